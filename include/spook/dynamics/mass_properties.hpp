@@ -1,0 +1,76 @@
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include <spook/core/error.hpp>
+#include <spook/core/math.hpp>
+
+namespace spook {
+
+/// Mass attributes of a rigid body, expressed in its center-of-mass frame:
+/// mass (kg), inertia tensor (kg·m²) and added-mass coefficients. Owned by
+/// its RigidBody (getMassProperties()); every setter validates first and
+/// leaves the values unchanged when it throws.
+template <Scalar S>
+class MassPropertiesT {
+ public:
+  using Vec3 = spook::Vec3<S>;
+  using Mat3 = spook::Mat3<S>;
+
+  /// Mass in kg; must be finite and > 0 (a body of infinite mass is STATIC).
+  [[nodiscard]] S getMass() const { return mass_; }
+  void setMass(S mass) {
+    if (!(std::isfinite(mass) && mass > S(0))) throw error("mass must be finite and > 0 kg", mass);
+    mass_ = mass;
+  }
+
+  /// Inertia tensor about the center of mass, in the CM frame (kg·m²).
+  [[nodiscard]] const Mat3& getInertiaTensor() const { return inertia_.matrix(); }
+  /// Sets the full tensor; it must be finite, symmetric and positive definite.
+  void setInertiaTensor(const Mat3& inertia) {
+    if (const char* why = SPDMat3<S>::defect(inertia))
+      throw error(std::string("inertia tensor: ") + why, SPDMat3<S>::flat(inertia));
+    inertia_ = SPDMat3<S>(inertia);
+  }
+  void setInertiaTensor(const SPDMat3<S>& inertia) { inertia_ = inertia; }
+  /// Sets a diagonal tensor (principal moments along the CM frame axes).
+  void setInertiaTensor(const Vec3& diagonal) {
+    if (!(diagonal.allFinite() && diagonal.minCoeff() > S(0)))
+      throw error("inertia diagonal must be finite and > 0 kg·m²", diagonal);
+    inertia_ = SPDMat3<S>(diagonal);
+  }
+
+  /// Added-mass coefficients c along the CM frame axes (dimensionless, ≥ 0):
+  /// the inertial mass along axis i is m(1 + cᵢ), e.g. water carried by a
+  /// hull. They resist applied and constraint forces; gravity still
+  /// accelerates the body at g (the gravitational mass is m).
+  [[nodiscard]] const Vec3& getMassCoefficients() const { return massCoefficients_; }
+  void setMassCoefficients(const Vec3& c) {
+    if (!(c.allFinite() && c.minCoeff() >= S(0))) throw error("mass coefficients must be finite and >= 0", c);
+    massCoefficients_ = c;
+  }
+
+  /// Inertial mass along the CM frame axes, m(1 + c) (kg).
+  [[nodiscard]] Vec3 getEffectiveMass() const { return mass_ * (Vec3::Ones() + massCoefficients_); }
+
+  explicit MassPropertiesT(const std::string* ownerName = nullptr) : ownerName_(ownerName) {}
+
+ private:
+  template <class T>
+  [[nodiscard]] Error error(const std::string& what, const T& value) const {
+    return detail::makeError("RigidBody", ownerName_ ? *ownerName_ : std::string(), what, value);
+  }
+
+  const std::string* ownerName_;
+  S mass_ = S(1);
+  SPDMat3<S> inertia_;
+  Vec3 massCoefficients_ = Vec3::Zero();
+};
+
+using MassProperties = MassPropertiesT<double>;
+namespace f32 {
+using MassProperties = MassPropertiesT<float>;
+}
+
+}  // namespace spook

@@ -1,0 +1,313 @@
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <spook/core/error.hpp>
+#include <spook/core/frame.hpp>
+#include <spook/core/math.hpp>
+#include <spook/core/observer_ptr.hpp>
+#include <spook/core/ref_ptr.hpp>
+#include <spook/core/referenced.hpp>
+#include <spook/dynamics/mass_properties.hpp>
+
+namespace spook {
+
+namespace detail {
+template <Scalar S>
+struct BodyIntegrator;
+struct SimulationMembership;
+}  // namespace detail
+
+/// A rigid body: a model frame (where the user places it), a center-of-mass
+/// frame fixed in it, mass properties, and velocities of the center of mass
+/// in world coordinates.
+template <Scalar S>
+class RigidBodyT : public Referenced {
+ public:
+  using Vec3 = spook::Vec3<S>;
+  using Quat = spook::Quat<S>;
+  using Mat3 = spook::Mat3<S>;
+  using Transform = spook::Transform<S>;
+  using Frame = FrameT<S>;
+
+  enum MotionControl {
+    DYNAMICS,   ///< moved by forces, gravity and (later) constraints
+    STATIC,     ///< never moves; infinite mass; velocities read as zero
+    KINEMATICS  ///< follows its set velocities (or moveTo), unaffected by forces
+  };
+
+  explicit RigidBodyT(std::string name = "") : name_(std::move(name)), massProperties_(&name_) {
+    cmFrame_->setParent(frame_.get());
+  }
+
+  [[nodiscard]] const std::string& getName() const { return name_; }
+  void setName(std::string name) { name_ = std::move(name); }
+
+  /// A disabled body is not stepped and feels no gravity.
+  [[nodiscard]] bool getEnable() const { return enable_; }
+  void setEnable(bool enable) { enable_ = enable; }
+
+  [[nodiscard]] MotionControl getMotionControl() const { return motionControl_; }
+  /// Switching to STATIC zeroes the velocities and cancels a moveTo.
+  void setMotionControl(MotionControl control) {
+    if (control != DYNAMICS && control != STATIC && control != KINEMATICS)
+      throw error("unknown motion control", static_cast<int>(control));
+    motionControl_ = control;
+    if (control != KINEMATICS) target_.reset();
+    if (control == STATIC) velocity_ = angularVelocity_ = Vec3::Zero();
+  }
+
+  /// Mass, inertia and added-mass coefficients. Changing them keeps the
+  /// center-of-mass offset.
+  [[nodiscard]] MassPropertiesT<S>* getMassProperties() { return &massProperties_; }
+  [[nodiscard]] const MassPropertiesT<S>* getMassProperties() const { return &massProperties_; }
+
+  // --- Pose -----------------------------------------------------------------
+
+  /// The model frame: its world transform is the body's transform.
+  [[nodiscard]] Frame* getFrame() const { return frame_.get(); }
+  /// The center-of-mass frame, a child of the model frame.
+  [[nodiscard]] Frame* getCmFrame() const { return cmFrame_.get(); }
+
+  /// Model frame origin, world coordinates (m).
+  [[nodiscard]] Vec3 getPosition() const { return frame_->getTranslate(); }
+  void setPosition(const Vec3& p_W) {
+    requireFinite(p_W, "position must be finite (m)");
+    frame_->setTranslate(p_W);
+  }
+  void setPosition(S x, S y, S z) { setPosition(Vec3(x, y, z)); }
+
+  /// Model frame orientation in world coordinates (normalized on set).
+  [[nodiscard]] Quat getRotation() const { return frame_->getRotate(); }
+  void setRotation(const Quat& q_W) {
+    requireRotation(q_W);
+    frame_->setRotate(q_W);
+  }
+
+  /// Model frame to world transform.
+  [[nodiscard]] Transform getTransform() const { return frame_->getMatrix(); }
+  void setTransform(const Transform& X_W) {
+    requireFinite(Vec3(X_W.translation()), "transform translation must be finite (m)");
+    requireRotation(Quat(X_W.linear()));
+    frame_->setMatrix(X_W);
+  }
+
+  /// Center of mass in world coordinates (m). Setting it moves the body.
+  [[nodiscard]] Vec3 getCmPosition() const { return cmFrame_->getTranslate(); }
+  void setCmPosition(const Vec3& p_W) {
+    requireFinite(p_W, "center of mass position must be finite (m)");
+    setPosition(p_W - getRotation() * getCmLocalTranslate());
+  }
+  /// Orientation of the center-of-mass frame in world coordinates.
+  [[nodiscard]] Quat getCmRotation() const { return cmFrame_->getRotate(); }
+  /// Center-of-mass frame to world transform.
+  [[nodiscard]] Transform getCmTransform() const { return cmFrame_->getMatrix(); }
+
+  /// Center-of-mass offset in the model frame (m); the model frame stays put.
+  [[nodiscard]] const Vec3& getCmLocalTranslate() const { return cmFrame_->getLocalTranslate(); }
+  void setCmLocalTranslate(const Vec3& offset) {
+    requireFinite(offset, "center of mass offset must be finite (m)");
+    cmFrame_->setLocalTranslate(offset);
+  }
+
+  // --- Velocities (world coordinates, of the center of mass) ----------------
+
+  /// Linear velocity of the center of mass (m/s). Zero for a static body.
+  [[nodiscard]] const Vec3& getVelocity() const { return velocity_; }
+  void setVelocity(const Vec3& v_W) {
+    requireFinite(v_W, "velocity must be finite (m/s)");
+    if (motionControl_ != STATIC) velocity_ = v_W;
+  }
+  void setVelocity(S x, S y, S z) { setVelocity(Vec3(x, y, z)); }
+
+  /// Angular velocity (rad/s). Zero for a static body.
+  [[nodiscard]] const Vec3& getAngularVelocity() const { return angularVelocity_; }
+  void setAngularVelocity(const Vec3& w_W) {
+    requireFinite(w_W, "angular velocity must be finite (rad/s)");
+    if (motionControl_ != STATIC) angularVelocity_ = w_W;
+  }
+  void setAngularVelocity(S x, S y, S z) { setAngularVelocity(Vec3(x, y, z)); }
+
+  /// Velocity of the body-fixed point currently at p_W (m/s).
+  [[nodiscard]] Vec3 getVelocityAtPoint(const Vec3& p_W) const {
+    return velocity_ + angularVelocity_.cross(p_W - getCmPosition());
+  }
+
+  // --- Forces (world coordinates; cleared after each step) -----------------
+
+  /// Adds a force through the center of mass (N).
+  void addForce(const Vec3& f_W) {
+    requireFinite(f_W, "force must be finite (N)");
+    force_ += f_W;
+  }
+  void addForce(S x, S y, S z) { addForce(Vec3(x, y, z)); }
+  /// Adds a force (N) acting at world point p_W (m): a force and a torque about the CM.
+  void addForceAtPosition(const Vec3& f_W, const Vec3& p_W) {
+    requireFinite(f_W, "force must be finite (N)");
+    requireFinite(p_W, "force position must be finite (m)");
+    const Vec3 torque = (p_W - getCmPosition()).cross(f_W);
+    requireFinite(torque, "torque of the force must be finite (N·m)");
+    force_ += f_W;
+    torque_ += torque;
+  }
+  /// Adds a torque about the center of mass (N·m).
+  void addTorque(const Vec3& t_W) {
+    requireFinite(t_W, "torque must be finite (N·m)");
+    torque_ += t_W;
+  }
+  void addTorque(S x, S y, S z) { addTorque(Vec3(x, y, z)); }
+  /// Sum of the forces added since the last step (N).
+  [[nodiscard]] const Vec3& getForce() const { return force_; }
+  /// Sum of the torques about the CM added since the last step (N·m).
+  [[nodiscard]] const Vec3& getTorque() const { return torque_; }
+
+  // --- Velocity damping ------------------------------------------------------
+
+  /// Linear velocity damping d (1/s) along the CM frame axes:
+  /// dv/dt = −d v, stepped implicitly, v ← v / (1 + h d) per step.
+  [[nodiscard]] const Vec3& getLinearVelocityDamping() const { return linearDamping_; }
+  void setLinearVelocityDamping(const Vec3& d) { linearDamping_ = checkedDamping(d, "linear"); }
+  void setLinearVelocityDamping(S d) { setLinearVelocityDamping(Vec3::Constant(d)); }
+  /// Angular velocity damping d (1/s) about the CM frame axes, same law.
+  [[nodiscard]] const Vec3& getAngularVelocityDamping() const { return angularDamping_; }
+  void setAngularVelocityDamping(const Vec3& d) { angularDamping_ = checkedDamping(d, "angular"); }
+  void setAngularVelocityDamping(S d) { setAngularVelocityDamping(Vec3::Constant(d)); }
+
+  // --- Derived quantities ----------------------------------------------------
+
+  /// Inertia tensor about the CM in world coordinates (kg·m²).
+  [[nodiscard]] Mat3 getInertiaWorld() const {
+    const Mat3 R = getCmRotation().toRotationMatrix();
+    return R * massProperties_.getInertiaTensor() * R.transpose();
+  }
+  /// Linear momentum with the inertial (added) mass, world (kg·m/s).
+  [[nodiscard]] Vec3 getLinearMomentum() const {
+    const Mat3 R = getCmRotation().toRotationMatrix();
+    return R * massProperties_.getEffectiveMass().cwiseProduct(R.transpose() * velocity_);
+  }
+  /// Angular momentum about the CM, world (kg·m²/s).
+  [[nodiscard]] Vec3 getAngularMomentum() const { return getInertiaWorld() * angularVelocity_; }
+  /// Kinetic energy ½vᵀMv + ½ωᵀIω with the inertial mass (J).
+  [[nodiscard]] S getKineticEnergy() const {
+    return S(0.5) * (velocity_.dot(getLinearMomentum()) + angularVelocity_.dot(getAngularMomentum()));
+  }
+
+  // --- Kinematic control -----------------------------------------------------
+
+  /// Sets, on a KINEMATICS body, the constant velocities that bring the
+  /// model frame to `target` (world) after `duration` seconds, then stops it
+  /// there. The velocities are re-aimed every step; when duration is not a
+  /// multiple of the time step the body arrives at the first step boundary
+  /// after it.
+  void moveTo(const Transform& target, S duration) {
+    if (motionControl_ != KINEMATICS) throw error("moveTo needs motion control KINEMATICS", static_cast<int>(motionControl_));
+    if (!(std::isfinite(duration) && duration > S(0))) throw error("moveTo duration must be finite and > 0 s", duration);
+    requireFinite(Vec3(target.translation()), "moveTo target translation must be finite (m)");
+    requireRotation(Quat(target.linear()));
+    target_ = KinematicTarget{target, duration};
+    aimAtTarget(duration);
+  }
+  /// True while a moveTo is under way.
+  [[nodiscard]] bool isMovingToTarget() const { return target_.has_value(); }
+
+  // --- Attachments -----------------------------------------------------------
+
+  /// Adds a named frame fixed in the body; its local transform is relative to
+  /// the model frame. Throws if the name is taken or the frame already has a
+  /// parent.
+  void addAttachment(Frame* frame, const std::string& name) {
+    if (!frame) throw error("attachment frame must not be null", name);
+    if (getAttachment(name)) throw error("attachment name already used", name);
+    if (frame->getParent()) throw error("attachment frame already has a parent", name);
+    attachments_.emplace_back(name, ref_ptr<Frame>(frame));
+    frame->setParent(frame_.get());
+  }
+  /// The attachment called `name`, or nullptr.
+  [[nodiscard]] Frame* getAttachment(const std::string& name) const {
+    for (const auto& [key, frame] : attachments_)
+      if (key == name) return frame.get();
+    return nullptr;
+  }
+  /// Removes an attachment; returns false when there is none by that name.
+  bool removeAttachment(const std::string& name) {
+    for (auto it = attachments_.begin(); it != attachments_.end(); ++it)
+      if (it->first == name) {
+        it->second->setParent(nullptr);
+        attachments_.erase(it);
+        return true;
+      }
+    return false;
+  }
+
+ protected:
+  ~RigidBodyT() override = default;
+
+ private:
+  friend struct detail::BodyIntegrator<S>;
+  friend struct detail::SimulationMembership;
+
+  struct KinematicTarget {
+    Transform pose;
+    S remaining;  // s
+  };
+
+  // Velocities that reach the target in `time`.
+  void aimAtTarget(S time) {
+    const Vec3 cmTarget = target_->pose * getCmLocalTranslate();
+    velocity_ = (cmTarget - getCmPosition()) / time;
+    const Quat qTarget(target_->pose.linear());
+    angularVelocity_ = logRotation<S>(qTarget * getRotation().conjugate()) / time;
+  }
+
+  template <class T>
+  [[nodiscard]] Error error(const std::string& what, const T& value) const {
+    return detail::makeError("RigidBody", name_, what, value);
+  }
+  void requireFinite(const Vec3& v, const char* what) const {
+    if (!v.allFinite()) throw error(what, v);
+  }
+  void requireRotation(const Quat& q) const {
+    if (!q.coeffs().allFinite() || !(q.norm() > S(0)))
+      throw error("rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
+  }
+  Vec3 checkedDamping(const Vec3& d, const char* kind) const {
+    if (!(d.allFinite() && d.minCoeff() >= S(0)))
+      throw error(std::string(kind) + " velocity damping must be finite and >= 0 (1/s)", d);
+    return d;
+  }
+
+  std::string name_;
+  bool enable_ = true;
+  MotionControl motionControl_ = DYNAMICS;
+  ref_ptr<Frame> frame_ = new Frame();
+  ref_ptr<Frame> cmFrame_ = new Frame();
+  MassPropertiesT<S> massProperties_;
+  Vec3 velocity_ = Vec3::Zero();
+  Vec3 angularVelocity_ = Vec3::Zero();
+  Vec3 force_ = Vec3::Zero();
+  Vec3 torque_ = Vec3::Zero();
+  Vec3 linearDamping_ = Vec3::Zero();
+  Vec3 angularDamping_ = Vec3::Zero();
+  std::optional<KinematicTarget> target_;
+  std::vector<std::pair<std::string, ref_ptr<Frame>>> attachments_;
+
+  // Membership, maintained by the simulation.
+  const void* simulation_ = nullptr;
+  std::size_t simulationIndex_ = 0;
+};
+
+using RigidBody = RigidBodyT<double>;
+using RigidBodyRef = ref_ptr<RigidBody>;
+using RigidBodyObserver = observer_ptr<RigidBody>;
+namespace f32 {
+using RigidBody = RigidBodyT<float>;
+using RigidBodyRef = ref_ptr<RigidBody>;
+using RigidBodyObserver = observer_ptr<RigidBody>;
+}  // namespace f32
+
+}  // namespace spook

@@ -1,0 +1,268 @@
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+#include <spook/core/error.hpp>
+#include <spook/core/ref_ptr.hpp>
+#include <spook/core/referenced.hpp>
+#include <spook/dynamics/gravity_field.hpp>
+#include <spook/dynamics/rigid_body.hpp>
+#include <spook/sim/collection.hpp>
+#include <spook/sim/membership.hpp>
+#include <spook/sim/statistics.hpp>
+#include <spook/sim/step_event_listener.hpp>
+#include <spook/solver/integrator.hpp>
+
+namespace spook {
+
+/// Owns a scene and steps it. Time in seconds; default step 1/60 s; default
+/// gravity uniform (0, 0, −9.80665) m/s². An object belongs to at most one
+/// simulation; a call that throws leaves the simulation unchanged.
+template <Scalar S>
+class SimulationT : public Referenced, public detail::ContentSink<S> {
+ public:
+  using Vec3 = spook::Vec3<S>;
+  using Body = RigidBodyT<S>;
+  using Listener = StepEventListenerT<S>;
+  using Collection = CollectionT<S>;
+
+  SimulationT() = default;
+
+  // --- Time ------------------------------------------------------------------
+
+  /// Step length h (s), finite and > 0.
+  [[nodiscard]] S getTimeStep() const { return timeStep_; }
+  void setTimeStep(S h) {
+    if (!(std::isfinite(h) && h > S(0))) throw error("time step must be finite and > 0 s", h);
+    timeStep_ = h;
+  }
+  /// Simulated time (s).
+  [[nodiscard]] S getTimeStamp() const { return time_; }
+
+  /// Takes one step:
+  /// preCollide listeners → (collision detection) → pre listeners →
+  /// (rows, islands, solve) → integrate → post listeners → last listeners → t += h.
+  void stepForward() {
+    if (stepping_) throw error("stepForward called from inside a step", time_);
+    stepping_ = true;
+    struct ResetOnExit {
+      bool& flag;
+      ~ResetOnExit() { flag = false; }
+    } reset{stepping_};
+    const S h = timeStep_;
+    notify(Listener::PRE_COLLIDE);
+    notify(Listener::PRE_STEP);
+    integrate(h);
+    notify(Listener::POST_STEP);
+    notify(Listener::LAST_STEP);
+    time_ += h;
+    ++statistics_.numSteps;
+  }
+
+  /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps.
+  void stepTo(S t) {
+    if (!std::isfinite(t)) throw error("stepTo time must be finite", t);
+    if (t < time_) throw error("stepTo time is in the past (now " + std::to_string(time_) + " s)", t);
+    const auto steps = static_cast<std::int64_t>(std::llround((t - time_) / timeStep_));
+    for (std::int64_t i = 0; i < steps; ++i) stepForward();
+  }
+
+  // --- Gravity ---------------------------------------------------------------
+
+  [[nodiscard]] GravityFieldT<S>* getGravityField() const { return gravity_.get(); }
+  void setGravityField(GravityFieldT<S>* field) {
+    if (!field) throw error("gravity field must not be null", "nullptr");
+    gravity_ = field;
+  }
+  /// Replaces the field by a uniform one (m/s²).
+  void setUniformGravity(const Vec3& g) { setGravityField(new UniformGravityFieldT<S>(g)); }
+
+  // --- Content ---------------------------------------------------------------
+
+  void add(ref_ptr<Body> body) override {
+    checkAddable(body.get(), "RigidBody");
+    Membership::indexOf(*body) = bodies_.size();
+    Membership::simulationOf(*body) = this;
+    bodies_.push_back(std::move(body));
+  }
+  void remove(Body* body) override {
+    checkRemovable(body, "RigidBody");
+    const std::size_t index = Membership::indexOf(*body);
+    ref_ptr<Body> keep = body;
+    std::swap(bodies_[index], bodies_.back());
+    Membership::indexOf(*bodies_[index]) = index;
+    bodies_.pop_back();
+    Membership::simulationOf(*body) = nullptr;
+  }
+
+  void add(ref_ptr<Listener> listener) override {
+    checkAddable(listener.get(), "StepEventListener");
+    Membership::simulationOf(*listener) = this;
+    Membership::orderOf(*listener) = nextListenerOrder_++;
+    listeners_.push_back(std::move(listener));
+  }
+  void remove(Listener* listener) override {
+    checkRemovable(listener, "StepEventListener");
+    listeners_.erase(std::find_if(listeners_.begin(), listeners_.end(), [&](const auto& l) { return l.get() == listener; }));
+    Membership::simulationOf(*listener) = nullptr;
+  }
+
+  /// Adds a collection and everything in it, nested collections included.
+  void add(ref_ptr<Collection> collection) {
+    if (!collection) throw error("cannot add a null Collection", "nullptr");
+    addNested(*collection);
+    collections_.push_back(std::move(collection));
+  }
+  /// Removes a collection added with add(), and its content.
+  void remove(Collection* collection) {
+    auto it = std::find_if(collections_.begin(), collections_.end(), [&](const auto& c) { return c.get() == collection; });
+    if (it == collections_.end())
+      throw error("Collection was never added", collection ? collection->getName() : std::string("nullptr"));
+    ref_ptr<Collection> keep = collection;
+    collections_.erase(it);
+    removeNested(*collection);
+  }
+
+  [[nodiscard]] const std::vector<ref_ptr<Body>>& getRigidBodies() const { return bodies_; }
+  [[nodiscard]] const std::vector<ref_ptr<Listener>>& getEventListeners() const { return listeners_; }
+  [[nodiscard]] const std::vector<ref_ptr<Collection>>& getCollections() const { return collections_; }
+  /// The first body with this name, or nullptr.
+  [[nodiscard]] Body* getRigidBody(const std::string& name) const {
+    for (const auto& b : bodies_)
+      if (b->getName() == name) return b.get();
+    return nullptr;
+  }
+  [[nodiscard]] bool contains(const Body* body) const override {
+    return body && Membership::simulationOf(*body) == static_cast<const void*>(this);
+  }
+  [[nodiscard]] bool contains(const Listener* listener) const override { return listener && listener->getSimulation() == this; }
+
+  [[nodiscard]] const SimulationStatisticsT<S>& getStatistics() const { return statistics_; }
+
+ protected:
+  ~SimulationT() override {
+    for (auto& b : bodies_) Membership::simulationOf(*b) = nullptr;
+    for (auto& l : listeners_) Membership::simulationOf(*l) = nullptr;
+    for (auto& c : collections_) setCollectionsSink(*c, nullptr);
+  }
+
+ private:
+  using Membership = detail::SimulationMembership;
+
+  void integrate(S h) {
+    statistics_.frozenBodies.clear();
+    for (const auto& body : bodies_) {
+      if (!detail::BodyIntegrator<S>::step(*body, *gravity_, h)) statistics_.frozenBodies.emplace_back(body.get());
+      detail::BodyIntegrator<S>::clearForces(*body);
+    }
+  }
+
+  // Calls the listeners selected by `stage`, highest priority first, over a
+  // snapshot, so that callbacks may add and remove objects freely.
+  void notify(typename Listener::ActivationMask stage) {
+    if (listeners_.empty()) return;
+    std::vector<ref_ptr<Listener>> snapshot;
+    for (const auto& l : listeners_)
+      if (l->getMask() & stage) snapshot.push_back(l);
+    std::stable_sort(snapshot.begin(), snapshot.end(), [](const auto& a, const auto& b) {
+      return a->getPriority() > b->getPriority();
+    });
+    for (const auto& l : snapshot) {
+      if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage)) continue;
+      switch (stage) {
+        case Listener::PRE_COLLIDE: l->preCollide(time_); break;
+        case Listener::PRE_STEP: l->pre(time_); break;
+        case Listener::POST_STEP: l->post(time_); break;
+        case Listener::LAST_STEP: l->last(time_); break;
+        default: break;
+      }
+    }
+  }
+
+  // Collections: validate the whole tree, then register it, so that a failed
+  // add changes nothing.
+  void addNested(Collection& collection) override {
+    std::unordered_set<const void*> seen;
+    validateTree(collection, seen);
+    registerTree(collection);
+  }
+  void removeNested(Collection& collection) override {
+    ref_ptr<Collection> keep = &collection;
+    for (const auto& b : collection.getRigidBodies())
+      if (contains(b.get())) remove(b.get());
+    for (const auto& l : collection.getEventListeners())
+      if (l->getSimulation() == this) remove(l.get());
+    Membership::simulationOf(collection) = nullptr;
+    for (const auto& c : collection.getCollections()) removeNested(*c);
+  }
+  void validateTree(const Collection& collection, std::unordered_set<const void*>& seen) const {
+    if (Membership::simulationOf(collection))
+      throw error("Collection is already in a simulation", collection.getName());
+    if (!seen.insert(&collection).second) throw error("Collection appears twice", collection.getName());
+    for (const auto& b : collection.getRigidBodies()) {
+      checkAddable(b.get(), "RigidBody");
+      if (!seen.insert(b.get()).second) throw error("RigidBody appears twice in the collection", b->getName());
+    }
+    for (const auto& l : collection.getEventListeners()) {
+      checkAddable(l.get(), "StepEventListener");
+      if (!seen.insert(l.get()).second) throw error("StepEventListener appears twice in the collection", collection.getName());
+    }
+    for (const auto& c : collection.getCollections()) validateTree(*c, seen);
+  }
+  void registerTree(Collection& collection) {
+    for (const auto& b : collection.getRigidBodies()) add(b);
+    for (const auto& l : collection.getEventListeners()) add(l);
+    Membership::simulationOf(collection) = this;
+    for (const auto& c : collection.getCollections()) registerTree(*c);
+  }
+  void setCollectionsSink(Collection& collection, detail::ContentSink<S>* sink) {
+    Membership::simulationOf(collection) = sink;
+    for (const auto& c : collection.getCollections()) setCollectionsSink(*c, sink);
+  }
+
+  template <class T>
+  void checkAddable(T* object, const char* kind) const {
+    if (!object) throw error(std::string("cannot add a null ") + kind, "nullptr");
+    const auto* owner = Membership::simulationOf(*object);
+    if (owner == static_cast<const void*>(this)) throw error(std::string(kind) + " already added to this simulation", nameOf(*object));
+    if (owner) throw error(std::string(kind) + " already belongs to another simulation", nameOf(*object));
+  }
+  template <class T>
+  void checkRemovable(T* object, const char* kind) const {
+    if (!object || Membership::simulationOf(*object) != static_cast<const void*>(this))
+      throw error(std::string(kind) + " was never added to this simulation", object ? nameOf(*object) : std::string("nullptr"));
+  }
+  template <class T>
+  static std::string nameOf(const T& object) {
+    if constexpr (requires { object.getName(); }) return object.getName();
+    else return "(unnamed)";
+  }
+  template <class T>
+  [[nodiscard]] Error error(const std::string& what, const T& value) const {
+    return detail::makeError("Simulation", "", what, value);
+  }
+
+  S timeStep_ = S(1) / S(60);
+  S time_ = S(0);
+  bool stepping_ = false;
+  ref_ptr<GravityFieldT<S>> gravity_ = new UniformGravityFieldT<S>();
+  std::vector<ref_ptr<Body>> bodies_;
+  std::vector<ref_ptr<Listener>> listeners_;
+  std::vector<ref_ptr<Collection>> collections_;
+  std::uint64_t nextListenerOrder_ = 0;
+  SimulationStatisticsT<S> statistics_;
+};
+
+using Simulation = SimulationT<double>;
+using SimulationRef = ref_ptr<Simulation>;
+namespace f32 {
+using Simulation = SimulationT<float>;
+using SimulationRef = ref_ptr<Simulation>;
+}  // namespace f32
+
+}  // namespace spook

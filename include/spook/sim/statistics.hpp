@@ -1,0 +1,21 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <spook/core/observer_ptr.hpp>
+#include <spook/dynamics/rigid_body.hpp>
+
+namespace spook {
+
+/// What the last step did, readable after stepForward().
+template <Scalar S>
+struct SimulationStatisticsT {
+  /// Steps taken since the simulation was created.
+  std::uint64_t numSteps = 0;
+  /// Bodies whose state would have become non-finite in the last step; they
+  /// were frozen (velocities zeroed, pose kept) instead.
+  std::vector<observer_ptr<RigidBodyT<S>>> frozenBodies;
+};
+
+}  // namespace spook

@@ -1,0 +1,71 @@
+#pragma once
+
+#include <spook/core/math.hpp>
+#include <spook/core/scalar.hpp>
+
+namespace spook::detail {
+
+/// Result of advancing a torque-free rotation over one step.
+template <Scalar S>
+struct FreeRotation {
+  Quat<S> increment;  ///< body-frame rotation over the step: R⁺ = R · increment
+  Vec3<S> momentum;   ///< body-frame angular momentum at the end, Π⁺ (kg·m²/s)
+  bool converged;
+};
+
+/// One torque-free step of Euler's equations, Π̇ = Π × I⁻¹Π, in the body
+/// frame: Π⁺ = exp(−h ω̂ₘ) Π with the mean angular velocity
+/// ωₘ = I⁻¹(Π + Π⁺)/2, and the orientation advanced by R⁺ = R exp(h ω̂ₘ).
+/// World momentum R⁺Π⁺ = RΠ exactly (Π⁺ is Π rotated back by the same
+/// rotation), and the kinetic energy is kept to solver tolerance:
+/// E⁺ − E = (Π⁺ − Π)·ωₘ = 0 since a rotation about ωₘ leaves the component
+/// of Π along ωₘ unchanged. Unlike an explicit −ω×Iω torque (energy grows)
+/// or implicit Euler (energy decays), a free body keeps spinning as it
+/// should, and flips about its intermediate axis (Dzhanibekov). The implicit
+/// equation is solved by Newton steps with the Jacobian I − (h/2)[Π]ₓ I⁻¹.
+template <Scalar S>
+FreeRotation<S> freeRotationStep(const Mat3<S>& inertiaInverse, const Vec3<S>& momentum, S h) {
+  using Vec3 = spook::Vec3<S>;
+  const S scale = momentum.norm();
+  if (!(scale > S(0))) return {Quat<S>::Identity(), momentum, true};
+  const S tolerance = ScalarTraits<S>::solveTolerance() * scale;
+  const Mat3<S> jacobian = Mat3<S>::Identity() - S(0.5) * h * skew<S>(momentum) * inertiaInverse;
+  const auto jacobianLu = jacobian.partialPivLu();
+
+  Vec3 next = momentum;
+  Vec3 meanVelocity = inertiaInverse * momentum;
+  bool converged = false;
+  constexpr int kMaxIterations = 30;
+  for (int i = 0; i < kMaxIterations && !converged; ++i) {
+    meanVelocity = S(0.5) * inertiaInverse * (momentum + next);
+    const Vec3 residual = next - expRotation<S>(-h * meanVelocity) * momentum;
+    const Vec3 correction = jacobianLu.solve(residual);
+    next -= correction;
+    converged = correction.norm() <= tolerance;
+  }
+  meanVelocity = S(0.5) * inertiaInverse * (momentum + next);
+  const Quat<S> increment = expRotation<S>(h * meanVelocity);
+  // Π⁺ from the final rotation, so that the world momentum is exact.
+  return {increment, increment.conjugate() * momentum, converged};
+}
+
+/// freeRotationStep, split into 2, 4, … 64 substeps when the Newton solve
+/// does not converge in one (very fast spin relative to the step).
+template <Scalar S>
+FreeRotation<S> rotateFreely(const Mat3<S>& inertiaInverse, const Vec3<S>& momentum, S h) {
+  FreeRotation<S> result{};
+  for (int substeps = 1; substeps <= 64; substeps *= 2) {
+    result = {Quat<S>::Identity(), momentum, true};
+    const S dt = h / S(substeps);
+    for (int k = 0; k < substeps; ++k) {
+      const FreeRotation<S> part = freeRotationStep<S>(inertiaInverse, result.momentum, dt);
+      result.increment = (result.increment * part.increment).normalized();
+      result.momentum = part.momentum;
+      result.converged = result.converged && part.converged;
+    }
+    if (result.converged) break;
+  }
+  return result;
+}
+
+}  // namespace spook::detail

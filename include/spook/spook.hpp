@@ -1,0 +1,20 @@
+#pragma once
+
+// spook: header-only SPOOK multibody dynamics. Include this umbrella header,
+// or single_include/spook/spook.hpp, its generated amalgamation.
+
+#include <spook/core/error.hpp>
+#include <spook/core/frame.hpp>
+#include <spook/core/math.hpp>
+#include <spook/core/observer_ptr.hpp>
+#include <spook/core/ref_ptr.hpp>
+#include <spook/core/referenced.hpp>
+#include <spook/core/scalar.hpp>
+#include <spook/dynamics/gravity_field.hpp>
+#include <spook/dynamics/mass_properties.hpp>
+#include <spook/dynamics/rigid_body.hpp>
+#include <spook/sim/assembly.hpp>
+#include <spook/sim/collection.hpp>
+#include <spook/sim/simulation.hpp>
+#include <spook/sim/statistics.hpp>
+#include <spook/sim/step_event_listener.hpp>
