@@ -117,14 +117,15 @@ template <class S>
 }
 
 /// Euler angles of a rotation matrix, with y in [−π/2, π/2]. At y = ±π/2
-/// (gimbal lock) only x ∓ z is defined; z is set to 0.
+/// (gimbal lock) only x ∓ z is defined; z is set to 0. y comes from atan2,
+/// which stays accurate near ±π/2 where asin would not.
 template <class S>
 [[nodiscard]] EulerAngles<S> toEulerAngles(const Mat3<S>& R) {
-  using std::asin, std::atan2;
+  using std::atan2;
   EulerAngles<S> e;
-  const S sy = std::clamp(-R(2, 0), S(-1), S(1));
-  e.y = asin(sy);
-  if (std::abs(sy) < S(1) - S(16) * ScalarTraits<S>::epsilon()) {
+  const S cosY = std::hypot(R(0, 0), R(1, 0));
+  e.y = atan2(-R(2, 0), cosY);
+  if (cosY > S(16) * ScalarTraits<S>::epsilon()) {
     e.x = atan2(R(2, 1), R(2, 2));
     e.z = atan2(R(1, 0), R(0, 0));
   } else {
@@ -138,12 +139,6 @@ template <class S>
 template <class S>
 [[nodiscard]] EulerAngles<S> toEulerAngles(const Quat<S>& q) {
   return toEulerAngles<S>(q.normalized().toRotationMatrix());
-}
-
-/// Quaternion of a rotation matrix.
-template <class S>
-[[nodiscard]] Quat<S> toQuat(const Mat3<S>& R) {
-  return Quat<S>(R).normalized();
 }
 
 /// Transform from translation and rotation.

@@ -27,19 +27,24 @@ class MassPropertiesT {
 
   /// Inertia tensor about the center of mass, in the CM frame (kg·m²).
   [[nodiscard]] const Mat3& getInertiaTensor() const { return inertia_.matrix(); }
-  /// Sets the full tensor; it must be finite, symmetric and positive definite.
-  void setInertiaTensor(const Mat3& inertia) {
-    if (const char* why = SPDMat3<S>::defect(inertia))
-      throw error(std::string("inertia tensor: ") + why, SPDMat3<S>::flat(inertia));
-    inertia_ = SPDMat3<S>(inertia);
+  /// Sets the tensor from a full 3×3 matrix, which must be finite, symmetric
+  /// and positive definite, or from a 3-vector of principal moments along
+  /// the CM frame axes, which must be finite and > 0.
+  template <class Derived>
+  void setInertiaTensor(const Eigen::MatrixBase<Derived>& value) {
+    if constexpr (Derived::ColsAtCompileTime == 1) {
+      const Vec3 diagonal = value;
+      if (!(diagonal.allFinite() && diagonal.minCoeff() > S(0)))
+        throw error("inertia diagonal must be finite and > 0 kg·m²", diagonal);
+      inertia_ = SPDMat3<S>(diagonal);
+    } else {
+      const Mat3 inertia = value;
+      if (const char* why = SPDMat3<S>::defect(inertia))
+        throw error(std::string("inertia tensor: ") + why, SPDMat3<S>::flat(inertia));
+      inertia_ = SPDMat3<S>(inertia);
+    }
   }
   void setInertiaTensor(const SPDMat3<S>& inertia) { inertia_ = inertia; }
-  /// Sets a diagonal tensor (principal moments along the CM frame axes).
-  void setInertiaTensor(const Vec3& diagonal) {
-    if (!(diagonal.allFinite() && diagonal.minCoeff() > S(0)))
-      throw error("inertia diagonal must be finite and > 0 kg·m²", diagonal);
-    inertia_ = SPDMat3<S>(diagonal);
-  }
 
   /// Added-mass coefficients c along the CM frame axes (dimensionless, ≥ 0):
   /// the inertial mass along axis i is m(1 + cᵢ), e.g. water carried by a

@@ -201,9 +201,8 @@ class RigidBodyT : public Referenced {
 
   /// Sets, on a KINEMATICS body, the constant velocities that bring the
   /// model frame to `target` (world) after `duration` seconds, then stops it
-  /// there. The velocities are re-aimed every step; when duration is not a
-  /// multiple of the time step the body arrives at the first step boundary
-  /// after it.
+  /// there. The velocities are re-aimed every step; the body lands exactly on
+  /// the target at the step boundary nearest to `duration` (at least one step).
   void moveTo(const Transform& target, S duration) {
     if (motionControl_ != KINEMATICS) throw error("moveTo needs motion control KINEMATICS", static_cast<int>(motionControl_));
     if (!(std::isfinite(duration) && duration > S(0))) throw error("moveTo duration must be finite and > 0 s", duration);

@@ -62,11 +62,13 @@ struct BodyIntegrator {
   }
 
   // Kinematic bodies move with their velocities: x⁺ = x + h v, q⁺ = exp(h ω) q.
-  // A moveTo re-aims the velocities at the target each step and lands on it.
+  // A moveTo re-aims the velocities at the target each step and lands on it
+  // at the step boundary nearest to its end time (the half-step margin makes
+  // that decision immune to round-off in the remaining time).
   static bool stepKinematic(Body& body, S h) {
     bool arriving = false;
     if (body.target_) {
-      arriving = body.target_->remaining <= h * (S(1) + S(1e-6));
+      arriving = body.target_->remaining < S(1.5) * h;
       body.aimAtTarget(arriving ? h : body.target_->remaining);
       body.target_->remaining -= h;
     }
