@@ -66,8 +66,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps.
   void stepTo(S t) {
-    if (!std::isfinite(t)) throw error("stepTo time must be finite", t);
-    if (t < time_) throw error("stepTo time is in the past (now " + std::to_string(time_) + " s)", t);
+    if (!std::isfinite(t)) throw error("stepTo time must be finite (s)", t);
+    if (t < time_) throw error("stepTo time must not be in the past (now " + std::to_string(time_) + " s)", t);
     const auto steps = static_cast<std::int64_t>(std::llround((t - time_) / timeStep_));
     for (std::int64_t i = 0; i < steps; ++i) stepForward();
   }
@@ -229,18 +229,19 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void checkAddable(T* object, const char* kind) const {
     if (!object) throw error(std::string("cannot add a null ") + kind, "nullptr");
     const auto* owner = Membership::simulationOf(*object);
-    if (owner == static_cast<const void*>(this)) throw error(std::string(kind) + " already added to this simulation", nameOf(*object));
-    if (owner) throw error(std::string(kind) + " already belongs to another simulation", nameOf(*object));
+    if (owner == static_cast<const void*>(this)) throw detail::makeError(kind, nameOf(*object), "already added to this simulation");
+    if (owner) throw detail::makeError(kind, nameOf(*object), "already belongs to another simulation");
   }
   template <class T>
   void checkRemovable(T* object, const char* kind) const {
-    if (!object || Membership::simulationOf(*object) != static_cast<const void*>(this))
-      throw error(std::string(kind) + " was never added to this simulation", object ? nameOf(*object) : std::string("nullptr"));
+    if (!object) throw error(std::string("cannot remove a null ") + kind, "nullptr");
+    if (Membership::simulationOf(*object) != static_cast<const void*>(this))
+      throw detail::makeError(kind, nameOf(*object), "was never added to this simulation");
   }
   template <class T>
   static std::string nameOf(const T& object) {
     if constexpr (requires { object.getName(); }) return object.getName();
-    else return "(unnamed)";
+    else return "";
   }
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
