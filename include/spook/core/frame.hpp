@@ -95,8 +95,9 @@ class FrameT : public Referenced {
       throw detail::makeError("Frame", "", "rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
   }
   static void checkMatrix(const Transform& X) {
-    if (!X.matrix().allFinite())
-      throw detail::makeError("Frame", "", "transform must be finite", X.translation());
+    if (!X.matrix().allFinite() || !isRotation<S>(X.linear()))
+      throw detail::makeError("Frame", "", "transform must be finite with a rotation as linear part",
+                              SPDMat3<S>::flat(X.linear()));
   }
 
   ref_ptr<FrameT> parent_;

@@ -58,8 +58,11 @@ class SPDMat3 {
     if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= ScalarTraits<S>::symmetryTolerance() * scale))
       return "matrix must be symmetric";
     const Mat3<S> sym = S(0.5) * (m + m.transpose());
-    const S smallest = Eigen::SelfAdjointEigenSolver<Mat3<S>>(sym, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
-    if (!(smallest > S(0))) return "matrix must be positive definite";
+    // Relative to the largest eigenvalue, so that round-off cannot pass a
+    // singular matrix off as positive definite.
+    const Vec3<S> eigenvalues = Eigen::SelfAdjointEigenSolver<Mat3<S>>(sym, Eigen::EigenvaluesOnly).eigenvalues();
+    if (!(eigenvalues.minCoeff() > S(16) * ScalarTraits<S>::epsilon() * eigenvalues.maxCoeff()))
+      return "matrix must be positive definite";
     return nullptr;
   }
 
@@ -78,6 +81,14 @@ class SPDMat3 {
  private:
   Mat3<S> m_;
 };
+
+/// True when R is finite, orthonormal (to ScalarTraits::rotationTolerance)
+/// and right-handed: the linear part of a rigid transform.
+template <class S>
+[[nodiscard]] bool isRotation(const Mat3<S>& R) {
+  return R.allFinite() && (R.transpose() * R - Mat3<S>::Identity()).norm() <= ScalarTraits<S>::rotationTolerance() &&
+         R.determinant() > S(0);
+}
 
 /// True when every component is finite.
 template <class Derived>

@@ -1,8 +1,10 @@
 #pragma once
 
+#include <concepts>
 #include <cstddef>
 #include <utility>
 
+#include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
 
 namespace spook {
@@ -17,6 +19,10 @@ class observer_ptr {
   observer_ptr(T* object) : ptr_(object), hub_(object ? object->observerHub() : nullptr) {
     if (hub_) hub_->reference();
   }
+  /// From a strong pointer, as in `RigidBodyObserver o = bodyRef;`.
+  template <class Y>
+    requires std::convertible_to<Y*, T*>
+  observer_ptr(const ref_ptr<Y>& object) : observer_ptr(static_cast<T*>(object.get())) {}
   observer_ptr(const observer_ptr& other) noexcept : ptr_(other.ptr_), hub_(other.hub_) {
     if (hub_) hub_->reference();
   }

@@ -92,8 +92,7 @@ class RigidBodyT : public Referenced {
   /// Model frame to world transform.
   [[nodiscard]] Transform getTransform() const { return frame_->getMatrix(); }
   void setTransform(const Transform& X_W) {
-    requireFinite(Vec3(X_W.translation()), "transform translation must be finite (m)");
-    requireRotation(Quat(X_W.linear()));
+    requireTransform(X_W, "transform");
     frame_->setMatrix(X_W);
   }
 
@@ -206,8 +205,7 @@ class RigidBodyT : public Referenced {
   void moveTo(const Transform& target, S duration) {
     if (motionControl_ != KINEMATICS) throw error("moveTo needs motion control KINEMATICS", static_cast<int>(motionControl_));
     if (!(std::isfinite(duration) && duration > S(0))) throw error("moveTo duration must be finite and > 0 s", duration);
-    requireFinite(Vec3(target.translation()), "moveTo target translation must be finite (m)");
-    requireRotation(Quat(target.linear()));
+    requireTransform(target, "moveTo target");
     target_ = KinematicTarget{target, duration};
     aimAtTarget(duration);
   }
@@ -219,12 +217,12 @@ class RigidBodyT : public Referenced {
   /// Adds a named frame fixed in the body; its local transform is relative to
   /// the model frame. Throws if the name is taken or the frame already has a
   /// parent.
-  void addAttachment(Frame* frame, const std::string& name) {
+  void addAttachment(ref_ptr<Frame> frame, const std::string& name) {
     if (!frame) throw error("attachment frame must not be null", name);
     if (getAttachment(name)) throw error("attachment name already used", name);
     if (frame->getParent()) throw error("attachment frame already has a parent", name);
-    attachments_.emplace_back(name, ref_ptr<Frame>(frame));
     frame->setParent(frame_.get());
+    attachments_.emplace_back(name, std::move(frame));
   }
   /// The attachment called `name`, or nullptr.
   [[nodiscard]] Frame* getAttachment(const std::string& name) const {
@@ -273,6 +271,11 @@ class RigidBodyT : public Referenced {
   void requireRotation(const Quat& q) const {
     if (!q.coeffs().allFinite() || !(q.norm() > S(0)))
       throw error("rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
+  }
+  void requireTransform(const Transform& X, const std::string& what) const {
+    requireFinite(Vec3(X.translation()), (what + " translation must be finite (m)").c_str());
+    if (!isRotation<S>(X.linear()))
+      throw error(what + " rotation must be orthonormal and right-handed", SPDMat3<S>::flat(X.linear()));
   }
   Vec3 checkedDamping(const Vec3& d, const char* kind) const {
     if (!(d.allFinite() && d.minCoeff() >= S(0)))

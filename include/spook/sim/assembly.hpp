@@ -1,5 +1,8 @@
 #pragma once
 
+#include <unordered_set>
+#include <vector>
+
 #include <spook/core/frame.hpp>
 #include <spook/sim/collection.hpp>
 
@@ -35,17 +38,29 @@ class AssemblyT : public CollectionT<S> {
   }
   [[nodiscard]] Transform getTransform() const { return frame_->getMatrix(); }
   void setTransform(const Transform& X_W) {
-    if (!X_W.matrix().allFinite()) throw this->error("transform must be finite", X_W.translation());
-    const Transform normalized = makeTransform<S>(X_W.translation(), Quat(X_W.linear()));
-    this->applyTransform(normalized * frame_->getMatrix().inverse());
+    if (!X_W.matrix().allFinite() || !isRotation<S>(X_W.linear()))
+      throw this->error("transform must be finite with a rotation as linear part", X_W.translation());
+    const Transform delta = makeTransform<S>(X_W.translation(), Quat(X_W.linear())) * frame_->getMatrix().inverse();
+    const Quat turn(delta.linear());
+    std::vector<RigidBodyT<S>*> bodies;
+    std::vector<FrameT<S>*> frames;
+    std::unordered_set<const void*> seen;
+    this->gatherMovable(bodies, frames, seen);
+    for (FrameT<S>* frame : frames) frame->setMatrix(delta * frame->getMatrix());
+    for (RigidBodyT<S>* body : bodies) {
+      body->setTransform(delta * body->getTransform());
+      body->setVelocity(turn * body->getVelocity());
+      body->setAngularVelocity(turn * body->getAngularVelocity());
+    }
   }
 
  protected:
   ~AssemblyT() override = default;
 
-  void applyTransform(const Transform& delta) override {
-    frame_->setMatrix(delta * frame_->getMatrix());
-    CollectionT<S>::applyTransform(delta);
+  void gatherMovable(std::vector<RigidBodyT<S>*>& bodies, std::vector<FrameT<S>*>& frames,
+                     std::unordered_set<const void*>& seen) const override {
+    if (seen.insert(frame_.get()).second) frames.push_back(frame_.get());
+    CollectionT<S>::gatherMovable(bodies, frames, seen);
   }
   [[nodiscard]] const char* kind() const override { return "Assembly"; }
 

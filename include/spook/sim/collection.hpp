@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include <spook/core/error.hpp>
+#include <spook/core/frame.hpp>
 #include <spook/core/math.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
@@ -110,15 +112,13 @@ class CollectionT : public Referenced {
  protected:
   ~CollectionT() override = default;
 
-  /// Moves the content rigidly by `delta` (world), velocities turned with it.
-  virtual void applyTransform(const Transform<S>& delta) {
-    const Quat<S> turn(delta.linear());
-    for (const auto& b : bodies_) {
-      b->setTransform(delta * b->getTransform());
-      b->setVelocity(turn * b->getVelocity());
-      b->setAngularVelocity(turn * b->getAngularVelocity());
-    }
-    for (const auto& c : children_) c->applyTransform(delta);
+  /// Collects, once each, the bodies and assembly frames that move with this
+  /// collection (a body may be reachable through several nested collections).
+  virtual void gatherMovable(std::vector<Body*>& bodies, std::vector<FrameT<S>*>& frames,
+                             std::unordered_set<const void*>& seen) const {
+    for (const auto& b : bodies_)
+      if (seen.insert(b.get()).second) bodies.push_back(b.get());
+    for (const auto& c : children_) c->gatherMovable(bodies, frames, seen);
   }
 
   [[nodiscard]] virtual const char* kind() const { return "Collection"; }

@@ -39,36 +39,39 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   [[nodiscard]] S getTimeStep() const { return timeStep_; }
   void setTimeStep(S h) {
     if (!(std::isfinite(h) && h > S(0))) throw error("time step must be finite and > 0 s", h);
+    timeBase_ = getTimeStamp();
+    stepsSinceBase_ = 0;
     timeStep_ = h;
   }
-  /// Simulated time (s).
-  [[nodiscard]] S getTimeStamp() const { return time_; }
+  /// Simulated time (s), computed as t₀ + n·h rather than summed, so that a
+  /// float simulation does not drift by a step every few thousand steps.
+  [[nodiscard]] S getTimeStamp() const { return timeBase_ + S(stepsSinceBase_) * timeStep_; }
 
   /// Takes one step:
   /// preCollide listeners → (collision detection) → pre listeners →
   /// (rows, islands, solve) → integrate → post listeners → last listeners → t += h.
   void stepForward() {
-    if (stepping_) throw error("stepForward called from inside a step", time_);
+    if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
     stepping_ = true;
     struct ResetOnExit {
       bool& flag;
       ~ResetOnExit() { flag = false; }
     } reset{stepping_};
-    const S h = timeStep_;
     notify(Listener::PRE_COLLIDE);
     notify(Listener::PRE_STEP);
-    integrate(h);
+    integrate(timeStep_);
     notify(Listener::POST_STEP);
     notify(Listener::LAST_STEP);
-    time_ += h;
+    ++stepsSinceBase_;
     ++statistics_.numSteps;
   }
 
   /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps.
   void stepTo(S t) {
     if (!std::isfinite(t)) throw error("stepTo time must be finite (s)", t);
-    if (t < time_) throw error("stepTo time must not be in the past (now " + std::to_string(time_) + " s)", t);
-    const auto steps = static_cast<std::int64_t>(std::llround((t - time_) / timeStep_));
+    const S now = getTimeStamp();
+    if (t < now) throw error("stepTo time must not be in the past (now " + std::to_string(now) + " s)", t);
+    const auto steps = static_cast<std::int64_t>(std::llround((t - now) / timeStep_));
     for (std::int64_t i = 0; i < steps; ++i) stepForward();
   }
 
@@ -172,13 +175,14 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     std::stable_sort(snapshot.begin(), snapshot.end(), [](const auto& a, const auto& b) {
       return a->getPriority() > b->getPriority();
     });
+    const S time = getTimeStamp();
     for (const auto& l : snapshot) {
       if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage)) continue;
       switch (stage) {
-        case Listener::PRE_COLLIDE: l->preCollide(time_); break;
-        case Listener::PRE_STEP: l->pre(time_); break;
-        case Listener::POST_STEP: l->post(time_); break;
-        case Listener::LAST_STEP: l->last(time_); break;
+        case Listener::PRE_COLLIDE: l->preCollide(time); break;
+        case Listener::PRE_STEP: l->pre(time); break;
+        case Listener::POST_STEP: l->post(time); break;
+        case Listener::LAST_STEP: l->last(time); break;
         default: break;
       }
     }
@@ -249,7 +253,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   }
 
   S timeStep_ = S(1) / S(60);
-  S time_ = S(0);
+  S timeBase_ = S(0);
+  std::uint64_t stepsSinceBase_ = 0;
   bool stepping_ = false;
   ref_ptr<GravityFieldT<S>> gravity_ = new UniformGravityFieldT<S>();
   std::vector<ref_ptr<Body>> bodies_;
