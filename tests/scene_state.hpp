@@ -5,12 +5,13 @@
 // to show that a call which threw changed nothing:
 //
 //   const auto before = spook::test::SceneState<S>::capture(*sim);
-//   CHECK_THROWS_AS(body->setMass(-1), spook::Error);
+//   CHECK_THROWS_AS(body->getMassProperties()->setMass(-1), spook::Error);
 //   CHECK(spook::test::firstDifference(before, spook::test::SceneState<S>::capture(*sim)) == "");
 
 #include <cstdint>
 #include <initializer_list>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <spook/sim/simulation.hpp>

@@ -290,7 +290,7 @@ TEST_CASE_TEMPLATE("a duplicate attachment name is rejected and the first attach
   CHECK(second->getParent() == nullptr);
 }
 
-// Attachments are passed as raw pointers, AGX style: `addAttachment(new Frame(), "lug")`.
+// AGX style hands a fresh object straight to the API: `addAttachment(new Frame(), "lug")`.
 TEST_CASE_TEMPLATE("a rejected attachment passed as a raw new is deleted, not leaked", S, float, double) {
   int deletions = 0;
   {

@@ -172,16 +172,20 @@ TEST_CASE("an observer is non-null while the object lives and null once it is de
   CHECK(observer.get() == nullptr);
 }
 
-// The AGX course, "agx::observer_ptr": `RigidBodyObserver rbObserver = rb;` with rb a RigidBodyRef.
-TEST_CASE("a RigidBodyObserver is initialized from a RigidBodyRef as in the AGX course") {
-  CHECK(std::is_convertible_v<spook::RigidBodyRef, spook::RigidBodyObserver>);
-  CHECK(std::is_convertible_v<spook::f32::RigidBodyRef, spook::f32::RigidBodyObserver>);
+// The AGX course, "agx::observer_ptr", word for word.
+TEST_CASE("a RigidBodyObserver taken from a RigidBodyRef goes null when the ref lets go") {
   spook::RigidBodyRef rb = new spook::RigidBody("crate");
-  spook::RigidBodyObserver o(rb);  // direct initialization: works either way
+  spook::RigidBodyObserver o = rb;
   CHECK(o != nullptr);
   CHECK(o->getName() == "crate");
   rb = nullptr;
   CHECK(o == nullptr);
+
+  spook::f32::RigidBodyRef small = new spook::f32::RigidBody("pebble");
+  spook::f32::RigidBodyObserver watch = small;
+  CHECK(watch == small.get());
+  small = nullptr;
+  CHECK(watch == nullptr);
 }
 
 TEST_CASE("observer copies and assignments all go null with the object") {

@@ -828,6 +828,14 @@ class RigidBodyT : public Referenced {
   void setEnable(bool enable) { enable_ = enable; }
 
   [[nodiscard]] MotionControl getMotionControl() const { return motionControl_; }
+  [[nodiscard]] static const char* toString(MotionControl control) {
+    switch (control) {
+      case DYNAMICS: return "DYNAMICS";
+      case STATIC: return "STATIC";
+      case KINEMATICS: return "KINEMATICS";
+    }
+    return "unknown";
+  }
   /// Switching to STATIC zeroes the velocities and cancels a moveTo.
   void setMotionControl(MotionControl control) {
     if (control != DYNAMICS && control != STATIC && control != KINEMATICS)
@@ -978,7 +986,7 @@ class RigidBodyT : public Referenced {
   /// there. The velocities are re-aimed every step; the body lands exactly on
   /// the target at the step boundary nearest to `duration` (at least one step).
   void moveTo(const Transform& target, S duration) {
-    if (motionControl_ != KINEMATICS) throw error("moveTo needs motion control KINEMATICS", static_cast<int>(motionControl_));
+    if (motionControl_ != KINEMATICS) throw error("moveTo needs motion control KINEMATICS", toString(motionControl_));
     if (!(std::isfinite(duration) && duration > S(0))) throw error("moveTo duration must be finite and > 0 s", duration);
     requireTransform(target, "moveTo target");
     target_ = KinematicTarget{target, duration};
@@ -1414,8 +1422,10 @@ using AssemblyRef = ref_ptr<Assembly>;
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 // --- begin spook/sim/statistics.hpp ---
@@ -1623,10 +1633,15 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   // --- Time ------------------------------------------------------------------
 
-  /// Step length h (s), finite and > 0.
+  /// Step length h (s), finite and > 0. Set from a listener during a step,
+  /// it takes effect from the next step (a step is taken whole with one h).
   [[nodiscard]] S getTimeStep() const { return timeStep_; }
   void setTimeStep(S h) {
     if (!(std::isfinite(h) && h > S(0))) throw error("time step must be finite and > 0 s", h);
+    if (stepping_) {
+      pendingTimeStep_ = h;
+      return;
+    }
     timeBase_ = getTimeStamp();
     stepsSinceBase_ = 0;
     timeStep_ = h;
@@ -1640,6 +1655,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// (rows, islands, solve) → integrate → post listeners → last listeners → t += h.
   void stepForward() {
     if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
+    applyPendingTimeStep();  // left over when a listener threw in the last step
     stepping_ = true;
     struct ResetOnExit {
       bool& flag;
@@ -1652,6 +1668,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     notify(Listener::LAST_STEP);
     ++stepsSinceBase_;
     ++statistics_.numSteps;
+    stepping_ = false;
+    applyPendingTimeStep();
   }
 
   /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps.
@@ -1744,6 +1762,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
  private:
   using Membership = detail::SimulationMembership;
+
+  void applyPendingTimeStep() {
+    if (pendingTimeStep_) setTimeStep(*std::exchange(pendingTimeStep_, std::nullopt));
+  }
 
   void integrate(S h) {
     statistics_.frozenBodies.clear();
@@ -1841,6 +1863,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   }
 
   S timeStep_ = S(1) / S(60);
+  std::optional<S> pendingTimeStep_;
   S timeBase_ = S(0);
   std::uint64_t stepsSinceBase_ = 0;
   bool stepping_ = false;

@@ -53,6 +53,14 @@ class RigidBodyT : public Referenced {
   void setEnable(bool enable) { enable_ = enable; }
 
   [[nodiscard]] MotionControl getMotionControl() const { return motionControl_; }
+  [[nodiscard]] static const char* toString(MotionControl control) {
+    switch (control) {
+      case DYNAMICS: return "DYNAMICS";
+      case STATIC: return "STATIC";
+      case KINEMATICS: return "KINEMATICS";
+    }
+    return "unknown";
+  }
   /// Switching to STATIC zeroes the velocities and cancels a moveTo.
   void setMotionControl(MotionControl control) {
     if (control != DYNAMICS && control != STATIC && control != KINEMATICS)
@@ -203,7 +211,7 @@ class RigidBodyT : public Referenced {
   /// there. The velocities are re-aimed every step; the body lands exactly on
   /// the target at the step boundary nearest to `duration` (at least one step).
   void moveTo(const Transform& target, S duration) {
-    if (motionControl_ != KINEMATICS) throw error("moveTo needs motion control KINEMATICS", static_cast<int>(motionControl_));
+    if (motionControl_ != KINEMATICS) throw error("moveTo needs motion control KINEMATICS", toString(motionControl_));
     if (!(std::isfinite(duration) && duration > S(0))) throw error("moveTo duration must be finite and > 0 s", duration);
     requireTransform(target, "moveTo target");
     target_ = KinematicTarget{target, duration};

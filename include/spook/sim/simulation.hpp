@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include <spook/core/error.hpp>
@@ -35,10 +37,15 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   // --- Time ------------------------------------------------------------------
 
-  /// Step length h (s), finite and > 0.
+  /// Step length h (s), finite and > 0. Set from a listener during a step,
+  /// it takes effect from the next step (a step is taken whole with one h).
   [[nodiscard]] S getTimeStep() const { return timeStep_; }
   void setTimeStep(S h) {
     if (!(std::isfinite(h) && h > S(0))) throw error("time step must be finite and > 0 s", h);
+    if (stepping_) {
+      pendingTimeStep_ = h;
+      return;
+    }
     timeBase_ = getTimeStamp();
     stepsSinceBase_ = 0;
     timeStep_ = h;
@@ -52,6 +59,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// (rows, islands, solve) → integrate → post listeners → last listeners → t += h.
   void stepForward() {
     if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
+    applyPendingTimeStep();  // left over when a listener threw in the last step
     stepping_ = true;
     struct ResetOnExit {
       bool& flag;
@@ -64,6 +72,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     notify(Listener::LAST_STEP);
     ++stepsSinceBase_;
     ++statistics_.numSteps;
+    stepping_ = false;
+    applyPendingTimeStep();
   }
 
   /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps.
@@ -156,6 +166,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
  private:
   using Membership = detail::SimulationMembership;
+
+  void applyPendingTimeStep() {
+    if (pendingTimeStep_) setTimeStep(*std::exchange(pendingTimeStep_, std::nullopt));
+  }
 
   void integrate(S h) {
     statistics_.frozenBodies.clear();
@@ -253,6 +267,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   }
 
   S timeStep_ = S(1) / S(60);
+  std::optional<S> pendingTimeStep_;
   S timeBase_ = S(0);
   std::uint64_t stepsSinceBase_ = 0;
   bool stepping_ = false;
