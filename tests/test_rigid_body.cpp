@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 
 #include <spook/sim/simulation.hpp>
 
@@ -150,4 +151,22 @@ TEST_CASE_TEMPLATE("attachments ride with their body", S, float, double) {
   CHECK(std::abs((tip->getTranslate() - arm.getPosition()).norm() - S(1)) < tol);
   CHECK(arm.removeAttachment("tip"));
   CHECK(tip->getParent() == nullptr);
+}
+
+TEST_CASE_TEMPLATE("a body whose state would overflow is frozen and reported, not NaN", S, float, double) {
+  OneBody<S> scene;
+  spook::RigidBodyT<S>& dust = *scene.body;
+  const spook::Vec3<S> start(S(1), S(2), S(3));
+  dust.setPosition(start);
+  dust.setVelocity(spook::Vec3<S>(S(1), S(0), S(0)));
+  dust.getMassProperties()->setMass(std::numeric_limits<S>::min());
+  dust.addForce(spook::Vec3<S>(std::numeric_limits<S>::max(), S(0), S(0)));  // finite, but F/m overflows
+  scene.sim->stepForward();
+  REQUIRE(scene.sim->getStatistics().frozenBodies.size() == 1);
+  CHECK(scene.sim->getStatistics().frozenBodies[0].get() == &dust);
+  CHECK(dust.getPosition() == start);
+  CHECK(dust.getVelocity() == spook::Vec3<S>::Zero());
+  scene.sim->stepForward();
+  CHECK(scene.sim->getStatistics().frozenBodies.empty());
+  CHECK(dust.getPosition().allFinite());
 }
