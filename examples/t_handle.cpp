@@ -16,7 +16,7 @@ spook::Vec3<> tHandleInertia() {
   const double barMass = 0.6, barLength = 0.12, stemMass = 0.3, stemLength = 0.08;
   const double stemOffset = 0.04 + 0.5 * stemLength;  // stem center from the bar's axis
   const double total = barMass + stemMass;
-  const double cm = stemMass * stemOffset / total;     // along y
+  const double cm = stemMass * stemOffset / total;  // along y
   const double bar = barMass * barLength * barLength / 12.0;
   const double stem = stemMass * stemLength * stemLength / 12.0;
   const double shift = barMass * cm * cm + stemMass * (stemOffset - cm) * (stemOffset - cm);
@@ -55,8 +55,8 @@ int main() {
     previous = alignment;
     if (sim->getStatistics().numSteps % 30 == 0)
       std::printf("%7.2f   %+18.4f   %10.2e  %+10.2e   %8.4f\n", sim->getTimeStamp(), alignment,
-                  (handle->getAngularMomentum() - L0).norm() / L0.norm(),
-                  (handle->getKineticEnergy() - E0) / E0, grapple->getPosition().z());
+                  (handle->getAngularMomentum() - L0).norm() / L0.norm(), (handle->getKineticEnergy() - E0) / E0,
+                  grapple->getPosition().z());
   }
   std::printf("\n%d half-flips of the handle in %.0f s; grapple %s its target.\n", flips, sim->getTimeStamp(),
               grapple->isMovingToTarget() ? "has not reached" : "sits on");

@@ -90,11 +90,11 @@ struct SceneState {
  private:
   void addBody(const SimulationT<S>& sim, const RigidBodyT<S>& b) {
     const MassPropertiesT<S>& m = *b.getMassProperties();
-    bodyStates.push_back({&b, b.getName(), b.getEnable(), static_cast<int>(b.getMotionControl()),
-                          b.isMovingToTarget(), sim.contains(&b), b.getTransform().matrix(),
-                          b.getCmFrame()->getLocalMatrix().matrix(), b.getVelocity(), b.getAngularVelocity(),
-                          b.getForce(), b.getTorque(), m.getMass(), m.getInertiaTensor(), m.getMassCoefficients(),
-                          b.getLinearVelocityDamping(), b.getAngularVelocityDamping()});
+    bodyStates.push_back({&b, b.getName(), b.getEnable(), static_cast<int>(b.getMotionControl()), b.isMovingToTarget(),
+                          sim.contains(&b), b.getTransform().matrix(), b.getCmFrame()->getLocalMatrix().matrix(),
+                          b.getVelocity(), b.getAngularVelocity(), b.getForce(), b.getTorque(), m.getMass(),
+                          m.getInertiaTensor(), m.getMassCoefficients(), b.getLinearVelocityDamping(),
+                          b.getAngularVelocityDamping()});
   }
   void addListener(const StepEventListenerT<S>& l) {
     listenerStates.push_back({&l, l.getMask(), l.getPriority(), l.getEnable(), l.getSimulation()});

@@ -218,8 +218,10 @@ TEST_CASE_TEMPLATE("negative or NaN velocity damping is rejected", S, float, dou
   using Vec3 = spook::Vec3<S>;
   Yard<S> y;
   checkRejected(y, [&] { y.crate->setLinearVelocityDamping(S(-1)); }, {"'crate'", "got (-1, -1, -1)"});
-  checkRejected(y, [&] { y.crate->setLinearVelocityDamping(Vec3(S(0), S(0), kNaN<S>)); }, {"'crate'", "got (0, 0, nan)"});
-  checkRejected(y, [&] { y.crate->setAngularVelocityDamping(Vec3(S(0), S(-0.5), S(0))); }, {"'crate'", "got (0, -0.5, 0)"});
+  checkRejected(y, [&] { y.crate->setLinearVelocityDamping(Vec3(S(0), S(0), kNaN<S>)); },
+                {"'crate'", "got (0, 0, nan)"});
+  checkRejected(y, [&] { y.crate->setAngularVelocityDamping(Vec3(S(0), S(-0.5), S(0))); },
+                {"'crate'", "got (0, -0.5, 0)"});
   checkRejected(y, [&] { y.crate->setAngularVelocityDamping(kNaN<S>); }, {"'crate'", "got (nan, nan, nan)"});
 }
 

@@ -213,7 +213,8 @@ TEST_CASE_TEMPLATE("moving an assembly moves its content rigidly, nested assembl
   CHECK(scene.crane->getRotation().angularDistance(q) < tol);
   scene.checkRigid(before);
 
-  const spook::Transform<S> X = spook::makeTransform<S>(Vec3(S(-2), S(4), S(1)), spook::toQuat(spook::EulerAngles<S>{S(2), S(0.1), S(-0.5)}));
+  const spook::Transform<S> X =
+      spook::makeTransform<S>(Vec3(S(-2), S(4), S(1)), spook::toQuat(spook::EulerAngles<S>{S(2), S(0.1), S(-0.5)}));
   scene.crane->setTransform(X);
   CHECK(poseError<S>(scene.crane->getTransform(), X) < tol);
   scene.checkRigid(before);
@@ -225,7 +226,7 @@ TEST_CASE_TEMPLATE("turning an assembly turns the velocities of its bodies with 
   std::vector<spook::Vec3<S>> v, w;
   for (const auto& b : scene.bodies) v.push_back(b->getVelocity()), w.push_back(b->getAngularVelocity());
   const spook::Quat<S> q = spook::toQuat(spook::EulerAngles<S>{S(0.3), S(-0.2), S(1.1)});
-  scene.crane->setRotation(q);  // from the identity: the turn is q
+  scene.crane->setRotation(q);                                 // from the identity: the turn is q
   scene.crane->setPosition(spook::Vec3<S>(S(5), S(5), S(5)));  // a translation leaves velocities alone
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     CHECK((scene.bodies[i]->getVelocity() - q * v[i]).norm() < tol);

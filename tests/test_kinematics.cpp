@@ -31,8 +31,8 @@ TEST_CASE_TEMPLATE("moveTo reaches its target pose at the stated time and stops"
   const S tol = pick<S>(1e-9, 2e-5);
   Crane<S> crane;
   const S h = crane.sim->getTimeStep();
-  const spook::Transform<S> target =
-      spook::makeTransform<S>(spook::Vec3<S>(S(-2), S(3), S(5)), spook::toQuat(spook::EulerAngles<S>{S(0.3), S(-0.5), S(2.0)}));
+  const spook::Transform<S> target = spook::makeTransform<S>(
+      spook::Vec3<S>(S(-2), S(3), S(5)), spook::toQuat(spook::EulerAngles<S>{S(0.3), S(-0.5), S(2.0)}));
   crane.hook->moveTo(target, S(1.5));
   for (int i = 0; i < 89; ++i) crane.sim->stepForward();
   CHECK(crane.hook->isMovingToTarget());

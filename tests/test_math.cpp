@@ -99,7 +99,8 @@ TEST_CASE_TEMPLATE("an SPD matrix accepts inertia tensors and rejects the rest",
 
 TEST_CASE_TEMPLATE("a rigid transform and its inverse compose to the identity", S, float, double) {
   const S tol = pick<S>(1e-14, 1e-6);
-  const auto X = spook::makeTransform<S>(spook::Vec3<S>(S(1), S(-2), S(3)), spook::toQuat(spook::EulerAngles<S>{S(0.1), S(0.2), S(0.3)}));
+  const auto X = spook::makeTransform<S>(spook::Vec3<S>(S(1), S(-2), S(3)),
+                                         spook::toQuat(spook::EulerAngles<S>{S(0.1), S(0.2), S(0.3)}));
   CHECK(((X * X.inverse()).matrix() - Eigen::Matrix<S, 4, 4>::Identity()).norm() < tol);
   CHECK(((X.inverse() * spook::Vec3<S>(S(1), S(-2), S(3)))).norm() < tol);
 }

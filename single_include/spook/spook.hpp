@@ -45,9 +45,18 @@ void appendScalar(std::ostringstream& out, const T& value) {
   }
 }
 
+// Vectors and matrices print as (a, b, c); strings and scalars as themselves.
+template <class T>
+concept Indexable = requires(const T& v) {
+  v.size();
+  v[0];
+};
+template <class T>
+concept PrintedAsTuple = Indexable<T> && !std::is_convertible_v<T, std::string_view>;
+
 template <class T>
 void appendValue(std::ostringstream& out, const T& value) {
-  if constexpr (requires { value.size(); value[0]; } && !std::is_convertible_v<T, std::string_view>) {
+  if constexpr (PrintedAsTuple<T>) {
     out << '(';
     for (decltype(value.size()) i = 0; i < value.size(); ++i) {
       if (i) out << ", ";
@@ -62,8 +71,7 @@ void appendValue(std::ostringstream& out, const T& value) {
 /// "spook::RigidBody 'crate': mass must be finite and > 0 kg, got -1"
 /// (the quoted name is left out for unnamed objects).
 template <class T>
-[[nodiscard]] Error makeError(std::string_view kind, std::string_view name, std::string_view what,
-                              const T& value) {
+[[nodiscard]] Error makeError(std::string_view kind, std::string_view name, std::string_view what, const T& value) {
   std::ostringstream out;
   out << "spook::" << kind;
   if (!name.empty()) out << " '" << name << "'";
@@ -218,9 +226,8 @@ template <class S>
 template <class S>
 [[nodiscard]] Quat<S> rotate(const Vec3<S>& from, const Vec3<S>& to) {
   if (!(from.norm() > S(0)) || !(to.norm() > S(0)) || !from.allFinite() || !to.allFinite())
-    throw detail::makeError("rotate", "", "vectors must be finite and non-zero", Eigen::Matrix<S, 6, 1>(
-                                                                                   from.x(), from.y(), from.z(),
-                                                                                   to.x(), to.y(), to.z()));
+    throw detail::makeError("rotate", "", "vectors must be finite and non-zero",
+                            Eigen::Matrix<S, 6, 1>(from.x(), from.y(), from.z(), to.x(), to.y(), to.z()));
   return Quat<S>::FromTwoVectors(from, to);
 }
 
@@ -328,11 +335,11 @@ class ref_ptr {
   ref_ptr(T* object) noexcept : ptr_(object) { acquire(); }
   ref_ptr(const ref_ptr& other) noexcept : ptr_(other.ptr_) { acquire(); }
   ref_ptr(ref_ptr&& other) noexcept : ptr_(std::exchange(other.ptr_, nullptr)) {}
+  // clang-format off
   template <class Y>
     requires std::convertible_to<Y*, T*>
-  ref_ptr(const ref_ptr<Y>& other) noexcept : ptr_(other.get()) {
-    acquire();
-  }
+  ref_ptr(const ref_ptr<Y>& other) noexcept : ptr_(other.get()) { acquire(); }
+  // clang-format on
   ~ref_ptr() { release(); }
 
   ref_ptr& operator=(ref_ptr other) noexcept {
@@ -477,7 +484,9 @@ class FrameT : public Referenced {
   }
 
   /// Transform from this frame to the world.
-  [[nodiscard]] Transform getMatrix() const { return parent_ ? parent_->getMatrix() * getLocalMatrix() : getLocalMatrix(); }
+  [[nodiscard]] Transform getMatrix() const {
+    return parent_ ? parent_->getMatrix() * getLocalMatrix() : getLocalMatrix();
+  }
   void setMatrix(const Transform& X_W) {
     checkMatrix(X_W);
     const Transform X_P = parent_ ? Transform(parent_->getMatrix().inverse() * X_W) : X_W;
@@ -494,7 +503,9 @@ class FrameT : public Referenced {
   void setLocalRotate(const Quat& q) { setLocal(localTranslate_, q); }
 
   /// Origin in world coordinates (m).
-  [[nodiscard]] Vec3 getTranslate() const { return parent_ ? parent_->transformPointToWorld(localTranslate_) : localTranslate_; }
+  [[nodiscard]] Vec3 getTranslate() const {
+    return parent_ ? parent_->transformPointToWorld(localTranslate_) : localTranslate_;
+  }
   void setTranslate(const Vec3& p_W) {
     checkVector(p_W, "translate must be finite");
     setLocalTranslate(parent_ ? parent_->transformPointToLocal(p_W) : p_W);
@@ -573,9 +584,11 @@ class observer_ptr {
     if (hub_) hub_->reference();
   }
   /// From a strong pointer, as in `RigidBodyObserver o = bodyRef;`.
+  // clang-format off
   template <class Y>
     requires std::convertible_to<Y*, T*>
   observer_ptr(const ref_ptr<Y>& object) : observer_ptr(static_cast<T*>(object.get())) {}
+  // clang-format on
   observer_ptr(const observer_ptr& other) noexcept : ptr_(other.ptr_), hub_(other.hub_) {
     if (hub_) hub_->reference();
   }
@@ -830,9 +843,12 @@ class RigidBodyT : public Referenced {
   [[nodiscard]] MotionControl getMotionControl() const { return motionControl_; }
   [[nodiscard]] static const char* toString(MotionControl control) {
     switch (control) {
-      case DYNAMICS: return "DYNAMICS";
-      case STATIC: return "STATIC";
-      case KINEMATICS: return "KINEMATICS";
+      case DYNAMICS:
+        return "DYNAMICS";
+      case STATIC:
+        return "STATIC";
+      case KINEMATICS:
+        return "KINEMATICS";
     }
     return "unknown";
   }
@@ -987,7 +1003,8 @@ class RigidBodyT : public Referenced {
   /// the target at the step boundary nearest to `duration` (at least one step).
   void moveTo(const Transform& target, S duration) {
     if (motionControl_ != KINEMATICS) throw error("moveTo needs motion control KINEMATICS", toString(motionControl_));
-    if (!(std::isfinite(duration) && duration > S(0))) throw error("moveTo duration must be finite and > 0 s", duration);
+    if (!(std::isfinite(duration) && duration > S(0)))
+      throw error("moveTo duration must be finite and > 0 s", duration);
     requireTransform(target, "moveTo target");
     target_ = KinematicTarget{target, duration};
     aimAtTarget(duration);
@@ -1560,12 +1577,14 @@ struct BodyIntegrator {
     const Vec3 x = body.getCmPosition();
 
     const Vec3 damping = Vec3::Ones() + h * body.linearDamping_;
-    const Vec3 acceleration = R * (R.transpose() * body.force_).cwiseQuotient(mass.getEffectiveMass()) + gravity.calculateGravity(x);
+    const Vec3 acceleration =
+        R * (R.transpose() * body.force_).cwiseQuotient(mass.getEffectiveMass()) + gravity.calculateGravity(x);
     const Vec3 v = R * (R.transpose() * (body.velocity_ + h * acceleration)).cwiseQuotient(damping);
 
     const Mat3& inertia = mass.getInertiaTensor();
     const Mat3 inertiaInverse = inertia.inverse();
-    Vec3 omega = inertiaInverse * (inertia * (R.transpose() * body.angularVelocity_) + h * (R.transpose() * body.torque_));
+    Vec3 omega =
+        inertiaInverse * (inertia * (R.transpose() * body.angularVelocity_) + h * (R.transpose() * body.torque_));
     omega = omega.cwiseQuotient(Vec3::Ones() + h * body.angularDamping_);
 
     const Vec3 xNext = x + h * v;
@@ -1717,7 +1736,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   }
   void remove(Listener* listener) override {
     checkRemovable(listener, "StepEventListener");
-    listeners_.erase(std::find_if(listeners_.begin(), listeners_.end(), [&](const auto& l) { return l.get() == listener; }));
+    listeners_.erase(
+        std::find_if(listeners_.begin(), listeners_.end(), [&](const auto& l) { return l.get() == listener; }));
     Membership::simulationOf(*listener) = nullptr;
   }
 
@@ -1729,7 +1749,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   }
   /// Removes a collection added with add(), and its content.
   void remove(Collection* collection) {
-    auto it = std::find_if(collections_.begin(), collections_.end(), [&](const auto& c) { return c.get() == collection; });
+    auto it =
+        std::find_if(collections_.begin(), collections_.end(), [&](const auto& c) { return c.get() == collection; });
     if (it == collections_.end())
       throw error("Collection was never added", collection ? collection->getName() : std::string("nullptr"));
     ref_ptr<Collection> keep = collection;
@@ -1749,7 +1770,9 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   [[nodiscard]] bool contains(const Body* body) const override {
     return body && Membership::simulationOf(*body) == static_cast<const void*>(this);
   }
-  [[nodiscard]] bool contains(const Listener* listener) const override { return listener && listener->getSimulation() == this; }
+  [[nodiscard]] bool contains(const Listener* listener) const override {
+    return listener && listener->getSimulation() == this;
+  }
 
   [[nodiscard]] const SimulationStatisticsT<S>& getStatistics() const { return statistics_; }
 
@@ -1782,18 +1805,26 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     std::vector<ref_ptr<Listener>> snapshot;
     for (const auto& l : listeners_)
       if (l->getMask() & stage) snapshot.push_back(l);
-    std::stable_sort(snapshot.begin(), snapshot.end(), [](const auto& a, const auto& b) {
-      return a->getPriority() > b->getPriority();
-    });
+    std::stable_sort(snapshot.begin(), snapshot.end(),
+                     [](const auto& a, const auto& b) { return a->getPriority() > b->getPriority(); });
     const S time = getTimeStamp();
     for (const auto& l : snapshot) {
       if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage)) continue;
       switch (stage) {
-        case Listener::PRE_COLLIDE: l->preCollide(time); break;
-        case Listener::PRE_STEP: l->pre(time); break;
-        case Listener::POST_STEP: l->post(time); break;
-        case Listener::LAST_STEP: l->last(time); break;
-        default: break;
+        case Listener::PRE_COLLIDE:
+          l->preCollide(time);
+          break;
+        case Listener::PRE_STEP:
+          l->pre(time);
+          break;
+        case Listener::POST_STEP:
+          l->post(time);
+          break;
+        case Listener::LAST_STEP:
+          l->last(time);
+          break;
+        default:
+          break;
       }
     }
   }
@@ -1824,7 +1855,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     }
     for (const auto& l : collection.getEventListeners()) {
       checkAddable(l.get(), "StepEventListener");
-      if (!seen.insert(l.get()).second) throw error("StepEventListener appears twice in the collection", collection.getName());
+      if (!seen.insert(l.get()).second)
+        throw error("StepEventListener appears twice in the collection", collection.getName());
     }
     for (const auto& c : collection.getCollections()) validateTree(*c, seen);
   }
@@ -1843,7 +1875,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void checkAddable(T* object, const char* kind) const {
     if (!object) throw error(std::string("cannot add a null ") + kind, "nullptr");
     const auto* owner = Membership::simulationOf(*object);
-    if (owner == static_cast<const void*>(this)) throw detail::makeError(kind, nameOf(*object), "already added to this simulation");
+    if (owner == static_cast<const void*>(this))
+      throw detail::makeError(kind, nameOf(*object), "already added to this simulation");
     if (owner) throw detail::makeError(kind, nameOf(*object), "already belongs to another simulation");
   }
   template <class T>
@@ -1854,8 +1887,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   }
   template <class T>
   static std::string nameOf(const T& object) {
-    if constexpr (requires { object.getName(); }) return object.getName();
-    else return "";
+    if constexpr (requires { object.getName(); })
+      return object.getName();
+    else
+      return "";
   }
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {

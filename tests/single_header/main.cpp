@@ -56,7 +56,8 @@ int main() {
 
   // Second TU: a 3 kg body dropped from rest, 60 steps: E = m |n h g|² / 2.
   const double speed = 60 * h * 9.80665;
-  expectNear("kinetic energy from the second translation unit", kineticEnergyAfter(60, h), 0.5 * 3.0 * speed * speed, 1e-12);
+  expectNear("kinetic energy from the second translation unit", kineticEnergyAfter(60, h), 0.5 * 3.0 * speed * speed,
+             1e-12);
 
   if (failures != 0) {
     std::printf("%d check(s) failed\n", failures);

@@ -33,9 +33,18 @@ void appendScalar(std::ostringstream& out, const T& value) {
   }
 }
 
+// Vectors and matrices print as (a, b, c); strings and scalars as themselves.
+template <class T>
+concept Indexable = requires(const T& v) {
+  v.size();
+  v[0];
+};
+template <class T>
+concept PrintedAsTuple = Indexable<T> && !std::is_convertible_v<T, std::string_view>;
+
 template <class T>
 void appendValue(std::ostringstream& out, const T& value) {
-  if constexpr (requires { value.size(); value[0]; } && !std::is_convertible_v<T, std::string_view>) {
+  if constexpr (PrintedAsTuple<T>) {
     out << '(';
     for (decltype(value.size()) i = 0; i < value.size(); ++i) {
       if (i) out << ", ";
@@ -50,8 +59,7 @@ void appendValue(std::ostringstream& out, const T& value) {
 /// "spook::RigidBody 'crate': mass must be finite and > 0 kg, got -1"
 /// (the quoted name is left out for unnamed objects).
 template <class T>
-[[nodiscard]] Error makeError(std::string_view kind, std::string_view name, std::string_view what,
-                              const T& value) {
+[[nodiscard]] Error makeError(std::string_view kind, std::string_view name, std::string_view what, const T& value) {
   std::ostringstream out;
   out << "spook::" << kind;
   if (!name.empty()) out << " '" << name << "'";

@@ -37,7 +37,9 @@ class FrameT : public Referenced {
   }
 
   /// Transform from this frame to the world.
-  [[nodiscard]] Transform getMatrix() const { return parent_ ? parent_->getMatrix() * getLocalMatrix() : getLocalMatrix(); }
+  [[nodiscard]] Transform getMatrix() const {
+    return parent_ ? parent_->getMatrix() * getLocalMatrix() : getLocalMatrix();
+  }
   void setMatrix(const Transform& X_W) {
     checkMatrix(X_W);
     const Transform X_P = parent_ ? Transform(parent_->getMatrix().inverse() * X_W) : X_W;
@@ -54,7 +56,9 @@ class FrameT : public Referenced {
   void setLocalRotate(const Quat& q) { setLocal(localTranslate_, q); }
 
   /// Origin in world coordinates (m).
-  [[nodiscard]] Vec3 getTranslate() const { return parent_ ? parent_->transformPointToWorld(localTranslate_) : localTranslate_; }
+  [[nodiscard]] Vec3 getTranslate() const {
+    return parent_ ? parent_->transformPointToWorld(localTranslate_) : localTranslate_;
+  }
   void setTranslate(const Vec3& p_W) {
     checkVector(p_W, "translate must be finite");
     setLocalTranslate(parent_ ? parent_->transformPointToLocal(p_W) : p_W);

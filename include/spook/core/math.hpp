@@ -106,9 +106,8 @@ template <class S>
 template <class S>
 [[nodiscard]] Quat<S> rotate(const Vec3<S>& from, const Vec3<S>& to) {
   if (!(from.norm() > S(0)) || !(to.norm() > S(0)) || !from.allFinite() || !to.allFinite())
-    throw detail::makeError("rotate", "", "vectors must be finite and non-zero", Eigen::Matrix<S, 6, 1>(
-                                                                                   from.x(), from.y(), from.z(),
-                                                                                   to.x(), to.y(), to.z()));
+    throw detail::makeError("rotate", "", "vectors must be finite and non-zero",
+                            Eigen::Matrix<S, 6, 1>(from.x(), from.y(), from.z(), to.x(), to.y(), to.z()));
   return Quat<S>::FromTwoVectors(from, to);
 }
 

@@ -20,9 +20,11 @@ class observer_ptr {
     if (hub_) hub_->reference();
   }
   /// From a strong pointer, as in `RigidBodyObserver o = bodyRef;`.
+  // clang-format off
   template <class Y>
     requires std::convertible_to<Y*, T*>
   observer_ptr(const ref_ptr<Y>& object) : observer_ptr(static_cast<T*>(object.get())) {}
+  // clang-format on
   observer_ptr(const observer_ptr& other) noexcept : ptr_(other.ptr_), hub_(other.hub_) {
     if (hub_) hub_->reference();
   }

@@ -19,11 +19,11 @@ class ref_ptr {
   ref_ptr(T* object) noexcept : ptr_(object) { acquire(); }
   ref_ptr(const ref_ptr& other) noexcept : ptr_(other.ptr_) { acquire(); }
   ref_ptr(ref_ptr&& other) noexcept : ptr_(std::exchange(other.ptr_, nullptr)) {}
+  // clang-format off
   template <class Y>
     requires std::convertible_to<Y*, T*>
-  ref_ptr(const ref_ptr<Y>& other) noexcept : ptr_(other.get()) {
-    acquire();
-  }
+  ref_ptr(const ref_ptr<Y>& other) noexcept : ptr_(other.get()) { acquire(); }
+  // clang-format on
   ~ref_ptr() { release(); }
 
   ref_ptr& operator=(ref_ptr other) noexcept {

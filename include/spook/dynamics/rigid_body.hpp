@@ -55,9 +55,12 @@ class RigidBodyT : public Referenced {
   [[nodiscard]] MotionControl getMotionControl() const { return motionControl_; }
   [[nodiscard]] static const char* toString(MotionControl control) {
     switch (control) {
-      case DYNAMICS: return "DYNAMICS";
-      case STATIC: return "STATIC";
-      case KINEMATICS: return "KINEMATICS";
+      case DYNAMICS:
+        return "DYNAMICS";
+      case STATIC:
+        return "STATIC";
+      case KINEMATICS:
+        return "KINEMATICS";
     }
     return "unknown";
   }
@@ -212,7 +215,8 @@ class RigidBodyT : public Referenced {
   /// the target at the step boundary nearest to `duration` (at least one step).
   void moveTo(const Transform& target, S duration) {
     if (motionControl_ != KINEMATICS) throw error("moveTo needs motion control KINEMATICS", toString(motionControl_));
-    if (!(std::isfinite(duration) && duration > S(0))) throw error("moveTo duration must be finite and > 0 s", duration);
+    if (!(std::isfinite(duration) && duration > S(0)))
+      throw error("moveTo duration must be finite and > 0 s", duration);
     requireTransform(target, "moveTo target");
     target_ = KinematicTarget{target, duration};
     aimAtTarget(duration);

@@ -121,7 +121,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   }
   void remove(Listener* listener) override {
     checkRemovable(listener, "StepEventListener");
-    listeners_.erase(std::find_if(listeners_.begin(), listeners_.end(), [&](const auto& l) { return l.get() == listener; }));
+    listeners_.erase(
+        std::find_if(listeners_.begin(), listeners_.end(), [&](const auto& l) { return l.get() == listener; }));
     Membership::simulationOf(*listener) = nullptr;
   }
 
@@ -133,7 +134,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   }
   /// Removes a collection added with add(), and its content.
   void remove(Collection* collection) {
-    auto it = std::find_if(collections_.begin(), collections_.end(), [&](const auto& c) { return c.get() == collection; });
+    auto it =
+        std::find_if(collections_.begin(), collections_.end(), [&](const auto& c) { return c.get() == collection; });
     if (it == collections_.end())
       throw error("Collection was never added", collection ? collection->getName() : std::string("nullptr"));
     ref_ptr<Collection> keep = collection;
@@ -153,7 +155,9 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   [[nodiscard]] bool contains(const Body* body) const override {
     return body && Membership::simulationOf(*body) == static_cast<const void*>(this);
   }
-  [[nodiscard]] bool contains(const Listener* listener) const override { return listener && listener->getSimulation() == this; }
+  [[nodiscard]] bool contains(const Listener* listener) const override {
+    return listener && listener->getSimulation() == this;
+  }
 
   [[nodiscard]] const SimulationStatisticsT<S>& getStatistics() const { return statistics_; }
 
@@ -186,18 +190,26 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     std::vector<ref_ptr<Listener>> snapshot;
     for (const auto& l : listeners_)
       if (l->getMask() & stage) snapshot.push_back(l);
-    std::stable_sort(snapshot.begin(), snapshot.end(), [](const auto& a, const auto& b) {
-      return a->getPriority() > b->getPriority();
-    });
+    std::stable_sort(snapshot.begin(), snapshot.end(),
+                     [](const auto& a, const auto& b) { return a->getPriority() > b->getPriority(); });
     const S time = getTimeStamp();
     for (const auto& l : snapshot) {
       if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage)) continue;
       switch (stage) {
-        case Listener::PRE_COLLIDE: l->preCollide(time); break;
-        case Listener::PRE_STEP: l->pre(time); break;
-        case Listener::POST_STEP: l->post(time); break;
-        case Listener::LAST_STEP: l->last(time); break;
-        default: break;
+        case Listener::PRE_COLLIDE:
+          l->preCollide(time);
+          break;
+        case Listener::PRE_STEP:
+          l->pre(time);
+          break;
+        case Listener::POST_STEP:
+          l->post(time);
+          break;
+        case Listener::LAST_STEP:
+          l->last(time);
+          break;
+        default:
+          break;
       }
     }
   }
@@ -228,7 +240,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     }
     for (const auto& l : collection.getEventListeners()) {
       checkAddable(l.get(), "StepEventListener");
-      if (!seen.insert(l.get()).second) throw error("StepEventListener appears twice in the collection", collection.getName());
+      if (!seen.insert(l.get()).second)
+        throw error("StepEventListener appears twice in the collection", collection.getName());
     }
     for (const auto& c : collection.getCollections()) validateTree(*c, seen);
   }
@@ -247,7 +260,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void checkAddable(T* object, const char* kind) const {
     if (!object) throw error(std::string("cannot add a null ") + kind, "nullptr");
     const auto* owner = Membership::simulationOf(*object);
-    if (owner == static_cast<const void*>(this)) throw detail::makeError(kind, nameOf(*object), "already added to this simulation");
+    if (owner == static_cast<const void*>(this))
+      throw detail::makeError(kind, nameOf(*object), "already added to this simulation");
     if (owner) throw detail::makeError(kind, nameOf(*object), "already belongs to another simulation");
   }
   template <class T>
@@ -258,8 +272,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   }
   template <class T>
   static std::string nameOf(const T& object) {
-    if constexpr (requires { object.getName(); }) return object.getName();
-    else return "";
+    if constexpr (requires { object.getName(); })
+      return object.getName();
+    else
+      return "";
   }
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {

@@ -46,12 +46,14 @@ struct BodyIntegrator {
     const Vec3 x = body.getCmPosition();
 
     const Vec3 damping = Vec3::Ones() + h * body.linearDamping_;
-    const Vec3 acceleration = R * (R.transpose() * body.force_).cwiseQuotient(mass.getEffectiveMass()) + gravity.calculateGravity(x);
+    const Vec3 acceleration =
+        R * (R.transpose() * body.force_).cwiseQuotient(mass.getEffectiveMass()) + gravity.calculateGravity(x);
     const Vec3 v = R * (R.transpose() * (body.velocity_ + h * acceleration)).cwiseQuotient(damping);
 
     const Mat3& inertia = mass.getInertiaTensor();
     const Mat3 inertiaInverse = inertia.inverse();
-    Vec3 omega = inertiaInverse * (inertia * (R.transpose() * body.angularVelocity_) + h * (R.transpose() * body.torque_));
+    Vec3 omega =
+        inertiaInverse * (inertia * (R.transpose() * body.angularVelocity_) + h * (R.transpose() * body.torque_));
     omega = omega.cwiseQuotient(Vec3::Ones() + h * body.angularDamping_);
 
     const Vec3 xNext = x + h * v;

@@ -26,7 +26,8 @@ int main() {
   const double dx = (ball->getPosition() - x).norm(), dv = (ball->getVelocity() - v).norm();
   const double dt = std::abs(sim->getTimeStamp() - n * h);
   if (!(dx <= 1e-12 * x.norm() && dv <= 1e-12 * v.norm() && dt <= 1e-12 * n * h)) {
-    std::printf("FAIL: after %d steps |x - exact| = %.3g m, |v - exact| = %.3g m/s, |t - nh| = %.3g s\n", n, dx, dv, dt);
+    std::printf("FAIL: after %d steps |x - exact| = %.3g m, |v - exact| = %.3g m/s, |t - nh| = %.3g s\n", n, dx, dv,
+                dt);
     return 1;
   }
   std::printf("single-header consumer: x(2 s) = (%.12f, %.12f, %.12f) m, exact\n", x.x(), x.y(), x.z());
