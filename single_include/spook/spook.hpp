@@ -1145,10 +1145,6 @@ struct SimulationMembership {
   static auto& indexOf(T& object) {
     return object.simulationIndex_;
   }
-  template <class T>
-  static auto& orderOf(T& object) {
-    return object.order_;
-  }
 };
 
 }  // namespace spook::detail
@@ -1207,7 +1203,6 @@ class StepEventListenerT : public Referenced {
   int priority_;
   bool enable_ = true;
   SimulationT<S>* simulation_ = nullptr;
-  std::uint64_t order_ = 0;  // insertion order in the simulation
 };
 
 using StepEventListener = StepEventListenerT<double>;
@@ -1691,13 +1686,13 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     applyPendingTimeStep();
   }
 
-  /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps.
+  /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps,
+  /// recounted after each step in case a listener changes h.
   void stepTo(S t) {
     if (!std::isfinite(t)) throw error("stepTo time must be finite (s)", t);
     const S now = getTimeStamp();
     if (t < now) throw error("stepTo time must not be in the past (now " + std::to_string(now) + " s)", t);
-    const auto steps = static_cast<std::int64_t>(std::llround((t - now) / timeStep_));
-    for (std::int64_t i = 0; i < steps; ++i) stepForward();
+    while (std::llround((t - getTimeStamp()) / timeStep_) > 0) stepForward();
   }
 
   // --- Gravity ---------------------------------------------------------------
@@ -1731,7 +1726,6 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void add(ref_ptr<Listener> listener) override {
     checkAddable(listener.get(), "StepEventListener");
     Membership::simulationOf(*listener) = this;
-    Membership::orderOf(*listener) = nextListenerOrder_++;
     listeners_.push_back(std::move(listener));
   }
   void remove(Listener* listener) override {
@@ -1906,7 +1900,6 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   std::vector<ref_ptr<Body>> bodies_;
   std::vector<ref_ptr<Listener>> listeners_;
   std::vector<ref_ptr<Collection>> collections_;
-  std::uint64_t nextListenerOrder_ = 0;
   SimulationStatisticsT<S> statistics_;
 };
 

@@ -17,10 +17,6 @@ struct SimulationMembership {
   static auto& indexOf(T& object) {
     return object.simulationIndex_;
   }
-  template <class T>
-  static auto& orderOf(T& object) {
-    return object.order_;
-  }
 };
 
 }  // namespace spook::detail

@@ -57,7 +57,6 @@ class StepEventListenerT : public Referenced {
   int priority_;
   bool enable_ = true;
   SimulationT<S>* simulation_ = nullptr;
-  std::uint64_t order_ = 0;  // insertion order in the simulation
 };
 
 using StepEventListener = StepEventListenerT<double>;
