@@ -3,6 +3,12 @@
 // spook: header-only SPOOK multibody dynamics. Include this umbrella header,
 // or single_include/spook/spook.hpp, its generated amalgamation.
 
+#include <spook/collide/bounding_box.hpp>
+#include <spook/collide/shapes/box.hpp>
+#include <spook/collide/shapes/capsule.hpp>
+#include <spook/collide/shapes/cylinder.hpp>
+#include <spook/collide/shapes/shape.hpp>
+#include <spook/collide/shapes/sphere.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/frame.hpp>
 #include <spook/core/math.hpp>

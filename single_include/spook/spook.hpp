@@ -10,6 +10,15 @@
 // spook: header-only SPOOK multibody dynamics. Include this umbrella header,
 // or single_include/spook/spook.hpp, its generated amalgamation.
 
+// --- begin spook/collide/bounding_box.hpp ---
+
+// --- begin spook/core/math.hpp ---
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
 // --- begin spook/core/error.hpp ---
 
 #include <array>
@@ -92,15 +101,6 @@ template <class T>
 }  // namespace detail
 }  // namespace spook
 // --- end spook/core/error.hpp ---
-// --- begin spook/core/frame.hpp ---
-
-// --- begin spook/core/math.hpp ---
-
-#include <algorithm>
-#include <cmath>
-
-#include <Eigen/Dense>
-
 // --- begin spook/core/scalar.hpp ---
 
 #include <concepts>
@@ -163,10 +163,16 @@ class SPDMat3 {
  public:
   /// The identity.
   SPDMat3() : m_(Mat3<S>::Identity()) {}
-  /// Diagonal matrix from positive entries.
-  explicit SPDMat3(const Vec3<S>& diagonal) : SPDMat3(Mat3<S>(diagonal.asDiagonal())) {}
-  /// From a full matrix; throws unless it is finite, symmetric and positive definite.
-  explicit SPDMat3(const Mat3<S>& m) {
+  /// From a 3-vector (a diagonal matrix) or a full 3×3 matrix; throws unless
+  /// the result is finite, symmetric and positive definite.
+  template <class Derived>
+  explicit SPDMat3(const Eigen::MatrixBase<Derived>& value) {
+    Mat3<S> m;
+    if constexpr (Derived::ColsAtCompileTime == 1) {
+      m = Vec3<S>(value).asDiagonal();
+    } else {
+      m = value;
+    }
     if (const char* why = defect(m)) throw detail::makeError("SPDMat3", "", why, flat(m));
     m_ = S(0.5) * (m + m.transpose());
   }
@@ -314,6 +320,31 @@ template <class S>
 
 }  // namespace spook
 // --- end spook/core/math.hpp ---
+
+namespace spook {
+
+/// Axis-aligned box [min, max] (m), in whatever frame its owner states.
+template <Scalar S>
+struct BoundingBoxT {
+  Vec3<S> min = Vec3<S>::Zero();
+  Vec3<S> max = Vec3<S>::Zero();
+
+  [[nodiscard]] Vec3<S> center() const { return S(0.5) * (min + max); }
+  [[nodiscard]] Vec3<S> halfExtents() const { return S(0.5) * (max - min); }
+  [[nodiscard]] bool contains(const Vec3<S>& p, S tolerance = S(0)) const {
+    return (p.array() >= min.array() - tolerance).all() && (p.array() <= max.array() + tolerance).all();
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/bounding_box.hpp ---
+// --- begin spook/collide/shapes/box.hpp ---
+
+// --- begin spook/collide/shapes/shape.hpp ---
+
+#include <cmath>
+#include <string>
+
 // --- begin spook/core/ref_ptr.hpp ---
 
 #include <concepts>
@@ -451,6 +482,293 @@ class Referenced {
 
 }  // namespace spook
 // --- end spook/core/referenced.hpp ---
+
+namespace spook {
+
+/// A geometric primitive in its own frame (origin at its center of volume).
+/// It knows its volume, its inertia for a given mass and its bounding box;
+/// convex shapes also give their support point. Lengths in meters.
+template <Scalar S>
+class ShapeT : public Referenced {
+ public:
+  using Vec3 = spook::Vec3<S>;
+
+  /// Volume (m³).
+  [[nodiscard]] virtual S getVolume() const = 0;
+  /// Inertia tensor about the shape origin, in the shape frame, for a
+  /// uniform body of `mass` kg (kg·m²).
+  [[nodiscard]] virtual SPDMat3<S> calculateInertia(S mass) const = 0;
+  /// Tight axis-aligned box in the shape frame (m).
+  [[nodiscard]] virtual BoundingBoxT<S> getBoundingBox() const = 0;
+
+ protected:
+  ~ShapeT() override = default;
+
+  static void requireMass(const char* kind, S mass) {
+    if (!(std::isfinite(mass) && mass > S(0)))
+      throw detail::makeError(kind, "", "mass for the inertia must be finite and > 0 kg", mass);
+  }
+  static S requireLength(const char* kind, const char* what, S value) {
+    if (!(std::isfinite(value) && value > S(0)))
+      throw detail::makeError(kind, "", std::string(what) + " must be finite and > 0 m", value);
+    return value;
+  }
+};
+
+namespace detail {
+
+/// Bounding box of a convex shape from its support function along ±x, ±y, ±z.
+template <Scalar S, class Convex>
+BoundingBoxT<S> boundingBoxFromSupport(const Convex& shape) {
+  BoundingBoxT<S> box;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3<S> axis = Vec3<S>::Unit(i);
+    box.max[i] = shape.support(axis)[i];
+    box.min[i] = shape.support(-axis)[i];
+  }
+  return box;
+}
+
+}  // namespace detail
+}  // namespace spook
+// --- end spook/collide/shapes/shape.hpp ---
+
+namespace spook {
+
+/// A box centered on its origin, given by its half extents along x, y, z (m).
+template <Scalar S>
+class BoxT : public ShapeT<S> {
+ public:
+  using Vec3 = spook::Vec3<S>;
+
+  explicit BoxT(const Vec3& halfExtents) { setHalfExtents(halfExtents); }
+
+  [[nodiscard]] const Vec3& getHalfExtents() const { return halfExtents_; }
+  void setHalfExtents(const Vec3& halfExtents) {
+    if (!(halfExtents.allFinite() && halfExtents.minCoeff() > S(0)))
+      throw detail::makeError("Box", "", "half extents must be finite and > 0 m", halfExtents);
+    halfExtents_ = halfExtents;
+  }
+
+  [[nodiscard]] S getVolume() const override { return S(8) * halfExtents_.prod(); }
+
+  /// I = m/3 (b² + c², a² + c², a² + b²) for half extents a, b, c.
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    this->requireMass("Box", mass);
+    const Vec3 sq = halfExtents_.cwiseAbs2();
+    return SPDMat3<S>(Vec3(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()) * (mass / S(3)));
+  }
+
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return {-halfExtents_, halfExtents_}; }
+
+  /// The corner farthest along `direction` (a zero component picks +).
+  [[nodiscard]] Vec3 support(const Vec3& direction) const {
+    return Vec3(direction.x() < S(0) ? -halfExtents_.x() : halfExtents_.x(),
+                direction.y() < S(0) ? -halfExtents_.y() : halfExtents_.y(),
+                direction.z() < S(0) ? -halfExtents_.z() : halfExtents_.z());
+  }
+
+ protected:
+  ~BoxT() override = default;
+
+ private:
+  Vec3 halfExtents_;
+};
+
+using Box = BoxT<double>;
+using BoxRef = ref_ptr<Box>;
+namespace f32 {
+using Box = BoxT<float>;
+using BoxRef = ref_ptr<Box>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/collide/shapes/box.hpp ---
+// --- begin spook/collide/shapes/capsule.hpp ---
+
+#include <numbers>
+
+namespace spook {
+
+/// A capsule centered on its origin with its axis along y, as in the seeds:
+/// a cylinder of `height` (m, between the hemisphere centers) capped by two
+/// hemispheres of `radius` (m). Total length height + 2·radius.
+template <Scalar S>
+class CapsuleT : public ShapeT<S> {
+ public:
+  using Vec3 = spook::Vec3<S>;
+
+  CapsuleT(S radius, S height) {
+    setRadius(radius);
+    setHeight(height);
+  }
+
+  [[nodiscard]] S getRadius() const { return radius_; }
+  void setRadius(S radius) { radius_ = this->requireLength("Capsule", "radius", radius); }
+  [[nodiscard]] S getHeight() const { return height_; }
+  void setHeight(S height) { height_ = this->requireLength("Capsule", "height", height); }
+
+  /// V = π r² h + 4/3 π r³.
+  [[nodiscard]] S getVolume() const override {
+    return std::numbers::pi_v<S> * radius_ * radius_ * (height_ + S(4) / S(3) * radius_);
+  }
+
+  /// Cylinder part m_c and the two hemispheres m_s share the mass by volume:
+  /// I_yy = m_c r²/2 + 2/5 m_s r²,
+  /// I_xx = I_zz = m_c (3r² + h²)/12 + m_s (2r²/5 + h²/4 + 3hr/8), the last
+  /// term from each hemisphere's centroid at 3r/8 and the parallel-axis rule.
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    this->requireMass("Capsule", mass);
+    const S r = radius_, h = height_, r2 = r * r;
+    const S cylinderShare = h / (h + S(4) / S(3) * r);
+    const S mc = mass * cylinderShare, ms = mass - mc;
+    const S axial = S(0.5) * mc * r2 + S(0.4) * ms * r2;
+    const S across = mc * (S(3) * r2 + h * h) / S(12) + ms * (S(0.4) * r2 + S(0.25) * h * h + S(0.375) * h * r);
+    return SPDMat3<S>(Vec3(across, axial, across));
+  }
+
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return detail::boundingBoxFromSupport<S>(*this); }
+
+  /// The surface point farthest along `direction`: the end sphere's support.
+  [[nodiscard]] Vec3 support(const Vec3& direction) const {
+    const Vec3 end(S(0), direction.y() < S(0) ? -S(0.5) * height_ : S(0.5) * height_, S(0));
+    const S length = direction.norm();
+    return length > S(0) ? Vec3(end + direction * (radius_ / length)) : Vec3(end + Vec3(radius_, S(0), S(0)));
+  }
+
+ protected:
+  ~CapsuleT() override = default;
+
+ private:
+  S radius_;
+  S height_;
+};
+
+using Capsule = CapsuleT<double>;
+using CapsuleRef = ref_ptr<Capsule>;
+namespace f32 {
+using Capsule = CapsuleT<float>;
+using CapsuleRef = ref_ptr<Capsule>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/collide/shapes/capsule.hpp ---
+// --- begin spook/collide/shapes/cylinder.hpp ---
+
+#include <cmath>
+#include <numbers>
+
+namespace spook {
+
+/// A solid cylinder centered on its origin with its axis along y, as in the
+/// seeds: radius and height (the full length along y), both in m.
+template <Scalar S>
+class CylinderT : public ShapeT<S> {
+ public:
+  using Vec3 = spook::Vec3<S>;
+
+  CylinderT(S radius, S height) {
+    setRadius(radius);
+    setHeight(height);
+  }
+
+  [[nodiscard]] S getRadius() const { return radius_; }
+  void setRadius(S radius) { radius_ = this->requireLength("Cylinder", "radius", radius); }
+  [[nodiscard]] S getHeight() const { return height_; }
+  void setHeight(S height) { height_ = this->requireLength("Cylinder", "height", height); }
+
+  /// V = π r² h.
+  [[nodiscard]] S getVolume() const override { return std::numbers::pi_v<S> * radius_ * radius_ * height_; }
+
+  /// I_yy = m r²/2 about the axis; I_xx = I_zz = m (3r² + h²)/12.
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    this->requireMass("Cylinder", mass);
+    const S r2 = radius_ * radius_, across = mass * (S(3) * r2 + height_ * height_) / S(12);
+    return SPDMat3<S>(Vec3(across, S(0.5) * mass * r2, across));
+  }
+
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return detail::boundingBoxFromSupport<S>(*this); }
+
+  /// The point of the rim (or cap center, along the axis) farthest along `direction`.
+  [[nodiscard]] Vec3 support(const Vec3& direction) const {
+    const S radial = std::hypot(direction.x(), direction.z());
+    const S y = direction.y() < S(0) ? -S(0.5) * height_ : S(0.5) * height_;
+    if (!(radial > S(0))) return Vec3(S(0), y, S(0));
+    return Vec3(direction.x() * (radius_ / radial), y, direction.z() * (radius_ / radial));
+  }
+
+ protected:
+  ~CylinderT() override = default;
+
+ private:
+  S radius_;
+  S height_;
+};
+
+using Cylinder = CylinderT<double>;
+using CylinderRef = ref_ptr<Cylinder>;
+namespace f32 {
+using Cylinder = CylinderT<float>;
+using CylinderRef = ref_ptr<Cylinder>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/collide/shapes/cylinder.hpp ---
+// --- begin spook/collide/shapes/sphere.hpp ---
+
+#include <numbers>
+
+namespace spook {
+
+/// A sphere centered on its origin (radius in m).
+template <Scalar S>
+class SphereT : public ShapeT<S> {
+ public:
+  using Vec3 = spook::Vec3<S>;
+
+  explicit SphereT(S radius) { setRadius(radius); }
+
+  [[nodiscard]] S getRadius() const { return radius_; }
+  void setRadius(S radius) { radius_ = this->requireLength("Sphere", "radius", radius); }
+
+  /// V = 4/3 π r³.
+  [[nodiscard]] S getVolume() const override {
+    return S(4) / S(3) * std::numbers::pi_v<S> * radius_ * radius_ * radius_;
+  }
+
+  /// I = 2/5 m r² about every axis.
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    this->requireMass("Sphere", mass);
+    return SPDMat3<S>(Vec3::Constant(S(0.4) * mass * radius_ * radius_));
+  }
+
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
+    return {Vec3::Constant(-radius_), Vec3::Constant(radius_)};
+  }
+
+  /// The surface point farthest along `direction` (+x for a zero direction).
+  [[nodiscard]] Vec3 support(const Vec3& direction) const {
+    const S length = direction.norm();
+    return length > S(0) ? Vec3(direction * (radius_ / length)) : Vec3(radius_, S(0), S(0));
+  }
+
+ protected:
+  ~SphereT() override = default;
+
+ private:
+  S radius_;
+};
+
+using Sphere = SphereT<double>;
+using SphereRef = ref_ptr<Sphere>;
+namespace f32 {
+using Sphere = SphereT<float>;
+using SphereRef = ref_ptr<Sphere>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/collide/shapes/sphere.hpp ---
+// --- begin spook/core/frame.hpp ---
 
 namespace spook {
 

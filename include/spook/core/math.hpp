@@ -43,10 +43,16 @@ class SPDMat3 {
  public:
   /// The identity.
   SPDMat3() : m_(Mat3<S>::Identity()) {}
-  /// Diagonal matrix from positive entries.
-  explicit SPDMat3(const Vec3<S>& diagonal) : SPDMat3(Mat3<S>(diagonal.asDiagonal())) {}
-  /// From a full matrix; throws unless it is finite, symmetric and positive definite.
-  explicit SPDMat3(const Mat3<S>& m) {
+  /// From a 3-vector (a diagonal matrix) or a full 3×3 matrix; throws unless
+  /// the result is finite, symmetric and positive definite.
+  template <class Derived>
+  explicit SPDMat3(const Eigen::MatrixBase<Derived>& value) {
+    Mat3<S> m;
+    if constexpr (Derived::ColsAtCompileTime == 1) {
+      m = Vec3<S>(value).asDiagonal();
+    } else {
+      m = value;
+    }
     if (const char* why = defect(m)) throw detail::makeError("SPDMat3", "", why, flat(m));
     m_ = S(0.5) * (m + m.transpose());
   }

@@ -1,0 +1,70 @@
+#pragma once
+
+#include <numbers>
+
+#include <spook/collide/shapes/shape.hpp>
+
+namespace spook {
+
+/// A capsule centered on its origin with its axis along y, as in the seeds:
+/// a cylinder of `height` (m, between the hemisphere centers) capped by two
+/// hemispheres of `radius` (m). Total length height + 2·radius.
+template <Scalar S>
+class CapsuleT : public ShapeT<S> {
+ public:
+  using Vec3 = spook::Vec3<S>;
+
+  CapsuleT(S radius, S height) {
+    setRadius(radius);
+    setHeight(height);
+  }
+
+  [[nodiscard]] S getRadius() const { return radius_; }
+  void setRadius(S radius) { radius_ = this->requireLength("Capsule", "radius", radius); }
+  [[nodiscard]] S getHeight() const { return height_; }
+  void setHeight(S height) { height_ = this->requireLength("Capsule", "height", height); }
+
+  /// V = π r² h + 4/3 π r³.
+  [[nodiscard]] S getVolume() const override {
+    return std::numbers::pi_v<S> * radius_ * radius_ * (height_ + S(4) / S(3) * radius_);
+  }
+
+  /// Cylinder part m_c and the two hemispheres m_s share the mass by volume:
+  /// I_yy = m_c r²/2 + 2/5 m_s r²,
+  /// I_xx = I_zz = m_c (3r² + h²)/12 + m_s (2r²/5 + h²/4 + 3hr/8), the last
+  /// term from each hemisphere's centroid at 3r/8 and the parallel-axis rule.
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    this->requireMass("Capsule", mass);
+    const S r = radius_, h = height_, r2 = r * r;
+    const S cylinderShare = h / (h + S(4) / S(3) * r);
+    const S mc = mass * cylinderShare, ms = mass - mc;
+    const S axial = S(0.5) * mc * r2 + S(0.4) * ms * r2;
+    const S across = mc * (S(3) * r2 + h * h) / S(12) + ms * (S(0.4) * r2 + S(0.25) * h * h + S(0.375) * h * r);
+    return SPDMat3<S>(Vec3(across, axial, across));
+  }
+
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return detail::boundingBoxFromSupport<S>(*this); }
+
+  /// The surface point farthest along `direction`: the end sphere's support.
+  [[nodiscard]] Vec3 support(const Vec3& direction) const {
+    const Vec3 end(S(0), direction.y() < S(0) ? -S(0.5) * height_ : S(0.5) * height_, S(0));
+    const S length = direction.norm();
+    return length > S(0) ? Vec3(end + direction * (radius_ / length)) : Vec3(end + Vec3(radius_, S(0), S(0)));
+  }
+
+ protected:
+  ~CapsuleT() override = default;
+
+ private:
+  S radius_;
+  S height_;
+};
+
+using Capsule = CapsuleT<double>;
+using CapsuleRef = ref_ptr<Capsule>;
+namespace f32 {
+using Capsule = CapsuleT<float>;
+using CapsuleRef = ref_ptr<Capsule>;
+}  // namespace f32
+
+}  // namespace spook

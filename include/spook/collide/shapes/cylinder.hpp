@@ -1,0 +1,62 @@
+#pragma once
+
+#include <cmath>
+#include <numbers>
+
+#include <spook/collide/shapes/shape.hpp>
+
+namespace spook {
+
+/// A solid cylinder centered on its origin with its axis along y, as in the
+/// seeds: radius and height (the full length along y), both in m.
+template <Scalar S>
+class CylinderT : public ShapeT<S> {
+ public:
+  using Vec3 = spook::Vec3<S>;
+
+  CylinderT(S radius, S height) {
+    setRadius(radius);
+    setHeight(height);
+  }
+
+  [[nodiscard]] S getRadius() const { return radius_; }
+  void setRadius(S radius) { radius_ = this->requireLength("Cylinder", "radius", radius); }
+  [[nodiscard]] S getHeight() const { return height_; }
+  void setHeight(S height) { height_ = this->requireLength("Cylinder", "height", height); }
+
+  /// V = π r² h.
+  [[nodiscard]] S getVolume() const override { return std::numbers::pi_v<S> * radius_ * radius_ * height_; }
+
+  /// I_yy = m r²/2 about the axis; I_xx = I_zz = m (3r² + h²)/12.
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    this->requireMass("Cylinder", mass);
+    const S r2 = radius_ * radius_, across = mass * (S(3) * r2 + height_ * height_) / S(12);
+    return SPDMat3<S>(Vec3(across, S(0.5) * mass * r2, across));
+  }
+
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return detail::boundingBoxFromSupport<S>(*this); }
+
+  /// The point of the rim (or cap center, along the axis) farthest along `direction`.
+  [[nodiscard]] Vec3 support(const Vec3& direction) const {
+    const S radial = std::hypot(direction.x(), direction.z());
+    const S y = direction.y() < S(0) ? -S(0.5) * height_ : S(0.5) * height_;
+    if (!(radial > S(0))) return Vec3(S(0), y, S(0));
+    return Vec3(direction.x() * (radius_ / radial), y, direction.z() * (radius_ / radial));
+  }
+
+ protected:
+  ~CylinderT() override = default;
+
+ private:
+  S radius_;
+  S height_;
+};
+
+using Cylinder = CylinderT<double>;
+using CylinderRef = ref_ptr<Cylinder>;
+namespace f32 {
+using Cylinder = CylinderT<float>;
+using CylinderRef = ref_ptr<Cylinder>;
+}  // namespace f32
+
+}  // namespace spook

@@ -1,0 +1,55 @@
+#pragma once
+
+#include <numbers>
+
+#include <spook/collide/shapes/shape.hpp>
+
+namespace spook {
+
+/// A sphere centered on its origin (radius in m).
+template <Scalar S>
+class SphereT : public ShapeT<S> {
+ public:
+  using Vec3 = spook::Vec3<S>;
+
+  explicit SphereT(S radius) { setRadius(radius); }
+
+  [[nodiscard]] S getRadius() const { return radius_; }
+  void setRadius(S radius) { radius_ = this->requireLength("Sphere", "radius", radius); }
+
+  /// V = 4/3 π r³.
+  [[nodiscard]] S getVolume() const override {
+    return S(4) / S(3) * std::numbers::pi_v<S> * radius_ * radius_ * radius_;
+  }
+
+  /// I = 2/5 m r² about every axis.
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    this->requireMass("Sphere", mass);
+    return SPDMat3<S>(Vec3::Constant(S(0.4) * mass * radius_ * radius_));
+  }
+
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
+    return {Vec3::Constant(-radius_), Vec3::Constant(radius_)};
+  }
+
+  /// The surface point farthest along `direction` (+x for a zero direction).
+  [[nodiscard]] Vec3 support(const Vec3& direction) const {
+    const S length = direction.norm();
+    return length > S(0) ? Vec3(direction * (radius_ / length)) : Vec3(radius_, S(0), S(0));
+  }
+
+ protected:
+  ~SphereT() override = default;
+
+ private:
+  S radius_;
+};
+
+using Sphere = SphereT<double>;
+using SphereRef = ref_ptr<Sphere>;
+namespace f32 {
+using Sphere = SphereT<float>;
+using SphereRef = ref_ptr<Sphere>;
+}  // namespace f32
+
+}  // namespace spook

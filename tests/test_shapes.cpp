@@ -1,0 +1,128 @@
+#include <doctest/doctest.h>
+
+#include <limits>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <spook/collide/shapes/box.hpp>
+#include <spook/collide/shapes/capsule.hpp>
+#include <spook/collide/shapes/cylinder.hpp>
+#include <spook/collide/shapes/sphere.hpp>
+
+#include "tolerance.hpp"
+
+using spook::test::pick;
+
+namespace {
+
+template <class S>
+void checkDiagonal(const spook::SPDMat3<S>& inertia, double xx, double yy, double zz, S tol) {
+  const spook::Mat3<S>& I = inertia.matrix();
+  CHECK(std::abs(I(0, 0) - S(xx)) <= tol * S(xx));
+  CHECK(std::abs(I(1, 1) - S(yy)) <= tol * S(yy));
+  CHECK(std::abs(I(2, 2) - S(zz)) <= tol * S(zz));
+  CHECK((I - spook::Mat3<S>(I.diagonal().asDiagonal())).norm() == S(0));
+}
+
+// Points spread over the surface of a convex shape, from its own support
+// function along many directions; a support point must beat all of them.
+template <class S, class Shape>
+void checkSupportIsFarthest(const Shape& shape) {
+  std::mt19937 rng(17);
+  std::normal_distribution<double> n(0.0, 1.0);
+  std::vector<spook::Vec3<S>> directions, surface;
+  for (int i = 0; i < 400; ++i) directions.emplace_back(S(n(rng)), S(n(rng)), S(n(rng)));
+  for (const auto& d : directions) surface.push_back(shape.support(d));
+  const spook::BoundingBoxT<S> box = shape.getBoundingBox();
+  const S tol = pick<S>(1e-12, 1e-5);
+  S worstExcess = S(0);  // how far some surface point lies beyond the support plane
+  bool allInBox = true;
+  for (const auto& d : directions) {
+    const spook::Vec3<S> p = shape.support(d);
+    allInBox = allInBox && box.contains(p, tol);
+    for (const auto& q : surface) worstExcess = std::max(worstExcess, (q - p).dot(d) / d.norm());
+  }
+  CHECK(allInBox);
+  CHECK(worstExcess <= tol);
+}
+
+template <class F>
+void checkRejects(F&& make, const std::string& kind, const std::string& value) {
+  try {
+    make();
+    FAIL("no spook::Error for " << kind << " " << value);
+  } catch (const spook::Error& e) {
+    const std::string what = e.what();
+    CHECK_MESSAGE(what.find(kind) != std::string::npos, what);
+    CHECK_MESSAGE(what.find("got " + value) != std::string::npos, what);
+  }
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a box has volume 8abc and inertia m/3 (b²+c², a²+c², a²+b²)", S, float, double) {
+  const S tol = pick<S>(1e-15, 1e-6);
+  spook::ref_ptr<spook::BoxT<S>> box = new spook::BoxT<S>(spook::Vec3<S>(S(0.5), S(1), S(1.5)));
+  CHECK(std::abs(box->getVolume() - S(6)) <= tol * S(6));
+  checkDiagonal<S>(box->calculateInertia(S(6)), 6.5, 5.0, 2.5, tol);
+  CHECK(box->getBoundingBox().max == spook::Vec3<S>(S(0.5), S(1), S(1.5)));
+  CHECK(box->support(spook::Vec3<S>(S(-1), S(0.2), S(-3))) == spook::Vec3<S>(S(-0.5), S(1), S(-1.5)));
+  checkSupportIsFarthest<S>(*box);
+}
+
+TEST_CASE_TEMPLATE("a sphere has volume 4/3 π r³ and inertia 2/5 m r²", S, float, double) {
+  const S tol = pick<S>(1e-15, 1e-6);
+  spook::ref_ptr<spook::SphereT<S>> sphere = new spook::SphereT<S>(S(0.5));
+  CHECK(std::abs(sphere->getVolume() - S(std::numbers::pi / 6)) <= tol);
+  checkDiagonal<S>(sphere->calculateInertia(S(2)), 0.2, 0.2, 0.2, tol);
+  checkSupportIsFarthest<S>(*sphere);
+}
+
+TEST_CASE_TEMPLATE("a cylinder along y has I_yy = m r²/2 and I_xx = m (3r² + h²)/12", S, float, double) {
+  const S tol = pick<S>(1e-15, 1e-6);
+  spook::ref_ptr<spook::CylinderT<S>> cylinder = new spook::CylinderT<S>(S(0.5), S(2));
+  CHECK(std::abs(cylinder->getVolume() - S(std::numbers::pi / 2)) <= tol);
+  checkDiagonal<S>(cylinder->calculateInertia(S(3)), 1.1875, 0.375, 1.1875, tol);
+  const spook::BoundingBoxT<S> box = cylinder->getBoundingBox();
+  CHECK((box.max - spook::Vec3<S>(S(0.5), S(1), S(0.5))).norm() <= tol);
+  CHECK((box.min + spook::Vec3<S>(S(0.5), S(1), S(0.5))).norm() <= tol);
+  checkSupportIsFarthest<S>(*cylinder);
+}
+
+// r = 1, h = 2, density 1: m = 10π/3; worked by hand as a cylinder of mass 2π
+// and two hemispheres of 2π/3 with centroids 3r/8 beyond the cylinder ends:
+// I_yy = π + (2/5)(4π/3) = 23π/15, I_xx = 7π/6 + (4π/3)(2/5 + 1 + 3/4) = 121π/30.
+TEST_CASE_TEMPLATE("a capsule's inertia is a cylinder's plus two offset hemispheres'", S, float, double) {
+  const S tol = pick<S>(1e-15, 1e-6);
+  const double pi = std::numbers::pi;
+  spook::ref_ptr<spook::CapsuleT<S>> capsule = new spook::CapsuleT<S>(S(1), S(2));
+  CHECK(std::abs(capsule->getVolume() - S(10 * pi / 3)) <= tol * S(10));
+  checkDiagonal<S>(capsule->calculateInertia(S(10 * pi / 3)), 121 * pi / 30, 23 * pi / 15, 121 * pi / 30,
+                   pick<S>(1e-14, 1e-6));
+  const spook::BoundingBoxT<S> box = capsule->getBoundingBox();
+  CHECK((box.max - spook::Vec3<S>(S(1), S(2), S(1))).norm() <= tol * S(2));
+  checkSupportIsFarthest<S>(*capsule);
+}
+
+TEST_CASE("a capsule shrinking to zero height tends to a sphere") {
+  spook::CapsuleRef capsule = new spook::Capsule(0.3, 1e-9);
+  spook::SphereRef sphere = new spook::Sphere(0.3);
+  CHECK(capsule->getVolume() == doctest::Approx(sphere->getVolume()).epsilon(1e-8));
+  CHECK((capsule->calculateInertia(2.0).matrix() - sphere->calculateInertia(2.0).matrix()).norm() < 1e-9);
+}
+
+TEST_CASE_TEMPLATE("shapes reject zero, negative and non-finite dimensions", S, float, double) {
+  const S nan = std::numeric_limits<S>::quiet_NaN();
+  checkRejects([] { spook::ref_ptr<spook::SphereT<S>> s = new spook::SphereT<S>(S(0)); }, "Sphere", "0");
+  checkRejects([] { spook::ref_ptr<spook::SphereT<S>> s = new spook::SphereT<S>(S(-2)); }, "Sphere", "-2");
+  checkRejects([&] { spook::ref_ptr<spook::CapsuleT<S>> s = new spook::CapsuleT<S>(S(1), nan); }, "Capsule", "nan");
+  checkRejects([] { spook::ref_ptr<spook::CylinderT<S>> s = new spook::CylinderT<S>(S(-1), S(1)); }, "Cylinder", "-1");
+  checkRejects([] { spook::ref_ptr<spook::BoxT<S>> s = new spook::BoxT<S>(spook::Vec3<S>(S(1), S(0), S(1))); }, "Box",
+               "(1, 0, 1)");
+  spook::ref_ptr<spook::BoxT<S>> box = new spook::BoxT<S>(spook::Vec3<S>::Ones());
+  checkRejects([&] { box->setHalfExtents(spook::Vec3<S>(S(1), S(1), S(-0.5))); }, "Box", "(1, 1, -0.5)");
+  CHECK(box->getHalfExtents() == spook::Vec3<S>::Ones());
+  checkRejects([&] { (void)box->calculateInertia(S(0)); }, "Box", "0");
+}
