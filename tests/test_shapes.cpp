@@ -8,6 +8,7 @@
 
 #include <spook/collide/shapes/box.hpp>
 #include <spook/collide/shapes/capsule.hpp>
+#include <spook/collide/shapes/composite.hpp>
 #include <spook/collide/shapes/cylinder.hpp>
 #include <spook/collide/shapes/sphere.hpp>
 
@@ -125,4 +126,81 @@ TEST_CASE_TEMPLATE("shapes reject zero, negative and non-finite dimensions", S, 
   checkRejects([&] { box->setHalfExtents(spook::Vec3<S>(S(1), S(1), S(-0.5))); }, "Box", "(1, 1, -0.5)");
   CHECK(box->getHalfExtents() == spook::Vec3<S>::Ones());
   checkRejects([&] { (void)box->calculateInertia(S(0)); }, "Box", "0");
+}
+
+namespace {
+
+template <class S>
+spook::ref_ptr<spook::BoxT<S>> box(double x, double y, double z) {
+  return new spook::BoxT<S>(spook::Vec3<S>(S(x), S(y), S(z)));
+}
+template <class S>
+spook::Transform<S> at(double x, double y, double z, const spook::Quat<S>& q = spook::Quat<S>::Identity()) {
+  return spook::makeTransform<S>(spook::Vec3<S>(S(x), S(y), S(z)), q);
+}
+template <class S>
+S difference(const spook::SPDMat3<S>& a, const spook::SPDMat3<S>& b) {
+  return (a.matrix() - b.matrix()).norm() / b.matrix().norm();
+}
+
+}  // namespace
+
+// Two unit cubes side by side are one 2×1×1 box: an independent check of
+// the parallel-axis theorem, I = Σ (Iᵢ + mᵢ(|pᵢ|² 1 − pᵢ pᵢᵀ)).
+TEST_CASE_TEMPLATE("two cubes side by side have the volume and inertia of one long box", S, float, double) {
+  const S tol = pick<S>(1e-12, 1e-6);
+  spook::ref_ptr<spook::CompositeT<S>> pair = new spook::CompositeT<S>();
+  auto cube = box<S>(0.5, 0.5, 0.5);
+  pair->add(cube, at<S>(-0.5, 0, 0));
+  pair->add(cube, at<S>(0.5, 0, 0));
+  const auto whole = box<S>(1, 0.5, 0.5);
+  CHECK(std::abs(pair->getVolume() - whole->getVolume()) <= tol);
+  CHECK(difference<S>(pair->calculateInertia(S(3)), whole->calculateInertia(S(3))) <= tol);
+  CHECK((pair->getBoundingBox().max - spook::Vec3<S>(S(1), S(0.5), S(0.5))).norm() <= tol);
+  CHECK(pair->getCenterOfVolume().norm() <= tol);
+}
+
+TEST_CASE_TEMPLATE("a child turned a quarter turn swaps its principal moments", S, float, double) {
+  const S tol = pick<S>(1e-12, 1e-6);
+  spook::ref_ptr<spook::CompositeT<S>> turned = new spook::CompositeT<S>();
+  turned->add(box<S>(1, 0.5, 0.25), at<S>(0, 0, 0, spook::rotate<S>(spook::Vec3<S>::UnitX(), spook::Vec3<S>::UnitY())));
+  CHECK(difference<S>(turned->calculateInertia(S(2)), box<S>(0.5, 1, 0.25)->calculateInertia(S(2))) <= tol);
+  CHECK((turned->getBoundingBox().max - spook::Vec3<S>(S(0.5), S(1), S(0.25))).norm() <= tol);
+}
+
+// Sphere of r = 0.5, m = 2 at (2, 0, 0): I = 2/5 m r² + m(|p|² 1 − p pᵀ)
+// = diag(0.2, 8.2, 8.2) about the composite origin.
+TEST_CASE_TEMPLATE("an offset child adds m d² about the composite origin", S, float, double) {
+  const S tol = pick<S>(1e-12, 1e-6);
+  spook::ref_ptr<spook::CompositeT<S>> arm = new spook::CompositeT<S>();
+  arm->add(new spook::SphereT<S>(S(0.5)), at<S>(2, 0, 0));
+  checkDiagonal<S>(arm->calculateInertia(S(2)), 0.2, 8.2, 8.2, tol);
+  CHECK((arm->getCenterOfVolume() - spook::Vec3<S>(S(2), S(0), S(0))).norm() <= tol);
+}
+
+// A composite whose own center is off its origin, nested in another: its
+// tensor must be moved to its center before being moved again.
+TEST_CASE_TEMPLATE("nested composites transfer inertia through each center of volume", S, float, double) {
+  const S tol = pick<S>(1e-12, 1e-6);
+  spook::ref_ptr<spook::CompositeT<S>> inner = new spook::CompositeT<S>();
+  inner->add(box<S>(0.5, 0.5, 0.5), at<S>(1, 0, 0));
+  spook::ref_ptr<spook::CompositeT<S>> outer = new spook::CompositeT<S>();
+  outer->add(inner, at<S>(0, 3, 0));
+  spook::ref_ptr<spook::CompositeT<S>> flat = new spook::CompositeT<S>();
+  flat->add(box<S>(0.5, 0.5, 0.5), at<S>(1, 3, 0));
+  CHECK(difference<S>(outer->calculateInertia(S(5)), flat->calculateInertia(S(5))) <= tol);
+  CHECK((outer->getCenterOfVolume() - spook::Vec3<S>(S(1), S(3), S(0))).norm() <= tol);
+}
+
+TEST_CASE_TEMPLATE("composites reject null and self-containing children and non-rigid placements", S, float, double) {
+  spook::ref_ptr<spook::CompositeT<S>> a = new spook::CompositeT<S>(), b = new spook::CompositeT<S>();
+  b->add(a);
+  checkRejects([&] { a->add(b); }, "Composite", "a composite of its own chain");
+  checkRejects([&] { a->add(a); }, "Composite", "a composite of its own chain");
+  checkRejects([&] { a->add(nullptr); }, "Composite", "nullptr");
+  spook::Transform<S> scaled = spook::Transform<S>::Identity();
+  scaled.linear() *= S(2);
+  checkRejects([&] { a->add(box<S>(1, 1, 1), scaled); }, "Composite", "(2, 0, 0");
+  CHECK(a->getChildren().empty());
+  checkRejects([&] { (void)a->calculateInertia(S(1)); }, "Composite", "0");
 }

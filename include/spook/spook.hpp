@@ -6,6 +6,7 @@
 #include <spook/collide/bounding_box.hpp>
 #include <spook/collide/shapes/box.hpp>
 #include <spook/collide/shapes/capsule.hpp>
+#include <spook/collide/shapes/composite.hpp>
 #include <spook/collide/shapes/cylinder.hpp>
 #include <spook/collide/shapes/shape.hpp>
 #include <spook/collide/shapes/sphere.hpp>

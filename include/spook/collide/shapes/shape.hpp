@@ -26,6 +26,8 @@ class ShapeT : public Referenced {
   [[nodiscard]] virtual SPDMat3<S> calculateInertia(S mass) const = 0;
   /// Tight axis-aligned box in the shape frame (m).
   [[nodiscard]] virtual BoundingBoxT<S> getBoundingBox() const = 0;
+  /// Center of volume in the shape frame (m); the origin for primitives.
+  [[nodiscard]] virtual Vec3 getCenterOfVolume() const { return Vec3::Zero(); }
 
  protected:
   ~ShapeT() override = default;

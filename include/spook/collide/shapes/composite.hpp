@@ -1,0 +1,123 @@
+#pragma once
+
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <spook/collide/shapes/shape.hpp>
+
+namespace spook {
+
+/// Child shapes placed by rigid transforms relative to the composite's
+/// frame. Volume, inertia and bounding box are those of the union of the
+/// children, assumed not to overlap, all of one density.
+template <Scalar S>
+class CompositeT : public ShapeT<S> {
+ public:
+  using Vec3 = spook::Vec3<S>;
+  using Mat3 = spook::Mat3<S>;
+  using Transform = spook::Transform<S>;
+  using Shape = ShapeT<S>;
+
+  struct Child {
+    ref_ptr<Shape> shape;
+    Transform transform;  ///< child frame → composite frame
+  };
+
+  CompositeT() = default;
+
+  /// Adds a child at `transform` (child to composite); one shape may be
+  /// added several times. Throws on a null child, a child that contains this
+  /// composite, or a transform that is not finite and rigid.
+  void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
+    if (!shape) throw detail::makeError("Composite", "", "cannot add a null shape", "nullptr");
+    const auto* nested = dynamic_cast<const CompositeT*>(shape.get());
+    if (nested && nested->contains(this))
+      throw detail::makeError("Composite", "", "a composite cannot contain itself", "a composite of its own chain");
+    if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
+      throw detail::makeError("Composite", "", "child transform must be finite and rigid",
+                              SPDMat3<S>::flat(transform.linear()));
+    children_.push_back({std::move(shape), makeTransform<S>(transform.translation(), Quat<S>(transform.linear()))});
+  }
+
+  [[nodiscard]] const std::vector<Child>& getChildren() const { return children_; }
+
+  /// True when `shape` is this composite or anywhere among its descendants.
+  [[nodiscard]] bool contains(const Shape* shape) const {
+    if (shape == this) return true;
+    for (const Child& c : children_) {
+      if (c.shape.get() == shape) return true;
+      if (const auto* nested = dynamic_cast<const CompositeT*>(c.shape.get()); nested && nested->contains(shape))
+        return true;
+    }
+    return false;
+  }
+
+  [[nodiscard]] S getVolume() const override {
+    S volume = S(0);
+    for (const Child& c : children_) volume += c.shape->getVolume();
+    return volume;
+  }
+
+  /// Volume-weighted mean of the children's centers, composite frame (m).
+  [[nodiscard]] Vec3 getCenterOfVolume() const override {
+    Vec3 moment = Vec3::Zero();
+    for (const Child& c : children_) moment += c.shape->getVolume() * (c.transform * c.shape->getCenterOfVolume());
+    return moment / getVolume();
+  }
+
+  /// About the composite origin. Each child gets the mass m Vᵢ/V; its tensor
+  /// about its own origin is first moved to its center of volume cᵢ, then
+  /// turned into the composite frame and moved to the origin (parallel-axis
+  /// theorem both ways, J(m, d) = m(|d|² 1 − d dᵀ)):
+  /// I = Σ Rᵢ (Iᵢ − J(mᵢ, cᵢ)) Rᵢᵀ + J(mᵢ, Xᵢ cᵢ).
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    this->requireMass("Composite", mass);
+    const S volume = getVolume();
+    if (!(volume > S(0))) throw detail::makeError("Composite", "", "inertia needs a positive volume (m^3)", volume);
+    const auto shift = [](S m, const Vec3& d) {
+      return Mat3(m * (d.squaredNorm() * Mat3::Identity() - d * d.transpose()));
+    };
+    Mat3 inertia = Mat3::Zero();
+    for (const Child& c : children_) {
+      const S childMass = mass * (c.shape->getVolume() / volume);
+      const Vec3 center = c.shape->getCenterOfVolume();
+      const Mat3 aboutCenter = c.shape->calculateInertia(childMass).matrix() - shift(childMass, center);
+      const Mat3 R = c.transform.linear();
+      inertia += R * aboutCenter * R.transpose() + shift(childMass, c.transform * center);
+    }
+    return SPDMat3<S>(inertia);
+  }
+
+  /// Union of the children's boxes, each child box's corners transformed.
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
+    if (children_.empty()) return {};
+    BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::max()),
+                        Vec3::Constant(std::numeric_limits<S>::lowest())};
+    for (const Child& c : children_) {
+      const BoundingBoxT<S> local = c.shape->getBoundingBox();
+      const Mat3 R = c.transform.linear();
+      const Vec3 center = c.transform * local.center();
+      const Vec3 reach = R.cwiseAbs() * local.halfExtents();
+      box.min = box.min.cwiseMin(center - reach);
+      box.max = box.max.cwiseMax(center + reach);
+    }
+    return box;
+  }
+
+ protected:
+  ~CompositeT() override = default;
+
+ private:
+  std::vector<Child> children_;
+};
+
+using Composite = CompositeT<double>;
+using CompositeRef = ref_ptr<Composite>;
+namespace f32 {
+using Composite = CompositeT<float>;
+using CompositeRef = ref_ptr<Composite>;
+}  // namespace f32
+
+}  // namespace spook
