@@ -345,6 +345,30 @@ struct BoundingBoxT {
 #include <cmath>
 #include <string>
 
+// --- begin spook/collide/shapes/shape_type.hpp ---
+
+#include <array>
+#include <cstddef>
+#include <string_view>
+
+namespace spook {
+
+/// The kinds of shape, in the order of the collider-matrix table in the
+/// seeds. A pair (A, B) of colliding shapes is handled by the collider of
+/// the ordered pair with index(A) <= index(B).
+enum class ShapeType : unsigned char { BOX, CAPSULE, CONVEX, CYLINDER, LINE, PLANE, SPHERE, TRIMESH, COMPOSITE, HEIGHTFIELD };
+
+inline constexpr std::size_t kNumShapeTypes = 10;
+
+inline constexpr std::array<std::string_view, kNumShapeTypes> kShapeTypeNames = {
+    "Box", "Capsule", "Convex", "Cylinder", "Line", "Plane", "Sphere", "Trimesh", "Composite", "HeightField"};
+
+[[nodiscard]] constexpr std::string_view toString(ShapeType type) {
+  return kShapeTypeNames[static_cast<std::size_t>(type)];
+}
+
+}  // namespace spook
+// --- end spook/collide/shapes/shape_type.hpp ---
 // --- begin spook/core/ref_ptr.hpp ---
 
 #include <concepts>
@@ -493,7 +517,12 @@ class ShapeT : public Referenced {
  public:
   using Vec3 = spook::Vec3<S>;
 
-  /// Volume (m³).
+  /// Which kind of shape this is; every concrete shape class also states it
+  /// as `static constexpr ShapeType kType`.
+  [[nodiscard]] virtual ShapeType getType() const = 0;
+  /// Volume (m³); 0 for shapes that enclose none (Plane, Line, HeightField,
+  /// an open Trimesh), which then add no mass to a body.
+  [[nodiscard]] virtual S getVolume() const = 0;
   [[nodiscard]] virtual S getVolume() const = 0;
   /// Inertia tensor about the shape origin, in the shape frame, for a
   /// uniform body of `mass` kg (kg·m²).
@@ -541,6 +570,7 @@ namespace spook {
 template <Scalar S>
 class BoxT : public ShapeT<S> {
  public:
+  static constexpr ShapeType kType = ShapeType::BOX;
   using Vec3 = spook::Vec3<S>;
 
   explicit BoxT(const Vec3& halfExtents) { setHalfExtents(halfExtents); }
@@ -551,6 +581,8 @@ class BoxT : public ShapeT<S> {
       throw detail::makeError("Box", "", "half extents must be finite and > 0 m", halfExtents);
     halfExtents_ = halfExtents;
   }
+
+  [[nodiscard]] ShapeType getType() const override { return kType; }
 
   [[nodiscard]] S getVolume() const override { return S(8) * halfExtents_.prod(); }
 
@@ -598,6 +630,7 @@ namespace spook {
 template <Scalar S>
 class CapsuleT : public ShapeT<S> {
  public:
+  static constexpr ShapeType kType = ShapeType::CAPSULE;
   using Vec3 = spook::Vec3<S>;
 
   CapsuleT(S radius, S height) {
@@ -611,6 +644,8 @@ class CapsuleT : public ShapeT<S> {
   void setHeight(S height) { height_ = this->requireLength("Capsule", "height", height); }
 
   /// V = π r² h + 4/3 π r³.
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+
   [[nodiscard]] S getVolume() const override {
     return std::numbers::pi_v<S> * radius_ * radius_ * (height_ + S(4) / S(3) * radius_);
   }
@@ -670,6 +705,7 @@ namespace spook {
 template <Scalar S>
 class CompositeT : public ShapeT<S> {
  public:
+  static constexpr ShapeType kType = ShapeType::COMPOSITE;
   using Vec3 = spook::Vec3<S>;
   using Mat3 = spook::Mat3<S>;
   using Transform = spook::Transform<S>;
@@ -709,6 +745,8 @@ class CompositeT : public ShapeT<S> {
     return false;
   }
 
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+
   [[nodiscard]] S getVolume() const override {
     S volume = S(0);
     for (const Child& c : children_) volume += c.shape->getVolume();
@@ -736,6 +774,7 @@ class CompositeT : public ShapeT<S> {
     };
     Mat3 inertia = Mat3::Zero();
     for (const Child& c : children_) {
+      if (!(c.shape->getVolume() > S(0))) continue;  // a plane or a line carries no mass
       const S childMass = mass * (c.shape->getVolume() / volume);
       const Vec3 center = c.shape->getCenterOfVolume();
       const Mat3 aboutCenter = c.shape->calculateInertia(childMass).matrix() - shift(childMass, center);
@@ -789,6 +828,7 @@ namespace spook {
 template <Scalar S>
 class CylinderT : public ShapeT<S> {
  public:
+  static constexpr ShapeType kType = ShapeType::CYLINDER;
   using Vec3 = spook::Vec3<S>;
 
   CylinderT(S radius, S height) {
@@ -802,6 +842,8 @@ class CylinderT : public ShapeT<S> {
   void setHeight(S height) { height_ = this->requireLength("Cylinder", "height", height); }
 
   /// V = π r² h.
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+
   [[nodiscard]] S getVolume() const override { return std::numbers::pi_v<S> * radius_ * radius_ * height_; }
 
   /// I_yy = m r²/2 about the axis; I_xx = I_zz = m (3r² + h²)/12.
@@ -848,6 +890,7 @@ namespace spook {
 template <Scalar S>
 class SphereT : public ShapeT<S> {
  public:
+  static constexpr ShapeType kType = ShapeType::SPHERE;
   using Vec3 = spook::Vec3<S>;
 
   explicit SphereT(S radius) { setRadius(radius); }
@@ -856,6 +899,8 @@ class SphereT : public ShapeT<S> {
   void setRadius(S radius) { radius_ = this->requireLength("Sphere", "radius", radius); }
 
   /// V = 4/3 π r³.
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+
   [[nodiscard]] S getVolume() const override {
     return S(4) / S(3) * std::numbers::pi_v<S> * radius_ * radius_ * radius_;
   }

@@ -8,6 +8,7 @@ namespace spook {
 template <Scalar S>
 class BoxT : public ShapeT<S> {
  public:
+  static constexpr ShapeType kType = ShapeType::BOX;
   using Vec3 = spook::Vec3<S>;
 
   explicit BoxT(const Vec3& halfExtents) { setHalfExtents(halfExtents); }
@@ -18,6 +19,8 @@ class BoxT : public ShapeT<S> {
       throw detail::makeError("Box", "", "half extents must be finite and > 0 m", halfExtents);
     halfExtents_ = halfExtents;
   }
+
+  [[nodiscard]] ShapeType getType() const override { return kType; }
 
   [[nodiscard]] S getVolume() const override { return S(8) * halfExtents_.prod(); }
 

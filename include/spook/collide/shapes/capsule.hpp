@@ -12,6 +12,7 @@ namespace spook {
 template <Scalar S>
 class CapsuleT : public ShapeT<S> {
  public:
+  static constexpr ShapeType kType = ShapeType::CAPSULE;
   using Vec3 = spook::Vec3<S>;
 
   CapsuleT(S radius, S height) {
@@ -25,6 +26,8 @@ class CapsuleT : public ShapeT<S> {
   void setHeight(S height) { height_ = this->requireLength("Capsule", "height", height); }
 
   /// V = π r² h + 4/3 π r³.
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+
   [[nodiscard]] S getVolume() const override {
     return std::numbers::pi_v<S> * radius_ * radius_ * (height_ + S(4) / S(3) * radius_);
   }

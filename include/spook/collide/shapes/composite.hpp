@@ -15,6 +15,7 @@ namespace spook {
 template <Scalar S>
 class CompositeT : public ShapeT<S> {
  public:
+  static constexpr ShapeType kType = ShapeType::COMPOSITE;
   using Vec3 = spook::Vec3<S>;
   using Mat3 = spook::Mat3<S>;
   using Transform = spook::Transform<S>;
@@ -54,6 +55,8 @@ class CompositeT : public ShapeT<S> {
     return false;
   }
 
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+
   [[nodiscard]] S getVolume() const override {
     S volume = S(0);
     for (const Child& c : children_) volume += c.shape->getVolume();
@@ -81,6 +84,7 @@ class CompositeT : public ShapeT<S> {
     };
     Mat3 inertia = Mat3::Zero();
     for (const Child& c : children_) {
+      if (!(c.shape->getVolume() > S(0))) continue;  // a plane or a line carries no mass
       const S childMass = mass * (c.shape->getVolume() / volume);
       const Vec3 center = c.shape->getCenterOfVolume();
       const Mat3 aboutCenter = c.shape->calculateInertia(childMass).matrix() - shift(childMass, center);

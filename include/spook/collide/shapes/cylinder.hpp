@@ -12,6 +12,7 @@ namespace spook {
 template <Scalar S>
 class CylinderT : public ShapeT<S> {
  public:
+  static constexpr ShapeType kType = ShapeType::CYLINDER;
   using Vec3 = spook::Vec3<S>;
 
   CylinderT(S radius, S height) {
@@ -25,6 +26,8 @@ class CylinderT : public ShapeT<S> {
   void setHeight(S height) { height_ = this->requireLength("Cylinder", "height", height); }
 
   /// V = π r² h.
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+
   [[nodiscard]] S getVolume() const override { return std::numbers::pi_v<S> * radius_ * radius_ * height_; }
 
   /// I_yy = m r²/2 about the axis; I_xx = I_zz = m (3r² + h²)/12.

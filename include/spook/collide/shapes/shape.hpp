@@ -4,6 +4,7 @@
 #include <string>
 
 #include <spook/collide/bounding_box.hpp>
+#include <spook/collide/shapes/shape_type.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/math.hpp>
 #include <spook/core/ref_ptr.hpp>
@@ -19,7 +20,12 @@ class ShapeT : public Referenced {
  public:
   using Vec3 = spook::Vec3<S>;
 
-  /// Volume (m³).
+  /// Which kind of shape this is; every concrete shape class also states it
+  /// as `static constexpr ShapeType kType`.
+  [[nodiscard]] virtual ShapeType getType() const = 0;
+  /// Volume (m³); 0 for shapes that enclose none (Plane, Line, HeightField,
+  /// an open Trimesh), which then add no mass to a body.
+  [[nodiscard]] virtual S getVolume() const = 0;
   [[nodiscard]] virtual S getVolume() const = 0;
   /// Inertia tensor about the shape origin, in the shape frame, for a
   /// uniform body of `mass` kg (kg·m²).

@@ -10,6 +10,7 @@ namespace spook {
 template <Scalar S>
 class SphereT : public ShapeT<S> {
  public:
+  static constexpr ShapeType kType = ShapeType::SPHERE;
   using Vec3 = spook::Vec3<S>;
 
   explicit SphereT(S radius) { setRadius(radius); }
@@ -18,6 +19,8 @@ class SphereT : public ShapeT<S> {
   void setRadius(S radius) { radius_ = this->requireLength("Sphere", "radius", radius); }
 
   /// V = 4/3 π r³.
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+
   [[nodiscard]] S getVolume() const override {
     return S(4) / S(3) * std::numbers::pi_v<S> * radius_ * radius_ * radius_;
   }
