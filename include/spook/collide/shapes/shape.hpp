@@ -26,7 +26,6 @@ class ShapeT : public Referenced {
   /// Volume (m³); 0 for shapes that enclose none (Plane, Line, HeightField,
   /// an open Trimesh), which then add no mass to a body.
   [[nodiscard]] virtual S getVolume() const = 0;
-  [[nodiscard]] virtual S getVolume() const = 0;
   /// Inertia tensor about the shape origin, in the shape frame, for a
   /// uniform body of `mass` kg (kg·m²).
   [[nodiscard]] virtual SPDMat3<S> calculateInertia(S mass) const = 0;
