@@ -3,7 +3,7 @@
 # Does nothing (and needs no network or root) when everything is present.
 set -euo pipefail
 
-packages=(cmake g++ make python3 libeigen3-dev libccd-dev doctest-dev libbenchmark-dev)
+packages=(cmake g++ make python3 libeigen3-dev libccd-dev doctest-dev libbenchmark-dev libfcl-dev)
 
 missing=()
 for package in "${packages[@]}"; do

@@ -1,0 +1,27 @@
+#pragma once
+
+#include <spook/core/math.hpp>
+
+namespace spook {
+
+/// One point of contact between two shapes, in world coordinates. The
+/// normal is a unit vector pointing from the first shape toward the second:
+/// moving the second shape by `depth` along it separates them. The point
+/// lies midway between the two surfaces, so point ∓ normal·depth/2 are the
+/// deepest points of the first and the second shape.
+template <Scalar S>
+struct ContactPointT {
+  Vec3<S> point = Vec3<S>::Zero();   ///< world (m)
+  Vec3<S> normal = Vec3<S>::UnitZ();  ///< world, unit, from the first shape toward the second
+  S depth = S(0);                     ///< penetration along the normal (m), >= 0
+  bool enabled = true;                ///< false once contact reduction or a listener has dropped it
+  Vec3<S> force = Vec3<S>::Zero();    ///< contact force on the second shape's body (N), after the solve
+
+  [[nodiscard]] bool getEnabled() const { return enabled; }
+  [[nodiscard]] const Vec3<S>& getPoint() const { return point; }
+  [[nodiscard]] const Vec3<S>& getNormal() const { return normal; }
+  [[nodiscard]] S getDepth() const { return depth; }
+  [[nodiscard]] const Vec3<S>& getForce() const { return force; }
+};
+
+}  // namespace spook

@@ -1,0 +1,42 @@
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include <spook/collide/contact_point.hpp>
+
+namespace spook {
+
+/// Where a collider writes the contact points of one shape pair. It keeps
+/// the "first toward second" normal convention when the pair was handed to
+/// the collider in reverse order (flipped), and never lets a non-finite
+/// point through.
+template <Scalar S>
+class ContactSinkT {
+ public:
+  explicit ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped = false)
+      : points_(&points), flipped_(flipped) {}
+
+  /// Adds a point: world position (m), unit normal from the collider's first
+  /// shape toward its second, penetration depth (m, clamped at 0).
+  void add(const Vec3<S>& point, const Vec3<S>& normal, S depth) {
+    if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) return;
+    ContactPointT<S> contact;
+    contact.point = point;
+    contact.normal = flipped_ ? Vec3<S>(-normal) : normal;
+    contact.depth = depth > S(0) ? depth : S(0);
+    points_->push_back(contact);
+  }
+
+  /// The same output with the shape order swapped.
+  [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_); }
+
+  /// Number of points written so far.
+  [[nodiscard]] std::size_t size() const { return points_->size(); }
+
+ private:
+  std::vector<ContactPointT<S>>* points_;
+  bool flipped_;
+};
+
+}  // namespace spook
