@@ -4,6 +4,7 @@
 // or single_include/spook/spook.hpp, its generated amalgamation.
 
 #include <spook/collide/bounding_box.hpp>
+#include <spook/collide/geometry.hpp>
 #include <spook/collide/shapes/box.hpp>
 #include <spook/collide/shapes/capsule.hpp>
 #include <spook/collide/shapes/composite.hpp>
@@ -18,6 +19,7 @@
 #include <spook/core/referenced.hpp>
 #include <spook/core/scalar.hpp>
 #include <spook/dynamics/gravity_field.hpp>
+#include <spook/dynamics/material.hpp>
 #include <spook/dynamics/mass_properties.hpp>
 #include <spook/dynamics/rigid_body.hpp>
 #include <spook/sim/assembly.hpp>

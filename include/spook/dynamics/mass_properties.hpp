@@ -18,18 +18,31 @@ class MassPropertiesT {
   using Vec3 = spook::Vec3<S>;
   using Mat3 = spook::Mat3<S>;
 
+  /// Which properties the body recomputes from its geometries (shape
+  /// volumes times material density) when geometries, shapes or materials
+  /// change. Setting a property by hand takes it out of the mask.
+  enum AutoGenerate : unsigned { MASS = 1u << 0, CM_OFFSET = 1u << 1, INERTIA = 1u << 2, ALL = MASS | CM_OFFSET | INERTIA };
+  [[nodiscard]] unsigned getAutoGenerateMask() const { return autoGenerate_; }
+  void setAutoGenerateMask(unsigned mask) {
+    if (mask & ~unsigned(ALL)) throw error("auto-generate mask has unknown bits", mask);
+    autoGenerate_ = mask;
+  }
+
   /// Mass in kg; must be finite and > 0 (a body of infinite mass is STATIC).
+  /// Stops the mass from being generated from the geometries.
   [[nodiscard]] S getMass() const { return mass_; }
   void setMass(S mass) {
     if (!(std::isfinite(mass) && mass > S(0))) throw error("mass must be finite and > 0 kg", mass);
     mass_ = mass;
+    autoGenerate_ &= ~unsigned(MASS);
   }
 
   /// Inertia tensor about the center of mass, in the CM frame (kg·m²).
   [[nodiscard]] const Mat3& getInertiaTensor() const { return inertia_.matrix(); }
   /// Sets the tensor from a full 3×3 matrix, which must be finite, symmetric
   /// and positive definite, or from a 3-vector of principal moments along
-  /// the CM frame axes, which must be finite and > 0.
+  /// the CM frame axes, which must be finite and > 0. Stops the tensor from
+  /// being generated from the geometries.
   template <class Derived>
   void setInertiaTensor(const Eigen::MatrixBase<Derived>& value) {
     if constexpr (Derived::ColsAtCompileTime == 1) {
@@ -37,14 +50,19 @@ class MassPropertiesT {
       if (!(diagonal.allFinite() && diagonal.minCoeff() > S(0)))
         throw error("inertia diagonal must be finite and > 0 kg·m²", diagonal);
       inertia_ = SPDMat3<S>(diagonal);
+      autoGenerate_ &= ~unsigned(INERTIA);
     } else {
       const Mat3 inertia = value;
       if (const char* why = SPDMat3<S>::defect(inertia))
         throw error(std::string("inertia tensor: ") + why, SPDMat3<S>::flat(inertia));
       inertia_ = SPDMat3<S>(inertia);
+      autoGenerate_ &= ~unsigned(INERTIA);
     }
   }
-  void setInertiaTensor(const SPDMat3<S>& inertia) { inertia_ = inertia; }
+  void setInertiaTensor(const SPDMat3<S>& inertia) {
+    inertia_ = inertia;
+    autoGenerate_ &= ~unsigned(INERTIA);
+  }
 
   /// Added-mass coefficients c along the CM frame axes (dimensionless, ≥ 0):
   /// the inertial mass along axis i is m(1 + cᵢ), e.g. water carried by a
@@ -62,6 +80,14 @@ class MassPropertiesT {
   explicit MassPropertiesT(const std::string* ownerName = nullptr) : ownerName_(ownerName) {}
 
  private:
+  template <Scalar>
+  friend class RigidBodyT;
+  // Generated values, set by the body without touching the mask.
+  void generate(S mass, const SPDMat3<S>& inertia) {
+    if (autoGenerate_ & MASS) mass_ = mass;
+    if (autoGenerate_ & INERTIA) inertia_ = inertia;
+  }
+
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
     return detail::makeError("RigidBody", ownerName_ ? *ownerName_ : std::string(), what, value);
@@ -71,6 +97,7 @@ class MassPropertiesT {
   S mass_ = S(1);
   SPDMat3<S> inertia_;
   Vec3 massCoefficients_ = Vec3::Zero();
+  unsigned autoGenerate_ = ALL;
 };
 
 using MassProperties = MassPropertiesT<double>;

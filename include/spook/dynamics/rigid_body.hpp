@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -7,12 +8,14 @@
 #include <utility>
 #include <vector>
 
+#include <spook/collide/geometry.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/frame.hpp>
 #include <spook/core/math.hpp>
 #include <spook/core/observer_ptr.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
+#include <spook/dynamics/mass_from_geometries.hpp>
 #include <spook/dynamics/mass_properties.hpp>
 
 namespace spook {
@@ -27,13 +30,14 @@ struct SimulationMembership;
 /// frame fixed in it, mass properties, and velocities of the center of mass
 /// in world coordinates.
 template <Scalar S>
-class RigidBodyT : public Referenced {
+class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
  public:
   using Vec3 = spook::Vec3<S>;
   using Quat = spook::Quat<S>;
   using Mat3 = spook::Mat3<S>;
   using Transform = spook::Transform<S>;
   using Frame = FrameT<S>;
+  using Geometry = GeometryT<S>;
 
   enum MotionControl {
     DYNAMICS,   ///< moved by forces, gravity and (later) constraints
@@ -120,9 +124,11 @@ class RigidBodyT : public Referenced {
 
   /// Center-of-mass offset in the model frame (m); the model frame stays put.
   [[nodiscard]] const Vec3& getCmLocalTranslate() const { return cmFrame_->getLocalTranslate(); }
+  /// Stops the offset from being generated from the geometries.
   void setCmLocalTranslate(const Vec3& offset) {
     requireFinite(offset, "center of mass offset must be finite (m)");
     cmFrame_->setLocalTranslate(offset);
+    massProperties_.setAutoGenerateMask(massProperties_.getAutoGenerateMask() & ~unsigned(MassPropertiesT<S>::CM_OFFSET));
   }
 
   // --- Velocities (world coordinates, of the center of mass) ----------------
@@ -224,6 +230,71 @@ class RigidBodyT : public Referenced {
   /// True while a moveTo is under way.
   [[nodiscard]] bool isMovingToTarget() const { return target_.has_value(); }
 
+  // --- Geometries ------------------------------------------------------------
+
+  /// Adds a geometry; its local transform is now relative to the model
+  /// frame. Recomputes the generated mass properties. Throws if the
+  /// geometry is null, belongs to a body, or stands on its own in a space.
+  void add(ref_ptr<Geometry> geometry) {
+    if (!geometry) throw error("cannot add a null Geometry", "nullptr");
+    if (geometry->getRigidBody() == this) throw error("Geometry already added to this body", geometry->getName());
+    if (geometry->getRigidBody()) throw error("Geometry already belongs to another body", geometry->getName());
+    if (Access::space(*geometry)) throw error("Geometry is in a space on its own; remove it first", geometry->getName());
+    Access::body(*geometry) = this;
+    Access::owner(*geometry) = this;
+    geometry->getFrame()->setParent(frame_.get());
+    geometries_.push_back(std::move(geometry));
+    updateMassProperties();
+  }
+  /// Removes a geometry (it keeps its local transform, now a world one);
+  /// false when it is not this body's.
+  bool remove(Geometry* geometry) {
+    const auto it = std::find_if(geometries_.begin(), geometries_.end(), [&](const auto& g) { return g == geometry; });
+    if (it == geometries_.end()) return false;
+    ref_ptr<Geometry> keep = *it;
+    geometries_.erase(it);
+    Access::body(*keep) = nullptr;
+    Access::owner(*keep) = nullptr;
+    keep->getFrame()->setParent(nullptr);
+    updateMassProperties();
+    return true;
+  }
+  [[nodiscard]] const std::vector<ref_ptr<Geometry>>& getGeometries() const { return geometries_; }
+  /// The first geometry with this name, or nullptr.
+  [[nodiscard]] Geometry* getGeometry(const std::string& name) const {
+    for (const auto& g : geometries_)
+      if (g->getName() == name) return g.get();
+    return nullptr;
+  }
+
+  /// Recomputes mass, center of mass and inertia from the geometries'
+  /// shape volumes and material densities, for the properties still in the
+  /// auto-generate mask (a hand-set mass scales the generated inertia). The
+  /// model frame stays put; the center-of-mass velocity follows the new
+  /// center so that no body point changes velocity. Nothing changes when no
+  /// shape has volume.
+  void updateMassProperties() {
+    const auto generated = detail::massFromGeometries<S>(geometries_);
+    if (!generated) return;
+    const unsigned mask = massProperties_.getAutoGenerateMask();
+    const S mass = (mask & MassPropertiesT<S>::MASS) ? generated->mass : massProperties_.getMass();
+    Mat3 inertia = generated->inertia * (mass / generated->mass);
+    if (!(mask & MassPropertiesT<S>::CM_OFFSET)) {
+      // About the user's center instead of the generated one.
+      const Vec3 d = getCmLocalTranslate() - generated->center;
+      inertia += mass * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+    }
+    // The tensor is stored in the CM frame, whose axes are the model axes
+    // turned by the CM frame's local rotation.
+    const Mat3 R = cmFrame_->getLocalRotate().toRotationMatrix();
+    massProperties_.generate(mass, SPDMat3<S>(Mat3(R.transpose() * inertia * R)));
+    if (mask & MassPropertiesT<S>::CM_OFFSET) {
+      const Vec3 oldCm = getCmPosition();
+      cmFrame_->setLocalTranslate(generated->center);
+      velocity_ += angularVelocity_.cross(getCmPosition() - oldCm);
+    }
+  }
+
   // --- Attachments -----------------------------------------------------------
 
   /// Adds a named frame fixed in the body; its local transform is relative to
@@ -254,9 +325,18 @@ class RigidBodyT : public Referenced {
   }
 
  protected:
-  ~RigidBodyT() override = default;
+  ~RigidBodyT() override {
+    for (auto& g : geometries_) {
+      Access::body(*g) = nullptr;
+      Access::owner(*g) = nullptr;
+      g->getFrame()->setParent(nullptr);
+    }
+  }
 
  private:
+  using Access = detail::GeometryAccess<S>;
+  void geometryChanged() override { updateMassProperties(); }
+
   friend struct detail::BodyIntegrator<S>;
   friend struct detail::SimulationMembership;
 
@@ -309,6 +389,7 @@ class RigidBodyT : public Referenced {
   Vec3 angularDamping_ = Vec3::Zero();
   std::optional<KinematicTarget> target_;
   std::vector<std::pair<std::string, ref_ptr<Frame>>> attachments_;
+  std::vector<ref_ptr<Geometry>> geometries_;
 
   // Membership, maintained by the simulation.
   const void* simulation_ = nullptr;

@@ -1,0 +1,271 @@
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <spook/collide/bounding_box.hpp>
+#include <spook/collide/shapes/shape.hpp>
+#include <spook/core/error.hpp>
+#include <spook/core/frame.hpp>
+#include <spook/core/observer_ptr.hpp>
+#include <spook/core/ref_ptr.hpp>
+#include <spook/core/referenced.hpp>
+#include <spook/dynamics/material.hpp>
+
+namespace spook {
+
+template <Scalar S>
+class RigidBodyT;
+
+namespace detail {
+/// Told when a geometry's shapes or material change, so that a body can
+/// recompute its mass properties.
+template <Scalar S>
+struct GeometryOwner {
+  virtual void geometryChanged() = 0;
+
+ protected:
+  ~GeometryOwner() = default;
+};
+template <Scalar S>
+struct GeometryAccess;
+}  // namespace detail
+
+/// One or more shapes, each at a transform relative to the geometry frame,
+/// with a material and collision settings. A geometry belongs to a
+/// RigidBody (its frame is then fixed in the body's model frame) or stands
+/// static in the world (its frame is then a world transform).
+template <Scalar S>
+class GeometryT : public Referenced {
+ public:
+  using Vec3 = spook::Vec3<S>;
+  using Transform = spook::Transform<S>;
+  using Shape = ShapeT<S>;
+  using Frame = FrameT<S>;
+
+  struct ShapeEntry {
+    ref_ptr<Shape> shape;
+    Transform transform;  ///< shape frame → geometry frame
+  };
+
+  explicit GeometryT(std::string name = "") : name_(std::move(name)), id_(nextId()) {}
+  /// A geometry holding one shape at `transform` (shape → geometry frame).
+  explicit GeometryT(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity(), std::string name = "")
+      : GeometryT(std::move(name)) {
+    add(std::move(shape), transform);
+  }
+
+  [[nodiscard]] const std::string& getName() const { return name_; }
+  void setName(std::string name) { name_ = std::move(name); }
+  /// A number unique to this geometry for the life of the program.
+  [[nodiscard]] std::uint64_t getId() const { return id_; }
+
+  // --- Shapes ----------------------------------------------------------------
+
+  /// Adds a shape at `transform` (shape → geometry frame, rigid). Updates the
+  /// owning body's mass properties.
+  void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
+    if (!shape) throw error("cannot add a null shape", "nullptr");
+    if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
+      throw error("shape transform must be finite and rigid", SPDMat3<S>::flat(transform.linear()));
+    if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
+      throw error("shape already added to this geometry", toString(shape->getType()));
+    shapes_.push_back({std::move(shape), makeTransform<S>(transform.translation(), Quat<S>(transform.linear()))});
+    changed();
+  }
+  /// Removes a shape; false when it is not here.
+  bool remove(const Shape* shape) {
+    const auto it = std::find_if(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; });
+    if (it == shapes_.end()) return false;
+    shapes_.erase(it);
+    changed();
+    return true;
+  }
+  [[nodiscard]] const std::vector<ShapeEntry>& getShapes() const { return shapes_; }
+  /// The first shape, or nullptr.
+  [[nodiscard]] Shape* getShape() const { return shapes_.empty() ? nullptr : shapes_.front().shape.get(); }
+
+  // --- Placement -------------------------------------------------------------
+
+  /// The geometry frame; its parent is the body's model frame when the
+  /// geometry belongs to a body.
+  [[nodiscard]] Frame* getFrame() const { return frame_.get(); }
+  /// Geometry → world transform.
+  [[nodiscard]] Transform getTransform() const { return frame_->getMatrix(); }
+  /// Sets the world transform (a body-owned geometry moves relative to its
+  /// body so that it lands there). Updates the owning body's mass.
+  void setTransform(const Transform& X_W) {
+    frame_->setMatrix(X_W);
+    changed();
+  }
+  [[nodiscard]] Vec3 getPosition() const { return frame_->getTranslate(); }
+  void setPosition(const Vec3& p_W) {
+    frame_->setTranslate(p_W);
+    changed();
+  }
+  void setPosition(S x, S y, S z) { setPosition(Vec3(x, y, z)); }
+  /// Geometry → body model frame (or world, without a body).
+  [[nodiscard]] Transform getLocalTransform() const { return frame_->getLocalMatrix(); }
+  void setLocalTransform(const Transform& X) {
+    frame_->setLocalMatrix(X);
+    changed();
+  }
+  /// The body this geometry belongs to, or nullptr for a static geometry.
+  [[nodiscard]] RigidBodyT<S>* getRigidBody() const { return body_; }
+
+  // --- Material --------------------------------------------------------------
+
+  /// The material; a geometry made without one uses a shared default
+  /// (density 1000 kg/m³). Assigning updates the owning body's mass.
+  [[nodiscard]] MaterialT<S>* getMaterial() const { return material_ ? material_.get() : defaultMaterial(); }
+  void setMaterial(ref_ptr<MaterialT<S>> material) {
+    if (!material) throw error("material must not be null", "nullptr");
+    material_ = std::move(material);
+    changed();
+  }
+  /// The material every geometry without its own uses.
+  [[nodiscard]] static MaterialT<S>* defaultMaterial() {
+    static const ref_ptr<MaterialT<S>> material = new MaterialT<S>("default");
+    return material.get();
+  }
+
+  // --- Collision settings ----------------------------------------------------
+
+  /// A disabled geometry is ignored by collision detection.
+  [[nodiscard]] bool getEnable() const { return enable_; }
+  void setEnable(bool enable) { enable_ = enable; }
+  /// False: collides with nothing.
+  [[nodiscard]] bool getEnableCollisions() const { return enableCollisions_; }
+  void setEnableCollisions(bool enable) { enableCollisions_ = enable; }
+  /// Enables or disables collisions between this and `other` (both ways).
+  void setEnableCollisions(GeometryT* other, bool enable) {
+    if (!other) throw error("cannot pair collisions with a null geometry", "nullptr");
+    if (other == this) throw error("cannot pair collisions with itself", name_);
+    setPartner(other, enable);
+    other->setPartner(this, enable);
+  }
+  /// False when collisions with `other` were disabled pairwise.
+  [[nodiscard]] bool getEnableCollisions(const GeometryT* other) const {
+    return std::none_of(disabledWith_.begin(), disabledWith_.end(),
+                        [&](const observer_ptr<GeometryT>& g) { return g.get() == other; });
+  }
+
+  /// Collision group ids and names, matched by Space::setEnablePair.
+  void addGroup(std::uint32_t id) {
+    if (!hasGroup(id)) groupIds_.push_back(id);
+  }
+  void addGroup(const std::string& name) {
+    if (!hasGroup(name)) groupNames_.push_back(name);
+  }
+  void removeGroup(std::uint32_t id) { std::erase(groupIds_, id); }
+  void removeGroup(const std::string& name) { std::erase(groupNames_, name); }
+  [[nodiscard]] bool hasGroup(std::uint32_t id) const {
+    return std::find(groupIds_.begin(), groupIds_.end(), id) != groupIds_.end();
+  }
+  [[nodiscard]] bool hasGroup(const std::string& name) const {
+    return std::find(groupNames_.begin(), groupNames_.end(), name) != groupNames_.end();
+  }
+  [[nodiscard]] const std::vector<std::uint32_t>& getGroupIds() const { return groupIds_; }
+  [[nodiscard]] const std::vector<std::string>& getGroupNames() const { return groupNames_; }
+
+  /// A sensor's contacts are found and reported to listeners, never solved.
+  [[nodiscard]] bool isSensor() const { return sensor_; }
+  void setSensor(bool sensor) { sensor_ = sensor; }
+
+  /// Velocity of the surface relative to the geometry, in the geometry
+  /// frame (m/s): a conveyor belt. Used by the contact solver.
+  [[nodiscard]] const Vec3& getSurfaceVelocity() const { return surfaceVelocity_; }
+  void setSurfaceVelocity(const Vec3& v) {
+    if (!v.allFinite()) throw error("surface velocity must be finite (m/s)", v);
+    surfaceVelocity_ = v;
+  }
+
+  /// World bounding box of every shape (m); infinite along the axes where a
+  /// plane extends.
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
+    const Transform X_WG = getTransform();
+    BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::infinity()),
+                        Vec3::Constant(-std::numeric_limits<S>::infinity())};
+    for (const ShapeEntry& e : shapes_) {
+      const Transform X_WS = X_WG * e.transform;
+      const BoundingBoxT<S> local = e.shape->getBoundingBox();
+      const Mat3<S> R = X_WS.linear();
+      if (!(local.min.allFinite() && local.max.allFinite())) {
+        box.min = box.min.cwiseMin(Vec3::Constant(-std::numeric_limits<S>::infinity()));
+        box.max = box.max.cwiseMax(Vec3::Constant(std::numeric_limits<S>::infinity()));
+        continue;
+      }
+      const Vec3 center = X_WS * local.center();
+      const Vec3 reach = R.cwiseAbs() * local.halfExtents();
+      box.min = box.min.cwiseMin(center - reach);
+      box.max = box.max.cwiseMax(center + reach);
+    }
+    return box;
+  }
+
+ protected:
+  ~GeometryT() override = default;
+
+ private:
+  friend struct detail::GeometryAccess<S>;
+
+  static std::uint64_t nextId() {
+    static std::atomic<std::uint64_t> counter{0};
+    return ++counter;
+  }
+  void changed() {
+    if (owner_) owner_->geometryChanged();
+  }
+  void setPartner(GeometryT* other, bool enable) {
+    std::erase_if(disabledWith_, [&](const observer_ptr<GeometryT>& g) { return !g.valid() || g.get() == other; });
+    if (!enable) disabledWith_.emplace_back(other);
+  }
+  template <class T>
+  [[nodiscard]] Error error(const std::string& what, const T& value) const {
+    return detail::makeError("Geometry", name_, what, value);
+  }
+
+  std::string name_;
+  std::uint64_t id_;
+  std::vector<ShapeEntry> shapes_;
+  ref_ptr<Frame> frame_ = new Frame();
+  ref_ptr<MaterialT<S>> material_;
+  bool enable_ = true;
+  bool enableCollisions_ = true;
+  bool sensor_ = false;
+  Vec3 surfaceVelocity_ = Vec3::Zero();
+  std::vector<observer_ptr<GeometryT>> disabledWith_;
+  std::vector<std::uint32_t> groupIds_;
+  std::vector<std::string> groupNames_;
+
+  // Maintained by the owning body and the space.
+  RigidBodyT<S>* body_ = nullptr;
+  detail::GeometryOwner<S>* owner_ = nullptr;
+  const void* space_ = nullptr;
+};
+
+namespace detail {
+/// The owning body's and the space's handle on a geometry's membership.
+template <Scalar S>
+struct GeometryAccess {
+  static RigidBodyT<S>*& body(GeometryT<S>& g) { return g.body_; }
+  static GeometryOwner<S>*& owner(GeometryT<S>& g) { return g.owner_; }
+  static const void*& space(GeometryT<S>& g) { return g.space_; }
+  static const void* space(const GeometryT<S>& g) { return g.space_; }
+};
+}  // namespace detail
+
+using Geometry = GeometryT<double>;
+using GeometryRef = ref_ptr<Geometry>;
+using GeometryObserver = observer_ptr<Geometry>;
+namespace f32 {
+using Geometry = GeometryT<float>;
+using GeometryRef = ref_ptr<Geometry>;
+using GeometryObserver = observer_ptr<Geometry>;
+}  // namespace f32
+
+}  // namespace spook

@@ -1,0 +1,117 @@
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include <spook/core/error.hpp>
+#include <spook/core/ref_ptr.hpp>
+#include <spook/core/referenced.hpp>
+#include <spook/core/scalar.hpp>
+
+namespace spook {
+
+/// What a geometry is made of. The bulk part gives the density that turns
+/// shape volumes into body mass; the stiffness and surface parameters are
+/// used by contacts (the contact-dynamics layer combines two materials into
+/// a contact material). Changing a parameter does not recompute the mass of
+/// bodies already built from it (as in AGX): call
+/// RigidBody::updateMassProperties() for that.
+template <Scalar S>
+class MaterialT : public Referenced {
+ public:
+  /// Volume-related properties.
+  class BulkMaterial {
+   public:
+    /// Density (kg/m³), finite and > 0; default 1000 (water).
+    [[nodiscard]] S getDensity() const { return density_; }
+    void setDensity(S density) { density_ = positive("density must be finite and > 0 kg/m^3", density); }
+    /// Young's modulus (Pa), the contact stiffness; default 4e8.
+    [[nodiscard]] S getYoungsModulus() const { return youngsModulus_; }
+    void setYoungsModulus(S modulus) { youngsModulus_ = positive("Young's modulus must be finite and > 0 Pa", modulus); }
+    /// Viscosity, 1 − restitution, in [0, 1]; default 1 (no bounce).
+    [[nodiscard]] S getViscosity() const { return viscosity_; }
+    void setViscosity(S viscosity) {
+      if (!(viscosity >= S(0) && viscosity <= S(1))) throw error("viscosity must be in [0, 1]", viscosity);
+      viscosity_ = viscosity;
+    }
+    /// SPOOK damping of contacts (s), finite and >= 0; default 0.075.
+    [[nodiscard]] S getDamping() const { return damping_; }
+    void setDamping(S damping) {
+      if (!(std::isfinite(damping) && damping >= S(0))) throw error("damping must be finite and >= 0 s", damping);
+      damping_ = damping;
+    }
+
+   private:
+    friend class MaterialT;
+    explicit BulkMaterial(const std::string* owner) : owner_(owner) {}
+    template <class T>
+    [[nodiscard]] Error error(const char* what, const T& value) const {
+      return detail::makeError("Material", *owner_, what, value);
+    }
+    S positive(const char* what, S value) const {
+      if (!(std::isfinite(value) && value > S(0))) throw error(what, value);
+      return value;
+    }
+    const std::string* owner_;
+    S density_ = S(1000);
+    S youngsModulus_ = S(4e8);
+    S viscosity_ = S(1);
+    S damping_ = S(0.075);
+  };
+
+  /// Surface-related properties.
+  class SurfaceMaterial {
+   public:
+    /// Roughness, the friction coefficient of the material with itself (>= 0);
+    /// default 0.41667.
+    [[nodiscard]] S getRoughness() const { return roughness_; }
+    void setRoughness(S roughness) {
+      if (!(std::isfinite(roughness) && roughness >= S(0)))
+        throw detail::makeError("Material", *owner_, "roughness must be finite and >= 0", roughness);
+      roughness_ = roughness;
+    }
+    /// Surface viscosity, the compliance of the friction rows (m/(N·s));
+    /// default 5e-9.
+    [[nodiscard]] S getViscosity() const { return viscosity_; }
+    void setViscosity(S viscosity) {
+      if (!(std::isfinite(viscosity) && viscosity >= S(0)))
+        throw detail::makeError("Material", *owner_, "surface viscosity must be finite and >= 0", viscosity);
+      viscosity_ = viscosity;
+    }
+
+   private:
+    friend class MaterialT;
+    explicit SurfaceMaterial(const std::string* owner) : owner_(owner) {}
+    const std::string* owner_;
+    S roughness_ = S(0.41667);
+    S viscosity_ = S(5e-9);
+  };
+
+  explicit MaterialT(std::string name = "") : name_(std::move(name)) {}
+  MaterialT(const MaterialT&) = delete;
+  MaterialT& operator=(const MaterialT&) = delete;
+
+  [[nodiscard]] const std::string& getName() const { return name_; }
+  [[nodiscard]] BulkMaterial* getBulkMaterial() { return &bulk_; }
+  [[nodiscard]] const BulkMaterial* getBulkMaterial() const { return &bulk_; }
+  [[nodiscard]] SurfaceMaterial* getSurfaceMaterial() { return &surface_; }
+  [[nodiscard]] const SurfaceMaterial* getSurfaceMaterial() const { return &surface_; }
+
+ protected:
+  ~MaterialT() override = default;
+
+ private:
+  std::string name_;
+  BulkMaterial bulk_{&name_};
+  SurfaceMaterial surface_{&name_};
+};
+
+using Material = MaterialT<double>;
+using MaterialRef = ref_ptr<Material>;
+namespace f32 {
+using Material = MaterialT<float>;
+using MaterialRef = ref_ptr<Material>;
+}  // namespace f32
+
+}  // namespace spook

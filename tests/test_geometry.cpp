@@ -1,0 +1,146 @@
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include <spook/collide/shapes/box.hpp>
+#include <spook/collide/shapes/composite.hpp>
+#include <spook/collide/shapes/sphere.hpp>
+#include <spook/dynamics/rigid_body.hpp>
+
+#include "tolerance.hpp"
+
+using spook::test::pick;
+
+namespace {
+
+template <class S>
+spook::Transform<S> at(double x, double y, double z, const spook::Quat<S>& q = spook::Quat<S>::Identity()) {
+  return spook::makeTransform<S>(spook::Vec3<S>(S(x), S(y), S(z)), q);
+}
+template <class S>
+S relative(const spook::Mat3<S>& a, const spook::Mat3<S>& b) {
+  return (a - b).norm() / b.norm();
+}
+template <class S>
+spook::ref_ptr<spook::MaterialT<S>> material(double density) {
+  spook::ref_ptr<spook::MaterialT<S>> m = new spook::MaterialT<S>("m");
+  m->getBulkMaterial()->setDensity(S(density));
+  return m;
+}
+
+}  // namespace
+
+// Box of half extents (0.5, 0.25, 0.1) at density 800: m = 800·0.1 = 80 kg,
+// I = m/3 (b² + c², a² + c², a² + b²) about its center.
+TEST_CASE_TEMPLATE("a body's mass, center and inertia come from its geometry's volume and density", S, float, double) {
+  const S tol = pick<S>(1e-12, 1e-6);
+  spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>("crate");
+  spook::ref_ptr<spook::GeometryT<S>> g = new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3<S>(S(0.5), S(0.25), S(0.1))));
+  g->setMaterial(material<S>(800));
+  g->setLocalTransform(at<S>(1, 2, 3));
+  body->add(g);
+  const auto* mp = body->getMassProperties();
+  CHECK(std::abs(mp->getMass() - S(80)) <= tol * S(80));
+  CHECK((body->getCmLocalTranslate() - spook::Vec3<S>(S(1), S(2), S(3))).norm() <= tol);
+  const spook::Vec3<S> expected = spook::Vec3<S>(S(0.0725), S(0.26), S(0.3125)) * S(80.0 / 3.0);
+  CHECK(relative<S>(mp->getInertiaTensor(), spook::Mat3<S>(expected.asDiagonal())) <= tol);
+  CHECK(g->getRigidBody() == body.get());
+}
+
+// Two geometries must give the same mass properties as one composite shape
+// of the same parts (the composite's parallel-axis transfer is tested
+// against closed forms in test_shapes.cpp).
+TEST_CASE_TEMPLATE("two offset geometries combine by the parallel-axis theorem", S, float, double) {
+  const S tol = pick<S>(1e-12, 1e-5);
+  const spook::Quat<S> turn(Eigen::AngleAxis<S>(S(0.7), spook::Vec3<S>(S(1), S(2), S(3)).normalized()));
+  spook::ref_ptr<spook::BoxT<S>> box = new spook::BoxT<S>(spook::Vec3<S>(S(0.3), S(0.2), S(0.4)));
+  spook::ref_ptr<spook::SphereT<S>> ball = new spook::SphereT<S>(S(0.25));
+  spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>();
+  body->add(new spook::GeometryT<S>(box, at<S>(0.5, 0, 0, turn)));
+  body->add(new spook::GeometryT<S>(ball, at<S>(-1, 0.5, 0.2)));
+  spook::ref_ptr<spook::CompositeT<S>> both = new spook::CompositeT<S>();
+  both->add(box, at<S>(0.5, 0, 0, turn));
+  both->add(ball, at<S>(-1, 0.5, 0.2));
+  const S mass = S(1000) * both->getVolume();
+  const spook::Vec3<S> c = both->getCenterOfVolume();
+  const spook::Mat3<S> aboutCenter =
+      both->calculateInertia(mass).matrix() - mass * (c.squaredNorm() * spook::Mat3<S>::Identity() - c * c.transpose());
+  CHECK(std::abs(body->getMassProperties()->getMass() - mass) <= tol * mass);
+  CHECK((body->getCmLocalTranslate() - c).norm() <= tol);
+  CHECK(relative<S>(body->getMassProperties()->getInertiaTensor(), aboutCenter) <= tol);
+}
+
+TEST_CASE_TEMPLATE("mass follows geometry and material changes but not material parameter edits", S, float, double) {
+  const S tol = pick<S>(1e-12, 1e-6);
+  spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>();
+  spook::ref_ptr<spook::GeometryT<S>> g = new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))));
+  body->add(g);
+  CHECK(std::abs(body->getMassProperties()->getMass() - S(1000)) <= tol * S(1000));  // default density, 1 m³
+  const auto steel = material<S>(7750);
+  g->setMaterial(steel);
+  CHECK(std::abs(body->getMassProperties()->getMass() - S(7750)) <= tol * S(7750));
+  steel->getBulkMaterial()->setDensity(S(100));  // a parameter edit: no update
+  CHECK(std::abs(body->getMassProperties()->getMass() - S(7750)) <= tol * S(7750));
+  body->updateMassProperties();
+  CHECK(std::abs(body->getMassProperties()->getMass() - S(100)) <= tol * S(100));
+  g->add(new spook::SphereT<S>(S(1)), at<S>(3, 0, 0));  // adding a shape updates
+  const S sphereVolume = S(4.0 / 3.0 * 3.14159265358979323846);
+  CHECK(std::abs(body->getMassProperties()->getMass() - S(100) * (S(1) + sphereVolume)) <= tol * S(600));
+  CHECK(body->remove(g.get()));
+  CHECK(g->getRigidBody() == nullptr);
+  CHECK(body->getGeometries().empty());
+}
+
+TEST_CASE_TEMPLATE("a hand-set mass stays and scales the generated inertia", S, float, double) {
+  const S tol = pick<S>(1e-12, 1e-6);
+  spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>();
+  body->getMassProperties()->setMass(S(2));
+  body->add(new spook::GeometryT<S>(new spook::SphereT<S>(S(0.5))));
+  CHECK(body->getMassProperties()->getMass() == S(2));
+  CHECK(std::abs(body->getMassProperties()->getInertiaTensor()(0, 0) - S(0.2)) <= tol);  // 2/5 m r²
+  CHECK(body->getMassProperties()->getAutoGenerateMask() ==
+        (spook::MassPropertiesT<S>::CM_OFFSET | spook::MassPropertiesT<S>::INERTIA));
+}
+
+TEST_CASE_TEMPLATE("moving the center of mass keeps every body point's velocity", S, float, double) {
+  const S tol = pick<S>(1e-12, 1e-5);
+  spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>();
+  body->setAngularVelocity(S(0), S(0), S(2));
+  body->setVelocity(S(1), S(0), S(0));
+  const spook::Vec3<S> probe(S(0.3), S(-0.4), S(0.1));
+  const spook::Vec3<S> before = body->getVelocityAtPoint(probe);
+  body->add(new spook::GeometryT<S>(new spook::SphereT<S>(S(0.5)), at<S>(1, 0, 0)));
+  CHECK((body->getCmPosition() - spook::Vec3<S>(S(1), S(0), S(0))).norm() <= tol);
+  CHECK((body->getVelocityAtPoint(probe) - before).norm() <= tol);
+}
+
+TEST_CASE_TEMPLATE("bad geometry input throws and leaves body and geometry unchanged", S, float, double) {
+  spook::ref_ptr<spook::RigidBodyT<S>> a = new spook::RigidBodyT<S>("a"), b = new spook::RigidBodyT<S>("b");
+  spook::ref_ptr<spook::GeometryT<S>> g = new spook::GeometryT<S>(new spook::SphereT<S>(S(1)), at<S>(0, 0, 0), "ball");
+  a->add(g);
+  const S mass = a->getMassProperties()->getMass();
+  CHECK_THROWS_WITH_AS(b->add(g), doctest::Contains("another body, got ball"), spook::Error);
+  CHECK_THROWS_WITH_AS(a->add(g), doctest::Contains("already added"), spook::Error);
+  CHECK_THROWS_WITH_AS(a->add(nullptr), doctest::Contains("got nullptr"), spook::Error);
+  CHECK_THROWS_WITH_AS(g->add(nullptr), doctest::Contains("Geometry 'ball'"), spook::Error);
+  CHECK_THROWS_WITH_AS(g->setMaterial(nullptr), doctest::Contains("got nullptr"), spook::Error);
+  CHECK_THROWS_WITH_AS(g->setEnableCollisions(g.get(), false), doctest::Contains("itself"), spook::Error);
+  CHECK(b->getGeometries().empty());
+  CHECK(a->getGeometries().size() == 1);
+  CHECK(g->getShapes().size() == 1);
+  CHECK(a->getMassProperties()->getMass() == mass);
+}
+
+TEST_CASE_TEMPLATE("pairwise collision disabling is symmetric and forgets dead partners", S, float, double) {
+  spook::ref_ptr<spook::GeometryT<S>> a = new spook::GeometryT<S>(), b = new spook::GeometryT<S>();
+  a->setEnableCollisions(b.get(), false);
+  CHECK_FALSE(a->getEnableCollisions(b.get()));
+  CHECK_FALSE(b->getEnableCollisions(a.get()));
+  b->setEnableCollisions(a.get(), true);
+  CHECK(a->getEnableCollisions(b.get()));
+  a->addGroup(7);
+  a->addGroup("wheels");
+  CHECK(a->hasGroup(7));
+  CHECK(a->hasGroup(std::string("wheels")));
+  CHECK_FALSE(a->hasGroup(8));
+}
