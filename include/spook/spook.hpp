@@ -3,14 +3,19 @@
 // spook: header-only SPOOK multibody dynamics. Include this umbrella header,
 // or single_include/spook/spook.hpp, its generated amalgamation.
 
+#include <spook/collide/all_shapes.hpp>
 #include <spook/collide/bounding_box.hpp>
+#include <spook/collide/collider_matrix.hpp>
+#include <spook/collide/contact_reduction.hpp>
 #include <spook/collide/geometry.hpp>
+#include <spook/collide/geometry_contact.hpp>
 #include <spook/collide/shapes/box.hpp>
 #include <spook/collide/shapes/capsule.hpp>
 #include <spook/collide/shapes/composite.hpp>
 #include <spook/collide/shapes/cylinder.hpp>
 #include <spook/collide/shapes/shape.hpp>
 #include <spook/collide/shapes/sphere.hpp>
+#include <spook/collide/space.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/frame.hpp>
 #include <spook/core/math.hpp>

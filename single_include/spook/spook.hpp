@@ -10,6 +10,88 @@
 // spook: header-only SPOOK multibody dynamics. Include this umbrella header,
 // or single_include/spook/spook.hpp, its generated amalgamation.
 
+// --- begin spook/collide/all_shapes.hpp ---
+
+// --- begin spook/collide/shape_list.hpp ---
+
+#include <cstddef>
+
+// --- begin spook/collide/shapes/shape_type.hpp ---
+
+#include <array>
+#include <cstddef>
+#include <string_view>
+
+namespace spook {
+
+/// The kinds of shape, in the order of the collider-matrix table in the
+/// seeds. A pair (A, B) of colliding shapes is handled by the collider of
+/// the ordered pair with index(A) <= index(B).
+enum class ShapeType : unsigned char { BOX, CAPSULE, CONVEX, CYLINDER, LINE, PLANE, SPHERE, TRIMESH, COMPOSITE, HEIGHTFIELD };
+
+inline constexpr std::size_t kNumShapeTypes = 10;
+
+inline constexpr std::array<std::string_view, kNumShapeTypes> kShapeTypeNames = {
+    "Box", "Capsule", "Convex", "Cylinder", "Line", "Plane", "Sphere", "Trimesh", "Composite", "HeightField"};
+
+[[nodiscard]] constexpr std::string_view shapeTypeName(ShapeType type) {
+  return kShapeTypeNames[static_cast<std::size_t>(type)];
+}
+
+}  // namespace spook
+// --- end spook/collide/shapes/shape_type.hpp ---
+// --- begin spook/core/scalar.hpp ---
+
+#include <concepts>
+#include <limits>
+
+namespace spook {
+
+/// The floating-point types every physics class is instantiated with.
+template <class S>
+concept Scalar = std::same_as<S, float> || std::same_as<S, double>;
+
+/// Per-scalar numerical constants, so physics code carries no magic numbers.
+template <Scalar S>
+struct ScalarTraits {
+  /// Machine epsilon of S.
+  static constexpr S epsilon() { return std::numeric_limits<S>::epsilon(); }
+  /// Relative tolerance for iterative solves inside one step (a few ulps).
+  static constexpr S solveTolerance() { return S(8) * std::numeric_limits<S>::epsilon(); }
+  /// Tolerance on ‖RᵀR − I‖ when checking that a matrix is a rotation.
+  static constexpr S rotationTolerance() { return std::is_same_v<S, float> ? S(1e-4) : S(1e-9); }
+  /// Relative tolerance when checking that a matrix is symmetric.
+  static constexpr S symmetryTolerance() { return std::is_same_v<S, float> ? S(1e-5) : S(1e-10); }
+};
+
+}  // namespace spook
+// --- end spook/core/scalar.hpp ---
+
+namespace spook {
+
+/// The shape types a simulation or a space may contain, as class templates
+/// on the scalar: `ShapeList<SphereT, PlaneT>`. Only the colliders between
+/// these types are compiled (see ColliderMatrixT); `AllShapes`
+/// (spook/collide/all_shapes.hpp) lists every shape.
+template <template <class> class... Shapes>
+struct ShapeList {
+  static constexpr std::size_t size = sizeof...(Shapes);
+
+  /// True when the list holds the shape type `kind`.
+  [[nodiscard]] static constexpr bool contains(ShapeType kind) {
+    return ((Shapes<double>::kType == kind) || ...);
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/shape_list.hpp ---
+// --- begin spook/collide/shapes/box.hpp ---
+
+// --- begin spook/collide/shapes/shape.hpp ---
+
+#include <cmath>
+#include <string>
+
 // --- begin spook/collide/bounding_box.hpp ---
 
 // --- begin spook/core/math.hpp ---
@@ -101,32 +183,6 @@ template <class T>
 }  // namespace detail
 }  // namespace spook
 // --- end spook/core/error.hpp ---
-// --- begin spook/core/scalar.hpp ---
-
-#include <concepts>
-#include <limits>
-
-namespace spook {
-
-/// The floating-point types every physics class is instantiated with.
-template <class S>
-concept Scalar = std::same_as<S, float> || std::same_as<S, double>;
-
-/// Per-scalar numerical constants, so physics code carries no magic numbers.
-template <Scalar S>
-struct ScalarTraits {
-  /// Machine epsilon of S.
-  static constexpr S epsilon() { return std::numeric_limits<S>::epsilon(); }
-  /// Relative tolerance for iterative solves inside one step (a few ulps).
-  static constexpr S solveTolerance() { return S(8) * std::numeric_limits<S>::epsilon(); }
-  /// Tolerance on ‖RᵀR − I‖ when checking that a matrix is a rotation.
-  static constexpr S rotationTolerance() { return std::is_same_v<S, float> ? S(1e-4) : S(1e-9); }
-  /// Relative tolerance when checking that a matrix is symmetric.
-  static constexpr S symmetryTolerance() { return std::is_same_v<S, float> ? S(1e-5) : S(1e-10); }
-};
-
-}  // namespace spook
-// --- end spook/core/scalar.hpp ---
 
 namespace spook {
 
@@ -338,37 +394,6 @@ struct BoundingBoxT {
 
 }  // namespace spook
 // --- end spook/collide/bounding_box.hpp ---
-// --- begin spook/collide/shapes/box.hpp ---
-
-// --- begin spook/collide/shapes/shape.hpp ---
-
-#include <cmath>
-#include <string>
-
-// --- begin spook/collide/shapes/shape_type.hpp ---
-
-#include <array>
-#include <cstddef>
-#include <string_view>
-
-namespace spook {
-
-/// The kinds of shape, in the order of the collider-matrix table in the
-/// seeds. A pair (A, B) of colliding shapes is handled by the collider of
-/// the ordered pair with index(A) <= index(B).
-enum class ShapeType : unsigned char { BOX, CAPSULE, CONVEX, CYLINDER, LINE, PLANE, SPHERE, TRIMESH, COMPOSITE, HEIGHTFIELD };
-
-inline constexpr std::size_t kNumShapeTypes = 10;
-
-inline constexpr std::array<std::string_view, kNumShapeTypes> kShapeTypeNames = {
-    "Box", "Capsule", "Convex", "Cylinder", "Line", "Plane", "Sphere", "Trimesh", "Composite", "HeightField"};
-
-[[nodiscard]] constexpr std::string_view toString(ShapeType type) {
-  return kShapeTypeNames[static_cast<std::size_t>(type)];
-}
-
-}  // namespace spook
-// --- end spook/collide/shapes/shape_type.hpp ---
 // --- begin spook/core/ref_ptr.hpp ---
 
 #include <concepts>
@@ -522,7 +547,6 @@ class ShapeT : public Referenced {
   [[nodiscard]] virtual ShapeType getType() const = 0;
   /// Volume (m³); 0 for shapes that enclose none (Plane, Line, HeightField,
   /// an open Trimesh), which then add no mass to a body.
-  [[nodiscard]] virtual S getVolume() const = 0;
   [[nodiscard]] virtual S getVolume() const = 0;
   /// Inertia tensor about the shape origin, in the shape frame, for a
   /// uniform body of `mass` kg (kg·m²).
@@ -816,6 +840,656 @@ using CompositeRef = ref_ptr<Composite>;
 
 }  // namespace spook
 // --- end spook/collide/shapes/composite.hpp ---
+// --- begin spook/collide/shapes/convex.hpp ---
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+// --- begin spook/collide/detail/convex_hull.hpp ---
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace spook::detail {
+
+/// One polygon face of a convex polyhedron: the plane normal·x = offset.
+template <Scalar S>
+struct ConvexFace {
+  std::vector<int> vertices;         ///< corner indices, counter-clockwise seen from outside
+  Vec3<S> normal = Vec3<S>::Zero();  ///< unit outward normal (shape frame)
+  S offset = S(0);                   ///< normal·x on the face (m); smaller inside
+};
+
+/// A convex hull: its corners, its outward triangles and its polygon faces.
+template <Scalar S>
+struct ConvexHull {
+  std::vector<Vec3<S>> vertices;              ///< the hull's corners, in input order (m)
+  std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
+  std::vector<ConvexFace<S>> faces;           ///< coplanar triangles merged into polygons
+  S tolerance = S(0);                         ///< distance below which points counted as on a face (m)
+};
+
+/// Quickhull in 3D (Barber, Dobkin, Huhdanpaa, "The Quickhull Algorithm for
+/// Convex Hulls", ACM TOMS 1996), in double, on "joggled" points as Qhull's
+/// option QJ does: each point moved at random by at most a quarter of the
+/// tolerance, which puts the cloud in general position, so that visibility
+/// can be a plain sign test and the hull stays convex. A point less than the
+/// tolerance above the hull never becomes a vertex. Coplanar triangles are
+/// then merged, and corners on straight edges dropped, with the true points.
+class QuickHull {
+ public:
+  using V = Vec3<double>;
+
+  /// A polygon of the hull: its loop of point indices (counter-clockwise seen
+  /// from outside), every point its triangles used, and its unit normal.
+  struct Polygon {
+    std::vector<int> loop;
+    std::vector<int> points;
+    V normal;
+  };
+
+  /// `points` in any frame; `tolerance` (m); `attempt` picks the joggle.
+  QuickHull(std::vector<V> points, double tolerance, int attempt)
+      : p_(std::move(points)), tol_(tolerance), next_(p_.size(), -1) {
+    q_.reserve(p_.size());
+    std::uint64_t state = 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(attempt + 1);
+    for (const V& p : p_) q_.push_back(p + 0.25 * tol_ * V(jiggle(state), jiggle(state), jiggle(state)));
+  }
+
+  /// Builds the triangle hull; false when the true points span no volume.
+  bool build() {
+    if (p_.size() < 4 || !initialSimplex()) return false;
+    std::vector<int> work;
+    for (int f = 0; f < 4; ++f) work.push_back(f);
+    while (!work.empty()) {
+      const int f = work.back();
+      work.pop_back();
+      if (faces_[f].alive && !faces_[f].outside.empty()) addPoint(f, work);
+    }
+    return true;
+  }
+
+  /// True when round-off left some point out (then try another joggle).
+  [[nodiscard]] bool leftPointsOut() const { return leftOut_; }
+
+  /// The polygon faces: coplanar triangles merged, corners on straight edges dropped.
+  [[nodiscard]] std::vector<Polygon> polygons() {
+    std::vector<Polygon> polygons = mergeCoplanar();
+    dropStraightCorners(polygons);
+    for (Polygon& polygon : polygons) {
+      // Twice the loop's area vector (a fan of cross products).
+      V area = V::Zero();
+      const V& origin = p_[polygon.loop[0]];
+      for (std::size_t k = 1; k + 1 < polygon.loop.size(); ++k)
+        area += (p_[polygon.loop[k]] - origin).cross(p_[polygon.loop[k + 1]] - origin);
+      if (area.norm() > 0) polygon.normal = area.normalized();
+    }
+    return polygons;
+  }
+
+ private:
+  struct Face {
+    std::array<int, 3> v{};         // point indices, counter-clockwise from outside
+    std::array<int, 3> neighbor{};  // face across the edge v[i] → v[i+1]
+    V normal = V::Zero();           // of the joggled points
+    double offset = 0;
+    std::vector<int> outside;  // points more than tol_ above the plane
+    int furthest = -1;
+    double furthestDistance = 0;
+    int visited = 0;  // stamp of the last flood fill that reached it
+    bool visible = false;
+    bool alive = true;
+  };
+  struct Edge {
+    int a, b, outer;
+  };
+
+  // Uniform in [-1, 1) from a splitmix64 stream: the same on every platform.
+  static double jiggle(std::uint64_t& state) {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;
+  }
+
+  // Unit normal and area of the triangle a, b, c of `x`; the cross product of
+  // its two shortest edges loses the fewest digits.
+  static std::pair<V, double> plane(const std::vector<V>& x, int a, int b, int c) {
+    const std::array<V, 3> e = {x[b] - x[a], x[c] - x[b], x[a] - x[c]};
+    int longest = 0;
+    for (int i = 1; i < 3; ++i)
+      if (e[i].squaredNorm() > e[longest].squaredNorm()) longest = i;
+    const V n = e[(longest + 2) % 3].cross(-e[(longest + 1) % 3]);
+    const double twiceArea = n.norm();
+    return {twiceArea > 0 ? V(n / twiceArea) : n, 0.5 * twiceArea};
+  }
+
+  [[nodiscard]] double distance(const Face& f, int i) const { return f.normal.dot(q_[i]) - f.offset; }
+
+  int addFace(int a, int b, int c) {
+    Face f;
+    f.v = {a, b, c};
+    f.normal = plane(q_, a, b, c).first;
+    f.offset = f.normal.dot(q_[a] + q_[b] + q_[c]) / 3;
+    faces_.push_back(std::move(f));
+    return static_cast<int>(faces_.size()) - 1;
+  }
+
+  void assign(int point, int first, int last) {
+    int best = -1;
+    double bestDistance = tol_;
+    for (int f = first; f < last; ++f) {
+      const double d = distance(faces_[f], point);
+      if (d > bestDistance) best = f, bestDistance = d;
+    }
+    if (best < 0) return;  // inside, or on the hull within the tolerance
+    Face& f = faces_[best];
+    f.outside.push_back(point);
+    if (bestDistance > f.furthestDistance) f.furthest = point, f.furthestDistance = bestDistance;
+  }
+
+  // A tetrahedron of extreme true points: the widest pair along an axis, the
+  // point farthest from their line, the point farthest from their plane.
+  bool initialSimplex() {
+    const int n = static_cast<int>(p_.size());
+    int lo = 0, hi = 0;
+    double extent = -1;
+    for (int axis = 0; axis < 3; ++axis) {
+      int mn = 0, mx = 0;
+      for (int i = 1; i < n; ++i) {
+        if (p_[i][axis] < p_[mn][axis]) mn = i;
+        if (p_[i][axis] > p_[mx][axis]) mx = i;
+      }
+      if (p_[mx][axis] - p_[mn][axis] > extent) extent = p_[mx][axis] - p_[mn][axis], lo = mn, hi = mx;
+    }
+    if (!((p_[hi] - p_[lo]).norm() > tol_)) return false;
+    const V u = (p_[hi] - p_[lo]).normalized();
+    int third = -1, fourth = -1;
+    double far = tol_;
+    for (int i = 0; i < n; ++i)
+      if (const double d = (p_[i] - p_[lo]).cross(u).norm(); d > far) far = d, third = i;
+    if (third < 0) return false;
+    const V normal = (p_[hi] - p_[lo]).cross(p_[third] - p_[lo]).normalized();
+    far = tol_;
+    for (int i = 0; i < n; ++i)
+      if (const double d = std::abs(normal.dot(p_[i] - p_[lo])); d > far) far = d, fourth = i;
+    if (fourth < 0) return false;
+
+    int a = lo, b = hi, c = third;
+    const int d = fourth;
+    if (plane(q_, a, b, c).first.dot(q_[d] - q_[a]) > 0) std::swap(b, c);  // d below the base a, b, c
+    addFace(a, b, c);
+    addFace(a, d, b);
+    addFace(b, d, c);
+    addFace(c, d, a);
+    for (int f = 0; f < 4; ++f)
+      for (int i = 0; i < 3; ++i)
+        for (int g = 0; g < 4; ++g)
+          for (int j = 0; j < 3; ++j)
+            if (faces_[g].v[j] == faces_[f].v[(i + 1) % 3] && faces_[g].v[(j + 1) % 3] == faces_[f].v[i])
+              faces_[f].neighbor[i] = g;
+    for (int i = 0; i < n; ++i)
+      if (i != a && i != b && i != c && i != d) assign(i, 0, 4);
+    return true;
+  }
+
+  // Replaces the faces the furthest point of face `start` is above by a cone
+  // from that point to their horizon.
+  void addPoint(int start, std::vector<int>& work) {
+    const int eye = faces_[start].furthest;
+    ++stamp_;
+    std::vector<int> visible{start};
+    faces_[start].visited = stamp_;
+    faces_[start].visible = true;
+    for (std::size_t k = 0; k < visible.size(); ++k) {
+      for (const int nb : faces_[visible[k]].neighbor) {
+        Face& g = faces_[nb];
+        if (g.visited == stamp_) continue;
+        g.visited = stamp_;
+        g.visible = distance(g, eye) > 0;
+        if (g.visible) visible.push_back(nb);
+      }
+    }
+    std::vector<Edge> horizon;
+    for (const int f : visible)
+      for (int i = 0; i < 3; ++i)
+        if (const int nb = faces_[f].neighbor[i]; !faces_[nb].visible)
+          horizon.push_back({faces_[f].v[i], faces_[f].v[(i + 1) % 3], nb});
+    const std::vector<int> order = chain(horizon);
+    if (order.empty()) {
+      // Round-off made the visible region other than a disk: leave the point out.
+      leftOut_ = true;
+      discard(start, eye);
+      if (!faces_[start].outside.empty()) work.push_back(start);
+      return;
+    }
+
+    const int first = static_cast<int>(faces_.size());
+    const int m = static_cast<int>(order.size());
+    for (int j = 0; j < m; ++j) addFace(horizon[order[j]].a, horizon[order[j]].b, eye);
+    for (int j = 0; j < m; ++j) {
+      const Edge& e = horizon[order[j]];
+      faces_[first + j].neighbor = {e.outer, first + (j + 1) % m, first + (j + m - 1) % m};
+      Face& outer = faces_[e.outer];
+      for (int i = 0; i < 3; ++i)
+        if (outer.v[i] == e.b && outer.v[(i + 1) % 3] == e.a) outer.neighbor[i] = first + j;
+    }
+    for (const int f : visible) {
+      Face& old = faces_[f];
+      old.alive = false;
+      for (const int q : old.outside)
+        if (q != eye) assign(q, first, first + m);
+      old.outside = {};
+    }
+    for (int j = first; j < first + m; ++j)
+      if (!faces_[j].outside.empty()) work.push_back(j);
+  }
+
+  // The edges in loop order, or nothing when they do not form one loop.
+  std::vector<int> chain(const std::vector<Edge>& edges) {
+    std::vector<int> order;
+    bool simple = true;
+    for (std::size_t k = 0; k < edges.size(); ++k) {
+      if (next_[edges[k].a] != -1) simple = false;
+      next_[edges[k].a] = static_cast<int>(k);
+    }
+    if (simple && !edges.empty()) {
+      int k = 0;
+      do {
+        order.push_back(k);
+        k = next_[edges[k].b];
+      } while (k > 0 && order.size() < edges.size());
+      if (k != 0 || order.size() != edges.size()) order.clear();
+    }
+    for (const Edge& e : edges) next_[e.a] = -1;
+    return order;
+  }
+
+  void discard(int face, int point) {
+    Face& f = faces_[face];
+    std::erase(f.outside, point);
+    f.furthest = -1;
+    f.furthestDistance = 0;
+    for (const int q : f.outside)
+      if (const double d = distance(f, q); d > f.furthestDistance) f.furthest = q, f.furthestDistance = d;
+  }
+
+  // Grows each polygon from the largest remaining triangle over neighbours
+  // whose true corners all lie within the tolerance of its true plane.
+  std::vector<Polygon> mergeCoplanar() {
+    std::vector<int> alive;
+    std::vector<V> normal(faces_.size(), V::Zero());
+    std::vector<double> offset(faces_.size(), 0), area(faces_.size(), 0);
+    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+      const Face& face = faces_[f];
+      if (!face.alive) continue;
+      alive.push_back(f);
+      std::tie(normal[f], area[f]) = plane(p_, face.v[0], face.v[1], face.v[2]);
+      if (!(area[f] > 0)) normal[f] = face.normal;  // a sliver flattened by the true points
+      offset[f] = normal[f].dot(p_[face.v[0]] + p_[face.v[1]] + p_[face.v[2]]) / 3;
+    }
+    std::stable_sort(alive.begin(), alive.end(), [&](int a, int b) { return area[a] > area[b]; });
+    std::vector<int> group(faces_.size(), -1);
+    std::vector<Polygon> polygons;
+    int id = 0;
+    for (const int seed : alive) {
+      if (group[seed] != -1) continue;
+      std::vector<int> members{seed};
+      group[seed] = id;
+      for (std::size_t k = 0; k < members.size(); ++k) {
+        for (const int nb : faces_[members[k]].neighbor) {
+          if (group[nb] != -1 || !(faces_[nb].normal.dot(faces_[seed].normal) > 0)) continue;
+          bool flat = true;
+          for (const int v : faces_[nb].v) flat = flat && std::abs(normal[seed].dot(p_[v]) - offset[seed]) <= tol_;
+          if (flat) group[nb] = id, members.push_back(nb);
+        }
+      }
+      std::vector<Edge> boundary;
+      for (const int f : members)
+        for (int i = 0; i < 3; ++i)
+          if (group[faces_[f].neighbor[i]] != id) boundary.push_back({faces_[f].v[i], faces_[f].v[(i + 1) % 3], -1});
+      const std::vector<int> order = chain(boundary);
+      if (!order.empty()) {
+        Polygon polygon{{}, {}, normal[seed]};
+        for (const int k : order) polygon.loop.push_back(boundary[k].a);
+        for (const int f : members) polygon.points.insert(polygon.points.end(), faces_[f].v.begin(), faces_[f].v.end());
+        polygons.push_back(std::move(polygon));
+      } else {
+        for (const int f : members) {
+          const std::vector<int> corners(faces_[f].v.begin(), faces_[f].v.end());
+          polygons.push_back({corners, corners, normal[f]});
+        }
+      }
+      ++id;
+    }
+    return polygons;
+  }
+
+  // A corner shared by only two polygons lies on the straight edge between
+  // them (at a true corner of a closed convex surface three faces meet).
+  static void dropStraightCorners(std::vector<Polygon>& polygons) {
+    int top = 0;
+    for (const Polygon& polygon : polygons)
+      for (const int v : polygon.loop) top = std::max(top, v + 1);
+    std::vector<int> count(static_cast<std::size_t>(top), 0);
+    for (const Polygon& polygon : polygons)
+      for (const int v : polygon.loop) ++count[v];
+    const auto straight = [&](int v) { return count[v] <= 2; };
+    for (const Polygon& polygon : polygons)
+      if (polygon.loop.size() - std::count_if(polygon.loop.begin(), polygon.loop.end(), straight) < 3)
+        return;  // would leave a polygon with fewer than three corners: keep them all
+    for (Polygon& polygon : polygons) std::erase_if(polygon.loop, straight);
+  }
+
+  std::vector<V> p_;  // the true points
+  std::vector<V> q_;  // the joggled points the hull is built on
+  double tol_;
+  std::vector<Face> faces_;
+  std::vector<int> next_;  // edge chaining scratch, -1 between uses
+  int stamp_ = 0;
+  bool leftOut_ = false;
+};
+
+/// Relative tolerance of the hull. The hull is built in double, so for float
+/// points it covers only their own round-off (a few ulps); for double a floor
+/// keeps sliver faces from steering the normals.
+template <Scalar S>
+inline constexpr double kHullRelativeTolerance = std::is_same_v<S, float> ? 16 * 1.1920929e-7 : 1e-12;
+
+/// Convex hull of `points` (finite, in any frame), or nothing when they are
+/// (within the tolerance) coplanar, collinear, coincident or fewer than 4.
+/// The tolerance is kHullRelativeTolerance times the larger of the cloud's
+/// half bounding-box diagonal and its largest coordinate.
+template <Scalar S>
+[[nodiscard]] std::optional<ConvexHull<S>> convexHull(const std::vector<Vec3<S>>& points) {
+  using V = Vec3<double>;
+  if (points.size() < 4) return std::nullopt;
+  V lo = points.front().template cast<double>(), hi = lo;
+  for (const auto& p : points) {
+    lo = lo.cwiseMin(p.template cast<double>());
+    hi = hi.cwiseMax(p.template cast<double>());
+  }
+  const double scale = std::max(0.5 * (hi - lo).norm(), std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()));
+  const double tolerance = kHullRelativeTolerance<S> * scale;
+  const V center = 0.5 * (lo + hi);
+  std::vector<V> shifted;
+  shifted.reserve(points.size());
+  for (const auto& p : points) shifted.push_back(p.template cast<double>() - center);
+
+  // A point left out by round-off is rare; another joggle almost surely
+  // keeps it (Qhull retries likewise).
+  constexpr int kAttempts = 4;
+  std::vector<QuickHull::Polygon> polygons;
+  for (int attempt = 0; attempt < kAttempts; ++attempt) {
+    QuickHull hull(shifted, tolerance, attempt);
+    if (!hull.build()) return std::nullopt;
+    if (hull.leftPointsOut() && attempt + 1 < kAttempts) continue;
+    polygons = hull.polygons();
+    break;
+  }
+
+  ConvexHull<S> result;
+  result.tolerance = S(tolerance);
+  std::vector<int> index(points.size(), -1);
+  for (const auto& polygon : polygons)
+    for (const int v : polygon.loop) index[v] = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (index[i] == 0) {
+      index[i] = static_cast<int>(result.vertices.size());
+      result.vertices.push_back(points[i]);
+    }
+  for (const auto& polygon : polygons) {
+    ConvexFace<S> face;
+    face.normal = polygon.normal.template cast<S>();
+    face.offset = std::numeric_limits<S>::lowest();
+    for (const int v : polygon.loop) face.vertices.push_back(index[v]);
+    for (const int v : polygon.points) face.offset = std::max(face.offset, face.normal.dot(points[v]));
+    for (std::size_t k = 1; k + 1 < face.vertices.size(); ++k)
+      result.triangles.push_back({face.vertices[0], face.vertices[k], face.vertices[k + 1]});
+    result.faces.push_back(std::move(face));
+  }
+  return result;
+}
+
+}  // namespace spook::detail
+// --- end spook/collide/detail/convex_hull.hpp ---
+// --- begin spook/collide/detail/polyhedron_mass.hpp ---
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace spook::detail {
+
+/// Volume, center of volume and second moments of a closed, outward-wound
+/// triangle mesh of unit density.
+template <Scalar S>
+struct PolyhedronMass {
+  S volume = S(0);               ///< m³
+  Vec3<S> center = Vec3<S>::Zero();  ///< center of volume, mesh frame (m)
+  Mat3<S> inertia = Mat3<S>::Zero();  ///< unit-density inertia about `center`, mesh frame (m⁵)
+};
+
+/// Exact integrals over the polyhedron by the divergence theorem, one
+/// tetrahedron-free pass over the faces (D. Eberly, "Polyhedral Mass
+/// Properties (Revisited)", 2002; after Mirtich 1996). The vertices are first
+/// shifted to their mean so that far-from-origin meshes keep their digits.
+template <Scalar S>
+[[nodiscard]] PolyhedronMass<S> polyhedronMass(const std::vector<Vec3<S>>& vertices,
+                                               const std::vector<std::array<int, 3>>& triangles) {
+  Vec3<S> reference = Vec3<S>::Zero();
+  for (const auto& v : vertices) reference += v;
+  if (!vertices.empty()) reference /= S(vertices.size());
+
+  // ∫1, ∫x, ∫y, ∫z, ∫x², ∫y², ∫z², ∫xy, ∫yz, ∫zx (each times 6, 24, 60 or 120).
+  std::array<S, 10> integral{};
+  const auto subexpressions = [](S w0, S w1, S w2, S& f1, S& f2, S& f3, S& g0, S& g1, S& g2) {
+    const S t0 = w0 + w1, t1 = w0 * w0, t2 = t1 + w1 * t0;
+    f1 = t0 + w2;
+    f2 = t2 + w2 * f1;
+    f3 = w0 * t1 + w1 * t2 + w2 * f2;
+    g0 = f2 + w0 * (f1 + w0);
+    g1 = f2 + w1 * (f1 + w1);
+    g2 = f2 + w2 * (f1 + w2);
+  };
+  for (const auto& t : triangles) {
+    const Vec3<S> p0 = vertices[static_cast<std::size_t>(t[0])] - reference;
+    const Vec3<S> p1 = vertices[static_cast<std::size_t>(t[1])] - reference;
+    const Vec3<S> p2 = vertices[static_cast<std::size_t>(t[2])] - reference;
+    const Vec3<S> d = (p1 - p0).cross(p2 - p0);
+    S f1x, f2x, f3x, g0x, g1x, g2x, f1y, f2y, f3y, g0y, g1y, g2y, f1z, f2z, f3z, g0z, g1z, g2z;
+    subexpressions(p0.x(), p1.x(), p2.x(), f1x, f2x, f3x, g0x, g1x, g2x);
+    subexpressions(p0.y(), p1.y(), p2.y(), f1y, f2y, f3y, g0y, g1y, g2y);
+    subexpressions(p0.z(), p1.z(), p2.z(), f1z, f2z, f3z, g0z, g1z, g2z);
+    integral[0] += d.x() * f1x;
+    integral[1] += d.x() * f2x;
+    integral[2] += d.y() * f2y;
+    integral[3] += d.z() * f2z;
+    integral[4] += d.x() * f3x;
+    integral[5] += d.y() * f3y;
+    integral[6] += d.z() * f3z;
+    integral[7] += d.x() * (p0.y() * g0x + p1.y() * g1x + p2.y() * g2x);
+    integral[8] += d.y() * (p0.z() * g0y + p1.z() * g1y + p2.z() * g2y);
+    integral[9] += d.z() * (p0.x() * g0z + p1.x() * g1z + p2.x() * g2z);
+  }
+  constexpr std::array<double, 10> scale = {1.0 / 6,  1.0 / 24, 1.0 / 24, 1.0 / 24,  1.0 / 60,
+                                            1.0 / 60, 1.0 / 60, 1.0 / 120, 1.0 / 120, 1.0 / 120};
+  for (std::size_t i = 0; i < integral.size(); ++i) integral[i] *= S(scale[i]);
+
+  PolyhedronMass<S> mass;
+  mass.volume = integral[0];
+  if (!(mass.volume > S(0))) return mass;
+  const Vec3<S> c(integral[1] / mass.volume, integral[2] / mass.volume, integral[3] / mass.volume);
+  // Second moments about the reference point, then moved to the center
+  // (parallel-axis theorem with the unit-density mass V).
+  Mat3<S> I;
+  I(0, 0) = integral[5] + integral[6];
+  I(1, 1) = integral[4] + integral[6];
+  I(2, 2) = integral[4] + integral[5];
+  I(0, 1) = I(1, 0) = -integral[7];
+  I(1, 2) = I(2, 1) = -integral[8];
+  I(0, 2) = I(2, 0) = -integral[9];
+  mass.inertia = I - mass.volume * (c.squaredNorm() * Mat3<S>::Identity() - c * c.transpose());
+  mass.center = c + reference;
+  return mass;
+}
+
+}  // namespace spook::detail
+// --- end spook/collide/detail/polyhedron_mass.hpp ---
+
+namespace spook {
+
+/// The convex hull of a point cloud, in the shape frame of the points (m).
+/// Only the hull's corners are kept; points inside it, or on its faces and
+/// edges within a tolerance relative to the cloud's size, are dropped.
+template <Scalar S>
+class ConvexT : public ShapeT<S> {
+ public:
+  static constexpr ShapeType kType = ShapeType::CONVEX;
+  using Vec3 = spook::Vec3<S>;
+  using Mat3 = spook::Mat3<S>;
+  using Triangle = std::array<int, 3>;
+  using Face = detail::ConvexFace<S>;
+
+  /// Hull of `points` (shape frame, m). Throws on a non-finite point and on
+  /// fewer than 4 points that are not (nearly) coplanar.
+  explicit ConvexT(const std::vector<Vec3>& points) {
+    for (const Vec3& p : points)
+      if (!p.allFinite()) throw detail::makeError("Convex", "", "points must be finite (m)", p);
+    auto hull = detail::convexHull<S>(points);
+    if (!hull) throw detail::makeError("Convex", "", "needs at least 4 non-coplanar points", points.size());
+    vertices_ = std::move(hull->vertices);
+    triangles_ = std::move(hull->triangles);
+    faces_ = std::move(hull->faces);
+    tolerance_ = hull->tolerance;
+
+    // Mass properties in double, whatever S, from the exact corner positions.
+    std::vector<spook::Vec3<double>> corners;
+    for (const Vec3& v : vertices_) corners.push_back(v.template cast<double>());
+    const auto mass = detail::polyhedronMass<double>(corners, triangles_);
+    volume_ = S(mass.volume);
+    center_ = mass.center.template cast<S>();
+    unitInertia_ = mass.inertia.template cast<S>();
+    buildAdjacency();
+  }
+
+  /// Hull corners, shape frame (m).
+  [[nodiscard]] const std::vector<Vec3>& getVertices() const { return vertices_; }
+  /// Triangles as vertex indices, counter-clockwise seen from outside.
+  [[nodiscard]] const std::vector<Triangle>& getTriangles() const { return triangles_; }
+  /// Polygon faces (coplanar triangles merged): corner loop, unit outward normal, offset (m).
+  [[nodiscard]] const std::vector<Face>& getFaces() const { return faces_; }
+
+  /// Distance within which input points were taken as lying on a face (m);
+  /// every input point is inside the hull or at most about twice this outside.
+  [[nodiscard]] S getTolerance() const { return tolerance_; }
+
+  /// Which kind of shape this is.
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+
+  /// Volume of the hull (m³).
+  [[nodiscard]] S getVolume() const override { return volume_; }
+
+  /// Center of volume, shape frame (m).
+  [[nodiscard]] Vec3 getCenterOfVolume() const override { return center_; }
+
+  /// About the shape origin: I = m/V · I_c + m (|c|² 1 − c cᵀ), with I_c the
+  /// unit-density tensor about the center c (kg·m²).
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    this->requireMass("Convex", mass);
+    const Vec3& c = center_;
+    return SPDMat3<S>(Mat3((mass / volume_) * unitInertia_ +
+                           mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())));
+  }
+
+  /// Box around the corners, shape frame (m).
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
+    BoundingBoxT<S> box{vertices_.front(), vertices_.front()};
+    for (const Vec3& v : vertices_) {
+      box.min = box.min.cwiseMin(v);
+      box.max = box.max.cwiseMax(v);
+    }
+    return box;
+  }
+
+  /// The corner farthest along `direction`, shape frame (m): a scan of the
+  /// corners for small hulls, a climb along the hull's edges for large ones.
+  [[nodiscard]] Vec3 support(const Vec3& direction) const {
+    std::size_t best = 0;
+    S bestDot = vertices_[0].dot(direction);
+    if (vertices_.size() <= kScanLimit) {
+      for (std::size_t i = 1; i < vertices_.size(); ++i)
+        if (const S d = vertices_[i].dot(direction); d > bestDot) best = i, bestDot = d;
+      return vertices_[best];
+    }
+    // On a convex polyhedron a corner no neighbour beats is the farthest.
+    for (bool climbed = true; climbed;) {
+      climbed = false;
+      for (int k = adjacencyStart_[best]; k < adjacencyStart_[best + 1]; ++k) {
+        const auto j = static_cast<std::size_t>(adjacency_[k]);
+        if (const S d = vertices_[j].dot(direction); d > bestDot) best = j, bestDot = d, climbed = true;
+      }
+    }
+    return vertices_[best];
+  }
+
+ protected:
+  ~ConvexT() override = default;
+
+ private:
+  static constexpr std::size_t kScanLimit = 64;
+
+  // Neighbours of each corner along the triangles' edges, in compressed rows.
+  void buildAdjacency() {
+    std::vector<std::vector<int>> neighbours(vertices_.size());
+    for (const Triangle& t : triangles_)
+      for (int i = 0; i < 3; ++i) {
+        auto& list = neighbours[static_cast<std::size_t>(t[i])];
+        const int other = t[(i + 1) % 3];
+        if (std::find(list.begin(), list.end(), other) == list.end()) list.push_back(other);
+        auto& back = neighbours[static_cast<std::size_t>(other)];
+        if (std::find(back.begin(), back.end(), t[i]) == back.end()) back.push_back(t[i]);
+      }
+    adjacencyStart_.assign(1, 0);
+    for (const auto& list : neighbours) {
+      adjacency_.insert(adjacency_.end(), list.begin(), list.end());
+      adjacencyStart_.push_back(static_cast<int>(adjacency_.size()));
+    }
+  }
+
+  std::vector<Vec3> vertices_;
+  std::vector<Triangle> triangles_;
+  std::vector<Face> faces_;
+  S tolerance_ = S(0);
+  S volume_ = S(0);
+  Vec3 center_ = Vec3::Zero();
+  Mat3 unitInertia_ = Mat3::Zero();  // unit density, about center_ (m⁵)
+  std::vector<int> adjacency_;
+  std::vector<int> adjacencyStart_;
+};
+
+using Convex = ConvexT<double>;
+using ConvexRef = ref_ptr<Convex>;
+namespace f32 {
+using Convex = ConvexT<float>;
+using ConvexRef = ref_ptr<Convex>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/collide/shapes/convex.hpp ---
 // --- begin spook/collide/shapes/cylinder.hpp ---
 
 #include <cmath>
@@ -880,6 +1554,557 @@ using CylinderRef = ref_ptr<Cylinder>;
 
 }  // namespace spook
 // --- end spook/collide/shapes/cylinder.hpp ---
+// --- begin spook/collide/shapes/height_field.hpp ---
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+// --- begin spook/collide/detail/aabb_tree.hpp ---
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+namespace spook::detail {
+
+/// True when two closed boxes share at least one point (touching counts).
+template <Scalar S>
+[[nodiscard]] bool overlaps(const BoundingBoxT<S>& a, const BoundingBoxT<S>& b) {
+  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
+}
+
+/// The axis-aligned box, in the target frame, around `box` moved by the
+/// rigid transform X (source → target): center X c, half extents |R| h.
+template <Scalar S>
+[[nodiscard]] BoundingBoxT<S> transformBox(const BoundingBoxT<S>& box, const Transform<S>& X) {
+  const Vec3<S> center = X.linear() * box.center() + X.translation();
+  const Vec3<S> reach = X.linear().cwiseAbs() * box.halfExtents();
+  return {center - reach, center + reach};
+}
+
+/// A static bounding-volume hierarchy over N primitives given by their
+/// boxes, in the frame the boxes are given in. Built once, top down: each
+/// node's primitives are split at the median of their box centers along the
+/// longest axis of those centers' bounds, so the depth is about log2(N/4)
+/// whatever the input. Nodes sit in one vector in depth-first order (a left
+/// child follows its parent); a leaf holds at most kMaxLeafSize primitives.
+template <Scalar S>
+class AabbTree {
+ public:
+  using Box = BoundingBoxT<S>;
+  using Vec3 = spook::Vec3<S>;
+  static constexpr std::size_t kMaxLeafSize = 4;
+
+  /// An empty tree; every query visits nothing.
+  AabbTree() = default;
+
+  /// Builds the tree over `boxes`; primitive i is boxes[i] (fewer than 2³² primitives).
+  explicit AabbTree(const std::vector<Box>& boxes) { build(boxes); }
+
+  /// Number of primitives.
+  [[nodiscard]] std::size_t size() const { return primitives_.size(); }
+  /// True when the tree holds no primitive.
+  [[nodiscard]] bool empty() const { return primitives_.empty(); }
+  /// Number of nodes, leaves included.
+  [[nodiscard]] std::size_t getNodeCount() const { return nodes_.size(); }
+  /// Number of levels; 1 for a single leaf, 0 for an empty tree.
+  [[nodiscard]] std::size_t getDepth() const { return depth_; }
+  /// Box around all primitives, tree frame (m); a zero box when empty.
+  [[nodiscard]] Box getBoundingBox() const { return nodes_.empty() ? Box{} : nodes_.front().box; }
+
+  /// Calls visit(primitiveIndex) once for each primitive whose box overlaps
+  /// `box` (tree frame, touching counts).
+  template <class F>
+  void query(const Box& box, F&& visit) const {
+    if (nodes_.empty()) return;
+    std::array<std::uint32_t, kMaxStack> stack{};
+    std::size_t top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const std::uint32_t id = stack[--top];
+      const Node& node = nodes_[id];
+      if (!overlaps(node.box, box)) continue;
+      if (node.count == 0) {
+        stack[top++] = node.index;
+        stack[top++] = id + 1;
+        continue;
+      }
+      for (std::uint32_t k = node.index; k < node.index + node.count; ++k)
+        if (overlaps(boxes_[k], box)) visit(static_cast<std::size_t>(primitives_[k]));
+    }
+  }
+
+  /// Calls visit(i, j) once for each primitive i of this tree and j of
+  /// `other` whose boxes overlap, with `other` placed in this tree's frame
+  /// by X_thisOther (other → this). Primitive j is tested with
+  /// transformBox(its box, X_thisOther).
+  template <class F>
+  void queryPairs(const AabbTree& other, const Transform<S>& X_thisOther, F&& visit) const {
+    if (nodes_.empty() || other.nodes_.empty()) return;
+    const Mat3<S> R = X_thisOther.linear();
+    const Mat3<S> absR = R.cwiseAbs();
+    const Vec3 t = X_thisOther.translation();
+    // Node boxes of `other` grow by a few ulps of their coordinates, so that
+    // round-off in the transform never culls a pair its leaves would report.
+    const auto movedNode = [&](const Box& b) {
+      Box moved = transformBox(b, X_thisOther);
+      const Vec3 scale = absR * b.min.cwiseAbs().cwiseMax(b.max.cwiseAbs()) + t.cwiseAbs();
+      const Vec3 margin = S(16) * std::numeric_limits<S>::epsilon() * scale;
+      return Box{moved.min - margin, moved.max + margin};
+    };
+    std::array<std::array<std::uint32_t, 2>, 2 * kMaxStack> stack{};
+    std::size_t top = 0;
+    stack[top++] = {0, 0};
+    while (top > 0) {
+      const auto [ia, ib] = stack[--top];
+      const Node& a = nodes_[ia];
+      const Node& b = other.nodes_[ib];
+      if (!overlaps(a.box, movedNode(b.box))) continue;
+      if (a.count > 0 && b.count > 0) {
+        for (std::uint32_t kb = b.index; kb < b.index + b.count; ++kb) {
+          const Box moved = transformBox(other.boxes_[kb], X_thisOther);
+          for (std::uint32_t ka = a.index; ka < a.index + a.count; ++ka)
+            if (overlaps(boxes_[ka], moved))
+              visit(static_cast<std::size_t>(primitives_[ka]), static_cast<std::size_t>(other.primitives_[kb]));
+        }
+      } else if (b.count > 0 || (a.count == 0 && a.box.halfExtents().sum() >= b.box.halfExtents().sum())) {
+        stack[top++] = {a.index, ib};
+        stack[top++] = {ia + 1, ib};
+      } else {
+        stack[top++] = {ia, b.index};
+        stack[top++] = {ia, ib + 1};
+      }
+    }
+  }
+
+ private:
+  struct Node {
+    Box box;
+    std::uint32_t index = 0;  ///< inner node: right child (the left one is the next node); leaf: first slot
+    std::uint32_t count = 0;  ///< primitives in a leaf, 0 for an inner node
+  };
+  // A median split halves the primitives at every level, so fewer than 2³²
+  // primitives give at most 31 levels: a depth-first stack never holds more
+  // than depth + 1 nodes, a pair stack more than depthA + depthB + 1 pairs.
+  static constexpr std::size_t kMaxStack = 64;
+
+  void build(const std::vector<Box>& boxes) {
+    const std::size_t n = boxes.size();
+    if (n == 0) return;
+    std::vector<Vec3> centers(n);
+    for (std::size_t i = 0; i < n; ++i) centers[i] = boxes[i].min + boxes[i].max;  // twice the center
+    std::vector<std::uint32_t> order(n);
+    std::iota(order.begin(), order.end(), std::uint32_t(0));
+    nodes_.reserve(2 * (n / kMaxLeafSize + 1));
+
+    struct Task {
+      std::size_t begin, end, level;
+      std::size_t parent;  ///< node whose right child this is, or npos for a left child or the root
+    };
+    constexpr std::size_t npos = std::numeric_limits<std::size_t>::max();
+    std::vector<Task> tasks{{0, n, 1, npos}};
+    while (!tasks.empty()) {
+      const Task task = tasks.back();
+      tasks.pop_back();
+      const auto id = static_cast<std::uint32_t>(nodes_.size());
+      if (task.parent != npos) nodes_[task.parent].index = id;
+      depth_ = std::max(depth_, task.level);
+
+      Node node;
+      node.box = boxes[order[task.begin]];
+      Box centerBounds{centers[order[task.begin]], centers[order[task.begin]]};
+      for (std::size_t k = task.begin + 1; k < task.end; ++k) {
+        const Box& b = boxes[order[k]];
+        node.box = {node.box.min.cwiseMin(b.min), node.box.max.cwiseMax(b.max)};
+        centerBounds = {centerBounds.min.cwiseMin(centers[order[k]]), centerBounds.max.cwiseMax(centers[order[k]])};
+      }
+      const std::size_t count = task.end - task.begin;
+      if (count <= kMaxLeafSize) {
+        node.index = static_cast<std::uint32_t>(task.begin);
+        node.count = static_cast<std::uint32_t>(count);
+        nodes_.push_back(node);
+        continue;
+      }
+      nodes_.push_back(node);
+      int axis = 0;
+      (centerBounds.max - centerBounds.min).maxCoeff(&axis);
+      const std::size_t mid = task.begin + count / 2;
+      const auto first = order.begin() + static_cast<std::ptrdiff_t>(task.begin);
+      std::nth_element(first, order.begin() + static_cast<std::ptrdiff_t>(mid),
+                       order.begin() + static_cast<std::ptrdiff_t>(task.end), [&](std::uint32_t p, std::uint32_t q) {
+                         const S cp = centers[p][axis], cq = centers[q][axis];
+                         return cp < cq || (cp == cq && p < q);
+                       });
+      // The left child is popped next, so it lands right after its parent.
+      tasks.push_back({mid, task.end, task.level + 1, id});
+      tasks.push_back({task.begin, mid, task.level + 1, npos});
+    }
+    primitives_ = std::move(order);
+    boxes_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) boxes_[k] = boxes[primitives_[k]];
+  }
+
+  std::vector<Node> nodes_;
+  std::vector<std::uint32_t> primitives_;  ///< primitive indices, leaf after leaf
+  std::vector<Box> boxes_;                 ///< their boxes, in the same order
+  std::size_t depth_ = 0;
+};
+
+}  // namespace spook::detail
+// --- end spook/collide/detail/aabb_tree.hpp ---
+
+namespace spook {
+
+/// A terrain: a regular grid of resolutionX × resolutionY height samples
+/// over the rectangle [−sizeX/2, sizeX/2] × [−sizeY/2, sizeY/2] of the shape
+/// frame's xy plane, heights along +z (m), solid below the surface. Sample
+/// (i, j) sits at x = −sizeX/2 + i·sizeX/(resolutionX − 1), likewise y, and
+/// is stored at index i + resolutionX·j. Cell (i, j) is cut along its
+/// diagonal from sample (i, j) to (i+1, j+1) into two triangles,
+/// counter-clockwise seen from above; triangle k of the cell has index
+/// 2·(i + (resolutionX − 1)·j) + k. Meant for static geometry: no volume.
+template <Scalar S>
+class HeightFieldT : public ShapeT<S> {
+ public:
+  static constexpr ShapeType kType = ShapeType::HEIGHTFIELD;
+  using Vec3 = spook::Vec3<S>;
+  using Vec2 = Eigen::Matrix<S, 2, 1>;
+
+  /// Throws spook::Error on fewer than 2 × 2 samples, a heights vector not of
+  /// resolutionX·resolutionY entries, a non-finite height, or a size that is
+  /// not finite and > 0 m.
+  HeightFieldT(std::size_t resolutionX, std::size_t resolutionY, S sizeX, S sizeY, std::vector<S> heights)
+      : resolutionX_(resolutionX), resolutionY_(resolutionY), heights_(std::move(heights)) {
+    if (resolutionX < 2 || resolutionY < 2)
+      throw detail::makeError("HeightField", "", "needs at least 2 x 2 height samples (resolutionX, resolutionY)",
+                              std::array<std::size_t, 2>{resolutionX, resolutionY});
+    sizeX_ = this->requireLength("HeightField", "sizeX", sizeX);
+    sizeY_ = this->requireLength("HeightField", "sizeY", sizeY);
+    if (heights_.size() != resolutionX * resolutionY)
+      throw detail::makeError(
+          "HeightField", "",
+          "needs resolutionX * resolutionY = " + std::to_string(resolutionX * resolutionY) + " heights",
+          heights_.size());
+    for (std::size_t k = 0; k < heights_.size(); ++k)
+      if (!std::isfinite(heights_[k]))
+        throw detail::makeError("HeightField", "", "height " + std::to_string(k) + " must be finite (m)", heights_[k]);
+    spacing_ = Vec2(sizeX_ / S(resolutionX - 1), sizeY_ / S(resolutionY - 1));
+    updateHeightRange();
+  }
+
+  /// Number of samples along x.
+  [[nodiscard]] std::size_t getResolutionX() const { return resolutionX_; }
+  /// Number of samples along y.
+  [[nodiscard]] std::size_t getResolutionY() const { return resolutionY_; }
+  /// Extent along x (m).
+  [[nodiscard]] S getSizeX() const { return sizeX_; }
+  /// Extent along y (m).
+  [[nodiscard]] S getSizeY() const { return sizeY_; }
+  /// Cell size along x and y (m).
+  [[nodiscard]] Vec2 getSpacing() const { return spacing_; }
+  /// Number of triangles, two per cell.
+  [[nodiscard]] std::size_t getNumTriangles() const { return 2 * (resolutionX_ - 1) * (resolutionY_ - 1); }
+  /// Lowest sample height (m).
+  [[nodiscard]] S getMinHeight() const { return minHeight_; }
+  /// Highest sample height (m).
+  [[nodiscard]] S getMaxHeight() const { return maxHeight_; }
+
+  /// Height of sample (i, j) (m); throws when out of range.
+  [[nodiscard]] S getHeight(std::size_t i, std::size_t j) const {
+    requireSample(i, j);
+    return height(i, j);
+  }
+  /// Sets the height of sample (i, j) (m); throws on an index out of range or a non-finite height.
+  void setHeight(std::size_t i, std::size_t j, S h) {
+    requireSample(i, j);
+    if (!std::isfinite(h)) throw detail::makeError("HeightField", "", "height must be finite (m)", h);
+    const S old = std::exchange(heights_[i + resolutionX_ * j], h);
+    if (old == minHeight_ || old == maxHeight_) {
+      updateHeightRange();
+    } else {
+      minHeight_ = std::min(minHeight_, h);
+      maxHeight_ = std::max(maxHeight_, h);
+    }
+  }
+
+  /// Sample (i, j) as a point, shape frame (m).
+  [[nodiscard]] Vec3 getVertex(std::size_t i, std::size_t j) const { return Vec3(gridX(i), gridY(j), height(i, j)); }
+  /// Corners of triangle `index`, shape frame (m), counter-clockwise seen from above.
+  [[nodiscard]] std::array<Vec3, 3> getTriangle(std::size_t index) const {
+    const std::size_t cell = index / 2, i = cell % (resolutionX_ - 1), j = cell / (resolutionX_ - 1);
+    if (index % 2 == 0) return {getVertex(i, j), getVertex(i + 1, j), getVertex(i + 1, j + 1)};
+    return {getVertex(i, j), getVertex(i + 1, j + 1), getVertex(i, j + 1)};
+  }
+  /// Unit normal of triangle `index`, shape frame, pointing out of the solid (z > 0).
+  [[nodiscard]] Vec3 getNormal(std::size_t index) const {
+    const auto [a, b, c] = getTriangle(index);
+    return (b - a).cross(c - a).normalized();
+  }
+
+  /// Height of the surface above (x, y) (shape frame, m), interpolated on
+  /// its triangle; points outside the grid are first clamped onto it.
+  /// Throws on a NaN coordinate.
+  [[nodiscard]] S heightAt(S x, S y) const {
+    if (std::isnan(x) || std::isnan(y))
+      throw detail::makeError("HeightField", "", "heightAt needs x and y that are not NaN (m)", Vec2(x, y));
+    const S u = std::clamp((x + S(0.5) * sizeX_) / spacing_.x(), S(0), S(resolutionX_ - 1));
+    const S v = std::clamp((y + S(0.5) * sizeY_) / spacing_.y(), S(0), S(resolutionY_ - 1));
+    const std::size_t i = std::min(static_cast<std::size_t>(u), resolutionX_ - 2);
+    const std::size_t j = std::min(static_cast<std::size_t>(v), resolutionY_ - 2);
+    const S fu = u - S(i), fv = v - S(j);
+    const S h00 = height(i, j), h11 = height(i + 1, j + 1);
+    if (fu >= fv) return h00 + fu * (height(i + 1, j) - h00) + fv * (h11 - height(i + 1, j));
+    return h00 + fv * (height(i, j + 1) - h00) + fu * (h11 - height(i, j + 1));
+  }
+
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+
+  /// 0: a solid below the surface has no finite volume.
+  [[nodiscard]] S getVolume() const override { return S(0); }
+
+  /// Always throws: a HeightField has no volume, so no inertia.
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    throw detail::makeError("HeightField", "", "a HeightField has no volume, hence no inertia; mass (kg)", mass);
+  }
+
+  /// The grid's x and y extents, z from the lowest to the highest sample (shape frame, m).
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
+    return {Vec3(gridX(0), gridY(0), minHeight_), Vec3(gridX(resolutionX_ - 1), gridY(resolutionY_ - 1), maxHeight_)};
+  }
+
+  /// Calls visit(index, a, b, c) with the corners (shape frame, m) of each
+  /// triangle whose box overlaps `localBox` (shape frame, touching counts);
+  /// only the cells under the box's x, y range are looked at.
+  template <class F>
+  void forEachTriangle(const BoundingBoxT<S>& localBox, F&& visit) const {
+    if (!detail::overlaps(localBox, getBoundingBox())) return;
+    // One cell of slack on each side absorbs round-off at the cell borders;
+    // each triangle's own box then decides.
+    const auto [i0, i1] = cellRange(localBox.min.x(), localBox.max.x(), sizeX_, spacing_.x(), resolutionX_);
+    const auto [j0, j1] = cellRange(localBox.min.y(), localBox.max.y(), sizeY_, spacing_.y(), resolutionY_);
+    for (std::size_t j = j0; j <= j1; ++j)
+      for (std::size_t i = i0; i <= i1; ++i)
+        for (std::size_t k = 0; k < 2; ++k) {
+          const std::size_t index = 2 * (i + (resolutionX_ - 1) * j) + k;
+          const auto [a, b, c] = getTriangle(index);
+          if (detail::overlaps(localBox, {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)})) visit(index, a, b, c);
+        }
+  }
+
+ protected:
+  ~HeightFieldT() override = default;
+
+ private:
+  [[nodiscard]] S height(std::size_t i, std::size_t j) const { return heights_[i + resolutionX_ * j]; }
+  // Sample coordinates, computed one way everywhere so that boxes and corners agree to the bit.
+  [[nodiscard]] S gridX(std::size_t i) const { return S(-0.5) * sizeX_ + S(i) * spacing_.x(); }
+  [[nodiscard]] S gridY(std::size_t j) const { return S(-0.5) * sizeY_ + S(j) * spacing_.y(); }
+
+  void requireSample(std::size_t i, std::size_t j) const {
+    if (i >= resolutionX_ || j >= resolutionY_)
+      throw detail::makeError("HeightField", "",
+                              "sample (i, j) must lie in [0, " + std::to_string(resolutionX_) + ") x [0, " +
+                                  std::to_string(resolutionY_) + ")",
+                              std::array<std::size_t, 2>{i, j});
+  }
+
+  void updateHeightRange() {
+    const auto [lo, hi] = std::minmax_element(heights_.begin(), heights_.end());
+    minHeight_ = *lo;
+    maxHeight_ = *hi;
+  }
+
+  // Cells [first, last] along one axis that may meet [lo, hi], given that
+  // the box meets the grid's extent on that axis.
+  [[nodiscard]] static std::pair<std::size_t, std::size_t> cellRange(S lo, S hi, S size, S spacing,
+                                                                     std::size_t resolution) {
+    const S cells = S(resolution - 1);
+    const S first = std::clamp(std::floor((lo + S(0.5) * size) / spacing) - S(1), S(0), cells - S(1));
+    const S last = std::clamp(std::floor((hi + S(0.5) * size) / spacing) + S(1), S(0), cells - S(1));
+    return {static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
+  }
+
+  std::size_t resolutionX_;
+  std::size_t resolutionY_;
+  S sizeX_ = S(0);
+  S sizeY_ = S(0);
+  Vec2 spacing_ = Vec2::Zero();
+  std::vector<S> heights_;
+  S minHeight_ = S(0);
+  S maxHeight_ = S(0);
+};
+
+using HeightField = HeightFieldT<double>;
+using HeightFieldRef = ref_ptr<HeightField>;
+namespace f32 {
+using HeightField = HeightFieldT<float>;
+using HeightFieldRef = ref_ptr<HeightField>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/collide/shapes/height_field.hpp ---
+// --- begin spook/collide/shapes/line.hpp ---
+
+namespace spook {
+
+/// A straight segment from a first to a second point in the shape frame (m).
+/// It has no volume and no mass; its support point is an endpoint.
+template <Scalar S>
+class LineT : public ShapeT<S> {
+ public:
+  static constexpr ShapeType kType = ShapeType::LINE;
+  using Vec3 = spook::Vec3<S>;
+
+  /// Segment from `first` to `second` (shape frame, m).
+  LineT(const Vec3& first, const Vec3& second) { setPoints(first, second); }
+
+  /// First endpoint, shape frame (m).
+  [[nodiscard]] const Vec3& getFirstPoint() const { return first_; }
+  /// Second endpoint, shape frame (m).
+  [[nodiscard]] const Vec3& getSecondPoint() const { return second_; }
+  /// Length of the segment (m).
+  [[nodiscard]] S getLength() const { return (second_ - first_).norm(); }
+  /// Moves both endpoints (shape frame, m); throws and keeps the line unless
+  /// they are finite and apart.
+  void setPoints(const Vec3& first, const Vec3& second) {
+    const Eigen::Matrix<S, 6, 1> both = (Eigen::Matrix<S, 6, 1>() << first, second).finished();
+    if (!both.allFinite()) throw detail::makeError("Line", "", "points must be finite (m)", both);
+    const Vec3 span = second - first;
+    if (!(span.allFinite() && span.squaredNorm() > S(0)))
+      throw detail::makeError("Line", "", "points must be apart (length > 0 m)", both);
+    first_ = first;
+    second_ = second;
+  }
+
+  /// Which kind of shape this is.
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+  /// A segment encloses no volume: 0 m³.
+  [[nodiscard]] S getVolume() const override { return S(0); }
+  /// The midpoint, shape frame (m).
+  [[nodiscard]] Vec3 getCenterOfVolume() const override { return S(0.5) * (first_ + second_); }
+  /// Always throws: a line has no volume, and a rod of zero thickness has a
+  /// singular inertia (none about its own axis).
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    throw detail::makeError("Line", "", "a Line has no volume and no inertia (kg)", mass);
+  }
+  /// Box around both endpoints, shape frame (m).
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
+    return {first_.cwiseMin(second_), first_.cwiseMax(second_)};
+  }
+
+  /// The endpoint farther along `direction`, the first one on a tie (shape frame, m).
+  [[nodiscard]] Vec3 support(const Vec3& direction) const {
+    return second_.dot(direction) > first_.dot(direction) ? second_ : first_;
+  }
+
+ protected:
+  ~LineT() override = default;
+
+ private:
+  Vec3 first_;
+  Vec3 second_;
+};
+
+using Line = LineT<double>;
+using LineRef = ref_ptr<Line>;
+namespace f32 {
+using Line = LineT<float>;
+using LineRef = ref_ptr<Line>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/collide/shapes/line.hpp ---
+// --- begin spook/collide/shapes/plane.hpp ---
+
+#include <limits>
+
+namespace spook {
+
+/// An infinite plane through `point` with unit `normal`, both in the shape
+/// frame. As in AGX the solid half-space lies below it, opposite the normal.
+/// It has no volume, no mass and no support point.
+template <Scalar S>
+class PlaneT : public ShapeT<S> {
+ public:
+  static constexpr ShapeType kType = ShapeType::PLANE;
+  using Vec3 = spook::Vec3<S>;
+
+  /// Plane through `point` (m) with normal `normal` (any non-zero length; normalized).
+  explicit PlaneT(const Vec3& normal, const Vec3& point = Vec3::Zero()) { set(normal, point); }
+  /// Plane normal·x = distance (m), i.e. through normal·distance for a unit normal.
+  PlaneT(const Vec3& normal, S distance) {
+    if (!std::isfinite(distance)) throw detail::makeError("Plane", "", "distance must be finite (m)", distance);
+    const Vec3 n = unitNormal(normal);
+    set(n, Vec3(n * distance));
+  }
+
+  /// Unit outward normal, shape frame.
+  [[nodiscard]] const Vec3& getNormal() const { return normal_; }
+  /// The point the plane was given through, shape frame (m).
+  [[nodiscard]] const Vec3& getPoint() const { return point_; }
+  /// Signed distance of the plane from the shape origin along the normal, normal·point (m).
+  [[nodiscard]] S getDistance() const { return normal_.dot(point_); }
+  /// Moves the plane (shape frame; normal normalized, point in m); throws and keeps it on bad input.
+  void set(const Vec3& normal, const Vec3& point) {
+    const Vec3 n = unitNormal(normal);
+    if (!point.allFinite()) throw detail::makeError("Plane", "", "point must be finite (m)", point);
+    normal_ = n;
+    point_ = point;
+  }
+
+  /// Signed distance of `p` (shape frame, m) above the plane; negative inside the solid (m).
+  [[nodiscard]] S signedDistance(const Vec3& p) const { return normal_.dot(p - point_); }
+
+  /// Which kind of shape this is.
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+  /// A plane encloses no volume: 0 m³.
+  [[nodiscard]] S getVolume() const override { return S(0); }
+  /// Always throws: a plane has no volume and so no inertia.
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    throw detail::makeError("Plane", "", "a Plane has no volume and no inertia (kg)", mass);
+  }
+  /// Unbounded: every component ±infinity (the Space treats such boxes apart).
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
+    constexpr S inf = std::numeric_limits<S>::infinity();
+    return {Vec3::Constant(-inf), Vec3::Constant(inf)};
+  }
+
+ protected:
+  ~PlaneT() override = default;
+
+ private:
+  // Scaled by its largest component first, so that tiny normals do not
+  // underflow when squared.
+  static Vec3 unitNormal(const Vec3& normal) {
+    const S largest = normal.cwiseAbs().maxCoeff();
+    if (!(normal.allFinite() && largest > S(0)))
+      throw detail::makeError("Plane", "", "normal must be finite and non-zero", normal);
+    return (normal / largest).normalized();
+  }
+
+  Vec3 normal_ = Vec3::UnitZ();
+  Vec3 point_ = Vec3::Zero();
+};
+
+using Plane = PlaneT<double>;
+using PlaneRef = ref_ptr<Plane>;
+namespace f32 {
+using Plane = PlaneT<float>;
+using PlaneRef = ref_ptr<Plane>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/collide/shapes/plane.hpp ---
 // --- begin spook/collide/shapes/sphere.hpp ---
 
 #include <numbers>
@@ -937,6 +2162,1956 @@ using SphereRef = ref_ptr<Sphere>;
 
 }  // namespace spook
 // --- end spook/collide/shapes/sphere.hpp ---
+// --- begin spook/collide/shapes/trimesh.hpp ---
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace spook {
+
+/// A triangle mesh: vertices in the shape frame (m) and triangles as three
+/// vertex indices, counter-clockwise seen from outside. A closed mesh (every
+/// edge shared by exactly two triangles of opposite orientation) is a solid
+/// with volume and inertia; an open one is a surface with no volume. The
+/// triangles are kept in an AabbTree for collision queries.
+template <Scalar S>
+class TrimeshT : public ShapeT<S> {
+ public:
+  static constexpr ShapeType kType = ShapeType::TRIMESH;
+  using Vec3 = spook::Vec3<S>;
+  using Mat3 = spook::Mat3<S>;
+  using Triangle = std::array<int, 3>;
+
+  /// Throws spook::Error on no triangles, a non-finite vertex, an index out
+  /// of range, a triangle repeating an index, or a closed mesh wound inward.
+  TrimeshT(std::vector<Vec3> vertices, std::vector<Triangle> triangles)
+      : vertices_(std::move(vertices)), triangles_(std::move(triangles)) {
+    validate();
+    std::vector<BoundingBoxT<S>> boxes(triangles_.size());
+    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+      const auto [a, b, c] = getTriangle(i);
+      boxes[i] = {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
+    }
+    tree_ = detail::AabbTree<S>(boxes);
+    bounds_ = {vertices_.front(), vertices_.front()};
+    for (const Vec3& v : vertices_) bounds_ = {bounds_.min.cwiseMin(v), bounds_.max.cwiseMax(v)};
+    openEdges_ = countOpenEdges();
+    if (openEdges_ == 0) computeMass();
+  }
+
+  /// Vertices, shape frame (m).
+  [[nodiscard]] const std::vector<Vec3>& getVertices() const { return vertices_; }
+  /// Triangles as vertex indices, counter-clockwise seen from outside.
+  [[nodiscard]] const std::vector<Triangle>& getTriangles() const { return triangles_; }
+  /// Number of triangles.
+  [[nodiscard]] std::size_t getNumTriangles() const { return triangles_.size(); }
+  /// Corners of triangle i, shape frame (m), counter-clockwise seen from outside.
+  [[nodiscard]] std::array<Vec3, 3> getTriangle(std::size_t i) const {
+    const Triangle& t = triangles_[i];
+    return {vertices_[static_cast<std::size_t>(t[0])], vertices_[static_cast<std::size_t>(t[1])],
+            vertices_[static_cast<std::size_t>(t[2])]};
+  }
+  /// Unit outward normal of triangle i, shape frame; zero for a triangle of zero area.
+  [[nodiscard]] Vec3 getNormal(std::size_t i) const {
+    const auto [a, b, c] = getTriangle(i);
+    return (b - a).cross(c - a).normalized();
+  }
+  /// True when every edge is shared by exactly two triangles with opposite orientation.
+  [[nodiscard]] bool isClosed() const { return openEdges_ == 0; }
+  /// The tree over the triangle boxes, shape frame; primitive i is triangle i.
+  [[nodiscard]] const detail::AabbTree<S>& getTree() const { return tree_; }
+
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+
+  /// Enclosed volume (m³) of a closed mesh, 0 for an open one.
+  [[nodiscard]] S getVolume() const override { return volume_; }
+
+  /// Center of volume of a closed mesh, else the center of the vertices' box (shape frame, m).
+  [[nodiscard]] Vec3 getCenterOfVolume() const override { return volume_ > S(0) ? center_ : bounds_.center(); }
+
+  /// About the shape origin, shape frame (kg·m²): the tensor about the center
+  /// of volume c scaled to `mass`, plus m(|c|² 1 − c cᵀ). Throws for a mesh
+  /// enclosing no volume.
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    this->requireMass("Trimesh", mass);
+    if (openEdges_ > 0)
+      throw detail::makeError("Trimesh", "", "an open Trimesh has no volume, hence no inertia; edges without a twin",
+                              openEdges_);
+    if (!(volume_ > S(0)))
+      throw detail::makeError("Trimesh", "", "a closed Trimesh enclosing no volume has no inertia; volume (m^3)",
+                              enclosed_);
+    const Mat3 shift = mass * (center_.squaredNorm() * Mat3::Identity() - center_ * center_.transpose());
+    return SPDMat3<S>(Mat3((mass / volume_) * inertia_ + shift));
+  }
+
+  /// Box around all vertices, shape frame (m).
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return bounds_; }
+
+  /// Calls visit(index, a, b, c) with the corners (shape frame, m) of each
+  /// triangle whose box overlaps `localBox` (shape frame, touching counts).
+  template <class F>
+  void forEachTriangle(const BoundingBoxT<S>& localBox, F&& visit) const {
+    tree_.query(localBox, [&](std::size_t i) {
+      const Triangle& t = triangles_[i];
+      visit(i, vertices_[static_cast<std::size_t>(t[0])], vertices_[static_cast<std::size_t>(t[1])],
+            vertices_[static_cast<std::size_t>(t[2])]);
+    });
+  }
+
+ protected:
+  ~TrimeshT() override = default;
+
+ private:
+  void validate() const {
+    if (triangles_.empty()) throw detail::makeError("Trimesh", "", "needs at least one triangle", triangles_.size());
+    for (std::size_t i = 0; i < vertices_.size(); ++i)
+      if (!vertices_[i].allFinite())
+        throw detail::makeError("Trimesh", "", "vertex " + std::to_string(i) + " must be finite (m)", vertices_[i]);
+    const std::size_t n = vertices_.size();
+    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+      const Triangle& t = triangles_[i];
+      for (int k : t)
+        if (k < 0 || static_cast<std::size_t>(k) >= n)
+          throw detail::makeError(
+              "Trimesh", "",
+              "triangle " + std::to_string(i) + " has a vertex index outside [0, " + std::to_string(n) + ")", k);
+      if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+        throw detail::makeError("Trimesh", "", "triangle " + std::to_string(i) + " must have three distinct vertices",
+                                t);
+    }
+  }
+
+  // Directed edges sorted once: the mesh is closed when no directed edge
+  // repeats and each one's reverse is present. Counts the edges that fail.
+  [[nodiscard]] std::size_t countOpenEdges() const {
+    std::vector<std::uint64_t> edges;
+    edges.reserve(3 * triangles_.size());
+    const auto key = [](int from, int to) {
+      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) | static_cast<std::uint32_t>(to);
+    };
+    for (const Triangle& t : triangles_)
+      for (int k = 0; k < 3; ++k) edges.push_back(key(t[k], t[(k + 1) % 3]));
+    std::sort(edges.begin(), edges.end());
+    std::size_t open = 0;
+    for (std::size_t k = 0; k < edges.size(); ++k) {
+      const bool repeated = (k > 0 && edges[k] == edges[k - 1]) || (k + 1 < edges.size() && edges[k] == edges[k + 1]);
+      const std::uint64_t reverse = (edges[k] << 32) | (edges[k] >> 32);
+      if (repeated || !std::binary_search(edges.begin(), edges.end(), reverse)) ++open;
+    }
+    return open;
+  }
+
+  void computeMass() {
+    const detail::PolyhedronMass<S> mass = detail::polyhedronMass<S>(vertices_, triangles_);
+    enclosed_ = mass.volume;
+    // Round-off leaves a flat, two-sided mesh a volume of a few ulps of its box.
+    const S extent = (bounds_.max - bounds_.min).maxCoeff();
+    const S noise = S(64) * std::numeric_limits<S>::epsilon() * extent * extent * extent;
+    if (enclosed_ < -noise)
+      throw detail::makeError(
+          "Trimesh", "", "a closed Trimesh must be wound counter-clockwise seen from outside; volume (m^3)", enclosed_);
+    if (enclosed_ <= noise) return;
+    volume_ = mass.volume;
+    center_ = mass.center;
+    inertia_ = mass.inertia;
+  }
+
+  std::vector<Vec3> vertices_;
+  std::vector<Triangle> triangles_;
+  detail::AabbTree<S> tree_;
+  BoundingBoxT<S> bounds_;
+  std::size_t openEdges_ = 0;
+  S enclosed_ = S(0);  ///< signed volume of a closed mesh (m³), as computed
+  S volume_ = S(0);    ///< m³; 0 unless closed and enclosing a volume
+  Vec3 center_ = Vec3::Zero();
+  Mat3 inertia_ = Mat3::Zero();  ///< unit-density inertia about center_ (m⁵)
+};
+
+using Trimesh = TrimeshT<double>;
+using TrimeshRef = ref_ptr<Trimesh>;
+namespace f32 {
+using Trimesh = TrimeshT<float>;
+using TrimeshRef = ref_ptr<Trimesh>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/collide/shapes/trimesh.hpp ---
+
+namespace spook {
+
+/// Every shape type, in the order of the seeds' collider table: the default
+/// shape list of a Space and a Simulation.
+using AllShapes =
+    ShapeList<BoxT, CapsuleT, ConvexT, CylinderT, LineT, PlaneT, SphereT, TrimeshT, CompositeT, HeightFieldT>;
+
+}  // namespace spook
+// --- end spook/collide/all_shapes.hpp ---
+// --- begin spook/collide/collider_matrix.hpp ---
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <utility>
+
+// --- begin spook/collide/collider.hpp ---
+
+#include <concepts>
+
+// --- begin spook/collide/contact_sink.hpp ---
+
+#include <cmath>
+#include <vector>
+
+// --- begin spook/collide/contact_point.hpp ---
+
+namespace spook {
+
+/// One point of contact between two shapes, in world coordinates. The
+/// normal is a unit vector pointing from the first shape toward the second:
+/// moving the second shape by `depth` along it separates them. The point
+/// lies midway between the two surfaces, so point ∓ normal·depth/2 are the
+/// deepest points of the first and the second shape.
+template <Scalar S>
+struct ContactPointT {
+  Vec3<S> point = Vec3<S>::Zero();   ///< world (m)
+  Vec3<S> normal = Vec3<S>::UnitZ();  ///< world, unit, from the first shape toward the second
+  S depth = S(0);                     ///< penetration along the normal (m), >= 0
+  bool enabled = true;                ///< false once contact reduction or a listener has dropped it
+  Vec3<S> force = Vec3<S>::Zero();    ///< contact force on the second shape's body (N), after the solve
+
+  [[nodiscard]] bool getEnabled() const { return enabled; }
+  [[nodiscard]] const Vec3<S>& getPoint() const { return point; }
+  [[nodiscard]] const Vec3<S>& getNormal() const { return normal; }
+  [[nodiscard]] S getDepth() const { return depth; }
+  [[nodiscard]] const Vec3<S>& getForce() const { return force; }
+};
+
+}  // namespace spook
+// --- end spook/collide/contact_point.hpp ---
+
+namespace spook {
+
+/// Where a collider writes the contact points of one shape pair. It keeps
+/// the "first toward second" normal convention when the pair was handed to
+/// the collider in reverse order (flipped), and never lets a non-finite
+/// point through.
+template <Scalar S>
+class ContactSinkT {
+ public:
+  explicit ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped = false)
+      : points_(&points), flipped_(flipped) {}
+
+  /// Adds a point: world position (m), unit normal from the collider's first
+  /// shape toward its second, penetration depth (m, clamped at 0).
+  void add(const Vec3<S>& point, const Vec3<S>& normal, S depth) {
+    if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) return;
+    ContactPointT<S> contact;
+    contact.point = point;
+    contact.normal = flipped_ ? Vec3<S>(-normal) : normal;
+    contact.depth = depth > S(0) ? depth : S(0);
+    points_->push_back(contact);
+  }
+
+  /// The same output with the shape order swapped.
+  [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_); }
+
+  /// Number of points written so far.
+  [[nodiscard]] std::size_t size() const { return points_->size(); }
+
+ private:
+  std::vector<ContactPointT<S>>* points_;
+  bool flipped_;
+};
+
+}  // namespace spook
+// --- end spook/collide/contact_sink.hpp ---
+// --- begin spook/collide/detail/ccd_bridge.hpp ---
+
+#include <type_traits>
+
+#include <ccd/ccd.h>
+
+namespace spook::detail {
+
+// The libccd bridge: each convex shape lends libccd its support function
+// through a stack object that holds the shape and its world pose. libccd is
+// built with double, so a float shape converts at this boundary.
+template <class Shape>
+struct CcdObject {
+  using S = typename Shape::Vec3::Scalar;
+  const Shape* shape;
+  Mat3<double> R;     // shape → world rotation
+  Vec3<double> p;     // shape origin in world (m)
+  Vec3<double> center;  // a point inside the shape, world (m)
+
+  CcdObject(const Shape& s, const Transform<S>& X_W)
+      : shape(&s),
+        R(X_W.linear().template cast<double>()),
+        p(X_W.translation().template cast<double>()),
+        center(R * s.getCenterOfVolume().template cast<double>() + p) {}
+
+  static void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
+    const auto& o = *static_cast<const CcdObject*>(object);
+    const Vec3<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
+    const Vec3<S> d_local = (o.R.transpose() * d_W).template cast<S>();
+    const Vec3<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
+    for (int i = 0; i < 3; ++i) out->v[i] = s_W[i];
+  }
+  static void centerOf(const void* object, ccd_vec3_t* out) {
+    const auto& o = *static_cast<const CcdObject*>(object);
+    for (int i = 0; i < 3; ++i) out->v[i] = o.center[i];
+  }
+};
+
+inline constexpr double kCcdEpaTolerance = 1e-6;  // m
+inline constexpr unsigned long kCcdMaxIterations = 200;
+
+/// The overlap of the projections of a and b onto the unit direction n
+/// (from a toward b): f(n) = h_a(n) + h_b(−n), with h the support function.
+/// By the separating axis theorem the penetration depth is min f over unit
+/// n, and by Danskin's theorem ∇f = s_a(n) − s_b(−n) =: w.
+template <class A, class B>
+struct ProjectionOverlap {
+  const CcdObject<A>& a;
+  const CcdObject<B>& b;
+
+  [[nodiscard]] Vec3<double> supportOf(const auto& object, const Vec3<double>& n_W) const {
+    using S = typename std::remove_cvref_t<decltype(object)>::S;
+    const Vec3<S> d = (object.R.transpose() * n_W).template cast<S>();
+    return object.R * object.shape->support(d).template cast<double>() + object.p;
+  }
+  [[nodiscard]] Vec3<double> gradient(const Vec3<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
+};
+
+/// Polishes libccd's direction: libccd's EPA stops some 1e-4 to 1e-3 short
+/// of the boundary on curved shapes, so the direction is refined by descent
+/// of f on the unit sphere (Barzilai–Borwein steps with backtracking) and
+/// the depth is taken as f at the final direction, an upper bound that is
+/// exact at the minimum. On polytopes, where the minimum sits on a kink of
+/// f and EPA is already exact, the descent stops at once.
+template <class A, class B>
+double refinePenetration(const CcdObject<A>& a, const CcdObject<B>& b, Vec3<double>& n, double scale) {
+  const ProjectionOverlap<A, B> overlap{a, b};
+  Vec3<double> w = overlap.gradient(n);
+  double f = n.dot(w);
+  Vec3<double> g = w - n.dot(w) * n;
+  double step = 1.0 / scale;
+  for (int iteration = 0; iteration < 64 && g.norm() > 1e-13 * scale && step > 1e-12 / scale; ++iteration) {
+    const Vec3<double> trial = (n - step * g).normalized();
+    const Vec3<double> wTrial = overlap.gradient(trial);
+    const double fTrial = trial.dot(wTrial);
+    if (!(fTrial < f)) {
+      step *= 0.5;
+      continue;
+    }
+    const Vec3<double> gTrial = wTrial - trial.dot(wTrial) * trial;
+    const Vec3<double> sStep = trial - n, yStep = gTrial - g;
+    const double curvature = sStep.dot(yStep);
+    step = curvature > 0.0 ? sStep.squaredNorm() / curvature : 2.0 * step;
+    n = trial;
+    w = wTrial;
+    f = fTrial;
+    g = gTrial;
+  }
+  return f;
+}
+
+/// Penetration of two convex shapes by GJK + EPA (libccd), polished as
+/// above: one contact at libccd's point, with the direction that separates
+/// b from a.
+template <Scalar S, class A, class B>
+void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB, ContactSinkT<S>& sink) {
+  const CcdObject<A> objectA(a, X_WA);
+  const CcdObject<B> objectB(b, X_WB);
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = &CcdObject<A>::support;
+  ccd.support2 = &CcdObject<B>::support;
+  ccd.center1 = &CcdObject<A>::centerOf;
+  ccd.center2 = &CcdObject<B>::centerOf;
+  ccd.max_iterations = kCcdMaxIterations;
+  ccd.epa_tolerance = kCcdEpaTolerance;
+  ccd_real_t depth = 0;
+  ccd_vec3_t direction, position;
+  if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) return;
+  Vec3<double> n(direction.v[0], direction.v[1], direction.v[2]);
+  const double length = n.norm();
+  if (!(length > 0.0)) return;  // touching at a single point: no direction to push along
+  n /= length;
+  const double scale = (a.getBoundingBox().halfExtents().template cast<double>().norm() +
+                        b.getBoundingBox().halfExtents().template cast<double>().norm());
+  const double refined = refinePenetration(objectA, objectB, n, scale);
+  if (!(refined >= 0.0)) return;  // the polished direction separates them
+  const Vec3<double> point(position.v[0], position.v[1], position.v[2]);
+  sink.add(point.cast<S>(), n.cast<S>(), S(refined));
+}
+
+}  // namespace spook::detail
+// --- end spook/collide/detail/ccd_bridge.hpp ---
+
+namespace spook {
+
+/// A shape with a support function `support(direction)` in its own frame:
+/// every convex shape, which libccd can then collide with any other.
+template <class T>
+concept ConvexShape = requires(const T& shape, const typename T::Vec3& direction) {
+  { shape.support(direction) } -> std::convertible_to<typename T::Vec3>;
+};
+
+/// The collider of an ordered shape pair (A, B) with A::kType <= B::kType:
+/// `Collider<A, B>::collide(a, X_WA, b, X_WB, sink)` writes the contact
+/// points of a placed at X_WA and b placed at X_WB (shape frame → world).
+/// Analytic pairs specialize it, one file per pair in colliders/; a pair of
+/// convex shapes without one goes through libccd; any other pair has none
+/// (a hole in the collider matrix).
+template <class A, class B>
+struct Collider {};
+
+template <ConvexShape A, ConvexShape B>
+struct Collider<A, B> {
+  using S = typename A::Vec3::Scalar;
+  static void collide(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideByCcd<S>(a, X_WA, b, X_WB, sink);
+  }
+};
+
+/// True when the ordered pair (A, B) has a collider.
+template <class A, class B>
+concept HasCollider = requires(const A& a, const B& b, const Transform<typename A::Vec3::Scalar>& X,
+                               ContactSinkT<typename A::Vec3::Scalar>& sink) {
+  Collider<A, B>::collide(a, X, b, X, sink);
+};
+
+/// Collides a and b in either order: the pair is handed to its collider with
+/// the lower ShapeType first, and the sink flips the normals back. This is
+/// the one place where a reversed pair is handled.
+template <class A, class B>
+  requires(A::kType <= B::kType ? HasCollider<A, B> : HasCollider<B, A>)
+void collide(const A& a, const Transform<typename A::Vec3::Scalar>& X_WA, const B& b,
+             const Transform<typename A::Vec3::Scalar>& X_WB, ContactSinkT<typename A::Vec3::Scalar>& sink) {
+  if constexpr (A::kType <= B::kType) {
+    Collider<A, B>::collide(a, X_WA, b, X_WB, sink);
+  } else {
+    ContactSinkT<typename A::Vec3::Scalar> reversed = sink.reversed();
+    Collider<B, A>::collide(b, X_WB, a, X_WA, reversed);
+  }
+}
+
+}  // namespace spook
+// --- end spook/collide/collider.hpp ---
+// --- begin spook/collide/colliders.hpp ---
+
+// Every analytic collider. The collider matrix includes them all so that a
+// pair means the same collider in every translation unit; only the pairs of
+// a shape list that is used get instantiated.
+
+// --- begin spook/collide/colliders/box_box.hpp ---
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+// --- begin spook/collide/detail/box_clipping.hpp ---
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+
+namespace spook::detail {
+
+/// A convex polygon of at most 8 corners on the stack: a quadrilateral
+/// clipped by the 4 side planes of a rectangle gains at most one corner per
+/// plane.
+template <Scalar S>
+struct ClipPolygon {
+  static constexpr std::size_t kCapacity = 8;
+  std::array<Vec3<S>, kCapacity> points;
+  std::size_t count = 0;
+
+  void push(const Vec3<S>& p) {
+    if (count < kCapacity) points[count++] = p;
+  }
+};
+
+/// One Sutherland–Hodgman step: the part of `polygon` in the half-space
+/// normal·x <= offset. A corner on the plane is kept (once); an edge that
+/// strictly crosses the plane gains its crossing point.
+template <Scalar S>
+[[nodiscard]] ClipPolygon<S> clipPolygon(const ClipPolygon<S>& polygon, const Vec3<S>& normal, S offset) {
+  ClipPolygon<S> out;
+  for (std::size_t i = 0; i < polygon.count; ++i) {
+    const Vec3<S>& p = polygon.points[i];
+    const Vec3<S>& q = polygon.points[(i + 1) % polygon.count];
+    const S dp = normal.dot(p) - offset, dq = normal.dot(q) - offset;
+    if (dp <= S(0)) out.push(p);
+    if ((dp < S(0) && dq > S(0)) || (dp > S(0) && dq < S(0))) out.push(Vec3<S>(p + (q - p) * (dp / (dp - dq))));
+  }
+  return out;
+}
+
+/// Closest points of the segments p + s·u, |s| <= sMax, and q + t·v,
+/// |t| <= tMax, for unit u and v that are not parallel (the box edges and
+/// capsule axis of the box colliders): the closest points of the two lines,
+/// then each parameter clamped with the other one re-projected onto it.
+template <Scalar S>
+void clampedLineClosest(const Vec3<S>& p, const Vec3<S>& u, S sMax, const Vec3<S>& q, const Vec3<S>& v, S tMax, S& s,
+                        S& t) {
+  const Vec3<S> w = q - p;
+  const S b = u.dot(v), d = u.dot(w), e = v.dot(w);
+  const S denominator = S(1) - b * b;  // |u × v|²
+  s = denominator > S(0) ? (d - b * e) / denominator : S(0);
+  s = std::clamp(s, -sMax, sMax);
+  t = std::clamp(b * s - e, -tMax, tMax);
+  s = std::clamp(b * t + d, -sMax, sMax);
+}
+
+}  // namespace spook::detail
+// --- end spook/collide/detail/box_clipping.hpp ---
+
+namespace spook {
+
+namespace detail::box_box {
+
+/// A box seen from box A's frame: center, axes (columns) and half extents.
+template <Scalar S>
+struct Placed {
+  Vec3<S> center;
+  Mat3<S> axes;
+  Vec3<S> half;
+
+  /// Half-width of the box's projection onto the unit axis n.
+  [[nodiscard]] S radius(const Vec3<S>& n) const { return (axes.transpose() * n).cwiseAbs().dot(half); }
+  /// The corner farthest along n (a zero component picks +).
+  [[nodiscard]] Vec3<S> corner(const Vec3<S>& n) const {
+    Vec3<S> p = center;
+    for (int k = 0; k < 3; ++k) p += axes.col(k) * (axes.col(k).dot(n) < S(0) ? -half[k] : half[k]);
+    return p;
+  }
+};
+
+/// The candidate separating axis of least penetration: `axis` points from A
+/// toward B, `depth` is the overlap of the two projections on it (m).
+/// kind 0: a face normal of A (index = axis of A); kind 1: a face normal of
+/// B; kind 2: the cross product of A's edge `index / 3` and B's edge
+/// `index % 3`.
+template <Scalar S>
+struct Axis {
+  Vec3<S> axis = Vec3<S>::UnitZ();
+  S depth = std::numeric_limits<S>::infinity();
+  int kind = -1;
+  int index = -1;
+};
+
+/// Edge–edge axes win only when their overlap is below that of the best face
+/// axis divided by this factor: a resting box then keeps its face manifold
+/// instead of flickering to a single edge point. 1.05 is the value of ODE's
+/// dBoxBox, also used by Bullet and FCL.
+inline constexpr double kEdgeBias = 1.05;
+
+}  // namespace detail::box_box
+
+/// Box–box contacts by the separating axis theorem (Gottschalk's 15 axes)
+/// and face clipping, after ODE's dBoxBox:
+///  - the overlap of the two boxes' projections onto each candidate axis
+///    (3 + 3 face normals, 9 cross products of edge directions) is
+///    r_A(n) + r_B(n) − |n·(c_B − c_A)|, r the projected half-width; a
+///    positive gap on any axis separates the boxes, otherwise the axis of
+///    least overlap gives the normal and the depth (edge axes pay kEdgeBias);
+///  - on a face axis, the face of the other (incident) box most opposed to
+///    it is clipped against the side planes of the reference face
+///    (Sutherland–Hodgman), and every clipped corner below the reference
+///    face becomes a contact with its own depth: up to 8 points;
+///  - on an edge axis, one contact midway between the closest points of the
+///    two edges, with the axis overlap as depth.
+/// Cross products of near-parallel edges are skipped: their direction is
+/// lost to round-off, and the face axes then separate the boxes anyway.
+template <Scalar S>
+struct Collider<BoxT<S>, BoxT<S>> {
+  using Vec3 = spook::Vec3<S>;
+  using Mat3 = spook::Mat3<S>;
+  using Placed = detail::box_box::Placed<S>;
+  using Axis = detail::box_box::Axis<S>;
+
+  /// |a × b| below this (unit a and b) skips the edge axis a × b: the
+  /// direction error ε/|a × b| then balances the depth error |a × b|·size of
+  /// skipping it.
+  static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
+
+  static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const BoxT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    // Everything in A's frame, where A is axis-aligned at the origin.
+    const Mat3 R_WA = X_WA.linear();
+    const Placed boxA{Vec3::Zero(), Mat3::Identity(), a.getHalfExtents()};
+    const Placed boxB{R_WA.transpose() * (X_WB.translation() - X_WA.translation()), R_WA.transpose() * X_WB.linear(),
+                      b.getHalfExtents()};
+    const Vec3 d = boxB.center;
+
+    Axis face, edge;
+    // Overlap along the unit axis n; returns false when n separates them.
+    auto consider = [&](const Vec3& n, int kind, int index, Axis& best) {
+      const S along = n.dot(d);
+      const S overlap = boxA.radius(n) + boxB.radius(n) - std::abs(along);
+      if (overlap < S(0)) return false;
+      if (overlap < best.depth) best = Axis{along < S(0) ? Vec3(-n) : n, overlap, kind, index};
+      return true;
+    };
+    for (int i = 0; i < 3; ++i)
+      if (!consider(boxA.axes.col(i), 0, i, face)) return;
+    for (int j = 0; j < 3; ++j)
+      if (!consider(boxB.axes.col(j), 1, j, face)) return;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        const Vec3 n = boxA.axes.col(i).cross(boxB.axes.col(j));
+        const S length = n.norm();
+        if (!(length > kParallel)) continue;
+        if (!consider(n / length, 2, 3 * i + j, edge)) return;
+      }
+    }
+
+    const Mat3 R = R_WA;
+    const Vec3 p = X_WA.translation();
+    auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
+      sink.add(Vec3(R * point_A + p), Vec3(R * normal_A), depth);
+    };
+    if (edge.kind == 2 && S(detail::box_box::kEdgeBias) * edge.depth < face.depth) {
+      emitEdge(boxA, boxB, edge, emit);
+      return;
+    }
+    // The face case: reference face on the box that owns the axis.
+    const bool onA = face.kind == 0;
+    const Placed& reference = onA ? boxA : boxB;
+    const Placed& incident = onA ? boxB : boxA;
+    const Vec3 n = onA ? face.axis : Vec3(-face.axis);  // out of the reference face, toward the incident box
+    if (emitFace(reference, face.index, n, incident, face.axis, face.depth, emit) == 0) {
+      // Round-off (or the face bias) left no clipped corner below the
+      // reference face: one point at the incident box's deepest corner.
+      const Vec3 deepest = incident.corner(-n);
+      emit(Vec3(deepest + n * (S(0.5) * face.depth)), face.axis, face.depth);
+    }
+  }
+
+ private:
+  template <class Emit>
+  static void emitEdge(const Placed& boxA, const Placed& boxB, const Axis& edge, Emit& emit) {
+    const int i = edge.index / 3, j = edge.index % 3;
+    const Vec3& n = edge.axis;
+    // The edge of A farthest along n and the edge of B farthest along −n,
+    // each through its midpoint.
+    Vec3 midA = boxA.corner(n), midB = boxB.corner(-n);
+    midA -= boxA.axes.col(i) * boxA.axes.col(i).dot(midA - boxA.center);
+    midB -= boxB.axes.col(j) * boxB.axes.col(j).dot(midB - boxB.center);
+    S s = S(0), t = S(0);
+    detail::clampedLineClosest<S>(midA, boxA.axes.col(i), boxA.half[i], midB, boxB.axes.col(j), boxB.half[j], s,
+                                       t);
+    const Vec3 pointA = midA + boxA.axes.col(i) * s, pointB = midB + boxB.axes.col(j) * t;
+    emit(Vec3(S(0.5) * (pointA + pointB)), n, edge.depth);
+  }
+
+  /// Clips the incident face against the reference face `axis` whose
+  /// outward normal is n and writes the points below it with the normal
+  /// normal_AB (from A toward B); returns how many.
+  template <class Emit>
+  static int emitFace(const Placed& reference, int axis, const Vec3& n, const Placed& incident, const Vec3& normal_AB,
+                      S depthOfAxis, Emit& emit) {
+    // Incident face: the face of the incident box most opposed to n.
+    const Vec3 alignment = incident.axes.transpose() * n;
+    int k = 0;
+    alignment.cwiseAbs().maxCoeff(&k);
+    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+    const Vec3 faceCenter =
+        incident.center - incident.axes.col(k) * (alignment[k] > S(0) ? incident.half[k] : -incident.half[k]);
+    const Vec3 e1 = incident.axes.col(k1) * incident.half[k1], e2 = incident.axes.col(k2) * incident.half[k2];
+    detail::ClipPolygon<S> polygon;
+    polygon.push(faceCenter - e1 - e2);
+    polygon.push(faceCenter + e1 - e2);
+    polygon.push(faceCenter + e1 + e2);
+    polygon.push(faceCenter - e1 + e2);
+
+    // Side planes of the reference face: |(x − c)·t| <= h for its two
+    // tangent axes t.
+    for (const int side : {(axis + 1) % 3, (axis + 2) % 3}) {
+      const Vec3 tangent = reference.axes.col(side);
+      const S offset = tangent.dot(reference.center);
+      polygon = detail::clipPolygon<S>(polygon, tangent, offset + reference.half[side]);
+      polygon = detail::clipPolygon<S>(polygon, Vec3(-tangent), reference.half[side] - offset);
+    }
+
+    // Depth of each clipped corner below the reference face plane
+    // n·x = n·c + h; the contact point is midway to that plane. The depth
+    // of the axis bounds them all (they differ by round-off at most).
+    const S facePlane = n.dot(reference.center) + reference.half[axis];
+    int written = 0;
+    for (std::size_t m = 0; m < polygon.count; ++m) {
+      const Vec3& x = polygon.points[m];
+      const S depth = std::min(facePlane - n.dot(x), depthOfAxis);
+      if (!(depth >= S(0))) continue;
+      emit(Vec3(x + n * (S(0.5) * depth)), normal_AB, depth);
+      ++written;
+    }
+    return written;
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/box_box.hpp ---
+// --- begin spook/collide/colliders/box_capsule.hpp ---
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <type_traits>
+
+namespace spook {
+
+namespace detail::box_capsule {
+
+/// Squared distance (m²) from x to the solid box |x_k| <= e_k.
+template <Scalar S>
+[[nodiscard]] S boxDistanceSquared(const Vec3<S>& x, const Vec3<S>& e) {
+  return (x.cwiseAbs() - e).cwiseMax(S(0)).squaredNorm();
+}
+
+/// The parameter t in [−h, h] of the point c + t·u of a segment closest to
+/// the solid box |x_k| <= e_k. The squared distance g(t) is convex and
+/// piecewise quadratic, with knots where the segment crosses the six face
+/// planes; on each piece it is Σ (c_k + t u_k ∓ e_k)² over the coordinates
+/// outside the box, minimized in closed form and clamped to the piece.
+template <Scalar S>
+[[nodiscard]] S closestOnSegment(const Vec3<S>& c, const Vec3<S>& u, S h, const Vec3<S>& e) {
+  std::array<S, 8> knots{};
+  std::size_t count = 0;
+  knots[count++] = -h;
+  for (int k = 0; k < 3; ++k) {
+    if (u[k] == S(0)) continue;
+    for (const S plane : {-e[k], e[k]}) {
+      const S t = (plane - c[k]) / u[k];
+      if (t > -h && t < h) knots[count++] = t;
+    }
+  }
+  knots[count++] = h;
+  std::sort(knots.begin(), knots.begin() + static_cast<std::ptrdiff_t>(count));
+  S bestT = -h, best = std::numeric_limits<S>::infinity();
+  for (std::size_t i = 0; i + 1 < count; ++i) {
+    const S lo = knots[i], hi = knots[i + 1], mid = S(0.5) * (lo + hi);
+    S slope = S(0), curvature = S(0);  // g/2 on this piece: ½ curvature·t² + slope·t + const
+    for (int k = 0; k < 3; ++k) {
+      const S x = c[k] + mid * u[k];
+      if (x > e[k] || x < -e[k]) {
+        slope += u[k] * (c[k] - (x > S(0) ? e[k] : -e[k]));
+        curvature += u[k] * u[k];
+      }
+    }
+    const S t = curvature > S(0) ? std::clamp(-slope / curvature, lo, hi) : lo;
+    const S g = boxDistanceSquared<S>(Vec3<S>(c + t * u), e);
+    if (g < best) {
+      best = g;
+      bestT = t;
+    }
+  }
+  return bestT;
+}
+
+}  // namespace detail::box_capsule
+
+/// Box–capsule contacts: the capsule is the set of points within its radius
+/// r of the segment between its hemisphere centers, so everything reduces
+/// to that segment against the box, in the box frame.
+///  - Segment outside the box at distance δ (exact closest points, see
+///    closestOnSegment): depth r − δ along the direction from the box's
+///    closest point to the segment's.
+///  - Segment touching or inside the box: the segment's penetration is the
+///    least overlap of the projections onto the face normals of the
+///    Minkowski sum box ⊕ segment, which are the box's 3 face normals and
+///    the 3 cross products of the capsule axis with the box edges; depth
+///    r + that overlap (exact, the same separating-axis argument as for two
+///    boxes).
+/// When the normal is a box face normal, the segment is clipped to the
+/// face's side planes and each clipped end within r of the face is a
+/// contact with its own depth: two points for a capsule lying on the face,
+/// one otherwise.
+template <Scalar S>
+struct Collider<BoxT<S>, CapsuleT<S>> {
+  using Vec3 = spook::Vec3<S>;
+  using Mat3 = spook::Mat3<S>;
+
+  /// |u × axis| below this (u the capsule axis) skips the edge axis u × axis;
+  /// the face axes cover the parallel case (as for two boxes).
+  static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
+
+  static void collide(const BoxT<S>& box, const Transform<S>& X_WA, const CapsuleT<S>& capsule,
+                      const Transform<S>& X_WB, ContactSinkT<S>& sink) {
+    // Box frame: the box is |x_k| <= e_k, the segment c + t·u, |t| <= h.
+    const Mat3 R_WA = X_WA.linear();
+    const Vec3 e = box.getHalfExtents();
+    const Vec3 c = R_WA.transpose() * (X_WB.translation() - X_WA.translation());
+    const Vec3 u = (R_WA.transpose() * X_WB.linear().col(1)).normalized();
+    const S h = S(0.5) * capsule.getHeight(), r = capsule.getRadius();
+    const S scale = e.maxCoeff() + h + r;
+    const Local local{e, c, u, h, r, scale};
+    auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
+      sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
+    };
+
+    const S t = detail::box_capsule::closestOnSegment<S>(c, u, h, e);
+    const Vec3 x = c + t * u;
+    const Vec3 q = x.cwiseMax(-e).cwiseMin(e);
+    const Vec3 gap = x - q;
+    const S distance = gap.norm();
+    if (distance > r) return;
+    // Below this distance the direction x − q is round-off: the segment
+    // counts as touching the box and the separating axes take over.
+    const S touching = S(64) * std::numeric_limits<S>::epsilon() * scale;
+    if (distance > touching) {
+      const Vec3 n = gap / distance;
+      const S depth = r - distance;
+      int outside = 0, k = 0;
+      for (int j = 0; j < 3; ++j)
+        if (gap[j] != S(0)) ++outside, k = j;
+      if (outside == 1 && local.emitOnFace(k, gap[k] > S(0) ? S(1) : S(-1), depth, emit) > 0) return;
+      emit(Vec3(S(0.5) * (q + x - n * r)), n, depth);
+      return;
+    }
+
+    // Separating axes of the segment inside the box. An edge axis must beat
+    // the best face axis by more than round-off, so that a capsule lying in
+    // a face (where the two coincide) keeps the face and its two points.
+    S faceDepth = std::numeric_limits<S>::infinity(), edgeDepth = faceDepth;
+    int face = 0, edge = -1;
+    Vec3 edgeAxis = Vec3::UnitZ();
+    for (int k = 0; k < 3; ++k) {
+      const S overlap = e[k] + h * std::abs(u[k]) + r - std::abs(c[k]);
+      if (overlap < faceDepth) faceDepth = overlap, face = k;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 axis = u.cross(Vec3::Unit(k));
+      const S length = axis.norm();
+      if (!(length > kParallel)) continue;
+      const Vec3 n = axis / length;
+      const S overlap = n.cwiseAbs().dot(e) + r - std::abs(n.dot(c));
+      if (overlap < edgeDepth) edgeDepth = overlap, edge = k, edgeAxis = n;
+    }
+    if (!(std::min(faceDepth, edgeDepth) >= S(0))) return;  // only round-off can get here
+
+    if (edge >= 0 && edgeDepth < faceDepth - S(8) * std::numeric_limits<S>::epsilon() * scale) {
+      // The segment crosses the box edge along axis `edge` that is farthest
+      // along n: one point midway between the segment and that edge.
+      const Vec3 n = edgeAxis.dot(c) < S(0) ? Vec3(-edgeAxis) : edgeAxis;
+      Vec3 middle = Vec3::Zero();
+      for (int j = 0; j < 3; ++j)
+        if (j != edge) middle[j] = n[j] < S(0) ? -e[j] : e[j];
+      S s = S(0), tOnSegment = S(0);
+      detail::clampedLineClosest<S>(middle, Vec3::Unit(edge), e[edge], c, u, h, s, tOnSegment);
+      const Vec3 onEdge = middle + Vec3::Unit(edge) * s, onSegment = c + u * tOnSegment;
+      emit(Vec3(S(0.5) * (onEdge + onSegment - n * r)), n, edgeDepth);
+      return;
+    }
+    const S sign = c[face] < S(0) ? S(-1) : S(1);
+    if (local.emitOnFace(face, sign, faceDepth, emit) > 0) return;
+    // The deepest end of the segment lies beside the face: one point there.
+    const S along = sign * u[face];
+    const Vec3 deepest = c + u * (along > S(0) ? -h : (along < S(0) ? h : S(0)));
+    Vec3 onFace = deepest.cwiseMax(-e).cwiseMin(e);
+    onFace[face] = sign * e[face];
+    const Vec3 n = Vec3::Unit(face) * sign;
+    emit(Vec3(S(0.5) * (onFace + deepest - n * r)), n, faceDepth);
+  }
+
+ private:
+  struct Local {
+    Vec3 e, c, u;
+    S h, r, scale;
+
+    /// Contacts for the normal sign·(unit k), the outward normal of a box
+    /// face: the segment clipped to the face's side planes, each end within
+    /// r of the face plane a contact with depth r − height. Writes nothing
+    /// (returns 0) when the clipped ends miss `depth`, the depth of the
+    /// whole pair: the deepest part of the segment lies beside the face.
+    template <class Emit>
+    int emitOnFace(int k, S sign, S depth, Emit& emit) const {
+      S lo = -h, hi = h;
+      for (const int j : {(k + 1) % 3, (k + 2) % 3}) {
+        if (u[j] == S(0)) {
+          if (std::abs(c[j]) > e[j]) return 0;
+          continue;
+        }
+        const S t0 = (-e[j] - c[j]) / u[j], t1 = (e[j] - c[j]) / u[j];
+        lo = std::max(lo, std::min(t0, t1));
+        hi = std::min(hi, std::max(t0, t1));
+      }
+      if (!(lo <= hi)) return 0;
+      const Vec3 n = Vec3::Unit(k) * sign;
+      const S tolerance = S(64) * std::numeric_limits<S>::epsilon() * scale;
+      std::array<S, 2> ends{lo, hi}, depths{};
+      for (std::size_t i = 0; i < 2; ++i) depths[i] = r - (sign * (c[k] + ends[i] * u[k]) - e[k]);
+      if (!(std::max(depths[0], depths[1]) >= depth - tolerance)) return 0;
+      // Ends closer than the tolerance are one point: keep the deeper.
+      const bool single = (hi - lo) <= tolerance;
+      int written = 0;
+      for (std::size_t i = 0; i < 2; ++i) {
+        if (!(depths[i] >= S(0))) continue;
+        if (single && depths[i] < depths[1 - i]) continue;
+        if (single && written > 0) break;
+        const Vec3 x = c + u * ends[i];
+        const S height = r - depths[i];
+        emit(Vec3(x - n * (S(0.5) * (height + r))), n, std::min(depths[i], depth));
+        ++written;
+      }
+      return written;
+    }
+  };
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/box_capsule.hpp ---
+// --- begin spook/collide/colliders/box_line.hpp ---
+
+#include <algorithm>
+#include <cmath>
+
+// --- begin spook/collide/detail/segment_distance.hpp ---
+
+#include <algorithm>
+#include <cmath>
+
+namespace spook::detail {
+
+// Closest points between segments and points, the geometric core of every
+// collider with a capsule or a line (Ericson, Real-Time Collision
+// Detection, §5.1.2 and §5.1.9). All results are finite for any finite
+// input, degenerate segments and parallel segments included.
+
+/// Parameter t ∈ [0, 1] of the point of segment p + t (q − p) closest to x
+/// (0 for a degenerate segment).
+template <Scalar S>
+[[nodiscard]] S closestParameterOnSegment(const Vec3<S>& p, const Vec3<S>& q, const Vec3<S>& x) {
+  const Vec3<S> d = q - p;
+  const S dd = d.squaredNorm();
+  if (!(dd > S(0))) return S(0);
+  return std::clamp(d.dot(x - p) / dd, S(0), S(1));
+}
+
+/// The point of segment [p, q] closest to x.
+template <Scalar S>
+[[nodiscard]] Vec3<S> closestPointOnSegment(const Vec3<S>& p, const Vec3<S>& q, const Vec3<S>& x) {
+  return p + closestParameterOnSegment(p, q, x) * (q - p);
+}
+
+/// A unit vector perpendicular to d (any non-zero d), chosen deterministically:
+/// d crossed with the coordinate axis least aligned with it.
+template <Scalar S>
+[[nodiscard]] Vec3<S> unitPerpendicular(const Vec3<S>& d) {
+  int axis = 0;
+  const Vec3<S> a = d.cwiseAbs();
+  if (a.y() < a[axis]) axis = 1;
+  if (a.z() < a[axis]) axis = 2;
+  const Vec3<S> n = d.cross(Vec3<S>::Unit(axis));
+  const S length = n.norm();
+  return length > S(0) ? Vec3<S>(n / length) : Vec3<S>(Vec3<S>::UnitX());
+}
+
+/// The closest points of segments [p1, q1] and [p2, q2]: parameters s, t
+/// ∈ [0, 1], the points themselves, and whether the segments are parallel
+/// or degenerate (then the pair is one deterministic choice among many).
+template <Scalar S>
+struct SegmentClosestPoints {
+  S s = S(0);
+  S t = S(0);
+  Vec3<S> onFirst = Vec3<S>::Zero();
+  Vec3<S> onSecond = Vec3<S>::Zero();
+  bool parallel = false;
+};
+
+/// Minimizes |p1 + s d1 − (p2 + t d2)|² over the unit square (Ericson
+/// §5.1.9): the unconstrained minimum of the line pair is clamped to the
+/// first segment, then the second parameter follows and is clamped, and the
+/// first is recomputed once. Parallel (or degenerate) segments, where the
+/// determinant a e − b² vanishes relative to a e, start from s = 0.
+template <Scalar S>
+[[nodiscard]] SegmentClosestPoints<S> closestPointsBetweenSegments(const Vec3<S>& p1, const Vec3<S>& q1,
+                                                                   const Vec3<S>& p2, const Vec3<S>& q2) {
+  const Vec3<S> d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const S a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  SegmentClosestPoints<S> result;
+  if (!(a > S(0)) && !(e > S(0))) {
+    result.parallel = true;
+  } else if (!(a > S(0))) {
+    result.t = std::clamp(f / e, S(0), S(1));
+    result.parallel = true;
+  } else {
+    const S c = d1.dot(r);
+    if (!(e > S(0))) {
+      result.s = std::clamp(-c / a, S(0), S(1));
+      result.parallel = true;
+    } else {
+      const S b = d1.dot(d2);
+      // a e − b² = |d1 × d2|², computed as such to keep its relative accuracy
+      // for nearly parallel segments.
+      const S denominator = d1.cross(d2).squaredNorm();
+      result.parallel = !(denominator > S(4) * ScalarTraits<S>::epsilon() * a * e);
+      S s = result.parallel ? S(0) : std::clamp((b * f - c * e) / denominator, S(0), S(1));
+      S t = (b * s + f) / e;
+      if (t < S(0)) {
+        t = S(0);
+        s = std::clamp(-c / a, S(0), S(1));
+      } else if (t > S(1)) {
+        t = S(1);
+        s = std::clamp((b - c) / a, S(0), S(1));
+      }
+      result.s = s;
+      result.t = t;
+    }
+  }
+  result.onFirst = p1 + result.s * d1;
+  result.onSecond = p2 + result.t * d2;
+  return result;
+}
+
+}  // namespace spook::detail
+// --- end spook/collide/detail/segment_distance.hpp ---
+
+namespace spook {
+
+/// Box–line, in the box frame, for a segment x(t) = p + t d, t ∈ [0, 1].
+///
+/// Depth: the penetration depth proper, the shortest distance the line has
+/// to move to leave the box, D = min over unit n of f(n) = h_box(n) −
+/// min_t n·x(t) (the overlap of the two projections on n), the same measure
+/// as every other convex pair and as the libccd fallback. The box ⊕ segment
+/// difference is a polytope whose faces have the box face normals e_i and
+/// the cross products d × e_i as normals, so the minimum is over these six
+/// axes, both signs each (the separating axis theorem); a negative overlap
+/// on any of them separates the shapes. Cross products shorter than
+/// round-off (d along a box edge) are dropped: they are face normals then,
+/// and the overlap they would bound differs from a face's by less than
+/// their length.
+///
+/// Points: the line's deepest point along −n is the contact's line side,
+/// midway to the box surface at depth D. On a face normal that is the
+/// deepest endpoint, unless a point of the segment's part inside the box
+/// (clipped against the three slabs |x_i| <= h_i) is as deep, as for a
+/// segment lying in a face; on an edge axis every segment point is as deep
+/// and the point closest to the box's supporting edge is taken. A segment
+/// nearly parallel to the face (|sin| <= kParallelSine) also gets a contact
+/// at each end of its inside part, with that point's own depth, so that a
+/// rod lying across a face rests on two points.
+template <Scalar S>
+struct Collider<BoxT<S>, LineT<S>> {
+  static constexpr S kParallelSine = S(1e-2);
+
+  static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const LineT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Transform<S> X_AB = X_WA.inverse(Eigen::Isometry) * X_WB;
+    const Vec3<S> p = X_AB * b.getFirstPoint(), q = X_AB * b.getSecondPoint();
+    const Vec3<S> d = q - p;
+    const Vec3<S>& h = a.getHalfExtents();
+    const S length = d.norm();
+    const S tiny = S(16) * ScalarTraits<S>::epsilon() * (h.norm() + p.norm() + q.norm());
+
+    // Separating axis test: the smallest overlap and its axis, from the box toward the line.
+    S depth = S(0);
+    Vec3<S> n = Vec3<S>::UnitZ();
+    int edge = -1;  // the box edge direction of a cross-product axis, -1 for a face normal
+    bool first = true;
+    const auto tryAxis = [&](const Vec3<S>& axis, int edgeAxis) {
+      const S support = h.dot(axis.cwiseAbs());
+      const S lowest = std::min(axis.dot(p), axis.dot(q)), highest = std::max(axis.dot(p), axis.dot(q));
+      const S up = support - lowest, down = support + highest;  // overlaps along +axis and −axis
+      if (first || up < depth) {
+        depth = up;
+        n = axis;
+        edge = edgeAxis;
+        first = false;
+      }
+      if (down < depth) {
+        depth = down;
+        n = -axis;
+        edge = edgeAxis;
+      }
+    };
+    for (int i = 0; i < 3; ++i) tryAxis(Vec3<S>::Unit(i), -1);
+    for (int i = 0; i < 3; ++i) {
+      const Vec3<S> axis = d.cross(Vec3<S>::Unit(i));
+      const S axisLength = axis.norm();
+      if (axisLength > S(16) * ScalarTraits<S>::epsilon() * length) tryAxis(axis / axisLength, i);
+    }
+    if (!(depth >= S(0))) return;
+
+    const auto add = [&](const Vec3<S>& onLine, S pointDepth) {
+      sink.add(X_WA * Vec3<S>(onLine + S(0.5) * pointDepth * n), X_WA.linear() * n, pointDepth);
+    };
+    if (edge >= 0) {
+      // The box edge along e_edge through the corner farthest along n.
+      Vec3<S> corner = a.support(n);
+      Vec3<S> otherEnd = corner;
+      corner[edge] = -h[edge];
+      otherEnd[edge] = h[edge];
+      add(detail::closestPointsBetweenSegments<S>(p, q, corner, otherEnd).onFirst, depth);
+      return;
+    }
+
+    // The part of the segment inside the box, t ∈ [t0, t1] (empty when t0 > t1).
+    S t0 = S(0), t1 = S(1);
+    for (int i = 0; i < 3; ++i) {
+      if (d[i] != S(0)) {
+        const S ta = (-h[i] - p[i]) / d[i], tb = (h[i] - p[i]) / d[i];
+        t0 = std::max(t0, std::min(ta, tb));
+        t1 = std::min(t1, std::max(ta, tb));
+      } else if (std::abs(p[i]) > h[i]) {
+        t0 = S(1);
+        t1 = S(0);
+      }
+    }
+    const S support = h.dot(n.cwiseAbs());
+    const auto depthAt = [&](S t) { return support - n.dot(p + t * d); };
+    S deepest = depthAt(S(0)) >= depthAt(S(1)) ? S(0) : S(1);
+    if (t0 <= t1) {
+      const S inside = depthAt(t0) >= depthAt(t1) ? t0 : t1;
+      if (depthAt(inside) >= depth - tiny) deepest = inside;
+    }
+    add(p + deepest * d, depth);
+    if (!(t0 <= t1 && std::abs(n.dot(d)) <= kParallelSine * length)) return;
+    const S apart = std::sqrt(ScalarTraits<S>::epsilon()) * (h.norm() + length);  // closer is the same contact
+    const S ends[2] = {t0, t1};
+    for (int k = 0; k < 2; ++k) {
+      const S t = ends[k];
+      if (std::abs(t - deepest) * length <= apart || (k == 1 && (t1 - t0) * length <= apart)) continue;
+      const S pointDepth = depthAt(t);
+      if (pointDepth >= S(0)) add(p + t * d, pointDepth);
+    }
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/box_line.hpp ---
+// --- begin spook/collide/colliders/box_plane.hpp ---
+
+namespace spook {
+
+/// Box–plane: every corner at or below the plane (signed height s <= 0) is
+/// a contact of depth −s: four for a box lying flat on a face, two on an
+/// edge, one on a corner. The normal points from the box into the plane, −n.
+template <Scalar S>
+struct Collider<BoxT<S>, PlaneT<S>> {
+  static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3<S> n = X_WB.linear() * b.getNormal();
+    const Vec3<S>& h = a.getHalfExtents();
+    // Heights relative to the box center: corner height = center height + Σ ±h_i (n · axis_i).
+    const S centerHeight = n.dot(X_WA.translation() - X_WB * b.getPoint());
+    const Vec3<S> reach = (X_WA.linear().transpose() * n).cwiseProduct(h);
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3<S> sign((corner & 1) ? S(1) : S(-1), (corner & 2) ? S(1) : S(-1), (corner & 4) ? S(1) : S(-1));
+      const S height = centerHeight + sign.dot(reach);
+      if (!(height <= S(0))) continue;
+      const Vec3<S> p = X_WA * Vec3<S>(sign.cwiseProduct(h));
+      // Midway between the corner and the plane point under it.
+      sink.add(p - S(0.5) * height * n, -n, -height);
+    }
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/box_plane.hpp ---
+// --- begin spook/collide/colliders/box_sphere.hpp ---
+
+#include <cmath>
+
+namespace spook {
+
+/// Box–sphere, in the box frame. A sphere center c outside the box pushes
+/// away from the box point q closest to it (c clamped to the half extents):
+/// depth r − |c − q|. A center inside the box, or on its surface, pushes out
+/// through the nearest face, the one with the smallest h_i − |c_i| (the
+/// lowest axis on a tie, the + face when c_i = 0): depth r + h_i − |c_i|.
+template <Scalar S>
+struct Collider<BoxT<S>, SphereT<S>> {
+  static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3<S>& h = a.getHalfExtents();
+    const S r = b.getRadius();
+    const Vec3<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
+    const Vec3<S> q = c.cwiseMax(-h).cwiseMin(h);
+    const Vec3<S> d = c - q;
+    const S distance = d.norm();
+    Vec3<S> n;        // box frame, from the box toward the sphere
+    Vec3<S> onBox;    // the box's deepest point along n
+    S depth;
+    if (distance > ScalarTraits<S>::epsilon() * (h.norm() + r)) {
+      depth = r - distance;
+      if (!(depth >= S(0))) return;
+      n = d / distance;
+      onBox = q;
+    } else {
+      int axis = 0;
+      S gap = h[0] - std::abs(c[0]);  // distance from c to the nearest face, >= 0 up to round-off
+      for (int i = 1; i < 3; ++i) {
+        const S g = h[i] - std::abs(c[i]);
+        if (g < gap) {
+          gap = g;
+          axis = i;
+        }
+      }
+      n = Vec3<S>::Zero();
+      n[axis] = c[axis] < S(0) ? S(-1) : S(1);
+      depth = r + gap;
+      onBox = c + gap * n;
+    }
+    // Midway between the box's deepest point and the sphere's, c − r n.
+    sink.add(X_WA * Vec3<S>(S(0.5) * (onBox + c - r * n)), X_WA.linear() * n, depth);
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/box_sphere.hpp ---
+// --- begin spook/collide/colliders/capsule_capsule.hpp ---
+
+#include <algorithm>
+#include <cmath>
+
+namespace spook {
+
+/// Capsule–capsule: the closest points a, b of the two core segments give
+/// the deepest contact, depth r_a + r_b − |b − a| along (b − a)/|b − a|.
+/// Segments that meet have no such direction; they push along the common
+/// perpendicular d_a × d_b (turned toward b's center), or, when they are
+/// also parallel, along a fixed perpendicular of a's axis.
+///
+/// Nearly parallel capsules (|sin θ| <= kParallelSine between the axes)
+/// lying side by side touch along a line, and one point would let them roll
+/// about it: the ends of the stretch where their axes overlap (the part of
+/// a's segment onto which b's segment projects) add a contact each, with
+/// the exact depth between that point of a's axis and the nearest point of
+/// b's. The deepest contact is always reported, so the largest depth is the
+/// exact penetration.
+template <Scalar S>
+struct Collider<CapsuleT<S>, CapsuleT<S>> {
+  static constexpr S kParallelSine = S(1e-2);
+
+  static void collide(const CapsuleT<S>& a, const Transform<S>& X_WA, const CapsuleT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3<S> halfA = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
+    const Vec3<S> halfB = X_WB.linear().col(1) * (S(0.5) * b.getHeight());
+    const Vec3<S> pA = X_WA.translation() - halfA, qA = X_WA.translation() + halfA;
+    const Vec3<S> pB = X_WB.translation() - halfB, qB = X_WB.translation() + halfB;
+    const S rA = a.getRadius(), rB = b.getRadius();
+    const S scale = rA + rB + a.getHeight() + b.getHeight();
+    const auto closest = detail::closestPointsBetweenSegments<S>(pA, qA, pB, qB);
+
+    // The direction for points closer than round-off, where b − a has none.
+    Vec3<S> fallback;
+    const Vec3<S> across = halfA.cross(halfB);
+    if (!closest.parallel && across.norm() > S(0)) {
+      fallback = across.normalized();
+      if (fallback.dot(X_WB.translation() - X_WA.translation()) < S(0)) fallback = -fallback;
+    } else {
+      fallback = X_WA.linear().col(0);
+    }
+    const S tiny = ScalarTraits<S>::epsilon() * scale;
+    const auto addAlong = [&](const Vec3<S>& onA, const Vec3<S>& onB, const Vec3<S>& n, S distance) {
+      const S depth = rA + rB - distance;
+      if (!(depth >= S(0))) return false;
+      sink.add(S(0.5) * (onA + onB + (rA - rB) * n), n, depth);
+      return true;
+    };
+    const auto add = [&](const Vec3<S>& onA, const Vec3<S>& onB) {
+      const Vec3<S> d = onB - onA;
+      const S distance = d.norm();
+      return addAlong(onA, onB, distance > tiny ? Vec3<S>(d / distance) : fallback, distance);
+    };
+    const bool inside = closest.s > S(0) && closest.s < S(1) && closest.t > S(0) && closest.t < S(1);
+    if (inside && !closest.parallel) {
+      // Closest points inside both segments are those of the two lines: the
+      // normal is their common perpendicular and the distance its projection
+      // of pB − pA, both free of the round-off in s and t, which would tilt
+      // the normal by ε/distance for nearly crossing axes.
+      const Vec3<S> d = closest.onSecond - closest.onFirst;
+      const Vec3<S> n = d.dot(fallback) < S(0) ? Vec3<S>(-fallback) : fallback;
+      if (!addAlong(closest.onFirst, closest.onSecond, n, std::abs(n.dot(pB - pA)))) return;
+    } else if (!add(closest.onFirst, closest.onSecond)) {
+      return;
+    }
+
+    const Vec3<S> dA = qA - pA, dB = qB - pB;
+    const S lengthA2 = dA.squaredNorm();
+    if (!(across.squaredNorm() * S(16) <= kParallelSine * kParallelSine * lengthA2 * dB.squaredNorm())) return;
+    // The stretch of a's segment (parameters on a) that b's projects onto.
+    const S s0 = dA.dot(pB - pA) / lengthA2, s1 = dA.dot(qB - pA) / lengthA2;
+    const S lo = std::max(S(0), std::min(s0, s1)), hi = std::min(S(1), std::max(s0, s1));
+    if (!(lo < hi)) return;
+    const S apart = std::sqrt(ScalarTraits<S>::epsilon()) * scale;  // ends closer than this are the same contact
+    const S lengthA = std::sqrt(lengthA2);
+    for (const S s : {lo, hi}) {
+      if (std::abs(s - closest.s) * lengthA <= apart) continue;
+      const Vec3<S> onA = pA + s * dA;
+      add(onA, detail::closestPointOnSegment<S>(pB, qB, onA));
+    }
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/capsule_capsule.hpp ---
+// --- begin spook/collide/colliders/capsule_plane.hpp ---
+
+namespace spook {
+
+/// Capsule–plane: each end sphere (hemisphere center e at signed height s
+/// above the plane) that reaches the solid below the plane is a contact of
+/// depth r − s: one for a tilted capsule, two for one lying on the plane.
+/// The normal points from the capsule into the plane, −n.
+template <Scalar S>
+struct Collider<CapsuleT<S>, PlaneT<S>> {
+  static void collide(const CapsuleT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3<S> n = X_WB.linear() * b.getNormal();
+    const Vec3<S> onPlane = X_WB * b.getPoint();
+    const Vec3<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
+    const S r = a.getRadius();
+    for (const S side : {S(-1), S(1)}) {
+      const Vec3<S> e = X_WA.translation() + side * halfAxis;
+      const S height = n.dot(e - onPlane);
+      const S depth = r - height;
+      // Midway between the capsule's deepest point e − r n and the plane point under e, e − s n.
+      if (depth >= S(0)) sink.add(e - S(0.5) * (r + height) * n, -n, depth);
+    }
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/capsule_plane.hpp ---
+// --- begin spook/collide/colliders/capsule_sphere.hpp ---
+
+namespace spook {
+
+/// Capsule–sphere: the sphere center c against the capsule's core segment
+/// (its hemisphere centers, ±height/2 along the capsule's y): one contact
+/// from the segment point q closest to c, depth r_a + r_b − |c − q|. A
+/// center on the segment pushes along the capsule's own x axis, which is
+/// perpendicular to the segment.
+template <Scalar S>
+struct Collider<CapsuleT<S>, SphereT<S>> {
+  static void collide(const CapsuleT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
+    const Vec3<S> center = X_WA.translation(), c = X_WB.translation();
+    const S t = detail::closestParameterOnSegment<S>(center - halfAxis, center + halfAxis, c);
+    const Vec3<S> q = center + (S(2) * t - S(1)) * halfAxis;
+    const S rA = a.getRadius(), rB = b.getRadius();
+    Vec3<S> d = c - q;
+    // Off an end the closest point is that end; along the side, c − q is
+    // perpendicular to the axis, and making it exactly so keeps the normal
+    // from tilting toward the axis by round-off when c is near it.
+    if (t > S(0) && t < S(1)) d -= X_WA.linear().col(1) * X_WA.linear().col(1).dot(d);
+    const S distance = d.norm();
+    const S depth = rA + rB - distance;
+    if (!(depth >= S(0))) return;
+    const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB + a.getHeight()) ? Vec3<S>(d / distance)
+                                                                                         : Vec3<S>(X_WA.linear().col(0));
+    sink.add(S(0.5) * (q + c + (rA - rB) * n), n, depth);
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/capsule_sphere.hpp ---
+// --- begin spook/collide/colliders/cylinder_plane.hpp ---
+
+#include <array>
+
+namespace spook {
+
+/// Cylinder–plane: the deepest points of a cylinder are on its rims. On
+/// each cap rim the candidates are four points 90° apart, starting from the
+/// rim point farthest below the plane, v = −(n − (n·u) u)/|…| for axis u
+/// (the cylinder's own x axis when the axis is along n and every rim point
+/// is as deep); each candidate at or below the plane is a contact of depth
+/// −(its signed height). So a tilted cylinder resting on its rim has one
+/// contact, one lying on its side two (one per cap), one standing on a cap
+/// four spread around the rim, and the deepest rim point is always among
+/// them. The normal points from the cylinder into the plane, −n.
+template <Scalar S>
+struct Collider<CylinderT<S>, PlaneT<S>> {
+  static void collide(const CylinderT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3<S> n = X_WB.linear() * b.getNormal();
+    const Vec3<S> u = X_WA.linear().col(1);
+    const Vec3<S> across = (n.dot(u)) * u - n;  // along the rim, away from the plane's outside
+    const S acrossLength = across.norm();
+    const Vec3<S> v = acrossLength > ScalarTraits<S>::epsilon() ? Vec3<S>(across / acrossLength)
+                                                                 : Vec3<S>(X_WA.linear().col(0));
+    const Vec3<S> w = u.cross(v);
+    const std::array<Vec3<S>, 4> rim = {v, w, Vec3<S>(-v), Vec3<S>(-w)};
+    const S r = a.getRadius(), halfHeight = S(0.5) * a.getHeight();
+    const Vec3<S> onPlane = X_WB * b.getPoint();
+    for (const S side : {S(-1), S(1)}) {
+      const Vec3<S> capCenter = X_WA.translation() + side * halfHeight * u;
+      const S capHeight = n.dot(capCenter - onPlane);
+      for (const Vec3<S>& direction : rim) {
+        const S height = capHeight + r * n.dot(direction);
+        if (!(height <= S(0))) continue;
+        // Midway between the rim point and the plane point under it.
+        sink.add(capCenter + r * direction - S(0.5) * height * n, -n, -height);
+      }
+    }
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/cylinder_plane.hpp ---
+// --- begin spook/collide/colliders/cylinder_sphere.hpp ---
+
+#include <algorithm>
+#include <cmath>
+
+namespace spook {
+
+/// Cylinder–sphere, in the cylinder frame (axis y, half height k, radius
+/// R). A sphere center c outside the cylinder pushes away from the point q
+/// of the solid cylinder closest to it (c with y clamped to ±k and its
+/// radial part to length R): depth r − |c − q|. A center inside, or on the
+/// surface, pushes out through the nearer of the cap (gap k − |c_y|) and the
+/// barrel (gap R − |c_xz|), the cap on a tie, the barrel along the
+/// cylinder's x axis when c is on the axis: depth r + gap.
+template <Scalar S>
+struct Collider<CylinderT<S>, SphereT<S>> {
+  static void collide(const CylinderT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const S R = a.getRadius(), k = S(0.5) * a.getHeight(), r = b.getRadius();
+    const Vec3<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
+    const S radial = std::hypot(c.x(), c.z());
+    Vec3<S> q(c.x(), std::clamp(c.y(), -k, k), c.z());
+    if (radial > R) {
+      q.x() *= R / radial;
+      q.z() *= R / radial;
+    }
+    const Vec3<S> d = c - q;
+    const S distance = d.norm();
+    const S tiny = ScalarTraits<S>::epsilon() * (R + k + r);
+    Vec3<S> n;          // cylinder frame, from the cylinder toward the sphere
+    Vec3<S> onCylinder;  // the cylinder's deepest point along n
+    S depth;
+    if (distance > tiny) {
+      depth = r - distance;
+      if (!(depth >= S(0))) return;
+      n = d / distance;
+      onCylinder = q;
+    } else {
+      const S capGap = k - std::abs(c.y()), barrelGap = R - radial;
+      const S gap = std::min(capGap, barrelGap);
+      if (capGap <= barrelGap)
+        n = Vec3<S>(S(0), c.y() < S(0) ? S(-1) : S(1), S(0));
+      else if (radial > tiny)
+        n = Vec3<S>(c.x() / radial, S(0), c.z() / radial);
+      else
+        n = Vec3<S>::UnitX();
+      depth = r + gap;
+      onCylinder = c + gap * n;
+    }
+    // Midway between the cylinder's deepest point and the sphere's, c − r n.
+    sink.add(X_WA * Vec3<S>(S(0.5) * (onCylinder + c - r * n)), X_WA.linear() * n, depth);
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/cylinder_sphere.hpp ---
+// --- begin spook/collide/colliders/line_plane.hpp ---
+
+namespace spook {
+
+/// Line–plane: each segment endpoint at or below the plane (signed height
+/// s <= 0) is a contact of depth −s, so a segment lying in or under the
+/// plane has two. The normal points from the line into the plane, −n.
+template <Scalar S>
+struct Collider<LineT<S>, PlaneT<S>> {
+  static void collide(const LineT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3<S> n = X_WB.linear() * b.getNormal();
+    const Vec3<S> onPlane = X_WB * b.getPoint();
+    for (const Vec3<S>& end : {a.getFirstPoint(), a.getSecondPoint()}) {
+      const Vec3<S> e = X_WA * end;
+      const S height = n.dot(e - onPlane);
+      // Midway between the endpoint and the plane point under it.
+      if (height <= S(0)) sink.add(e - S(0.5) * height * n, -n, -height);
+    }
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/line_plane.hpp ---
+// --- begin spook/collide/colliders/line_sphere.hpp ---
+
+namespace spook {
+
+/// Line–sphere: the segment point q closest to the sphere center c gives
+/// one contact of depth r − |c − q| along (c − q)/|c − q|; a center on the
+/// segment pushes along a fixed perpendicular of the segment.
+template <Scalar S>
+struct Collider<LineT<S>, SphereT<S>> {
+  static void collide(const LineT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3<S> p = X_WA * a.getFirstPoint(), q = X_WA * a.getSecondPoint();
+    const Vec3<S> c = X_WB.translation();
+    const S t = detail::closestParameterOnSegment<S>(p, q, c);
+    const Vec3<S> onLine = p + t * (q - p);
+    const S r = b.getRadius();
+    Vec3<S> d = c - onLine;
+    // Along the segment's interior c − q is perpendicular to it: made exactly
+    // so, round-off cannot tilt the normal toward the segment.
+    if (t > S(0) && t < S(1)) d -= (q - p) * ((q - p).dot(d) / (q - p).squaredNorm());
+    const S distance = d.norm();
+    const S depth = r - distance;
+    if (!(depth >= S(0))) return;
+    const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (r + a.getLength()) ? Vec3<S>(d / distance)
+                                                                                 : detail::unitPerpendicular<S>(q - p);
+    // Midway between the segment point and the sphere's deepest point c − r n.
+    sink.add(S(0.5) * (onLine + c - r * n), n, depth);
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/line_sphere.hpp ---
+// --- begin spook/collide/colliders/plane_sphere.hpp ---
+
+namespace spook {
+
+/// Plane–sphere: the plane is the solid half-space below it, so a sphere
+/// whose center c lies at signed height s above the plane penetrates by
+/// r − s (also when c is below the plane), along the plane normal.
+template <Scalar S>
+struct Collider<PlaneT<S>, SphereT<S>> {
+  static void collide(const PlaneT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3<S> n = X_WA.linear() * a.getNormal();
+    const Vec3<S> c = X_WB.translation();
+    const S height = n.dot(c - X_WA * a.getPoint());
+    const S r = b.getRadius();
+    const S depth = r - height;
+    if (!(depth >= S(0))) return;
+    // Midway between the plane point under c, c − s n, and the sphere's deepest point c − r n.
+    sink.add(c - S(0.5) * (height + r) * n, n, depth);
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/plane_sphere.hpp ---
+// --- begin spook/collide/colliders/sphere_sphere.hpp ---
+
+namespace spook {
+
+/// Sphere–sphere: one contact along the line of centers, depth
+/// r_a + r_b − |c_b − c_a|. Coincident centers (closer than round-off of
+/// the radii) have no line of centers; they push along world +z.
+template <Scalar S>
+struct Collider<SphereT<S>, SphereT<S>> {
+  static void collide(const SphereT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3<S> cA = X_WA.translation(), cB = X_WB.translation();
+    const S rA = a.getRadius(), rB = b.getRadius();
+    const Vec3<S> d = cB - cA;
+    const S distance = d.norm();
+    const S depth = rA + rB - distance;
+    if (!(depth >= S(0))) return;
+    const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB) ? Vec3<S>(d / distance) : Vec3<S>::UnitZ();
+    // Midway between a's deepest point cA + rA n and b's, cB − rB n.
+    sink.add(S(0.5) * (cA + cB + (rA - rB) * n), n, depth);
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/sphere_sphere.hpp ---
+// --- begin spook/collide/colliders/mesh.hpp ---
+
+#include <vector>
+
+// --- begin spook/collide/detail/triangle.hpp ---
+
+#include <array>
+
+namespace spook::detail {
+
+/// One triangle of a mesh or height field, as a convex shape for the
+/// colliders: vertices in the mesh frame, counter-clockwise seen from the
+/// outside (the solid side is behind the face).
+template <Scalar S>
+struct Triangle {
+  using Vec3 = spook::Vec3<S>;
+  std::array<Vec3, 3> v;
+
+  [[nodiscard]] Vec3 support(const Vec3& d) const {
+    const S a = v[0].dot(d), b = v[1].dot(d), c = v[2].dot(d);
+    return a >= b ? (a >= c ? v[0] : v[2]) : (b >= c ? v[1] : v[2]);
+  }
+  [[nodiscard]] Vec3 getCenterOfVolume() const { return (v[0] + v[1] + v[2]) / S(3); }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
+    return {v[0].cwiseMin(v[1]).cwiseMin(v[2]), v[0].cwiseMax(v[1]).cwiseMax(v[2])};
+  }
+  /// Unit outward normal (+z for a degenerate triangle).
+  [[nodiscard]] Vec3 normal() const {
+    const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
+    const S length = n.norm();
+    return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
+  }
+};
+
+}  // namespace spook::detail
+// --- end spook/collide/detail/triangle.hpp ---
+
+namespace spook {
+
+namespace detail {
+
+/// A triangle soup: a Trimesh or a HeightField, both of which visit the
+/// triangles overlapping a box of their own frame.
+template <class T>
+concept TriangleSoup = T::kType == ShapeType::TRIMESH || T::kType == ShapeType::HEIGHTFIELD;
+
+/// Sphere against one triangle: the closest point of the triangle to the
+/// center (Ericson, Real-Time Collision Detection, §5.1.5, by Voronoi
+/// regions) decides; a center exactly on the triangle pushes out along the
+/// face normal.
+template <Scalar S>
+void collideSphereTriangle(const SphereT<S>& sphere, const Vec3<S>& c_W, const Triangle<S>& t_W,
+                           ContactSinkT<S>& sink) {
+  const Vec3<S>&a = t_W.v[0], &b = t_W.v[1], &c = t_W.v[2];
+  const Vec3<S> ab = b - a, ac = c - a, ap = c_W - a;
+  Vec3<S> q;
+  const S d1 = ab.dot(ap), d2 = ac.dot(ap);
+  const Vec3<S> bp = c_W - b;
+  const S d3 = ab.dot(bp), d4 = ac.dot(bp);
+  const Vec3<S> cp = c_W - c;
+  const S d5 = ab.dot(cp), d6 = ac.dot(cp);
+  const S vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+  if (d1 <= S(0) && d2 <= S(0)) {
+    q = a;
+  } else if (d3 >= S(0) && d4 <= d3) {
+    q = b;
+  } else if (d6 >= S(0) && d5 <= d6) {
+    q = c;
+  } else if (vc <= S(0) && d1 >= S(0) && d3 <= S(0)) {
+    q = a + ab * (d1 / (d1 - d3));
+  } else if (vb <= S(0) && d2 >= S(0) && d6 <= S(0)) {
+    q = a + ac * (d2 / (d2 - d6));
+  } else if (va <= S(0) && (d4 - d3) >= S(0) && (d5 - d6) >= S(0)) {
+    q = b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  } else {
+    const S denominator = va + vb + vc;
+    q = denominator > S(0) ? Vec3<S>(a + ab * (vb / denominator) + ac * (vc / denominator)) : a;
+  }
+  const Vec3<S> toCenter = c_W - q;
+  const S distance = toCenter.norm();
+  const S r = sphere.getRadius();
+  if (distance > r) return;
+  // The normal points from the sphere toward the mesh.
+  const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * r ? Vec3<S>(-toCenter / distance) : Vec3<S>(-t_W.normal());
+  const S depth = r - distance;
+  sink.add(q - n * (depth * S(0.5)), n, depth);
+}
+
+/// Contacts of a shape against the triangles of a soup near it; a
+/// triangle counts as a convex shape of its own.
+template <Scalar S, class A, class Soup>
+void collideWithTriangles(const A& a, const Transform<S>& X_WA, const Soup& soup, const Transform<S>& X_WM,
+                          ContactSinkT<S>& sink) {
+  const BoundingBoxT<S> box_M = transformBox<S>(a.getBoundingBox(), X_WM.inverse() * X_WA);
+  soup.forEachTriangle(box_M, [&](std::size_t, const Vec3<S>& p0, const Vec3<S>& p1, const Vec3<S>& p2) {
+    if constexpr (A::kType == ShapeType::SPHERE) {
+      const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
+      collideSphereTriangle<S>(a, X_WA.translation(), t_W, sink);
+    } else {
+      const Triangle<S> t_M{{p0, p1, p2}};
+      collideByCcd<S>(a, X_WA, t_M, X_WM, sink);
+    }
+  });
+}
+
+/// Triangle pairs of two soups whose boxes overlap, each collided by libccd.
+template <Scalar S, class SoupA, class SoupB>
+void collideSoups(const SoupA& a, const Transform<S>& X_WA, const SoupB& b, const Transform<S>& X_WB,
+                  ContactSinkT<S>& sink) {
+  const Transform<S> X_BA = X_WB.inverse() * X_WA;
+  const BoundingBoxT<S> a_B = transformBox<S>(a.getBoundingBox(), X_BA);
+  b.forEachTriangle(a_B, [&](std::size_t, const Vec3<S>& q0, const Vec3<S>& q1, const Vec3<S>& q2) {
+    const Triangle<S> t_B{{q0, q1, q2}};
+    const BoundingBoxT<S> t_A = transformBox<S>(t_B.getBoundingBox(), X_BA.inverse());
+    a.forEachTriangle(t_A, [&](std::size_t, const Vec3<S>& p0, const Vec3<S>& p1, const Vec3<S>& p2) {
+      const Triangle<S> t_A2{{p0, p1, p2}};
+      collideByCcd<S>(t_A2, X_WA, t_B, X_WB, sink);
+    });
+  });
+}
+
+/// Every vertex of `points` (frame A) at or below the plane is a contact,
+/// with the normal from the points' shape into the plane (−n).
+template <Scalar S, class Points>
+void collideVerticesWithPlane(const Points& vertices, const Transform<S>& X_WA, const PlaneT<S>& plane,
+                              const Transform<S>& X_WP, ContactSinkT<S>& sink, bool planeFirst) {
+  const Vec3<S> n = X_WP.linear() * plane.getNormal();
+  const Vec3<S> o = X_WP * plane.getPoint();
+  for (const auto& v : vertices) {
+    const Vec3<S> p = X_WA * v;
+    const S height = n.dot(p - o);
+    if (height > S(0)) continue;
+    const Vec3<S> mid = p - n * (height * S(0.5));
+    sink.add(mid, planeFirst ? n : Vec3<S>(-n), -height);
+  }
+}
+
+}  // namespace detail
+
+/// A convex shape against a triangle mesh or a height field, triangle by
+/// triangle among those the mesh's hierarchy (or grid) finds near it.
+template <ConvexShape A, detail::TriangleSoup B>
+  requires(A::kType < B::kType)
+struct Collider<A, B> {
+  using S = typename A::Vec3::Scalar;
+  static void collide(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideWithTriangles<S>(a, X_WA, b, X_WB, sink);
+  }
+};
+
+/// Plane–trimesh: the mesh vertices at or below the plane.
+template <Scalar S>
+struct Collider<PlaneT<S>, TrimeshT<S>> {
+  static void collide(const PlaneT<S>& a, const Transform<S>& X_WA, const TrimeshT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideVerticesWithPlane<S>(b.getVertices(), X_WB, a, X_WA, sink, true);
+  }
+};
+
+/// Convex–plane: the hull vertices at or below the plane.
+template <Scalar S>
+struct Collider<ConvexT<S>, PlaneT<S>> {
+  static void collide(const ConvexT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideVerticesWithPlane<S>(a.getVertices(), X_WA, b, X_WB, sink, false);
+  }
+};
+
+/// Trimesh–trimesh and trimesh–height field: triangle pairs.
+template <Scalar S>
+struct Collider<TrimeshT<S>, TrimeshT<S>> {
+  static void collide(const TrimeshT<S>& a, const Transform<S>& X_WA, const TrimeshT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideSoups<S>(a, X_WA, b, X_WB, sink);
+  }
+};
+template <Scalar S>
+struct Collider<TrimeshT<S>, HeightFieldT<S>> {
+  static void collide(const TrimeshT<S>& a, const Transform<S>& X_WA, const HeightFieldT<S>& b,
+                      const Transform<S>& X_WB, ContactSinkT<S>& sink) {
+    detail::collideSoups<S>(a, X_WA, b, X_WB, sink);
+  }
+};
+
+}  // namespace spook
+// --- end spook/collide/colliders/mesh.hpp ---
+// --- end spook/collide/colliders.hpp ---
+
+namespace spook {
+
+template <Scalar S, class List>
+class ColliderMatrixT;
+
+/// The narrow phase of one shape list: a constexpr N×N table of collider
+/// entry points, generated at compile time from the list, so that only the
+/// colliders between listed shapes are instantiated. A pair without a
+/// collider is a hole (nullptr). Composites are taken apart into their
+/// children, which go through the same table.
+template <Scalar S, template <Scalar> class... Shapes>
+class ColliderMatrixT<S, ShapeList<Shapes...>> {
+ public:
+  using List = ShapeList<Shapes...>;
+  using Shape = ShapeT<S>;
+  using Transform = spook::Transform<S>;
+  using Sink = ContactSinkT<S>;
+  using Function = void (*)(const Shape&, const Transform&, const Shape&, const Transform&, Sink&);
+  static constexpr std::size_t N = sizeof...(Shapes);
+
+  /// True when a and b are both listed and their pair has a collider.
+  [[nodiscard]] static constexpr bool supports(ShapeType a, ShapeType b) {
+    const int i = kIndex[static_cast<std::size_t>(a)], j = kIndex[static_cast<std::size_t>(b)];
+    return i >= 0 && j >= 0 && kTable[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] != nullptr;
+  }
+
+  /// Contacts between a at X_WA and b at X_WB (shape → world), through the
+  /// table. Returns false, writing nothing, for a pair the table lacks.
+  static bool collide(const Shape& a, const Transform& X_WA, const Shape& b, const Transform& X_WB, Sink& sink) {
+    const int i = kIndex[static_cast<std::size_t>(a.getType())], j = kIndex[static_cast<std::size_t>(b.getType())];
+    if (i < 0 || j < 0) return false;
+    const Function entry = kTable[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+    if (!entry) return false;
+    entry(a, X_WA, b, X_WB, sink);
+    return true;
+  }
+
+  /// The same with both types known at compile time: no table, and a
+  /// compile-time error for a shape outside the list.
+  template <class A, class B>
+  static void collide(const A& a, const Transform& X_WA, const B& b, const Transform& X_WB, Sink& sink) {
+    static_assert(List::contains(A::kType), "the first shape's type is not in this shape list");
+    static_assert(List::contains(B::kType), "the second shape's type is not in this shape list");
+    static_assert(pairSupported<A, B>(), "this shape pair has no collider (a hole in the collider matrix)");
+    entry<A, B>(a, X_WA, b, X_WB, sink);
+  }
+
+  /// The matrix as a markdown table, rows and columns in list order: X
+  /// where a collider exists, - where the pair is a hole.
+  [[nodiscard]] static std::string describe() {
+    std::string text = "|";
+    for (std::size_t j = 0; j < N; ++j) text += std::string(" | ") + std::string(shapeTypeName(kTypes[j]));
+    text += " |\n|---";
+    for (std::size_t j = 0; j < N; ++j) text += "|---";
+    text += "|\n";
+    for (std::size_t i = 0; i < N; ++i) {
+      text += "| " + std::string(shapeTypeName(kTypes[i]));
+      for (std::size_t j = 0; j < N; ++j) text += kTable[i][j] ? " | X" : " | -";
+      text += " |\n";
+    }
+    return text;
+  }
+
+ private:
+  static constexpr std::array<ShapeType, N> kTypes = {Shapes<S>::kType...};
+
+  static constexpr std::array<int, kNumShapeTypes> makeIndex() {
+    std::array<int, kNumShapeTypes> index{};
+    index.fill(-1);
+    for (std::size_t i = 0; i < N; ++i) index[static_cast<std::size_t>(kTypes[i])] = static_cast<int>(i);
+    return index;
+  }
+  static constexpr std::array<int, kNumShapeTypes> kIndex = makeIndex();
+
+  template <class A>
+  static constexpr bool kIsComposite = A::kType == ShapeType::COMPOSITE;
+
+  // A composite pairs with everything listed; its children are dispatched
+  // at run time and skipped where the table has a hole.
+  template <class A, class B>
+  static constexpr bool pairSupported() {
+    if constexpr (kIsComposite<A> || kIsComposite<B>)
+      return true;
+    else if constexpr (A::kType <= B::kType)
+      return HasCollider<A, B>;
+    else
+      return HasCollider<B, A>;
+  }
+
+  template <class A, class B>
+  static void entry(const Shape& a, const Transform& X_WA, const Shape& b, const Transform& X_WB, Sink& sink) {
+    if constexpr (kIsComposite<A>) {
+      for (const auto& child : static_cast<const A&>(a).getChildren())
+        collide(*child.shape, X_WA * child.transform, b, X_WB, sink);
+    } else if constexpr (kIsComposite<B>) {
+      for (const auto& child : static_cast<const B&>(b).getChildren())
+        collide(a, X_WA, *child.shape, X_WB * child.transform, sink);
+    } else {
+      spook::collide(static_cast<const A&>(a), X_WA, static_cast<const B&>(b), X_WB, sink);
+    }
+  }
+
+  template <class A, class B>
+  static constexpr Function make() {
+    if constexpr (pairSupported<A, B>())
+      return &entry<A, B>;
+    else
+      return nullptr;
+  }
+  template <class A>
+  static constexpr std::array<Function, N> makeRow() {
+    return {make<A, Shapes<S>>()...};
+  }
+  static constexpr std::array<std::array<Function, N>, N> kTable = {makeRow<Shapes<S>>()...};
+};
+
+}  // namespace spook
+// --- end spook/collide/collider_matrix.hpp ---
+// --- begin spook/collide/contact_reduction.hpp ---
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace spook {
+
+/// How contact points are reduced (AGX's ContactMaterial modes).
+enum class ContactReductionMode {
+  REDUCE_NONE,      ///< keep every point
+  REDUCE_GEOMETRY,  ///< reduce per geometry pair (default)
+  REDUCE_ALL        ///< reduce per body pair, over all their geometry pairs
+};
+
+namespace detail {
+
+/// Disables redundant contact points. Each point is binned in the six
+/// dimensional space of the unit wrench it can carry, [n, n × r/|r|max]
+/// with r its arm from the points' centroid (the binning of the AGX manual,
+/// ch. 13), each coordinate cut into `resolution` bins over [−1, 1]; in each
+/// bin the point farthest from the centroid survives (so the survivors span
+/// the largest area, as the seeds put it), ties going to the deeper one.
+/// Resolution 2 keeps at most one point per quadrant of a flat contact
+/// patch, 3 keeps more. Disabled points stay in the list.
+template <Scalar S>
+void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
+  if (resolution < 1 || resolution > 3) throw detail::makeError("ContactReduction", "", "bin resolution must be 1, 2 or 3", resolution);
+  if (points.size() <= 4) return;
+  Vec3<S> centroid = Vec3<S>::Zero();
+  for (const auto* p : points) centroid += p->point;
+  centroid /= S(points.size());
+  S reach = S(0);
+  for (const auto* p : points) reach = std::max(reach, (p->point - centroid).norm());
+  const S scale = reach > S(0) ? S(1) / reach : S(0);
+  // The small shift keeps round-off from splitting a bin whose edge sits at
+  // 0 (resolution 2): a component of ±1e-17 lands on the + side either way.
+  const auto binOf = [&](S x) {
+    const int b = static_cast<int>((x + S(1)) * S(0.5) * S(resolution) + S(1e-5));
+    return std::clamp(b, 0, resolution - 1);
+  };
+  struct Bin {
+    std::array<int, 6> key;
+    ContactPointT<S>* best;
+  };
+  std::vector<Bin> bins;
+  for (auto* p : points) {
+    const Vec3<S> arm = (p->point - centroid) * scale;
+    const Vec3<S> moment = p->normal.cross(arm);
+    const std::array<int, 6> key = {binOf(p->normal.x()), binOf(p->normal.y()), binOf(p->normal.z()),
+                                    binOf(moment.x()),    binOf(moment.y()),    binOf(moment.z())};
+    auto it = std::find_if(bins.begin(), bins.end(), [&](const Bin& b) { return b.key == key; });
+    if (it == bins.end()) {
+      bins.push_back({key, p});
+      continue;
+    }
+    const S current = (it->best->point - centroid).squaredNorm(), candidate = (p->point - centroid).squaredNorm();
+    const bool better = candidate > current * (S(1) + S(1e-6)) ||
+                        (candidate >= current * (S(1) - S(1e-6)) && p->depth > it->best->depth);
+    (better ? it->best : p)->enabled = false;
+    if (better) it->best = p;
+  }
+}
+
+}  // namespace detail
+}  // namespace spook
+// --- end spook/collide/contact_reduction.hpp ---
+// --- begin spook/collide/geometry.hpp ---
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
 // --- begin spook/core/frame.hpp ---
 
 namespace spook {
@@ -1105,103 +4280,604 @@ class observer_ptr {
 
 }  // namespace spook
 // --- end spook/core/observer_ptr.hpp ---
-// --- begin spook/dynamics/gravity_field.hpp ---
+// --- begin spook/dynamics/material.hpp ---
+
+#include <cmath>
+#include <string>
+#include <utility>
 
 namespace spook {
 
-/// Applies gravity to every enabled dynamic body of a simulation, as an
-/// acceleration of its center of mass (m/s²).
+/// What a geometry is made of. The bulk part gives the density that turns
+/// shape volumes into body mass; the stiffness and surface parameters are
+/// used by contacts (the contact-dynamics layer combines two materials into
+/// a contact material). Changing a parameter does not recompute the mass of
+/// bodies already built from it (as in AGX): call
+/// RigidBody::updateMassProperties() for that.
 template <Scalar S>
-class GravityFieldT : public Referenced {
+class MaterialT : public Referenced {
  public:
-  using Vec3 = spook::Vec3<S>;
-  /// Gravitational acceleration at world point p_W (m/s²).
-  [[nodiscard]] virtual Vec3 calculateGravity(const Vec3& p_W) const = 0;
+  /// Volume-related properties.
+  class BulkMaterial {
+   public:
+    /// Density (kg/m³), finite and > 0; default 1000 (water).
+    [[nodiscard]] S getDensity() const { return density_; }
+    void setDensity(S density) { density_ = positive("density must be finite and > 0 kg/m^3", density); }
+    /// Young's modulus (Pa), the contact stiffness; default 4e8.
+    [[nodiscard]] S getYoungsModulus() const { return youngsModulus_; }
+    void setYoungsModulus(S modulus) { youngsModulus_ = positive("Young's modulus must be finite and > 0 Pa", modulus); }
+    /// Viscosity, 1 − restitution, in [0, 1]; default 1 (no bounce).
+    [[nodiscard]] S getViscosity() const { return viscosity_; }
+    void setViscosity(S viscosity) {
+      if (!(viscosity >= S(0) && viscosity <= S(1))) throw error("viscosity must be in [0, 1]", viscosity);
+      viscosity_ = viscosity;
+    }
+    /// SPOOK damping of contacts (s), finite and >= 0; default 0.075.
+    [[nodiscard]] S getDamping() const { return damping_; }
+    void setDamping(S damping) {
+      if (!(std::isfinite(damping) && damping >= S(0))) throw error("damping must be finite and >= 0 s", damping);
+      damping_ = damping;
+    }
+
+   private:
+    friend class MaterialT;
+    explicit BulkMaterial(const std::string* owner) : owner_(owner) {}
+    template <class T>
+    [[nodiscard]] Error error(const char* what, const T& value) const {
+      return detail::makeError("Material", *owner_, what, value);
+    }
+    S positive(const char* what, S value) const {
+      if (!(std::isfinite(value) && value > S(0))) throw error(what, value);
+      return value;
+    }
+    const std::string* owner_;
+    S density_ = S(1000);
+    S youngsModulus_ = S(4e8);
+    S viscosity_ = S(1);
+    S damping_ = S(0.075);
+  };
+
+  /// Surface-related properties.
+  class SurfaceMaterial {
+   public:
+    /// Roughness, the friction coefficient of the material with itself (>= 0);
+    /// default 0.41667.
+    [[nodiscard]] S getRoughness() const { return roughness_; }
+    void setRoughness(S roughness) {
+      if (!(std::isfinite(roughness) && roughness >= S(0)))
+        throw detail::makeError("Material", *owner_, "roughness must be finite and >= 0", roughness);
+      roughness_ = roughness;
+    }
+    /// Surface viscosity, the compliance of the friction rows (m/(N·s));
+    /// default 5e-9.
+    [[nodiscard]] S getViscosity() const { return viscosity_; }
+    void setViscosity(S viscosity) {
+      if (!(std::isfinite(viscosity) && viscosity >= S(0)))
+        throw detail::makeError("Material", *owner_, "surface viscosity must be finite and >= 0", viscosity);
+      viscosity_ = viscosity;
+    }
+
+   private:
+    friend class MaterialT;
+    explicit SurfaceMaterial(const std::string* owner) : owner_(owner) {}
+    const std::string* owner_;
+    S roughness_ = S(0.41667);
+    S viscosity_ = S(5e-9);
+  };
+
+  explicit MaterialT(std::string name = "") : name_(std::move(name)) {}
+  MaterialT(const MaterialT&) = delete;
+  MaterialT& operator=(const MaterialT&) = delete;
+
+  [[nodiscard]] const std::string& getName() const { return name_; }
+  [[nodiscard]] BulkMaterial* getBulkMaterial() { return &bulk_; }
+  [[nodiscard]] const BulkMaterial* getBulkMaterial() const { return &bulk_; }
+  [[nodiscard]] SurfaceMaterial* getSurfaceMaterial() { return &surface_; }
+  [[nodiscard]] const SurfaceMaterial* getSurfaceMaterial() const { return &surface_; }
 
  protected:
-  ~GravityFieldT() override = default;
-};
-
-/// The same acceleration everywhere; default (0, 0, −9.80665) m/s².
-template <Scalar S>
-class UniformGravityFieldT : public GravityFieldT<S> {
- public:
-  using Vec3 = spook::Vec3<S>;
-  explicit UniformGravityFieldT(const Vec3& gravity = Vec3(S(0), S(0), S(-9.80665))) { setGravity(gravity); }
-
-  /// Acceleration in world coordinates (m/s²).
-  [[nodiscard]] const Vec3& getGravity() const { return gravity_; }
-  void setGravity(const Vec3& gravity) {
-    if (!gravity.allFinite()) throw detail::makeError("UniformGravityField", "", "gravity must be finite", gravity);
-    gravity_ = gravity;
-  }
-  [[nodiscard]] Vec3 calculateGravity(const Vec3&) const override { return gravity_; }
-
- protected:
-  ~UniformGravityFieldT() override = default;
+  ~MaterialT() override = default;
 
  private:
-  Vec3 gravity_;
+  std::string name_;
+  BulkMaterial bulk_{&name_};
+  SurfaceMaterial surface_{&name_};
 };
 
-/// Inverse-square attraction toward a center: a(p) = μ (c − p) / |c − p|³,
-/// with strength μ = G·M in m³/s² (3.986004418e14 for the Earth). Zero at
-/// the center itself.
-template <Scalar S>
-class PointGravityFieldT : public GravityFieldT<S> {
- public:
-  using Vec3 = spook::Vec3<S>;
-  PointGravityFieldT(const Vec3& center, S strength) {
-    setCenter(center);
-    setStrength(strength);
-  }
-
-  /// Attracting point, world coordinates (m).
-  [[nodiscard]] const Vec3& getCenter() const { return center_; }
-  void setCenter(const Vec3& center) {
-    if (!center.allFinite()) throw detail::makeError("PointGravityField", "", "center must be finite", center);
-    center_ = center;
-  }
-  /// μ = G·M (m³/s²), finite and ≥ 0.
-  [[nodiscard]] S getStrength() const { return strength_; }
-  void setStrength(S strength) {
-    if (!(std::isfinite(strength) && strength >= S(0)))
-      throw detail::makeError("PointGravityField", "", "strength must be finite and >= 0 m^3/s^2", strength);
-    strength_ = strength;
-  }
-
-  [[nodiscard]] Vec3 calculateGravity(const Vec3& p_W) const override {
-    const Vec3 d = center_ - p_W;
-    const S r2 = d.squaredNorm();
-    if (!(r2 > S(0))) return Vec3::Zero();
-    return (strength_ / (r2 * std::sqrt(r2))) * d;
-  }
-
- protected:
-  ~PointGravityFieldT() override = default;
-
- private:
-  Vec3 center_;
-  S strength_ = S(0);
-};
-
-using GravityField = GravityFieldT<double>;
-using UniformGravityField = UniformGravityFieldT<double>;
-using PointGravityField = PointGravityFieldT<double>;
-using GravityFieldRef = ref_ptr<GravityField>;
-using UniformGravityFieldRef = ref_ptr<UniformGravityField>;
-using PointGravityFieldRef = ref_ptr<PointGravityField>;
+using Material = MaterialT<double>;
+using MaterialRef = ref_ptr<Material>;
 namespace f32 {
-using GravityField = GravityFieldT<float>;
-using UniformGravityField = UniformGravityFieldT<float>;
-using PointGravityField = PointGravityFieldT<float>;
-using GravityFieldRef = ref_ptr<GravityField>;
-using UniformGravityFieldRef = ref_ptr<UniformGravityField>;
-using PointGravityFieldRef = ref_ptr<PointGravityField>;
+using Material = MaterialT<float>;
+using MaterialRef = ref_ptr<Material>;
 }  // namespace f32
 
 }  // namespace spook
-// --- end spook/dynamics/gravity_field.hpp ---
+// --- end spook/dynamics/material.hpp ---
+
+namespace spook {
+
+template <Scalar S>
+class RigidBodyT;
+
+namespace detail {
+/// Told when a geometry's shapes or material change, so that a body can
+/// recompute its mass properties.
+template <Scalar S>
+struct GeometryOwner {
+  virtual void geometryChanged() = 0;
+
+ protected:
+  ~GeometryOwner() = default;
+};
+template <Scalar S>
+struct GeometryAccess;
+}  // namespace detail
+
+/// One or more shapes, each at a transform relative to the geometry frame,
+/// with a material and collision settings. A geometry belongs to a
+/// RigidBody (its frame is then fixed in the body's model frame) or stands
+/// static in the world (its frame is then a world transform).
+template <Scalar S>
+class GeometryT : public Referenced {
+ public:
+  using Vec3 = spook::Vec3<S>;
+  using Transform = spook::Transform<S>;
+  using Shape = ShapeT<S>;
+  using Frame = FrameT<S>;
+
+  struct ShapeEntry {
+    ref_ptr<Shape> shape;
+    Transform transform;  ///< shape frame → geometry frame
+  };
+
+  explicit GeometryT(std::string name = "") : name_(std::move(name)), id_(nextId()) {}
+  /// A geometry holding one shape at `transform` (shape → geometry frame).
+  explicit GeometryT(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity(), std::string name = "")
+      : GeometryT(std::move(name)) {
+    add(std::move(shape), transform);
+  }
+
+  [[nodiscard]] const std::string& getName() const { return name_; }
+  void setName(std::string name) { name_ = std::move(name); }
+  /// A number unique to this geometry for the life of the program.
+  [[nodiscard]] std::uint64_t getId() const { return id_; }
+
+  // --- Shapes ----------------------------------------------------------------
+
+  /// Adds a shape at `transform` (shape → geometry frame, rigid). Updates the
+  /// owning body's mass properties.
+  void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
+    if (!shape) throw error("cannot add a null shape", "nullptr");
+    if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
+      throw error("shape transform must be finite and rigid", SPDMat3<S>::flat(transform.linear()));
+    if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
+      throw error("shape already added to this geometry", std::string(shapeTypeName(shape->getType())));
+    shapes_.push_back({std::move(shape), makeTransform<S>(transform.translation(), Quat<S>(transform.linear()))});
+    changed();
+  }
+  /// Removes a shape; false when it is not here.
+  bool remove(const Shape* shape) {
+    const auto it = std::find_if(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; });
+    if (it == shapes_.end()) return false;
+    shapes_.erase(it);
+    changed();
+    return true;
+  }
+  [[nodiscard]] const std::vector<ShapeEntry>& getShapes() const { return shapes_; }
+  /// The first shape, or nullptr.
+  [[nodiscard]] Shape* getShape() const { return shapes_.empty() ? nullptr : shapes_.front().shape.get(); }
+
+  // --- Placement -------------------------------------------------------------
+
+  /// The geometry frame; its parent is the body's model frame when the
+  /// geometry belongs to a body.
+  [[nodiscard]] Frame* getFrame() const { return frame_.get(); }
+  /// Geometry → world transform.
+  [[nodiscard]] Transform getTransform() const { return frame_->getMatrix(); }
+  /// Sets the world transform (a body-owned geometry moves relative to its
+  /// body so that it lands there). Updates the owning body's mass.
+  void setTransform(const Transform& X_W) {
+    frame_->setMatrix(X_W);
+    changed();
+  }
+  [[nodiscard]] Vec3 getPosition() const { return frame_->getTranslate(); }
+  void setPosition(const Vec3& p_W) {
+    frame_->setTranslate(p_W);
+    changed();
+  }
+  void setPosition(S x, S y, S z) { setPosition(Vec3(x, y, z)); }
+  /// Geometry → body model frame (or world, without a body).
+  [[nodiscard]] Transform getLocalTransform() const { return frame_->getLocalMatrix(); }
+  void setLocalTransform(const Transform& X) {
+    frame_->setLocalMatrix(X);
+    changed();
+  }
+  /// The body this geometry belongs to, or nullptr for a static geometry.
+  [[nodiscard]] RigidBodyT<S>* getRigidBody() const { return body_; }
+
+  // --- Material --------------------------------------------------------------
+
+  /// The material; a geometry made without one uses a shared default
+  /// (density 1000 kg/m³). Assigning updates the owning body's mass.
+  [[nodiscard]] MaterialT<S>* getMaterial() const { return material_ ? material_.get() : defaultMaterial(); }
+  void setMaterial(ref_ptr<MaterialT<S>> material) {
+    if (!material) throw error("material must not be null", "nullptr");
+    material_ = std::move(material);
+    changed();
+  }
+  /// The material every geometry without its own uses.
+  [[nodiscard]] static MaterialT<S>* defaultMaterial() {
+    static const ref_ptr<MaterialT<S>> material = new MaterialT<S>("default");
+    return material.get();
+  }
+
+  // --- Collision settings ----------------------------------------------------
+
+  /// A disabled geometry is ignored by collision detection.
+  [[nodiscard]] bool getEnable() const { return enable_; }
+  void setEnable(bool enable) { enable_ = enable; }
+  /// False: collides with nothing.
+  [[nodiscard]] bool getEnableCollisions() const { return enableCollisions_; }
+  void setEnableCollisions(bool enable) { enableCollisions_ = enable; }
+  /// Enables or disables collisions between this and `other` (both ways).
+  void setEnableCollisions(GeometryT* other, bool enable) {
+    if (!other) throw error("cannot pair collisions with a null geometry", "nullptr");
+    if (other == this) throw error("cannot pair collisions with itself", name_);
+    setPartner(other, enable);
+    other->setPartner(this, enable);
+  }
+  /// False when collisions with `other` were disabled pairwise.
+  [[nodiscard]] bool getEnableCollisions(const GeometryT* other) const {
+    return std::none_of(disabledWith_.begin(), disabledWith_.end(),
+                        [&](const observer_ptr<GeometryT>& g) { return g.get() == other; });
+  }
+
+  /// Collision group ids and names, matched by Space::setEnablePair.
+  void addGroup(std::uint32_t id) {
+    if (!hasGroup(id)) groupIds_.push_back(id);
+  }
+  void addGroup(const std::string& name) {
+    if (!hasGroup(name)) groupNames_.push_back(name);
+  }
+  void removeGroup(std::uint32_t id) { std::erase(groupIds_, id); }
+  void removeGroup(const std::string& name) { std::erase(groupNames_, name); }
+  [[nodiscard]] bool hasGroup(std::uint32_t id) const {
+    return std::find(groupIds_.begin(), groupIds_.end(), id) != groupIds_.end();
+  }
+  [[nodiscard]] bool hasGroup(const std::string& name) const {
+    return std::find(groupNames_.begin(), groupNames_.end(), name) != groupNames_.end();
+  }
+  [[nodiscard]] const std::vector<std::uint32_t>& getGroupIds() const { return groupIds_; }
+  [[nodiscard]] const std::vector<std::string>& getGroupNames() const { return groupNames_; }
+
+  /// A sensor's contacts are found and reported to listeners, never solved.
+  [[nodiscard]] bool isSensor() const { return sensor_; }
+  void setSensor(bool sensor) { sensor_ = sensor; }
+
+  /// Velocity of the surface relative to the geometry, in the geometry
+  /// frame (m/s): a conveyor belt. Used by the contact solver.
+  [[nodiscard]] const Vec3& getSurfaceVelocity() const { return surfaceVelocity_; }
+  void setSurfaceVelocity(const Vec3& v) {
+    if (!v.allFinite()) throw error("surface velocity must be finite (m/s)", v);
+    surfaceVelocity_ = v;
+  }
+
+  /// World bounding box of every shape (m); infinite along the axes where a
+  /// plane extends.
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
+    const Transform X_WG = getTransform();
+    BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::infinity()),
+                        Vec3::Constant(-std::numeric_limits<S>::infinity())};
+    for (const ShapeEntry& e : shapes_) {
+      const Transform X_WS = X_WG * e.transform;
+      const BoundingBoxT<S> local = e.shape->getBoundingBox();
+      const Mat3<S> R = X_WS.linear();
+      if (!(local.min.allFinite() && local.max.allFinite())) {
+        box.min = box.min.cwiseMin(Vec3::Constant(-std::numeric_limits<S>::infinity()));
+        box.max = box.max.cwiseMax(Vec3::Constant(std::numeric_limits<S>::infinity()));
+        continue;
+      }
+      const Vec3 center = X_WS * local.center();
+      const Vec3 reach = R.cwiseAbs() * local.halfExtents();
+      box.min = box.min.cwiseMin(center - reach);
+      box.max = box.max.cwiseMax(center + reach);
+    }
+    return box;
+  }
+
+ protected:
+  ~GeometryT() override = default;
+
+ private:
+  friend struct detail::GeometryAccess<S>;
+
+  static std::uint64_t nextId() {
+    static std::atomic<std::uint64_t> counter{0};
+    return ++counter;
+  }
+  void changed() {
+    if (owner_) owner_->geometryChanged();
+  }
+  void setPartner(GeometryT* other, bool enable) {
+    std::erase_if(disabledWith_, [&](const observer_ptr<GeometryT>& g) { return !g.valid() || g.get() == other; });
+    if (!enable) disabledWith_.emplace_back(other);
+  }
+  template <class T>
+  [[nodiscard]] Error error(const std::string& what, const T& value) const {
+    return detail::makeError("Geometry", name_, what, value);
+  }
+
+  std::string name_;
+  std::uint64_t id_;
+  std::vector<ShapeEntry> shapes_;
+  ref_ptr<Frame> frame_ = new Frame();
+  ref_ptr<MaterialT<S>> material_;
+  bool enable_ = true;
+  bool enableCollisions_ = true;
+  bool sensor_ = false;
+  Vec3 surfaceVelocity_ = Vec3::Zero();
+  std::vector<observer_ptr<GeometryT>> disabledWith_;
+  std::vector<std::uint32_t> groupIds_;
+  std::vector<std::string> groupNames_;
+
+  // Maintained by the owning body and the space.
+  RigidBodyT<S>* body_ = nullptr;
+  detail::GeometryOwner<S>* owner_ = nullptr;
+  const void* space_ = nullptr;
+};
+
+namespace detail {
+/// The owning body's and the space's handle on a geometry's membership.
+template <Scalar S>
+struct GeometryAccess {
+  static RigidBodyT<S>*& body(GeometryT<S>& g) { return g.body_; }
+  static GeometryOwner<S>*& owner(GeometryT<S>& g) { return g.owner_; }
+  static const void*& space(GeometryT<S>& g) { return g.space_; }
+  static const void* space(const GeometryT<S>& g) { return g.space_; }
+};
+}  // namespace detail
+
+using Geometry = GeometryT<double>;
+using GeometryRef = ref_ptr<Geometry>;
+using GeometryObserver = observer_ptr<Geometry>;
+namespace f32 {
+using Geometry = GeometryT<float>;
+using GeometryRef = ref_ptr<Geometry>;
+using GeometryObserver = observer_ptr<Geometry>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/collide/geometry.hpp ---
+// --- begin spook/collide/geometry_contact.hpp ---
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace spook {
+
+/// The contact points between two geometries found in one collision pass.
+/// Normals point from geometry(0) toward geometry(1).
+template <Scalar S>
+class GeometryContactT {
+ public:
+  using Geometry = GeometryT<S>;
+
+  GeometryContactT(ref_ptr<Geometry> first, ref_ptr<Geometry> second)
+      : geometries_{std::move(first), std::move(second)} {}
+
+  /// The first (0) or second (1) geometry.
+  [[nodiscard]] Geometry* geometry(std::size_t i) const { return geometries_[i & 1].get(); }
+  /// The body of the first (0) or second (1) geometry; nullptr for a static one.
+  [[nodiscard]] RigidBodyT<S>* rigidBody(std::size_t i) const { return geometries_[i & 1]->getRigidBody(); }
+  [[nodiscard]] std::vector<ContactPointT<S>>& points() { return points_; }
+  [[nodiscard]] const std::vector<ContactPointT<S>>& points() const { return points_; }
+  /// Number of points still enabled after contact reduction.
+  [[nodiscard]] std::size_t getNumEnabledPoints() const {
+    std::size_t n = 0;
+    for (const auto& p : points_) n += p.enabled ? 1 : 0;
+    return n;
+  }
+  /// False once a contact listener returned REMOVE_CONTACT: later listeners
+  /// and the solver do not see it.
+  [[nodiscard]] bool isEnabled() const { return enabled_; }
+  void setEnable(bool enable) { enabled_ = enable; }
+  /// True when the two geometries did not touch in the previous pass.
+  [[nodiscard]] bool isImpact() const { return impact_; }
+  void setImpact(bool impact) { impact_ = impact; }
+  /// True when either geometry is a sensor: reported, never solved.
+  [[nodiscard]] bool isSensor() const { return geometries_[0]->isSensor() || geometries_[1]->isSensor(); }
+
+ private:
+  ref_ptr<Geometry> geometries_[2];
+  std::vector<ContactPointT<S>> points_;
+  bool enabled_ = true;
+  bool impact_ = true;
+};
+
+/// Two geometries that touched in the previous pass and no longer do; either
+/// may have been deleted since (the observers are then null).
+template <Scalar S>
+struct GeometryPairT {
+  observer_ptr<GeometryT<S>> first;
+  observer_ptr<GeometryT<S>> second;
+};
+
+using GeometryContact = GeometryContactT<double>;
+using GeometryPair = GeometryPairT<double>;
+namespace f32 {
+using GeometryContact = GeometryContactT<float>;
+using GeometryPair = GeometryPairT<float>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/collide/geometry_contact.hpp ---
+// --- begin spook/collide/space.hpp ---
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+// --- begin spook/collide/broadphase/sweep_and_prune.hpp ---
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace spook::detail {
+
+/// Sweep and prune along one axis: boxes sorted by their lower bound on the
+/// axis of largest spread of the box centers, then swept, each box tested
+/// against the boxes whose interval it overlaps. Boxes unbounded along the
+/// axis (planes) are kept aside and tested against every box.
+/// The sweep rebuilds from scratch each pass in O(n log n), with no
+/// persistent structure to refit when everything moves every step.
+template <Scalar S>
+class SweepAndPrune {
+ public:
+  /// Calls visit(i, j), i < j, for every pair of overlapping boxes.
+  template <class F>
+  void findPairs(const std::vector<BoundingBoxT<S>>& boxes, F&& visit) {
+    const int axis = sweepAxis(boxes);
+    bounded_.clear();
+    unbounded_.clear();
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      if (std::isfinite(boxes[i].min[axis]) && std::isfinite(boxes[i].max[axis]))
+        bounded_.push_back(i);
+      else
+        unbounded_.push_back(i);
+    }
+    std::sort(bounded_.begin(), bounded_.end(),
+              [&](std::size_t a, std::size_t b) { return boxes[a].min[axis] < boxes[b].min[axis]; });
+    for (std::size_t k = 0; k < bounded_.size(); ++k) {
+      const BoundingBoxT<S>& a = boxes[bounded_[k]];
+      for (std::size_t m = k + 1; m < bounded_.size(); ++m) {
+        const BoundingBoxT<S>& b = boxes[bounded_[m]];
+        if (b.min[axis] > a.max[axis]) break;
+        if (overlap(a, b)) emit(bounded_[k], bounded_[m], visit);
+      }
+    }
+    for (std::size_t k = 0; k < unbounded_.size(); ++k)
+      for (std::size_t i = 0; i < boxes.size(); ++i)
+        if (i != unbounded_[k] && overlap(boxes[unbounded_[k]], boxes[i]) &&
+            !(isUnbounded(i) && i < unbounded_[k]))
+          emit(unbounded_[k], i, visit);
+  }
+
+  [[nodiscard]] static bool overlap(const BoundingBoxT<S>& a, const BoundingBoxT<S>& b) {
+    return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
+  }
+
+ private:
+  template <class F>
+  static void emit(std::size_t i, std::size_t j, F& visit) {
+    if (i < j)
+      visit(i, j);
+    else
+      visit(j, i);
+  }
+  [[nodiscard]] bool isUnbounded(std::size_t i) const {
+    return std::find(unbounded_.begin(), unbounded_.end(), i) != unbounded_.end();
+  }
+  // The axis along which the finite box centers spread the most.
+  static int sweepAxis(const std::vector<BoundingBoxT<S>>& boxes) {
+    Vec3<S> sum = Vec3<S>::Zero(), sumSq = Vec3<S>::Zero();
+    std::size_t n = 0;
+    for (const auto& b : boxes) {
+      if (!(b.min.allFinite() && b.max.allFinite())) continue;
+      const Vec3<S> c = b.center();
+      sum += c;
+      sumSq += c.cwiseAbs2();
+      ++n;
+    }
+    if (n == 0) return 0;
+    const Vec3<S> variance = sumSq / S(n) - (sum / S(n)).cwiseAbs2();
+    int axis = 0;
+    variance.maxCoeff(&axis);
+    return axis;
+  }
+
+  std::vector<std::size_t> bounded_;
+  std::vector<std::size_t> unbounded_;
+};
+
+}  // namespace spook::detail
+// --- end spook/collide/broadphase/sweep_and_prune.hpp ---
+// --- begin spook/dynamics/rigid_body.hpp ---
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+// --- begin spook/dynamics/mass_from_geometries.hpp ---
+
+#include <optional>
+#include <vector>
+
+namespace spook::detail {
+
+/// Mass, center of mass and inertia of a set of geometries whose local
+/// transforms place them in a body's model frame.
+template <Scalar S>
+struct GeneratedMass {
+  S mass = S(0);                        ///< kg
+  Vec3<S> center = Vec3<S>::Zero();     ///< model frame (m)
+  Mat3<S> inertia = Mat3<S>::Zero();    ///< about `center`, model frame axes (kg·m²)
+};
+
+/// Each shape of volume V contributes m = ρV (ρ its geometry's material
+/// density) at its center of volume; its tensor about its own origin is
+/// moved to its center, turned into the model frame, then moved to the
+/// common center (parallel-axis theorem, J(m, d) = m(|d|² 1 − d dᵀ)).
+/// Empty when no shape has volume.
+template <Scalar S>
+[[nodiscard]] std::optional<GeneratedMass<S>> massFromGeometries(const std::vector<ref_ptr<GeometryT<S>>>& geometries) {
+  struct Part {
+    S mass;
+    Vec3<S> center;
+    Mat3<S> inertia;
+  };
+  const auto shift = [](S m, const Vec3<S>& d) {
+    return Mat3<S>(m * (d.squaredNorm() * Mat3<S>::Identity() - d * d.transpose()));
+  };
+  std::vector<Part> parts;
+  GeneratedMass<S> total;
+  Vec3<S> moment = Vec3<S>::Zero();
+  for (const auto& geometry : geometries) {
+    const S density = geometry->getMaterial()->getBulkMaterial()->getDensity();
+    const Transform<S> X_BG = geometry->getLocalTransform();
+    for (const auto& entry : geometry->getShapes()) {
+      const S volume = entry.shape->getVolume();
+      if (!(volume > S(0))) continue;
+      const S m = density * volume;
+      const Transform<S> X_BS = X_BG * entry.transform;
+      const Vec3<S> c_S = entry.shape->getCenterOfVolume();
+      const Mat3<S> R = X_BS.linear();
+      const Mat3<S> aboutCenter = entry.shape->calculateInertia(m).matrix() - shift(m, c_S);
+      parts.push_back({m, X_BS * c_S, R * aboutCenter * R.transpose()});
+      total.mass += m;
+      moment += m * parts.back().center;
+    }
+  }
+  if (parts.empty()) return std::nullopt;
+  total.center = moment / total.mass;
+  for (const Part& p : parts) total.inertia += p.inertia + shift(p.mass, p.center - total.center);
+  total.inertia = S(0.5) * (total.inertia + total.inertia.transpose());
+  return total;
+}
+
+}  // namespace spook::detail
+// --- end spook/dynamics/mass_from_geometries.hpp ---
 // --- begin spook/dynamics/mass_properties.hpp ---
 
 #include <cmath>
@@ -1219,18 +4895,31 @@ class MassPropertiesT {
   using Vec3 = spook::Vec3<S>;
   using Mat3 = spook::Mat3<S>;
 
+  /// Which properties the body recomputes from its geometries (shape
+  /// volumes times material density) when geometries, shapes or materials
+  /// change. Setting a property by hand takes it out of the mask.
+  enum AutoGenerate : unsigned { MASS = 1u << 0, CM_OFFSET = 1u << 1, INERTIA = 1u << 2, ALL = MASS | CM_OFFSET | INERTIA };
+  [[nodiscard]] unsigned getAutoGenerateMask() const { return autoGenerate_; }
+  void setAutoGenerateMask(unsigned mask) {
+    if (mask & ~unsigned(ALL)) throw error("auto-generate mask has unknown bits", mask);
+    autoGenerate_ = mask;
+  }
+
   /// Mass in kg; must be finite and > 0 (a body of infinite mass is STATIC).
+  /// Stops the mass from being generated from the geometries.
   [[nodiscard]] S getMass() const { return mass_; }
   void setMass(S mass) {
     if (!(std::isfinite(mass) && mass > S(0))) throw error("mass must be finite and > 0 kg", mass);
     mass_ = mass;
+    autoGenerate_ &= ~unsigned(MASS);
   }
 
   /// Inertia tensor about the center of mass, in the CM frame (kg·m²).
   [[nodiscard]] const Mat3& getInertiaTensor() const { return inertia_.matrix(); }
   /// Sets the tensor from a full 3×3 matrix, which must be finite, symmetric
   /// and positive definite, or from a 3-vector of principal moments along
-  /// the CM frame axes, which must be finite and > 0.
+  /// the CM frame axes, which must be finite and > 0. Stops the tensor from
+  /// being generated from the geometries.
   template <class Derived>
   void setInertiaTensor(const Eigen::MatrixBase<Derived>& value) {
     if constexpr (Derived::ColsAtCompileTime == 1) {
@@ -1238,14 +4927,19 @@ class MassPropertiesT {
       if (!(diagonal.allFinite() && diagonal.minCoeff() > S(0)))
         throw error("inertia diagonal must be finite and > 0 kg·m²", diagonal);
       inertia_ = SPDMat3<S>(diagonal);
+      autoGenerate_ &= ~unsigned(INERTIA);
     } else {
       const Mat3 inertia = value;
       if (const char* why = SPDMat3<S>::defect(inertia))
         throw error(std::string("inertia tensor: ") + why, SPDMat3<S>::flat(inertia));
       inertia_ = SPDMat3<S>(inertia);
+      autoGenerate_ &= ~unsigned(INERTIA);
     }
   }
-  void setInertiaTensor(const SPDMat3<S>& inertia) { inertia_ = inertia; }
+  void setInertiaTensor(const SPDMat3<S>& inertia) {
+    inertia_ = inertia;
+    autoGenerate_ &= ~unsigned(INERTIA);
+  }
 
   /// Added-mass coefficients c along the CM frame axes (dimensionless, ≥ 0):
   /// the inertial mass along axis i is m(1 + cᵢ), e.g. water carried by a
@@ -1263,6 +4957,14 @@ class MassPropertiesT {
   explicit MassPropertiesT(const std::string* ownerName = nullptr) : ownerName_(ownerName) {}
 
  private:
+  template <Scalar>
+  friend class RigidBodyT;
+  // Generated values, set by the body without touching the mask.
+  void generate(S mass, const SPDMat3<S>& inertia) {
+    if (autoGenerate_ & MASS) mass_ = mass;
+    if (autoGenerate_ & INERTIA) inertia_ = inertia;
+  }
+
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
     return detail::makeError("RigidBody", ownerName_ ? *ownerName_ : std::string(), what, value);
@@ -1272,6 +4974,7 @@ class MassPropertiesT {
   S mass_ = S(1);
   SPDMat3<S> inertia_;
   Vec3 massCoefficients_ = Vec3::Zero();
+  unsigned autoGenerate_ = ALL;
 };
 
 using MassProperties = MassPropertiesT<double>;
@@ -1281,14 +4984,6 @@ using MassProperties = MassPropertiesT<float>;
 
 }  // namespace spook
 // --- end spook/dynamics/mass_properties.hpp ---
-// --- begin spook/dynamics/rigid_body.hpp ---
-
-#include <cmath>
-#include <cstddef>
-#include <optional>
-#include <string>
-#include <utility>
-#include <vector>
 
 namespace spook {
 
@@ -1302,13 +4997,14 @@ struct SimulationMembership;
 /// frame fixed in it, mass properties, and velocities of the center of mass
 /// in world coordinates.
 template <Scalar S>
-class RigidBodyT : public Referenced {
+class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
  public:
   using Vec3 = spook::Vec3<S>;
   using Quat = spook::Quat<S>;
   using Mat3 = spook::Mat3<S>;
   using Transform = spook::Transform<S>;
   using Frame = FrameT<S>;
+  using Geometry = GeometryT<S>;
 
   enum MotionControl {
     DYNAMICS,   ///< moved by forces, gravity and (later) constraints
@@ -1395,9 +5091,11 @@ class RigidBodyT : public Referenced {
 
   /// Center-of-mass offset in the model frame (m); the model frame stays put.
   [[nodiscard]] const Vec3& getCmLocalTranslate() const { return cmFrame_->getLocalTranslate(); }
+  /// Stops the offset from being generated from the geometries.
   void setCmLocalTranslate(const Vec3& offset) {
     requireFinite(offset, "center of mass offset must be finite (m)");
     cmFrame_->setLocalTranslate(offset);
+    massProperties_.setAutoGenerateMask(massProperties_.getAutoGenerateMask() & ~unsigned(MassPropertiesT<S>::CM_OFFSET));
   }
 
   // --- Velocities (world coordinates, of the center of mass) ----------------
@@ -1499,6 +5197,71 @@ class RigidBodyT : public Referenced {
   /// True while a moveTo is under way.
   [[nodiscard]] bool isMovingToTarget() const { return target_.has_value(); }
 
+  // --- Geometries ------------------------------------------------------------
+
+  /// Adds a geometry; its local transform is now relative to the model
+  /// frame. Recomputes the generated mass properties. Throws if the
+  /// geometry is null, belongs to a body, or stands on its own in a space.
+  void add(ref_ptr<Geometry> geometry) {
+    if (!geometry) throw error("cannot add a null Geometry", "nullptr");
+    if (geometry->getRigidBody() == this) throw error("Geometry already added to this body", geometry->getName());
+    if (geometry->getRigidBody()) throw error("Geometry already belongs to another body", geometry->getName());
+    if (Access::space(*geometry)) throw error("Geometry is in a space on its own; remove it first", geometry->getName());
+    Access::body(*geometry) = this;
+    Access::owner(*geometry) = this;
+    geometry->getFrame()->setParent(frame_.get());
+    geometries_.push_back(std::move(geometry));
+    updateMassProperties();
+  }
+  /// Removes a geometry (it keeps its local transform, now a world one);
+  /// false when it is not this body's.
+  bool remove(Geometry* geometry) {
+    const auto it = std::find_if(geometries_.begin(), geometries_.end(), [&](const auto& g) { return g == geometry; });
+    if (it == geometries_.end()) return false;
+    ref_ptr<Geometry> keep = *it;
+    geometries_.erase(it);
+    Access::body(*keep) = nullptr;
+    Access::owner(*keep) = nullptr;
+    keep->getFrame()->setParent(nullptr);
+    updateMassProperties();
+    return true;
+  }
+  [[nodiscard]] const std::vector<ref_ptr<Geometry>>& getGeometries() const { return geometries_; }
+  /// The first geometry with this name, or nullptr.
+  [[nodiscard]] Geometry* getGeometry(const std::string& name) const {
+    for (const auto& g : geometries_)
+      if (g->getName() == name) return g.get();
+    return nullptr;
+  }
+
+  /// Recomputes mass, center of mass and inertia from the geometries'
+  /// shape volumes and material densities, for the properties still in the
+  /// auto-generate mask (a hand-set mass scales the generated inertia). The
+  /// model frame stays put; the center-of-mass velocity follows the new
+  /// center so that no body point changes velocity. Nothing changes when no
+  /// shape has volume.
+  void updateMassProperties() {
+    const auto generated = detail::massFromGeometries<S>(geometries_);
+    if (!generated) return;
+    const unsigned mask = massProperties_.getAutoGenerateMask();
+    const S mass = (mask & MassPropertiesT<S>::MASS) ? generated->mass : massProperties_.getMass();
+    Mat3 inertia = generated->inertia * (mass / generated->mass);
+    if (!(mask & MassPropertiesT<S>::CM_OFFSET)) {
+      // About the user's center instead of the generated one.
+      const Vec3 d = getCmLocalTranslate() - generated->center;
+      inertia += mass * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+    }
+    // The tensor is stored in the CM frame, whose axes are the model axes
+    // turned by the CM frame's local rotation.
+    const Mat3 R = cmFrame_->getLocalRotate().toRotationMatrix();
+    massProperties_.generate(mass, SPDMat3<S>(Mat3(R.transpose() * inertia * R)));
+    if (mask & MassPropertiesT<S>::CM_OFFSET) {
+      const Vec3 oldCm = getCmPosition();
+      cmFrame_->setLocalTranslate(generated->center);
+      velocity_ += angularVelocity_.cross(getCmPosition() - oldCm);
+    }
+  }
+
   // --- Attachments -----------------------------------------------------------
 
   /// Adds a named frame fixed in the body; its local transform is relative to
@@ -1529,9 +5292,18 @@ class RigidBodyT : public Referenced {
   }
 
  protected:
-  ~RigidBodyT() override = default;
+  ~RigidBodyT() override {
+    for (auto& g : geometries_) {
+      Access::body(*g) = nullptr;
+      Access::owner(*g) = nullptr;
+      g->getFrame()->setParent(nullptr);
+    }
+  }
 
  private:
+  using Access = detail::GeometryAccess<S>;
+  void geometryChanged() override { updateMassProperties(); }
+
   friend struct detail::BodyIntegrator<S>;
   friend struct detail::SimulationMembership;
 
@@ -1584,6 +5356,7 @@ class RigidBodyT : public Referenced {
   Vec3 angularDamping_ = Vec3::Zero();
   std::optional<KinematicTarget> target_;
   std::vector<std::pair<std::string, ref_ptr<Frame>>> attachments_;
+  std::vector<ref_ptr<Geometry>> geometries_;
 
   // Membership, maintained by the simulation.
   const void* simulation_ = nullptr;
@@ -1601,6 +5374,336 @@ using RigidBodyObserver = observer_ptr<RigidBody>;
 
 }  // namespace spook
 // --- end spook/dynamics/rigid_body.hpp ---
+
+namespace spook {
+
+/// Collision detection over a set of geometries: a broadphase (sweep and
+/// prune), the narrow phase through the collider matrix of a shape list
+/// chosen at construction (only those colliders are compiled), contact
+/// reduction, and the impact / contact / separation bookkeeping. Usable on
+/// its own for queries; a Simulation owns one and feeds it its bodies.
+template <Scalar S>
+class SpaceT : public Referenced {
+ public:
+  using Geometry = GeometryT<S>;
+  using Body = RigidBodyT<S>;
+  using Contact = GeometryContactT<S>;
+
+  /// A space for every shape type.
+  SpaceT() : SpaceT(AllShapes{}) {}
+  /// A space for the shape types of `List`, e.g. ShapeList<SphereT, PlaneT>.
+  template <template <class> class... Shapes>
+  explicit SpaceT(ShapeList<Shapes...>)
+      : collide_(&ColliderMatrixT<S, ShapeList<Shapes...>>::collide),
+        supports_(&ColliderMatrixT<S, ShapeList<Shapes...>>::supports),
+        contains_(&ShapeList<Shapes...>::contains) {}
+
+  // --- Content ---------------------------------------------------------------
+
+  /// Adds a geometry on its own (static, or of a body not in a simulation).
+  /// Throws if it is null, already here, or holds a shape type outside this
+  /// space's shape list.
+  void add(ref_ptr<Geometry> geometry) {
+    if (!geometry) throw error("cannot add a null Geometry", "nullptr");
+    if (Access::space(*geometry) == this) throw detail::makeError("Geometry", geometry->getName(), "already in this space");
+    if (Access::space(*geometry)) throw detail::makeError("Geometry", geometry->getName(), "already in another space");
+    requireSupported(*geometry);
+    Access::space(*geometry) = this;
+    geometries_.push_back(std::move(geometry));
+  }
+  /// Removes a geometry added with add(); false when it is not here.
+  bool remove(Geometry* geometry) {
+    const auto it = std::find_if(geometries_.begin(), geometries_.end(), [&](const auto& g) { return g == geometry; });
+    if (it == geometries_.end()) return false;
+    Access::space(**it) = nullptr;
+    geometries_.erase(it);
+    return true;
+  }
+  [[nodiscard]] const std::vector<ref_ptr<Geometry>>& getGeometries() const { return geometries_; }
+
+  /// Throws unless every shape of `geometry` (composite children included)
+  /// has a type in this space's shape list.
+  void requireSupported(const Geometry& geometry) const {
+    for (const auto& entry : geometry.getShapes()) requireSupported(geometry, *entry.shape);
+  }
+
+  // --- Filters ---------------------------------------------------------------
+
+  /// Enables or disables collisions between geometries of groups a and b.
+  void setEnablePair(std::uint32_t a, std::uint32_t b, bool enable) { setPair(disabledIds_, a, b, enable); }
+  void setEnablePair(const std::string& a, const std::string& b, bool enable) { setPair(disabledNames_, a, b, enable); }
+  [[nodiscard]] bool getEnablePair(std::uint32_t a, std::uint32_t b) const {
+    return !disabledIds_.count(std::minmax(a, b));
+  }
+  [[nodiscard]] bool getEnablePair(const std::string& a, const std::string& b) const {
+    return !disabledNames_.count(std::minmax(a, b));
+  }
+
+  /// True when the pair passes every filter: both enabled and colliding,
+  /// not on one body, not both static, not disabled pairwise or by groups.
+  [[nodiscard]] bool canCollide(const Geometry& a, const Geometry& b) const {
+    if (&a == &b || !a.getEnable() || !b.getEnable() || !a.getEnableCollisions() || !b.getEnableCollisions())
+      return false;
+    const Body* bodyA = a.getRigidBody();
+    const Body* bodyB = b.getRigidBody();
+    if (bodyA && bodyA == bodyB) return false;
+    if (isFixed(bodyA) && isFixed(bodyB)) return false;
+    if (!a.getEnableCollisions(&b)) return false;
+    for (const auto id : a.getGroupIds())
+      for (const auto other : b.getGroupIds())
+        if (disabledIds_.count(std::minmax(id, other))) return false;
+    for (const auto& name : a.getGroupNames())
+      for (const auto& other : b.getGroupNames())
+        if (disabledNames_.count(std::minmax(name, other))) return false;
+    return true;
+  }
+
+  // --- Contact reduction -----------------------------------------------------
+
+  [[nodiscard]] ContactReductionMode getContactReductionMode() const { return reductionMode_; }
+  void setContactReductionMode(ContactReductionMode mode) { reductionMode_ = mode; }
+  /// Bin resolution 1, 2 (default, fast) or 3 (higher fidelity).
+  [[nodiscard]] int getContactBinResolution() const { return binResolution_; }
+  void setContactBinResolution(int resolution) {
+    if (resolution < 1 || resolution > 3) throw error("contact bin resolution must be 1, 2 or 3", resolution);
+    binResolution_ = resolution;
+  }
+
+  // --- Collision detection ---------------------------------------------------
+
+  /// Finds the contacts between this space's geometries and those of
+  /// `bodies` (a simulation's), reduces them and marks impacts; pairs that
+  /// touched before and no longer do are listed in getSeparations().
+  void update(const std::vector<ref_ptr<Body>>& bodies = {}) {
+    gather(bodies);
+    boxes_.clear();
+    for (const Geometry* g : active_) boxes_.push_back(g->getBoundingBox());
+    contacts_.clear();
+    broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(*active_[i], *active_[j]); });
+    reduce();
+    trackEvents();
+  }
+
+  /// Geometry pairs in contact after the last update().
+  [[nodiscard]] std::vector<Contact>& getGeometryContacts() { return contacts_; }
+  [[nodiscard]] const std::vector<Contact>& getGeometryContacts() const { return contacts_; }
+  /// Pairs that were in contact the update before the last and no longer are.
+  [[nodiscard]] const std::vector<GeometryPairT<S>>& getSeparations() const { return separations_; }
+
+ protected:
+  ~SpaceT() override {
+    for (auto& g : geometries_) Access::space(*g) = nullptr;
+  }
+
+ private:
+  using Access = detail::GeometryAccess<S>;
+  using CollideFunction = bool (*)(const ShapeT<S>&, const Transform<S>&, const ShapeT<S>&, const Transform<S>&,
+                                   ContactSinkT<S>&);
+
+  static bool isFixed(const Body* body) { return !body || body->getMotionControl() == Body::STATIC; }
+
+  void requireSupported(const Geometry& geometry, const ShapeT<S>& shape) const {
+    if (!contains_(shape.getType()))
+      throw detail::makeError("Geometry", geometry.getName(), "shape type not in this space's shape list",
+                              std::string(shapeTypeName(shape.getType())));
+    if (const auto* composite = dynamic_cast<const CompositeT<S>*>(&shape))
+      for (const auto& child : composite->getChildren()) requireSupported(geometry, *child.shape);
+  }
+
+  template <class Key>
+  static void setPair(std::set<std::pair<Key, Key>>& disabled, const Key& a, const Key& b, bool enable) {
+    if (enable)
+      disabled.erase(std::minmax(a, b));
+    else
+      disabled.insert(std::minmax(a, b));
+  }
+
+  void gather(const std::vector<ref_ptr<Body>>& bodies) {
+    active_.clear();
+    for (const auto& g : geometries_) active_.push_back(g.get());
+    for (const auto& body : bodies)
+      if (body->getEnable())
+        for (const auto& g : body->getGeometries()) active_.push_back(g.get());
+  }
+
+  void narrowPhase(Geometry& a, Geometry& b) {
+    if (!canCollide(a, b)) return;
+    // One order per pair, so that normals and event keys are stable.
+    Geometry* first = &a;
+    Geometry* second = &b;
+    if (first->getId() > second->getId()) std::swap(first, second);
+    Contact contact(first, second);
+    ContactSinkT<S> sink(contact.points());
+    const Transform<S> X_W1 = first->getTransform(), X_W2 = second->getTransform();
+    for (const auto& e1 : first->getShapes())
+      for (const auto& e2 : second->getShapes())
+        collide_(*e1.shape, X_W1 * e1.transform, *e2.shape, X_W2 * e2.transform, sink);
+    if (!contact.points().empty()) contacts_.push_back(std::move(contact));
+  }
+
+  void reduce() {
+    if (reductionMode_ == ContactReductionMode::REDUCE_NONE) return;
+    std::vector<ContactPointT<S>*> points;
+    if (reductionMode_ == ContactReductionMode::REDUCE_GEOMETRY) {
+      for (auto& contact : contacts_) {
+        points.clear();
+        for (auto& p : contact.points()) points.push_back(&p);
+        detail::reduceContacts<S>(points, binResolution_);
+      }
+      return;
+    }
+    // Per body pair: a static geometry counts as its own "body".
+    std::map<std::pair<const void*, const void*>, std::vector<ContactPointT<S>*>> byBodies;
+    for (auto& contact : contacts_) {
+      const void* k1 = contact.rigidBody(0) ? static_cast<const void*>(contact.rigidBody(0)) : contact.geometry(0);
+      const void* k2 = contact.rigidBody(1) ? static_cast<const void*>(contact.rigidBody(1)) : contact.geometry(1);
+      auto& list = byBodies[std::minmax(k1, k2)];
+      for (auto& p : contact.points()) list.push_back(&p);
+    }
+    for (auto& [key, list] : byBodies) detail::reduceContacts<S>(list, binResolution_);
+  }
+
+  void trackEvents() {
+    std::map<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>> now;
+    for (auto& contact : contacts_) {
+      const auto key = std::make_pair(contact.geometry(0)->getId(), contact.geometry(1)->getId());
+      contact.setImpact(!touching_.count(key));
+      now.emplace(key, GeometryPairT<S>{contact.geometry(0), contact.geometry(1)});
+    }
+    separations_.clear();
+    for (const auto& [key, pair] : touching_)
+      if (!now.count(key)) separations_.push_back(pair);
+    touching_ = std::move(now);
+  }
+
+  template <class T>
+  [[nodiscard]] Error error(const std::string& what, const T& value) const {
+    return detail::makeError("Space", "", what, value);
+  }
+
+  CollideFunction collide_;
+  bool (*supports_)(ShapeType, ShapeType);
+  bool (*contains_)(ShapeType);
+  std::vector<ref_ptr<Geometry>> geometries_;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> disabledIds_;
+  std::set<std::pair<std::string, std::string>> disabledNames_;
+  ContactReductionMode reductionMode_ = ContactReductionMode::REDUCE_GEOMETRY;
+  int binResolution_ = 2;
+
+  std::vector<Geometry*> active_;
+  std::vector<BoundingBoxT<S>> boxes_;
+  detail::SweepAndPrune<S> broadphase_;
+  std::vector<Contact> contacts_;
+  std::map<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>> touching_;
+  std::vector<GeometryPairT<S>> separations_;
+};
+
+using Space = SpaceT<double>;
+using SpaceRef = ref_ptr<Space>;
+namespace f32 {
+using Space = SpaceT<float>;
+using SpaceRef = ref_ptr<Space>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/collide/space.hpp ---
+// --- begin spook/dynamics/gravity_field.hpp ---
+
+namespace spook {
+
+/// Applies gravity to every enabled dynamic body of a simulation, as an
+/// acceleration of its center of mass (m/s²).
+template <Scalar S>
+class GravityFieldT : public Referenced {
+ public:
+  using Vec3 = spook::Vec3<S>;
+  /// Gravitational acceleration at world point p_W (m/s²).
+  [[nodiscard]] virtual Vec3 calculateGravity(const Vec3& p_W) const = 0;
+
+ protected:
+  ~GravityFieldT() override = default;
+};
+
+/// The same acceleration everywhere; default (0, 0, −9.80665) m/s².
+template <Scalar S>
+class UniformGravityFieldT : public GravityFieldT<S> {
+ public:
+  using Vec3 = spook::Vec3<S>;
+  explicit UniformGravityFieldT(const Vec3& gravity = Vec3(S(0), S(0), S(-9.80665))) { setGravity(gravity); }
+
+  /// Acceleration in world coordinates (m/s²).
+  [[nodiscard]] const Vec3& getGravity() const { return gravity_; }
+  void setGravity(const Vec3& gravity) {
+    if (!gravity.allFinite()) throw detail::makeError("UniformGravityField", "", "gravity must be finite", gravity);
+    gravity_ = gravity;
+  }
+  [[nodiscard]] Vec3 calculateGravity(const Vec3&) const override { return gravity_; }
+
+ protected:
+  ~UniformGravityFieldT() override = default;
+
+ private:
+  Vec3 gravity_;
+};
+
+/// Inverse-square attraction toward a center: a(p) = μ (c − p) / |c − p|³,
+/// with strength μ = G·M in m³/s² (3.986004418e14 for the Earth). Zero at
+/// the center itself.
+template <Scalar S>
+class PointGravityFieldT : public GravityFieldT<S> {
+ public:
+  using Vec3 = spook::Vec3<S>;
+  PointGravityFieldT(const Vec3& center, S strength) {
+    setCenter(center);
+    setStrength(strength);
+  }
+
+  /// Attracting point, world coordinates (m).
+  [[nodiscard]] const Vec3& getCenter() const { return center_; }
+  void setCenter(const Vec3& center) {
+    if (!center.allFinite()) throw detail::makeError("PointGravityField", "", "center must be finite", center);
+    center_ = center;
+  }
+  /// μ = G·M (m³/s²), finite and ≥ 0.
+  [[nodiscard]] S getStrength() const { return strength_; }
+  void setStrength(S strength) {
+    if (!(std::isfinite(strength) && strength >= S(0)))
+      throw detail::makeError("PointGravityField", "", "strength must be finite and >= 0 m^3/s^2", strength);
+    strength_ = strength;
+  }
+
+  [[nodiscard]] Vec3 calculateGravity(const Vec3& p_W) const override {
+    const Vec3 d = center_ - p_W;
+    const S r2 = d.squaredNorm();
+    if (!(r2 > S(0))) return Vec3::Zero();
+    return (strength_ / (r2 * std::sqrt(r2))) * d;
+  }
+
+ protected:
+  ~PointGravityFieldT() override = default;
+
+ private:
+  Vec3 center_;
+  S strength_ = S(0);
+};
+
+using GravityField = GravityFieldT<double>;
+using UniformGravityField = UniformGravityFieldT<double>;
+using PointGravityField = PointGravityFieldT<double>;
+using GravityFieldRef = ref_ptr<GravityField>;
+using UniformGravityFieldRef = ref_ptr<UniformGravityField>;
+using PointGravityFieldRef = ref_ptr<PointGravityField>;
+namespace f32 {
+using GravityField = GravityFieldT<float>;
+using UniformGravityField = UniformGravityFieldT<float>;
+using PointGravityField = PointGravityFieldT<float>;
+using GravityFieldRef = ref_ptr<GravityField>;
+using UniformGravityFieldRef = ref_ptr<UniformGravityField>;
+using PointGravityFieldRef = ref_ptr<PointGravityField>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/dynamics/gravity_field.hpp ---
 // --- begin spook/sim/assembly.hpp ---
 
 #include <unordered_set>

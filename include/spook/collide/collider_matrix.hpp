@@ -6,6 +6,7 @@
 #include <utility>
 
 #include <spook/collide/collider.hpp>
+#include <spook/collide/colliders.hpp>
 #include <spook/collide/shape_list.hpp>
 #include <spook/collide/shapes/composite.hpp>
 #include <spook/collide/shapes/shape_type.hpp>
@@ -61,12 +62,12 @@ class ColliderMatrixT<S, ShapeList<Shapes...>> {
   /// where a collider exists, - where the pair is a hole.
   [[nodiscard]] static std::string describe() {
     std::string text = "|";
-    for (std::size_t j = 0; j < N; ++j) text += std::string(" | ") + std::string(toString(kTypes[j]));
+    for (std::size_t j = 0; j < N; ++j) text += std::string(" | ") + std::string(shapeTypeName(kTypes[j]));
     text += " |\n|---";
     for (std::size_t j = 0; j < N; ++j) text += "|---";
     text += "|\n";
     for (std::size_t i = 0; i < N; ++i) {
-      text += "| " + std::string(toString(kTypes[i]));
+      text += "| " + std::string(shapeTypeName(kTypes[i]));
       for (std::size_t j = 0; j < N; ++j) text += kTable[i][j] ? " | X" : " | -";
       text += " |\n";
     }

@@ -73,7 +73,7 @@ class GeometryT : public Referenced {
     if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
       throw error("shape transform must be finite and rigid", SPDMat3<S>::flat(transform.linear()));
     if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
-      throw error("shape already added to this geometry", toString(shape->getType()));
+      throw error("shape already added to this geometry", std::string(shapeTypeName(shape->getType())));
     shapes_.push_back({std::move(shape), makeTransform<S>(transform.translation(), Quat<S>(transform.linear()))});
     changed();
   }

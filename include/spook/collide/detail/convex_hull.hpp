@@ -4,8 +4,10 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -17,9 +19,9 @@ namespace spook::detail {
 /// One polygon face of a convex polyhedron: the plane normal·x = offset.
 template <Scalar S>
 struct ConvexFace {
-  std::vector<int> vertices;          ///< corner indices, counter-clockwise seen from outside
-  Vec3<S> normal = Vec3<S>::Zero();   ///< unit outward normal (shape frame)
-  S offset = S(0);                    ///< normal·x on the face (m); smaller inside
+  std::vector<int> vertices;         ///< corner indices, counter-clockwise seen from outside
+  Vec3<S> normal = Vec3<S>::Zero();  ///< unit outward normal (shape frame)
+  S offset = S(0);                   ///< normal·x on the face (m); smaller inside
 };
 
 /// A convex hull: its corners, its outward triangles and its polygon faces.
@@ -28,20 +30,37 @@ struct ConvexHull {
   std::vector<Vec3<S>> vertices;              ///< the hull's corners, in input order (m)
   std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
   std::vector<ConvexFace<S>> faces;           ///< coplanar triangles merged into polygons
+  S tolerance = S(0);                         ///< distance below which points counted as on a face (m)
 };
 
 /// Quickhull in 3D (Barber, Dobkin, Huhdanpaa, "The Quickhull Algorithm for
-/// Convex Hulls", ACM TOMS 1996), in double. A point within `tolerance` of a
-/// face's plane counts as on it: it never becomes a vertex, and a face it is
-/// (nearly) coplanar with is replaced rather than kept beside a sliver.
+/// Convex Hulls", ACM TOMS 1996), in double, on "joggled" points as Qhull's
+/// option QJ does: each point moved at random by at most a quarter of the
+/// tolerance, which puts the cloud in general position, so that visibility
+/// can be a plain sign test and the hull stays convex. A point less than the
+/// tolerance above the hull never becomes a vertex. Coplanar triangles are
+/// then merged, and corners on straight edges dropped, with the true points.
 class QuickHull {
  public:
   using V = Vec3<double>;
 
-  QuickHull(std::vector<V> points, double tolerance)
-      : p_(std::move(points)), tol_(tolerance), next_(p_.size(), -1) {}
+  /// A polygon of the hull: its loop of point indices (counter-clockwise seen
+  /// from outside), every point its triangles used, and its unit normal.
+  struct Polygon {
+    std::vector<int> loop;
+    std::vector<int> points;
+    V normal;
+  };
 
-  /// Builds the triangle hull; false when the points span no volume.
+  /// `points` in any frame; `tolerance` (m); `attempt` picks the joggle.
+  QuickHull(std::vector<V> points, double tolerance, int attempt)
+      : p_(std::move(points)), tol_(tolerance), next_(p_.size(), -1) {
+    q_.reserve(p_.size());
+    std::uint64_t state = 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(attempt + 1);
+    for (const V& p : p_) q_.push_back(p + 0.25 * tol_ * V(jiggle(state), jiggle(state), jiggle(state)));
+  }
+
+  /// Builds the triangle hull; false when the true points span no volume.
   bool build() {
     if (p_.size() < 4 || !initialSimplex()) return false;
     std::vector<int> work;
@@ -54,23 +73,30 @@ class QuickHull {
     return true;
   }
 
-  /// Polygon faces as point-index loops (counter-clockwise seen from outside):
-  /// coplanar triangles merged, and corners lying on a straight edge dropped.
-  [[nodiscard]] std::vector<std::vector<int>> polygons() {
-    std::vector<std::vector<int>> loops = mergeCoplanar();
-    dropStraightCorners(loops);
-    return loops;
-  }
+  /// True when round-off left some point out (then try another joggle).
+  [[nodiscard]] bool leftPointsOut() const { return leftOut_; }
 
-  [[nodiscard]] const std::vector<V>& points() const { return p_; }
+  /// The polygon faces: coplanar triangles merged, corners on straight edges dropped.
+  [[nodiscard]] std::vector<Polygon> polygons() {
+    std::vector<Polygon> polygons = mergeCoplanar();
+    dropStraightCorners(polygons);
+    for (Polygon& polygon : polygons) {
+      // Twice the loop's area vector (a fan of cross products).
+      V area = V::Zero();
+      const V& origin = p_[polygon.loop[0]];
+      for (std::size_t k = 1; k + 1 < polygon.loop.size(); ++k)
+        area += (p_[polygon.loop[k]] - origin).cross(p_[polygon.loop[k + 1]] - origin);
+      if (area.norm() > 0) polygon.normal = area.normalized();
+    }
+    return polygons;
+  }
 
  private:
   struct Face {
     std::array<int, 3> v{};         // point indices, counter-clockwise from outside
     std::array<int, 3> neighbor{};  // face across the edge v[i] → v[i+1]
-    V normal = V::Zero();
+    V normal = V::Zero();           // of the joggled points
     double offset = 0;
-    double area = 0;
     std::vector<int> outside;  // points more than tol_ above the plane
     int furthest = -1;
     double furthestDistance = 0;
@@ -82,20 +108,34 @@ class QuickHull {
     int a, b, outer;
   };
 
-  [[nodiscard]] double distance(const Face& f, int i) const { return f.normal.dot(p_[i]) - f.offset; }
+  // Uniform in [-1, 1) from a splitmix64 stream: the same on every platform.
+  static double jiggle(std::uint64_t& state) {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;
+  }
+
+  // Unit normal and area of the triangle a, b, c of `x`; the cross product of
+  // its two shortest edges loses the fewest digits.
+  static std::pair<V, double> plane(const std::vector<V>& x, int a, int b, int c) {
+    const std::array<V, 3> e = {x[b] - x[a], x[c] - x[b], x[a] - x[c]};
+    int longest = 0;
+    for (int i = 1; i < 3; ++i)
+      if (e[i].squaredNorm() > e[longest].squaredNorm()) longest = i;
+    const V n = e[(longest + 2) % 3].cross(-e[(longest + 1) % 3]);
+    const double twiceArea = n.norm();
+    return {twiceArea > 0 ? V(n / twiceArea) : n, 0.5 * twiceArea};
+  }
+
+  [[nodiscard]] double distance(const Face& f, int i) const { return f.normal.dot(q_[i]) - f.offset; }
 
   int addFace(int a, int b, int c) {
     Face f;
     f.v = {a, b, c};
-    // The cross product of the two shortest edges loses the fewest digits.
-    const std::array<V, 3> e = {p_[b] - p_[a], p_[c] - p_[b], p_[a] - p_[c]};
-    int longest = 0;
-    for (int i = 1; i < 3; ++i)
-      if (e[i].squaredNorm() > e[longest].squaredNorm()) longest = i;
-    const V n = e[(longest + 1) % 3].cross(-e[(longest + 2) % 3]);
-    f.area = 0.5 * n.norm();
-    f.normal = f.area > 0 ? V(n / (2 * f.area)) : n;
-    f.offset = f.normal.dot(p_[a] + p_[b] + p_[c]) / 3;
+    f.normal = plane(q_, a, b, c).first;
+    f.offset = f.normal.dot(q_[a] + q_[b] + q_[c]) / 3;
     faces_.push_back(std::move(f));
     return static_cast<int>(faces_.size()) - 1;
   }
@@ -113,8 +153,8 @@ class QuickHull {
     if (bestDistance > f.furthestDistance) f.furthest = point, f.furthestDistance = bestDistance;
   }
 
-  // A tetrahedron of extreme points: the widest pair along an axis, the point
-  // farthest from their line, the point farthest from their plane.
+  // A tetrahedron of extreme true points: the widest pair along an axis, the
+  // point farthest from their line, the point farthest from their plane.
   bool initialSimplex() {
     const int n = static_cast<int>(p_.size());
     int lo = 0, hi = 0;
@@ -142,7 +182,7 @@ class QuickHull {
 
     int a = lo, b = hi, c = third;
     const int d = fourth;
-    if (normal.dot(p_[d] - p_[a]) > 0) std::swap(b, c);  // d below the base a, b, c
+    if (plane(q_, a, b, c).first.dot(q_[d] - q_[a]) > 0) std::swap(b, c);  // d below the base a, b, c
     addFace(a, b, c);
     addFace(a, d, b);
     addFace(b, d, c);
@@ -158,8 +198,8 @@ class QuickHull {
     return true;
   }
 
-  // Replaces the faces the furthest point of face `start` sees (or is
-  // coplanar with) by a cone from that point to their horizon.
+  // Replaces the faces the furthest point of face `start` is above by a cone
+  // from that point to their horizon.
   void addPoint(int start, std::vector<int>& work) {
     const int eye = faces_[start].furthest;
     ++stamp_;
@@ -171,7 +211,7 @@ class QuickHull {
         Face& g = faces_[nb];
         if (g.visited == stamp_) continue;
         g.visited = stamp_;
-        g.visible = distance(g, eye) > -tol_;
+        g.visible = distance(g, eye) > 0;
         if (g.visible) visible.push_back(nb);
       }
     }
@@ -182,7 +222,8 @@ class QuickHull {
           horizon.push_back({faces_[f].v[i], faces_[f].v[(i + 1) % 3], nb});
     const std::vector<int> order = chain(horizon);
     if (order.empty()) {
-      // Round-off made the visible region other than a disk; leave this point out.
+      // Round-off made the visible region other than a disk: leave the point out.
+      leftOut_ = true;
       discard(start, eye);
       if (!faces_[start].outside.empty()) work.push_back(start);
       return;
@@ -209,7 +250,7 @@ class QuickHull {
       if (!faces_[j].outside.empty()) work.push_back(j);
   }
 
-  // The horizon's edges in loop order, or nothing when they do not form one loop.
+  // The edges in loop order, or nothing when they do not form one loop.
   std::vector<int> chain(const std::vector<Edge>& edges) {
     std::vector<int> order;
     bool simple = true;
@@ -238,27 +279,33 @@ class QuickHull {
       if (const double d = distance(f, q); d > f.furthestDistance) f.furthest = q, f.furthestDistance = d;
   }
 
-  // Grows each polygon from its largest triangle over neighbours whose
-  // corners all lie within the tolerance of that triangle's plane.
-  std::vector<std::vector<int>> mergeCoplanar() {
+  // Grows each polygon from the largest remaining triangle over neighbours
+  // whose true corners all lie within the tolerance of its true plane.
+  std::vector<Polygon> mergeCoplanar() {
     std::vector<int> alive;
-    for (int f = 0; f < static_cast<int>(faces_.size()); ++f)
-      if (faces_[f].alive) alive.push_back(f);
-    std::stable_sort(alive.begin(), alive.end(), [&](int a, int b) { return faces_[a].area > faces_[b].area; });
+    std::vector<V> normal(faces_.size(), V::Zero());
+    std::vector<double> offset(faces_.size(), 0), area(faces_.size(), 0);
+    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+      const Face& face = faces_[f];
+      if (!face.alive) continue;
+      alive.push_back(f);
+      std::tie(normal[f], area[f]) = plane(p_, face.v[0], face.v[1], face.v[2]);
+      if (!(area[f] > 0)) normal[f] = face.normal;  // a sliver flattened by the true points
+      offset[f] = normal[f].dot(p_[face.v[0]] + p_[face.v[1]] + p_[face.v[2]]) / 3;
+    }
+    std::stable_sort(alive.begin(), alive.end(), [&](int a, int b) { return area[a] > area[b]; });
     std::vector<int> group(faces_.size(), -1);
-    std::vector<std::vector<int>> loops;
+    std::vector<Polygon> polygons;
     int id = 0;
     for (const int seed : alive) {
       if (group[seed] != -1) continue;
-      const Face& s = faces_[seed];
       std::vector<int> members{seed};
       group[seed] = id;
       for (std::size_t k = 0; k < members.size(); ++k) {
         for (const int nb : faces_[members[k]].neighbor) {
-          const Face& g = faces_[nb];
-          if (group[nb] != -1 || !(g.normal.dot(s.normal) > 0)) continue;
+          if (group[nb] != -1 || !(faces_[nb].normal.dot(faces_[seed].normal) > 0)) continue;
           bool flat = true;
-          for (const int v : g.v) flat = flat && std::abs(s.normal.dot(p_[v]) - s.offset) <= tol_;
+          for (const int v : faces_[nb].v) flat = flat && std::abs(normal[seed].dot(p_[v]) - offset[seed]) <= tol_;
           if (flat) group[nb] = id, members.push_back(nb);
         }
       }
@@ -268,49 +315,56 @@ class QuickHull {
           if (group[faces_[f].neighbor[i]] != id) boundary.push_back({faces_[f].v[i], faces_[f].v[(i + 1) % 3], -1});
       const std::vector<int> order = chain(boundary);
       if (!order.empty()) {
-        std::vector<int> loop;
-        for (const int k : order) loop.push_back(boundary[k].a);
-        loops.push_back(std::move(loop));
+        Polygon polygon{{}, {}, normal[seed]};
+        for (const int k : order) polygon.loop.push_back(boundary[k].a);
+        for (const int f : members) polygon.points.insert(polygon.points.end(), faces_[f].v.begin(), faces_[f].v.end());
+        polygons.push_back(std::move(polygon));
       } else {
-        for (const int f : members) loops.push_back({faces_[f].v[0], faces_[f].v[1], faces_[f].v[2]});
+        for (const int f : members) {
+          const std::vector<int> corners(faces_[f].v.begin(), faces_[f].v.end());
+          polygons.push_back({corners, corners, normal[f]});
+        }
       }
       ++id;
     }
-    return loops;
+    return polygons;
   }
 
   // A corner shared by only two polygons lies on the straight edge between
-  // them (a closed convex surface meets at least three faces at a true corner).
-  static void dropStraightCorners(std::vector<std::vector<int>>& loops) {
+  // them (at a true corner of a closed convex surface three faces meet).
+  static void dropStraightCorners(std::vector<Polygon>& polygons) {
     int top = 0;
-    for (const auto& loop : loops)
-      for (const int v : loop) top = std::max(top, v + 1);
+    for (const Polygon& polygon : polygons)
+      for (const int v : polygon.loop) top = std::max(top, v + 1);
     std::vector<int> count(static_cast<std::size_t>(top), 0);
-    for (const auto& loop : loops)
-      for (const int v : loop) ++count[v];
-    for (const auto& loop : loops) {
-      const auto kept = std::count_if(loop.begin(), loop.end(), [&](int v) { return count[v] > 2; });
-      if (kept < 3) return;  // would leave a degenerate polygon: keep every corner
-    }
-    for (auto& loop : loops) std::erase_if(loop, [&](int v) { return count[v] <= 2; });
+    for (const Polygon& polygon : polygons)
+      for (const int v : polygon.loop) ++count[v];
+    const auto straight = [&](int v) { return count[v] <= 2; };
+    for (const Polygon& polygon : polygons)
+      if (polygon.loop.size() - std::count_if(polygon.loop.begin(), polygon.loop.end(), straight) < 3)
+        return;  // would leave a polygon with fewer than three corners: keep them all
+    for (Polygon& polygon : polygons) std::erase_if(polygon.loop, straight);
   }
 
-  std::vector<V> p_;
+  std::vector<V> p_;  // the true points
+  std::vector<V> q_;  // the joggled points the hull is built on
   double tol_;
   std::vector<Face> faces_;
-  std::vector<int> next_;  // horizon chaining scratch, -1 between uses
+  std::vector<int> next_;  // edge chaining scratch, -1 between uses
   int stamp_ = 0;
+  bool leftOut_ = false;
 };
 
-/// Relative tolerance of the hull: coordinates of S carry round-off of a few
-/// ulps, and for double a floor keeps sliver faces from steering the normals.
+/// Relative tolerance of the hull. The hull is built in double, so for float
+/// points it covers only their own round-off (a few ulps); for double a floor
+/// keeps sliver faces from steering the normals.
 template <Scalar S>
-inline constexpr double kHullRelativeTolerance = std::is_same_v<S, float> ? 32 * 1.1920929e-7 : 1e-12;
+inline constexpr double kHullRelativeTolerance = std::is_same_v<S, float> ? 16 * 1.1920929e-7 : 1e-12;
 
 /// Convex hull of `points` (finite, in any frame), or nothing when they are
 /// (within the tolerance) coplanar, collinear, coincident or fewer than 4.
 /// The tolerance is kHullRelativeTolerance times the larger of the cloud's
-/// bounding-box diagonal and its largest coordinate.
+/// half bounding-box diagonal and its largest coordinate.
 template <Scalar S>
 [[nodiscard]] std::optional<ConvexHull<S>> convexHull(const std::vector<Vec3<S>>& points) {
   using V = Vec3<double>;
@@ -320,39 +374,41 @@ template <Scalar S>
     lo = lo.cwiseMin(p.template cast<double>());
     hi = hi.cwiseMax(p.template cast<double>());
   }
-  const double scale = std::max((hi - lo).norm(), std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()));
+  const double scale = std::max(0.5 * (hi - lo).norm(), std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()));
+  const double tolerance = kHullRelativeTolerance<S> * scale;
   const V center = 0.5 * (lo + hi);
   std::vector<V> shifted;
   shifted.reserve(points.size());
   for (const auto& p : points) shifted.push_back(p.template cast<double>() - center);
 
-  QuickHull hull(std::move(shifted), kHullRelativeTolerance<S> * scale);
-  if (!hull.build()) return std::nullopt;
-  const std::vector<std::vector<int>> loops = hull.polygons();
+  // A point left out by round-off is rare; another joggle almost surely
+  // keeps it (Qhull retries likewise).
+  constexpr int kAttempts = 4;
+  std::vector<QuickHull::Polygon> polygons;
+  for (int attempt = 0; attempt < kAttempts; ++attempt) {
+    QuickHull hull(shifted, tolerance, attempt);
+    if (!hull.build()) return std::nullopt;
+    if (hull.leftPointsOut() && attempt + 1 < kAttempts) continue;
+    polygons = hull.polygons();
+    break;
+  }
 
   ConvexHull<S> result;
+  result.tolerance = S(tolerance);
   std::vector<int> index(points.size(), -1);
-  for (const auto& loop : loops)
-    for (const int v : loop) index[v] = 0;
+  for (const auto& polygon : polygons)
+    for (const int v : polygon.loop) index[v] = 0;
   for (std::size_t i = 0; i < points.size(); ++i)
     if (index[i] == 0) {
       index[i] = static_cast<int>(result.vertices.size());
       result.vertices.push_back(points[i]);
     }
-  for (const auto& loop : loops) {
-    // Twice the loop's area vector (a fan of cross products): its direction is
-    // the polygon's normal whatever the corner it starts from.
-    V area = V::Zero();
-    const V& origin = hull.points()[loop[0]];
-    for (std::size_t k = 1; k + 1 < loop.size(); ++k)
-      area += (hull.points()[loop[k]] - origin).cross(hull.points()[loop[k + 1]] - origin);
+  for (const auto& polygon : polygons) {
     ConvexFace<S> face;
-    face.normal = area.normalized().template cast<S>();
+    face.normal = polygon.normal.template cast<S>();
     face.offset = std::numeric_limits<S>::lowest();
-    for (const int v : loop) {
-      face.vertices.push_back(index[v]);
-      face.offset = std::max(face.offset, face.normal.dot(points[v]));
-    }
+    for (const int v : polygon.loop) face.vertices.push_back(index[v]);
+    for (const int v : polygon.points) face.offset = std::max(face.offset, face.normal.dot(points[v]));
     for (std::size_t k = 1; k + 1 < face.vertices.size(); ++k)
       result.triangles.push_back({face.vertices[0], face.vertices[k], face.vertices[k + 1]});
     result.faces.push_back(std::move(face));

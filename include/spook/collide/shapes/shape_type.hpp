@@ -16,7 +16,7 @@ inline constexpr std::size_t kNumShapeTypes = 10;
 inline constexpr std::array<std::string_view, kNumShapeTypes> kShapeTypeNames = {
     "Box", "Capsule", "Convex", "Cylinder", "Line", "Plane", "Sphere", "Trimesh", "Composite", "HeightField"};
 
-[[nodiscard]] constexpr std::string_view toString(ShapeType type) {
+[[nodiscard]] constexpr std::string_view shapeTypeName(ShapeType type) {
   return kShapeTypeNames[static_cast<std::size_t>(type)];
 }
 

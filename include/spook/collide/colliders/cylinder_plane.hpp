@@ -1,0 +1,47 @@
+#pragma once
+
+#include <array>
+
+#include <spook/collide/collider.hpp>
+#include <spook/collide/shapes/cylinder.hpp>
+#include <spook/collide/shapes/plane.hpp>
+
+namespace spook {
+
+/// Cylinder–plane: the deepest points of a cylinder are on its rims. On
+/// each cap rim the candidates are four points 90° apart, starting from the
+/// rim point farthest below the plane, v = −(n − (n·u) u)/|…| for axis u
+/// (the cylinder's own x axis when the axis is along n and every rim point
+/// is as deep); each candidate at or below the plane is a contact of depth
+/// −(its signed height). So a tilted cylinder resting on its rim has one
+/// contact, one lying on its side two (one per cap), one standing on a cap
+/// four spread around the rim, and the deepest rim point is always among
+/// them. The normal points from the cylinder into the plane, −n.
+template <Scalar S>
+struct Collider<CylinderT<S>, PlaneT<S>> {
+  static void collide(const CylinderT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3<S> n = X_WB.linear() * b.getNormal();
+    const Vec3<S> u = X_WA.linear().col(1);
+    const Vec3<S> across = (n.dot(u)) * u - n;  // along the rim, away from the plane's outside
+    const S acrossLength = across.norm();
+    const Vec3<S> v = acrossLength > ScalarTraits<S>::epsilon() ? Vec3<S>(across / acrossLength)
+                                                                 : Vec3<S>(X_WA.linear().col(0));
+    const Vec3<S> w = u.cross(v);
+    const std::array<Vec3<S>, 4> rim = {v, w, Vec3<S>(-v), Vec3<S>(-w)};
+    const S r = a.getRadius(), halfHeight = S(0.5) * a.getHeight();
+    const Vec3<S> onPlane = X_WB * b.getPoint();
+    for (const S side : {S(-1), S(1)}) {
+      const Vec3<S> capCenter = X_WA.translation() + side * halfHeight * u;
+      const S capHeight = n.dot(capCenter - onPlane);
+      for (const Vec3<S>& direction : rim) {
+        const S height = capHeight + r * n.dot(direction);
+        if (!(height <= S(0))) continue;
+        // Midway between the rim point and the plane point under it.
+        sink.add(capCenter + r * direction - S(0.5) * height * n, -n, -height);
+      }
+    }
+  }
+};
+
+}  // namespace spook

@@ -1,0 +1,161 @@
+#pragma once
+
+#include <vector>
+
+#include <spook/collide/collider.hpp>
+#include <spook/collide/detail/triangle.hpp>
+#include <spook/collide/shapes/convex.hpp>
+#include <spook/collide/shapes/height_field.hpp>
+#include <spook/collide/shapes/plane.hpp>
+#include <spook/collide/shapes/sphere.hpp>
+#include <spook/collide/shapes/trimesh.hpp>
+
+namespace spook {
+
+namespace detail {
+
+/// A triangle soup: a Trimesh or a HeightField, both of which visit the
+/// triangles overlapping a box of their own frame.
+template <class T>
+concept TriangleSoup = T::kType == ShapeType::TRIMESH || T::kType == ShapeType::HEIGHTFIELD;
+
+/// Sphere against one triangle: the closest point of the triangle to the
+/// center (Ericson, Real-Time Collision Detection, §5.1.5, by Voronoi
+/// regions) decides; a center exactly on the triangle pushes out along the
+/// face normal.
+template <Scalar S>
+void collideSphereTriangle(const SphereT<S>& sphere, const Vec3<S>& c_W, const Triangle<S>& t_W,
+                           ContactSinkT<S>& sink) {
+  const Vec3<S>&a = t_W.v[0], &b = t_W.v[1], &c = t_W.v[2];
+  const Vec3<S> ab = b - a, ac = c - a, ap = c_W - a;
+  Vec3<S> q;
+  const S d1 = ab.dot(ap), d2 = ac.dot(ap);
+  const Vec3<S> bp = c_W - b;
+  const S d3 = ab.dot(bp), d4 = ac.dot(bp);
+  const Vec3<S> cp = c_W - c;
+  const S d5 = ab.dot(cp), d6 = ac.dot(cp);
+  const S vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+  if (d1 <= S(0) && d2 <= S(0)) {
+    q = a;
+  } else if (d3 >= S(0) && d4 <= d3) {
+    q = b;
+  } else if (d6 >= S(0) && d5 <= d6) {
+    q = c;
+  } else if (vc <= S(0) && d1 >= S(0) && d3 <= S(0)) {
+    q = a + ab * (d1 / (d1 - d3));
+  } else if (vb <= S(0) && d2 >= S(0) && d6 <= S(0)) {
+    q = a + ac * (d2 / (d2 - d6));
+  } else if (va <= S(0) && (d4 - d3) >= S(0) && (d5 - d6) >= S(0)) {
+    q = b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  } else {
+    const S denominator = va + vb + vc;
+    q = denominator > S(0) ? Vec3<S>(a + ab * (vb / denominator) + ac * (vc / denominator)) : a;
+  }
+  const Vec3<S> toCenter = c_W - q;
+  const S distance = toCenter.norm();
+  const S r = sphere.getRadius();
+  if (distance > r) return;
+  // The normal points from the sphere toward the mesh.
+  const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * r ? Vec3<S>(-toCenter / distance) : Vec3<S>(-t_W.normal());
+  const S depth = r - distance;
+  sink.add(q - n * (depth * S(0.5)), n, depth);
+}
+
+/// Contacts of a shape against the triangles of a soup near it; a
+/// triangle counts as a convex shape of its own.
+template <Scalar S, class A, class Soup>
+void collideWithTriangles(const A& a, const Transform<S>& X_WA, const Soup& soup, const Transform<S>& X_WM,
+                          ContactSinkT<S>& sink) {
+  const BoundingBoxT<S> box_M = transformBox<S>(a.getBoundingBox(), X_WM.inverse() * X_WA);
+  soup.forEachTriangle(box_M, [&](std::size_t, const Vec3<S>& p0, const Vec3<S>& p1, const Vec3<S>& p2) {
+    if constexpr (A::kType == ShapeType::SPHERE) {
+      const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
+      collideSphereTriangle<S>(a, X_WA.translation(), t_W, sink);
+    } else {
+      const Triangle<S> t_M{{p0, p1, p2}};
+      collideByCcd<S>(a, X_WA, t_M, X_WM, sink);
+    }
+  });
+}
+
+/// Triangle pairs of two soups whose boxes overlap, each collided by libccd.
+template <Scalar S, class SoupA, class SoupB>
+void collideSoups(const SoupA& a, const Transform<S>& X_WA, const SoupB& b, const Transform<S>& X_WB,
+                  ContactSinkT<S>& sink) {
+  const Transform<S> X_BA = X_WB.inverse() * X_WA;
+  const BoundingBoxT<S> a_B = transformBox<S>(a.getBoundingBox(), X_BA);
+  b.forEachTriangle(a_B, [&](std::size_t, const Vec3<S>& q0, const Vec3<S>& q1, const Vec3<S>& q2) {
+    const Triangle<S> t_B{{q0, q1, q2}};
+    const BoundingBoxT<S> t_A = transformBox<S>(t_B.getBoundingBox(), X_BA.inverse());
+    a.forEachTriangle(t_A, [&](std::size_t, const Vec3<S>& p0, const Vec3<S>& p1, const Vec3<S>& p2) {
+      const Triangle<S> t_A2{{p0, p1, p2}};
+      collideByCcd<S>(t_A2, X_WA, t_B, X_WB, sink);
+    });
+  });
+}
+
+/// Every vertex of `points` (frame A) at or below the plane is a contact,
+/// with the normal from the points' shape into the plane (−n).
+template <Scalar S, class Points>
+void collideVerticesWithPlane(const Points& vertices, const Transform<S>& X_WA, const PlaneT<S>& plane,
+                              const Transform<S>& X_WP, ContactSinkT<S>& sink, bool planeFirst) {
+  const Vec3<S> n = X_WP.linear() * plane.getNormal();
+  const Vec3<S> o = X_WP * plane.getPoint();
+  for (const auto& v : vertices) {
+    const Vec3<S> p = X_WA * v;
+    const S height = n.dot(p - o);
+    if (height > S(0)) continue;
+    const Vec3<S> mid = p - n * (height * S(0.5));
+    sink.add(mid, planeFirst ? n : Vec3<S>(-n), -height);
+  }
+}
+
+}  // namespace detail
+
+/// A convex shape against a triangle mesh or a height field, triangle by
+/// triangle among those the mesh's hierarchy (or grid) finds near it.
+template <ConvexShape A, detail::TriangleSoup B>
+  requires(A::kType < B::kType)
+struct Collider<A, B> {
+  using S = typename A::Vec3::Scalar;
+  static void collide(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideWithTriangles<S>(a, X_WA, b, X_WB, sink);
+  }
+};
+
+/// Plane–trimesh: the mesh vertices at or below the plane.
+template <Scalar S>
+struct Collider<PlaneT<S>, TrimeshT<S>> {
+  static void collide(const PlaneT<S>& a, const Transform<S>& X_WA, const TrimeshT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideVerticesWithPlane<S>(b.getVertices(), X_WB, a, X_WA, sink, true);
+  }
+};
+
+/// Convex–plane: the hull vertices at or below the plane.
+template <Scalar S>
+struct Collider<ConvexT<S>, PlaneT<S>> {
+  static void collide(const ConvexT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideVerticesWithPlane<S>(a.getVertices(), X_WA, b, X_WB, sink, false);
+  }
+};
+
+/// Trimesh–trimesh and trimesh–height field: triangle pairs.
+template <Scalar S>
+struct Collider<TrimeshT<S>, TrimeshT<S>> {
+  static void collide(const TrimeshT<S>& a, const Transform<S>& X_WA, const TrimeshT<S>& b, const Transform<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideSoups<S>(a, X_WA, b, X_WB, sink);
+  }
+};
+template <Scalar S>
+struct Collider<TrimeshT<S>, HeightFieldT<S>> {
+  static void collide(const TrimeshT<S>& a, const Transform<S>& X_WA, const HeightFieldT<S>& b,
+                      const Transform<S>& X_WB, ContactSinkT<S>& sink) {
+    detail::collideSoups<S>(a, X_WA, b, X_WB, sink);
+  }
+};
+
+}  // namespace spook

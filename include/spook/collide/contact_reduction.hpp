@@ -1,0 +1,70 @@
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include <spook/collide/contact_point.hpp>
+#include <spook/core/error.hpp>
+
+namespace spook {
+
+/// How contact points are reduced (AGX's ContactMaterial modes).
+enum class ContactReductionMode {
+  REDUCE_NONE,      ///< keep every point
+  REDUCE_GEOMETRY,  ///< reduce per geometry pair (default)
+  REDUCE_ALL        ///< reduce per body pair, over all their geometry pairs
+};
+
+namespace detail {
+
+/// Disables redundant contact points. Each point is binned in the six
+/// dimensional space of the unit wrench it can carry, [n, n × r/|r|max]
+/// with r its arm from the points' centroid (the binning of the AGX manual,
+/// ch. 13), each coordinate cut into `resolution` bins over [−1, 1]; in each
+/// bin the point farthest from the centroid survives (so the survivors span
+/// the largest area, as the seeds put it), ties going to the deeper one.
+/// Resolution 2 keeps at most one point per quadrant of a flat contact
+/// patch, 3 keeps more. Disabled points stay in the list.
+template <Scalar S>
+void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
+  if (resolution < 1 || resolution > 3) throw detail::makeError("ContactReduction", "", "bin resolution must be 1, 2 or 3", resolution);
+  if (points.size() <= 4) return;
+  Vec3<S> centroid = Vec3<S>::Zero();
+  for (const auto* p : points) centroid += p->point;
+  centroid /= S(points.size());
+  S reach = S(0);
+  for (const auto* p : points) reach = std::max(reach, (p->point - centroid).norm());
+  const S scale = reach > S(0) ? S(1) / reach : S(0);
+  // The small shift keeps round-off from splitting a bin whose edge sits at
+  // 0 (resolution 2): a component of ±1e-17 lands on the + side either way.
+  const auto binOf = [&](S x) {
+    const int b = static_cast<int>((x + S(1)) * S(0.5) * S(resolution) + S(1e-5));
+    return std::clamp(b, 0, resolution - 1);
+  };
+  struct Bin {
+    std::array<int, 6> key;
+    ContactPointT<S>* best;
+  };
+  std::vector<Bin> bins;
+  for (auto* p : points) {
+    const Vec3<S> arm = (p->point - centroid) * scale;
+    const Vec3<S> moment = p->normal.cross(arm);
+    const std::array<int, 6> key = {binOf(p->normal.x()), binOf(p->normal.y()), binOf(p->normal.z()),
+                                    binOf(moment.x()),    binOf(moment.y()),    binOf(moment.z())};
+    auto it = std::find_if(bins.begin(), bins.end(), [&](const Bin& b) { return b.key == key; });
+    if (it == bins.end()) {
+      bins.push_back({key, p});
+      continue;
+    }
+    const S current = (it->best->point - centroid).squaredNorm(), candidate = (p->point - centroid).squaredNorm();
+    const bool better = candidate > current * (S(1) + S(1e-6)) ||
+                        (candidate >= current * (S(1) - S(1e-6)) && p->depth > it->best->depth);
+    (better ? it->best : p)->enabled = false;
+    if (better) it->best = p;
+  }
+}
+
+}  // namespace detail
+}  // namespace spook

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <array>
+
+#include <spook/collide/bounding_box.hpp>
+#include <spook/collide/detail/aabb_tree.hpp>
+#include <spook/core/math.hpp>
+
+namespace spook::detail {
+
+/// One triangle of a mesh or height field, as a convex shape for the
+/// colliders: vertices in the mesh frame, counter-clockwise seen from the
+/// outside (the solid side is behind the face).
+template <Scalar S>
+struct Triangle {
+  using Vec3 = spook::Vec3<S>;
+  std::array<Vec3, 3> v;
+
+  [[nodiscard]] Vec3 support(const Vec3& d) const {
+    const S a = v[0].dot(d), b = v[1].dot(d), c = v[2].dot(d);
+    return a >= b ? (a >= c ? v[0] : v[2]) : (b >= c ? v[1] : v[2]);
+  }
+  [[nodiscard]] Vec3 getCenterOfVolume() const { return (v[0] + v[1] + v[2]) / S(3); }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
+    return {v[0].cwiseMin(v[1]).cwiseMin(v[2]), v[0].cwiseMax(v[1]).cwiseMax(v[2])};
+  }
+  /// Unit outward normal (+z for a degenerate triangle).
+  [[nodiscard]] Vec3 normal() const {
+    const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
+    const S length = n.norm();
+    return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
+  }
+};
+
+}  // namespace spook::detail

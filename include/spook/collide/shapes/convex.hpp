@@ -1,0 +1,151 @@
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include <spook/collide/detail/convex_hull.hpp>
+#include <spook/collide/detail/polyhedron_mass.hpp>
+#include <spook/collide/shapes/shape.hpp>
+
+namespace spook {
+
+/// The convex hull of a point cloud, in the shape frame of the points (m).
+/// Only the hull's corners are kept; points inside it, or on its faces and
+/// edges within a tolerance relative to the cloud's size, are dropped.
+template <Scalar S>
+class ConvexT : public ShapeT<S> {
+ public:
+  static constexpr ShapeType kType = ShapeType::CONVEX;
+  using Vec3 = spook::Vec3<S>;
+  using Mat3 = spook::Mat3<S>;
+  using Triangle = std::array<int, 3>;
+  using Face = detail::ConvexFace<S>;
+
+  /// Hull of `points` (shape frame, m). Throws on a non-finite point and on
+  /// fewer than 4 points that are not (nearly) coplanar.
+  explicit ConvexT(const std::vector<Vec3>& points) {
+    for (const Vec3& p : points)
+      if (!p.allFinite()) throw detail::makeError("Convex", "", "points must be finite (m)", p);
+    auto hull = detail::convexHull<S>(points);
+    if (!hull) throw detail::makeError("Convex", "", "needs at least 4 non-coplanar points", points.size());
+    vertices_ = std::move(hull->vertices);
+    triangles_ = std::move(hull->triangles);
+    faces_ = std::move(hull->faces);
+    tolerance_ = hull->tolerance;
+
+    // Mass properties in double, whatever S, from the exact corner positions.
+    std::vector<spook::Vec3<double>> corners;
+    for (const Vec3& v : vertices_) corners.push_back(v.template cast<double>());
+    const auto mass = detail::polyhedronMass<double>(corners, triangles_);
+    volume_ = S(mass.volume);
+    center_ = mass.center.template cast<S>();
+    unitInertia_ = mass.inertia.template cast<S>();
+    buildAdjacency();
+  }
+
+  /// Hull corners, shape frame (m).
+  [[nodiscard]] const std::vector<Vec3>& getVertices() const { return vertices_; }
+  /// Triangles as vertex indices, counter-clockwise seen from outside.
+  [[nodiscard]] const std::vector<Triangle>& getTriangles() const { return triangles_; }
+  /// Polygon faces (coplanar triangles merged): corner loop, unit outward normal, offset (m).
+  [[nodiscard]] const std::vector<Face>& getFaces() const { return faces_; }
+
+  /// Distance within which input points were taken as lying on a face (m);
+  /// every input point is inside the hull or at most about twice this outside.
+  [[nodiscard]] S getTolerance() const { return tolerance_; }
+
+  /// Which kind of shape this is.
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+
+  /// Volume of the hull (m³).
+  [[nodiscard]] S getVolume() const override { return volume_; }
+
+  /// Center of volume, shape frame (m).
+  [[nodiscard]] Vec3 getCenterOfVolume() const override { return center_; }
+
+  /// About the shape origin: I = m/V · I_c + m (|c|² 1 − c cᵀ), with I_c the
+  /// unit-density tensor about the center c (kg·m²).
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    this->requireMass("Convex", mass);
+    const Vec3& c = center_;
+    return SPDMat3<S>(Mat3((mass / volume_) * unitInertia_ +
+                           mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())));
+  }
+
+  /// Box around the corners, shape frame (m).
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
+    BoundingBoxT<S> box{vertices_.front(), vertices_.front()};
+    for (const Vec3& v : vertices_) {
+      box.min = box.min.cwiseMin(v);
+      box.max = box.max.cwiseMax(v);
+    }
+    return box;
+  }
+
+  /// The corner farthest along `direction`, shape frame (m): a scan of the
+  /// corners for small hulls, a climb along the hull's edges for large ones.
+  [[nodiscard]] Vec3 support(const Vec3& direction) const {
+    std::size_t best = 0;
+    S bestDot = vertices_[0].dot(direction);
+    if (vertices_.size() <= kScanLimit) {
+      for (std::size_t i = 1; i < vertices_.size(); ++i)
+        if (const S d = vertices_[i].dot(direction); d > bestDot) best = i, bestDot = d;
+      return vertices_[best];
+    }
+    // On a convex polyhedron a corner no neighbour beats is the farthest.
+    for (bool climbed = true; climbed;) {
+      climbed = false;
+      for (int k = adjacencyStart_[best]; k < adjacencyStart_[best + 1]; ++k) {
+        const auto j = static_cast<std::size_t>(adjacency_[k]);
+        if (const S d = vertices_[j].dot(direction); d > bestDot) best = j, bestDot = d, climbed = true;
+      }
+    }
+    return vertices_[best];
+  }
+
+ protected:
+  ~ConvexT() override = default;
+
+ private:
+  static constexpr std::size_t kScanLimit = 64;
+
+  // Neighbours of each corner along the triangles' edges, in compressed rows.
+  void buildAdjacency() {
+    std::vector<std::vector<int>> neighbours(vertices_.size());
+    for (const Triangle& t : triangles_)
+      for (int i = 0; i < 3; ++i) {
+        auto& list = neighbours[static_cast<std::size_t>(t[i])];
+        const int other = t[(i + 1) % 3];
+        if (std::find(list.begin(), list.end(), other) == list.end()) list.push_back(other);
+        auto& back = neighbours[static_cast<std::size_t>(other)];
+        if (std::find(back.begin(), back.end(), t[i]) == back.end()) back.push_back(t[i]);
+      }
+    adjacencyStart_.assign(1, 0);
+    for (const auto& list : neighbours) {
+      adjacency_.insert(adjacency_.end(), list.begin(), list.end());
+      adjacencyStart_.push_back(static_cast<int>(adjacency_.size()));
+    }
+  }
+
+  std::vector<Vec3> vertices_;
+  std::vector<Triangle> triangles_;
+  std::vector<Face> faces_;
+  S tolerance_ = S(0);
+  S volume_ = S(0);
+  Vec3 center_ = Vec3::Zero();
+  Mat3 unitInertia_ = Mat3::Zero();  // unit density, about center_ (m⁵)
+  std::vector<int> adjacency_;
+  std::vector<int> adjacencyStart_;
+};
+
+using Convex = ConvexT<double>;
+using ConvexRef = ref_ptr<Convex>;
+namespace f32 {
+using Convex = ConvexT<float>;
+using ConvexRef = ref_ptr<Convex>;
+}  // namespace f32
+
+}  // namespace spook

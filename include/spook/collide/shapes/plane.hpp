@@ -1,0 +1,82 @@
+#pragma once
+
+#include <limits>
+
+#include <spook/collide/shapes/shape.hpp>
+
+namespace spook {
+
+/// An infinite plane through `point` with unit `normal`, both in the shape
+/// frame. As in AGX the solid half-space lies below it, opposite the normal.
+/// It has no volume, no mass and no support point.
+template <Scalar S>
+class PlaneT : public ShapeT<S> {
+ public:
+  static constexpr ShapeType kType = ShapeType::PLANE;
+  using Vec3 = spook::Vec3<S>;
+
+  /// Plane through `point` (m) with normal `normal` (any non-zero length; normalized).
+  explicit PlaneT(const Vec3& normal, const Vec3& point = Vec3::Zero()) { set(normal, point); }
+  /// Plane normal·x = distance (m), i.e. through normal·distance for a unit normal.
+  PlaneT(const Vec3& normal, S distance) {
+    if (!std::isfinite(distance)) throw detail::makeError("Plane", "", "distance must be finite (m)", distance);
+    const Vec3 n = unitNormal(normal);
+    set(n, Vec3(n * distance));
+  }
+
+  /// Unit outward normal, shape frame.
+  [[nodiscard]] const Vec3& getNormal() const { return normal_; }
+  /// The point the plane was given through, shape frame (m).
+  [[nodiscard]] const Vec3& getPoint() const { return point_; }
+  /// Signed distance of the plane from the shape origin along the normal, normal·point (m).
+  [[nodiscard]] S getDistance() const { return normal_.dot(point_); }
+  /// Moves the plane (shape frame; normal normalized, point in m); throws and keeps it on bad input.
+  void set(const Vec3& normal, const Vec3& point) {
+    const Vec3 n = unitNormal(normal);
+    if (!point.allFinite()) throw detail::makeError("Plane", "", "point must be finite (m)", point);
+    normal_ = n;
+    point_ = point;
+  }
+
+  /// Signed distance of `p` (shape frame, m) above the plane; negative inside the solid (m).
+  [[nodiscard]] S signedDistance(const Vec3& p) const { return normal_.dot(p - point_); }
+
+  /// Which kind of shape this is.
+  [[nodiscard]] ShapeType getType() const override { return kType; }
+  /// A plane encloses no volume: 0 m³.
+  [[nodiscard]] S getVolume() const override { return S(0); }
+  /// Always throws: a plane has no volume and so no inertia.
+  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+    throw detail::makeError("Plane", "", "a Plane has no volume and no inertia (kg)", mass);
+  }
+  /// Unbounded: every component ±infinity (the Space treats such boxes apart).
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
+    constexpr S inf = std::numeric_limits<S>::infinity();
+    return {Vec3::Constant(-inf), Vec3::Constant(inf)};
+  }
+
+ protected:
+  ~PlaneT() override = default;
+
+ private:
+  // Scaled by its largest component first, so that tiny normals do not
+  // underflow when squared.
+  static Vec3 unitNormal(const Vec3& normal) {
+    const S largest = normal.cwiseAbs().maxCoeff();
+    if (!(normal.allFinite() && largest > S(0)))
+      throw detail::makeError("Plane", "", "normal must be finite and non-zero", normal);
+    return (normal / largest).normalized();
+  }
+
+  Vec3 normal_ = Vec3::UnitZ();
+  Vec3 point_ = Vec3::Zero();
+};
+
+using Plane = PlaneT<double>;
+using PlaneRef = ref_ptr<Plane>;
+namespace f32 {
+using Plane = PlaneT<float>;
+using PlaneRef = ref_ptr<Plane>;
+}  // namespace f32
+
+}  // namespace spook

@@ -1,0 +1,252 @@
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <spook/collide/all_shapes.hpp>
+#include <spook/collide/broadphase/sweep_and_prune.hpp>
+#include <spook/collide/collider_matrix.hpp>
+#include <spook/collide/contact_reduction.hpp>
+#include <spook/collide/geometry.hpp>
+#include <spook/collide/geometry_contact.hpp>
+#include <spook/core/error.hpp>
+#include <spook/core/ref_ptr.hpp>
+#include <spook/core/referenced.hpp>
+#include <spook/dynamics/rigid_body.hpp>
+
+namespace spook {
+
+/// Collision detection over a set of geometries: a broadphase (sweep and
+/// prune), the narrow phase through the collider matrix of a shape list
+/// chosen at construction (only those colliders are compiled), contact
+/// reduction, and the impact / contact / separation bookkeeping. Usable on
+/// its own for queries; a Simulation owns one and feeds it its bodies.
+template <Scalar S>
+class SpaceT : public Referenced {
+ public:
+  using Geometry = GeometryT<S>;
+  using Body = RigidBodyT<S>;
+  using Contact = GeometryContactT<S>;
+
+  /// A space for every shape type.
+  SpaceT() : SpaceT(AllShapes{}) {}
+  /// A space for the shape types of `List`, e.g. ShapeList<SphereT, PlaneT>.
+  template <template <class> class... Shapes>
+  explicit SpaceT(ShapeList<Shapes...>)
+      : collide_(&ColliderMatrixT<S, ShapeList<Shapes...>>::collide),
+        supports_(&ColliderMatrixT<S, ShapeList<Shapes...>>::supports),
+        contains_(&ShapeList<Shapes...>::contains) {}
+
+  // --- Content ---------------------------------------------------------------
+
+  /// Adds a geometry on its own (static, or of a body not in a simulation).
+  /// Throws if it is null, already here, or holds a shape type outside this
+  /// space's shape list.
+  void add(ref_ptr<Geometry> geometry) {
+    if (!geometry) throw error("cannot add a null Geometry", "nullptr");
+    if (Access::space(*geometry) == this) throw detail::makeError("Geometry", geometry->getName(), "already in this space");
+    if (Access::space(*geometry)) throw detail::makeError("Geometry", geometry->getName(), "already in another space");
+    requireSupported(*geometry);
+    Access::space(*geometry) = this;
+    geometries_.push_back(std::move(geometry));
+  }
+  /// Removes a geometry added with add(); false when it is not here.
+  bool remove(Geometry* geometry) {
+    const auto it = std::find_if(geometries_.begin(), geometries_.end(), [&](const auto& g) { return g == geometry; });
+    if (it == geometries_.end()) return false;
+    Access::space(**it) = nullptr;
+    geometries_.erase(it);
+    return true;
+  }
+  [[nodiscard]] const std::vector<ref_ptr<Geometry>>& getGeometries() const { return geometries_; }
+
+  /// Throws unless every shape of `geometry` (composite children included)
+  /// has a type in this space's shape list.
+  void requireSupported(const Geometry& geometry) const {
+    for (const auto& entry : geometry.getShapes()) requireSupported(geometry, *entry.shape);
+  }
+
+  // --- Filters ---------------------------------------------------------------
+
+  /// Enables or disables collisions between geometries of groups a and b.
+  void setEnablePair(std::uint32_t a, std::uint32_t b, bool enable) { setPair(disabledIds_, a, b, enable); }
+  void setEnablePair(const std::string& a, const std::string& b, bool enable) { setPair(disabledNames_, a, b, enable); }
+  [[nodiscard]] bool getEnablePair(std::uint32_t a, std::uint32_t b) const {
+    return !disabledIds_.count(std::minmax(a, b));
+  }
+  [[nodiscard]] bool getEnablePair(const std::string& a, const std::string& b) const {
+    return !disabledNames_.count(std::minmax(a, b));
+  }
+
+  /// True when the pair passes every filter: both enabled and colliding,
+  /// not on one body, not both static, not disabled pairwise or by groups.
+  [[nodiscard]] bool canCollide(const Geometry& a, const Geometry& b) const {
+    if (&a == &b || !a.getEnable() || !b.getEnable() || !a.getEnableCollisions() || !b.getEnableCollisions())
+      return false;
+    const Body* bodyA = a.getRigidBody();
+    const Body* bodyB = b.getRigidBody();
+    if (bodyA && bodyA == bodyB) return false;
+    if (isFixed(bodyA) && isFixed(bodyB)) return false;
+    if (!a.getEnableCollisions(&b)) return false;
+    for (const auto id : a.getGroupIds())
+      for (const auto other : b.getGroupIds())
+        if (disabledIds_.count(std::minmax(id, other))) return false;
+    for (const auto& name : a.getGroupNames())
+      for (const auto& other : b.getGroupNames())
+        if (disabledNames_.count(std::minmax(name, other))) return false;
+    return true;
+  }
+
+  // --- Contact reduction -----------------------------------------------------
+
+  [[nodiscard]] ContactReductionMode getContactReductionMode() const { return reductionMode_; }
+  void setContactReductionMode(ContactReductionMode mode) { reductionMode_ = mode; }
+  /// Bin resolution 1, 2 (default, fast) or 3 (higher fidelity).
+  [[nodiscard]] int getContactBinResolution() const { return binResolution_; }
+  void setContactBinResolution(int resolution) {
+    if (resolution < 1 || resolution > 3) throw error("contact bin resolution must be 1, 2 or 3", resolution);
+    binResolution_ = resolution;
+  }
+
+  // --- Collision detection ---------------------------------------------------
+
+  /// Finds the contacts between this space's geometries and those of
+  /// `bodies` (a simulation's), reduces them and marks impacts; pairs that
+  /// touched before and no longer do are listed in getSeparations().
+  void update(const std::vector<ref_ptr<Body>>& bodies = {}) {
+    gather(bodies);
+    boxes_.clear();
+    for (const Geometry* g : active_) boxes_.push_back(g->getBoundingBox());
+    contacts_.clear();
+    broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(*active_[i], *active_[j]); });
+    reduce();
+    trackEvents();
+  }
+
+  /// Geometry pairs in contact after the last update().
+  [[nodiscard]] std::vector<Contact>& getGeometryContacts() { return contacts_; }
+  [[nodiscard]] const std::vector<Contact>& getGeometryContacts() const { return contacts_; }
+  /// Pairs that were in contact the update before the last and no longer are.
+  [[nodiscard]] const std::vector<GeometryPairT<S>>& getSeparations() const { return separations_; }
+
+ protected:
+  ~SpaceT() override {
+    for (auto& g : geometries_) Access::space(*g) = nullptr;
+  }
+
+ private:
+  using Access = detail::GeometryAccess<S>;
+  using CollideFunction = bool (*)(const ShapeT<S>&, const Transform<S>&, const ShapeT<S>&, const Transform<S>&,
+                                   ContactSinkT<S>&);
+
+  static bool isFixed(const Body* body) { return !body || body->getMotionControl() == Body::STATIC; }
+
+  void requireSupported(const Geometry& geometry, const ShapeT<S>& shape) const {
+    if (!contains_(shape.getType()))
+      throw detail::makeError("Geometry", geometry.getName(), "shape type not in this space's shape list",
+                              std::string(shapeTypeName(shape.getType())));
+    if (const auto* composite = dynamic_cast<const CompositeT<S>*>(&shape))
+      for (const auto& child : composite->getChildren()) requireSupported(geometry, *child.shape);
+  }
+
+  template <class Key>
+  static void setPair(std::set<std::pair<Key, Key>>& disabled, const Key& a, const Key& b, bool enable) {
+    if (enable)
+      disabled.erase(std::minmax(a, b));
+    else
+      disabled.insert(std::minmax(a, b));
+  }
+
+  void gather(const std::vector<ref_ptr<Body>>& bodies) {
+    active_.clear();
+    for (const auto& g : geometries_) active_.push_back(g.get());
+    for (const auto& body : bodies)
+      if (body->getEnable())
+        for (const auto& g : body->getGeometries()) active_.push_back(g.get());
+  }
+
+  void narrowPhase(Geometry& a, Geometry& b) {
+    if (!canCollide(a, b)) return;
+    // One order per pair, so that normals and event keys are stable.
+    Geometry* first = &a;
+    Geometry* second = &b;
+    if (first->getId() > second->getId()) std::swap(first, second);
+    Contact contact(first, second);
+    ContactSinkT<S> sink(contact.points());
+    const Transform<S> X_W1 = first->getTransform(), X_W2 = second->getTransform();
+    for (const auto& e1 : first->getShapes())
+      for (const auto& e2 : second->getShapes())
+        collide_(*e1.shape, X_W1 * e1.transform, *e2.shape, X_W2 * e2.transform, sink);
+    if (!contact.points().empty()) contacts_.push_back(std::move(contact));
+  }
+
+  void reduce() {
+    if (reductionMode_ == ContactReductionMode::REDUCE_NONE) return;
+    std::vector<ContactPointT<S>*> points;
+    if (reductionMode_ == ContactReductionMode::REDUCE_GEOMETRY) {
+      for (auto& contact : contacts_) {
+        points.clear();
+        for (auto& p : contact.points()) points.push_back(&p);
+        detail::reduceContacts<S>(points, binResolution_);
+      }
+      return;
+    }
+    // Per body pair: a static geometry counts as its own "body".
+    std::map<std::pair<const void*, const void*>, std::vector<ContactPointT<S>*>> byBodies;
+    for (auto& contact : contacts_) {
+      const void* k1 = contact.rigidBody(0) ? static_cast<const void*>(contact.rigidBody(0)) : contact.geometry(0);
+      const void* k2 = contact.rigidBody(1) ? static_cast<const void*>(contact.rigidBody(1)) : contact.geometry(1);
+      auto& list = byBodies[std::minmax(k1, k2)];
+      for (auto& p : contact.points()) list.push_back(&p);
+    }
+    for (auto& [key, list] : byBodies) detail::reduceContacts<S>(list, binResolution_);
+  }
+
+  void trackEvents() {
+    std::map<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>> now;
+    for (auto& contact : contacts_) {
+      const auto key = std::make_pair(contact.geometry(0)->getId(), contact.geometry(1)->getId());
+      contact.setImpact(!touching_.count(key));
+      now.emplace(key, GeometryPairT<S>{contact.geometry(0), contact.geometry(1)});
+    }
+    separations_.clear();
+    for (const auto& [key, pair] : touching_)
+      if (!now.count(key)) separations_.push_back(pair);
+    touching_ = std::move(now);
+  }
+
+  template <class T>
+  [[nodiscard]] Error error(const std::string& what, const T& value) const {
+    return detail::makeError("Space", "", what, value);
+  }
+
+  CollideFunction collide_;
+  bool (*supports_)(ShapeType, ShapeType);
+  bool (*contains_)(ShapeType);
+  std::vector<ref_ptr<Geometry>> geometries_;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> disabledIds_;
+  std::set<std::pair<std::string, std::string>> disabledNames_;
+  ContactReductionMode reductionMode_ = ContactReductionMode::REDUCE_GEOMETRY;
+  int binResolution_ = 2;
+
+  std::vector<Geometry*> active_;
+  std::vector<BoundingBoxT<S>> boxes_;
+  detail::SweepAndPrune<S> broadphase_;
+  std::vector<Contact> contacts_;
+  std::map<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>> touching_;
+  std::vector<GeometryPairT<S>> separations_;
+};
+
+using Space = SpaceT<double>;
+using SpaceRef = ref_ptr<Space>;
+namespace f32 {
+using Space = SpaceT<float>;
+using SpaceRef = ref_ptr<Space>;
+}  // namespace f32
+
+}  // namespace spook
