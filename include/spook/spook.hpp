@@ -29,6 +29,7 @@
 #include <spook/dynamics/rigid_body.hpp>
 #include <spook/sim/assembly.hpp>
 #include <spook/sim/collection.hpp>
+#include <spook/sim/contact_event_listener.hpp>
 #include <spook/sim/simulation.hpp>
 #include <spook/sim/statistics.hpp>
 #include <spook/sim/step_event_listener.hpp>

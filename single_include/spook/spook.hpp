@@ -857,6 +857,7 @@ using CompositeRef = ref_ptr<Composite>;
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <set>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -869,7 +870,7 @@ template <Scalar S>
 struct ConvexFace {
   std::vector<int> vertices;         ///< corner indices, counter-clockwise seen from outside
   Vec3<S> normal = Vec3<S>::Zero();  ///< unit outward normal (shape frame)
-  S offset = S(0);                   ///< normal·x on the face (m); smaller inside
+  S offset = S(0);                   ///< largest normal·x of its corners and merged points (m)
 };
 
 /// A convex hull: its corners, its outward triangles and its polygon faces.
@@ -883,11 +884,12 @@ struct ConvexHull {
 
 /// Quickhull in 3D (Barber, Dobkin, Huhdanpaa, "The Quickhull Algorithm for
 /// Convex Hulls", ACM TOMS 1996), in double, on "joggled" points as Qhull's
-/// option QJ does: each point moved at random by at most a quarter of the
-/// tolerance, which puts the cloud in general position, so that visibility
-/// can be a plain sign test and the hull stays convex. A point less than the
-/// tolerance above the hull never becomes a vertex. Coplanar triangles are
-/// then merged, and corners on straight edges dropped, with the true points.
+/// option QJ does: each coordinate moved at random by at most a quarter of
+/// the tolerance, which puts the cloud in general position, so that
+/// visibility can be a plain sign test and the hull stays convex. A point
+/// within the tolerance of the hull never becomes a vertex. Coplanar
+/// triangles are then merged, and corners on straight edges dropped, by the
+/// true points.
 class QuickHull {
  public:
   using V = Vec3<double>;
@@ -945,7 +947,7 @@ class QuickHull {
     std::array<int, 3> neighbor{};  // face across the edge v[i] → v[i+1]
     V normal = V::Zero();           // of the joggled points
     double offset = 0;
-    std::vector<int> outside;  // points more than tol_ above the plane
+    std::vector<int> outside;  // points above the plane, not known to be within tol_ of the hull
     int furthest = -1;
     double furthestDistance = 0;
     int visited = 0;  // stamp of the last flood fill that reached it
@@ -988,14 +990,39 @@ class QuickHull {
     return static_cast<int>(faces_.size()) - 1;
   }
 
+  // Distance from joggled point i to the triangle of face f (Ericson,
+  // "Real-Time Collision Detection", 2005, 5.1.5): to its plane when the
+  // point projects inside it, else to the nearest edge.
+  [[nodiscard]] double triangleDistance(const Face& f, int i) const {
+    const V& x = q_[i];
+    bool inside = true;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      const V& a = q_[f.v[k]];
+      const V edge = q_[f.v[(k + 1) % 3]] - a;
+      inside = inside && edge.cross(x - a).dot(f.normal) >= 0;
+      const double t = std::clamp((x - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+      nearest = std::min(nearest, (x - a - t * edge).norm());
+    }
+    return inside ? std::abs(distance(f, i)) : nearest;
+  }
+
+  // Files the point under the new face it is farthest above. A point on or
+  // below them all is inside the hull; one within the tolerance of the
+  // triangles it is above lies (and stays) within the tolerance of the hull.
+  // Both are dropped. A point above the planes by less than the tolerance
+  // but farther from their triangles (beyond a sharp edge) is kept.
   void assign(int point, int first, int last) {
     int best = -1;
-    double bestDistance = tol_;
+    double bestDistance = 0;
     for (int f = first; f < last; ++f) {
       const double d = distance(faces_[f], point);
       if (d > bestDistance) best = f, bestDistance = d;
     }
-    if (best < 0) return;  // inside, or on the hull within the tolerance
+    if (best < 0) return;
+    if (bestDistance <= tol_)
+      for (int f = first; f < last; ++f)
+        if (distance(faces_[f], point) > 0 && triangleDistance(faces_[f], point) <= tol_) return;
     Face& f = faces_[best];
     f.outside.push_back(point);
     if (bestDistance > f.furthestDistance) f.furthest = point, f.furthestDistance = bestDistance;
@@ -1062,6 +1089,14 @@ class QuickHull {
         g.visible = distance(g, eye) > 0;
         if (g.visible) visible.push_back(nb);
       }
+    }
+    // The hull's nearest point to the eye lies on a face the eye sees.
+    double gap = std::numeric_limits<double>::infinity();
+    for (const int f : visible) gap = std::min(gap, triangleDistance(faces_[f], eye));
+    if (!(gap > tol_)) {
+      discard(start, eye);
+      if (!faces_[start].outside.empty()) work.push_back(start);
+      return;
     }
     std::vector<Edge> horizon;
     for (const int f : visible)
@@ -1178,20 +1213,39 @@ class QuickHull {
     return polygons;
   }
 
-  // A corner shared by only two polygons lies on the straight edge between
-  // them (at a true corner of a closed convex surface three faces meet).
-  static void dropStraightCorners(std::vector<Polygon>& polygons) {
-    int top = 0;
-    for (const Polygon& polygon : polygons)
-      for (const int v : polygon.loop) top = std::max(top, v + 1);
-    std::vector<int> count(static_cast<std::size_t>(top), 0);
-    for (const Polygon& polygon : polygons)
-      for (const int v : polygon.loop) ++count[v];
-    const auto straight = [&](int v) { return count[v] <= 2; };
-    for (const Polygon& polygon : polygons)
-      if (polygon.loop.size() - std::count_if(polygon.loop.begin(), polygon.loop.end(), straight) < 3)
-        return;  // would leave a polygon with fewer than three corners: keep them all
-    for (Polygon& polygon : polygons) std::erase_if(polygon.loop, straight);
+  // Drops each corner that only two polygons share and that lies within the
+  // tolerance of the line through its remaining neighbours: it sits on the
+  // edge between them (at a true corner three faces or more meet).
+  void dropStraightCorners(std::vector<Polygon>& polygons) const {
+    std::vector<std::array<int, 2>> owner(p_.size(), {-1, -1});
+    std::vector<int> count(p_.size(), 0);
+    for (int k = 0; k < static_cast<int>(polygons.size()); ++k)
+      for (const int v : polygons[k].loop)
+        if (++count[v] <= 2) owner[v][count[v] - 1] = k;
+    std::vector<char> dropped(p_.size(), 0);
+    std::vector<std::size_t> left(polygons.size());
+    for (std::size_t k = 0; k < polygons.size(); ++k) left[k] = polygons[k].loop.size();
+    for (const Polygon& polygon : polygons) {
+      const std::vector<int>& loop = polygon.loop;
+      const std::size_t n = loop.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        const int v = loop[i];
+        if (count[v] != 2 || dropped[v] || left[owner[v][0]] <= 3 || left[owner[v][1]] <= 3) continue;
+        std::size_t before = i, after = i;
+        do before = (before + n - 1) % n;
+        while (dropped[loop[before]]);
+        do after = (after + 1) % n;
+        while (dropped[loop[after]]);
+        const V& a = p_[loop[before]];
+        const V line = p_[loop[after]] - a;
+        if ((p_[v] - a).cross(line).norm() <= tol_ * line.norm()) {
+          dropped[v] = 1;
+          --left[owner[v][0]];
+          --left[owner[v][1]];
+        }
+      }
+    }
+    for (Polygon& polygon : polygons) std::erase_if(polygon.loop, [&](int v) { return dropped[v] != 0; });
   }
 
   std::vector<V> p_;  // the true points
@@ -1203,16 +1257,17 @@ class QuickHull {
   bool leftOut_ = false;
 };
 
-/// Relative tolerance of the hull. The hull is built in double, so for float
-/// points it covers only their own round-off (a few ulps); for double a floor
-/// keeps sliver faces from steering the normals.
+/// Tolerance of the hull, relative to the cloud's half bounding-box diagonal.
+/// The hull is built in double on points moved to their box center, where a
+/// sliver face of height h has a normal good to about ε·size/h: features
+/// below some √ε·size cannot be decided, hence 1e-7 for double. For float,
+/// 16 ulps of the input's own round-off is the larger. convexHull adds 16
+/// ulps of S of the largest coordinate, for round-off in the input.
 template <Scalar S>
-inline constexpr double kHullRelativeTolerance = std::is_same_v<S, float> ? 16 * 1.1920929e-7 : 1e-12;
+inline constexpr double kHullRelativeTolerance = std::is_same_v<S, float> ? 16 * 1.1920929e-7 : 1e-7;
 
 /// Convex hull of `points` (finite, in any frame), or nothing when they are
 /// (within the tolerance) coplanar, collinear, coincident or fewer than 4.
-/// The tolerance is kHullRelativeTolerance times the larger of the cloud's
-/// half bounding-box diagonal and its largest coordinate.
 template <Scalar S>
 [[nodiscard]] std::optional<ConvexHull<S>> convexHull(const std::vector<Vec3<S>>& points) {
   using V = Vec3<double>;
@@ -1222,8 +1277,9 @@ template <Scalar S>
     lo = lo.cwiseMin(p.template cast<double>());
     hi = hi.cwiseMax(p.template cast<double>());
   }
-  const double scale = std::max(0.5 * (hi - lo).norm(), std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()));
-  const double tolerance = kHullRelativeTolerance<S> * scale;
+  const double largest = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  const double tolerance =
+      kHullRelativeTolerance<S> * 0.5 * (hi - lo).norm() + 16 * double(std::numeric_limits<S>::epsilon()) * largest;
   const V center = 0.5 * (lo + hi);
   std::vector<V> shifted;
   shifted.reserve(points.size());
@@ -1251,13 +1307,33 @@ template <Scalar S>
       index[i] = static_cast<int>(result.vertices.size());
       result.vertices.push_back(points[i]);
     }
+  std::set<std::pair<int, int>> edges;  // polygon sides and fan diagonals, as (low, high) index
+  for (const auto& polygon : polygons)
+    for (std::size_t k = 0; k < polygon.loop.size(); ++k) {
+      const int a = index[polygon.loop[k]], b = index[polygon.loop[(k + 1) % polygon.loop.size()]];
+      edges.insert(std::minmax(a, b));
+    }
   for (const auto& polygon : polygons) {
     ConvexFace<S> face;
     face.normal = polygon.normal.template cast<S>();
     face.offset = std::numeric_limits<S>::lowest();
     for (const int v : polygon.loop) face.vertices.push_back(index[v]);
     for (const int v : polygon.points) face.offset = std::max(face.offset, face.normal.dot(points[v]));
-    for (std::size_t k = 1; k + 1 < face.vertices.size(); ++k)
+    // A fan from the first corner whose diagonals are no edge yet (two
+    // polygons bent within the tolerance could share one): a closed surface.
+    const std::size_t n = face.vertices.size();
+    for (std::size_t root = 0; root < n; ++root) {
+      bool clear = true;
+      for (std::size_t k = 2; k + 1 < n && clear; ++k)
+        clear = !edges.contains(std::minmax(face.vertices[root], face.vertices[(root + k) % n]));
+      if (clear) {
+        std::rotate(face.vertices.begin(), face.vertices.begin() + static_cast<std::ptrdiff_t>(root),
+                    face.vertices.end());
+        break;
+      }
+    }
+    for (std::size_t k = 2; k + 1 < n; ++k) edges.insert(std::minmax(face.vertices[0], face.vertices[k]));
+    for (std::size_t k = 1; k + 1 < n; ++k)
       result.triangles.push_back({face.vertices[0], face.vertices[k], face.vertices[k + 1]});
     result.faces.push_back(std::move(face));
   }
@@ -1353,8 +1429,9 @@ template <Scalar S>
 namespace spook {
 
 /// The convex hull of a point cloud, in the shape frame of the points (m).
-/// Only the hull's corners are kept; points inside it, or on its faces and
-/// edges within a tolerance relative to the cloud's size, are dropped.
+/// Only the hull's corners are kept: points inside it, or on its faces and
+/// edges within getTolerance() (about 1e-7 of the cloud's size for double,
+/// 16 ulps for float), are dropped, and coplanar triangles form one face.
 template <Scalar S>
 class ConvexT : public ShapeT<S> {
  public:
@@ -1364,8 +1441,8 @@ class ConvexT : public ShapeT<S> {
   using Triangle = std::array<int, 3>;
   using Face = detail::ConvexFace<S>;
 
-  /// Hull of `points` (shape frame, m). Throws on a non-finite point and on
-  /// fewer than 4 points that are not (nearly) coplanar.
+  /// Hull of `points` (shape frame, m). Throws on a non-finite point, and
+  /// unless the points span a volume (not all coplanar within the tolerance).
   explicit ConvexT(const std::vector<Vec3>& points) {
     for (const Vec3& p : points)
       if (!p.allFinite()) throw detail::makeError("Convex", "", "points must be finite (m)", p);
@@ -1411,8 +1488,8 @@ class ConvexT : public ShapeT<S> {
   [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
     this->requireMass("Convex", mass);
     const Vec3& c = center_;
-    return SPDMat3<S>(Mat3((mass / volume_) * unitInertia_ +
-                           mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())));
+    return SPDMat3<S>(
+        Mat3((mass / volume_) * unitInertia_ + mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())));
   }
 
   /// Box around the corners, shape frame (m).
@@ -2433,6 +2510,12 @@ class ContactSinkT {
 // --- end spook/collide/contact_sink.hpp ---
 // --- begin spook/collide/detail/ccd_bridge.hpp ---
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
 #include <type_traits>
 
 #include <ccd/ccd.h>
@@ -2489,6 +2572,70 @@ struct ProjectionOverlap {
   [[nodiscard]] Vec3<double> gradient(const Vec3<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
 };
 
+/// Where f has a kink (an edge or a corner of a box-like shape is involved)
+/// its minimum may sit at the bottom of a narrow crease, which neither the
+/// gradient nor a fixed pattern of steps can follow; a Nelder–Mead simplex
+/// over the tangent plane of n (Nelder & Mead 1965) stretches along the
+/// crease and walks down it, to 1e-10 rad.
+template <class A, class B>
+double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3<double>& n, double f, double size,
+                             double turn) {
+  const Vec3<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
+  const Vec3<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
+  const auto direction = [&](const Eigen::Vector2d& x) { return Vec3<double>((n0 + x[0] * t1 + x[1] * t2).normalized()); };
+  const auto value = [&](const Eigen::Vector2d& x) {
+    const Vec3<double> d = direction(x);
+    return d.dot(overlap.gradient(d));
+  };
+  std::array<Eigen::Vector2d, 3> x = {Eigen::Vector2d(0, 0), Eigen::Vector2d(size, 0), Eigen::Vector2d(0, size)};
+  std::array<double, 3> fx = {f, value(x[1]), value(x[2])};
+  for (int iteration = 0; iteration < 400; ++iteration) {
+    // Order best, middle, worst.
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2 - i; ++j)
+        if (fx[j + 1] < fx[j]) {
+          std::swap(fx[j], fx[j + 1]);
+          std::swap(x[j], x[j + 1]);
+        }
+    if ((x[1] - x[0]).norm() + (x[2] - x[0]).norm() < 1e-10) break;
+    const Eigen::Vector2d centroid = 0.5 * (x[0] + x[1]);
+    const Eigen::Vector2d reflected = centroid + (centroid - x[2]);
+    const double fr = value(reflected);
+    if (fr < fx[0]) {
+      const Eigen::Vector2d expanded = centroid + 2.0 * (centroid - x[2]);
+      const double fe = value(expanded);
+      if (fe < fr) {
+        x[2] = expanded;
+        fx[2] = fe;
+      } else {
+        x[2] = reflected;
+        fx[2] = fr;
+      }
+    } else if (fr < fx[1]) {
+      x[2] = reflected;
+      fx[2] = fr;
+    } else {
+      const Eigen::Vector2d contracted = centroid + 0.5 * (x[2] - centroid);
+      const double fc = value(contracted);
+      if (fc < fx[2]) {
+        x[2] = contracted;
+        fx[2] = fc;
+      } else {
+        for (int i = 1; i < 3; ++i) {
+          x[i] = x[0] + 0.5 * (x[i] - x[0]);
+          fx[i] = value(x[i]);
+        }
+      }
+    }
+  }
+  const int best = fx[0] <= fx[1] ? (fx[0] <= fx[2] ? 0 : 2) : (fx[1] <= fx[2] ? 1 : 2);
+  if (fx[best] < f) {
+    n = direction(x[best]);
+    f = fx[best];
+  }
+  return f;
+}
+
 /// Polishes libccd's direction: libccd's EPA stops some 1e-4 to 1e-3 short
 /// of the boundary on curved shapes, so the direction is refined by descent
 /// of f on the unit sphere (Barzilai–Borwein steps with backtracking) and
@@ -2519,7 +2666,58 @@ double refinePenetration(const CcdObject<A>& a, const CcdObject<B>& b, Vec3<doub
     f = fTrial;
     g = gTrial;
   }
+  // Restarts with fresh, turned simplices: the usual cure for one that
+  // collapsed across a crease.
+  for (int restart = 0; restart < 6; ++restart) {
+    const double before = f;
+    f = polishBySimplexSearch(overlap, n, f, restart % 2 ? 0.1 : 0.02, 0.5 * restart);
+    if (restart > 0 && !(f < before - 1e-15 * scale)) break;
+  }
   return f;
+}
+
+/// Starting directions for the polishing: libccd's, then the most promising
+/// of the line of centers, each shape's frame axes and their cross products
+/// (both signs) and a coarse lattice of directions, lowest overlap first. libccd's EPA sometimes returns a poor
+/// direction on deep or curved overlaps, and f may have several local
+/// minima; for box-like and cylindrical shapes the true minimum lies on or
+/// near one of these axes (face normals and edge–edge directions, as in the
+/// separating axis theorem).
+template <class A, class B>
+std::vector<Vec3<double>> startingDirections(const CcdObject<A>& a, const CcdObject<B>& b,
+                                             const Vec3<double>& fromCcd, std::size_t count) {
+  const ProjectionOverlap<A, B> overlap{a, b};
+  std::vector<std::pair<double, Vec3<double>>> candidates;
+  const auto consider = [&](const Vec3<double>& direction) {
+    const double length = direction.norm();
+    if (!(length > 1e-9)) return;
+    for (const double sign : {1.0, -1.0}) {
+      const Vec3<double> d = direction * (sign / length);
+      candidates.emplace_back(d.dot(overlap.gradient(d)), d);
+    }
+  };
+  consider(b.center - a.center);
+  for (int i = 0; i < 3; ++i) {
+    consider(a.R.col(i));
+    consider(b.R.col(i));
+    for (int j = 0; j < 3; ++j) consider(a.R.col(i).cross(b.R.col(j)));
+  }
+  // And a coarse, even spread (a Fibonacci lattice of 48 pairs ±d, some
+  // 0.25 rad apart) so that no basin of f is far from a start.
+  constexpr int kLattice = 48;
+  const double golden = 3.141592653589793 * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < kLattice; ++i) {
+    const double z = 1.0 - (i + 0.5) / kLattice, rho = std::sqrt(1.0 - z * z), phi = golden * i;
+    consider(Vec3<double>(rho * std::cos(phi), rho * std::sin(phi), z));
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Vec3<double>> starts{fromCcd};
+  for (const auto& [f, d] : candidates) {
+    if (starts.size() > count) break;
+    if (std::none_of(starts.begin(), starts.end(), [&](const Vec3<double>& s) { return s.dot(d) > 0.999; }))
+      starts.push_back(d);
+  }
+  return starts;
 }
 
 /// Penetration of two convex shapes by GJK + EPA (libccd), polished as
@@ -2546,7 +2744,16 @@ void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transf
   n /= length;
   const double scale = (a.getBoundingBox().halfExtents().template cast<double>().norm() +
                         b.getBoundingBox().halfExtents().template cast<double>().norm());
-  const double refined = refinePenetration(objectA, objectB, n, scale);
+  // f may have several local minima: polish from several starts and keep
+  // the lowest.
+  double refined = std::numeric_limits<double>::infinity();
+  for (Vec3<double> start : startingDirections(objectA, objectB, n, 6)) {
+    const double f = refinePenetration(objectA, objectB, start, scale);
+    if (f < refined) {
+      refined = f;
+      n = start;
+    }
+  }
   if (!(refined >= 0.0)) return;  // the polished direction separates them
   const Vec3<double> point(position.v[0], position.v[1], position.v[2]);
   sink.add(point.cast<S>(), n.cast<S>(), S(refined));
@@ -2615,10 +2822,10 @@ void collide(const A& a, const Transform<typename A::Vec3::Scalar>& X_WA, const 
 // --- begin spook/collide/colliders/box_box.hpp ---
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <type_traits>
 
 // --- begin spook/collide/detail/box_clipping.hpp ---
 
@@ -2725,7 +2932,9 @@ inline constexpr double kEdgeBias = 1.05;
 ///    (3 + 3 face normals, 9 cross products of edge directions) is
 ///    r_A(n) + r_B(n) − |n·(c_B − c_A)|, r the projected half-width; a
 ///    positive gap on any axis separates the boxes, otherwise the axis of
-///    least overlap gives the normal and the depth (edge axes pay kEdgeBias);
+///    least overlap gives the normal and the depth: the least edge axis
+///    against the least face axis with kEdgeBias (dBoxBox also applies the
+///    bias between two edge axes, so it may keep one up to 5 % deeper);
 ///  - on a face axis, the face of the other (incident) box most opposed to
 ///    it is clipped against the side planes of the reference face
 ///    (Sutherland–Hodgman), and every clipped corner below the reference
@@ -2741,9 +2950,9 @@ struct Collider<BoxT<S>, BoxT<S>> {
   using Placed = detail::box_box::Placed<S>;
   using Axis = detail::box_box::Axis<S>;
 
-  /// |a × b| below this (unit a and b) skips the edge axis a × b: the
-  /// direction error ε/|a × b| then balances the depth error |a × b|·size of
-  /// skipping it.
+  /// |a × b| below this (unit a and b, about √ε) skips the edge axis a × b:
+  /// the direction error ε/|a × b| of keeping it then balances the depth
+  /// error |a × b|·size of skipping it.
   static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
 
   static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const BoxT<S>& b, const Transform<S>& X_WB,
@@ -2777,10 +2986,8 @@ struct Collider<BoxT<S>, BoxT<S>> {
       }
     }
 
-    const Mat3 R = R_WA;
-    const Vec3 p = X_WA.translation();
     auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
-      sink.add(Vec3(R * point_A + p), Vec3(R * normal_A), depth);
+      sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
     };
     if (edge.kind == 2 && S(detail::box_box::kEdgeBias) * edge.depth < face.depth) {
       emitEdge(boxA, boxB, edge, emit);
@@ -2810,8 +3017,7 @@ struct Collider<BoxT<S>, BoxT<S>> {
     midA -= boxA.axes.col(i) * boxA.axes.col(i).dot(midA - boxA.center);
     midB -= boxB.axes.col(j) * boxB.axes.col(j).dot(midB - boxB.center);
     S s = S(0), t = S(0);
-    detail::clampedLineClosest<S>(midA, boxA.axes.col(i), boxA.half[i], midB, boxB.axes.col(j), boxB.half[j], s,
-                                       t);
+    detail::clampedLineClosest<S>(midA, boxA.axes.col(i), boxA.half[i], midB, boxB.axes.col(j), boxB.half[j], s, t);
     const Vec3 pointA = midA + boxA.axes.col(i) * s, pointB = midB + boxB.axes.col(j) * t;
     emit(Vec3(S(0.5) * (pointA + pointB)), n, edge.depth);
   }
@@ -2846,8 +3052,9 @@ struct Collider<BoxT<S>, BoxT<S>> {
     }
 
     // Depth of each clipped corner below the reference face plane
-    // n·x = n·c + h; the contact point is midway to that plane. The depth
-    // of the axis bounds them all (they differ by round-off at most).
+    // n·x = n·c + h; the contact point is midway to that plane. No corner
+    // lies deeper than the axis overlap but by round-off, which the min
+    // removes.
     const S facePlane = n.dot(reference.center) + reference.half[axis];
     int written = 0;
     for (std::size_t m = 0; m < polygon.count; ++m) {
@@ -2900,7 +3107,10 @@ template <Scalar S>
     }
   }
   knots[count++] = h;
-  std::sort(knots.begin(), knots.begin() + static_cast<std::ptrdiff_t>(count));
+  // Insertion sort: at most 8 knots (and std::sort trips GCC 12's
+  // -Warray-bounds on a partly filled std::array at -O2).
+  for (std::size_t i = 1; i < count; ++i)
+    for (std::size_t j = i; j > 0 && knots[j] < knots[j - 1]; --j) std::swap(knots[j], knots[j - 1]);
   S bestT = -h, best = std::numeric_limits<S>::infinity();
   for (std::size_t i = 0; i + 1 < count; ++i) {
     const S lo = knots[i], hi = knots[i + 1], mid = S(0.5) * (lo + hi);
@@ -2945,8 +3155,8 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
   using Vec3 = spook::Vec3<S>;
   using Mat3 = spook::Mat3<S>;
 
-  /// |u × axis| below this (u the capsule axis) skips the edge axis u × axis;
-  /// the face axes cover the parallel case (as for two boxes).
+  /// |u × axis| below this (u the capsule axis, about √ε) skips the edge
+  /// axis u × axis; the face axes cover the parallel case (as for two boxes).
   static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
 
   static void collide(const BoxT<S>& box, const Transform<S>& X_WA, const CapsuleT<S>& capsule,
@@ -2958,7 +3168,7 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
     const Vec3 u = (R_WA.transpose() * X_WB.linear().col(1)).normalized();
     const S h = S(0.5) * capsule.getHeight(), r = capsule.getRadius();
     const S scale = e.maxCoeff() + h + r;
-    const Local local{e, c, u, h, r, scale};
+    const BoxFrame local{e, c, u, h, r, scale};
     auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
       sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
     };
@@ -2971,13 +3181,31 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
     if (distance > r) return;
     // Below this distance the direction x − q is round-off: the segment
     // counts as touching the box and the separating axes take over.
-    const S touching = S(64) * std::numeric_limits<S>::epsilon() * scale;
+    const S touching = S(64) * ScalarTraits<S>::epsilon() * scale;
     if (distance > touching) {
-      const Vec3 n = gap / distance;
       const S depth = r - distance;
-      int outside = 0, k = 0;
-      for (int j = 0; j < 3; ++j)
-        if (gap[j] != S(0)) ++outside, k = j;
+      int outside = 0, k = 0, inside = 0;
+      for (int j = 0; j < 3; ++j) {
+        if (gap[j] == S(0)) {
+          inside = j;
+          continue;
+        }
+        ++outside;
+        k = j;
+      }
+      Vec3 n = gap / distance;
+      if (std::abs(t) < h - touching && outside > 1) {
+        // The segment's interior (clear of its ends by more than round-off)
+        // is closest to a box edge or corner, so n is exactly ⊥ u (and ⊥ the
+        // edge): rebuilt that way rather than from the rounded gap, whose
+        // tilt along u would add to the overlap at its kink there.
+        const Vec3 acrossEdge = u.cross(Vec3::Unit(inside));
+        const S length = acrossEdge.norm();
+        const Vec3 rebuilt =
+            outside == 2 && length > kParallel ? Vec3(acrossEdge / length) : Vec3(gap - gap.dot(u) * u);
+        const S size = rebuilt.norm();
+        if (size > S(0)) n = rebuilt.dot(gap) < S(0) ? Vec3(-rebuilt / size) : Vec3(rebuilt / size);
+      }
       if (outside == 1 && local.emitOnFace(k, gap[k] > S(0) ? S(1) : S(-1), depth, emit) > 0) return;
       emit(Vec3(S(0.5) * (q + x - n * r)), n, depth);
       return;
@@ -2991,7 +3219,10 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
     Vec3 edgeAxis = Vec3::UnitZ();
     for (int k = 0; k < 3; ++k) {
       const S overlap = e[k] + h * std::abs(u[k]) + r - std::abs(c[k]);
-      if (overlap < faceDepth) faceDepth = overlap, face = k;
+      if (overlap < faceDepth) {
+        faceDepth = overlap;
+        face = k;
+      }
     }
     for (int k = 0; k < 3; ++k) {
       const Vec3 axis = u.cross(Vec3::Unit(k));
@@ -2999,11 +3230,15 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
       if (!(length > kParallel)) continue;
       const Vec3 n = axis / length;
       const S overlap = n.cwiseAbs().dot(e) + r - std::abs(n.dot(c));
-      if (overlap < edgeDepth) edgeDepth = overlap, edge = k, edgeAxis = n;
+      if (overlap < edgeDepth) {
+        edgeDepth = overlap;
+        edge = k;
+        edgeAxis = n;
+      }
     }
     if (!(std::min(faceDepth, edgeDepth) >= S(0))) return;  // only round-off can get here
 
-    if (edge >= 0 && edgeDepth < faceDepth - S(8) * std::numeric_limits<S>::epsilon() * scale) {
+    if (edge >= 0 && edgeDepth < faceDepth - S(8) * ScalarTraits<S>::epsilon() * scale) {
       // The segment crosses the box edge along axis `edge` that is farthest
       // along n: one point midway between the segment and that edge.
       const Vec3 n = edgeAxis.dot(c) < S(0) ? Vec3(-edgeAxis) : edgeAxis;
@@ -3028,7 +3263,9 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
   }
 
  private:
-  struct Local {
+  /// The pair in the box frame: half extents e, segment c + t·u with
+  /// |t| <= h, radius r, and a length scale for tolerances (m).
+  struct BoxFrame {
     Vec3 e, c, u;
     S h, r, scale;
 
@@ -3051,7 +3288,7 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
       }
       if (!(lo <= hi)) return 0;
       const Vec3 n = Vec3::Unit(k) * sign;
-      const S tolerance = S(64) * std::numeric_limits<S>::epsilon() * scale;
+      const S tolerance = S(64) * ScalarTraits<S>::epsilon() * scale;
       std::array<S, 2> ends{lo, hi}, depths{};
       for (std::size_t i = 0; i < 2; ++i) depths[i] = r - (sign * (c[k] + ends[i] * u[k]) - e[k]);
       if (!(std::max(depths[0], depths[1]) >= depth - tolerance)) return 0;
@@ -3344,8 +3581,8 @@ struct Collider<BoxT<S>, SphereT<S>> {
     const Vec3<S> q = c.cwiseMax(-h).cwiseMin(h);
     const Vec3<S> d = c - q;
     const S distance = d.norm();
-    Vec3<S> n;        // box frame, from the box toward the sphere
-    Vec3<S> onBox;    // the box's deepest point along n
+    Vec3<S> n;      // box frame, from the box toward the sphere
+    Vec3<S> onBox;  // the box's deepest point along n
     S depth;
     if (distance > ScalarTraits<S>::epsilon() * (h.norm() + r)) {
       depth = r - distance;
@@ -3516,7 +3753,7 @@ struct Collider<CapsuleT<S>, SphereT<S>> {
     const S depth = rA + rB - distance;
     if (!(depth >= S(0))) return;
     const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB + a.getHeight()) ? Vec3<S>(d / distance)
-                                                                                         : Vec3<S>(X_WA.linear().col(0));
+                                                                                        : Vec3<S>(X_WA.linear().col(0));
     sink.add(S(0.5) * (q + c + (rA - rB) * n), n, depth);
   }
 };
@@ -3546,8 +3783,8 @@ struct Collider<CylinderT<S>, PlaneT<S>> {
     const Vec3<S> u = X_WA.linear().col(1);
     const Vec3<S> across = (n.dot(u)) * u - n;  // along the rim, away from the plane's outside
     const S acrossLength = across.norm();
-    const Vec3<S> v = acrossLength > ScalarTraits<S>::epsilon() ? Vec3<S>(across / acrossLength)
-                                                                 : Vec3<S>(X_WA.linear().col(0));
+    const Vec3<S> v =
+        acrossLength > ScalarTraits<S>::epsilon() ? Vec3<S>(across / acrossLength) : Vec3<S>(X_WA.linear().col(0));
     const Vec3<S> w = u.cross(v);
     const std::array<Vec3<S>, 4> rim = {v, w, Vec3<S>(-v), Vec3<S>(-w)};
     const S r = a.getRadius(), halfHeight = S(0.5) * a.getHeight();
@@ -3596,7 +3833,7 @@ struct Collider<CylinderT<S>, SphereT<S>> {
     const Vec3<S> d = c - q;
     const S distance = d.norm();
     const S tiny = ScalarTraits<S>::epsilon() * (R + k + r);
-    Vec3<S> n;          // cylinder frame, from the cylinder toward the sphere
+    Vec3<S> n;           // cylinder frame, from the cylinder toward the sphere
     Vec3<S> onCylinder;  // the cylinder's deepest point along n
     S depth;
     if (distance > tiny) {
@@ -3671,7 +3908,7 @@ struct Collider<LineT<S>, SphereT<S>> {
     const S depth = r - distance;
     if (!(depth >= S(0))) return;
     const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (r + a.getLength()) ? Vec3<S>(d / distance)
-                                                                                 : detail::unitPerpendicular<S>(q - p);
+                                                                                  : detail::unitPerpendicular<S>(q - p);
     // Midway between the segment point and the sphere's deepest point c − r n.
     sink.add(S(0.5) * (onLine + c - r * n), n, depth);
   }
@@ -3870,8 +4107,7 @@ void collideVerticesWithPlane(const Points& vertices, const Transform<S>& X_WA, 
 /// A convex shape against a triangle mesh or a height field, triangle by
 /// triangle among those the mesh's hierarchy (or grid) finds near it.
 template <ConvexShape A, detail::TriangleSoup B>
-  requires(A::kType < B::kType)
-struct Collider<A, B> {
+requires(A::kType < B::kType) struct Collider<A, B> {
   using S = typename A::Vec3::Scalar;
   static void collide(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB,
                       ContactSinkT<S>& sink) {
@@ -4738,6 +4974,11 @@ namespace spook::detail {
 /// axis (planes) are kept aside and tested against every box.
 /// The sweep rebuilds from scratch each pass in O(n log n), with no
 /// persistent structure to refit when everything moves every step.
+///
+/// Chosen over an AABB tree by bench/bench_broadphase (CPU time per pass,
+/// 2-core machine, Release): 1,000 moving spheres 0.33 ms against 0.68 ms
+/// for a tree rebuilt each pass; 10,000 spheres 8.6 ms against 10.2 ms; a
+/// 210-box pyramid 12 µs against 68 µs (all pairs: 3.0 ms, 319 ms, 49 µs).
 template <Scalar S>
 class SweepAndPrune {
  public:
@@ -4745,22 +4986,23 @@ class SweepAndPrune {
   template <class F>
   void findPairs(const std::vector<BoundingBoxT<S>>& boxes, F&& visit) {
     const int axis = sweepAxis(boxes);
-    bounded_.clear();
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    entries_.clear();
     unbounded_.clear();
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-      if (std::isfinite(boxes[i].min[axis]) && std::isfinite(boxes[i].max[axis]))
-        bounded_.push_back(i);
+      const BoundingBoxT<S>& b = boxes[i];
+      if (std::isfinite(b.min[axis]) && std::isfinite(b.max[axis]))
+        entries_.push_back({b.min[axis], b.max[axis], b.min[u], b.max[u], b.min[v], b.max[v], i});
       else
         unbounded_.push_back(i);
     }
-    std::sort(bounded_.begin(), bounded_.end(),
-              [&](std::size_t a, std::size_t b) { return boxes[a].min[axis] < boxes[b].min[axis]; });
-    for (std::size_t k = 0; k < bounded_.size(); ++k) {
-      const BoundingBoxT<S>& a = boxes[bounded_[k]];
-      for (std::size_t m = k + 1; m < bounded_.size(); ++m) {
-        const BoundingBoxT<S>& b = boxes[bounded_[m]];
-        if (b.min[axis] > a.max[axis]) break;
-        if (overlap(a, b)) emit(bounded_[k], bounded_[m], visit);
+    // Sorted copies of the intervals, so that the sweep reads memory in order.
+    std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) { return a.lo < b.lo; });
+    for (std::size_t k = 0; k < entries_.size(); ++k) {
+      const Entry& a = entries_[k];
+      for (std::size_t m = k + 1; m < entries_.size() && entries_[m].lo <= a.hi; ++m) {
+        const Entry& b = entries_[m];
+        if (a.loU <= b.hiU && b.loU <= a.hiU && a.loV <= b.hiV && b.loV <= a.hiV) emit(a.index, b.index, visit);
       }
     }
     for (std::size_t k = 0; k < unbounded_.size(); ++k)
@@ -4803,7 +5045,13 @@ class SweepAndPrune {
     return axis;
   }
 
-  std::vector<std::size_t> bounded_;
+  struct Entry {
+    S lo, hi;      // along the sweep axis
+    S loU, hiU;    // along the next axis
+    S loV, hiV;    // along the last axis
+    std::size_t index;
+  };
+  std::vector<Entry> entries_;
   std::vector<std::size_t> unbounded_;
 };
 
@@ -6019,6 +6267,91 @@ using AssemblyRef = ref_ptr<Assembly>;
 
 }  // namespace spook
 // --- end spook/sim/assembly.hpp ---
+// --- begin spook/sim/contact_event_listener.hpp ---
+
+#include <cstdint>
+
+namespace spook {
+
+template <Scalar S>
+class SimulationT;
+namespace detail {
+struct SimulationMembership;
+}
+
+/// User code called on contact events after collision detection, before
+/// the `pre` step listeners: impact (the first pass in which two geometries
+/// touch), contact (each later pass while they touch) and separation (the
+/// first pass after). Returning REMOVE_CONTACT from impact or contact
+/// disables the contact: listeners called later and the solver do not see
+/// it. An execution filter of one or two geometries restricts the events
+/// to contacts involving them. Listeners are called in the order added.
+template <Scalar S>
+class ContactEventListenerT : public Referenced {
+ public:
+  enum ActivationMask : std::uint32_t {
+    IMPACT = 1u << 0,
+    CONTACT = 1u << 1,
+    SEPARATION = 1u << 2,
+    DEFAULT = IMPACT | CONTACT | SEPARATION
+  };
+  enum KeepContactPolicy { KEEP_CONTACT, REMOVE_CONTACT };
+
+  explicit ContactEventListenerT(std::uint32_t mask = DEFAULT) : mask_(mask) {}
+
+  virtual KeepContactPolicy impact(S /*timeStamp*/, GeometryContactT<S>* /*contact*/) { return KEEP_CONTACT; }
+  virtual KeepContactPolicy contact(S /*timeStamp*/, GeometryContactT<S>* /*contact*/) { return KEEP_CONTACT; }
+  virtual void separation(S /*timeStamp*/, GeometryPairT<S>& /*pair*/) {}
+
+  [[nodiscard]] std::uint32_t getMask() const { return mask_; }
+  void setMask(std::uint32_t mask) { mask_ = mask; }
+  [[nodiscard]] bool getEnable() const { return enable_; }
+  void setEnable(bool enable) { enable_ = enable; }
+
+  /// Events only for contacts of `first` (with anything), or of `first`
+  /// with `second` when both are given; nullptr for both clears the filter.
+  void setFilter(GeometryT<S>* first, GeometryT<S>* second = nullptr) {
+    filterFirst_ = first;
+    filterSecond_ = second;
+    filtered_ = first || second;
+  }
+  /// True when the filter lets a contact between a and b through. A
+  /// filter geometry that has been deleted matches nothing.
+  [[nodiscard]] bool matches(const GeometryT<S>* a, const GeometryT<S>* b) const {
+    if (!filtered_) return true;
+    const GeometryT<S>* first = filterFirst_.get();
+    const GeometryT<S>* second = filterSecond_.get();
+    if (!first && !second) return false;
+    if (first && second) return (a == first && b == second) || (a == second && b == first);
+    const GeometryT<S>* one = first ? first : second;
+    return a == one || b == one;
+  }
+
+  /// The simulation this listener is added to, or nullptr.
+  [[nodiscard]] SimulationT<S>* getSimulation() const { return simulation_; }
+
+ protected:
+  ~ContactEventListenerT() override = default;
+
+ private:
+  friend struct detail::SimulationMembership;
+  std::uint32_t mask_;
+  bool enable_ = true;
+  bool filtered_ = false;
+  observer_ptr<GeometryT<S>> filterFirst_;
+  observer_ptr<GeometryT<S>> filterSecond_;
+  SimulationT<S>* simulation_ = nullptr;
+};
+
+using ContactEventListener = ContactEventListenerT<double>;
+using ContactEventListenerRef = ref_ptr<ContactEventListener>;
+namespace f32 {
+using ContactEventListener = ContactEventListenerT<float>;
+using ContactEventListenerRef = ref_ptr<ContactEventListener>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/sim/contact_event_listener.hpp ---
 // --- begin spook/sim/simulation.hpp ---
 
 #include <algorithm>
@@ -6232,8 +6565,16 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   using Body = RigidBodyT<S>;
   using Listener = StepEventListenerT<S>;
   using Collection = CollectionT<S>;
+  using ContactListener = ContactEventListenerT<S>;
+  using Geometry = GeometryT<S>;
 
-  SimulationT() = default;
+  /// A simulation whose space collides every shape type.
+  SimulationT() : space_(new SpaceT<S>()) {}
+  /// A simulation for the shape types of `List` only, e.g.
+  /// `Simulation(ShapeList<SphereT, PlaneT>{})`: only the colliders between
+  /// them are compiled, and a geometry of another type is refused.
+  template <template <class> class... Shapes>
+  explicit SimulationT(ShapeList<Shapes...> list) : space_(new SpaceT<S>(list)) {}
 
   // --- Time ------------------------------------------------------------------
 
@@ -6255,8 +6596,9 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   [[nodiscard]] S getTimeStamp() const { return timeBase_ + S(stepsSinceBase_) * timeStep_; }
 
   /// Takes one step:
-  /// preCollide listeners → (collision detection) → pre listeners →
-  /// (rows, islands, solve) → integrate → post listeners → last listeners → t += h.
+  /// preCollide listeners → collision detection → contact events → pre
+  /// listeners → (rows, islands, solve) → integrate → post listeners → last
+  /// listeners → t += h.
   void stepForward() {
     if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
     applyPendingTimeStep();  // left over when a listener threw in the last step
@@ -6266,6 +6608,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       ~ResetOnExit() { flag = false; }
     } reset{stepping_};
     notify(Listener::PRE_COLLIDE);
+    space_->update(bodies_);
+    notifyContacts();
     notify(Listener::PRE_STEP);
     integrate(timeStep_);
     notify(Listener::POST_STEP);
@@ -6295,10 +6639,45 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// Replaces the field by a uniform one (m/s²).
   void setUniformGravity(const Vec3& g) { setGravityField(new UniformGravityFieldT<S>(g)); }
 
+  // --- Collision detection ---------------------------------------------------
+
+  /// The space that finds this simulation's contacts.
+  [[nodiscard]] SpaceT<S>* getSpace() const { return space_.get(); }
+  /// The contacts found in the last step (those with isEnabled() false were
+  /// removed by a contact listener).
+  [[nodiscard]] const std::vector<GeometryContactT<S>>& getGeometryContacts() const {
+    return space_->getGeometryContacts();
+  }
+
   // --- Content ---------------------------------------------------------------
+
+  /// Adds a geometry that stands static in the world (a body's geometries
+  /// come with the body).
+  void add(ref_ptr<Geometry> geometry) {
+    if (geometry && geometry->getRigidBody())
+      throw detail::makeError("Geometry", geometry->getName(), "belongs to a body; add the body instead");
+    space_->add(std::move(geometry));
+  }
+  /// Removes a static geometry; false when it is not here.
+  bool remove(Geometry* geometry) { return space_->remove(geometry); }
+
+  void add(ref_ptr<ContactListener> listener) {
+    checkAddable(listener.get(), "ContactEventListener");
+    Membership::simulationOf(*listener) = this;
+    contactListeners_.push_back(std::move(listener));
+  }
+  void remove(ContactListener* listener) {
+    checkRemovable(listener, "ContactEventListener");
+    std::erase_if(contactListeners_, [&](const auto& l) { return l.get() == listener; });
+    Membership::simulationOf(*listener) = nullptr;
+  }
+  [[nodiscard]] const std::vector<ref_ptr<ContactListener>>& getContactEventListeners() const {
+    return contactListeners_;
+  }
 
   void add(ref_ptr<Body> body) override {
     checkAddable(body.get(), "RigidBody");
+    for (const auto& g : body->getGeometries()) space_->requireSupported(*g);
     Membership::indexOf(*body) = bodies_.size();
     Membership::simulationOf(*body) = this;
     bodies_.push_back(std::move(body));
@@ -6357,6 +6736,9 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   [[nodiscard]] bool contains(const Listener* listener) const override {
     return listener && listener->getSimulation() == this;
   }
+  [[nodiscard]] bool contains(const ContactListener* listener) const {
+    return listener && listener->getSimulation() == this;
+  }
 
   [[nodiscard]] const SimulationStatisticsT<S>& getStatistics() const { return statistics_; }
 
@@ -6364,6 +6746,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   ~SimulationT() override {
     for (auto& b : bodies_) Membership::simulationOf(*b) = nullptr;
     for (auto& l : listeners_) Membership::simulationOf(*l) = nullptr;
+    for (auto& l : contactListeners_) Membership::simulationOf(*l) = nullptr;
     for (auto& c : collections_) setCollectionsSink(*c, nullptr);
   }
 
@@ -6413,6 +6796,31 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     }
   }
 
+  // Impact and contact callbacks per enabled contact, in the order the
+  // listeners were added, over a snapshot; a REMOVE_CONTACT hides the
+  // contact from the rest. Then the separations.
+  void notifyContacts() {
+    if (contactListeners_.empty()) return;
+    const std::vector<ref_ptr<ContactListener>> snapshot = contactListeners_;
+    const S time = getTimeStamp();
+    for (auto& contact : space_->getGeometryContacts()) {
+      const auto stage = contact.isImpact() ? ContactListener::IMPACT : ContactListener::CONTACT;
+      for (const auto& l : snapshot) {
+        if (!contact.isEnabled()) break;
+        if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage) ||
+            !l->matches(contact.geometry(0), contact.geometry(1)))
+          continue;
+        const auto policy = contact.isImpact() ? l->impact(time, &contact) : l->contact(time, &contact);
+        if (policy == ContactListener::REMOVE_CONTACT) contact.setEnable(false);
+      }
+    }
+    for (auto pair : space_->getSeparations())
+      for (const auto& l : snapshot)
+        if (l->getSimulation() == this && l->getEnable() && (l->getMask() & ContactListener::SEPARATION) &&
+            l->matches(pair.first.get(), pair.second.get()))
+          l->separation(time, pair);
+  }
+
   // Collections: validate the whole tree, then register it, so that a failed
   // add changes nothing.
   void addNested(Collection& collection) override {
@@ -6435,6 +6843,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     if (!seen.insert(&collection).second) throw error("Collection appears twice", collection.getName());
     for (const auto& b : collection.getRigidBodies()) {
       checkAddable(b.get(), "RigidBody");
+      for (const auto& g : b->getGeometries()) space_->requireSupported(*g);
       if (!seen.insert(b.get()).second) throw error("RigidBody appears twice in the collection", b->getName());
     }
     for (const auto& l : collection.getEventListeners()) {
@@ -6489,6 +6898,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   ref_ptr<GravityFieldT<S>> gravity_ = new UniformGravityFieldT<S>();
   std::vector<ref_ptr<Body>> bodies_;
   std::vector<ref_ptr<Listener>> listeners_;
+  std::vector<ref_ptr<ContactListener>> contactListeners_;
+  ref_ptr<SpaceT<S>> space_;
   std::vector<ref_ptr<Collection>> collections_;
   SimulationStatisticsT<S> statistics_;
 };

@@ -12,9 +12,11 @@
 #include <spook/core/error.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
+#include <spook/collide/space.hpp>
 #include <spook/dynamics/gravity_field.hpp>
 #include <spook/dynamics/rigid_body.hpp>
 #include <spook/sim/collection.hpp>
+#include <spook/sim/contact_event_listener.hpp>
 #include <spook/sim/membership.hpp>
 #include <spook/sim/statistics.hpp>
 #include <spook/sim/step_event_listener.hpp>
@@ -32,8 +34,16 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   using Body = RigidBodyT<S>;
   using Listener = StepEventListenerT<S>;
   using Collection = CollectionT<S>;
+  using ContactListener = ContactEventListenerT<S>;
+  using Geometry = GeometryT<S>;
 
-  SimulationT() = default;
+  /// A simulation whose space collides every shape type.
+  SimulationT() : space_(new SpaceT<S>()) {}
+  /// A simulation for the shape types of `List` only, e.g.
+  /// `Simulation(ShapeList<SphereT, PlaneT>{})`: only the colliders between
+  /// them are compiled, and a geometry of another type is refused.
+  template <template <class> class... Shapes>
+  explicit SimulationT(ShapeList<Shapes...> list) : space_(new SpaceT<S>(list)) {}
 
   // --- Time ------------------------------------------------------------------
 
@@ -55,8 +65,9 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   [[nodiscard]] S getTimeStamp() const { return timeBase_ + S(stepsSinceBase_) * timeStep_; }
 
   /// Takes one step:
-  /// preCollide listeners → (collision detection) → pre listeners →
-  /// (rows, islands, solve) → integrate → post listeners → last listeners → t += h.
+  /// preCollide listeners → collision detection → contact events → pre
+  /// listeners → (rows, islands, solve) → integrate → post listeners → last
+  /// listeners → t += h.
   void stepForward() {
     if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
     applyPendingTimeStep();  // left over when a listener threw in the last step
@@ -66,6 +77,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       ~ResetOnExit() { flag = false; }
     } reset{stepping_};
     notify(Listener::PRE_COLLIDE);
+    space_->update(bodies_);
+    notifyContacts();
     notify(Listener::PRE_STEP);
     integrate(timeStep_);
     notify(Listener::POST_STEP);
@@ -95,10 +108,45 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// Replaces the field by a uniform one (m/s²).
   void setUniformGravity(const Vec3& g) { setGravityField(new UniformGravityFieldT<S>(g)); }
 
+  // --- Collision detection ---------------------------------------------------
+
+  /// The space that finds this simulation's contacts.
+  [[nodiscard]] SpaceT<S>* getSpace() const { return space_.get(); }
+  /// The contacts found in the last step (those with isEnabled() false were
+  /// removed by a contact listener).
+  [[nodiscard]] const std::vector<GeometryContactT<S>>& getGeometryContacts() const {
+    return space_->getGeometryContacts();
+  }
+
   // --- Content ---------------------------------------------------------------
+
+  /// Adds a geometry that stands static in the world (a body's geometries
+  /// come with the body).
+  void add(ref_ptr<Geometry> geometry) {
+    if (geometry && geometry->getRigidBody())
+      throw detail::makeError("Geometry", geometry->getName(), "belongs to a body; add the body instead");
+    space_->add(std::move(geometry));
+  }
+  /// Removes a static geometry; false when it is not here.
+  bool remove(Geometry* geometry) { return space_->remove(geometry); }
+
+  void add(ref_ptr<ContactListener> listener) {
+    checkAddable(listener.get(), "ContactEventListener");
+    Membership::simulationOf(*listener) = this;
+    contactListeners_.push_back(std::move(listener));
+  }
+  void remove(ContactListener* listener) {
+    checkRemovable(listener, "ContactEventListener");
+    std::erase_if(contactListeners_, [&](const auto& l) { return l.get() == listener; });
+    Membership::simulationOf(*listener) = nullptr;
+  }
+  [[nodiscard]] const std::vector<ref_ptr<ContactListener>>& getContactEventListeners() const {
+    return contactListeners_;
+  }
 
   void add(ref_ptr<Body> body) override {
     checkAddable(body.get(), "RigidBody");
+    for (const auto& g : body->getGeometries()) space_->requireSupported(*g);
     Membership::indexOf(*body) = bodies_.size();
     Membership::simulationOf(*body) = this;
     bodies_.push_back(std::move(body));
@@ -157,6 +205,9 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   [[nodiscard]] bool contains(const Listener* listener) const override {
     return listener && listener->getSimulation() == this;
   }
+  [[nodiscard]] bool contains(const ContactListener* listener) const {
+    return listener && listener->getSimulation() == this;
+  }
 
   [[nodiscard]] const SimulationStatisticsT<S>& getStatistics() const { return statistics_; }
 
@@ -164,6 +215,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   ~SimulationT() override {
     for (auto& b : bodies_) Membership::simulationOf(*b) = nullptr;
     for (auto& l : listeners_) Membership::simulationOf(*l) = nullptr;
+    for (auto& l : contactListeners_) Membership::simulationOf(*l) = nullptr;
     for (auto& c : collections_) setCollectionsSink(*c, nullptr);
   }
 
@@ -213,6 +265,31 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     }
   }
 
+  // Impact and contact callbacks per enabled contact, in the order the
+  // listeners were added, over a snapshot; a REMOVE_CONTACT hides the
+  // contact from the rest. Then the separations.
+  void notifyContacts() {
+    if (contactListeners_.empty()) return;
+    const std::vector<ref_ptr<ContactListener>> snapshot = contactListeners_;
+    const S time = getTimeStamp();
+    for (auto& contact : space_->getGeometryContacts()) {
+      const auto stage = contact.isImpact() ? ContactListener::IMPACT : ContactListener::CONTACT;
+      for (const auto& l : snapshot) {
+        if (!contact.isEnabled()) break;
+        if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage) ||
+            !l->matches(contact.geometry(0), contact.geometry(1)))
+          continue;
+        const auto policy = contact.isImpact() ? l->impact(time, &contact) : l->contact(time, &contact);
+        if (policy == ContactListener::REMOVE_CONTACT) contact.setEnable(false);
+      }
+    }
+    for (auto pair : space_->getSeparations())
+      for (const auto& l : snapshot)
+        if (l->getSimulation() == this && l->getEnable() && (l->getMask() & ContactListener::SEPARATION) &&
+            l->matches(pair.first.get(), pair.second.get()))
+          l->separation(time, pair);
+  }
+
   // Collections: validate the whole tree, then register it, so that a failed
   // add changes nothing.
   void addNested(Collection& collection) override {
@@ -235,6 +312,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     if (!seen.insert(&collection).second) throw error("Collection appears twice", collection.getName());
     for (const auto& b : collection.getRigidBodies()) {
       checkAddable(b.get(), "RigidBody");
+      for (const auto& g : b->getGeometries()) space_->requireSupported(*g);
       if (!seen.insert(b.get()).second) throw error("RigidBody appears twice in the collection", b->getName());
     }
     for (const auto& l : collection.getEventListeners()) {
@@ -289,6 +367,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   ref_ptr<GravityFieldT<S>> gravity_ = new UniformGravityFieldT<S>();
   std::vector<ref_ptr<Body>> bodies_;
   std::vector<ref_ptr<Listener>> listeners_;
+  std::vector<ref_ptr<ContactListener>> contactListeners_;
+  ref_ptr<SpaceT<S>> space_;
   std::vector<ref_ptr<Collection>> collections_;
   SimulationStatisticsT<S> statistics_;
 };

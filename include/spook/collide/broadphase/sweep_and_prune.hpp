@@ -16,6 +16,11 @@ namespace spook::detail {
 /// axis (planes) are kept aside and tested against every box.
 /// The sweep rebuilds from scratch each pass in O(n log n), with no
 /// persistent structure to refit when everything moves every step.
+///
+/// Chosen over an AABB tree by bench/bench_broadphase (CPU time per pass,
+/// 2-core machine, Release): 1,000 moving spheres 0.33 ms against 0.68 ms
+/// for a tree rebuilt each pass; 10,000 spheres 8.6 ms against 10.2 ms; a
+/// 210-box pyramid 12 µs against 68 µs (all pairs: 3.0 ms, 319 ms, 49 µs).
 template <Scalar S>
 class SweepAndPrune {
  public:
@@ -23,22 +28,23 @@ class SweepAndPrune {
   template <class F>
   void findPairs(const std::vector<BoundingBoxT<S>>& boxes, F&& visit) {
     const int axis = sweepAxis(boxes);
-    bounded_.clear();
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    entries_.clear();
     unbounded_.clear();
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-      if (std::isfinite(boxes[i].min[axis]) && std::isfinite(boxes[i].max[axis]))
-        bounded_.push_back(i);
+      const BoundingBoxT<S>& b = boxes[i];
+      if (std::isfinite(b.min[axis]) && std::isfinite(b.max[axis]))
+        entries_.push_back({b.min[axis], b.max[axis], b.min[u], b.max[u], b.min[v], b.max[v], i});
       else
         unbounded_.push_back(i);
     }
-    std::sort(bounded_.begin(), bounded_.end(),
-              [&](std::size_t a, std::size_t b) { return boxes[a].min[axis] < boxes[b].min[axis]; });
-    for (std::size_t k = 0; k < bounded_.size(); ++k) {
-      const BoundingBoxT<S>& a = boxes[bounded_[k]];
-      for (std::size_t m = k + 1; m < bounded_.size(); ++m) {
-        const BoundingBoxT<S>& b = boxes[bounded_[m]];
-        if (b.min[axis] > a.max[axis]) break;
-        if (overlap(a, b)) emit(bounded_[k], bounded_[m], visit);
+    // Sorted copies of the intervals, so that the sweep reads memory in order.
+    std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) { return a.lo < b.lo; });
+    for (std::size_t k = 0; k < entries_.size(); ++k) {
+      const Entry& a = entries_[k];
+      for (std::size_t m = k + 1; m < entries_.size() && entries_[m].lo <= a.hi; ++m) {
+        const Entry& b = entries_[m];
+        if (a.loU <= b.hiU && b.loU <= a.hiU && a.loV <= b.hiV && b.loV <= a.hiV) emit(a.index, b.index, visit);
       }
     }
     for (std::size_t k = 0; k < unbounded_.size(); ++k)
@@ -81,7 +87,13 @@ class SweepAndPrune {
     return axis;
   }
 
-  std::vector<std::size_t> bounded_;
+  struct Entry {
+    S lo, hi;      // along the sweep axis
+    S loU, hiU;    // along the next axis
+    S loV, hiV;    // along the last axis
+    std::size_t index;
+  };
+  std::vector<Entry> entries_;
   std::vector<std::size_t> unbounded_;
 };
 

@@ -1,10 +1,10 @@
 #pragma once
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <type_traits>
 
 #include <spook/collide/collider.hpp>
 #include <spook/collide/detail/box_clipping.hpp>
@@ -58,7 +58,9 @@ inline constexpr double kEdgeBias = 1.05;
 ///    (3 + 3 face normals, 9 cross products of edge directions) is
 ///    r_A(n) + r_B(n) − |n·(c_B − c_A)|, r the projected half-width; a
 ///    positive gap on any axis separates the boxes, otherwise the axis of
-///    least overlap gives the normal and the depth (edge axes pay kEdgeBias);
+///    least overlap gives the normal and the depth: the least edge axis
+///    against the least face axis with kEdgeBias (dBoxBox also applies the
+///    bias between two edge axes, so it may keep one up to 5 % deeper);
 ///  - on a face axis, the face of the other (incident) box most opposed to
 ///    it is clipped against the side planes of the reference face
 ///    (Sutherland–Hodgman), and every clipped corner below the reference
@@ -74,9 +76,9 @@ struct Collider<BoxT<S>, BoxT<S>> {
   using Placed = detail::box_box::Placed<S>;
   using Axis = detail::box_box::Axis<S>;
 
-  /// |a × b| below this (unit a and b) skips the edge axis a × b: the
-  /// direction error ε/|a × b| then balances the depth error |a × b|·size of
-  /// skipping it.
+  /// |a × b| below this (unit a and b, about √ε) skips the edge axis a × b:
+  /// the direction error ε/|a × b| of keeping it then balances the depth
+  /// error |a × b|·size of skipping it.
   static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
 
   static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const BoxT<S>& b, const Transform<S>& X_WB,
@@ -110,10 +112,8 @@ struct Collider<BoxT<S>, BoxT<S>> {
       }
     }
 
-    const Mat3 R = R_WA;
-    const Vec3 p = X_WA.translation();
     auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
-      sink.add(Vec3(R * point_A + p), Vec3(R * normal_A), depth);
+      sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
     };
     if (edge.kind == 2 && S(detail::box_box::kEdgeBias) * edge.depth < face.depth) {
       emitEdge(boxA, boxB, edge, emit);
@@ -143,8 +143,7 @@ struct Collider<BoxT<S>, BoxT<S>> {
     midA -= boxA.axes.col(i) * boxA.axes.col(i).dot(midA - boxA.center);
     midB -= boxB.axes.col(j) * boxB.axes.col(j).dot(midB - boxB.center);
     S s = S(0), t = S(0);
-    detail::clampedLineClosest<S>(midA, boxA.axes.col(i), boxA.half[i], midB, boxB.axes.col(j), boxB.half[j], s,
-                                       t);
+    detail::clampedLineClosest<S>(midA, boxA.axes.col(i), boxA.half[i], midB, boxB.axes.col(j), boxB.half[j], s, t);
     const Vec3 pointA = midA + boxA.axes.col(i) * s, pointB = midB + boxB.axes.col(j) * t;
     emit(Vec3(S(0.5) * (pointA + pointB)), n, edge.depth);
   }
@@ -179,8 +178,9 @@ struct Collider<BoxT<S>, BoxT<S>> {
     }
 
     // Depth of each clipped corner below the reference face plane
-    // n·x = n·c + h; the contact point is midway to that plane. The depth
-    // of the axis bounds them all (they differ by round-off at most).
+    // n·x = n·c + h; the contact point is midway to that plane. No corner
+    // lies deeper than the axis overlap but by round-off, which the min
+    // removes.
     const S facePlane = n.dot(reference.center) + reference.half[axis];
     int written = 0;
     for (std::size_t m = 0; m < polygon.count; ++m) {

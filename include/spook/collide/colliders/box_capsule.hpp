@@ -40,7 +40,10 @@ template <Scalar S>
     }
   }
   knots[count++] = h;
-  std::sort(knots.begin(), knots.begin() + static_cast<std::ptrdiff_t>(count));
+  // Insertion sort: at most 8 knots (and std::sort trips GCC 12's
+  // -Warray-bounds on a partly filled std::array at -O2).
+  for (std::size_t i = 1; i < count; ++i)
+    for (std::size_t j = i; j > 0 && knots[j] < knots[j - 1]; --j) std::swap(knots[j], knots[j - 1]);
   S bestT = -h, best = std::numeric_limits<S>::infinity();
   for (std::size_t i = 0; i + 1 < count; ++i) {
     const S lo = knots[i], hi = knots[i + 1], mid = S(0.5) * (lo + hi);
@@ -85,8 +88,8 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
   using Vec3 = spook::Vec3<S>;
   using Mat3 = spook::Mat3<S>;
 
-  /// |u × axis| below this (u the capsule axis) skips the edge axis u × axis;
-  /// the face axes cover the parallel case (as for two boxes).
+  /// |u × axis| below this (u the capsule axis, about √ε) skips the edge
+  /// axis u × axis; the face axes cover the parallel case (as for two boxes).
   static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
 
   static void collide(const BoxT<S>& box, const Transform<S>& X_WA, const CapsuleT<S>& capsule,
@@ -98,7 +101,7 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
     const Vec3 u = (R_WA.transpose() * X_WB.linear().col(1)).normalized();
     const S h = S(0.5) * capsule.getHeight(), r = capsule.getRadius();
     const S scale = e.maxCoeff() + h + r;
-    const Local local{e, c, u, h, r, scale};
+    const BoxFrame local{e, c, u, h, r, scale};
     auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
       sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
     };
@@ -111,13 +114,31 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
     if (distance > r) return;
     // Below this distance the direction x − q is round-off: the segment
     // counts as touching the box and the separating axes take over.
-    const S touching = S(64) * std::numeric_limits<S>::epsilon() * scale;
+    const S touching = S(64) * ScalarTraits<S>::epsilon() * scale;
     if (distance > touching) {
-      const Vec3 n = gap / distance;
       const S depth = r - distance;
-      int outside = 0, k = 0;
-      for (int j = 0; j < 3; ++j)
-        if (gap[j] != S(0)) ++outside, k = j;
+      int outside = 0, k = 0, inside = 0;
+      for (int j = 0; j < 3; ++j) {
+        if (gap[j] == S(0)) {
+          inside = j;
+          continue;
+        }
+        ++outside;
+        k = j;
+      }
+      Vec3 n = gap / distance;
+      if (std::abs(t) < h - touching && outside > 1) {
+        // The segment's interior (clear of its ends by more than round-off)
+        // is closest to a box edge or corner, so n is exactly ⊥ u (and ⊥ the
+        // edge): rebuilt that way rather than from the rounded gap, whose
+        // tilt along u would add to the overlap at its kink there.
+        const Vec3 acrossEdge = u.cross(Vec3::Unit(inside));
+        const S length = acrossEdge.norm();
+        const Vec3 rebuilt =
+            outside == 2 && length > kParallel ? Vec3(acrossEdge / length) : Vec3(gap - gap.dot(u) * u);
+        const S size = rebuilt.norm();
+        if (size > S(0)) n = rebuilt.dot(gap) < S(0) ? Vec3(-rebuilt / size) : Vec3(rebuilt / size);
+      }
       if (outside == 1 && local.emitOnFace(k, gap[k] > S(0) ? S(1) : S(-1), depth, emit) > 0) return;
       emit(Vec3(S(0.5) * (q + x - n * r)), n, depth);
       return;
@@ -131,7 +152,10 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
     Vec3 edgeAxis = Vec3::UnitZ();
     for (int k = 0; k < 3; ++k) {
       const S overlap = e[k] + h * std::abs(u[k]) + r - std::abs(c[k]);
-      if (overlap < faceDepth) faceDepth = overlap, face = k;
+      if (overlap < faceDepth) {
+        faceDepth = overlap;
+        face = k;
+      }
     }
     for (int k = 0; k < 3; ++k) {
       const Vec3 axis = u.cross(Vec3::Unit(k));
@@ -139,11 +163,15 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
       if (!(length > kParallel)) continue;
       const Vec3 n = axis / length;
       const S overlap = n.cwiseAbs().dot(e) + r - std::abs(n.dot(c));
-      if (overlap < edgeDepth) edgeDepth = overlap, edge = k, edgeAxis = n;
+      if (overlap < edgeDepth) {
+        edgeDepth = overlap;
+        edge = k;
+        edgeAxis = n;
+      }
     }
     if (!(std::min(faceDepth, edgeDepth) >= S(0))) return;  // only round-off can get here
 
-    if (edge >= 0 && edgeDepth < faceDepth - S(8) * std::numeric_limits<S>::epsilon() * scale) {
+    if (edge >= 0 && edgeDepth < faceDepth - S(8) * ScalarTraits<S>::epsilon() * scale) {
       // The segment crosses the box edge along axis `edge` that is farthest
       // along n: one point midway between the segment and that edge.
       const Vec3 n = edgeAxis.dot(c) < S(0) ? Vec3(-edgeAxis) : edgeAxis;
@@ -168,7 +196,9 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
   }
 
  private:
-  struct Local {
+  /// The pair in the box frame: half extents e, segment c + t·u with
+  /// |t| <= h, radius r, and a length scale for tolerances (m).
+  struct BoxFrame {
     Vec3 e, c, u;
     S h, r, scale;
 
@@ -191,7 +221,7 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
       }
       if (!(lo <= hi)) return 0;
       const Vec3 n = Vec3::Unit(k) * sign;
-      const S tolerance = S(64) * std::numeric_limits<S>::epsilon() * scale;
+      const S tolerance = S(64) * ScalarTraits<S>::epsilon() * scale;
       std::array<S, 2> ends{lo, hi}, depths{};
       for (std::size_t i = 0; i < 2; ++i) depths[i] = r - (sign * (c[k] + ends[i] * u[k]) - e[k]);
       if (!(std::max(depths[0], depths[1]) >= depth - tolerance)) return 0;

@@ -23,8 +23,8 @@ struct Collider<BoxT<S>, SphereT<S>> {
     const Vec3<S> q = c.cwiseMax(-h).cwiseMin(h);
     const Vec3<S> d = c - q;
     const S distance = d.norm();
-    Vec3<S> n;        // box frame, from the box toward the sphere
-    Vec3<S> onBox;    // the box's deepest point along n
+    Vec3<S> n;      // box frame, from the box toward the sphere
+    Vec3<S> onBox;  // the box's deepest point along n
     S depth;
     if (distance > ScalarTraits<S>::epsilon() * (h.norm() + r)) {
       depth = r - distance;

@@ -30,7 +30,7 @@ struct Collider<CapsuleT<S>, SphereT<S>> {
     const S depth = rA + rB - distance;
     if (!(depth >= S(0))) return;
     const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB + a.getHeight()) ? Vec3<S>(d / distance)
-                                                                                         : Vec3<S>(X_WA.linear().col(0));
+                                                                                        : Vec3<S>(X_WA.linear().col(0));
     sink.add(S(0.5) * (q + c + (rA - rB) * n), n, depth);
   }
 };

@@ -25,8 +25,8 @@ struct Collider<CylinderT<S>, PlaneT<S>> {
     const Vec3<S> u = X_WA.linear().col(1);
     const Vec3<S> across = (n.dot(u)) * u - n;  // along the rim, away from the plane's outside
     const S acrossLength = across.norm();
-    const Vec3<S> v = acrossLength > ScalarTraits<S>::epsilon() ? Vec3<S>(across / acrossLength)
-                                                                 : Vec3<S>(X_WA.linear().col(0));
+    const Vec3<S> v =
+        acrossLength > ScalarTraits<S>::epsilon() ? Vec3<S>(across / acrossLength) : Vec3<S>(X_WA.linear().col(0));
     const Vec3<S> w = u.cross(v);
     const std::array<Vec3<S>, 4> rim = {v, w, Vec3<S>(-v), Vec3<S>(-w)};
     const S r = a.getRadius(), halfHeight = S(0.5) * a.getHeight();

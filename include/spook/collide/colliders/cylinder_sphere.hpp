@@ -31,7 +31,7 @@ struct Collider<CylinderT<S>, SphereT<S>> {
     const Vec3<S> d = c - q;
     const S distance = d.norm();
     const S tiny = ScalarTraits<S>::epsilon() * (R + k + r);
-    Vec3<S> n;          // cylinder frame, from the cylinder toward the sphere
+    Vec3<S> n;           // cylinder frame, from the cylinder toward the sphere
     Vec3<S> onCylinder;  // the cylinder's deepest point along n
     S depth;
     if (distance > tiny) {

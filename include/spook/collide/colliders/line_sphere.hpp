@@ -27,7 +27,7 @@ struct Collider<LineT<S>, SphereT<S>> {
     const S depth = r - distance;
     if (!(depth >= S(0))) return;
     const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (r + a.getLength()) ? Vec3<S>(d / distance)
-                                                                                 : detail::unitPerpendicular<S>(q - p);
+                                                                                  : detail::unitPerpendicular<S>(q - p);
     // Midway between the segment point and the sphere's deepest point c − r n.
     sink.add(S(0.5) * (onLine + c - r * n), n, depth);
   }

@@ -115,8 +115,7 @@ void collideVerticesWithPlane(const Points& vertices, const Transform<S>& X_WA, 
 /// A convex shape against a triangle mesh or a height field, triangle by
 /// triangle among those the mesh's hierarchy (or grid) finds near it.
 template <ConvexShape A, detail::TriangleSoup B>
-  requires(A::kType < B::kType)
-struct Collider<A, B> {
+requires(A::kType < B::kType) struct Collider<A, B> {
   using S = typename A::Vec3::Scalar;
   static void collide(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB,
                       ContactSinkT<S>& sink) {

@@ -1,5 +1,11 @@
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
 #include <type_traits>
 
 #include <ccd/ccd.h>
@@ -59,6 +65,70 @@ struct ProjectionOverlap {
   [[nodiscard]] Vec3<double> gradient(const Vec3<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
 };
 
+/// Where f has a kink (an edge or a corner of a box-like shape is involved)
+/// its minimum may sit at the bottom of a narrow crease, which neither the
+/// gradient nor a fixed pattern of steps can follow; a Nelder–Mead simplex
+/// over the tangent plane of n (Nelder & Mead 1965) stretches along the
+/// crease and walks down it, to 1e-10 rad.
+template <class A, class B>
+double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3<double>& n, double f, double size,
+                             double turn) {
+  const Vec3<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
+  const Vec3<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
+  const auto direction = [&](const Eigen::Vector2d& x) { return Vec3<double>((n0 + x[0] * t1 + x[1] * t2).normalized()); };
+  const auto value = [&](const Eigen::Vector2d& x) {
+    const Vec3<double> d = direction(x);
+    return d.dot(overlap.gradient(d));
+  };
+  std::array<Eigen::Vector2d, 3> x = {Eigen::Vector2d(0, 0), Eigen::Vector2d(size, 0), Eigen::Vector2d(0, size)};
+  std::array<double, 3> fx = {f, value(x[1]), value(x[2])};
+  for (int iteration = 0; iteration < 400; ++iteration) {
+    // Order best, middle, worst.
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2 - i; ++j)
+        if (fx[j + 1] < fx[j]) {
+          std::swap(fx[j], fx[j + 1]);
+          std::swap(x[j], x[j + 1]);
+        }
+    if ((x[1] - x[0]).norm() + (x[2] - x[0]).norm() < 1e-10) break;
+    const Eigen::Vector2d centroid = 0.5 * (x[0] + x[1]);
+    const Eigen::Vector2d reflected = centroid + (centroid - x[2]);
+    const double fr = value(reflected);
+    if (fr < fx[0]) {
+      const Eigen::Vector2d expanded = centroid + 2.0 * (centroid - x[2]);
+      const double fe = value(expanded);
+      if (fe < fr) {
+        x[2] = expanded;
+        fx[2] = fe;
+      } else {
+        x[2] = reflected;
+        fx[2] = fr;
+      }
+    } else if (fr < fx[1]) {
+      x[2] = reflected;
+      fx[2] = fr;
+    } else {
+      const Eigen::Vector2d contracted = centroid + 0.5 * (x[2] - centroid);
+      const double fc = value(contracted);
+      if (fc < fx[2]) {
+        x[2] = contracted;
+        fx[2] = fc;
+      } else {
+        for (int i = 1; i < 3; ++i) {
+          x[i] = x[0] + 0.5 * (x[i] - x[0]);
+          fx[i] = value(x[i]);
+        }
+      }
+    }
+  }
+  const int best = fx[0] <= fx[1] ? (fx[0] <= fx[2] ? 0 : 2) : (fx[1] <= fx[2] ? 1 : 2);
+  if (fx[best] < f) {
+    n = direction(x[best]);
+    f = fx[best];
+  }
+  return f;
+}
+
 /// Polishes libccd's direction: libccd's EPA stops some 1e-4 to 1e-3 short
 /// of the boundary on curved shapes, so the direction is refined by descent
 /// of f on the unit sphere (Barzilai–Borwein steps with backtracking) and
@@ -89,7 +159,58 @@ double refinePenetration(const CcdObject<A>& a, const CcdObject<B>& b, Vec3<doub
     f = fTrial;
     g = gTrial;
   }
+  // Restarts with fresh, turned simplices: the usual cure for one that
+  // collapsed across a crease.
+  for (int restart = 0; restart < 6; ++restart) {
+    const double before = f;
+    f = polishBySimplexSearch(overlap, n, f, restart % 2 ? 0.1 : 0.02, 0.5 * restart);
+    if (restart > 0 && !(f < before - 1e-15 * scale)) break;
+  }
   return f;
+}
+
+/// Starting directions for the polishing: libccd's, then the most promising
+/// of the line of centers, each shape's frame axes and their cross products
+/// (both signs) and a coarse lattice of directions, lowest overlap first. libccd's EPA sometimes returns a poor
+/// direction on deep or curved overlaps, and f may have several local
+/// minima; for box-like and cylindrical shapes the true minimum lies on or
+/// near one of these axes (face normals and edge–edge directions, as in the
+/// separating axis theorem).
+template <class A, class B>
+std::vector<Vec3<double>> startingDirections(const CcdObject<A>& a, const CcdObject<B>& b,
+                                             const Vec3<double>& fromCcd, std::size_t count) {
+  const ProjectionOverlap<A, B> overlap{a, b};
+  std::vector<std::pair<double, Vec3<double>>> candidates;
+  const auto consider = [&](const Vec3<double>& direction) {
+    const double length = direction.norm();
+    if (!(length > 1e-9)) return;
+    for (const double sign : {1.0, -1.0}) {
+      const Vec3<double> d = direction * (sign / length);
+      candidates.emplace_back(d.dot(overlap.gradient(d)), d);
+    }
+  };
+  consider(b.center - a.center);
+  for (int i = 0; i < 3; ++i) {
+    consider(a.R.col(i));
+    consider(b.R.col(i));
+    for (int j = 0; j < 3; ++j) consider(a.R.col(i).cross(b.R.col(j)));
+  }
+  // And a coarse, even spread (a Fibonacci lattice of 48 pairs ±d, some
+  // 0.25 rad apart) so that no basin of f is far from a start.
+  constexpr int kLattice = 48;
+  const double golden = 3.141592653589793 * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < kLattice; ++i) {
+    const double z = 1.0 - (i + 0.5) / kLattice, rho = std::sqrt(1.0 - z * z), phi = golden * i;
+    consider(Vec3<double>(rho * std::cos(phi), rho * std::sin(phi), z));
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Vec3<double>> starts{fromCcd};
+  for (const auto& [f, d] : candidates) {
+    if (starts.size() > count) break;
+    if (std::none_of(starts.begin(), starts.end(), [&](const Vec3<double>& s) { return s.dot(d) > 0.999; }))
+      starts.push_back(d);
+  }
+  return starts;
 }
 
 /// Penetration of two convex shapes by GJK + EPA (libccd), polished as
@@ -116,7 +237,16 @@ void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transf
   n /= length;
   const double scale = (a.getBoundingBox().halfExtents().template cast<double>().norm() +
                         b.getBoundingBox().halfExtents().template cast<double>().norm());
-  const double refined = refinePenetration(objectA, objectB, n, scale);
+  // f may have several local minima: polish from several starts and keep
+  // the lowest.
+  double refined = std::numeric_limits<double>::infinity();
+  for (Vec3<double> start : startingDirections(objectA, objectB, n, 6)) {
+    const double f = refinePenetration(objectA, objectB, start, scale);
+    if (f < refined) {
+      refined = f;
+      n = start;
+    }
+  }
   if (!(refined >= 0.0)) return;  // the polished direction separates them
   const Vec3<double> point(position.v[0], position.v[1], position.v[2]);
   sink.add(point.cast<S>(), n.cast<S>(), S(refined));

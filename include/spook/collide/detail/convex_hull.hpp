@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <set>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -21,7 +22,7 @@ template <Scalar S>
 struct ConvexFace {
   std::vector<int> vertices;         ///< corner indices, counter-clockwise seen from outside
   Vec3<S> normal = Vec3<S>::Zero();  ///< unit outward normal (shape frame)
-  S offset = S(0);                   ///< normal·x on the face (m); smaller inside
+  S offset = S(0);                   ///< largest normal·x of its corners and merged points (m)
 };
 
 /// A convex hull: its corners, its outward triangles and its polygon faces.
@@ -35,11 +36,12 @@ struct ConvexHull {
 
 /// Quickhull in 3D (Barber, Dobkin, Huhdanpaa, "The Quickhull Algorithm for
 /// Convex Hulls", ACM TOMS 1996), in double, on "joggled" points as Qhull's
-/// option QJ does: each point moved at random by at most a quarter of the
-/// tolerance, which puts the cloud in general position, so that visibility
-/// can be a plain sign test and the hull stays convex. A point less than the
-/// tolerance above the hull never becomes a vertex. Coplanar triangles are
-/// then merged, and corners on straight edges dropped, with the true points.
+/// option QJ does: each coordinate moved at random by at most a quarter of
+/// the tolerance, which puts the cloud in general position, so that
+/// visibility can be a plain sign test and the hull stays convex. A point
+/// within the tolerance of the hull never becomes a vertex. Coplanar
+/// triangles are then merged, and corners on straight edges dropped, by the
+/// true points.
 class QuickHull {
  public:
   using V = Vec3<double>;
@@ -97,7 +99,7 @@ class QuickHull {
     std::array<int, 3> neighbor{};  // face across the edge v[i] → v[i+1]
     V normal = V::Zero();           // of the joggled points
     double offset = 0;
-    std::vector<int> outside;  // points more than tol_ above the plane
+    std::vector<int> outside;  // points above the plane, not known to be within tol_ of the hull
     int furthest = -1;
     double furthestDistance = 0;
     int visited = 0;  // stamp of the last flood fill that reached it
@@ -140,14 +142,39 @@ class QuickHull {
     return static_cast<int>(faces_.size()) - 1;
   }
 
+  // Distance from joggled point i to the triangle of face f (Ericson,
+  // "Real-Time Collision Detection", 2005, 5.1.5): to its plane when the
+  // point projects inside it, else to the nearest edge.
+  [[nodiscard]] double triangleDistance(const Face& f, int i) const {
+    const V& x = q_[i];
+    bool inside = true;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      const V& a = q_[f.v[k]];
+      const V edge = q_[f.v[(k + 1) % 3]] - a;
+      inside = inside && edge.cross(x - a).dot(f.normal) >= 0;
+      const double t = std::clamp((x - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+      nearest = std::min(nearest, (x - a - t * edge).norm());
+    }
+    return inside ? std::abs(distance(f, i)) : nearest;
+  }
+
+  // Files the point under the new face it is farthest above. A point on or
+  // below them all is inside the hull; one within the tolerance of the
+  // triangles it is above lies (and stays) within the tolerance of the hull.
+  // Both are dropped. A point above the planes by less than the tolerance
+  // but farther from their triangles (beyond a sharp edge) is kept.
   void assign(int point, int first, int last) {
     int best = -1;
-    double bestDistance = tol_;
+    double bestDistance = 0;
     for (int f = first; f < last; ++f) {
       const double d = distance(faces_[f], point);
       if (d > bestDistance) best = f, bestDistance = d;
     }
-    if (best < 0) return;  // inside, or on the hull within the tolerance
+    if (best < 0) return;
+    if (bestDistance <= tol_)
+      for (int f = first; f < last; ++f)
+        if (distance(faces_[f], point) > 0 && triangleDistance(faces_[f], point) <= tol_) return;
     Face& f = faces_[best];
     f.outside.push_back(point);
     if (bestDistance > f.furthestDistance) f.furthest = point, f.furthestDistance = bestDistance;
@@ -214,6 +241,14 @@ class QuickHull {
         g.visible = distance(g, eye) > 0;
         if (g.visible) visible.push_back(nb);
       }
+    }
+    // The hull's nearest point to the eye lies on a face the eye sees.
+    double gap = std::numeric_limits<double>::infinity();
+    for (const int f : visible) gap = std::min(gap, triangleDistance(faces_[f], eye));
+    if (!(gap > tol_)) {
+      discard(start, eye);
+      if (!faces_[start].outside.empty()) work.push_back(start);
+      return;
     }
     std::vector<Edge> horizon;
     for (const int f : visible)
@@ -330,20 +365,39 @@ class QuickHull {
     return polygons;
   }
 
-  // A corner shared by only two polygons lies on the straight edge between
-  // them (at a true corner of a closed convex surface three faces meet).
-  static void dropStraightCorners(std::vector<Polygon>& polygons) {
-    int top = 0;
-    for (const Polygon& polygon : polygons)
-      for (const int v : polygon.loop) top = std::max(top, v + 1);
-    std::vector<int> count(static_cast<std::size_t>(top), 0);
-    for (const Polygon& polygon : polygons)
-      for (const int v : polygon.loop) ++count[v];
-    const auto straight = [&](int v) { return count[v] <= 2; };
-    for (const Polygon& polygon : polygons)
-      if (polygon.loop.size() - std::count_if(polygon.loop.begin(), polygon.loop.end(), straight) < 3)
-        return;  // would leave a polygon with fewer than three corners: keep them all
-    for (Polygon& polygon : polygons) std::erase_if(polygon.loop, straight);
+  // Drops each corner that only two polygons share and that lies within the
+  // tolerance of the line through its remaining neighbours: it sits on the
+  // edge between them (at a true corner three faces or more meet).
+  void dropStraightCorners(std::vector<Polygon>& polygons) const {
+    std::vector<std::array<int, 2>> owner(p_.size(), {-1, -1});
+    std::vector<int> count(p_.size(), 0);
+    for (int k = 0; k < static_cast<int>(polygons.size()); ++k)
+      for (const int v : polygons[k].loop)
+        if (++count[v] <= 2) owner[v][count[v] - 1] = k;
+    std::vector<char> dropped(p_.size(), 0);
+    std::vector<std::size_t> left(polygons.size());
+    for (std::size_t k = 0; k < polygons.size(); ++k) left[k] = polygons[k].loop.size();
+    for (const Polygon& polygon : polygons) {
+      const std::vector<int>& loop = polygon.loop;
+      const std::size_t n = loop.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        const int v = loop[i];
+        if (count[v] != 2 || dropped[v] || left[owner[v][0]] <= 3 || left[owner[v][1]] <= 3) continue;
+        std::size_t before = i, after = i;
+        do before = (before + n - 1) % n;
+        while (dropped[loop[before]]);
+        do after = (after + 1) % n;
+        while (dropped[loop[after]]);
+        const V& a = p_[loop[before]];
+        const V line = p_[loop[after]] - a;
+        if ((p_[v] - a).cross(line).norm() <= tol_ * line.norm()) {
+          dropped[v] = 1;
+          --left[owner[v][0]];
+          --left[owner[v][1]];
+        }
+      }
+    }
+    for (Polygon& polygon : polygons) std::erase_if(polygon.loop, [&](int v) { return dropped[v] != 0; });
   }
 
   std::vector<V> p_;  // the true points
@@ -355,16 +409,17 @@ class QuickHull {
   bool leftOut_ = false;
 };
 
-/// Relative tolerance of the hull. The hull is built in double, so for float
-/// points it covers only their own round-off (a few ulps); for double a floor
-/// keeps sliver faces from steering the normals.
+/// Tolerance of the hull, relative to the cloud's half bounding-box diagonal.
+/// The hull is built in double on points moved to their box center, where a
+/// sliver face of height h has a normal good to about ε·size/h: features
+/// below some √ε·size cannot be decided, hence 1e-7 for double. For float,
+/// 16 ulps of the input's own round-off is the larger. convexHull adds 16
+/// ulps of S of the largest coordinate, for round-off in the input.
 template <Scalar S>
-inline constexpr double kHullRelativeTolerance = std::is_same_v<S, float> ? 16 * 1.1920929e-7 : 1e-12;
+inline constexpr double kHullRelativeTolerance = std::is_same_v<S, float> ? 16 * 1.1920929e-7 : 1e-7;
 
 /// Convex hull of `points` (finite, in any frame), or nothing when they are
 /// (within the tolerance) coplanar, collinear, coincident or fewer than 4.
-/// The tolerance is kHullRelativeTolerance times the larger of the cloud's
-/// half bounding-box diagonal and its largest coordinate.
 template <Scalar S>
 [[nodiscard]] std::optional<ConvexHull<S>> convexHull(const std::vector<Vec3<S>>& points) {
   using V = Vec3<double>;
@@ -374,8 +429,9 @@ template <Scalar S>
     lo = lo.cwiseMin(p.template cast<double>());
     hi = hi.cwiseMax(p.template cast<double>());
   }
-  const double scale = std::max(0.5 * (hi - lo).norm(), std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()));
-  const double tolerance = kHullRelativeTolerance<S> * scale;
+  const double largest = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  const double tolerance =
+      kHullRelativeTolerance<S> * 0.5 * (hi - lo).norm() + 16 * double(std::numeric_limits<S>::epsilon()) * largest;
   const V center = 0.5 * (lo + hi);
   std::vector<V> shifted;
   shifted.reserve(points.size());
@@ -403,13 +459,33 @@ template <Scalar S>
       index[i] = static_cast<int>(result.vertices.size());
       result.vertices.push_back(points[i]);
     }
+  std::set<std::pair<int, int>> edges;  // polygon sides and fan diagonals, as (low, high) index
+  for (const auto& polygon : polygons)
+    for (std::size_t k = 0; k < polygon.loop.size(); ++k) {
+      const int a = index[polygon.loop[k]], b = index[polygon.loop[(k + 1) % polygon.loop.size()]];
+      edges.insert(std::minmax(a, b));
+    }
   for (const auto& polygon : polygons) {
     ConvexFace<S> face;
     face.normal = polygon.normal.template cast<S>();
     face.offset = std::numeric_limits<S>::lowest();
     for (const int v : polygon.loop) face.vertices.push_back(index[v]);
     for (const int v : polygon.points) face.offset = std::max(face.offset, face.normal.dot(points[v]));
-    for (std::size_t k = 1; k + 1 < face.vertices.size(); ++k)
+    // A fan from the first corner whose diagonals are no edge yet (two
+    // polygons bent within the tolerance could share one): a closed surface.
+    const std::size_t n = face.vertices.size();
+    for (std::size_t root = 0; root < n; ++root) {
+      bool clear = true;
+      for (std::size_t k = 2; k + 1 < n && clear; ++k)
+        clear = !edges.contains(std::minmax(face.vertices[root], face.vertices[(root + k) % n]));
+      if (clear) {
+        std::rotate(face.vertices.begin(), face.vertices.begin() + static_cast<std::ptrdiff_t>(root),
+                    face.vertices.end());
+        break;
+      }
+    }
+    for (std::size_t k = 2; k + 1 < n; ++k) edges.insert(std::minmax(face.vertices[0], face.vertices[k]));
+    for (std::size_t k = 1; k + 1 < n; ++k)
       result.triangles.push_back({face.vertices[0], face.vertices[k], face.vertices[k + 1]});
     result.faces.push_back(std::move(face));
   }

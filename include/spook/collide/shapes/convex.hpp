@@ -13,8 +13,9 @@
 namespace spook {
 
 /// The convex hull of a point cloud, in the shape frame of the points (m).
-/// Only the hull's corners are kept; points inside it, or on its faces and
-/// edges within a tolerance relative to the cloud's size, are dropped.
+/// Only the hull's corners are kept: points inside it, or on its faces and
+/// edges within getTolerance() (about 1e-7 of the cloud's size for double,
+/// 16 ulps for float), are dropped, and coplanar triangles form one face.
 template <Scalar S>
 class ConvexT : public ShapeT<S> {
  public:
@@ -24,8 +25,8 @@ class ConvexT : public ShapeT<S> {
   using Triangle = std::array<int, 3>;
   using Face = detail::ConvexFace<S>;
 
-  /// Hull of `points` (shape frame, m). Throws on a non-finite point and on
-  /// fewer than 4 points that are not (nearly) coplanar.
+  /// Hull of `points` (shape frame, m). Throws on a non-finite point, and
+  /// unless the points span a volume (not all coplanar within the tolerance).
   explicit ConvexT(const std::vector<Vec3>& points) {
     for (const Vec3& p : points)
       if (!p.allFinite()) throw detail::makeError("Convex", "", "points must be finite (m)", p);
@@ -71,8 +72,8 @@ class ConvexT : public ShapeT<S> {
   [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
     this->requireMass("Convex", mass);
     const Vec3& c = center_;
-    return SPDMat3<S>(Mat3((mass / volume_) * unitInertia_ +
-                           mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())));
+    return SPDMat3<S>(
+        Mat3((mass / volume_) * unitInertia_ + mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())));
   }
 
   /// Box around the corners, shape frame (m).

@@ -1,0 +1,54 @@
+// Nanoseconds per narrow-phase query for every pair of the collider
+// matrix, through the run-time table of the full shape list: the second
+// shape sits 0.3 m above the first, turned a little, so that every pair
+// overlaps (mesh and height-field queries visit the triangles under it).
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include <spook/collide/collider_matrix.hpp>
+
+#include "scenes.hpp"
+
+namespace {
+
+using Matrix = spook::ColliderMatrixT<double, spook::AllShapes>;
+
+void query(benchmark::State& state, const spook::ShapeT<double>* a, const spook::ShapeT<double>* b) {
+  const spook::Transform<double> X_WA = spook::Transform<double>::Identity();
+  const spook::Quat<double> tilt(Eigen::AngleAxis<double>(0.2, spook::Vec3<double>(1, 2, 0).normalized()));
+  const spook::Transform<double> X_WB = spook::makeTransform<double>(spook::Vec3<double>(0.05, -0.03, 0.3), tilt);
+  std::vector<spook::ContactPointT<double>> points;
+  std::size_t found = 0;
+  for (auto _ : state) {
+    points.clear();
+    spook::ContactSinkT<double> sink(points);
+    Matrix::collide(*a, X_WA, *b, X_WB, sink);
+    found += points.size();
+    benchmark::DoNotOptimize(points.data());
+  }
+  state.counters["points"] = double(found) / double(state.iterations());
+}
+
+const std::vector<spook::ref_ptr<spook::ShapeT<double>>>& shapes() {
+  static const auto all = spook::bench::oneOfEach();
+  return all;
+}
+
+const bool registered = [] {
+  for (std::size_t i = 0; i < shapes().size(); ++i)
+    for (std::size_t j = i; j < shapes().size(); ++j) {
+      const spook::ShapeT<double>* a = shapes()[i].get();
+      const spook::ShapeT<double>* b = shapes()[j].get();
+      if (!Matrix::supports(a->getType(), b->getType())) continue;
+      const std::string name = "collide/" + std::string(spook::shapeTypeName(a->getType())) + "/" +
+                               std::string(spook::shapeTypeName(b->getType()));
+      benchmark::RegisterBenchmark(name.c_str(), query, a, b);
+    }
+  return true;
+}();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,55 @@
+#pragma once
+
+// Helpers of the colliders' degenerate-case tests: poses and a collide
+// that checks every contact it gets is finite with a unit normal.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <type_traits>
+#include <vector>
+
+#include <spook/collide/collider.hpp>
+
+#include "tolerance.hpp"
+
+namespace spook::test {
+
+template <class S>
+using Points = std::vector<spook::ContactPointT<S>>;
+
+template <class S>
+spook::Transform<S> at(S x, S y, S z) {
+  spook::Transform<S> X = spook::Transform<S>::Identity();
+  X.translation() = spook::Vec3<S>(x, y, z);
+  return X;
+}
+
+template <class S>
+spook::Transform<S> turned(const spook::Transform<S>& X, S angle, const std::type_identity_t<spook::Vec3<S>>& axis) {
+  spook::Transform<S> Y = X;
+  Y.linear() = Eigen::AngleAxis<S>(angle, axis.normalized()).toRotationMatrix();
+  return Y;
+}
+
+// spook::collide on the pair, every contact checked finite with a unit normal.
+template <class A, class B, class S = typename A::Vec3::Scalar>
+Points<S> contacts(const A& a, const spook::Transform<S>& X_WA, const B& b, const spook::Transform<S>& X_WB) {
+  Points<S> points;
+  spook::ContactSinkT<S> sink(points);
+  spook::collide(a, X_WA, b, X_WB, sink);
+  for (const auto& p : points) {
+    CHECK(p.point.allFinite());
+    CHECK(std::isfinite(p.depth));
+    CHECK(p.depth >= S(0));
+    CHECK(std::abs(p.normal.norm() - S(1)) <= pick<S>(1e-12, 1e-6));
+  }
+  return points;
+}
+
+template <class S>
+bool near(const spook::Vec3<S>& a, const spook::Vec3<S>& b, S tolerance) {
+  return (a - b).norm() <= tolerance;
+}
+
+}  // namespace spook::test
