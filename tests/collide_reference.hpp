@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -39,10 +40,12 @@
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/capsule_capsule.h>
 #include <fcl/narrowphase/distance.h>
 
 #include <spook/collide/collider.hpp>
 #include <spook/collide/contact_sink.hpp>
+#include <spook/collide/detail/ccd_bridge.hpp>
 #include <spook/collide/shapes/box.hpp>
 #include <spook/collide/shapes/capsule.hpp>
 #include <spook/collide/shapes/convex.hpp>
@@ -265,6 +268,41 @@ double projectionOverlap(const A& a, const Transformd& X_WA, const B& b, const T
   return n.dot(supportWorld(a, X_WA, n) - supportWorld(b, X_WB, -n));
 }
 
+/// The support height max over the shape of d·x in its own frame (m), in
+/// closed form: a restatement of the shapes' support functions that shares
+/// no code with them.
+inline double supportHeight(const SphereT<double>& s, const Vec3d& d) { return s.getRadius() * d.norm(); }
+inline double supportHeight(const BoxT<double>& s, const Vec3d& d) { return s.getHalfExtents().dot(d.cwiseAbs()); }
+inline double supportHeight(const CylinderT<double>& s, const Vec3d& d) {
+  return s.getRadius() * std::sqrt(d.x() * d.x() + d.z() * d.z()) + 0.5 * s.getHeight() * std::abs(d.y());
+}
+inline double supportHeight(const CapsuleT<double>& s, const Vec3d& d) {
+  return s.getRadius() * d.norm() + 0.5 * s.getHeight() * std::abs(d.y());
+}
+inline double supportHeight(const LineT<double>& s, const Vec3d& d) {
+  return std::max(s.getFirstPoint().dot(d), s.getSecondPoint().dot(d));
+}
+
+/// A convex shape placed at X: its support height h(n) = max over the
+/// shape of n·x (world, m), by supportHeight in the shape's frame.
+template <class Shape>
+struct PlacedShape {
+  const Shape& shape;
+  Eigen::Matrix3d R;  // shape → world
+  Vec3d p;            // shape origin, world (m)
+  PlacedShape(const Shape& s, const Transformd& X) : shape(s), R(X.linear()), p(X.translation()) {}
+  [[nodiscard]] double height(const Vec3d& n) const { return supportHeight(shape, Vec3d(R.transpose() * n)) + n.dot(p); }
+};
+/// A hull: the largest n·x over its world corners.
+template <>
+struct PlacedShape<ConvexT<double>> {
+  Eigen::Matrix3Xd corners;
+  PlacedShape(const ConvexT<double>& s, const Transformd& X) : corners(3, Eigen::Index(s.getVertices().size())) {
+    for (std::size_t i = 0; i < s.getVertices().size(); ++i) corners.col(Eigen::Index(i)) = X * s.getVertices()[i];
+  }
+  [[nodiscard]] double height(const Vec3d& n) const { return (n.transpose() * corners).maxCoeff(); }
+};
+
 /// Exact penetration of two convex polytopes given by their world corners,
 /// by brute force. The Minkowski difference M = {a − b} is the hull of all
 /// corner differences; the pair intersects when the origin is in M, and
@@ -319,13 +357,15 @@ inline Reference polytopePenetration(const std::vector<Vec3d>& cornersA, const s
 template <class A, class B>
 Reference axesMinimum(const A& a, const Transformd& X_WA, const B& b, const Transformd& X_WB,
                       const std::vector<Vec3d>& axes) {
+  const PlacedShape<A> placedA(a, X_WA);
+  const PlacedShape<B> placedB(b, X_WB);
   Reference reference;
   bool first = true;
   for (const Vec3d& axis : axes) {
     if (!(axis.norm() > 1e-9)) continue;
     for (const double sign : {1.0, -1.0}) {
       const Vec3d n = sign * axis.normalized();
-      const double f = projectionOverlap(a, X_WA, b, X_WB, n);
+      const double f = placedA.height(n) + placedB.height(-n);
       if (first || f < reference.depth) {
         reference.depth = f;
         reference.normal = n;
@@ -338,84 +378,189 @@ Reference axesMinimum(const A& a, const Transformd& X_WA, const B& b, const Tran
   return reference;
 }
 
-/// The penetration depth of two convex shapes as the minimum over unit n of
-/// the projection overlap f(n) = h_a(n) + h_b(−n) (minus the distance when
-/// apart), found by brute force: f on 2,000 directions spread evenly over
-/// the sphere (a Fibonacci lattice, ~0.08 rad apart), then Nelder–Mead from
-/// the best five of them (at least 0.15 rad apart), in coordinates on the tangent plane, restarted
-/// with ever smaller simplices until they stop improving. It shares nothing
-/// with libccd or FCL; on pairs with closed forms it matches them to ~1e-10.
-template <class A, class B>
-Reference overlapMinimum(const A& a, const Transformd& X_WA, const B& b, const Transformd& X_WB) {
-  const auto f = [&](const Vec3d& n) { return projectionOverlap(a, X_WA, b, X_WB, n); };
-  constexpr int kLattice = 2000, kSeeds = 5;
-  std::vector<std::pair<double, Vec3d>> samples;
-  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < kLattice; ++i) {
-    const double z = 1.0 - 2.0 * (i + 0.5) / kLattice, rho = std::sqrt(1.0 - z * z), phi = golden * i;
-    const Vec3d n(rho * std::cos(phi), rho * std::sin(phi), z);
-    samples.emplace_back(f(n), n);
+/// Where a shape's support height h(n) has kinks, world frame. `corners`:
+/// directions at which h has a conical kink, the normals of flat faces (a
+/// box's or hull's faces, a cylinder's caps); `ridges`: directions d whose
+/// perpendicular great circle (or an arc of it) is a crease of h, the edge
+/// directions of a box or hull, a cylinder's rims, a capsule's or line's
+/// axis. A minimum of the projection overlap at such a kink sits at the tip
+/// of a cone too narrow for a lattice of directions to see.
+struct Kinks {
+  std::vector<Vec3d> corners;
+  std::vector<Vec3d> ridges;
+};
+inline void addKinks(const SphereT<double>&, const Transformd&, Kinks&) {}
+inline void addKinks(const BoxT<double>&, const Transformd& X, Kinks& kinks) {
+  for (int i = 0; i < 3; ++i) {
+    kinks.corners.push_back(X.linear().col(i));
+    kinks.corners.push_back(-X.linear().col(i));
+    kinks.ridges.push_back(X.linear().col(i));
   }
-  std::sort(samples.begin(), samples.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<Vec3d> seeds;
-  for (const auto& [value, n] : samples) {
-    bool distinct = true;
-    for (const Vec3d& seed : seeds) distinct = distinct && seed.dot(n) < std::cos(0.15);
-    if (distinct) seeds.push_back(n);
-    if (int(seeds.size()) == kSeeds) break;
-  }
-  Reference reference;
-  reference.depth = samples.front().first;
-  reference.normal = samples.front().second;
-  for (const Vec3d& seed : seeds) {
-    Vec3d center = seed;
-    double best = f(seed);
-    int restarts = 0;
-    for (double size = 0.1; size > 1e-12 && restarts < 80; ++restarts) {
-      // Nelder–Mead on g(u, v) = f(normalize(center + u e1 + v e2)).
-      const Vec3d e1 = center.unitOrthogonal(), e2 = center.cross(e1);
-      const auto at = [&](const Eigen::Vector2d& x) { return Vec3d((center + x.x() * e1 + x.y() * e2).normalized()); };
-      std::array<Eigen::Vector2d, 3> x = {Eigen::Vector2d(0, 0), Eigen::Vector2d(size, 0), Eigen::Vector2d(0, size)};
-      std::array<double, 3> g = {best, f(at(x[1])), f(at(x[2]))};
-      for (int iteration = 0; iteration < 200; ++iteration) {
-        std::array<int, 3> order = {0, 1, 2};
-        std::sort(order.begin(), order.end(), [&](int i, int j) { return g[i] < g[j]; });
-        const int lo = order[0], mid = order[1], hi = order[2];
-        if ((x[hi] - x[lo]).norm() + (x[mid] - x[lo]).norm() < 1e-13) break;
-        const Eigen::Vector2d centroid = 0.5 * (x[lo] + x[mid]);
-        const Eigen::Vector2d reflected = centroid + (centroid - x[hi]);
-        const double gr = f(at(reflected));
-        if (gr < g[lo]) {
-          const Eigen::Vector2d expanded = centroid + 2.0 * (centroid - x[hi]);
-          const double ge = f(at(expanded));
-          x[hi] = ge < gr ? expanded : reflected;
-          g[hi] = std::min(ge, gr);
-        } else if (gr < g[mid]) {
-          x[hi] = reflected;
-          g[hi] = gr;
+}
+inline void addKinks(const CylinderT<double>&, const Transformd& X, Kinks& kinks) {
+  kinks.corners.push_back(X.linear().col(1));
+  kinks.corners.push_back(-X.linear().col(1));
+  kinks.ridges.push_back(X.linear().col(1));
+}
+inline void addKinks(const CapsuleT<double>&, const Transformd& X, Kinks& kinks) {
+  kinks.ridges.push_back(X.linear().col(1));
+}
+inline void addKinks(const LineT<double>& s, const Transformd& X, Kinks& kinks) {
+  kinks.ridges.push_back(X.linear() * (s.getSecondPoint() - s.getFirstPoint()));
+}
+inline void addKinks(const ConvexT<double>& s, const Transformd& X, Kinks& kinks) {
+  for (const auto& face : s.getFaces()) kinks.corners.push_back(X.linear() * face.normal);
+  const auto& v = s.getVertices();
+  for (const auto& t : s.getTriangles())
+    for (int k = 0; k < 3; ++k)
+      if (t[std::size_t(k)] < t[std::size_t((k + 1) % 3)])
+        kinks.ridges.push_back(X.linear() * (v[std::size_t(t[std::size_t((k + 1) % 3)])] - v[std::size_t(t[std::size_t(k)])]));
+}
+
+/// 500 directions spread evenly over the unit sphere (a Fibonacci lattice,
+/// some 0.16 rad apart).
+inline const std::vector<Vec3d>& fibonacciLattice() {
+  static const std::vector<Vec3d> lattice = [] {
+    constexpr int kCount = 500;
+    std::vector<Vec3d> directions;
+    const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < kCount; ++i) {
+      const double z = 1.0 - 2.0 * (i + 0.5) / kCount, rho = std::sqrt(1.0 - z * z), phi = golden * i;
+      directions.emplace_back(rho * std::cos(phi), rho * std::sin(phi), z);
+    }
+    return directions;
+  }();
+  return lattice;
+}
+
+/// Nelder–Mead on g(u, v) = f(normalize(center + u e1 + v e2)), coordinates
+/// on the tangent plane of the unit sphere at `center`, from a simplex of
+/// `size` (rad), restarted from the best point with fresh simplices (half
+/// as large after an improvement, a tenth otherwise) until they are
+/// smaller than `smallest` (rad). `best` is f(center); returns the lowest
+/// f found and moves `center` there.
+template <class F>
+double nelderMeadOnSphere(const F& f, Vec3d& center, double best, double size, double smallest) {
+  for (int restarts = 0; size > smallest && restarts < 80; ++restarts) {
+    const Vec3d e1 = center.unitOrthogonal(), e2 = center.cross(e1);
+    const auto at = [&](const Eigen::Vector2d& x) { return Vec3d((center + x.x() * e1 + x.y() * e2).normalized()); };
+    std::array<Eigen::Vector2d, 3> x = {Eigen::Vector2d(0, 0), Eigen::Vector2d(size, 0), Eigen::Vector2d(0, size)};
+    std::array<double, 3> g = {best, f(at(x[1])), f(at(x[2]))};
+    for (int iteration = 0; iteration < 200; ++iteration) {
+      std::array<int, 3> order = {0, 1, 2};
+      std::sort(order.begin(), order.end(), [&](int i, int j) { return g[std::size_t(i)] < g[std::size_t(j)]; });
+      const auto lo = std::size_t(order[0]), mid = std::size_t(order[1]), hi = std::size_t(order[2]);
+      if ((x[hi] - x[lo]).norm() + (x[mid] - x[lo]).norm() < smallest) break;
+      const Eigen::Vector2d centroid = 0.5 * (x[lo] + x[mid]);
+      const Eigen::Vector2d reflected = centroid + (centroid - x[hi]);
+      const double gr = f(at(reflected));
+      if (gr < g[lo]) {
+        const Eigen::Vector2d expanded = centroid + 2.0 * (centroid - x[hi]);
+        const double ge = f(at(expanded));
+        x[hi] = ge < gr ? expanded : reflected;
+        g[hi] = std::min(ge, gr);
+      } else if (gr < g[mid]) {
+        x[hi] = reflected;
+        g[hi] = gr;
+      } else {
+        const Eigen::Vector2d contracted = centroid + 0.5 * (x[hi] - centroid);
+        const double gc = f(at(contracted));
+        if (gc < g[hi]) {
+          x[hi] = contracted;
+          g[hi] = gc;
         } else {
-          const Eigen::Vector2d contracted = centroid + 0.5 * (x[hi] - centroid);
-          const double gc = f(at(contracted));
-          if (gc < g[hi]) {
-            x[hi] = contracted;
-            g[hi] = gc;
-          } else {
-            for (const int i : {mid, hi}) {
-              x[i] = x[lo] + 0.5 * (x[i] - x[lo]);
-              g[i] = f(at(x[i]));
-            }
+          for (const std::size_t i : {mid, hi}) {
+            x[i] = x[lo] + 0.5 * (x[i] - x[lo]);
+            g[i] = f(at(x[i]));
           }
         }
       }
-      const int lo = int(std::min_element(g.begin(), g.end()) - g.begin());
-      const bool improved = g[lo] < best - 1e-15;
-      center = at(x[lo]);
-      best = std::min(best, g[lo]);
-      size *= improved ? 0.5 : 0.1;
     }
-    if (best < reference.depth) {
-      reference.depth = best;
-      reference.normal = center;
+    const auto lo = std::size_t(std::min_element(g.begin(), g.end()) - g.begin());
+    const bool improved = g[lo] < best - 1e-15;
+    if (g[lo] < best) {
+      center = at(x[lo]);
+      best = g[lo];
+    }
+    size *= improved ? 0.5 : 0.1;
+  }
+  return best;
+}
+
+/// The penetration depth of two convex shapes as the minimum over unit n of
+/// the projection overlap f(n) = h_a(n) + h_b(−n) (minus the distance when
+/// apart), found by brute force: f on 500 directions spread evenly over the
+/// sphere (fibonacciLattice) and on the kinks of f (each shape's flat-face
+/// normals, and the crossings ±(d_a × d_b) of the two shapes' creases,
+/// addKinks); Nelder–Mead on the tangent plane from the best five lattice
+/// directions and the best three kinks, at least 0.2 rad apart, to 1e-4
+/// rad, and from the best two results on to 1e-10 rad. The lattice alone
+/// misses minima at cone tips (a cylinder's cap pressed on a rim: 7 mm on 1
+/// case in 1,500 with 2,000 directions and five seeds), hence the kinks.
+/// It shares nothing with libccd or FCL (supportHeight restates the
+/// shapes' support functions); on pairs with closed forms it matches them
+/// to ~1e-9 (checked in test_colliders_ccd.cpp), and on 30,000 cylinder,
+/// box, capsule, hull and line pairs it came within 3e-8 m of a 4,000-point
+/// lattice with fourteen seeds polished to 1e-11 rad. Being a search, it
+/// may still miss a narrow minimum now and then: differential() then finds
+/// f lower along spook's normal than this depth, and says so.
+template <class A, class B>
+Reference overlapMinimum(const A& a, const Transformd& X_WA, const B& b, const Transformd& X_WB) {
+  const PlacedShape<A> placedA(a, X_WA);
+  const PlacedShape<B> placedB(b, X_WB);
+  const auto f = [&](const Vec3d& n) { return placedA.height(n) + placedB.height(-n); };
+  constexpr std::size_t kLatticeSeeds = 5, kKinkSeeds = 3, kPolished = 2;
+  const double kSeedSpacing = std::cos(0.2), kCoarse = 1e-4, kFine = 1e-10;  // rad
+  using Sample = std::pair<double, Vec3d>;
+  const auto lower = [](const Sample& x, const Sample& y) { return x.first < y.first; };
+
+  std::vector<Sample> lattice, kinks;
+  for (const Vec3d& n : fibonacciLattice()) lattice.emplace_back(f(n), n);
+  const auto sample = [&](const Vec3d& direction) {
+    if (!(direction.norm() > 1e-9)) return;
+    const Vec3d n = direction.normalized();
+    kinks.emplace_back(f(n), n);
+  };
+  Kinks kinksA, kinksB;
+  addKinks(a, X_WA, kinksA);
+  addKinks(b, X_WB, kinksB);
+  for (const Vec3d& corner : kinksA.corners) sample(corner);
+  for (const Vec3d& corner : kinksB.corners) sample(-corner);  // b's overlap term is h_b(−n)
+  for (const Vec3d& ridgeA : kinksA.ridges)
+    for (const Vec3d& ridgeB : kinksB.ridges) {
+      sample(ridgeA.cross(ridgeB));
+      sample(ridgeB.cross(ridgeA));
+    }
+  std::sort(lattice.begin(), lattice.end(), lower);
+  std::sort(kinks.begin(), kinks.end(), lower);
+
+  Reference reference;
+  reference.depth = lattice.front().first;
+  reference.normal = lattice.front().second;
+  if (!kinks.empty() && kinks.front().first < reference.depth) {
+    reference.depth = kinks.front().first;
+    reference.normal = kinks.front().second;
+  }
+  std::vector<Sample> seeds;
+  const auto pick = [&](const std::vector<Sample>& pool, std::size_t count) {
+    const std::size_t until = seeds.size() + count;
+    for (const Sample& candidate : pool) {
+      if (seeds.size() == until) break;
+      if (std::none_of(seeds.begin(), seeds.end(),
+                       [&](const Sample& seed) { return seed.second.dot(candidate.second) >= kSeedSpacing; }))
+        seeds.push_back(candidate);
+    }
+  };
+  pick(lattice, kLatticeSeeds);
+  pick(kinks, kKinkSeeds);
+  for (auto& [value, n] : seeds) value = nelderMeadOnSphere(f, n, value, 0.05, kCoarse);
+  std::sort(seeds.begin(), seeds.end(), lower);
+  if (seeds.size() > kPolished) seeds.resize(kPolished);
+  for (auto& [value, n] : seeds) {
+    value = nelderMeadOnSphere(f, n, value, 10 * kCoarse, kFine);
+    if (value < reference.depth) {
+      reference.depth = value;
+      reference.normal = n;
     }
   }
   reference.intersect = reference.depth >= 0.0;
@@ -423,11 +568,186 @@ Reference overlapMinimum(const A& a, const Transformd& X_WA, const B& b, const T
   return reference;
 }
 
+// ---------------------------------------------------------------------------
+// Polytopes: the separating axes of their Minkowski difference.
+
+/// A polytope's faces and edges, world frame: what the facets of its
+/// Minkowski difference with another polytope or a segment are made of.
+struct PolytopeFeatures {
+  struct Edge {
+    Vec3d direction;       // unit
+    Vec3d left, right;     // the outward unit normals of the two faces meeting there
+    bool hasFaces = true;  // false when the hull's face loops did not give exactly two faces
+  };
+  std::vector<Vec3d> faceNormals;  // outward, unit
+  std::vector<Edge> edges;
+};
+
+inline PolytopeFeatures polytopeFeatures(const BoxT<double>&, const Transformd& X) {
+  PolytopeFeatures features;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3d u = X.linear().col(i), v = X.linear().col((i + 1) % 3), w = X.linear().col((i + 2) % 3);
+    features.faceNormals.push_back(u);
+    features.faceNormals.push_back(-u);
+    for (const double sv : {1.0, -1.0})
+      for (const double sw : {1.0, -1.0}) features.edges.push_back({u, sv * v, sw * w, true});
+  }
+  return features;
+}
+
+/// A hull's polygon faces, and its edges from the faces' corner loops, each
+/// between the two faces whose loops share it.
+inline PolytopeFeatures polytopeFeatures(const ConvexT<double>& s, const Transformd& X) {
+  PolytopeFeatures features;
+  const auto& v = s.getVertices();
+  std::vector<std::pair<std::pair<int, int>, std::vector<std::size_t>>> edges;  // (i < j) → faces
+  for (std::size_t f = 0; f < s.getFaces().size(); ++f) {
+    const auto& face = s.getFaces()[f];
+    features.faceNormals.push_back(X.linear() * face.normal);
+    for (std::size_t k = 0; k < face.vertices.size(); ++k) {
+      const int i = face.vertices[k], j = face.vertices[(k + 1) % face.vertices.size()];
+      const std::pair<int, int> key(std::min(i, j), std::max(i, j));
+      auto it = std::find_if(edges.begin(), edges.end(), [&](const auto& e) { return e.first == key; });
+      if (it == edges.end()) {
+        edges.push_back({key, {}});
+        it = edges.end() - 1;
+      }
+      it->second.push_back(f);
+    }
+  }
+  for (const auto& [key, faces] : edges) {
+    PolytopeFeatures::Edge edge;
+    edge.direction = (X.linear() * (v[std::size_t(key.second)] - v[std::size_t(key.first)])).normalized();
+    edge.hasFaces = faces.size() == 2;
+    if (edge.hasFaces) {
+      edge.left = features.faceNormals[faces[0]];
+      edge.right = features.faceNormals[faces[1]];
+    }
+    features.edges.push_back(edge);
+  }
+  return features;
+}
+
+/// Whether the arcs AB and CD of the unit sphere (each shorter than a half
+/// circle) may cross (Gregorius, "The Separating Axis Test between Convex
+/// Polyhedra", GDC 2013), with some slack: a pair let through needlessly
+/// only adds an axis, one held back wrongly would lose a facet.
+inline bool arcsMayCross(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+  constexpr double kSlack = 1e-9;
+  const Vec3d bxa = b.cross(a), dxc = d.cross(c);
+  const double cba = c.dot(bxa), dba = d.dot(bxa), adc = a.dot(dxc), bdc = b.dot(dxc);
+  return cba * dba < kSlack && adc * bdc < kSlack && cba * bdc > -kSlack;
+}
+
+/// The facet normals of the Minkowski difference of two polytopes: the face
+/// normals of both and the cross products of their edges. With `prune`,
+/// only the edge pairs whose arcs on the Gauss map cross (those of b
+/// mirrored: −b's faces are b's, negated) form a facet; without, every pair
+/// (the textbook separating axis test, O(edges²) axes).
+inline std::vector<Vec3d> minkowskiAxes(const PolytopeFeatures& a, const PolytopeFeatures& b, bool prune = true) {
+  std::vector<Vec3d> axes = a.faceNormals;
+  axes.insert(axes.end(), b.faceNormals.begin(), b.faceNormals.end());
+  for (const auto& ea : a.edges)
+    for (const auto& eb : b.edges)
+      if (!prune || !ea.hasFaces || !eb.hasFaces || arcsMayCross(ea.left, ea.right, -eb.left, -eb.right))
+        axes.push_back(ea.direction.cross(eb.direction));
+  return axes;
+}
+
+/// The facet normals of the Minkowski difference of a polytope and a
+/// segment along `direction`: the polytope's faces, and its edges crossed
+/// with the segment (the parallelograms an edge sweeps along it).
+inline std::vector<Vec3d> segmentAxes(const PolytopeFeatures& polytope, const Vec3d& direction) {
+  std::vector<Vec3d> axes = polytope.faceNormals;
+  const Vec3d d = direction.normalized();
+  for (const auto& e : polytope.edges) axes.push_back(e.direction.cross(d));
+  return axes;
+}
+
+/// Exact penetration of two polytopes (boxes or hulls) by the separating
+/// axes of their Minkowski difference; apart, minus the largest separation
+/// along them, a lower bound of the distance.
+template <class A, class B>
+Reference polytopeReference(const A& a, const Transformd& X_WA, const B& b, const Transformd& X_WB) {
+  return axesMinimum(a, X_WA, b, X_WB, minkowskiAxes(polytopeFeatures(a, X_WA), polytopeFeatures(b, X_WB)));
+}
+
+// ---------------------------------------------------------------------------
+// Closest points.
+
+/// The point of the triangle (p0, p1, p2) closest to c (Ericson, Real-Time
+/// Collision Detection, §5.1.5, by Voronoi regions).
+inline Vec3d closestPointOnTriangle(const Vec3d& c, const Vec3d& p0, const Vec3d& p1, const Vec3d& p2) {
+  const Vec3d ab = p1 - p0, ac = p2 - p0, ap = c - p0;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return p0;
+  const Vec3d bp = c - p1;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return p1;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return p0 + d1 / (d1 - d3) * ab;
+  const Vec3d cp = c - p2;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return p2;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return p0 + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return p1 + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (p2 - p1);
+  const double denominator = 1.0 / (va + vb + vc);
+  return p0 + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+/// Closest points of the segments [p1, q1] and [p2, q2]: FCL's closed form
+/// (fcl::detail::closestPtSegmentSegment, used by its capsule distance).
+struct SegmentPoints {
+  Vec3d onFirst, onSecond;
+  [[nodiscard]] double distance() const { return (onSecond - onFirst).norm(); }
+};
+inline SegmentPoints closestSegmentPoints(const Vec3d& p1, const Vec3d& q1, const Vec3d& p2, const Vec3d& q2) {
+  double s = 0, t = 0;
+  SegmentPoints points;
+  fcl::detail::closestPtSegmentSegment<double>(p1, q1, p2, q2, &s, &t, &points.onFirst, &points.onSecond);
+  return points;
+}
+
+/// A segment's world endpoints: a Line's, or a Capsule's axis (local y).
+inline std::pair<Vec3d, Vec3d> worldSegment(const LineT<double>& s, const Transformd& X) {
+  return {X * s.getFirstPoint(), X * s.getSecondPoint()};
+}
+inline std::pair<Vec3d, Vec3d> worldSegment(const CapsuleT<double>& s, const Transformd& X) {
+  const Vec3d half = X.linear().col(1) * (0.5 * s.getHeight());
+  return {X.translation() - half, X.translation() + half};
+}
+
+/// Closest points of a segment [p, q] and a hull that it does not meet: the
+/// nearest over the hull's triangles of the endpoints' closest points on
+/// them (closestPointOnTriangle) and of the segment's closest points to
+/// their edges (closestSegmentPoints). A segment apart from the hull comes
+/// nearest to it on its surface, where one of these is the closest pair.
+inline SegmentPoints segmentHullPoints(const Vec3d& p, const Vec3d& q, const ConvexT<double>& hull,
+                                       const Transformd& X) {
+  std::vector<Vec3d> w;
+  for (const Vec3d& v : hull.getVertices()) w.push_back(X * v);
+  SegmentPoints best{p, w.front()};
+  const auto consider = [&](const SegmentPoints& candidate) {
+    if (candidate.distance() < best.distance()) best = candidate;
+  };
+  for (const auto& t : hull.getTriangles()) {
+    const Vec3d &p0 = w[std::size_t(t[0])], &p1 = w[std::size_t(t[1])], &p2 = w[std::size_t(t[2])];
+    consider({p, closestPointOnTriangle(p, p0, p1, p2)});
+    consider({q, closestPointOnTriangle(q, p0, p1, p2)});
+    consider(closestSegmentPoints(p, q, p0, p1));
+    consider(closestSegmentPoints(p, q, p1, p2));
+    consider(closestSegmentPoints(p, q, p2, p0));
+  }
+  return best;
+}
+
 /// Exact penetration of a convex hull (world corners and outward faces from
 /// its triangles) and a sphere: a center c outside the hull at distance d
-/// from it (the nearest of the triangles, Ericson's closest point on a
-/// triangle) gives depth r − d along (c − q)/d; a center inside pushes out
-/// through the nearest face plane, depth r + (offset − n·c).
+/// from it (the nearest of the triangles, closestPointOnTriangle) gives
+/// depth r − d along (c − q)/d; a center inside pushes out through the
+/// nearest face plane, depth r + (offset − n·c).
 inline Reference convexSphereReference(const ConvexT<double>& a, const Transformd& X_WA, const SphereT<double>& b,
                                        const Transformd& X_WB) {
   const Vec3d c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
@@ -452,34 +772,7 @@ inline Reference convexSphereReference(const ConvexT<double>& a, const Transform
     double nearest = 1e300;
     Vec3d q = Vec3d::Zero();
     for (const auto& t : a.getTriangles()) {
-      // Ericson, Real-Time Collision Detection, §5.1.5.
-      const Vec3d &p0 = v[std::size_t(t[0])], &p1 = v[std::size_t(t[1])], &p2 = v[std::size_t(t[2])];
-      const Vec3d ab = p1 - p0, ac = p2 - p0, ap = c - p0;
-      const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-      Vec3d x;
-      if (d1 <= 0 && d2 <= 0) {
-        x = p0;
-      } else {
-        const Vec3d bp = c - p1;
-        const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-        const Vec3d cp = c - p2;
-        const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-        const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-        if (d3 >= 0 && d4 <= d3) {
-          x = p1;
-        } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-          x = p0 + d1 / (d1 - d3) * ab;
-        } else if (d6 >= 0 && d5 <= d6) {
-          x = p2;
-        } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-          x = p0 + d2 / (d2 - d6) * ac;
-        } else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-          x = p1 + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (p2 - p1);
-        } else {
-          const double denominator = 1.0 / (va + vb + vc);
-          x = p0 + ab * (vb * denominator) + ac * (vc * denominator);
-        }
-      }
+      const Vec3d x = closestPointOnTriangle(c, v[std::size_t(t[0])], v[std::size_t(t[1])], v[std::size_t(t[2])]);
       if ((c - x).norm() < nearest) {
         nearest = (c - x).norm();
         q = x;
@@ -525,6 +818,8 @@ struct Agreement {
   int wrongNormals = 0;       // normals off by more than kAngle that do not
   int nonUnit = 0;            // contacts whose normal is not unit length, or whose depth is negative
   int maxContacts = 0;
+  int referenceMisses = 0;    // compared cases where f along spook's normal is below the reference depth
+  double worstReferenceMiss = 0.0;     // m, by how much, at most
   int deep = 0;                        // compared cases deeper than the comparison limit, measured apart
   double worstDeepDepth = 0.0;         // m, over those
   double worstDepth = 0.0;             // m
@@ -532,8 +827,9 @@ struct Agreement {
   double worstStrictAngle = 0.0;       // rad, over cases whose reference minimum is not flat or tied
   double worstEquivalentExcess = 0.0;  // m, overlap along spook's normal above the reference depth, at most
 
-  static constexpr double kDecided = 1e-6;  // m
-  static constexpr double kAngle = 1e-3;    // rad
+  static constexpr double kDecided = 1e-6;       // m
+  static constexpr double kAngle = 1e-3;         // rad
+  static constexpr double kReferenceMiss = 1e-7;  // m
 };
 
 template <class S>
@@ -547,8 +843,12 @@ const char* scalarName() {
 /// given, is the projection overlap along n; a spook normal more than
 /// kAngle off the reference's still counts as equivalent when its overlap
 /// exceeds the reference depth by at most `depthTolerance` (two faces at
-/// the same distance, or a minimum too flat for S to place). Cases deeper
-/// than `compareUpTo` (m) are measured apart and not judged.
+/// the same distance, or a minimum too flat for S to place). The deepest
+/// contact is the one compared, and where the overlap is given, the
+/// reference's depth is lowered to the overlap along spook's normal when
+/// that is smaller (a brute-force reference that missed the minimum; such
+/// cases are counted and logged). Cases deeper than `compareUpTo` (m) are
+/// measured apart and not judged.
 template <class S, class A, class B, class Sample, class Run, class Ref>
 Agreement differential(
     std::uint64_t seed, int count, Sample&& sample, Run&& run, Ref&& reference, double depthTolerance,
@@ -564,15 +864,15 @@ Agreement differential(
     points.clear();
     ContactSinkT<S> sink(points);
     run(*castShape<S>(*c.a), X_WA, *castShape<S>(*c.b), X_WB, sink);
-    const Reference ref = reference(*c.a, XA, *c.b, XB);
+    const Reference reference0 = reference(*c.a, XA, *c.b, XB);
 
     ++agreement.cases;
-    agreement.intersecting += ref.intersect ? 1 : 0;
+    agreement.intersecting += reference0.intersect ? 1 : 0;
     agreement.maxContacts = std::max(agreement.maxContacts, int(points.size()));
     const bool found = !points.empty();
-    if (std::abs(ref.signedDistance) > Agreement::kDecided) {
+    if (std::abs(reference0.signedDistance) > Agreement::kDecided) {
       ++agreement.decided;
-      if (found != ref.intersect) ++agreement.disagreements;
+      if (found != reference0.intersect) ++agreement.disagreements;
     }
     double depth = -1.0;
     Vec3d normal = Vec3d::Zero();
@@ -584,7 +884,22 @@ Agreement differential(
         normal = n.normalized();
       }
     }
-    if (!(found && ref.intersect)) continue;
+    if (!(found && reference0.intersect)) continue;
+    // The penetration depth is the minimum of the projection overlap f over
+    // unit directions, so f along spook's normal bounds it from above as
+    // well as the reference's depth does. Lower than that depth, it shows
+    // that the reference (a search, for curved shapes) missed the minimum:
+    // spook's normal is then the better reference, and the miss is counted.
+    Reference ref = reference0;
+    if (overlap) {
+      const double along = overlap(*c.a, XA, *c.b, XB, normal);
+      if (along < ref.depth - Agreement::kReferenceMiss) {
+        ++agreement.referenceMisses;
+        agreement.worstReferenceMiss = std::max(agreement.worstReferenceMiss, ref.depth - along);
+        ref.depth = along;
+        ref.normal = normal;
+      }
+    }
     if (ref.depth > compareUpTo) {
       ++agreement.deep;
       agreement.worstDeepDepth = std::max(agreement.worstDeepDepth, std::abs(depth - ref.depth));
@@ -613,11 +928,15 @@ Agreement differential(
 /// One line for the log.
 template <class S>
 std::string describe(const std::string& pair, const Agreement& a) {
-  char deepText[128] = "";
+  char deepText[256] = "";
   if (a.deep > 0)
     std::snprintf(deepText, sizeof deepText, "; %d deeper cases apart, worst depth error %.3g m", a.deep,
                   a.worstDeepDepth);
-  char buffer[640];
+  if (a.referenceMisses > 0)
+    std::snprintf(deepText + std::strlen(deepText), sizeof deepText - std::strlen(deepText),
+                  "; %d reference misses (spook's normal overlaps less, by up to %.3g m)", a.referenceMisses,
+                  a.worstReferenceMiss);
+  char buffer[768];
   std::snprintf(buffer, sizeof buffer,
                 "%s <%s>: %d cases, %d intersecting, %d/%d decided cases disagree; worst depth error %.3g m; "
                 "worst normal error %.3g rad (%.3g rad outside %d equivalent normals, those within %.3g m); "
@@ -670,6 +989,134 @@ Agreement checkPair(const std::string& name, std::uint64_t seed, auto&& sample, 
     spook::collide(a, X_WA, b, X_WB, sink);
   };
   return checkDifferential<S, A, B>(name, seed, sample, run, reference, depthTolerance<S>());
+}
+
+
+// ---------------------------------------------------------------------------
+// The libccd pairs (test_colliders_ccd.cpp, test_colliders_ccd_more.cpp).
+
+/// Runs the libccd bridge itself, whatever the pair's collider.
+inline constexpr auto collideByBridge = [](const auto& a, const auto& X_WA, const auto& b, const auto& X_WB,
+                                           auto& sink) { spook::detail::collideByCcd(a, X_WA, b, X_WB, sink); };
+
+/// Depth tolerance of the libccd pairs, float and double (m).
+inline constexpr double kCcdDepth = 1e-4;
+
+/// Cases per libccd pair and scalar: 10,000 contacts as a simulation makes
+/// them (and a quarter as many deep overlaps) in optimized builds. Without
+/// NDEBUG (the Debug + AddressSanitizer build of CI, some 20 times slower)
+/// a tenth of that, 1,000 (and 250): the brute-force references and the
+/// bridge's polishing would take most of an hour there.
+#ifdef NDEBUG
+inline constexpr int kCcdCases = 10000;
+#else
+inline constexpr int kCcdCases = 1000;
+#endif
+inline constexpr int kCcdDeepCases = kCcdCases / 4;
+
+/// Contacts as a simulation makes them: the second shape turned at random
+/// and moved so that its deepest point along −u, for a random direction u,
+/// sits δ ∈ [−5, 10] cm below the first shape's highest point along u: the
+/// shapes are apart (the plane between the two points separates them) for
+/// δ < 0, and overlap by at most δ otherwise.
+template <class A, class B>
+PairCase<A, B> touching(RandomPoses& random, A* a, B* b) {
+  PairCase<A, B> c;
+  c.a = a;
+  c.b = b;
+  c.X_WA = random.pose(1.0);
+  c.X_WB = random.pose(0.0);
+  const Vec3d u = random.unit();
+  const double delta = random.uniform(-0.05, 0.1);
+  c.X_WB.translation() = supportWorld(*a, c.X_WA, u) - delta * u - supportWorld(*b, c.X_WB, -u);
+  return c;
+}
+
+/// The second shape anywhere within `reach` of the first one's center:
+/// mostly deep overlaps.
+template <class A, class B>
+PairCase<A, B> near(RandomPoses& random, A* a, B* b, double reach) {
+  PairCase<A, B> c;
+  c.a = a;
+  c.b = b;
+  c.X_WA = random.pose(1.0);
+  c.X_WB = random.poseNear(c.X_WA.translation(), reach);
+  return c;
+}
+
+inline BoxT<double>* randomBox(RandomPoses& random) {
+  return new BoxT<double>(Vec3d(random.length(0.1, 0.8), random.length(0.1, 0.8), random.length(0.1, 0.8)));
+}
+inline CylinderT<double>* randomCylinder(RandomPoses& random) {
+  return new CylinderT<double>(random.length(0.1, 0.8), random.length(0.2, 1.6));
+}
+inline CapsuleT<double>* randomCapsule(RandomPoses& random) {
+  return new CapsuleT<double>(random.length(0.1, 0.5), random.length(0.1, 1.5));
+}
+inline SphereT<double>* randomSphere(RandomPoses& random) { return new SphereT<double>(random.length(0.1, 0.8)); }
+
+/// A point rounded to float, so that the float and double runs collide the
+/// same hull (m).
+inline Vec3d floatExact(const Vec3d& p) { return p.cast<float>().cast<double>(); }
+
+/// A segment of length 0.1–2 m through a point up to 0.3 m from its frame's
+/// origin, float-exact endpoints.
+inline LineT<double>* randomLine(RandomPoses& random) {
+  const Vec3d offset = random.unit() * random.uniform(0.0, 0.3), along = random.unit() * random.length(0.05, 1.0);
+  return new LineT<double>(floatExact(offset - along), floatExact(offset + along));
+}
+
+/// A hull with float-exact corners: half the time that of 20–40 random
+/// points on an ellipsoid of semi-axes 0.2–0.8 m (every point a corner,
+/// triangular faces), half the time a box-shaped one (8 corners, half
+/// extents 0.1–0.8 m, quadrilateral faces) off its frame's origin by up to
+/// 0.2 m.
+inline ConvexT<double>* randomHull(RandomPoses& random) {
+  std::vector<Vec3d> points;
+  if (random.uniform(0.0, 1.0) < 0.5) {
+    const Vec3d axes(random.length(0.2, 0.8), random.length(0.2, 0.8), random.length(0.2, 0.8));
+    const int count = 20 + int(random.uniform(0.0, 21.0));
+    for (int i = 0; i < count; ++i) points.push_back(floatExact(random.unit().cwiseProduct(axes)));
+  } else {
+    const Vec3d half(random.length(0.1, 0.8), random.length(0.1, 0.8), random.length(0.1, 0.8));
+    const Vec3d offset = floatExact(random.unit() * random.uniform(0.0, 0.2));
+    for (int c = 0; c < 8; ++c)
+      points.push_back(offset + half.cwiseProduct(Vec3d((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0,
+                                                        (c & 4) ? 1.0 : -1.0)));
+  }
+  return new ConvexT<double>(points);
+}
+
+/// Intersecting or not by FCL's GJK (GST_INDEP); depth, normal and signed
+/// distance by `exact`.
+template <class A, class B>
+auto withFclIntersection(auto exact) {
+  return [exact](const A& a, const Transformd& X_WA, const B& b, const Transformd& X_WB) {
+    const FclObject oa = toFcl(a, X_WA), ob = toFcl(b, X_WB);
+    Reference reference = exact(a, X_WA, b, X_WB);
+    reference.intersect = fclCollide(*oa, *ob).intersect;
+    return reference;
+  };
+}
+
+/// A libccd pair: kCcdCases contacts as a simulation makes them (touching),
+/// judged by checkDifferential with depth within kCcdDepth; then
+/// kCcdDeepCases deep overlaps (near, the second shape's center within
+/// `reach` of the first's), intersecting or not and contacts judged, the
+/// depth error only logged. The bridge reports one contact, its deepest and
+/// only point, which is what checkDifferential compares.
+template <class S, class A, class B>
+void checkCcd(const std::string& name, std::uint64_t seed, auto&& makeA, auto&& makeB, double reach,
+              auto&& reference) {
+  const Agreement shallow = checkDifferential<S, A, B>(
+      name, seed, [&](RandomPoses& random) { return touching(random, makeA(random), makeB(random)); },
+      collideByBridge, reference, kCcdDepth, kCcdCases);
+  CHECK(shallow.maxContacts <= 1);
+  const Agreement deep = checkDifferential<S, A, B>(
+      name + " (deep)", seed + 1000,
+      [&](RandomPoses& random) { return near(random, makeA(random), makeB(random), reach); }, collideByBridge,
+      reference, kCcdDepth, kCcdDeepCases, 0.0);
+  CHECK(deep.maxContacts <= 1);
 }
 
 }  // namespace spook::test

@@ -10,6 +10,7 @@
 #include <spook/collide/shapes/capsule.hpp>
 #include <spook/collide/shapes/composite.hpp>
 #include <spook/collide/shapes/cylinder.hpp>
+#include <spook/collide/shapes/plane.hpp>
 #include <spook/collide/shapes/sphere.hpp>
 
 #include "tolerance.hpp"
@@ -203,4 +204,16 @@ TEST_CASE_TEMPLATE("composites reject null and self-containing children and non-
   checkRejects([&] { a->add(box<S>(1, 1, 1), scaled); }, "Composite", "(2, 0, 0");
   CHECK(a->getChildren().empty());
   checkRejects([&] { (void)a->calculateInertia(S(1)); }, "Composite", "0");
+}
+
+TEST_CASE_TEMPLATE("a composite with a plane child is unbounded, weighs only its solid children", S, float, double) {
+  spook::ref_ptr<spook::CompositeT<S>> floorAndBox = new spook::CompositeT<S>();
+  floorAndBox->add(new spook::PlaneT<S>(spook::Vec3<S>::UnitZ()));
+  floorAndBox->add(box<S>(0.5, 0.5, 0.5), at<S>(0, 0, 2));
+  const spook::BoundingBoxT<S> bounds = floorAndBox->getBoundingBox();
+  CHECK((bounds.min.array() == -std::numeric_limits<S>::infinity()).all());
+  CHECK((bounds.max.array() == std::numeric_limits<S>::infinity()).all());
+  CHECK(floorAndBox->getVolume() == S(1));
+  CHECK((floorAndBox->getCenterOfVolume() - spook::Vec3<S>(S(0), S(0), S(2))).norm() <= pick<S>(1e-12, 1e-6));
+  CHECK(floorAndBox->calculateInertia(S(6)).matrix().allFinite());
 }

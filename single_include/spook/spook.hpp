@@ -808,13 +808,17 @@ class CompositeT : public ShapeT<S> {
     return SPDMat3<S>(inertia);
   }
 
-  /// Union of the children's boxes, each child box's corners transformed.
+  /// Union of the children's boxes, each child box's corners transformed;
+  /// unbounded (±infinity) when a child is.
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
     if (children_.empty()) return {};
     BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::max()),
                         Vec3::Constant(std::numeric_limits<S>::lowest())};
     for (const Child& c : children_) {
       const BoundingBoxT<S> local = c.shape->getBoundingBox();
+      if (!(local.min.allFinite() && local.max.allFinite())) {  // a plane child: unbounded
+        return {Vec3::Constant(-std::numeric_limits<S>::infinity()), Vec3::Constant(std::numeric_limits<S>::infinity())};
+      }
       const Mat3 R = c.transform.linear();
       const Vec3 center = c.transform * local.center();
       const Vec3 reach = R.cwiseAbs() * local.halfExtents();
@@ -2704,7 +2708,7 @@ std::vector<Vec3<double>> startingDirections(const CcdObject<A>& a, const CcdObj
   }
   // And a coarse, even spread (a Fibonacci lattice of 48 pairs ±d, some
   // 0.25 rad apart) so that no basin of f is far from a start.
-  constexpr int kLattice = 48;
+  constexpr int kLattice = 96;
   const double golden = 3.141592653589793 * (3.0 - std::sqrt(5.0));
   for (int i = 0; i < kLattice; ++i) {
     const double z = 1.0 - (i + 0.5) / kLattice, rho = std::sqrt(1.0 - z * z), phi = golden * i;
@@ -2747,7 +2751,7 @@ void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transf
   // f may have several local minima: polish from several starts and keep
   // the lowest.
   double refined = std::numeric_limits<double>::infinity();
-  for (Vec3<double> start : startingDirections(objectA, objectB, n, 6)) {
+  for (Vec3<double> start : startingDirections(objectA, objectB, n, 10)) {
     const double f = refinePenetration(objectA, objectB, start, scale);
     if (f < refined) {
       refined = f;
@@ -5625,6 +5629,38 @@ using RigidBodyObserver = observer_ptr<RigidBody>;
 
 namespace spook {
 
+namespace detail {
+
+/// The narrow-phase entry point of a space for one shape list. A plain
+/// (not inline) function template, so that with SPOOK_EXTERN_TEMPLATES the
+/// full shape list's colliders are compiled once, in the translation unit
+/// that defines SPOOK_IMPLEMENTATION, instead of in every one that makes a
+/// default Space or Simulation.
+template <Scalar S, class List>
+bool collideThrough(const ShapeT<S>& a, const Transform<S>& X_WA, const ShapeT<S>& b, const Transform<S>& X_WB,
+                    ContactSinkT<S>& sink) {
+  return ColliderMatrixT<S, List>::collide(a, X_WA, b, X_WB, sink);
+}
+
+}  // namespace detail
+
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENTATION)
+extern template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const Transform<double>&,
+                                                               const ShapeT<double>&, const Transform<double>&,
+                                                               ContactSinkT<double>&);
+extern template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const Transform<float>&,
+                                                              const ShapeT<float>&, const Transform<float>&,
+                                                              ContactSinkT<float>&);
+#endif
+#if defined(SPOOK_IMPLEMENTATION)
+template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const Transform<double>&,
+                                                        const ShapeT<double>&, const Transform<double>&,
+                                                        ContactSinkT<double>&);
+template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const Transform<float>&,
+                                                       const ShapeT<float>&, const Transform<float>&,
+                                                       ContactSinkT<float>&);
+#endif
+
 /// Collision detection over a set of geometries: a broadphase (sweep and
 /// prune), the narrow phase through the collider matrix of a shape list
 /// chosen at construction (only those colliders are compiled), contact
@@ -5642,9 +5678,7 @@ class SpaceT : public Referenced {
   /// A space for the shape types of `List`, e.g. ShapeList<SphereT, PlaneT>.
   template <template <class> class... Shapes>
   explicit SpaceT(ShapeList<Shapes...>)
-      : collide_(&ColliderMatrixT<S, ShapeList<Shapes...>>::collide),
-        supports_(&ColliderMatrixT<S, ShapeList<Shapes...>>::supports),
-        contains_(&ShapeList<Shapes...>::contains) {}
+      : collide_(&detail::collideThrough<S, ShapeList<Shapes...>>), contains_(&ShapeList<Shapes...>::contains) {}
 
   // --- Content ---------------------------------------------------------------
 
@@ -5830,7 +5864,6 @@ class SpaceT : public Referenced {
   }
 
   CollideFunction collide_;
-  bool (*supports_)(ShapeType, ShapeType);
   bool (*contains_)(ShapeType);
   std::vector<ref_ptr<Geometry>> geometries_;
   std::set<std::pair<std::uint32_t, std::uint32_t>> disabledIds_;

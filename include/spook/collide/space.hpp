@@ -21,6 +21,38 @@
 
 namespace spook {
 
+namespace detail {
+
+/// The narrow-phase entry point of a space for one shape list. A plain
+/// (not inline) function template, so that with SPOOK_EXTERN_TEMPLATES the
+/// full shape list's colliders are compiled once, in the translation unit
+/// that defines SPOOK_IMPLEMENTATION, instead of in every one that makes a
+/// default Space or Simulation.
+template <Scalar S, class List>
+bool collideThrough(const ShapeT<S>& a, const Transform<S>& X_WA, const ShapeT<S>& b, const Transform<S>& X_WB,
+                    ContactSinkT<S>& sink) {
+  return ColliderMatrixT<S, List>::collide(a, X_WA, b, X_WB, sink);
+}
+
+}  // namespace detail
+
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENTATION)
+extern template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const Transform<double>&,
+                                                               const ShapeT<double>&, const Transform<double>&,
+                                                               ContactSinkT<double>&);
+extern template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const Transform<float>&,
+                                                              const ShapeT<float>&, const Transform<float>&,
+                                                              ContactSinkT<float>&);
+#endif
+#if defined(SPOOK_IMPLEMENTATION)
+template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const Transform<double>&,
+                                                        const ShapeT<double>&, const Transform<double>&,
+                                                        ContactSinkT<double>&);
+template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const Transform<float>&,
+                                                       const ShapeT<float>&, const Transform<float>&,
+                                                       ContactSinkT<float>&);
+#endif
+
 /// Collision detection over a set of geometries: a broadphase (sweep and
 /// prune), the narrow phase through the collider matrix of a shape list
 /// chosen at construction (only those colliders are compiled), contact
@@ -38,9 +70,7 @@ class SpaceT : public Referenced {
   /// A space for the shape types of `List`, e.g. ShapeList<SphereT, PlaneT>.
   template <template <class> class... Shapes>
   explicit SpaceT(ShapeList<Shapes...>)
-      : collide_(&ColliderMatrixT<S, ShapeList<Shapes...>>::collide),
-        supports_(&ColliderMatrixT<S, ShapeList<Shapes...>>::supports),
-        contains_(&ShapeList<Shapes...>::contains) {}
+      : collide_(&detail::collideThrough<S, ShapeList<Shapes...>>), contains_(&ShapeList<Shapes...>::contains) {}
 
   // --- Content ---------------------------------------------------------------
 
@@ -226,7 +256,6 @@ class SpaceT : public Referenced {
   }
 
   CollideFunction collide_;
-  bool (*supports_)(ShapeType, ShapeType);
   bool (*contains_)(ShapeType);
   std::vector<ref_ptr<Geometry>> geometries_;
   std::set<std::pair<std::uint32_t, std::uint32_t>> disabledIds_;

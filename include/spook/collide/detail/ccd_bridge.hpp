@@ -197,7 +197,7 @@ std::vector<Vec3<double>> startingDirections(const CcdObject<A>& a, const CcdObj
   }
   // And a coarse, even spread (a Fibonacci lattice of 48 pairs ±d, some
   // 0.25 rad apart) so that no basin of f is far from a start.
-  constexpr int kLattice = 48;
+  constexpr int kLattice = 96;
   const double golden = 3.141592653589793 * (3.0 - std::sqrt(5.0));
   for (int i = 0; i < kLattice; ++i) {
     const double z = 1.0 - (i + 0.5) / kLattice, rho = std::sqrt(1.0 - z * z), phi = golden * i;
@@ -240,7 +240,7 @@ void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transf
   // f may have several local minima: polish from several starts and keep
   // the lowest.
   double refined = std::numeric_limits<double>::infinity();
-  for (Vec3<double> start : startingDirections(objectA, objectB, n, 6)) {
+  for (Vec3<double> start : startingDirections(objectA, objectB, n, 10)) {
     const double f = refinePenetration(objectA, objectB, start, scale);
     if (f < refined) {
       refined = f;

@@ -94,13 +94,17 @@ class CompositeT : public ShapeT<S> {
     return SPDMat3<S>(inertia);
   }
 
-  /// Union of the children's boxes, each child box's corners transformed.
+  /// Union of the children's boxes, each child box's corners transformed;
+  /// unbounded (±infinity) when a child is.
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
     if (children_.empty()) return {};
     BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::max()),
                         Vec3::Constant(std::numeric_limits<S>::lowest())};
     for (const Child& c : children_) {
       const BoundingBoxT<S> local = c.shape->getBoundingBox();
+      if (!(local.min.allFinite() && local.max.allFinite())) {  // a plane child: unbounded
+        return {Vec3::Constant(-std::numeric_limits<S>::infinity()), Vec3::Constant(std::numeric_limits<S>::infinity())};
+      }
       const Mat3 R = c.transform.linear();
       const Vec3 center = c.transform * local.center();
       const Vec3 reach = R.cwiseAbs() * local.halfExtents();
