@@ -981,12 +981,11 @@ TEST_CASE_TEMPLATE("mesh: capsule vs a two-cell HeightField is r minus the segme
                                                                    capsuleTriangle);
 }
 
-// Known shortfall of the bridge, measured here: on a few deep overlaps
-// (~0.4 m for a radius of ~0.48 m) its polishing stops in another local
-// minimum of the overlap on the great circle perpendicular to a triangle
-// edge (the rim against the edge instead of the side), 1.6e-4..2e-4 m too
-// deep with the normal 0.5..0.7 rad off. These cases state the 1e-4 m
-// target and fail until the bridge meets it.
+// With six starts and a 48-direction lattice the bridge stopped, on a few
+// deep overlaps (~0.4 m for a radius of ~0.48 m), in another local minimum
+// on the great circle perpendicular to a triangle edge (the rim against the
+// edge instead of the side), 1.6e-4..2e-4 m too deep with the normal
+// 0.5..0.7 rad off; with ten starts and 96 directions the worst is 1.3e-5 m.
 TEST_CASE_TEMPLATE("mesh: cylinder vs a one-triangle Trimesh is the overlap minimum over the candidate normals", S,
                    float, double) {
   checkShapeAgainstSoup<S, CylinderT<double>, TrimeshT<double>>("cylinder-triangle", 515, randomCylinder,

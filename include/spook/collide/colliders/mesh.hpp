@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include <spook/collide/collider.hpp>
@@ -19,46 +20,69 @@ namespace detail {
 template <class T>
 concept TriangleSoup = T::kType == ShapeType::TRIMESH || T::kType == ShapeType::HEIGHTFIELD;
 
-/// Sphere against one triangle: the closest point of the triangle to the
-/// center (Ericson, Real-Time Collision Detection, §5.1.5, by Voronoi
-/// regions) decides; a center exactly on the triangle pushes out along the
-/// face normal.
+/// The point of segment [a, b] closest to p (a for a zero-length segment).
+template <Scalar S>
+[[nodiscard]] Vec3<S> closestOnSegment(const Vec3<S>& a, const Vec3<S>& b, const Vec3<S>& p) {
+  const Vec3<S> ab = b - a;
+  const S length2 = ab.squaredNorm();
+  if (!(length2 > S(0))) return a;
+  return a + ab * std::clamp((p - a).dot(ab) / length2, S(0), S(1));
+}
+
+/// The point of triangle t closest to p: by Voronoi regions (Ericson,
+/// Real-Time Collision Detection, §5.1.5) for a proper triangle; over its
+/// three edges for a degenerate one (repeated or collinear corners), where
+/// the region tests would divide round-off by round-off.
+template <Scalar S>
+[[nodiscard]] Vec3<S> closestOnTriangle(const Triangle<S>& t, const Vec3<S>& p, bool& onFace) {
+  const Vec3<S>&a = t.v[0], &b = t.v[1], &c = t.v[2];
+  const Vec3<S> ab = b - a, ac = c - a;
+  const S longest2 = std::max({ab.squaredNorm(), ac.squaredNorm(), (c - b).squaredNorm()});
+  onFace = false;
+  if (!(ab.cross(ac).norm() > S(64) * ScalarTraits<S>::epsilon() * longest2)) {
+    Vec3<S> best = closestOnSegment<S>(a, b, p);
+    for (const Vec3<S>& q : {closestOnSegment<S>(b, c, p), closestOnSegment<S>(c, a, p)})
+      if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
+    return best;
+  }
+  const Vec3<S> ap = p - a, bp = p - b, cp = p - c;
+  const S d1 = ab.dot(ap), d2 = ac.dot(ap), d3 = ab.dot(bp), d4 = ac.dot(bp), d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d1 <= S(0) && d2 <= S(0)) return a;
+  if (d3 >= S(0) && d4 <= d3) return b;
+  if (d6 >= S(0) && d5 <= d6) return c;
+  const S vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+  if (vc <= S(0) && d1 >= S(0) && d3 <= S(0)) return a + ab * (d1 / (d1 - d3));
+  if (vb <= S(0) && d2 >= S(0) && d6 <= S(0)) return a + ac * (d2 / (d2 - d6));
+  if (va <= S(0) && (d4 - d3) >= S(0) && (d5 - d6) >= S(0))
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  onFace = true;
+  const S denominator = va + vb + vc;
+  return a + ab * (vb / denominator) + ac * (vc / denominator);
+}
+
+/// Sphere against one triangle: a contact when the triangle's closest point
+/// to the center lies within the radius. The normal, from the sphere toward
+/// the mesh, is the face normal when that point is inside the face (exact,
+/// where c − q is all round-off for a center near the face) and along
+/// c − q otherwise; a center on an edge or corner pushes along the face
+/// normal.
 template <Scalar S>
 void collideSphereTriangle(const SphereT<S>& sphere, const Vec3<S>& c_W, const Triangle<S>& t_W,
                            ContactSinkT<S>& sink) {
-  const Vec3<S>&a = t_W.v[0], &b = t_W.v[1], &c = t_W.v[2];
-  const Vec3<S> ab = b - a, ac = c - a, ap = c_W - a;
-  Vec3<S> q;
-  const S d1 = ab.dot(ap), d2 = ac.dot(ap);
-  const Vec3<S> bp = c_W - b;
-  const S d3 = ab.dot(bp), d4 = ac.dot(bp);
-  const Vec3<S> cp = c_W - c;
-  const S d5 = ab.dot(cp), d6 = ac.dot(cp);
-  const S vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-  if (d1 <= S(0) && d2 <= S(0)) {
-    q = a;
-  } else if (d3 >= S(0) && d4 <= d3) {
-    q = b;
-  } else if (d6 >= S(0) && d5 <= d6) {
-    q = c;
-  } else if (vc <= S(0) && d1 >= S(0) && d3 <= S(0)) {
-    q = a + ab * (d1 / (d1 - d3));
-  } else if (vb <= S(0) && d2 >= S(0) && d6 <= S(0)) {
-    q = a + ac * (d2 / (d2 - d6));
-  } else if (va <= S(0) && (d4 - d3) >= S(0) && (d5 - d6) >= S(0)) {
-    q = b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  } else {
-    const S denominator = va + vb + vc;
-    q = denominator > S(0) ? Vec3<S>(a + ab * (vb / denominator) + ac * (vc / denominator)) : a;
-  }
+  bool onFace = false;
+  const Vec3<S> q = closestOnTriangle<S>(t_W, c_W, onFace);
   const Vec3<S> toCenter = c_W - q;
   const S distance = toCenter.norm();
   const S r = sphere.getRadius();
   if (distance > r) return;
-  // The normal points from the sphere toward the mesh.
-  const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * r ? Vec3<S>(-toCenter / distance) : Vec3<S>(-t_W.normal());
+  const Vec3<S> faceNormal = t_W.normal();
+  Vec3<S> n;
+  if (onFace)
+    n = toCenter.dot(faceNormal) >= S(0) ? Vec3<S>(-faceNormal) : faceNormal;
+  else
+    n = distance > ScalarTraits<S>::epsilon() * r ? Vec3<S>(-toCenter / distance) : Vec3<S>(-faceNormal);
   const S depth = r - distance;
-  sink.add(q - n * (depth * S(0.5)), n, depth);
+  sink.add(q + n * (depth * S(0.5)), n, depth);  // midway: q and c + n r bound the overlap
 }
 
 /// Contacts of a shape against the triangles of a soup near it; a
