@@ -23,6 +23,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <random>
@@ -132,11 +133,17 @@ template <Scalar S>
 ref_ptr<LineT<S>> castShape(const LineT<double>& s) {
   return new LineT<S>(s.getFirstPoint().cast<S>(), s.getSecondPoint().cast<S>());
 }
+/// A hull in double is handed on as it is: rebuilding the same hull would
+/// only take time (it has to be reference-counted, as every shape here is).
 template <Scalar S>
 ref_ptr<ConvexT<S>> castShape(const ConvexT<double>& s) {
-  std::vector<Vec3<S>> points;
-  for (const Vec3d& v : s.getVertices()) points.push_back(v.cast<S>());
-  return new ConvexT<S>(points);
+  if constexpr (std::is_same_v<S, double>) {
+    return const_cast<ConvexT<double>*>(&s);
+  } else {
+    std::vector<Vec3<S>> points;
+    for (const Vec3d& v : s.getVertices()) points.push_back(v.cast<S>());
+    return new ConvexT<S>(points);
+  }
 }
 
 // ---------------------------------------------------------------------------
@@ -291,16 +298,22 @@ struct PlacedShape {
   Eigen::Matrix3d R;  // shape → world
   Vec3d p;            // shape origin, world (m)
   PlacedShape(const Shape& s, const Transformd& X) : shape(s), R(X.linear()), p(X.translation()) {}
-  [[nodiscard]] double height(const Vec3d& n) const { return supportHeight(shape, Vec3d(R.transpose() * n)) + n.dot(p); }
+  [[nodiscard]] double height(const Vec3d& n) const {
+    return supportHeight(shape, Vec3d(R.transpose() * n)) + n.dot(p);
+  }
 };
 /// A hull: the largest n·x over its world corners.
 template <>
 struct PlacedShape<ConvexT<double>> {
-  Eigen::Matrix3Xd corners;
-  PlacedShape(const ConvexT<double>& s, const Transformd& X) : corners(3, Eigen::Index(s.getVertices().size())) {
-    for (std::size_t i = 0; i < s.getVertices().size(); ++i) corners.col(Eigen::Index(i)) = X * s.getVertices()[i];
+  std::vector<Vec3d> corners;
+  PlacedShape(const ConvexT<double>& s, const Transformd& X) {
+    for (const Vec3d& v : s.getVertices()) corners.push_back(X * v);
   }
-  [[nodiscard]] double height(const Vec3d& n) const { return (n.transpose() * corners).maxCoeff(); }
+  [[nodiscard]] double height(const Vec3d& n) const {
+    double highest = -std::numeric_limits<double>::infinity();
+    for (const Vec3d& corner : corners) highest = std::max(highest, n.dot(corner));
+    return highest;
+  }
 };
 
 /// Exact penetration of two convex polytopes given by their world corners,
@@ -414,7 +427,8 @@ inline void addKinks(const ConvexT<double>& s, const Transformd& X, Kinks& kinks
   for (const auto& t : s.getTriangles())
     for (int k = 0; k < 3; ++k)
       if (t[std::size_t(k)] < t[std::size_t((k + 1) % 3)])
-        kinks.ridges.push_back(X.linear() * (v[std::size_t(t[std::size_t((k + 1) % 3)])] - v[std::size_t(t[std::size_t(k)])]));
+        kinks.ridges.push_back(X.linear() *
+                               (v[std::size_t(t[std::size_t((k + 1) % 3)])] - v[std::size_t(t[std::size_t(k)])]));
 }
 
 /// 500 directions spread evenly over the unit sphere (a Fibonacci lattice,
@@ -563,6 +577,39 @@ Reference overlapMinimum(const A& a, const Transformd& X_WA, const B& b, const T
       reference.normal = n;
     }
   }
+  reference.intersect = reference.depth >= 0.0;
+  reference.signedDistance = -reference.depth;
+  return reference;
+}
+
+/// overlapMinimum searched once per case for both scalars: the float and
+/// the double run of a test collide the same shapes at poses that differ
+/// by float's rounding (~1e-7), so the run that comes second takes the
+/// first one's direction and polishes it on its own poses (Nelder–Mead
+/// from 1e-3 to 1e-10 rad) instead of searching the sphere again: a tenth
+/// of the work. Cases are told apart by their poses rounded to float.
+template <class A, class B>
+Reference sharedOverlapMinimum(const A& a, const Transformd& X_WA, const B& b, const Transformd& X_WB) {
+  static std::map<std::array<float, 24>, Vec3d> searched;  // per shape pair type
+  std::array<float, 24> key{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) {
+      key[std::size_t(4 * i + j)] = float(X_WA.matrix()(i, j));
+      key[std::size_t(12 + 4 * i + j)] = float(X_WB.matrix()(i, j));
+    }
+  const auto found = searched.find(key);
+  if (found == searched.end()) {
+    const Reference reference = overlapMinimum(a, X_WA, b, X_WB);
+    searched.emplace(key, reference.normal);
+    return reference;
+  }
+  const PlacedShape<A> placedA(a, X_WA);
+  const PlacedShape<B> placedB(b, X_WB);
+  const auto f = [&](const Vec3d& n) { return placedA.height(n) + placedB.height(-n); };
+  Reference reference;
+  reference.normal = found->second;
+  searched.erase(found);
+  reference.depth = nelderMeadOnSphere(f, reference.normal, f(reference.normal), 1e-3, 1e-10);
   reference.intersect = reference.depth >= 0.0;
   reference.signedDistance = -reference.depth;
   return reference;
@@ -818,7 +865,7 @@ struct Agreement {
   int wrongNormals = 0;       // normals off by more than kAngle that do not
   int nonUnit = 0;            // contacts whose normal is not unit length, or whose depth is negative
   int maxContacts = 0;
-  int referenceMisses = 0;    // compared cases where f along spook's normal is below the reference depth
+  int referenceMisses = 0;             // compared cases where f along spook's normal is below the reference depth
   double worstReferenceMiss = 0.0;     // m, by how much, at most
   int deep = 0;                        // compared cases deeper than the comparison limit, measured apart
   double worstDeepDepth = 0.0;         // m, over those
@@ -827,8 +874,8 @@ struct Agreement {
   double worstStrictAngle = 0.0;       // rad, over cases whose reference minimum is not flat or tied
   double worstEquivalentExcess = 0.0;  // m, overlap along spook's normal above the reference depth, at most
 
-  static constexpr double kDecided = 1e-6;       // m
-  static constexpr double kAngle = 1e-3;         // rad
+  static constexpr double kDecided = 1e-6;        // m
+  static constexpr double kAngle = 1e-3;          // rad
   static constexpr double kReferenceMiss = 1e-7;  // m
 };
 
@@ -991,7 +1038,6 @@ Agreement checkPair(const std::string& name, std::uint64_t seed, auto&& sample, 
   return checkDifferential<S, A, B>(name, seed, sample, run, reference, depthTolerance<S>());
 }
 
-
 // ---------------------------------------------------------------------------
 // The libccd pairs (test_colliders_ccd.cpp, test_colliders_ccd_more.cpp).
 
@@ -1003,16 +1049,20 @@ inline constexpr auto collideByBridge = [](const auto& a, const auto& X_WA, cons
 inline constexpr double kCcdDepth = 1e-4;
 
 /// Cases per libccd pair and scalar: 10,000 contacts as a simulation makes
-/// them (and a quarter as many deep overlaps) in optimized builds. Without
-/// NDEBUG (the Debug + AddressSanitizer build of CI, some 20 times slower)
-/// a tenth of that, 1,000 (and 250): the brute-force references and the
-/// bridge's polishing would take most of an hour there.
-#ifdef NDEBUG
+/// them (and a twentieth as many deep overlaps, logged) in optimized
+/// builds. Without NDEBUG (the Debug + AddressSanitizer build of CI, some
+/// 20 times slower) a tenth of that, 1,000 (and 50): the bridge's polishing
+/// (about 0.2–0.6 ms a call in Release) and the brute-force references
+/// would take most of an hour there. -DSPOOK_CCD_CASES=n sets the count
+/// for quick runs.
+#if defined(SPOOK_CCD_CASES)
+inline constexpr int kCcdCases = SPOOK_CCD_CASES;
+#elif defined(NDEBUG)
 inline constexpr int kCcdCases = 10000;
 #else
 inline constexpr int kCcdCases = 1000;
 #endif
-inline constexpr int kCcdDeepCases = kCcdCases / 4;
+inline constexpr int kCcdDeepCases = kCcdCases / 20;
 
 /// Contacts as a simulation makes them: the second shape turned at random
 /// and moved so that its deepest point along −u, for a random direction u,
@@ -1081,8 +1131,8 @@ inline ConvexT<double>* randomHull(RandomPoses& random) {
     const Vec3d half(random.length(0.1, 0.8), random.length(0.1, 0.8), random.length(0.1, 0.8));
     const Vec3d offset = floatExact(random.unit() * random.uniform(0.0, 0.2));
     for (int c = 0; c < 8; ++c)
-      points.push_back(offset + half.cwiseProduct(Vec3d((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0,
-                                                        (c & 4) ? 1.0 : -1.0)));
+      points.push_back(offset +
+                       half.cwiseProduct(Vec3d((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0)));
   }
   return new ConvexT<double>(points);
 }
@@ -1106,11 +1156,10 @@ auto withFclIntersection(auto exact) {
 /// depth error only logged. The bridge reports one contact, its deepest and
 /// only point, which is what checkDifferential compares.
 template <class S, class A, class B>
-void checkCcd(const std::string& name, std::uint64_t seed, auto&& makeA, auto&& makeB, double reach,
-              auto&& reference) {
+void checkCcd(const std::string& name, std::uint64_t seed, auto&& makeA, auto&& makeB, double reach, auto&& reference) {
   const Agreement shallow = checkDifferential<S, A, B>(
-      name, seed, [&](RandomPoses& random) { return touching(random, makeA(random), makeB(random)); },
-      collideByBridge, reference, kCcdDepth, kCcdCases);
+      name, seed, [&](RandomPoses& random) { return touching(random, makeA(random), makeB(random)); }, collideByBridge,
+      reference, kCcdDepth, kCcdCases);
   CHECK(shallow.maxContacts <= 1);
   const Agreement deep = checkDifferential<S, A, B>(
       name + " (deep)", seed + 1000,

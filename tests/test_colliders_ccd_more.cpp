@@ -143,20 +143,18 @@ TEST_CASE_TEMPLATE("libccd bridge, 10,000 poses: convex-convex penetration is th
 TEST_CASE_TEMPLATE("libccd bridge, 10,000 poses: convex-cylinder penetration is the overlap minimum", S, float,
                    double) {
   checkCcd<S, ConvexT<double>, CylinderT<double>>("ccd convex-cylinder", 414, randomHull, randomCylinder, 1.8,
-                                                  overlapMinimum<ConvexT<double>, CylinderT<double>>);
+                                                  sharedOverlapMinimum<ConvexT<double>, CylinderT<double>>);
 }
 
 TEST_CASE_TEMPLATE("libccd bridge, 10,000 poses: convex-line penetration is the separating-axis minimum", S, float,
                    double) {
-  checkCcd<S, ConvexT<double>, LineT<double>>("ccd convex-line", 415, randomHull, randomLine, 1.4,
-                                              convexLineReference);
+  checkCcd<S, ConvexT<double>, LineT<double>>("ccd convex-line", 415, randomHull, randomLine, 1.4, convexLineReference);
 }
 
-TEST_CASE_TEMPLATE("libccd bridge, 10,000 poses: cylinder-line penetration is the overlap minimum", S, float,
-                   double) {
+TEST_CASE_TEMPLATE("libccd bridge, 10,000 poses: cylinder-line penetration is the overlap minimum", S, float, double) {
   checkCcd<S, CylinderT<double>, LineT<double>>(
       "ccd cylinder-line", 416, randomCylinder, randomLine, 1.6,
-      withFclIntersection<CylinderT<double>, LineT<double>>(overlapMinimum<CylinderT<double>, LineT<double>>));
+      withFclIntersection<CylinderT<double>, LineT<double>>(sharedOverlapMinimum<CylinderT<double>, LineT<double>>));
 }
 
 // Two segments in general position do not meet: placed as the other pairs
@@ -192,8 +190,8 @@ TEST_CASE_TEMPLATE("libccd bridge, 10,000 poses: line-line contacts only where s
         Vec3d direction(dyadic(-2.0, 2.0), dyadic(-2.0, 2.0), 0.0);
         if (direction.y() == 0.0) direction.y() = 0.5;
         Vec3d b0 = -dyadic(0.1, 1.0) * direction, b1 = dyadic(0.1, 1.0) * direction;  // crossing at the origin
-        if (kind == 1) b0 = Vec3d(dyadic(-a0, a1), 0.0, 0.0), b1 = b0 + direction;      // T: b starts on a
-        if (kind == 2) b0 = Vec3d(a1, 0.0, 0.0), b1 = b0 + direction;                   // end to end
+        if (kind == 1) b0 = Vec3d(dyadic(-a0, a1), 0.0, 0.0), b1 = b0 + direction;    // T: b starts on a
+        if (kind == 2) b0 = Vec3d(a1, 0.0, 0.0), b1 = b0 + direction;                 // end to end
         if (kind == 3) b0 = Vec3d(-dyadic(0.0, 1.0), 0.0, 0.0), b1 = Vec3d(dyadic(0.1, 1.5), 0.0, 0.0);  // collinear
         LineT<double>* a = new LineT<double>(Vec3d(-a0, 0.0, 0.0), Vec3d(a1, 0.0, 0.0));
         LineT<double>* b = new LineT<double>(b0, b1);
@@ -215,8 +213,8 @@ TEST_CASE_TEMPLATE("libccd bridge, 10,000 poses: line-line contacts only where s
           if (finite) deepest = std::max(deepest, double(p.depth));
         }
       }
-  MESSAGE("ccd line-line <" << std::string(scalarName<S>()) << ">: " << cases << " crossing, T, end-to-end and collinear pairs, "
-                            << contacts << " contacts, " << bad
+  MESSAGE("ccd line-line <" << std::string(scalarName<S>()) << ">: " << cases
+                            << " crossing, T, end-to-end and collinear pairs, " << contacts << " contacts, " << bad
                             << " not finite or with a wrong normal or depth; deepest " << deepest << " m");
   CHECK(bad == 0);
 }
@@ -280,10 +278,12 @@ TEST_CASE("the separating-axis references agree with all edge pairs and with the
         worstPruning = std::max(
             worstPruning,
             gap(axesMinimum(*boxHull.a, boxHull.X_WA, *boxHull.b, boxHull.X_WB, minkowskiAxes(fbox, fhull)), allBox));
-      if (pruned.intersect) worstHulls = std::max(worstHulls, gap(pruned, overlapMinimum(*hulls.a, hulls.X_WA, *hulls.b, hulls.X_WB)));
+      if (pruned.intersect)
+        worstHulls = std::max(worstHulls, gap(pruned, overlapMinimum(*hulls.a, hulls.X_WA, *hulls.b, hulls.X_WB)));
       const auto capsule = pick(randomCapsule(random), randomHull(random));
-      worstCapsule = std::max(worstCapsule, gap(capsuleConvexReference(*capsule.a, capsule.X_WA, *capsule.b, capsule.X_WB),
-                                                overlapMinimum(*capsule.a, capsule.X_WA, *capsule.b, capsule.X_WB)));
+      worstCapsule =
+          std::max(worstCapsule, gap(capsuleConvexReference(*capsule.a, capsule.X_WA, *capsule.b, capsule.X_WB),
+                                     overlapMinimum(*capsule.a, capsule.X_WA, *capsule.b, capsule.X_WB)));
       const auto line = pick(randomHull(random), randomLine(random));
       const Reference exactLine = convexLineReference(*line.a, line.X_WA, *line.b, line.X_WB);
       if (exactLine.intersect)
