@@ -1052,7 +1052,7 @@ inline constexpr double kCcdDepth = 1e-4;
 /// them (and a twentieth as many deep overlaps, logged) in optimized
 /// builds. Without NDEBUG (the Debug + AddressSanitizer build of CI, some
 /// 20 times slower) a tenth of that, 1,000 (and 50): the bridge's polishing
-/// (about 0.2–0.6 ms a call in Release) and the brute-force references
+/// (0.08–0.65 ms a call in Release) and the brute-force references
 /// would take most of an hour there. -DSPOOK_CCD_CASES=n sets the count
 /// for quick runs.
 #if defined(SPOOK_CCD_CASES)
