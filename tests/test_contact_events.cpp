@@ -137,3 +137,36 @@ TEST_CASE_TEMPLATE("a simulation refuses bodies with shapes outside its list and
   CHECK(sim->getRigidBodies().size() == 1);
   CHECK_FALSE(sim->contains(ball2.get()));
 }
+
+// A shape that joins a geometry after the geometry joined the simulation is
+// checked when the simulation steps: an Error before anything moves, not a
+// shape that silently collides with nothing.
+TEST_CASE_TEMPLATE("a step refuses a shape added outside the list after the geometry joined", S, float, double) {
+  spook::ref_ptr<spook::SimulationT<S>> sim =
+      new spook::SimulationT<S>(spook::ShapeList<spook::SphereT, spook::PlaneT, spook::CompositeT>{});
+  spook::ref_ptr<spook::RigidBodyT<S>> ball = new spook::RigidBodyT<S>("ball");
+  spook::ref_ptr<spook::GeometryT<S>> geometry =
+      new spook::GeometryT<S>(new spook::SphereT<S>(S(0.5)), spook::Transform<S>::Identity(), "ball geometry");
+  ball->add(geometry);
+  sim->add(ball);
+  sim->stepForward();
+  const spook::Vec3<S> before = ball->getPosition();
+  const S timeBefore = sim->getTimeStamp();
+  spook::ref_ptr<spook::CompositeT<S>> parts = new spook::CompositeT<S>();
+  parts->add(new spook::SphereT<S>(S(0.2)));
+  geometry->add(parts);
+  sim->stepForward();  // composites of spheres are in the list
+  parts->add(new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.1))));
+  const spook::Vec3<S> moved = ball->getPosition();
+  const S timeMoved = sim->getTimeStamp();
+  CHECK_THROWS_WITH_AS(sim->stepForward(),
+                       doctest::Contains("Geometry 'ball geometry': shape type not in this space's shape list, got Box"),
+                       spook::Error);
+  CHECK(ball->getPosition() == moved);
+  CHECK(sim->getTimeStamp() == timeMoved);
+  CHECK(timeMoved > timeBefore);
+  CHECK(moved != before);
+  geometry->remove(parts.get());
+  sim->stepForward();
+  CHECK(sim->getTimeStamp() > timeMoved);
+}

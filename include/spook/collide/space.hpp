@@ -180,8 +180,9 @@ class SpaceT : public Referenced {
     if (!contains_(shape.getType()))
       throw detail::makeError("Geometry", geometry.getName(), "shape type not in this space's shape list",
                               std::string(shapeTypeName(shape.getType())));
-    if (const auto* composite = dynamic_cast<const CompositeT<S>*>(&shape))
-      for (const auto& child : composite->getChildren()) requireSupported(geometry, *child.shape);
+    if (shape.getType() == ShapeType::COMPOSITE)
+      for (const auto& child : static_cast<const CompositeT<S>&>(shape).getChildren())
+        requireSupported(geometry, *child.shape);
   }
 
   template <class Key>
@@ -192,12 +193,16 @@ class SpaceT : public Referenced {
       disabled.insert(std::minmax(a, b));
   }
 
+  /// The geometries to collide. A shape may have joined a geometry (or a
+  /// composite) after the geometry was checked on add: it is checked here,
+  /// before anything changes, rather than silently colliding with nothing.
   void gather(const std::vector<ref_ptr<Body>>& bodies) {
     active_.clear();
     for (const auto& g : geometries_) active_.push_back(g.get());
     for (const auto& body : bodies)
       if (body->getEnable())
         for (const auto& g : body->getGeometries()) active_.push_back(g.get());
+    for (const Geometry* g : active_) requireSupported(*g);
   }
 
   void narrowPhase(Geometry& a, Geometry& b) {
