@@ -766,6 +766,13 @@ inline std::pair<Vec3d, Vec3d> worldSegment(const CapsuleT<double>& s, const Tra
   return {X.translation() - half, X.translation() + half};
 }
 
+/// Hull–segment: the hull's faces and its edges crossed with the segment.
+inline Reference convexLineReference(const ConvexT<double>& a, const Transformd& X_WA, const LineT<double>& b,
+                                     const Transformd& X_WB) {
+  const auto [p, q] = worldSegment(b, X_WB);
+  return axesMinimum(a, X_WA, b, X_WB, segmentAxes(polytopeFeatures(a, X_WA), q - p));
+}
+
 /// Closest points of a segment [p, q] and a hull that it does not meet: the
 /// nearest over the hull's triangles of the endpoints' closest points on
 /// them (closestPointOnTriangle) and of the segment's closest points to

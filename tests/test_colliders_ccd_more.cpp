@@ -75,12 +75,6 @@ Reference capsuleLineReference(const CapsuleT<double>& a, const Transformd& X_WA
   return reference;
 }
 
-Reference convexLineReference(const ConvexT<double>& a, const Transformd& X_WA, const LineT<double>& b,
-                              const Transformd& X_WB) {
-  const auto [p, q] = worldSegment(b, X_WB);
-  return axesMinimum(a, X_WA, b, X_WB, segmentAxes(polytopeFeatures(a, X_WA), q - p));
-}
-
 // Two segments: their distance; they intersect only when it is 0 (a flat
 // Minkowski difference, depth 0).
 Reference lineLineReference(const LineT<double>& a, const Transformd& X_WA, const LineT<double>& b,

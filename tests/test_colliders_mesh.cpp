@@ -1,6 +1,8 @@
 // The mesh colliders (collide/colliders/mesh.hpp), float and double, against
-// exact computations of their own, triangle by triangle, since the contact
-// of one triangle is what these colliders produce:
+// exact computations of their own, triangle by triangle, since the contacts
+// of one triangle are what these colliders produce (one point, or for a
+// box or a hull a clipped manifold whose deepest point is compared; every
+// point names its triangle, getFaceIndex2):
 //  - sphere vs a closed icosphere Trimesh, an open terrain Trimesh and a
 //    HeightField: the closest point on each triangle (projected onto the
 //    plane, else onto the nearest of the three edges; not the library's
@@ -8,7 +10,8 @@
 //    contact of depth r − distance along the closest-point direction, and
 //    none for the others;
 //  - box, capsule, cylinder and convex vs a single-triangle Trimesh and a
-//    HeightField of two cells (libccd per triangle): the penetration of the
+//    HeightField of two cells (separating axes for box and convex, libccd
+//    for capsule and cylinder, per triangle): the penetration of the
 //    shape and each triangle, the minimum over unit n of the projection
 //    overlap, computed exactly: for box and convex by the separating axes
 //    (face normals, the triangle normal, edge × edge), for the capsule from
@@ -894,6 +897,30 @@ Transformd placeNear(RandomPoses& random, const Shape& shape, const Soup& soup, 
   return X;
 }
 
+/// A box, a hull or a segment touches a triangle with a manifold of points
+/// that share the triangle's normal, the deepest at the pair's penetration
+/// depth: that one is compared with the triangle's reference. Each point
+/// names its triangle (getFaceIndex2); a point whose triangle is decidedly
+/// apart, or whose normal differs from its manifold's, is invalid.
+template <class S>
+std::vector<ContactPointT<S>> deepestPerFace(const std::vector<ContactPointT<S>>& points,
+                                             const std::vector<Reference>& refs, Tally& tally) {
+  std::vector<ContactPointT<S>> deepest;
+  for (const auto& p : points) {
+    const std::size_t face = p.getFaceIndex2();
+    if (face >= refs.size() || (!refs[face].intersect && refs[face].signedDistance > kDecided)) ++tally.invalid;
+    const auto same = std::find_if(deepest.begin(), deepest.end(),
+                                   [&](const auto& q) { return q.getFaceIndex2() == p.getFaceIndex2(); });
+    if (same == deepest.end()) {
+      deepest.push_back(p);
+      continue;
+    }
+    if ((same->normal - p.normal).norm() > S(1e-5)) ++tally.invalid;
+    if (p.depth > same->depth) *same = p;
+  }
+  return deepest;
+}
+
 template <class S, class Shape, class SoupD>
 Tally shapeAgainstSoup(std::uint64_t seed, auto&& makeShape, auto&& makeSoup, auto&& exact) {
   RandomPoses random(seed);
@@ -926,7 +953,7 @@ Tally shapeAgainstSoup(std::uint64_t seed, auto&& makeShape, auto&& makeSoup, au
       }
     }
     compareContacts<S>(
-        refs, points,
+        refs, deepestPerFace(points, refs, tally),
         [&](std::size_t i, const Vec3d& n) { return projectionOverlap(*shape, XSd, triangles[i], kIdentity, n); },
         noPoint, kCcdDepth, tally);
   }

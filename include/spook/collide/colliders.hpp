@@ -17,5 +17,6 @@
 #include <spook/collide/colliders/line_plane.hpp>
 #include <spook/collide/colliders/line_sphere.hpp>
 #include <spook/collide/colliders/plane_sphere.hpp>
+#include <spook/collide/colliders/polytopes.hpp>
 #include <spook/collide/colliders/sphere_sphere.hpp>
 #include <spook/collide/colliders/mesh.hpp>

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstdint>
+
 #include <spook/core/math.hpp>
 
 namespace spook {
@@ -16,12 +18,16 @@ struct ContactPointT {
   S depth = S(0);                     ///< penetration along the normal (m), >= 0
   bool enabled = true;                ///< false once contact reduction or a listener has dropped it
   Vec3<S> force = Vec3<S>::Zero();    ///< contact force on the second shape's body (N), after the solve
+  std::uint32_t faceIndex1 = 0;       ///< the triangle touched when the first shape is a Trimesh or HeightField
+  std::uint32_t faceIndex2 = 0;       ///< the same for the second shape
 
   [[nodiscard]] bool getEnabled() const { return enabled; }
   [[nodiscard]] const Vec3<S>& getPoint() const { return point; }
   [[nodiscard]] const Vec3<S>& getNormal() const { return normal; }
   [[nodiscard]] S getDepth() const { return depth; }
   [[nodiscard]] const Vec3<S>& getForce() const { return force; }
+  [[nodiscard]] std::uint32_t getFaceIndex1() const { return faceIndex1; }
+  [[nodiscard]] std::uint32_t getFaceIndex2() const { return faceIndex2; }
 };
 
 }  // namespace spook

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <spook/collide/contact_point.hpp>
@@ -25,7 +28,15 @@ class ContactSinkT {
     contact.point = point;
     contact.normal = flipped_ ? Vec3<S>(-normal) : normal;
     contact.depth = depth > S(0) ? depth : S(0);
+    contact.faceIndex1 = flipped_ ? faces_[1] : faces_[0];
+    contact.faceIndex2 = flipped_ ? faces_[0] : faces_[1];
     points_->push_back(contact);
+  }
+
+  /// The triangles (of a Trimesh or HeightField) of the collider's first
+  /// and second shape that the next points touch; 0 for other shapes.
+  void setFaceIndices(std::size_t first, std::size_t second) {
+    faces_ = {static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(second)};
   }
 
   /// The same output with the shape order swapped.
@@ -37,6 +48,7 @@ class ContactSinkT {
  private:
   std::vector<ContactPointT<S>>* points_;
   bool flipped_;
+  std::array<std::uint32_t, 2> faces_{};
 };
 
 }  // namespace spook

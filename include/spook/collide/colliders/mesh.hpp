@@ -4,9 +4,12 @@
 #include <vector>
 
 #include <spook/collide/collider.hpp>
+#include <spook/collide/detail/polytope_sat.hpp>
 #include <spook/collide/detail/triangle.hpp>
+#include <spook/collide/shapes/box.hpp>
 #include <spook/collide/shapes/convex.hpp>
 #include <spook/collide/shapes/height_field.hpp>
+#include <spook/collide/shapes/line.hpp>
 #include <spook/collide/shapes/plane.hpp>
 #include <spook/collide/shapes/sphere.hpp>
 #include <spook/collide/shapes/trimesh.hpp>
@@ -85,21 +88,34 @@ void collideSphereTriangle(const SphereT<S>& sphere, const Vec3<S>& c_W, const T
   sink.add(q + n * (depth * S(0.5)), n, depth);  // midway: q and c + n r bound the overlap
 }
 
-/// Contacts of a shape against the triangles of a soup near it; a
-/// triangle counts as a convex shape of its own.
+template <class A>
+inline constexpr bool kIsPolytope =
+    A::kType == ShapeType::BOX || A::kType == ShapeType::CONVEX || A::kType == ShapeType::LINE;
+
+/// Contacts of a shape against the triangles of a soup near it, each
+/// triangle a convex shape of its own: boxes, hulls and segments by the
+/// separating axes with a clipped manifold (polytope_sat.hpp), spheres in
+/// closed form, capsules and cylinders through libccd.
 template <Scalar S, class A, class Soup>
 void collideWithTriangles(const A& a, const Transform<S>& X_WA, const Soup& soup, const Transform<S>& X_WM,
                           ContactSinkT<S>& sink) {
   const BoundingBoxT<S> box_M = transformBox<S>(a.getBoundingBox(), X_WM.inverse() * X_WA);
-  soup.forEachTriangle(box_M, [&](std::size_t, const Vec3<S>& p0, const Vec3<S>& p1, const Vec3<S>& p2) {
+  thread_local Polytope shape, triangle;
+  if constexpr (kIsPolytope<A>) makePolytope(a, X_WA, shape);
+  soup.forEachTriangle(box_M, [&](std::size_t i, const Vec3<S>& p0, const Vec3<S>& p1, const Vec3<S>& p2) {
+    sink.setFaceIndices(0, i);
     if constexpr (A::kType == ShapeType::SPHERE) {
       const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
       collideSphereTriangle<S>(a, X_WA.translation(), t_W, sink);
+    } else if constexpr (kIsPolytope<A>) {
+      makeTrianglePolytope<S>(Triangle<S>{{X_WM * p0, X_WM * p1, X_WM * p2}}, triangle);
+      collidePolytopes(shape, triangle, sink);
     } else {
       const Triangle<S> t_M{{p0, p1, p2}};
       collideByCcd<S>(a, X_WA, t_M, X_WM, sink);
     }
   });
+  sink.setFaceIndices(0, 0);
 }
 
 /// Triangle pairs of two soups whose boxes overlap, each collided by libccd.
@@ -108,14 +124,16 @@ void collideSoups(const SoupA& a, const Transform<S>& X_WA, const SoupB& b, cons
                   ContactSinkT<S>& sink) {
   const Transform<S> X_BA = X_WB.inverse() * X_WA;
   const BoundingBoxT<S> a_B = transformBox<S>(a.getBoundingBox(), X_BA);
-  b.forEachTriangle(a_B, [&](std::size_t, const Vec3<S>& q0, const Vec3<S>& q1, const Vec3<S>& q2) {
+  b.forEachTriangle(a_B, [&](std::size_t j, const Vec3<S>& q0, const Vec3<S>& q1, const Vec3<S>& q2) {
     const Triangle<S> t_B{{q0, q1, q2}};
     const BoundingBoxT<S> t_A = transformBox<S>(t_B.getBoundingBox(), X_BA.inverse());
-    a.forEachTriangle(t_A, [&](std::size_t, const Vec3<S>& p0, const Vec3<S>& p1, const Vec3<S>& p2) {
+    a.forEachTriangle(t_A, [&](std::size_t i, const Vec3<S>& p0, const Vec3<S>& p1, const Vec3<S>& p2) {
       const Triangle<S> t_A2{{p0, p1, p2}};
+      sink.setFaceIndices(i, j);
       collideByCcd<S>(t_A2, X_WA, t_B, X_WB, sink);
     });
   });
+  sink.setFaceIndices(0, 0);
 }
 
 /// Every vertex of `points` (frame A) at or below the plane is a contact,

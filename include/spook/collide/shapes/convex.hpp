@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -24,6 +25,12 @@ class ConvexT : public ShapeT<S> {
   using Mat3 = spook::Mat3<S>;
   using Triangle = std::array<int, 3>;
   using Face = detail::ConvexFace<S>;
+  /// A hull edge from corner `from` to corner `to`, as it runs in the loop
+  /// of face `left`; face `right` is on its other side (-1 should the
+  /// merged faces not share it whole).
+  struct Edge {
+    int from, to, left, right;
+  };
 
   /// Hull of `points` (shape frame, m). Throws on a non-finite point, and
   /// unless the points span a volume (not all coplanar within the tolerance).
@@ -45,6 +52,7 @@ class ConvexT : public ShapeT<S> {
     center_ = mass.center.template cast<S>();
     unitInertia_ = mass.inertia.template cast<S>();
     buildAdjacency();
+    buildEdges();
   }
 
   /// Hull corners, shape frame (m).
@@ -53,6 +61,9 @@ class ConvexT : public ShapeT<S> {
   [[nodiscard]] const std::vector<Triangle>& getTriangles() const { return triangles_; }
   /// Polygon faces (coplanar triangles merged): corner loop, unit outward normal, offset (m).
   [[nodiscard]] const std::vector<Face>& getFaces() const { return faces_; }
+
+  /// The edges between polygon faces (none inside a merged face).
+  [[nodiscard]] const std::vector<Edge>& getEdges() const { return edges_; }
 
   /// Distance within which input points were taken as lying on a face (m);
   /// every input point is inside the hull or at most about twice this outside.
@@ -131,7 +142,30 @@ class ConvexT : public ShapeT<S> {
     }
   }
 
+  // Each face loop edge meets the reversed edge of exactly one other face.
+  void buildEdges() {
+    struct HalfEdge {
+      int low, high, from, to, face;
+    };
+    std::vector<HalfEdge> halves;
+    for (std::size_t f = 0; f < faces_.size(); ++f) {
+      const auto& loop = faces_[f].vertices;
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const int a = loop[k], b = loop[(k + 1) % loop.size()];
+        halves.push_back({std::min(a, b), std::max(a, b), a, b, static_cast<int>(f)});
+      }
+    }
+    std::sort(halves.begin(), halves.end(),
+              [](const HalfEdge& x, const HalfEdge& y) { return std::tie(x.low, x.high) < std::tie(y.low, y.high); });
+    for (std::size_t k = 0; k < halves.size();) {
+      const bool paired = k + 1 < halves.size() && halves[k + 1].low == halves[k].low && halves[k + 1].high == halves[k].high;
+      edges_.push_back({halves[k].from, halves[k].to, halves[k].face, paired ? halves[k + 1].face : -1});
+      k += paired ? 2 : 1;
+    }
+  }
+
   std::vector<Vec3> vertices_;
+  std::vector<Edge> edges_;
   std::vector<Triangle> triangles_;
   std::vector<Face> faces_;
   S tolerance_ = S(0);

@@ -1,0 +1,193 @@
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include <spook/collide/contact_sink.hpp>
+#include <spook/collide/detail/polytope.hpp>
+#include <spook/collide/detail/segment_distance.hpp>
+#include <spook/core/math.hpp>
+
+namespace spook::detail {
+
+/// The axis of least overlap of two polytopes, from a toward b.
+struct SeparatingAxis {
+  using S = double;
+  enum Kind { FACE_OF_A, FACE_OF_B, EDGES };
+  S depth = std::numeric_limits<S>::infinity();  // overlap of the projections on n (m)
+  Vec3<S> n = Vec3<S>::UnitZ();
+  Kind kind = FACE_OF_A;
+  int first = -1, second = -1;  // the face, or the edge of a and the edge of b
+};
+
+/// Whether edges with face normals (a, b) on one polytope and (c, d) on the
+/// other make a face of their Minkowski difference: the arcs a–b and
+/// −c–−d cross on the Gauss map (Gregorius, "The Separating Axis Test
+/// between Convex Polyhedra", GDC 2013). Only such edge pairs can give the
+/// least overlap, which prunes most of the E_a·E_b cross products.
+[[nodiscard]] inline bool arcsCross(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
+                                    const Vec3<double>& d) {
+  const Vec3<double> bxa = b.cross(a), dxc = d.cross(c);
+  const double cba = c.dot(bxa), dba = d.dot(bxa), adc = a.dot(dxc), bdc = b.dot(dxc);
+  return cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0;
+}
+
+/// The separating axis theorem for polytopes: the penetration depth is the
+/// least overlap f(n) = h_a(n) + h_b(−n) over the face normals of each and
+/// the cross products of their edges (the face normals of the Minkowski
+/// difference), both signs. Returns false as soon as an axis separates.
+[[nodiscard]] inline bool leastOverlap(const Polytope& a, const Polytope& b, SeparatingAxis& best) {
+  using S = double;
+  using Kind = SeparatingAxis::Kind;
+  const auto overlap = [&](const Vec3<S>& n) { return a.support(n).first + b.support(-n).first; };
+  const auto consider = [&](const Vec3<S>& n, Kind kind, int first, int second) {
+    const S f = overlap(n);
+    if (f < best.depth) best = {f, n, kind, first, second};
+    return f >= S(0);
+  };
+  for (std::size_t i = 0; i < a.faces.size(); ++i) {
+    const Vec3<S>& n = a.faces[i].normal;
+    if (!consider(n, Kind::FACE_OF_A, int(i), -1)) return false;
+    if (a.twoSided && !consider(-n, Kind::FACE_OF_A, int(i), -1)) return false;
+  }
+  for (std::size_t j = 0; j < b.faces.size(); ++j) {
+    const Vec3<S>& m = b.faces[j].normal;
+    if (!consider(-m, Kind::FACE_OF_B, int(j), -1)) return false;
+    if (b.twoSided && !consider(m, Kind::FACE_OF_B, int(j), -1)) return false;
+  }
+  // Edge pairs within round-off of parallel span no face of their own.
+  const S parallel = S(1e3) * ScalarTraits<S>::epsilon();
+  for (std::size_t i = 0; i < a.edges.size(); ++i) {
+    const auto& ea = a.edges[i];
+    const Vec3<S> u = a.edgeVector(ea);
+    for (std::size_t j = 0; j < b.edges.size(); ++j) {
+      const auto& eb = b.edges[j];
+      if (ea.right >= 0 && eb.right >= 0 &&
+          !arcsCross(a.faces[std::size_t(ea.left)].normal, a.faces[std::size_t(ea.right)].normal,
+                        Vec3<S>(-b.faces[std::size_t(eb.left)].normal),
+                        Vec3<S>(-b.faces[std::size_t(eb.right)].normal)))
+        continue;
+      const Vec3<S> v = b.edgeVector(eb);
+      Vec3<S> n = u.cross(v);
+      const S length = n.norm();
+      if (!(length > parallel * u.norm() * v.norm())) continue;
+      n /= length;
+      if (!consider(n, Kind::EDGES, int(i), int(j)) || !consider(-n, Kind::EDGES, int(i), int(j))) return false;
+    }
+  }
+  return best.depth < std::numeric_limits<S>::infinity();
+}
+
+/// The face of `p` whose outward normal points most against `r` (for a
+/// two-sided face, the side that does), as a corner loop; a segment gives
+/// its two ends.
+inline void incidentFeature(const Polytope& p, const Vec3<double>& r, std::vector<Vec3<double>>& corners) {
+  using S = double;
+  corners.clear();
+  if (p.faces.empty()) {
+    corners = p.vertices;
+    return;
+  }
+  std::size_t best = 0;
+  S lowest = std::numeric_limits<S>::infinity();
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    const S alignment = p.twoSided ? -std::abs(p.faces[f].normal.dot(r)) : p.faces[f].normal.dot(r);
+    if (alignment < lowest) lowest = alignment, best = f;
+  }
+  for (const int k : p.faces[best].loop) corners.push_back(p.vertex(k));
+}
+
+/// Clips a polygon (or a segment, two corners) to the half-space
+/// s·x <= offset, Sutherland–Hodgman.
+inline void clipToHalfSpace(std::vector<Vec3<double>>& corners, const Vec3<double>& s, double offset,
+                            std::vector<Vec3<double>>& scratch) {
+  using S = double;
+  scratch.clear();
+  const std::size_t count = corners.size();
+  const std::size_t edges = count == 2 ? 1 : count;
+  for (std::size_t i = 0; i < edges; ++i) {
+    const Vec3<S>& p = corners[i];
+    const Vec3<S>& q = corners[(i + 1) % count];
+    const S dp = s.dot(p) - offset, dq = s.dot(q) - offset;
+    if (dp <= S(0)) scratch.push_back(p);
+    if ((dp < S(0) && dq > S(0)) || (dp > S(0) && dq < S(0))) scratch.push_back(p + (q - p) * (dp / (dp - dq)));
+    if (count == 2 && dq <= S(0)) scratch.push_back(q);
+  }
+  corners.swap(scratch);
+}
+
+/// Contacts of two overlapping polytopes along their axis of least overlap.
+///
+/// Edge against edge: one point, midway between the two edges' closest
+/// points, at the least overlap. Face against anything: the face is the
+/// reference, the other polytope's face most against it (or its segment)
+/// is clipped to the reference face's side planes (Sutherland–Hodgman), and
+/// each clipped corner below the reference plane is a contact at its own
+/// depth, midway to the plane: a full manifold, as for box–box. Where
+/// clipping keeps no corner as deep as the least overlap (the deepest one
+/// hangs over the reference face's rim) the deepest corner of the other
+/// polytope is added at the least overlap, so that the deepest contact is
+/// always the penetration depth of the pair.
+template <Scalar T>
+void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink) {
+  using S = double;
+  const auto add = [&](const Vec3<S>& point, S depth) {
+    sink.add(point.template cast<T>(), axis.n.template cast<T>(), T(depth));
+  };
+  const Vec3<S>& n = axis.n;
+  if (axis.kind == SeparatingAxis::EDGES) {
+    const auto& ea = a.edges[std::size_t(axis.first)];
+    const auto& eb = b.edges[std::size_t(axis.second)];
+    const auto closest = closestPointsBetweenSegments<S>(a.vertex(ea.from), a.vertex(ea.to), b.vertex(eb.from),
+                                                         b.vertex(eb.to));
+    add(S(0.5) * (closest.onFirst + closest.onSecond), axis.depth);
+    return;
+  }
+  const bool onA = axis.kind == SeparatingAxis::FACE_OF_A;
+  const Polytope& reference = onA ? a : b;
+  const Polytope& incident = onA ? b : a;
+  const Vec3<S> r = onA ? n : Vec3<S>(-n);  // the reference face's outward normal, toward the incident polytope
+  const auto& loop = reference.faces[std::size_t(axis.first)].loop;
+  const S planeOffset = r.dot(reference.vertex(loop[0]));
+
+  thread_local std::vector<Vec3<S>> corners, scratch;
+  incidentFeature(incident, r, corners);
+  Vec3<S> centroid = Vec3<S>::Zero();
+  for (const int k : loop) centroid += reference.vertex(k);
+  centroid /= S(loop.size());
+  for (std::size_t k = 0; k < loop.size() && !corners.empty(); ++k) {
+    const Vec3<S>& p = reference.vertex(loop[k]);
+    const Vec3<S> edge = reference.vertex(loop[(k + 1) % loop.size()]) - p;
+    Vec3<S> side = edge.cross(r);
+    if (side.dot(centroid - p) > S(0)) side = -side;
+    const S length = side.norm();
+    if (!(length > S(0))) continue;  // a repeated corner of a degenerate face
+    side /= length;
+    clipToHalfSpace(corners, side, side.dot(p), scratch);
+  }
+  S deepest = -std::numeric_limits<S>::infinity();
+  const S tolerance = S(64) * ScalarTraits<S>::epsilon() * (S(1) + std::abs(planeOffset));
+  for (const Vec3<S>& x : corners) {
+    const S depth = planeOffset - r.dot(x);
+    if (depth < -tolerance) continue;
+    add(x + r * (S(0.5) * depth), depth);
+    deepest = std::max(deepest, depth);
+  }
+  if (deepest < axis.depth - tolerance * S(16)) {
+    const Vec3<S>& x = incident.vertex(incident.support(-r).second);
+    add(x + r * (S(0.5) * axis.depth), axis.depth);
+  }
+}
+
+/// Contacts of two polytopes (from a toward b), none when an axis separates them.
+template <Scalar T>
+void collidePolytopes(const Polytope& a, const Polytope& b, ContactSinkT<T>& sink) {
+  SeparatingAxis axis;
+  if (!leastOverlap(a, b, axis)) return;
+  polytopeContacts(a, b, axis, sink);
+}
+
+}  // namespace spook::detail
