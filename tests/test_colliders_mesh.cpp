@@ -71,6 +71,7 @@ using spook::ContactSinkT;
 using spook::ConvexT;
 using spook::CylinderT;
 using spook::HeightFieldT;
+using spook::LineT;
 using spook::PlaneT;
 using spook::ref_ptr;
 using spook::SphereT;
@@ -143,6 +144,10 @@ ref_ptr<ConvexT<S>> castShape(const ConvexT<double>& s) {
   std::vector<spook::Vec3<S>> points;
   for (const Vec3d& v : s.getVertices()) points.push_back(v.cast<S>());
   return new ConvexT<S>(points);
+}
+template <class S>
+ref_ptr<LineT<S>> castShape(const LineT<double>& s) {
+  return new LineT<S>(s.getFirstPoint().cast<S>(), s.getSecondPoint().cast<S>());
 }
 
 /// A reference answer for one placed pair: whether they intersect, the
@@ -401,6 +406,20 @@ Reference capsuleTriangle(const CapsuleT<double>& capsule, const Transformd& X, 
   reference.normal = (onTriangle - onSegment) / distance;
   reference.intersect = reference.depth >= 0.0;
   reference.signedDistance = -reference.depth;
+  return reference;
+}
+
+/// Segment: when it crosses the triangle, the smallest overlap over the
+/// facet normals of the prism segment − triangle (the triangle normal and
+/// segment × edges); otherwise apart by the segment–triangle distance.
+Reference lineTriangle(const LineT<double>& line, const Transformd& X, const Tri& t) {
+  const Vec3d p0 = X * line.getFirstPoint(), p1 = X * line.getSecondPoint();
+  std::vector<Vec3d> axes = {unnormalizedNormal(t)};
+  for (int k = 0; k < 3; ++k) axes.push_back((p1 - p0).cross(t.v[(k + 1) % 3] - t.v[k]));
+  Reference reference = axesMinimum(line, X, t, kIdentity, axes);
+  if (reference.intersect) return reference;
+  const auto [onSegment, onTriangle] = closestSegmentTriangle(p0, p1, t);
+  reference.signedDistance = (onTriangle - onSegment).norm();
   return reference;
 }
 
@@ -969,6 +988,11 @@ ref_ptr<CapsuleT<double>> randomCapsule(RandomPoses& random) {
 ref_ptr<CylinderT<double>> randomCylinder(RandomPoses& random) {
   return new CylinderT<double>(random.length(0.05, 0.5), random.length(0.1, 1.0));
 }
+/// A segment of length 0.1–1 m centered on its frame's origin, float-exact ends.
+ref_ptr<LineT<double>> randomSegment(RandomPoses& random) {
+  const Vec3d half = (random.unit() * random.length(0.05, 0.5)).unaryExpr(&toFloat);
+  return new LineT<double>(-half, half);
+}
 /// The hull of 12 random float-exact points on an ellipsoid.
 ref_ptr<ConvexT<double>> randomConvex(RandomPoses& random) {
   const Vec3d axes(random.length(0.1, 0.5), random.length(0.1, 0.5), random.length(0.1, 0.5));
@@ -1033,6 +1057,16 @@ TEST_CASE_TEMPLATE("mesh: convex vs a one-triangle Trimesh is the separating-axi
 TEST_CASE_TEMPLATE("mesh: convex vs a two-cell HeightField is the separating-axis penetration", S, float, double) {
   checkShapeAgainstSoup<S, ConvexT<double>, HeightFieldT<double>>("convex-heightfield", 518, randomConvex, twoCells,
                                                                   convexTriangle);
+}
+
+TEST_CASE_TEMPLATE("mesh: line vs a one-triangle Trimesh is the separating-axis penetration", S, float, double) {
+  checkShapeAgainstSoup<S, LineT<double>, TrimeshT<double>>("line-triangle", 519, randomSegment, randomTriangle,
+                                                            lineTriangle);
+}
+
+TEST_CASE_TEMPLATE("mesh: line vs a two-cell HeightField is the separating-axis penetration", S, float, double) {
+  checkShapeAgainstSoup<S, LineT<double>, HeightFieldT<double>>("line-heightfield", 520, randomSegment, twoCells,
+                                                                lineTriangle);
 }
 
 // ---------------------------------------------------------------------------
