@@ -2817,23 +2817,14 @@ void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transf
   // f may have several local minima: descend from several starts, then
   // search the kinks where a descent stalled.
   const ProjectionOverlap<A, B> overlap{objectA, objectB};
-  struct Descent {
-    Vec3<double> n;
-    double f;
-    bool smooth;
-  };
-  std::vector<Descent> descents;
+  double refined = std::numeric_limits<double>::infinity();
   for (Vec3<double> start : startingDirections(objectA, objectB, n, kStarts)) {
     bool smooth = false;
-    const double f = descend(overlap, start, scale, smooth);
-    descents.push_back({start, f, smooth});
-  }
-  double refined = std::numeric_limits<double>::infinity();
-  for (Descent& d : descents) {
-    if (!d.smooth) d.f = polishOnKinks(overlap, d.n, d.f, scale);
-    if (d.f < refined) {
-      refined = d.f;
-      n = d.n;
+    double f = descend(overlap, start, scale, smooth);
+    if (!smooth) f = polishOnKinks(overlap, start, f, scale);
+    if (f < refined) {
+      refined = f;
+      n = start;
     }
   }
   if (!(refined >= 0.0)) return;  // the polished direction separates them
