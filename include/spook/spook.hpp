@@ -16,6 +16,13 @@
 #include <spook/collide/shapes/shape.hpp>
 #include <spook/collide/shapes/sphere.hpp>
 #include <spook/collide/space.hpp>
+#include <spook/constraints/constraint.hpp>
+#include <spook/constraints/joints/ball_joint.hpp>
+#include <spook/constraints/joints/distance_joint.hpp>
+#include <spook/constraints/joints/hinge.hpp>
+#include <spook/constraints/joints/lock_joint.hpp>
+#include <spook/constraints/joints/prismatic.hpp>
+#include <spook/constraints/regularization.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/frame.hpp>
 #include <spook/core/math.hpp>
@@ -33,3 +40,4 @@
 #include <spook/sim/simulation.hpp>
 #include <spook/sim/statistics.hpp>
 #include <spook/sim/step_event_listener.hpp>
+#include <spook/solver/solver.hpp>

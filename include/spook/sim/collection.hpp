@@ -10,6 +10,7 @@
 #include <spook/core/math.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
+#include <spook/constraints/constraint.hpp>
 #include <spook/dynamics/rigid_body.hpp>
 #include <spook/sim/membership.hpp>
 #include <spook/sim/step_event_listener.hpp>
@@ -30,6 +31,9 @@ class ContentSink {
   [[nodiscard]] virtual bool contains(const StepEventListenerT<S>* listener) const = 0;
   virtual void add(ref_ptr<StepEventListenerT<S>> listener) = 0;
   virtual void remove(StepEventListenerT<S>* listener) = 0;
+  virtual void add(ref_ptr<ConstraintT<S>> constraint) = 0;
+  virtual void remove(ConstraintT<S>* constraint) = 0;
+  [[nodiscard]] virtual bool contains(const ConstraintT<S>* constraint) const = 0;
   virtual void addNested(CollectionT<S>& collection) = 0;
   virtual void removeNested(CollectionT<S>& collection) = 0;
 
@@ -38,7 +42,7 @@ class ContentSink {
 };
 }  // namespace detail
 
-/// A named group of bodies, listeners and other collections, added to and
+/// A named group of bodies, constraints, listeners and other collections, added to and
 /// removed from a simulation as one. While the collection is in a
 /// simulation, what is added to it is added to the simulation too.
 template <Scalar S>
@@ -64,6 +68,13 @@ class CollectionT : public Referenced {
     if (simulation_) simulation_->add(listener);
     listeners_.push_back(std::move(listener));
   }
+  /// Adds a constraint; in a simulation, its bodies must be there already.
+  void add(ref_ptr<ConstraintT<S>> constraint) {
+    if (!constraint) throw error("cannot add a null Constraint", "nullptr");
+    if (contains(constraints_, constraint.get())) throw error("Constraint already added", constraint->getName());
+    if (simulation_) simulation_->add(constraint);
+    constraints_.push_back(std::move(constraint));
+  }
   void add(ref_ptr<CollectionT> child) {
     if (!child) throw error("cannot add a null Collection", "nullptr");
     if (contains(children_, child.get())) throw error("Collection already added", child->getName());
@@ -85,6 +96,13 @@ class CollectionT : public Referenced {
     if (simulation_ && simulation_->contains(listener)) simulation_->remove(listener);
     listeners_.erase(it);
   }
+  void remove(ConstraintT<S>* constraint) {
+    auto it = find(constraints_, constraint);
+    if (it == constraints_.end())
+      throw error("Constraint was never added", constraint ? constraint->getName() : "nullptr");
+    if (simulation_ && simulation_->contains(constraint)) simulation_->remove(constraint);
+    constraints_.erase(it);
+  }
   void remove(CollectionT* child) {
     auto it = find(children_, child);
     if (it == children_.end()) throw error("Collection was never added", child ? child->getName() : "nullptr");
@@ -94,6 +112,7 @@ class CollectionT : public Referenced {
 
   [[nodiscard]] const std::vector<ref_ptr<Body>>& getRigidBodies() const { return bodies_; }
   [[nodiscard]] const std::vector<ref_ptr<Listener>>& getEventListeners() const { return listeners_; }
+  [[nodiscard]] const std::vector<ref_ptr<ConstraintT<S>>>& getConstraints() const { return constraints_; }
   [[nodiscard]] const std::vector<ref_ptr<CollectionT>>& getCollections() const { return children_; }
 
   /// True when `other` is this collection or nested anywhere inside it.
@@ -143,6 +162,7 @@ class CollectionT : public Referenced {
   std::string name_;
   std::vector<ref_ptr<Body>> bodies_;
   std::vector<ref_ptr<Listener>> listeners_;
+  std::vector<ref_ptr<ConstraintT<S>>> constraints_;
   std::vector<ref_ptr<CollectionT>> children_;
   detail::ContentSink<S>* simulation_ = nullptr;
 };

@@ -13,6 +13,7 @@
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
 #include <spook/collide/space.hpp>
+#include <spook/constraints/constraint.hpp>
 #include <spook/dynamics/gravity_field.hpp>
 #include <spook/dynamics/rigid_body.hpp>
 #include <spook/sim/collection.hpp>
@@ -21,6 +22,8 @@
 #include <spook/sim/statistics.hpp>
 #include <spook/sim/step_event_listener.hpp>
 #include <spook/solver/integrator.hpp>
+#include <spook/solver/islands.hpp>
+#include <spook/solver/solver.hpp>
 
 namespace spook {
 
@@ -36,6 +39,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   using Collection = CollectionT<S>;
   using ContactListener = ContactEventListenerT<S>;
   using Geometry = GeometryT<S>;
+  using Constraint = ConstraintT<S>;
 
   /// A simulation whose space collides every shape type.
   SimulationT() : space_(new SpaceT<S>()) {}
@@ -66,7 +70,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   /// Takes one step:
   /// preCollide listeners → collision detection → contact events → pre
-  /// listeners → (rows, islands, solve) → integrate → post listeners → last
+  /// listeners → rows, islands, solve → integrate → post listeners → last
   /// listeners → t += h.
   void stepForward() {
     if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
@@ -96,6 +100,16 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     const S now = getTimeStamp();
     if (t < now) throw error("stepTo time must not be in the past (now " + std::to_string(now) + " s)", t);
     while (std::llround((t - getTimeStamp()) / timeStep_) > 0) stepForward();
+  }
+
+  // --- Solver ----------------------------------------------------------------
+
+  /// The solver policy that solves each island: HybridSolver by default
+  /// (rows solved as their constraints ask), DirectSolver or IterativeSolver.
+  [[nodiscard]] Solver* getSolver() const { return solver_.get(); }
+  void setSolver(ref_ptr<Solver> solver) {
+    if (!solver) throw error("solver must not be null", "nullptr");
+    solver_ = std::move(solver);
   }
 
   // --- Gravity ---------------------------------------------------------------
@@ -190,6 +204,36 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     removeNested(*collection);
   }
 
+  /// Adds a constraint whose bodies are in this simulation already; throws
+  /// when a body is elsewhere or when both are static (or static and world).
+  /// A constraint whose body is later removed adds no rows.
+  void add(ref_ptr<Constraint> constraint) override {
+    checkAddable(constraint.get(), constraint ? constraint->getKind() : "Constraint");
+    checkBodiesOf(*constraint, nullptr);
+    Membership::indexOf(*constraint) = constraints_.size();
+    Membership::simulationOf(*constraint) = this;
+    constraints_.push_back(std::move(constraint));
+  }
+  void remove(Constraint* constraint) override {
+    checkRemovable(constraint, constraint ? constraint->getKind() : "Constraint");
+    const std::size_t index = Membership::indexOf(*constraint);
+    ref_ptr<Constraint> keep = constraint;
+    std::swap(constraints_[index], constraints_.back());
+    Membership::indexOf(*constraints_[index]) = index;
+    constraints_.pop_back();
+    Membership::simulationOf(*constraint) = nullptr;
+  }
+  [[nodiscard]] const std::vector<ref_ptr<Constraint>>& getConstraints() const { return constraints_; }
+  /// The first constraint with this name, or nullptr.
+  [[nodiscard]] Constraint* getConstraint(const std::string& name) const {
+    for (const auto& c : constraints_)
+      if (c->getName() == name) return c.get();
+    return nullptr;
+  }
+  [[nodiscard]] bool contains(const Constraint* constraint) const override {
+    return constraint && Membership::simulationOf(*constraint) == static_cast<const void*>(this);
+  }
+
   [[nodiscard]] const std::vector<ref_ptr<Body>>& getRigidBodies() const { return bodies_; }
   [[nodiscard]] const std::vector<ref_ptr<Listener>>& getEventListeners() const { return listeners_; }
   [[nodiscard]] const std::vector<ref_ptr<Collection>>& getCollections() const { return collections_; }
@@ -216,6 +260,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     for (auto& b : bodies_) Membership::simulationOf(*b) = nullptr;
     for (auto& l : listeners_) Membership::simulationOf(*l) = nullptr;
     for (auto& l : contactListeners_) Membership::simulationOf(*l) = nullptr;
+    for (auto& c : constraints_) Membership::simulationOf(*c) = nullptr;
     for (auto& c : collections_) setCollectionsSink(*c, nullptr);
   }
 
@@ -226,12 +271,45 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     if (pendingTimeStep_) setTimeStep(*std::exchange(pendingTimeStep_, std::nullopt));
   }
 
+  // The SPOOK step for every body: force-driven velocities, the rows of the
+  // enabled constraints, islands solved by the policy, then the poses.
   void integrate(S h) {
     statistics_.frozenBodies.clear();
-    for (const auto& body : bodies_) {
-      if (!detail::BodyIntegrator<S>::step(*body, *gravity_, h)) statistics_.frozenBodies.emplace_back(body.get());
-      detail::BodyIntegrator<S>::clearForces(*body);
+    statistics_.solver = SolverStatistics{};
+    solverBodies_.clear();
+    for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h));
+    collectRows(double(h));
+    if (!rows_.empty()) islands_.solve(rows_, solverBodies_, double(h), *solver_, statistics_.solver);
+    readBackForces(double(h));
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      Body& body = *bodies_[i];
+      if (!detail::BodyIntegrator<S>::move(body, solverBodies_[i], h)) statistics_.frozenBodies.emplace_back(&body);
+      detail::BodyIntegrator<S>::clearForces(body);
     }
+  }
+
+  void collectRows(double h) {
+    rows_.clear();
+    rowOwners_.clear();
+    for (const auto& c : constraints_) {
+      if (!c->getEnable()) continue;
+      Body* body1 = c->getBodyAt(0);
+      Body* body2 = c->getBodyAt(1);
+      if (!contains(body1) || (body2 && !contains(body2))) continue;
+      detail::RowSink sink{&rows_, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
+                           c->getSolveType()};
+      detail::ConstraintAccess::addRows(*c, sink, h);
+      rowOwners_.resize(rows_.size(), c.get());
+    }
+  }
+
+  void readBackForces(double h) {
+    for (const auto& c : constraints_)
+      if (c->getEnableComputeForces()) detail::ConstraintAccess::clearWrench(*c);
+    for (std::size_t i = 0; i < rows_.size(); ++i)
+      if (rowOwners_[i]->getEnableComputeForces())
+        detail::ConstraintAccess::addWrench(*rowOwners_[i], rows_[i], *rows_[i].impulse / h);
+    for (const auto& c : constraints_) detail::ConstraintAccess::afterSolve(*c, h);
   }
 
   // Calls the listeners selected by `stage`, highest priority first, over a
@@ -295,6 +373,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void addNested(Collection& collection) override {
     std::unordered_set<const void*> seen;
     validateTree(collection, seen);
+    validateConstraints(collection, seen);
     registerTree(collection);
   }
   void removeNested(Collection& collection) override {
@@ -303,6 +382,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       if (contains(b.get())) remove(b.get());
     for (const auto& l : collection.getEventListeners())
       if (l->getSimulation() == this) remove(l.get());
+    for (const auto& c : collection.getConstraints())
+      if (contains(c.get())) remove(c.get());
     Membership::simulationOf(collection) = nullptr;
     for (const auto& c : collection.getCollections()) removeNested(*c);
   }
@@ -320,13 +401,45 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       if (!seen.insert(l.get()).second)
         throw error("StepEventListener appears twice in the collection", collection.getName());
     }
+    for (const auto& c : collection.getConstraints()) {
+      checkAddable(c.get(), c ? c->getKind() : "Constraint");
+      if (!seen.insert(c.get()).second) throw detail::makeError(c->getKind(), c->getName(), "appears twice in the collection");
+    }
     for (const auto& c : collection.getCollections()) validateTree(*c, seen);
   }
+  // After the whole tree is known: a constraint's bodies are in this
+  // simulation or in the tree.
+  void validateConstraints(const Collection& collection, const std::unordered_set<const void*>& seen) const {
+    for (const auto& c : collection.getConstraints()) checkBodiesOf(*c, &seen);
+    for (const auto& child : collection.getCollections()) validateConstraints(*child, seen);
+  }
+  void checkBodiesOf(const Constraint& c, const std::unordered_set<const void*>* arriving) const {
+    for (int i = 0; i < 2; ++i) {
+      const Body* body = c.getBodyAt(i);
+      if (body && !contains(body) && !(arriving && arriving->count(body)))
+        throw detail::makeError(c.getKind(), c.getName(), "body not in this simulation; add the bodies first",
+                                body->getName());
+    }
+    const auto movable = [](const Body* b) { return b && b->getMotionControl() != Body::STATIC; };
+    if (!movable(c.getBodyAt(0)) && !movable(c.getBodyAt(1)))
+      throw detail::makeError(c.getKind(), c.getName(), "needs at least one body that is not static",
+                              c.getBodyAt(0)->getName());
+  }
+  // Bodies and listeners of the whole tree first, so that every constraint
+  // finds its bodies.
   void registerTree(Collection& collection) {
+    registerMembers(collection);
+    registerConstraints(collection);
+  }
+  void registerMembers(Collection& collection) {
     for (const auto& b : collection.getRigidBodies()) add(b);
     for (const auto& l : collection.getEventListeners()) add(l);
     Membership::simulationOf(collection) = this;
-    for (const auto& c : collection.getCollections()) registerTree(*c);
+    for (const auto& c : collection.getCollections()) registerMembers(*c);
+  }
+  void registerConstraints(Collection& collection) {
+    for (const auto& c : collection.getConstraints()) add(c);
+    for (const auto& c : collection.getCollections()) registerConstraints(*c);
   }
   void setCollectionsSink(Collection& collection, detail::ContentSink<S>* sink) {
     Membership::simulationOf(collection) = sink;
@@ -370,7 +483,13 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   std::vector<ref_ptr<ContactListener>> contactListeners_;
   ref_ptr<SpaceT<S>> space_;
   std::vector<ref_ptr<Collection>> collections_;
+  std::vector<ref_ptr<Constraint>> constraints_;
   SimulationStatisticsT<S> statistics_;
+  ref_ptr<Solver> solver_ = new HybridSolver();
+  std::vector<detail::SolverBody> solverBodies_;
+  std::vector<detail::Row> rows_;
+  std::vector<Constraint*> rowOwners_;
+  detail::IslandStepper islands_;
 };
 
 using Simulation = SimulationT<double>;

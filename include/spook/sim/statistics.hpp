@@ -5,6 +5,7 @@
 
 #include <spook/core/observer_ptr.hpp>
 #include <spook/dynamics/rigid_body.hpp>
+#include <spook/solver/solver.hpp>
 
 namespace spook {
 
@@ -16,6 +17,8 @@ struct SimulationStatisticsT {
   /// Bodies whose state would have become non-finite in the last step; they
   /// were frozen (velocities zeroed, pose kept) instead.
   std::vector<observer_ptr<RigidBodyT<S>>> frozenBodies;
+  /// What the constraint solver did in the last step.
+  SolverStatistics solver;
 };
 
 }  // namespace spook

@@ -4,12 +4,14 @@
 #include <spook/dynamics/gravity_field.hpp>
 #include <spook/dynamics/rigid_body.hpp>
 #include <spook/solver/free_rotation.hpp>
+#include <spook/solver/island_problem.hpp>
 
 namespace spook::detail {
 
-/// Advances one body over one step of the SPOOK stepper without
-/// constraints: velocities first (symplectic Euler), then positions from the
-/// new velocities.
+/// Advances one body over one step of the SPOOK stepper in two halves around
+/// the constraint solve: `prepare` computes the velocities the applied forces
+/// alone would give (symplectic Euler), the solver adds the constraint
+/// impulses, and `move` advances the pose with the final velocities.
 template <Scalar S>
 struct BodyIntegrator {
   using Vec3 = spook::Vec3<S>;
@@ -17,17 +19,55 @@ struct BodyIntegrator {
   using Mat3 = spook::Mat3<S>;
   using Body = RigidBodyT<S>;
 
-  /// Returns false when the new state would not be finite; the body is then
-  /// frozen (velocities zeroed, pose kept) instead of spreading NaN.
-  static bool step(Body& body, const GravityFieldT<S>& gravity, S h) {
+  /// The body as the solver sees it. Dynamic bodies get their force-driven
+  /// velocities v*; kinematic ones re-aim a moveTo; static and disabled ones
+  /// stand still with infinite mass.
+  static SolverBody solverBody(Body& body, const GravityFieldT<S>& gravity, S h) {
+    SolverBody b;
+    if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
+    if (body.motionControl_ == Body::KINEMATICS) {
+      if (body.target_) {
+        body.aimAtTarget(body.target_->remaining < S(1.5) * h ? h : body.target_->remaining);
+        body.target_->remaining -= h;
+      }
+      b.velocity = b.freeVelocity = stack(body.velocity_, body.angularVelocity_);
+      return b;
+    }
+    b.dynamic = true;
+    b.velocity = stack(body.velocity_, body.angularVelocity_);
+    const MassPropertiesT<S>& mass = body.massProperties_;
+    const Mat3 R = body.getCmRotation().toRotationMatrix();
+    // v⁺ = (v + h(M⁻¹f + g)) / (1 + h d) per CM axis: the applied force sees
+    // the inertial mass m(1 + c), gravity is an acceleration; damping is
+    // implicit. Angular: Π = I Ω + h Rᵀτ (body frame), damped the same way.
+    const Vec3 damping = Vec3::Ones() + h * body.linearDamping_;
+    const Vec3 acceleration = R * (R.transpose() * body.force_).cwiseQuotient(mass.getEffectiveMass()) +
+                              gravity.calculateGravity(body.getCmPosition());
+    const Vec3 v = R * (R.transpose() * (body.velocity_ + h * acceleration)).cwiseQuotient(damping);
+    const Mat3& inertia = mass.getInertiaTensor();
+    const Mat3 inertiaInverse = inertia.inverse();
+    Vec3 omega =
+        inertiaInverse * (inertia * (R.transpose() * body.angularVelocity_) + h * (R.transpose() * body.torque_));
+    omega = omega.cwiseQuotient(Vec3::Ones() + h * body.angularDamping_);
+    b.freeVelocity = stack(v, R * omega);
+    const Mat3 massInverse = R * mass.getEffectiveMass().cwiseInverse().asDiagonal() * R.transpose();
+    b.inverseMass = massInverse.template cast<double>();
+    b.inverseInertia = (R * inertiaInverse * R.transpose()).template cast<double>();
+    return b;
+  }
+
+  /// Advances the pose with the solved velocities v⁺ = (v, ω). Returns false
+  /// when the new state would not be finite; the body is then frozen
+  /// (velocities zeroed, pose kept) instead of spreading NaN.
+  static bool move(Body& body, const SolverBody& solved, S h) {
     if (!body.enable_) return true;
     switch (body.motionControl_) {
       case Body::STATIC:
         return true;
       case Body::KINEMATICS:
-        return stepKinematic(body, h);
+        return moveKinematic(body, h);
       case Body::DYNAMICS:
-        return stepDynamic(body, gravity, h);
+        return moveDynamic(body, solved, h);
     }
     return true;
   }
@@ -35,45 +75,34 @@ struct BodyIntegrator {
   static void clearForces(Body& body) { body.force_ = body.torque_ = Vec3::Zero(); }
 
  private:
-  // v⁺ = (v + h(M⁻¹f + g)) / (1 + h d) per CM axis: the applied force sees the
-  // inertial mass m(1 + c), gravity is an acceleration; damping is implicit.
-  // Angular: Π = I Ω + h Rᵀτ (body frame), damped the same way, then the
-  // momentum-conserving free rotation (free_rotation.hpp) moves the frame.
-  static bool stepDynamic(Body& body, const GravityFieldT<S>& gravity, S h) {
-    const MassPropertiesT<S>& mass = body.massProperties_;
+  static Vec6d stack(const Vec3& v, const Vec3& w) {
+    Vec6d out;
+    out << v.template cast<double>(), w.template cast<double>();
+    return out;
+  }
+
+  // x⁺ = x + h v⁺; the orientation by the momentum-conserving free rotation
+  // (free_rotation.hpp) of Π = I Rᵀω⁺, which also gives the end ω.
+  static bool moveDynamic(Body& body, const SolverBody& solved, S h) {
+    const Vec3 v = solved.freeVelocity.head<3>().template cast<S>();
+    const Vec3 omega = solved.freeVelocity.tail<3>().template cast<S>();
     const Quat q = body.getCmRotation();
     const Mat3 R = q.toRotationMatrix();
-    const Vec3 x = body.getCmPosition();
-
-    const Vec3 damping = Vec3::Ones() + h * body.linearDamping_;
-    const Vec3 acceleration =
-        R * (R.transpose() * body.force_).cwiseQuotient(mass.getEffectiveMass()) + gravity.calculateGravity(x);
-    const Vec3 v = R * (R.transpose() * (body.velocity_ + h * acceleration)).cwiseQuotient(damping);
-
-    const Mat3& inertia = mass.getInertiaTensor();
+    const Mat3& inertia = body.massProperties_.getInertiaTensor();
     const Mat3 inertiaInverse = inertia.inverse();
-    Vec3 omega =
-        inertiaInverse * (inertia * (R.transpose() * body.angularVelocity_) + h * (R.transpose() * body.torque_));
-    omega = omega.cwiseQuotient(Vec3::Ones() + h * body.angularDamping_);
-
-    const Vec3 xNext = x + h * v;
-    const FreeRotation<S> rotation = rotateFreely<S>(inertiaInverse, inertia * omega, h);
+    const Vec3 xNext = body.getCmPosition() + h * v;
+    const FreeRotation<S> rotation = rotateFreely<S>(inertiaInverse, inertia * (R.transpose() * omega), h);
     const Quat qNext = (q * rotation.increment).normalized();
     const Vec3 omegaNext = qNext * (inertiaInverse * rotation.momentum);
     return commit(body, xNext, qNext, v, omegaNext);
   }
 
   // Kinematic bodies move with their velocities: x⁺ = x + h v, q⁺ = exp(h ω) q.
-  // A moveTo re-aims the velocities at the target each step and lands on it
-  // at the step boundary nearest to its end time (the half-step margin makes
-  // that decision immune to round-off in the remaining time).
-  static bool stepKinematic(Body& body, S h) {
-    bool arriving = false;
-    if (body.target_) {
-      arriving = body.target_->remaining < S(1.5) * h;
-      body.aimAtTarget(arriving ? h : body.target_->remaining);
-      body.target_->remaining -= h;
-    }
+  // A moveTo (re-aimed in solverBody) lands on its target at the step
+  // boundary nearest to its end time; the half-step margin makes that
+  // decision immune to round-off in the remaining time.
+  static bool moveKinematic(Body& body, S h) {
+    const bool arriving = body.target_ && body.target_->remaining < S(0.5) * h;
     const Vec3 xNext = body.getCmPosition() + h * body.velocity_;
     const Quat qNext = (expRotation<S>(h * body.angularVelocity_) * body.getCmRotation()).normalized();
     if (!commit(body, xNext, qNext, body.velocity_, body.angularVelocity_)) return false;

@@ -1,0 +1,92 @@
+#pragma once
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include <spook/solver/island_problem.hpp>
+#include <spook/solver/row.hpp>
+
+namespace spook::detail {
+
+using Quatd = Eigen::Quaterniond;
+
+/// The two attachment frames of a constraint in world coordinates, in
+/// double, with the bodies' centers of mass and velocities: everything an
+/// elementary constraint needs to write its rows. For the world side the
+/// center is the frame origin and the velocities are zero.
+struct Attachments {
+  Vec3d p1 = Vec3d::Zero(), p2 = Vec3d::Zero();  ///< frame origins (m)
+  Quatd q1 = Quatd::Identity(), q2 = Quatd::Identity();
+  Mat3d R1 = Mat3d::Identity(), R2 = Mat3d::Identity();  ///< frame axes as columns
+  Vec3d c1 = Vec3d::Zero(), c2 = Vec3d::Zero();          ///< centers of mass (m)
+  Vec6d v1 = Vec6d::Zero(), v2 = Vec6d::Zero();          ///< (v, ω) of the centers of mass
+
+  [[nodiscard]] Vec3d r1() const { return p1 - c1; }
+  [[nodiscard]] Vec3d r2() const { return p2 - c2; }
+  /// G v of a row at the start of the step.
+  [[nodiscard]] double speed(const Vec6d& J1, const Vec6d& J2) const { return J1.dot(v1) + J2.dot(v2); }
+};
+
+/// Where a constraint writes its rows this step.
+struct RowSink {
+  std::vector<Row>* rows = nullptr;
+  int body1 = -1, body2 = -1;
+  SolveType solveType = SolveType::DIRECT;
+
+  Row& add(const Vec6d& J1, const Vec6d& J2, double* impulse) {
+    Row& row = rows->emplace_back();
+    row.body1 = body1;
+    row.body2 = body2;
+    row.J1 = J1;
+    row.J2 = J2;
+    row.solveType = solveType;
+    row.impulse = impulse;
+    return row;
+  }
+};
+
+inline Vec6d linearAngular(const Vec3d& linear, const Vec3d& angular) {
+  Vec6d J;
+  J << linear, angular;
+  return J;
+}
+
+/// A scalar coordinate of a joint's free motion (an angle or a position)
+/// with its Jacobian: what Motor1D, Lock1D and Range1D act on.
+struct Coordinate {
+  double value = 0.0;  ///< m or rad (angles with winding)
+  double speed = 0.0;  ///< d(value)/dt at the start of the step
+  Vec6d J1 = Vec6d::Zero(), J2 = Vec6d::Zero();
+  bool rotational = false;
+};
+
+/// The relative rotation of frame 1 in frame 2, q₂* q₁, with w ≥ 0.
+[[nodiscard]] inline Quatd relativeRotation(const Attachments& a) {
+  Quatd q = a.q2.conjugate() * a.q1;
+  if (q.w() < 0.0) q.coeffs() = -q.coeffs();
+  return q;
+}
+
+/// Keeps an angle continuous across ±π: the raw angle in (−π, π] is turned
+/// into the value nearest the last one.
+class Winding {
+ public:
+  [[nodiscard]] double unwrap(double raw) const {
+    if (!started_) return raw;
+    return last_ + std::remainder(raw - last_, 2.0 * std::numbers::pi);
+  }
+  void update(double value) {
+    last_ = value;
+    started_ = true;
+  }
+  void reset() { started_ = false; }
+
+ private:
+  double last_ = 0.0;
+  bool started_ = false;
+};
+
+}  // namespace spook::detail

@@ -1,0 +1,259 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <utility>
+
+#include <spook/constraints/attachments.hpp>
+#include <spook/core/error.hpp>
+#include <spook/core/frame.hpp>
+#include <spook/core/math.hpp>
+#include <spook/core/ref_ptr.hpp>
+#include <spook/core/referenced.hpp>
+#include <spook/dynamics/rigid_body.hpp>
+#include <spook/solver/row.hpp>
+
+namespace spook {
+
+namespace detail {
+struct SimulationMembership;
+struct ConstraintAccess;
+}  // namespace detail
+
+/// A geometrical relation between a body and the world, or between two
+/// bodies, held by rows with compliance and damping (seed 001 §12). Each body
+/// carries an attachment frame; the constraint is relaxed when the two frames
+/// coincide in the way the joint defines. A frame without a parent is fixed
+/// to its body's model frame (or to the world for a missing second body) and
+/// keeps its local transform; an attachment frame of the body is used as it
+/// is. Position and orient the bodies before attaching them.
+template <Scalar S>
+class ConstraintT : public Referenced {
+ public:
+  using Vec3 = spook::Vec3<S>;
+  using Quat = spook::Quat<S>;
+  using Body = RigidBodyT<S>;
+  using Frame = FrameT<S>;
+
+  static constexpr SolveType DIRECT = SolveType::DIRECT;
+  static constexpr SolveType ITERATIVE = SolveType::ITERATIVE;
+  static constexpr SolveType DIRECT_AND_ITERATIVE = SolveType::DIRECT_AND_ITERATIVE;
+
+  [[nodiscard]] const std::string& getName() const { return name_; }
+  void setName(std::string name) { name_ = std::move(name); }
+  /// The joint type, e.g. "Hinge".
+  [[nodiscard]] const char* getKind() const { return kind_; }
+
+  /// A disabled constraint adds no rows.
+  [[nodiscard]] bool getEnable() const { return enable_; }
+  void setEnable(bool enable) { enable_ = enable; }
+
+  /// Body 0 or 1 (nullptr for the world).
+  [[nodiscard]] Body* getBodyAt(int index) const { return index == 0 ? body1_.get() : index == 1 ? body2_.get() : nullptr; }
+  /// Attachment frame 0 or 1.
+  [[nodiscard]] Frame* getAttachmentFrame(int index) const {
+    return index == 0 ? frame1_.get() : index == 1 ? frame2_.get() : nullptr;
+  }
+
+  /// Elementary rows of the joint (its DOF enum's NUM_DOF).
+  [[nodiscard]] virtual int getNumDOF() const = 0;
+
+  /// Which solver handles the rows under the hybrid policy (default
+  /// DIRECT_AND_ITERATIVE, as AGX's joints).
+  [[nodiscard]] SolveType getSolveType() const { return solveType_; }
+  void setSolveType(SolveType type) {
+    if (type != DIRECT && type != ITERATIVE && type != DIRECT_AND_ITERATIVE)
+      throw error("unknown solve type", static_cast<int>(type));
+    solveType_ = type;
+  }
+
+  /// When on, the force and torque the constraint applied in the last step
+  /// are kept for getLastForce (default off: costs a little per row).
+  [[nodiscard]] bool getEnableComputeForces() const { return computeForces_; }
+  void setEnableComputeForces(bool enable) {
+    computeForces_ = enable;
+    if (!enable) wrench_[0] = wrench_[1] = detail::Vec6d::Zero();
+  }
+  /// The force (N) and torque (N·m) the constraint applied on body `index`
+  /// (0 or 1) in the last step; the torque about the center of mass, or with
+  /// atCm false about the body's attachment frame origin. False (and zeros)
+  /// when force computation is off or the index names no body.
+  bool getLastForce(int index, Vec3& force, Vec3& torque, bool atCm = true) const {
+    force = torque = Vec3::Zero();
+    Body* body = getBodyAt(index);
+    if (!computeForces_ || !body) return false;
+    const detail::Vec6d& w = wrench_[static_cast<std::size_t>(index)];
+    force = w.head<3>().template cast<S>();
+    torque = w.tail<3>().template cast<S>();
+    if (!atCm) torque += (body->getCmPosition() - getAttachmentFrame(index)->getTranslate()).cross(force);
+    return true;
+  }
+  bool getLastForce(const Body* body, Vec3& force, Vec3& torque, bool atCm = true) const {
+    const int index = body && body == body1_.get() ? 0 : body && body == body2_.get() ? 1 : -1;
+    if (index < 0) {
+      force = torque = Vec3::Zero();
+      return false;
+    }
+    return getLastForce(index, force, torque, atCm);
+  }
+
+  /// Takes the current configuration as the relaxed one: frame 2 is moved
+  /// onto frame 1 (seed 001 §12.16), and rest lengths and angles restart.
+  void rebind() {
+    if (rebindsFrames()) frame2_->setMatrix(frame1_->getMatrix());
+    onRebind();
+  }
+
+  /// The simulation this constraint was added to, or nullptr.
+  [[nodiscard]] const void* getSimulationHandle() const { return simulation_; }
+
+  /// Frames at a world point with z along a world axis, one per body,
+  /// expressed in each body's model frame (the world for body2 == nullptr):
+  /// a relaxed configuration for any joint whose free axis is z.
+  static void calculateFramesFromWorld(const Vec3& point, const Vec3& axis, const Body* body1, ref_ptr<Frame>& frame1,
+                                       const Body* body2, ref_ptr<Frame>& frame2) {
+    if (!point.allFinite()) throw detail::makeError("Constraint", "", "frame point must be finite (m)", point);
+    if (!axis.allFinite() || !(axis.norm() > S(0)))
+      throw detail::makeError("Constraint", "", "frame axis must be finite and non-zero", axis);
+    if (!body1) throw detail::makeError("Constraint", "", "calculateFrames needs a first body", "nullptr");
+    const Transform<S> world = makeTransform<S>(point, Quat::FromTwoVectors(Vec3::UnitZ(), axis.normalized()));
+    frame1 = new Frame(Transform<S>(body1->getTransform().inverse() * world));
+    frame2 = new Frame(body2 ? Transform<S>(body2->getTransform().inverse() * world) : world);
+  }
+  /// As calculateFramesFromWorld with the point and axis given in body1's model frame.
+  static void calculateFramesFromBody(const Vec3& point, const Vec3& axis, const Body* body1, ref_ptr<Frame>& frame1,
+                                      const Body* body2, ref_ptr<Frame>& frame2) {
+    if (!body1) throw detail::makeError("Constraint", "", "calculateFrames needs a first body", "nullptr");
+    if (!point.allFinite()) throw detail::makeError("Constraint", "", "frame point must be finite (m)", point);
+    if (!axis.allFinite()) throw detail::makeError("Constraint", "", "frame axis must be finite and non-zero", axis);
+    const Transform<S> X = body1->getTransform();
+    calculateFramesFromWorld(X * point, X.linear() * axis, body1, frame1, body2, frame2);
+  }
+
+ protected:
+  ConstraintT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2) : kind_(kind) {
+    if (!body1) throw error("needs a first body (the second may be null: the world)", "nullptr");
+    if (body1 == body2) throw error("cannot join a body to itself", body1->getName());
+    if (!isMovable(body1) && !isMovable(body2))
+      throw error("needs at least one body that is not static",
+                  body1->getName() + (body2 ? " and " + body2->getName() : std::string(" and the world")));
+    checkParent(frame1, body1, 1);
+    checkParent(frame2, body2, 2);
+    body1_ = body1;
+    body2_ = body2;
+    frame1_ = attach(frame1, body1);
+    if (frame2) {
+      frame2_ = attach(frame2, body2);
+    } else {
+      // Relaxed at creation: frame 2 where frame 1 is now.
+      frame2_ = new Frame();
+      if (body2) frame2_->setParent(body2->getFrame());
+      frame2_->setMatrix(frame1_->getMatrix());
+    }
+  }
+  ~ConstraintT() override = default;
+
+  /// Writes this step's rows; called once per step while enabled.
+  virtual void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) = 0;
+  /// Called after the solve with the step length, to read back forces.
+  virtual void afterSolve(double h) { (void)h; }
+  virtual void onRebind() {}
+  /// False for joints whose relaxed state is not coincident frames (DistanceJoint).
+  [[nodiscard]] virtual bool rebindsFrames() const { return true; }
+
+  template <class T>
+  [[nodiscard]] Error error(const std::string& what, const T& value) const {
+    return detail::makeError(kind_, name_, what, value);
+  }
+
+  /// The attachment frames and the bodies' state, in world coordinates.
+  [[nodiscard]] detail::Attachments attachments() const {
+    detail::Attachments a;
+    const Transform<S> X1 = frame1_->getMatrix(), X2 = frame2_->getMatrix();
+    a.p1 = X1.translation().template cast<double>();
+    a.p2 = X2.translation().template cast<double>();
+    a.q1 = detail::Quatd(Quat(X1.linear()).template cast<double>()).normalized();
+    a.q2 = detail::Quatd(Quat(X2.linear()).template cast<double>()).normalized();
+    a.R1 = a.q1.toRotationMatrix();
+    a.R2 = a.q2.toRotationMatrix();
+    a.c1 = body1_->getCmPosition().template cast<double>();
+    a.v1 = detail::linearAngular(body1_->getVelocity().template cast<double>(),
+                                 body1_->getAngularVelocity().template cast<double>());
+    if (body2_) {
+      a.c2 = body2_->getCmPosition().template cast<double>();
+      a.v2 = detail::linearAngular(body2_->getVelocity().template cast<double>(),
+                                   body2_->getAngularVelocity().template cast<double>());
+    } else {
+      a.c2 = a.p2;
+    }
+    return a;
+  }
+
+ private:
+  friend struct detail::SimulationMembership;
+  friend struct detail::ConstraintAccess;
+
+  static bool isMovable(const Body* body) { return body && body->getMotionControl() != Body::STATIC; }
+
+  void checkParent(const Frame* frame, const Body* body, int index) const {
+    if (frame && frame->getParent() && frame->getParent() != (body ? body->getFrame() : nullptr))
+      throw error("attachment frame " + std::to_string(index) + " has a parent other than its body's model frame",
+                  body ? body->getName() : std::string("the world"));
+  }
+  static ref_ptr<Frame> attach(Frame* frame, Body* body) {
+    if (!frame) return attachNew(body);
+    if (!frame->getParent() && body) frame->setParent(body->getFrame());
+    return frame;
+  }
+  static ref_ptr<Frame> attachNew(Body* body) {
+    ref_ptr<Frame> frame = new Frame();
+    if (body) frame->setParent(body->getFrame());
+    return frame;
+  }
+
+  const char* kind_;
+  std::string name_;
+  bool enable_ = true;
+  SolveType solveType_ = SolveType::DIRECT_AND_ITERATIVE;
+  bool computeForces_ = false;
+  std::array<detail::Vec6d, 2> wrench_{detail::Vec6d::Zero(), detail::Vec6d::Zero()};
+  ref_ptr<Body> body1_, body2_;
+  ref_ptr<Frame> frame1_, frame2_;
+
+  // Membership, maintained by the simulation.
+  const void* simulation_ = nullptr;
+  std::size_t simulationIndex_ = 0;
+};
+
+namespace detail {
+/// The simulation's access to a constraint's step hooks.
+struct ConstraintAccess {
+  template <Scalar S>
+  static void addRows(ConstraintT<S>& c, RowSink& sink, double h) {
+    c.addRows(c.attachments(), sink, h);
+  }
+  template <Scalar S>
+  static void afterSolve(ConstraintT<S>& c, double h) {
+    c.afterSolve(h);
+  }
+  template <Scalar S>
+  static void clearWrench(ConstraintT<S>& c) {
+    c.wrench_[0] = c.wrench_[1] = Vec6d::Zero();
+  }
+  template <Scalar S>
+  static void addWrench(ConstraintT<S>& c, const Row& row, double force) {
+    c.wrench_[0] += row.J1 * force;
+    c.wrench_[1] += row.J2 * force;
+  }
+};
+}  // namespace detail
+
+using Constraint = ConstraintT<double>;
+using ConstraintRef = ref_ptr<Constraint>;
+namespace f32 {
+using Constraint = ConstraintT<float>;
+using ConstraintRef = ref_ptr<Constraint>;
+}  // namespace f32
+
+}  // namespace spook

@@ -1,0 +1,146 @@
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include <spook/constraints/attachments.hpp>
+
+namespace spook::detail {
+
+/// Compliance and damping of one row, in double.
+struct RowParameters {
+  double compliance = 1e-8;
+  double damping = 2.0 / 60.0;
+};
+
+/// Options shared by the elementary constraints of one joint.
+struct ElementaryOptions {
+  bool linearize = false;  ///< QuatLock compliance per radian (seed 001 §12.1.3)
+};
+
+// Elementary constraints (seed 001 §12.1). Each writes kRows holonomic rows
+// g(q) = 0 with Jacobians G = ∂ġ/∂(v₁, ω₁, v₂, ω₂), centers of mass as the
+// reference points, frame 2 (body 2 or the world) as the reference frame.
+
+inline Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, double g, const RowParameters& p,
+                         double* impulse) {
+  Row& row = sink.add(J1, J2, impulse);
+  row.violation = g;
+  row.compliance = p.compliance;
+  row.damping = p.damping;
+  return row;
+}
+
+/// Frame origins coincide: g = p₁ − p₂ (3 rows, world axes).
+struct Spherical {
+  static constexpr int kRows = 3;
+  static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
+                      const ElementaryOptions&) {
+    const Vec3d d = a.p1 - a.p2, r1 = a.r1(), r2 = a.r2();
+    for (int k = 0; k < 3; ++k) {
+      const Vec3d e = Vec3d::Unit(k);
+      holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
+    }
+  }
+};
+
+/// Axis A1 of frame 1 stays perpendicular to axis A2 of frame 2: g = a·b,
+/// ġ = (ω₁ − ω₂)·(a × b).
+template <int A1, int A2>
+struct Dot1 {
+  static constexpr int kRows = 1;
+  static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
+                      const ElementaryOptions&) {
+    const Vec3d u = a.R1.col(A1), w = a.R2.col(A2), n = u.cross(w);
+    holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), u.dot(w), p[0], impulse);
+  }
+};
+
+/// The separation d = p₁ − p₂ stays perpendicular to axis A of frame 2:
+/// g = d·n, ġ = (v₁ + ω₁×r₁ − v₂ − ω₂×(p₁ − c₂))·n.
+template <int A>
+struct Dot2 {
+  static constexpr int kRows = 1;
+  static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
+                      const ElementaryOptions&) {
+    const Vec3d n = a.R2.col(A);
+    holonomicRow(sink, linearAngular(n, a.r1().cross(n)), linearAngular(-n, n.cross(a.p1 - a.c2)), (a.p1 - a.p2).dot(n),
+                 p[0], impulse);
+  }
+};
+
+/// All relative rotation locked: g = 2·vec(q₂* q₁) in frame 2, with
+/// ġ = (w I − [v]ₓ) R₂ᵀ (ω₁ − ω₂). For a rotation θ about n the rows hold
+/// the torque sin θ/ε instead of θ/ε; linearization scales ε by sin θ/θ
+/// (θ at the start of the step) so that the deflection obeys Hooke's law in
+/// radians (seed 001 §12.1.3).
+struct QuatLock {
+  static constexpr int kRows = 3;
+  static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
+                      const ElementaryOptions& options) {
+    const Quatd q = relativeRotation(a);
+    const Vec3d v = q.vec();
+    Mat3d B = q.w() * Mat3d::Identity();
+    B(0, 1) = v.z();
+    B(0, 2) = -v.y();
+    B(1, 0) = -v.z();
+    B(1, 2) = v.x();
+    B(2, 0) = v.y();
+    B(2, 1) = -v.x();
+    const Mat3d A = B * a.R2.transpose();
+    double scale = 1.0;
+    if (options.linearize) {
+      const double theta = 2.0 * std::atan2(v.norm(), q.w());
+      if (theta > 1e-6) scale = std::sin(theta) / theta;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const Vec3d n = A.row(k).transpose();
+      RowParameters pk = p[k];
+      pk.compliance *= scale;
+      holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), 2.0 * v[k], pk,
+                   impulse + k);
+    }
+  }
+};
+
+// Coordinates of the free motion.
+
+/// Angle of frame 1 about axis z of frame 2 (rad, −π..π before winding): the
+/// twist of the relative rotation about z.
+inline Coordinate rotationalCoordinate(const Attachments& a) {
+  const Quatd q = relativeRotation(a);
+  Coordinate c;
+  c.rotational = true;
+  c.value = 2.0 * std::atan2(q.z(), q.w());
+  const Vec3d z = a.R2.col(2);
+  c.J1 = linearAngular(Vec3d::Zero(), z);
+  c.J2 = linearAngular(Vec3d::Zero(), -z);
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
+}
+
+/// Position of frame 1 along axis z of frame 2 (m).
+inline Coordinate translationalCoordinate(const Attachments& a) {
+  const Vec3d n = a.R2.col(2);
+  Coordinate c;
+  c.value = (a.p1 - a.p2).dot(n);
+  c.J1 = linearAngular(n, a.r1().cross(n));
+  c.J2 = linearAngular(-n, n.cross(a.p1 - a.c2));
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
+}
+
+/// Distance between the frame origins (m); along z of frame 2 when they meet.
+inline Coordinate distanceCoordinate(const Attachments& a) {
+  const Vec3d d = a.p1 - a.p2;
+  const double length = d.norm();
+  const Vec3d n = length > 1e-12 ? Vec3d(d / length) : Vec3d(a.R2.col(2));
+  Coordinate c;
+  c.value = length;
+  c.J1 = linearAngular(n, a.r1().cross(n));
+  c.J2 = linearAngular(-n, -a.r2().cross(n));
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
+}
+
+}  // namespace spook::detail

@@ -1,0 +1,161 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+#include <spook/constraints/constraint.hpp>
+#include <spook/constraints/elementary.hpp>
+#include <spook/constraints/regularization.hpp>
+#include <spook/constraints/secondary/lock_1d.hpp>
+#include <spook/constraints/secondary/motor_1d.hpp>
+#include <spook/constraints/secondary/range_1d.hpp>
+
+namespace spook {
+
+/// A joint made of elementary constraints at compile time (seed 001
+/// table 12.5): its rows are the elementary rows in order, one DOF each, each
+/// with its own compliance and damping. No virtual call per row.
+template <Scalar S, class... Elementary>
+class ElementaryJointT : public ConstraintT<S> {
+ public:
+  static constexpr int kNumRows = (Elementary::kRows + ... + 0);
+  static constexpr int ALL_DOF = -1;
+
+  [[nodiscard]] int getNumDOF() const override { return kNumRows; }
+
+  /// Compliance (m/N or rad/(N·m)) of one DOF, or of all with ALL_DOF.
+  void setCompliance(S compliance, int dof = ALL_DOF) {
+    checkDof(dof);
+    RegularizationParametersT<S>{}.setCompliance(compliance);
+    forDof(dof, [&](RegularizationParametersT<S>& p) { p.setCompliance(compliance); });
+  }
+  /// SPOOK damping (s) of one DOF, or of all with ALL_DOF.
+  void setDamping(S damping, int dof = ALL_DOF) {
+    checkDof(dof);
+    RegularizationParametersT<S>{}.setDamping(damping);
+    forDof(dof, [&](RegularizationParametersT<S>& p) { p.setDamping(damping); });
+  }
+  [[nodiscard]] S getCompliance(int dof) const { return parameters(dof).getCompliance(); }
+  [[nodiscard]] S getDamping(int dof) const { return parameters(dof).getDamping(); }
+  [[nodiscard]] RegularizationParametersT<S>* getRegularizationParameters(int dof) {
+    checkDof(dof, false);
+    return &parameters_[static_cast<std::size_t>(dof)];
+  }
+
+  /// Quaternion-based rows (QuatLock) follow Hooke's law in radians when on
+  /// (seed 001 §12.1.3); default off.
+  [[nodiscard]] bool getEnableLinearization() const { return options_.linearize; }
+  void setEnableLinearization(bool enable) { options_.linearize = enable; }
+
+ protected:
+  using typename ConstraintT<S>::Body;
+  using typename ConstraintT<S>::Frame;
+  ElementaryJointT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
+      : ConstraintT<S>(kind, body1, frame1, body2, frame2) {}
+  ~ElementaryJointT() override = default;
+
+  void addElementaryRows(const detail::Attachments& a, detail::RowSink& sink) {
+    std::array<detail::RowParameters, kNumRows> p{};
+    for (std::size_t i = 0; i < p.size(); ++i)
+      p[i] = {double(parameters_[i].getCompliance()), double(parameters_[i].getDamping())};
+    [[maybe_unused]] int offset = 0;
+    ((Elementary::addRows(a, sink, p.data() + offset, impulses_.data() + offset, options_),
+      offset += Elementary::kRows),
+     ...);
+  }
+
+ private:
+  void checkDof(int dof, bool allowAll = true) const {
+    if (!((allowAll && dof == ALL_DOF) || (dof >= 0 && dof < kNumRows)))
+      throw this->error("DOF index out of range 0.." + std::to_string(kNumRows - 1), dof);
+  }
+  template <class F>
+  void forDof(int dof, F&& f) {
+    if (dof == ALL_DOF)
+      for (auto& p : parameters_) f(p);
+    else
+      f(parameters_[static_cast<std::size_t>(dof)]);
+  }
+  [[nodiscard]] const RegularizationParametersT<S>& parameters(int dof) const {
+    checkDof(dof, false);
+    return parameters_[static_cast<std::size_t>(dof)];
+  }
+
+  std::array<RegularizationParametersT<S>, kNumRows> parameters_{};
+  std::array<double, kNumRows> impulses_{};
+  detail::ElementaryOptions options_;
+};
+
+/// A joint with one free DOF measured by `Free::measure` (an angle with
+/// winding or a position) and Motor1D, Lock1D and Range1D acting on it.
+template <Scalar S, class Free, class... Elementary>
+class Constraint1DOFT : public ElementaryJointT<S, Elementary...> {
+ public:
+  [[nodiscard]] Motor1DT<S>* getMotor1D() const { return motor_.get(); }
+  [[nodiscard]] Lock1DT<S>* getLock1D() const { return lock_.get(); }
+  [[nodiscard]] Range1DT<S>* getRange1D() const { return range_.get(); }
+
+  /// The free DOF's current value: rad (with winding) or m.
+  [[nodiscard]] S getAngle() const { return S(measure().value); }
+  /// Its rate (rad/s or m/s).
+  [[nodiscard]] S getCurrentSpeed() const { return S(measure().speed); }
+
+ protected:
+  using typename ConstraintT<S>::Body;
+  using typename ConstraintT<S>::Frame;
+  Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
+      : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
+    winding_.update(measure().value);
+  }
+  ~Constraint1DOFT() override = default;
+
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    this->addElementaryRows(a, sink);
+    detail::Coordinate c = Free::measure(a);
+    if (c.rotational) {
+      c.value = winding_.unwrap(c.value);
+      winding_.update(c.value);
+    }
+    motor_->beginStep();
+    lock_->beginStep();
+    range_->beginStep();
+    motor_->addRows(sink, c);
+    lock_->addRows(sink, c);
+    range_->addRows(sink, c, h);
+  }
+  void afterSolve(double h) override {
+    motor_->endStep(h);
+    lock_->endStep(h);
+    range_->endStep(h);
+  }
+  void onRebind() override {
+    winding_.reset();
+    winding_.update(measure().value);
+  }
+
+ private:
+  [[nodiscard]] detail::Coordinate measure() const {
+    detail::Coordinate c = Free::measure(this->attachments());
+    if (c.rotational) c.value = winding_.unwrap(c.value);
+    return c;
+  }
+
+  ref_ptr<Motor1DT<S>> motor_ = new Motor1DT<S>();
+  ref_ptr<Lock1DT<S>> lock_ = new Lock1DT<S>();
+  ref_ptr<Range1DT<S>> range_ = new Range1DT<S>();
+  detail::Winding winding_;
+};
+
+namespace detail {
+struct RotationalZ {
+  static Coordinate measure(const Attachments& a) { return rotationalCoordinate(a); }
+};
+struct TranslationalZ {
+  static Coordinate measure(const Attachments& a) { return translationalCoordinate(a); }
+};
+struct DistanceBetween {
+  static Coordinate measure(const Attachments& a) { return distanceCoordinate(a); }
+};
+}  // namespace detail
+
+}  // namespace spook

@@ -1,0 +1,57 @@
+#pragma once
+
+#include <spook/constraints/joint.hpp>
+
+namespace spook {
+
+/// Keeps the distance between the frame origins (seed 001 §12.7): its Lock1D
+/// is enabled at the distance at creation, so the joint acts as a stiff rod or,
+/// with the lock's compliance, a spring; disable the lock to drive the
+/// distance with the motor (a hydraulic actuator) or bound it with the range.
+/// getAngle is the distance (m).
+template <Scalar S>
+class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
+  using Base = Constraint1DOFT<S, detail::DistanceBetween>;
+
+ public:
+  enum DOF { ALL_DOF = -1, NUM_DOF = 0 };
+
+  DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr, FrameT<S>* frame2 = nullptr)
+      : Base("DistanceJoint", body1, frame1, body2, frame2) {
+    holdCurrentDistance();
+  }
+  /// From body1's frame to a fixed world point (m).
+  DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, const Vec3<S>& worldPoint)
+      : Base("DistanceJoint", body1, frame1, nullptr, worldFrame(worldPoint)) {
+    holdCurrentDistance();
+  }
+
+ protected:
+  ~DistanceJointT() override = default;
+  [[nodiscard]] bool rebindsFrames() const override { return false; }
+  void onRebind() override {
+    Base::onRebind();
+    holdCurrentDistance();
+  }
+
+ private:
+  static FrameT<S>* worldFrame(const Vec3<S>& p) {
+    if (!p.allFinite()) throw detail::makeError("DistanceJoint", "", "world point must be finite (m)", p);
+    auto* frame = new FrameT<S>();
+    frame->setTranslate(p);
+    return frame;
+  }
+  void holdCurrentDistance() {
+    this->getLock1D()->setPosition(this->getAngle());
+    this->getLock1D()->setEnable(true);
+  }
+};
+
+using DistanceJoint = DistanceJointT<double>;
+using DistanceJointRef = ref_ptr<DistanceJoint>;
+namespace f32 {
+using DistanceJoint = DistanceJointT<float>;
+using DistanceJointRef = ref_ptr<DistanceJoint>;
+}  // namespace f32
+
+}  // namespace spook

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <cmath>
+
+#include <spook/constraints/secondary/secondary_constraint.hpp>
+
+namespace spook {
+
+/// Holds a free DOF at a position (m or rad, angles with winding) with its own
+/// compliance, damping and force range (seed 001 §12.15.2): g = x − position.
+template <Scalar S>
+class Lock1DT : public SecondaryConstraintT<S> {
+ public:
+  Lock1DT() : SecondaryConstraintT<S>("Lock1D") {}
+
+  [[nodiscard]] S getPosition() const { return position_; }
+  void setPosition(S position) {
+    if (!std::isfinite(position)) throw detail::makeError("Lock1D", "", "position must be finite (m or rad)", position);
+    position_ = position;
+  }
+
+  void addRows(detail::RowSink& sink, const detail::Coordinate& c) {
+    if (!this->enable_) return;
+    detail::Row& row = this->addRow(sink, c);
+    row.violation = c.value - double(position_);
+  }
+
+ protected:
+  ~Lock1DT() override = default;
+
+ private:
+  S position_ = S(0);
+};
+
+}  // namespace spook

@@ -1,0 +1,197 @@
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <spook/solver/island_problem.hpp>
+
+namespace spook::detail {
+
+/// What a direct solve did.
+struct DirectSolveResult {
+  int factorizations = 0;  ///< sparse LDLᵀ factorizations (one per pivot step)
+  bool converged = true;   ///< a complementary solution was found
+};
+
+/// Solves the rows `subset` of an island exactly, the impulses of the other
+/// rows held fixed: (S + Σ)_DD Λ_D = q_D − (S Λ)_D,fixed within the bounds.
+///
+/// S + Σ is assembled in block-sparse form (a row couples only to the rows
+/// sharing one of its bodies) and factorized by a sparse LDLᵀ with an
+/// approximate-minimum-degree ordering, so a chain or a tree of n bodies costs
+/// O(n). Σ > 0 keeps the matrix positive definite.
+///
+/// Bounded rows make a box-constrained LCP, solved by block principal
+/// pivoting (Júdice & Pires 1994): every row is free, at its lower or at its
+/// upper bound; each step solves the free rows with the others at their
+/// bounds and swaps every infeasible row at once. When that stops reducing
+/// the number of infeasible rows for three steps, it switches to Murty's
+/// single principal pivoting (swap only the infeasible row of largest index),
+/// which cannot cycle on a positive definite matrix (Murty 1974).
+class DirectSolve {
+ public:
+  DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps) {
+    DirectSolveResult result;
+    const int n = static_cast<int>(subset.size());
+    if (n == 0) return result;
+    assemble(problem, subset);
+
+    // The state of each row: free, or clamped at its lower or upper bound.
+    // Warm start: a row that ended at a bound starts there.
+    enum State : unsigned char { FREE, LOWER, UPPER };
+    std::vector<State> state(static_cast<std::size_t>(n), FREE);
+    bool anyBounded = false;
+    for (int k = 0; k < n; ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      if (!isBounded(e)) continue;
+      anyBounded = true;
+      if (e.impulse <= e.lower) state[static_cast<std::size_t>(k)] = LOWER;
+      else if (e.impulse >= e.upper) state[static_cast<std::size_t>(k)] = UPPER;
+    }
+
+    Eigen::VectorXd x(n);
+    int best = std::numeric_limits<int>::max();
+    int strikes = 0;
+    std::vector<int> infeasible;
+    for (int step = 0;; ++step) {
+      solveFree(problem, subset, state, x);
+      ++result.factorizations;
+      if (!anyBounded) break;
+      const Eigen::VectorXd w = A_ * x - q_;
+      infeasible.clear();
+      for (int k = 0; k < n; ++k) {
+        const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+        const double tolX = 1e-12 * (1.0 + std::abs(x[k]));
+        const double tolW = 1e-12 * (1.0 + std::abs(q_[k]));
+        const State s = state[static_cast<std::size_t>(k)];
+        if ((s == FREE && (x[k] < e.lower - tolX || x[k] > e.upper + tolX)) || (s == LOWER && w[k] < -tolW) ||
+            (s == UPPER && w[k] > tolW))
+          infeasible.push_back(k);
+      }
+      if (infeasible.empty()) break;
+      if (step >= maxPivotSteps) {
+        result.converged = false;
+        break;
+      }
+      const int count = static_cast<int>(infeasible.size());
+      if (count < best) {
+        best = count;
+        strikes = 0;
+      } else {
+        ++strikes;
+      }
+      if (strikes >= 3) infeasible.erase(infeasible.begin(), infeasible.end() - 1);
+      for (int k : infeasible) {
+        const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+        State& s = state[static_cast<std::size_t>(k)];
+        if (s != FREE) s = FREE;
+        else s = x[k] < e.lower ? LOWER : UPPER;
+      }
+    }
+    for (int k = 0; k < n; ++k) {
+      auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      e.impulse = std::clamp(x[k], e.lower, e.upper);
+    }
+    return result;
+  }
+
+ private:
+  static bool isBounded(const IslandProblem::Entry& e) {
+    return e.lower > -std::numeric_limits<double>::infinity() || e.upper < std::numeric_limits<double>::infinity();
+  }
+
+  // A_ = (S + Σ)_DD, full symmetric; q_ = q_D − G_D Δv(rows outside D).
+  void assemble(const IslandProblem& problem, const std::vector<int>& subset) {
+    const int n = static_cast<int>(subset.size());
+    std::vector<char> inSubset(problem.rows.size(), 0);
+    for (int i : subset) inSubset[static_cast<std::size_t>(i)] = 1;
+    std::vector<int> others;
+    for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i)
+      if (!inSubset[static_cast<std::size_t>(i)]) others.push_back(i);
+    const std::vector<Vec6d> fixed = problem.velocityChange(others);
+
+    q_.resize(n);
+    std::vector<std::vector<int>> rowsOfBody(static_cast<std::size_t>(problem.numBodies));
+    for (int k = 0; k < n; ++k) {
+      const int i = subset[static_cast<std::size_t>(k)];
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      q_[k] = e.q - problem.rowVelocity(i, fixed);
+      if (e.body1 >= 0) rowsOfBody[static_cast<std::size_t>(e.body1)].push_back(k);
+      if (e.body2 >= 0 && e.body2 != e.body1) rowsOfBody[static_cast<std::size_t>(e.body2)].push_back(k);
+    }
+    triplets_.clear();
+    for (int k = 0; k < n; ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      triplets_.emplace_back(k, k, e.diagonal);
+    }
+    // Off-diagonal blocks body by body; two rows sharing both bodies meet
+    // twice and coupling() already sums both, so each pair is added once.
+    std::vector<int> lastSeen(static_cast<std::size_t>(n), -1);
+    for (int k = 0; k < n; ++k) {
+      const int i = subset[static_cast<std::size_t>(k)];
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      for (int body : {e.body1, e.body2}) {
+        if (body < 0) continue;
+        for (int m : rowsOfBody[static_cast<std::size_t>(body)]) {
+          if (m <= k || lastSeen[static_cast<std::size_t>(m)] == k) continue;
+          lastSeen[static_cast<std::size_t>(m)] = k;
+          const double s = problem.coupling(i, subset[static_cast<std::size_t>(m)]);
+          if (s == 0.0) continue;
+          triplets_.emplace_back(k, m, s);
+          triplets_.emplace_back(m, k, s);
+        }
+      }
+    }
+    A_.resize(n, n);
+    A_.setFromTriplets(triplets_.begin(), triplets_.end());
+  }
+
+  // Solves the free rows with the clamped ones at their bounds.
+  template <class States>
+  void solveFree(const IslandProblem& problem, const std::vector<int>& subset, const States& state,
+                 Eigen::VectorXd& x) {
+    const int n = static_cast<int>(subset.size());
+    std::vector<int> freeIndex(static_cast<std::size_t>(n), -1);
+    int numFree = 0;
+    for (int k = 0; k < n; ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      if (state[static_cast<std::size_t>(k)] == 0) freeIndex[static_cast<std::size_t>(k)] = numFree++;
+      else x[k] = state[static_cast<std::size_t>(k)] == 1 ? e.lower : e.upper;
+    }
+    if (numFree == 0) return;
+    Eigen::VectorXd rhs(numFree);
+    for (int k = 0; k < n; ++k)
+      if (freeIndex[static_cast<std::size_t>(k)] >= 0) rhs[freeIndex[static_cast<std::size_t>(k)]] = q_[k];
+    subTriplets_.clear();
+    for (int col = 0; col < n; ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A_, col); it; ++it) {
+        const int fr = freeIndex[static_cast<std::size_t>(it.row())];
+        if (fr < 0) continue;
+        const int fc = freeIndex[static_cast<std::size_t>(col)];
+        if (fc >= 0) {
+          if (fr >= fc) subTriplets_.emplace_back(fr, fc, it.value());
+        } else {
+          rhs[fr] -= it.value() * x[col];
+        }
+      }
+    Eigen::SparseMatrix<double> sub(numFree, numFree);
+    sub.setFromTriplets(subTriplets_.begin(), subTriplets_.end());
+    ldlt_.compute(sub);
+    const Eigen::VectorXd solution = ldlt_.solve(rhs);
+    for (int k = 0; k < n; ++k)
+      if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[freeIndex[static_cast<std::size_t>(k)]];
+  }
+
+  Eigen::SparseMatrix<double> A_;
+  Eigen::VectorXd q_;
+  std::vector<Eigen::Triplet<double>> triplets_, subTriplets_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+};
+
+}  // namespace spook::detail

@@ -1,0 +1,90 @@
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include <spook/solver/row.hpp>
+
+namespace spook::detail {
+
+using Vec3d = Eigen::Vector3d;
+using Mat3d = Eigen::Matrix3d;
+
+/// A body as the solver sees it: velocities of the center of mass (world)
+/// at the start of the step and after the applied forces, and the inverse
+/// mass and inertia in world coordinates (zero unless dynamic).
+struct SolverBody {
+  Vec6d velocity = Vec6d::Zero();      ///< v_k: (linear, angular)
+  Vec6d freeVelocity = Vec6d::Zero();  ///< v*: v_k advanced by the applied forces
+  Mat3d inverseMass = Mat3d::Zero();
+  Mat3d inverseInertia = Mat3d::Zero();
+  bool dynamic = false;
+};
+
+/// The rows of one island in solver form: (S + Σ) Λ = q + w with
+/// S = G M⁻¹ Gᵀ, bounds lo ≤ Λ ≤ hi (impulses, N·s) and the complementarity
+/// of PHYSICS.md §2.1. Bodies are numbered locally (−1: none or not dynamic).
+struct IslandProblem {
+  struct Entry {
+    int body1 = -1, body2 = -1;
+    Vec6d J1 = Vec6d::Zero(), J2 = Vec6d::Zero();
+    Vec6d W1 = Vec6d::Zero(), W2 = Vec6d::Zero();  ///< M⁻¹Jᵀ per body
+    double q = 0.0;                                ///< right-hand side, m/s or rad/s
+    double sigma = 0.0;                            ///< regularization Σ
+    double diagonal = 0.0;                         ///< S_ii + Σ_i
+    double lower = 0.0, upper = 0.0;               ///< impulse bounds
+    double impulse = 0.0;                          ///< Λ (warm start in, result out)
+    SolveType solveType = SolveType::DIRECT;
+  };
+
+  std::vector<Entry> rows;
+  int numBodies = 0;
+
+  /// Δv of every body from the impulses of `subset` (rows not in it count zero).
+  [[nodiscard]] std::vector<Vec6d> velocityChange(const std::vector<int>& subset) const {
+    std::vector<Vec6d> dv(static_cast<std::size_t>(numBodies), Vec6d::Zero());
+    for (int i : subset) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
+    return dv;
+  }
+  void addImpulse(std::vector<Vec6d>& dv, int i, double impulse) const {
+    const Entry& e = rows[static_cast<std::size_t>(i)];
+    if (e.body1 >= 0) dv[static_cast<std::size_t>(e.body1)] += e.W1 * impulse;
+    if (e.body2 >= 0) dv[static_cast<std::size_t>(e.body2)] += e.W2 * impulse;
+  }
+  /// G_i Δv.
+  [[nodiscard]] double rowVelocity(int i, const std::vector<Vec6d>& dv) const {
+    const Entry& e = rows[static_cast<std::size_t>(i)];
+    double v = 0.0;
+    if (e.body1 >= 0) v += e.J1.dot(dv[static_cast<std::size_t>(e.body1)]);
+    if (e.body2 >= 0) v += e.J2.dot(dv[static_cast<std::size_t>(e.body2)]);
+    return v;
+  }
+  /// (S + Σ)_ij for rows i ≠ j: the coupling through their shared bodies.
+  [[nodiscard]] double coupling(int i, int j) const {
+    const Entry& a = rows[static_cast<std::size_t>(i)];
+    const Entry& b = rows[static_cast<std::size_t>(j)];
+    double s = 0.0;
+    if (a.body1 >= 0 && a.body1 == b.body1) s += a.J1.dot(b.W1);
+    if (a.body1 >= 0 && a.body1 == b.body2) s += a.J1.dot(b.W2);
+    if (a.body2 >= 0 && a.body2 == b.body1) s += a.J2.dot(b.W1);
+    if (a.body2 >= 0 && a.body2 == b.body2) s += a.J2.dot(b.W2);
+    return s;
+  }
+};
+
+/// Complementarity error of row i at residual w = (S+Σ)Λ − q (m/s): |w| for
+/// a row strictly inside its bounds, the wrong-signed part of w at a bound.
+[[nodiscard]] inline double complementarityError(const IslandProblem::Entry& e, double w) {
+  const double tolerance = 1e-12 * (1.0 + std::abs(e.impulse));
+  const bool atLower = e.impulse <= e.lower + tolerance;
+  const bool atUpper = e.impulse >= e.upper - tolerance;
+  if (atLower && atUpper) return 0.0;
+  if (atLower) return std::max(0.0, -w);
+  if (atUpper) return std::max(0.0, w);
+  return std::abs(w);
+}
+
+}  // namespace spook::detail

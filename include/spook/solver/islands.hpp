@@ -1,0 +1,137 @@
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <numeric>
+#include <vector>
+
+#include <spook/solver/island_problem.hpp>
+#include <spook/solver/row.hpp>
+#include <spook/solver/solver.hpp>
+
+namespace spook::detail {
+
+/// Partitions the rows into islands (dynamic bodies connected through rows;
+/// static and kinematic bodies do not join islands), turns each island into
+/// an IslandProblem for step h, lets `solver` solve it, and writes the
+/// impulses back to the rows' owners and the velocity changes to `bodies`
+/// (freeVelocity becomes v⁺).
+class IslandStepper {
+ public:
+  void solve(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, Solver& solver,
+             SolverStatistics& statistics) {
+    partition(rows, bodies);
+    for (const std::vector<int>& island : islands_) {
+      buildProblem(rows, bodies, island, h);
+      solver.solve(problem_, statistics);
+      for (std::size_t k = 0; k < island.size(); ++k) *rows[static_cast<std::size_t>(island[k])].impulse = problem_.rows[k].impulse;
+      for (std::size_t k = 0; k < problem_.rows.size(); ++k) {
+        const auto& e = problem_.rows[k];
+        if (e.body1 >= 0) bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(e.body1)])].freeVelocity += e.W1 * e.impulse;
+        if (e.body2 >= 0) bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(e.body2)])].freeVelocity += e.W2 * e.impulse;
+      }
+    }
+  }
+
+ private:
+  int find(int i) {
+    while (parent_[static_cast<std::size_t>(i)] != i) {
+      parent_[static_cast<std::size_t>(i)] = parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(i)])];
+      i = parent_[static_cast<std::size_t>(i)];
+    }
+    return i;
+  }
+  static bool isDynamic(const std::vector<SolverBody>& bodies, int i) {
+    return i >= 0 && bodies[static_cast<std::size_t>(i)].dynamic;
+  }
+
+  void partition(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies) {
+    parent_.resize(bodies.size());
+    std::iota(parent_.begin(), parent_.end(), 0);
+    for (const Row& r : rows)
+      if (isDynamic(bodies, r.body1) && isDynamic(bodies, r.body2)) parent_[static_cast<std::size_t>(find(r.body1))] = find(r.body2);
+    islandOfRoot_.assign(bodies.size(), -1);
+    islands_.clear();
+    for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
+      const Row& r = rows[static_cast<std::size_t>(i)];
+      const int body = isDynamic(bodies, r.body1) ? r.body1 : isDynamic(bodies, r.body2) ? r.body2 : -1;
+      if (body < 0) {
+        *r.impulse = 0.0;
+        continue;
+      }
+      int& island = islandOfRoot_[static_cast<std::size_t>(find(body))];
+      if (island < 0) {
+        island = static_cast<int>(islands_.size());
+        islands_.emplace_back();
+      }
+      islands_[static_cast<std::size_t>(island)].push_back(i);
+    }
+  }
+
+  void buildProblem(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, const std::vector<int>& island,
+                    double h) {
+    local_.resize(bodies.size(), -1);
+    islandBodies_.clear();
+    auto localIndex = [&](int body) {
+      if (!isDynamic(bodies, body)) return -1;
+      int& l = local_[static_cast<std::size_t>(body)];
+      if (l < 0) {
+        l = static_cast<int>(islandBodies_.size());
+        islandBodies_.push_back(body);
+      }
+      return l;
+    };
+    auto velocity = [&](int body, bool free) -> Vec6d {
+      if (body < 0) return Vec6d::Zero();
+      const SolverBody& b = bodies[static_cast<std::size_t>(body)];
+      return free ? b.freeVelocity : b.velocity;
+    };
+    auto weighted = [&](int body, const Vec6d& J) -> Vec6d {
+      if (!isDynamic(bodies, body)) return Vec6d::Zero();
+      const SolverBody& b = bodies[static_cast<std::size_t>(body)];
+      Vec6d W;
+      W << b.inverseMass * J.head<3>(), b.inverseInertia * J.tail<3>();
+      return W;
+    };
+
+    problem_.rows.resize(island.size());
+    for (std::size_t k = 0; k < island.size(); ++k) {
+      const Row& r = rows[static_cast<std::size_t>(island[k])];
+      IslandProblem::Entry& e = problem_.rows[k];
+      e.body1 = localIndex(r.body1);
+      e.body2 = localIndex(r.body2);
+      e.J1 = r.J1;
+      e.J2 = r.J2;
+      e.W1 = weighted(r.body1, r.J1);
+      e.W2 = weighted(r.body2, r.J2);
+      const double freeSpeed = r.J1.dot(velocity(r.body1, true)) + r.J2.dot(velocity(r.body2, true));
+      const double mobility = r.J1.dot(e.W1) + r.J2.dot(e.W2);
+      if (r.holonomic) {
+        // SPOOK (PHYSICS.md §1.2): a = 4/(h(1+4d)), b' = 1/(1+4d), Σ = 4ε/(h²(1+4d)), d = τ/h.
+        const double d = r.damping / h;
+        const double speed = r.J1.dot(velocity(r.body1, false)) + r.J2.dot(velocity(r.body2, false));
+        e.q = -4.0 / (h * (1.0 + 4.0 * d)) * r.violation + speed / (1.0 + 4.0 * d) - freeSpeed;
+        e.sigma = 4.0 * r.compliance / (h * h * (1.0 + 4.0 * d));
+      } else {
+        e.q = r.speed - freeSpeed;
+        e.sigma = r.compliance / h;
+      }
+      // A floor far below any physical compliance keeps redundant rigid rows
+      // (compliance 0) positive definite.
+      e.sigma = std::max(e.sigma, 1e-12 * mobility);
+      e.diagonal = mobility + e.sigma;
+      e.lower = r.lower * h;
+      e.upper = r.upper * h;
+      e.impulse = std::clamp(*r.impulse, e.lower, e.upper);
+      e.solveType = r.solveType;
+    }
+    problem_.numBodies = static_cast<int>(islandBodies_.size());
+    for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
+  }
+
+  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_;
+  std::vector<std::vector<int>> islands_;
+  IslandProblem problem_;
+};
+
+}  // namespace spook::detail

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include <Eigen/Core>
+
+namespace spook {
+
+/// Which solver handles a constraint's rows under the hybrid policy
+/// (seed 001 §12.17). The direct and iterative policies ignore it.
+enum class SolveType : std::uint8_t {
+  DIRECT = 1,               ///< the direct (pivoting, factorizing) solver
+  ITERATIVE = 2,            ///< projected Gauss–Seidel
+  DIRECT_AND_ITERATIVE = 3  ///< both: couples a direct subsystem to an iterative one
+};
+
+namespace detail {
+
+using Vec6d = Eigen::Matrix<double, 6, 1>;
+
+/// One scalar constraint row as the solver sees it, in double whatever the
+/// scene's scalar. G v = J1·(v1, ω1) + J2·(v2, ω2) with velocities of the
+/// centers of mass in world coordinates; a body index of −1 is the world.
+///
+/// A holonomic row has a violation g and SPOOK parameters (compliance ε,
+/// damping τ): G v⁺ + Σ Λ = −a g + b' G v, Σ = 4ε/(h²(1+4τ/h)) (PHYSICS.md
+/// §1.2). A velocity row (motors, friction) has a target speed u and a
+/// viscosity γ: G v⁺ + (γ/h) Λ = u (§1.3). Bounds are forces (N or N·m).
+struct Row {
+  int body1 = -1;
+  int body2 = -1;
+  Vec6d J1 = Vec6d::Zero();  ///< (linear, angular) of body 1
+  Vec6d J2 = Vec6d::Zero();  ///< (linear, angular) of body 2
+  bool holonomic = true;
+  double violation = 0.0;   ///< g (m or rad), holonomic rows
+  double speed = 0.0;       ///< target G v (m/s or rad/s), velocity rows
+  double compliance = 0.0;  ///< ε, or γ for a velocity row
+  double damping = 0.0;     ///< τ (s), holonomic rows
+  double lower = -std::numeric_limits<double>::infinity();
+  double upper = std::numeric_limits<double>::infinity();
+  SolveType solveType = SolveType::DIRECT;
+  /// Warm start in, solved impulse (N·s) out; owned by the constraint.
+  double* impulse = nullptr;
+
+  [[nodiscard]] bool bounded() const { return lower > -std::numeric_limits<double>::infinity() || upper < std::numeric_limits<double>::infinity(); }
+};
+
+}  // namespace detail
+}  // namespace spook

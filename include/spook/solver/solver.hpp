@@ -1,0 +1,196 @@
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <spook/core/error.hpp>
+#include <spook/core/ref_ptr.hpp>
+#include <spook/core/referenced.hpp>
+#include <spook/solver/direct_solve.hpp>
+#include <spook/solver/island_problem.hpp>
+#include <spook/solver/iterative_solve.hpp>
+
+namespace spook {
+
+/// What the solver did in the last step, summed or maximized over islands.
+struct SolverStatistics {
+  int numIslands = 0;
+  int numRows = 0;
+  int numDirectRows = 0;     ///< rows that went through a direct solve
+  int numIterativeRows = 0;  ///< rows that went through projected Gauss–Seidel
+  int iterations = 0;        ///< most Gauss–Seidel (or Jacobi) sweeps in one island
+  int factorizations = 0;    ///< sparse factorizations, one per pivoting step
+  /// Largest complementarity error over all rows (m/s or rad/s): |w| for a
+  /// row inside its bounds, the wrong-signed part of w at a bound, with
+  /// w = (S+Σ)Λ − q (PHYSICS.md §2.1). Zero to round-off for a direct solve.
+  double complementarityError = 0.0;
+  bool converged = true;   ///< every pivoting solve found its solution, every sweep met the tolerance
+  double solveTime = 0.0;  ///< wall-clock time spent solving (s)
+  int nonFiniteIslands = 0;  ///< islands whose impulses were not finite and were dropped
+};
+
+/// Solves the rows of an island: the simulation's solver policy. Subclasses
+/// choose how (DirectSolver, IterativeSolver, HybridSolver); the settings of
+/// the iterative and pivoting parts are common.
+class Solver : public Referenced {
+ public:
+  enum IterativeMethod { GAUSS_SEIDEL, JACOBI };
+
+  [[nodiscard]] virtual const char* getName() const = 0;
+
+  /// Sweeps of projected Gauss–Seidel per step (default 16, AGX's resting iterations).
+  [[nodiscard]] int getNumIterations() const { return iterations_; }
+  void setNumIterations(int n) {
+    if (n < 1) throw detail::makeError("Solver", getName(), "number of iterations must be >= 1", n);
+    iterations_ = n;
+  }
+  /// Sweeps stop early when no impulse changes by more than this, measured
+  /// as a velocity (m/s or rad/s). Default 1e-10.
+  [[nodiscard]] double getTolerance() const { return tolerance_; }
+  void setTolerance(double tolerance) {
+    if (!(tolerance >= 0.0)) throw detail::makeError("Solver", getName(), "tolerance must be >= 0 (m/s)", tolerance);
+    tolerance_ = tolerance;
+  }
+  [[nodiscard]] IterativeMethod getIterativeMethod() const { return method_; }
+  void setIterativeMethod(IterativeMethod method) {
+    if (method != GAUSS_SEIDEL && method != JACOBI)
+      throw detail::makeError("Solver", getName(), "unknown iterative method", static_cast<int>(method));
+    method_ = method;
+  }
+  /// Cap on the pivoting steps of one direct solve (default 200).
+  [[nodiscard]] int getMaxPivotSteps() const { return maxPivotSteps_; }
+  void setMaxPivotSteps(int n) {
+    if (n < 1) throw detail::makeError("Solver", getName(), "maximum pivot steps must be >= 1", n);
+    maxPivotSteps_ = n;
+  }
+
+  /// Solves one island in place and accumulates the statistics. Impulses that
+  /// come out non-finite are dropped (set to zero) and counted.
+  void solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
+    const auto start = std::chrono::steady_clock::now();
+    ++statistics.numIslands;
+    statistics.numRows += static_cast<int>(problem.rows.size());
+    solveIsland(problem, statistics);
+    bool finite = true;
+    for (const auto& e : problem.rows) finite = finite && std::isfinite(e.impulse);
+    if (!finite) {
+      for (auto& e : problem.rows) e.impulse = 0.0;
+      ++statistics.nonFiniteIslands;
+      statistics.converged = false;
+    }
+    statistics.complementarityError = std::max(statistics.complementarityError, complementarityError(problem));
+    statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+ protected:
+  ~Solver() override = default;
+  virtual void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) = 0;
+
+  void direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
+    const detail::DirectSolveResult r = direct_.solve(problem, subset, maxPivotSteps_);
+    statistics.factorizations += r.factorizations;
+    statistics.converged = statistics.converged && r.converged;
+  }
+  void iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
+    const detail::IterativeSolveResult r =
+        detail::iterativeSolve(problem, subset, iterations_, tolerance_, method_ == JACOBI);
+    statistics.iterations = std::max(statistics.iterations, r.iterations);
+    statistics.converged = statistics.converged && r.converged;
+  }
+  static std::vector<int> allRows(const detail::IslandProblem& problem) {
+    std::vector<int> rows(problem.rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<int>(i);
+    return rows;
+  }
+
+ private:
+  static double complementarityError(const detail::IslandProblem& problem) {
+    const std::vector<detail::Vec6d> dv = problem.velocityChange(allRows(problem));
+    double worst = 0.0;
+    for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      const double w = problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
+      worst = std::max(worst, detail::complementarityError(e, w));
+    }
+    return worst;
+  }
+
+  int iterations_ = 16;
+  double tolerance_ = 1e-10;
+  IterativeMethod method_ = GAUSS_SEIDEL;
+  int maxPivotSteps_ = 200;
+  detail::DirectSolve direct_;
+};
+
+/// Every row by the direct solver: exact to round-off, whatever the mass
+/// ratios and stiffness; O(n) for chains and trees, more where loops and
+/// contacts fill in the factor.
+class DirectSolver final : public Solver {
+ public:
+  [[nodiscard]] const char* getName() const override { return "direct"; }
+
+ protected:
+  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override {
+    const std::vector<int> rows = allRows(problem);
+    statistics.numDirectRows += static_cast<int>(rows.size());
+    direct(problem, rows, statistics);
+  }
+};
+
+/// Every row by projected Gauss–Seidel (or Jacobi), warm-started from the
+/// last step: cheap per sweep, approximate; stiff joints and large mass ratios
+/// come out softer than they are.
+class IterativeSolver final : public Solver {
+ public:
+  [[nodiscard]] const char* getName() const override { return "iterative"; }
+
+ protected:
+  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override {
+    const std::vector<int> rows = allRows(problem);
+    statistics.numIterativeRows += static_cast<int>(rows.size());
+    iterative(problem, rows, statistics);
+  }
+};
+
+/// Each row as its constraint asks (Constraint::setSolveType): DIRECT rows by
+/// the direct solver, ITERATIVE rows by Gauss–Seidel, DIRECT_AND_ITERATIVE
+/// rows by both, coupling the two subsystems (seed 001 §12.17). With both
+/// kinds present an island is solved in three passes: direct (iterative rows
+/// at their warm start), iterative (direct rows fixed), direct again with the
+/// iterative impulses, so the direct rows end exact given the iterative ones.
+class HybridSolver final : public Solver {
+ public:
+  [[nodiscard]] const char* getName() const override { return "hybrid"; }
+
+ protected:
+  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override {
+    std::vector<int> directRows, iterativeRows;
+    bool anyIterativeOnly = false;
+    for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
+      const SolveType type = problem.rows[static_cast<std::size_t>(i)].solveType;
+      if (type != SolveType::ITERATIVE) directRows.push_back(i);
+      if (type != SolveType::DIRECT) iterativeRows.push_back(i);
+      anyIterativeOnly = anyIterativeOnly || type == SolveType::ITERATIVE;
+    }
+    statistics.numDirectRows += static_cast<int>(directRows.size());
+    if (!anyIterativeOnly) {
+      direct(problem, directRows, statistics);
+      return;
+    }
+    statistics.numIterativeRows += static_cast<int>(iterativeRows.size());
+    if (directRows.empty()) {
+      iterative(problem, iterativeRows, statistics);
+      return;
+    }
+    direct(problem, directRows, statistics);
+    iterative(problem, iterativeRows, statistics);
+    direct(problem, directRows, statistics);
+  }
+};
+
+using SolverRef = ref_ptr<Solver>;
+
+}  // namespace spook
