@@ -156,6 +156,12 @@ class ConstraintT : public Referenced {
 
   /// Writes this step's rows; called once per step while enabled.
   virtual void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) = 0;
+  /// Writes the equality rows that post-stabilization projects onto the
+  /// constraint manifold (joints: the elementary rows and unbounded locks).
+  virtual void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) {
+    (void)a;
+    (void)sink;
+  }
   /// Called after the solve with the step length, to read back forces.
   virtual void afterSolve(double h) { (void)h; }
   virtual void onRebind() {}
@@ -232,6 +238,10 @@ struct ConstraintAccess {
   template <Scalar S>
   static void addRows(ConstraintT<S>& c, RowSink& sink, double h) {
     c.addRows(c.attachments(), sink, h);
+  }
+  template <Scalar S>
+  static void addProjectionRows(ConstraintT<S>& c, RowSink& sink) {
+    c.addProjectionRows(c.attachments(), sink);
   }
   template <Scalar S>
   static void afterSolve(ConstraintT<S>& c, double h) {

@@ -54,6 +54,9 @@ class ElementaryJointT : public ConstraintT<S> {
       : ConstraintT<S>(kind, body1, frame1, body2, frame2) {}
   ~ElementaryJointT() override = default;
 
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
+    addElementaryRows(a, sink);
+  }
   void addElementaryRows(const detail::Attachments& a, detail::RowSink& sink) {
     std::array<detail::RowParameters, kNumRows> p{};
     for (std::size_t i = 0; i < p.size(); ++i)
@@ -122,6 +125,12 @@ class Constraint1DOFT : public ElementaryJointT<S, Elementary...> {
     motor_->addRows(sink, c);
     lock_->addRows(sink, c);
     range_->addRows(sink, c, h);
+  }
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
+    this->addElementaryRows(a, sink);
+    detail::Coordinate c = Free::measure(a);
+    if (c.rotational) c.value = winding_.unwrap(c.value);
+    lock_->addProjectionRow(sink, c);
   }
   void afterSolve(double h) override {
     motor_->endStep(h);

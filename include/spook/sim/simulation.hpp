@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 #include <vector>
@@ -281,11 +282,55 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     collectRows(double(h));
     if (!rows_.empty()) islands_.solve(rows_, solverBodies_, double(h), *solver_, statistics_.solver);
     readBackForces(double(h));
+    predictViolations(double(h));
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
       Body& body = *bodies_[i];
       if (!detail::BodyIntegrator<S>::move(body, solverBodies_[i], h)) statistics_.frozenBodies.emplace_back(&body);
       detail::BodyIntegrator<S>::clearForces(body);
     }
+    if (!rows_.empty())
+      for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(double(h));
+  }
+
+  // The violation each row expects at the end of the step from its linearization,
+  // g + h G v⁺: what post-stabilization restores (it removes only the
+  // second-order drift of the step, not the rows' compliant or damped motion).
+  void predictViolations(double h) {
+    predicted_.clear();
+    if (!solver_->getEnablePostStabilization()) return;
+    for (const detail::Row& r : rows_) {
+      if (!r.holonomic) continue;
+      const auto speed = [&](int body, const detail::Vec6d& J) {
+        return body < 0 ? 0.0 : J.dot(solverBodies_[static_cast<std::size_t>(body)].freeVelocity);
+      };
+      predicted_[r.impulse] = r.violation + h * (speed(r.body1, r.J1) + speed(r.body2, r.J2));
+    }
+  }
+
+  // Projects the direct solver's equality rows back onto their manifold
+  // (Solver::getEnablePostStabilization).
+  void postStabilize(double h) {
+    rows_.clear();
+    for (const auto& c : constraints_) {
+      if (!c->getEnable() || !solver_->projects(c->getSolveType())) continue;
+      Body* body1 = c->getBodyAt(0);
+      Body* body2 = c->getBodyAt(1);
+      if (!contains(body1) || (body2 && !contains(body2))) continue;
+      detail::RowSink sink{&rows_, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
+                           c->getSolveType()};
+      detail::ConstraintAccess::addProjectionRows(*c, sink);
+    }
+    // Target: the predicted violation (rows without one, e.g. a lock enabled
+    // by a listener after the solve, are left out).
+    std::erase_if(rows_, [&](const detail::Row& r) { return !predicted_.count(r.impulse); });
+    for (detail::Row& r : rows_) r.speed = predicted_[r.impulse];
+    if (rows_.empty()) return;
+    solverBodies_.clear();
+    for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body));
+    islands_.project(rows_, solverBodies_, h, *solver_, statistics_.solver);
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+      if (!detail::BodyIntegrator<S>::displace(*bodies_[i], solverBodies_[i], S(h)))
+        statistics_.frozenBodies.emplace_back(bodies_[i].get());
   }
 
   void collectRows(double h) {
@@ -489,6 +534,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   std::vector<detail::SolverBody> solverBodies_;
   std::vector<detail::Row> rows_;
   std::vector<Constraint*> rowOwners_;
+  std::unordered_map<const double*, double> predicted_;
   detail::IslandStepper islands_;
 };
 

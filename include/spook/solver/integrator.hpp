@@ -74,6 +74,32 @@ struct BodyIntegrator {
 
   static void clearForces(Body& body) { body.force_ = body.torque_ = Vec3::Zero(); }
 
+  /// Inverse mass and inertia at the current pose and the current velocities
+  /// (dynamic bodies; the others stand still with infinite mass).
+  static SolverBody massAndVelocity(const Body& body) {
+    SolverBody b;
+    if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
+    b.velocity = stack(body.velocity_, body.angularVelocity_);
+    if (body.motionControl_ != Body::DYNAMICS) return b;
+    b.dynamic = true;
+    const MassPropertiesT<S>& mass = body.massProperties_;
+    const Mat3 R = body.getCmRotation().toRotationMatrix();
+    b.inverseMass = (R * mass.getEffectiveMass().cwiseInverse().asDiagonal() * R.transpose()).template cast<double>();
+    b.inverseInertia = (R * mass.getInertiaTensor().inverse() * R.transpose()).template cast<double>();
+    return b;
+  }
+
+  /// Moves a body by a post-stabilization displacement: its center by Δx,
+  /// its orientation by the rotation vector Δθ (world); the velocities take
+  /// Δx/h and Δθ/h so that they stay consistent with the motion.
+  static bool displace(Body& body, const SolverBody& b, S h) {
+    if (!b.dynamic || b.displacement.isZero(0.0)) return true;
+    const Vec3 dx = b.displacement.head<3>().template cast<S>();
+    const Vec3 dtheta = b.displacement.tail<3>().template cast<S>();
+    const Quat q = (expRotation<S>(dtheta) * body.getCmRotation()).normalized();
+    return commit(body, body.getCmPosition() + dx, q, body.velocity_ + dx / h, body.angularVelocity_ + dtheta / h);
+  }
+
  private:
   static Vec6d stack(const Vec3& v, const Vec3& w) {
     Vec6d out;

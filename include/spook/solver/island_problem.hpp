@@ -19,6 +19,7 @@ using Mat3d = Eigen::Matrix3d;
 struct SolverBody {
   Vec6d velocity = Vec6d::Zero();      ///< v_k: (linear, angular)
   Vec6d freeVelocity = Vec6d::Zero();  ///< v*: v_k advanced by the applied forces
+  Vec6d displacement = Vec6d::Zero();  ///< post-stabilization: (Δx, Δθ)
   Mat3d inverseMass = Mat3d::Zero();
   Mat3d inverseInertia = Mat3d::Zero();
   bool dynamic = false;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <limits>
 #include <cstddef>
 #include <numeric>
 #include <vector>
@@ -18,6 +19,34 @@ namespace spook::detail {
 /// (freeVelocity becomes v⁺).
 class IslandStepper {
  public:
+  /// Post-stabilization: `rows` evaluated at the new positions with their
+  /// target violation in `speed`, bodies with their inverse masses at the new
+  /// orientations. Fills each body's displacement (Δx, Δθ) that brings the
+  /// rows to their targets.
+  void project(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, Solver& solver,
+               SolverStatistics& statistics) {
+    partition(rows, bodies);
+    for (const std::vector<int>& island : islands_) {
+      buildProblem(rows, bodies, island, h);
+      for (std::size_t k = 0; k < island.size(); ++k) {
+        const Row& r = rows[static_cast<std::size_t>(island[k])];
+        IslandProblem::Entry& e = problem_.rows[k];
+        const double mobility = e.diagonal - e.sigma;
+        e.q = r.speed - r.violation;  // speed carries the target violation here
+        e.sigma = 1e-9 * mobility;
+        e.diagonal = mobility + e.sigma;
+        e.lower = -std::numeric_limits<double>::infinity();
+        e.upper = std::numeric_limits<double>::infinity();
+        e.impulse = 0.0;
+      }
+      solver.project(problem_, statistics);
+      for (const auto& e : problem_.rows) {
+        if (e.body1 >= 0) bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(e.body1)])].displacement += e.W1 * e.impulse;
+        if (e.body2 >= 0) bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(e.body2)])].displacement += e.W2 * e.impulse;
+      }
+    }
+  }
+
   void solve(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, Solver& solver,
              SolverStatistics& statistics) {
     partition(rows, bodies);
@@ -55,10 +84,7 @@ class IslandStepper {
     for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
       const Row& r = rows[static_cast<std::size_t>(i)];
       const int body = isDynamic(bodies, r.body1) ? r.body1 : isDynamic(bodies, r.body2) ? r.body2 : -1;
-      if (body < 0) {
-        *r.impulse = 0.0;
-        continue;
-      }
+      if (body < 0) continue;
       int& island = islandOfRoot_[static_cast<std::size_t>(find(body))];
       if (island < 0) {
         island = static_cast<int>(islands_.size());

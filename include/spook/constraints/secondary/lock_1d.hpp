@@ -24,6 +24,14 @@ class Lock1DT : public SecondaryConstraintT<S> {
     detail::Row& row = this->addRow(sink, c);
     row.violation = c.value - double(position_);
   }
+  /// The same row for post-stabilization, when the lock's force is unbounded.
+  void addProjectionRow(detail::RowSink& sink, const detail::Coordinate& c) {
+    if (!this->enable_ || std::isfinite(this->forceRange_.lower) || std::isfinite(this->forceRange_.upper)) return;
+    detail::Row& row = sink.add(c.J1, c.J2, &this->impulse_);
+    row.violation = c.value - double(position_);
+    row.compliance = double(this->regularization_.getCompliance());
+    row.damping = double(this->regularization_.getDamping());
+  }
 
  protected:
   ~Lock1DT() override = default;
