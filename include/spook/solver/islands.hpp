@@ -51,7 +51,7 @@ class IslandStepper {
              SolverStatistics& statistics) {
     partition(rows, bodies);
     for (const std::vector<int>& island : islands_) {
-      buildProblem(rows, bodies, island, h);
+      buildProblem(rows, bodies, island, h, solver.getEnableWarmStarting());
       solver.solve(problem_, statistics);
       for (std::size_t k = 0; k < island.size(); ++k) *rows[static_cast<std::size_t>(island[k])].impulse = problem_.rows[k].impulse;
       for (std::size_t k = 0; k < problem_.rows.size(); ++k) {
@@ -95,7 +95,7 @@ class IslandStepper {
   }
 
   void buildProblem(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, const std::vector<int>& island,
-                    double h) {
+                    double h, bool warmStart = false) {
     local_.resize(bodies.size(), -1);
     islandBodies_.clear();
     auto localIndex = [&](int body) {
@@ -148,7 +148,7 @@ class IslandStepper {
       e.diagonal = mobility + e.sigma;
       e.lower = r.lower * h;
       e.upper = r.upper * h;
-      e.impulse = std::clamp(*r.impulse, e.lower, e.upper);
+      e.impulse = std::clamp(warmStart ? *r.impulse : 0.0, e.lower, e.upper);
       e.solveType = r.solveType;
     }
     problem_.numBodies = static_cast<int>(islandBodies_.size());

@@ -17,8 +17,8 @@ struct IterativeSolveResult {
 };
 
 /// Projected Gauss–Seidel on the rows `subset` (PHYSICS.md §2.2), the other
-/// rows' impulses held fixed and warm-started from the impulses in the
-/// problem: Λᵢ ← clamp(Λᵢ + rᵢ/(S+Σ)ᵢᵢ, loᵢ, hiᵢ) with rᵢ = qᵢ − GᵢΔv − ΣᵢΛᵢ,
+/// rows' impulses held fixed, starting from the impulses in the problem
+/// (the last step's when warm starting): Λᵢ ← clamp(Λᵢ + rᵢ/(S+Σ)ᵢᵢ, loᵢ, hiᵢ) with rᵢ = qᵢ − GᵢΔv − ΣᵢΛᵢ,
 /// keeping Δv = M⁻¹GᵀΛ current so that one row costs O(1).
 ///
 /// The Jacobi variant computes every update of a sweep from the same Δv and

@@ -54,6 +54,13 @@ class Solver : public Referenced {
     if (!(tolerance >= 0.0)) throw detail::makeError("Solver", getName(), "tolerance must be >= 0 (m/s)", tolerance);
     tolerance_ = tolerance;
   }
+  /// Start each solve from the last step's impulses (default off). It saves
+  /// sweeps on slowly changing systems, but with few sweeps on stiff, badly
+  /// conditioned joints (a light body with small inertia far from its joint)
+  /// the stale impulses feed energy into the system and it can blow up;
+  /// AGX leaves warm starting off by default too (PHYSICS.md §2.2).
+  [[nodiscard]] bool getEnableWarmStarting() const { return warmStarting_; }
+  void setEnableWarmStarting(bool enable) { warmStarting_ = enable; }
   [[nodiscard]] IterativeMethod getIterativeMethod() const { return method_; }
   void setIterativeMethod(IterativeMethod method) {
     if (method != GAUSS_SEIDEL && method != JACOBI)
@@ -153,6 +160,7 @@ class Solver : public Referenced {
   IterativeMethod method_ = GAUSS_SEIDEL;
   int maxPivotSteps_ = 200;
   bool postStabilization_ = false;
+  bool warmStarting_ = false;
   int projectionIterations_ = 2;
   detail::DirectSolve direct_;
 };
@@ -173,9 +181,9 @@ class DirectSolver final : public Solver {
   }
 };
 
-/// Every row by projected Gauss–Seidel (or Jacobi), warm-started from the
-/// last step: cheap per sweep, approximate; stiff joints and large mass ratios
-/// come out softer than they are.
+/// Every row by projected Gauss–Seidel (or Jacobi), optionally warm-started
+/// from the last step: cheap per sweep, approximate; stiff joints and large
+/// mass ratios come out softer than they are.
 class IterativeSolver final : public Solver {
  public:
   [[nodiscard]] const char* getName() const override { return "iterative"; }

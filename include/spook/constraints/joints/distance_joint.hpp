@@ -22,7 +22,7 @@ class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
   }
   /// From body1's frame to a fixed world point (m).
   DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, const Vec3<S>& worldPoint)
-      : Base("DistanceJoint", body1, frame1, nullptr, worldFrame(worldPoint)) {
+      : Base("DistanceJoint", body1, frame1, nullptr, worldFrame(worldPoint).get()) {
     holdCurrentDistance();
   }
 
@@ -35,9 +35,9 @@ class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
   }
 
  private:
-  static FrameT<S>* worldFrame(const Vec3<S>& p) {
+  static ref_ptr<FrameT<S>> worldFrame(const Vec3<S>& p) {
     if (!p.allFinite()) throw detail::makeError("DistanceJoint", "", "world point must be finite (m)", p);
-    auto* frame = new FrameT<S>();
+    ref_ptr<FrameT<S>> frame = new FrameT<S>();
     frame->setTranslate(p);
     return frame;
   }

@@ -36,8 +36,14 @@ class Range1DT : public SecondaryConstraintT<S> {
     const bool lowerSide = atLower && (!atUpper || c.value - lower <= upper - c.value);
     row.violation = c.value - (lowerSide ? lower : upper);
     if (lower == upper) return;
-    if (lowerSide) row.lower = std::max(row.lower, 0.0);
-    else row.upper = std::min(row.upper, 0.0);
+    // One-sided: the force range keeps only its inward part.
+    if (lowerSide) {
+      row.lower = std::max(row.lower, 0.0);
+      row.upper = std::max(row.upper, 0.0);
+    } else {
+      row.lower = std::min(row.lower, 0.0);
+      row.upper = std::min(row.upper, 0.0);
+    }
   }
 
  protected:

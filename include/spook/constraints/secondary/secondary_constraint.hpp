@@ -5,7 +5,7 @@
 #include <string>
 
 #include <spook/constraints/attachments.hpp>
-#include <spook/constraints/elementary.hpp>
+#include <spook/constraints/rows/elementary.hpp>
 #include <spook/constraints/regularization.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/referenced.hpp>
