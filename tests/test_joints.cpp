@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <spook/constraints/joints/cylindrical_joint.hpp>
+
 #include "joint_scenes.hpp"
 #include "tolerance.hpp"
 
@@ -144,4 +146,43 @@ TEST_CASE_TEMPLATE("getLastForce of a hanging body equals its weight", S, float,
   // Off: nothing kept.
   hinge->setEnableComputeForces(false);
   CHECK_FALSE(hinge->getLastForce(body.get(), force, torque));
+}
+
+// A screw jack: a CylindricalJoint along the vertical with a Screw1D of lead
+// L. Gravity drives the body down and the screw turns it, so it falls with
+// a = g m / (m + I (2π/L)²) (energy: m g x = ½ m v² + ½ I (2π v/L)²).
+TEST_CASE_TEMPLATE("a screw jack descends at g m / (m + I (2 pi / lead)^2)", S, float, double) {
+  ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+  sim->setSolver(new DirectSolver());
+  const S m = S(3), I = S(0.02), lead = S(0.25);
+  auto nut = makeBody<S>(*sim, "nut", m, Vec3<S>::Zero(), I);
+  auto screw = ConstraintT<S>::template createFromWorld<CylindricalJointT<S>>(Vec3<S>::Zero(), Vec3<S>::UnitZ(), nut.get());
+  screw->getScrew1D()->setEnable(true);
+  screw->setLead(lead);
+  sim->add(screw);
+  sim->stepTo(S(1));
+  const double k = 2 * std::numbers::pi / double(lead);
+  const double a = kG * double(m) / (double(m) + double(I) * k * k);
+  const double t = double(sim->getTimeStamp()), h = double(sim->getTimeStep());
+  const double x = double(screw->getAngle(CylindricalJointT<S>::FIRST));
+  const double theta = double(screw->getAngle(CylindricalJointT<S>::SECOND));
+  MESSAGE("screw jack: x " << x << " m, exact " << -0.5 * a * t * t - 0.5 * a * h * t << " m; turns " << theta / (2 * std::numbers::pi));
+  CHECK(std::abs(x - (-0.5 * a * t * t - 0.5 * a * h * t)) < pick<S>(1e-6, 1e-4));
+  CHECK(std::abs(x - double(lead) * theta / (2 * std::numbers::pi)) < pick<S>(1e-7, 1e-5));
+}
+
+// A PlaneJoint keeps a body in the xy plane of its frame while it slides and spins freely.
+TEST_CASE_TEMPLATE("a plane joint keeps a body in its plane", S, float, double) {
+  ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+  sim->setSolver(new DirectSolver());
+  auto puck = makeBody<S>(*sim, "puck", S(2), Vec3<S>(1, 2, 0));
+  ref_ptr<PlaneJointT<S>> plane = new PlaneJointT<S>(puck.get(), nullptr);
+  sim->add(plane);
+  puck->setVelocity(S(1), S(-0.5), S(0));
+  puck->setAngularVelocity(S(0.3), S(2), S(1));
+  sim->stepTo(S(2));
+  // In-plane motion untouched; out of plane only the compliance's m g ε.
+  CHECK(std::abs(double(puck->getPosition().x()) - 3.0) < pick<S>(1e-9, 1e-5));
+  CHECK(std::abs(double(puck->getPosition().y()) - 1.0) < pick<S>(1e-9, 1e-5));
+  CHECK(std::abs(double(puck->getPosition().z())) < 2.0 * kG * 1e-8 + pick<S>(1e-12, 1e-6));
 }
