@@ -14,6 +14,8 @@
 
 namespace spook::test {
 
+inline constexpr double kG = 9.80665;  // m/s², standard gravity (the simulation's default)
+
 template <class S>
 ref_ptr<RigidBodyT<S>> makeBody(SimulationT<S>& sim, const char* name, S mass, const Vec3<S>& position,
                                 S inertia = S(0)) {

@@ -18,6 +18,12 @@
 
 namespace spook::test {
 
+/// Largest entry of the difference of two poses (m for the translation).
+template <class S>
+S poseError(const Transform<S>& a, const Transform<S>& b) {
+  return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff();
+}
+
 template <class S>
 struct BodyState {
   const RigidBodyT<S>* body = nullptr;

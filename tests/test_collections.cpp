@@ -56,11 +56,6 @@ struct Tree {
   }
 };
 
-template <class S>
-S poseError(const spook::Transform<S>& a, const spook::Transform<S>& b) {
-  return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff();
-}
-
 }  // namespace
 
 TEST_CASE_TEMPLATE("collections and assemblies hold bodies, listeners and nested collections until removed", S, float,
@@ -154,14 +149,14 @@ TEST_CASE_TEMPLATE("a collection cannot contain itself, directly or through nest
 // Content of the crane assembly: two bodies, a nested assembly (the hook)
 // with a body, and a plain collection inside the hook with another body.
 template <class S>
-struct Crane {
+struct CraneAssembly {
   using Vec3 = spook::Vec3<S>;
   AssemblyRef<S> crane = new spook::AssemblyT<S>("crane");
   AssemblyRef<S> hook = new spook::AssemblyT<S>("hook");
   CollectionRef<S> cargo = new spook::CollectionT<S>("cargo");
   std::vector<BodyRef<S>> bodies;
 
-  Crane() {
+  CraneAssembly() {
     hook->setPosition(Vec3(S(1), S(0), S(-2)));
     const auto body = [&](const char* name, Vec3 p, spook::EulerAngles<S> angles, spook::CollectionT<S>* into) {
       BodyRef<S> b = new spook::RigidBodyT<S>(name);
@@ -188,7 +183,7 @@ struct Crane {
   }
   void checkRigid(const std::vector<spook::Transform<S>>& before) const {
     const std::vector<spook::Transform<S>> after = localPoses();
-    for (std::size_t i = 0; i < before.size(); ++i) CHECK(poseError<S>(after[i], before[i]) < pick<S>(1e-12, 1e-5));
+    for (std::size_t i = 0; i < before.size(); ++i) CHECK(spook::test::poseError<S>(after[i], before[i]) < pick<S>(1e-12, 1e-5));
   }
 };
 
@@ -196,7 +191,7 @@ TEST_CASE_TEMPLATE("moving an assembly moves its content rigidly, nested assembl
                    double) {
   using Vec3 = spook::Vec3<S>;
   const S tol = pick<S>(1e-12, 1e-5);
-  Crane<S> scene;
+  CraneAssembly<S> scene;
   const auto before = scene.localPoses();
   const Vec3 boomAt = scene.bodies[0]->getPosition();
   const spook::Quat<S> boomTurn = scene.bodies[0]->getRotation();
@@ -216,13 +211,13 @@ TEST_CASE_TEMPLATE("moving an assembly moves its content rigidly, nested assembl
   const spook::Transform<S> X =
       spook::makeTransform<S>(Vec3(S(-2), S(4), S(1)), spook::toQuat(spook::EulerAngles<S>{S(2), S(0.1), S(-0.5)}));
   scene.crane->setTransform(X);
-  CHECK(poseError<S>(scene.crane->getTransform(), X) < tol);
+  CHECK(spook::test::poseError<S>(scene.crane->getTransform(), X) < tol);
   scene.checkRigid(before);
 }
 
 TEST_CASE_TEMPLATE("turning an assembly turns the velocities of its bodies with it", S, float, double) {
   const S tol = pick<S>(1e-12, 1e-5);
-  Crane<S> scene;
+  CraneAssembly<S> scene;
   std::vector<spook::Vec3<S>> v, w;
   for (const auto& b : scene.bodies) v.push_back(b->getVelocity()), w.push_back(b->getAngularVelocity());
   const spook::Quat<S> q = spook::toQuat(spook::EulerAngles<S>{S(0.3), S(-0.2), S(1.1)});

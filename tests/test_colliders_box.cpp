@@ -43,7 +43,7 @@ using V3 = Eigen::Vector3d;
 // ---- FCL adapters ----------------------------------------------------------
 
 template <class S>
-fcl::Transform3d toFcl(const spook::Transform<S>& X) {
+fcl::Transform3d toFclTransform(const spook::Transform<S>& X) {
   fcl::Transform3d Y = fcl::Transform3d::Identity();
   Y.linear() = X.linear().template cast<double>();
   Y.translation() = X.translation().template cast<double>();
@@ -67,7 +67,7 @@ std::shared_ptr<fcl::CollisionGeometryd> fclCapsule(const spook::CapsuleT<S>& ca
 }
 template <class S>
 fcl::Transform3d toFclCapsule(const spook::Transform<S>& X) {
-  fcl::Transform3d Y = toFcl(X);
+  fcl::Transform3d Y = toFclTransform(X);
   Y.linear() = Y.linear() * Eigen::AngleAxisd(-std::numbers::pi / 2, V3::UnitX()).toRotationMatrix();
   return Y;
 }
@@ -79,7 +79,7 @@ struct FclContacts {
   std::size_t count = 0;
 };
 
-FclContacts fclCollide(const std::shared_ptr<fcl::CollisionGeometryd>& a, const fcl::Transform3d& X_WA,
+FclContacts fclContacts(const std::shared_ptr<fcl::CollisionGeometryd>& a, const fcl::Transform3d& X_WA,
                        const std::shared_ptr<fcl::CollisionGeometryd>& b, const fcl::Transform3d& X_WB) {
   fcl::CollisionObjectd objectA(a, X_WA), objectB(b, X_WB);
   fcl::CollisionRequestd request(16, true);
@@ -99,7 +99,7 @@ FclContacts fclCollide(const std::shared_ptr<fcl::CollisionGeometryd>& a, const 
   return out;
 }
 
-double fclDistance(const std::shared_ptr<fcl::CollisionGeometryd>& a, const fcl::Transform3d& X_WA,
+double fclSeparation(const std::shared_ptr<fcl::CollisionGeometryd>& a, const fcl::Transform3d& X_WA,
                    const std::shared_ptr<fcl::CollisionGeometryd>& b, const fcl::Transform3d& X_WB) {
   fcl::CollisionObjectd objectA(a, X_WA), objectB(b, X_WB);
   fcl::DistanceRequestd request;
@@ -310,7 +310,7 @@ TEST_CASE("FCL reports the contact normal from the first object toward the secon
   fcl::Transform3d X_WB = fcl::Transform3d::Identity();
   X_WB.translation() = V3(1.5, 0, 0);
   const FclContacts contacts =
-      fclCollide(std::make_shared<fcl::Sphered>(1.0), X_WA, std::make_shared<fcl::Sphered>(1.0), X_WB);
+      fclContacts(std::make_shared<fcl::Sphered>(1.0), X_WA, std::make_shared<fcl::Sphered>(1.0), X_WB);
   REQUIRE(contacts.hit);
   CHECK(contacts.normal.isApprox(V3::UnitX(), 1e-12));
   CHECK(std::abs(contacts.depth - 0.5) < 1e-12);
@@ -401,11 +401,11 @@ void checkBoxBoxAgainstFcl(PoseSampler& sampler) {
     REQUIRE(allFinite(points));
 
     const auto shapeA = fclBox(*a), shapeB = fclBox(*b);
-    const FclContacts reference = fclCollide(shapeA, toFcl(X_WA), shapeB, toFcl(X_WB));
+    const FclContacts reference = fclContacts(shapeA, toFclTransform(X_WA), shapeB, toFclTransform(X_WB));
     // fcl::distance answers −1 for boxes that touch (on the lattice) although
     // fcl::collide found no contact: that is a signed distance of 0.
     const double signedDistance =
-        reference.hit ? -reference.depth : std::max(0.0, fclDistance(shapeA, toFcl(X_WA), shapeB, toFcl(X_WB)));
+        reference.hit ? -reference.depth : std::max(0.0, fclSeparation(shapeA, toFclTransform(X_WA), shapeB, toFclTransform(X_WB)));
     if (std::abs(signedDistance) > 1e-6) {
       ++decided;
       if (reference.hit == !points.empty()) ++agreed;
@@ -480,7 +480,7 @@ void checkBoxCapsuleAgainstExact(PoseSampler& sampler) {
     const CapsuleBoxReference exact = exactCapsuleBox(e, c, u, h, r);
 
     const auto shapeA = fclBox(*box), shapeB = fclCapsule(*capsule);
-    const FclContacts fcl = fclCollide(shapeA, toFcl(X_WA), shapeB, toFclCapsule(X_WB));
+    const FclContacts fcl = fclContacts(shapeA, toFclTransform(X_WA), shapeB, toFclCapsule(X_WB));
     if (std::abs(exact.signedDistance) > 1e-6) {
       ++decided;
       if (fcl.hit == (exact.signedDistance < 0)) ++agreedFcl;

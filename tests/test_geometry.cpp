@@ -7,20 +7,16 @@
 #include <spook/collide/shapes/sphere.hpp>
 #include <spook/dynamics/rigid_body.hpp>
 
+#include "shape_helpers.hpp"
 #include "tolerance.hpp"
+
+using spook::test::at;
+using spook::test::relative;
 
 using spook::test::pick;
 
 namespace {
 
-template <class S>
-spook::Transform<S> at(double x, double y, double z, const spook::Quat<S>& q = spook::Quat<S>::Identity()) {
-  return spook::makeTransform<S>(spook::Vec3<S>(S(x), S(y), S(z)), q);
-}
-template <class S>
-S relative(const spook::Mat3<S>& a, const spook::Mat3<S>& b) {
-  return (a - b).norm() / b.norm();
-}
 template <class S>
 spook::ref_ptr<spook::MaterialT<S>> material(double density) {
   spook::ref_ptr<spook::MaterialT<S>> m = new spook::MaterialT<S>("m");

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <spook/constraints/joints/cylindrical_joint.hpp>
+
 #include "joint_scenes.hpp"
 #include "tolerance.hpp"
 
@@ -10,10 +12,6 @@ using namespace spook;
 using spook::test::frameAt;
 using spook::test::makeBody;
 using spook::test::pick;
-
-namespace {
-constexpr double kG = 9.80665;
-}
 
 // A hinge pendulum released at 90° swings with the exact large-amplitude
 // period T = 4√(I_p/(m g L)) K(sin 45°) (PHYSICS.md §7.5). Symplectic Euler
@@ -42,7 +40,7 @@ TEST_CASE_TEMPLATE("a hinge pendulum released at 90 degrees has the exact large-
   }
   REQUIRE(crossings.size() == 5);
   const double period = (crossings[4] - crossings[0]) / 2.0;
-  const double expected = spook::test::pendulumPeriod(double(Icm + m * L * L), double(m), double(L), kG, std::numbers::pi / 2);
+  const double expected = spook::test::pendulumPeriod(double(Icm + m * L * L), double(m), double(L), spook::test::kG, std::numbers::pi / 2);
   MESSAGE("pendulum period " << period << " s, exact " << expected << " s");
   CHECK(std::abs(period / expected - 1.0) < 0.005);
   // The bob stays on its circle up to SPOOK's drift: each step moves the
@@ -50,7 +48,7 @@ TEST_CASE_TEMPLATE("a hinge pendulum released at 90 degrees has the exact large-
   // does not see) and the stabilization removes 4/(1+4τ/h) of the violation,
   // so it settles at (1+4τ/h)h²ω²L/8 ≈ 1.4e-3 m with ω² ≈ 2g/L at the bottom.
   const double h = 1.0 / 240.0, d = (2.0 / 60.0) / h;
-  const double drift = (1.0 + 4.0 * d) * h * h * (2.0 * kG) * double(L) / 8.0;
+  const double drift = (1.0 + 4.0 * d) * h * h * (2.0 * spook::test::kG) * double(L) / 8.0;
   CHECK(std::abs(double(bob->getPosition().norm()) - double(L)) < 1.2 * drift);
 }
 
@@ -66,7 +64,7 @@ TEST_CASE_TEMPLATE("a prismatic on a 30 degree axis accelerates at g sin 30", S,
   sim->add(prismatic);
   sim->stepTo(S(2));
   const double t = double(sim->getTimeStamp());
-  const double a = kG * 0.5;
+  const double a = spook::test::kG * 0.5;
   const double expected = -0.5 * a * t * t;
   MESSAGE("prismatic position " << double(prismatic->getAngle()) << " m, exact " << expected << " m");
   // Symplectic Euler: x_n = −a h² n(n+1)/2, off by a·h·t/2 from ½at².
@@ -87,7 +85,7 @@ TEST_CASE_TEMPLATE("a lock joint deflects load times compliance, in meters", S, 
   lock->setCompliance(c, LockJointT<S>::TRANSLATIONAL_3);
   sim->add(lock);
   sim->stepTo(S(3));
-  const double expected = -double(m) * kG * double(c);
+  const double expected = -double(m) * spook::test::kG * double(c);
   MESSAGE("deflection " << double(body->getPosition().z()) << " m, Hooke " << expected << " m");
   CHECK(std::abs(double(body->getPosition().z()) / expected - 1.0) < 0.01);
 }
@@ -132,7 +130,7 @@ TEST_CASE_TEMPLATE("getLastForce of a hanging body equals its weight", S, float,
   sim->stepTo(S(5));
   Vec3<S> force = Vec3<S>::Zero(), torque = Vec3<S>::Zero();
   REQUIRE(hinge->getLastForce(body.get(), force, torque));
-  const double weight = double(m) * kG;
+  const double weight = double(m) * spook::test::kG;
   MESSAGE("lock force " << force.transpose() << " N, weight " << weight << " N");
   CHECK(std::abs(double(force.z()) / weight - 1.0) < pick<S>(1e-6, 1e-5));
   CHECK(std::hypot(double(force.x()), double(force.y())) < pick<S>(1e-9, 1e-4) * weight);
@@ -144,4 +142,44 @@ TEST_CASE_TEMPLATE("getLastForce of a hanging body equals its weight", S, float,
   // Off: nothing kept.
   hinge->setEnableComputeForces(false);
   CHECK_FALSE(hinge->getLastForce(body.get(), force, torque));
+}
+
+// A screw jack: a CylindricalJoint along the vertical with a Screw1D of lead
+// L. Gravity drives the body down and the screw turns it, so it falls with
+// a = g m / (m + I (2π/L)²) (energy: m g x = ½ m v² + ½ I (2π v/L)²).
+TEST_CASE_TEMPLATE("a screw jack descends at g m / (m + I (2 pi / lead)^2)", S, float, double) {
+  ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+  sim->setSolver(new DirectSolver());
+  const S m = S(3), I = S(0.02), lead = S(0.25);
+  auto nut = makeBody<S>(*sim, "nut", m, Vec3<S>::Zero(), I);
+  auto screw = ConstraintT<S>::template createFromWorld<CylindricalJointT<S>>(Vec3<S>::Zero(), Vec3<S>::UnitZ(), nut.get());
+  screw->getScrew1D()->setEnable(true);
+  screw->setLead(lead);
+  sim->add(screw);
+  sim->stepTo(S(1));
+  const double k = 2 * std::numbers::pi / double(lead);
+  const double a = spook::test::kG * double(m) / (double(m) + double(I) * k * k);
+  const double t = double(sim->getTimeStamp()), h = double(sim->getTimeStep());
+  const double x = double(screw->getAngle(CylindricalJointT<S>::FIRST));
+  const double theta = double(screw->getAngle(CylindricalJointT<S>::SECOND));
+  MESSAGE("screw jack: x " << x << " m, exact " << -0.5 * a * t * t - 0.5 * a * h * t << " m; turns " << theta / (2 * std::numbers::pi));
+  CHECK(std::abs(x - (-0.5 * a * t * t - 0.5 * a * h * t)) < pick<S>(1e-6, 1e-4));
+  // The screw row is compliant (default ε = 1e-8 m/N) and carries less than m g.
+  CHECK(std::abs(x - double(lead) * theta / (2 * std::numbers::pi)) < double(m) * spook::test::kG * 1e-8 + pick<S>(1e-9, 1e-5));
+}
+
+// A PlaneJoint keeps a body in the xy plane of its frame while it slides and spins freely.
+TEST_CASE_TEMPLATE("a plane joint keeps a body in its plane", S, float, double) {
+  ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+  sim->setSolver(new DirectSolver());
+  auto puck = makeBody<S>(*sim, "puck", S(2), Vec3<S>(1, 2, 0));
+  ref_ptr<PlaneJointT<S>> plane = new PlaneJointT<S>(puck.get(), nullptr);
+  sim->add(plane);
+  puck->setVelocity(S(1), S(-0.5), S(0));
+  puck->setAngularVelocity(S(0.3), S(2), S(1));
+  sim->stepTo(S(2));
+  // In-plane motion untouched; out of plane only the compliance's m g ε.
+  CHECK(std::abs(double(puck->getPosition().x()) - 3.0) < pick<S>(1e-9, 5e-5));
+  CHECK(std::abs(double(puck->getPosition().y()) - 1.0) < pick<S>(1e-9, 5e-5));
+  CHECK(std::abs(double(puck->getPosition().z())) < 2.0 * spook::test::kG * 1e-8 + pick<S>(1e-12, 1e-6));
 }

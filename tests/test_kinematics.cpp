@@ -2,6 +2,7 @@
 
 #include <spook/sim/simulation.hpp>
 
+#include "scene_state.hpp"
 #include "tolerance.hpp"
 
 using spook::test::pick;
@@ -9,15 +10,10 @@ using spook::test::pick;
 namespace {
 
 template <class S>
-S poseError(const spook::Transform<S>& a, const spook::Transform<S>& b) {
-  return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff();
-}
-
-template <class S>
-struct Crane {
+struct KinematicCrane {
   spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
   spook::ref_ptr<spook::RigidBodyT<S>> hook = new spook::RigidBodyT<S>("hook");
-  Crane() {
+  KinematicCrane() {
     hook->setMotionControl(spook::RigidBodyT<S>::KINEMATICS);
     hook->setPosition(spook::Vec3<S>(S(1), S(0), S(2)));
     hook->setCmLocalTranslate(spook::Vec3<S>(S(0), S(0.2), S(-0.1)));
@@ -29,27 +25,27 @@ struct Crane {
 
 TEST_CASE_TEMPLATE("moveTo reaches its target pose at the stated time and stops", S, float, double) {
   const S tol = pick<S>(1e-9, 2e-5);
-  Crane<S> crane;
+  KinematicCrane<S> crane;
   const S h = crane.sim->getTimeStep();
   const spook::Transform<S> target = spook::makeTransform<S>(
       spook::Vec3<S>(S(-2), S(3), S(5)), spook::toQuat(spook::EulerAngles<S>{S(0.3), S(-0.5), S(2.0)}));
   crane.hook->moveTo(target, S(1.5));
   for (int i = 0; i < 89; ++i) crane.sim->stepForward();
   CHECK(crane.hook->isMovingToTarget());
-  CHECK(poseError<S>(crane.hook->getTransform(), target) > S(1e-3));
+  CHECK(spook::test::poseError<S>(crane.hook->getTransform(), target) > S(1e-3));
   crane.sim->stepForward();
   CHECK(crane.sim->getTimeStamp() == doctest::Approx(1.5).epsilon(pick<S>(1e-12, 1e-5)));
-  CHECK(poseError<S>(crane.hook->getTransform(), target) < tol);
+  CHECK(spook::test::poseError<S>(crane.hook->getTransform(), target) < tol);
   CHECK(!crane.hook->isMovingToTarget());
   CHECK(crane.hook->getVelocity() == spook::Vec3<S>::Zero());
   for (int i = 0; i < 10; ++i) crane.sim->stepForward();
-  CHECK(poseError<S>(crane.hook->getTransform(), target) < tol);
+  CHECK(spook::test::poseError<S>(crane.hook->getTransform(), target) < tol);
   (void)h;
 }
 
 TEST_CASE_TEMPLATE("moveTo moves at constant velocity along the way", S, float, double) {
   const S tol = pick<S>(1e-9, 2e-5);
-  Crane<S> crane;
+  KinematicCrane<S> crane;
   const spook::Vec3<S> start = crane.hook->getCmPosition();
   const spook::Transform<S> target = spook::makeTransform<S>(spook::Vec3<S>(S(4), S(0), S(2)));
   crane.hook->moveTo(target, S(1));
@@ -61,19 +57,19 @@ TEST_CASE_TEMPLATE("moveTo moves at constant velocity along the way", S, float, 
 
 TEST_CASE_TEMPLATE("a moveTo that is not a whole number of steps lands on the next step", S, float, double) {
   const S tol = pick<S>(1e-9, 2e-5);
-  Crane<S> crane;
+  KinematicCrane<S> crane;
   const spook::Transform<S> target = spook::makeTransform<S>(spook::Vec3<S>(S(0), S(0), S(0)));
   crane.hook->moveTo(target, S(0.11));  // 6.6 steps of 1/60 s
   for (int i = 0; i < 6; ++i) crane.sim->stepForward();
   CHECK(crane.hook->isMovingToTarget());
   crane.sim->stepForward();
   CHECK(!crane.hook->isMovingToTarget());
-  CHECK(poseError<S>(crane.hook->getTransform(), target) < tol);
+  CHECK(spook::test::poseError<S>(crane.hook->getTransform(), target) < tol);
 }
 
 TEST_CASE_TEMPLATE("a kinematic body turns by exp(h ω) each step", S, float, double) {
   const S tol = pick<S>(1e-12, 1e-5);
-  Crane<S> crane;
+  KinematicCrane<S> crane;
   const spook::Vec3<S> omega(S(0.2), S(-0.4), S(0.9));
   crane.hook->setAngularVelocity(omega);
   const spook::Quat<S> q0 = crane.hook->getCmRotation();

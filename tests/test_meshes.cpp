@@ -13,7 +13,10 @@
 #include <spook/collide/shapes/height_field.hpp>
 #include <spook/collide/shapes/trimesh.hpp>
 
+#include "shape_helpers.hpp"
 #include "tolerance.hpp"
+
+using spook::test::checkRejects;
 
 using spook::test::pick;
 
@@ -28,17 +31,6 @@ using Box = spook::BoundingBoxT<S>;
 using Triangles = std::vector<std::array<int, 3>>;
 using Pairs = std::vector<std::pair<std::size_t, std::size_t>>;
 
-template <class F>
-void checkRejects(F&& make, const std::string& kind, const std::string& value) {
-  try {
-    make();
-    FAIL("no spook::Error for " << kind << " " << value);
-  } catch (const spook::Error& e) {
-    const std::string what = e.what();
-    CHECK_MESSAGE(what.find(kind) != std::string::npos, what);
-    CHECK_MESSAGE(what.find("got " + value) != std::string::npos, what);
-  }
-}
 
 // A box with corners center ± half, wound counter-clockwise seen from outside.
 template <class S>

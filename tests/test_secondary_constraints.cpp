@@ -12,7 +12,6 @@ using spook::test::makeBody;
 using spook::test::pick;
 
 namespace {
-constexpr double kG = 9.80665;
 
 // A wheel on a horizontal hinge to the world (no gravity torque: the center
 // of mass is on the axis).
@@ -101,7 +100,7 @@ TEST_CASE_TEMPLATE("Range1D stops a hinge pendulum at its limits", S, float, dou
   CHECK(highest > 0.5 - 1e-3);  // it did reach the stop
   CHECK(lowest > -0.2 - 1e-3);
   // At rest on the stop: the range holds the gravity torque m g L cos 0.5.
-  CHECK(std::abs(double(range->getCurrentForce()) + kG * std::cos(0.5)) < 1e-3 * kG);
+  CHECK(std::abs(double(range->getCurrentForce()) + spook::test::kG * std::cos(0.5)) < 1e-3 * spook::test::kG);
 }
 
 TEST_CASE_TEMPLATE("a prismatic motor lifts a load at its speed; getCurrentForce is the load", S, float, double) {
@@ -116,7 +115,7 @@ TEST_CASE_TEMPLATE("a prismatic motor lifts a load at its speed; getCurrentForce
   sim->add(prismatic);
   sim->stepTo(S(2));
   // The motor's compliance γ acts as a viscosity: it runs slow by γ·F (PHYSICS.md §1.3).
-  const double slip = double(motor->getCompliance()) * double(m) * kG;
+  const double slip = double(motor->getCompliance()) * double(m) * spook::test::kG;
   CHECK(std::abs(double(prismatic->getCurrentSpeed()) - (0.25 - slip)) < pick<S>(1e-9, 1e-5));
-  CHECK(std::abs(double(motor->getCurrentForce()) / (double(m) * kG) - 1.0) < pick<S>(1e-6, 1e-4));
+  CHECK(std::abs(double(motor->getCurrentForce()) / (double(m) * spook::test::kG) - 1.0) < pick<S>(1e-6, 1e-4));
 }

@@ -13,7 +13,11 @@
 #include <spook/collide/shapes/plane.hpp>
 #include <spook/collide/shapes/sphere.hpp>
 
+#include "shape_helpers.hpp"
 #include "tolerance.hpp"
+
+using spook::test::at;
+using spook::test::checkRejects;
 
 using spook::test::pick;
 
@@ -50,17 +54,6 @@ void checkSupportIsFarthest(const Shape& shape) {
   CHECK(worstExcess <= tol);
 }
 
-template <class F>
-void checkRejects(F&& make, const std::string& kind, const std::string& value) {
-  try {
-    make();
-    FAIL("no spook::Error for " << kind << " " << value);
-  } catch (const spook::Error& e) {
-    const std::string what = e.what();
-    CHECK_MESSAGE(what.find(kind) != std::string::npos, what);
-    CHECK_MESSAGE(what.find("got " + value) != std::string::npos, what);
-  }
-}
 
 }  // namespace
 
@@ -134,10 +127,6 @@ namespace {
 template <class S>
 spook::ref_ptr<spook::BoxT<S>> box(double x, double y, double z) {
   return new spook::BoxT<S>(spook::Vec3<S>(S(x), S(y), S(z)));
-}
-template <class S>
-spook::Transform<S> at(double x, double y, double z, const spook::Quat<S>& q = spook::Quat<S>::Identity()) {
-  return spook::makeTransform<S>(spook::Vec3<S>(S(x), S(y), S(z)), q);
 }
 template <class S>
 S difference(const spook::SPDMat3<S>& a, const spook::SPDMat3<S>& b) {

@@ -14,7 +14,11 @@
 #include <spook/collide/shapes/line.hpp>
 #include <spook/collide/shapes/plane.hpp>
 
+#include "shape_helpers.hpp"
 #include "tolerance.hpp"
+
+using spook::test::checkRejects;
+using spook::test::relative;
 
 using spook::test::pick;
 
@@ -28,17 +32,6 @@ spook::ref_ptr<spook::ConvexT<S>> hullOf(const Points<S>& points) {
   return new spook::ConvexT<S>(points);
 }
 
-template <class F>
-void checkRejects(F&& make, const std::string& kind, const std::string& value) {
-  try {
-    make();
-    FAIL("no spook::Error for " << kind << " " << value);
-  } catch (const spook::Error& e) {
-    const std::string what = e.what();
-    CHECK_MESSAGE(what.find(kind) != std::string::npos, what);
-    CHECK_MESSAGE(what.find("got " + value) != std::string::npos, what);
-  }
-}
 
 // A closed, consistently wound surface uses every directed edge once and its
 // reverse once; the triangles face away from the center of volume.
@@ -81,10 +74,6 @@ void checkFaces(const spook::ConvexT<S>& convex, S tol) {
   CHECK(turn > S(0.99));  // every turn is a left turn about the normal: a convex loop, no straight corners
 }
 
-template <class S>
-S relative(const spook::Mat3<S>& a, const spook::Mat3<S>& b) {
-  return (a - b).norm() / b.norm();
-}
 
 }  // namespace
 

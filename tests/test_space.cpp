@@ -5,16 +5,15 @@
 
 #include <spook/collide/space.hpp>
 
+#include "shape_helpers.hpp"
 #include "tolerance.hpp"
+
+using spook::test::at;
 
 using spook::test::pick;
 
 namespace {
 
-template <class S>
-spook::Transform<S> at(double x, double y, double z) {
-  return spook::makeTransform<S>(spook::Vec3<S>(S(x), S(y), S(z)), spook::Quat<S>::Identity());
-}
 
 // A flat floor at z = 0 of cells × cells squares of side `cell`, two
 // triangles each, centered on the origin.

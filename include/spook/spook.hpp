@@ -18,6 +18,7 @@
 #include <spook/collide/space.hpp>
 #include <spook/constraints/constraint.hpp>
 #include <spook/constraints/joints/ball_joint.hpp>
+#include <spook/constraints/joints/cylindrical_joint.hpp>
 #include <spook/constraints/joints/distance_joint.hpp>
 #include <spook/constraints/joints/hinge.hpp>
 #include <spook/constraints/joints/lock_joint.hpp>

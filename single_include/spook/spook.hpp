@@ -6719,6 +6719,24 @@ class ConstraintT : public Referenced {
     frame1 = new Frame(Transform<S>(body1->getTransform().inverse() * world));
     frame2 = new Frame(body2 ? Transform<S>(body2->getTransform().inverse() * world) : world);
   }
+  /// A joint of type `Joint` at a world point with its z axis along a world
+  /// axis (seed 001 §12.18), relaxed in the current configuration.
+  template <class Joint>
+  [[nodiscard]] static ref_ptr<Joint> createFromWorld(const Vec3& point, const Vec3& axis, Body* body1,
+                                                      Body* body2 = nullptr) {
+    ref_ptr<Frame> frame1, frame2;
+    calculateFramesFromWorld(point, axis, body1, frame1, body2, frame2);
+    return new Joint(body1, frame1.get(), body2, frame2.get());
+  }
+  /// As createFromWorld with the point and axis in body1's model frame.
+  template <class Joint>
+  [[nodiscard]] static ref_ptr<Joint> createFromBody(const Vec3& point, const Vec3& axis, Body* body1,
+                                                     Body* body2 = nullptr) {
+    ref_ptr<Frame> frame1, frame2;
+    calculateFramesFromBody(point, axis, body1, frame1, body2, frame2);
+    return new Joint(body1, frame1.get(), body2, frame2.get());
+  }
+
   /// As calculateFramesFromWorld with the point and axis given in body1's model frame.
   static void calculateFramesFromBody(const Vec3& point, const Vec3& axis, const Body* body1, ref_ptr<Frame>& frame1,
                                       const Body* body2, ref_ptr<Frame>& frame2) {
@@ -7398,70 +7416,153 @@ class ElementaryJointT : public ConstraintT<S> {
   detail::ElementaryOptions options_;
 };
 
-/// A joint with one free DOF measured by `Free::measure` (an angle with
-/// winding or a position) and Motor1D, Lock1D and Range1D acting on it.
-template <Scalar S, class Free, class... Elementary>
-class Constraint1DOFT : public ElementaryJointT<S, Elementary...> {
+/// One free DOF of a joint, measured by `Free::measure` (an angle with
+/// winding or a position), with the Motor1D, Lock1D and Range1D acting on it.
+template <Scalar S, class Free>
+class FreeDofT {
  public:
-  [[nodiscard]] Motor1DT<S>* getMotor1D() const { return motor_.get(); }
-  [[nodiscard]] Lock1DT<S>* getLock1D() const { return lock_.get(); }
-  [[nodiscard]] Range1DT<S>* getRange1D() const { return range_.get(); }
+  [[nodiscard]] Motor1DT<S>* motor() const { return motor_.get(); }
+  [[nodiscard]] Lock1DT<S>* lock() const { return lock_.get(); }
+  [[nodiscard]] Range1DT<S>* range() const { return range_.get(); }
 
-  /// The free DOF's current value: rad (with winding) or m.
-  [[nodiscard]] S getAngle() const { return S(measure().value); }
-  /// Its rate (rad/s or m/s).
-  [[nodiscard]] S getCurrentSpeed() const { return S(measure().speed); }
-
- protected:
-  using typename ConstraintT<S>::Body;
-  using typename ConstraintT<S>::Frame;
-  Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
-      : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
-    winding_.update(measure().value);
-  }
-  ~Constraint1DOFT() override = default;
-
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    this->addElementaryRows(a, sink);
+  /// The coordinate now (winding applied, not recorded).
+  [[nodiscard]] detail::Coordinate measure(const detail::Attachments& a) const {
     detail::Coordinate c = Free::measure(a);
-    if (c.rotational) {
-      c.value = winding_.unwrap(c.value);
-      winding_.update(c.value);
-    }
+    if (c.rotational) c.value = winding_.unwrap(c.value);
+    return c;
+  }
+  /// The coordinate of this step, recorded for the winding, and the rows of
+  /// the enabled controllers.
+  detail::Coordinate addRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+    const detail::Coordinate c = measure(a);
+    winding_.update(c.value);
     motor_->beginStep();
     lock_->beginStep();
     range_->beginStep();
     motor_->addRows(sink, c);
     lock_->addRows(sink, c);
     range_->addRows(sink, c, h);
+    return c;
   }
-  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
-    this->addElementaryRows(a, sink);
-    detail::Coordinate c = Free::measure(a);
-    if (c.rotational) c.value = winding_.unwrap(c.value);
-    lock_->addProjectionRow(sink, c);
-  }
-  void afterSolve(double h) override {
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) { lock_->addProjectionRow(sink, measure(a)); }
+  void afterSolve(double h) {
     motor_->endStep(h);
     lock_->endStep(h);
     range_->endStep(h);
   }
-  void onRebind() override {
+  /// Restarts the winding at the current value.
+  void restart(const detail::Attachments& a) {
     winding_.reset();
-    winding_.update(measure().value);
+    winding_.update(measure(a).value);
   }
 
  private:
-  [[nodiscard]] detail::Coordinate measure() const {
-    detail::Coordinate c = Free::measure(this->attachments());
-    if (c.rotational) c.value = winding_.unwrap(c.value);
-    return c;
-  }
-
   ref_ptr<Motor1DT<S>> motor_ = new Motor1DT<S>();
   ref_ptr<Lock1DT<S>> lock_ = new Lock1DT<S>();
   ref_ptr<Range1DT<S>> range_ = new Range1DT<S>();
   detail::Winding winding_;
+};
+
+/// A joint with one free DOF and Motor1D, Lock1D and Range1D acting on it.
+template <Scalar S, class Free, class... Elementary>
+class Constraint1DOFT : public ElementaryJointT<S, Elementary...> {
+ public:
+  [[nodiscard]] Motor1DT<S>* getMotor1D() const { return dof_.motor(); }
+  [[nodiscard]] Lock1DT<S>* getLock1D() const { return dof_.lock(); }
+  [[nodiscard]] Range1DT<S>* getRange1D() const { return dof_.range(); }
+
+  /// The free DOF's current value: rad (with winding) or m.
+  [[nodiscard]] S getAngle() const { return S(dof_.measure(this->attachments()).value); }
+  /// Its rate (rad/s or m/s).
+  [[nodiscard]] S getCurrentSpeed() const { return S(dof_.measure(this->attachments()).speed); }
+
+ protected:
+  using typename ConstraintT<S>::Body;
+  using typename ConstraintT<S>::Frame;
+  Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
+      : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
+    dof_.restart(this->attachments());
+  }
+  ~Constraint1DOFT() override = default;
+
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    this->addElementaryRows(a, sink);
+    dof_.addRows(a, sink, h);
+  }
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
+    this->addElementaryRows(a, sink);
+    dof_.addProjectionRows(a, sink);
+  }
+  void afterSolve(double h) override { dof_.afterSolve(h); }
+  void onRebind() override { dof_.restart(this->attachments()); }
+
+ private:
+  FreeDofT<S, Free> dof_;
+};
+
+/// A joint with two free DOFs (FIRST, SECOND), each with its Motor1D, Lock1D
+/// and Range1D (seed 001 §12.10).
+template <Scalar S, class Free1, class Free2, class... Elementary>
+class Constraint2DOFT : public ElementaryJointT<S, Elementary...> {
+ public:
+  enum DOF_INDEX { FIRST = 0, SECOND = 1 };
+
+  [[nodiscard]] Motor1DT<S>* getMotor1D(int index) const { return index == FIRST ? first_.motor() : second(index).motor(); }
+  [[nodiscard]] Lock1DT<S>* getLock1D(int index) const { return index == FIRST ? first_.lock() : second(index).lock(); }
+  [[nodiscard]] Range1DT<S>* getRange1D(int index) const { return index == FIRST ? first_.range() : second(index).range(); }
+  /// The free DOF's current value: rad (with winding) or m.
+  [[nodiscard]] S getAngle(int index) const {
+    const auto a = this->attachments();
+    return S(index == FIRST ? first_.measure(a).value : second(index).measure(a).value);
+  }
+  [[nodiscard]] S getCurrentSpeed(int index) const {
+    const auto a = this->attachments();
+    return S(index == FIRST ? first_.measure(a).speed : second(index).measure(a).speed);
+  }
+
+ protected:
+  using typename ConstraintT<S>::Body;
+  using typename ConstraintT<S>::Frame;
+  Constraint2DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
+      : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
+    restart();
+  }
+  ~Constraint2DOFT() override = default;
+
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    this->addElementaryRows(a, sink);
+    const detail::Coordinate c1 = first_.addRows(a, sink, h);
+    const detail::Coordinate c2 = second_.addRows(a, sink, h);
+    addCouplingRows(c1, c2, sink);
+  }
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
+    this->addElementaryRows(a, sink);
+    first_.addProjectionRows(a, sink);
+    second_.addProjectionRows(a, sink);
+  }
+  void afterSolve(double h) override {
+    first_.afterSolve(h);
+    second_.afterSolve(h);
+    afterCoupling(h);
+  }
+  void onRebind() override { restart(); }
+  /// Rows tying the two DOFs together (Screw1D); none by default.
+  virtual void addCouplingRows(const detail::Coordinate&, const detail::Coordinate&, detail::RowSink&) {}
+  virtual void afterCoupling(double) {}
+
+ private:
+  const FreeDofT<S, Free2>& second(int index) const {
+    if (index != SECOND) throw this->error("DOF index must be FIRST (0) or SECOND (1)", index);
+    return second_;
+  }
+  void restart() {
+    const auto a = this->attachments();
+    first_.restart(a);
+    second_.restart(a);
+  }
+
+  FreeDofT<S, Free1> first_;
+  FreeDofT<S, Free2> second_;
 };
 
 namespace detail {
@@ -7506,6 +7607,124 @@ using BallJointRef = ref_ptr<BallJoint>;
 
 }  // namespace spook
 // --- end spook/constraints/joints/ball_joint.hpp ---
+// --- begin spook/constraints/joints/cylindrical_joint.hpp ---
+
+// --- begin spook/constraints/secondary/screw_1d.hpp ---
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+namespace spook {
+
+/// Couples the translation and the rotation of a CylindricalJoint (seed 001
+/// §12.10.1): the body advances `lead` meters per revolution,
+/// g = (x − x₀) − lead (θ − θ₀)/2π, from where it was when the screw engaged.
+template <Scalar S>
+class Screw1DT : public SecondaryConstraintT<S> {
+ public:
+  Screw1DT() : SecondaryConstraintT<S>("Screw1D") {}
+
+  /// Meters of translation per revolution (may be negative: a left-hand thread).
+  [[nodiscard]] S getLead() const { return lead_; }
+  void setLead(S lead) {
+    if (!std::isfinite(lead)) throw detail::makeError("Screw1D", "", "lead must be finite (m per revolution)", lead);
+    lead_ = lead;
+  }
+
+  void addRows(detail::RowSink& sink, const detail::Coordinate& translation, const detail::Coordinate& angle) {
+    if (!this->enable_) {
+      reference_.reset();
+      return;
+    }
+    if (!reference_) reference_ = Reference{translation.value, angle.value};
+    const double ratio = double(lead_) / (2.0 * std::numbers::pi);
+    detail::Coordinate c;
+    c.J1 = translation.J1 - ratio * angle.J1;
+    c.J2 = translation.J2 - ratio * angle.J2;
+    detail::Row& row = this->addRow(sink, c);
+    row.violation = (translation.value - reference_->translation) - ratio * (angle.value - reference_->angle);
+  }
+
+ protected:
+  ~Screw1DT() override = default;
+
+ private:
+  struct Reference {
+    double translation, angle;
+  };
+  S lead_ = S(0);
+  std::optional<Reference> reference_;
+};
+
+}  // namespace spook
+// --- end spook/constraints/secondary/screw_1d.hpp ---
+
+namespace spook {
+
+/// Translation along and rotation about the z axis of the attachment frames,
+/// the other four DOF removed by two Dot2 and two Dot1 rows (seed 001
+/// §12.10). FIRST is the translation (m), SECOND the rotation (rad, with
+/// winding); Screw1D couples them.
+template <Scalar S>
+class CylindricalJointT : public Constraint2DOFT<S, detail::TranslationalZ, detail::RotationalZ, detail::Dot2<0>,
+                                                 detail::Dot2<1>, detail::Dot1<0, 2>, detail::Dot1<1, 2>> {
+  using Base = Constraint2DOFT<S, detail::TranslationalZ, detail::RotationalZ, detail::Dot2<0>, detail::Dot2<1>,
+                               detail::Dot1<0, 2>, detail::Dot1<1, 2>>;
+
+ public:
+  enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, TRANSLATIONAL_2, ROTATIONAL_1, ROTATIONAL_2, NUM_DOF };
+
+  CylindricalJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr,
+                    FrameT<S>* frame2 = nullptr)
+      : Base("CylindricalJoint", body1, frame1, body2, frame2) {}
+
+  [[nodiscard]] Screw1DT<S>* getScrew1D() const { return screw_.get(); }
+  /// The screw's lead (m per revolution).
+  void setLead(S lead) { screw_->setLead(lead); }
+
+ protected:
+  ~CylindricalJointT() override = default;
+  void addCouplingRows(const detail::Coordinate& translation, const detail::Coordinate& angle,
+                       detail::RowSink& sink) override {
+    screw_->beginStep();
+    screw_->addRows(sink, translation, angle);
+  }
+  void afterCoupling(double h) override { screw_->endStep(h); }
+
+ private:
+  ref_ptr<Screw1DT<S>> screw_ = new Screw1DT<S>();
+};
+
+/// Translation within the xy plane of frame 2, rotation free: one Dot2 row.
+template <Scalar S>
+class PlaneJointT : public ElementaryJointT<S, detail::Dot2<2>> {
+  using Base = ElementaryJointT<S, detail::Dot2<2>>;
+
+ public:
+  enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, NUM_DOF };
+
+  PlaneJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr, FrameT<S>* frame2 = nullptr)
+      : Base("PlaneJoint", body1, frame1, body2, frame2) {}
+
+ protected:
+  ~PlaneJointT() override = default;
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double) override { this->addElementaryRows(a, sink); }
+};
+
+using CylindricalJoint = CylindricalJointT<double>;
+using CylindricalJointRef = ref_ptr<CylindricalJoint>;
+using PlaneJoint = PlaneJointT<double>;
+using PlaneJointRef = ref_ptr<PlaneJoint>;
+namespace f32 {
+using CylindricalJoint = CylindricalJointT<float>;
+using CylindricalJointRef = ref_ptr<CylindricalJoint>;
+using PlaneJoint = PlaneJointT<float>;
+using PlaneJointRef = ref_ptr<PlaneJoint>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/constraints/joints/cylindrical_joint.hpp ---
 // --- begin spook/constraints/joints/distance_joint.hpp ---
 
 namespace spook {

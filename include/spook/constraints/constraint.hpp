@@ -121,6 +121,24 @@ class ConstraintT : public Referenced {
     frame1 = new Frame(Transform<S>(body1->getTransform().inverse() * world));
     frame2 = new Frame(body2 ? Transform<S>(body2->getTransform().inverse() * world) : world);
   }
+  /// A joint of type `Joint` at a world point with its z axis along a world
+  /// axis (seed 001 §12.18), relaxed in the current configuration.
+  template <class Joint>
+  [[nodiscard]] static ref_ptr<Joint> createFromWorld(const Vec3& point, const Vec3& axis, Body* body1,
+                                                      Body* body2 = nullptr) {
+    ref_ptr<Frame> frame1, frame2;
+    calculateFramesFromWorld(point, axis, body1, frame1, body2, frame2);
+    return new Joint(body1, frame1.get(), body2, frame2.get());
+  }
+  /// As createFromWorld with the point and axis in body1's model frame.
+  template <class Joint>
+  [[nodiscard]] static ref_ptr<Joint> createFromBody(const Vec3& point, const Vec3& axis, Body* body1,
+                                                     Body* body2 = nullptr) {
+    ref_ptr<Frame> frame1, frame2;
+    calculateFramesFromBody(point, axis, body1, frame1, body2, frame2);
+    return new Joint(body1, frame1.get(), body2, frame2.get());
+  }
+
   /// As calculateFramesFromWorld with the point and axis given in body1's model frame.
   static void calculateFramesFromBody(const Vec3& point, const Vec3& axis, const Body* body1, ref_ptr<Frame>& frame1,
                                       const Body* body2, ref_ptr<Frame>& frame2) {

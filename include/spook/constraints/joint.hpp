@@ -89,70 +89,153 @@ class ElementaryJointT : public ConstraintT<S> {
   detail::ElementaryOptions options_;
 };
 
-/// A joint with one free DOF measured by `Free::measure` (an angle with
-/// winding or a position) and Motor1D, Lock1D and Range1D acting on it.
-template <Scalar S, class Free, class... Elementary>
-class Constraint1DOFT : public ElementaryJointT<S, Elementary...> {
+/// One free DOF of a joint, measured by `Free::measure` (an angle with
+/// winding or a position), with the Motor1D, Lock1D and Range1D acting on it.
+template <Scalar S, class Free>
+class FreeDofT {
  public:
-  [[nodiscard]] Motor1DT<S>* getMotor1D() const { return motor_.get(); }
-  [[nodiscard]] Lock1DT<S>* getLock1D() const { return lock_.get(); }
-  [[nodiscard]] Range1DT<S>* getRange1D() const { return range_.get(); }
+  [[nodiscard]] Motor1DT<S>* motor() const { return motor_.get(); }
+  [[nodiscard]] Lock1DT<S>* lock() const { return lock_.get(); }
+  [[nodiscard]] Range1DT<S>* range() const { return range_.get(); }
 
-  /// The free DOF's current value: rad (with winding) or m.
-  [[nodiscard]] S getAngle() const { return S(measure().value); }
-  /// Its rate (rad/s or m/s).
-  [[nodiscard]] S getCurrentSpeed() const { return S(measure().speed); }
-
- protected:
-  using typename ConstraintT<S>::Body;
-  using typename ConstraintT<S>::Frame;
-  Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
-      : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
-    winding_.update(measure().value);
-  }
-  ~Constraint1DOFT() override = default;
-
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    this->addElementaryRows(a, sink);
+  /// The coordinate now (winding applied, not recorded).
+  [[nodiscard]] detail::Coordinate measure(const detail::Attachments& a) const {
     detail::Coordinate c = Free::measure(a);
-    if (c.rotational) {
-      c.value = winding_.unwrap(c.value);
-      winding_.update(c.value);
-    }
+    if (c.rotational) c.value = winding_.unwrap(c.value);
+    return c;
+  }
+  /// The coordinate of this step, recorded for the winding, and the rows of
+  /// the enabled controllers.
+  detail::Coordinate addRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+    const detail::Coordinate c = measure(a);
+    winding_.update(c.value);
     motor_->beginStep();
     lock_->beginStep();
     range_->beginStep();
     motor_->addRows(sink, c);
     lock_->addRows(sink, c);
     range_->addRows(sink, c, h);
+    return c;
   }
-  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
-    this->addElementaryRows(a, sink);
-    detail::Coordinate c = Free::measure(a);
-    if (c.rotational) c.value = winding_.unwrap(c.value);
-    lock_->addProjectionRow(sink, c);
-  }
-  void afterSolve(double h) override {
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) { lock_->addProjectionRow(sink, measure(a)); }
+  void afterSolve(double h) {
     motor_->endStep(h);
     lock_->endStep(h);
     range_->endStep(h);
   }
-  void onRebind() override {
+  /// Restarts the winding at the current value.
+  void restart(const detail::Attachments& a) {
     winding_.reset();
-    winding_.update(measure().value);
+    winding_.update(measure(a).value);
   }
 
  private:
-  [[nodiscard]] detail::Coordinate measure() const {
-    detail::Coordinate c = Free::measure(this->attachments());
-    if (c.rotational) c.value = winding_.unwrap(c.value);
-    return c;
-  }
-
   ref_ptr<Motor1DT<S>> motor_ = new Motor1DT<S>();
   ref_ptr<Lock1DT<S>> lock_ = new Lock1DT<S>();
   ref_ptr<Range1DT<S>> range_ = new Range1DT<S>();
   detail::Winding winding_;
+};
+
+/// A joint with one free DOF and Motor1D, Lock1D and Range1D acting on it.
+template <Scalar S, class Free, class... Elementary>
+class Constraint1DOFT : public ElementaryJointT<S, Elementary...> {
+ public:
+  [[nodiscard]] Motor1DT<S>* getMotor1D() const { return dof_.motor(); }
+  [[nodiscard]] Lock1DT<S>* getLock1D() const { return dof_.lock(); }
+  [[nodiscard]] Range1DT<S>* getRange1D() const { return dof_.range(); }
+
+  /// The free DOF's current value: rad (with winding) or m.
+  [[nodiscard]] S getAngle() const { return S(dof_.measure(this->attachments()).value); }
+  /// Its rate (rad/s or m/s).
+  [[nodiscard]] S getCurrentSpeed() const { return S(dof_.measure(this->attachments()).speed); }
+
+ protected:
+  using typename ConstraintT<S>::Body;
+  using typename ConstraintT<S>::Frame;
+  Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
+      : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
+    dof_.restart(this->attachments());
+  }
+  ~Constraint1DOFT() override = default;
+
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    this->addElementaryRows(a, sink);
+    dof_.addRows(a, sink, h);
+  }
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
+    this->addElementaryRows(a, sink);
+    dof_.addProjectionRows(a, sink);
+  }
+  void afterSolve(double h) override { dof_.afterSolve(h); }
+  void onRebind() override { dof_.restart(this->attachments()); }
+
+ private:
+  FreeDofT<S, Free> dof_;
+};
+
+/// A joint with two free DOFs (FIRST, SECOND), each with its Motor1D, Lock1D
+/// and Range1D (seed 001 §12.10).
+template <Scalar S, class Free1, class Free2, class... Elementary>
+class Constraint2DOFT : public ElementaryJointT<S, Elementary...> {
+ public:
+  enum DOF_INDEX { FIRST = 0, SECOND = 1 };
+
+  [[nodiscard]] Motor1DT<S>* getMotor1D(int index) const { return index == FIRST ? first_.motor() : second(index).motor(); }
+  [[nodiscard]] Lock1DT<S>* getLock1D(int index) const { return index == FIRST ? first_.lock() : second(index).lock(); }
+  [[nodiscard]] Range1DT<S>* getRange1D(int index) const { return index == FIRST ? first_.range() : second(index).range(); }
+  /// The free DOF's current value: rad (with winding) or m.
+  [[nodiscard]] S getAngle(int index) const {
+    const auto a = this->attachments();
+    return S(index == FIRST ? first_.measure(a).value : second(index).measure(a).value);
+  }
+  [[nodiscard]] S getCurrentSpeed(int index) const {
+    const auto a = this->attachments();
+    return S(index == FIRST ? first_.measure(a).speed : second(index).measure(a).speed);
+  }
+
+ protected:
+  using typename ConstraintT<S>::Body;
+  using typename ConstraintT<S>::Frame;
+  Constraint2DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
+      : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
+    restart();
+  }
+  ~Constraint2DOFT() override = default;
+
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    this->addElementaryRows(a, sink);
+    const detail::Coordinate c1 = first_.addRows(a, sink, h);
+    const detail::Coordinate c2 = second_.addRows(a, sink, h);
+    addCouplingRows(c1, c2, sink);
+  }
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
+    this->addElementaryRows(a, sink);
+    first_.addProjectionRows(a, sink);
+    second_.addProjectionRows(a, sink);
+  }
+  void afterSolve(double h) override {
+    first_.afterSolve(h);
+    second_.afterSolve(h);
+    afterCoupling(h);
+  }
+  void onRebind() override { restart(); }
+  /// Rows tying the two DOFs together (Screw1D); none by default.
+  virtual void addCouplingRows(const detail::Coordinate&, const detail::Coordinate&, detail::RowSink&) {}
+  virtual void afterCoupling(double) {}
+
+ private:
+  const FreeDofT<S, Free2>& second(int index) const {
+    if (index != SECOND) throw this->error("DOF index must be FIRST (0) or SECOND (1)", index);
+    return second_;
+  }
+  void restart() {
+    const auto a = this->attachments();
+    first_.restart(a);
+    second_.restart(a);
+  }
+
+  FreeDofT<S, Free1> first_;
+  FreeDofT<S, Free2> second_;
 };
 
 namespace detail {
