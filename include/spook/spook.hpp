@@ -20,9 +20,12 @@
 #include <spook/constraints/joints/ball_joint.hpp>
 #include <spook/constraints/joints/cylindrical_joint.hpp>
 #include <spook/constraints/joints/distance_joint.hpp>
+#include <spook/constraints/joints/dot1_joint.hpp>
 #include <spook/constraints/joints/hinge.hpp>
 #include <spook/constraints/joints/lock_joint.hpp>
 #include <spook/constraints/joints/prismatic.hpp>
+#include <spook/constraints/joints/slack_joints.hpp>
+#include <spook/constraints/joints/universal_joint.hpp>
 #include <spook/constraints/regularization.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/frame.hpp>

@@ -6886,6 +6886,10 @@ using ConstraintRef = ref_ptr<Constraint>;
 // --- end spook/constraints/constraint.hpp ---
 // --- begin spook/constraints/joints/ball_joint.hpp ---
 
+#include <array>
+#include <cstddef>
+#include <vector>
+
 // --- begin spook/constraints/joint.hpp ---
 
 #include <array>
@@ -7102,9 +7106,14 @@ template <Scalar S>
 
 }  // namespace spook
 // --- end spook/constraints/regularization.hpp ---
-// --- begin spook/constraints/secondary/lock_1d.hpp ---
+// --- begin spook/constraints/secondary/friction_controller.hpp ---
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
 
 // --- begin spook/constraints/secondary/secondary_constraint.hpp ---
 
@@ -7189,6 +7198,185 @@ class SecondaryConstraintT : public Referenced {
 
 }  // namespace spook
 // --- end spook/constraints/secondary/secondary_constraint.hpp ---
+
+namespace spook {
+
+namespace detail {
+
+/// The joint a secondary constraint belongs to, for error messages:
+/// "spook::ConeLimit of BallJoint 'shoulder': ...". Observed, not owned: a
+/// controller kept alive after its joint just names itself.
+template <Scalar S>
+class JointLabel {
+ public:
+  void set(const ConstraintT<S>* joint) { joint_ = joint; }
+
+  template <class T>
+  [[nodiscard]] Error error(std::string_view kind, std::string_view what, const T& value) const {
+    std::string label(kind);
+    std::string name;
+    if (const ConstraintT<S>* joint = joint_.get()) {
+      label += std::string(" of ") + joint->getKind();
+      name = joint->getName();
+    }
+    return makeError(label, name, what, value);
+  }
+
+ private:
+  observer_ptr<const ConstraintT<S>> joint_;
+};
+
+/// The force the elementary rows of a joint applied on body 1 in a step, read
+/// back after the solve from their impulses: F = Σ J1ᵢ(linear) Λᵢ / h (N,
+/// world). The normal force of the seed (001 §12.15.4.2) is the part of F
+/// across the joint axis z (frame 2): N = √(Fx² + Fy²).
+class JointLoad {
+ public:
+  /// Records the rows written to `sink` from index `first` on (the joint's
+  /// elementary rows of this step) and the joint axis (world, unit).
+  void record(const RowSink& sink, std::size_t first, const Vec3d& axis) {
+    rows_.clear();
+    for (std::size_t i = first; i < sink.rows->size(); ++i) {
+      const Row& row = (*sink.rows)[i];
+      rows_.push_back({row.J1.head<3>(), row.impulse});
+    }
+    axis_ = axis;
+    recorded_ = true;
+  }
+  /// Force on body 1 from the recorded rows (N, world); zero when the joint
+  /// wrote no rows this step. Call once per step, after the solve.
+  [[nodiscard]] Vec3d force(double h) {
+    Vec3d f = Vec3d::Zero();
+    if (recorded_)
+      for (const auto& r : rows_) f += r.linear * (*r.impulse / h);
+    recorded_ = false;
+    return f;
+  }
+  /// The part of `force` across the axis (N); with `across` false its whole
+  /// magnitude (a ball joint has no axis).
+  [[nodiscard]] double normal(const Vec3d& force, bool across = true) const {
+    return across ? (force - force.dot(axis_) * axis_).norm() : force.norm();
+  }
+
+ private:
+  struct Entry {
+    Vec3d linear;
+    const double* impulse;
+  };
+  std::vector<Entry> rows_;
+  Vec3d axis_ = Vec3d::UnitZ();
+  bool recorded_ = false;
+};
+
+}  // namespace detail
+
+/// Internal friction of a joint's free DOF (seed 001 §12.15.4): a velocity
+/// row with target speed 0 whose force may not exceed
+///   |F| ≤ max(μ N, minimum static friction)   (N, or N·m for a rotation),
+/// so the DOF sticks while the driving force is below the bound and slides
+/// with exactly the bound otherwise. N (N) is the joint's constraint force
+/// across its axis (√(Fx² + Fy²) with the axis along z, seed §12.15.4.2).
+/// For a rotational DOF the bound is a torque and the axle radius is part of
+/// μ (τ ≤ μ r N: pass μ·r, in m). The row's compliance acts as a viscosity:
+/// a stuck DOF creeps at compliance × force (PHYSICS.md §1.3).
+///
+/// N is the previous step's by default (the first step after enabling has no
+/// friction beyond the minimum range). setEnableNonLinearDirectSolveUpdate
+/// asks for the current step's N; AGX iterates the direct solve for it. Our
+/// solver has no outer loop for bounds that depend on other rows, so this
+/// mode is approximated: the bound uses N extrapolated to the current step,
+/// max(0, 2Nₖ − Nₖ₋₁), which removes the one-step lag for a normal force
+/// that changes linearly in time (error O(h²) instead of O(h)). A friction
+/// row only ever dissipates, so a wrong bound cannot add energy.
+///
+/// The bounds replace the force range of SecondaryConstraint (unused here).
+/// Disabled by default; default μ = 0.4167 (seed).
+template <Scalar S>
+class FrictionControllerT : public SecondaryConstraintT<S> {
+ public:
+  FrictionControllerT() : SecondaryConstraintT<S>("FrictionController") {}
+
+  /// μ (dimensionless; m for a rotational DOF, the axle radius included), ≥ 0.
+  [[nodiscard]] S getFrictionCoefficient() const { return mu_; }
+  void setFrictionCoefficient(S mu) {
+    if (!(std::isfinite(mu) && mu >= S(0)))
+      throw label_.error(this->kind_, "friction coefficient must be finite and >= 0", mu);
+    mu_ = mu;
+  }
+
+  /// Friction force (N or N·m) available even without a normal force:
+  /// [lower, upper] with lower ≤ 0 ≤ upper. Default [0, 0].
+  [[nodiscard]] RangeT<S> getMinimumStaticFrictionForceRange() const { return minimum_; }
+  void setMinimumStaticFrictionForceRange(S lower, S upper) {
+    if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= S(0) && upper >= S(0)))
+      throw label_.error(this->kind_, "minimum static friction range must be finite with lower <= 0 <= upper (N or N·m)",
+                         Eigen::Matrix<S, 2, 1>(lower, upper));
+    minimum_ = {lower, upper};
+  }
+  void setMinimumStaticFrictionForceRange(RangeT<S> range) { setMinimumStaticFrictionForceRange(range.lower, range.upper); }
+
+  /// Current-step normal force (approximated, see the class comment); default off.
+  [[nodiscard]] bool getEnableNonLinearDirectSolveUpdate() const { return nonLinear_; }
+  void setEnableNonLinearDirectSolveUpdate(bool enable) { nonLinear_ = enable; }
+
+  /// The normal force (N) the joint carried in the last step.
+  [[nodiscard]] S getNormalForce() const { return S(normal_); }
+  /// The friction bound (N or N·m) used in the last step, ≥ 0.
+  [[nodiscard]] S getCurrentFrictionBound() const { return S(bound_); }
+
+  // Called by the joint: this step's row on the DOF `c`.
+  void addRows(detail::RowSink& sink, const detail::Coordinate& c) {
+    if (!this->enable_) {
+      bound_ = 0.0;
+      return;
+    }
+    double n = normal_;
+    if (nonLinear_ && samples_ >= 2) n = std::max(0.0, 2.0 * normal_ - previousNormal_);
+    const double slide = double(mu_) * n;
+    const double lower = std::min(-slide, double(minimum_.lower));
+    const double upper = std::max(slide, double(minimum_.upper));
+    bound_ = std::max(-lower, upper);
+    if (lower == 0.0 && upper == 0.0) return;  // nothing to hold
+    detail::Row& row = this->addRow(sink, c);
+    row.holonomic = false;
+    row.speed = 0.0;
+    row.lower = lower;
+    row.upper = upper;
+  }
+  /// The joint's normal force of the step just solved (N).
+  void setStepNormalForce(double normal) {
+    previousNormal_ = normal_;
+    normal_ = std::isfinite(normal) ? normal : 0.0;
+    samples_ = std::min(samples_ + 1, 2);
+  }
+  /// The joint this controller belongs to (for error messages).
+  void setJoint(const ConstraintT<S>* joint) { label_.set(joint); }
+
+ protected:
+  ~FrictionControllerT() override = default;
+
+ private:
+  S mu_ = S(0.4167);
+  RangeT<S> minimum_{S(0), S(0)};
+  bool nonLinear_ = false;
+  double normal_ = 0.0, previousNormal_ = 0.0;
+  int samples_ = 0;
+  double bound_ = 0.0;
+  detail::JointLabel<S> label_;
+};
+
+using FrictionController = FrictionControllerT<double>;
+using FrictionControllerRef = ref_ptr<FrictionController>;
+namespace f32 {
+using FrictionController = FrictionControllerT<float>;
+using FrictionControllerRef = ref_ptr<FrictionController>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/constraints/secondary/friction_controller.hpp ---
+// --- begin spook/constraints/secondary/lock_1d.hpp ---
+
+#include <cmath>
 
 namespace spook {
 
@@ -7417,13 +7605,15 @@ class ElementaryJointT : public ConstraintT<S> {
 };
 
 /// One free DOF of a joint, measured by `Free::measure` (an angle with
-/// winding or a position), with the Motor1D, Lock1D and Range1D acting on it.
+/// winding or a position), with the Motor1D, Lock1D, Range1D and
+/// FrictionController acting on it.
 template <Scalar S, class Free>
 class FreeDofT {
  public:
   [[nodiscard]] Motor1DT<S>* motor() const { return motor_.get(); }
   [[nodiscard]] Lock1DT<S>* lock() const { return lock_.get(); }
   [[nodiscard]] Range1DT<S>* range() const { return range_.get(); }
+  [[nodiscard]] FrictionControllerT<S>* friction() const { return friction_.get(); }
 
   /// The coordinate now (winding applied, not recorded).
   [[nodiscard]] detail::Coordinate measure(const detail::Attachments& a) const {
@@ -7439,9 +7629,11 @@ class FreeDofT {
     motor_->beginStep();
     lock_->beginStep();
     range_->beginStep();
+    friction_->beginStep();
     motor_->addRows(sink, c);
     lock_->addRows(sink, c);
     range_->addRows(sink, c, h);
+    friction_->addRows(sink, c);
     return c;
   }
   void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) { lock_->addProjectionRow(sink, measure(a)); }
@@ -7449,6 +7641,7 @@ class FreeDofT {
     motor_->endStep(h);
     lock_->endStep(h);
     range_->endStep(h);
+    friction_->endStep(h);
   }
   /// Restarts the winding at the current value.
   void restart(const detail::Attachments& a) {
@@ -7460,16 +7653,20 @@ class FreeDofT {
   ref_ptr<Motor1DT<S>> motor_ = new Motor1DT<S>();
   ref_ptr<Lock1DT<S>> lock_ = new Lock1DT<S>();
   ref_ptr<Range1DT<S>> range_ = new Range1DT<S>();
+  ref_ptr<FrictionControllerT<S>> friction_ = new FrictionControllerT<S>();
   detail::Winding winding_;
 };
 
-/// A joint with one free DOF and Motor1D, Lock1D and Range1D acting on it.
+/// A joint with one free DOF and Motor1D, Lock1D, Range1D and
+/// FrictionController acting on it.
 template <Scalar S, class Free, class... Elementary>
 class Constraint1DOFT : public ElementaryJointT<S, Elementary...> {
  public:
   [[nodiscard]] Motor1DT<S>* getMotor1D() const { return dof_.motor(); }
   [[nodiscard]] Lock1DT<S>* getLock1D() const { return dof_.lock(); }
   [[nodiscard]] Range1DT<S>* getRange1D() const { return dof_.range(); }
+  /// Internal friction of the free DOF (seed 001 §12.15.4); disabled by default.
+  [[nodiscard]] FrictionControllerT<S>* getFrictionController() const { return dof_.friction(); }
 
   /// The free DOF's current value: rad (with winding) or m.
   [[nodiscard]] S getAngle() const { return S(dof_.measure(this->attachments()).value); }
@@ -7482,22 +7679,29 @@ class Constraint1DOFT : public ElementaryJointT<S, Elementary...> {
   Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
       : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
     dof_.restart(this->attachments());
+    dof_.friction()->setJoint(this);
   }
   ~Constraint1DOFT() override = default;
 
   void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    const std::size_t first = sink.rows->size();
     this->addElementaryRows(a, sink);
+    load_.record(sink, first, a.R2.col(2));
     dof_.addRows(a, sink, h);
   }
   void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
     this->addElementaryRows(a, sink);
     dof_.addProjectionRows(a, sink);
   }
-  void afterSolve(double h) override { dof_.afterSolve(h); }
+  void afterSolve(double h) override {
+    dof_.afterSolve(h);
+    dof_.friction()->setStepNormalForce(load_.normal(load_.force(h)));
+  }
   void onRebind() override { dof_.restart(this->attachments()); }
 
  private:
   FreeDofT<S, Free> dof_;
+  detail::JointLoad load_;  // the normal force for the friction controller
 };
 
 /// A joint with two free DOFs (FIRST, SECOND), each with its Motor1D, Lock1D
@@ -7510,6 +7714,10 @@ class Constraint2DOFT : public ElementaryJointT<S, Elementary...> {
   [[nodiscard]] Motor1DT<S>* getMotor1D(int index) const { return index == FIRST ? first_.motor() : second(index).motor(); }
   [[nodiscard]] Lock1DT<S>* getLock1D(int index) const { return index == FIRST ? first_.lock() : second(index).lock(); }
   [[nodiscard]] Range1DT<S>* getRange1D(int index) const { return index == FIRST ? first_.range() : second(index).range(); }
+  /// Internal friction of DOF `index` (seed 001 §12.15.4); disabled by default.
+  [[nodiscard]] FrictionControllerT<S>* getFrictionController(int index) const {
+    return index == FIRST ? first_.friction() : second(index).friction();
+  }
   /// The free DOF's current value: rad (with winding) or m.
   [[nodiscard]] S getAngle(int index) const {
     const auto a = this->attachments();
@@ -7526,11 +7734,15 @@ class Constraint2DOFT : public ElementaryJointT<S, Elementary...> {
   Constraint2DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
       : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
     restart();
+    first_.friction()->setJoint(this);
+    second_.friction()->setJoint(this);
   }
   ~Constraint2DOFT() override = default;
 
   void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    const std::size_t first = sink.rows->size();
     this->addElementaryRows(a, sink);
+    load_.record(sink, first, a.R2.col(2));
     const detail::Coordinate c1 = first_.addRows(a, sink, h);
     const detail::Coordinate c2 = second_.addRows(a, sink, h);
     addCouplingRows(c1, c2, sink);
@@ -7544,6 +7756,9 @@ class Constraint2DOFT : public ElementaryJointT<S, Elementary...> {
     first_.afterSolve(h);
     second_.afterSolve(h);
     afterCoupling(h);
+    const double normal = load_.normal(load_.force(h));
+    first_.friction()->setStepNormalForce(normal);
+    second_.friction()->setStepNormalForce(normal);
   }
   void onRebind() override { restart(); }
   /// Rows tying the two DOFs together (Screw1D); none by default.
@@ -7563,6 +7778,7 @@ class Constraint2DOFT : public ElementaryJointT<S, Elementary...> {
 
   FreeDofT<S, Free1> first_;
   FreeDofT<S, Free2> second_;
+  detail::JointLoad load_;  // the normal force for the friction controllers
 };
 
 namespace detail {
@@ -7579,10 +7795,232 @@ struct DistanceBetween {
 
 }  // namespace spook
 // --- end spook/constraints/joint.hpp ---
+// --- begin spook/constraints/secondary/cone_limit.hpp ---
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 
 namespace spook {
 
-/// The frame origins held together, rotation free: one Spherical (seed 001 §12.4).
+namespace detail {
+
+/// Where frame 1's z axis is relative to an elliptic cone about frame 2's z
+/// axis (seed 001 §12.4.1). With d = R₂ᵀ z₁ = (sin θ cos φ, sin θ sin φ,
+/// cos θ) the tilt θ and its azimuth φ are measured in frame 2; the cone's
+/// half-angle towards azimuth φ is that of the ellipse with semi-axes a₁
+/// (towards frame 2's x, the x–z plane) and a₂ (towards y, the y–z plane)
+/// in the plane of tilt vectors θ (cos φ, sin φ):
+///   α(φ) = a₁ a₂ / √(a₂² cos²φ + a₁² sin²φ),   g = θ − α(φ)  (rad, ≤ 0 inside).
+/// With Ω = R₂ᵀ(ω₁ − ω₂), ḋ = Ω × d, θ̇ = Ω·(e_z × d)/sin θ and
+/// φ̇ = Ω·(e_z − d_z d)/sin²θ, so ġ = Ω·n₂ with n₂ = (e_z × d)/sin θ − α′(φ)(e_z − d_z d)/sin²θ.
+struct ConeState {
+  double tilt = 0.0;       ///< θ (rad)
+  double limit = 0.0;      ///< α(φ) (rad)
+  Vec3d axis = Vec3d::Zero();  ///< n = R₂ n₂ (world): ġ = n·(ω₁ − ω₂)
+};
+
+[[nodiscard]] inline ConeState coneState(const Attachments& a, double a1, double a2) {
+  const Vec3d d = a.R2.transpose() * a.R1.col(2);
+  const double rho = std::hypot(d.x(), d.y());
+  ConeState s;
+  s.tilt = std::atan2(rho, d.z());
+  if (rho < 1e-12) {
+    // z axes (anti)parallel: no azimuth; push about frame 2's y (towards x).
+    s.limit = a1;
+    s.axis = a.R2.col(1) * (d.z() >= 0.0 ? 1.0 : -1.0);
+    return s;
+  }
+  const double c = d.x() / rho, sn = d.y() / rho;
+  const double D = a2 * a2 * c * c + a1 * a1 * sn * sn;
+  s.limit = a1 * a2 / std::sqrt(D);
+  const double dLimit = -a1 * a2 * (a1 * a1 - a2 * a2) * sn * c / (D * std::sqrt(D));
+  const Vec3d ez = Vec3d::UnitZ();
+  const Vec3d n2 = Vec3d(-d.y(), d.x(), 0.0) / rho - dLimit * (ez - d.z() * d) / (rho * rho);
+  s.axis = a.R2 * n2;
+  return s;
+}
+
+}  // namespace detail
+
+/// Keeps frame 1's z axis inside a cone about frame 2's z axis, the base
+/// (seed 001 §12.4.1): a one-sided row g = θ − α(φ) ≤ 0 (detail::coneState),
+/// pushing only inward, added when the axis is on or beyond the cone or would
+/// reach it within two steps at its current rate. Equal half-angles give a
+/// circular cone, different ones an elliptic cone: a₁ in frame 2's x–z
+/// plane, a₂ in its y–z plane. Disabled by default; both angles π/4.
+template <Scalar S>
+class ConeLimitT : public SecondaryConstraintT<S> {
+ public:
+  ConeLimitT() : SecondaryConstraintT<S>("ConeLimit") {}
+
+  /// Half-angle (rad) in frame 2's x–z plane (index 0) or y–z plane (1).
+  [[nodiscard]] S getLimitAngle(int index) const { return index == 0 ? a1_ : a2_; }
+  /// Both half-angles (rad), each in (0, π/2).
+  void setLimitAngles(S a1, S a2) {
+    const auto valid = [](S angle) { return std::isfinite(angle) && angle > S(0) && angle < std::numbers::pi_v<S> / S(2); };
+    if (!valid(a1) || !valid(a2))
+      throw label_.error(this->kind_, "limit angles must both be in (0, pi/2) rad", Eigen::Matrix<S, 2, 1>(a1, a2));
+    a1_ = a1;
+    a2_ = a2;
+  }
+
+  /// The tilt of frame 1's z axis from frame 2's (rad) in the last step it
+  /// was enabled.
+  [[nodiscard]] S getAngle() const { return S(tilt_); }
+
+  // Called by the joint each step.
+  void addRows(detail::RowSink& sink, const detail::Attachments& a, double h) {
+    if (!this->enable_) return;
+    const detail::ConeState s = detail::coneState(a, double(a1_), double(a2_));
+    tilt_ = s.tilt;
+    detail::Coordinate c;
+    c.J1 = detail::linearAngular(detail::Vec3d::Zero(), s.axis);
+    c.J2 = -c.J1;
+    c.speed = a.speed(c.J1, c.J2);
+    c.value = s.tilt - s.limit;
+    c.rotational = true;
+    if (c.value < -2.0 * h * std::abs(c.speed)) return;
+    detail::Row& row = this->addRow(sink, c);
+    row.violation = c.value;
+    row.lower = std::min(row.lower, 0.0);
+    row.upper = std::min(row.upper, 0.0);
+  }
+  /// The joint this limit belongs to (for error messages).
+  void setJoint(const ConstraintT<S>* joint) { label_.set(joint); }
+
+ protected:
+  ~ConeLimitT() override = default;
+
+ private:
+  S a1_ = std::numbers::pi_v<S> / S(4);
+  S a2_ = std::numbers::pi_v<S> / S(4);
+  double tilt_ = 0.0;
+  detail::JointLabel<S> label_;
+};
+
+using ConeLimit = ConeLimitT<double>;
+using ConeLimitRef = ref_ptr<ConeLimit>;
+namespace f32 {
+using ConeLimit = ConeLimitT<float>;
+using ConeLimitRef = ref_ptr<ConeLimit>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/constraints/secondary/cone_limit.hpp ---
+// --- begin spook/constraints/secondary/twist_range.hpp ---
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace spook {
+
+namespace detail {
+
+/// The twist of frame 1 about its own z axis relative to frame 2's z axis
+/// (seed 001 §12.4.2), from the swing–twist split of q = q₂* q₁ = swing ⊗
+/// twist with the swing about an axis in the xy plane: ψ = 2 atan2(q_z, q_w)
+/// (rad, −π..π; the same for the twist taken first or last). With
+/// q̇ = ½ Ω ⊗ q, Ω = R₂ᵀ(ω₁ − ω₂):
+///   ψ̇ = Ω·(q_w q_y + q_x q_z, q_y q_z − q_w q_x, q_w² + q_z²)/(q_w² + q_z²).
+/// Undefined when z₁ = −z₂ (q_w = q_z = 0), as the seed warns.
+[[nodiscard]] inline Coordinate twistCoordinate(const Attachments& a) {
+  const Quatd q = relativeRotation(a);
+  Coordinate c;
+  c.rotational = true;
+  c.value = 2.0 * std::atan2(q.z(), q.w());
+  const double den = q.w() * q.w() + q.z() * q.z();
+  Vec3d n2 = Vec3d::UnitZ();
+  if (den > 1e-12)
+    n2 = Vec3d(q.w() * q.y() + q.x() * q.z(), q.y() * q.z() - q.w() * q.x(), den) / den;
+  const Vec3d n = a.R2 * n2;
+  c.J1 = linearAngular(Vec3d::Zero(), n);
+  c.J2 = linearAngular(Vec3d::Zero(), -n);
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
+}
+
+}  // namespace detail
+
+/// Keeps the twist of a ball joint (detail::twistCoordinate, rad) within
+/// [lower, upper] like a contact at each end (seed 001 §12.4.2): a one-sided
+/// row pushing only inward, added when the twist is beyond a limit or would
+/// reach it within two steps; lower == upper locks the twist. The range lies
+/// in [−π, π]; by default none is set and the controller does nothing even
+/// when enabled. Meant to be used with the ConeLimit, which keeps z₁ away
+/// from −z₂ where the twist is undefined. Disabled by default.
+template <Scalar S>
+class TwistRangeControllerT : public SecondaryConstraintT<S> {
+ public:
+  TwistRangeControllerT() : SecondaryConstraintT<S>("TwistRangeController") {}
+
+  [[nodiscard]] RangeT<S> getRange() const { return range_; }
+  /// Twist limits (rad), −π ≤ lower ≤ upper ≤ π.
+  void setRange(S lower, S upper) {
+    const S pi = std::numbers::pi_v<S>;
+    if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= upper && lower >= -pi && upper <= pi))
+      throw label_.error(this->kind_, "range must have -pi <= lower <= upper <= pi (rad)",
+                         Eigen::Matrix<S, 2, 1>(lower, upper));
+    range_ = {lower, upper};
+  }
+  void setRange(RangeT<S> range) { setRange(range.lower, range.upper); }
+
+  /// The twist (rad) in the last step it was enabled.
+  [[nodiscard]] S getAngle() const { return S(twist_); }
+
+  // Called by the joint each step.
+  void addRows(detail::RowSink& sink, const detail::Attachments& a, double h) {
+    if (!this->enable_) return;
+    const detail::Coordinate c = detail::twistCoordinate(a);
+    twist_ = c.value;
+    const double lower = double(range_.lower), upper = double(range_.upper);
+    const double reach = 2.0 * h * std::abs(c.speed);
+    const bool atLower = c.value - lower <= reach;
+    const bool atUpper = upper - c.value <= reach;
+    if (!atLower && !atUpper) return;
+    detail::Row& row = this->addRow(sink, c);
+    const bool lowerSide = atLower && (!atUpper || c.value - lower <= upper - c.value);
+    row.violation = c.value - (lowerSide ? lower : upper);
+    if (lower == upper) return;  // a lock
+    if (lowerSide) {
+      row.lower = std::max(row.lower, 0.0);
+      row.upper = std::max(row.upper, 0.0);
+    } else {
+      row.lower = std::min(row.lower, 0.0);
+      row.upper = std::min(row.upper, 0.0);
+    }
+  }
+  /// The joint this controller belongs to (for error messages).
+  void setJoint(const ConstraintT<S>* joint) { label_.set(joint); }
+
+ protected:
+  ~TwistRangeControllerT() override = default;
+
+ private:
+  RangeT<S> range_;
+  double twist_ = 0.0;
+  detail::JointLabel<S> label_;
+};
+
+using TwistRangeController = TwistRangeControllerT<double>;
+using TwistRangeControllerRef = ref_ptr<TwistRangeController>;
+namespace f32 {
+using TwistRangeController = TwistRangeControllerT<float>;
+using TwistRangeControllerRef = ref_ptr<TwistRangeController>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/constraints/secondary/twist_range.hpp ---
+
+namespace spook {
+
+/// The frame origins held together, rotation free: one Spherical (seed 001
+/// §12.4). Frame 2 is the base of its secondary constraints: a ConeLimit on
+/// frame 1's z axis, a TwistRangeController on the twist about it, and a
+/// rotational FrictionController about each axis U, V, N (x, y, z of frame
+/// 2). All disabled by default.
 template <Scalar S>
 class BallJointT : public ElementaryJointT<S, detail::Spherical> {
   using Base = ElementaryJointT<S, detail::Spherical>;
@@ -7591,11 +8029,82 @@ class BallJointT : public ElementaryJointT<S, detail::Spherical> {
   enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, TRANSLATIONAL_2, TRANSLATIONAL_3, NUM_DOF };
 
   BallJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr, FrameT<S>* frame2 = nullptr)
-      : Base("BallJoint", body1, frame1, body2, frame2) {}
+      : Base("BallJoint", body1, frame1, body2, frame2) {
+    cone_->setJoint(this);
+    twist_->setJoint(this);
+    for (auto& f : friction_) f->setJoint(this);
+  }
+
+  /// Keeps frame 1's z axis in a cone about frame 2's (seed 001 §12.4.1).
+  [[nodiscard]] ConeLimitT<S>* getConeLimit() const { return cone_.get(); }
+  /// Limits the twist of frame 1 about its z axis (seed 001 §12.4.2).
+  [[nodiscard]] TwistRangeControllerT<S>* getTwistRangeController() const { return twist_.get(); }
+
+  /// Friction on the rotation about frame 2's x (U), y (V) and z (N) axes
+  /// (seed 001 §12.4.3). Each bound is μ N (N·m; μ in m, the ball's radius
+  /// included) with N the magnitude of the ball joint's constraint force
+  /// (N) of the previous step: a ball has no axis, so the whole load presses
+  /// it into its socket.
+  [[nodiscard]] FrictionControllerT<S>* getRotationalFrictionControllerU() const { return friction_[0].get(); }
+  [[nodiscard]] FrictionControllerT<S>* getRotationalFrictionControllerV() const { return friction_[1].get(); }
+  [[nodiscard]] FrictionControllerT<S>* getRotationalFrictionControllerN() const { return friction_[2].get(); }
+  /// U, V and N in that order.
+  [[nodiscard]] std::vector<ref_ptr<FrictionControllerT<S>>> getRotationalFrictionControllers() const {
+    return {friction_.begin(), friction_.end()};
+  }
+  /// Enables or disables the three rotational friction controllers.
+  void setEnableRotationalFriction(bool enable) {
+    for (auto& f : friction_) f->setEnable(enable);
+  }
+  /// μ (m, radius included, ≥ 0) of the three; on bad input none changes.
+  void setRotationalFrictionCoefficient(S mu) {
+    friction_[0]->setFrictionCoefficient(mu);  // throws before anything changed
+    for (auto& f : friction_) f->setFrictionCoefficient(mu);
+  }
+
+  /// Angle between frame 1's z axis and frame 2's (rad, 0..π).
+  [[nodiscard]] S getSwingAngle() const { return S(detail::coneState(this->attachments(), 1.0, 1.0).tilt); }
+  /// Twist of frame 1 about its z axis relative to frame 2's (rad, −π..π).
+  [[nodiscard]] S getTwistAngle() const { return S(detail::twistCoordinate(this->attachments()).value); }
 
  protected:
   ~BallJointT() override = default;
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double) override { this->addElementaryRows(a, sink); }
+
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    const std::size_t first = sink.rows->size();
+    this->addElementaryRows(a, sink);
+    load_.record(sink, first, a.R2.col(2));
+    cone_->beginStep();
+    cone_->addRows(sink, a, h);
+    twist_->beginStep();
+    twist_->addRows(sink, a, h);
+    for (int k = 0; k < 3; ++k) {
+      detail::Coordinate c;
+      c.rotational = true;
+      c.J1 = detail::linearAngular(detail::Vec3d::Zero(), a.R2.col(k));
+      c.J2 = -c.J1;
+      c.speed = a.speed(c.J1, c.J2);
+      FrictionControllerT<S>& f = *friction_[static_cast<std::size_t>(k)];
+      f.beginStep();
+      f.addRows(sink, c);
+    }
+  }
+  void afterSolve(double h) override {
+    cone_->endStep(h);
+    twist_->endStep(h);
+    const double normal = load_.normal(load_.force(h), false);
+    for (auto& f : friction_) {
+      f->endStep(h);
+      f->setStepNormalForce(normal);
+    }
+  }
+
+ private:
+  ref_ptr<ConeLimitT<S>> cone_ = new ConeLimitT<S>();
+  ref_ptr<TwistRangeControllerT<S>> twist_ = new TwistRangeControllerT<S>();
+  std::array<ref_ptr<FrictionControllerT<S>>, 3> friction_{new FrictionControllerT<S>(), new FrictionControllerT<S>(),
+                                                           new FrictionControllerT<S>()};
+  detail::JointLoad load_;  // the normal force for the friction controllers
 };
 
 using BallJoint = BallJointT<double>;
@@ -7781,6 +8290,39 @@ using DistanceJointRef = ref_ptr<DistanceJoint>;
 
 }  // namespace spook
 // --- end spook/constraints/joints/distance_joint.hpp ---
+// --- begin spook/constraints/joints/dot1_joint.hpp ---
+
+namespace spook {
+
+/// Keeps the x axis of frame 1 perpendicular to the y axis of frame 2: a
+/// single Dot1 row (seed 001 table 12.3), relaxed when the frames coincide.
+/// Removes one rotational DOF; translation and the other two rotations are
+/// free. It is the rotational row of a UniversalJoint (a UniversalJoint is a
+/// BallJoint plus a Dot1Joint at the same frames).
+template <Scalar S>
+class Dot1JointT : public ElementaryJointT<S, detail::Dot1<0, 1>> {
+  using Base = ElementaryJointT<S, detail::Dot1<0, 1>>;
+
+ public:
+  enum DOF { ALL_DOF = -1, ROTATIONAL_1 = 0, NUM_DOF };
+
+  Dot1JointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr, FrameT<S>* frame2 = nullptr)
+      : Base("Dot1Joint", body1, frame1, body2, frame2) {}
+
+ protected:
+  ~Dot1JointT() override = default;
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double) override { this->addElementaryRows(a, sink); }
+};
+
+using Dot1Joint = Dot1JointT<double>;
+using Dot1JointRef = ref_ptr<Dot1Joint>;
+namespace f32 {
+using Dot1Joint = Dot1JointT<float>;
+using Dot1JointRef = ref_ptr<Dot1Joint>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/constraints/joints/dot1_joint.hpp ---
 // --- begin spook/constraints/joints/hinge.hpp ---
 
 namespace spook {
@@ -7896,6 +8438,579 @@ using PrismaticRef = ref_ptr<Prismatic>;
 
 }  // namespace spook
 // --- end spook/constraints/joints/prismatic.hpp ---
+// --- begin spook/constraints/joints/slack_joints.hpp ---
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <type_traits>
+
+// --- begin spook/constraints/rows/slack.hpp ---
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace spook::detail {
+
+// Rows of the slack joints (seed 001 §12, "constraints with slack"). Each
+// constrained DOF of a slack joint is a coordinate x (m or rad) that is zero
+// in the relaxed configuration, with a slack interval [lower, upper] inside
+// which it moves freely. Its row type writes the bilateral row g = x (the
+// rigid version of that DOF, which is what a zero interval gives);
+// SlackInterval::restrict then makes it one-sided at the nearer end, like a
+// Range1D that is always engaged.
+//
+// Translational DOFs are the separation along the axes of frame 2, which is
+// exactly what Dot2<K> writes (g = (p₁ − p₂)·n_K). Rotational DOFs need
+// angles in radians rather than the Dot1/QuatLock sines, so that a slack of
+// 0.05 rad means 0.05 rad: TiltAngle and RotationAngle below.
+
+/// Tilt of frame 1's z axis about axis K (0: x, 1: y) of frame 2 (rad): the
+/// angle of z₁ projected on the plane normal to that axis, measured from z₂.
+/// Independent of the twist about z, so it suits joints whose rotation about
+/// z is free (hinge, cylindrical). K = 0: atan2(−z₁·y₂, z₁·z₂);
+/// K = 1: atan2(z₁·x₂, z₁·z₂). With s and c those two dot products,
+/// ṡ = ±(ω₁ − ω₂)·(z₁ × m), ċ = (ω₁ − ω₂)·(z₁ × z₂), and
+/// d(angle)/dt = (c ṡ − s ċ)/(s² + c²).
+template <int K>
+struct TiltAngle {
+  static_assert(K == 0 || K == 1, "TiltAngle is about x (0) or y (1) of frame 2");
+  static constexpr int kRows = 1;
+
+  static Coordinate coordinate(const Attachments& a) {
+    const Vec3d z1 = a.R1.col(2), z2 = a.R2.col(2);
+    const Vec3d m = K == 0 ? Vec3d(a.R2.col(1)) : Vec3d(a.R2.col(0));
+    const double sign = K == 0 ? -1.0 : 1.0;
+    const double s = sign * z1.dot(m), c = z1.dot(z2);
+    const double r2 = std::max(s * s + c * c, 1e-300);
+    const Vec3d j = (c * sign * z1.cross(m) - s * z1.cross(z2)) / r2;
+    Coordinate out;
+    out.rotational = true;
+    out.value = std::atan2(s, c);
+    out.J1 = linearAngular(Vec3d::Zero(), j);
+    out.J2 = linearAngular(Vec3d::Zero(), -j);
+    out.speed = a.speed(out.J1, out.J2);
+    return out;
+  }
+  static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
+                      const ElementaryOptions&) {
+    const Coordinate c = coordinate(a);
+    holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
+  }
+};
+
+/// Rotation of frame 1 about axis K of frame 2 (rad), 2·atan2(v_K, w) with
+/// (w, v) = q₂* q₁ (w ≥ 0): exact for a rotation about that axis alone, and
+/// the three together vanish only at the relaxed orientation. With
+/// Ω = R₂ᵀ(ω₁ − ω₂), v̇ = ½(wΩ + Ω × v) and ẇ = −½ Ω·v, so
+/// d(angle)/dt = Ω·(w² e_K + w v × e_K + v_K v)/(w² + v_K²).
+template <int K>
+struct RotationAngle {
+  static_assert(K >= 0 && K <= 2, "RotationAngle is about x, y or z (0, 1, 2) of frame 2");
+  static constexpr int kRows = 1;
+
+  static Coordinate coordinate(const Attachments& a) {
+    const Quatd q = relativeRotation(a);
+    const Vec3d v = q.vec(), e = Vec3d::Unit(K);
+    const double w = q.w(), vk = v[K];
+    const double r2 = std::max(w * w + vk * vk, 1e-300);
+    const Vec3d j = a.R2 * ((w * w * e + w * v.cross(e) + vk * v) / r2);
+    Coordinate out;
+    out.rotational = true;
+    out.value = 2.0 * std::atan2(vk, w);
+    out.J1 = linearAngular(Vec3d::Zero(), j);
+    out.J2 = linearAngular(Vec3d::Zero(), -j);
+    out.speed = a.speed(out.J1, out.J2);
+    return out;
+  }
+  static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
+                      const ElementaryOptions&) {
+    const Coordinate c = coordinate(a);
+    holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
+  }
+};
+
+/// Whether a slack row is an angle (rad) or a separation (m): what
+/// setSlackParameters(positional, rotational) applies to.
+template <class Row>
+inline constexpr bool kRotationalSlackRow = false;
+template <int K>
+inline constexpr bool kRotationalSlackRow<TiltAngle<K>> = true;
+template <int K>
+inline constexpr bool kRotationalSlackRow<RotationAngle<K>> = true;
+
+/// The slack of one DOF: the coordinate moves freely in [lower, upper]
+/// (m or rad).
+struct SlackInterval {
+  double lower = 0.0, upper = 0.0;
+
+  /// Turns the bilateral row g = x of a slack row type into this step's
+  /// row. A zero-width interval keeps it bilateral (g = x − lower). Otherwise
+  /// it becomes a one-sided row at the nearer end, pushing inward only, with
+  /// g = x − end: SPOOK's −a g on the right-hand side lets x approach that end
+  /// freely and brakes it only in the last ~2 steps before it (at
+  /// |ẋ| ≳ a·(distance), a = 4/(h(1+4τ/h))), as Range1D's look-ahead does,
+  /// so the row carries no force while the DOF is inside its slack. It stays
+  /// in the system throughout: a look-ahead on the DOF's own speed misses
+  /// the kicks that other rows' impacts give it within one step (measured:
+  /// 3–6 mm past a 1 cm slack in a swinging chain).
+  void restrict(Row& row) const {
+    const double x = row.violation;
+    if (lower == upper) {
+      row.violation = x - lower;
+      return;
+    }
+    const bool lowerSide = x - lower <= upper - x;
+    row.violation = x - (lowerSide ? lower : upper);
+    if (lowerSide)
+      row.lower = 0.0;  // may only push x up
+    else
+      row.upper = 0.0;  // may only push x down
+  }
+
+  /// For post-stabilization, which projects equalities only: a zero-width
+  /// interval keeps its row (g = x − lower); any other is left to the solve.
+  bool restrictProjection(Row& row) const {
+    if (lower != upper) return false;
+    row.violation -= lower;
+    return true;
+  }
+};
+
+}  // namespace spook::detail
+// --- end spook/constraints/rows/slack.hpp ---
+
+namespace spook {
+
+/// A joint whose constrained DOFs have slack (seed 001 §12, table 12.2): each
+/// moves freely within an interval [lower, upper] (m or rad) and stops at its
+/// ends like a contact, which models a gap in a real joint (a tool with a few
+/// millimeters of play) without collision geometry. Default slack 0: the
+/// joint is then its rigid counterpart. Each DOF keeps one row, as in the
+/// rigid joint (not two, as AGX's slack joints): one-sided at the nearer end,
+/// carrying force only at that end or in the step or two before reaching it.
+///
+/// Translational DOFs are the separation of the frame origins along the axes
+/// of frame 2 (m); rotational DOFs are angles about the axes of frame 2 (rad),
+/// see rows/slack.hpp. `Rigid<S, Rows...>` is the rigid joint machinery
+/// (ElementaryJointT, or a Constraint1DOFT / Constraint2DOFT with the free
+/// DOFs) over the slack rows `Rows`, which write bilateral rows; this class
+/// bounds them.
+template <Scalar S, template <Scalar, class...> class Rigid, class... Rows>
+class SlackJointT : public Rigid<S, Rows...> {
+  using Base = Rigid<S, Rows...>;
+  static constexpr std::size_t kNum = sizeof...(Rows);
+
+ public:
+  /// The same slack on every DOF, symmetric about the relaxed configuration:
+  /// [−positional, positional] (m) on the translational DOFs and
+  /// [−rotational, rotational] (rad) on the rotational ones (as AGX, one
+  /// value for all rotational DOFs). Both finite and ≥ 0.
+  void setSlackParameters(S positional, S rotational) {
+    if (!(std::isfinite(positional) && positional >= S(0) && std::isfinite(rotational) && rotational >= S(0)))
+      throw this->error("slack must be finite and >= 0 (positional m, rotational rad)",
+                        Eigen::Matrix<S, 2, 1>(positional, rotational));
+    for (std::size_t i = 0; i < kNum; ++i) {
+      const S s = kRotational[i] ? rotational : positional;
+      slack_[i] = {-s, s};
+    }
+  }
+  /// The slack interval of one DOF of the joint's DOF enum (m or rad), or of
+  /// every DOF with ALL_DOF; finite, lower ≤ upper (it need not contain 0:
+  /// an interval beside the relaxed configuration pushes the DOF into it).
+  void setSlack(int dof, S lower, S upper) {
+    checkDof(dof, true);
+    if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= upper))
+      throw this->error("slack must have finite lower <= upper (m or rad)", Eigen::Matrix<S, 2, 1>(lower, upper));
+    if (dof == Base::ALL_DOF)
+      slack_.fill({lower, upper});
+    else
+      slack_[static_cast<std::size_t>(dof)] = {lower, upper};
+  }
+  void setSlack(int dof, RangeT<S> slack) { setSlack(dof, slack.lower, slack.upper); }
+  /// The slack interval of one DOF (m or rad).
+  [[nodiscard]] RangeT<S> getSlack(int dof) const {
+    checkDof(dof, false);
+    return slack_[static_cast<std::size_t>(dof)];
+  }
+  /// The force (N) or torque (N·m) the slack row of that DOF applied in the
+  /// last step: zero while the DOF is inside its slack, the load at its end.
+  [[nodiscard]] S getSlackForce(int dof) const {
+    checkDof(dof, false);
+    return force_[static_cast<std::size_t>(dof)];
+  }
+
+ protected:
+  using typename ConstraintT<S>::Body;
+  using typename ConstraintT<S>::Frame;
+  SlackJointT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
+      : Base(kind, body1, frame1, body2, frame2) {
+    static_assert(kNum == std::size_t(Base::kNumRows), "one slack interval per row");
+  }
+  ~SlackJointT() override = default;
+
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    const std::size_t first = sink.rows->size();
+    // ElementaryJointT leaves addRows to the joint; the DOF joints write the
+    // elementary rows first, then their controllers' rows.
+    if constexpr (std::is_abstract_v<Base>)
+      this->addElementaryRows(a, sink);
+    else
+      Base::addRows(a, sink, h);
+    for (std::size_t i = 0; i < kNum; ++i) {
+      detail::Row& row = (*sink.rows)[first + i];
+      interval(i).restrict(row);
+      impulses_[i] = row.impulse;
+    }
+  }
+  void afterSolve(double h) override {
+    Base::afterSolve(h);
+    for (std::size_t i = 0; i < kNum; ++i) force_[i] = impulses_[i] ? S(*impulses_[i] / h) : S(0);
+  }
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
+    const std::size_t first = sink.rows->size();
+    Base::addProjectionRows(a, sink);
+    keepRows(*sink.rows, first, [&](detail::Row& row, std::size_t i) { return interval(i).restrictProjection(row); });
+  }
+
+ private:
+  static constexpr std::array<bool, kNum> kRotational{detail::kRotationalSlackRow<Rows>...};
+
+  [[nodiscard]] detail::SlackInterval interval(std::size_t i) const {
+    return {double(slack_[i].lower), double(slack_[i].upper)};
+  }
+  // The slack rows are the first kNum rows written since `first`; `keep`
+  // adjusts each and says whether it stays. Rows after them are kept as they are.
+  template <class Keep>
+  static void keepRows(std::vector<detail::Row>& rows, std::size_t first, Keep&& keep) {
+    std::size_t out = first;
+    for (std::size_t i = first; i < rows.size(); ++i) {
+      if (i < first + kNum && !keep(rows[i], i - first)) continue;
+      if (out != i) rows[out] = rows[i];
+      ++out;
+    }
+    rows.resize(out);
+  }
+  void checkDof(int dof, bool allowAll) const {
+    if (!((allowAll && dof == Base::ALL_DOF) || (dof >= 0 && dof < int(kNum))))
+      throw this->error("DOF index out of range 0.." + std::to_string(kNum - 1), dof);
+  }
+
+  std::array<RangeT<S>, kNum> slack_ = [] {
+    std::array<RangeT<S>, kNum> zero{};
+    zero.fill({S(0), S(0)});
+    return zero;
+  }();
+  std::array<double*, kNum> impulses_{};
+  std::array<S, kNum> force_{};
+};
+
+namespace detail {
+// The rigid joint machinery each slack joint bounds: its free DOFs and their controllers.
+template <Scalar S, class... Rows>
+using RotationalDofOver = Constraint1DOFT<S, RotationalZ, Rows...>;
+template <Scalar S, class... Rows>
+using TranslationalDofOver = Constraint1DOFT<S, TranslationalZ, Rows...>;
+template <Scalar S, class... Rows>
+using CylindricalDofsOver = Constraint2DOFT<S, TranslationalZ, RotationalZ, Rows...>;
+}  // namespace detail
+
+/// A Hinge with slack (seed 001 table 12.2): rotation about z of the frames
+/// free, with its Motor1D, Lock1D and Range1D; the three translations (along
+/// x, y, z of frame 2, m) and the two tilts of z₁ about x₂ and y₂ (rad)
+/// constrained within their slack.
+template <Scalar S>
+class SlackHingeJointT : public SlackJointT<S, detail::RotationalDofOver, detail::Dot2<0>, detail::Dot2<1>,
+                                            detail::Dot2<2>, detail::TiltAngle<0>, detail::TiltAngle<1>> {
+  using Base = SlackJointT<S, detail::RotationalDofOver, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>,
+                           detail::TiltAngle<0>, detail::TiltAngle<1>>;
+
+ public:
+  enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, TRANSLATIONAL_2, TRANSLATIONAL_3, ROTATIONAL_1, ROTATIONAL_2, NUM_DOF };
+
+  SlackHingeJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr,
+                   FrameT<S>* frame2 = nullptr)
+      : Base("SlackHingeJoint", body1, frame1, body2, frame2) {}
+
+ protected:
+  ~SlackHingeJointT() override = default;
+};
+
+/// A Prismatic with slack: translation along z free, with its Motor1D, Lock1D
+/// and Range1D; the two translations across z (along x₂, y₂, m) and the three
+/// rotations about x₂, y₂, z₂ (rad) constrained within their slack.
+template <Scalar S>
+class SlackPrismaticJointT
+    : public SlackJointT<S, detail::TranslationalDofOver, detail::Dot2<0>, detail::Dot2<1>, detail::RotationAngle<0>,
+                         detail::RotationAngle<1>, detail::RotationAngle<2>> {
+  using Base = SlackJointT<S, detail::TranslationalDofOver, detail::Dot2<0>, detail::Dot2<1>,
+                           detail::RotationAngle<0>, detail::RotationAngle<1>, detail::RotationAngle<2>>;
+
+ public:
+  enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, TRANSLATIONAL_2, ROTATIONAL_1, ROTATIONAL_2, ROTATIONAL_3, NUM_DOF };
+
+  SlackPrismaticJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr,
+                       FrameT<S>* frame2 = nullptr)
+      : Base("SlackPrismaticJoint", body1, frame1, body2, frame2) {}
+
+ protected:
+  ~SlackPrismaticJointT() override = default;
+};
+
+/// A LockJoint with slack: all six DOFs (translations along and rotations
+/// about the axes of frame 2) move freely within their slack.
+template <Scalar S>
+class SlackLockJointT
+    : public SlackJointT<S, ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>,
+                         detail::RotationAngle<0>, detail::RotationAngle<1>, detail::RotationAngle<2>> {
+  using Base = SlackJointT<S, ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>,
+                           detail::RotationAngle<0>, detail::RotationAngle<1>, detail::RotationAngle<2>>;
+
+ public:
+  enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, TRANSLATIONAL_2, TRANSLATIONAL_3, ROTATIONAL_1, ROTATIONAL_2, ROTATIONAL_3, NUM_DOF };
+
+  explicit SlackLockJointT(RigidBodyT<S>* body1, FrameT<S>* frame1 = nullptr, RigidBodyT<S>* body2 = nullptr,
+                           FrameT<S>* frame2 = nullptr)
+      : Base("SlackLockJoint", body1, frame1, body2, frame2) {}
+
+ protected:
+  ~SlackLockJointT() override = default;
+};
+
+/// A CylindricalJoint with slack: translation along and rotation about z free
+/// (FIRST, SECOND) with their controllers and the Screw1D coupling; the two
+/// translations across z (m) and the two tilts of z₁ about x₂, y₂ (rad)
+/// constrained within their slack.
+template <Scalar S>
+class SlackCylindricalJointT : public SlackJointT<S, detail::CylindricalDofsOver, detail::Dot2<0>, detail::Dot2<1>,
+                                                  detail::TiltAngle<0>, detail::TiltAngle<1>> {
+  using Base = SlackJointT<S, detail::CylindricalDofsOver, detail::Dot2<0>, detail::Dot2<1>, detail::TiltAngle<0>,
+                           detail::TiltAngle<1>>;
+
+ public:
+  enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, TRANSLATIONAL_2, ROTATIONAL_1, ROTATIONAL_2, NUM_DOF };
+
+  SlackCylindricalJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr,
+                         FrameT<S>* frame2 = nullptr)
+      : Base("SlackCylindricalJoint", body1, frame1, body2, frame2) {}
+
+  [[nodiscard]] Screw1DT<S>* getScrew1D() const { return screw_.get(); }
+  /// The screw's lead (m per revolution).
+  void setLead(S lead) { screw_->setLead(lead); }
+
+ protected:
+  ~SlackCylindricalJointT() override = default;
+  void addCouplingRows(const detail::Coordinate& translation, const detail::Coordinate& angle,
+                       detail::RowSink& sink) override {
+    screw_->beginStep();
+    screw_->addRows(sink, translation, angle);
+  }
+  void afterCoupling(double h) override { screw_->endStep(h); }
+
+ private:
+  ref_ptr<Screw1DT<S>> screw_ = new Screw1DT<S>();
+};
+
+using SlackHingeJoint = SlackHingeJointT<double>;
+using SlackHingeJointRef = ref_ptr<SlackHingeJoint>;
+using SlackPrismaticJoint = SlackPrismaticJointT<double>;
+using SlackPrismaticJointRef = ref_ptr<SlackPrismaticJoint>;
+using SlackLockJoint = SlackLockJointT<double>;
+using SlackLockJointRef = ref_ptr<SlackLockJoint>;
+using SlackCylindricalJoint = SlackCylindricalJointT<double>;
+using SlackCylindricalJointRef = ref_ptr<SlackCylindricalJoint>;
+namespace f32 {
+using SlackHingeJoint = SlackHingeJointT<float>;
+using SlackHingeJointRef = ref_ptr<SlackHingeJoint>;
+using SlackPrismaticJoint = SlackPrismaticJointT<float>;
+using SlackPrismaticJointRef = ref_ptr<SlackPrismaticJoint>;
+using SlackLockJoint = SlackLockJointT<float>;
+using SlackLockJointRef = ref_ptr<SlackLockJoint>;
+using SlackCylindricalJoint = SlackCylindricalJointT<float>;
+using SlackCylindricalJointRef = ref_ptr<SlackCylindricalJoint>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/constraints/joints/slack_joints.hpp ---
+// --- begin spook/constraints/joints/universal_joint.hpp ---
+
+#include <cmath>
+
+namespace spook {
+
+namespace detail {
+
+// The two free rotations of a universal (Cardan) joint. The shafts are the z
+// axes of the frames; the cross (spider) has one arm along x₁, fixed in
+// frame 1, and one along y₂, fixed in frame 2, kept perpendicular by the
+// Dot1 row x₁·y₂ = 0. Every relative orientation that satisfies it is
+//   R₂ᵀ R₁ = R_y(b) R_x(a),
+// the spider turned by b about y₂ and frame 1 turned by a about the spider's
+// x arm x₁. On that manifold ω₁ − ω₂ = ȧ x₁ + ḃ y₂ with x₁ ⊥ y₂, so
+// ȧ = x₁·(ω₁ − ω₂) and ḃ = y₂·(ω₁ − ω₂). With Q = R₂ᵀR₁:
+// Q e_x = (cos b, 0, −sin b) and Q e_z = (cos a sin b, −sin a, cos a cos b).
+
+/// a: frame 1 about the arm x₁ (rad).
+struct UniversalArm1 {
+  static Coordinate measure(const Attachments& a) {
+    const Mat3d Q = a.R2.transpose() * a.R1;
+    const Vec3d x1 = a.R1.col(0);
+    Coordinate c;
+    c.rotational = true;
+    c.value = std::atan2(-Q(1, 2), Q(1, 1));
+    c.J1 = linearAngular(Vec3d::Zero(), x1);
+    c.J2 = linearAngular(Vec3d::Zero(), -x1);
+    c.speed = a.speed(c.J1, c.J2);
+    return c;
+  }
+};
+
+/// b: the spider about the arm y₂ (rad).
+struct UniversalArm2 {
+  static Coordinate measure(const Attachments& a) {
+    const Mat3d Q = a.R2.transpose() * a.R1;
+    const Vec3d y2 = a.R2.col(1);
+    Coordinate c;
+    c.rotational = true;
+    c.value = std::atan2(-Q(2, 0), Q(0, 0));
+    c.J1 = linearAngular(Vec3d::Zero(), y2);
+    c.J2 = linearAngular(Vec3d::Zero(), -y2);
+    c.speed = a.speed(c.J1, c.J2);
+    return c;
+  }
+};
+
+}  // namespace detail
+
+/// A universal (Cardan) joint (seed 001 §12.5): the frame origins held
+/// together (Spherical) and the cross arms x₁ and y₂ kept perpendicular
+/// (one Dot1), so twist about the shafts (the z axes) is transmitted while the
+/// shafts may bend. The two free rotations, about x₁ and about y₂
+/// (ROTATIONAL_CONTROLLER_1 and _2, also FIRST and SECOND), each have a
+/// Motor1D, Lock1D and Range1D; getAngle(index) gives them in rad (with
+/// winding), zero when the frames coincide. Create it with frames whose z
+/// axes run along the shafts and whose x₁ and y₂ are perpendicular.
+template <Scalar S>
+class UniversalJointT : public Constraint2DOFT<S, detail::UniversalArm1, detail::UniversalArm2, detail::Spherical,
+                                               detail::Dot1<0, 1>> {
+  using Base =
+      Constraint2DOFT<S, detail::UniversalArm1, detail::UniversalArm2, detail::Spherical, detail::Dot1<0, 1>>;
+
+ public:
+  enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, TRANSLATIONAL_2, TRANSLATIONAL_3, ROTATIONAL_1, NUM_DOF };
+  /// The free rotations, for getMotor1D, getLock1D, getRange1D, getAngle.
+  enum CONTROLLER { ROTATIONAL_CONTROLLER_1 = 0, ROTATIONAL_CONTROLLER_2 = 1 };
+
+  UniversalJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr,
+                  FrameT<S>* frame2 = nullptr)
+      : Base("UniversalJoint", body1, frame1, body2, frame2) {}
+
+ protected:
+  ~UniversalJointT() override = default;
+};
+
+/// A universal joint whose center slides along the z axis of frame 2 (seed
+/// 001 §12.6): two Dot2 rows keep frame 1's origin on that axis and a Dot1
+/// keeps the cross arms x₁ ⊥ y₂ — a telescopic drive shaft. Three free DOFs,
+/// each with a Motor1D, Lock1D and Range1D: ROTATIONAL_CONTROLLER_1 and _2 as
+/// in UniversalJoint (rad), TRANSLATIONAL_CONTROLLER_1 the position of frame
+/// 1's origin along z₂ (m).
+template <Scalar S>
+class PrismaticUniversalJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>, detail::Dot1<0, 1>> {
+  using Base = ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>, detail::Dot1<0, 1>>;
+
+ public:
+  enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, TRANSLATIONAL_2, ROTATIONAL_1, NUM_DOF };
+  enum CONTROLLER { ROTATIONAL_CONTROLLER_1 = 0, ROTATIONAL_CONTROLLER_2 = 1, TRANSLATIONAL_CONTROLLER_1 = 2 };
+
+  PrismaticUniversalJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr,
+                           FrameT<S>* frame2 = nullptr)
+      : Base("PrismaticUniversalJoint", body1, frame1, body2, frame2) {
+    restart();
+  }
+
+  [[nodiscard]] Motor1DT<S>* getMotor1D(int index) const {
+    return visit(index, [](const auto& dof) { return dof.motor(); });
+  }
+  [[nodiscard]] Lock1DT<S>* getLock1D(int index) const {
+    return visit(index, [](const auto& dof) { return dof.lock(); });
+  }
+  [[nodiscard]] Range1DT<S>* getRange1D(int index) const {
+    return visit(index, [](const auto& dof) { return dof.range(); });
+  }
+  /// The free DOF's current value: rad (with winding) or m.
+  [[nodiscard]] S getAngle(int index) const {
+    const auto a = this->attachments();
+    return visit(index, [&](const auto& dof) { return S(dof.measure(a).value); });
+  }
+  /// Its rate (rad/s or m/s).
+  [[nodiscard]] S getCurrentSpeed(int index) const {
+    const auto a = this->attachments();
+    return visit(index, [&](const auto& dof) { return S(dof.measure(a).speed); });
+  }
+
+ protected:
+  ~PrismaticUniversalJointT() override = default;
+
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    this->addElementaryRows(a, sink);
+    arm1_.addRows(a, sink, h);
+    arm2_.addRows(a, sink, h);
+    slide_.addRows(a, sink, h);
+  }
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
+    this->addElementaryRows(a, sink);
+    arm1_.addProjectionRows(a, sink);
+    arm2_.addProjectionRows(a, sink);
+    slide_.addProjectionRows(a, sink);
+  }
+  void afterSolve(double h) override {
+    arm1_.afterSolve(h);
+    arm2_.afterSolve(h);
+    slide_.afterSolve(h);
+  }
+  void onRebind() override { restart(); }
+
+ private:
+  template <class F>
+  auto visit(int index, F&& f) const {
+    switch (index) {
+      case ROTATIONAL_CONTROLLER_1: return f(arm1_);
+      case ROTATIONAL_CONTROLLER_2: return f(arm2_);
+      case TRANSLATIONAL_CONTROLLER_1: return f(slide_);
+      default:
+        throw this->error("controller index must be ROTATIONAL_CONTROLLER_1 (0), ROTATIONAL_CONTROLLER_2 (1) or "
+                          "TRANSLATIONAL_CONTROLLER_1 (2)",
+                          index);
+    }
+  }
+  void restart() {
+    const auto a = this->attachments();
+    arm1_.restart(a);
+    arm2_.restart(a);
+    slide_.restart(a);
+  }
+
+  FreeDofT<S, detail::UniversalArm1> arm1_;
+  FreeDofT<S, detail::UniversalArm2> arm2_;
+  FreeDofT<S, detail::TranslationalZ> slide_;
+};
+
+using UniversalJoint = UniversalJointT<double>;
+using UniversalJointRef = ref_ptr<UniversalJoint>;
+using PrismaticUniversalJoint = PrismaticUniversalJointT<double>;
+using PrismaticUniversalJointRef = ref_ptr<PrismaticUniversalJoint>;
+namespace f32 {
+using UniversalJoint = UniversalJointT<float>;
+using UniversalJointRef = ref_ptr<UniversalJoint>;
+using PrismaticUniversalJoint = PrismaticUniversalJointT<float>;
+using PrismaticUniversalJointRef = ref_ptr<PrismaticUniversalJoint>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/constraints/joints/universal_joint.hpp ---
 // --- begin spook/dynamics/gravity_field.hpp ---
 
 namespace spook {

@@ -6,6 +6,7 @@
 #include <spook/constraints/constraint.hpp>
 #include <spook/constraints/rows/elementary.hpp>
 #include <spook/constraints/regularization.hpp>
+#include <spook/constraints/secondary/friction_controller.hpp>
 #include <spook/constraints/secondary/lock_1d.hpp>
 #include <spook/constraints/secondary/motor_1d.hpp>
 #include <spook/constraints/secondary/range_1d.hpp>
@@ -90,13 +91,15 @@ class ElementaryJointT : public ConstraintT<S> {
 };
 
 /// One free DOF of a joint, measured by `Free::measure` (an angle with
-/// winding or a position), with the Motor1D, Lock1D and Range1D acting on it.
+/// winding or a position), with the Motor1D, Lock1D, Range1D and
+/// FrictionController acting on it.
 template <Scalar S, class Free>
 class FreeDofT {
  public:
   [[nodiscard]] Motor1DT<S>* motor() const { return motor_.get(); }
   [[nodiscard]] Lock1DT<S>* lock() const { return lock_.get(); }
   [[nodiscard]] Range1DT<S>* range() const { return range_.get(); }
+  [[nodiscard]] FrictionControllerT<S>* friction() const { return friction_.get(); }
 
   /// The coordinate now (winding applied, not recorded).
   [[nodiscard]] detail::Coordinate measure(const detail::Attachments& a) const {
@@ -112,9 +115,11 @@ class FreeDofT {
     motor_->beginStep();
     lock_->beginStep();
     range_->beginStep();
+    friction_->beginStep();
     motor_->addRows(sink, c);
     lock_->addRows(sink, c);
     range_->addRows(sink, c, h);
+    friction_->addRows(sink, c);
     return c;
   }
   void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) { lock_->addProjectionRow(sink, measure(a)); }
@@ -122,6 +127,7 @@ class FreeDofT {
     motor_->endStep(h);
     lock_->endStep(h);
     range_->endStep(h);
+    friction_->endStep(h);
   }
   /// Restarts the winding at the current value.
   void restart(const detail::Attachments& a) {
@@ -133,16 +139,20 @@ class FreeDofT {
   ref_ptr<Motor1DT<S>> motor_ = new Motor1DT<S>();
   ref_ptr<Lock1DT<S>> lock_ = new Lock1DT<S>();
   ref_ptr<Range1DT<S>> range_ = new Range1DT<S>();
+  ref_ptr<FrictionControllerT<S>> friction_ = new FrictionControllerT<S>();
   detail::Winding winding_;
 };
 
-/// A joint with one free DOF and Motor1D, Lock1D and Range1D acting on it.
+/// A joint with one free DOF and Motor1D, Lock1D, Range1D and
+/// FrictionController acting on it.
 template <Scalar S, class Free, class... Elementary>
 class Constraint1DOFT : public ElementaryJointT<S, Elementary...> {
  public:
   [[nodiscard]] Motor1DT<S>* getMotor1D() const { return dof_.motor(); }
   [[nodiscard]] Lock1DT<S>* getLock1D() const { return dof_.lock(); }
   [[nodiscard]] Range1DT<S>* getRange1D() const { return dof_.range(); }
+  /// Internal friction of the free DOF (seed 001 §12.15.4); disabled by default.
+  [[nodiscard]] FrictionControllerT<S>* getFrictionController() const { return dof_.friction(); }
 
   /// The free DOF's current value: rad (with winding) or m.
   [[nodiscard]] S getAngle() const { return S(dof_.measure(this->attachments()).value); }
@@ -155,22 +165,29 @@ class Constraint1DOFT : public ElementaryJointT<S, Elementary...> {
   Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
       : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
     dof_.restart(this->attachments());
+    dof_.friction()->setJoint(this);
   }
   ~Constraint1DOFT() override = default;
 
   void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    const std::size_t first = sink.rows->size();
     this->addElementaryRows(a, sink);
+    load_.record(sink, first, a.R2.col(2));
     dof_.addRows(a, sink, h);
   }
   void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
     this->addElementaryRows(a, sink);
     dof_.addProjectionRows(a, sink);
   }
-  void afterSolve(double h) override { dof_.afterSolve(h); }
+  void afterSolve(double h) override {
+    dof_.afterSolve(h);
+    dof_.friction()->setStepNormalForce(load_.normal(load_.force(h)));
+  }
   void onRebind() override { dof_.restart(this->attachments()); }
 
  private:
   FreeDofT<S, Free> dof_;
+  detail::JointLoad load_;  // the normal force for the friction controller
 };
 
 /// A joint with two free DOFs (FIRST, SECOND), each with its Motor1D, Lock1D
@@ -183,6 +200,10 @@ class Constraint2DOFT : public ElementaryJointT<S, Elementary...> {
   [[nodiscard]] Motor1DT<S>* getMotor1D(int index) const { return index == FIRST ? first_.motor() : second(index).motor(); }
   [[nodiscard]] Lock1DT<S>* getLock1D(int index) const { return index == FIRST ? first_.lock() : second(index).lock(); }
   [[nodiscard]] Range1DT<S>* getRange1D(int index) const { return index == FIRST ? first_.range() : second(index).range(); }
+  /// Internal friction of DOF `index` (seed 001 §12.15.4); disabled by default.
+  [[nodiscard]] FrictionControllerT<S>* getFrictionController(int index) const {
+    return index == FIRST ? first_.friction() : second(index).friction();
+  }
   /// The free DOF's current value: rad (with winding) or m.
   [[nodiscard]] S getAngle(int index) const {
     const auto a = this->attachments();
@@ -199,11 +220,15 @@ class Constraint2DOFT : public ElementaryJointT<S, Elementary...> {
   Constraint2DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
       : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
     restart();
+    first_.friction()->setJoint(this);
+    second_.friction()->setJoint(this);
   }
   ~Constraint2DOFT() override = default;
 
   void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    const std::size_t first = sink.rows->size();
     this->addElementaryRows(a, sink);
+    load_.record(sink, first, a.R2.col(2));
     const detail::Coordinate c1 = first_.addRows(a, sink, h);
     const detail::Coordinate c2 = second_.addRows(a, sink, h);
     addCouplingRows(c1, c2, sink);
@@ -217,6 +242,9 @@ class Constraint2DOFT : public ElementaryJointT<S, Elementary...> {
     first_.afterSolve(h);
     second_.afterSolve(h);
     afterCoupling(h);
+    const double normal = load_.normal(load_.force(h));
+    first_.friction()->setStepNormalForce(normal);
+    second_.friction()->setStepNormalForce(normal);
   }
   void onRebind() override { restart(); }
   /// Rows tying the two DOFs together (Screw1D); none by default.
@@ -236,6 +264,7 @@ class Constraint2DOFT : public ElementaryJointT<S, Elementary...> {
 
   FreeDofT<S, Free1> first_;
   FreeDofT<S, Free2> second_;
+  detail::JointLoad load_;  // the normal force for the friction controllers
 };
 
 namespace detail {
