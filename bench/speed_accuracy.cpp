@@ -3,7 +3,8 @@
 // wall-clock cost per step, the worst joint gap over the run, the relative
 // energy error at the end and whether anything went non-finite. It prints an
 // aligned table and writes a CSV (argv[1], default speed_accuracy.csv) that
-// bench/plot_speed_accuracy.py turns into a cost-vs-gap plot.
+// bench/plot_speed_accuracy.py turns into a cost-vs-gap plot; argv[2], when
+// given, runs only the scenes whose name contains it.
 //
 // Scenes (gravity (0, 0, −9.80665) m/s², every run 10 s from rest):
 //   chain 1:R   10 links of 1 kg and 1 m, end mass R kg (R = 1, 1e2, 1e3,
@@ -17,7 +18,10 @@
 //   pendulum    1 kg, 1 m from a world hinge, released at 90°; default
 //               compliance 1e-8 and damping 2/60 s
 //
-// Policies: direct; direct with post-stabilization (2 projections); iterative
+// Policies: direct (geometric stiffness at its default threshold); direct
+// without geometric stiffness (direct-nogs); direct with post-stabilization
+// (2 projections), also with geometric stiffness on every body
+// (direct+ps+gs0, threshold 0); iterative
 // (Gauss–Seidel) with 4, 16, 64 and 256 sweeps, cold started (the default);
 // hybrid with the default solve types (joints DIRECT_AND_ITERATIVE: with no
 // contacts it solves exactly what direct solves); hybrid-mixed, where the
@@ -171,9 +175,20 @@ struct Policy {
 std::vector<Policy> policies() {
   std::vector<Policy> list;
   list.push_back({"direct", [] { return spook::SolverRef(new spook::DirectSolver()); }});
+  list.push_back({"direct-nogs", [] {
+                    spook::SolverRef s = new spook::DirectSolver();
+                    s->setEnableGeometricStiffness(false);
+                    return s;
+                  }});
   list.push_back({"direct+ps", [] {
                     spook::SolverRef s = new spook::DirectSolver();
                     s->setEnablePostStabilization(true);
+                    return s;
+                  }});
+  list.push_back({"direct+ps+gs0", [] {
+                    spook::SolverRef s = new spook::DirectSolver();
+                    s->setEnablePostStabilization(true);
+                    s->setGeometricStiffnessThreshold(0.0);
                     return s;
                   }});
   for (int n : {4, 16, 64, 256})
@@ -279,6 +294,7 @@ Result run(const std::string& sceneName, const std::function<Scene(bool)>& build
 
 int main(int argc, char** argv) {
   const std::string csvPath = argc > 1 ? argv[1] : "speed_accuracy.csv";
+  const std::string only = argc > 2 ? argv[2] : "";  // run only the scenes whose name contains this
   struct NamedScene {
     std::string name;
     std::function<Scene(bool)> build;
@@ -298,6 +314,7 @@ int main(int argc, char** argv) {
 
   std::vector<Result> results;
   const auto start = std::chrono::steady_clock::now();
+  std::erase_if(scenes, [&](const NamedScene& scene) { return scene.name.find(only) == std::string::npos; });
   for (const NamedScene& scene : scenes)
     for (const Policy& policy : policies())
       for (double h : steps) results.push_back(run(scene.name, scene.build, policy, h));

@@ -26,6 +26,8 @@
 #include <spook/constraints/joints/prismatic.hpp>
 #include <spook/constraints/joints/slack_joints.hpp>
 #include <spook/constraints/joints/universal_joint.hpp>
+#include <spook/constraints/joints/wheel_joint.hpp>
+#include <spook/constraints/steering/steering.hpp>
 #include <spook/constraints/regularization.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/frame.hpp>

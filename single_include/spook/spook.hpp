@@ -6438,6 +6438,10 @@ struct Row {
   SolveType solveType = SolveType::DIRECT;
   /// Warm start in, solved impulse (N·s) out; owned by the constraint.
   double* impulse = nullptr;
+  /// Translational rows: lever arms (world, m) from each center of mass to
+  /// the point where the row's force acts, for the geometric stiffness
+  /// (geometric_stiffness.hpp). Zero for rows that apply pure torques.
+  Eigen::Vector3d arm1 = Eigen::Vector3d::Zero(), arm2 = Eigen::Vector3d::Zero();
 
   [[nodiscard]] bool bounded() const { return lower > -std::numeric_limits<double>::infinity() || upper < std::numeric_limits<double>::infinity(); }
 };
@@ -6934,7 +6938,9 @@ struct Spherical {
     const Vec3d d = a.p1 - a.p2, r1 = a.r1(), r2 = a.r2();
     for (int k = 0; k < 3; ++k) {
       const Vec3d e = Vec3d::Unit(k);
-      holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
+      Row& row = holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
+      row.arm1 = r1;
+      row.arm2 = r2;
     }
   }
 };
@@ -6959,8 +6965,10 @@ struct Dot2 {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Vec3d n = a.R2.col(A);
-    holonomicRow(sink, linearAngular(n, a.r1().cross(n)), linearAngular(-n, n.cross(a.p1 - a.c2)), (a.p1 - a.p2).dot(n),
-                 p[0], impulse);
+    Row& row = holonomicRow(sink, linearAngular(n, a.r1().cross(n)), linearAngular(-n, n.cross(a.p1 - a.c2)),
+                            (a.p1 - a.p2).dot(n), p[0], impulse);
+    row.arm1 = a.r1();
+    row.arm2 = a.p1 - a.c2;
   }
 };
 
@@ -7051,7 +7059,9 @@ namespace spook {
 /// §1.1): compliance ε is the inverse stiffness (m/N, or rad/(N·m) for a
 /// rotational DOF); damping τ is SPOOK's relaxation time (s). Defaults as
 /// AGX: ε = 1e-8, τ = 2/60 s. For a velocity row (motor) ε acts as a
-/// viscosity: the row gives way by ε·force in speed.
+/// viscosity: the row gives way by ε·force in speed. The stepper uses at
+/// least τ = h/10: at τ = 0 SPOOK's rigid rows oscillate with growing
+/// amplitude (islands.hpp).
 template <Scalar S>
 class RegularizationParametersT {
  public:
@@ -9011,6 +9021,885 @@ using PrismaticUniversalJointRef = ref_ptr<PrismaticUniversalJoint>;
 
 }  // namespace spook
 // --- end spook/constraints/joints/universal_joint.hpp ---
+// --- begin spook/constraints/joints/wheel_joint.hpp ---
+
+#include <cmath>
+#include <string>
+#include <type_traits>
+
+namespace spook {
+
+namespace detail {
+
+// The two free rotations of a wheel joint (seed 001 §12.12). The Dot1 row
+// y₁·z₂ = 0 keeps the axle y₁ perpendicular to the steering axis z₂, so every
+// admissible relative orientation is
+//   Q = R₂ᵀ R₁ = R_z(s) R_y(w),
+// the knuckle steered by s about z₂, then the wheel rolled by w about its
+// axle. On that manifold ω₁ − ω₂ = ṡ z₂ + ẇ y₁ with y₁ ⊥ z₂, hence
+// ṡ = z₂·(ω₁ − ω₂) and ẇ = y₁·(ω₁ − ω₂). From the closed form,
+// Q e_y = (−sin s, cos s, 0) and the last row of Q is (−sin w, 0, cos w).
+
+/// s: the steering angle, frame 1 about z₂ (rad).
+struct WheelSteeringAngle {
+  static Coordinate measure(const Attachments& a) {
+    const Mat3d Q = a.R2.transpose() * a.R1;
+    const Vec3d z2 = a.R2.col(2);
+    Coordinate c;
+    c.rotational = true;
+    c.value = std::atan2(-Q(0, 1), Q(1, 1));
+    c.J1 = linearAngular(Vec3d::Zero(), z2);
+    c.J2 = linearAngular(Vec3d::Zero(), -z2);
+    c.speed = a.speed(c.J1, c.J2);
+    return c;
+  }
+};
+
+/// w: the wheel's roll about its axle y₁ (rad).
+struct WheelRollAngle {
+  static Coordinate measure(const Attachments& a) {
+    const Mat3d Q = a.R2.transpose() * a.R1;
+    const Vec3d y1 = a.R1.col(1);
+    Coordinate c;
+    c.rotational = true;
+    c.value = std::atan2(-Q(2, 0), Q(2, 2));
+    c.J1 = linearAngular(Vec3d::Zero(), y1);
+    c.J2 = linearAngular(Vec3d::Zero(), -y1);
+    c.speed = a.speed(c.J1, c.J2);
+    return c;
+  }
+};
+
+}  // namespace detail
+
+/// Where a wheel joint sits, in world coordinates (seed 001 §12.12): the
+/// point where the wheel axle meets the steering (suspension) axis, the axle
+/// direction and the steering direction. The two axes must be perpendicular:
+/// |â·b̂| ≤ perpendicularTolerance() for the unit axes.
+template <Scalar S>
+class WheelJointFrameT {
+ public:
+  using Vec3 = spook::Vec3<S>;
+
+  /// |cos| of the angle between the axes accepted as perpendicular.
+  static constexpr S perpendicularTolerance() { return std::is_same_v<S, float> ? S(1e-4) : S(1e-6); }
+
+  /// `worldAttach` (m, world), `worldWheelAxle` and `worldSteeringAxle`
+  /// (world directions, any non-zero length, perpendicular).
+  WheelJointFrameT(const Vec3& worldAttach, const Vec3& worldWheelAxle, const Vec3& worldSteeringAxle) {
+    if (!worldAttach.allFinite()) throw error("attachment point must be finite (m)", worldAttach);
+    checkAxis("wheel axle must be finite and non-zero", worldWheelAxle);
+    checkAxis("steering axle must be finite and non-zero", worldSteeringAxle);
+    const Vec3 wheel = worldWheelAxle.normalized(), steering = worldSteeringAxle.normalized();
+    const S cosine = wheel.dot(steering);
+    if (!(std::abs(cosine) <= perpendicularTolerance()))
+      throw error(std::is_same_v<S, float> ? "wheel axle and steering axle must be perpendicular (|cos| <= 1e-4)"
+                                           : "wheel axle and steering axle must be perpendicular (|cos| <= 1e-6)",
+                  cosine);
+    attach_ = worldAttach;
+    wheel_ = wheel;
+    steering_ = steering;
+  }
+
+  /// Intersection of the two axes (m, world).
+  [[nodiscard]] const Vec3& getWorldAttach() const { return attach_; }
+  /// Unit wheel axle (world).
+  [[nodiscard]] const Vec3& getWorldWheelAxle() const { return wheel_; }
+  /// Unit steering and suspension axis (world).
+  [[nodiscard]] const Vec3& getWorldSteeringAxle() const { return steering_; }
+
+  /// The joint frame in world: origin at the attachment point, y along the
+  /// axle made exactly perpendicular to z, z along the steering axis.
+  [[nodiscard]] Transform<S> getWorldTransform() const {
+    const Vec3 z = steering_;
+    const Vec3 y = (wheel_ - wheel_.dot(z) * z).normalized();
+    Mat3<S> R;
+    R.col(0) = y.cross(z);
+    R.col(1) = y;
+    R.col(2) = z;
+    Transform<S> X = Transform<S>::Identity();
+    X.linear() = R;
+    X.translation() = attach_;
+    return X;
+  }
+
+ private:
+  template <class T>
+  static Error error(const std::string& what, const T& value) {
+    return detail::makeError("WheelJointFrame", "", what, value);
+  }
+  static void checkAxis(const char* what, const Vec3& axis) {
+    if (!axis.allFinite() || !(axis.norm() > S(0))) throw error(what, axis);
+  }
+
+  Vec3 attach_, wheel_, steering_;
+};
+
+/// A wheel on a chassis or on the world (seed 001 §12.12). The wheel is body
+/// 1; the chassis is body 2 (nullptr: the world). The y axis of frame 1 is
+/// the wheel axle; the z axis of frame 2 is the suspension and steering axis.
+/// Constrained: frame 1's origin on the z₂ axis (two Dot2 rows,
+/// TRANSLATIONAL_1 and _2) and the axle perpendicular to the steering axis
+/// (one Dot1 row, ROTATIONAL_1). Free, each with a Motor1D, Lock1D, Range1D
+/// and FrictionController:
+/// - WHEEL, the roll about the axle (rad, with winding);
+/// - STEERING, the rotation about z₂ (rad, with winding);
+/// - SUSPENSION, the position of frame 1's origin along z₂ (m).
+/// The SUSPENSION Lock1D is enabled at creation, holding the initial
+/// position; disable it (and use its Range1D, or a compliant lock as a
+/// spring) for a travelling suspension. The friction controllers take as
+/// normal force the joint's force across z₂.
+template <Scalar S>
+class WheelJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>, detail::Dot1<1, 2>> {
+  using Base = ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>, detail::Dot1<1, 2>>;
+
+ public:
+  enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, TRANSLATIONAL_2, ROTATIONAL_1, NUM_DOF };
+  /// The free DOFs, for getMotor1D, getLock1D, getRange1D, getAngle.
+  enum SecondaryConstraint { WHEEL = 0, STEERING = 1, SUSPENSION = 2 };
+
+  /// Frames in the bodies' model frames (frame 2 in world for chassis ==
+  /// nullptr); frame 2 defaults to frame 1's current pose.
+  WheelJointT(RigidBodyT<S>* wheel, FrameT<S>* wheelFrame, RigidBodyT<S>* chassis = nullptr,
+              FrameT<S>* chassisFrame = nullptr)
+      : Base("WheelJoint", wheel, wheelFrame, chassis, chassisFrame) {
+    initialize();
+  }
+  /// Frames from a world description, relaxed in the current configuration.
+  WheelJointT(const WheelJointFrameT<S>& frame, RigidBodyT<S>* wheel, RigidBodyT<S>* chassis = nullptr)
+      : Base("WheelJoint", wheel, localFrame(frame, wheel).get(), chassis, localFrame(frame, chassis).get()) {
+    initialize();
+  }
+
+  [[nodiscard]] Motor1DT<S>* getMotor1D(int index) const {
+    return visit(index, [](const auto& dof) { return dof.motor(); });
+  }
+  [[nodiscard]] Lock1DT<S>* getLock1D(int index) const {
+    return visit(index, [](const auto& dof) { return dof.lock(); });
+  }
+  [[nodiscard]] Range1DT<S>* getRange1D(int index) const {
+    return visit(index, [](const auto& dof) { return dof.range(); });
+  }
+  /// Internal friction of a free DOF (seed 001 §12.15.4); disabled by default.
+  [[nodiscard]] FrictionControllerT<S>* getFrictionController(int index) const {
+    return visit(index, [](const auto& dof) { return dof.friction(); });
+  }
+  /// The free DOF's current value: rad (with winding) for WHEEL and STEERING,
+  /// m for SUSPENSION.
+  [[nodiscard]] S getAngle(int index) const {
+    const auto a = this->attachments();
+    return visit(index, [&](const auto& dof) { return S(dof.measure(a).value); });
+  }
+  /// Its rate (rad/s or m/s).
+  [[nodiscard]] S getCurrentSpeed(int index) const {
+    const auto a = this->attachments();
+    return visit(index, [&](const auto& dof) { return S(dof.measure(a).speed); });
+  }
+
+  /// The steering axis z₂ (unit, world).
+  [[nodiscard]] Vec3<S> getWorldSteeringAxis() const {
+    return Vec3<S>(this->attachments().R2.col(2).template cast<S>());
+  }
+  /// Frame 2's origin, the steering pivot on the chassis (m, world).
+  [[nodiscard]] Vec3<S> getWorldSteeringPivot() const { return Vec3<S>(this->attachments().p2.template cast<S>()); }
+
+ protected:
+  ~WheelJointT() override = default;
+
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
+    const std::size_t first = sink.rows->size();
+    this->addElementaryRows(a, sink);
+    load_.record(sink, first, a.R2.col(2));
+    wheel_.addRows(a, sink, h);
+    steering_.addRows(a, sink, h);
+    suspension_.addRows(a, sink, h);
+  }
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
+    this->addElementaryRows(a, sink);
+    wheel_.addProjectionRows(a, sink);
+    steering_.addProjectionRows(a, sink);
+    suspension_.addProjectionRows(a, sink);
+  }
+  void afterSolve(double h) override {
+    wheel_.afterSolve(h);
+    steering_.afterSolve(h);
+    suspension_.afterSolve(h);
+    const double normal = load_.normal(load_.force(h));
+    wheel_.friction()->setStepNormalForce(normal);
+    steering_.friction()->setStepNormalForce(normal);
+    suspension_.friction()->setStepNormalForce(normal);
+  }
+  void onRebind() override { restart(); }
+
+ private:
+  static ref_ptr<FrameT<S>> localFrame(const WheelJointFrameT<S>& frame, const RigidBodyT<S>* body) {
+    const Transform<S> world = frame.getWorldTransform();
+    return new FrameT<S>(body ? Transform<S>(body->getTransform().inverse() * world) : world);
+  }
+
+  template <class F>
+  auto visit(int index, F&& f) const {
+    switch (index) {
+      case WHEEL:
+        return f(wheel_);
+      case STEERING:
+        return f(steering_);
+      case SUSPENSION:
+        return f(suspension_);
+      default:
+        throw this->error("free DOF index must be WHEEL (0), STEERING (1) or SUSPENSION (2)", index);
+    }
+  }
+  void restart() {
+    const auto a = this->attachments();
+    wheel_.restart(a);
+    steering_.restart(a);
+    suspension_.restart(a);
+  }
+  void initialize() {
+    restart();
+    wheel_.friction()->setJoint(this);
+    steering_.friction()->setJoint(this);
+    suspension_.friction()->setJoint(this);
+    suspension_.lock()->setPosition(S(suspension_.measure(this->attachments()).value));
+    suspension_.lock()->setEnable(true);
+  }
+
+  FreeDofT<S, detail::WheelRollAngle> wheel_;
+  FreeDofT<S, detail::WheelSteeringAngle> steering_;
+  FreeDofT<S, detail::TranslationalZ> suspension_;
+  detail::JointLoad load_;  // the normal force for the friction controllers
+};
+
+using WheelJointFrame = WheelJointFrameT<double>;
+using WheelJoint = WheelJointT<double>;
+using WheelJointRef = ref_ptr<WheelJoint>;
+namespace f32 {
+using WheelJointFrame = WheelJointFrameT<float>;
+using WheelJoint = WheelJointT<float>;
+using WheelJointRef = ref_ptr<WheelJoint>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/constraints/joints/wheel_joint.hpp ---
+// --- begin spook/constraints/steering/steering.hpp ---
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <utility>
+
+// --- begin spook/constraints/steering/linkages.hpp ---
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+// --- begin spook/constraints/steering/steering_parameters.hpp ---
+
+#include <numbers>
+
+namespace spook {
+
+/// Geometry of a steering linkage (seed 001 §12.13.1, Table 12.6), in the
+/// mechanism's plane: x runs from the left to the right steering pivot (the
+/// wheel joints' frame 2 origins), z along the steering axes, y = z × x
+/// (forward for a car with z up). Lengths are in units of the wheel track
+/// W_t, the distance between the two pivots. Fields a mechanism does not use
+/// are ignored.
+struct SteeringParameters {
+  /// Angle (rad) from +x to the right knuckle (kingpin) arm when driving
+  /// straight; the left arm is its mirror image, at π − phi0.
+  double phi0 = 0.0;
+  /// Knuckle arm length (W_t): Ackermann, BellCrank, RackPinion.
+  double l = 0.0;
+  /// Angle (rad) from ±x to each tie rod when driving straight, positive
+  /// when the inner end lies behind (−y) the outer one: BellCrank, RackPinion.
+  double alpha = 0.0;
+  /// Length of the central steering lever that carries the tie rods' inner
+  /// joint (W_t): BellCrank.
+  double lc = 0.0;
+  /// Rack length between the tie rods' inner joints (W_t): RackPinion.
+  double lr = 0.0;
+  /// Steering gear: the linkage's input member turns gear × the steering
+  /// angle (dimensionless, > 0).
+  double gear = 1.0;
+  /// The knuckle carrying the steering arm: 0 left, 1 right (Ackermann).
+  int side = 0;
+
+  /// Table 12.6 defaults.
+  [[nodiscard]] static SteeringParameters ackermann() { return {degrees(-115.0), 0.16, 0.0, 0.0, 0.0, 1.0, 0}; }
+  [[nodiscard]] static SteeringParameters bellCrank() { return {degrees(-108.0), 0.14, 0.0, 1.0, 0.0, 1.0, 0}; }
+  [[nodiscard]] static SteeringParameters rackPinion() { return {degrees(-108.0), 0.14, 0.0, 1.0, 0.25, 1.0, 0}; }
+  [[nodiscard]] static SteeringParameters davis() { return {degrees(104.0), 0.0, 0.0, 0.0, 0.0, 1.0, 0}; }
+
+ private:
+  static constexpr double degrees(double angle) { return angle * std::numbers::pi / 180.0; }
+};
+
+}  // namespace spook
+// --- end spook/constraints/steering/steering_parameters.hpp ---
+
+// Closed-form kinematics of the steering linkages of seed 001 §12.13 in the
+// plane of SteeringParameters: left pivot K_L = (−½, 0), right pivot
+// K_R = (½, 0), lengths in wheel tracks, wheel angles δ counterclockwise
+// about z (positive: turning left), all in double.
+
+namespace spook::detail {
+
+using Vec2d = Eigen::Vector2d;
+
+/// Steering angles of the two wheels (rad).
+struct LinkageAngles {
+  double left = 0.0;
+  double right = 0.0;
+};
+
+/// A knuckle arm of length `length` on the pivot, at `restAngle` from +x
+/// when driving straight; it turns with its wheel.
+struct KnuckleArm {
+  Vec2d pivot;
+  double restAngle = 0.0;
+  double length = 0.0;
+
+  [[nodiscard]] Vec2d end(double steer) const {
+    return pivot + length * Vec2d(std::cos(restAngle + steer), std::sin(restAngle + steer));
+  }
+  [[nodiscard]] double steerOf(const Vec2d& end) const {
+    const Vec2d d = end - pivot;
+    return std::remainder(std::atan2(d.y(), d.x()) - restAngle, 2.0 * std::numbers::pi);
+  }
+};
+
+inline double cross2(const Vec2d& a, const Vec2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// A rod of fixed length from a moving joint P to the end of a knuckle arm:
+/// the arm end is where the circle about the pivot (radius l) meets the
+/// circle about P (radius L), on the side of the ray pivot → P where it was
+/// when driving straight (the assembly branch). No intersection: the linkage
+/// cannot reach P.
+struct TieRod {
+  KnuckleArm arm;
+  double length = 0.0;
+  double branch = 1.0;  // +1: the arm end left of pivot → P, −1: right
+
+  /// The rod between P0 and the arm's straight-ahead end; `sine` is the sine
+  /// of the transmission angle there, zero at a dead centre.
+  static TieRod assemble(const KnuckleArm& arm, const Vec2d& P0, double& sine) {
+    TieRod rod;
+    rod.arm = arm;
+    const Vec2d B0 = arm.end(0.0);
+    rod.length = (B0 - P0).norm();
+    const double c = cross2(P0 - arm.pivot, B0 - arm.pivot);
+    rod.branch = c >= 0.0 ? 1.0 : -1.0;
+    sine = rod.length > 0.0 ? std::abs(cross2((P0 - B0) / rod.length, (B0 - arm.pivot) / arm.length)) : 0.0;
+    return rod;
+  }
+
+  [[nodiscard]] std::optional<double> steerFor(const Vec2d& P) const {
+    const Vec2d d = P - arm.pivot;
+    const double distance = d.norm();
+    if (!(distance > 0.0)) return std::nullopt;
+    const double along = (arm.length * arm.length - length * length + distance * distance) / (2.0 * distance);
+    const double across2 = arm.length * arm.length - along * along;
+    if (!(across2 >= 0.0)) return std::nullopt;
+    const Vec2d u = d / distance, n(-u.y(), u.x());
+    return arm.steerOf(arm.pivot + along * u + branch * std::sqrt(across2) * n);
+  }
+};
+
+inline KnuckleArm leftKnuckle(const SteeringParameters& p) {
+  return {Vec2d(-0.5, 0.0), std::numbers::pi - p.phi0, p.l};
+}
+inline KnuckleArm rightKnuckle(const SteeringParameters& p) { return {Vec2d(0.5, 0.0), p.phi0, p.l}; }
+
+/// Smallest transmission-angle sine accepted when driving straight.
+inline constexpr double kDeadCentreSine = 1e-6;
+
+template <class T>
+[[nodiscard]] Error linkageError(const char* kind, const std::string& what, const T& value) {
+  return makeError(kind, "", what, value);
+}
+
+inline void checkCommon(const char* kind, const SteeringParameters& p) {
+  if (!std::isfinite(p.phi0)) throw linkageError(kind, "phi0 must be finite (rad)", p.phi0);
+  if (!(std::isfinite(p.gear) && p.gear > 0.0)) throw linkageError(kind, "gear must be finite and > 0", p.gear);
+}
+inline void checkKnuckle(const char* kind, const SteeringParameters& p) {
+  if (!(std::isfinite(p.l) && p.l > 0.0 && p.l < 0.5))
+    throw linkageError(kind, "knuckle arm length l must be in (0, 0.5) wheel tracks", p.l);
+}
+
+/// Ackermann (seed 001 §12.13): a symmetric trapezoid four-bar. The steering
+/// arm turns the knuckle on `side` by gear × input; the tie rod, of its
+/// straight-ahead length L₀ = 1 + 2 l cos φ₀, carries the other knuckle,
+/// whose angle closes the loop |B − A| = L₀ in closed form.
+class AckermannLinkage {
+ public:
+  static constexpr const char* kName = "Ackermann";
+  [[nodiscard]] static SteeringParameters defaults() { return SteeringParameters::ackermann(); }
+
+  explicit AckermannLinkage(const SteeringParameters& p) {
+    checkCommon(kName, p);
+    checkKnuckle(kName, p);
+    if (p.side != 0 && p.side != 1) throw linkageError(kName, "side must be 0 (left) or 1 (right)", p.side);
+    driven_ = p.side == 0 ? leftKnuckle(p) : rightKnuckle(p);
+    double sine = 0.0;
+    follower_ = TieRod::assemble(p.side == 0 ? rightKnuckle(p) : leftKnuckle(p), driven_.end(0.0), sine);
+    if (!(follower_.length > 0.0 && sine > kDeadCentreSine))
+      throw linkageError(kName, "phi0 and l put the tie rod at a dead centre when driving straight (rad)", p.phi0);
+    gear_ = p.gear;
+    side_ = p.side;
+  }
+
+  /// Inputs beyond half a turn of the driven knuckle are not considered.
+  [[nodiscard]] double inputCap() const { return std::numbers::pi / gear_; }
+
+  [[nodiscard]] std::optional<LinkageAngles> solve(double input) const {
+    const double driven = gear_ * input;
+    const auto follower = follower_.steerFor(driven_.end(driven));
+    if (!follower) return std::nullopt;
+    return side_ == 0 ? LinkageAngles{driven, *follower} : LinkageAngles{*follower, driven};
+  }
+
+ private:
+  KnuckleArm driven_;
+  TieRod follower_;
+  double gear_ = 1.0;
+  int side_ = 0;
+};
+
+/// Two tie rods from inner joints that move along x to the knuckle arms,
+/// at α to the x axis when driving straight. The input is scaled so that the
+/// wheels turn by gear × input at small angles: the inner joints move by
+/// s = gear·input/k₀, where k₀ = dδ/ds = cos α / (l sin(α − φ₀)) at s = 0
+/// (from the rod length's derivative, e·dB = e·dP).
+class TieRodPair {
+ public:
+  TieRodPair(const char* kind, const SteeringParameters& p, double innerSpacing) {
+    checkCommon(kind, p);
+    checkKnuckle(kind, p);
+    if (!(std::isfinite(p.alpha) && std::abs(p.alpha) < 0.5 * std::numbers::pi))
+      throw linkageError(kind, "tie rod angle alpha must be in (-pi/2, pi/2) rad", p.alpha);
+    const KnuckleArm left = leftKnuckle(p), right = rightKnuckle(p);
+    const Vec2d B0 = right.end(0.0);
+    const double reach = B0.x() - 0.5 * innerSpacing;
+    if (!(reach > 0.0))
+      throw linkageError(kind, "the knuckle arms end inside the tie rods' inner joints (x of the right arm end, W_t)",
+                         B0.x());
+    innerY_ = B0.y() - reach * std::tan(p.alpha);
+    halfSpacing_ = 0.5 * innerSpacing;
+    double sineLeft = 0.0, sineRight = 0.0;
+    left_ = TieRod::assemble(left, Vec2d(-halfSpacing_, innerY_), sineLeft);
+    right_ = TieRod::assemble(right, Vec2d(halfSpacing_, innerY_), sineRight);
+    if (!(std::min(sineLeft, sineRight) > kDeadCentreSine))
+      throw linkageError(kind, "phi0 and alpha put the tie rods at a dead centre when driving straight (rad)", p.phi0);
+    gainPerInput_ = p.gear * p.l * std::sin(p.alpha - p.phi0) / std::cos(p.alpha);
+    inputCap_ = std::numbers::pi / p.gear;
+  }
+
+  /// Inputs beyond half a turn (of the wheels, at the small-angle gain) are not considered.
+  [[nodiscard]] double inputCap() const { return inputCap_; }
+
+  /// Displacement (W_t) of the inner joints for an input (rad).
+  [[nodiscard]] double travel(double input) const { return gainPerInput_ * input; }
+  /// Wheel angles with the inner joints at (∓spacing/2 + dx, innerY + dy).
+  [[nodiscard]] std::optional<LinkageAngles> solveAt(double dx, double dy) const {
+    const auto left = left_.steerFor(Vec2d(-halfSpacing_ + dx, innerY_ + dy));
+    const auto right = right_.steerFor(Vec2d(halfSpacing_ + dx, innerY_ + dy));
+    if (!left || !right) return std::nullopt;
+    return LinkageAngles{*left, *right};
+  }
+
+ private:
+  TieRod left_, right_;
+  double innerY_ = 0.0, halfSpacing_ = 0.0, gainPerInput_ = 0.0, inputCap_ = 0.0;
+};
+
+/// Bell crank, or central lever (seed 001 §12.13): both tie rods meet at one
+/// joint carried by a lever of length lc pivoted lc behind it on the
+/// centre line; the lever turns by ψ = s/lc, moving the joint on its arc,
+/// P = O + lc (sin ψ, cos ψ).
+class BellCrankLinkage {
+ public:
+  static constexpr const char* kName = "BellCrank";
+  [[nodiscard]] static SteeringParameters defaults() { return SteeringParameters::bellCrank(); }
+
+  explicit BellCrankLinkage(const SteeringParameters& p) : rods_(kName, p, 0.0), lever_(checkedLever(p.lc)) {}
+
+  [[nodiscard]] double inputCap() const { return rods_.inputCap(); }
+
+  [[nodiscard]] std::optional<LinkageAngles> solve(double input) const {
+    const double psi = rods_.travel(input) / lever_;
+    return rods_.solveAt(lever_ * std::sin(psi), lever_ * (std::cos(psi) - 1.0));
+  }
+
+ private:
+  static double checkedLever(double lc) {
+    if (!(std::isfinite(lc) && lc > 0.0)) throw linkageError(kName, "lever length lc must be finite and > 0 (W_t)", lc);
+    return lc;
+  }
+  TieRodPair rods_;
+  double lever_;
+};
+
+/// Rack and pinion (seed 001 §12.13): the tie rods' inner joints sit at the
+/// ends of a rack of length lr that the pinion slides along x.
+class RackPinionLinkage {
+ public:
+  static constexpr const char* kName = "RackPinion";
+  [[nodiscard]] static SteeringParameters defaults() { return SteeringParameters::rackPinion(); }
+
+  explicit RackPinionLinkage(const SteeringParameters& p) : rods_(kName, p, checkedRack(p.lr)) {}
+
+  [[nodiscard]] double inputCap() const { return rods_.inputCap(); }
+  [[nodiscard]] std::optional<LinkageAngles> solve(double input) const {
+    return rods_.solveAt(rods_.travel(input), 0.0);
+  }
+
+ private:
+  static double checkedRack(double lr) {
+    if (!(std::isfinite(lr) && lr >= 0.0 && lr < 1.0))
+      throw linkageError(kName, "rack length lr must be in [0, 1) wheel tracks", lr);
+    return lr;
+  }
+  TieRodPair rods_;
+};
+
+/// Davis (seed 001 §12.13): a bar ahead of the axle slides along x; each
+/// knuckle arm, at β = φ₀ − π/2 from the y axis (inward for β > 0), slides
+/// through a pivoted block on the bar. With the bar at distance b and
+/// moved by −u b, t = tan β:
+///   tan(β + δ_R) = t + u,   tan(β − δ_L) = t − u
+/// ⇒ tan δ_R = u/(1 + t² + t u),  tan δ_L = u/(1 + t² − t u),
+/// so cot δ_R − cot δ_L = 2t for every u: Ackermann's rule exactly, for the
+/// wheel base W_b = W_t/(2 tan β). The input is the mean-cotangent (bicycle)
+/// angle: u = (1 + t²) tan(gear·input) gives (cot δ_L + cot δ_R)/2 =
+/// cot(gear·input).
+class DavisLinkage {
+ public:
+  static constexpr const char* kName = "Davis";
+  [[nodiscard]] static SteeringParameters defaults() { return SteeringParameters::davis(); }
+
+  explicit DavisLinkage(const SteeringParameters& p) {
+    checkCommon(kName, p);
+    if (!(p.phi0 > 0.0 && p.phi0 < std::numbers::pi))
+      throw linkageError(kName, "phi0 must be in (0, pi) rad: the arms reach forward to the bar", p.phi0);
+    t_ = std::tan(p.phi0 - 0.5 * std::numbers::pi);
+    gear_ = p.gear;
+    inputCap_ = 0.5 * std::numbers::pi / p.gear;
+  }
+
+  /// The wheel base (W_t) for which the mechanism is exact.
+  [[nodiscard]] double exactWheelBase() const { return 0.5 / t_; }
+  [[nodiscard]] double inputCap() const { return inputCap_; }
+
+  [[nodiscard]] std::optional<LinkageAngles> solve(double input) const {
+    if (!(std::abs(input) < inputCap_)) return std::nullopt;
+    const double u = (1.0 + t_ * t_) * std::tan(gear_ * input);
+    return LinkageAngles{std::atan2(u, 1.0 + t_ * t_ - t_ * u), std::atan2(u, 1.0 + t_ * t_ + t_ * u)};
+  }
+
+ private:
+  double t_ = 0.0, gear_ = 1.0, inputCap_ = 0.0;
+};
+
+/// The largest input x such that on [−x, x] the linkage closes, both wheel
+/// angles stay within ±π/2 and rise strictly with the input (past a dead
+/// centre a wheel would turn back). Scanned in steps of cap/720 from
+/// straight ahead in both directions, the first failure refined by bisection.
+template <class Linkage>
+[[nodiscard]] double maximumLinkageInput(const Linkage& linkage) {
+  const double cap = linkage.inputCap();
+  constexpr double kProbe = 1e-7;
+  const auto admissible = [&](double x, double sign) {
+    const auto here = linkage.solve(sign * x), before = linkage.solve(sign * (x - kProbe));
+    if (!here || !before) return false;
+    const double halfTurn = 0.5 * std::numbers::pi;
+    if (!(std::abs(here->left) < halfTurn && std::abs(here->right) < halfTurn)) return false;
+    return sign * (here->left - before->left) > 0.0 && sign * (here->right - before->right) > 0.0;
+  };
+  double maximum = cap;
+  const double step = cap / 720.0;
+  for (const double sign : {1.0, -1.0}) {
+    double good = 0.0, bad = cap;
+    for (double x = step; x < cap; x += step) {
+      if (!admissible(x, sign)) {
+        bad = x;
+        break;
+      }
+      good = x;
+    }
+    for (int i = 0; i < 60 && bad < cap; ++i) {
+      const double middle = 0.5 * (good + bad);
+      (admissible(middle, sign) ? good : bad) = middle;
+    }
+    maximum = std::min(maximum, good);
+  }
+  return maximum;
+}
+
+}  // namespace spook::detail
+// --- end spook/constraints/steering/linkages.hpp ---
+// --- begin spook/sim/step_event_listener.hpp ---
+
+#include <cstdint>
+
+namespace spook {
+
+template <Scalar S>
+class SimulationT;
+namespace detail {
+struct SimulationMembership;
+}
+
+/// User code in the step loop. Override the callbacks you need and select
+/// them with the mask; each receives the time stamp at the start of the step
+/// (s). A listener may add or remove objects, itself included, from its
+/// callbacks. Listeners with a higher priority are called first; equal
+/// priorities run in the order they were added.
+template <Scalar S>
+class StepEventListenerT : public Referenced {
+ public:
+  enum ActivationMask : std::uint32_t {
+    PRE_COLLIDE = 1u << 0,  ///< before collision detection
+    PRE_STEP = 1u << 1,     ///< after collision detection, before the dynamics
+    POST_STEP = 1u << 2,    ///< after the dynamics: new positions and velocities
+    LAST_STEP = 1u << 3,    ///< last in the step, before the time stamp advances
+    DEFAULT = PRE_COLLIDE | PRE_STEP | POST_STEP | LAST_STEP
+  };
+
+  explicit StepEventListenerT(std::uint32_t mask = DEFAULT, int priority = 0) : mask_(mask), priority_(priority) {}
+
+  virtual void preCollide(S /*timeStamp*/) {}
+  virtual void pre(S /*timeStamp*/) {}
+  virtual void post(S /*timeStamp*/) {}
+  virtual void last(S /*timeStamp*/) {}
+
+  [[nodiscard]] std::uint32_t getMask() const { return mask_; }
+  void setMask(std::uint32_t mask) { mask_ = mask; }
+  [[nodiscard]] int getPriority() const { return priority_; }
+  void setPriority(int priority) { priority_ = priority; }
+  [[nodiscard]] bool getEnable() const { return enable_; }
+  void setEnable(bool enable) { enable_ = enable; }
+
+  /// The simulation this listener is added to, or nullptr.
+  [[nodiscard]] SimulationT<S>* getSimulation() const { return simulation_; }
+
+ protected:
+  ~StepEventListenerT() override = default;
+
+ private:
+  friend struct detail::SimulationMembership;
+  std::uint32_t mask_;
+  int priority_;
+  bool enable_ = true;
+  SimulationT<S>* simulation_ = nullptr;
+};
+
+using StepEventListener = StepEventListenerT<double>;
+using StepEventListenerRef = ref_ptr<StepEventListener>;
+namespace f32 {
+using StepEventListener = StepEventListenerT<float>;
+using StepEventListenerRef = ref_ptr<StepEventListener>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/sim/step_event_listener.hpp ---
+
+namespace spook {
+
+/// A steering mechanism between two wheel joints on one chassis (seed 001
+/// §12.13). The steering angle (rad, positive turning left, i.e.
+/// counterclockwise about the steering axes) is position-controlled, so the
+/// linkage has no free DOF left: each wheel's steering angle is a known
+/// function of the input, given in closed form by the linkage's loop closure
+/// (linkages.hpp). The mechanism acts through the wheel joints'
+/// STEERING Lock1D: it enables each lock and sets its position to the
+/// wheel's angle plus the STEERING angle the joint had when the mechanism was
+/// built (straight ahead); compliance, damping and force range of the locks
+/// stay the user's.
+///
+/// setSteeringAngle applies at once, so a mechanism works without being
+/// added anywhere; added to a simulation (sim->add(steering)) it also
+/// re-applies its targets before every step, so the locks cannot be left
+/// disabled while it is enabled. Angles beyond ±getMaximumSteeringAngle()
+/// are refused.
+///
+/// The left wheel joint is the one whose steering pivot (frame 2 origin) the
+/// mechanism's x axis starts from; see SteeringParameters for the plane.
+template <Scalar S>
+class SteeringT : public StepEventListenerT<S> {
+ public:
+  using WheelJoint = WheelJointT<S>;
+
+  /// Steering angles of the left and right wheels (rad) relative to straight ahead.
+  struct WheelAngles {
+    S left = S(0);
+    S right = S(0);
+  };
+
+  /// The mechanism, e.g. "Ackermann".
+  [[nodiscard]] const char* getKind() const { return kind_; }
+  [[nodiscard]] const std::string& getName() const { return name_; }
+  void setName(std::string name) { name_ = std::move(name); }
+
+  [[nodiscard]] WheelJoint* getLeftWheelJoint() const { return left_.get(); }
+  [[nodiscard]] WheelJoint* getRightWheelJoint() const { return right_.get(); }
+  [[nodiscard]] const SteeringParameters& getParameters() const { return parameters_; }
+
+  /// The largest |steering angle| (rad): on [−max, max] the linkage closes,
+  /// both wheels stay within ±π/2 of straight ahead and turn strictly with
+  /// the input (no dead centre), in both directions.
+  [[nodiscard]] S getMaximumSteeringAngle() const { return S(maximum_); }
+
+  /// The steering input (rad).
+  [[nodiscard]] S getSteeringAngle() const { return S(input_); }
+  /// The wheel angles the mechanism holds for the current input (rad).
+  [[nodiscard]] WheelAngles getWheelAngles() const { return {S(angles_.left), S(angles_.right)}; }
+
+  /// Steers to `angle` (rad, finite, |angle| ≤ getMaximumSteeringAngle()).
+  void setSteeringAngle(S angle) {
+    if (!std::isfinite(angle)) throw error("steering angle must be finite (rad)", angle);
+    if (!(std::abs(double(angle)) <= maximum_))
+      throw error("steering angle must be within +-getMaximumSteeringAngle() = " + std::to_string(maximum_) + " rad",
+                  angle);
+    const auto angles = solve(double(angle));
+    if (!angles) throw error("linkage does not close at this steering angle (rad)", angle);
+    input_ = double(angle);
+    angles_ = *angles;
+    apply();
+  }
+
+  void pre(S) override { apply(); }
+
+ protected:
+  SteeringT(const char* kind, WheelJoint* left, WheelJoint* right, const SteeringParameters& parameters)
+      : StepEventListenerT<S>(StepEventListenerT<S>::PRE_STEP), kind_(kind), parameters_(parameters) {
+    checkWheelJoints(left, right);
+    left_ = left;
+    right_ = right;
+    straightLeft_ = double(left->getAngle(WheelJoint::STEERING));
+    straightRight_ = double(right->getAngle(WheelJoint::STEERING));
+  }
+  ~SteeringT() override = default;
+
+  /// Wheel angles for an input (rad); none where the linkage does not close.
+  [[nodiscard]] virtual std::optional<detail::LinkageAngles> solve(double input) const = 0;
+
+  /// Called by the mechanism's constructor once its linkage is built.
+  void start(double maximum) {
+    if (!(maximum > 0.0)) throw error("linkage cannot turn from straight ahead: maximum steering angle (rad)", maximum);
+    maximum_ = maximum;
+    apply();
+  }
+
+  template <class T>
+  [[nodiscard]] Error error(const std::string& what, const T& value) const {
+    return detail::makeError(kind_, name_, what, value);
+  }
+
+ private:
+  void checkWheelJoints(const WheelJoint* left, const WheelJoint* right) const {
+    if (!left || !right)
+      throw error("needs a left and a right WheelJoint", !left && !right ? "nullptr and nullptr" : "nullptr");
+    if (left == right) throw error("left and right must be different wheel joints", left->getName());
+    if (left->getBodyAt(1) != right->getBodyAt(1))
+      throw error("wheel joints must share one chassis (body 2)", left->getName() + " and " + right->getName());
+    const double track = double((right->getWorldSteeringPivot() - left->getWorldSteeringPivot()).norm());
+    if (!(std::isfinite(track) && track > 0.0))
+      throw error("wheel joints' steering pivots must be apart (wheel track, m)", track);
+    const double sameWay = double(left->getWorldSteeringAxis().dot(right->getWorldSteeringAxis()));
+    if (!(sameWay > 0.0)) throw error("wheel joints' steering axes must point the same way (cosine)", sameWay);
+  }
+
+  void apply() {
+    steer(*left_, straightLeft_ + angles_.left);
+    steer(*right_, straightRight_ + angles_.right);
+  }
+  static void steer(WheelJoint& joint, double angle) {
+    Lock1DT<S>* lock = joint.getLock1D(WheelJoint::STEERING);
+    lock->setPosition(S(angle));
+    lock->setEnable(true);
+  }
+
+  const char* kind_;
+  std::string name_;
+  SteeringParameters parameters_;
+  ref_ptr<WheelJoint> left_, right_;
+  double straightLeft_ = 0.0, straightRight_ = 0.0;
+  double maximum_ = 0.0;
+  double input_ = 0.0;
+  detail::LinkageAngles angles_;
+};
+
+/// A steering mechanism with the kinematics of `Linkage` (linkages.hpp).
+template <Scalar S, class Linkage>
+class SteeringMechanismT : public SteeringT<S> {
+ public:
+  /// Between two wheel joints on one chassis, with Table 12.6 defaults
+  /// unless parameters are given; holds the wheels straight ahead.
+  SteeringMechanismT(WheelJointT<S>* leftWheel, WheelJointT<S>* rightWheel,
+                     const SteeringParameters& parameters = Linkage::defaults())
+      : SteeringT<S>(Linkage::kName, leftWheel, rightWheel, parameters), linkage_(parameters) {
+    this->start(detail::maximumLinkageInput(linkage_));
+  }
+
+  /// The linkage's closed-form kinematics.
+  [[nodiscard]] const Linkage& getLinkage() const { return linkage_; }
+
+ protected:
+  ~SteeringMechanismT() override = default;
+  [[nodiscard]] std::optional<detail::LinkageAngles> solve(double input) const override {
+    return linkage_.solve(input);
+  }
+
+ private:
+  Linkage linkage_;
+};
+
+/// Ackermann trapezoid four-bar (seed 001 §12.13).
+template <Scalar S>
+using AckermannT = SteeringMechanismT<S, detail::AckermannLinkage>;
+/// Bell crank (central lever) steering.
+template <Scalar S>
+using BellCrankT = SteeringMechanismT<S, detail::BellCrankLinkage>;
+/// Rack-and-pinion steering.
+template <Scalar S>
+using RackPinionT = SteeringMechanismT<S, detail::RackPinionLinkage>;
+/// Davis steering: Ackermann's rule exactly, for W_b = W_t/(2 tan(φ₀ − π/2)).
+template <Scalar S>
+using DavisT = SteeringMechanismT<S, detail::DavisLinkage>;
+
+using Steering = SteeringT<double>;
+using SteeringRef = ref_ptr<Steering>;
+using Ackermann = AckermannT<double>;
+using AckermannRef = ref_ptr<Ackermann>;
+using BellCrank = BellCrankT<double>;
+using BellCrankRef = ref_ptr<BellCrank>;
+using RackPinion = RackPinionT<double>;
+using RackPinionRef = ref_ptr<RackPinion>;
+using Davis = DavisT<double>;
+using DavisRef = ref_ptr<Davis>;
+namespace f32 {
+using Steering = SteeringT<float>;
+using SteeringRef = ref_ptr<Steering>;
+using Ackermann = AckermannT<float>;
+using AckermannRef = ref_ptr<Ackermann>;
+using BellCrank = BellCrankT<float>;
+using BellCrankRef = ref_ptr<BellCrank>;
+using RackPinion = RackPinionT<float>;
+using RackPinionRef = ref_ptr<RackPinion>;
+using Davis = DavisT<float>;
+using DavisRef = ref_ptr<Davis>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/constraints/steering/steering.hpp ---
 // --- begin spook/dynamics/gravity_field.hpp ---
 
 namespace spook {
@@ -9143,71 +10032,6 @@ struct SimulationMembership {
 
 }  // namespace spook::detail
 // --- end spook/sim/membership.hpp ---
-// --- begin spook/sim/step_event_listener.hpp ---
-
-#include <cstdint>
-
-namespace spook {
-
-template <Scalar S>
-class SimulationT;
-namespace detail {
-struct SimulationMembership;
-}
-
-/// User code in the step loop. Override the callbacks you need and select
-/// them with the mask; each receives the time stamp at the start of the step
-/// (s). A listener may add or remove objects, itself included, from its
-/// callbacks. Listeners with a higher priority are called first; equal
-/// priorities run in the order they were added.
-template <Scalar S>
-class StepEventListenerT : public Referenced {
- public:
-  enum ActivationMask : std::uint32_t {
-    PRE_COLLIDE = 1u << 0,  ///< before collision detection
-    PRE_STEP = 1u << 1,     ///< after collision detection, before the dynamics
-    POST_STEP = 1u << 2,    ///< after the dynamics: new positions and velocities
-    LAST_STEP = 1u << 3,    ///< last in the step, before the time stamp advances
-    DEFAULT = PRE_COLLIDE | PRE_STEP | POST_STEP | LAST_STEP
-  };
-
-  explicit StepEventListenerT(std::uint32_t mask = DEFAULT, int priority = 0) : mask_(mask), priority_(priority) {}
-
-  virtual void preCollide(S /*timeStamp*/) {}
-  virtual void pre(S /*timeStamp*/) {}
-  virtual void post(S /*timeStamp*/) {}
-  virtual void last(S /*timeStamp*/) {}
-
-  [[nodiscard]] std::uint32_t getMask() const { return mask_; }
-  void setMask(std::uint32_t mask) { mask_ = mask; }
-  [[nodiscard]] int getPriority() const { return priority_; }
-  void setPriority(int priority) { priority_ = priority; }
-  [[nodiscard]] bool getEnable() const { return enable_; }
-  void setEnable(bool enable) { enable_ = enable; }
-
-  /// The simulation this listener is added to, or nullptr.
-  [[nodiscard]] SimulationT<S>* getSimulation() const { return simulation_; }
-
- protected:
-  ~StepEventListenerT() override = default;
-
- private:
-  friend struct detail::SimulationMembership;
-  std::uint32_t mask_;
-  int priority_;
-  bool enable_ = true;
-  SimulationT<S>* simulation_ = nullptr;
-};
-
-using StepEventListener = StepEventListenerT<double>;
-using StepEventListenerRef = ref_ptr<StepEventListener>;
-namespace f32 {
-using StepEventListener = StepEventListenerT<float>;
-using StepEventListenerRef = ref_ptr<StepEventListener>;
-}  // namespace f32
-
-}  // namespace spook
-// --- end spook/sim/step_event_listener.hpp ---
 
 namespace spook {
 
@@ -9883,6 +10707,24 @@ class Solver : public Referenced {
   /// AGX leaves warm starting off by default too (PHYSICS.md §2.2).
   [[nodiscard]] bool getEnableWarmStarting() const { return warmStarting_; }
   void setEnableWarmStarting(bool enable) { warmStarting_ = enable; }
+  /// Geometric stiffness (default on): the turning of the joint forces with
+  /// the bodies is taken implicitly, from the last step's forces, for every
+  /// body whose explicit step would be unstable. It keeps light bodies pulled
+  /// by heavy ones stable (a 1 kg link holding 1e6 kg at 60 Hz), at the price
+  /// of backward Euler's damping of the swing those bodies take part in
+  /// (geometric_stiffness.hpp). Bodies below the threshold are untouched.
+  [[nodiscard]] bool getEnableGeometricStiffness() const { return geometricStiffness_; }
+  void setEnableGeometricStiffness(bool enable) { geometricStiffness_ = enable; }
+  /// ρ₀ of the geometric stiffness: a body whose (hω)² from its joint forces
+  /// exceeds ρ₀ gets the implicit term with weight 1 − ρ₀/(hω)². Default 1
+  /// (the explicit step is stable to (hω)² = 4); 0 applies it to every body
+  /// at full weight, which tracks the joints of a swinging chain closest.
+  [[nodiscard]] double getGeometricStiffnessThreshold() const { return geometricStiffnessThreshold_; }
+  void setGeometricStiffnessThreshold(double threshold) {
+    if (!(threshold >= 0.0 && std::isfinite(threshold)))
+      throw detail::makeError("Solver", getName(), "geometric stiffness threshold must be finite and >= 0", threshold);
+    geometricStiffnessThreshold_ = threshold;
+  }
   [[nodiscard]] IterativeMethod getIterativeMethod() const { return method_; }
   void setIterativeMethod(IterativeMethod method) {
     if (method != GAUSS_SEIDEL && method != JACOBI)
@@ -9983,6 +10825,8 @@ class Solver : public Referenced {
   int maxPivotSteps_ = 200;
   bool postStabilization_ = false;
   bool warmStarting_ = false;
+  bool geometricStiffness_ = true;
+  double geometricStiffnessThreshold_ = 1.0;
   int projectionIterations_ = 2;
   detail::DirectSolve direct_;
 };
@@ -10076,6 +10920,103 @@ struct SimulationStatisticsT {
 
 }  // namespace spook
 // --- end spook/sim/statistics.hpp ---
+// --- begin spook/solver/geometric_stiffness.hpp ---
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+namespace spook::detail {
+
+/// Geometric stiffness of the joint forces (Tournier et al., "Stable
+/// Constrained Dynamics", SIGGRAPH 2015; Andrews, Teichmann & Kry,
+/// "Geometric Stiffness for Real-time Constrained Multibody Dynamics", 2017).
+///
+/// A force f acting at lever arm r of a body turns with the body: the torque
+/// r × f changes by K dθ with K = [f]ₓ[r]ₓ. A light body pulled hard at its
+/// ends (a 1 kg link under the weight of 1e6 kg) is a stiff spring of
+/// frequency ω² ~ |f||r|/I; the velocity-level step treats it explicitly and
+/// is unstable once hω > 2. Taking the term implicitly, from the last step's
+/// forces, gives the step (I + h²K̃) ω⁺ = I ω* + h τ_c: the body's inertia grows
+/// by h²K̃ and its free rotation is damped by the same factor (backward Euler
+/// in the geometry). K̃ is the symmetric, tension-only (negative) part of K.
+///
+/// The price is backward Euler's damping of the swing the body takes part
+/// in, ~h²ω² of its energy per step, so each body gets it only in proportion
+/// to how unstable the explicit step would be: with ρ = h² λmax(I⁻¹K̃) = (hω)²,
+/// weight max(0, 1 − ρ₀/ρ) for a threshold ρ₀ (0: every body at full weight).
+class GeometricStiffness {
+ public:
+  /// Augments `bodies` (inverse inertia, free angular velocity) from the
+  /// rows' last impulses, for a step of length h.
+  void apply(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
+    added_.assign(bodies.size(), Mat3d::Zero());
+    stiffness_.assign(bodies.size(), Mat3d::Zero());
+    any_ = false;
+    for (const Row& r : rows) {
+      const double force = *r.impulse / h;
+      if (force == 0.0) continue;
+      accumulate(r.body1, force * r.J1.head<3>(), r.arm1, bodies);
+      accumulate(r.body2, force * r.J2.head<3>(), r.arm2, bodies);
+    }
+    if (!any_) return;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      SolverBody& b = bodies[i];
+      if (!b.dynamic || stiffness_[i].isZero(0.0)) continue;
+      const Eigen::SelfAdjointEigenSolver<Mat3d> eigen(0.5 * (stiffness_[i] + stiffness_[i].transpose()));
+      const Vec3d tension = (-eigen.eigenvalues()).cwiseMax(0.0);
+      if (tension.maxCoeff() <= 0.0) continue;
+      const Mat3d stiffness = eigen.eigenvectors() * tension.asDiagonal() * eigen.eigenvectors().transpose();
+      // (hω)² of the stiffest mode: the largest eigenvalue of I⁻¹K̃, i.e. of
+      // Lᵀ K̃ L with I⁻¹ = L Lᵀ.
+      const Eigen::LLT<Mat3d> inverseInertia(b.inverseInertia);
+      const Mat3d L = inverseInertia.matrixL();
+      const double rho =
+          h * h *
+          Eigen::SelfAdjointEigenSolver<Mat3d>(L.transpose() * stiffness * L, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+      if (rho <= threshold) continue;
+      const double weight = 1.0 - threshold / rho;
+      added_[i] = weight * h * h * stiffness;
+      const Mat3d inertia = b.inverseInertia.inverse();
+      b.inverseInertia = (inertia + added_[i]).inverse();
+      b.freeVelocity.tail<3>() = b.inverseInertia * (inertia * b.freeVelocity.tail<3>());
+    }
+  }
+
+  /// The same inertia for the post-stabilization projection of this step.
+  void addInertia(std::vector<SolverBody>& bodies) const {
+    if (!any_ || added_.size() != bodies.size()) return;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      if (bodies[i].dynamic && !added_[i].isZero(0.0))
+        bodies[i].inverseInertia = (bodies[i].inverseInertia.inverse() + added_[i]).inverse();
+  }
+
+  void clear() {
+    added_.clear();
+    any_ = false;
+  }
+
+ private:
+  void accumulate(int body, const Vec3d& force, const Vec3d& arm, const std::vector<SolverBody>& bodies) {
+    if (body < 0 || !bodies[static_cast<std::size_t>(body)].dynamic || arm.isZero(0.0)) return;
+    stiffness_[static_cast<std::size_t>(body)] += skew(force) * skew(arm);
+    any_ = true;
+  }
+  static Mat3d skew(const Vec3d& v) {
+    Mat3d m;
+    m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+    return m;
+  }
+
+  std::vector<Mat3d> added_, stiffness_;
+  bool any_ = false;
+};
+
+}  // namespace spook::detail
+// --- end spook/solver/geometric_stiffness.hpp ---
 // --- begin spook/solver/integrator.hpp ---
 
 // --- begin spook/solver/free_rotation.hpp ---
@@ -10317,6 +11258,9 @@ namespace spook::detail {
 /// (freeVelocity becomes v⁺).
 class IslandStepper {
  public:
+  /// Smallest damping τ/h the stepper uses; a smaller τ (0 included) is raised to it.
+  static constexpr double kMinimumSpookDamping = 0.1;
+
   /// Post-stabilization: `rows` evaluated at the new positions with their
   /// target violation in `speed`, bodies with their inverse masses at the new
   /// orientations. Fills each body's displacement (Δx, Δθ) that brings the
@@ -10432,7 +11376,10 @@ class IslandStepper {
       const double mobility = r.J1.dot(e.W1) + r.J2.dot(e.W2);
       if (r.holonomic) {
         // SPOOK (PHYSICS.md §1.2): a = 4/(h(1+4d)), b' = 1/(1+4d), Σ = 4ε/(h²(1+4d)), d = τ/h.
-        const double d = r.damping / h;
+        // At d = 0 a rigid row's violation obeys g⁺ = −2g − g⁻ (a double
+        // root at −1) and grows step by step; d ≥ 0.1 keeps the roots at
+        // |z| = 1/√(1+4d) ≤ 0.85.
+        const double d = std::max(r.damping / h, kMinimumSpookDamping);
         const double speed = r.J1.dot(velocity(r.body1, false)) + r.J2.dot(velocity(r.body2, false));
         e.q = -4.0 / (h * (1.0 + 4.0 * d)) * r.violation + speed / (1.0 + 4.0 * d) - freeSpeed;
         e.sigma = 4.0 * r.compliance / (h * h * (1.0 + 4.0 * d));
@@ -10715,6 +11662,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     solverBodies_.clear();
     for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h));
     collectRows(double(h));
+    if (solver_->getEnableGeometricStiffness() && !rows_.empty())
+      geometricStiffness_.apply(rows_, solverBodies_, double(h), solver_->getGeometricStiffnessThreshold());
+    else
+      geometricStiffness_.clear();
     if (!rows_.empty()) islands_.solve(rows_, solverBodies_, double(h), *solver_, statistics_.solver);
     readBackForces(double(h));
     predictViolations(double(h));
@@ -10762,6 +11713,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     if (rows_.empty()) return;
     solverBodies_.clear();
     for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body));
+    geometricStiffness_.addInertia(solverBodies_);
     islands_.project(rows_, solverBodies_, h, *solver_, statistics_.solver);
     for (std::size_t i = 0; i < bodies_.size(); ++i)
       if (!detail::BodyIntegrator<S>::displace(*bodies_[i], solverBodies_[i], S(h)))
@@ -10971,6 +11923,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   std::vector<Constraint*> rowOwners_;
   std::unordered_map<const double*, double> predicted_;
   detail::IslandStepper islands_;
+  detail::GeometricStiffness geometricStiffness_;
 };
 
 using Simulation = SimulationT<double>;

@@ -12,7 +12,9 @@ namespace spook {
 /// §1.1): compliance ε is the inverse stiffness (m/N, or rad/(N·m) for a
 /// rotational DOF); damping τ is SPOOK's relaxation time (s). Defaults as
 /// AGX: ε = 1e-8, τ = 2/60 s. For a velocity row (motor) ε acts as a
-/// viscosity: the row gives way by ε·force in speed.
+/// viscosity: the row gives way by ε·force in speed. The stepper uses at
+/// least τ = h/10: at τ = 0 SPOOK's rigid rows oscillate with growing
+/// amplitude (islands.hpp).
 template <Scalar S>
 class RegularizationParametersT {
  public:

@@ -22,6 +22,7 @@
 #include <spook/sim/membership.hpp>
 #include <spook/sim/statistics.hpp>
 #include <spook/sim/step_event_listener.hpp>
+#include <spook/solver/geometric_stiffness.hpp>
 #include <spook/solver/integrator.hpp>
 #include <spook/solver/islands.hpp>
 #include <spook/solver/solver.hpp>
@@ -280,6 +281,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     solverBodies_.clear();
     for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h));
     collectRows(double(h));
+    if (solver_->getEnableGeometricStiffness() && !rows_.empty())
+      geometricStiffness_.apply(rows_, solverBodies_, double(h), solver_->getGeometricStiffnessThreshold());
+    else
+      geometricStiffness_.clear();
     if (!rows_.empty()) islands_.solve(rows_, solverBodies_, double(h), *solver_, statistics_.solver);
     readBackForces(double(h));
     predictViolations(double(h));
@@ -327,6 +332,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     if (rows_.empty()) return;
     solverBodies_.clear();
     for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body));
+    geometricStiffness_.addInertia(solverBodies_);
     islands_.project(rows_, solverBodies_, h, *solver_, statistics_.solver);
     for (std::size_t i = 0; i < bodies_.size(); ++i)
       if (!detail::BodyIntegrator<S>::displace(*bodies_[i], solverBodies_[i], S(h)))
@@ -536,6 +542,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   std::vector<Constraint*> rowOwners_;
   std::unordered_map<const double*, double> predicted_;
   detail::IslandStepper islands_;
+  detail::GeometricStiffness geometricStiffness_;
 };
 
 using Simulation = SimulationT<double>;

@@ -19,6 +19,9 @@ namespace spook::detail {
 /// (freeVelocity becomes v⁺).
 class IslandStepper {
  public:
+  /// Smallest damping τ/h the stepper uses; a smaller τ (0 included) is raised to it.
+  static constexpr double kMinimumSpookDamping = 0.1;
+
   /// Post-stabilization: `rows` evaluated at the new positions with their
   /// target violation in `speed`, bodies with their inverse masses at the new
   /// orientations. Fills each body's displacement (Δx, Δθ) that brings the
@@ -134,7 +137,10 @@ class IslandStepper {
       const double mobility = r.J1.dot(e.W1) + r.J2.dot(e.W2);
       if (r.holonomic) {
         // SPOOK (PHYSICS.md §1.2): a = 4/(h(1+4d)), b' = 1/(1+4d), Σ = 4ε/(h²(1+4d)), d = τ/h.
-        const double d = r.damping / h;
+        // At d = 0 a rigid row's violation obeys g⁺ = −2g − g⁻ (a double
+        // root at −1) and grows step by step; d ≥ 0.1 keeps the roots at
+        // |z| = 1/√(1+4d) ≤ 0.85.
+        const double d = std::max(r.damping / h, kMinimumSpookDamping);
         const double speed = r.J1.dot(velocity(r.body1, false)) + r.J2.dot(velocity(r.body2, false));
         e.q = -4.0 / (h * (1.0 + 4.0 * d)) * r.violation + speed / (1.0 + 4.0 * d) - freeSpeed;
         e.sigma = 4.0 * r.compliance / (h * h * (1.0 + 4.0 * d));

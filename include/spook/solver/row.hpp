@@ -42,6 +42,10 @@ struct Row {
   SolveType solveType = SolveType::DIRECT;
   /// Warm start in, solved impulse (N·s) out; owned by the constraint.
   double* impulse = nullptr;
+  /// Translational rows: lever arms (world, m) from each center of mass to
+  /// the point where the row's force acts, for the geometric stiffness
+  /// (geometric_stiffness.hpp). Zero for rows that apply pure torques.
+  Eigen::Vector3d arm1 = Eigen::Vector3d::Zero(), arm2 = Eigen::Vector3d::Zero();
 
   [[nodiscard]] bool bounded() const { return lower > -std::numeric_limits<double>::infinity() || upper < std::numeric_limits<double>::infinity(); }
 };

@@ -61,6 +61,24 @@ class Solver : public Referenced {
   /// AGX leaves warm starting off by default too (PHYSICS.md §2.2).
   [[nodiscard]] bool getEnableWarmStarting() const { return warmStarting_; }
   void setEnableWarmStarting(bool enable) { warmStarting_ = enable; }
+  /// Geometric stiffness (default on): the turning of the joint forces with
+  /// the bodies is taken implicitly, from the last step's forces, for every
+  /// body whose explicit step would be unstable. It keeps light bodies pulled
+  /// by heavy ones stable (a 1 kg link holding 1e6 kg at 60 Hz), at the price
+  /// of backward Euler's damping of the swing those bodies take part in
+  /// (geometric_stiffness.hpp). Bodies below the threshold are untouched.
+  [[nodiscard]] bool getEnableGeometricStiffness() const { return geometricStiffness_; }
+  void setEnableGeometricStiffness(bool enable) { geometricStiffness_ = enable; }
+  /// ρ₀ of the geometric stiffness: a body whose (hω)² from its joint forces
+  /// exceeds ρ₀ gets the implicit term with weight 1 − ρ₀/(hω)². Default 1
+  /// (the explicit step is stable to (hω)² = 4); 0 applies it to every body
+  /// at full weight, which tracks the joints of a swinging chain closest.
+  [[nodiscard]] double getGeometricStiffnessThreshold() const { return geometricStiffnessThreshold_; }
+  void setGeometricStiffnessThreshold(double threshold) {
+    if (!(threshold >= 0.0 && std::isfinite(threshold)))
+      throw detail::makeError("Solver", getName(), "geometric stiffness threshold must be finite and >= 0", threshold);
+    geometricStiffnessThreshold_ = threshold;
+  }
   [[nodiscard]] IterativeMethod getIterativeMethod() const { return method_; }
   void setIterativeMethod(IterativeMethod method) {
     if (method != GAUSS_SEIDEL && method != JACOBI)
@@ -161,6 +179,8 @@ class Solver : public Referenced {
   int maxPivotSteps_ = 200;
   bool postStabilization_ = false;
   bool warmStarting_ = false;
+  bool geometricStiffness_ = true;
+  double geometricStiffnessThreshold_ = 1.0;
   int projectionIterations_ = 2;
   detail::DirectSolve direct_;
 };

@@ -39,7 +39,9 @@ struct Spherical {
     const Vec3d d = a.p1 - a.p2, r1 = a.r1(), r2 = a.r2();
     for (int k = 0; k < 3; ++k) {
       const Vec3d e = Vec3d::Unit(k);
-      holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
+      Row& row = holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
+      row.arm1 = r1;
+      row.arm2 = r2;
     }
   }
 };
@@ -64,8 +66,10 @@ struct Dot2 {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Vec3d n = a.R2.col(A);
-    holonomicRow(sink, linearAngular(n, a.r1().cross(n)), linearAngular(-n, n.cross(a.p1 - a.c2)), (a.p1 - a.p2).dot(n),
-                 p[0], impulse);
+    Row& row = holonomicRow(sink, linearAngular(n, a.r1().cross(n)), linearAngular(-n, n.cross(a.p1 - a.c2)),
+                            (a.p1 - a.p2).dot(n), p[0], impulse);
+    row.arm1 = a.r1();
+    row.arm2 = a.p1 - a.c2;
   }
 };
 
