@@ -10966,7 +10966,10 @@ class GeometricStiffness {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       SolverBody& b = bodies[i];
       if (!b.dynamic || stiffness_[i].isZero(0.0)) continue;
-      const Eigen::SelfAdjointEigenSolver<Mat3d> eigen(0.5 * (stiffness_[i] + stiffness_[i].transpose()));
+      const Mat3d symmetric = 0.5 * (stiffness_[i] + stiffness_[i].transpose());
+      // ρ ≤ h²‖K̃‖‖I⁻¹‖: most bodies of an ordinary scene stop here.
+      if (h * h * symmetric.norm() * b.inverseInertia.norm() <= threshold) continue;
+      const Eigen::SelfAdjointEigenSolver<Mat3d> eigen(symmetric);
       const Vec3d tension = (-eigen.eigenvalues()).cwiseMax(0.0);
       if (tension.maxCoeff() <= 0.0) continue;
       const Mat3d stiffness = eigen.eigenvectors() * tension.asDiagonal() * eigen.eigenvectors().transpose();
