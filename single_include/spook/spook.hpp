@@ -11005,13 +11005,8 @@ class GeometricStiffness {
  private:
   void accumulate(int body, const Vec3d& force, const Vec3d& arm, const std::vector<SolverBody>& bodies) {
     if (body < 0 || !bodies[static_cast<std::size_t>(body)].dynamic || arm.isZero(0.0)) return;
-    stiffness_[static_cast<std::size_t>(body)] += skew(force) * skew(arm);
+    stiffness_[static_cast<std::size_t>(body)] += skew<double>(force) * skew<double>(arm);
     any_ = true;
-  }
-  static Mat3d skew(const Vec3d& v) {
-    Mat3d m;
-    m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-    return m;
   }
 
   std::vector<Mat3d> added_, stiffness_;
