@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <string>
+
+#include <spook/constraints/joints/cylindrical_joint.hpp>
+#include <spook/constraints/joints/dot1_joint.hpp>
+#include <spook/constraints/joints/universal_joint.hpp>
 
 #include "joint_scenes.hpp"
 #include "tolerance.hpp"
@@ -36,19 +41,25 @@ struct FramePair {
   [[nodiscard]] double rotation() const {
     return Eigen::AngleAxisd(Eigen::Matrix3d(R2.transpose() * R1)).angle();
   }
+  [[nodiscard]] double outOfPlane() const { return std::abs((p1 - p2).dot(R2.col(2))); }
+  [[nodiscard]] double crossTilt() const { return std::abs(R1.col(0).dot(R2.col(1))); }  // Dot1<0, 1>
 };
 
 // One body hung from the world and one from it, both perturbed, 10 s at
-// 60 Hz under gravity, direct solver with post-stabilization, default
-// compliance 1e-8: the worst violation of the constrained DOFs from 1 s on.
-// Without post-stabilization the swinging leaves a drift of ~h²ω²L per step
-// that SPOOK's stabilization holds at ~1e-4..1e-3 m (reported, not asserted). The perturbing velocities
+// 60 Hz under gravity, direct solver, default compliance 1e-8: the worst
+// violation of the constrained DOFs from 1 s on. The perturbing velocities
 // break the constraints' velocity conditions; SPOOK removes that over a few
-// damping times τ = 2/60 s (b' = 1/(1+4τ/h) of it survives each step,
-// PHYSICS.md §1.2), a transient of ~1e-3 m that is over well before 1 s.
+// damping times τ = 2/60 s (PHYSICS.md §1.2), a transient of ~1e-3 m that is
+// over well before 1 s. The loads (≤ 30 N on the upper joint) deflect the
+// rows by ≤ 3e-7 m at that compliance.
+struct Measured {
+  double worst = 0.0;  ///< worst violation from 1 s on (m or rad)
+  double reach = 0.0;  ///< farthest body center from the origin at the end (m)
+};
+
 template <class S, class Joint>
-double worstViolation(const std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)>& make,
-                      const std::function<double(const FramePair<S>&)>& violation, bool postStabilize = true) {
+Measured worstViolation(const std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)>& make,
+                      const std::function<double(const FramePair<S>&)>& violation, bool postStabilize) {
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   ref_ptr<DirectSolver> solver = new DirectSolver();
   solver->setEnablePostStabilization(postStabilize);
@@ -68,85 +79,94 @@ double worstViolation(const std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBo
     sim->stepForward();
     if (i >= 60) worst = std::max({worst, violation(FramePair<S>(*top)), violation(FramePair<S>(*bottom))});
   }
-  return worst;
+  return {worst, std::max(double(upper->getPosition().norm()), double(lower->getPosition().norm()))};
+}
+
+// The joint at the upper end of each body (0.5 m above its center) with its
+// z axis along `axis`.
+template <class S, class Joint>
+std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)> jointAbove(const Vec3<S>& axis) {
+  return [axis](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
+    ref_ptr<FrameT<S>> f1, f2;
+    ConstraintT<S>::calculateFramesFromWorld(b1->getPosition() + Vec3<S>(0, 0, S(0.5)), axis, b1, f1, b2, f2);
+    return ref_ptr<Joint>(new Joint(b1, f1.get(), b2, f2.get()));
+  };
+}
+
+template <class S, class Joint>
+void checkJoint(const std::string& name, const std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)>& make,
+                const std::function<double(const FramePair<S>&)>& violation) {
+  // The issue's target for every joint: 1e-6. Float stores positions with a
+  // spacing of 6e-8·r at r meters, so for bodies that slide or fall far
+  // (hundreds of meters in 10 s) its tolerance grows as 1e-6·r.
+  const Measured projected = worstViolation<S, Joint>(make, violation, true);
+  const Measured plain = worstViolation<S, Joint>(make, violation, false);
+  const double tol = pick<S>(1e-6, 1e-6 * std::max(1.0, projected.reach));
+  MESSAGE(name << " worst violation " << projected.worst << " (without post-stabilization " << plain.worst
+               << "), bodies within " << projected.reach << " m");
+  CHECK(projected.worst < tol);
+  // SPOOK alone leaves the step's second-order drift, ~h²ω²L, held at
+  // ~1e-4..1e-2 m by its stabilization.
+  CHECK(plain.worst < 2e-2);
 }
 
 }  // namespace
 
-TEST_CASE_TEMPLATE("every joint holds its constrained DOFs within 5e-5 m when post-stabilized", S, float, double) {
-  // The issue's target is 1e-6 for every joint; post-stabilization reaches it
-  // for the lock joints and leaves ~1e-5 m on the swinging ones (open).
-  const double tol = pick<S>(5e-5, 5e-5);
-  // Joints at the upper end of each body, axes chosen so gravity loads them.
-  const Vec3<S> up(0, 0, S(0.5)), axis = Vec3<S>(1, 0, 1).normalized();
-
+// Axes: tilted so that gravity loads the rotational rows of the hinge-like
+// joints; horizontal for the sliding joints (whose bodies would otherwise
+// slide hundreds of meters in 10 s, beyond float's 1e-6 m resolution);
+// vertical for the plane (the bodies slide in it, gravity on its normal).
+TEST_CASE_TEMPLATE("every joint holds its constrained DOFs within 1e-6 when post-stabilized", S, float, double) {
+  const Vec3<S> tilted = Vec3<S>(1, 0, 1).normalized(), horizontal = Vec3<S>(1, 1, 0).normalized(), up = Vec3<S>::UnitZ();
+  using F = FramePair<S>;
   SUBCASE("Hinge") {
-    const double worst = worstViolation<S, HingeT<S>>(
-        [&](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
-          ref_ptr<FrameT<S>> f1, f2;
-          ConstraintT<S>::calculateFramesFromWorld(b1->getPosition() + up, axis, b1, f1, b2, f2);
-          return ref_ptr<HingeT<S>>(new HingeT<S>(b1, f1.get(), b2, f2.get()));
-        },
-        [](const FramePair<S>& f) { return std::max(f.separation(), f.tilt()); });
-    const double plain = worstViolation<S, HingeT<S>>(
-        [&](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
-          ref_ptr<FrameT<S>> f1, f2;
-          ConstraintT<S>::calculateFramesFromWorld(b1->getPosition() + up, axis, b1, f1, b2, f2);
-          return ref_ptr<HingeT<S>>(new HingeT<S>(b1, f1.get(), b2, f2.get()));
-        },
-        [](const FramePair<S>& f) { return std::max(f.separation(), f.tilt()); }, false);
-    MESSAGE("Hinge worst violation " << worst << " (without post-stabilization " << plain << ")");
-    CHECK(worst < tol);
+    checkJoint<S, HingeT<S>>("Hinge", jointAbove<S, HingeT<S>>(tilted),
+                             [](const F& f) { return std::max(f.separation(), f.tilt()); });
   }
   SUBCASE("BallJoint") {
-    const double worst = worstViolation<S, BallJointT<S>>(
-        [&](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
-          ref_ptr<FrameT<S>> f1, f2;
-          ConstraintT<S>::calculateFramesFromWorld(b1->getPosition() + up, axis, b1, f1, b2, f2);
-          return ref_ptr<BallJointT<S>>(new BallJointT<S>(b1, f1.get(), b2, f2.get()));
-        },
-        [](const FramePair<S>& f) { return f.separation(); });
-    MESSAGE("BallJoint worst violation " << worst);
-    CHECK(worst < tol);
+    checkJoint<S, BallJointT<S>>("BallJoint", jointAbove<S, BallJointT<S>>(tilted),
+                                 [](const F& f) { return f.separation(); });
   }
   SUBCASE("Prismatic") {
-    const double worst = worstViolation<S, PrismaticT<S>>(
-        [&](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
-          ref_ptr<FrameT<S>> f1, f2;
-          ConstraintT<S>::calculateFramesFromWorld(b1->getPosition() + up, axis, b1, f1, b2, f2);
-          return ref_ptr<PrismaticT<S>>(new PrismaticT<S>(b1, f1.get(), b2, f2.get()));
-        },
-        [](const FramePair<S>& f) { return std::max(f.offAxis(), f.rotation()); });
-    MESSAGE("Prismatic worst violation " << worst);
-    CHECK(worst < tol);
+    checkJoint<S, PrismaticT<S>>("Prismatic", jointAbove<S, PrismaticT<S>>(horizontal),
+                                 [](const F& f) { return std::max(f.offAxis(), f.rotation()); });
   }
   SUBCASE("LockJoint") {
-    const double worst = worstViolation<S, LockJointT<S>>(
-        [&](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
-          ref_ptr<FrameT<S>> f1, f2;
-          ConstraintT<S>::calculateFramesFromWorld(b1->getPosition() + up, axis, b1, f1, b2, f2);
-          return ref_ptr<LockJointT<S>>(new LockJointT<S>(b1, f1.get(), b2, f2.get()));
-        },
-        [](const FramePair<S>& f) { return std::max(f.separation(), f.rotation()); });
-    MESSAGE("LockJoint worst violation " << worst);
-    CHECK(worst < tol);
+    checkJoint<S, LockJointT<S>>("LockJoint", jointAbove<S, LockJointT<S>>(tilted),
+                                 [](const F& f) { return std::max(f.separation(), f.rotation()); });
   }
   SUBCASE("AngularLockJoint") {
-    const double worst = worstViolation<S, AngularLockJointT<S>>(
-        [&](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
-          ref_ptr<FrameT<S>> f1, f2;
-          ConstraintT<S>::calculateFramesFromWorld(b1->getPosition() + up, axis, b1, f1, b2, f2);
-          return ref_ptr<AngularLockJointT<S>>(new AngularLockJointT<S>(b1, f1.get(), b2, f2.get()));
-        },
-        [](const FramePair<S>& f) { return f.rotation(); });
-    MESSAGE("AngularLockJoint worst violation " << worst);
-    CHECK(worst < tol);
+    checkJoint<S, AngularLockJointT<S>>("AngularLockJoint", jointAbove<S, AngularLockJointT<S>>(tilted),
+                                        [](const F& f) { return f.rotation(); });
+  }
+  SUBCASE("CylindricalJoint") {
+    checkJoint<S, CylindricalJointT<S>>("CylindricalJoint", jointAbove<S, CylindricalJointT<S>>(horizontal),
+                                        [](const F& f) { return std::max(f.offAxis(), f.tilt()); });
+  }
+  SUBCASE("UniversalJoint") {
+    checkJoint<S, UniversalJointT<S>>("UniversalJoint", jointAbove<S, UniversalJointT<S>>(tilted),
+                                      [](const F& f) { return std::max(f.separation(), f.crossTilt()); });
+  }
+  SUBCASE("PrismaticUniversalJoint") {
+    checkJoint<S, PrismaticUniversalJointT<S>>("PrismaticUniversalJoint",
+                                               jointAbove<S, PrismaticUniversalJointT<S>>(horizontal),
+                                               [](const F& f) { return std::max(f.offAxis(), f.crossTilt()); });
+  }
+  SUBCASE("PlaneJoint") {
+    checkJoint<S, PlaneJointT<S>>("PlaneJoint", jointAbove<S, PlaneJointT<S>>(up),
+                                  [](const F& f) { return f.outOfPlane(); });
+  }
+  SUBCASE("Dot1Joint") {
+    checkJoint<S, Dot1JointT<S>>("Dot1Joint", jointAbove<S, Dot1JointT<S>>(tilted),
+                                 [](const F& f) { return f.crossTilt(); });
   }
   SUBCASE("DistanceJoint") {
-    const double worst = worstViolation<S, DistanceJointT<S>>(
-        [&](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
+    // Anchored 0.7 m above the joint point.
+    checkJoint<S, DistanceJointT<S>>(
+        "DistanceJoint",
+        [](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
+          const Vec3<S> up(0, 0, S(0.5));
           ref_ptr<FrameT<S>> f1 = frameAt<S>(up);
-          // Anchored 0.7 m above the joint point.
           const Vec3<S> anchor = b1->getPosition() + up + Vec3<S>(0, 0, S(0.7));
           if (b2) {
             ref_ptr<FrameT<S>> f2 = frameAt<S>(Vec3<S>(anchor - b2->getPosition()));
@@ -154,8 +174,44 @@ TEST_CASE_TEMPLATE("every joint holds its constrained DOFs within 5e-5 m when po
           }
           return ref_ptr<DistanceJointT<S>>(new DistanceJointT<S>(b1, f1.get(), anchor));
         },
-        [](const FramePair<S>& f) { return std::abs(f.separation() - 0.7); });
-    MESSAGE("DistanceJoint worst violation " << worst);
-    CHECK(worst < tol);
+        [](const F& f) { return std::abs(f.separation() - 0.7); });
   }
+}
+
+TEST_CASE_TEMPLATE("post-stabilization holds a 90° pendulum to 1e-6 without taking its energy", S, float, double) {
+  // A 2 kg bob on a 1 m hinge arm released horizontally, 10 s at 60 Hz: the
+  // fastest swing of the catalogue (ω up to 4.4 rad/s, tension 3mg = 59 N,
+  // which the default compliance 1e-8 turns into 5.9e-7 m).
+  struct Run {
+    double worstGap = 0.0, energyChange = 0.0;  // energy relative to m·g·L
+  };
+  const auto run = [](bool postStabilize) {
+    ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+    ref_ptr<DirectSolver> solver = new DirectSolver();
+    solver->setEnablePostStabilization(postStabilize);
+    sim->setSolver(solver);
+    auto bob = makeBody<S>(*sim, "bob", S(2), Vec3<S>(S(1), 0, 0), S(0.05));
+    ref_ptr<HingeT<S>> hinge = new HingeT<S>(bob.get(), frameAt<S>(Vec3<S>(-1, 0, 0), Vec3<S>::UnitY()).get());
+    sim->add(hinge);
+    const auto energy = [&] {
+      return double(bob->getKineticEnergy()) + 2.0 * 9.80665 * double(bob->getCmPosition().z());
+    };
+    const double E0 = energy();
+    Run r;
+    for (int i = 0; i < 600; ++i) {
+      sim->stepForward();
+      r.worstGap = std::max(r.worstGap, FramePair<S>(*hinge).separation());
+    }
+    r.energyChange = (energy() - E0) / (2.0 * 9.80665);
+    return r;
+  };
+  const Run projected = run(true), plain = run(false);
+  MESSAGE("90° pendulum: worst gap " << projected.worstGap << " m (without post-stabilization " << plain.worstGap
+                                     << "), energy change " << projected.energyChange << " of m·g·L (without "
+                                     << plain.energyChange << ")");
+  CHECK(projected.worstGap < 1e-6);
+  // Symplectic Euler's own energy error at this step is a few percent of
+  // m·g·L; post-stabilization must not add to it beyond 1% of m·g·L.
+  CHECK(std::abs(projected.energyChange) < std::abs(plain.energyChange) + 0.01);
+  CHECK(std::abs(projected.energyChange) < 0.05);
 }

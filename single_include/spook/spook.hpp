@@ -6438,6 +6438,16 @@ struct Row {
   SolveType solveType = SolveType::DIRECT;
   /// Warm start in, solved impulse (N·s) out; owned by the constraint.
   double* impulse = nullptr;
+  /// Holonomic rows: κ = ½ vᵀ(∂²g/∂q²)v at the start of the step (m/s² or
+  /// rad/s²), the quadratic velocity term of the index-1 DAE (Ġv/2). A step
+  /// with velocity v⁺ moves g by hGv⁺ + h²κ + O(h³), and G_k v_k exceeds the
+  /// last step's mean rate of g by hκ. Used with post-stabilization only
+  /// (zero otherwise).
+  double curvature = 0.0;
+  /// Holonomic rows: the rate G_{k−1}v_k + hκ at which the last step moved
+  /// g (m/s or rad/s), kept by post-stabilization; NaN when unknown, then
+  /// G v − hκ stands in for it in SPOOK's b' term.
+  double lastRate = std::numeric_limits<double>::quiet_NaN();
   /// Translational rows: lever arms (world, m) from each center of mass to
   /// the point where the row's force acts, for the geometric stiffness
   /// (geometric_stiffness.hpp). Zero for rows that apply pure torques.
@@ -6585,6 +6595,8 @@ struct Coordinate {
   double speed = 0.0;  ///< d(value)/dt at the start of the step
   Vec6d J1 = Vec6d::Zero(), J2 = Vec6d::Zero();
   bool rotational = false;
+  /// ½ vᵀ∇²(value) v at the start of the step (Row::curvature).
+  double curvature = 0.0;
 };
 
 /// The relative rotation of frame 1 in frame 2, q₂* q₁, with w ≥ 0.
@@ -6930,17 +6942,36 @@ inline Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, double
   return row;
 }
 
+/// Centripetal part of the separation's second derivative,
+/// ω₁×(ω₁×r₁) − ω₂×(ω₂×r₂), and its rate ḋ = v₁ + ω₁×r₁ − v₂ − ω₂×r₂.
+inline Vec3d separationCentripetal(const Attachments& a) {
+  const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>();
+  return w1.cross(w1.cross(a.r1())) - w2.cross(w2.cross(a.r2()));
+}
+inline Vec3d separationRate(const Attachments& a) {
+  return a.v1.head<3>() + a.v1.tail<3>().cross(a.r1()) - a.v2.head<3>() - a.v2.tail<3>().cross(a.r2());
+}
+
+/// κ = ½ vᵀ∇²g v (Row::curvature) of g = (p₁ − p₂)·n with the frame-2 axis
+/// n turning with ω₂: ½(d̈·n + d·n̈) + ḋ·ṅ, d̈ and n̈ their centripetal parts.
+inline double separationCurvature(const Attachments& a, const Vec3d& n) {
+  const Vec3d w2 = a.v2.tail<3>(), dn = w2.cross(n);
+  return 0.5 * (separationCentripetal(a).dot(n) + (a.p1 - a.p2).dot(w2.cross(dn))) + separationRate(a).dot(dn);
+}
+
 /// Frame origins coincide: g = p₁ − p₂ (3 rows, world axes).
 struct Spherical {
   static constexpr int kRows = 3;
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Vec3d d = a.p1 - a.p2, r1 = a.r1(), r2 = a.r2();
+    const Vec3d curvature = 0.5 * separationCentripetal(a);
     for (int k = 0; k < 3; ++k) {
       const Vec3d e = Vec3d::Unit(k);
       Row& row = holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
       row.arm1 = r1;
       row.arm2 = r2;
+      row.curvature = curvature[k];
     }
   }
 };
@@ -6953,7 +6984,10 @@ struct Dot1 {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Vec3d u = a.R1.col(A1), w = a.R2.col(A2), n = u.cross(w);
-    holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), u.dot(w), p[0], impulse);
+    Row& row = holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), u.dot(w), p[0], impulse);
+    // κ = ½(ü·w + u·ẅ) + u̇·ẇ with u̇ = ω₁×u, ü = ω₁×u̇ (Row::curvature).
+    const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
+    row.curvature = 0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw);
   }
 };
 
@@ -6969,6 +7003,7 @@ struct Dot2 {
                             (a.p1 - a.p2).dot(n), p[0], impulse);
     row.arm1 = a.r1();
     row.arm2 = a.p1 - a.c2;
+    row.curvature = separationCurvature(a, n);
   }
 };
 
@@ -7030,6 +7065,7 @@ inline Coordinate translationalCoordinate(const Attachments& a) {
   c.J1 = linearAngular(n, a.r1().cross(n));
   c.J2 = linearAngular(-n, n.cross(a.p1 - a.c2));
   c.speed = a.speed(c.J1, c.J2);
+  c.curvature = separationCurvature(a, n);
   return c;
 }
 
@@ -7043,6 +7079,11 @@ inline Coordinate distanceCoordinate(const Attachments& a) {
   c.J1 = linearAngular(n, a.r1().cross(n));
   c.J2 = linearAngular(-n, -a.r2().cross(n));
   c.speed = a.speed(c.J1, c.J2);
+  if (length > 1e-12) {
+    // κ = ½ L̈ with L̈ = n·d̈ + (|ḋ|² − (n·ḋ)²)/L, d̈ its centripetal part.
+    const Vec3d rate = separationRate(a);
+    c.curvature = 0.5 * (n.dot(separationCentripetal(a)) + (rate.squaredNorm() - std::pow(n.dot(rate), 2)) / length);
+  }
   return c;
 }
 
@@ -7185,6 +7226,7 @@ class SecondaryConstraintT : public Referenced {
     row.damping = double(regularization_.getDamping());
     row.lower = double(forceRange_.lower);
     row.upper = double(forceRange_.upper);
+    row.curvature = c.curvature;
     return row;
   }
 
@@ -11379,7 +11421,11 @@ class IslandStepper {
         // |z| = 1/√(1+4d) ≤ 0.85.
         const double d = std::max(r.damping / h, kMinimumSpookDamping);
         const double speed = r.J1.dot(velocity(r.body1, false)) + r.J2.dot(velocity(r.body2, false));
-        e.q = -4.0 / (h * (1.0 + 4.0 * d)) * r.violation + speed / (1.0 + 4.0 * d) - freeSpeed;
+        // Second order in h (row.hpp): the b' term reads the rate at which
+        // the last step moved g (G v − hκ when not kept); the step aims G v⁺
+        // at SPOOK's target minus the drift hκ its motion will add.
+        const double rate = std::isnan(r.lastRate) ? speed - h * r.curvature : r.lastRate;
+        e.q = -4.0 / (h * (1.0 + 4.0 * d)) * r.violation + rate / (1.0 + 4.0 * d) - h * r.curvature - freeSpeed;
         e.sigma = 4.0 * r.compliance / (h * h * (1.0 + 4.0 * d));
       } else {
         e.q = r.speed - freeSpeed;
@@ -11603,6 +11649,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     Membership::indexOf(*constraints_[index]) = index;
     constraints_.pop_back();
     Membership::simulationOf(*constraint) = nullptr;
+    predicted_.clear();  // keyed by row storage a later constraint may reuse
   }
   [[nodiscard]] const std::vector<ref_ptr<Constraint>>& getConstraints() const { return constraints_; }
   /// The first constraint with this name, or nullptr.
@@ -11676,9 +11723,11 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(double(h));
   }
 
-  // The violation each row expects at the end of the step from its linearization,
-  // g + h G v⁺: what post-stabilization restores (it removes only the
-  // second-order drift of the step, not the rows' compliant or damped motion).
+  // What each holonomic row's linearization makes of the step: the rate
+  // G v⁺ + hκ at which it moves g and the violation g + h·rate it should end
+  // with, which post-stabilization restores (it removes only the
+  // higher-order drift of the step, not the rows' compliant or damped
+  // motion). The rate is the next step's b' term (Row::lastRate).
   void predictViolations(double h) {
     predicted_.clear();
     if (!solver_->getEnablePostStabilization()) return;
@@ -11687,7 +11736,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       const auto speed = [&](int body, const detail::Vec6d& J) {
         return body < 0 ? 0.0 : J.dot(solverBodies_[static_cast<std::size_t>(body)].freeVelocity);
       };
-      predicted_[r.impulse] = r.violation + h * (speed(r.body1, r.J1) + speed(r.body2, r.J2));
+      const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + h * r.curvature;
+      predicted_[r.impulse] = {r.violation + h * rate, rate};
     }
   }
 
@@ -11707,7 +11757,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     // Target: the predicted violation (rows without one, e.g. a lock enabled
     // by a listener after the solve, are left out).
     std::erase_if(rows_, [&](const detail::Row& r) { return !predicted_.count(r.impulse); });
-    for (detail::Row& r : rows_) r.speed = predicted_[r.impulse];
+    for (detail::Row& r : rows_) r.speed = predicted_[r.impulse].violation;
     if (rows_.empty()) return;
     solverBodies_.clear();
     for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body));
@@ -11728,9 +11778,17 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       if (!contains(body1) || (body2 && !contains(body2))) continue;
       detail::RowSink sink{&rows_, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
                            c->getSolveType()};
+      const std::size_t first = rows_.size();
       detail::ConstraintAccess::addRows(*c, sink, h);
       rowOwners_.resize(rows_.size(), c.get());
+      // The curvature terms need the projection: without it, their error
+      // feeds back (the 1:1e6 chain of test_solvers.cpp diverges).
+      if (!solver_->projects(c->getSolveType()))
+        for (std::size_t i = first; i < rows_.size(); ++i) rows_[i].curvature = 0.0;
     }
+    if (!predicted_.empty())
+      for (detail::Row& r : rows_)
+        if (const auto it = predicted_.find(r.impulse); r.holonomic && it != predicted_.end()) r.lastRate = it->second.rate;
   }
 
   void readBackForces(double h) {
@@ -11919,7 +11977,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   std::vector<detail::SolverBody> solverBodies_;
   std::vector<detail::Row> rows_;
   std::vector<Constraint*> rowOwners_;
-  std::unordered_map<const double*, double> predicted_;
+  struct Prediction {
+    double violation = 0.0, rate = 0.0;
+  };
+  std::unordered_map<const double*, Prediction> predicted_;
   detail::IslandStepper islands_;
   detail::GeometricStiffness geometricStiffness_;
 };

@@ -61,6 +61,8 @@ struct Coordinate {
   double speed = 0.0;  ///< d(value)/dt at the start of the step
   Vec6d J1 = Vec6d::Zero(), J2 = Vec6d::Zero();
   bool rotational = false;
+  /// ½ vᵀ∇²(value) v at the start of the step (Row::curvature).
+  double curvature = 0.0;
 };
 
 /// The relative rotation of frame 1 in frame 2, q₂* q₁, with w ≥ 0.

@@ -224,6 +224,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     Membership::indexOf(*constraints_[index]) = index;
     constraints_.pop_back();
     Membership::simulationOf(*constraint) = nullptr;
+    predicted_.clear();  // keyed by row storage a later constraint may reuse
   }
   [[nodiscard]] const std::vector<ref_ptr<Constraint>>& getConstraints() const { return constraints_; }
   /// The first constraint with this name, or nullptr.
@@ -297,9 +298,11 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(double(h));
   }
 
-  // The violation each row expects at the end of the step from its linearization,
-  // g + h G v⁺: what post-stabilization restores (it removes only the
-  // second-order drift of the step, not the rows' compliant or damped motion).
+  // What each holonomic row's linearization makes of the step: the rate
+  // G v⁺ + hκ at which it moves g and the violation g + h·rate it should end
+  // with, which post-stabilization restores (it removes only the
+  // higher-order drift of the step, not the rows' compliant or damped
+  // motion). The rate is the next step's b' term (Row::lastRate).
   void predictViolations(double h) {
     predicted_.clear();
     if (!solver_->getEnablePostStabilization()) return;
@@ -308,7 +311,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       const auto speed = [&](int body, const detail::Vec6d& J) {
         return body < 0 ? 0.0 : J.dot(solverBodies_[static_cast<std::size_t>(body)].freeVelocity);
       };
-      predicted_[r.impulse] = r.violation + h * (speed(r.body1, r.J1) + speed(r.body2, r.J2));
+      const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + h * r.curvature;
+      predicted_[r.impulse] = {r.violation + h * rate, rate};
     }
   }
 
@@ -328,7 +332,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     // Target: the predicted violation (rows without one, e.g. a lock enabled
     // by a listener after the solve, are left out).
     std::erase_if(rows_, [&](const detail::Row& r) { return !predicted_.count(r.impulse); });
-    for (detail::Row& r : rows_) r.speed = predicted_[r.impulse];
+    for (detail::Row& r : rows_) r.speed = predicted_[r.impulse].violation;
     if (rows_.empty()) return;
     solverBodies_.clear();
     for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body));
@@ -349,9 +353,17 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       if (!contains(body1) || (body2 && !contains(body2))) continue;
       detail::RowSink sink{&rows_, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
                            c->getSolveType()};
+      const std::size_t first = rows_.size();
       detail::ConstraintAccess::addRows(*c, sink, h);
       rowOwners_.resize(rows_.size(), c.get());
+      // The curvature terms need the projection: without it, their error
+      // feeds back (the 1:1e6 chain of test_solvers.cpp diverges).
+      if (!solver_->projects(c->getSolveType()))
+        for (std::size_t i = first; i < rows_.size(); ++i) rows_[i].curvature = 0.0;
     }
+    if (!predicted_.empty())
+      for (detail::Row& r : rows_)
+        if (const auto it = predicted_.find(r.impulse); r.holonomic && it != predicted_.end()) r.lastRate = it->second.rate;
   }
 
   void readBackForces(double h) {
@@ -540,7 +552,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   std::vector<detail::SolverBody> solverBodies_;
   std::vector<detail::Row> rows_;
   std::vector<Constraint*> rowOwners_;
-  std::unordered_map<const double*, double> predicted_;
+  struct Prediction {
+    double violation = 0.0, rate = 0.0;
+  };
+  std::unordered_map<const double*, Prediction> predicted_;
   detail::IslandStepper islands_;
   detail::GeometricStiffness geometricStiffness_;
 };

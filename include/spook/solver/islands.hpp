@@ -142,7 +142,11 @@ class IslandStepper {
         // |z| = 1/√(1+4d) ≤ 0.85.
         const double d = std::max(r.damping / h, kMinimumSpookDamping);
         const double speed = r.J1.dot(velocity(r.body1, false)) + r.J2.dot(velocity(r.body2, false));
-        e.q = -4.0 / (h * (1.0 + 4.0 * d)) * r.violation + speed / (1.0 + 4.0 * d) - freeSpeed;
+        // Second order in h (row.hpp): the b' term reads the rate at which
+        // the last step moved g (G v − hκ when not kept); the step aims G v⁺
+        // at SPOOK's target minus the drift hκ its motion will add.
+        const double rate = std::isnan(r.lastRate) ? speed - h * r.curvature : r.lastRate;
+        e.q = -4.0 / (h * (1.0 + 4.0 * d)) * r.violation + rate / (1.0 + 4.0 * d) - h * r.curvature - freeSpeed;
         e.sigma = 4.0 * r.compliance / (h * h * (1.0 + 4.0 * d));
       } else {
         e.q = r.speed - freeSpeed;

@@ -42,6 +42,16 @@ struct Row {
   SolveType solveType = SolveType::DIRECT;
   /// Warm start in, solved impulse (N·s) out; owned by the constraint.
   double* impulse = nullptr;
+  /// Holonomic rows: κ = ½ vᵀ(∂²g/∂q²)v at the start of the step (m/s² or
+  /// rad/s²), the quadratic velocity term of the index-1 DAE (Ġv/2). A step
+  /// with velocity v⁺ moves g by hGv⁺ + h²κ + O(h³), and G_k v_k exceeds the
+  /// last step's mean rate of g by hκ. Used with post-stabilization only
+  /// (zero otherwise).
+  double curvature = 0.0;
+  /// Holonomic rows: the rate G_{k−1}v_k + hκ at which the last step moved
+  /// g (m/s or rad/s), kept by post-stabilization; NaN when unknown, then
+  /// G v − hκ stands in for it in SPOOK's b' term.
+  double lastRate = std::numeric_limits<double>::quiet_NaN();
   /// Translational rows: lever arms (world, m) from each center of mass to
   /// the point where the row's force acts, for the geometric stiffness
   /// (geometric_stiffness.hpp). Zero for rows that apply pure torques.

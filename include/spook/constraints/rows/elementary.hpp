@@ -31,17 +31,36 @@ inline Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, double
   return row;
 }
 
+/// Centripetal part of the separation's second derivative,
+/// ω₁×(ω₁×r₁) − ω₂×(ω₂×r₂), and its rate ḋ = v₁ + ω₁×r₁ − v₂ − ω₂×r₂.
+inline Vec3d separationCentripetal(const Attachments& a) {
+  const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>();
+  return w1.cross(w1.cross(a.r1())) - w2.cross(w2.cross(a.r2()));
+}
+inline Vec3d separationRate(const Attachments& a) {
+  return a.v1.head<3>() + a.v1.tail<3>().cross(a.r1()) - a.v2.head<3>() - a.v2.tail<3>().cross(a.r2());
+}
+
+/// κ = ½ vᵀ∇²g v (Row::curvature) of g = (p₁ − p₂)·n with the frame-2 axis
+/// n turning with ω₂: ½(d̈·n + d·n̈) + ḋ·ṅ, d̈ and n̈ their centripetal parts.
+inline double separationCurvature(const Attachments& a, const Vec3d& n) {
+  const Vec3d w2 = a.v2.tail<3>(), dn = w2.cross(n);
+  return 0.5 * (separationCentripetal(a).dot(n) + (a.p1 - a.p2).dot(w2.cross(dn))) + separationRate(a).dot(dn);
+}
+
 /// Frame origins coincide: g = p₁ − p₂ (3 rows, world axes).
 struct Spherical {
   static constexpr int kRows = 3;
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Vec3d d = a.p1 - a.p2, r1 = a.r1(), r2 = a.r2();
+    const Vec3d curvature = 0.5 * separationCentripetal(a);
     for (int k = 0; k < 3; ++k) {
       const Vec3d e = Vec3d::Unit(k);
       Row& row = holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
       row.arm1 = r1;
       row.arm2 = r2;
+      row.curvature = curvature[k];
     }
   }
 };
@@ -54,7 +73,10 @@ struct Dot1 {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Vec3d u = a.R1.col(A1), w = a.R2.col(A2), n = u.cross(w);
-    holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), u.dot(w), p[0], impulse);
+    Row& row = holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), u.dot(w), p[0], impulse);
+    // κ = ½(ü·w + u·ẅ) + u̇·ẇ with u̇ = ω₁×u, ü = ω₁×u̇ (Row::curvature).
+    const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
+    row.curvature = 0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw);
   }
 };
 
@@ -70,6 +92,7 @@ struct Dot2 {
                             (a.p1 - a.p2).dot(n), p[0], impulse);
     row.arm1 = a.r1();
     row.arm2 = a.p1 - a.c2;
+    row.curvature = separationCurvature(a, n);
   }
 };
 
@@ -131,6 +154,7 @@ inline Coordinate translationalCoordinate(const Attachments& a) {
   c.J1 = linearAngular(n, a.r1().cross(n));
   c.J2 = linearAngular(-n, n.cross(a.p1 - a.c2));
   c.speed = a.speed(c.J1, c.J2);
+  c.curvature = separationCurvature(a, n);
   return c;
 }
 
@@ -144,6 +168,11 @@ inline Coordinate distanceCoordinate(const Attachments& a) {
   c.J1 = linearAngular(n, a.r1().cross(n));
   c.J2 = linearAngular(-n, -a.r2().cross(n));
   c.speed = a.speed(c.J1, c.J2);
+  if (length > 1e-12) {
+    // κ = ½ L̈ with L̈ = n·d̈ + (|ḋ|² − (n·ḋ)²)/L, d̈ its centripetal part.
+    const Vec3d rate = separationRate(a);
+    c.curvature = 0.5 * (n.dot(separationCentripetal(a)) + (rate.squaredNorm() - std::pow(n.dot(rate), 2)) / length);
+  }
   return c;
 }
 
