@@ -6595,7 +6595,8 @@ struct Coordinate {
   double speed = 0.0;  ///< d(value)/dt at the start of the step
   Vec6d J1 = Vec6d::Zero(), J2 = Vec6d::Zero();
   bool rotational = false;
-  /// ½ vᵀ∇²(value) v at the start of the step (Row::curvature).
+  /// ½ vᵀ∇²(value) v at the start of the step (Row::curvature); zero for
+  /// angles, whose second-order term vanishes on the joint's manifold.
   double curvature = 0.0;
 };
 
@@ -11781,14 +11782,19 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       const std::size_t first = rows_.size();
       detail::ConstraintAccess::addRows(*c, sink, h);
       rowOwners_.resize(rows_.size(), c.get());
-      // The curvature terms need the projection: without it, their error
-      // feeds back (the 1:1e6 chain of test_solvers.cpp diverges).
-      if (!solver_->projects(c->getSolveType()))
-        for (std::size_t i = first; i < rows_.size(); ++i) rows_[i].curvature = 0.0;
+      // The second-order terms (Row::curvature, Row::lastRate) need the
+      // projection: without it their error feeds back (the 1:1e6 chain of
+      // test_solvers.cpp diverges).
+      const bool projected = solver_->projects(c->getSolveType());
+      for (std::size_t i = first; i < rows_.size(); ++i) {
+        detail::Row& r = rows_[i];
+        if (!projected) {
+          r.curvature = 0.0;
+        } else if (const auto it = predicted_.find(r.impulse); r.holonomic && it != predicted_.end()) {
+          r.lastRate = it->second.rate;
+        }
+      }
     }
-    if (!predicted_.empty())
-      for (detail::Row& r : rows_)
-        if (const auto it = predicted_.find(r.impulse); r.holonomic && it != predicted_.end()) r.lastRate = it->second.rate;
   }
 
   void readBackForces(double h) {

@@ -61,7 +61,8 @@ struct Coordinate {
   double speed = 0.0;  ///< d(value)/dt at the start of the step
   Vec6d J1 = Vec6d::Zero(), J2 = Vec6d::Zero();
   bool rotational = false;
-  /// ½ vᵀ∇²(value) v at the start of the step (Row::curvature).
+  /// ½ vᵀ∇²(value) v at the start of the step (Row::curvature); zero for
+  /// angles, whose second-order term vanishes on the joint's manifold.
   double curvature = 0.0;
 };
 

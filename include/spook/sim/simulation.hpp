@@ -356,14 +356,19 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       const std::size_t first = rows_.size();
       detail::ConstraintAccess::addRows(*c, sink, h);
       rowOwners_.resize(rows_.size(), c.get());
-      // The curvature terms need the projection: without it, their error
-      // feeds back (the 1:1e6 chain of test_solvers.cpp diverges).
-      if (!solver_->projects(c->getSolveType()))
-        for (std::size_t i = first; i < rows_.size(); ++i) rows_[i].curvature = 0.0;
+      // The second-order terms (Row::curvature, Row::lastRate) need the
+      // projection: without it their error feeds back (the 1:1e6 chain of
+      // test_solvers.cpp diverges).
+      const bool projected = solver_->projects(c->getSolveType());
+      for (std::size_t i = first; i < rows_.size(); ++i) {
+        detail::Row& r = rows_[i];
+        if (!projected) {
+          r.curvature = 0.0;
+        } else if (const auto it = predicted_.find(r.impulse); r.holonomic && it != predicted_.end()) {
+          r.lastRate = it->second.rate;
+        }
+      }
     }
-    if (!predicted_.empty())
-      for (detail::Row& r : rows_)
-        if (const auto it = predicted_.find(r.impulse); r.holonomic && it != predicted_.end()) r.lastRate = it->second.rate;
   }
 
   void readBackForces(double h) {
