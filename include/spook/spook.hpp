@@ -29,6 +29,7 @@
 #include <spook/constraints/joints/wheel_joint.hpp>
 #include <spook/constraints/steering/steering.hpp>
 #include <spook/constraints/regularization.hpp>
+#include <spook/constraints/virtual_constraint_inertia.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/frame.hpp>
 #include <spook/core/math.hpp>
