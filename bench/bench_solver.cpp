@@ -95,7 +95,8 @@ struct RowCollector {
     rows.clear();
     for (const auto& c : sim_.getConstraints()) {
       spook::RigidBody* body2 = c->getBodyAt(1);
-      spook::detail::RowSink sink{&rows, index_.at(c->getBodyAt(0)), body2 ? index_.at(body2) : -1, c->getSolveType()};
+      spook::detail::RowSink sink{&rows, index_.at(c->getBodyAt(0)), body2 ? index_.at(body2) : -1, c->getSolveType(),
+                                      false};
       spook::detail::ConstraintAccess::addRows(*c, sink, kStep);
     }
   }

@@ -25,11 +25,13 @@
 #include <spook/constraints/joints/lock_joint.hpp>
 #include <spook/constraints/joints/prismatic.hpp>
 #include <spook/constraints/joints/slack_joints.hpp>
+#include <spook/constraints/joints/spline_joint.hpp>
 #include <spook/constraints/joints/universal_joint.hpp>
 #include <spook/constraints/joints/wheel_joint.hpp>
 #include <spook/constraints/steering/steering.hpp>
 #include <spook/constraints/regularization.hpp>
 #include <spook/constraints/virtual_constraint_inertia.hpp>
+#include <spook/core/cubic_spline.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/frame.hpp>
 #include <spook/core/math.hpp>

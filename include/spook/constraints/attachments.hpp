@@ -35,6 +35,9 @@ struct RowSink {
   std::vector<Row>* rows = nullptr;
   int body1 = -1, body2 = -1;
   SolveType solveType = SolveType::DIRECT;
+  /// True when the solver post-stabilizes these rows, which then take their
+  /// second-order terms (Row::curvature); otherwise those are dropped.
+  bool secondOrder = false;
 
   Row& add(const Vec6d& J1, const Vec6d& J2, double* impulse) {
     Row& row = rows->emplace_back();

@@ -326,7 +326,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       Body* body2 = c->getBodyAt(1);
       if (!contains(body1) || (body2 && !contains(body2))) continue;
       detail::RowSink sink{&rows_, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
-                           c->getSolveType()};
+                           c->getSolveType(), true};
       detail::ConstraintAccess::addProjectionRows(*c, sink);
     }
     // Target: the predicted violation (rows without one, e.g. a lock enabled
@@ -351,15 +351,15 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       Body* body1 = c->getBodyAt(0);
       Body* body2 = c->getBodyAt(1);
       if (!contains(body1) || (body2 && !contains(body2))) continue;
-      detail::RowSink sink{&rows_, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
-                           c->getSolveType()};
-      const std::size_t first = rows_.size();
-      detail::ConstraintAccess::addRows(*c, sink, h);
-      rowOwners_.resize(rows_.size(), c.get());
       // The second-order terms (Row::curvature, Row::lastRate) need the
       // projection: without it their error feeds back (the 1:1e6 chain of
       // test_solvers.cpp diverges).
       const bool projected = solver_->projects(c->getSolveType());
+      detail::RowSink sink{&rows_, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
+                           c->getSolveType(), projected};
+      const std::size_t first = rows_.size();
+      detail::ConstraintAccess::addRows(*c, sink, h);
+      rowOwners_.resize(rows_.size(), c.get());
       for (std::size_t i = first; i < rows_.size(); ++i) {
         detail::Row& r = rows_[i];
         if (!projected) {
