@@ -22,8 +22,8 @@ import sys
 from collections import OrderedDict
 
 MARKERS = {
-    "direct": "s",
-    "direct+ps": "D",
+    "direct": "D",
+    "direct-nops": "s",
     "iterative4": "v",
     "iterative16": "<",
     "iterative64": ">",

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <string>
 
 #include <spook/constraints/joints/cylindrical_joint.hpp>
 #include <spook/constraints/joints/dot1_joint.hpp>
+#include <spook/constraints/joints/slack_joints.hpp>
 #include <spook/constraints/joints/universal_joint.hpp>
+#include <spook/constraints/joints/wheel_joint.hpp>
 
 #include "joint_scenes.hpp"
 #include "tolerance.hpp"
@@ -43,7 +46,25 @@ struct FramePair {
   }
   [[nodiscard]] double outOfPlane() const { return std::abs((p1 - p2).dot(R2.col(2))); }
   [[nodiscard]] double crossTilt() const { return std::abs(R1.col(0).dot(R2.col(1))); }  // Dot1<0, 1>
+  [[nodiscard]] double axleTilt() const { return std::abs(R1.col(1).dot(R2.col(2))); }   // Dot1<1, 2>
+  // The slack joints' DOFs (rows/slack.hpp): separation along axis k of frame
+  // 2 (m), tilt of z₁ about x₂ or y₂ and rotation about axis k of frame 2 (rad).
+  [[nodiscard]] double along(int k) const { return (p1 - p2).dot(R2.col(k)); }
+  [[nodiscard]] double tiltAbout(int k) const {
+    const Vec3<double> z1 = R1.col(2);
+    return k == 0 ? std::atan2(-z1.dot(R2.col(1)), z1.dot(R2.col(2)))
+                  : std::atan2(z1.dot(R2.col(0)), z1.dot(R2.col(2)));
+  }
+  [[nodiscard]] double rotationAbout(int k) const {
+    Eigen::Quaterniond q(Eigen::Matrix3d(R2.transpose() * R1));
+    if (q.w() < 0.0) q.coeffs() = -q.coeffs();
+    return 2.0 * std::atan2(q.vec()[k], q.w());
+  }
 };
+
+// How far a slack DOF x is beyond its slack [−slack, slack] (m or rad);
+// negative inside it.
+double beyond(double x, double slack) { return std::abs(x) - slack; }
 
 // One body hung from the world and one from it, both perturbed, 10 s at
 // 60 Hz under gravity, direct solver, default compliance 1e-8: the worst
@@ -53,7 +74,7 @@ struct FramePair {
 // over well before 1 s. The loads (≤ 30 N on the upper joint) deflect the
 // rows by ≤ 3e-7 m at that compliance.
 struct Measured {
-  double worst = 0.0;  ///< worst violation from 1 s on (m or rad)
+  double worst = 0.0;  ///< worst violation from 1 s on (m or rad); < 0: slack DOFs all inside their slack
   double reach = 0.0;  ///< farthest body center from the origin at the end (m)
 };
 
@@ -74,7 +95,7 @@ Measured worstViolation(const std::function<ref_ptr<Joint>(RigidBodyT<S>*, Rigid
   upper->setAngularVelocity(S(0.3), S(0.2), S(-0.4));
   lower->setVelocity(S(-0.1), S(0.3), S(0));
   lower->setAngularVelocity(S(0.1), S(0.5), S(0.2));
-  double worst = 0.0;
+  double worst = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < 600; ++i) {
     sim->stepForward();
     if (i >= 60) worst = std::max({worst, violation(FramePair<S>(*top)), violation(FramePair<S>(*bottom))});
@@ -93,9 +114,21 @@ std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)> jointAbove(const V
   };
 }
 
+// The same for a slack joint with `positional` (m) and `rotational` (rad)
+// slack.
 template <class S, class Joint>
-void checkJoint(const std::string& name, const std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)>& make,
-                const std::function<double(const FramePair<S>&)>& violation) {
+std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)> slackJointAbove(const Vec3<S>& axis, double positional,
+                                                                              double rotational) {
+  return [=](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
+    ref_ptr<Joint> joint = jointAbove<S, Joint>(axis)(b1, b2);
+    joint->setSlackParameters(S(positional), S(rotational));
+    return joint;
+  };
+}
+
+template <class S, class Joint>
+Measured checkJoint(const std::string& name, const std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)>& make,
+                    const std::function<double(const FramePair<S>&)>& violation) {
   // The issue's target for every joint: 1e-6. Float stores positions with a
   // spacing of 6e-8·r at r meters, so for bodies that slide or fall far
   // (hundreds of meters in 10 s) its tolerance grows as 1e-6·r.
@@ -108,6 +141,15 @@ void checkJoint(const std::string& name, const std::function<ref_ptr<Joint>(Rigi
   // SPOOK alone leaves the step's second-order drift, ~h²ω²L, held at
   // ~1e-4..1e-2 m by its stabilization.
   CHECK(plain.worst < 2e-2);
+  return projected;
+}
+
+// A slack joint, whose violation is how far its DOFs go beyond their slack:
+// some DOF must also be held at its end after 1 s, or the check is empty.
+template <class S, class Joint>
+void checkSlackJoint(const std::string& name, const std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)>& make,
+                     const std::function<double(const FramePair<S>&)>& excess) {
+  CHECK(checkJoint<S, Joint>(name, make, excess).worst > -1e-6);
 }
 
 }  // namespace
@@ -175,6 +217,49 @@ TEST_CASE_TEMPLATE("every joint holds its constrained DOFs within 1e-6 when post
           return ref_ptr<DistanceJointT<S>>(new DistanceJointT<S>(b1, f1.get(), anchor));
         },
         [](const F& f) { return std::abs(f.separation() - 0.7); });
+  }
+  SUBCASE("WheelJoint") {
+    // The suspension is locked at creation: the wheel's frame stays at the
+    // pivot, its axle perpendicular to the steering axis.
+    checkJoint<S, WheelJointT<S>>("WheelJoint", jointAbove<S, WheelJointT<S>>(tilted),
+                                  [](const F& f) { return std::max(f.separation(), f.axleTilt()); });
+  }
+  // Slack: 1 cm and 0.02 rad, taken up in the first second, after which
+  // gravity holds DOFs at their ends. The sliding joints get 2 mrad: their
+  // axes tilt by the rotational slack, the bodies slide apart along them, and
+  // the lower one's weight on that growing lever bends the upper joint by
+  // compliance × torque (2e-7 rad, 2.7 m apart, at 2 mrad; 1.4e-6 rad, 20 m
+  // apart, at 0.02 rad).
+  const double cm = 0.01, rad = 0.02, sliding = 0.002;
+  SUBCASE("SlackHingeJoint") {
+    checkSlackJoint<S, SlackHingeJointT<S>>(
+        "SlackHingeJoint", slackJointAbove<S, SlackHingeJointT<S>>(tilted, cm, rad), [=](const F& f) {
+          return std::max({beyond(f.along(0), cm), beyond(f.along(1), cm), beyond(f.along(2), cm),
+                           beyond(f.tiltAbout(0), rad), beyond(f.tiltAbout(1), rad)});
+        });
+  }
+  SUBCASE("SlackPrismaticJoint") {
+    checkSlackJoint<S, SlackPrismaticJointT<S>>(
+        "SlackPrismaticJoint", slackJointAbove<S, SlackPrismaticJointT<S>>(horizontal, cm, sliding), [=](const F& f) {
+          return std::max({beyond(f.along(0), cm), beyond(f.along(1), cm), beyond(f.rotationAbout(0), sliding),
+                           beyond(f.rotationAbout(1), sliding), beyond(f.rotationAbout(2), sliding)});
+        });
+  }
+  SUBCASE("SlackLockJoint") {
+    checkSlackJoint<S, SlackLockJointT<S>>(
+        "SlackLockJoint", slackJointAbove<S, SlackLockJointT<S>>(tilted, cm, rad), [=](const F& f) {
+          return std::max({beyond(f.along(0), cm), beyond(f.along(1), cm), beyond(f.along(2), cm),
+                           beyond(f.rotationAbout(0), rad), beyond(f.rotationAbout(1), rad),
+                           beyond(f.rotationAbout(2), rad)});
+        });
+  }
+  SUBCASE("SlackCylindricalJoint") {
+    checkSlackJoint<S, SlackCylindricalJointT<S>>(
+        "SlackCylindricalJoint", slackJointAbove<S, SlackCylindricalJointT<S>>(horizontal, cm, sliding),
+        [=](const F& f) {
+          return std::max({beyond(f.along(0), cm), beyond(f.along(1), cm), beyond(f.tiltAbout(0), sliding),
+                           beyond(f.tiltAbout(1), sliding)});
+        });
   }
 }
 

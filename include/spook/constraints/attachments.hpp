@@ -65,7 +65,8 @@ struct Coordinate {
   Vec6d J1 = Vec6d::Zero(), J2 = Vec6d::Zero();
   bool rotational = false;
   /// ½ vᵀ∇²(value) v at the start of the step (Row::curvature); zero for
-  /// angles, whose second-order term vanishes on the joint's manifold.
+  /// the free angles, whose second-order term vanishes on the joint's
+  /// manifold (the slack angles of slack.hpp, which leave it, carry theirs).
   double curvature = 0.0;
 };
 

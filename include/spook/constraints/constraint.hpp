@@ -175,7 +175,8 @@ class ConstraintT : public Referenced {
   /// Writes this step's rows; called once per step while enabled.
   virtual void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) = 0;
   /// Writes the equality rows that post-stabilization projects onto the
-  /// constraint manifold (joints: the elementary rows and unbounded locks).
+  /// constraint manifold (joints: the elementary rows, unbounded locks and
+  /// slack rows the step held at an end).
   virtual void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) {
     (void)a;
     (void)sink;

@@ -30,6 +30,13 @@ namespace spook::detail {
 /// in, ~h²ω² of its energy per step, so each body gets it only in proportion
 /// to how unstable the explicit step would be: with ρ = h² λmax(I⁻¹K̃) = (hω)²,
 /// weight max(0, 1 − ρ₀/ρ) for a threshold ρ₀ (0: every body at full weight).
+///
+/// A body held at a single point (a pendulum bob, a load on a hook) has no
+/// such spring: turning about its center moves the held point, so its mode
+/// is the turn about that point, with inertia I + m([r]ₓᵀ[r]ₓ), about which
+/// the force has no torque. Its ρ is taken with that inertia, which keeps
+/// the damping off free swinging (a 1 kg bob with I = 0.004 kg·m² on a 1 m
+/// hinge has ρ = 2 about its center at 60 Hz, 0.008 about the pivot).
 class GeometricStiffness {
  public:
   /// Augments `bodies` (inverse inertia, free angular velocity) from the
@@ -37,6 +44,7 @@ class GeometricStiffness {
   void apply(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
     added_.assign(bodies.size(), Mat3d::Zero());
     stiffness_.assign(bodies.size(), Mat3d::Zero());
+    heldAt_.assign(bodies.size(), Held{});
     any_ = false;
     for (const Row& r : rows) {
       const double force = *r.impulse / h;
@@ -57,7 +65,12 @@ class GeometricStiffness {
       const Mat3d stiffness = eigen.eigenvectors() * tension.asDiagonal() * eigen.eigenvectors().transpose();
       // (hω)² of the stiffest mode: the largest eigenvalue of I⁻¹K̃, i.e. of
       // Lᵀ K̃ L with I⁻¹ = L Lᵀ.
-      const Eigen::LLT<Mat3d> inverseInertia(b.inverseInertia);
+      const Held& held = heldAt_[i];
+      const Mat3d arm = skew<double>(held.arm);
+      const Mat3d modeInverseInertia =
+          held.single ? Mat3d((b.inverseInertia.inverse() + arm.transpose() * b.inverseMass.inverse() * arm).inverse())
+                      : b.inverseInertia;
+      const Eigen::LLT<Mat3d> inverseInertia(modeInverseInertia);
       const Mat3d L = inverseInertia.matrixL();
       const double rho =
           h * h *
@@ -87,11 +100,25 @@ class GeometricStiffness {
  private:
   void accumulate(int body, const Vec3d& force, const Vec3d& arm, const std::vector<SolverBody>& bodies) {
     if (body < 0 || !bodies[static_cast<std::size_t>(body)].dynamic || arm.isZero(0.0)) return;
-    stiffness_[static_cast<std::size_t>(body)] += skew<double>(force) * skew<double>(arm);
+    const auto i = static_cast<std::size_t>(body);
+    stiffness_[i] += skew<double>(force) * skew<double>(arm);
+    Held& held = heldAt_[i];
+    if (held.rows == 0) held.arm = arm;
+    // Arms of one joint's rows differ by its violation (Dot2 rows act at p₁).
+    held.single = (held.rows == 0 || held.single) && (arm - held.arm).norm() <= 1e-3 * (1.0 + arm.norm());
+    ++held.rows;
     any_ = true;
   }
 
+  /// Where a body's row forces act: one point (arm from its center) or several.
+  struct Held {
+    Vec3d arm = Vec3d::Zero();
+    int rows = 0;
+    bool single = false;
+  };
+
   std::vector<Mat3d> added_, stiffness_;
+  std::vector<Held> heldAt_;
   bool any_ = false;
 };
 

@@ -92,17 +92,18 @@ class Solver : public Referenced {
     maxPivotSteps_ = n;
   }
 
-  /// Post-stabilization (default off; 2 Newton iterations when on): after
-  /// the positions are advanced, the direct solver's equality rows are
-  /// projected, mass-weighted, onto the violation their linearization
-  /// predicted, g* = g + h G v⁺: Δq = M⁻¹Gᵀδ with G M⁻¹Gᵀ δ = g* − g(q⁺), and
-  /// the velocities take Δq/h. This removes the second-order drift of the
-  /// velocity-level step (centripetal terms, ~h²ω²L per step), which grows
-  /// with angular speed and mass ratio, and leaves the rows' compliance and
-  /// damping alone. Costs a factorization per iteration. Known defect: it
-  /// damps free swinging (a 90° hinge pendulum at h = 1/240 s runs 1.6%
-  /// short), which is why it is off by default. Iterative rows are not
-  /// projected.
+  /// Post-stabilization (on by default for DirectSolver, off for the
+  /// others; one Newton iteration): after the positions are advanced, the
+  /// direct solver's equality rows (and slack rows held at an end) are
+  /// projected, mass-weighted, onto the violation their second-order
+  /// prediction gives, g* = g + h(G v⁺ + hκ) (Row::curvature):
+  /// Δq = M⁻¹Gᵀδ with G M⁻¹Gᵀ δ = g* − g(q⁺), and the velocities take Δq/h.
+  /// This removes the drift of the velocity-level step beyond second order,
+  /// which grows with angular speed and mass ratio, and leaves the rows'
+  /// compliance and damping alone: the joint catalogue holds within 1e-6 m
+  /// (3e-7 m at the default compliance) where the plain step drifts
+  /// 1e-4..5e-3 m. Costs one more row assembly and factorization per step.
+  /// Iterative rows are not projected.
   [[nodiscard]] bool getEnablePostStabilization() const { return postStabilization_; }
   void setEnablePostStabilization(bool enable) { postStabilization_ = enable; }
   [[nodiscard]] int getNumPostStabilizationIterations() const { return postStabilization_ ? projectionIterations_ : 0; }
@@ -181,7 +182,7 @@ class Solver : public Referenced {
   bool warmStarting_ = false;
   bool geometricStiffness_ = true;
   double geometricStiffnessThreshold_ = 1.0;
-  int projectionIterations_ = 2;
+  int projectionIterations_ = 1;
   detail::DirectSolve direct_;
 };
 
@@ -190,6 +191,7 @@ class Solver : public Referenced {
 /// contacts fill in the factor.
 class DirectSolver final : public Solver {
  public:
+  DirectSolver() { setEnablePostStabilization(true); }
   [[nodiscard]] const char* getName() const override { return "direct"; }
   [[nodiscard]] bool projects(SolveType) const override { return getEnablePostStabilization(); }
 

@@ -54,7 +54,7 @@ struct Spherical {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Vec3d d = a.p1 - a.p2, r1 = a.r1(), r2 = a.r2();
-    const Vec3d curvature = 0.5 * separationCentripetal(a);
+    const Vec3d curvature = sink.secondOrder ? Vec3d(0.5 * separationCentripetal(a)) : Vec3d::Zero();
     for (int k = 0; k < 3; ++k) {
       const Vec3d e = Vec3d::Unit(k);
       Row& row = holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
@@ -74,6 +74,7 @@ struct Dot1 {
                       const ElementaryOptions&) {
     const Vec3d u = a.R1.col(A1), w = a.R2.col(A2), n = u.cross(w);
     Row& row = holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), u.dot(w), p[0], impulse);
+    if (!sink.secondOrder) return;
     // κ = ½(ü·w + u·ẅ) + u̇·ẇ with u̇ = ω₁×u, ü = ω₁×u̇ (Row::curvature).
     const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
     row.curvature = 0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw);
@@ -92,7 +93,7 @@ struct Dot2 {
                             (a.p1 - a.p2).dot(n), p[0], impulse);
     row.arm1 = a.r1();
     row.arm2 = a.p1 - a.c2;
-    row.curvature = separationCurvature(a, n);
+    if (sink.secondOrder) row.curvature = separationCurvature(a, n);
   }
 };
 

@@ -19,7 +19,31 @@ namespace spook::detail {
 // Translational DOFs are the separation along the axes of frame 2, which is
 // exactly what Dot2<K> writes (g = (p₁ − p₂)·n_K). Rotational DOFs need
 // angles in radians rather than the Dot1/QuatLock sines, so that a slack of
-// 0.05 rad means 0.05 rad: TiltAngle and RotationAngle below.
+// 0.05 rad means 0.05 rad: TiltAngle and RotationAngle below. Inside its
+// slack a DOF is off the rigid joint's manifold, so the angles carry their
+// second-order term κ (Row::curvature) like the elementary rows.
+
+/// A quantity's value, rate and κ = ½ of its second derivative at constant
+/// body velocities (Row::curvature).
+struct Rates {
+  double value = 0.0, rate = 0.0, curvature = 0.0;
+};
+
+/// u·w of an axis u of frame 1 and an axis w of frame 2, turning with ω₁ and
+/// ω₂ (as Dot1).
+inline Rates axisDot(const Attachments& a, const Vec3d& u, const Vec3d& w) {
+  const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
+  return {u.dot(w), du.dot(w) + u.dot(dw), 0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw)};
+}
+
+/// atan2(s, c) of two such quantities: θ̇ = (c ṡ − s ċ)/r² and
+/// ½θ̈ = (c κ_s − s κ_c)/r² − θ̇ (s ṡ + c ċ)/r², r² = s² + c².
+inline Rates angleRates(const Rates& s, const Rates& c) {
+  const double r2 = std::max(s.value * s.value + c.value * c.value, 1e-300);
+  const double rate = (c.value * s.rate - s.value * c.rate) / r2;
+  return {std::atan2(s.value, c.value), rate,
+          (c.value * s.curvature - s.value * c.curvature) / r2 - rate * (s.value * s.rate + c.value * c.rate) / r2};
+}
 
 /// Tilt of frame 1's z axis about axis K (0: x, 1: y) of frame 2 (rad): the
 /// angle of z₁ projected on the plane normal to that axis, measured from z₂.
@@ -46,12 +70,14 @@ struct TiltAngle {
     out.J1 = linearAngular(Vec3d::Zero(), j);
     out.J2 = linearAngular(Vec3d::Zero(), -j);
     out.speed = a.speed(out.J1, out.J2);
+    out.curvature = angleRates(axisDot(a, z1, sign * m), axisDot(a, z1, z2)).curvature;
     return out;
   }
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Coordinate c = coordinate(a);
-    holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
+    Row& row = holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
+    if (sink.secondOrder) row.curvature = c.curvature;
   }
 };
 
@@ -59,7 +85,9 @@ struct TiltAngle {
 /// (w, v) = q₂* q₁ (w ≥ 0): exact for a rotation about that axis alone, and
 /// the three together vanish only at the relaxed orientation. With
 /// Ω = R₂ᵀ(ω₁ − ω₂), v̇ = ½(wΩ + Ω × v) and ẇ = −½ Ω·v, so
-/// d(angle)/dt = Ω·(w² e_K + w v × e_K + v_K v)/(w² + v_K²).
+/// d(angle)/dt = Ω·(w² e_K + w v × e_K + v_K v)/(w² + v_K²). At constant
+/// velocities Ω̇ = −R₂ᵀ(ω₂ × (ω₁ − ω₂)), v̈ = ½(wΩ̇ + Ω̇ × v) − ¼|Ω|² v and
+/// ẅ = −½ Ω̇·v − ¼|Ω|² w.
 template <int K>
 struct RotationAngle {
   static_assert(K >= 0 && K <= 2, "RotationAngle is about x, y or z (0, 1, 2) of frame 2");
@@ -77,12 +105,18 @@ struct RotationAngle {
     out.J1 = linearAngular(Vec3d::Zero(), j);
     out.J2 = linearAngular(Vec3d::Zero(), -j);
     out.speed = a.speed(out.J1, out.J2);
+    const Vec3d omega2 = a.v2.tail<3>(), relative = a.v1.tail<3>() - omega2;
+    const Vec3d W = a.R2.transpose() * relative, dW = -a.R2.transpose() * omega2.cross(relative);
+    const Vec3d dv = 0.5 * (w * W + W.cross(v)), ddv = 0.5 * (w * dW + dW.cross(v)) - 0.25 * W.squaredNorm() * v;
+    const double dw = -0.5 * W.dot(v), ddw = -0.5 * dW.dot(v) - 0.25 * W.squaredNorm() * w;
+    out.curvature = 2.0 * angleRates({vk, dv[K], 0.5 * ddv[K]}, {w, dw, 0.5 * ddw}).curvature;
     return out;
   }
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Coordinate c = coordinate(a);
-    holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
+    Row& row = holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
+    if (sink.secondOrder) row.curvature = c.curvature;
   }
 };
 
@@ -124,11 +158,20 @@ struct SlackInterval {
       row.upper = 0.0;  // may only push x down
   }
 
-  /// For post-stabilization, which projects equalities only: a zero-width
-  /// interval keeps its row (g = x − lower); any other is left to the solve.
+  /// For post-stabilization, which projects equalities: a zero-width
+  /// interval keeps its row (g = x − lower), and so does an end the step's
+  /// solve pressed the DOF against (`row.impulse` non-zero): like a rigid
+  /// row, it is projected onto the violation x − end the solve predicted,
+  /// which removes the step's second-order drift past the end while the DOF
+  /// is held there. A DOF moving inside its slack is left to the solve.
   bool restrictProjection(Row& row) const {
-    if (lower != upper) return false;
-    row.violation -= lower;
+    if (lower == upper) {
+      row.violation -= lower;
+      return true;
+    }
+    if (!row.impulse || *row.impulse == 0.0) return false;
+    const double x = row.violation;
+    row.violation = x - (x - lower <= upper - x ? lower : upper);
     return true;
   }
 };
