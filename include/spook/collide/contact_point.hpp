@@ -18,6 +18,7 @@ struct ContactPointT {
   S depth = S(0);                     ///< penetration along the normal (m), >= 0
   bool enabled = true;                ///< false once contact reduction or a listener has dropped it
   Vec3<S> force = Vec3<S>::Zero();    ///< contact force on the second shape's body (N), after the solve
+  S normalForce = S(0);               ///< its component along the normal (N); negative only under adhesion
   std::uint32_t faceIndex1 = 0;       ///< the triangle touched when the first shape is a Trimesh or HeightField
   std::uint32_t faceIndex2 = 0;       ///< the same for the second shape
 
@@ -26,6 +27,9 @@ struct ContactPointT {
   [[nodiscard]] const Vec3<S>& getNormal() const { return normal; }
   [[nodiscard]] S getDepth() const { return depth; }
   [[nodiscard]] const Vec3<S>& getForce() const { return force; }
+  /// Normal and tangential (friction) magnitudes of getForce (N).
+  [[nodiscard]] S getNormalForceMagnitude() const { return normalForce; }
+  [[nodiscard]] S getTangentialForceMagnitude() const { return (force - normal * normalForce).norm(); }
   [[nodiscard]] std::uint32_t getFaceIndex1() const { return faceIndex1; }
   [[nodiscard]] std::uint32_t getFaceIndex2() const { return faceIndex2; }
 };

@@ -19,6 +19,8 @@
 #include <spook/dynamics/rigid_body.hpp>
 #include <spook/sim/collection.hpp>
 #include <spook/sim/contact_event_listener.hpp>
+#include <spook/sim/contact_rows.hpp>
+#include <spook/sim/material_manager.hpp>
 #include <spook/sim/membership.hpp>
 #include <spook/sim/statistics.hpp>
 #include <spook/sim/step_event_listener.hpp>
@@ -132,6 +134,28 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// removed by a contact listener).
   [[nodiscard]] const std::vector<GeometryContactT<S>>& getGeometryContacts() const {
     return space_->getGeometryContacts();
+  }
+
+  // --- Contacts --------------------------------------------------------------
+
+  /// The explicit contact materials (getOrCreateContactMaterial); pairs
+  /// without one combine their two materials' implicit values.
+  [[nodiscard]] MaterialManagerT<S>* getMaterialManager() { return &materials_; }
+  [[nodiscard]] const MaterialManagerT<S>* getMaterialManager() const { return &materials_; }
+  /// Approach speed (m/s, >= 0) above which restitution makes a contact
+  /// bounce; slower ones come to rest. Default 0.2.
+  [[nodiscard]] S getRestitutionThreshold() const { return S(contactSettings_.restitutionThreshold); }
+  void setRestitutionThreshold(S speed) {
+    if (!(std::isfinite(speed) && speed >= S(0))) throw error("restitution threshold must be finite and >= 0 m/s", speed);
+    contactSettings_.restitutionThreshold = double(speed);
+  }
+  /// The fastest (m/s, > 0) that contact stabilization separates overlapping
+  /// shapes: a box created half inside another leaves it at about this speed
+  /// instead of being shot out. Default 1.
+  [[nodiscard]] S getMaxDepenetrationSpeed() const { return S(contactSettings_.maxDepenetrationSpeed); }
+  void setMaxDepenetrationSpeed(S speed) {
+    if (!(std::isfinite(speed) && speed > S(0))) throw error("maximum depenetration speed must be finite and > 0 m/s", speed);
+    contactSettings_.maxDepenetrationSpeed = double(speed);
   }
 
   // --- Content ---------------------------------------------------------------
@@ -282,12 +306,18 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     solverBodies_.clear();
     for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h));
     collectRows(double(h));
+    numConstraintRows_ = rows_.size();
+    contactRows_.build(
+        space_->getGeometryContacts(), materials_, *gravity_,
+        [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, solverBodies_,
+        double(h), contactSettings_, rows_);
     if (solver_->getEnableGeometricStiffness() && !rows_.empty())
       geometricStiffness_.apply(rows_, solverBodies_, double(h), solver_->getGeometricStiffnessThreshold());
     else
       geometricStiffness_.clear();
     if (!rows_.empty()) islands_.solve(rows_, solverBodies_, double(h), *solver_, statistics_.solver);
     readBackForces(double(h));
+    contactRows_.readBack(double(h));
     predictViolations(double(h));
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
       Body& body = *bodies_[i];
@@ -306,7 +336,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void predictViolations(double h) {
     predicted_.clear();
     if (!solver_->getEnablePostStabilization()) return;
-    for (const detail::Row& r : rows_) {
+    for (std::size_t i = 0; i < numConstraintRows_; ++i) {
+      const detail::Row& r = rows_[i];
       if (!r.holonomic) continue;
       const auto speed = [&](int body, const detail::Vec6d& J) {
         return body < 0 ? 0.0 : J.dot(solverBodies_[static_cast<std::size_t>(body)].freeVelocity);
@@ -374,7 +405,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void readBackForces(double h) {
     for (const auto& c : constraints_)
       if (c->getEnableComputeForces()) detail::ConstraintAccess::clearWrench(*c);
-    for (std::size_t i = 0; i < rows_.size(); ++i)
+    for (std::size_t i = 0; i < numConstraintRows_; ++i)
       if (rowOwners_[i]->getEnableComputeForces())
         detail::ConstraintAccess::addWrench(*rowOwners_[i], rows_[i], *rows_[i].impulse / h);
     for (const auto& c : constraints_) detail::ConstraintAccess::afterSolve(*c, h);
@@ -557,6 +588,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   std::vector<detail::SolverBody> solverBodies_;
   std::vector<detail::Row> rows_;
   std::vector<Constraint*> rowOwners_;
+  std::size_t numConstraintRows_ = 0;  ///< rows_ holds the constraints' rows, then the contacts'
+  MaterialManagerT<S> materials_;
+  detail::ContactSettings contactSettings_;
+  detail::ContactRows<S> contactRows_;
   struct Prediction {
     double violation = 0.0, rate = 0.0;
   };

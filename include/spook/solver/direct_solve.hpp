@@ -70,6 +70,7 @@ class DirectSolve {
         const double tolX = 1e-12 * (1.0 + std::abs(x[k]));
         const double tolW = 1e-12 * (1.0 + std::abs(q_[k]));
         const State s = state[static_cast<std::size_t>(k)];
+        if (e.upper <= e.lower) continue;  // a zero-width box: held at its bound from the start
         if ((s == FREE && (x[k] < e.lower - tolX || x[k] > e.upper + tolX)) || (s == LOWER && w[k] < -tolW) ||
             (s == UPPER && w[k] > tolW))
           infeasible.push_back(k);

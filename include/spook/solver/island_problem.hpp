@@ -39,6 +39,17 @@ struct IslandProblem {
     double lower = 0.0, upper = 0.0;               ///< impulse bounds
     double impulse = 0.0;                          ///< Λ (warm start in, result out)
     SolveType solveType = SolveType::DIRECT;
+    int normal = -1;                               ///< friction rows: local index of their normal row
+    int partner = -1;                              ///< cone rows: the other tangent row of the point
+    double mu = 0.0;                               ///< friction coefficient
+    FrictionBound frictionBound = FrictionBound::FIXED;
+    /// Cone rows in a direct solve: the share |d_i| of the bound μΛn this
+    /// tangent gets, d the friction direction of the point (friction_bounds.hpp).
+    double coneShare = 1.0;
+
+    [[nodiscard]] bool followsNormal() const { return normal >= 0 && frictionBound != FrictionBound::FIXED; }
+    /// A friction row solved by the iterative pass of a SPLIT contact.
+    [[nodiscard]] bool splitFriction() const { return normal >= 0 && solveType == SolveType::SPLIT; }
   };
 
   std::vector<Entry> rows;

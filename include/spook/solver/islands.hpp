@@ -123,6 +123,9 @@ class IslandStepper {
       return W;
     };
 
+    rowLocal_.resize(rows.size(), -1);
+    for (std::size_t k = 0; k < island.size(); ++k) rowLocal_[static_cast<std::size_t>(island[k])] = static_cast<int>(k);
+    const auto localRow = [&](int i) { return i < 0 ? -1 : rowLocal_[static_cast<std::size_t>(i)]; };
     problem_.rows.resize(island.size());
     for (std::size_t k = 0; k < island.size(); ++k) {
       const Row& r = rows[static_cast<std::size_t>(island[k])];
@@ -160,12 +163,17 @@ class IslandStepper {
       e.upper = r.upper * h;
       e.impulse = std::clamp(warmStart ? *r.impulse : 0.0, e.lower, e.upper);
       e.solveType = r.solveType;
+      e.normal = localRow(r.frictionNormal);
+      e.partner = localRow(r.frictionPartner);
+      e.mu = r.frictionCoefficient;
+      e.frictionBound = r.frictionBound;
+      e.coneShare = 1.0;
     }
     problem_.numBodies = static_cast<int>(islandBodies_.size());
     for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
   }
 
-  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_;
+  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_;
   std::vector<std::vector<int>> islands_;
   IslandProblem problem_;
 };

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include <spook/solver/friction_bounds.hpp>
 #include <spook/solver/island_problem.hpp>
 
 namespace spook::detail {
@@ -20,6 +21,11 @@ struct IterativeSolveResult {
 /// rows' impulses held fixed, starting from the impulses in the problem
 /// (the last step's when warm starting): Λᵢ ← clamp(Λᵢ + rᵢ/(S+Σ)ᵢᵢ, loᵢ, hiᵢ) with rᵢ = qᵢ − GᵢΔv − ΣᵢΛᵢ,
 /// keeping Δv = M⁻¹GᵀΛ current so that one row costs O(1).
+///
+/// Friction rows take their bounds from the current impulse of their normal
+/// row: ±μΛn (scaled box), and a cone's tangent pair is updated as a block,
+/// its two impulses minimizing their quadratic within the disk of radius
+/// μΛn (projectOntoDisk), the projected cone of PHYSICS.md §2.2.
 ///
 /// The Jacobi variant computes every update of a sweep from the same Δv and
 /// applies it scaled by 1/k, k the largest number of swept rows on either of
@@ -48,13 +54,43 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
     }
   }
   std::vector<double> delta(subset.size(), 0.0);
+  std::vector<char> inSubset(problem.rows.size(), 0);
+  for (int i : subset) inSubset[static_cast<std::size_t>(i)] = 1;
+  const auto conePair = [&](int i) {
+    const auto& e = problem.rows[static_cast<std::size_t>(i)];
+    return e.frictionBound == FrictionBound::CONE && e.normal >= 0 && e.partner >= 0 &&
+           inSubset[static_cast<std::size_t>(e.partner)];
+  };
 
   for (int sweep = 0; sweep < maxIterations; ++sweep) {
     double change = 0.0;
     for (std::size_t k = 0; k < subset.size(); ++k) {
       const int i = subset[k];
       auto& e = problem.rows[static_cast<std::size_t>(i)];
+      if (e.followsNormal()) {
+        const double limit = frictionLimit(problem, e);
+        e.lower = -limit;
+        e.upper = limit;
+      }
       const double r = e.q - problem.rowVelocity(i, dv) - e.sigma * e.impulse;
+      if (!jacobi && conePair(i)) {
+        if (e.partner < i) continue;  // updated with its partner
+        auto& p = problem.rows[static_cast<std::size_t>(e.partner)];
+        p.lower = e.lower;
+        p.upper = e.upper;
+        const double rp = p.q - problem.rowVelocity(e.partner, dv) - p.sigma * p.impulse;
+        const double a01 = problem.coupling(i, e.partner);
+        const double det = e.diagonal * p.diagonal - a01 * a01;
+        const double d0 = (p.diagonal * r - a01 * rp) / det, d1 = (e.diagonal * rp - a01 * r) / det;
+        const auto next = projectOntoDisk({e.impulse + d0, p.impulse + d1}, e.upper, e.diagonal, a01, p.diagonal);
+        const double de = next[0] - e.impulse, dp = next[1] - p.impulse;
+        e.impulse = next[0];
+        p.impulse = next[1];
+        problem.addImpulse(dv, i, de);
+        problem.addImpulse(dv, e.partner, dp);
+        change = std::max({change, std::abs(de) * e.diagonal, std::abs(dp) * p.diagonal});
+        continue;
+      }
       const double next = std::clamp(e.impulse + r / e.diagonal, e.lower, e.upper);
       if (jacobi) {
         delta[k] = relaxation[k] * (next - e.impulse);
@@ -65,7 +101,7 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
       problem.addImpulse(dv, i, d);
       change = std::max(change, std::abs(d) * e.diagonal);
     }
-    if (jacobi)
+    if (jacobi) {
       for (std::size_t k = 0; k < subset.size(); ++k) {
         const int i = subset[k];
         auto& e = problem.rows[static_cast<std::size_t>(i)];
@@ -73,6 +109,20 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
         problem.addImpulse(dv, i, delta[k]);
         change = std::max(change, std::abs(delta[k]) * e.diagonal);
       }
+      // The box step leaves a cone pair in its square: scale it into the disk.
+      for (int i : subset) {
+        auto& e = problem.rows[static_cast<std::size_t>(i)];
+        if (!conePair(i) || e.partner < i) continue;
+        auto& p = problem.rows[static_cast<std::size_t>(e.partner)];
+        const double limit = frictionLimit(problem, e), force = std::hypot(e.impulse, p.impulse);
+        if (force <= limit) continue;
+        const double f = limit / force;
+        problem.addImpulse(dv, i, e.impulse * (f - 1.0));
+        problem.addImpulse(dv, e.partner, p.impulse * (f - 1.0));
+        e.impulse *= f;
+        p.impulse *= f;
+      }
+    }
     result.iterations = sweep + 1;
     result.change = change;
     if (!std::isfinite(change)) break;

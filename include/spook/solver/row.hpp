@@ -12,10 +12,18 @@ namespace spook {
 enum class SolveType : std::uint8_t {
   DIRECT = 1,               ///< the direct (pivoting, factorizing) solver
   ITERATIVE = 2,            ///< projected Gauss–Seidel
-  DIRECT_AND_ITERATIVE = 3  ///< both: couples a direct subsystem to an iterative one
+  DIRECT_AND_ITERATIVE = 3, ///< both: couples a direct subsystem to an iterative one
+  SPLIT = 4                 ///< contacts only: normals direct, friction iterative with those normals
 };
 
 namespace detail {
+
+/// How a friction row's bounds follow its contact's normal impulse Λn.
+enum class FrictionBound : std::uint8_t {
+  FIXED,       ///< the row's own bounds (box friction, or not a friction row)
+  SCALED_BOX,  ///< ±μΛn, per tangent
+  CONE         ///< the tangent pair within the disk of radius μΛn
+};
 
 using Vec6d = Eigen::Matrix<double, 6, 1>;
 
@@ -56,6 +64,13 @@ struct Row {
   /// the point where the row's force acts, for the geometric stiffness
   /// (geometric_stiffness.hpp). Zero for rows that apply pure torques.
   Eigen::Vector3d arm1 = Eigen::Vector3d::Zero(), arm2 = Eigen::Vector3d::Zero();
+  /// Friction rows: the index in the same row list of the normal row whose
+  /// impulse bounds this one (−1: not a friction row), the coefficient μ and
+  /// the kind of bound; cone rows name their contact's other tangent row.
+  int frictionNormal = -1;
+  int frictionPartner = -1;
+  double frictionCoefficient = 0.0;
+  FrictionBound frictionBound = FrictionBound::FIXED;
 
   [[nodiscard]] bool bounded() const { return lower > -std::numeric_limits<double>::infinity() || upper < std::numeric_limits<double>::infinity(); }
 };

@@ -10,6 +10,7 @@
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
 #include <spook/solver/direct_solve.hpp>
+#include <spook/solver/friction_bounds.hpp>
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/iterative_solve.hpp>
 
@@ -92,6 +93,33 @@ class Solver : public Referenced {
     maxPivotSteps_ = n;
   }
 
+  /// Outer iterations of a direct solve over the friction bounds that follow
+  /// the normal forces (scaled box and cone friction; PHYSICS.md §2.4's
+  /// non-linear iterations): each solves the LCP exactly, then moves the
+  /// bounds to μΛn of the new normal impulses and, for a cone, onto the
+  /// direction of sliding. Default 8.
+  [[nodiscard]] int getNumFrictionIterations() const { return frictionIterations_; }
+  void setNumFrictionIterations(int n) {
+    if (n < 1) throw detail::makeError("Solver", getName(), "number of friction iterations must be >= 1", n);
+    frictionIterations_ = n;
+  }
+  /// The friction iterations stop when no bound moves by more than this
+  /// fraction of the largest one. Default 1e-6.
+  [[nodiscard]] double getFrictionTolerance() const { return frictionTolerance_; }
+  void setFrictionTolerance(double tolerance) {
+    if (!(tolerance >= 0.0 && std::isfinite(tolerance)))
+      throw detail::makeError("Solver", getName(), "friction tolerance must be finite and >= 0", tolerance);
+    frictionTolerance_ = tolerance;
+  }
+  /// Hybrid solver: the most (iterative, direct) passes that couple the two
+  /// subsystems of an island (AGX's 7 dry-friction iterations); they stop
+  /// once the direct impulses change by less than 1e-6 of the largest.
+  [[nodiscard]] int getNumCouplingIterations() const { return couplingIterations_; }
+  void setNumCouplingIterations(int n) {
+    if (n < 1) throw detail::makeError("Solver", getName(), "number of coupling iterations must be >= 1", n);
+    couplingIterations_ = n;
+  }
+
   /// Post-stabilization (on by default for DirectSolver, off for the
   /// others; one Newton iteration): after the positions are advanced, the
   /// direct solver's equality rows (and slack rows held at an end) are
@@ -150,6 +178,27 @@ class Solver : public Referenced {
     statistics.factorizations += r.factorizations;
     statistics.converged = statistics.converged && r.converged;
   }
+  /// A direct solve repeated over the friction bounds that follow the normal
+  /// impulses (getNumFrictionIterations); rows flagged in `keep` keep theirs.
+  void directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
+                          SolverStatistics& statistics, const std::vector<char>* keep = nullptr) {
+    std::vector<int> following;
+    double largest = 0.0;
+    for (int i : subset) {
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      if (!e.followsNormal() || (keep && (*keep)[static_cast<std::size_t>(i)])) continue;
+      following.push_back(i);
+    }
+    direct(problem, subset, statistics);
+    for (int k = 1; k < frictionIterations_ && !following.empty(); ++k) {
+      double change = detail::updateConeDirections(problem, following);
+      change = std::max(change, detail::applyFrictionBounds(problem, following));
+      largest = 0.0;
+      for (int i : following) largest = std::max(largest, problem.rows[static_cast<std::size_t>(i)].upper);
+      if (change <= frictionTolerance_ * largest) return;
+      direct(problem, subset, statistics);
+    }
+  }
   void iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
     const detail::IterativeSolveResult r =
         detail::iterativeSolve(problem, subset, iterations_, tolerance_, method_ == JACOBI);
@@ -165,11 +214,21 @@ class Solver : public Referenced {
  private:
   static double complementarityError(const detail::IslandProblem& problem) {
     const std::vector<detail::Vec6d> dv = problem.velocityChange(allRows(problem));
+    const auto residual = [&](int i) {
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      return problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
+    };
     double worst = 0.0;
     for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
       const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      const double w = problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
-      worst = std::max(worst, detail::complementarityError(e, w));
+      if (e.frictionBound == detail::FrictionBound::CONE && e.partner >= 0) {
+        if (e.partner > i)
+          worst = std::max(worst, detail::coneComplementarityError(e, problem.rows[static_cast<std::size_t>(e.partner)],
+                                                                   detail::frictionLimit(problem, e), residual(i),
+                                                                   residual(e.partner)));
+        continue;
+      }
+      worst = std::max(worst, detail::complementarityError(e, residual(i)));
     }
     return worst;
   }
@@ -183,6 +242,9 @@ class Solver : public Referenced {
   bool geometricStiffness_ = true;
   double geometricStiffnessThreshold_ = 1.0;
   int projectionIterations_ = 1;
+  int frictionIterations_ = 8;
+  double frictionTolerance_ = 1e-6;
+  int couplingIterations_ = 7;
   detail::DirectSolve direct_;
 };
 
@@ -199,7 +261,7 @@ class DirectSolver final : public Solver {
   void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override {
     const std::vector<int> rows = allRows(problem);
     statistics.numDirectRows += static_cast<int>(rows.size());
-    direct(problem, rows, statistics);
+    directWithFriction(problem, rows, statistics);
   }
 };
 
@@ -219,12 +281,16 @@ class IterativeSolver final : public Solver {
   }
 };
 
-/// Each row as its constraint asks (Constraint::setSolveType): DIRECT rows by
-/// the direct solver, ITERATIVE rows by Gauss–Seidel, DIRECT_AND_ITERATIVE
-/// rows by both, coupling the two subsystems (seed 001 §12.17). With both
-/// kinds present an island is solved in three passes: direct (iterative rows
-/// at their warm start), iterative (direct rows fixed), direct again with the
-/// iterative impulses, so the direct rows end exact given the iterative ones.
+/// Each row as its constraint or friction model asks (setSolveType): DIRECT
+/// rows by the direct solver, ITERATIVE rows by Gauss–Seidel,
+/// DIRECT_AND_ITERATIVE rows by both, coupling the two subsystems (seed 001
+/// §12.17), and SPLIT contacts with their normals direct and their friction
+/// iterative. An island without iterative-only rows is solved directly
+/// (DIRECT_AND_ITERATIVE then means DIRECT). Otherwise: a direct pass
+/// (iterative rows at their warm start), then up to getNumCouplingIterations
+/// passes of Gauss–Seidel (direct-only rows fixed) followed by a direct solve
+/// with the iterative impulses, in which DIRECT_AND_ITERATIVE friction keeps
+/// the bounds the iterative pass found (PHYSICS.md §2.5).
 class HybridSolver final : public Solver {
  public:
   [[nodiscard]] const char* getName() const override { return "hybrid"; }
@@ -232,16 +298,22 @@ class HybridSolver final : public Solver {
  protected:
   void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override {
     std::vector<int> directRows, iterativeRows;
+    std::vector<char> keep(problem.rows.size(), 0);
     bool anyIterativeOnly = false;
     for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
-      const SolveType type = problem.rows[static_cast<std::size_t>(i)].solveType;
-      if (type != SolveType::ITERATIVE) directRows.push_back(i);
-      if (type != SolveType::DIRECT) iterativeRows.push_back(i);
-      anyIterativeOnly = anyIterativeOnly || type == SolveType::ITERATIVE;
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      const bool friction = e.normal >= 0;
+      const bool split = e.solveType == SolveType::SPLIT;
+      const bool inDirect = e.solveType != SolveType::ITERATIVE && !(split && friction);
+      const bool inIterative = e.solveType != SolveType::DIRECT && !(split && !friction);
+      if (inDirect) directRows.push_back(i);
+      if (inIterative) iterativeRows.push_back(i);
+      anyIterativeOnly = anyIterativeOnly || (inIterative && !inDirect);
+      keep[static_cast<std::size_t>(i)] = friction && e.solveType == SolveType::DIRECT_AND_ITERATIVE;
     }
     statistics.numDirectRows += static_cast<int>(directRows.size());
     if (!anyIterativeOnly) {
-      direct(problem, directRows, statistics);
+      directWithFriction(problem, directRows, statistics);
       return;
     }
     statistics.numIterativeRows += static_cast<int>(iterativeRows.size());
@@ -249,9 +321,23 @@ class HybridSolver final : public Solver {
       iterative(problem, iterativeRows, statistics);
       return;
     }
-    direct(problem, directRows, statistics);
-    iterative(problem, iterativeRows, statistics);
-    direct(problem, directRows, statistics);
+    directWithFriction(problem, directRows, statistics);
+    std::vector<double> previous(directRows.size());
+    for (int pass = 0; pass < getNumCouplingIterations(); ++pass) {
+      iterative(problem, iterativeRows, statistics);
+      detail::freezeConeShares(problem, iterativeRows, keep);
+      detail::applyFrictionBounds(problem, iterativeRows);
+      double largest = 0.0;
+      for (std::size_t k = 0; k < directRows.size(); ++k) {
+        previous[k] = problem.rows[static_cast<std::size_t>(directRows[k])].impulse;
+        largest = std::max(largest, std::abs(previous[k]));
+      }
+      directWithFriction(problem, directRows, statistics, &keep);
+      double change = 0.0;
+      for (std::size_t k = 0; k < directRows.size(); ++k)
+        change = std::max(change, std::abs(problem.rows[static_cast<std::size_t>(directRows[k])].impulse - previous[k]));
+      if (change <= 1e-6 * largest) break;
+    }
   }
 };
 

@@ -1,0 +1,211 @@
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <spook/collide/geometry_contact.hpp>
+#include <spook/dynamics/friction_model.hpp>
+#include <spook/dynamics/gravity_field.hpp>
+#include <spook/sim/material_manager.hpp>
+#include <spook/solver/island_problem.hpp>
+#include <spook/solver/islands.hpp>
+#include <spook/solver/row.hpp>
+
+namespace spook::detail {
+
+/// Simulation-wide contact settings.
+struct ContactSettings {
+  /// Approach speed (m/s) above which restitution acts; slower contacts rest.
+  double restitutionThreshold = 0.2;
+  /// Cap on the speed (m/s) at which the stabilization of the normal rows
+  /// pushes overlapping shapes apart.
+  double maxDepenetrationSpeed = 1.0;
+};
+
+/// Turns the solvable contact points into rows (PHYSICS.md §1.4) and reads
+/// their forces back. Per point: a unilateral normal row on the gap
+/// g = adhesive overlap − depth with compliance 1/E and the contact
+/// material's damping (0 ≤ Λn, or down to −adhesive force), and two tangent
+/// velocity rows that drive the slip to the surface velocities' difference,
+/// with the surface viscosity as compliance and bounds from the friction
+/// model. An impact faster than the restitution threshold turns the normal
+/// row into a velocity row asking for e times the approach speed (Newton's
+/// law, §1.4).
+template <Scalar S>
+class ContactRows {
+ public:
+  template <class BodyIndex>
+  void build(std::vector<GeometryContactT<S>>& contacts, const MaterialManagerT<S>& materials,
+             const GravityFieldT<S>& gravity, BodyIndex bodyIndex, const std::vector<SolverBody>& bodies, double h,
+             const ContactSettings& settings, std::vector<Row>& rows) {
+    points_.clear();
+    std::size_t count = 0;
+    for (const auto& c : contacts)
+      if (solvable(c)) count += c.getNumEnabledPoints();
+    impulses_.assign(3 * count, 0.0);
+    std::unordered_map<PairKey, double, PairHash> lastForce;
+    lastForce.swap(pairForce_);
+
+    for (auto& contact : contacts) {
+      if (!solvable(contact)) continue;
+      const ContactParametersT<S> p =
+          materials.resolve(*contact.geometry(0)->getMaterial(), *contact.geometry(1)->getMaterial());
+      const FrictionModelT<S>* model = p.frictionModel;
+      const SolveType solveType = model ? model->getSolveType() : SolveType::SPLIT;
+      const auto type = model ? model->getType() : FrictionModelT<S>::ITERATIVE_PROJECTED_CONE;
+      FrictionBound bound = type == FrictionModelT<S>::BOX         ? FrictionBound::FIXED
+                            : type == FrictionModelT<S>::SCALE_BOX ? FrictionBound::SCALED_BOX
+                                                                   : FrictionBound::CONE;
+      // The projected cone is round: anisotropic friction falls back to the scaled box.
+      if (bound == FrictionBound::CONE && p.friction[0] != p.friction[1]) bound = FrictionBound::SCALED_BOX;
+
+      RigidBodyT<S>* body[2] = {contact.rigidBody(0), contact.rigidBody(1)};
+      const int index[2] = {body[0] ? bodyIndex(body[0]) : -1, body[1] ? bodyIndex(body[1]) : -1};
+      Eigen::Vector3d cm[2], surface[2];
+      for (int k = 0; k < 2; ++k) {
+        cm[k] = body[k] ? Eigen::Vector3d(body[k]->getCmPosition().template cast<double>()) : Eigen::Vector3d::Zero();
+        surface[k] = (contact.geometry(static_cast<std::size_t>(k))->getTransform().linear() *
+                      contact.geometry(static_cast<std::size_t>(k))->getSurfaceVelocity())
+                         .template cast<double>();
+      }
+      const double normalEstimate = estimateNormalForce(contact, model, lastForce, gravity);
+
+      for (auto& point : contact.points()) {
+        if (!point.enabled) continue;
+        const Eigen::Vector3d n = point.normal.template cast<double>();
+        const Eigen::Vector3d x = point.point.template cast<double>();
+        const Eigen::Vector3d r1 = x - cm[0], r2 = x - cm[1];
+        const auto velocityOf = [&](int k, const Eigen::Vector3d& r, bool free) -> Eigen::Vector3d {
+          if (index[k] < 0) return Eigen::Vector3d::Zero();
+          const SolverBody& b = bodies[static_cast<std::size_t>(index[k])];
+          const Vec6d& v = free ? b.freeVelocity : b.velocity;
+          return v.head<3>() + v.tail<3>().cross(r);
+        };
+        const auto makeRow = [&](const Eigen::Vector3d& direction, double* impulse) {
+          Row row;
+          row.body1 = index[0];
+          row.body2 = index[1];
+          row.J1 << -direction, -r1.cross(direction);
+          row.J2 << direction, r2.cross(direction);
+          row.arm1 = r1;
+          row.arm2 = r2;
+          row.solveType = solveType;
+          row.impulse = impulse;
+          return row;
+        };
+
+        double* impulse = &impulses_[3 * points_.size()];
+        const int normalIndex = static_cast<int>(rows.size());
+        Row normal = makeRow(n, impulse);
+        normal.lower = -double(p.adhesiveForce);
+        const double approach = n.dot(velocityOf(1, r2, false) - velocityOf(0, r1, false));
+        if (p.restitution > S(0) && approach < -settings.restitutionThreshold) {
+          normal.holonomic = false;
+          normal.speed = -double(p.restitution) * approach;
+        } else {
+          const double d = std::max(double(p.damping) / h, IslandStepper::kMinimumSpookDamping);
+          // SPOOK's a·g is the speed at which the overlap is pushed out: capped.
+          const double deepest = -settings.maxDepenetrationSpeed * h * (1.0 + 4.0 * d) / 4.0;
+          normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
+          normal.compliance = 1.0 / double(p.youngsModulus);
+          normal.damping = double(p.damping);
+        }
+        rows.push_back(normal);
+
+        const Eigen::Vector3d slip = velocityOf(1, r2, true) + surface[1] - velocityOf(0, r1, true) - surface[0];
+        const auto [t1, t2] = tangents(n, slip, model);
+        const Eigen::Vector3d tangent[2] = {t1, t2};
+        for (int k = 0; k < 2; ++k) {
+          Row row = makeRow(tangent[k], impulse + 1 + k);
+          row.holonomic = false;
+          row.speed = (surface[0] - surface[1]).dot(tangent[k]);
+          row.compliance = double(p.surfaceViscosity[k]);
+          const double mu = double(p.friction[k]);
+          row.upper = mu * normalEstimate / double(std::max<std::size_t>(contact.getNumEnabledPoints(), 1));
+          row.lower = -row.upper;
+          row.frictionNormal = normalIndex;
+          row.frictionPartner = bound == FrictionBound::CONE ? normalIndex + 2 - k : -1;
+          row.frictionCoefficient = mu;
+          row.frictionBound = bound;
+          rows.push_back(row);
+        }
+        points_.push_back({&point, pairKey(contact), n, t1, t2});
+      }
+    }
+  }
+
+  /// Writes each point's force (on the second geometry's body) and keeps the
+  /// normal force of each pair for the next step's box friction.
+  void readBack(double h) {
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const PointRows& p = points_[i];
+      const double* impulse = &impulses_[3 * i];
+      const Eigen::Vector3d force = (impulse[0] * p.normal + impulse[1] * p.t1 + impulse[2] * p.t2) / h;
+      p.point->force = force.template cast<S>();
+      p.point->normalForce = S(impulse[0] / h);
+      pairForce_[p.pair] += impulse[0] / h;
+    }
+  }
+
+ private:
+  using PairKey = std::pair<const void*, const void*>;
+  struct PairHash {
+    std::size_t operator()(const PairKey& k) const {
+      return std::hash<const void*>()(k.first) * 31u ^ std::hash<const void*>()(k.second);
+    }
+  };
+  struct PointRows {
+    ContactPointT<S>* point;
+    PairKey pair;
+    Eigen::Vector3d normal, t1, t2;
+  };
+
+  static bool solvable(const GeometryContactT<S>& c) { return c.isEnabled() && !c.isSensor(); }
+  static PairKey pairKey(const GeometryContactT<S>& c) { return {c.geometry(0), c.geometry(1)}; }
+
+  // N for box friction: the user's, else the pair's normal force of the last
+  // step, else the weight of the lighter dynamic body.
+  double estimateNormalForce(const GeometryContactT<S>& contact, const FrictionModelT<S>* model,
+                             const std::unordered_map<PairKey, double, PairHash>& lastForce,
+                             const GravityFieldT<S>& gravity) const {
+    if (model && model->getType() == FrictionModelT<S>::BOX) {
+      const auto* box = static_cast<const BoxFrictionT<S>*>(model);
+      if (box->hasNormalForceMagnitude()) return double(box->getNormalForceMagnitude());
+    }
+    if (const auto it = lastForce.find(pairKey(contact)); it != lastForce.end() && it->second > 0.0) return it->second;
+    double weight = 0.0;
+    for (std::size_t k = 0; k < 2; ++k) {
+      const RigidBodyT<S>* body = contact.rigidBody(k);
+      if (!body || body->getMotionControl() != RigidBodyT<S>::DYNAMICS) continue;
+      const double w = double(body->getMassProperties()->getMass() * gravity.calculateGravity(body->getCmPosition()).norm());
+      weight = weight > 0.0 ? std::min(weight, w) : w;
+    }
+    return weight;
+  }
+
+  // t1 along the primary direction when the model has one, else along the
+  // slip (so that box friction opposes it), else any; t2 = n × t1.
+  static std::pair<Eigen::Vector3d, Eigen::Vector3d> tangents(const Eigen::Vector3d& n, const Eigen::Vector3d& slip,
+                                                              const FrictionModelT<S>* model) {
+    Eigen::Vector3d t1 = Eigen::Vector3d::Zero();
+    if (model && model->hasPrimaryDirection()) {
+      const Eigen::Vector3d d = model->getPrimaryDirection().template cast<double>();
+      t1 = d - d.dot(n) * n;
+    }
+    if (t1.norm() < 1e-6) t1 = slip - slip.dot(n) * n;
+    if (t1.norm() < 1e-9) t1 = n.unitOrthogonal();
+    t1.normalize();
+    return {t1, n.cross(t1)};
+  }
+
+  std::vector<double> impulses_;
+  std::vector<PointRows> points_;
+  std::unordered_map<PairKey, double, PairHash> pairForce_;
+};
+
+}  // namespace spook::detail

@@ -1,0 +1,134 @@
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include <spook/solver/island_problem.hpp>
+
+namespace spook::detail {
+
+/// The friction limit μΛn (N·s) of friction row e from its normal's current impulse.
+[[nodiscard]] inline double frictionLimit(const IslandProblem& problem, const IslandProblem::Entry& e) {
+  return e.mu * std::max(0.0, problem.rows[static_cast<std::size_t>(e.normal)].impulse);
+}
+
+/// Sets the bounds of the friction rows among `subset` that follow their
+/// normal: ±μΛn for a scaled box, ±μΛn·|d_i| for a cone row (the direct
+/// solver's box around the cone, see updateConeDirections).
+/// Returns the largest change of a bound (N·s).
+inline double applyFrictionBounds(IslandProblem& problem, const std::vector<int>& subset) {
+  double change = 0.0;
+  for (int i : subset) {
+    IslandProblem::Entry& e = problem.rows[static_cast<std::size_t>(i)];
+    if (!e.followsNormal()) continue;
+    const double limit = frictionLimit(problem, e) * (e.frictionBound == FrictionBound::CONE ? e.coneShare : 1.0);
+    change = std::max(change, std::abs(limit - e.upper));
+    e.lower = -limit;
+    e.upper = limit;
+  }
+  return change;
+}
+
+/// The point of the disk |x| ≤ radius closest to `target` in the metric of
+/// the 2×2 block A (a00, a01, a11): the cone step of Gauss–Seidel, where the
+/// pair of tangent impulses minimizes its quadratic within the disk.
+/// Projected gradient with step 1/λmax(A) from the radial projection.
+[[nodiscard]] inline std::array<double, 2> projectOntoDisk(std::array<double, 2> target, double radius, double a00,
+                                                          double a01, double a11) {
+  const auto clampToDisk = [radius](std::array<double, 2> x) {
+    const double r = std::hypot(x[0], x[1]);
+    if (r > radius) {
+      const double f = r > 0.0 ? radius / r : 0.0;
+      x = {x[0] * f, x[1] * f};
+    }
+    return x;
+  };
+  std::array<double, 2> x = clampToDisk(target);
+  const double half = 0.5 * (a00 + a11);
+  const double largest = half + std::sqrt(0.25 * (a00 - a11) * (a00 - a11) + a01 * a01);
+  if (!(largest > 0.0)) return x;
+  for (int k = 0; k < 16; ++k) {
+    const double g0 = a00 * (x[0] - target[0]) + a01 * (x[1] - target[1]);
+    const double g1 = a01 * (x[0] - target[0]) + a11 * (x[1] - target[1]);
+    const std::array<double, 2> next = clampToDisk({x[0] - g0 / largest, x[1] - g1 / largest});
+    const double moved = std::hypot(next[0] - x[0], next[1] - x[1]);
+    x = next;
+    if (moved <= 1e-12 * (radius + 1e-300)) break;
+  }
+  return x;
+}
+
+/// The cone in a direct (box-constrained) solve, as an outer iteration: each
+/// tangent pair (t1, t2) gets the box |Λ_i| ≤ μΛn|d_i|, whose corner d·μΛn
+/// lies on the cone. d is the direction of the friction force: opposite the
+/// slip w = (S+Σ)Λ − q of the pair while it slides (Coulomb's law), or the
+/// force itself when it sticks outside the disk. A sticking pair inside the
+/// disk keeps its box. At the fixed point every sliding pair carries μΛn
+/// against its slip and every sticking one lies in the disk: the cone's
+/// solution. Returns the largest change of a bound (N·s).
+inline double updateConeDirections(IslandProblem& problem, const std::vector<int>& subset) {
+  std::vector<int> all(problem.rows.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  const std::vector<Vec6d> dv = problem.velocityChange(all);
+  const auto slip = [&](int i) {
+    const IslandProblem::Entry& e = problem.rows[static_cast<std::size_t>(i)];
+    return problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
+  };
+  std::vector<char> inSubset(problem.rows.size(), 0);
+  for (int i : subset) inSubset[static_cast<std::size_t>(i)] = 1;
+  double change = 0.0;
+  for (int a : subset) {
+    IslandProblem::Entry& ea = problem.rows[static_cast<std::size_t>(a)];
+    if (ea.frictionBound != FrictionBound::CONE || ea.partner < a || !inSubset[static_cast<std::size_t>(ea.partner)])
+      continue;
+    IslandProblem::Entry& eb = problem.rows[static_cast<std::size_t>(ea.partner)];
+    const double limit = frictionLimit(problem, ea);
+    const double wa = slip(a), wb = slip(ea.partner);
+    const double slipSpeed = std::hypot(wa, wb);
+    const double force = std::hypot(ea.impulse, eb.impulse);
+    // A pair inside its box has w = 0 to round-off; slip counts above that.
+    const double slipFloor = 1e-9 * (1.0 + std::abs(ea.q) + std::abs(eb.q));
+    double da = ea.coneShare, db = eb.coneShare;
+    if (slipSpeed > slipFloor) {
+      da = std::abs(wa) / slipSpeed;
+      db = std::abs(wb) / slipSpeed;
+    } else if (force > limit * (1.0 + 1e-9) && force > 0.0) {
+      da = std::abs(ea.impulse) / force;
+      db = std::abs(eb.impulse) / force;
+    }
+    change = std::max(change, limit * std::max(std::abs(da - ea.coneShare), std::abs(db - eb.coneShare)));
+    ea.coneShare = da;
+    eb.coneShare = db;
+  }
+  return change;
+}
+
+/// Freezes the cone rows among `subset` whose `keep` flag is set at the
+/// friction their last (iterative) solve found: the box |Λ_i| ≤ μΛn|f_i|/|f|
+/// holds f and has its corner on the cone (the inscribed square when f = 0).
+inline void freezeConeShares(IslandProblem& problem, const std::vector<int>& subset, const std::vector<char>& keep) {
+  for (int a : subset) {
+    IslandProblem::Entry& ea = problem.rows[static_cast<std::size_t>(a)];
+    if (!keep[static_cast<std::size_t>(a)] || ea.frictionBound != FrictionBound::CONE || ea.partner < a) continue;
+    IslandProblem::Entry& eb = problem.rows[static_cast<std::size_t>(ea.partner)];
+    const double force = std::hypot(ea.impulse, eb.impulse);
+    ea.coneShare = force > 0.0 ? std::abs(ea.impulse) / force : std::sqrt(0.5);
+    eb.coneShare = force > 0.0 ? std::abs(eb.impulse) / force : std::sqrt(0.5);
+  }
+}
+
+/// Complementarity error of a cone pair (m/s): its slip w must oppose its
+/// force f when |f| = μΛn and vanish inside the disk.
+[[nodiscard]] inline double coneComplementarityError(const IslandProblem::Entry& a, const IslandProblem::Entry& b,
+                                                     double limit, double wa, double wb) {
+  const double force = std::hypot(a.impulse, b.impulse);
+  if (force < limit * (1.0 - 1e-9) || force == 0.0) return std::hypot(wa, wb);
+  const double fa = a.impulse / force, fb = b.impulse / force;
+  const double along = wa * fa + wb * fb;  // must be <= 0
+  return std::max(0.0, along) + std::abs(wa * fb - wb * fa);
+}
+
+}  // namespace spook::detail
