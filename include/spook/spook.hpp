@@ -39,6 +39,8 @@
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
 #include <spook/core/scalar.hpp>
+#include <spook/dynamics/contact_material.hpp>
+#include <spook/dynamics/friction_model.hpp>
 #include <spook/dynamics/gravity_field.hpp>
 #include <spook/dynamics/material.hpp>
 #include <spook/dynamics/mass_properties.hpp>
@@ -46,6 +48,7 @@
 #include <spook/sim/assembly.hpp>
 #include <spook/sim/collection.hpp>
 #include <spook/sim/contact_event_listener.hpp>
+#include <spook/sim/material_manager.hpp>
 #include <spook/sim/simulation.hpp>
 #include <spook/sim/statistics.hpp>
 #include <spook/sim/step_event_listener.hpp>

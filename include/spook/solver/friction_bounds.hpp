@@ -86,15 +86,23 @@ inline double updateConeDirections(IslandProblem& problem, const std::vector<int
       continue;
     IslandProblem::Entry& eb = problem.rows[static_cast<std::size_t>(ea.partner)];
     const double limit = frictionLimit(problem, ea);
-    const double wa = slip(a), wb = slip(ea.partner);
+    // Only a row held at its bound slips; inside, w is round-off.
+    const auto held = [](const IslandProblem::Entry& e) {
+      return e.upper <= e.lower || std::abs(e.impulse) >= e.upper * (1.0 - 1e-9);
+    };
+    const double wa = held(ea) ? slip(a) : 0.0, wb = held(eb) ? slip(ea.partner) : 0.0;
     const double slipSpeed = std::hypot(wa, wb);
     const double force = std::hypot(ea.impulse, eb.impulse);
-    // A pair inside its box has w = 0 to round-off; slip counts above that.
-    const double slipFloor = 1e-9 * (1.0 + std::abs(ea.q) + std::abs(eb.q));
     double da = ea.coneShare, db = eb.coneShare;
-    if (slipSpeed > slipFloor) {
-      da = std::abs(wa) / slipSpeed;
-      db = std::abs(wb) / slipSpeed;
+    if (slipSpeed > 0.0) {
+      // Halfway from the last direction toward the slip's: the slips of
+      // points on one body answer each other's turns, and the full step
+      // can oscillate.
+      const double sa = std::copysign(ea.coneShare, ea.impulse) - wa / slipSpeed;
+      const double sb = std::copysign(eb.coneShare, eb.impulse) - wb / slipSpeed;
+      const double norm = std::hypot(sa, sb);
+      da = norm > 1e-12 ? std::abs(sa) / norm : std::abs(wa) / slipSpeed;
+      db = norm > 1e-12 ? std::abs(sb) / norm : std::abs(wb) / slipSpeed;
     } else if (force > limit * (1.0 + 1e-9) && force > 0.0) {
       da = std::abs(ea.impulse) / force;
       db = std::abs(eb.impulse) / force;
@@ -125,7 +133,9 @@ inline void freezeConeShares(IslandProblem& problem, const std::vector<int>& sub
 [[nodiscard]] inline double coneComplementarityError(const IslandProblem::Entry& a, const IslandProblem::Entry& b,
                                                      double limit, double wa, double wb) {
   const double force = std::hypot(a.impulse, b.impulse);
-  if (force < limit * (1.0 - 1e-9) || force == 0.0) return std::hypot(wa, wb);
+  // On the cone to within the friction iterations' reach (their last solve
+  // moves Λn after the bounds were set).
+  if (force < limit * (1.0 - 1e-4) || force == 0.0) return std::hypot(wa, wb);
   const double fa = a.impulse / force, fb = b.impulse / force;
   const double along = wa * fa + wb * fb;  // must be <= 0
   return std::max(0.0, along) + std::abs(wa * fb - wb * fa);

@@ -112,8 +112,10 @@ class Solver : public Referenced {
     frictionTolerance_ = tolerance;
   }
   /// Hybrid solver: the most (iterative, direct) passes that couple the two
-  /// subsystems of an island (AGX's 7 dry-friction iterations); they stop
-  /// once the direct impulses change by less than 1e-6 of the largest.
+  /// subsystems of an island; they stop once the direct impulses change by
+  /// less than 1e-6 of the largest. Default 16: the coupling converges
+  /// linearly, and a box resting on a 30° incline under SPLIT friction creeps
+  /// 4.7 mm in 2 s after AGX's 7 dry-friction iterations, 0.05 mm after 16.
   [[nodiscard]] int getNumCouplingIterations() const { return couplingIterations_; }
   void setNumCouplingIterations(int n) {
     if (n < 1) throw detail::makeError("Solver", getName(), "number of coupling iterations must be >= 1", n);
@@ -244,7 +246,7 @@ class Solver : public Referenced {
   int projectionIterations_ = 1;
   int frictionIterations_ = 8;
   double frictionTolerance_ = 1e-6;
-  int couplingIterations_ = 7;
+  int couplingIterations_ = 16;
   detail::DirectSolve direct_;
 };
 

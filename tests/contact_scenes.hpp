@@ -1,0 +1,63 @@
+#pragma once
+
+// Small contact scenes shared by the contact tests and their solver policies.
+
+#include <string>
+
+#include <spook/collide/shapes/box.hpp>
+#include <spook/collide/shapes/plane.hpp>
+#include <spook/collide/shapes/sphere.hpp>
+#include <spook/sim/simulation.hpp>
+
+namespace spook::test {
+
+/// The three solver policies, by name, for reports.
+enum class Policy { DIRECT, HYBRID, ITERATIVE };
+
+inline std::string policyName(Policy p) {
+  return p == Policy::DIRECT ? "direct" : p == Policy::HYBRID ? "hybrid" : "iterative";
+}
+
+inline ref_ptr<Solver> makeSolver(Policy p) {
+  if (p == Policy::DIRECT) return new DirectSolver();
+  if (p == Policy::HYBRID) return new HybridSolver();
+  return new IterativeSolver();
+}
+
+/// A static ground plane through the origin with normal `up`.
+template <class S>
+ref_ptr<GeometryT<S>> addGround(SimulationT<S>& sim, const ref_ptr<MaterialT<S>>& material,
+                                const Vec3<S>& up = Vec3<S>::UnitZ()) {
+  ref_ptr<GeometryT<S>> ground = new GeometryT<S>(new PlaneT<S>(up), Transform<S>::Identity(), "ground");
+  ground->setMaterial(material);
+  sim.add(ground);
+  return ground;
+}
+
+/// A dynamic body of one shape (mass from the material's density).
+template <class S>
+ref_ptr<RigidBodyT<S>> addBody(SimulationT<S>& sim, const char* name, ShapeT<S>* shape,
+                               const ref_ptr<MaterialT<S>>& material, const Vec3<S>& position,
+                               const Quat<S>& rotation = Quat<S>::Identity()) {
+  ref_ptr<GeometryT<S>> geometry = new GeometryT<S>(shape, Transform<S>::Identity(), name);
+  geometry->setMaterial(material);
+  ref_ptr<RigidBodyT<S>> body = new RigidBodyT<S>(name);
+  body->add(geometry);
+  body->setPosition(position);
+  body->setRotation(rotation);
+  sim.add(body);
+  return body;
+}
+
+/// Sum of the normal forces (N) of the contacts that involve `geometry`'s body.
+template <class S>
+S normalForceOn(const SimulationT<S>& sim, const RigidBodyT<S>* body) {
+  S sum = S(0);
+  for (const auto& c : sim.getGeometryContacts())
+    if (c.rigidBody(0) == body || c.rigidBody(1) == body)
+      for (const auto& p : c.points())
+        if (p.enabled) sum += p.getNormalForceMagnitude();
+  return sum;
+}
+
+}  // namespace spook::test
