@@ -1,6 +1,6 @@
-// Collision detection on its own: a capsule falls through a static ground
-// (contacts are found and reported, not yet solved), and a listener prints
-// the impact, the contacts and the separation once the capsule is lifted.
+// Contact events: a capsule falls onto a static ground and comes to rest on
+// it (the contacts carry its weight), and a listener prints the impact, the
+// contacts and the separation once the capsule is lifted.
 #include <cstdio>
 
 #include <spook/spook.hpp>
@@ -42,7 +42,12 @@ int main() {
   sim->add(new Reporter());
 
   std::printf("capsule of %.2f kg (density 1000 kg/m^3)\n", capsule->getMassProperties()->getMass());
-  for (int step = 0; step < 9; ++step) sim->stepForward();
+  for (int step = 0; step < 30; ++step) sim->stepForward();
+  double normalForce = 0;
+  for (const auto& contact : sim->getGeometryContacts())
+    for (const auto& p : contact.points()) normalForce += p.getNormalForceMagnitude();
+  std::printf("resting: normal force %.2f N, weight %.2f N\n", normalForce,
+              capsule->getMassProperties()->getMass() * 9.80665);
   capsule->setPosition(0, 0, 2);  // lift it clear
   capsule->setVelocity(0, 0, 0);
   sim->stepForward();

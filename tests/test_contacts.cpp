@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <spook/constraints/joints/lock_joint.hpp>
@@ -244,10 +245,52 @@ TEST_CASE_TEMPLATE("a joint and a contact share a load by their compliances; get
   sim->add(lock);
   for (int step = 0; step < 300; ++step) sim->stepForward();
   const S weight = box->getMassProperties()->getMass() * S(kG);
-  spook::Vec3<S> force, torque;
+  spook::Vec3<S> force = spook::Vec3<S>::Zero(), torque = spook::Vec3<S>::Zero();
   REQUIRE(lock->getLastForce(box.get(), force, torque));
   const S contact = spook::test::normalForceOn(*sim, box.get());
   MESSAGE("lock carries ", force.z() / weight, " of the weight, contacts ", contact / weight);
   CHECK(std::abs(force.z() / weight - S(1) / S(3)) < S(0.01));
   CHECK(std::abs((force.z() + contact) / weight - S(1)) < pick<S>(1e-6, 1e-4));
+}
+
+TEST_CASE_TEMPLATE("an explicit contact material chooses the contact reduction of its pair", S, float, double) {
+  // A cube turned 45° on a larger static block: the square faces overlap in
+  // an octagon, eight contact points.
+  spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
+  Materials<S> m;
+  spook::ref_ptr<spook::GeometryT<S>> block =
+      new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3<S>(S(2), S(2), S(0.5))), spook::Transform<S>::Identity(), "block");
+  block->setMaterial(m.ground);
+  sim->add(block);
+  const spook::Quat<S> turned(Eigen::AngleAxis<S>(S(std::numbers::pi / 4), spook::Vec3<S>::UnitZ()));
+  spook::test::addBody(*sim, "cube", new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))), m.body,
+                       spook::Vec3<S>(S(0), S(0), S(0.999)), turned);
+  const auto counts = [&] {
+    sim->getSpace()->update(sim->getRigidBodies());
+    std::size_t all = 0, enabled = 0;
+    for (const auto& c : sim->getGeometryContacts()) {
+      all += c.points().size();
+      enabled += c.getNumEnabledPoints();
+    }
+    return std::pair{all, enabled};
+  };
+  const auto [all, reduced] = counts();
+  REQUIRE(all > 4);
+  CHECK(reduced < all);
+  auto cm = sim->getMaterialManager()->getOrCreateContactMaterial(m.ground.get(), m.body.get());
+  cm->setContactReductionMode(spook::ContactReductionMode::REDUCE_NONE);
+  CHECK(counts().second == all);
+  cm->setContactReductionMode(spook::ContactReductionMode::REDUCE_GEOMETRY);
+  CHECK(counts().second == reduced);
+}
+
+TEST_CASE_TEMPLATE("contact settings refuse bad values and keep theirs", S, float, double) {
+  spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
+  sim->setRestitutionThreshold(S(0.5));
+  sim->setMaxDepenetrationSpeed(S(2));
+  CHECK_THROWS_WITH_AS(sim->setRestitutionThreshold(S(-1)), doctest::Contains("-1"), spook::Error);
+  CHECK_THROWS_AS(sim->setRestitutionThreshold(std::numeric_limits<S>::quiet_NaN()), spook::Error);
+  CHECK_THROWS_WITH_AS(sim->setMaxDepenetrationSpeed(S(0)), doctest::Contains("depenetration"), spook::Error);
+  CHECK(sim->getRestitutionThreshold() == S(0.5));
+  CHECK(sim->getMaxDepenetrationSpeed() == S(2));
 }

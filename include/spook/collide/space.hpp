@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -143,6 +146,13 @@ class SpaceT : public Referenced {
     binResolution_ = resolution;
   }
 
+  /// Overrides the reduction of some geometry pairs: the rule returns the
+  /// mode and bin resolution for a pair, or nothing for the space's. A
+  /// simulation sets it to follow its explicit contact materials.
+  using ReductionRule =
+      std::function<std::optional<std::pair<ContactReductionMode, int>>(const Geometry&, const Geometry&)>;
+  void setReductionRule(ReductionRule rule) { reductionRule_ = std::move(rule); }
+
   // --- Collision detection ---------------------------------------------------
 
   /// Finds the contacts between this space's geometries and those of
@@ -220,26 +230,32 @@ class SpaceT : public Referenced {
     if (!contact.points().empty()) contacts_.push_back(std::move(contact));
   }
 
+  // Each pair reduces as its rule says (the space's mode and resolution
+  // unless a reduction rule overrides them); REDUCE_ALL pairs pool their
+  // points per body pair.
   void reduce() {
-    if (reductionMode_ == ContactReductionMode::REDUCE_NONE) return;
     std::vector<ContactPointT<S>*> points;
-    if (reductionMode_ == ContactReductionMode::REDUCE_GEOMETRY) {
-      for (auto& contact : contacts_) {
+    std::map<std::pair<const void*, const void*>, std::pair<int, std::vector<ContactPointT<S>*>>> byBodies;
+    for (auto& contact : contacts_) {
+      ContactReductionMode mode = reductionMode_;
+      int resolution = binResolution_;
+      if (reductionRule_)
+        if (const auto rule = reductionRule_(*contact.geometry(0), *contact.geometry(1))) std::tie(mode, resolution) = *rule;
+      if (mode == ContactReductionMode::REDUCE_NONE) continue;
+      if (mode == ContactReductionMode::REDUCE_GEOMETRY) {
         points.clear();
         for (auto& p : contact.points()) points.push_back(&p);
-        detail::reduceContacts<S>(points, binResolution_);
+        detail::reduceContacts<S>(points, resolution);
+        continue;
       }
-      return;
-    }
-    // Per body pair: a static geometry counts as its own "body".
-    std::map<std::pair<const void*, const void*>, std::vector<ContactPointT<S>*>> byBodies;
-    for (auto& contact : contacts_) {
+      // Per body pair: a static geometry counts as its own "body".
       const void* k1 = contact.rigidBody(0) ? static_cast<const void*>(contact.rigidBody(0)) : contact.geometry(0);
       const void* k2 = contact.rigidBody(1) ? static_cast<const void*>(contact.rigidBody(1)) : contact.geometry(1);
-      auto& list = byBodies[std::minmax(k1, k2)];
+      auto& [pairResolution, list] = byBodies[std::minmax(k1, k2)];
+      pairResolution = resolution;
       for (auto& p : contact.points()) list.push_back(&p);
     }
-    for (auto& [key, list] : byBodies) detail::reduceContacts<S>(list, binResolution_);
+    for (auto& [key, entry] : byBodies) detail::reduceContacts<S>(entry.second, entry.first);
   }
 
   void trackEvents() {
@@ -266,6 +282,7 @@ class SpaceT : public Referenced {
   std::set<std::pair<std::uint32_t, std::uint32_t>> disabledIds_;
   std::set<std::pair<std::string, std::string>> disabledNames_;
   ContactReductionMode reductionMode_ = ContactReductionMode::REDUCE_GEOMETRY;
+  ReductionRule reductionRule_;
   int binResolution_ = 2;
 
   std::vector<Geometry*> active_;

@@ -46,12 +46,12 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   using Constraint = ConstraintT<S>;
 
   /// A simulation whose space collides every shape type.
-  SimulationT() : space_(new SpaceT<S>()) {}
+  SimulationT() : space_(new SpaceT<S>()) { followContactMaterials(); }
   /// A simulation for the shape types of `List` only, e.g.
   /// `Simulation(ShapeList<SphereT, PlaneT>{})`: only the colliders between
   /// them are compiled, and a geometry of another type is refused.
   template <template <class> class... Shapes>
-  explicit SimulationT(ShapeList<Shapes...> list) : space_(new SpaceT<S>(list)) {}
+  explicit SimulationT(ShapeList<Shapes...> list) : space_(new SpaceT<S>(list)) { followContactMaterials(); }
 
   // --- Time ------------------------------------------------------------------
 
@@ -293,6 +293,16 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
  private:
   using Membership = detail::SimulationMembership;
+
+  // Pairs with an explicit contact material reduce their points as it says.
+  void followContactMaterials() {
+    space_->setReductionRule([this](const Geometry& a, const Geometry& b) {
+      std::optional<std::pair<ContactReductionMode, int>> rule;
+      if (const auto* cm = materials_.getContactMaterial(a.getMaterial(), b.getMaterial()))
+        rule.emplace(cm->getContactReductionMode(), cm->getContactReductionBinResolution());
+      return rule;
+    });
+  }
 
   void applyPendingTimeStep() {
     if (pendingTimeStep_) setTimeStep(*std::exchange(pendingTimeStep_, std::nullopt));
