@@ -254,12 +254,12 @@ TEST_CASE_TEMPLATE("a joint and a contact share a load by their compliances; get
 }
 
 TEST_CASE_TEMPLATE("an explicit contact material chooses the contact reduction of its pair", S, float, double) {
-  // A cube turned 45° on a larger static block: the square faces overlap in
-  // an octagon, eight contact points.
+  // A cube turned 45° on a static block of its size: the square faces
+  // overlap in an octagon, eight contact points.
   spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
   Materials<S> m;
   spook::ref_ptr<spook::GeometryT<S>> block =
-      new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3<S>(S(2), S(2), S(0.5))), spook::Transform<S>::Identity(), "block");
+      new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))), spook::Transform<S>::Identity(), "block");
   block->setMaterial(m.ground);
   sim->add(block);
   const spook::Quat<S> turned(Eigen::AngleAxis<S>(S(std::numbers::pi / 4), spook::Vec3<S>::UnitZ()));

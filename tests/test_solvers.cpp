@@ -277,7 +277,9 @@ TEST_CASE("the hybrid solver couples direct and iterative rows through DIRECT_AN
   MESSAGE("hybrid: direct joint gap " << worstDirect << " m, iterative joint gap " << worstIterative << " m");
   CHECK(stats.numDirectRows == 6);
   CHECK(stats.numIterativeRows == 6);
-  CHECK(stats.factorizations == 2);
+  // A direct pass, then (iterative, direct) passes until the direct impulses settle.
+  CHECK(stats.factorizations >= 2);
+  CHECK(stats.factorizations <= 1 + sim->getSolver()->getNumCouplingIterations());
   // A swinging 3-link chain at 60 Hz: the direct joint sits at SPOOK's drift
   // (~7e-3 m here), the iterative one opens further.
   CHECK(worstDirect < 2e-2);

@@ -5438,9 +5438,12 @@ using GeometryPair = GeometryPairT<float>;
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -6233,6 +6236,13 @@ class SpaceT : public Referenced {
     binResolution_ = resolution;
   }
 
+  /// Overrides the reduction of some geometry pairs: the rule returns the
+  /// mode and bin resolution for a pair, or nothing for the space's. A
+  /// simulation sets it to follow its explicit contact materials.
+  using ReductionRule =
+      std::function<std::optional<std::pair<ContactReductionMode, int>>(const Geometry&, const Geometry&)>;
+  void setReductionRule(ReductionRule rule) { reductionRule_ = std::move(rule); }
+
   // --- Collision detection ---------------------------------------------------
 
   /// Finds the contacts between this space's geometries and those of
@@ -6310,26 +6320,32 @@ class SpaceT : public Referenced {
     if (!contact.points().empty()) contacts_.push_back(std::move(contact));
   }
 
+  // Each pair reduces as its rule says (the space's mode and resolution
+  // unless a reduction rule overrides them); REDUCE_ALL pairs pool their
+  // points per body pair.
   void reduce() {
-    if (reductionMode_ == ContactReductionMode::REDUCE_NONE) return;
     std::vector<ContactPointT<S>*> points;
-    if (reductionMode_ == ContactReductionMode::REDUCE_GEOMETRY) {
-      for (auto& contact : contacts_) {
+    std::map<std::pair<const void*, const void*>, std::pair<int, std::vector<ContactPointT<S>*>>> byBodies;
+    for (auto& contact : contacts_) {
+      ContactReductionMode mode = reductionMode_;
+      int resolution = binResolution_;
+      if (reductionRule_)
+        if (const auto rule = reductionRule_(*contact.geometry(0), *contact.geometry(1))) std::tie(mode, resolution) = *rule;
+      if (mode == ContactReductionMode::REDUCE_NONE) continue;
+      if (mode == ContactReductionMode::REDUCE_GEOMETRY) {
         points.clear();
         for (auto& p : contact.points()) points.push_back(&p);
-        detail::reduceContacts<S>(points, binResolution_);
+        detail::reduceContacts<S>(points, resolution);
+        continue;
       }
-      return;
-    }
-    // Per body pair: a static geometry counts as its own "body".
-    std::map<std::pair<const void*, const void*>, std::vector<ContactPointT<S>*>> byBodies;
-    for (auto& contact : contacts_) {
+      // Per body pair: a static geometry counts as its own "body".
       const void* k1 = contact.rigidBody(0) ? static_cast<const void*>(contact.rigidBody(0)) : contact.geometry(0);
       const void* k2 = contact.rigidBody(1) ? static_cast<const void*>(contact.rigidBody(1)) : contact.geometry(1);
-      auto& list = byBodies[std::minmax(k1, k2)];
+      auto& [pairResolution, list] = byBodies[std::minmax(k1, k2)];
+      pairResolution = resolution;
       for (auto& p : contact.points()) list.push_back(&p);
     }
-    for (auto& [key, list] : byBodies) detail::reduceContacts<S>(list, binResolution_);
+    for (auto& [key, entry] : byBodies) detail::reduceContacts<S>(entry.second, entry.first);
   }
 
   void trackEvents() {
@@ -6356,6 +6372,7 @@ class SpaceT : public Referenced {
   std::set<std::pair<std::uint32_t, std::uint32_t>> disabledIds_;
   std::set<std::pair<std::string, std::string>> disabledNames_;
   ContactReductionMode reductionMode_ = ContactReductionMode::REDUCE_GEOMETRY;
+  ReductionRule reductionRule_;
   int binResolution_ = 2;
 
   std::vector<Geometry*> active_;
@@ -13320,12 +13337,12 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   using Constraint = ConstraintT<S>;
 
   /// A simulation whose space collides every shape type.
-  SimulationT() : space_(new SpaceT<S>()) {}
+  SimulationT() : space_(new SpaceT<S>()) { followContactMaterials(); }
   /// A simulation for the shape types of `List` only, e.g.
   /// `Simulation(ShapeList<SphereT, PlaneT>{})`: only the colliders between
   /// them are compiled, and a geometry of another type is refused.
   template <template <class> class... Shapes>
-  explicit SimulationT(ShapeList<Shapes...> list) : space_(new SpaceT<S>(list)) {}
+  explicit SimulationT(ShapeList<Shapes...> list) : space_(new SpaceT<S>(list)) { followContactMaterials(); }
 
   // --- Time ------------------------------------------------------------------
 
@@ -13567,6 +13584,16 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
  private:
   using Membership = detail::SimulationMembership;
+
+  // Pairs with an explicit contact material reduce their points as it says.
+  void followContactMaterials() {
+    space_->setReductionRule([this](const Geometry& a, const Geometry& b) {
+      std::optional<std::pair<ContactReductionMode, int>> rule;
+      if (const auto* cm = materials_.getContactMaterial(a.getMaterial(), b.getMaterial()))
+        rule.emplace(cm->getContactReductionMode(), cm->getContactReductionBinResolution());
+      return rule;
+    });
+  }
 
   void applyPendingTimeStep() {
     if (pendingTimeStep_) setTimeStep(*std::exchange(pendingTimeStep_, std::nullopt));
