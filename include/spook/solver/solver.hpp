@@ -185,7 +185,6 @@ class Solver : public Referenced {
   void directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
                           SolverStatistics& statistics, const std::vector<char>* keep = nullptr) {
     std::vector<int> following;
-    double largest = 0.0;
     for (int i : subset) {
       const auto& e = problem.rows[static_cast<std::size_t>(i)];
       if (!e.followsNormal() || (keep && (*keep)[static_cast<std::size_t>(i)])) continue;
@@ -195,7 +194,7 @@ class Solver : public Referenced {
     for (int k = 1; k < frictionIterations_ && !following.empty(); ++k) {
       double change = detail::updateConeDirections(problem, following);
       change = std::max(change, detail::applyFrictionBounds(problem, following));
-      largest = 0.0;
+      double largest = 0.0;
       for (int i : following) largest = std::max(largest, problem.rows[static_cast<std::size_t>(i)].upper);
       if (change <= frictionTolerance_ * largest) return;
       direct(problem, subset, statistics);
