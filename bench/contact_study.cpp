@@ -1,5 +1,6 @@
 // Contact scenes against the solver policies (DESIGN.md, promise 1, now with
-// contacts): each scene × policy is simulated and the program reports the
+// contacts), and against Bullet and ODE where they are installed: each
+// scene × policy is simulated and the program reports the
 // wall-clock cost per step, the contact points, how far the resting bodies
 // drifted, the deepest penetration and the kinetic energy left at the end.
 // Every contact point is one normal row and two friction rows. It prints an
@@ -25,6 +26,17 @@
 // (the default: normals direct, friction iterative), DIRECT_AND_ITERATIVE
 // and DIRECT; iterative (projected Gauss–Seidel, cold started) with 16 and 64
 // sweeps. The direct and iterative policies ignore the solve type ("-").
+//
+// Reference engines, built in when their packages are installed (CMake finds
+// them with pkg-config; bench/study_engine_*.cpp), each with its own defaults
+// and the same bodies, masses, friction coefficient (pair value 0.5) and no
+// restitution: "bullet SI" (btDiscreteDynamicsWorld, sequential impulse, 10
+// iterations, sleeping off), "bullet MLCP" (btMLCPSolver with the Dantzig
+// LCP; where the LCP fails, Bullet silently redoes the step with sequential
+// impulses), "ode quick" (dWorldQuickStep, 20 SOR iterations) and "ode world"
+// (dWorldStep, the Dantzig LCP), both with the friction pyramid
+// (dContactApprox1) and ODE's ERP 0.2 and CFM (1e-10 in double). Their
+// penetration and contact count are those of their own contact points.
 //
 // Measures:
 //   ms/step     wall-clock time of stepForward, mean over the steps of the
@@ -59,11 +71,22 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <spook/spook.hpp>
+
+#include "study_engine.hpp"
+
+#ifndef SPOOK_STUDY_BULLET
+std::vector<study::ReferenceEngine> study::bulletEngines() { return {}; }
+#endif
+#ifndef SPOOK_STUDY_ODE
+std::vector<study::ReferenceEngine> study::odeEngines() { return {}; }
+#endif
 
 namespace {
 
@@ -80,40 +103,35 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 enum class Kind { SPHERES, PYRAMID, STACK };
 
-struct Scene {
-  spook::SimulationRef sim = new spook::Simulation();
-  spook::MaterialRef material = new spook::Material("wood");
-  std::vector<spook::RigidBodyRef> bodies;
-  std::vector<Vec3> starts;          ///< the bodies' initial positions (m, world)
-  std::vector<std::size_t> tracked;  ///< the bodies whose displacement is the drift
+/// A scene without an engine and the dynamic bodies whose displacement is
+/// its drift.
+struct StudyScene {
+  study::SceneDescription description;
+  std::vector<std::size_t> tracked;  ///< dynamic-body indices
 };
 
-/// The shared material's contact material with itself: μ = 0.5 and a
-/// projected-cone friction model solved as `solveType` (hybrid only).
-void setFriction(Scene& scene, spook::SolveType solveType) {
-  auto* cm = scene.sim->getMaterialManager()->getOrCreateContactMaterial(scene.material.get(), scene.material.get());
-  spook::FrictionModelRef model = new spook::IterativeProjectedConeFriction();
-  model->setSolveType(solveType);
-  cm->setFrictionModel(model);
-  cm->setFrictionCoefficient(kFriction);
+study::BodySpec ground() {
+  study::BodySpec spec;
+  spec.shape = study::ShapeType::PLANE;
+  spec.dynamic = false;
+  return spec;
 }
 
-void addStatic(Scene& scene, spook::ShapeT<double>* shape, const Vec3& position, const char* name) {
-  spook::GeometryRef geometry = new spook::Geometry(shape, spook::Transform<double>::Identity(), name);
-  geometry->setPosition(position);
-  geometry->setMaterial(scene.material);
-  scene.sim->add(geometry);
+study::BodySpec box(const study::Point& halfExtents, const study::Point& position, bool dynamic) {
+  study::BodySpec spec;
+  spec.shape = study::ShapeType::BOX;
+  spec.halfExtents = halfExtents;
+  spec.position = position;
+  spec.dynamic = dynamic;
+  return spec;
 }
 
-void addBody(Scene& scene, spook::ShapeT<double>* shape, const Vec3& position, const std::string& name) {
-  spook::GeometryRef geometry = new spook::Geometry(shape, spook::Transform<double>::Identity(), name);
-  geometry->setMaterial(scene.material);
-  spook::RigidBodyRef body = new spook::RigidBody(name);
-  body->add(geometry);
-  body->setPosition(position);
-  scene.sim->add(body);
-  scene.bodies.push_back(body);
-  scene.starts.push_back(position);
+study::BodySpec sphere(double radius, const study::Point& position) {
+  study::BodySpec spec;
+  spec.shape = study::ShapeType::SPHERE;
+  spec.radius = radius;
+  spec.position = position;
+  return spec;
 }
 
 /// A reproducible jitter in [−1, 1] for slot `i`, component `axis` (an
@@ -128,62 +146,154 @@ double jitter(std::uint32_t i, std::uint32_t axis) {
   return double(x) / double(UINT32_MAX) * 2.0 - 1.0;
 }
 
-void spheres(Scene& scene) {
+StudyScene spheres() {
   constexpr int kCount = 1000, kGrid = 9;
   constexpr double kRadius = 0.1, kPitch = 0.22, kLayerPitch = 0.25;  // m
   constexpr double kWallHalf = 2.0;                                   // m: walls 4 m tall
-  addStatic(scene, new spook::Plane(Vec3::UnitZ()), Vec3::Zero(), "ground");
-  for (int side : {-1, 1}) {
-    addStatic(scene, new spook::Box(Vec3(0.1, 1.2, kWallHalf)), Vec3(1.1 * side, 0, kWallHalf), "wall x");
-    addStatic(scene, new spook::Box(Vec3(1.2, 0.1, kWallHalf)), Vec3(0, 1.1 * side, kWallHalf), "wall y");
+  StudyScene scene;
+  auto& bodies = scene.description.bodies;
+  bodies.push_back(ground());
+  for (double side : {-1.0, 1.0}) {
+    bodies.push_back(box({0.1, 1.2, kWallHalf}, {1.1 * side, 0, kWallHalf}, false));
+    bodies.push_back(box({1.2, 0.1, kWallHalf}, {0, 1.1 * side, kWallHalf}, false));
   }
   // Neighbours 2 cm apart on the grid, so a jitter of ±8 mm keeps them apart;
   // the outermost stay 1.2 cm inside the walls.
   for (int i = 0; i < kCount; ++i) {
     const int layer = i / (kGrid * kGrid), column = i % kGrid, row = (i / kGrid) % kGrid;
     const std::uint32_t slot = std::uint32_t(i);
-    const Vec3 p((column - (kGrid - 1) / 2.0) * kPitch + 0.008 * jitter(slot, 0),
-                 (row - (kGrid - 1) / 2.0) * kPitch + 0.008 * jitter(slot, 1),
-                 2.0 * kRadius + layer * kLayerPitch + 0.02 * jitter(slot, 2));
-    addBody(scene, new spook::Sphere(kRadius), p, "sphere " + std::to_string(i));
+    bodies.push_back(sphere(kRadius, {(column - (kGrid - 1) / 2.0) * kPitch + 0.008 * jitter(slot, 0),
+                                      (row - (kGrid - 1) / 2.0) * kPitch + 0.008 * jitter(slot, 1),
+                                      2.0 * kRadius + layer * kLayerPitch + 0.02 * jitter(slot, 2)}));
   }
+  return scene;
 }
 
-void pyramid(Scene& scene) {
+StudyScene pyramid() {
   constexpr int kBase = 20;
   constexpr double kPitch = 1.01;  // m: unit cubes with 1 cm gaps
-  addStatic(scene, new spook::Plane(Vec3::UnitZ()), Vec3::Zero(), "ground");
+  StudyScene scene;
+  scene.description.bodies.push_back(ground());
+  std::size_t index = 0;
   for (int level = 0; level < kBase; ++level) {
     const int count = kBase - level;
     for (int i = 0; i < count; ++i) {
-      const Vec3 p((i - (count - 1) / 2.0) * kPitch, 0.0, 0.5 + level);
-      addBody(scene, new spook::Box(Vec3::Constant(0.5)), p, "cube " + std::to_string(level) + "." + std::to_string(i));
-      scene.tracked.push_back(scene.bodies.size() - 1);
+      scene.description.bodies.push_back(box({0.5, 0.5, 0.5}, {(i - (count - 1) / 2.0) * kPitch, 0.0, 0.5 + level}, true));
+      scene.tracked.push_back(index++);
     }
   }
+  return scene;
 }
 
-void stack(Scene& scene) {
+StudyScene stack() {
   constexpr int kCount = 10;
-  addStatic(scene, new spook::Plane(Vec3::UnitZ()), Vec3::Zero(), "ground");
-  for (int i = 0; i < kCount; ++i)
-    addBody(scene, new spook::Box(Vec3::Constant(0.5)), Vec3(0, 0, 0.5 + i), "cube " + std::to_string(i));
-  scene.tracked.push_back(scene.bodies.size() - 1);  // the top cube
+  StudyScene scene;
+  scene.description.bodies.push_back(ground());
+  for (int i = 0; i < kCount; ++i) scene.description.bodies.push_back(box({0.5, 0.5, 0.5}, {0, 0, 0.5 + i}, true));
+  scene.tracked.push_back(kCount - 1);  // the top cube
+  return scene;
 }
 
 struct SceneSpec {
   std::string name;
   Kind kind;
   double h, duration;  ///< s
-  std::function<void(Scene&)> build;
+  std::function<StudyScene()> build;
+};
+
+// --- Engines -----------------------------------------------------------------
+
+/// The scene in spook under one solver policy. Every geometry shares one
+/// material whose contact material with itself has the scene's friction
+/// coefficient and a projected-cone friction model solved as
+/// `frictionSolveType` (the hybrid policy's choice; the others ignore it).
+class SpookEngine final : public study::Engine {
+ public:
+  SpookEngine(const study::SceneDescription& scene, spook::SolverRef solver, spook::SolveType frictionSolveType) {
+    sim_->setUniformGravity(Vec3(0, 0, scene.gravity));
+    material_->getBulkMaterial()->setDensity(scene.density);
+    auto* cm = sim_->getMaterialManager()->getOrCreateContactMaterial(material_.get(), material_.get());
+    spook::FrictionModelRef model = new spook::IterativeProjectedConeFriction();
+    model->setSolveType(frictionSolveType);
+    cm->setFrictionModel(model);
+    cm->setFrictionCoefficient(scene.friction);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) add(scene.bodies[i], "body " + std::to_string(i));
+    sim_->setTimeStep(scene.timeStep);
+    sim_->setSolver(solver);
+  }
+
+  void step() override { sim_->stepForward(); }
+
+  study::Point position(std::size_t i) const override {
+    const Vec3 p = bodies_[i]->getPosition();
+    return {p.x(), p.y(), p.z()};
+  }
+
+  double kineticEnergy() const override {
+    double e = 0.0;
+    for (const auto& b : bodies_) e += b->getKineticEnergy();
+    return e;
+  }
+
+  study::ContactSummary contacts() const override {
+    study::ContactSummary summary;
+    for (const auto& c : sim_->getGeometryContacts()) {
+      if (!c.isEnabled() || c.isSensor()) continue;
+      for (const auto& p : c.points())
+        if (p.enabled) {
+          ++summary.points;
+          summary.deepest = std::max(summary.deepest, p.depth);
+        }
+    }
+    return summary;
+  }
+
+  bool healthy() const override {
+    const auto& statistics = sim_->getStatistics();
+    return statistics.solver.nonFiniteIslands == 0 && statistics.frozenBodies.empty();
+  }
+
+  const spook::SolverStatistics& solverStatistics() const { return sim_->getStatistics().solver; }
+
+ private:
+  void add(const study::BodySpec& spec, const std::string& name) {
+    spook::ShapeT<double>* shape = nullptr;
+    switch (spec.shape) {
+      case study::ShapeType::PLANE:
+        shape = new spook::Plane(Vec3::UnitZ());
+        break;
+      case study::ShapeType::BOX:
+        shape = new spook::Box(Vec3(spec.halfExtents[0], spec.halfExtents[1], spec.halfExtents[2]));
+        break;
+      case study::ShapeType::SPHERE:
+        shape = new spook::Sphere(spec.radius);
+        break;
+    }
+    spook::GeometryRef geometry = new spook::Geometry(shape, spook::Transform<double>::Identity(), name);
+    geometry->setMaterial(material_);
+    const Vec3 position(spec.position[0], spec.position[1], spec.position[2]);
+    if (!spec.dynamic) {
+      geometry->setPosition(position);
+      sim_->add(geometry);
+      return;
+    }
+    spook::RigidBodyRef body = new spook::RigidBody(name);
+    body->add(geometry);
+    body->setPosition(position);
+    sim_->add(body);
+    bodies_.push_back(body);
+  }
+
+  spook::SimulationRef sim_ = new spook::Simulation();
+  spook::MaterialRef material_ = new spook::Material("wood");
+  std::vector<spook::RigidBodyRef> bodies_;
 };
 
 // --- Policies ----------------------------------------------------------------
 
 struct Policy {
-  std::string name;
-  std::function<spook::SolverRef()> make;
-  std::optional<spook::SolveType> frictionSolveType;  ///< hybrid only; the others ignore it
+  std::string name, friction;  ///< friction: the hybrid's friction solve type, "-" where it does not apply
+  std::function<std::unique_ptr<study::Engine>(const study::SceneDescription&)> make;
 };
 
 const char* solveTypeName(spook::SolveType type) {
@@ -200,20 +310,30 @@ const char* solveTypeName(spook::SolveType type) {
   return "?";
 }
 
+Policy spookPolicy(std::string name, std::function<spook::SolverRef()> solver, std::optional<spook::SolveType> type) {
+  return {std::move(name), type ? solveTypeName(*type) : "-",
+          [solver, type](const study::SceneDescription& scene) -> std::unique_ptr<study::Engine> {
+            return std::make_unique<SpookEngine>(scene, solver(), type.value_or(spook::SolveType::SPLIT));
+          }};
+}
+
 std::vector<Policy> policies() {
   std::vector<Policy> list;
-  list.push_back({"direct", [] { return spook::SolverRef(new spook::DirectSolver()); }, std::nullopt});
+  list.push_back(spookPolicy("direct", [] { return spook::SolverRef(new spook::DirectSolver()); }, std::nullopt));
   for (spook::SolveType type :
        {spook::SolveType::SPLIT, spook::SolveType::DIRECT_AND_ITERATIVE, spook::SolveType::DIRECT})
-    list.push_back({"hybrid", [] { return spook::SolverRef(new spook::HybridSolver()); }, type});
+    list.push_back(spookPolicy("hybrid", [] { return spook::SolverRef(new spook::HybridSolver()); }, type));
   for (int n : {16, 64})
-    list.push_back({"iterative" + std::to_string(n),
-                    [n] {
-                      spook::SolverRef s = new spook::IterativeSolver();
-                      s->setNumIterations(n);
-                      return s;
-                    },
-                    std::nullopt});
+    list.push_back(spookPolicy(
+        "iterative" + std::to_string(n),
+        [n] {
+          spook::SolverRef s = new spook::IterativeSolver();
+          s->setNumIterations(n);
+          return s;
+        },
+        std::nullopt));
+  for (const auto& engines : {study::bulletEngines(), study::odeEngines()})
+    for (const study::ReferenceEngine& engine : engines) list.push_back({engine.name, "-", engine.make});
   return list;
 }
 
@@ -225,35 +345,28 @@ struct Result {
   long steps = 0;
   std::size_t contacts = 0;
   bool finite = true, tooSlow = false, escaped = false;
-  spook::SolverStatistics solver;  ///< of the last step
+  std::optional<spook::SolverStatistics> solver;  ///< spook's, of the last step
   std::string verdict;
 };
 
-/// Enabled contact points and the deepest of them (m) after the last step.
-std::pair<std::size_t, double> contactsOf(const spook::Simulation& sim) {
-  std::size_t count = 0;
-  double deepest = 0.0;
-  for (const auto& c : sim.getGeometryContacts()) {
-    if (!c.isEnabled() || c.isSensor()) continue;
-    for (const auto& p : c.points())
-      if (p.enabled) {
-        ++count;
-        deepest = std::max(deepest, p.depth);
-      }
+double totalMassOf(const study::SceneDescription& scene) {
+  double volume = 0.0;
+  for (const auto& b : scene.bodies) {
+    if (!b.dynamic) continue;
+    if (b.shape == study::ShapeType::BOX)
+      volume += 8.0 * b.halfExtents[0] * b.halfExtents[1] * b.halfExtents[2];
+    else if (b.shape == study::ShapeType::SPHERE)
+      volume += 4.0 / 3.0 * std::numbers::pi * b.radius * b.radius * b.radius;
   }
-  return {count, deepest};
+  return scene.density * volume;
 }
 
-double kineticEnergyOf(const Scene& scene) {
-  double e = 0.0;
-  for (const auto& b : scene.bodies) e += b->getKineticEnergy();
-  return e;
+std::size_t dynamicCountOf(const study::SceneDescription& scene) {
+  return std::size_t(std::count_if(scene.bodies.begin(), scene.bodies.end(), [](const auto& b) { return b.dynamic; }));
 }
 
-double totalMassOf(const Scene& scene) {
-  double m = 0.0;
-  for (const auto& b : scene.bodies) m += b->getMassProperties()->getMass();
-  return m;
+double distance(const study::Point& a, const study::Point& b) {
+  return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 }
 
 std::string verdictOf(const Result& r, Kind kind, double settledEnergy) {
@@ -269,15 +382,16 @@ std::string verdictOf(const Result& r, Kind kind, double settledEnergy) {
 }
 
 Result run(const SceneSpec& spec, const Policy& policy) {
-  Scene scene;
-  spec.build(scene);
-  setFriction(scene, policy.frictionSolveType.value_or(spook::SolveType::SPLIT));
-  scene.sim->setTimeStep(spec.h);
-  scene.sim->setSolver(policy.make());
+  StudyScene scene = spec.build();
+  scene.description.timeStep = spec.h;
+  const std::unique_ptr<study::Engine> engine = policy.make(scene.description);
+  const std::size_t dynamicCount = dynamicCountOf(scene.description);
+  std::vector<study::Point> starts;
+  for (std::size_t i = 0; i < dynamicCount; ++i) starts.push_back(engine->position(i));
   Result r;
   r.scene = spec.name;
   r.policy = policy.name;
-  r.friction = policy.frictionSolveType ? solveTypeName(*policy.frictionSolveType) : "-";
+  r.friction = policy.friction;
   r.h = spec.h;
   const long steps = std::lround(spec.duration / spec.h);
   const long lastSecond = steps - std::lround(1.0 / spec.h);  // the first step of the last simulated second
@@ -285,18 +399,16 @@ Result run(const SceneSpec& spec, const Policy& policy) {
   const auto start = std::chrono::steady_clock::now();
   for (long k = 0; k < steps; ++k) {
     const auto stepStart = std::chrono::steady_clock::now();
-    scene.sim->stepForward();
+    engine->step();
     const double step = std::chrono::duration<double>(std::chrono::steady_clock::now() - stepStart).count();
     all += step;
     r.slowestMs = std::max(r.slowestMs, 1e3 * step);
     if (k >= lastSecond) timed += step;
     r.steps = k + 1;
-    const auto& statistics = scene.sim->getStatistics();
-    r.finite = r.finite && statistics.solver.nonFiniteIslands == 0 && statistics.frozenBodies.empty();
-    if (spec.kind != Kind::SPHERES || k >= lastSecond)
-      r.penetration = std::max(r.penetration, contactsOf(*scene.sim).second);
+    r.finite = r.finite && engine->healthy();
+    if (spec.kind != Kind::SPHERES || k >= lastSecond) r.penetration = std::max(r.penetration, engine->contacts().deepest);
     for (std::size_t i : scene.tracked) {
-      const double moved = (scene.bodies[i]->getPosition() - scene.starts[i]).norm();
+      const double moved = distance(engine->position(i), starts[i]);
       r.finite = r.finite && std::isfinite(moved);
       if (std::isfinite(moved)) r.drift = std::max(r.drift, moved);
     }
@@ -308,20 +420,20 @@ Result run(const SceneSpec& spec, const Policy& policy) {
   r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.seconds = double(r.steps) * spec.h;
   r.msPerStep = r.steps > lastSecond ? 1e3 * timed / double(r.steps - lastSecond) : 1e3 * all / double(r.steps);
-  r.contacts = contactsOf(*scene.sim).first;
-  r.kineticEnergy = kineticEnergyOf(scene);
+  r.contacts = engine->contacts().points;
+  r.kineticEnergy = engine->kineticEnergy();
   r.finite = r.finite && std::isfinite(r.kineticEnergy);
-  r.solver = scene.sim->getStatistics().solver;
+  if (const auto* spookEngine = dynamic_cast<const SpookEngine*>(engine.get())) r.solver = spookEngine->solverStatistics();
   if (spec.kind == Kind::SPHERES) {
     r.drift = kNaN;
     if (r.steps <= lastSecond) r.penetration = kNaN;  // stopped before the last second
-    for (const auto& b : scene.bodies) {
-      const Vec3 p = b->getPosition();
-      r.finite = r.finite && p.allFinite();
-      r.escaped = r.escaped || std::abs(p.x()) > 1.0 || std::abs(p.y()) > 1.0 || p.z() < 0.0;
+    for (std::size_t i = 0; i < dynamicCount; ++i) {
+      const study::Point p = engine->position(i);
+      r.finite = r.finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+      r.escaped = r.escaped || std::abs(p[0]) > 1.0 || std::abs(p[1]) > 1.0 || p[2] < 0.0;
     }
   }
-  const double settledEnergy = 0.5 * totalMassOf(scene) * kSettledSpeed * kSettledSpeed;
+  const double settledEnergy = 0.5 * totalMassOf(scene.description) * kSettledSpeed * kSettledSpeed;
   r.verdict = verdictOf(r, spec.kind, settledEnergy);
   return r;
 }
@@ -387,12 +499,14 @@ int main(int argc, char** argv) {
                "scene,policy,friction_solve_type,h,steps,seconds,ms_per_step,slowest_step_ms,contact_points,drift_m,"
                "max_penetration_m,end_kinetic_energy_j,rows,iterations,factorizations,complementarity_error,converged,"
                "finite,verdict,run_wall_s\n");
-  for (const Result& r : results)
+  for (const Result& r : results) {
+    const spook::SolverStatistics solver = r.solver.value_or(spook::SolverStatistics{});
     std::fprintf(csv, "%s,%s,%s,%.17g,%ld,%.6g,%.6g,%.6g,%zu,%.6e,%.6e,%.6e,%d,%d,%d,%.6e,%d,%d,%s,%.6g\n",
                  r.scene.c_str(), r.policy.c_str(), r.friction.c_str(), r.h, r.steps, r.seconds, r.msPerStep,
-                 r.slowestMs, r.contacts, r.drift, r.penetration, r.kineticEnergy, r.solver.numRows,
-                 r.solver.iterations, r.solver.factorizations, r.solver.complementarityError,
-                 r.solver.converged ? 1 : 0, r.finite ? 1 : 0, r.verdict.c_str(), r.wall);
+                 r.slowestMs, r.contacts, r.drift, r.penetration, r.kineticEnergy, solver.numRows, solver.iterations,
+                 solver.factorizations, r.solver ? solver.complementarityError : kNaN, solver.converged ? 1 : 0,
+                 r.finite ? 1 : 0, r.verdict.c_str(), r.wall);
+  }
   std::fclose(csv);
   std::printf("CSV written to %s (plot: python3 bench/plot_contact_study.py %s)\n", csvPath.c_str(), csvPath.c_str());
   return 0;

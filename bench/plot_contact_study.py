@@ -5,7 +5,7 @@
 
 One panel per scene: wall-clock cost per step (ms) against the drift (m),
 log-log, one marker per policy (solver and, for hybrid, the friction solve
-type). The spheres scene has no drift: its panel plots the deepest
+type) and per reference engine (Bullet, ODE) when the study ran them. The spheres scene has no drift: its panel plots the deepest
 penetration over the last second instead. Runs that went non-finite or were
 stopped as too slow are drawn as a red cross at the top of the panel (their
 cost is that of the steps they took). Without matplotlib it prints a note and
@@ -24,6 +24,10 @@ MARKERS = {
     "hybrid DIRECT": "P",
     "iterative16": "<",
     "iterative64": ">",
+    "bullet SI": "v",
+    "bullet MLCP": "^",
+    "ode quick": "*",
+    "ode world": "h",
 }
 OK_DRIFT, FELL_DRIFT = 1e-3, 0.1  # m, as in contact_study.cpp
 SOFT_PENETRATION = 0.01  # m, spheres
@@ -106,7 +110,7 @@ def main():
         for handle, name in zip(*ax.get_legend_handles_labels()):
             legend.setdefault(name, handle)
     fig.legend(legend.values(), legend.keys(), loc="lower center", ncol=min(len(legend), 3), frameon=False)
-    fig.suptitle("spook contact scenes: cost against drift (dotted: 1 mm; shaded: fell, >= 0.1 m, or spheres"
+    fig.suptitle("contact scenes: cost against drift (dotted: 1 mm; shaded: fell, >= 0.1 m, or spheres"
                  " penetration > 1 cm; red x: non-finite or too slow)", fontsize=9)
     fig.tight_layout(rect=(0, 0.1 if rows == 1 else 0.06, 1, 0.95))
     fig.savefig(target, dpi=110)

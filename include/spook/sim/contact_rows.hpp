@@ -25,6 +25,10 @@ struct ContactSettings {
   /// Cap on the speed (m/s) at which the stabilization of the normal rows
   /// pushes overlapping shapes apart.
   double maxDepenetrationSpeed = 1.0;
+  /// A point of this step continues a point of the last step (same geometry
+  /// pair) when they lie within this distance (m) in the first geometry's
+  /// frame: its rows start from that point's force.
+  double persistenceDistance = 0.01;
 };
 
 /// Turns the solvable contact points into rows (PHYSICS.md §1.4) and reads
@@ -36,6 +40,11 @@ struct ContactSettings {
 /// model. An impact faster than the restitution threshold turns the normal
 /// row into a velocity row asking for e times the approach speed (Newton's
 /// law, §1.4).
+///
+/// A point that continues one of the last step's (contact persistence) gives
+/// its rows that point's force as their last impulse: the warm start of
+/// Gauss–Seidel (when enabled) and the starting active set of the direct
+/// solver's pivoting, which a resting contact then keeps in one step.
 template <Scalar S>
 class ContactRows {
  public:
@@ -50,6 +59,8 @@ class ContactRows {
     impulses_.assign(3 * count, 0.0);
     std::unordered_map<PairKey, double, PairHash> lastForce;
     lastForce.swap(pairForce_);
+    std::unordered_map<PairKey, std::vector<Remembered>, PairHash> last;
+    last.swap(remembered_);
 
     for (auto& contact : contacts) {
       if (!solvable(contact)) continue;
@@ -74,6 +85,8 @@ class ContactRows {
                          .template cast<double>();
       }
       const double normalEstimate = estimateNormalForce(contact, model, lastForce, gravity);
+      const auto lastPoints = last.find(pairKey(contact));
+      const auto toFirstGeometry = contact.geometry(0)->getTransform().template cast<double>().inverse();
 
       for (auto& point : contact.points()) {
         if (!point.enabled) continue;
@@ -99,7 +112,12 @@ class ContactRows {
           return row;
         };
 
+        const Eigen::Vector3d local = toFirstGeometry * x;
+        const Eigen::Vector3d lastForceOfPoint =
+            lastPoints == last.end() ? Eigen::Vector3d::Zero()
+                                     : continuedForce(lastPoints->second, local, settings.persistenceDistance);
         double* impulse = &impulses_[3 * points_.size()];
+        impulse[0] = lastForceOfPoint.dot(n) * h;
         const int normalIndex = static_cast<int>(rows.size());
         Row normal = makeRow(n, impulse);
         normal.lower = -double(p.adhesiveForce);
@@ -121,6 +139,7 @@ class ContactRows {
         const auto [t1, t2] = tangents(n, slip, model);
         const Eigen::Vector3d tangent[2] = {t1, t2};
         for (int k = 0; k < 2; ++k) {
+          impulse[1 + k] = lastForceOfPoint.dot(tangent[k]) * h;
           Row row = makeRow(tangent[k], impulse + 1 + k);
           row.holonomic = false;
           row.speed = (surface[0] - surface[1]).dot(tangent[k]);
@@ -134,13 +153,14 @@ class ContactRows {
           row.frictionBound = bound;
           rows.push_back(row);
         }
-        points_.push_back({&point, pairKey(contact), n, t1, t2});
+        points_.push_back({&point, pairKey(contact), local, n, t1, t2});
       }
     }
   }
 
   /// Writes each point's force (on the second geometry's body) and keeps the
-  /// normal force of each pair for the next step's box friction.
+  /// normal force of each pair for the next step's box friction and each
+  /// point's force for its continuation.
   void readBack(double h) {
     for (std::size_t i = 0; i < points_.size(); ++i) {
       const PointRows& p = points_[i];
@@ -149,6 +169,7 @@ class ContactRows {
       p.point->force = force.template cast<S>();
       p.point->normalForce = S(impulse[0] / h);
       pairForce_[p.pair] += impulse[0] / h;
+      remembered_[p.pair].push_back({p.local, force});
     }
   }
 
@@ -162,8 +183,26 @@ class ContactRows {
   struct PointRows {
     ContactPointT<S>* point;
     PairKey pair;
+    Eigen::Vector3d local;  ///< in the first geometry's frame (m)
     Eigen::Vector3d normal, t1, t2;
   };
+  struct Remembered {
+    Eigen::Vector3d local;  ///< in the first geometry's frame (m)
+    Eigen::Vector3d force;  ///< on the second geometry's body (N, world)
+  };
+
+  // The force of the last step's point nearest `local` within `distance`, else zero.
+  static Eigen::Vector3d continuedForce(const std::vector<Remembered>& points, const Eigen::Vector3d& local,
+                                        double distance) {
+    const Remembered* nearest = nullptr;
+    double best = distance * distance;
+    for (const Remembered& r : points)
+      if (const double d = (r.local - local).squaredNorm(); d <= best) {
+        best = d;
+        nearest = &r;
+      }
+    return nearest ? nearest->force : Eigen::Vector3d::Zero();
+  }
 
   static bool solvable(const GeometryContactT<S>& c) { return c.isEnabled() && !c.isSensor(); }
   static PairKey pairKey(const GeometryContactT<S>& c) { return {c.geometry(0), c.geometry(1)}; }
@@ -206,6 +245,7 @@ class ContactRows {
   std::vector<double> impulses_;
   std::vector<PointRows> points_;
   std::unordered_map<PairKey, double, PairHash> pairForce_;
+  std::unordered_map<PairKey, std::vector<Remembered>, PairHash> remembered_;
 };
 
 }  // namespace spook::detail

@@ -9,6 +9,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include <spook/solver/body_space_solve.hpp>
 #include <spook/solver/island_problem.hpp>
 
 namespace spook::detail {
@@ -25,25 +26,37 @@ struct DirectSolveResult {
 /// S + Σ is assembled in block-sparse form (a row couples only to the rows
 /// sharing one of its bodies) and factorized by a sparse LDLᵀ with an
 /// approximate-minimum-degree ordering, so a chain or a tree of n bodies costs
-/// O(n). Σ > 0 keeps the matrix positive definite.
+/// O(n). Σ > 0 keeps the matrix positive definite. Where rows far outnumber
+/// the bodies' degrees of freedom and all are compliant (contacts), the same
+/// system is solved through the bodies' mass matrix instead
+/// (body_space_solve.hpp).
 ///
 /// Bounded rows make a box-constrained LCP, solved by block principal
 /// pivoting (Júdice & Pires 1994): every row is free, at its lower or at its
 /// upper bound; each step solves the free rows with the others at their
 /// bounds and swaps every infeasible row at once. When that stops reducing
-/// the number of infeasible rows for three steps, it switches to Murty's
-/// single principal pivoting (swap only the infeasible row of largest index),
-/// which cannot cycle on a positive definite matrix (Murty 1974).
+/// the number of infeasible rows for kBlockPivotingStrikes steps, it switches
+/// to Murty's single principal pivoting (swap only the infeasible row of
+/// largest index), which cannot cycle on a positive definite matrix (Murty
+/// 1974). Should the step cap be reached, the iterate with the fewest
+/// infeasible rows is kept, clamped to the bounds.
 class DirectSolve {
  public:
+  /// Block pivoting steps allowed without a new fewest-infeasible count
+  /// before single pivots: friction in a 210-cube pyramid needs tens of such
+  /// steps, and Murty's one row per step then takes hundreds.
+  static constexpr int kBlockPivotingStrikes = 30;
+
   DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps) {
     DirectSolveResult result;
     const int n = static_cast<int>(subset.size());
     if (n == 0) return result;
-    assemble(problem, subset);
+    bodySpace_ = BodySpaceSolve::pays(problem, subset);
+    assembleRhs(problem, subset);
+    if (!bodySpace_) assembleMatrix(problem, subset);
 
     // The state of each row: free, or clamped at its lower or upper bound.
-    // Warm start: a row that ended at a bound starts there.
+    // Warm start: a row whose guess (the last solution) is at a bound starts there.
     enum State : unsigned char { FREE, LOWER, UPPER };
     std::vector<State> state(static_cast<std::size_t>(n), FREE);
     bool anyBounded = false;
@@ -51,11 +64,11 @@ class DirectSolve {
       const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
       if (!isBounded(e)) continue;
       anyBounded = true;
-      if (e.impulse <= e.lower) state[static_cast<std::size_t>(k)] = LOWER;
-      else if (e.impulse >= e.upper) state[static_cast<std::size_t>(k)] = UPPER;
+      if (e.guess <= e.lower) state[static_cast<std::size_t>(k)] = LOWER;
+      else if (e.guess >= e.upper) state[static_cast<std::size_t>(k)] = UPPER;
     }
 
-    Eigen::VectorXd x(n);
+    Eigen::VectorXd x(n), bestX;
     int best = std::numeric_limits<int>::max();
     int strikes = 0;
     std::vector<int> infeasible;
@@ -63,7 +76,7 @@ class DirectSolve {
       solveFree(problem, subset, state, x);
       ++result.factorizations;
       if (!anyBounded) break;
-      const Eigen::VectorXd w = A_ * x - q_;
+      const Eigen::VectorXd w = residual(problem, subset, x);
       infeasible.clear();
       for (int k = 0; k < n; ++k) {
         const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
@@ -76,18 +89,20 @@ class DirectSolve {
           infeasible.push_back(k);
       }
       if (infeasible.empty()) break;
-      if (step >= maxPivotSteps) {
-        result.converged = false;
-        break;
-      }
       const int count = static_cast<int>(infeasible.size());
       if (count < best) {
         best = count;
+        bestX = x;
         strikes = 0;
       } else {
         ++strikes;
       }
-      if (strikes >= 3) infeasible.erase(infeasible.begin(), infeasible.end() - 1);
+      if (step >= maxPivotSteps) {
+        result.converged = false;
+        x = bestX;
+        break;
+      }
+      if (strikes >= kBlockPivotingStrikes) infeasible.erase(infeasible.begin(), infeasible.end() - 1);
       for (int k : infeasible) {
         const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
         State& s = state[static_cast<std::size_t>(k)];
@@ -98,6 +113,7 @@ class DirectSolve {
     for (int k = 0; k < n; ++k) {
       auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
       e.impulse = std::clamp(x[k], e.lower, e.upper);
+      e.guess = e.impulse;
     }
     return result;
   }
@@ -107,22 +123,40 @@ class DirectSolve {
     return e.lower > -std::numeric_limits<double>::infinity() || e.upper < std::numeric_limits<double>::infinity();
   }
 
-  // A_ = (S + Σ)_DD, full symmetric; q_ = q_D − G_D Δv(rows outside D).
-  void assemble(const IslandProblem& problem, const std::vector<int>& subset) {
-    const int n = static_cast<int>(subset.size());
+  // q_ = q_D − G_D Δv(rows outside D).
+  void assembleRhs(const IslandProblem& problem, const std::vector<int>& subset) {
     std::vector<char> inSubset(problem.rows.size(), 0);
     for (int i : subset) inSubset[static_cast<std::size_t>(i)] = 1;
     std::vector<int> others;
     for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i)
       if (!inSubset[static_cast<std::size_t>(i)]) others.push_back(i);
     const std::vector<Vec6d> fixed = problem.velocityChange(others);
+    q_.resize(static_cast<Eigen::Index>(subset.size()));
+    for (std::size_t k = 0; k < subset.size(); ++k)
+      q_[static_cast<Eigen::Index>(k)] = problem.rows[static_cast<std::size_t>(subset[k])].q - problem.rowVelocity(subset[k], fixed);
+  }
 
-    q_.resize(n);
+  // w = (S + Σ)_DD x − q_D.
+  Eigen::VectorXd residual(const IslandProblem& problem, const std::vector<int>& subset, const Eigen::VectorXd& x) const {
+    if (!bodySpace_) return A_ * x - q_;
+    std::vector<Vec6d> dv(static_cast<std::size_t>(problem.numBodies), Vec6d::Zero());
+    for (std::size_t k = 0; k < subset.size(); ++k) problem.addImpulse(dv, subset[k], x[static_cast<Eigen::Index>(k)]);
+    Eigen::VectorXd w(x.size());
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
+      const auto j = static_cast<Eigen::Index>(k);
+      w[j] = problem.rowVelocity(subset[k], dv) + e.sigma * x[j] - q_[j];
+    }
+    return w;
+  }
+
+  // A_ = (S + Σ)_DD, full symmetric.
+  void assembleMatrix(const IslandProblem& problem, const std::vector<int>& subset) {
+    const int n = static_cast<int>(subset.size());
     std::vector<std::vector<int>> rowsOfBody(static_cast<std::size_t>(problem.numBodies));
     for (int k = 0; k < n; ++k) {
       const int i = subset[static_cast<std::size_t>(k)];
       const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      q_[k] = e.q - problem.rowVelocity(i, fixed);
       if (e.body1 >= 0) rowsOfBody[static_cast<std::size_t>(e.body1)].push_back(k);
       if (e.body2 >= 0 && e.body2 != e.body1) rowsOfBody[static_cast<std::size_t>(e.body2)].push_back(k);
     }
@@ -169,6 +203,16 @@ class DirectSolve {
     Eigen::VectorXd rhs(numFree);
     for (int k = 0; k < n; ++k)
       if (freeIndex[static_cast<std::size_t>(k)] >= 0) rhs[freeIndex[static_cast<std::size_t>(k)]] = q_[k];
+    if (bodySpace_) {
+      std::vector<Vec6d> clamped(static_cast<std::size_t>(problem.numBodies), Vec6d::Zero());
+      for (int k = 0; k < n; ++k)
+        if (freeIndex[static_cast<std::size_t>(k)] < 0) problem.addImpulse(clamped, subset[static_cast<std::size_t>(k)], x[k]);
+      for (int k = 0; k < n; ++k)
+        if (const int f = freeIndex[static_cast<std::size_t>(k)]; f >= 0)
+          rhs[f] -= problem.rowVelocity(subset[static_cast<std::size_t>(k)], clamped);
+      bodySpaceSolve_.solve(problem, subset, freeIndex, rhs, x);
+      return;
+    }
     subTriplets_.clear();
     for (int col = 0; col < n; ++col)
       for (Eigen::SparseMatrix<double>::InnerIterator it(A_, col); it; ++it) {
@@ -189,6 +233,8 @@ class DirectSolve {
       if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[freeIndex[static_cast<std::size_t>(k)]];
   }
 
+  bool bodySpace_ = false;
+  BodySpaceSolve bodySpaceSolve_;
   Eigen::SparseMatrix<double> A_;
   Eigen::VectorXd q_;
   std::vector<Eigen::Triplet<double>> triplets_, subTriplets_;

@@ -95,14 +95,17 @@ inline double updateConeDirections(IslandProblem& problem, const std::vector<int
     const double force = std::hypot(ea.impulse, eb.impulse);
     double da = ea.coneShare, db = eb.coneShare;
     if (slipSpeed > 0.0) {
-      // Halfway from the last direction toward the slip's: the slips of
-      // points on one body answer each other's turns, and the full step
-      // can oscillate.
-      const double sa = std::copysign(ea.coneShare, ea.impulse) - wa / slipSpeed;
-      const double sb = std::copysign(eb.coneShare, eb.impulse) - wb / slipSpeed;
+      // The force turns against the slip: fully on the first update (from
+      // the square around the disk), then halfway from the last direction:
+      // the slips of points on one body answer each other's turns, and full
+      // turns can oscillate.
+      const double oa = std::copysign(ea.coneShare, ea.impulse), ob = std::copysign(eb.coneShare, eb.impulse);
+      const double ta = -wa / slipSpeed, tb = -wb / slipSpeed;
+      const bool full = ea.coneShare == 1.0 && eb.coneShare == 1.0;
+      const double sa = full ? ta : oa + ta, sb = full ? tb : ob + tb;
       const double norm = std::hypot(sa, sb);
-      da = norm > 1e-12 ? std::abs(sa) / norm : std::abs(wa) / slipSpeed;
-      db = norm > 1e-12 ? std::abs(sb) / norm : std::abs(wb) / slipSpeed;
+      da = norm > 1e-12 ? std::abs(sa) / norm : std::abs(ta);
+      db = norm > 1e-12 ? std::abs(sb) / norm : std::abs(tb);
     } else if (force > limit * (1.0 + 1e-9) && force > 0.0) {
       da = std::abs(ea.impulse) / force;
       db = std::abs(eb.impulse) / force;

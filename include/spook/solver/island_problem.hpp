@@ -12,6 +12,7 @@ namespace spook::detail {
 
 using Vec3d = Eigen::Vector3d;
 using Mat3d = Eigen::Matrix3d;
+using Mat6d = Eigen::Matrix<double, 6, 6>;
 
 /// A body as the solver sees it: velocities of the center of mass (world)
 /// at the start of the step and after the applied forces, and the inverse
@@ -38,6 +39,9 @@ struct IslandProblem {
     double diagonal = 0.0;                         ///< S_ii + Σ_i
     double lower = 0.0, upper = 0.0;               ///< impulse bounds
     double impulse = 0.0;                          ///< Λ (warm start in, result out)
+    /// The impulse the direct solver's pivoting starts its active set from:
+    /// the last step's, then each direct solve's own result.
+    double guess = 0.0;
     SolveType solveType = SolveType::DIRECT;
     int normal = -1;                               ///< friction rows: local index of their normal row
     int partner = -1;                              ///< cone rows: the other tangent row of the point
@@ -54,6 +58,9 @@ struct IslandProblem {
 
   std::vector<Entry> rows;
   int numBodies = 0;
+  /// Each body's mass matrix M = diag(m, I) (world; the inverse of its
+  /// inverse mass and inertia), non-finite where those are singular.
+  std::vector<Mat6d> mass;
 
   /// Δv of every body from the impulses of `subset` (rows not in it count zero).
   [[nodiscard]] std::vector<Vec6d> velocityChange(const std::vector<int>& subset) const {

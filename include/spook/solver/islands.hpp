@@ -6,6 +6,8 @@
 #include <numeric>
 #include <vector>
 
+#include <Eigen/Cholesky>
+
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/row.hpp>
 #include <spook/solver/solver.hpp>
@@ -41,6 +43,7 @@ class IslandStepper {
         e.lower = -std::numeric_limits<double>::infinity();
         e.upper = std::numeric_limits<double>::infinity();
         e.impulse = 0.0;
+        e.guess = 0.0;
       }
       solver.project(problem_, statistics);
       for (const auto& e : problem_.rows) {
@@ -161,7 +164,8 @@ class IslandStepper {
       e.diagonal = mobility + e.sigma;
       e.lower = r.lower * h;
       e.upper = r.upper * h;
-      e.impulse = std::clamp(warmStart ? *r.impulse : 0.0, e.lower, e.upper);
+      e.guess = std::clamp(*r.impulse, e.lower, e.upper);
+      e.impulse = warmStart ? e.guess : std::clamp(0.0, e.lower, e.upper);
       e.solveType = r.solveType;
       e.normal = localRow(r.frictionNormal);
       e.partner = localRow(r.frictionPartner);
@@ -170,7 +174,22 @@ class IslandStepper {
       e.coneShare = 1.0;
     }
     problem_.numBodies = static_cast<int>(islandBodies_.size());
+    problem_.mass.resize(islandBodies_.size());
+    for (std::size_t k = 0; k < islandBodies_.size(); ++k) {
+      const SolverBody& b = bodies[static_cast<std::size_t>(islandBodies_[k])];
+      Mat6d& M = problem_.mass[k];
+      M.setZero();
+      M.topLeftCorner<3, 3>() = inverseOf(b.inverseMass);
+      M.bottomRightCorner<3, 3>() = inverseOf(b.inverseInertia);
+    }
     for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
+  }
+
+  // The inverse of a symmetric 3×3 matrix, NaN when it is not positive definite.
+  static Mat3d inverseOf(const Mat3d& m) {
+    const Eigen::LLT<Mat3d> llt(m);
+    if (llt.info() != Eigen::Success) return Mat3d::Constant(std::numeric_limits<double>::quiet_NaN());
+    return llt.solve(Mat3d::Identity());
   }
 
   std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_;
