@@ -1,8 +1,8 @@
 // Contact scenes against the solver policies (DESIGN.md, promise 1, now with
 // contacts), and against Bullet and ODE where they are installed: each
-// scene × policy is simulated and the program reports the
-// wall-clock cost per step, the contact points, how far the resting bodies
-// drifted, the deepest penetration and the kinetic energy left at the end.
+// scene × policy is simulated and the program reports the wall-clock cost
+// per step, the contact points, how far the resting bodies drifted, the
+// deepest penetration and the kinetic energy left at the end.
 // Every contact point is one normal row and two friction rows. It prints an
 // aligned table and writes a CSV (argv[1], default contact_study.csv) that
 // bench/plot_contact_study.py turns into a cost-vs-drift plot; argv[2], when

@@ -6550,6 +6550,12 @@ struct IslandProblem {
   /// inverse mass and inertia), non-finite where those are singular.
   std::vector<Mat6d> mass;
 
+  /// Δv of every body from the impulses of all rows.
+  [[nodiscard]] std::vector<Vec6d> velocityChange() const {
+    std::vector<Vec6d> dv(static_cast<std::size_t>(numBodies), Vec6d::Zero());
+    for (int i = 0; i < static_cast<int>(rows.size()); ++i) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
+    return dv;
+  }
   /// Δv of every body from the impulses of `subset` (rows not in it count zero).
   [[nodiscard]] std::vector<Vec6d> velocityChange(const std::vector<int>& subset) const {
     std::vector<Vec6d> dv(static_cast<std::size_t>(numBodies), Vec6d::Zero());
@@ -11666,6 +11672,28 @@ using ContactEventListenerRef = ref_ptr<ContactEventListener>;
 #include <unordered_map>
 #include <utility>
 
+// --- begin spook/core/pointer_pair_hash.hpp ---
+
+#include <cstddef>
+#include <functional>
+#include <utility>
+
+namespace spook::detail {
+
+/// Hash of an ordered pair of pointers, for maps keyed by pairs of objects
+/// (materials, geometries): the two pointer hashes mixed as Boost's
+/// hash_combine does.
+struct PointerPairHash {
+  template <class A, class B>
+  std::size_t operator()(const std::pair<A*, B*>& key) const noexcept {
+    const std::size_t a = std::hash<const void*>()(key.first), b = std::hash<const void*>()(key.second);
+    return a ^ (b + std::size_t(0x9e3779b97f4a7c15ull) + (a << 6) + (a >> 2));
+  }
+};
+
+}  // namespace spook::detail
+// --- end spook/core/pointer_pair_hash.hpp ---
+
 namespace spook {
 
 /// The material table of a simulation (seed 000, "Explicit
@@ -11726,17 +11754,11 @@ class MaterialManagerT {
 
  private:
   using Key = std::pair<const MaterialT<S>*, const MaterialT<S>*>;
-  struct KeyHash {
-    std::size_t operator()(const Key& key) const noexcept {
-      const std::size_t a = std::hash<const void*>()(key.first), b = std::hash<const void*>()(key.second);
-      return a ^ (b + std::size_t(0x9e3779b97f4a7c15ull) + (a << 6) + (a >> 2));
-    }
-  };
   static Key keyOf(const MaterialT<S>* m1, const MaterialT<S>* m2) {
     return std::less<const MaterialT<S>*>()(m2, m1) ? Key(m2, m1) : Key(m1, m2);
   }
 
-  std::unordered_map<Key, ref_ptr<ContactMaterialT<S>>, KeyHash> table_;
+  std::unordered_map<Key, ref_ptr<ContactMaterialT<S>>, detail::PointerPairHash> table_;
 };
 
 using MaterialManager = MaterialManagerT<double>;
@@ -12224,9 +12246,7 @@ inline double applyFrictionBounds(IslandProblem& problem, const std::vector<int>
 /// against its slip and every sticking one lies in the disk: the cone's
 /// solution. Returns the largest change of a bound (N·s).
 inline double updateConeDirections(IslandProblem& problem, const std::vector<int>& subset) {
-  std::vector<int> all(problem.rows.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-  const std::vector<Vec6d> dv = problem.velocityChange(all);
+  const std::vector<Vec6d> dv = problem.velocityChange();
   const auto slip = [&](int i) {
     const IslandProblem::Entry& e = problem.rows[static_cast<std::size_t>(i)];
     return problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
@@ -12333,9 +12353,7 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
                                            double tolerance, bool jacobi) {
   IterativeSolveResult result;
   if (subset.empty()) return result;
-  std::vector<int> all(problem.rows.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-  std::vector<Vec6d> dv = problem.velocityChange(all);
+  std::vector<Vec6d> dv = problem.velocityChange();
 
   std::vector<double> relaxation;
   if (jacobi) {
@@ -12446,6 +12464,9 @@ struct SolverStatistics {
   int numIterativeRows = 0;  ///< rows that went through projected Gauss–Seidel
   int iterations = 0;        ///< most Gauss–Seidel (or Jacobi) sweeps in one island
   int factorizations = 0;    ///< sparse factorizations, one per pivoting step
+  /// Most friction iterations of one direct solve (getNumFrictionIterations);
+  /// reaching the maximum means its bounds had not settled to the tolerance.
+  int frictionIterations = 0;
   /// Largest complementarity error over all rows (m/s or rad/s): |w| for a
   /// row inside its bounds, the wrong-signed part of w at a bound, with
   /// w = (S+Σ)Λ − q (PHYSICS.md §2.1). Zero to round-off for a direct solve.
@@ -12613,14 +12634,16 @@ class Solver : public Referenced {
       following.push_back(i);
     }
     direct(problem, subset, statistics);
-    for (int k = 1; k < frictionIterations_ && !following.empty(); ++k) {
+    int k = 1;
+    for (; k < frictionIterations_ && !following.empty(); ++k) {
       double change = detail::updateConeDirections(problem, following);
       change = std::max(change, detail::applyFrictionBounds(problem, following));
       double largest = 0.0;
       for (int i : following) largest = std::max(largest, problem.rows[static_cast<std::size_t>(i)].upper);
-      if (change <= frictionTolerance_ * largest) return;
+      if (change <= frictionTolerance_ * largest) break;
       direct(problem, subset, statistics);
     }
+    statistics.frictionIterations = std::max(statistics.frictionIterations, k);
   }
   void iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
     const detail::IterativeSolveResult r =
@@ -12636,7 +12659,7 @@ class Solver : public Referenced {
 
  private:
   static double complementarityError(const detail::IslandProblem& problem) {
-    const std::vector<detail::Vec6d> dv = problem.velocityChange(allRows(problem));
+    const std::vector<detail::Vec6d> dv = problem.velocityChange();
     const auto residual = [&](int i) {
       const auto& e = problem.rows[static_cast<std::size_t>(i)];
       return problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
@@ -12998,9 +13021,9 @@ class ContactRows {
     for (const auto& c : contacts)
       if (solvable(c)) count += c.getNumEnabledPoints();
     impulses_.assign(3 * count, 0.0);
-    std::unordered_map<PairKey, double, PairHash> lastForce;
+    std::unordered_map<PairKey, double, PointerPairHash> lastForce;
     lastForce.swap(pairForce_);
-    std::unordered_map<PairKey, std::vector<Remembered>, PairHash> last;
+    std::unordered_map<PairKey, std::vector<Remembered>, PointerPairHash> last;
     last.swap(remembered_);
 
     for (auto& contact : contacts) {
@@ -13116,11 +13139,6 @@ class ContactRows {
 
  private:
   using PairKey = std::pair<const void*, const void*>;
-  struct PairHash {
-    std::size_t operator()(const PairKey& k) const {
-      return std::hash<const void*>()(k.first) * 31u ^ std::hash<const void*>()(k.second);
-    }
-  };
   struct PointRows {
     ContactPointT<S>* point;
     PairKey pair;
@@ -13151,7 +13169,7 @@ class ContactRows {
   // N for box friction: the user's, else the pair's normal force of the last
   // step, else the weight of the lighter dynamic body.
   double estimateNormalForce(const GeometryContactT<S>& contact, const FrictionModelT<S>* model,
-                             const std::unordered_map<PairKey, double, PairHash>& lastForce,
+                             const std::unordered_map<PairKey, double, PointerPairHash>& lastForce,
                              const GravityFieldT<S>& gravity) const {
     if (model && model->getType() == FrictionModelT<S>::BOX) {
       const auto* box = static_cast<const BoxFrictionT<S>*>(model);
@@ -13185,8 +13203,8 @@ class ContactRows {
 
   std::vector<double> impulses_;
   std::vector<PointRows> points_;
-  std::unordered_map<PairKey, double, PairHash> pairForce_;
-  std::unordered_map<PairKey, std::vector<Remembered>, PairHash> remembered_;
+  std::unordered_map<PairKey, double, PointerPairHash> pairForce_;
+  std::unordered_map<PairKey, std::vector<Remembered>, PointerPairHash> remembered_;
 };
 
 }  // namespace spook::detail

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <spook/collide/geometry_contact.hpp>
+#include <spook/core/pointer_pair_hash.hpp>
 #include <spook/dynamics/friction_model.hpp>
 #include <spook/dynamics/gravity_field.hpp>
 #include <spook/sim/material_manager.hpp>
@@ -57,9 +58,9 @@ class ContactRows {
     for (const auto& c : contacts)
       if (solvable(c)) count += c.getNumEnabledPoints();
     impulses_.assign(3 * count, 0.0);
-    std::unordered_map<PairKey, double, PairHash> lastForce;
+    std::unordered_map<PairKey, double, PointerPairHash> lastForce;
     lastForce.swap(pairForce_);
-    std::unordered_map<PairKey, std::vector<Remembered>, PairHash> last;
+    std::unordered_map<PairKey, std::vector<Remembered>, PointerPairHash> last;
     last.swap(remembered_);
 
     for (auto& contact : contacts) {
@@ -175,11 +176,6 @@ class ContactRows {
 
  private:
   using PairKey = std::pair<const void*, const void*>;
-  struct PairHash {
-    std::size_t operator()(const PairKey& k) const {
-      return std::hash<const void*>()(k.first) * 31u ^ std::hash<const void*>()(k.second);
-    }
-  };
   struct PointRows {
     ContactPointT<S>* point;
     PairKey pair;
@@ -210,7 +206,7 @@ class ContactRows {
   // N for box friction: the user's, else the pair's normal force of the last
   // step, else the weight of the lighter dynamic body.
   double estimateNormalForce(const GeometryContactT<S>& contact, const FrictionModelT<S>* model,
-                             const std::unordered_map<PairKey, double, PairHash>& lastForce,
+                             const std::unordered_map<PairKey, double, PointerPairHash>& lastForce,
                              const GravityFieldT<S>& gravity) const {
     if (model && model->getType() == FrictionModelT<S>::BOX) {
       const auto* box = static_cast<const BoxFrictionT<S>*>(model);
@@ -244,8 +240,8 @@ class ContactRows {
 
   std::vector<double> impulses_;
   std::vector<PointRows> points_;
-  std::unordered_map<PairKey, double, PairHash> pairForce_;
-  std::unordered_map<PairKey, std::vector<Remembered>, PairHash> remembered_;
+  std::unordered_map<PairKey, double, PointerPairHash> pairForce_;
+  std::unordered_map<PairKey, std::vector<Remembered>, PointerPairHash> remembered_;
 };
 
 }  // namespace spook::detail

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include <spook/core/error.hpp>
+#include <spook/core/pointer_pair_hash.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/scalar.hpp>
 #include <spook/dynamics/contact_material.hpp>
@@ -71,17 +72,11 @@ class MaterialManagerT {
 
  private:
   using Key = std::pair<const MaterialT<S>*, const MaterialT<S>*>;
-  struct KeyHash {
-    std::size_t operator()(const Key& key) const noexcept {
-      const std::size_t a = std::hash<const void*>()(key.first), b = std::hash<const void*>()(key.second);
-      return a ^ (b + std::size_t(0x9e3779b97f4a7c15ull) + (a << 6) + (a >> 2));
-    }
-  };
   static Key keyOf(const MaterialT<S>* m1, const MaterialT<S>* m2) {
     return std::less<const MaterialT<S>*>()(m2, m1) ? Key(m2, m1) : Key(m1, m2);
   }
 
-  std::unordered_map<Key, ref_ptr<ContactMaterialT<S>>, KeyHash> table_;
+  std::unordered_map<Key, ref_ptr<ContactMaterialT<S>>, detail::PointerPairHash> table_;
 };
 
 using MaterialManager = MaterialManagerT<double>;

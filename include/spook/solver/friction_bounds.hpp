@@ -70,9 +70,7 @@ inline double applyFrictionBounds(IslandProblem& problem, const std::vector<int>
 /// against its slip and every sticking one lies in the disk: the cone's
 /// solution. Returns the largest change of a bound (N·s).
 inline double updateConeDirections(IslandProblem& problem, const std::vector<int>& subset) {
-  std::vector<int> all(problem.rows.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-  const std::vector<Vec6d> dv = problem.velocityChange(all);
+  const std::vector<Vec6d> dv = problem.velocityChange();
   const auto slip = [&](int i) {
     const IslandProblem::Entry& e = problem.rows[static_cast<std::size_t>(i)];
     return problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;

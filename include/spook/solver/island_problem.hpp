@@ -62,6 +62,12 @@ struct IslandProblem {
   /// inverse mass and inertia), non-finite where those are singular.
   std::vector<Mat6d> mass;
 
+  /// Δv of every body from the impulses of all rows.
+  [[nodiscard]] std::vector<Vec6d> velocityChange() const {
+    std::vector<Vec6d> dv(static_cast<std::size_t>(numBodies), Vec6d::Zero());
+    for (int i = 0; i < static_cast<int>(rows.size()); ++i) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
+    return dv;
+  }
   /// Δv of every body from the impulses of `subset` (rows not in it count zero).
   [[nodiscard]] std::vector<Vec6d> velocityChange(const std::vector<int>& subset) const {
     std::vector<Vec6d> dv(static_cast<std::size_t>(numBodies), Vec6d::Zero());

@@ -34,9 +34,7 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
                                            double tolerance, bool jacobi) {
   IterativeSolveResult result;
   if (subset.empty()) return result;
-  std::vector<int> all(problem.rows.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-  std::vector<Vec6d> dv = problem.velocityChange(all);
+  std::vector<Vec6d> dv = problem.velocityChange();
 
   std::vector<double> relaxation;
   if (jacobi) {

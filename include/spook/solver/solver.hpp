@@ -24,6 +24,9 @@ struct SolverStatistics {
   int numIterativeRows = 0;  ///< rows that went through projected Gauss–Seidel
   int iterations = 0;        ///< most Gauss–Seidel (or Jacobi) sweeps in one island
   int factorizations = 0;    ///< sparse factorizations, one per pivoting step
+  /// Most friction iterations of one direct solve (getNumFrictionIterations);
+  /// reaching the maximum means its bounds had not settled to the tolerance.
+  int frictionIterations = 0;
   /// Largest complementarity error over all rows (m/s or rad/s): |w| for a
   /// row inside its bounds, the wrong-signed part of w at a bound, with
   /// w = (S+Σ)Λ − q (PHYSICS.md §2.1). Zero to round-off for a direct solve.
@@ -191,14 +194,16 @@ class Solver : public Referenced {
       following.push_back(i);
     }
     direct(problem, subset, statistics);
-    for (int k = 1; k < frictionIterations_ && !following.empty(); ++k) {
+    int k = 1;
+    for (; k < frictionIterations_ && !following.empty(); ++k) {
       double change = detail::updateConeDirections(problem, following);
       change = std::max(change, detail::applyFrictionBounds(problem, following));
       double largest = 0.0;
       for (int i : following) largest = std::max(largest, problem.rows[static_cast<std::size_t>(i)].upper);
-      if (change <= frictionTolerance_ * largest) return;
+      if (change <= frictionTolerance_ * largest) break;
       direct(problem, subset, statistics);
     }
+    statistics.frictionIterations = std::max(statistics.frictionIterations, k);
   }
   void iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
     const detail::IterativeSolveResult r =
@@ -214,7 +219,7 @@ class Solver : public Referenced {
 
  private:
   static double complementarityError(const detail::IslandProblem& problem) {
-    const std::vector<detail::Vec6d> dv = problem.velocityChange(allRows(problem));
+    const std::vector<detail::Vec6d> dv = problem.velocityChange();
     const auto residual = [&](int i) {
       const auto& e = problem.rows[static_cast<std::size_t>(i)];
       return problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
