@@ -109,10 +109,10 @@ def main():
     for ax in axes.flat:
         for handle, name in zip(*ax.get_legend_handles_labels()):
             legend.setdefault(name, handle)
-    fig.legend(legend.values(), legend.keys(), loc="lower center", ncol=min(len(legend), 3), frameon=False)
+    fig.legend(legend.values(), legend.keys(), loc="lower center", ncol=min(len(legend), 5), frameon=False)
     fig.suptitle("contact scenes: cost against drift (dotted: 1 mm; shaded: fell, >= 0.1 m, or spheres"
                  " penetration > 1 cm; red x: non-finite or too slow)", fontsize=9)
-    fig.tight_layout(rect=(0, 0.1 if rows == 1 else 0.06, 1, 0.95))
+    fig.tight_layout(rect=(0, 0.14 if rows == 1 else 0.08, 1, 0.95))
     fig.savefig(target, dpi=110)
     print(f"plot written to {target}")
     return 0
