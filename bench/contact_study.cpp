@@ -72,7 +72,6 @@
 #include <functional>
 #include <limits>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -351,13 +350,8 @@ struct Result {
 
 double totalMassOf(const study::SceneDescription& scene) {
   double volume = 0.0;
-  for (const auto& b : scene.bodies) {
-    if (!b.dynamic) continue;
-    if (b.shape == study::ShapeType::BOX)
-      volume += 8.0 * b.halfExtents[0] * b.halfExtents[1] * b.halfExtents[2];
-    else if (b.shape == study::ShapeType::SPHERE)
-      volume += 4.0 / 3.0 * std::numbers::pi * b.radius * b.radius * b.radius;
-  }
+  for (const auto& b : scene.bodies)
+    if (b.dynamic) volume += study::volumeOf(b);
   return scene.density * volume;
 }
 

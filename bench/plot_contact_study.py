@@ -17,6 +17,8 @@ import math
 import sys
 from collections import OrderedDict
 
+from study_plot import pyplot_or_note
+
 MARKERS = {
     "direct": "D",
     "hybrid SPLIT": "o",
@@ -59,14 +61,8 @@ def read(path):
 def main():
     source = sys.argv[1] if len(sys.argv) > 1 else "contact_study.csv"
     target = sys.argv[2] if len(sys.argv) > 2 else source.rsplit(".", 1)[0] + ".png"
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("note: matplotlib is not installed (apt-get install python3-matplotlib); no plot written,"
-              f" the numbers are in {source}")
+    plt = pyplot_or_note(source)
+    if plt is None:
         return 0
 
     scenes = read(source)

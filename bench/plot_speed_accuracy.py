@@ -21,6 +21,8 @@ import math
 import sys
 from collections import OrderedDict
 
+from study_plot import pyplot_or_note
+
 MARKERS = {
     "direct": "D",
     "direct-nops": "s",
@@ -57,14 +59,8 @@ def main():
     cpu, per_second = "--cpu" in flags, "--per-second" in flags
     source = args[0] if args else "speed_accuracy.csv"
     target = args[1] if len(args) > 1 else source.rsplit(".", 1)[0] + ".png"
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("note: matplotlib is not installed (apt-get install python3-matplotlib); no plot written,"
-              f" the numbers are in {source}")
+    plt = pyplot_or_note(source)
+    if plt is None:
         return 0
 
     scenes = read(source, "cpu_us_per_step" if cpu else "cost_us_per_step")

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,19 @@ struct BodySpec {
   Point position{};     ///< center, world (m)
   bool dynamic = true;
 };
+
+/// The volume of a box or sphere (m³); a plane has none.
+inline double volumeOf(const BodySpec& spec) {
+  switch (spec.shape) {
+    case ShapeType::BOX:
+      return 8.0 * spec.halfExtents[0] * spec.halfExtents[1] * spec.halfExtents[2];
+    case ShapeType::SPHERE:
+      return 4.0 / 3.0 * std::numbers::pi * spec.radius * spec.radius * spec.radius;
+    case ShapeType::PLANE:
+      break;
+  }
+  return 0.0;
+}
 
 struct SceneDescription {
   std::vector<BodySpec> bodies;

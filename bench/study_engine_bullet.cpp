@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <numbers>
 #include <vector>
 
 #include <BulletDynamics/MLCPSolvers/btDantzigSolver.h>
@@ -32,18 +31,6 @@ std::unique_ptr<btCollisionShape> makeShape(const study::BodySpec& spec) {
       return std::make_unique<btSphereShape>(btScalar(spec.radius));
   }
   return nullptr;
-}
-
-double volumeOf(const study::BodySpec& spec) {
-  switch (spec.shape) {
-    case study::ShapeType::BOX:
-      return 8.0 * spec.halfExtents[0] * spec.halfExtents[1] * spec.halfExtents[2];
-    case study::ShapeType::SPHERE:
-      return 4.0 / 3.0 * std::numbers::pi * spec.radius * spec.radius * spec.radius;
-    case study::ShapeType::PLANE:
-      break;
-  }
-  return 0.0;
 }
 
 class BulletEngine final : public study::Engine {
@@ -113,7 +100,7 @@ class BulletEngine final : public study::Engine {
  private:
   void add(const study::BodySpec& spec, const study::SceneDescription& scene) {
     btCollisionShape* shape = shapes_.emplace_back(makeShape(spec)).get();
-    const btScalar mass = spec.dynamic ? btScalar(scene.density * volumeOf(spec)) : btScalar(0);
+    const btScalar mass = spec.dynamic ? btScalar(scene.density * study::volumeOf(spec)) : btScalar(0);
     btVector3 inertia(0, 0, 0);
     if (spec.dynamic) shape->calculateLocalInertia(mass, inertia);
     btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);

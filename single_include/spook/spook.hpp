@@ -6322,7 +6322,7 @@ class SpaceT : public Referenced {
 
   // Each pair reduces as its rule says (the space's mode and resolution
   // unless a reduction rule overrides them); REDUCE_ALL pairs pool their
-  // points per body pair.
+  // points per body pair, at the resolution of the pair's last contact.
   void reduce() {
     std::vector<ContactPointT<S>*> points;
     std::map<std::pair<const void*, const void*>, std::pair<int, std::vector<ContactPointT<S>*>>> byBodies;
@@ -6547,7 +6547,9 @@ struct IslandProblem {
   std::vector<Entry> rows;
   int numBodies = 0;
   /// Each body's mass matrix M = diag(m, I) (world; the inverse of its
-  /// inverse mass and inertia), non-finite where those are singular.
+  /// inverse mass and inertia), non-finite where those are singular; empty
+  /// unless the rows outnumber the bodies' degrees of freedom
+  /// (BodySpaceSolve::outnumbers).
   std::vector<Mat6d> mass;
 
   /// Δv of every body from the impulses of all rows.
@@ -11800,25 +11802,6 @@ using MaterialManager = MaterialManagerT<float>;
 
 #include <Eigen/Cholesky>
 
-// --- begin spook/solver/solver.hpp ---
-
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <string>
-#include <vector>
-
-// --- begin spook/solver/direct_solve.hpp ---
-
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
-#include <limits>
-#include <vector>
-
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
-
 // --- begin spook/solver/body_space_solve.hpp ---
 
 #include <cmath>
@@ -11850,10 +11833,13 @@ class BodySpaceSolve {
  public:
   static constexpr double kSofterThan = 1e-6;
 
+  /// Whether `numRows` rows outnumber the degrees of freedom of `numBodies`.
+  [[nodiscard]] static bool outnumbers(std::size_t numRows, std::size_t numBodies) { return numRows > 6 * numBodies; }
+
   /// Whether the rows `subset` are better solved in body space: more rows
   /// than 6 per body, every body's mass known, every row soft enough.
   [[nodiscard]] static bool pays(const IslandProblem& problem, const std::vector<int>& subset) {
-    if (static_cast<int>(subset.size()) <= 6 * problem.numBodies) return false;
+    if (!outnumbers(subset.size(), static_cast<std::size_t>(problem.numBodies))) return false;
     if (static_cast<int>(problem.mass.size()) != problem.numBodies) return false;
     for (int b = 0; b < problem.numBodies; ++b)
       if (!problem.mass[static_cast<std::size_t>(b)].allFinite()) return false;
@@ -11944,6 +11930,24 @@ class BodySpaceSolve {
 
 }  // namespace spook::detail
 // --- end spook/solver/body_space_solve.hpp ---
+// --- begin spook/solver/solver.hpp ---
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+// --- begin spook/solver/direct_solve.hpp ---
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 
 namespace spook::detail {
 
@@ -12954,8 +12958,9 @@ class IslandStepper {
       e.coneShare = 1.0;
     }
     problem_.numBodies = static_cast<int>(islandBodies_.size());
-    problem_.mass.resize(islandBodies_.size());
-    for (std::size_t k = 0; k < islandBodies_.size(); ++k) {
+    // Mass matrices only where a direct solve may go through body space.
+    problem_.mass.resize(BodySpaceSolve::outnumbers(island.size(), islandBodies_.size()) ? islandBodies_.size() : 0);
+    for (std::size_t k = 0; k < problem_.mass.size(); ++k) {
       const SolverBody& b = bodies[static_cast<std::size_t>(islandBodies_[k])];
       Mat6d& M = problem_.mass[k];
       M.setZero();

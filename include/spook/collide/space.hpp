@@ -232,7 +232,7 @@ class SpaceT : public Referenced {
 
   // Each pair reduces as its rule says (the space's mode and resolution
   // unless a reduction rule overrides them); REDUCE_ALL pairs pool their
-  // points per body pair.
+  // points per body pair, at the resolution of the pair's last contact.
   void reduce() {
     std::vector<ContactPointT<S>*> points;
     std::map<std::pair<const void*, const void*>, std::pair<int, std::vector<ContactPointT<S>*>>> byBodies;

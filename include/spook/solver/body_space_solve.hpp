@@ -31,10 +31,13 @@ class BodySpaceSolve {
  public:
   static constexpr double kSofterThan = 1e-6;
 
+  /// Whether `numRows` rows outnumber the degrees of freedom of `numBodies`.
+  [[nodiscard]] static bool outnumbers(std::size_t numRows, std::size_t numBodies) { return numRows > 6 * numBodies; }
+
   /// Whether the rows `subset` are better solved in body space: more rows
   /// than 6 per body, every body's mass known, every row soft enough.
   [[nodiscard]] static bool pays(const IslandProblem& problem, const std::vector<int>& subset) {
-    if (static_cast<int>(subset.size()) <= 6 * problem.numBodies) return false;
+    if (!outnumbers(subset.size(), static_cast<std::size_t>(problem.numBodies))) return false;
     if (static_cast<int>(problem.mass.size()) != problem.numBodies) return false;
     for (int b = 0; b < problem.numBodies; ++b)
       if (!problem.mass[static_cast<std::size_t>(b)].allFinite()) return false;

@@ -59,7 +59,9 @@ struct IslandProblem {
   std::vector<Entry> rows;
   int numBodies = 0;
   /// Each body's mass matrix M = diag(m, I) (world; the inverse of its
-  /// inverse mass and inertia), non-finite where those are singular.
+  /// inverse mass and inertia), non-finite where those are singular; empty
+  /// unless the rows outnumber the bodies' degrees of freedom
+  /// (BodySpaceSolve::outnumbers).
   std::vector<Mat6d> mass;
 
   /// Δv of every body from the impulses of all rows.

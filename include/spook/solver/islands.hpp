@@ -8,6 +8,7 @@
 
 #include <Eigen/Cholesky>
 
+#include <spook/solver/body_space_solve.hpp>
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/row.hpp>
 #include <spook/solver/solver.hpp>
@@ -174,8 +175,9 @@ class IslandStepper {
       e.coneShare = 1.0;
     }
     problem_.numBodies = static_cast<int>(islandBodies_.size());
-    problem_.mass.resize(islandBodies_.size());
-    for (std::size_t k = 0; k < islandBodies_.size(); ++k) {
+    // Mass matrices only where a direct solve may go through body space.
+    problem_.mass.resize(BodySpaceSolve::outnumbers(island.size(), islandBodies_.size()) ? islandBodies_.size() : 0);
+    for (std::size_t k = 0; k < problem_.mass.size(); ++k) {
       const SolverBody& b = bodies[static_cast<std::size_t>(islandBodies_[k])];
       Mat6d& M = problem_.mass[k];
       M.setZero();
