@@ -17,7 +17,7 @@
 namespace {
 
 using Box = spook::BoundingBoxT<double>;
-using Vec3 = spook::Vec3<double>;
+using Vec3 = spook::Vec3;
 
 struct MovingSpheres {
   std::vector<Vec3> centers, velocities;

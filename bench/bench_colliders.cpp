@@ -16,9 +16,9 @@ namespace {
 using Matrix = spook::ColliderMatrixT<double, spook::AllShapes>;
 
 void query(benchmark::State& state, const spook::ShapeT<double>* a, const spook::ShapeT<double>* b) {
-  const spook::Transform<double> X_WA = spook::Transform<double>::Identity();
-  const spook::Quat<double> tilt(Eigen::AngleAxis<double>(0.2, spook::Vec3<double>(1, 2, 0).normalized()));
-  const spook::Transform<double> X_WB = spook::makeTransform<double>(spook::Vec3<double>(0.05, -0.03, 0.3), tilt);
+  const spook::Transform X_WA = spook::Transform::Identity();
+  const spook::Quat tilt(Eigen::AngleAxis<double>(0.2, spook::Vec3(1, 2, 0).normalized()));
+  const spook::Transform X_WB = spook::makeTransform<double>(spook::Vec3(0.05, -0.03, 0.3), tilt);
   std::vector<spook::ContactPointT<double>> points;
   std::size_t found = 0;
   for (auto _ : state) {

@@ -40,10 +40,10 @@ using spook::Vec3;
 constexpr double kStep = 1.0 / 60.0;  // s
 
 /// A frame at `point` of its parent with z along `axis`.
-spook::FrameRef frameAt(const Vec3<>& point, const Vec3<>& axis = Vec3<>::UnitZ()) {
+spook::FrameRef frameAt(const Vec3& point, const Vec3& axis = Vec3::UnitZ()) {
   spook::FrameRef f = new spook::Frame();
   f->setLocalTranslate(point);
-  f->setLocalRotate(spook::Quat<>::FromTwoVectors(Vec3<>::UnitZ(), axis));
+  f->setLocalRotate(spook::Quat::FromTwoVectors(Vec3::UnitZ(), axis));
   return f;
 }
 
@@ -57,13 +57,13 @@ spook::SimulationRef makeChain(int links) {
   for (int i = 0; i < links; ++i) {
     spook::RigidBodyRef link = new spook::RigidBody("link");
     link->getMassProperties()->setMass(1.0);
-    link->getMassProperties()->setInertiaTensor(Vec3<>(0.1, 0.1, 0.01));
-    link->setPosition(Vec3<>(0, 0, -0.5 - i));
+    link->getMassProperties()->setInertiaTensor(Vec3(0.1, 0.1, 0.01));
+    link->setPosition(Vec3(0, 0, -0.5 - i));
     sim->add(link);
-    const Vec3<> axis = Vec3<>::UnitY();
-    spook::FrameRef above = previous ? frameAt(Vec3<>(0, 0, -0.5), axis) : frameAt(Vec3<>::Zero(), axis);
+    const Vec3 axis = Vec3::UnitY();
+    spook::FrameRef above = previous ? frameAt(Vec3(0, 0, -0.5), axis) : frameAt(Vec3::Zero(), axis);
     sim->add(spook::ref_ptr<spook::Constraint>(
-        new Joint(link.get(), frameAt(Vec3<>(0, 0, 0.5), axis).get(), previous, above.get())));
+        new Joint(link.get(), frameAt(Vec3(0, 0, 0.5), axis).get(), previous, above.get())));
     previous = link.get();
   }
   return sim;

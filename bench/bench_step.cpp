@@ -12,9 +12,9 @@ void stepFreeBodies(benchmark::State& state) {
   const auto count = static_cast<int>(state.range(0));
   for (int i = 0; i < count; ++i) {
     spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>();
-    body->getMassProperties()->setInertiaTensor(spook::Vec3<S>(S(1), S(2), S(3)));
-    body->setPosition(spook::Vec3<S>(S(i), S(0), S(0)));
-    body->setAngularVelocity(spook::Vec3<S>(S(0.3), S(2), S(-0.5)));
+    body->getMassProperties()->setInertiaTensor(spook::Vec3T<S>(S(1), S(2), S(3)));
+    body->setPosition(spook::Vec3T<S>(S(i), S(0), S(0)));
+    body->setAngularVelocity(spook::Vec3T<S>(S(0.3), S(2), S(-0.5)));
     sim->add(body);
   }
   for (auto _ : state) sim->stepForward();
@@ -23,8 +23,8 @@ void stepFreeBodies(benchmark::State& state) {
 
 template <class S>
 void freeRotationStep(benchmark::State& state) {
-  const spook::Mat3<S> inverse = spook::Vec3<S>(S(1), S(0.5), S(1) / S(3)).asDiagonal();
-  spook::Vec3<S> momentum(S(0.3), S(4), S(-1.5));
+  const spook::Mat3T<S> inverse = spook::Vec3T<S>(S(1), S(0.5), S(1) / S(3)).asDiagonal();
+  spook::Vec3T<S> momentum(S(0.3), S(4), S(-1.5));
   for (auto _ : state) {
     auto r = spook::detail::rotateFreely<S>(inverse, momentum, S(1) / S(60));
     benchmark::DoNotOptimize(r);

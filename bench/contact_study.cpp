@@ -89,7 +89,7 @@ std::vector<study::ReferenceEngine> study::odeEngines() { return {}; }
 
 namespace {
 
-using Vec3 = spook::Vec3<>;
+using Vec3 = spook::Vec3;
 constexpr double kFriction = 0.5;
 constexpr double kOkDrift = 1e-3;          // m
 constexpr double kFellDrift = 0.1;         // m
@@ -268,7 +268,7 @@ class SpookEngine final : public study::Engine {
         shape = new spook::Sphere(spec.radius);
         break;
     }
-    spook::GeometryRef geometry = new spook::Geometry(shape, spook::Transform<double>::Identity(), name);
+    spook::GeometryRef geometry = new spook::Geometry(shape, spook::Transform::Identity(), name);
     geometry->setMaterial(material_);
     const Vec3 position(spec.position[0], spec.position[1], spec.position[2]);
     if (!spec.dynamic) {

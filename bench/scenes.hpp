@@ -12,7 +12,7 @@ namespace spook::bench {
 /// A flat, gently rippled grid of cells × cells squares of side `cell`
 /// (two triangles each) at z ≈ 0, centered on the origin.
 inline ref_ptr<Trimesh> gridMesh(int cells, double cell) {
-  std::vector<Vec3<double>> vertices;
+  std::vector<Vec3T<double>> vertices;
   std::vector<std::array<int, 3>> triangles;
   const double half = 0.5 * cells * cell;
   for (int j = 0; j <= cells; ++j)
@@ -32,19 +32,19 @@ inline ref_ptr<Trimesh> gridMesh(int cells, double cell) {
 inline std::vector<ref_ptr<ShapeT<double>>> oneOfEach() {
   std::mt19937 rng(5);
   std::normal_distribution<double> n(0.0, 1.0);
-  std::vector<Vec3<double>> cloud;
-  for (int i = 0; i < 32; ++i) cloud.push_back(Vec3<double>(n(rng), n(rng), n(rng)).normalized() * 0.5);
+  std::vector<Vec3T<double>> cloud;
+  for (int i = 0; i < 32; ++i) cloud.push_back(Vec3T<double>(n(rng), n(rng), n(rng)).normalized() * 0.5);
   ref_ptr<Composite> composite = new Composite();
-  composite->add(new Box(Vec3<double>(0.25, 0.25, 0.25)), makeTransform<double>(Vec3<double>(-0.25, 0, 0), Quat<double>::Identity()));
-  composite->add(new Sphere(0.25), makeTransform<double>(Vec3<double>(0.25, 0, 0), Quat<double>::Identity()));
+  composite->add(new Box(Vec3T<double>(0.25, 0.25, 0.25)), makeTransform<double>(Vec3T<double>(-0.25, 0, 0), QuatT<double>::Identity()));
+  composite->add(new Sphere(0.25), makeTransform<double>(Vec3T<double>(0.25, 0, 0), QuatT<double>::Identity()));
   std::vector<double> heights(16 * 16);
   for (std::size_t k = 0; k < heights.size(); ++k) heights[k] = 0.02 * std::sin(0.9 * double(k));
-  return {new Box(Vec3<double>(0.5, 0.4, 0.3)),
+  return {new Box(Vec3T<double>(0.5, 0.4, 0.3)),
           new Capsule(0.3, 0.6),
           new Convex(cloud),
           new Cylinder(0.4, 0.8),
-          new Line(Vec3<double>(-0.5, 0, 0), Vec3<double>(0.5, 0, 0)),
-          new Plane(Vec3<double>::UnitZ()),
+          new Line(Vec3T<double>(-0.5, 0, 0), Vec3T<double>(0.5, 0, 0)),
+          new Plane(Vec3T<double>::UnitZ()),
           new Sphere(0.5),
           gridMesh(16, 0.125),
           composite,

@@ -53,8 +53,8 @@
 
 namespace {
 
-using Vec3 = spook::Vec3<>;
-using Quat = spook::Quat<>;
+using Vec3 = spook::Vec3;
+using Quat = spook::Quat;
 constexpr double kG = 9.80665;      // m/s²
 constexpr double kDuration = 10.0;  // s of simulated time per run
 constexpr double kOkGap = 1e-3;     // m

@@ -18,9 +18,9 @@
 
 namespace {
 
-using Vec3 = spook::Vec3<>;
-using Mat3 = spook::Mat3<>;
-using Quat = spook::Quat<>;
+using Vec3 = spook::Vec3;
+using Mat3 = spook::Mat3;
+using Quat = spook::Quat;
 
 struct State {
   Quat q = Quat::Identity();

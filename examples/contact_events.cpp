@@ -35,8 +35,8 @@ int main() {
   sim->add(new spook::Geometry(new spook::Plane(spook::Vec3(0, 0, 1))));
 
   spook::RigidBodyRef capsule = new spook::RigidBody("capsule");
-  const spook::Quat<> lying(Eigen::AngleAxisd(0.5 * 3.141592653589793, spook::Vec3<>::UnitZ()));
-  capsule->add(new spook::Geometry(new spook::Capsule(0.1, 0.6), spook::makeTransform(spook::Vec3<>(0, 0, 0), lying)));
+  const spook::Quat lying(Eigen::AngleAxisd(0.5 * 3.141592653589793, spook::Vec3::UnitZ()));
+  capsule->add(new spook::Geometry(new spook::Capsule(0.1, 0.6), spook::makeTransform(spook::Vec3(0, 0, 0), lying)));
   capsule->setPosition(0, 0, 0.15);
   sim->add(capsule);
   sim->add(new Reporter());

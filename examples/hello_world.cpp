@@ -14,7 +14,7 @@ int main() {
 
   sim->stepTo(sim->getTimeStamp() + 2.0);
 
-  const spook::Vec3<> p = body->getPosition();
+  const spook::Vec3 p = body->getPosition();
   std::cout << body->getName() << " after " << sim->getTimeStamp() << " s: z = " << p.z()
             << " m, vz = " << body->getVelocity().z() << " m/s\n";
 }

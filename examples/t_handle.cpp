@@ -12,7 +12,7 @@ namespace {
 // A T-handle of two thin rods (kg, m): a cross bar along x and a stem along
 // y. Principal moments about its center of mass: Iy < Ix < Iz, so the bar
 // axis x is the intermediate one.
-spook::Vec3<> tHandleInertia() {
+spook::Vec3 tHandleInertia() {
   const double barMass = 0.6, barLength = 0.12, stemMass = 0.3, stemLength = 0.08;
   const double stemOffset = 0.04 + 0.5 * stemLength;  // stem center from the bar's axis
   const double total = barMass + stemMass;
@@ -28,7 +28,7 @@ spook::Vec3<> tHandleInertia() {
 int main() {
   spook::SimulationRef sim = new spook::Simulation();
   sim->setTimeStep(1.0 / 60.0);
-  sim->setUniformGravity(spook::Vec3<>::Zero());  // free flight
+  sim->setUniformGravity(spook::Vec3::Zero());  // free flight
 
   spook::RigidBodyRef handle = new spook::RigidBody("t-handle");
   handle->getMassProperties()->setMass(0.9);
@@ -42,14 +42,14 @@ int main() {
   sim->add(grapple);
   grapple->moveTo(spook::makeTransform(spook::Vec3(0.0, 0.0, 0.3)), 4.0);
 
-  const spook::Vec3<> L0 = handle->getAngularMomentum();
+  const spook::Vec3 L0 = handle->getAngularMomentum();
   const double E0 = handle->getKineticEnergy();
   std::printf("  t (s)   bar axis · L/|L|      |ΔL|/|L|    ΔE/E       grapple z (m)\n");
   double previous = 1.0;
   int flips = 0;
   while (sim->getTimeStamp() < 12.0 - 1e-9) {
     sim->stepForward();
-    const spook::Vec3<> axis = handle->getRotation() * spook::Vec3<>::UnitX();
+    const spook::Vec3 axis = handle->getRotation() * spook::Vec3::UnitX();
     const double alignment = axis.dot(L0) / L0.norm();
     if (alignment * previous < 0.0) ++flips;
     previous = alignment;

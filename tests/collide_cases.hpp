@@ -19,22 +19,22 @@ template <class S>
 using Points = std::vector<spook::ContactPointT<S>>;
 
 template <class S>
-spook::Transform<S> at(S x, S y, S z) {
-  spook::Transform<S> X = spook::Transform<S>::Identity();
-  X.translation() = spook::Vec3<S>(x, y, z);
+spook::TransformT<S> at(S x, S y, S z) {
+  spook::TransformT<S> X = spook::TransformT<S>::Identity();
+  X.translation() = spook::Vec3T<S>(x, y, z);
   return X;
 }
 
 template <class S>
-spook::Transform<S> turned(const spook::Transform<S>& X, S angle, const std::type_identity_t<spook::Vec3<S>>& axis) {
-  spook::Transform<S> Y = X;
+spook::TransformT<S> turned(const spook::TransformT<S>& X, S angle, const std::type_identity_t<spook::Vec3T<S>>& axis) {
+  spook::TransformT<S> Y = X;
   Y.linear() = Eigen::AngleAxis<S>(angle, axis.normalized()).toRotationMatrix();
   return Y;
 }
 
 // spook::collide on the pair, every contact checked finite with a unit normal.
 template <class A, class B, class S = typename A::Vec3::Scalar>
-Points<S> contacts(const A& a, const spook::Transform<S>& X_WA, const B& b, const spook::Transform<S>& X_WB) {
+Points<S> contacts(const A& a, const spook::TransformT<S>& X_WA, const B& b, const spook::TransformT<S>& X_WB) {
   Points<S> points;
   spook::ContactSinkT<S> sink(points);
   spook::collide(a, X_WA, b, X_WB, sink);
@@ -48,7 +48,7 @@ Points<S> contacts(const A& a, const spook::Transform<S>& X_WA, const B& b, cons
 }
 
 template <class S>
-bool near(const spook::Vec3<S>& a, const spook::Vec3<S>& b, S tolerance) {
+bool near(const spook::Vec3T<S>& a, const spook::Vec3T<S>& b, S tolerance) {
   return (a - b).norm() <= tolerance;
 }
 

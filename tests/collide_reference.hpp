@@ -57,8 +57,8 @@
 
 namespace spook::test {
 
-using Vec3d = spook::Vec3<double>;
-using Transformd = spook::Transform<double>;
+using Vec3d = spook::Vec3;
+using Transformd = spook::Transform;
 
 // ---------------------------------------------------------------------------
 // Random poses and sizes, deterministic for a seed. Lengths are rounded to
@@ -140,7 +140,7 @@ ref_ptr<ConvexT<S>> castShape(const ConvexT<double>& s) {
   if constexpr (std::is_same_v<S, double>) {
     return const_cast<ConvexT<double>*>(&s);
   } else {
-    std::vector<Vec3<S>> points;
+    std::vector<Vec3T<S>> points;
     for (const Vec3d& v : s.getVertices()) points.push_back(v.cast<S>());
     return new ConvexT<S>(points);
   }
@@ -913,7 +913,7 @@ Agreement differential(
   std::vector<ContactPointT<S>> points;
   for (int k = 0; k < count; ++k) {
     const PairCase<A, B> c = sample(random);
-    const Transform<S> X_WA = c.X_WA.template cast<S>(), X_WB = c.X_WB.template cast<S>();
+    const TransformT<S> X_WA = c.X_WA.template cast<S>(), X_WB = c.X_WB.template cast<S>();
     const Transformd XA = X_WA.template cast<double>(), XB = X_WB.template cast<double>();
     points.clear();
     ContactSinkT<S> sink(points);

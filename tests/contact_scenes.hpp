@@ -27,8 +27,8 @@ inline ref_ptr<Solver> makeSolver(Policy p) {
 /// A static ground plane through the origin with normal `up`.
 template <class S>
 ref_ptr<GeometryT<S>> addGround(SimulationT<S>& sim, const ref_ptr<MaterialT<S>>& material,
-                                const Vec3<S>& up = Vec3<S>::UnitZ()) {
-  ref_ptr<GeometryT<S>> ground = new GeometryT<S>(new PlaneT<S>(up), Transform<S>::Identity(), "ground");
+                                const Vec3T<S>& up = Vec3T<S>::UnitZ()) {
+  ref_ptr<GeometryT<S>> ground = new GeometryT<S>(new PlaneT<S>(up), TransformT<S>::Identity(), "ground");
   ground->setMaterial(material);
   sim.add(ground);
   return ground;
@@ -37,9 +37,9 @@ ref_ptr<GeometryT<S>> addGround(SimulationT<S>& sim, const ref_ptr<MaterialT<S>>
 /// A dynamic body of one shape (mass from the material's density).
 template <class S>
 ref_ptr<RigidBodyT<S>> addBody(SimulationT<S>& sim, const char* name, ShapeT<S>* shape,
-                               const ref_ptr<MaterialT<S>>& material, const Vec3<S>& position,
-                               const Quat<S>& rotation = Quat<S>::Identity()) {
-  ref_ptr<GeometryT<S>> geometry = new GeometryT<S>(shape, Transform<S>::Identity(), name);
+                               const ref_ptr<MaterialT<S>>& material, const Vec3T<S>& position,
+                               const QuatT<S>& rotation = QuatT<S>::Identity()) {
+  ref_ptr<GeometryT<S>> geometry = new GeometryT<S>(shape, TransformT<S>::Identity(), name);
   geometry->setMaterial(material);
   ref_ptr<RigidBodyT<S>> body = new RigidBodyT<S>(name);
   body->add(geometry);

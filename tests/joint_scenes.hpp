@@ -17,12 +17,12 @@ namespace spook::test {
 inline constexpr double kG = 9.80665;  // m/s², standard gravity (the simulation's default)
 
 template <class S>
-ref_ptr<RigidBodyT<S>> makeBody(SimulationT<S>& sim, const char* name, S mass, const Vec3<S>& position,
+ref_ptr<RigidBodyT<S>> makeBody(SimulationT<S>& sim, const char* name, S mass, const Vec3T<S>& position,
                                 S inertia = S(0)) {
   ref_ptr<RigidBodyT<S>> body = new RigidBodyT<S>(name);
   body->getMassProperties()->setMass(mass);
   const S I = inertia > S(0) ? inertia : S(0.4) * mass * S(0.01);
-  body->getMassProperties()->setInertiaTensor(SPDMat3<S>(Vec3<S>(I, I, I)));
+  body->getMassProperties()->setInertiaTensor(SPDMat3T<S>(Vec3T<S>(I, I, I)));
   body->setPosition(position);
   sim.add(body);
   return body;
@@ -30,10 +30,10 @@ ref_ptr<RigidBodyT<S>> makeBody(SimulationT<S>& sim, const char* name, S mass, c
 
 /// A frame at `point` (in its parent) with z along `axis`.
 template <class S>
-ref_ptr<FrameT<S>> frameAt(const Vec3<S>& point, const Vec3<S>& axis = Vec3<S>::UnitZ()) {
+ref_ptr<FrameT<S>> frameAt(const Vec3T<S>& point, const Vec3T<S>& axis = Vec3T<S>::UnitZ()) {
   ref_ptr<FrameT<S>> f = new FrameT<S>();
   f->setLocalTranslate(point);
-  f->setLocalRotate(Quat<S>::FromTwoVectors(Vec3<S>::UnitZ(), axis.normalized()));
+  f->setLocalRotate(QuatT<S>::FromTwoVectors(Vec3T<S>::UnitZ(), axis.normalized()));
   return f;
 }
 

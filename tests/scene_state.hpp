@@ -20,7 +20,7 @@ namespace spook::test {
 
 /// Largest entry of the difference of two poses (m for the translation).
 template <class S>
-S poseError(const Transform<S>& a, const Transform<S>& b) {
+S poseError(const TransformT<S>& a, const TransformT<S>& b) {
   return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff();
 }
 
@@ -34,10 +34,10 @@ struct BodyState {
   bool inSimulation = false;  // in the captured simulation
   Eigen::Matrix<S, 4, 4> transform;
   Eigen::Matrix<S, 4, 4> cmLocal;  // CM frame relative to the model frame
-  Vec3<S> velocity, angularVelocity, force, torque;
+  Vec3T<S> velocity, angularVelocity, force, torque;
   S mass = S(0);
-  Mat3<S> inertia;
-  Vec3<S> massCoefficients, linearDamping, angularDamping;
+  Mat3T<S> inertia;
+  Vec3T<S> massCoefficients, linearDamping, angularDamping;
 };
 
 template <class S>

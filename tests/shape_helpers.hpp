@@ -25,13 +25,13 @@ void checkRejects(F&& make, const std::string& kind, const std::string& value) {
 }
 
 template <class S>
-Transform<S> at(double x, double y, double z, const Quat<S>& q = Quat<S>::Identity()) {
-  return makeTransform<S>(Vec3<S>(S(x), S(y), S(z)), q);
+TransformT<S> at(double x, double y, double z, const QuatT<S>& q = QuatT<S>::Identity()) {
+  return makeTransform<S>(Vec3T<S>(S(x), S(y), S(z)), q);
 }
 
 /// Frobenius norm of a − b relative to that of b.
 template <class S>
-S relative(const Mat3<S>& a, const Mat3<S>& b) {
+S relative(const Mat3T<S>& a, const Mat3T<S>& b) {
   return (a - b).norm() / b.norm();
 }
 

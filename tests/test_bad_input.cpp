@@ -23,7 +23,7 @@ constexpr S kInf = std::numeric_limits<S>::infinity();
 template <class S>
 struct Yard {
   using Body = spook::RigidBodyT<S>;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
   spook::ref_ptr<spook::SimulationT<S>> other = new spook::SimulationT<S>();
   spook::ref_ptr<Body> crate = new Body("crate");    // dynamic
@@ -42,7 +42,7 @@ struct Yard {
     crate->setAngularVelocityDamping(Vec3(S(0.5), S(0), S(1)));
     crate->setCmLocalTranslate(Vec3(S(0.1), S(0), S(-0.2)));
     crate->setPosition(Vec3(S(1), S(2), S(3)));
-    crate->setRotation(spook::toQuat(spook::EulerAngles<S>{S(0.1), S(0.2), S(0.3)}));
+    crate->setRotation(spook::toQuat(spook::EulerAnglesT<S>{S(0.1), S(0.2), S(0.3)}));
     crate->setVelocity(S(1), S(0), S(2));
     crate->setAngularVelocity(S(0), S(3), S(0));
     hook->setMotionControl(Body::KINEMATICS);
@@ -83,8 +83,8 @@ void checkRejected(const Yard<S>& yard, Call call, std::initializer_list<std::st
 }
 
 template <class S>
-spook::Mat3<S> matrix(std::initializer_list<S> rowMajor) {
-  spook::Mat3<S> m;
+spook::Mat3T<S> matrix(std::initializer_list<S> rowMajor) {
+  spook::Mat3T<S> m;
   auto it = rowMajor.begin();
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) m(r, c) = *it++;
@@ -114,7 +114,7 @@ TEST_CASE_TEMPLATE("a mass that is zero, negative or NaN is rejected", S, float,
 }
 
 TEST_CASE_TEMPLATE("a non-finite position is rejected", S, float, double) {
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   Yard<S> y;
   checkRejected(y, [&] { y.crate->setPosition(Vec3(kNaN<S>, S(0), S(1))); }, {"'crate'", "got (nan, 0, 1)"});
   checkRejected(y, [&] { y.crate->setPosition(S(0), kInf<S>, S(1)); }, {"'crate'", "got (0, inf, 1)"});
@@ -125,11 +125,11 @@ TEST_CASE_TEMPLATE("a non-finite position is rejected", S, float, double) {
 }
 
 TEST_CASE_TEMPLATE("a NaN or zero rotation quaternion is rejected", S, float, double) {
-  using Quat = spook::Quat<S>;
+  using Quat = spook::QuatT<S>;
   Yard<S> y;
   checkRejected(y, [&] { y.crate->setRotation(Quat(kNaN<S>, S(0), S(0), S(1))); }, {"'crate'", "nan"});
   checkRejected(y, [&] { y.crate->setRotation(Quat(S(0), S(0), S(0), S(0))); }, {"'crate'", "got (0, 0, 0, 0)"});
-  spook::Transform<S> X = spook::Transform<S>::Identity();
+  spook::TransformT<S> X = spook::TransformT<S>::Identity();
   X.linear()(1, 1) = kNaN<S>;
   checkRejected(y, [&] { y.crate->setTransform(X); }, {"'crate'", "nan"});
 }
@@ -138,7 +138,7 @@ TEST_CASE_TEMPLATE("a NaN or zero rotation quaternion is rejected", S, float, do
 // Quat(Mat3::Zero()) reads as (1, 0, 0, 0), a half turn about x.
 TEST_CASE_TEMPLATE("a transform whose rotation part is zero is rejected", S, float, double) {
   Yard<S> y;
-  spook::Transform<S> X = spook::Transform<S>::Identity();
+  spook::TransformT<S> X = spook::TransformT<S>::Identity();
   X.linear().setZero();
   checkRejected(y, [&] { y.crate->setTransform(X); }, {"'crate'"});
 }
@@ -156,7 +156,7 @@ TEST_CASE_TEMPLATE("a non-finite force or torque is rejected", S, float, double)
 }
 
 TEST_CASE_TEMPLATE("addForceAtPosition rejects a non-finite force, point or resulting torque", S, float, double) {
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   Yard<S> y;
   const S big = std::numeric_limits<S>::max() / S(2);
   checkRejected(y, [&] { y.crate->addForceAtPosition(Vec3(kNaN<S>, S(0), S(0)), Vec3::Zero()); }, {"'crate'", "nan"});
@@ -168,21 +168,21 @@ TEST_CASE_TEMPLATE("addForceAtPosition rejects a non-finite force, point or resu
 
 TEST_CASE_TEMPLATE("an inertia tensor with a negative eigenvalue is rejected", S, float, double) {
   Yard<S> y;
-  const spook::Mat3<S> I = matrix<S>({2, 0, 0, 0, 1, 3, 0, 3, 1});  // eigenvalues 2, 4, -2
+  const spook::Mat3T<S> I = matrix<S>({2, 0, 0, 0, 1, 3, 0, 3, 1});  // eigenvalues 2, 4, -2
   checkRejected(y, [&] { y.crate->getMassProperties()->setInertiaTensor(I); },
                 {"'crate'", "positive definite", "got (2, 0, 0, 0, 1, 3, 0, 3, 1)"});
 }
 
 TEST_CASE_TEMPLATE("a non-symmetric inertia tensor is rejected", S, float, double) {
   Yard<S> y;
-  const spook::Mat3<S> I = matrix<S>({1, 0.5, 0, 0, 1, 0, 0, 0, 1});
+  const spook::Mat3T<S> I = matrix<S>({1, 0.5, 0, 0, 1, 0, 0, 0, 1});
   checkRejected(y, [&] { y.crate->getMassProperties()->setInertiaTensor(I); },
                 {"'crate'", "symmetric", "got (1, 0.5, 0, 0, 1, 0, 0, 0, 1)"});
 }
 
 TEST_CASE_TEMPLATE("a singular inertia tensor is rejected", S, float, double) {
   Yard<S> y;
-  const spook::Mat3<S> I = matrix<S>({1, 0, 0, 0, 1, 0, 0, 0, 0});
+  const spook::Mat3T<S> I = matrix<S>({1, 0, 0, 0, 1, 0, 0, 0, 0});
   checkRejected(y, [&] { y.crate->getMassProperties()->setInertiaTensor(I); },
                 {"'crate'", "got (1, 0, 0, 0, 1, 0, 0, 0, 0)"});
 }
@@ -192,13 +192,13 @@ TEST_CASE_TEMPLATE("a singular inertia tensor is rejected", S, float, double) {
 TEST_CASE_TEMPLATE("a singular inertia tensor is rejected when round-off makes its smallest eigenvalue positive", S,
                    float, double) {
   Yard<S> y;
-  const spook::Mat3<S> I = matrix<S>({1, 1, 1, 1, 1, 1, 1, 1, 2});
+  const spook::Mat3T<S> I = matrix<S>({1, 1, 1, 1, 1, 1, 1, 1, 2});
   checkRejected(y, [&] { y.crate->getMassProperties()->setInertiaTensor(I); },
                 {"'crate'", "got (1, 1, 1, 1, 1, 1, 1, 1, 2)"});
 }
 
 TEST_CASE_TEMPLATE("principal moments of inertia that are not positive are rejected", S, float, double) {
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   Yard<S> y;
   auto* mass = y.crate->getMassProperties();
   checkRejected(y, [&] { mass->setInertiaTensor(Vec3(S(1), S(0), S(1))); }, {"'crate'", "got (1, 0, 1)"});
@@ -207,7 +207,7 @@ TEST_CASE_TEMPLATE("principal moments of inertia that are not positive are rejec
 }
 
 TEST_CASE_TEMPLATE("negative or NaN mass coefficients are rejected", S, float, double) {
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   Yard<S> y;
   auto* mass = y.crate->getMassProperties();
   checkRejected(y, [&] { mass->setMassCoefficients(Vec3(S(-1), S(0), S(0))); }, {"'crate'", "got (-1, 0, 0)"});
@@ -215,7 +215,7 @@ TEST_CASE_TEMPLATE("negative or NaN mass coefficients are rejected", S, float, d
 }
 
 TEST_CASE_TEMPLATE("negative or NaN velocity damping is rejected", S, float, double) {
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   Yard<S> y;
   checkRejected(y, [&] { y.crate->setLinearVelocityDamping(S(-1)); }, {"'crate'", "got (-1, -1, -1)"});
   checkRejected(y, [&] { y.crate->setLinearVelocityDamping(Vec3(S(0), S(0), kNaN<S>)); },
@@ -270,14 +270,14 @@ TEST_CASE_TEMPLATE("stepTo a time in the past or NaN is rejected", S, float, dou
 
 TEST_CASE_TEMPLATE("moveTo on a body that is not kinematic is rejected", S, float, double) {
   Yard<S> y;
-  const auto target = spook::makeTransform<S>(spook::Vec3<S>(S(0), S(0), S(1)));
+  const auto target = spook::makeTransform<S>(spook::Vec3T<S>(S(0), S(0), S(1)));
   checkRejected(y, [&] { y.crate->moveTo(target, S(1)); }, {"'crate'", "KINEMATICS"});
   checkRejected(y, [&] { y.pallet->moveTo(target, S(1)); }, {"'pallet'", "KINEMATICS"});
 }
 
 TEST_CASE_TEMPLATE("moveTo with a duration that is not positive and finite is rejected", S, float, double) {
   Yard<S> y;
-  const auto target = spook::makeTransform<S>(spook::Vec3<S>(S(0), S(0), S(1)));
+  const auto target = spook::makeTransform<S>(spook::Vec3T<S>(S(0), S(0), S(1)));
   checkRejected(y, [&] { y.hook->moveTo(target, S(0)); }, {"'hook'", "got 0"});
   checkRejected(y, [&] { y.hook->moveTo(target, S(-1)); }, {"'hook'", "got -1"});
   checkRejected(y, [&] { y.hook->moveTo(target, kNaN<S>); }, {"'hook'", "got nan"});

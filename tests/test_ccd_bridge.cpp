@@ -22,12 +22,12 @@ TEST_CASE_TEMPLATE("libccd bridge finds the exact overlap of two spheres", S, fl
   double worstDepth = 0, worstAngle = 0;
   int compared = 0, missed = 0;
   for (int k = 0; k < 10000; ++k) {
-    spook::Transform<S> X_WA = spook::Transform<S>::Identity(), X_WB = spook::Transform<S>::Identity();
-    X_WA.translation() = spook::Vec3<S>(S(u(rng)), S(u(rng)), S(u(rng)));
-    X_WB.translation() = spook::Vec3<S>(S(u(rng)), S(u(rng)), S(u(rng)));
-    X_WA.linear() = spook::Quat<S>::UnitRandom().toRotationMatrix();
-    X_WB.linear() = spook::Quat<S>::UnitRandom().toRotationMatrix();
-    const spook::Vec3<double> d = (X_WB.translation() - X_WA.translation()).template cast<double>();
+    spook::TransformT<S> X_WA = spook::TransformT<S>::Identity(), X_WB = spook::TransformT<S>::Identity();
+    X_WA.translation() = spook::Vec3T<S>(S(u(rng)), S(u(rng)), S(u(rng)));
+    X_WB.translation() = spook::Vec3T<S>(S(u(rng)), S(u(rng)), S(u(rng)));
+    X_WA.linear() = spook::QuatT<S>::UnitRandom().toRotationMatrix();
+    X_WB.linear() = spook::QuatT<S>::UnitRandom().toRotationMatrix();
+    const spook::Vec3 d = (X_WB.translation() - X_WA.translation()).template cast<double>();
     const double depth = 1.5 - d.norm();
     if (std::abs(depth) <= 1e-6 || d.norm() < 1e-3) continue;
     std::vector<spook::ContactPointT<S>> points;

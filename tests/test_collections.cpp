@@ -104,7 +104,7 @@ TEST_CASE_TEMPLATE("removing a collection from a simulation removes its content,
   CHECK(tree.counter->getSimulation() == nullptr);
   sim->stepForward();
   CHECK(tree.counter->calls == 0);
-  CHECK(tree.pallet->getVelocity() == spook::Vec3<S>::Zero());
+  CHECK(tree.pallet->getVelocity() == spook::Vec3T<S>::Zero());
   // The collection and its nested ones are free again: another simulation takes them.
   SimulationRef<S> next = new spook::SimulationT<S>();
   next->add(tree.root);
@@ -150,7 +150,7 @@ TEST_CASE_TEMPLATE("a collection cannot contain itself, directly or through nest
 // with a body, and a plain collection inside the hook with another body.
 template <class S>
 struct CraneAssembly {
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   AssemblyRef<S> crane = new spook::AssemblyT<S>("crane");
   AssemblyRef<S> hook = new spook::AssemblyT<S>("hook");
   CollectionRef<S> cargo = new spook::CollectionT<S>("cargo");
@@ -158,7 +158,7 @@ struct CraneAssembly {
 
   CraneAssembly() {
     hook->setPosition(Vec3(S(1), S(0), S(-2)));
-    const auto body = [&](const char* name, Vec3 p, spook::EulerAngles<S> angles, spook::CollectionT<S>* into) {
+    const auto body = [&](const char* name, Vec3 p, spook::EulerAnglesT<S> angles, spook::CollectionT<S>* into) {
       BodyRef<S> b = new spook::RigidBodyT<S>(name);
       b->setTransform(spook::makeTransform<S>(p, spook::toQuat(angles)));
       b->setVelocity(p.cross(Vec3(S(1), S(2), S(3))));
@@ -175,26 +175,26 @@ struct CraneAssembly {
   }
 
   /// Poses of the bodies and of the hook frame in the crane frame.
-  std::vector<spook::Transform<S>> localPoses() const {
-    const spook::Transform<S> toCrane = crane->getTransform().inverse();
-    std::vector<spook::Transform<S>> poses{toCrane * hook->getTransform()};
+  std::vector<spook::TransformT<S>> localPoses() const {
+    const spook::TransformT<S> toCrane = crane->getTransform().inverse();
+    std::vector<spook::TransformT<S>> poses{toCrane * hook->getTransform()};
     for (const auto& b : bodies) poses.push_back(toCrane * b->getTransform());
     return poses;
   }
-  void checkRigid(const std::vector<spook::Transform<S>>& before) const {
-    const std::vector<spook::Transform<S>> after = localPoses();
+  void checkRigid(const std::vector<spook::TransformT<S>>& before) const {
+    const std::vector<spook::TransformT<S>> after = localPoses();
     for (std::size_t i = 0; i < before.size(); ++i) CHECK(spook::test::poseError<S>(after[i], before[i]) < pick<S>(1e-12, 1e-5));
   }
 };
 
 TEST_CASE_TEMPLATE("moving an assembly moves its content rigidly, nested assemblies and collections included", S, float,
                    double) {
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   const S tol = pick<S>(1e-12, 1e-5);
   CraneAssembly<S> scene;
   const auto before = scene.localPoses();
   const Vec3 boomAt = scene.bodies[0]->getPosition();
-  const spook::Quat<S> boomTurn = scene.bodies[0]->getRotation();
+  const spook::QuatT<S> boomTurn = scene.bodies[0]->getRotation();
 
   scene.crane->setPosition(Vec3(S(3), S(-1), S(0.5)));
   CHECK((scene.crane->getPosition() - Vec3(S(3), S(-1), S(0.5))).norm() < tol);
@@ -202,14 +202,14 @@ TEST_CASE_TEMPLATE("moving an assembly moves its content rigidly, nested assembl
   CHECK(scene.bodies[0]->getRotation().angularDistance(boomTurn) < tol);
   scene.checkRigid(before);
 
-  const spook::Quat<S> q = spook::toQuat(spook::EulerAngles<S>{S(0.3), S(-0.2), S(1.1)});
+  const spook::QuatT<S> q = spook::toQuat(spook::EulerAnglesT<S>{S(0.3), S(-0.2), S(1.1)});
   scene.crane->setRotation(q);
   CHECK((scene.crane->getPosition() - Vec3(S(3), S(-1), S(0.5))).norm() < tol);
   CHECK(scene.crane->getRotation().angularDistance(q) < tol);
   scene.checkRigid(before);
 
-  const spook::Transform<S> X =
-      spook::makeTransform<S>(Vec3(S(-2), S(4), S(1)), spook::toQuat(spook::EulerAngles<S>{S(2), S(0.1), S(-0.5)}));
+  const spook::TransformT<S> X =
+      spook::makeTransform<S>(Vec3(S(-2), S(4), S(1)), spook::toQuat(spook::EulerAnglesT<S>{S(2), S(0.1), S(-0.5)}));
   scene.crane->setTransform(X);
   CHECK(spook::test::poseError<S>(scene.crane->getTransform(), X) < tol);
   scene.checkRigid(before);
@@ -218,11 +218,11 @@ TEST_CASE_TEMPLATE("moving an assembly moves its content rigidly, nested assembl
 TEST_CASE_TEMPLATE("turning an assembly turns the velocities of its bodies with it", S, float, double) {
   const S tol = pick<S>(1e-12, 1e-5);
   CraneAssembly<S> scene;
-  std::vector<spook::Vec3<S>> v, w;
+  std::vector<spook::Vec3T<S>> v, w;
   for (const auto& b : scene.bodies) v.push_back(b->getVelocity()), w.push_back(b->getAngularVelocity());
-  const spook::Quat<S> q = spook::toQuat(spook::EulerAngles<S>{S(0.3), S(-0.2), S(1.1)});
+  const spook::QuatT<S> q = spook::toQuat(spook::EulerAnglesT<S>{S(0.3), S(-0.2), S(1.1)});
   scene.crane->setRotation(q);                                 // from the identity: the turn is q
-  scene.crane->setPosition(spook::Vec3<S>(S(5), S(5), S(5)));  // a translation leaves velocities alone
+  scene.crane->setPosition(spook::Vec3T<S>(S(5), S(5), S(5)));  // a translation leaves velocities alone
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     CHECK((scene.bodies[i]->getVelocity() - q * v[i]).norm() < tol);
     CHECK((scene.bodies[i]->getAngularVelocity() - q * w[i]).norm() < tol);
@@ -231,11 +231,11 @@ TEST_CASE_TEMPLATE("turning an assembly turns the velocities of its bodies with 
 
 TEST_CASE_TEMPLATE("adding a body to a moved assembly does not move the body", S, float, double) {
   AssemblyRef<S> assembly = new spook::AssemblyT<S>("crane");
-  assembly->setPosition(spook::Vec3<S>(S(1), S(2), S(3)));
+  assembly->setPosition(spook::Vec3T<S>(S(1), S(2), S(3)));
   BodyRef<S> body = new spook::RigidBodyT<S>("crate");
-  body->setPosition(spook::Vec3<S>(S(-1), S(0), S(4)));
+  body->setPosition(spook::Vec3T<S>(S(-1), S(0), S(4)));
   assembly->add(body);
-  CHECK(body->getPosition() == spook::Vec3<S>(S(-1), S(0), S(4)));
+  CHECK(body->getPosition() == spook::Vec3T<S>(S(-1), S(0), S(4)));
 }
 
 TEST_CASE_TEMPLATE("a body reachable twice through nested collections moves with its assembly once", S, float, double) {
@@ -245,8 +245,8 @@ TEST_CASE_TEMPLATE("a body reachable twice through nested collections moves with
   assembly->add(crate);
   cargo->add(crate);
   assembly->add(cargo);
-  assembly->setPosition(spook::Vec3<S>(S(2), S(0), S(0)));
-  CHECK((crate->getPosition() - spook::Vec3<S>(S(2), S(0), S(0))).norm() < pick<S>(1e-12, 1e-5));
+  assembly->setPosition(spook::Vec3T<S>(S(2), S(0), S(0)));
+  CHECK((crate->getPosition() - spook::Vec3T<S>(S(2), S(0), S(0))).norm() < pick<S>(1e-12, 1e-5));
 }
 
 TEST_CASE_TEMPLATE("a failed add of a collection leaves both simulations and the collection as they were", S, float,

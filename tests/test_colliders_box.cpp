@@ -43,7 +43,7 @@ using V3 = Eigen::Vector3d;
 // ---- FCL adapters ----------------------------------------------------------
 
 template <class S>
-fcl::Transform3d toFclTransform(const spook::Transform<S>& X) {
+fcl::Transform3d toFclTransform(const spook::TransformT<S>& X) {
   fcl::Transform3d Y = fcl::Transform3d::Identity();
   Y.linear() = X.linear().template cast<double>();
   Y.translation() = X.translation().template cast<double>();
@@ -66,7 +66,7 @@ std::shared_ptr<fcl::CollisionGeometryd> fclCapsule(const spook::CapsuleT<S>& ca
   return std::make_shared<fcl::Capsuled>(double(capsule.getRadius()), double(capsule.getHeight()));
 }
 template <class S>
-fcl::Transform3d toFclCapsule(const spook::Transform<S>& X) {
+fcl::Transform3d toFclCapsule(const spook::TransformT<S>& X) {
   fcl::Transform3d Y = toFclTransform(X);
   Y.linear() = Y.linear() * Eigen::AngleAxisd(-std::numbers::pi / 2, V3::UnitX()).toRotationMatrix();
   return Y;
@@ -124,13 +124,13 @@ V3 draw3(std::mt19937& rng, Distribution& distribution) {
 // A uniformly random rotation (normalized Gaussian quaternion), from the
 // test's own seeded engine rather than std::rand.
 template <class S>
-spook::Transform<S> randomPose(std::mt19937& rng, const V3& center) {
+spook::TransformT<S> randomPose(std::mt19937& rng, const V3& center) {
   std::normal_distribution<double> gauss(0.0, 1.0);
   const double w = gauss(rng);
   const V3 v = draw3(rng, gauss);
   Eigen::Quaterniond q(w, v.x(), v.y(), v.z());
   q.normalize();
-  spook::Transform<S> X = spook::Transform<S>::Identity();
+  spook::TransformT<S> X = spook::TransformT<S>::Identity();
   X.linear() = q.toRotationMatrix().cast<S>();
   X.translation() = center.cast<S>();
   return X;
@@ -142,8 +142,8 @@ V3 randomDirection(std::mt19937& rng) {
 }
 
 template <class S>
-std::vector<spook::ContactPointT<S>> contactsOf(const auto& a, const spook::Transform<S>& X_WA, const auto& b,
-                                                const spook::Transform<S>& X_WB) {
+std::vector<spook::ContactPointT<S>> contactsOf(const auto& a, const spook::TransformT<S>& X_WA, const auto& b,
+                                                const spook::TransformT<S>& X_WB) {
   std::vector<spook::ContactPointT<S>> points;
   spook::ContactSinkT<S> sink(points);
   spook::collide(a, X_WA, b, X_WB, sink);
@@ -341,11 +341,11 @@ class PoseSampler {
     return std::max(0.25, std::round((lo + (hi - lo) * unit_(rng_)) * 4) / 4);
   }
   template <class S>
-  spook::Transform<S> first() {
+  spook::TransformT<S> first() {
     return pose<S>(lattice_ ? V3::Zero() : V3(0.5 * draw3(rng_, unit_)));
   }
   template <class S>
-  spook::Transform<S> second(const spook::Transform<S>& X_WA, double reach) {
+  spook::TransformT<S> second(const spook::TransformT<S>& X_WA, double reach) {
     const V3 centerA = X_WA.translation().template cast<double>();
     if (lattice_) {
       std::uniform_int_distribution<int> cell(-int(4 * reach), int(4 * reach));  // a cube of side `reach`
@@ -361,7 +361,7 @@ class PoseSampler {
   int quarter() { return std::uniform_int_distribution<int>(0, 3)(rng_); }
 
   template <class S>
-  spook::Transform<S> pose(const V3& center) {
+  spook::TransformT<S> pose(const V3& center) {
     Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
     if (lattice_) {
       for (int turn = 0; turn < 2; ++turn) {
@@ -371,7 +371,7 @@ class PoseSampler {
     } else {
       R = randomPose<double>(rng_, V3::Zero()).linear();
     }
-    spook::Transform<S> X = spook::Transform<S>::Identity();
+    spook::TransformT<S> X = spook::TransformT<S>::Identity();
     X.linear() = R.cast<S>();
     X.translation() = center.cast<S>();
     return X;
@@ -395,8 +395,8 @@ void checkBoxBoxAgainstFcl(PoseSampler& sampler) {
   for (int trial = 0; trial < 10000; ++trial) {
     const V3 halfA = sampler.halfExtents(), halfB = sampler.halfExtents();
     spook::ref_ptr<spook::BoxT<S>> a = new spook::BoxT<S>(halfA.cast<S>()), b = new spook::BoxT<S>(halfB.cast<S>());
-    const spook::Transform<S> X_WA = sampler.first<S>();
-    const spook::Transform<S> X_WB = sampler.second<S>(X_WA, 1.4 * (halfA.norm() + halfB.norm()));
+    const spook::TransformT<S> X_WA = sampler.first<S>();
+    const spook::TransformT<S> X_WB = sampler.second<S>(X_WA, 1.4 * (halfA.norm() + halfB.norm()));
     const auto points = contactsOf<S>(*a, X_WA, *b, X_WB);
     REQUIRE(allFinite(points));
 
@@ -466,8 +466,8 @@ void checkBoxCapsuleAgainstExact(PoseSampler& sampler) {
     const double height = sampler.length(0.05, 1.55);
     spook::ref_ptr<spook::BoxT<S>> box = new spook::BoxT<S>(half.cast<S>());
     spook::ref_ptr<spook::CapsuleT<S>> capsule = new spook::CapsuleT<S>(S(radius), S(height));
-    const spook::Transform<S> X_WA = sampler.first<S>();
-    const spook::Transform<S> X_WB = sampler.second<S>(X_WA, 1.3 * (half.norm() + 0.5 * height + radius));
+    const spook::TransformT<S> X_WA = sampler.first<S>();
+    const spook::TransformT<S> X_WB = sampler.second<S>(X_WA, 1.3 * (half.norm() + 0.5 * height + radius));
     const auto points = contactsOf<S>(*box, X_WA, *capsule, X_WB);
     REQUIRE(allFinite(points));
 
@@ -555,10 +555,10 @@ TEST_CASE_TEMPLATE("box-capsule contacts agree with an exact reference on lattic
 namespace {
 
 template <class S>
-spook::Transform<S> at(double x, double y, double z, const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity()) {
-  spook::Transform<S> X = spook::Transform<S>::Identity();
+spook::TransformT<S> at(double x, double y, double z, const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity()) {
+  spook::TransformT<S> X = spook::TransformT<S>::Identity();
   X.linear() = R.cast<S>();
-  X.translation() = spook::Vec3<S>(S(x), S(y), S(z));
+  X.translation() = spook::Vec3T<S>(S(x), S(y), S(z));
   return X;
 }
 
@@ -568,14 +568,14 @@ Eigen::Matrix3d turn(double angle, const V3& axis) { return Eigen::AngleAxisd(an
 
 TEST_CASE_TEMPLATE("a box resting flat on a larger box touches it at its 4 bottom corners", S, float, double) {
   const S tol = pick<S>(1e-12, 1e-6);
-  spook::ref_ptr<spook::BoxT<S>> floor = new spook::BoxT<S>(spook::Vec3<S>(2, 2, 0.5));
-  spook::ref_ptr<spook::BoxT<S>> block = new spook::BoxT<S>(spook::Vec3<S>(0.5, 0.3, 0.4));
+  spook::ref_ptr<spook::BoxT<S>> floor = new spook::BoxT<S>(spook::Vec3T<S>(2, 2, 0.5));
+  spook::ref_ptr<spook::BoxT<S>> block = new spook::BoxT<S>(spook::Vec3T<S>(0.5, 0.3, 0.4));
   const auto points = contactsOf<S>(*floor, at<S>(0, 0, 0), *block, at<S>(0.7, -0.2, 0.5 + 0.4 - 0.01));
   MESSAGE("resting box: " << points.size() << " contacts");
   REQUIRE(points.size() == 4);
   for (const auto& p : points) {
     CHECK(std::abs(p.depth - S(0.01)) <= tol);
-    CHECK((p.normal - spook::Vec3<S>::UnitZ()).norm() <= tol);
+    CHECK((p.normal - spook::Vec3T<S>::UnitZ()).norm() <= tol);
     CHECK(std::abs(p.point.z() - S(0.495)) <= tol);  // midway between the two faces
     CHECK(std::abs(std::abs(p.point.x() - S(0.7)) - S(0.5)) <= tol);
     CHECK(std::abs(std::abs(p.point.y() + S(0.2)) - S(0.3)) <= tol);
@@ -583,21 +583,21 @@ TEST_CASE_TEMPLATE("a box resting flat on a larger box touches it at its 4 botto
   // The other order: the same points, the normal from the block toward the floor.
   const auto reversed = contactsOf<S>(*block, at<S>(0.7, -0.2, 0.5 + 0.4 - 0.01), *floor, at<S>(0, 0, 0));
   REQUIRE(reversed.size() == 4);
-  for (const auto& p : reversed) CHECK((p.normal + spook::Vec3<S>::UnitZ()).norm() <= tol);
+  for (const auto& p : reversed) CHECK((p.normal + spook::Vec3T<S>::UnitZ()).norm() <= tol);
 }
 
 TEST_CASE_TEMPLATE("a box turned 45 degrees on an equal box touches along the octagon of their overlap", S, float,
                    double) {
   const S tol = pick<S>(1e-12, 1e-6);
-  spook::ref_ptr<spook::BoxT<S>> lower = new spook::BoxT<S>(spook::Vec3<S>(1, 1, 0.5));
-  spook::ref_ptr<spook::BoxT<S>> upper = new spook::BoxT<S>(spook::Vec3<S>(1, 1, 0.5));
+  spook::ref_ptr<spook::BoxT<S>> lower = new spook::BoxT<S>(spook::Vec3T<S>(1, 1, 0.5));
+  spook::ref_ptr<spook::BoxT<S>> upper = new spook::BoxT<S>(spook::Vec3T<S>(1, 1, 0.5));
   const auto points =
       contactsOf<S>(*lower, at<S>(0, 0, 0), *upper, at<S>(0, 0, 1 - 0.02, turn(std::numbers::pi / 4, V3::UnitZ())));
   MESSAGE("box turned 45 degrees: " << points.size() << " contacts");
   CHECK(points.size() >= 4);
   for (const auto& p : points) {
     CHECK(std::abs(p.depth - S(0.02)) <= tol);
-    CHECK((p.normal - spook::Vec3<S>::UnitZ()).norm() <= tol);
+    CHECK((p.normal - spook::Vec3T<S>::UnitZ()).norm() <= tol);
     // Every point lies on the boundary of the octagon |x|, |y| <= 1,
     // |x ± y| <= √2.
     const S x = std::abs(p.point.x()), y = std::abs(p.point.y());
@@ -608,8 +608,8 @@ TEST_CASE_TEMPLATE("a box turned 45 degrees on an equal box touches along the oc
 
 TEST_CASE_TEMPLATE("two boxes crossing edge on edge touch at one point", S, float, double) {
   const S tol = pick<S>(1e-12, 1e-6);
-  spook::ref_ptr<spook::BoxT<S>> a = new spook::BoxT<S>(spook::Vec3<S>(0.5, 0.5, 0.5));
-  spook::ref_ptr<spook::BoxT<S>> b = new spook::BoxT<S>(spook::Vec3<S>(0.5, 0.5, 0.5));
+  spook::ref_ptr<spook::BoxT<S>> a = new spook::BoxT<S>(spook::Vec3T<S>(0.5, 0.5, 0.5));
+  spook::ref_ptr<spook::BoxT<S>> b = new spook::BoxT<S>(spook::Vec3T<S>(0.5, 0.5, 0.5));
   // A's top edge runs along x at z = √2/2, B's bottom edge along y at z_B − √2/2.
   const double reach = std::numbers::sqrt2;
   const auto points = contactsOf<S>(*a, at<S>(0, 0, 0, turn(std::numbers::pi / 4, V3::UnitX())), *b,
@@ -617,12 +617,12 @@ TEST_CASE_TEMPLATE("two boxes crossing edge on edge touch at one point", S, floa
   MESSAGE("edge on edge: " << points.size() << " contacts");
   REQUIRE(points.size() == 1);
   CHECK(std::abs(points[0].depth - S(0.01)) <= tol);
-  CHECK((points[0].normal - spook::Vec3<S>::UnitZ()).norm() <= tol);
-  CHECK((points[0].point - spook::Vec3<S>(S(0.1), S(0), S(reach / 2 - 0.005))).norm() <= tol);
+  CHECK((points[0].normal - spook::Vec3T<S>::UnitZ()).norm() <= tol);
+  CHECK((points[0].point - spook::Vec3T<S>(S(0.1), S(0), S(reach / 2 - 0.005))).norm() <= tol);
 }
 
 TEST_CASE_TEMPLATE("coincident and exactly touching boxes give finite contacts", S, float, double) {
-  spook::ref_ptr<spook::BoxT<S>> a = new spook::BoxT<S>(spook::Vec3<S>(0.5, 0.7, 0.9));
+  spook::ref_ptr<spook::BoxT<S>> a = new spook::BoxT<S>(spook::Vec3T<S>(0.5, 0.7, 0.9));
   const Eigen::Matrix3d R = turn(0.3, V3(1, 2, 3).normalized());
   const auto coincident = contactsOf<S>(*a, at<S>(1, 2, 3, R), *a, at<S>(1, 2, 3, R));
   MESSAGE("coincident boxes: " << coincident.size() << " contacts");
@@ -644,7 +644,7 @@ TEST_CASE_TEMPLATE("coincident and exactly touching boxes give finite contacts",
 
 TEST_CASE_TEMPLATE("a capsule lying flat on a box touches it at both ends", S, float, double) {
   const S tol = pick<S>(1e-12, 1e-6);
-  spook::ref_ptr<spook::BoxT<S>> box = new spook::BoxT<S>(spook::Vec3<S>(1, 1, 0.5));
+  spook::ref_ptr<spook::BoxT<S>> box = new spook::BoxT<S>(spook::Vec3T<S>(1, 1, 0.5));
   spook::ref_ptr<spook::CapsuleT<S>> capsule = new spook::CapsuleT<S>(S(0.1), S(1));
   const Eigen::Matrix3d alongX = turn(-std::numbers::pi / 2, V3::UnitZ());  // capsule axis y → x
   const auto points = contactsOf<S>(*box, at<S>(0, 0, 0), *capsule, at<S>(0.2, 0.3, 0.5 + 0.1 - 0.01, alongX));
@@ -652,7 +652,7 @@ TEST_CASE_TEMPLATE("a capsule lying flat on a box touches it at both ends", S, f
   REQUIRE(points.size() == 2);
   for (const auto& p : points) {
     CHECK(std::abs(p.depth - S(0.01)) <= tol);
-    CHECK((p.normal - spook::Vec3<S>::UnitZ()).norm() <= tol);
+    CHECK((p.normal - spook::Vec3T<S>::UnitZ()).norm() <= tol);
     CHECK(std::abs(std::abs(p.point.x() - S(0.2)) - S(0.5)) <= tol);
     CHECK(std::abs(p.point.z() - S(0.495)) <= tol);
   }
@@ -680,10 +680,10 @@ TEST_CASE_TEMPLATE("a capsule lying flat on a box touches it at both ends", S, f
   const auto sunk = contactsOf<S>(*box, at<S>(0, 0, 0), *capsule, at<S>(0.1, 0.1, 0.5 + 0.6 - 0.3, upright));
   REQUIRE(sunk.size() == 1);
   CHECK(std::abs(sunk[0].depth - S(0.3)) <= tol);
-  CHECK((sunk[0].normal - spook::Vec3<S>::UnitZ()).norm() <= tol);
+  CHECK((sunk[0].normal - spook::Vec3T<S>::UnitZ()).norm() <= tol);
 
   // Reversed order: the normal points from the capsule toward the box.
   const auto reversed = contactsOf<S>(*capsule, at<S>(0.2, 0.3, 0.5 + 0.1 - 0.01, alongX), *box, at<S>(0, 0, 0));
   REQUIRE(reversed.size() == 2);
-  for (const auto& p : reversed) CHECK((p.normal + spook::Vec3<S>::UnitZ()).norm() <= tol);
+  for (const auto& p : reversed) CHECK((p.normal + spook::Vec3T<S>::UnitZ()).norm() <= tol);
 }

@@ -193,7 +193,7 @@ TEST_CASE_TEMPLATE("libccd bridge, 10,000 poses: line-line contacts only where s
         Transformd X = Transformd::Identity();
         X.translation() = Vec3d(dyadic(-2.0, 2.0), dyadic(-2.0, 2.0), dyadic(-2.0, 2.0));
         if (turned) X.linear() = random.rotation();
-        const spook::Transform<S> X_W = X.template cast<S>();
+        const spook::TransformT<S> X_W = X.template cast<S>();
         points.clear();
         spook::ContactSinkT<S> sink(points);
         collideByBridge(*castShape<S>(*a), X_W, *castShape<S>(*b), X_W, sink);
@@ -220,8 +220,8 @@ TEST_CASE_TEMPLATE("libccd bridge, 10,000 poses: line-line contacts only where s
 TEST_CASE_TEMPLATE("convex-plane, 10,000 poses: every corner below the plane, the deepest agrees with FCL", S, float,
                    double) {
   int miscounted = 0;
-  const auto run = [&](const ConvexT<S>& a, const spook::Transform<S>& X_WA, const PlaneT<S>& b,
-                       const spook::Transform<S>& X_WB, spook::ContactSinkT<S>& sink) {
+  const auto run = [&](const ConvexT<S>& a, const spook::TransformT<S>& X_WA, const PlaneT<S>& b,
+                       const spook::TransformT<S>& X_WB, spook::ContactSinkT<S>& sink) {
     const std::size_t before = sink.size();
     spook::collide(a, X_WA, b, X_WB, sink);
     const std::size_t count = sink.size() - before;

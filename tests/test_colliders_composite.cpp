@@ -37,8 +37,8 @@ namespace {
 constexpr int kPoses = 1000;
 constexpr double kSame = 1e-12;  // m, and for unit normals
 
-using Vec3d = spook::Vec3<double>;
-using Transformd = spook::Transform<double>;
+using Vec3d = spook::Vec3;
+using Transformd = spook::Transform;
 
 Transformd randomPose(std::mt19937_64& rng, double spread) {
   std::normal_distribution<double> g(0.0, 1.0);
@@ -74,13 +74,13 @@ template <class S, class Other>
 void checkComposite(const std::string& name, std::uint64_t seed, const ref_ptr<Other>& other) {
   using Matrix = spook::ColliderMatrixT<S, spook::AllShapes>;
   using Shape = spook::ShapeT<S>;
-  using V = spook::Vec3<S>;
+  using V = spook::Vec3T<S>;
   ref_ptr<CompositeT<S>> composite = new CompositeT<S>();
   composite->add(new BoxT<S>(V(S(0.3), S(0.2), S(0.15))),
                  spook::makeTransform<S>(V(S(0.4), S(0.1), S(-0.1)),
-                                         spook::Quat<S>(Eigen::AngleAxis<S>(S(0.7), V(1, 2, 3).normalized()))));
+                                         spook::QuatT<S>(Eigen::AngleAxis<S>(S(0.7), V(1, 2, 3).normalized()))));
   composite->add(new SphereT<S>(S(0.25)),
-                 spook::makeTransform<S>(V(S(-0.45), S(0.05), S(0.2)), spook::Quat<S>::Identity()));
+                 spook::makeTransform<S>(V(S(-0.45), S(0.05), S(0.2)), spook::QuatT<S>::Identity()));
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> offset(-0.9, 0.9);
   int cases = 0, withContacts = 0, contacts = 0;
@@ -90,11 +90,11 @@ void checkComposite(const std::string& name, std::uint64_t seed, const ref_ptr<O
     const Transformd X_WC = randomPose(rng, 1.0);
     Transformd X_WO = randomPose(rng, 0.0);
     X_WO.translation() = X_WC.translation() + Vec3d(offset(rng), offset(rng), offset(rng));
-    const spook::Transform<S> XC = X_WC.cast<S>(), XO = X_WO.cast<S>();
+    const spook::TransformT<S> XC = X_WC.cast<S>(), XO = X_WO.cast<S>();
     expected.clear(), erased.clear(), typed.clear(), reversed.clear();
     ContactSinkT<S> expectedSink(expected), erasedSink(erased), typedSink(typed), reversedSink(reversed);
     for (const auto& child : composite->getChildren()) {
-      const spook::Transform<S> X_WChild = XC * child.transform;
+      const spook::TransformT<S> X_WChild = XC * child.transform;
       if (child.shape->getType() == spook::ShapeType::BOX)
         spook::collide(static_cast<const BoxT<S>&>(*child.shape), X_WChild, *other, XO, expectedSink);
       else
@@ -128,7 +128,7 @@ void checkComposite(const std::string& name, std::uint64_t seed, const ref_ptr<O
 
 TEST_CASE_TEMPLATE("composite: box and sphere children against a plane give the union of the children's contacts", S,
                    float, double) {
-  const ref_ptr<PlaneT<S>> plane = new PlaneT<S>(spook::Vec3<S>(S(0.2), S(-0.3), S(1)), spook::Vec3<S>::Zero());
+  const ref_ptr<PlaneT<S>> plane = new PlaneT<S>(spook::Vec3T<S>(S(0.2), S(-0.3), S(1)), spook::Vec3T<S>::Zero());
   checkComposite<S>("composite-plane", 601, plane);
 }
 

@@ -79,8 +79,8 @@ using spook::TrimeshT;
 
 namespace {
 
-using Vec3d = spook::Vec3<double>;
-using Transformd = spook::Transform<double>;
+using Vec3d = spook::Vec3;
+using Transformd = spook::Transform;
 using Tri = spook::detail::Triangle<double>;
 
 /// Random poses and sizes, deterministic for a seed; lengths rounded to
@@ -141,7 +141,7 @@ ref_ptr<CylinderT<S>> castShape(const CylinderT<double>& s) {
 }
 template <class S>
 ref_ptr<ConvexT<S>> castShape(const ConvexT<double>& s) {
-  std::vector<spook::Vec3<S>> points;
+  std::vector<spook::Vec3T<S>> points;
   for (const Vec3d& v : s.getVertices()) points.push_back(v.cast<S>());
   return new ConvexT<S>(points);
 }
@@ -587,7 +587,7 @@ ref_ptr<HeightFieldT<double>> heightField(RandomPoses& random, std::size_t nx, s
 
 template <class S>
 ref_ptr<TrimeshT<S>> castMesh(const TrimeshT<double>& mesh) {
-  std::vector<spook::Vec3<S>> vertices;
+  std::vector<spook::Vec3T<S>> vertices;
   for (const Vec3d& x : mesh.getVertices()) vertices.push_back(x.cast<S>());
   return new TrimeshT<S>(vertices, mesh.getTriangles());
 }
@@ -778,7 +778,7 @@ Tally sphereAgainst(const Soup& soupDouble, std::uint64_t seed, auto&& center) {
     Transformd X_WS = X_WM;
     X_WS.linear() = random.rotation();
     X_WS.translation() = X_WM * Vec3d(center(random, r));
-    const spook::Transform<S> XM = X_WM.cast<S>(), XS = X_WS.cast<S>();
+    const spook::TransformT<S> XM = X_WM.cast<S>(), XS = X_WS.cast<S>();
     ref_ptr<SphereT<S>> sphere = new SphereT<S>(S(r));
     ref_ptr<SphereT<double>> sphereDouble = new SphereT<double>(r);
     points.clear();
@@ -850,13 +850,13 @@ TEST_CASE_TEMPLATE("mesh: sphere vs a HeightField, per triangle, is the exact cl
 // 0.25 m below the surface, as plane–sphere gives for the same geometry.
 TEST_CASE_TEMPLATE("mesh: a sphere's contact with a triangle lies midway between the surfaces, as with a plane", S,
                    float, double) {
-  using V = spook::Vec3<S>;
+  using V = spook::Vec3T<S>;
   ref_ptr<TrimeshT<S>> mesh = new TrimeshT<S>({V(-2, -2, 0), V(2, -2, 0), V(0, 2, 0)}, {{0, 1, 2}});
   ref_ptr<spook::HeightFieldT<S>> field = new HeightFieldT<S>(2, 2, S(4), S(4), {S(0), S(0), S(0), S(0)});
   ref_ptr<PlaneT<S>> plane = new PlaneT<S>(V::UnitZ());
   ref_ptr<SphereT<S>> sphere = new SphereT<S>(S(1));
-  const auto X = spook::Transform<S>::Identity();
-  spook::Transform<S> X_S = X;
+  const auto X = spook::TransformT<S>::Identity();
+  spook::TransformT<S> X_S = X;
   X_S.translation() = V(S(0.25), S(0.25), S(0.5));
   std::vector<ContactPointT<S>> withPlane, withMesh, withField;
   ContactSinkT<S> planeSink(withPlane), meshSink(withMesh), fieldSink(withField);
@@ -954,7 +954,7 @@ Tally shapeAgainstSoup(std::uint64_t seed, auto&& makeShape, auto&& makeSoup, au
     const Transformd X_WS = placeNear(random, *shape, *soupDouble, X_WM);
     const auto soup = castMesh<S>(*soupDouble);
     const auto shapeS = castShape<S>(*shape);
-    const spook::Transform<S> XM = X_WM.cast<S>(), XS = X_WS.cast<S>();
+    const spook::TransformT<S> XM = X_WM.cast<S>(), XS = X_WS.cast<S>();
     const Transformd XMd = XM.template cast<double>(), XSd = XS.template cast<double>();
     points.clear();
     ContactSinkT<S> sink(points);
@@ -1088,7 +1088,7 @@ TEST_CASE_TEMPLATE("mesh: plane vs Trimesh gives every vertex below the plane at
     const Vec3d normal = random.unit();
     const Vec3d point = X_WP.inverse(Eigen::Isometry) * (X_WM.translation() + random.uniform(-1.2, 1.2) * normal);
     ref_ptr<PlaneT<S>> plane = new PlaneT<S>(normal.cast<S>(), point.cast<S>());
-    const spook::Transform<S> XM = X_WM.cast<S>(), XP = X_WP.cast<S>();
+    const spook::TransformT<S> XM = X_WM.cast<S>(), XP = X_WP.cast<S>();
     forward.clear(), reversed.clear();
     ContactSinkT<S> forwardSink(forward), reversedSink(reversed);
     spook::collide(*plane, XP, mesh, XM, forwardSink);
@@ -1118,7 +1118,7 @@ TEST_CASE_TEMPLATE("mesh: plane vs Trimesh gives every vertex below the plane at
       worstAngle = std::max(worstAngle, angleBetween(c.normal.template cast<double>(), n));
       worstPoint = std::max(worstPoint, (c.point.template cast<double>() - expected).norm());
       // The reversed pair: the same contact, the normal negated.
-      if (!(r.point == c.point && r.depth == c.depth && r.normal == spook::Vec3<S>(-c.normal))) ++invalid;
+      if (!(r.point == c.point && r.depth == c.depth && r.normal == spook::Vec3T<S>(-c.normal))) ++invalid;
     }
     if (next != forward.size() || reversed.size() != forward.size()) ++disagreements;
   }
@@ -1172,7 +1172,7 @@ Tally triangleAgainstSoup(std::uint64_t seed, auto&& makeSoup) {
     const Transformd X_WA = placeTriangleNear(random, *a, *soupDouble, X_WM);
     const auto aS = castMesh<S>(*a);
     const auto soup = castMesh<S>(*soupDouble);
-    const spook::Transform<S> XA = X_WA.cast<S>(), XM = X_WM.cast<S>();
+    const spook::TransformT<S> XA = X_WA.cast<S>(), XM = X_WM.cast<S>();
     const Transformd XAd = XA.template cast<double>(), XMd = XM.template cast<double>();
     points.clear();
     ContactSinkT<S> sink(points);
@@ -1214,8 +1214,8 @@ TEST_CASE_TEMPLATE("mesh: Trimesh vs HeightField has a contact exactly where the
 namespace {
 
 template <class S>
-std::vector<ContactPointT<S>> collideChecked(const auto& a, const spook::Transform<S>& X_WA, const auto& b,
-                                             const spook::Transform<S>& X_WB) {
+std::vector<ContactPointT<S>> collideChecked(const auto& a, const spook::TransformT<S>& X_WA, const auto& b,
+                                             const spook::TransformT<S>& X_WB) {
   std::vector<ContactPointT<S>> points;
   ContactSinkT<S> sink(points);
   spook::collide(a, X_WA, b, X_WB, sink);
@@ -1229,9 +1229,9 @@ std::vector<ContactPointT<S>> collideChecked(const auto& a, const spook::Transfo
 }
 
 template <class S>
-spook::Transform<S> translation(S x, S y, S z) {
-  spook::Transform<S> X = spook::Transform<S>::Identity();
-  X.translation() = spook::Vec3<S>(x, y, z);
+spook::TransformT<S> translation(S x, S y, S z) {
+  spook::TransformT<S> X = spook::TransformT<S>::Identity();
+  X.translation() = spook::Vec3T<S>(x, y, z);
   return X;
 }
 
@@ -1239,11 +1239,11 @@ spook::Transform<S> translation(S x, S y, S z) {
 
 TEST_CASE_TEMPLATE("mesh: a sphere centered on a triangle's face, edge or vertex pushes out along the face normal", S,
                    float, double) {
-  using V = spook::Vec3<S>;
+  using V = spook::Vec3T<S>;
   // Two triangles sharing the edge (1,0,0)–(0,1,0), both facing +z.
   ref_ptr<TrimeshT<S>> mesh = new TrimeshT<S>({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 0)}, {{0, 1, 2}, {1, 3, 2}});
   ref_ptr<SphereT<S>> sphere = new SphereT<S>(S(0.25));
-  const auto I = spook::Transform<S>::Identity();
+  const auto I = spook::TransformT<S>::Identity();
   const std::array<std::pair<V, std::size_t>, 5> centers = {
       std::pair{V(S(0.25), S(0.25), 0), std::size_t(1)},  // on the first face
       std::pair{V(S(0.5), 0, 0), std::size_t(1)},         // on an edge of one triangle
@@ -1272,18 +1272,18 @@ TEST_CASE_TEMPLATE("mesh: a sphere centered on a triangle's face, edge or vertex
 
 TEST_CASE_TEMPLATE("mesh: a shape's face coplanar with a mesh face: touching gives depth 0, sinking the sinking depth",
                    S, float, double) {
-  using V = spook::Vec3<S>;
+  using V = spook::Vec3T<S>;
   ref_ptr<TrimeshT<S>> mesh = new TrimeshT<S>({V(-2, -2, 0), V(2, -2, 0), V(0, 2, 0)}, {{0, 1, 2}});
   ref_ptr<HeightFieldT<S>> field = new HeightFieldT<S>(3, 2, S(4), S(4), std::vector<S>(6, S(0)));
   ref_ptr<BoxT<S>> box = new BoxT<S>(V(S(0.5), S(0.25), S(0.5)));
   ref_ptr<CylinderT<S>> cylinder = new CylinderT<S>(S(0.4), S(1));  // axis along z below: caps horizontal
   ref_ptr<ConvexT<S>> hull = new ConvexT<S>(
       {V(-S(0.3), -S(0.3), -S(0.5)), V(S(0.3), -S(0.3), -S(0.5)), V(0, S(0.4), -S(0.5)), V(0, 0, S(0.5))});
-  const auto I = spook::Transform<S>::Identity();
-  const spook::Transform<S> upright = spook::Transform<S>(Eigen::AngleAxis<S>(S(std::numbers::pi / 2), V::UnitX()));
+  const auto I = spook::TransformT<S>::Identity();
+  const spook::TransformT<S> upright = spook::TransformT<S>(Eigen::AngleAxis<S>(S(std::numbers::pi / 2), V::UnitX()));
   for (const S sink : {S(0), S(0.01)}) {
     CAPTURE(sink);
-    const auto check = [&](const auto& shape, const spook::Transform<S>& X_WS, const auto& soup) {
+    const auto check = [&](const auto& shape, const spook::TransformT<S>& X_WS, const auto& soup) {
       const auto points = collideChecked<S>(shape, X_WS, soup, I);
       if (sink == S(0)) {
         for (const auto& p : points) CHECK(p.depth <= S(1e-6));
@@ -1298,7 +1298,7 @@ TEST_CASE_TEMPLATE("mesh: a shape's face coplanar with a mesh face: touching giv
     const S z = S(0.5) - sink;
     check(*box, translation<S>(S(0.1), S(-0.2), z), *mesh);
     check(*box, translation<S>(S(0.1), S(-0.2), z), *field);
-    spook::Transform<S> X = upright;
+    spook::TransformT<S> X = upright;
     X.translation() = V(S(0.2), S(0.1), z);
     check(*cylinder, X, *mesh);
     check(*cylinder, X, *field);
@@ -1317,7 +1317,7 @@ TEST_CASE_TEMPLATE("mesh: a shape's face coplanar with a mesh face: touching giv
 // 0.02 rad in the normal).
 TEST_CASE_TEMPLATE("mesh: triangles of zero area give finite contacts, the sphere's at the exact distance", S, float,
                    double) {
-  using V = spook::Vec3<S>;
+  using V = spook::Vec3T<S>;
   // A sliver whose corners are collinear, and one with two coincident corners.
   const std::vector<V> corners = {V(0, 0, 0), V(1, 0, 0), V(S(2.5), 0, 0), V(1, 0, 0), V(0, 1, 0)};
   ref_ptr<TrimeshT<S>> collinear = new TrimeshT<S>(corners, {{0, 1, 2}});
@@ -1332,7 +1332,7 @@ TEST_CASE_TEMPLATE("mesh: triangles of zero area give finite contacts, the spher
     const Vec3d c(random.length(-0.8, 3.2), random.length(-0.8, 1.5), random.length(-0.6, 0.6));
     ref_ptr<SphereT<S>> sphere = new SphereT<S>(S(r));
     const auto points =
-        collideChecked<S>(*sphere, translation<S>(S(c.x()), S(c.y()), S(c.z())), mesh, spook::Transform<S>::Identity());
+        collideChecked<S>(*sphere, translation<S>(S(c.x()), S(c.y()), S(c.z())), mesh, spook::TransformT<S>::Identity());
     const Tri t = worldTriangle(mesh, 0, Transformd::Identity());
     Vec3d q;
     const Reference ref = sphereTriangle(c, r, t, q);
@@ -1359,13 +1359,13 @@ TEST_CASE_TEMPLATE("mesh: triangles of zero area give finite contacts, the spher
       {V(-S(0.3), -S(0.3), -S(0.2)), V(S(0.3), -S(0.3), -S(0.2)), V(0, S(0.4), -S(0.2)), V(0, 0, S(0.3))});
   for (int k = 0; k < 200; ++k) {
     const TrimeshT<S>& mesh = k % 2 ? *coincident : *collinear;
-    spook::Transform<S> X = random.pose(0.5).cast<S>();
+    spook::TransformT<S> X = random.pose(0.5).cast<S>();
     X.translation() += V(1, S(0.2), 0);
-    collideChecked<S>(*box, X, mesh, spook::Transform<S>::Identity());
-    collideChecked<S>(*capsule, X, mesh, spook::Transform<S>::Identity());
-    collideChecked<S>(*cylinder, X, mesh, spook::Transform<S>::Identity());
-    collideChecked<S>(*hull, X, mesh, spook::Transform<S>::Identity());
-    collideChecked<S>(*plain, X, mesh, spook::Transform<S>::Identity());
-    collideChecked<S>(*collinear, X, *coincident, spook::Transform<S>::Identity());
+    collideChecked<S>(*box, X, mesh, spook::TransformT<S>::Identity());
+    collideChecked<S>(*capsule, X, mesh, spook::TransformT<S>::Identity());
+    collideChecked<S>(*cylinder, X, mesh, spook::TransformT<S>::Identity());
+    collideChecked<S>(*hull, X, mesh, spook::TransformT<S>::Identity());
+    collideChecked<S>(*plain, X, mesh, spook::TransformT<S>::Identity());
+    collideChecked<S>(*collinear, X, *coincident, spook::TransformT<S>::Identity());
   }
 }

@@ -44,20 +44,20 @@ void checkPolytopes(const std::string& name, std::uint64_t seed, auto&& makeA, a
 /// Corners of an axis-aligned cube of half side h as a hull.
 template <class S>
 spook::ref_ptr<ConvexT<S>> cubeHull(S h) {
-  std::vector<spook::Vec3<S>> corners;
+  std::vector<spook::Vec3T<S>> corners;
   for (int c = 0; c < 8; ++c)
     corners.emplace_back((c & 1) ? h : -h, (c & 2) ? h : -h, (c & 4) ? h : -h);
   return new ConvexT<S>(corners);
 }
 
 template <class S>
-spook::Transform<S> at(const spook::Vec3<S>& p, S angleAboutZ = S(0)) {
-  return spook::makeTransform<S>(p, spook::Quat<S>(Eigen::AngleAxis<S>(angleAboutZ, spook::Vec3<S>::UnitZ())));
+spook::TransformT<S> at(const spook::Vec3T<S>& p, S angleAboutZ = S(0)) {
+  return spook::makeTransform<S>(p, spook::QuatT<S>(Eigen::AngleAxis<S>(angleAboutZ, spook::Vec3T<S>::UnitZ())));
 }
 
 template <class S>
-std::vector<spook::ContactPointT<S>> contacts(const auto& a, const spook::Transform<S>& X_WA, const auto& b,
-                                              const spook::Transform<S>& X_WB) {
+std::vector<spook::ContactPointT<S>> contacts(const auto& a, const spook::TransformT<S>& X_WA, const auto& b,
+                                              const spook::TransformT<S>& X_WB) {
   std::vector<spook::ContactPointT<S>> points;
   spook::ContactSinkT<S> sink(points);
   spook::collide(a, X_WA, b, X_WB, sink);
@@ -87,13 +87,13 @@ TEST_CASE_TEMPLATE("polytopes, 10,000 poses: convex-line is the separating-axis 
 
 TEST_CASE_TEMPLATE("a cube hull resting on a box touches it at its 4 bottom corners", S, float, double) {
   const auto hull = cubeHull<S>(S(0.5));
-  const spook::ref_ptr<BoxT<S>> floor = new BoxT<S>(spook::Vec3<S>(2, 2, 0.5));
-  const auto points = contacts<S>(*floor, at<S>(spook::Vec3<S>(0, 0, -0.5)), *hull,
-                                  at<S>(spook::Vec3<S>(S(0.3), S(-0.2), S(0.49))));
+  const spook::ref_ptr<BoxT<S>> floor = new BoxT<S>(spook::Vec3T<S>(2, 2, 0.5));
+  const auto points = contacts<S>(*floor, at<S>(spook::Vec3T<S>(0, 0, -0.5)), *hull,
+                                  at<S>(spook::Vec3T<S>(S(0.3), S(-0.2), S(0.49))));
   REQUIRE(points.size() == 4);
   for (const auto& p : points) {
     CHECK(std::abs(p.depth - S(0.01)) <= tight<S>());
-    CHECK((p.normal - spook::Vec3<S>::UnitZ()).norm() <= tight<S>());
+    CHECK((p.normal - spook::Vec3T<S>::UnitZ()).norm() <= tight<S>());
     CHECK(std::abs(std::abs(p.point.x() - S(0.3)) - S(0.5)) <= tight<S>());
     CHECK(std::abs(std::abs(p.point.y() + S(0.2)) - S(0.5)) <= tight<S>());
     CHECK(std::abs(p.point.z() + S(0.005)) <= tight<S>());  // midway between the surfaces
@@ -103,8 +103,8 @@ TEST_CASE_TEMPLATE("a cube hull resting on a box touches it at its 4 bottom corn
 TEST_CASE_TEMPLATE("a cube hull turned 45 degrees on an equal one touches along their octagon", S, float, double) {
   const auto hull = cubeHull<S>(S(0.5));
   const auto points =
-      contacts<S>(*hull, at<S>(spook::Vec3<S>::Zero()), *hull,
-                  at<S>(spook::Vec3<S>(0, 0, S(0.99)), S(std::numbers::pi / 4)));
+      contacts<S>(*hull, at<S>(spook::Vec3T<S>::Zero()), *hull,
+                  at<S>(spook::Vec3T<S>(0, 0, S(0.99)), S(std::numbers::pi / 4)));
   REQUIRE(points.size() == 8);
   const S apothem = S(0.5);  // the octagon's corners lie on the squares' sides
   for (const auto& p : points) {
@@ -117,31 +117,31 @@ TEST_CASE_TEMPLATE("a cube hull turned 45 degrees on an equal one touches along 
 
 TEST_CASE_TEMPLATE("a hull edge across a box edge touches at one point", S, float, double) {
   const auto hull = cubeHull<S>(S(0.5));
-  const spook::ref_ptr<BoxT<S>> box = new BoxT<S>(spook::Vec3<S>::Constant(S(0.5)));
+  const spook::ref_ptr<BoxT<S>> box = new BoxT<S>(spook::Vec3T<S>::Constant(S(0.5)));
   // Each turned 45 degrees so that an edge leads: the box's top edge along
   // x, the hull's bottom edge along y, overlapping by 1 cm.
-  const spook::Transform<S> X_WA =
-      spook::makeTransform<S>(spook::Vec3<S>::Zero(), spook::Quat<S>(Eigen::AngleAxis<S>(S(std::numbers::pi / 4),
-                                                                                            spook::Vec3<S>::UnitX())));
+  const spook::TransformT<S> X_WA =
+      spook::makeTransform<S>(spook::Vec3T<S>::Zero(), spook::QuatT<S>(Eigen::AngleAxis<S>(S(std::numbers::pi / 4),
+                                                                                            spook::Vec3T<S>::UnitX())));
   const S reach = S(0.5) * std::sqrt(S(2));
-  const spook::Transform<S> X_WB = spook::makeTransform<S>(
-      spook::Vec3<S>(0, 0, 2 * reach - S(0.01)),
-      spook::Quat<S>(Eigen::AngleAxis<S>(S(std::numbers::pi / 4), spook::Vec3<S>::UnitY())));
+  const spook::TransformT<S> X_WB = spook::makeTransform<S>(
+      spook::Vec3T<S>(0, 0, 2 * reach - S(0.01)),
+      spook::QuatT<S>(Eigen::AngleAxis<S>(S(std::numbers::pi / 4), spook::Vec3T<S>::UnitY())));
   const auto points = contacts<S>(*box, X_WA, *hull, X_WB);
   REQUIRE(points.size() == 1);
   CHECK(std::abs(points[0].depth - S(0.01)) <= tight<S>());
-  CHECK((points[0].normal - spook::Vec3<S>::UnitZ()).norm() <= tight<S>());
-  CHECK((points[0].point - spook::Vec3<S>(0, 0, reach - S(0.005))).norm() <= tight<S>());
+  CHECK((points[0].normal - spook::Vec3T<S>::UnitZ()).norm() <= tight<S>());
+  CHECK((points[0].point - spook::Vec3T<S>(0, 0, reach - S(0.005))).norm() <= tight<S>());
 }
 
 TEST_CASE_TEMPLATE("a segment lying on a hull face rests on its two ends", S, float, double) {
   const auto hull = cubeHull<S>(S(0.5));
-  const spook::ref_ptr<LineT<S>> rod = new LineT<S>(spook::Vec3<S>(-0.3, 0, 0), spook::Vec3<S>(0.3, 0.1, 0));
-  const auto points = contacts<S>(*hull, at<S>(spook::Vec3<S>::Zero()), *rod, at<S>(spook::Vec3<S>(0, 0, S(0.49))));
+  const spook::ref_ptr<LineT<S>> rod = new LineT<S>(spook::Vec3T<S>(-0.3, 0, 0), spook::Vec3T<S>(0.3, 0.1, 0));
+  const auto points = contacts<S>(*hull, at<S>(spook::Vec3T<S>::Zero()), *rod, at<S>(spook::Vec3T<S>(0, 0, S(0.49))));
   REQUIRE(points.size() == 2);
   for (const auto& p : points) {
     CHECK(std::abs(p.depth - S(0.01)) <= tight<S>());
-    CHECK((p.normal - spook::Vec3<S>::UnitZ()).norm() <= tight<S>());
+    CHECK((p.normal - spook::Vec3T<S>::UnitZ()).norm() <= tight<S>());
   }
 }
 
@@ -149,17 +149,17 @@ TEST_CASE_TEMPLATE("a segment lying on a hull face rests on its two ends", S, fl
 // to its half, so that the contacts are the four corners and the points
 // where the diagonal crosses the face, all 1 cm deep.
 TEST_CASE_TEMPLATE("a box resting on a two-triangle Trimesh touches it with its whole bottom face", S, float, double) {
-  const std::vector<spook::Vec3<S>> corners{{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}};
+  const std::vector<spook::Vec3T<S>> corners{{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}};
   const spook::ref_ptr<TrimeshT<S>> floor = new TrimeshT<S>(corners, std::vector<std::array<int, 3>>{{0, 1, 2}, {0, 2, 3}});
-  const spook::ref_ptr<BoxT<S>> box = new BoxT<S>(spook::Vec3<S>(0.5, 0.3, 0.2));
-  const auto points = contacts<S>(*box, at<S>(spook::Vec3<S>(S(0.1), 0, S(0.19)), S(0.3)), *floor,
-                                  at<S>(spook::Vec3<S>::Zero()));
+  const spook::ref_ptr<BoxT<S>> box = new BoxT<S>(spook::Vec3T<S>(0.5, 0.3, 0.2));
+  const auto points = contacts<S>(*box, at<S>(spook::Vec3T<S>(S(0.1), 0, S(0.19)), S(0.3)), *floor,
+                                  at<S>(spook::Vec3T<S>::Zero()));
   REQUIRE(points.size() >= 4);
   int bottomCorners = 0;
   for (const auto& p : points) {
     CHECK(std::abs(p.depth - S(0.01)) <= tight<S>());
-    CHECK((p.normal + spook::Vec3<S>::UnitZ()).norm() <= tight<S>());  // from the box into the floor
-    const spook::Vec3<S> local = at<S>(spook::Vec3<S>(S(0.1), 0, 0), S(0.3)).inverse() * p.point;
+    CHECK((p.normal + spook::Vec3T<S>::UnitZ()).norm() <= tight<S>());  // from the box into the floor
+    const spook::Vec3T<S> local = at<S>(spook::Vec3T<S>(S(0.1), 0, 0), S(0.3)).inverse() * p.point;
     CHECK(std::abs(local.x()) <= S(0.5) + tight<S>());
     CHECK(std::abs(local.y()) <= S(0.3) + tight<S>());
     if (std::abs(std::abs(local.x()) - S(0.5)) <= tight<S>() && std::abs(std::abs(local.y()) - S(0.3)) <= tight<S>())

@@ -26,8 +26,8 @@ bool mentions(const std::string& message, const std::string& part) { return mess
 
 TEST_CASE("bad constraint input throws spook::Error naming the constraint and the value") {
   SimulationRef sim = new Simulation();
-  auto a = makeBody<double>(*sim, "arm", 1.0, Vec3<double>(0, 0, 0));
-  auto b = makeBody<double>(*sim, "boom", 1.0, Vec3<double>(1, 0, 0));
+  auto a = makeBody<double>(*sim, "arm", 1.0, Vec3T<double>(0, 0, 0));
+  auto b = makeBody<double>(*sim, "boom", 1.0, Vec3T<double>(1, 0, 0));
   RigidBodyRef ground = new RigidBody("ground");
   ground->setMotionControl(RigidBody::STATIC);
   sim->add(ground);
@@ -70,8 +70,8 @@ TEST_CASE("bad constraint input throws spook::Error naming the constraint and th
 
 TEST_CASE("a failed constraint add leaves the simulation unchanged") {
   SimulationRef sim = new Simulation(), other = new Simulation();
-  auto a = makeBody<double>(*sim, "arm", 1.0, Vec3<double>(0, 0, 0));
-  auto stranger = makeBody<double>(*other, "stranger", 1.0, Vec3<double>(0, 0, 0));
+  auto a = makeBody<double>(*sim, "arm", 1.0, Vec3T<double>(0, 0, 0));
+  auto stranger = makeBody<double>(*other, "stranger", 1.0, Vec3T<double>(0, 0, 0));
   HingeRef hinge = new Hinge(a.get(), nullptr, stranger.get());
   CHECK(mentions(errorOf([&] { sim->add(hinge); }), "add the bodies first"));
   CHECK(sim->getConstraints().empty());
@@ -83,7 +83,7 @@ TEST_CASE("a failed constraint add leaves the simulation unchanged") {
   CHECK(mentions(errorOf([&] { other->add(ok); }), "another simulation"));
   CHECK(other->getConstraints().empty());
   // A body later made static with its only partner the world: refused at add.
-  auto c = makeBody<double>(*sim, "c", 1.0, Vec3<double>(0, 0, 0));
+  auto c = makeBody<double>(*sim, "c", 1.0, Vec3T<double>(0, 0, 0));
   HingeRef late = new Hinge(c.get(), nullptr);
   c->setMotionControl(RigidBody::STATIC);
   CHECK(mentions(errorOf([&] { sim->add(late); }), "not static"));

@@ -41,16 +41,16 @@ template <class S>
 struct DropScene {
   spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
   spook::ref_ptr<spook::GeometryT<S>> ground =
-      new spook::GeometryT<S>(new spook::PlaneT<S>(spook::Vec3<S>::UnitZ()), spook::Transform<S>::Identity(), "ground");
+      new spook::GeometryT<S>(new spook::PlaneT<S>(spook::Vec3T<S>::UnitZ()), spook::TransformT<S>::Identity(), "ground");
   spook::ref_ptr<spook::RigidBodyT<S>> capsule = new spook::RigidBodyT<S>("capsule");
 
   // A capsule (radius 0.1 m, lying along x) released with its lowest point
   // 0.05 m above the ground: free fall reaches it after √(2·0.05/g) ≈ 0.101 s.
   DropScene() {
     sim->add(ground);
-    const spook::Quat<S> lying(Eigen::AngleAxis<S>(S(1.5707963267948966), spook::Vec3<S>::UnitZ()));
+    const spook::QuatT<S> lying(Eigen::AngleAxis<S>(S(1.5707963267948966), spook::Vec3T<S>::UnitZ()));
     capsule->add(new spook::GeometryT<S>(new spook::CapsuleT<S>(S(0.1), S(0.6)),
-                                         spook::makeTransform<S>(spook::Vec3<S>::Zero(), lying), "capsule"));
+                                         spook::makeTransform<S>(spook::Vec3T<S>::Zero(), lying), "capsule"));
     capsule->setPosition(S(0), S(0), S(0.15));
     sim->add(capsule);
   }
@@ -100,7 +100,7 @@ TEST_CASE_TEMPLATE("REMOVE_CONTACT hides the contact from later listeners and di
 TEST_CASE_TEMPLATE("execution filters select contacts by one or two geometries", S, float, double) {
   DropScene<S> scene;
   spook::ref_ptr<spook::GeometryT<S>> other =
-      new spook::GeometryT<S>(new spook::SphereT<S>(S(0.5)), spook::Transform<S>::Identity(), "other");
+      new spook::GeometryT<S>(new spook::SphereT<S>(S(0.5)), spook::TransformT<S>::Identity(), "other");
   other->setPosition(S(5), S(0), S(0));
   scene.sim->add(other);
   spook::ref_ptr<Recorder<S>> byGround = new Recorder<S>(), byPair = new Recorder<S>(), byOther = new Recorder<S>();
@@ -123,7 +123,7 @@ TEST_CASE_TEMPLATE("a simulation refuses bodies with shapes outside its list and
       new spook::SimulationT<S>(spook::ShapeList<spook::SphereT, spook::PlaneT>{});
   spook::ref_ptr<spook::RigidBodyT<S>> ball = new spook::RigidBodyT<S>("ball"), crate = new spook::RigidBodyT<S>("crate");
   ball->add(new spook::GeometryT<S>(new spook::SphereT<S>(S(0.5))));
-  crate->add(new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3<S>::Ones()), spook::Transform<S>::Identity(),
+  crate->add(new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3T<S>::Ones()), spook::TransformT<S>::Identity(),
                                      "crate"));
   sim->add(ball);
   CHECK_THROWS_WITH_AS(sim->add(crate), doctest::Contains("shape type not in this space's shape list, got Box"),
@@ -146,18 +146,18 @@ TEST_CASE_TEMPLATE("a step refuses a shape added outside the list after the geom
       new spook::SimulationT<S>(spook::ShapeList<spook::SphereT, spook::PlaneT, spook::CompositeT>{});
   spook::ref_ptr<spook::RigidBodyT<S>> ball = new spook::RigidBodyT<S>("ball");
   spook::ref_ptr<spook::GeometryT<S>> geometry =
-      new spook::GeometryT<S>(new spook::SphereT<S>(S(0.5)), spook::Transform<S>::Identity(), "ball geometry");
+      new spook::GeometryT<S>(new spook::SphereT<S>(S(0.5)), spook::TransformT<S>::Identity(), "ball geometry");
   ball->add(geometry);
   sim->add(ball);
   sim->stepForward();
-  const spook::Vec3<S> before = ball->getPosition();
+  const spook::Vec3T<S> before = ball->getPosition();
   const S timeBefore = sim->getTimeStamp();
   spook::ref_ptr<spook::CompositeT<S>> parts = new spook::CompositeT<S>();
   parts->add(new spook::SphereT<S>(S(0.2)));
   geometry->add(parts);
   sim->stepForward();  // composites of spheres are in the list
-  parts->add(new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.1))));
-  const spook::Vec3<S> moved = ball->getPosition();
+  parts->add(new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.1))));
+  const spook::Vec3T<S> moved = ball->getPosition();
   const S timeMoved = sim->getTimeStamp();
   CHECK_THROWS_WITH_AS(sim->stepForward(),
                        doctest::Contains("Geometry 'ball geometry': shape type not in this space's shape list, got Box"),

@@ -233,7 +233,7 @@ TEST_CASE_TEMPLATE("the default friction is the projected cone solved SPLIT", S,
 
 TEST_CASE_TEMPLATE("a friction model keeps its solve type, unit primary direction and box normal force", S, float,
                    double) {
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   spook::ref_ptr<spook::BoxFrictionT<S>> box = new spook::BoxFrictionT<S>("box");
   for (auto type : {spook::SolveType::DIRECT, spook::SolveType::ITERATIVE, spook::SolveType::DIRECT_AND_ITERATIVE,
                     spook::SolveType::SPLIT}) {
@@ -331,7 +331,7 @@ TEST_CASE_TEMPLATE("a null material is rejected", S, float, double) {
 }
 
 TEST_CASE_TEMPLATE("bad friction model values are rejected and leave it unchanged", S, float, double) {
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   spook::ref_ptr<spook::BoxFrictionT<S>> box = new spook::BoxFrictionT<S>("dry");
   box->setSolveType(spook::SolveType::ITERATIVE);
   box->setPrimaryDirection(Vec3(S(1), S(0), S(0)));

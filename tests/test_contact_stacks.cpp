@@ -29,8 +29,8 @@ struct Stack {
     spook::test::addGround(*sim, material);
     for (int i = 0; i < count; ++i)
       boxes.push_back(spook::test::addBody(*sim, ("box " + std::to_string(i)).c_str(),
-                                           new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))), material,
-                                           spook::Vec3<S>(S(0), S(0), S(0.5) + S(i))));
+                                           new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))), material,
+                                           spook::Vec3T<S>(S(0), S(0), S(0.5) + S(i))));
   }
 };
 
@@ -41,9 +41,9 @@ TEST_CASE_TEMPLATE("a stack of 10 unit cubes stands for 10 s at 60 Hz", S, float
     const std::string name = spook::test::policyName(policy);
     CAPTURE(name);
     Stack<S> stack(policy, 10, S(1) / S(60));
-    const spook::Vec3<S> start = stack.boxes.back()->getPosition();
+    const spook::Vec3T<S> start = stack.boxes.back()->getPosition();
     for (int step = 0; step < 600; ++step) stack.sim->stepForward();
-    const spook::Vec3<S> moved = stack.boxes.back()->getPosition() - start;
+    const spook::Vec3T<S> moved = stack.boxes.back()->getPosition() - start;
     // The contacts' compliance alone settles the top by Σ_k k·m g/(4E) over
     // the ten interfaces (k boxes above the k-th, four points each).
     const S E = spook::ContactMaterialT<S>::implicitParameters(*stack.material, *stack.material).youngsModulus;
@@ -63,15 +63,15 @@ TEST_CASE_TEMPLATE("a 1000 kg box on four 1 kg boxes stays put (direct)", S, flo
   std::vector<spook::ref_ptr<spook::RigidBodyT<S>>> feet;
   for (int i = 0; i < 4; ++i) {
     const S x = (i & 1) ? S(0.4) : S(-0.4), y = (i & 2) ? S(0.4) : S(-0.4);
-    feet.push_back(spook::test::addBody(*sim, "foot", new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.05))), material,
-                                        spook::Vec3<S>(x, y, S(0.05))));
+    feet.push_back(spook::test::addBody(*sim, "foot", new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.05))), material,
+                                        spook::Vec3T<S>(x, y, S(0.05))));
   }
-  auto heavy = spook::test::addBody(*sim, "heavy", new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))), material,
-                                    spook::Vec3<S>(S(0), S(0), S(0.6)));
+  auto heavy = spook::test::addBody(*sim, "heavy", new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))), material,
+                                    spook::Vec3T<S>(S(0), S(0), S(0.6)));
   REQUIRE(heavy->getMassProperties()->getMass() / feet[0]->getMassProperties()->getMass() == doctest::Approx(1000));
-  const spook::Vec3<S> start = heavy->getPosition();
+  const spook::Vec3T<S> start = heavy->getPosition();
   for (int step = 0; step < 600; ++step) sim->stepForward();
-  const spook::Vec3<S> moved = heavy->getPosition() - start;
+  const spook::Vec3T<S> moved = heavy->getPosition() - start;
   MESSAGE("heavy box moved ", moved.transpose(), " m");
   CHECK(-moved.z() < S(1e-3));
   CHECK(moved.norm() < S(1e-3));
@@ -87,10 +87,10 @@ TEST_CASE_TEMPLATE("a pyramid of 210 unit cubes with a base of 20 stands for 5 s
   const S pitch = S(1.01);  // 1 cm gaps between neighbours on a level
   for (int level = 0; level < 20; ++level)
     for (int i = 0; i < 20 - level; ++i)
-      boxes.push_back(spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))), material,
-                                           spook::Vec3<S>(pitch * (S(i) - S(19 - level) / S(2)), S(0), S(0.5) + S(level))));
+      boxes.push_back(spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))), material,
+                                           spook::Vec3T<S>(pitch * (S(i) - S(19 - level) / S(2)), S(0), S(0.5) + S(level))));
   REQUIRE(boxes.size() == 210);
-  std::vector<spook::Vec3<S>> start;
+  std::vector<spook::Vec3T<S>> start;
   for (const auto& b : boxes) start.push_back(b->getPosition());
 #ifdef NDEBUG
   const int steps = 300;

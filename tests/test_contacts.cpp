@@ -35,7 +35,7 @@ TEST_CASE_TEMPLATE("a sphere resting on a plane carries its weight exactly and d
     sim->setSolver(spook::test::makeSolver(policy));
     Materials<S> m;
     spook::test::addGround(*sim, m.ground);
-    auto ball = spook::test::addBody(*sim, "ball", new spook::SphereT<S>(S(0.5)), m.body, spook::Vec3<S>(S(0), S(0), S(0.5)));
+    auto ball = spook::test::addBody(*sim, "ball", new spook::SphereT<S>(S(0.5)), m.body, spook::Vec3T<S>(S(0), S(0), S(0.5)));
     const S weight = ball->getMassProperties()->getMass() * S(kG);
     S low = S(1e9), high = S(-1e9), worstForce = S(0);
     for (int step = 0; step < 600; ++step) {
@@ -67,16 +67,16 @@ std::pair<double, double> slideOnIncline(Policy policy, S mu, const spook::ref_p
   sim->setSolver(spook::test::makeSolver(policy));
   Materials<S> m;
   const S theta = S(std::numbers::pi / 6);
-  const spook::Quat<S> tilt(Eigen::AngleAxis<S>(theta, spook::Vec3<S>::UnitX()));
-  spook::test::addGround(*sim, m.ground, spook::Vec3<S>(tilt * spook::Vec3<S>::UnitZ()));
+  const spook::QuatT<S> tilt(Eigen::AngleAxis<S>(theta, spook::Vec3T<S>::UnitX()));
+  spook::test::addGround(*sim, m.ground, spook::Vec3T<S>(tilt * spook::Vec3T<S>::UnitZ()));
   auto cm = sim->getMaterialManager()->getOrCreateContactMaterial(m.ground.get(), m.body.get());
   cm->setFrictionCoefficient(mu);
   cm->setYoungsModulus(S(1e10));
   if (model) cm->setFrictionModel(model);
-  auto box = spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))), m.body,
-                                  spook::Vec3<S>(tilt * spook::Vec3<S>(S(0), S(0), S(0.5) - S(1e-5))), tilt);
-  const spook::Vec3<S> downSlope = tilt * spook::Vec3<S>(S(0), S(-1), S(0));
-  const spook::Vec3<S> start = box->getPosition();
+  auto box = spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))), m.body,
+                                  spook::Vec3T<S>(tilt * spook::Vec3T<S>(S(0), S(0), S(0.5) - S(1e-5))), tilt);
+  const spook::Vec3T<S> downSlope = tilt * spook::Vec3T<S>(S(0), S(-1), S(0));
+  const spook::Vec3T<S> start = box->getPosition();
   double early = 0.0;
   for (int step = 1; step <= 120; ++step) {
     sim->stepForward();
@@ -114,7 +114,7 @@ TEST_CASE_TEMPLATE("a sphere dropped with restitution 0.5 rebounds to e^2 h", S,
   spook::test::addGround(*sim, m.ground);
   sim->getMaterialManager()->getOrCreateContactMaterial(m.ground.get(), m.body.get())->setRestitution(S(0.5));
   const S r = S(0.1), h = S(1);
-  auto ball = spook::test::addBody(*sim, "ball", new spook::SphereT<S>(r), m.body, spook::Vec3<S>(S(0), S(0), r + h));
+  auto ball = spook::test::addBody(*sim, "ball", new spook::SphereT<S>(r), m.body, spook::Vec3T<S>(S(0), S(0), r + h));
   bool bounced = false;
   S apex = S(0);
   for (int step = 0; step < 2500; ++step) {
@@ -136,9 +136,9 @@ TEST_CASE_TEMPLATE("a box on a conveyor reaches the belt speed", S, float, doubl
     sim->setSolver(spook::test::makeSolver(policy));
     Materials<S> m;
     auto belt = spook::test::addGround(*sim, m.ground);
-    belt->setSurfaceVelocity(spook::Vec3<S>(S(1), S(0), S(0)));
-    auto box = spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.25))), m.body,
-                                    spook::Vec3<S>(S(0), S(0), S(0.25)));
+    belt->setSurfaceVelocity(spook::Vec3T<S>(S(1), S(0), S(0)));
+    auto box = spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.25))), m.body,
+                                    spook::Vec3T<S>(S(0), S(0), S(0.25)));
     for (int step = 0; step < 120; ++step) sim->stepForward();
     MESSAGE(name, ": box speed ", box->getVelocity().transpose());
     CHECK(std::abs(box->getVelocity().x() - S(1)) < S(1e-3));
@@ -151,7 +151,7 @@ TEST_CASE_TEMPLATE("a sensor reports its contacts and applies no force", S, floa
   Materials<S> m;
   auto ground = spook::test::addGround(*sim, m.ground);
   ground->setSensor(true);
-  auto ball = spook::test::addBody(*sim, "ball", new spook::SphereT<S>(S(0.5)), m.body, spook::Vec3<S>(S(0), S(0), S(0.4)));
+  auto ball = spook::test::addBody(*sim, "ball", new spook::SphereT<S>(S(0.5)), m.body, spook::Vec3T<S>(S(0), S(0), S(0.4)));
   const S h = sim->getTimeStep();
   std::size_t reported = 0;
   for (int n = 1; n <= 30; ++n) {
@@ -172,8 +172,8 @@ TEST_CASE_TEMPLATE("a box created half inside the ground separates no faster tha
     sim->setSolver(spook::test::makeSolver(policy));
     Materials<S> m;
     spook::test::addGround(*sim, m.ground);
-    auto box = spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))), m.body,
-                                    spook::Vec3<S>(S(0), S(0), S(0)));
+    auto box = spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))), m.body,
+                                    spook::Vec3T<S>(S(0), S(0), S(0)));
     // Bound: the stabilization asks at most getMaxDepenetrationSpeed (1 m/s);
     // SPOOK's b' term may add what the body already moves at, 1/(1+4d) of it.
     const S bound = sim->getMaxDepenetrationSpeed() * S(1.1);
@@ -198,8 +198,8 @@ TEST_CASE_TEMPLATE("a push at 45 degrees to the friction axes tells the cone fro
     sim->setSolver(new spook::DirectSolver());
     Materials<S> m;
     spook::test::addGround(*sim, m.ground);
-    auto box = spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))), m.body,
-                                    spook::Vec3<S>(S(0), S(0), S(0.5)));
+    auto box = spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))), m.body,
+                                    spook::Vec3T<S>(S(0), S(0), S(0.5)));
     const S mass = box->getMassProperties()->getMass();
     spook::ref_ptr<spook::FrictionModelT<S>> model;
     if (useBox) {
@@ -209,13 +209,13 @@ TEST_CASE_TEMPLATE("a push at 45 degrees to the friction axes tells the cone fro
     } else {
       model = new spook::IterativeProjectedConeFrictionT<S>();
     }
-    model->setPrimaryDirection(spook::Vec3<S>::UnitX());
+    model->setPrimaryDirection(spook::Vec3T<S>::UnitX());
     model->setSolveType(spook::SolveType::DIRECT);
     auto cm = sim->getMaterialManager()->getOrCreateContactMaterial(m.ground.get(), m.body.get());
     cm->setFrictionCoefficient(mu);
     cm->setFrictionModel(model);
     const S push = S(1.2) * mu * mass * S(kG);
-    const spook::Vec3<S> along = spook::Vec3<S>(S(1), S(1), S(0)).normalized();
+    const spook::Vec3T<S> along = spook::Vec3T<S>(S(1), S(1), S(0)).normalized();
     int mostFrictionIterations = 0;
     for (int step = 0; step < 60; ++step) {
       box->addForce(along * push);
@@ -245,8 +245,8 @@ TEST_CASE_TEMPLATE("a joint and a contact share a load by their compliances; get
   spook::test::addGround(*sim, m.ground);
   const S E = S(1e8);
   sim->getMaterialManager()->getOrCreateContactMaterial(m.ground.get(), m.body.get())->setYoungsModulus(E);
-  auto box = spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))), m.body,
-                                  spook::Vec3<S>(S(0), S(0), S(0.5)));
+  auto box = spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))), m.body,
+                                  spook::Vec3T<S>(S(0), S(0), S(0.5)));
   // Four contact points of stiffness E each in parallel with a lock of
   // stiffness 2E: the lock carries a third of the weight.
   spook::ref_ptr<spook::LockJointT<S>> lock = new spook::LockJointT<S>(box.get());
@@ -255,7 +255,7 @@ TEST_CASE_TEMPLATE("a joint and a contact share a load by their compliances; get
   sim->add(lock);
   for (int step = 0; step < 300; ++step) sim->stepForward();
   const S weight = box->getMassProperties()->getMass() * S(kG);
-  spook::Vec3<S> force = spook::Vec3<S>::Zero(), torque = spook::Vec3<S>::Zero();
+  spook::Vec3T<S> force = spook::Vec3T<S>::Zero(), torque = spook::Vec3T<S>::Zero();
   REQUIRE(lock->getLastForce(box.get(), force, torque));
   const S contact = spook::test::normalForceOn(*sim, box.get());
   MESSAGE("lock carries ", force.z() / weight, " of the weight, contacts ", contact / weight);
@@ -269,12 +269,12 @@ TEST_CASE_TEMPLATE("an explicit contact material chooses the contact reduction o
   spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
   Materials<S> m;
   spook::ref_ptr<spook::GeometryT<S>> block =
-      new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))), spook::Transform<S>::Identity(), "block");
+      new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))), spook::TransformT<S>::Identity(), "block");
   block->setMaterial(m.ground);
   sim->add(block);
-  const spook::Quat<S> turned(Eigen::AngleAxis<S>(S(std::numbers::pi / 4), spook::Vec3<S>::UnitZ()));
-  spook::test::addBody(*sim, "cube", new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))), m.body,
-                       spook::Vec3<S>(S(0), S(0), S(0.999)), turned);
+  const spook::QuatT<S> turned(Eigen::AngleAxis<S>(S(std::numbers::pi / 4), spook::Vec3T<S>::UnitZ()));
+  spook::test::addBody(*sim, "cube", new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))), m.body,
+                       spook::Vec3T<S>(S(0), S(0), S(0.999)), turned);
   const auto counts = [&] {
     sim->getSpace()->update(sim->getRigidBodies());
     std::size_t all = 0, enabled = 0;

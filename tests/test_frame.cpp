@@ -12,10 +12,10 @@ using spook::test::pick;
 namespace {
 
 template <class S>
-spook::Transform<S> randomTransform(std::mt19937& rng) {
+spook::TransformT<S> randomTransform(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-2.0, 2.0);
-  return spook::makeTransform<S>(spook::Vec3<S>(S(u(rng)), S(u(rng)), S(u(rng))),
-                                 spook::toQuat(spook::EulerAngles<S>{S(u(rng)), S(u(rng) / 2), S(u(rng))}));
+  return spook::makeTransform<S>(spook::Vec3T<S>(S(u(rng)), S(u(rng)), S(u(rng))),
+                                 spook::toQuat(spook::EulerAnglesT<S>{S(u(rng)), S(u(rng) / 2), S(u(rng))}));
 }
 
 // A chain root → … → leaf of `depth` frames with random local transforms.
@@ -37,15 +37,15 @@ TEST_CASE_TEMPLATE("a chain of five frames maps points to world and back", S, fl
   for (int trial = 0; trial < 50; ++trial) {
     const auto chain = makeChain<S>(5, rng);
     const spook::FrameT<S>& leaf = *chain.back();
-    spook::Transform<S> product = spook::Transform<S>::Identity();
+    spook::TransformT<S> product = spook::TransformT<S>::Identity();
     for (const auto& f : chain) product = product * f->getLocalMatrix();
     CHECK((leaf.getMatrix().matrix() - product.matrix()).norm() < tol);
 
-    const spook::Vec3<S> p(S(0.3), S(-1.2), S(2.5));
-    const spook::Vec3<S> p_W = leaf.transformPointToWorld(p);
+    const spook::Vec3T<S> p(S(0.3), S(-1.2), S(2.5));
+    const spook::Vec3T<S> p_W = leaf.transformPointToWorld(p);
     CHECK((p_W - product * p).norm() < tol);
     CHECK((leaf.transformPointToLocal(p_W) - p).norm() < tol);
-    const spook::Vec3<S> v_W = leaf.transformVectorToWorld(p);
+    const spook::Vec3T<S> v_W = leaf.transformVectorToWorld(p);
     CHECK((v_W - product.linear() * p).norm() < tol);
     CHECK((leaf.transformVectorToLocal(v_W) - p).norm() < tol);
   }
@@ -56,20 +56,20 @@ TEST_CASE_TEMPLATE("world setters keep the world value under a moved parent", S,
   std::mt19937 rng(5);
   const auto chain = makeChain<S>(3, rng);
   spook::FrameT<S>& child = *chain.back();
-  const spook::Vec3<S> p_W(S(1), S(2), S(3));
-  const spook::Quat<S> q_W = spook::toQuat(spook::EulerAngles<S>{S(0.4), S(-0.2), S(1.1)});
+  const spook::Vec3T<S> p_W(S(1), S(2), S(3));
+  const spook::QuatT<S> q_W = spook::toQuat(spook::EulerAnglesT<S>{S(0.4), S(-0.2), S(1.1)});
   child.setTranslate(p_W);
   child.setRotate(q_W);
   CHECK((child.getTranslate() - p_W).norm() < tol);
   CHECK(std::abs(std::abs(child.getRotate().dot(q_W)) - S(1)) < tol);
 
-  const spook::Transform<S> X_W = randomTransform<S>(rng);
+  const spook::TransformT<S> X_W = randomTransform<S>(rng);
   child.setMatrix(X_W);
   CHECK((child.getMatrix().matrix() - X_W.matrix()).norm() < tol);
   CHECK(((chain[1]->getMatrix() * child.getLocalMatrix()).matrix() - X_W.matrix()).norm() < tol);
 
   // Moving the parent moves the child with it: local values are kept.
-  const spook::Transform<S> before = child.getLocalMatrix();
+  const spook::TransformT<S> before = child.getLocalMatrix();
   chain[0]->setTranslate(S(10), S(0), S(0));
   CHECK((child.getLocalMatrix().matrix() - before.matrix()).norm() < tol);
   CHECK((child.getMatrix().matrix() - (chain[1]->getMatrix() * before).matrix()).norm() < tol);
@@ -81,11 +81,11 @@ TEST_CASE_TEMPLATE("local setters are relative to the parent", S, float, double)
   spook::ref_ptr<spook::FrameT<S>> child = new spook::FrameT<S>();
   child->setParent(parent.get());
   parent->setTranslate(S(0), S(0), S(1));
-  parent->setRotate(spook::rotate<S>(spook::Vec3<S>::UnitX(), spook::Vec3<S>::UnitY()));
+  parent->setRotate(spook::rotate<S>(spook::Vec3T<S>::UnitX(), spook::Vec3T<S>::UnitY()));
   child->setLocalTranslate(S(2), S(0), S(0));
-  CHECK((child->getTranslate() - spook::Vec3<S>(S(0), S(2), S(1))).norm() < tol);
-  child->setLocalRotate(spook::rotate<S>(spook::Vec3<S>::UnitX(), spook::Vec3<S>::UnitY()));
-  CHECK((child->transformVectorToWorld(spook::Vec3<S>::UnitX()) + spook::Vec3<S>::UnitX()).norm() < tol);
+  CHECK((child->getTranslate() - spook::Vec3T<S>(S(0), S(2), S(1))).norm() < tol);
+  child->setLocalRotate(spook::rotate<S>(spook::Vec3T<S>::UnitX(), spook::Vec3T<S>::UnitY()));
+  CHECK((child->transformVectorToWorld(spook::Vec3T<S>::UnitX()) + spook::Vec3T<S>::UnitX()).norm() < tol);
 }
 
 TEST_CASE("a frame cannot become its own ancestor") {

@@ -10,7 +10,7 @@ namespace {
 
 // Relative distance |a − b| / max(1, |b|).
 template <class S>
-S relativeError(const spook::Vec3<S>& a, const spook::Vec3<S>& b) {
+S relativeError(const spook::Vec3T<S>& a, const spook::Vec3T<S>& b) {
   return (a - b).norm() / std::max(S(1), b.norm());
 }
 
@@ -25,11 +25,11 @@ TEST_CASE_TEMPLATE("free fall follows the exact discrete solution of the stepper
   sim->setTimeStep(h);
   spook::ref_ptr<spook::RigidBodyT<S>> ball = new spook::RigidBodyT<S>("ball");
   ball->getMassProperties()->setMass(S(2.5));
-  const spook::Vec3<S> x0(S(0.5), S(1), S(10)), v0(S(1), S(-2), S(3));
+  const spook::Vec3T<S> x0(S(0.5), S(1), S(10)), v0(S(1), S(-2), S(3));
   ball->setPosition(x0);
   ball->setVelocity(v0);
   sim->add(ball);
-  const spook::Vec3<S> g(S(0), S(0), S(-9.80665));
+  const spook::Vec3T<S> g(S(0), S(0), S(-9.80665));
   for (int n = 1; n <= 120; ++n) {
     sim->stepForward();
     const S k = S(n);
@@ -42,7 +42,7 @@ TEST_CASE_TEMPLATE("free fall follows the exact discrete solution of the stepper
 // xₙ − x(tₙ) = g h tₙ / 2 exactly, so the error halves with h.
 TEST_CASE_TEMPLATE("a projectile deviates from the parabola by g h t / 2", S, float, double) {
   const S tol = pick<S>(1e-10, 1e-3);
-  const spook::Vec3<S> x0(S(0), S(0), S(0)), v0(S(12), S(0), S(9)), g(S(0), S(0), S(-9.80665));
+  const spook::Vec3T<S> x0(S(0), S(0), S(0)), v0(S(12), S(0), S(9)), g(S(0), S(0), S(-9.80665));
   const S t = S(1.5);
   S previousError = S(0);
   for (int steps : {90, 180, 360}) {
@@ -54,8 +54,8 @@ TEST_CASE_TEMPLATE("a projectile deviates from the parabola by g h t / 2", S, fl
     sim->add(shot);
     sim->stepTo(t);
     CHECK(sim->getStatistics().numSteps == std::uint64_t(steps));
-    const spook::Vec3<S> exact = x0 + v0 * t + g * (t * t / S(2));
-    const spook::Vec3<S> error = shot->getPosition() - exact;
+    const spook::Vec3T<S> exact = x0 + v0 * t + g * (t * t / S(2));
+    const spook::Vec3T<S> error = shot->getPosition() - exact;
     CHECK(relativeError<S>(error, g * (h * t / S(2))) < tol);
     if (previousError > S(0)) CHECK(error.norm() / previousError == doctest::Approx(0.5).epsilon(pick<S>(1e-9, 1e-2)));
     previousError = error.norm();
@@ -69,13 +69,13 @@ TEST_CASE_TEMPLATE("the center of mass of a spinning off-center body follows the
   const S h = S(0.01);
   sim->setTimeStep(h);
   spook::ref_ptr<spook::RigidBodyT<S>> club = new spook::RigidBodyT<S>("club");
-  club->getMassProperties()->setInertiaTensor(spook::Vec3<S>(S(0.1), S(0.4), S(0.45)));
-  club->setCmLocalTranslate(spook::Vec3<S>(S(0.3), S(0), S(0)));
-  const spook::Vec3<S> c0 = club->getCmPosition(), v0(S(2), S(1), S(6));
+  club->getMassProperties()->setInertiaTensor(spook::Vec3T<S>(S(0.1), S(0.4), S(0.45)));
+  club->setCmLocalTranslate(spook::Vec3T<S>(S(0.3), S(0), S(0)));
+  const spook::Vec3T<S> c0 = club->getCmPosition(), v0(S(2), S(1), S(6));
   club->setVelocity(v0);
-  club->setAngularVelocity(spook::Vec3<S>(S(1), S(8), S(0.5)));
+  club->setAngularVelocity(spook::Vec3T<S>(S(1), S(8), S(0.5)));
   sim->add(club);
-  const spook::Vec3<S> g(S(0), S(0), S(-9.80665));
+  const spook::Vec3T<S> g(S(0), S(0), S(-9.80665));
   const int n = 100;
   for (int i = 0; i < n; ++i) sim->stepForward();
   const S k = S(n);
@@ -87,12 +87,12 @@ TEST_CASE_TEMPLATE("the center of mass of a spinning off-center body follows the
 TEST_CASE_TEMPLATE("a constant force accelerates a body at F/m", S, float, double) {
   const S tol = pick<S>(1e-12, 1e-6);
   spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
-  sim->setUniformGravity(spook::Vec3<S>::Zero());
+  sim->setUniformGravity(spook::Vec3T<S>::Zero());
   const S h = sim->getTimeStep();
   spook::ref_ptr<spook::RigidBodyT<S>> cart = new spook::RigidBodyT<S>("cart");
   cart->getMassProperties()->setMass(S(4));
   sim->add(cart);
-  const spook::Vec3<S> force(S(8), S(-2), S(1));
+  const spook::Vec3T<S> force(S(8), S(-2), S(1));
   for (int i = 0; i < 60; ++i) {
     cart->addForce(force);
     sim->stepForward();

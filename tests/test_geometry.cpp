@@ -31,15 +31,15 @@ spook::ref_ptr<spook::MaterialT<S>> material(double density) {
 TEST_CASE_TEMPLATE("a body's mass, center and inertia come from its geometry's volume and density", S, float, double) {
   const S tol = pick<S>(1e-12, 1e-6);
   spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>("crate");
-  spook::ref_ptr<spook::GeometryT<S>> g = new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3<S>(S(0.5), S(0.25), S(0.1))));
+  spook::ref_ptr<spook::GeometryT<S>> g = new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3T<S>(S(0.5), S(0.25), S(0.1))));
   g->setMaterial(material<S>(800));
   g->setLocalTransform(at<S>(1, 2, 3));
   body->add(g);
   const auto* mp = body->getMassProperties();
   CHECK(std::abs(mp->getMass() - S(80)) <= tol * S(80));
-  CHECK((body->getCmLocalTranslate() - spook::Vec3<S>(S(1), S(2), S(3))).norm() <= tol);
-  const spook::Vec3<S> expected = spook::Vec3<S>(S(0.0725), S(0.26), S(0.3125)) * S(80.0 / 3.0);
-  CHECK(relative<S>(mp->getInertiaTensor(), spook::Mat3<S>(expected.asDiagonal())) <= tol);
+  CHECK((body->getCmLocalTranslate() - spook::Vec3T<S>(S(1), S(2), S(3))).norm() <= tol);
+  const spook::Vec3T<S> expected = spook::Vec3T<S>(S(0.0725), S(0.26), S(0.3125)) * S(80.0 / 3.0);
+  CHECK(relative<S>(mp->getInertiaTensor(), spook::Mat3T<S>(expected.asDiagonal())) <= tol);
   CHECK(g->getRigidBody() == body.get());
 }
 
@@ -48,8 +48,8 @@ TEST_CASE_TEMPLATE("a body's mass, center and inertia come from its geometry's v
 // against closed forms in test_shapes.cpp).
 TEST_CASE_TEMPLATE("two offset geometries combine by the parallel-axis theorem", S, float, double) {
   const S tol = pick<S>(1e-12, 1e-5);
-  const spook::Quat<S> turn(Eigen::AngleAxis<S>(S(0.7), spook::Vec3<S>(S(1), S(2), S(3)).normalized()));
-  spook::ref_ptr<spook::BoxT<S>> box = new spook::BoxT<S>(spook::Vec3<S>(S(0.3), S(0.2), S(0.4)));
+  const spook::QuatT<S> turn(Eigen::AngleAxis<S>(S(0.7), spook::Vec3T<S>(S(1), S(2), S(3)).normalized()));
+  spook::ref_ptr<spook::BoxT<S>> box = new spook::BoxT<S>(spook::Vec3T<S>(S(0.3), S(0.2), S(0.4)));
   spook::ref_ptr<spook::SphereT<S>> ball = new spook::SphereT<S>(S(0.25));
   spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>();
   body->add(new spook::GeometryT<S>(box, at<S>(0.5, 0, 0, turn)));
@@ -58,9 +58,9 @@ TEST_CASE_TEMPLATE("two offset geometries combine by the parallel-axis theorem",
   both->add(box, at<S>(0.5, 0, 0, turn));
   both->add(ball, at<S>(-1, 0.5, 0.2));
   const S mass = S(1000) * both->getVolume();
-  const spook::Vec3<S> c = both->getCenterOfVolume();
-  const spook::Mat3<S> aboutCenter =
-      both->calculateInertia(mass).matrix() - mass * (c.squaredNorm() * spook::Mat3<S>::Identity() - c * c.transpose());
+  const spook::Vec3T<S> c = both->getCenterOfVolume();
+  const spook::Mat3T<S> aboutCenter =
+      both->calculateInertia(mass).matrix() - mass * (c.squaredNorm() * spook::Mat3T<S>::Identity() - c * c.transpose());
   CHECK(std::abs(body->getMassProperties()->getMass() - mass) <= tol * mass);
   CHECK((body->getCmLocalTranslate() - c).norm() <= tol);
   CHECK(relative<S>(body->getMassProperties()->getInertiaTensor(), aboutCenter) <= tol);
@@ -69,7 +69,7 @@ TEST_CASE_TEMPLATE("two offset geometries combine by the parallel-axis theorem",
 TEST_CASE_TEMPLATE("mass follows geometry and material changes but not material parameter edits", S, float, double) {
   const S tol = pick<S>(1e-12, 1e-6);
   spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>();
-  spook::ref_ptr<spook::GeometryT<S>> g = new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3<S>::Constant(S(0.5))));
+  spook::ref_ptr<spook::GeometryT<S>> g = new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))));
   body->add(g);
   CHECK(std::abs(body->getMassProperties()->getMass() - S(1000)) <= tol * S(1000));  // default density, 1 m³
   const auto steel = material<S>(7750);
@@ -103,10 +103,10 @@ TEST_CASE_TEMPLATE("moving the center of mass keeps every body point's velocity"
   spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>();
   body->setAngularVelocity(S(0), S(0), S(2));
   body->setVelocity(S(1), S(0), S(0));
-  const spook::Vec3<S> probe(S(0.3), S(-0.4), S(0.1));
-  const spook::Vec3<S> before = body->getVelocityAtPoint(probe);
+  const spook::Vec3T<S> probe(S(0.3), S(-0.4), S(0.1));
+  const spook::Vec3T<S> before = body->getVelocityAtPoint(probe);
   body->add(new spook::GeometryT<S>(new spook::SphereT<S>(S(0.5)), at<S>(1, 0, 0)));
-  CHECK((body->getCmPosition() - spook::Vec3<S>(S(1), S(0), S(0))).norm() <= tol);
+  CHECK((body->getCmPosition() - spook::Vec3T<S>(S(1), S(0), S(0))).norm() <= tol);
   CHECK((body->getVelocityAtPoint(probe) - before).norm() <= tol);
 }
 

@@ -26,10 +26,10 @@ namespace {
 // the test does not trust the rows it checks.
 template <class S>
 struct FramePair {
-  Vec3<double> p1, p2;
+  Vec3T<double> p1, p2;
   Eigen::Matrix3d R1, R2;
   explicit FramePair(const ConstraintT<S>& c) {
-    const Transform<S> X1 = c.getAttachmentFrame(0)->getMatrix(), X2 = c.getAttachmentFrame(1)->getMatrix();
+    const TransformT<S> X1 = c.getAttachmentFrame(0)->getMatrix(), X2 = c.getAttachmentFrame(1)->getMatrix();
     p1 = X1.translation().template cast<double>();
     p2 = X2.translation().template cast<double>();
     R1 = X1.linear().template cast<double>();
@@ -37,7 +37,7 @@ struct FramePair {
   }
   [[nodiscard]] double separation() const { return (p1 - p2).norm(); }
   [[nodiscard]] double offAxis() const {  // separation across z of frame 2
-    const Vec3<double> d = p1 - p2;
+    const Vec3T<double> d = p1 - p2;
     return std::hypot(d.dot(R2.col(0)), d.dot(R2.col(1)));
   }
   [[nodiscard]] double tilt() const { return std::hypot(R1.col(0).dot(R2.col(2)), R1.col(1).dot(R2.col(2))); }
@@ -51,7 +51,7 @@ struct FramePair {
   // 2 (m), tilt of z₁ about x₂ or y₂ and rotation about axis k of frame 2 (rad).
   [[nodiscard]] double along(int k) const { return (p1 - p2).dot(R2.col(k)); }
   [[nodiscard]] double tiltAbout(int k) const {
-    const Vec3<double> z1 = R1.col(2);
+    const Vec3T<double> z1 = R1.col(2);
     return k == 0 ? std::atan2(-z1.dot(R2.col(1)), z1.dot(R2.col(2)))
                   : std::atan2(z1.dot(R2.col(0)), z1.dot(R2.col(2)));
   }
@@ -85,8 +85,8 @@ Measured worstViolation(const std::function<ref_ptr<Joint>(RigidBodyT<S>*, Rigid
   ref_ptr<DirectSolver> solver = new DirectSolver();
   solver->setEnablePostStabilization(postStabilize);
   sim->setSolver(solver);
-  auto upper = makeBody<S>(*sim, "upper", S(2), Vec3<S>(S(0.5), 0, 0), S(0.05));
-  auto lower = makeBody<S>(*sim, "lower", S(1), Vec3<S>(S(0.5), 0, S(-1)), S(0.02));
+  auto upper = makeBody<S>(*sim, "upper", S(2), Vec3T<S>(S(0.5), 0, 0), S(0.05));
+  auto lower = makeBody<S>(*sim, "lower", S(1), Vec3T<S>(S(0.5), 0, S(-1)), S(0.02));
   ref_ptr<Joint> top = make(upper.get(), nullptr);
   ref_ptr<Joint> bottom = make(lower.get(), upper.get());
   sim->add(top);
@@ -106,10 +106,10 @@ Measured worstViolation(const std::function<ref_ptr<Joint>(RigidBodyT<S>*, Rigid
 // The joint at the upper end of each body (0.5 m above its center) with its
 // z axis along `axis`.
 template <class S, class Joint>
-std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)> jointAbove(const Vec3<S>& axis) {
+std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)> jointAbove(const Vec3T<S>& axis) {
   return [axis](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
     ref_ptr<FrameT<S>> f1, f2;
-    ConstraintT<S>::calculateFramesFromWorld(b1->getPosition() + Vec3<S>(0, 0, S(0.5)), axis, b1, f1, b2, f2);
+    ConstraintT<S>::calculateFramesFromWorld(b1->getPosition() + Vec3T<S>(0, 0, S(0.5)), axis, b1, f1, b2, f2);
     return ref_ptr<Joint>(new Joint(b1, f1.get(), b2, f2.get()));
   };
 }
@@ -117,7 +117,7 @@ std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)> jointAbove(const V
 // The same for a slack joint with `positional` (m) and `rotational` (rad)
 // slack.
 template <class S, class Joint>
-std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)> slackJointAbove(const Vec3<S>& axis, double positional,
+std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*)> slackJointAbove(const Vec3T<S>& axis, double positional,
                                                                               double rotational) {
   return [=](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
     ref_ptr<Joint> joint = jointAbove<S, Joint>(axis)(b1, b2);
@@ -159,7 +159,7 @@ void checkSlackJoint(const std::string& name, const std::function<ref_ptr<Joint>
 // slide hundreds of meters in 10 s, beyond float's 1e-6 m resolution);
 // vertical for the plane (the bodies slide in it, gravity on its normal).
 TEST_CASE_TEMPLATE("every joint holds its constrained DOFs within 1e-6 when post-stabilized", S, float, double) {
-  const Vec3<S> tilted = Vec3<S>(1, 0, 1).normalized(), horizontal = Vec3<S>(1, 1, 0).normalized(), up = Vec3<S>::UnitZ();
+  const Vec3T<S> tilted = Vec3T<S>(1, 0, 1).normalized(), horizontal = Vec3T<S>(1, 1, 0).normalized(), up = Vec3T<S>::UnitZ();
   using F = FramePair<S>;
   SUBCASE("Hinge") {
     checkJoint<S, HingeT<S>>("Hinge", jointAbove<S, HingeT<S>>(tilted),
@@ -207,11 +207,11 @@ TEST_CASE_TEMPLATE("every joint holds its constrained DOFs within 1e-6 when post
     checkJoint<S, DistanceJointT<S>>(
         "DistanceJoint",
         [](RigidBodyT<S>* b1, RigidBodyT<S>* b2) {
-          const Vec3<S> up(0, 0, S(0.5));
+          const Vec3T<S> up(0, 0, S(0.5));
           ref_ptr<FrameT<S>> f1 = frameAt<S>(up);
-          const Vec3<S> anchor = b1->getPosition() + up + Vec3<S>(0, 0, S(0.7));
+          const Vec3T<S> anchor = b1->getPosition() + up + Vec3T<S>(0, 0, S(0.7));
           if (b2) {
-            ref_ptr<FrameT<S>> f2 = frameAt<S>(Vec3<S>(anchor - b2->getPosition()));
+            ref_ptr<FrameT<S>> f2 = frameAt<S>(Vec3T<S>(anchor - b2->getPosition()));
             return ref_ptr<DistanceJointT<S>>(new DistanceJointT<S>(b1, f1.get(), b2, f2.get()));
           }
           return ref_ptr<DistanceJointT<S>>(new DistanceJointT<S>(b1, f1.get(), anchor));
@@ -275,8 +275,8 @@ TEST_CASE_TEMPLATE("post-stabilization holds a 90° pendulum to 1e-6 without tak
     ref_ptr<DirectSolver> solver = new DirectSolver();
     solver->setEnablePostStabilization(postStabilize);
     sim->setSolver(solver);
-    auto bob = makeBody<S>(*sim, "bob", S(2), Vec3<S>(S(1), 0, 0), S(0.05));
-    ref_ptr<HingeT<S>> hinge = new HingeT<S>(bob.get(), frameAt<S>(Vec3<S>(-1, 0, 0), Vec3<S>::UnitY()).get());
+    auto bob = makeBody<S>(*sim, "bob", S(2), Vec3T<S>(S(1), 0, 0), S(0.05));
+    ref_ptr<HingeT<S>> hinge = new HingeT<S>(bob.get(), frameAt<S>(Vec3T<S>(-1, 0, 0), Vec3T<S>::UnitY()).get());
     sim->add(hinge);
     const auto energy = [&] {
       return double(bob->getKineticEnergy()) + 2.0 * 9.80665 * double(bob->getCmPosition().z());

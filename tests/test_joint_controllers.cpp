@@ -41,8 +41,8 @@ template <class S>
 struct Slider {
   static constexpr double kMass = 10.0, kMu = 0.3;
   ref_ptr<SimulationT<S>> sim = directSimulation<S>();
-  ref_ptr<RigidBodyT<S>> body = makeBody<S>(*sim, "slider", S(kMass), Vec3<S>::Zero());
-  ref_ptr<PrismaticT<S>> joint = new PrismaticT<S>(body.get(), frameAt<S>(Vec3<S>::Zero(), Vec3<S>::UnitX()).get());
+  ref_ptr<RigidBodyT<S>> body = makeBody<S>(*sim, "slider", S(kMass), Vec3T<S>::Zero());
+  ref_ptr<PrismaticT<S>> joint = new PrismaticT<S>(body.get(), frameAt<S>(Vec3T<S>::Zero(), Vec3T<S>::UnitX()).get());
   Slider() {
     joint->setName("rail");
     joint->getFrictionController()->setEnable(true);
@@ -54,7 +54,7 @@ struct Slider {
   }
   void push(S force, int steps) {
     for (int i = 0; i < steps; ++i) {
-      body->addForce(Vec3<S>(force, 0, 0));
+      body->addForce(Vec3T<S>(force, 0, 0));
       sim->stepForward();
     }
   }
@@ -67,8 +67,8 @@ template <class S>
 struct FrictionWheel {
   static constexpr double kMass = 4.0, kInertia = 0.5, kMu = 0.05;  // μ in m
   ref_ptr<SimulationT<S>> sim = directSimulation<S>();
-  ref_ptr<RigidBodyT<S>> body = makeBody<S>(*sim, "wheel", S(kMass), Vec3<S>::Zero(), S(kInertia));
-  ref_ptr<HingeT<S>> joint = new HingeT<S>(body.get(), frameAt<S>(Vec3<S>::Zero(), Vec3<S>::UnitX()).get());
+  ref_ptr<RigidBodyT<S>> body = makeBody<S>(*sim, "wheel", S(kMass), Vec3T<S>::Zero(), S(kInertia));
+  ref_ptr<HingeT<S>> joint = new HingeT<S>(body.get(), frameAt<S>(Vec3T<S>::Zero(), Vec3T<S>::UnitX()).get());
   FrictionWheel() {
     joint->getFrictionController()->setEnable(true);
     joint->getFrictionController()->setFrictionCoefficient(S(kMu));
@@ -77,7 +77,7 @@ struct FrictionWheel {
   }
   void twist(S torque, int steps) {
     for (int i = 0; i < steps; ++i) {
-      body->addTorque(Vec3<S>(torque, 0, 0));
+      body->addTorque(Vec3T<S>(torque, 0, 0));
       sim->stepForward();
     }
   }
@@ -143,9 +143,9 @@ TEST_CASE_TEMPLATE("a cylindrical joint has friction on both DOFs: it slides und
                    S, float, double) {
   auto sim = directSimulation<S>();
   const double m = 5.0, I = 0.2, muT = 0.2, muR = 0.02;
-  auto body = makeBody<S>(*sim, "sleeve", S(m), Vec3<S>::Zero(), S(I));
+  auto body = makeBody<S>(*sim, "sleeve", S(m), Vec3T<S>::Zero(), S(I));
   ref_ptr<CylindricalJointT<S>> joint =
-      new CylindricalJointT<S>(body.get(), frameAt<S>(Vec3<S>::Zero(), Vec3<S>::UnitX()).get());
+      new CylindricalJointT<S>(body.get(), frameAt<S>(Vec3T<S>::Zero(), Vec3T<S>::UnitX()).get());
   using J = CylindricalJointT<S>;
   joint->getFrictionController(J::FIRST)->setEnable(true);
   joint->getFrictionController(J::FIRST)->setFrictionCoefficient(S(muT));
@@ -158,8 +158,8 @@ TEST_CASE_TEMPLATE("a cylindrical joint has friction on both DOFs: it slides und
   double v1 = 0.0;
   for (int i = 0; i < 90; ++i) {
     if (i == 30) v1 = double(joint->getCurrentSpeed(J::FIRST));
-    body->addForce(Vec3<S>(S(F), 0, 0));
-    body->addTorque(Vec3<S>(S(T), 0, 0));
+    body->addForce(Vec3T<S>(S(F), 0, 0));
+    body->addTorque(Vec3T<S>(S(T), 0, 0));
     sim->stepForward();
   }
   const double a = double(joint->getCurrentSpeed(J::FIRST)) - v1, expected = (F - muT * N) / m;
@@ -172,9 +172,9 @@ TEST_CASE_TEMPLATE("a cylindrical joint has friction on both DOFs: it slides und
 
 TEST_CASE_TEMPLATE("the minimum static friction range holds a load without a normal force", S, float, double) {
   auto sim = directSimulation<S>();
-  sim->setUniformGravity(Vec3<S>::Zero());
-  auto body = makeBody<S>(*sim, "wheel", S(2), Vec3<S>::Zero(), S(0.1));
-  ref_ptr<HingeT<S>> hinge = new HingeT<S>(body.get(), frameAt<S>(Vec3<S>::Zero(), Vec3<S>::UnitX()).get());
+  sim->setUniformGravity(Vec3T<S>::Zero());
+  auto body = makeBody<S>(*sim, "wheel", S(2), Vec3T<S>::Zero(), S(0.1));
+  ref_ptr<HingeT<S>> hinge = new HingeT<S>(body.get(), frameAt<S>(Vec3T<S>::Zero(), Vec3T<S>::UnitX()).get());
   auto* friction = hinge->getFrictionController();
   friction->setEnable(true);
   friction->setFrictionCoefficient(S(0));
@@ -183,14 +183,14 @@ TEST_CASE_TEMPLATE("the minimum static friction range holds a load without a nor
   friction->setMinimumStaticFrictionForceRange(S(-2), S(1));
   sim->add(hinge);
   for (int i = 0; i < 60; ++i) {
-    body->addTorque(Vec3<S>(S(1.5), 0, 0));  // held: friction −1.5 within [−2, 1]
+    body->addTorque(Vec3T<S>(S(1.5), 0, 0));  // held: friction −1.5 within [−2, 1]
     sim->stepForward();
   }
   MESSAGE("held by the minimum range: turned " << double(hinge->getAngle()) << " rad");
   CHECK(std::abs(double(hinge->getAngle())) < 1e-6);
   const double w1 = double(hinge->getCurrentSpeed());
   for (int i = 0; i < 60; ++i) {
-    body->addTorque(Vec3<S>(S(-1.5), 0, 0));  // beyond the upper end (1 N·m): turns at −0.5/0.1 rad/s²
+    body->addTorque(Vec3T<S>(S(-1.5), 0, 0));  // beyond the upper end (1 N·m): turns at −0.5/0.1 rad/s²
     sim->stepForward();
   }
   const double alpha = double(hinge->getCurrentSpeed()) - w1;
@@ -211,7 +211,7 @@ TEST_CASE_TEMPLATE("the non-linear update follows a linearly growing normal forc
     double worst = 0.0;
     for (int i = 0; i < 60; ++i) {
       const S t = s.sim->getTimeStamp();
-      s.body->addForce(Vec3<S>(S(200), 0, S(-k) * t));
+      s.body->addForce(Vec3T<S>(S(200), 0, S(-k) * t));
       s.sim->stepForward();
       const auto* f = s.joint->getFrictionController();
       if (i >= 3) worst = std::max(worst, std::abs(-double(f->getCurrentForce()) - mu * double(f->getNormalForce())));
@@ -230,15 +230,15 @@ TEST_CASE_TEMPLATE("ball joint rotational friction holds a small torque and slip
   const double bound = mu * m * kG;
   for (double T : {0.5, 2.0}) {
     auto sim = directSimulation<S>();
-    auto body = makeBody<S>(*sim, "ball", S(m), Vec3<S>::Zero(), S(I));
-    ref_ptr<BallJointT<S>> ball = new BallJointT<S>(body.get(), frameAt<S>(Vec3<S>::Zero()).get());
+    auto body = makeBody<S>(*sim, "ball", S(m), Vec3T<S>::Zero(), S(I));
+    ref_ptr<BallJointT<S>> ball = new BallJointT<S>(body.get(), frameAt<S>(Vec3T<S>::Zero()).get());
     ball->setEnableRotationalFriction(true);
     ball->setRotationalFrictionCoefficient(S(mu));
     CHECK(ball->getRotationalFrictionControllers().size() == 3);
     sim->add(ball);
     sim->stepForward();
     for (int i = 0; i < 60; ++i) {
-      body->addTorque(Vec3<S>(S(T), 0, 0));
+      body->addTorque(Vec3T<S>(S(T), 0, 0));
       sim->stepForward();
     }
     const double omega = double(body->getAngularVelocity().x());
@@ -260,10 +260,10 @@ namespace {
 template <class S>
 struct ConePendulum {
   ref_ptr<SimulationT<S>> sim = directSimulation<S>();
-  ref_ptr<RigidBodyT<S>> bob = makeBody<S>(*sim, "bob", S(1), Vec3<S>(1, 0, 0));
+  ref_ptr<RigidBodyT<S>> bob = makeBody<S>(*sim, "bob", S(1), Vec3T<S>(1, 0, 0));
   ref_ptr<BallJointT<S>> ball;
   ConePendulum(ref_ptr<FrameT<S>> frame2, S a1, S a2) {
-    ball = new BallJointT<S>(bob.get(), frameAt<S>(Vec3<S>(-1, 0, 0), Vec3<S>::UnitX()).get(), nullptr, frame2.get());
+    ball = new BallJointT<S>(bob.get(), frameAt<S>(Vec3T<S>(-1, 0, 0), Vec3T<S>::UnitX()).get(), nullptr, frame2.get());
     ball->setName("shoulder");
     ball->getConeLimit()->setEnable(true);
     ball->getConeLimit()->setLimitAngles(a1, a2);
@@ -273,11 +273,11 @@ struct ConePendulum {
 
 // World frame at the origin with axes (x, y, z) = the given world axes.
 template <class S>
-ref_ptr<FrameT<S>> frameWithAxes(const Vec3<S>& x, const Vec3<S>& y, const Vec3<S>& z) {
-  Mat3<S> R;
+ref_ptr<FrameT<S>> frameWithAxes(const Vec3T<S>& x, const Vec3T<S>& y, const Vec3T<S>& z) {
+  Mat3T<S> R;
   R << x, y, z;
   ref_ptr<FrameT<S>> f = new FrameT<S>();
-  f->setLocalRotate(Quat<S>(R));
+  f->setLocalRotate(QuatT<S>(R));
   return f;
 }
 
@@ -286,7 +286,7 @@ ref_ptr<FrameT<S>> frameWithAxes(const Vec3<S>& x, const Vec3<S>& y, const Vec3<
 TEST_CASE_TEMPLATE("an elliptic cone limit stops a falling pendulum at a1 in the x-z plane and a2 in the y-z plane", S,
                    float, double) {
   const S a1 = S(0.5), a2 = S(0.8);
-  const Vec3<S> X = Vec3<S>::UnitX(), Y = Vec3<S>::UnitY(), Z = Vec3<S>::UnitZ();
+  const Vec3T<S> X = Vec3T<S>::UnitX(), Y = Vec3T<S>::UnitY(), Z = Vec3T<S>::UnitZ();
   struct Case {
     const char* plane;
     ref_ptr<FrameT<S>> frame2;
@@ -326,17 +326,17 @@ TEST_CASE_TEMPLATE("a pendulum swinging inside its cone moves exactly as without
   // in the x-z plane, the rod never comes within two steps of the cone, so no
   // row is added and the run is the unlimited one, bit for bit.
   const double theta0 = 0.4;
-  const Vec3<S> rod(S(std::sin(theta0)), 0, S(-std::cos(theta0)));
+  const Vec3T<S> rod(S(std::sin(theta0)), 0, S(-std::cos(theta0)));
   auto run = [&](bool limited, double& widest) {
     auto sim = directSimulation<S>();
     auto bob = makeBody<S>(*sim, "bob", S(1), rod);
     ref_ptr<BallJointT<S>> ball =
-        new BallJointT<S>(bob.get(), frameAt<S>(-rod, rod).get(), nullptr, frameAt<S>(Vec3<S>::Zero(), -Vec3<S>::UnitZ()).get());
+        new BallJointT<S>(bob.get(), frameAt<S>(-rod, rod).get(), nullptr, frameAt<S>(Vec3T<S>::Zero(), -Vec3T<S>::UnitZ()).get());
     ball->getConeLimit()->setEnable(limited);
     ball->getConeLimit()->setLimitAngles(S(0.6), S(0.9));
     sim->add(ball);
     widest = 0.0;
-    std::vector<Vec3<S>> path;
+    std::vector<Vec3T<S>> path;
     for (int i = 0; i < 180; ++i) {
       sim->stepForward();
       widest = std::max(widest, double(ball->getSwingAngle()));
@@ -357,8 +357,8 @@ TEST_CASE_TEMPLATE("a pendulum swinging inside its cone moves exactly as without
 
 TEST_CASE_TEMPLATE("the twist range controller stops a body spun about its z axis at the upper limit", S, float, double) {
   auto sim = directSimulation<S>();
-  auto body = makeBody<S>(*sim, "top", S(2), Vec3<S>::Zero(), S(0.1));
-  ref_ptr<BallJointT<S>> ball = new BallJointT<S>(body.get(), frameAt<S>(Vec3<S>::Zero()).get());
+  auto body = makeBody<S>(*sim, "top", S(2), Vec3T<S>::Zero(), S(0.1));
+  ref_ptr<BallJointT<S>> ball = new BallJointT<S>(body.get(), frameAt<S>(Vec3T<S>::Zero()).get());
   auto* twist = ball->getTwistRangeController();
   twist->setEnable(true);
   twist->setRange(S(-0.3), S(0.6));
@@ -366,7 +366,7 @@ TEST_CASE_TEMPLATE("the twist range controller stops a body spun about its z axi
   const double T = 0.5;
   double highest = 0.0;
   for (int i = 0; i < 180; ++i) {
-    body->addTorque(Vec3<S>(0, 0, S(T)));
+    body->addTorque(Vec3T<S>(0, 0, S(T)));
     sim->stepForward();
     highest = std::max(highest, double(ball->getTwistAngle()));
   }
@@ -385,8 +385,8 @@ TEST_CASE_TEMPLATE("the twist range controller stops a body spun about its z axi
 
 TEST_CASE_TEMPLATE("bad controller input names the joint and the value and changes nothing", S, float, double) {
   auto sim = directSimulation<S>();
-  auto body = makeBody<S>(*sim, "b", S(1), Vec3<S>::Zero());
-  ref_ptr<HingeT<S>> hinge = new HingeT<S>(body.get(), frameAt<S>(Vec3<S>::Zero()).get());
+  auto body = makeBody<S>(*sim, "b", S(1), Vec3T<S>::Zero());
+  ref_ptr<HingeT<S>> hinge = new HingeT<S>(body.get(), frameAt<S>(Vec3T<S>::Zero()).get());
   hinge->setName("door");
   auto* friction = hinge->getFrictionController();
   friction->setFrictionCoefficient(S(0.2));
@@ -408,12 +408,12 @@ TEST_CASE_TEMPLATE("bad controller input names the joint and the value and chang
   CHECK(m.find("(1, 2)") != std::string::npos);
   CHECK(friction->getMinimumStaticFrictionForceRange().upper == S(0));
 
-  ref_ptr<CylindricalJointT<S>> cylinder = new CylindricalJointT<S>(body.get(), frameAt<S>(Vec3<S>::Zero()).get());
+  ref_ptr<CylindricalJointT<S>> cylinder = new CylindricalJointT<S>(body.get(), frameAt<S>(Vec3T<S>::Zero()).get());
   m = message([&] { cylinder->getFrictionController(CylindricalJointT<S>::SECOND)->setFrictionCoefficient(S(-2)); });
   CHECK(m.find("FrictionController of CylindricalJoint") != std::string::npos);
   CHECK_THROWS_AS((void)cylinder->getFrictionController(2), Error);
 
-  ref_ptr<BallJointT<S>> ball = new BallJointT<S>(body.get(), frameAt<S>(Vec3<S>::Zero()).get());
+  ref_ptr<BallJointT<S>> ball = new BallJointT<S>(body.get(), frameAt<S>(Vec3T<S>::Zero()).get());
   ball->setName("shoulder");
   auto* cone = ball->getConeLimit();
   cone->setLimitAngles(S(0.3), S(0.4));

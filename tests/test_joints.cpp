@@ -22,9 +22,9 @@ TEST_CASE_TEMPLATE("a hinge pendulum released at 90 degrees has the exact large-
   sim->setSolver(new DirectSolver());
   sim->setTimeStep(S(1) / S(240));
   const S L = S(1), m = S(2), Icm = S(0.01);
-  auto bob = makeBody<S>(*sim, "bob", m, Vec3<S>(L, 0, 0), Icm);
+  auto bob = makeBody<S>(*sim, "bob", m, Vec3T<S>(L, 0, 0), Icm);
   // Pivot at the origin, axis along world y: frame 1 sits at the pivot, in bob coordinates.
-  ref_ptr<HingeT<S>> hinge = new HingeT<S>(bob.get(), frameAt<S>(Vec3<S>(-L, 0, 0), Vec3<S>::UnitY()).get());
+  ref_ptr<HingeT<S>> hinge = new HingeT<S>(bob.get(), frameAt<S>(Vec3T<S>(-L, 0, 0), Vec3T<S>::UnitY()).get());
   sim->add(hinge);
 
   std::vector<double> crossings;
@@ -58,9 +58,9 @@ TEST_CASE_TEMPLATE("a prismatic on a 30 degree axis accelerates at g sin 30", S,
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   sim->setSolver(new DirectSolver());
   const S angle = S(std::numbers::pi / 6);
-  const Vec3<S> axis(std::cos(angle), S(0), std::sin(angle));
-  auto slider = makeBody<S>(*sim, "slider", S(3), Vec3<S>::Zero());
-  ref_ptr<PrismaticT<S>> prismatic = new PrismaticT<S>(slider.get(), frameAt<S>(Vec3<S>::Zero(), axis).get());
+  const Vec3T<S> axis(std::cos(angle), S(0), std::sin(angle));
+  auto slider = makeBody<S>(*sim, "slider", S(3), Vec3T<S>::Zero());
+  ref_ptr<PrismaticT<S>> prismatic = new PrismaticT<S>(slider.get(), frameAt<S>(Vec3T<S>::Zero(), axis).get());
   sim->add(prismatic);
   sim->stepTo(S(2));
   const double t = double(sim->getTimeStamp());
@@ -80,7 +80,7 @@ TEST_CASE_TEMPLATE("a lock joint deflects load times compliance, in meters", S, 
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   sim->setSolver(new DirectSolver());
   const S m = S(10), c = S(1e-4);
-  auto body = makeBody<S>(*sim, "weight", m, Vec3<S>::Zero());
+  auto body = makeBody<S>(*sim, "weight", m, Vec3T<S>::Zero());
   ref_ptr<LockJointT<S>> lock = new LockJointT<S>(body.get());
   lock->setCompliance(c, LockJointT<S>::TRANSLATIONAL_3);
   sim->add(lock);
@@ -97,15 +97,15 @@ TEST_CASE_TEMPLATE("a lock joint twists load times compliance in radians with li
   for (bool linearize : {false, true}) {
     ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
     sim->setSolver(new DirectSolver());
-    sim->setUniformGravity(Vec3<S>::Zero());
+    sim->setUniformGravity(Vec3T<S>::Zero());
     const S c = S(1e-2), torque = S(80);  // τc = 0.8 rad
-    auto body = makeBody<S>(*sim, "wheel", S(1), Vec3<S>::Zero(), S(0.1));
+    auto body = makeBody<S>(*sim, "wheel", S(1), Vec3T<S>::Zero(), S(0.1));
     ref_ptr<LockJointT<S>> lock = new LockJointT<S>(body.get());
     for (int dof : {3, 4, 5}) lock->setCompliance(c, dof);
     lock->setEnableLinearization(linearize);
     sim->add(lock);
     for (int i = 0; i < 600; ++i) {
-      body->addTorque(Vec3<S>(0, 0, torque));
+      body->addTorque(Vec3T<S>(0, 0, torque));
       sim->stepForward();
     }
     const double angle = double(toEulerAngles<S>(body->getRotation()).z);
@@ -123,12 +123,12 @@ TEST_CASE_TEMPLATE("getLastForce of a hanging body equals its weight", S, float,
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   sim->setSolver(new DirectSolver());
   const S m = S(7.5);
-  auto body = makeBody<S>(*sim, "hanging", m, Vec3<S>(0, 0, -1));
-  ref_ptr<HingeT<S>> hinge = new HingeT<S>(body.get(), frameAt<S>(Vec3<S>(0, 0, 1)).get());
+  auto body = makeBody<S>(*sim, "hanging", m, Vec3T<S>(0, 0, -1));
+  ref_ptr<HingeT<S>> hinge = new HingeT<S>(body.get(), frameAt<S>(Vec3T<S>(0, 0, 1)).get());
   hinge->setEnableComputeForces(true);
   sim->add(hinge);
   sim->stepTo(S(5));
-  Vec3<S> force = Vec3<S>::Zero(), torque = Vec3<S>::Zero();
+  Vec3T<S> force = Vec3T<S>::Zero(), torque = Vec3T<S>::Zero();
   REQUIRE(hinge->getLastForce(body.get(), force, torque));
   const double weight = double(m) * spook::test::kG;
   MESSAGE("lock force " << force.transpose() << " N, weight " << weight << " N");
@@ -136,7 +136,7 @@ TEST_CASE_TEMPLATE("getLastForce of a hanging body equals its weight", S, float,
   CHECK(std::hypot(double(force.x()), double(force.y())) < pick<S>(1e-9, 1e-4) * weight);
   CHECK(double(torque.norm()) < pick<S>(1e-8, 1e-4) * weight);
   // About the attachment origin, 2 m above the center: the same, as the force is vertical.
-  Vec3<S> forceAtFrame = Vec3<S>::Zero(), torqueAtFrame = Vec3<S>::Zero();
+  Vec3T<S> forceAtFrame = Vec3T<S>::Zero(), torqueAtFrame = Vec3T<S>::Zero();
   REQUIRE(hinge->getLastForce(0, forceAtFrame, torqueAtFrame, false));
   CHECK(double(torqueAtFrame.norm()) < pick<S>(1e-7, 1e-3) * weight);
   // Off: nothing kept.
@@ -151,8 +151,8 @@ TEST_CASE_TEMPLATE("a screw jack descends at g m / (m + I (2 pi / lead)^2)", S, 
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   sim->setSolver(new DirectSolver());
   const S m = S(3), I = S(0.02), lead = S(0.25);
-  auto nut = makeBody<S>(*sim, "nut", m, Vec3<S>::Zero(), I);
-  auto screw = ConstraintT<S>::template createFromWorld<CylindricalJointT<S>>(Vec3<S>::Zero(), Vec3<S>::UnitZ(), nut.get());
+  auto nut = makeBody<S>(*sim, "nut", m, Vec3T<S>::Zero(), I);
+  auto screw = ConstraintT<S>::template createFromWorld<CylindricalJointT<S>>(Vec3T<S>::Zero(), Vec3T<S>::UnitZ(), nut.get());
   screw->getScrew1D()->setEnable(true);
   screw->setLead(lead);
   sim->add(screw);
@@ -172,7 +172,7 @@ TEST_CASE_TEMPLATE("a screw jack descends at g m / (m + I (2 pi / lead)^2)", S, 
 TEST_CASE_TEMPLATE("a plane joint keeps a body in its plane", S, float, double) {
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   sim->setSolver(new DirectSolver());
-  auto puck = makeBody<S>(*sim, "puck", S(2), Vec3<S>(1, 2, 0));
+  auto puck = makeBody<S>(*sim, "puck", S(2), Vec3T<S>(1, 2, 0));
   ref_ptr<PlaneJointT<S>> plane = new PlaneJointT<S>(puck.get(), nullptr);
   sim->add(plane);
   puck->setVelocity(S(1), S(-0.5), S(0));

@@ -32,7 +32,7 @@ struct Frames {
   Eigen::Vector3d p1, p2;
   Eigen::Matrix3d R1, R2;
   explicit Frames(const ConstraintT<S>& c) {
-    const Transform<S> X1 = c.getAttachmentFrame(0)->getMatrix(), X2 = c.getAttachmentFrame(1)->getMatrix();
+    const TransformT<S> X1 = c.getAttachmentFrame(0)->getMatrix(), X2 = c.getAttachmentFrame(1)->getMatrix();
     p1 = X1.translation().template cast<double>();
     p2 = X2.translation().template cast<double>();
     R1 = X1.linear().template cast<double>();
@@ -68,12 +68,12 @@ struct PerturbedChain {
   ref_ptr<RigidBodyT<S>> upper, lower;
   ref_ptr<Joint> top, bottom;
 
-  PerturbedChain(const std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*, const Vec3<S>&)>& make) {
+  PerturbedChain(const std::function<ref_ptr<Joint>(RigidBodyT<S>*, RigidBodyT<S>*, const Vec3T<S>&)>& make) {
     sim->setSolver(new DirectSolver());
-    upper = makeBody<S>(*sim, "upper", S(2), Vec3<S>(S(0.5), 0, 0), S(0.05));
-    lower = makeBody<S>(*sim, "lower", S(1), Vec3<S>(S(0.5), 0, S(-1)), S(0.02));
-    top = make(upper.get(), nullptr, upper->getPosition() + Vec3<S>(0, 0, S(0.5)));
-    bottom = make(lower.get(), upper.get(), lower->getPosition() + Vec3<S>(0, 0, S(0.5)));
+    upper = makeBody<S>(*sim, "upper", S(2), Vec3T<S>(S(0.5), 0, 0), S(0.05));
+    lower = makeBody<S>(*sim, "lower", S(1), Vec3T<S>(S(0.5), 0, S(-1)), S(0.02));
+    top = make(upper.get(), nullptr, upper->getPosition() + Vec3T<S>(0, 0, S(0.5)));
+    bottom = make(lower.get(), upper.get(), lower->getPosition() + Vec3T<S>(0, 0, S(0.5)));
     sim->add(top);
     sim->add(bottom);
     upper->setVelocity(S(0.2), S(-0.1), S(0.3));
@@ -95,9 +95,9 @@ struct PerturbedChain {
 // Joints built from world frames at `point` with z along a tilted axis, so
 // that gravity loads every constrained DOF.
 template <class S, class Joint>
-ref_ptr<Joint> jointAt(RigidBodyT<S>* b1, RigidBodyT<S>* b2, const Vec3<S>& point) {
+ref_ptr<Joint> jointAt(RigidBodyT<S>* b1, RigidBodyT<S>* b2, const Vec3T<S>& point) {
   ref_ptr<FrameT<S>> f1, f2;
-  ConstraintT<S>::calculateFramesFromWorld(point, Vec3<S>(1, 0, 1).normalized(), b1, f1, b2, f2);
+  ConstraintT<S>::calculateFramesFromWorld(point, Vec3T<S>(1, 0, 1).normalized(), b1, f1, b2, f2);
   return new Joint(b1, f1.get(), b2, f2.get());
 }
 
@@ -172,16 +172,16 @@ TEST_CASE_TEMPLATE("a cardan joint drives its output at w1 cos b / (1 - sin^2 b 
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   sim->setSolver(new DirectSolver());
   const double beta = std::numbers::pi / 6, w1 = 2.0;
-  const Vec3<S> u2(S(std::sin(beta)), 0, S(std::cos(beta)));  // output shaft axis
-  auto input = makeBody<S>(*sim, "input", S(1), Vec3<S>(0, 0, S(-0.5)), S(0.01));
-  auto output = makeBody<S>(*sim, "output", S(1), Vec3<S>(S(0.5) * u2), S(0.01));
-  auto inHinge = ConstraintT<S>::template createFromWorld<HingeT<S>>(Vec3<S>(0, 0, S(-0.5)), Vec3<S>::UnitZ(), input.get());
-  auto outHinge = ConstraintT<S>::template createFromWorld<HingeT<S>>(Vec3<S>(S(0.5) * u2), u2, output.get());
+  const Vec3T<S> u2(S(std::sin(beta)), 0, S(std::cos(beta)));  // output shaft axis
+  auto input = makeBody<S>(*sim, "input", S(1), Vec3T<S>(0, 0, S(-0.5)), S(0.01));
+  auto output = makeBody<S>(*sim, "output", S(1), Vec3T<S>(S(0.5) * u2), S(0.01));
+  auto inHinge = ConstraintT<S>::template createFromWorld<HingeT<S>>(Vec3T<S>(0, 0, S(-0.5)), Vec3T<S>::UnitZ(), input.get());
+  auto outHinge = ConstraintT<S>::template createFromWorld<HingeT<S>>(Vec3T<S>(S(0.5) * u2), u2, output.get());
   // Cross arms: x₁ along world x (in the plane of the shafts), y₂ along world y.
-  ref_ptr<FrameT<S>> f1 = frameAt<S>(Vec3<S>(0, 0, S(0.5)));
+  ref_ptr<FrameT<S>> f1 = frameAt<S>(Vec3T<S>(0, 0, S(0.5)));
   ref_ptr<FrameT<S>> f2 = new FrameT<S>();
-  f2->setLocalTranslate(Vec3<S>(S(-0.5) * u2));
-  f2->setLocalRotate(Quat<S>(Eigen::AngleAxis<S>(S(beta), Vec3<S>::UnitY())));
+  f2->setLocalTranslate(Vec3T<S>(S(-0.5) * u2));
+  f2->setLocalRotate(QuatT<S>(Eigen::AngleAxis<S>(S(beta), Vec3T<S>::UnitY())));
   ref_ptr<UniversalJointT<S>> cardan = new UniversalJointT<S>(input.get(), f1.get(), output.get(), f2.get());
   inHinge->getMotor1D()->setEnable(true);
   inHinge->getMotor1D()->setSpeed(S(w1));
@@ -224,8 +224,8 @@ TEST_CASE_TEMPLATE("universal joint angles, locks and ranges act on the two cros
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   sim->setSolver(new DirectSolver());
   // A rod hanging 0.5 m below the joint, pushed sideways so both arms turn.
-  auto rod = makeBody<S>(*sim, "rod", S(1), Vec3<S>(0, 0, S(-0.5)), S(0.02));
-  ref_ptr<UniversalJointT<S>> u = new UniversalJointT<S>(rod.get(), frameAt<S>(Vec3<S>(0, 0, S(0.5))).get());
+  auto rod = makeBody<S>(*sim, "rod", S(1), Vec3T<S>(0, 0, S(-0.5)), S(0.02));
+  ref_ptr<UniversalJointT<S>> u = new UniversalJointT<S>(rod.get(), frameAt<S>(Vec3T<S>(0, 0, S(0.5))).get());
   sim->add(u);
   rod->setVelocity(S(0.6), S(0.8), 0);
   double worstChart = 0.0, worstRange = 0.0, maxA = 0, maxB = 0;
@@ -269,7 +269,7 @@ TEST_CASE_TEMPLATE("universal joint angles, locks and ranges act on the two cros
 // PrismaticUniversalJoint
 
 TEST_CASE_TEMPLATE("a prismatic universal joint keeps its center on the axis and its cross square", S, float, double) {
-  auto make = [](RigidBodyT<S>* b1, RigidBodyT<S>* b2, const Vec3<S>& p) {
+  auto make = [](RigidBodyT<S>* b1, RigidBodyT<S>* b2, const Vec3T<S>& p) {
     auto j = jointAt<S, PrismaticUniversalJointT<S>>(b1, b2, p);
     // The slide stopped at ±0.05 m so the chain stays in place.
     j->getRange1D(PrismaticUniversalJointT<S>::TRANSLATIONAL_CONTROLLER_1)->setEnable(true);
@@ -294,9 +294,9 @@ TEST_CASE_TEMPLATE("a prismatic universal slider accelerates at g sin 30 along i
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   sim->setSolver(new DirectSolver());
   const S angle = S(std::numbers::pi / 6);
-  const Vec3<S> axis(std::cos(angle), S(0), std::sin(angle));
-  auto slider = makeBody<S>(*sim, "slider", S(3), Vec3<S>::Zero());
-  auto pu = ConstraintT<S>::template createFromWorld<PrismaticUniversalJointT<S>>(Vec3<S>::Zero(), axis, slider.get());
+  const Vec3T<S> axis(std::cos(angle), S(0), std::sin(angle));
+  auto slider = makeBody<S>(*sim, "slider", S(3), Vec3T<S>::Zero());
+  auto pu = ConstraintT<S>::template createFromWorld<PrismaticUniversalJointT<S>>(Vec3T<S>::Zero(), axis, slider.get());
   sim->add(pu);
   sim->stepTo(S(2));
   const double t = double(sim->getTimeStamp()), h = double(sim->getTimeStep());
@@ -320,7 +320,7 @@ TEST_CASE_TEMPLATE("a prismatic universal slider accelerates at g sin 30 along i
 TEST_CASE_TEMPLATE("a dot1 joint keeps two axes perpendicular and leaves everything else free", S, float, double) {
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   sim->setSolver(new DirectSolver());
-  auto body = makeBody<S>(*sim, "tumbler", S(2), Vec3<S>(1, 2, 3), S(0.05));
+  auto body = makeBody<S>(*sim, "tumbler", S(2), Vec3T<S>(1, 2, 3), S(0.05));
   ref_ptr<Dot1JointT<S>> dot1 = new Dot1JointT<S>(body.get(), nullptr);
   sim->add(dot1);
   body->setVelocity(S(1), S(-0.5), S(2));
@@ -360,8 +360,8 @@ TEST_CASE_TEMPLATE("a slack prismatic falls freely through its slack and rests a
   sim->setSolver(new DirectSolver());
   using J = SlackPrismaticJointT<S>;
   const S m = S(10), slack = S(0.25), compliance = S(1e-5);
-  auto body = makeBody<S>(*sim, "gap", m, Vec3<S>::Zero(), S(0.1));
-  ref_ptr<J> joint = new J(body.get(), frameAt<S>(Vec3<S>::Zero(), Vec3<S>::UnitX()).get());
+  auto body = makeBody<S>(*sim, "gap", m, Vec3T<S>::Zero(), S(0.1));
+  ref_ptr<J> joint = new J(body.get(), frameAt<S>(Vec3T<S>::Zero(), Vec3T<S>::UnitX()).get());
   joint->setSlack(J::TRANSLATIONAL_1, -slack, slack);
   joint->setCompliance(compliance, J::TRANSLATIONAL_1);
   sim->add(joint);
@@ -405,8 +405,8 @@ TEST_CASE_TEMPLATE("a slack hinge tilts freely through its rotational slack and 
   sim->setSolver(new DirectSolver());
   using J = SlackHingeJointT<S>;
   const S m = S(2), L = S(0.5), Icm = S(0.02), slack = S(0.3), compliance = S(1e-4);
-  auto rod = makeBody<S>(*sim, "rod", m, Vec3<S>(L, 0, 0), Icm);
-  ref_ptr<J> joint = new J(rod.get(), frameAt<S>(Vec3<S>(-L, 0, 0)).get());
+  auto rod = makeBody<S>(*sim, "rod", m, Vec3T<S>(L, 0, 0), Icm);
+  ref_ptr<J> joint = new J(rod.get(), frameAt<S>(Vec3T<S>(-L, 0, 0)).get());
   joint->setSlackParameters(S(0), slack);
   joint->setCompliance(compliance, J::ROTATIONAL_2);
   sim->add(joint);
@@ -453,7 +453,7 @@ TEST_CASE_TEMPLATE("a slack hinge tilts freely through its rotational slack and 
 // chain stepped with both for 2 s ends in the same place.
 TEST_CASE_TEMPLATE("slack joints with zero slack move as their rigid counterparts", S, float, double) {
   auto finalPositions = [](auto make) {
-    using Joint = typename decltype(make(nullptr, nullptr, Vec3<S>()))::element_type;
+    using Joint = typename decltype(make(nullptr, nullptr, Vec3T<S>()))::element_type;
     PerturbedChain<S, Joint> chain(make);
     chain.sim->stepTo(S(2));
     return std::make_pair(chain.upper->getPosition().template cast<double>().eval(),
@@ -495,8 +495,8 @@ TEST_CASE_TEMPLATE("slack joints keep their constrained DOFs within the slack", 
   };
   auto run = [&](const char* name, auto make, const std::function<double(const Frames<S>&, int)>& coordinate,
                  const std::vector<bool>& rotational) {
-    using Joint = typename decltype(make(nullptr, nullptr, Vec3<S>()))::element_type;
-    PerturbedChain<S, Joint> chain([&](RigidBodyT<S>* b1, RigidBodyT<S>* b2, const Vec3<S>& p) {
+    using Joint = typename decltype(make(nullptr, nullptr, Vec3T<S>()))::element_type;
+    PerturbedChain<S, Joint> chain([&](RigidBodyT<S>* b1, RigidBodyT<S>* b2, const Vec3T<S>& p) {
       auto j = make(b1, b2, p);
       j->setSlackParameters(S(pos), S(rot));
       stopSlide(*j);
@@ -536,7 +536,7 @@ TEST_CASE_TEMPLATE("slack joints keep their constrained DOFs within the slack", 
 
 TEST_CASE_TEMPLATE("bad slack and DOF input is refused with the joint and the value named", S, float, double) {
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
-  auto body = makeBody<S>(*sim, "b", S(1), Vec3<S>::Zero());
+  auto body = makeBody<S>(*sim, "b", S(1), Vec3T<S>::Zero());
   const S nan = std::numeric_limits<S>::quiet_NaN();
 
   ref_ptr<SlackHingeJointT<S>> hinge = new SlackHingeJointT<S>(body.get(), nullptr);

@@ -34,10 +34,10 @@ using Pairs = std::vector<std::pair<std::size_t, std::size_t>>;
 
 // A box with corners center ± half, wound counter-clockwise seen from outside.
 template <class S>
-Mesh<S> boxMesh(const spook::Vec3<S>& center, const spook::Vec3<S>& half) {
-  std::vector<spook::Vec3<S>> vertices;
+Mesh<S> boxMesh(const spook::Vec3T<S>& center, const spook::Vec3T<S>& half) {
+  std::vector<spook::Vec3T<S>> vertices;
   for (int k = 0; k < 8; ++k)
-    vertices.push_back(center + spook::Vec3<S>((k & 1) ? half.x() : -half.x(), (k & 2) ? half.y() : -half.y(),
+    vertices.push_back(center + spook::Vec3T<S>((k & 1) ? half.x() : -half.x(), (k & 2) ? half.y() : -half.y(),
                                                (k & 4) ? half.z() : -half.z()));
   const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   Triangles triangles;
@@ -51,8 +51,8 @@ Mesh<S> boxMesh(const spook::Vec3<S>& center, const spook::Vec3<S>& half) {
 // Vertices on a sphere of radius r about the origin: `stacks` bands of
 // latitude, `slices` of longitude, one vertex at each pole.
 template <class S>
-std::pair<std::vector<spook::Vec3<S>>, Triangles> uvSphere(double r, int stacks, int slices) {
-  std::vector<spook::Vec3<S>> vertices{{S(0), S(0), S(r)}};
+std::pair<std::vector<spook::Vec3T<S>>, Triangles> uvSphere(double r, int stacks, int slices) {
+  std::vector<spook::Vec3T<S>> vertices{{S(0), S(0), S(r)}};
   for (int k = 1; k < stacks; ++k)
     for (int s = 0; s < slices; ++s) {
       const double theta = std::numbers::pi * k / stacks, phi = 2 * std::numbers::pi * s / slices;
@@ -79,11 +79,11 @@ template <class S>
 Mesh<S> triangleSoup(int count, double extent, double size, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> where(-extent, extent), offset(-size, size);
-  std::vector<spook::Vec3<S>> vertices;
+  std::vector<spook::Vec3T<S>> vertices;
   Triangles triangles;
   for (int t = 0; t < count; ++t) {
-    const spook::Vec3<S> c(S(where(rng)), S(where(rng)), S(where(rng)));
-    for (int k = 0; k < 3; ++k) vertices.push_back(c + spook::Vec3<S>(S(offset(rng)), S(offset(rng)), S(offset(rng))));
+    const spook::Vec3T<S> c(S(where(rng)), S(where(rng)), S(where(rng)));
+    for (int k = 0; k < 3; ++k) vertices.push_back(c + spook::Vec3T<S>(S(offset(rng)), S(offset(rng)), S(offset(rng))));
     triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
   }
   return new spook::TrimeshT<S>(vertices, triangles);
@@ -92,7 +92,7 @@ Mesh<S> triangleSoup(int count, double extent, double size, unsigned seed) {
 // A flat floor at z = 0 of cells × cells unit squares, two triangles each.
 template <class S>
 Mesh<S> floorMesh(int cells) {
-  std::vector<spook::Vec3<S>> vertices;
+  std::vector<spook::Vec3T<S>> vertices;
   for (int j = 0; j <= cells; ++j)
     for (int i = 0; i <= cells; ++i) vertices.emplace_back(S(i - cells / 2), S(j - cells / 2), S(0));
   Triangles triangles;
@@ -106,7 +106,7 @@ Mesh<S> floorMesh(int cells) {
 }
 
 template <class S>
-Box<S> boxOf(const std::array<spook::Vec3<S>, 3>& t) {
+Box<S> boxOf(const std::array<spook::Vec3T<S>, 3>& t) {
   return {t[0].cwiseMin(t[1]).cwiseMin(t[2]), t[0].cwiseMax(t[1]).cwiseMax(t[2])};
 }
 
@@ -125,8 +125,8 @@ std::vector<Box<S>> randomBoxes(int count, double extent, double zExtent, double
   std::uniform_real_distribution<double> where(-extent, extent), height(-zExtent, zExtent), width(0.0, size);
   std::vector<Box<S>> boxes;
   for (int q = 0; q < count; ++q) {
-    spook::Vec3<S> lo(S(where(rng)), S(where(rng)), S(height(rng)));
-    spook::Vec3<S> hi = lo + spook::Vec3<S>(S(width(rng)), S(width(rng)), S(width(rng)));
+    spook::Vec3T<S> lo(S(where(rng)), S(where(rng)), S(height(rng)));
+    spook::Vec3T<S> hi = lo + spook::Vec3T<S>(S(width(rng)), S(width(rng)), S(width(rng)));
     if (snap) {
       lo = lo.array().round().matrix();
       hi = hi.array().round().matrix();
@@ -142,7 +142,7 @@ template <class S>
 std::vector<std::size_t> visited(const spook::TrimeshT<S>& mesh, const Box<S>& query) {
   std::vector<std::size_t> hits;
   mesh.forEachTriangle(query,
-                       [&](std::size_t i, const spook::Vec3<S>& a, const spook::Vec3<S>&, const spook::Vec3<S>&) {
+                       [&](std::size_t i, const spook::Vec3T<S>& a, const spook::Vec3T<S>&, const spook::Vec3T<S>&) {
                          CHECK(a == mesh.getTriangle(i)[0]);
                          hits.push_back(i);
                        });
@@ -166,7 +166,7 @@ void checkQueriesMatchBruteForce(const spook::TrimeshT<S>& mesh, const std::vect
 }
 
 template <class S>
-Pairs pairsOf(const spook::detail::AabbTree<S>& a, const spook::detail::AabbTree<S>& b, const spook::Transform<S>& X) {
+Pairs pairsOf(const spook::detail::AabbTree<S>& a, const spook::detail::AabbTree<S>& b, const spook::TransformT<S>& X) {
   Pairs pairs;
   a.queryPairs(b, X, [&](std::size_t i, std::size_t j) { pairs.emplace_back(i, j); });
   std::sort(pairs.begin(), pairs.end());
@@ -174,7 +174,7 @@ Pairs pairsOf(const spook::detail::AabbTree<S>& a, const spook::detail::AabbTree
 }
 
 template <class S>
-Pairs bruteForcePairs(const std::vector<Box<S>>& a, const std::vector<Box<S>>& b, const spook::Transform<S>& X) {
+Pairs bruteForcePairs(const std::vector<Box<S>>& a, const std::vector<Box<S>>& b, const spook::TransformT<S>& X) {
   Pairs pairs;
   for (std::size_t j = 0; j < b.size(); ++j) {
     const Box<S> moved = spook::detail::transformBox(b[j], X);
@@ -190,7 +190,7 @@ Pairs bruteForcePairs(const std::vector<Box<S>>& a, const std::vector<Box<S>>& b
 TEST_CASE_TEMPLATE("a closed box mesh off the origin has the box's volume and parallel-axis inertia", S, float,
                    double) {
   const S tol = pick<S>(1e-12, 1e-5);
-  const spook::Vec3<S> half(S(0.5), S(1), S(1.5)), d(S(2), S(-1), S(0.5));
+  const spook::Vec3T<S> half(S(0.5), S(1), S(1.5)), d(S(2), S(-1), S(0.5));
   const Mesh<S> mesh = boxMesh<S>(d, half);
   CHECK((mesh->getType() == spook::ShapeType::TRIMESH));  // parenthesized: doctest would stringify via spook::toString
   CHECK(mesh->isClosed());
@@ -198,18 +198,18 @@ TEST_CASE_TEMPLATE("a closed box mesh off the origin has the box's volume and pa
   CHECK((mesh->getCenterOfVolume() - d).norm() <= tol * d.norm());
   // m/3 (b² + c², a² + c², a² + b²) about the center, plus m (|d|² 1 − d dᵀ).
   const S m = S(3);
-  const spook::Vec3<S> sq = half.cwiseAbs2();
-  const spook::Mat3<S> expected =
-      spook::Mat3<S>(spook::Vec3<S>(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()).asDiagonal()) * (m / S(3)) +
-      m * (d.squaredNorm() * spook::Mat3<S>::Identity() - d * d.transpose());
-  const spook::Mat3<S> inertia = mesh->calculateInertia(m).matrix();
+  const spook::Vec3T<S> sq = half.cwiseAbs2();
+  const spook::Mat3T<S> expected =
+      spook::Mat3T<S>(spook::Vec3T<S>(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()).asDiagonal()) * (m / S(3)) +
+      m * (d.squaredNorm() * spook::Mat3T<S>::Identity() - d * d.transpose());
+  const spook::Mat3T<S> inertia = mesh->calculateInertia(m).matrix();
   CHECK((inertia - expected).norm() <= tol * expected.norm());
   const Box<S> bounds = mesh->getBoundingBox();
   CHECK(bounds.min == d - half);
   CHECK(bounds.max == d + half);
   for (std::size_t i = 0; i < mesh->getNumTriangles(); ++i) {
     const auto t = mesh->getTriangle(i);
-    const spook::Vec3<S> outward = (t[0] + t[1] + t[2]) / S(3) - d;
+    const spook::Vec3T<S> outward = (t[0] + t[1] + t[2]) / S(3) - d;
     CHECK(mesh->getNormal(i).dot(outward) > S(0));
     CHECK(std::abs(mesh->getNormal(i).norm() - S(1)) <= tol);
   }
@@ -234,8 +234,8 @@ TEST_CASE_TEMPLATE("a UV sphere's volume approaches 4/3 π r³ from below; remov
   const auto [vertices, triangles] = uvSphere<S>(r, 64, 128);
   const Mesh<S> sphere = new spook::TrimeshT<S>(vertices, triangles);
   CHECK(sphere->getCenterOfVolume().norm() <= pick<S>(1e-12, 1e-5));
-  const spook::Vec3<S> moments = sphere->calculateInertia(S(1)).diagonal();
-  CHECK((moments / S(0.4 * r * r) - spook::Vec3<S>::Ones()).cwiseAbs().maxCoeff() < S(0.01));
+  const spook::Vec3T<S> moments = sphere->calculateInertia(S(1)).diagonal();
+  CHECK((moments / S(0.4 * r * r) - spook::Vec3T<S>::Ones()).cwiseAbs().maxCoeff() < S(0.01));
 
   Triangles open = triangles;
   open.erase(open.begin() + 100);
@@ -256,17 +256,17 @@ TEST_CASE_TEMPLATE("tree queries over 20,000 triangles find exactly the brute-fo
   const Mesh<S> floor = floorMesh<S>(100);
   CHECK(floor->getNumTriangles() == 20000);
   checkQueriesMatchBruteForce(*floor, randomBoxes<S>(300, 50.0, 1.0, 6.0, true, 7));
-  CHECK(visited(*floor, Box<S>{spook::Vec3<S>(S(-2), S(-2), S(1e-3)), spook::Vec3<S>(S(2), S(2), S(1))}).empty());
+  CHECK(visited(*floor, Box<S>{spook::Vec3T<S>(S(-2), S(-2), S(1e-3)), spook::Vec3T<S>(S(2), S(2), S(1))}).empty());
 
-  const Box<S> unit{spook::Vec3<S>::Zero(), spook::Vec3<S>::Ones()};
-  CHECK(spook::detail::overlaps(unit, Box<S>{spook::Vec3<S>::Ones(), spook::Vec3<S>::Constant(S(2))}));  // touching
+  const Box<S> unit{spook::Vec3T<S>::Zero(), spook::Vec3T<S>::Ones()};
+  CHECK(spook::detail::overlaps(unit, Box<S>{spook::Vec3T<S>::Ones(), spook::Vec3T<S>::Constant(S(2))}));  // touching
   CHECK_FALSE(
-      spook::detail::overlaps(unit, Box<S>{spook::Vec3<S>(S(0), S(0), S(1.5)), spook::Vec3<S>::Constant(S(2))}));
+      spook::detail::overlaps(unit, Box<S>{spook::Vec3T<S>(S(0), S(0), S(1.5)), spook::Vec3T<S>::Constant(S(2))}));
 
   const spook::detail::AabbTree<S> empty;
   std::size_t calls = 0;
   empty.query(soup->getBoundingBox(), [&](std::size_t) { ++calls; });
-  empty.queryPairs(soup->getTree(), spook::Transform<S>::Identity(), [&](std::size_t, std::size_t) { ++calls; });
+  empty.queryPairs(soup->getTree(), spook::TransformT<S>::Identity(), [&](std::size_t, std::size_t) { ++calls; });
   CHECK(calls == 0);
 }
 
@@ -277,9 +277,9 @@ TEST_CASE_TEMPLATE("tree-vs-tree pairs under a rigid transform match the brute-f
   std::mt19937 rng(17);
   std::normal_distribution<double> n(0.0, 1.0);
   for (int trial = 0; trial < 3; ++trial) {
-    const spook::Quat<S> q(S(n(rng)), S(n(rng)), S(n(rng)), S(n(rng)));
-    const spook::Transform<S> X =
-        spook::makeTransform<S>(spook::Vec3<S>(S(3 * n(rng)), S(3 * n(rng)), S(0.5 * n(rng))), q);
+    const spook::QuatT<S> q(S(n(rng)), S(n(rng)), S(n(rng)), S(n(rng)));
+    const spook::TransformT<S> X =
+        spook::makeTransform<S>(spook::Vec3T<S>(S(3 * n(rng)), S(3 * n(rng)), S(0.5 * n(rng))), q);
     const Pairs pairs = pairsOf(soup->getTree(), probe->getTree(), X);
     CHECK(std::adjacent_find(pairs.begin(), pairs.end()) == pairs.end());
     CHECK(pairs.size() > 100);
@@ -314,7 +314,7 @@ TEST_CASE_TEMPLATE("a plane-shaped height field interpolates the plane and its n
   CHECK(worst <= tol);
   CHECK(std::abs(field->heightAt(S(10), S(0)) - (a * sizeX / 2 + c)) <= tol);  // clamped onto the edge
 
-  const spook::Vec3<S> up = spook::Vec3<S>(-a, -b, S(1)).normalized();
+  const spook::Vec3T<S> up = spook::Vec3T<S>(-a, -b, S(1)).normalized();
   CHECK(field->getNumTriangles() == 2 * 8 * 5);
   for (std::size_t t = 0; t < field->getNumTriangles(); ++t) CHECK((field->getNormal(t) - up).norm() <= tol);
 
@@ -339,8 +339,8 @@ TEST_CASE_TEMPLATE("height-field triangle queries match brute force; setHeight m
     for (std::size_t t = 0; t < field->getNumTriangles(); ++t)
       if (spook::detail::overlaps(boxOf<S>(field->getTriangle(t)), q)) expected.push_back(t);
     field->forEachTriangle(
-        q, [&](std::size_t t, const spook::Vec3<S>& a, const spook::Vec3<S>& b, const spook::Vec3<S>& c) {
-          CHECK(field->getTriangle(t) == std::array<spook::Vec3<S>, 3>{a, b, c});
+        q, [&](std::size_t t, const spook::Vec3T<S>& a, const spook::Vec3T<S>& b, const spook::Vec3T<S>& c) {
+          CHECK(field->getTriangle(t) == std::array<spook::Vec3T<S>, 3>{a, b, c});
           CHECK((b - a).cross(c - a).z() > S(0));
           hits.push_back(t);
         });
@@ -363,8 +363,8 @@ TEST_CASE_TEMPLATE("height-field triangle queries match brute force; setHeight m
 
 TEST_CASE_TEMPLATE("meshes and height fields reject bad input, naming the value", S, float, double) {
   const S inf = std::numeric_limits<S>::infinity();
-  const std::vector<spook::Vec3<S>> corners{{S(0), S(0), S(0)}, {S(1), S(0), S(0)}, {S(0), S(1), S(0)}};
-  const auto trimesh = [](std::vector<spook::Vec3<S>> v, Triangles t) { Mesh<S> m = new spook::TrimeshT<S>(v, t); };
+  const std::vector<spook::Vec3T<S>> corners{{S(0), S(0), S(0)}, {S(1), S(0), S(0)}, {S(0), S(1), S(0)}};
+  const auto trimesh = [](std::vector<spook::Vec3T<S>> v, Triangles t) { Mesh<S> m = new spook::TrimeshT<S>(v, t); };
   checkRejects([&] { trimesh(corners, {}); }, "Trimesh", "0");
   checkRejects(
       [&] {
@@ -376,7 +376,7 @@ TEST_CASE_TEMPLATE("meshes and height fields reject bad input, naming the value"
   checkRejects([&] { trimesh(corners, {{-1, 1, 2}}); }, "Trimesh", "-1");
   checkRejects([&] { trimesh(corners, {{0, 2, 2}}); }, "Trimesh", "(0, 2, 2)");
   // A box wound inside out is closed but encloses a negative volume.
-  const Mesh<S> box = boxMesh<S>(spook::Vec3<S>::Zero(), spook::Vec3<S>::Ones());
+  const Mesh<S> box = boxMesh<S>(spook::Vec3T<S>::Zero(), spook::Vec3T<S>::Ones());
   Triangles inward = box->getTriangles();
   for (auto& t : inward) std::swap(t[1], t[2]);
   checkRejects([&] { trimesh(box->getVertices(), inward); }, "Trimesh", "-8");

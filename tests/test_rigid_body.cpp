@@ -16,7 +16,7 @@ struct OneBody {
   spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
   spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>("body");
   explicit OneBody(bool gravity = false) {
-    if (!gravity) sim->setUniformGravity(spook::Vec3<S>::Zero());
+    if (!gravity) sim->setUniformGravity(spook::Vec3T<S>::Zero());
     sim->add(body);
   }
 };
@@ -26,14 +26,14 @@ struct OneBody {
 TEST_CASE_TEMPLATE("changing mass properties keeps the center-of-mass offset", S, float, double) {
   OneBody<S> scene;
   spook::RigidBodyT<S>& body = *scene.body;
-  body.setPosition(spook::Vec3<S>(S(1), S(2), S(3)));
-  body.setCmLocalTranslate(spook::Vec3<S>(S(0.1), S(-0.2), S(0.3)));
+  body.setPosition(spook::Vec3T<S>(S(1), S(2), S(3)));
+  body.setCmLocalTranslate(spook::Vec3T<S>(S(0.1), S(-0.2), S(0.3)));
   body.getMassProperties()->setMass(S(40));
-  body.getMassProperties()->setInertiaTensor(spook::Vec3<S>(S(1), S(2), S(2.5)));
-  body.getMassProperties()->setMassCoefficients(spook::Vec3<S>(S(0.5), S(0), S(0)));
-  CHECK(body.getCmLocalTranslate() == spook::Vec3<S>(S(0.1), S(-0.2), S(0.3)));
-  CHECK(body.getPosition() == spook::Vec3<S>(S(1), S(2), S(3)));
-  CHECK((body.getCmPosition() - spook::Vec3<S>(S(1.1), S(1.8), S(3.3))).norm() < pick<S>(1e-15, 1e-6));
+  body.getMassProperties()->setInertiaTensor(spook::Vec3T<S>(S(1), S(2), S(2.5)));
+  body.getMassProperties()->setMassCoefficients(spook::Vec3T<S>(S(0.5), S(0), S(0)));
+  CHECK(body.getCmLocalTranslate() == spook::Vec3T<S>(S(0.1), S(-0.2), S(0.3)));
+  CHECK(body.getPosition() == spook::Vec3T<S>(S(1), S(2), S(3)));
+  CHECK((body.getCmPosition() - spook::Vec3T<S>(S(1.1), S(1.8), S(3.3))).norm() < pick<S>(1e-15, 1e-6));
 }
 
 TEST_CASE_TEMPLATE("a force at a point adds the torque r × F", S, float, double) {
@@ -41,8 +41,8 @@ TEST_CASE_TEMPLATE("a force at a point adds the torque r × F", S, float, double
   OneBody<S> scene;
   spook::RigidBodyT<S>& body = *scene.body;
   body.getMassProperties()->setMass(S(2));
-  body.getMassProperties()->setInertiaTensor(spook::Vec3<S>::Constant(S(0.5)));
-  const spook::Vec3<S> force(S(0), S(4), S(0)), at(S(0.25), S(0), S(0));
+  body.getMassProperties()->setInertiaTensor(spook::Vec3T<S>::Constant(S(0.5)));
+  const spook::Vec3T<S> force(S(0), S(4), S(0)), at(S(0.25), S(0), S(0));
   body.addForceAtPosition(force, at);
   CHECK((body.getTorque() - at.cross(force)).norm() < tol);
   const S h = scene.sim->getTimeStep();
@@ -50,9 +50,9 @@ TEST_CASE_TEMPLATE("a force at a point adds the torque r × F", S, float, double
   CHECK((body.getVelocity() - force / S(2) * h).norm() < tol);
   CHECK((body.getAngularVelocity() - at.cross(force) / S(0.5) * h).norm() < tol);
   // Cleared after the step: the next step changes nothing.
-  CHECK(body.getForce() == spook::Vec3<S>::Zero());
-  CHECK(body.getTorque() == spook::Vec3<S>::Zero());
-  const spook::Vec3<S> v = body.getVelocity();
+  CHECK(body.getForce() == spook::Vec3T<S>::Zero());
+  CHECK(body.getTorque() == spook::Vec3T<S>::Zero());
+  const spook::Vec3T<S> v = body.getVelocity();
   scene.sim->stepForward();
   CHECK((body.getVelocity() - v).norm() < tol);
 }
@@ -65,16 +65,16 @@ TEST_CASE_TEMPLATE("added mass changes the response to a force but not to gravit
   spook::RigidBodyT<S>& hull = *scene.body;
   const S h = scene.sim->getTimeStep();
   hull.getMassProperties()->setMass(S(1000));
-  hull.getMassProperties()->setMassCoefficients(spook::Vec3<S>(S(0.2), S(0), S(1)));
-  hull.setRotation(spook::rotate<S>(spook::Vec3<S>::UnitX(), spook::Vec3<S>::UnitY()));  // body x = world y
-  hull.addForce(spook::Vec3<S>(S(600), S(600), S(0)));
+  hull.getMassProperties()->setMassCoefficients(spook::Vec3T<S>(S(0.2), S(0), S(1)));
+  hull.setRotation(spook::rotate<S>(spook::Vec3T<S>::UnitX(), spook::Vec3T<S>::UnitY()));  // body x = world y
+  hull.addForce(spook::Vec3T<S>(S(600), S(600), S(0)));
   scene.sim->stepForward();
-  CHECK((hull.getVelocity() - spook::Vec3<S>(S(0.6) * h, S(0.5) * h, S(0))).norm() < tol);
+  CHECK((hull.getVelocity() - spook::Vec3T<S>(S(0.6) * h, S(0.5) * h, S(0))).norm() < tol);
 
   OneBody<S> falling(true);
-  falling.body->getMassProperties()->setMassCoefficients(spook::Vec3<S>(S(0.2), S(3), S(1)));
+  falling.body->getMassProperties()->setMassCoefficients(spook::Vec3T<S>(S(0.2), S(3), S(1)));
   falling.sim->stepForward();
-  CHECK((falling.body->getVelocity() - spook::Vec3<S>(S(0), S(0), S(-9.80665) * h)).norm() < tol);
+  CHECK((falling.body->getVelocity() - spook::Vec3T<S>(S(0), S(0), S(-9.80665) * h)).norm() < tol);
 }
 
 // dv/dt = −d v stepped implicitly: vₙ = v₀ / (1 + h d)ⁿ, which tends to
@@ -83,7 +83,7 @@ TEST_CASE_TEMPLATE("linear velocity damping follows v0 / (1 + h d)^n", S, float,
   const S tol = pick<S>(1e-12, 1e-5);
   OneBody<S> scene;
   const S h = scene.sim->getTimeStep(), d = S(0.8);
-  const spook::Vec3<S> v0(S(3), S(-1), S(2));
+  const spook::Vec3T<S> v0(S(3), S(-1), S(2));
   scene.body->setLinearVelocityDamping(d);
   scene.body->setVelocity(v0);
   for (int n = 1; n <= 120; ++n) {
@@ -98,7 +98,7 @@ TEST_CASE_TEMPLATE("angular velocity damping follows w0 / (1 + h d)^n", S, float
   const S tol = pick<S>(1e-12, 1e-5);
   OneBody<S> scene;
   const S h = scene.sim->getTimeStep(), d = S(0.3);
-  const spook::Vec3<S> w0(S(0.5), S(2), S(-1));
+  const spook::Vec3T<S> w0(S(0.5), S(2), S(-1));
   scene.body->setAngularVelocityDamping(d);
   scene.body->setAngularVelocity(w0);
   for (int n = 0; n < 90; ++n) scene.sim->stepForward();
@@ -109,11 +109,11 @@ TEST_CASE_TEMPLATE("velocity damping acts along the body's own axes", S, float, 
   const S tol = pick<S>(1e-13, 1e-6);
   OneBody<S> scene;
   const S h = scene.sim->getTimeStep();
-  scene.body->setRotation(spook::rotate<S>(spook::Vec3<S>::UnitX(), spook::Vec3<S>::UnitZ()));  // body x = world z
-  scene.body->setLinearVelocityDamping(spook::Vec3<S>(S(2), S(0), S(0)));
-  scene.body->setVelocity(spook::Vec3<S>(S(1), S(1), S(1)));
+  scene.body->setRotation(spook::rotate<S>(spook::Vec3T<S>::UnitX(), spook::Vec3T<S>::UnitZ()));  // body x = world z
+  scene.body->setLinearVelocityDamping(spook::Vec3T<S>(S(2), S(0), S(0)));
+  scene.body->setVelocity(spook::Vec3T<S>(S(1), S(1), S(1)));
   scene.sim->stepForward();
-  CHECK((scene.body->getVelocity() - spook::Vec3<S>(S(1), S(1), S(1) / (S(1) + S(2) * h))).norm() < tol);
+  CHECK((scene.body->getVelocity() - spook::Vec3T<S>(S(1), S(1), S(1) / (S(1) + S(2) * h))).norm() < tol);
 }
 
 TEST_CASE_TEMPLATE("static bodies stay put and kinematic bodies ignore forces", S, float, double) {
@@ -121,18 +121,18 @@ TEST_CASE_TEMPLATE("static bodies stay put and kinematic bodies ignore forces", 
   OneBody<S> scene(true);
   spook::ref_ptr<spook::RigidBodyT<S>> ground = new spook::RigidBodyT<S>("ground");
   ground->setMotionControl(spook::RigidBodyT<S>::STATIC);
-  ground->setVelocity(spook::Vec3<S>(S(1), S(0), S(0)));
-  ground->addForce(spook::Vec3<S>(S(0), S(0), S(100)));
+  ground->setVelocity(spook::Vec3T<S>(S(1), S(0), S(0)));
+  ground->addForce(spook::Vec3T<S>(S(0), S(0), S(100)));
   scene.sim->add(ground);
   spook::RigidBodyT<S>& conveyor = *scene.body;
   conveyor.setMotionControl(spook::RigidBodyT<S>::KINEMATICS);
-  conveyor.setVelocity(spook::Vec3<S>(S(0.5), S(0), S(0)));
-  conveyor.addForce(spook::Vec3<S>(S(0), S(0), S(100)));
+  conveyor.setVelocity(spook::Vec3T<S>(S(0.5), S(0), S(0)));
+  conveyor.addForce(spook::Vec3T<S>(S(0), S(0), S(100)));
   for (int i = 0; i < 60; ++i) scene.sim->stepForward();
-  CHECK(ground->getPosition() == spook::Vec3<S>::Zero());
-  CHECK(ground->getVelocity() == spook::Vec3<S>::Zero());
-  CHECK((conveyor.getPosition() - spook::Vec3<S>(S(0.5), S(0), S(0))).norm() < tol);
-  CHECK((conveyor.getVelocity() - spook::Vec3<S>(S(0.5), S(0), S(0))).norm() < tol);
+  CHECK(ground->getPosition() == spook::Vec3T<S>::Zero());
+  CHECK(ground->getVelocity() == spook::Vec3T<S>::Zero());
+  CHECK((conveyor.getPosition() - spook::Vec3T<S>(S(0.5), S(0), S(0))).norm() < tol);
+  CHECK((conveyor.getVelocity() - spook::Vec3T<S>(S(0.5), S(0), S(0))).norm() < tol);
 }
 
 TEST_CASE_TEMPLATE("attachments ride with their body", S, float, double) {
@@ -144,10 +144,10 @@ TEST_CASE_TEMPLATE("attachments ride with their body", S, float, double) {
   arm.addAttachment(tip.get(), "tip");
   CHECK(arm.getAttachment("tip") == tip.get());
   CHECK(arm.getAttachment("base") == nullptr);
-  arm.setVelocity(spook::Vec3<S>(S(0), S(0), S(1)));
-  arm.setAngularVelocity(spook::Vec3<S>(S(0), S(0), S(0.5)));
+  arm.setVelocity(spook::Vec3T<S>(S(0), S(0), S(1)));
+  arm.setAngularVelocity(spook::Vec3T<S>(S(0), S(0), S(0.5)));
   for (int i = 0; i < 60; ++i) scene.sim->stepForward();
-  CHECK((tip->getTranslate() - arm.getTransform() * spook::Vec3<S>(S(1), S(0), S(0))).norm() < tol);
+  CHECK((tip->getTranslate() - arm.getTransform() * spook::Vec3T<S>(S(1), S(0), S(0))).norm() < tol);
   CHECK(std::abs((tip->getTranslate() - arm.getPosition()).norm() - S(1)) < tol);
   CHECK(arm.removeAttachment("tip"));
   CHECK(tip->getParent() == nullptr);
@@ -156,16 +156,16 @@ TEST_CASE_TEMPLATE("attachments ride with their body", S, float, double) {
 TEST_CASE_TEMPLATE("a body whose state would overflow is frozen and reported, not NaN", S, float, double) {
   OneBody<S> scene;
   spook::RigidBodyT<S>& dust = *scene.body;
-  const spook::Vec3<S> start(S(1), S(2), S(3));
+  const spook::Vec3T<S> start(S(1), S(2), S(3));
   dust.setPosition(start);
-  dust.setVelocity(spook::Vec3<S>(S(1), S(0), S(0)));
+  dust.setVelocity(spook::Vec3T<S>(S(1), S(0), S(0)));
   dust.getMassProperties()->setMass(std::numeric_limits<S>::min());
-  dust.addForce(spook::Vec3<S>(std::numeric_limits<S>::max(), S(0), S(0)));  // finite, but F/m overflows
+  dust.addForce(spook::Vec3T<S>(std::numeric_limits<S>::max(), S(0), S(0)));  // finite, but F/m overflows
   scene.sim->stepForward();
   REQUIRE(scene.sim->getStatistics().frozenBodies.size() == 1);
   CHECK(scene.sim->getStatistics().frozenBodies[0].get() == &dust);
   CHECK(dust.getPosition() == start);
-  CHECK(dust.getVelocity() == spook::Vec3<S>::Zero());
+  CHECK(dust.getVelocity() == spook::Vec3T<S>::Zero());
   scene.sim->stepForward();
   CHECK(scene.sim->getStatistics().frozenBodies.empty());
   CHECK(dust.getPosition().allFinite());

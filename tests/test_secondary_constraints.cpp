@@ -22,8 +22,8 @@ struct Wheel {
   ref_ptr<HingeT<S>> hinge;
   explicit Wheel(S inertia = S(0.5)) {
     sim->setSolver(new DirectSolver());
-    body = makeBody<S>(*sim, "wheel", S(4), Vec3<S>::Zero(), inertia);
-    hinge = new HingeT<S>(body.get(), frameAt<S>(Vec3<S>::Zero(), Vec3<S>::UnitX()).get());
+    body = makeBody<S>(*sim, "wheel", S(4), Vec3T<S>::Zero(), inertia);
+    hinge = new HingeT<S>(body.get(), frameAt<S>(Vec3T<S>::Zero(), Vec3T<S>::UnitX()).get());
     hinge->setEnableComputeForces(true);
     sim->add(hinge);
   }
@@ -56,7 +56,7 @@ TEST_CASE_TEMPLATE("a motor locked at zero speed holds its position against a lo
   motor->setSpeed(S(0));
   const S start = w.hinge->getAngle();
   for (int i = 0; i < 120; ++i) {
-    w.body->addTorque(Vec3<S>(S(5), 0, 0));
+    w.body->addTorque(Vec3T<S>(S(5), 0, 0));
     w.sim->stepForward();
   }
   CHECK(std::abs(double(w.hinge->getAngle() - start)) < pick<S>(1e-6, 1e-5));
@@ -82,8 +82,8 @@ TEST_CASE_TEMPLATE("Lock1D holds a position, winding included", S, float, double
 TEST_CASE_TEMPLATE("Range1D stops a hinge pendulum at its limits", S, float, double) {
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   sim->setSolver(new DirectSolver());
-  auto bob = makeBody<S>(*sim, "bob", S(1), Vec3<S>(1, 0, 0));
-  ref_ptr<HingeT<S>> hinge = new HingeT<S>(bob.get(), frameAt<S>(Vec3<S>(-1, 0, 0), Vec3<S>::UnitY()).get());
+  auto bob = makeBody<S>(*sim, "bob", S(1), Vec3T<S>(1, 0, 0));
+  ref_ptr<HingeT<S>> hinge = new HingeT<S>(bob.get(), frameAt<S>(Vec3T<S>(-1, 0, 0), Vec3T<S>::UnitY()).get());
   auto* range = hinge->getRange1D();
   range->setEnable(true);
   // Angle about +y: the bob falling from +x toward −z turns positively.
@@ -107,8 +107,8 @@ TEST_CASE_TEMPLATE("a prismatic motor lifts a load at its speed; getCurrentForce
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   sim->setSolver(new DirectSolver());
   const S m = S(50);
-  auto load = makeBody<S>(*sim, "load", m, Vec3<S>::Zero());
-  ref_ptr<PrismaticT<S>> prismatic = new PrismaticT<S>(load.get(), frameAt<S>(Vec3<S>::Zero()).get());
+  auto load = makeBody<S>(*sim, "load", m, Vec3T<S>::Zero());
+  ref_ptr<PrismaticT<S>> prismatic = new PrismaticT<S>(load.get(), frameAt<S>(Vec3T<S>::Zero()).get());
   auto* motor = prismatic->getMotor1D();
   motor->setEnable(true);
   motor->setSpeed(S(0.25));

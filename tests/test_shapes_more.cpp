@@ -25,7 +25,7 @@ using spook::test::pick;
 namespace {
 
 template <class S>
-using Points = std::vector<spook::Vec3<S>>;
+using Points = std::vector<spook::Vec3T<S>>;
 
 template <class S>
 spook::ref_ptr<spook::ConvexT<S>> hullOf(const Points<S>& points) {
@@ -46,7 +46,7 @@ void checkClosedOutward(const spook::ConvexT<S>& convex) {
   const auto& v = convex.getVertices();
   bool outward = true;
   for (const auto& t : convex.getTriangles()) {
-    const spook::Vec3<S> n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
+    const spook::Vec3T<S> n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
     outward = outward && n.dot(v[t[0]] - convex.getCenterOfVolume()) > S(0);
   }
   CHECK(outward);
@@ -61,9 +61,9 @@ void checkFaces(const spook::ConvexT<S>& convex, S tol) {
   for (const auto& face : convex.getFaces()) {
     CHECK(std::abs(face.normal.norm() - S(1)) <= tol);
     for (std::size_t k = 0; k < face.vertices.size(); ++k) {
-      const spook::Vec3<S>& a = v[face.vertices[k]];
-      const spook::Vec3<S>& b = v[face.vertices[(k + 1) % face.vertices.size()]];
-      const spook::Vec3<S>& c = v[face.vertices[(k + 2) % face.vertices.size()]];
+      const spook::Vec3T<S>& a = v[face.vertices[k]];
+      const spook::Vec3T<S>& b = v[face.vertices[(k + 1) % face.vertices.size()]];
+      const spook::Vec3T<S>& c = v[face.vertices[(k + 2) % face.vertices.size()]];
       offPlane = std::max(offPlane, std::abs(face.normal.dot(a) - face.offset));
       turn = std::min(turn, (b - a).cross(c - b).normalized().dot(face.normal));
     }
@@ -82,20 +82,20 @@ void checkFaces(const spook::ConvexT<S>& convex, S tol) {
 // midpoints and 200 interior points, turned by R and moved to t.
 TEST_CASE_TEMPLATE("the hull of a box's corners and clutter inside is that box", S, float, double) {
   const S tol = pick<S>(1e-12, 1e-5);
-  const spook::Vec3<S> h(S(0.5), S(0.75), S(1.25));
-  const spook::Mat3<S> R = spook::toMatrix<S>({S(0.3), S(-1.1), S(2.4)});
-  const spook::Vec3<S> t(S(1.5), S(-1), S(0.5));
+  const spook::Vec3T<S> h(S(0.5), S(0.75), S(1.25));
+  const spook::Mat3T<S> R = spook::toMatrix<S>({S(0.3), S(-1.1), S(2.4)});
+  const spook::Vec3T<S> t(S(1.5), S(-1), S(0.5));
   Points<S> local;
   for (int i = 0; i < 8; ++i)
     local.emplace_back(i & 1 ? h.x() : -h.x(), i & 2 ? h.y() : -h.y(), i & 4 ? h.z() : -h.z());
   for (int i = 0; i < 10; ++i) local.push_back(local[static_cast<std::size_t>(i % 8)]);
   for (int axis = 0; axis < 3; ++axis) {
-    local.push_back(h[axis] * spook::Vec3<S>::Unit(axis));
-    local.push_back(-h[axis] * spook::Vec3<S>::Unit(axis));
+    local.push_back(h[axis] * spook::Vec3T<S>::Unit(axis));
+    local.push_back(-h[axis] * spook::Vec3T<S>::Unit(axis));
   }
   for (int i = 0; i < 8; ++i)
     for (int axis = 0; axis < 3; ++axis) {
-      spook::Vec3<S> midpoint = local[static_cast<std::size_t>(i)];
+      spook::Vec3T<S> midpoint = local[static_cast<std::size_t>(i)];
       midpoint[axis] = S(0);
       local.push_back(midpoint);
     }
@@ -118,15 +118,15 @@ TEST_CASE_TEMPLATE("the hull of a box's corners and clutter inside is that box",
   const S volume = S(8) * h.prod(), mass = S(7);
   CHECK(std::abs(convex->getVolume() - volume) <= tol * volume);
   CHECK((convex->getCenterOfVolume() - t).norm() <= tol * t.norm());
-  const spook::Vec3<S> sq = h.cwiseAbs2();
-  const spook::Mat3<S> expected = R * spook::Vec3<S>(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()).asDiagonal() *
+  const spook::Vec3T<S> sq = h.cwiseAbs2();
+  const spook::Mat3T<S> expected = R * spook::Vec3T<S>(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()).asDiagonal() *
                                   R.transpose() * (mass / S(3));
-  const spook::Vec3<S> c = convex->getCenterOfVolume();
-  const spook::Mat3<S> aboutCenter = convex->calculateInertia(mass).matrix() -
-                                     mass * (c.squaredNorm() * spook::Mat3<S>::Identity() - c * c.transpose());
+  const spook::Vec3T<S> c = convex->getCenterOfVolume();
+  const spook::Mat3T<S> aboutCenter = convex->calculateInertia(mass).matrix() -
+                                     mass * (c.squaredNorm() * spook::Mat3T<S>::Identity() - c * c.transpose());
   CHECK(relative<S>(aboutCenter, expected) <= tol);
   const spook::BoundingBoxT<S> box = convex->getBoundingBox();
-  const spook::Vec3<S> reach = R.cwiseAbs() * h;
+  const spook::Vec3T<S> reach = R.cwiseAbs() * h;
   CHECK((box.min - (t - reach)).norm() <= tol * S(8));
   CHECK((box.max - (t + reach)).norm() <= tol * S(8));
 }
@@ -135,8 +135,8 @@ TEST_CASE_TEMPLATE("the hull of a box's corners and clutter inside is that box",
 TEST_CASE_TEMPLATE("a regular tetrahedron has V = a³/(6√2) and I = m a²/20 about its centroid", S, float, double) {
   const S tol = pick<S>(1e-14, 2e-6);
   const double s = 0.7, a = 2 * std::sqrt(2.0) * s, mass = 3;
-  const Points<S> corners = {spook::Vec3<S>(S(s), S(s), S(s)), spook::Vec3<S>(S(s), S(-s), S(-s)),
-                             spook::Vec3<S>(S(-s), S(s), S(-s)), spook::Vec3<S>(S(-s), S(-s), S(s))};
+  const Points<S> corners = {spook::Vec3T<S>(S(s), S(s), S(s)), spook::Vec3T<S>(S(s), S(-s), S(-s)),
+                             spook::Vec3T<S>(S(-s), S(s), S(-s)), spook::Vec3T<S>(S(-s), S(-s), S(s))};
   const auto convex = hullOf<S>(corners);
   CHECK(convex->getVertices().size() == 4);
   CHECK(convex->getFaces().size() == 4);
@@ -144,16 +144,16 @@ TEST_CASE_TEMPLATE("a regular tetrahedron has V = a³/(6√2) and I = m a²/20 a
   const double volume = a * a * a / (6 * std::sqrt(2.0));
   CHECK(std::abs(convex->getVolume() - S(volume)) <= tol * S(volume));
   CHECK(convex->getCenterOfVolume().norm() <= tol);
-  const spook::Mat3<S> expected = spook::Mat3<S>::Identity() * S(mass * a * a / 20);
+  const spook::Mat3T<S> expected = spook::Mat3T<S>::Identity() * S(mass * a * a / 20);
   CHECK(relative<S>(convex->calculateInertia(S(mass)).matrix(), expected) <= tol);
 
   // Moved by d, about the shape origin: I + m(|d|² 1 − d dᵀ).
-  const spook::Vec3<S> d(S(1), S(-2), S(0.5));
+  const spook::Vec3T<S> d(S(1), S(-2), S(0.5));
   Points<S> moved;
   for (const auto& p : corners) moved.push_back(p + d);
   const auto shifted = hullOf<S>(moved);
-  const spook::Mat3<S> expectedShifted =
-      expected + S(mass) * (d.squaredNorm() * spook::Mat3<S>::Identity() - d * d.transpose());
+  const spook::Mat3T<S> expectedShifted =
+      expected + S(mass) * (d.squaredNorm() * spook::Mat3T<S>::Identity() - d * d.transpose());
   CHECK(relative<S>(shifted->calculateInertia(S(mass)).matrix(), expectedShifted) <= tol * S(4));
 }
 
@@ -192,7 +192,7 @@ TEST_CASE_TEMPLATE("face points barely above a face are dropped, points clearly 
     Points<S> points;
     for (int i = 0; i < 8; ++i) points.emplace_back(i & 1 ? S(1) : S(-1), i & 2 ? S(1) : S(-1), i & 4 ? S(1) : S(-1));
     for (int axis = 0; axis < 3; ++axis)
-      for (const double side : {-1.0, 1.0}) points.push_back(S(side * (1 + lift)) * spook::Vec3<S>::Unit(axis));
+      for (const double side : {-1.0, 1.0}) points.push_back(S(side * (1 + lift)) * spook::Vec3T<S>::Unit(axis));
     const auto convex = hullOf<S>(points);
     const bool kept = lift > 1e-4;
     CHECK(convex->getVertices().size() == (kept ? 14u : 8u));
@@ -212,7 +212,7 @@ TEST_CASE_TEMPLATE("the hull of 2000 points on a sphere contains them all and ne
   std::normal_distribution<double> normal(0.0, 1.0);
   Points<S> points;
   for (int i = 0; i < 2000; ++i) {
-    const spook::Vec3<double> p(normal(rng), normal(rng), normal(rng));
+    const spook::Vec3 p(normal(rng), normal(rng), normal(rng));
     points.push_back(p.normalized().template cast<S>());
   }
   const auto convex = hullOf<S>(points);
@@ -236,7 +236,7 @@ TEST_CASE_TEMPLATE("the hull of 2000 points on a sphere contains them all and ne
 
   S shortfall = S(0), againstScan = S(0);
   for (int i = 0; i < 200; ++i) {
-    const spook::Vec3<S> d(S(normal(rng)), S(normal(rng)), S(normal(rng)));
+    const spook::Vec3T<S> d(S(normal(rng)), S(normal(rng)), S(normal(rng)));
     const S reached = convex->support(d).dot(d);
     S best = std::numeric_limits<S>::lowest();
     for (const auto& p : points) best = std::max(best, p.dot(d));
@@ -258,7 +258,7 @@ TEST_CASE_TEMPLATE("a small hull's support is its farthest corner by a full scan
   CHECK(convex->getVertices().size() <= 40);
   bool farthest = true;
   for (int i = 0; i < 200; ++i) {
-    const spook::Vec3<S> d(S(normal(rng)), S(normal(rng)), S(normal(rng)));
+    const spook::Vec3T<S> d(S(normal(rng)), S(normal(rng)), S(normal(rng)));
     const S reached = convex->support(d).dot(d);
     for (const auto& p : points) farthest = farthest && p.dot(d) <= reached;
   }
@@ -275,24 +275,24 @@ TEST_CASE_TEMPLATE("a small hull's support is its farthest corner by a full scan
 }
 
 TEST_CASE_TEMPLATE("a line's support is the endpoint farther along, the first on a tie", S, float, double) {
-  const spook::Vec3<S> p1(S(1), S(-2), S(0.5)), p2(S(-3), S(4), S(2));
+  const spook::Vec3T<S> p1(S(1), S(-2), S(0.5)), p2(S(-3), S(4), S(2));
   spook::ref_ptr<spook::LineT<S>> line = new spook::LineT<S>(p1, p2);
   std::mt19937 rng(9);
   std::normal_distribution<double> normal(0.0, 1.0);
   bool farthest = true;
   for (int i = 0; i < 200; ++i) {
-    const spook::Vec3<S> d(S(normal(rng)), S(normal(rng)), S(normal(rng)));
-    const spook::Vec3<S> s = line->support(d);
+    const spook::Vec3T<S> d(S(normal(rng)), S(normal(rng)), S(normal(rng)));
+    const spook::Vec3T<S> s = line->support(d);
     farthest = farthest && (s == p1 || s == p2) && s.dot(d) >= p1.dot(d) && s.dot(d) >= p2.dot(d);
   }
   CHECK(farthest);
-  const spook::Vec3<S> across = (p2 - p1).cross(spook::Vec3<S>::UnitZ());
+  const spook::Vec3T<S> across = (p2 - p1).cross(spook::Vec3T<S>::UnitZ());
   CHECK(line->support(across) == p1);
-  CHECK(line->support(spook::Vec3<S>::Zero()) == p1);
+  CHECK(line->support(spook::Vec3T<S>::Zero()) == p1);
   CHECK(line->getVolume() == S(0));
-  CHECK(line->getCenterOfVolume() == spook::Vec3<S>(S(-1), S(1), S(1.25)));
-  CHECK(line->getBoundingBox().min == spook::Vec3<S>(S(-3), S(-2), S(0.5)));
-  CHECK(line->getBoundingBox().max == spook::Vec3<S>(S(1), S(4), S(2)));
+  CHECK(line->getCenterOfVolume() == spook::Vec3T<S>(S(-1), S(1), S(1.25)));
+  CHECK(line->getBoundingBox().min == spook::Vec3T<S>(S(-3), S(-2), S(0.5)));
+  CHECK(line->getBoundingBox().max == spook::Vec3T<S>(S(1), S(4), S(2)));
   CHECK(std::abs(line->getLength() - std::sqrt(S(54.25))) <= pick<S>(1e-15, 1e-6) * S(8));
   CHECK((line->getType() == spook::ShapeType::LINE));
 }
@@ -300,29 +300,29 @@ TEST_CASE_TEMPLATE("a line's support is the endpoint farther along, the first on
 TEST_CASE_TEMPLATE("a plane's normal is normalized and its solid lies below it", S, float, double) {
   const S tol = pick<S>(1e-15, 1e-6);
   spook::ref_ptr<spook::PlaneT<S>> plane =
-      new spook::PlaneT<S>(spook::Vec3<S>(S(0), S(3), S(4)), spook::Vec3<S>(S(7), S(1), S(-2)));
-  CHECK((plane->getNormal() - spook::Vec3<S>(S(0), S(0.6), S(0.8))).norm() <= tol);
+      new spook::PlaneT<S>(spook::Vec3T<S>(S(0), S(3), S(4)), spook::Vec3T<S>(S(7), S(1), S(-2)));
+  CHECK((plane->getNormal() - spook::Vec3T<S>(S(0), S(0.6), S(0.8))).norm() <= tol);
   CHECK(std::abs(plane->getDistance() - S(-1)) <= tol);  // 0.6·1 + 0.8·(−2)
-  CHECK(std::abs(plane->signedDistance(spook::Vec3<S>(S(-5), S(1), S(3))) - S(4)) <= tol * S(4));
-  CHECK(plane->signedDistance(spook::Vec3<S>(S(0), S(-10), S(0))) < S(0));
+  CHECK(std::abs(plane->signedDistance(spook::Vec3T<S>(S(-5), S(1), S(3))) - S(4)) <= tol * S(4));
+  CHECK(plane->signedDistance(spook::Vec3T<S>(S(0), S(-10), S(0))) < S(0));
 
-  spook::ref_ptr<spook::PlaneT<S>> ground = new spook::PlaneT<S>(spook::Vec3<S>(S(0), S(0), S(2)), S(1.5));
-  CHECK(ground->getPoint() == spook::Vec3<S>(S(0), S(0), S(1.5)));
+  spook::ref_ptr<spook::PlaneT<S>> ground = new spook::PlaneT<S>(spook::Vec3T<S>(S(0), S(0), S(2)), S(1.5));
+  CHECK(ground->getPoint() == spook::Vec3T<S>(S(0), S(0), S(1.5)));
   CHECK(ground->getDistance() == S(1.5));
-  CHECK(ground->signedDistance(spook::Vec3<S>(S(9), S(-9), S(1))) == S(-0.5));
-  spook::ref_ptr<spook::PlaneT<S>> tiny = new spook::PlaneT<S>(spook::Vec3<S>(S(1e-30), S(0), S(0)), 0);
-  CHECK(tiny->getNormal() == spook::Vec3<S>::UnitX());
+  CHECK(ground->signedDistance(spook::Vec3T<S>(S(9), S(-9), S(1))) == S(-0.5));
+  spook::ref_ptr<spook::PlaneT<S>> tiny = new spook::PlaneT<S>(spook::Vec3T<S>(S(1e-30), S(0), S(0)), 0);
+  CHECK(tiny->getNormal() == spook::Vec3T<S>::UnitX());
 
   CHECK(plane->getVolume() == S(0));
   CHECK((plane->getType() == spook::ShapeType::PLANE));
   const spook::BoundingBoxT<S> box = plane->getBoundingBox();
-  CHECK(box.min == spook::Vec3<S>::Constant(-std::numeric_limits<S>::infinity()));
-  CHECK(box.max == spook::Vec3<S>::Constant(std::numeric_limits<S>::infinity()));
+  CHECK(box.min == spook::Vec3T<S>::Constant(-std::numeric_limits<S>::infinity()));
+  CHECK(box.max == spook::Vec3T<S>::Constant(std::numeric_limits<S>::infinity()));
 }
 
 TEST_CASE_TEMPLATE("plane, line and convex reject bad input and name the value", S, float, double) {
   const S nan = std::numeric_limits<S>::quiet_NaN(), inf = std::numeric_limits<S>::infinity();
-  using V = spook::Vec3<S>;
+  using V = spook::Vec3T<S>;
   const auto convex = [](Points<S> points) { return [points] { (void)hullOf<S>(points); }; };
 
   Points<S> cube;
@@ -337,7 +337,7 @@ TEST_CASE_TEMPLATE("plane, line and convex reject bad input and name the value",
 
   // Ten points on a tilted plane (off it only by round-off), collinear points,
   // coincident points: none spans a volume.
-  const spook::Mat3<S> R = spook::toMatrix<S>({S(0.4), S(0.9), S(-0.3)});
+  const spook::Mat3T<S> R = spook::toMatrix<S>({S(0.4), S(0.9), S(-0.3)});
   Points<S> flat, collinear, coincident;
   for (int i = 0; i < 10; ++i) {
     flat.push_back(R * V(S(std::cos(i)), S(std::sin(3 * i)), S(0)) + V(S(1), S(2), S(3)));

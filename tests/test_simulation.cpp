@@ -71,7 +71,7 @@ struct Scene {
     log.clear();
     return line;
   }
-  spook::Vec3<S> gravity() const { return spook::Vec3<S>(S(0), S(0), S(-9.80665)); }
+  spook::Vec3T<S> gravity() const { return spook::Vec3T<S>(S(0), S(0), S(-9.80665)); }
 };
 
 }  // namespace
@@ -231,28 +231,28 @@ TEST_CASE_TEMPLATE("a body removed in post() has moved in that step and moves no
   CHECK(!scene.sim->contains(body));
   CHECK(scene.sim->getRigidBodies().empty());
   CHECK(body->getPosition().z() < S(0));
-  const spook::Vec3<S> position = body->getPosition();
+  const spook::Vec3T<S> position = body->getPosition();
   scene.sim->stepForward();
   CHECK(body->getPosition() == position);
 }
 
 TEST_CASE_TEMPLATE("a force added in post() acts in the next step, then is cleared", S, float, double) {
   Scene<S> scene;
-  scene.sim->setUniformGravity(spook::Vec3<S>::Zero());
+  scene.sim->setUniformGravity(spook::Vec3T<S>::Zero());
   auto body = scene.body("crate");
   body->getMassProperties()->setMass(S(2));
-  const spook::Vec3<S> force(S(4), S(0), S(-2));
+  const spook::Vec3T<S> force(S(4), S(0), S(-2));
   auto pusher = scene.probe("pusher");
   pusher->onPost = [b = body.get(), force, steps = 0](S) mutable {
     if (steps++ == 0) b->addForce(force);
   };
   const S h = scene.sim->getTimeStep();
   scene.sim->stepForward();
-  CHECK(body->getVelocity() == spook::Vec3<S>::Zero());
+  CHECK(body->getVelocity() == spook::Vec3T<S>::Zero());
   CHECK(body->getForce() == force);
   scene.sim->stepForward();
   CHECK((body->getVelocity() - h * force / S(2)).norm() < pick<S>(1e-15, 1e-7));
-  CHECK(body->getForce() == spook::Vec3<S>::Zero());
+  CHECK(body->getForce() == spook::Vec3T<S>::Zero());
 }
 
 // A step is taken whole with the h it started with: after the bodies were
@@ -290,7 +290,7 @@ TEST_CASE_TEMPLATE("a body belongs to at most one simulation", S, float, double)
   CHECK(!second.sim->contains(body));
   CHECK(first.sim->contains(body));
   second.sim->stepForward();
-  CHECK(body->getVelocity() == spook::Vec3<S>::Zero());
+  CHECK(body->getVelocity() == spook::Vec3T<S>::Zero());
 }
 
 TEST_CASE_TEMPLATE("a removed body can be added again, to another simulation or the same", S, float, double) {
@@ -300,7 +300,7 @@ TEST_CASE_TEMPLATE("a removed body can be added again, to another simulation or 
   second.sim->add(body);
   CHECK(second.sim->contains(body));
   first.sim->stepForward();
-  CHECK(body->getVelocity() == spook::Vec3<S>::Zero());
+  CHECK(body->getVelocity() == spook::Vec3T<S>::Zero());
   second.sim->stepForward();
   CHECK(body->getVelocity().z() < S(0));
   second.sim->remove(body);
@@ -323,8 +323,8 @@ TEST_CASE_TEMPLATE("removing bodies in any order keeps the others in the simulat
   CHECK(!scene.sim->contains(c));
   scene.sim->stepForward();
   CHECK(b->getVelocity().z() < S(0));
-  CHECK(a->getVelocity() == spook::Vec3<S>::Zero());
-  CHECK(c->getVelocity() == spook::Vec3<S>::Zero());
+  CHECK(a->getVelocity() == spook::Vec3T<S>::Zero());
+  CHECK(c->getVelocity() == spook::Vec3T<S>::Zero());
 }
 
 TEST_CASE_TEMPLATE("a disabled body and a static body do not move", S, float, double) {
@@ -335,17 +335,17 @@ TEST_CASE_TEMPLATE("a disabled body and a static body do not move", S, float, do
   auto fixed = scene.body("fixed");
   fixed->setMotionControl(spook::RigidBodyT<S>::STATIC);
   fixed->setVelocity(S(1), S(2), S(3));
-  const spook::Transform<S> disabledPose = disabled->getTransform(), fixedPose = fixed->getTransform();
+  const spook::TransformT<S> disabledPose = disabled->getTransform(), fixedPose = fixed->getTransform();
   for (int i = 0; i < 10; ++i) {
     fixed->addForce(S(100), S(0), S(0));
     fixed->addTorque(S(0), S(100), S(0));
     scene.sim->stepForward();
   }
   CHECK(disabled->getTransform().matrix() == disabledPose.matrix());
-  CHECK(disabled->getVelocity() == spook::Vec3<S>(S(1), S(2), S(3)));
+  CHECK(disabled->getVelocity() == spook::Vec3T<S>(S(1), S(2), S(3)));
   CHECK(fixed->getTransform().matrix() == fixedPose.matrix());
-  CHECK(fixed->getVelocity() == spook::Vec3<S>::Zero());
-  CHECK(fixed->getAngularVelocity() == spook::Vec3<S>::Zero());
+  CHECK(fixed->getVelocity() == spook::Vec3T<S>::Zero());
+  CHECK(fixed->getAngularVelocity() == spook::Vec3T<S>::Zero());
 }
 
 TEST_CASE_TEMPLATE("stepForward or stepTo from inside a callback throws and the outer step completes", S, float,

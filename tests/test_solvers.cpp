@@ -38,10 +38,10 @@ ChainResult<S> swingChain(Solver* solver, double endMass, double compliance, int
   for (int i = 0; i <= links; ++i) {
     const bool end = i == links;
     const S mass = end ? S(endMass) : S(1);
-    bodies.push_back(makeBody<S>(*sim, end ? "end" : "link", mass, Vec3<S>(S(i) + S(0.5), 0, 0), S(0.1) * mass));
+    bodies.push_back(makeBody<S>(*sim, end ? "end" : "link", mass, Vec3T<S>(S(i) + S(0.5), 0, 0), S(0.1) * mass));
     RigidBodyT<S>* previous = i == 0 ? nullptr : bodies[static_cast<std::size_t>(i - 1)].get();
-    ref_ptr<FrameT<S>> f2 = previous ? frameAt<S>(Vec3<S>(S(0.5), 0, 0)) : frameAt<S>(Vec3<S>::Zero());
-    ref_ptr<BallJointT<S>> joint = new BallJointT<S>(bodies.back().get(), frameAt<S>(Vec3<S>(S(-0.5), 0, 0)).get(),
+    ref_ptr<FrameT<S>> f2 = previous ? frameAt<S>(Vec3T<S>(S(0.5), 0, 0)) : frameAt<S>(Vec3T<S>::Zero());
+    ref_ptr<BallJointT<S>> joint = new BallJointT<S>(bodies.back().get(), frameAt<S>(Vec3T<S>(S(-0.5), 0, 0)).get(),
                                                      previous, f2.get());
     joint->setCompliance(S(compliance));
     sim->add(joint);
@@ -64,7 +64,7 @@ ChainResult<S> swingChain(Solver* solver, double endMass, double compliance, int
   for (int k = 0; k < steps && result.finite; ++k) {
     sim->stepForward();
     for (const auto& j : joints) {
-      const Vec3<S> gap = j->getAttachmentFrame(0)->getTranslate() - j->getAttachmentFrame(1)->getTranslate();
+      const Vec3T<S> gap = j->getAttachmentFrame(0)->getTranslate() - j->getAttachmentFrame(1)->getTranslate();
       result.finite = result.finite && gap.allFinite();
       result.worstGap = std::max(result.worstGap, double(gap.norm()));
     }
@@ -125,9 +125,9 @@ TEST_CASE_TEMPLATE("two lock joints on the same pair step stably", S, float, dou
     ref_ptr<Solver> keep = solver;
     ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
     sim->setSolver(solver);
-    auto base = makeBody<S>(*sim, "base", S(5), Vec3<S>::Zero());
-    auto top = makeBody<S>(*sim, "top", S(2), Vec3<S>(0, 0, 1));
-    ref_ptr<HingeT<S>> pivot = new HingeT<S>(base.get(), frameAt<S>(Vec3<S>::Zero(), Vec3<S>::UnitY()).get());
+    auto base = makeBody<S>(*sim, "base", S(5), Vec3T<S>::Zero());
+    auto top = makeBody<S>(*sim, "top", S(2), Vec3T<S>(0, 0, 1));
+    ref_ptr<HingeT<S>> pivot = new HingeT<S>(base.get(), frameAt<S>(Vec3T<S>::Zero(), Vec3T<S>::UnitY()).get());
     ref_ptr<LockJointT<S>> lock1 = new LockJointT<S>(top.get(), nullptr, base.get());
     ref_ptr<LockJointT<S>> lock2 = new LockJointT<S>(top.get(), nullptr, base.get());
     sim->add(pivot);
@@ -155,10 +155,10 @@ TEST_CASE("independent chains are separate islands; static and kinematic bodies 
   conveyor->setMotionControl(RigidBody::KINEMATICS);
   sim->add(conveyor);
   for (int i = 0; i < 3; ++i) {
-    auto a = makeBody<double>(*sim, "a", 1.0, Vec3<double>(i, 0, 0));
-    auto b = makeBody<double>(*sim, "b", 1.0, Vec3<double>(i, 0, -1));
+    auto a = makeBody<double>(*sim, "a", 1.0, Vec3T<double>(i, 0, 0));
+    auto b = makeBody<double>(*sim, "b", 1.0, Vec3T<double>(i, 0, -1));
     sim->add(new HingeT<double>(a.get(), nullptr, i == 1 ? conveyor.get() : ground.get()));
-    sim->add(new BallJointT<double>(b.get(), frameAt<double>(Vec3<double>(0, 0, 1)).get(), a.get()));
+    sim->add(new BallJointT<double>(b.get(), frameAt<double>(Vec3T<double>(0, 0, 1)).get(), a.get()));
   }
   sim->stepForward();
   const SolverStatistics& stats = sim->getStatistics().solver;
@@ -292,10 +292,10 @@ TEST_CASE("projected Gauss-Seidel and Jacobi converge to the direct solution of 
     iterativeSim->setSolver(pgs);
     std::vector<RigidBodyRef> ends;
     for (Simulation* sim : {directSim.get(), iterativeSim.get()}) {
-      auto a = makeBody<double>(*sim, "a", 1.0, Vec3<double>(1, 0, 0));
-      auto b = makeBody<double>(*sim, "b", 2.0, Vec3<double>(2, 0, 0));
-      sim->add(new BallJointT<double>(a.get(), frameAt<double>(Vec3<double>(-1, 0, 0)).get()));
-      sim->add(new BallJointT<double>(b.get(), frameAt<double>(Vec3<double>(-1, 0, 0)).get(), a.get()));
+      auto a = makeBody<double>(*sim, "a", 1.0, Vec3T<double>(1, 0, 0));
+      auto b = makeBody<double>(*sim, "b", 2.0, Vec3T<double>(2, 0, 0));
+      sim->add(new BallJointT<double>(a.get(), frameAt<double>(Vec3T<double>(-1, 0, 0)).get()));
+      sim->add(new BallJointT<double>(b.get(), frameAt<double>(Vec3T<double>(-1, 0, 0)).get(), a.get()));
       for (int i = 0; i < 30; ++i) sim->stepForward();
       ends.push_back(b);
     }
@@ -310,12 +310,12 @@ TEST_CASE("projected Gauss-Seidel and Jacobi converge to the direct solution of 
 // Hybrid: an ITERATIVE joint and a DIRECT one in the same island.
 TEST_CASE("the hybrid solver couples direct and iterative rows through DIRECT_AND_ITERATIVE ones") {
   SimulationRef sim = new Simulation();
-  auto a = makeBody<double>(*sim, "a", 1.0, Vec3<double>(1, 0, 0));
-  auto b = makeBody<double>(*sim, "b", 1.0, Vec3<double>(2, 0, 0));
-  auto c = makeBody<double>(*sim, "c", 1.0, Vec3<double>(3, 0, 0));
-  ref_ptr<BallJoint> j1 = new BallJoint(a.get(), frameAt<double>(Vec3<double>(-1, 0, 0)).get());
-  ref_ptr<BallJoint> j2 = new BallJoint(b.get(), frameAt<double>(Vec3<double>(-1, 0, 0)).get(), a.get());
-  ref_ptr<BallJoint> j3 = new BallJoint(c.get(), frameAt<double>(Vec3<double>(-1, 0, 0)).get(), b.get());
+  auto a = makeBody<double>(*sim, "a", 1.0, Vec3T<double>(1, 0, 0));
+  auto b = makeBody<double>(*sim, "b", 1.0, Vec3T<double>(2, 0, 0));
+  auto c = makeBody<double>(*sim, "c", 1.0, Vec3T<double>(3, 0, 0));
+  ref_ptr<BallJoint> j1 = new BallJoint(a.get(), frameAt<double>(Vec3T<double>(-1, 0, 0)).get());
+  ref_ptr<BallJoint> j2 = new BallJoint(b.get(), frameAt<double>(Vec3T<double>(-1, 0, 0)).get(), a.get());
+  ref_ptr<BallJoint> j3 = new BallJoint(c.get(), frameAt<double>(Vec3T<double>(-1, 0, 0)).get(), b.get());
   j1->setSolveType(Constraint::DIRECT);
   j2->setSolveType(Constraint::DIRECT_AND_ITERATIVE);
   j3->setSolveType(Constraint::ITERATIVE);
@@ -356,9 +356,9 @@ TEST_CASE("warm starting saves Gauss-Seidel sweeps on a chain at rest") {
     sim->setSolver(pgs);
     RigidBody* previous = nullptr;
     for (int i = 0; i < 5; ++i) {
-      auto link = makeBody<double>(*sim, "link", 1.0, Vec3<double>(0, 0, -0.5 - i));
-      sim->add(new BallJointT<double>(link.get(), frameAt<double>(Vec3<double>(0, 0, 0.5)).get(), previous,
-                                      previous ? frameAt<double>(Vec3<double>(0, 0, -0.5)).get() : nullptr));
+      auto link = makeBody<double>(*sim, "link", 1.0, Vec3T<double>(0, 0, -0.5 - i));
+      sim->add(new BallJointT<double>(link.get(), frameAt<double>(Vec3T<double>(0, 0, 0.5)).get(), previous,
+                                      previous ? frameAt<double>(Vec3T<double>(0, 0, -0.5)).get() : nullptr));
       previous = link.get();
     }
     for (int i = 0; i < 120; ++i) sim->stepForward();
@@ -375,15 +375,15 @@ TEST_CASE("warm starting saves Gauss-Seidel sweeps on a chain at rest") {
 TEST_CASE_TEMPLATE("a joint with zero SPOOK damping stays closed", S, float, double) {
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
   sim->setSolver(new DirectSolver());
-  auto bob = makeBody<S>(*sim, "bob", S(1), Vec3<S>(1, 0, 0), S(0.01));
+  auto bob = makeBody<S>(*sim, "bob", S(1), Vec3T<S>(1, 0, 0), S(0.01));
   ref_ptr<BallJointT<S>> joint =
-      new BallJointT<S>(bob.get(), frameAt<S>(Vec3<S>(-1, 0, 0)).get(), nullptr, frameAt<S>(Vec3<S>::Zero()).get());
+      new BallJointT<S>(bob.get(), frameAt<S>(Vec3T<S>(-1, 0, 0)).get(), nullptr, frameAt<S>(Vec3T<S>::Zero()).get());
   joint->setDamping(S(0));
   sim->add(joint);
   double worst = 0.0;
   for (int k = 0; k < 600; ++k) {
     sim->stepForward();
-    const Vec3<S> gap = joint->getAttachmentFrame(0)->getTranslate() - joint->getAttachmentFrame(1)->getTranslate();
+    const Vec3T<S> gap = joint->getAttachmentFrame(0)->getTranslate() - joint->getAttachmentFrame(1)->getTranslate();
     worst = std::max(worst, gap.allFinite() ? double(gap.norm()) : INFINITY);
   }
   MESSAGE("ball joint with τ = 0, 10 s at 60 Hz: worst gap " << worst << " m");

@@ -19,7 +19,7 @@ namespace {
 // triangles each, centered on the origin.
 template <class S>
 spook::ref_ptr<spook::TrimeshT<S>> floorMesh(int cells, double cell) {
-  std::vector<spook::Vec3<S>> vertices;
+  std::vector<spook::Vec3T<S>> vertices;
   std::vector<std::array<int, 3>> triangles;
   const double half = 0.5 * cells * cell;
   for (int j = 0; j <= cells; ++j)
@@ -36,7 +36,7 @@ spook::ref_ptr<spook::TrimeshT<S>> floorMesh(int cells, double cell) {
 template <class S>
 spook::ref_ptr<spook::RigidBodyT<S>> boxBody(double z) {
   spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>("box");
-  body->add(new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3<S>(S(0.5), S(0.5), S(0.5))), at<S>(0, 0, 0), "box"));
+  body->add(new spook::GeometryT<S>(new spook::BoxT<S>(spook::Vec3T<S>(S(0.5), S(0.5), S(0.5))), at<S>(0, 0, 0), "box"));
   body->setPosition(S(0.013), S(-0.021), S(z));
   return body;
 }
@@ -77,7 +77,7 @@ TEST_CASE("the full shape list renders the seeds' collider matrix") {
 
 TEST_CASE_TEMPLATE("a box lying on a plane touches it at its four bottom corners", S, float, double) {
   spook::ref_ptr<spook::SpaceT<S>> space = new spook::SpaceT<S>();
-  space->add(new spook::GeometryT<S>(new spook::PlaneT<S>(spook::Vec3<S>::UnitZ())));
+  space->add(new spook::GeometryT<S>(new spook::PlaneT<S>(spook::Vec3T<S>::UnitZ())));
   std::vector<spook::ref_ptr<spook::RigidBodyT<S>>> bodies{boxBody<S>(0.49)};
   space->update(bodies);
   REQUIRE(space->getGeometryContacts().size() == 1);
@@ -127,7 +127,7 @@ TEST_CASE_TEMPLATE("contact reduction keeps at most four points of a box on a fi
 
 TEST_CASE_TEMPLATE("filters: pairwise, group ids, group names, same body, disabled, static pairs", S, float, double) {
   spook::ref_ptr<spook::SpaceT<S>> space = new spook::SpaceT<S>();
-  spook::ref_ptr<spook::GeometryT<S>> ground = new spook::GeometryT<S>(new spook::PlaneT<S>(spook::Vec3<S>::UnitZ()));
+  spook::ref_ptr<spook::GeometryT<S>> ground = new spook::GeometryT<S>(new spook::PlaneT<S>(spook::Vec3T<S>::UnitZ()));
   space->add(ground);
   auto body = boxBody<S>(0.49);
   std::vector<spook::ref_ptr<spook::RigidBodyT<S>>> bodies{body};
@@ -163,7 +163,7 @@ TEST_CASE_TEMPLATE("filters: pairwise, group ids, group names, same body, disabl
 
 TEST_CASE_TEMPLATE("a pair is an impact once, then a contact, then a separation", S, float, double) {
   spook::ref_ptr<spook::SpaceT<S>> space = new spook::SpaceT<S>();
-  space->add(new spook::GeometryT<S>(new spook::PlaneT<S>(spook::Vec3<S>::UnitZ())));
+  space->add(new spook::GeometryT<S>(new spook::PlaneT<S>(spook::Vec3T<S>::UnitZ())));
   auto body = boxBody<S>(0.49);
   std::vector<spook::ref_ptr<spook::RigidBodyT<S>>> bodies{body};
   space->update(bodies);
@@ -185,7 +185,7 @@ TEST_CASE_TEMPLATE("a space refuses shapes outside its list and keeps what it ha
   spook::ref_ptr<spook::GeometryT<S>> ball = new spook::GeometryT<S>(new spook::SphereT<S>(S(1)));
   space->add(ball);
   spook::ref_ptr<spook::GeometryT<S>> crate = new spook::GeometryT<S>(
-      new spook::BoxT<S>(spook::Vec3<S>::Ones()), spook::Transform<S>::Identity(), "crate");
+      new spook::BoxT<S>(spook::Vec3T<S>::Ones()), spook::TransformT<S>::Identity(), "crate");
   CHECK_THROWS_WITH_AS(space->add(crate), doctest::Contains("Geometry 'crate': shape type not in this space's shape list, got Box"),
                        spook::Error);
   CHECK_THROWS_WITH_AS(space->add(ball), doctest::Contains("already in this space"), spook::Error);

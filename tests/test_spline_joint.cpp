@@ -31,7 +31,7 @@ ref_ptr<CubicSplineT<S>> splineBowl(double radius, double from, double to, int c
   ref_ptr<CubicSplineT<S>> spline = new CubicSplineT<S>();
   for (int i = 0; i < count; ++i) {
     const double phi = from + (to - from) * i / (count - 1);
-    spline->add(Vec3<S>(S(radius * std::sin(phi)), S(0), S(radius - radius * std::cos(phi))));
+    spline->add(Vec3T<S>(S(radius * std::sin(phi)), S(0), S(radius - radius * std::cos(phi))));
   }
   return spline;
 }
@@ -52,12 +52,12 @@ struct SplineBead {
     solver->setEnablePostStabilization(postStabilization);
     sim->setSolver(solver);
     body = makeBody<S>(*sim, "bead", S(1), spline->getPosition(t), inertia);
-    joint = new SplineJointT<S>(body.get(), frameAt<S>(Vec3<S>::Zero(), spline->getUnitTangent(t)).get(), spline.get());
+    joint = new SplineJointT<S>(body.get(), frameAt<S>(Vec3T<S>::Zero(), spline->getUnitTangent(t)).get(), spline.get());
     sim->add(joint);
   }
   /// Distance of the bead's center from the curve (m), by a search over the whole curve.
   [[nodiscard]] double offCurve() const {
-    const Vec3<S> p = body->getPosition();
+    const Vec3T<S> p = body->getPosition();
     return double((spline->getPosition(spline->findNearestParameter(p)) - p).norm());
   }
   /// Arc length of the point of the curve nearest the bead (m).
@@ -77,8 +77,8 @@ struct SplineBead {
 
 TEST_CASE_TEMPLATE("a cubic spline passes through its control points with continuous tangents", S, float, double) {
   ref_ptr<CubicSplineT<S>> spline = new CubicSplineT<S>();
-  const std::vector<Vec3<S>> points{Vec3<S>(0, 0, 0), Vec3<S>(0, 2, 1), Vec3<S>(0, 4, 5), Vec3<S>(1, 5, 6),
-                                    Vec3<S>(3, 5, 6)};
+  const std::vector<Vec3T<S>> points{Vec3T<S>(0, 0, 0), Vec3T<S>(0, 2, 1), Vec3T<S>(0, 4, 5), Vec3T<S>(1, 5, 6),
+                                    Vec3T<S>(3, 5, 6)};
   for (const auto& p : points) spline->add(p);
   spline->updateTangents();
   REQUIRE(spline->getNumPoints() == points.size());
@@ -90,9 +90,9 @@ TEST_CASE_TEMPLATE("a cubic spline passes through its control points with contin
   // The derivative is continuous across a knot and matches finite differences.
   const S e = pick<S>(1e-6, 1e-2);
   for (S t : {S(0.3), S(1.5), S(2.9)}) {
-    const Vec3<S> fd = (spline->getPosition(t + e) - spline->getPosition(t - e)) / (S(2) * e);
+    const Vec3T<S> fd = (spline->getPosition(t + e) - spline->getPosition(t - e)) / (S(2) * e);
     CHECK((fd - spline->getFirstDerivative(t)).norm() <= pick<S>(1e-8, 1e-2) * spline->getFirstDerivative(t).norm());
-    const Vec3<S> fd2 = (spline->getFirstDerivative(t + e) - spline->getFirstDerivative(t - e)) / (S(2) * e);
+    const Vec3T<S> fd2 = (spline->getFirstDerivative(t + e) - spline->getFirstDerivative(t - e)) / (S(2) * e);
     CHECK((fd2 - spline->getSecondDerivative(t)).norm() <= pick<S>(1e-7, 2e-2) * (S(1) + spline->getSecondDerivative(t).norm()));
   }
   CHECK((spline->getFirstDerivative(S(2) - S(1e-4)) - spline->getFirstDerivative(S(2) + S(1e-4))).norm() <= S(1e-2));
@@ -100,15 +100,15 @@ TEST_CASE_TEMPLATE("a cubic spline passes through its control points with contin
 
 TEST_CASE_TEMPLATE("the arc length of a straight spline is exact and inverts to the parameter", S, float, double) {
   ref_ptr<CubicSplineT<S>> segment = new CubicSplineT<S>();
-  segment->add(Vec3<S>(1, 1, 1));
-  segment->add(Vec3<S>(4, 5, 1));
+  segment->add(Vec3T<S>(1, 1, 1));
+  segment->add(Vec3T<S>(4, 5, 1));
   const S tol = pick<S>(1e-14, 1e-6);
   CHECK(std::abs(segment->getLength() - S(5)) <= S(5) * tol);
   CHECK(std::abs(segment->getLength(S(0.3)) - S(1.5)) <= S(5) * tol);
   CHECK(std::abs(segment->getParameterAtLength(S(4)) - S(0.8)) <= S(10) * tol);
   // Three equally spaced collinear points: the same line, 2 m per segment.
   ref_ptr<CubicSplineT<S>> line = new CubicSplineT<S>();
-  for (int i = 0; i < 3; ++i) line->add(Vec3<S>(S(2 * i), 0, 0));
+  for (int i = 0; i < 3; ++i) line->add(Vec3T<S>(S(2 * i), 0, 0));
   CHECK(std::abs(line->getLength() - S(4)) <= S(4) * tol);
   CHECK(std::abs(line->getLength(S(1.5)) - S(3)) <= S(4) * tol);
   CHECK(std::abs(line->getParameterAtLength(S(1)) - S(0.5)) <= S(10) * tol);
@@ -132,10 +132,10 @@ TEST_CASE("the quadrature of a curved spline agrees with a fine polygon and appr
 TEST_CASE_TEMPLATE("the nearest parameter is the foot of the perpendicular and stays on its branch", S, float, double) {
   auto spline = splineBowl<S>(1.0, -2.0 * kSplinePi / 3.0, 2.0 * kSplinePi / 3.0, 49);
   for (S t0 : {S(3.3), S(24), S(40.7)}) {
-    const Vec3<S> p = spline->getPosition(t0);
-    const Vec3<S> away = spline->getUnitTangent(t0).cross(Vec3<S>::UnitY());  // across the curve, in its plane
+    const Vec3T<S> p = spline->getPosition(t0);
+    const Vec3T<S> away = spline->getUnitTangent(t0).cross(Vec3T<S>::UnitY());  // across the curve, in its plane
     for (S offset : {S(-0.2), S(0.05), S(0.3)}) {
-      const Vec3<S> x = p + offset * away;
+      const Vec3T<S> x = p + offset * away;
       CHECK(std::abs(spline->findNearestParameter(x, t0 + S(0.4)) - t0) <= pick<S>(1e-9, 2e-4));
       CHECK(std::abs(spline->findNearestParameter(x) - t0) <= pick<S>(1e-9, 2e-4));
     }
@@ -144,9 +144,9 @@ TEST_CASE_TEMPLATE("the nearest parameter is the foot of the perpendicular and s
   // lower branch is nearer the upper one, yet the search from the lower
   // branch keeps the lower branch's local minimum.
   ref_ptr<CubicSplineT<S>> hairpin = new CubicSplineT<S>();
-  for (int i = 0; i <= 10; ++i) hairpin->add(Vec3<S>(S(0.2 * i), 0, 0));
-  for (int i = 10; i >= 0; --i) hairpin->add(Vec3<S>(S(0.2 * i - 0.0001), 0, S(0.2)));
-  const Vec3<S> x(S(0.9), 0, S(0.12));
+  for (int i = 0; i <= 10; ++i) hairpin->add(Vec3T<S>(S(0.2 * i), 0, 0));
+  for (int i = 10; i >= 0; --i) hairpin->add(Vec3T<S>(S(0.2 * i - 0.0001), 0, S(0.2)));
+  const Vec3T<S> x(S(0.9), 0, S(0.12));
   const S lower = hairpin->findNearestParameter(x, S(4));
   CHECK(std::abs(lower - S(4.5)) <= pick<S>(1e-6, 1e-3));
   CHECK(std::abs(hairpin->getPosition(lower).z()) <= pick<S>(1e-9, 1e-5));
@@ -156,16 +156,16 @@ TEST_CASE_TEMPLATE("the nearest parameter is the foot of the perpendicular and s
 TEST_CASE("bad spline input throws spook::Error naming the value") {
   CubicSplineRef spline = new CubicSpline();
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  CHECK_THROWS_WITH_AS(spline->add(Vec3<double>(0, nan, 0)), doctest::Contains("CubicSpline"), spook::Error);
+  CHECK_THROWS_WITH_AS(spline->add(Vec3T<double>(0, nan, 0)), doctest::Contains("CubicSpline"), spook::Error);
   CHECK_THROWS_WITH_AS(spline->getPosition(0.0), doctest::Contains("at least two points"), spook::Error);
-  spline->add(Vec3<double>(0, 0, 0));
-  CHECK_THROWS_WITH_AS(spline->add(Vec3<double>(0, 0, 0)), doctest::Contains("differ"), spook::Error);
-  CHECK_THROWS_WITH_AS(spline->add(Vec3<double>(1, 0, 0), Vec3<double>::Zero()), doctest::Contains("tangent"),
+  spline->add(Vec3T<double>(0, 0, 0));
+  CHECK_THROWS_WITH_AS(spline->add(Vec3T<double>(0, 0, 0)), doctest::Contains("differ"), spook::Error);
+  CHECK_THROWS_WITH_AS(spline->add(Vec3T<double>(1, 0, 0), Vec3T<double>::Zero()), doctest::Contains("tangent"),
                        spook::Error);
   CHECK_THROWS_WITH_AS(spline->setTension(1.0), doctest::Contains("1"), spook::Error);
   CHECK(spline->getNumPoints() == 1);
-  spline->add(Vec3<double>(1, 0, 0));
-  CHECK_THROWS_AS((void)spline->findNearestParameter(Vec3<double>(nan, 0, 0), 0.0), spook::Error);
+  spline->add(Vec3T<double>(1, 0, 0));
+  CHECK_THROWS_AS((void)spline->findNearestParameter(Vec3T<double>(nan, 0, 0), 0.0), spook::Error);
   CHECK_THROWS_AS((void)spline->getPoint(2), spook::Error);
 }
 
@@ -178,18 +178,18 @@ TEST_CASE("bad spline input throws spook::Error naming the value") {
 TEST_CASE("the spline joint's rows and coordinates have the Jacobians of their rates") {
   SimulationRef sim = new Simulation();
   CubicSplineRef spline = new CubicSpline();
-  for (int i = 0; i < 12; ++i) spline->add(Vec3<double>(std::cos(0.6 * i), std::sin(0.6 * i), 0.15 * i + 0.02 * i * i));
-  RigidBodyRef carrier = makeBody<double>(*sim, "carrier", 3.0, Vec3<double>(0.2, -0.1, 0.3), 0.3);
-  carrier->setRotation(Quat<double>(Eigen::AngleAxisd(0.4, Vec3<double>(1, 1, 0).normalized())));
+  for (int i = 0; i < 12; ++i) spline->add(Vec3T<double>(std::cos(0.6 * i), std::sin(0.6 * i), 0.15 * i + 0.02 * i * i));
+  RigidBodyRef carrier = makeBody<double>(*sim, "carrier", 3.0, Vec3T<double>(0.2, -0.1, 0.3), 0.3);
+  carrier->setRotation(QuatT<double>(Eigen::AngleAxisd(0.4, Vec3T<double>(1, 1, 0).normalized())));
   const double t0 = 4.3;
-  const Vec3<double> p0 = carrier->getTransform() * spline->getPosition(t0);
-  const Vec3<double> tangent = carrier->getRotation() * spline->getUnitTangent(t0);
-  RigidBodyRef bead = makeBody<double>(*sim, "bead", 1.0, p0 + Vec3<double>(0.1, 0.05, -0.2), 0.01);
-  bead->setRotation(Quat<double>(Eigen::AngleAxisd(-0.7, Vec3<double>(0.3, 1, 0.2).normalized())));
-  const Vec3<double> frameOrigin = bead->getFrame()->transformPointToLocal(p0);
-  const Vec3<double> frameAxis = bead->getRotation().conjugate() * tangent;
+  const Vec3T<double> p0 = carrier->getTransform() * spline->getPosition(t0);
+  const Vec3T<double> tangent = carrier->getRotation() * spline->getUnitTangent(t0);
+  RigidBodyRef bead = makeBody<double>(*sim, "bead", 1.0, p0 + Vec3T<double>(0.1, 0.05, -0.2), 0.01);
+  bead->setRotation(QuatT<double>(Eigen::AngleAxisd(-0.7, Vec3T<double>(0.3, 1, 0.2).normalized())));
+  const Vec3T<double> frameOrigin = bead->getFrame()->transformPointToLocal(p0);
+  const Vec3T<double> frameAxis = bead->getRotation().conjugate() * tangent;
   SplineJointRef joint = new SplineJoint(bead.get(), frameAt<double>(frameOrigin, frameAxis).get(), spline.get(), carrier.get());
-  const Vec3<double> v1(0.3, -0.2, 0.5), w1(0.4, 0.9, -0.3), v2(-0.1, 0.2, 0.1), w2(0.2, -0.5, 0.6);
+  const Vec3T<double> v1(0.3, -0.2, 0.5), w1(0.4, 0.9, -0.3), v2(-0.1, 0.2, 0.1), w2(0.2, -0.5, 0.6);
   bead->setVelocity(v1);
   bead->setAngularVelocity(w1);
   carrier->setVelocity(v2);
@@ -197,7 +197,7 @@ TEST_CASE("the spline joint's rows and coordinates have the Jacobians of their r
   const auto pose1 = bead->getTransform();
   const auto pose2 = carrier->getTransform();
   auto moveBy = [&](double e) {
-    Transform<double> X1 = pose1, X2 = pose2;
+    TransformT<double> X1 = pose1, X2 = pose2;
     X1.translation() += e * v1;
     X1.linear() = Eigen::AngleAxisd(e * w1.norm(), w1.normalized()) * pose1.linear();
     X2.translation() += e * v2;
@@ -244,8 +244,8 @@ TEST_CASE("the spline joint's rows and coordinates have the Jacobians of their r
 TEST_CASE_TEMPLATE("a bead on a straight spline down a 30 degree incline slides at g sin 30", S, float, double) {
   const double angle = kSplinePi / 6.0;
   ref_ptr<CubicSplineT<S>> spline = new CubicSplineT<S>();
-  spline->add(Vec3<S>(0, 0, 0));
-  spline->add(Vec3<S>(S(20 * std::cos(angle)), 0, S(-20 * std::sin(angle))));
+  spline->add(Vec3T<S>(0, 0, 0));
+  spline->add(Vec3T<S>(S(20 * std::cos(angle)), 0, S(-20 * std::sin(angle))));
   SplineBead<S> scene(spline, S(0));
   for (int i = 0; i < 60; ++i) scene.sim->stepForward();
   const double expected = kG * std::sin(angle) * 1.0;  // m/s after 1 s
@@ -309,8 +309,8 @@ TEST_CASE_TEMPLATE("a perturbed bead stays within 1e-6 of the curve and its tang
   for (int i = 0; i < 600; ++i) {
     scene.sim->stepForward();
     if (i < 60) continue;
-    const Transform<S> X = scene.joint->getAttachmentFrame(0)->getMatrix();
-    const Vec3<double> p = X.translation().template cast<double>(), z = X.linear().col(2).template cast<double>();
+    const TransformT<S> X = scene.joint->getAttachmentFrame(0)->getMatrix();
+    const Vec3T<double> p = X.translation().template cast<double>(), z = X.linear().col(2).template cast<double>();
     const double t = curve->findNearestParameter(p);
     worstOff = std::max(worstOff, (curve->getPosition(t) - p).norm());
     worstTilt = std::max(worstTilt, z.cross(curve->getUnitTangent(t)).norm());
@@ -328,7 +328,7 @@ TEST_CASE_TEMPLATE("a motor on the spline's translation drives the bead at its s
   ref_ptr<CubicSplineT<S>> spline = new CubicSplineT<S>();
   for (int i = 0; i <= 20; ++i) {
     const double phi = 0.5 * kSplinePi * i / 20.0;
-    spline->add(Vec3<S>(S(2 * std::cos(phi)), S(2 * std::sin(phi)), S(0)));
+    spline->add(Vec3T<S>(S(2 * std::cos(phi)), S(2 * std::sin(phi)), S(0)));
   }
   SplineBead<S> scene(spline, S(1));
   Motor1DT<S>* motor = scene.joint->getMotor1D(SplineJointT<S>::FIRST);
@@ -368,9 +368,9 @@ TEST_CASE_TEMPLATE("a range on the spline's translation stops the bead at the ar
 
 TEST_CASE_TEMPLATE("rotation about the spline's tangent is free and can be locked", S, float, double) {
   ref_ptr<CubicSplineT<S>> spline = new CubicSplineT<S>();
-  spline->add(Vec3<S>(-5, 0, 0));
-  spline->add(Vec3<S>(0, 0, S(0.5)));
-  spline->add(Vec3<S>(5, 0, 0));
+  spline->add(Vec3T<S>(-5, 0, 0));
+  spline->add(Vec3T<S>(0, 0, S(0.5)));
+  spline->add(Vec3T<S>(5, 0, 0));
   const S spin = S(3);  // rad/s about the tangent
   {
     SplineBead<S> scene(spline, S(0.5), false, S(0.1));
@@ -396,16 +396,16 @@ TEST_CASE_TEMPLATE("rotation about the spline's tangent is free and can be locke
 
 TEST_CASE("bad spline joint input throws spook::Error naming the joint and the value") {
   SimulationRef sim = new Simulation();
-  RigidBodyRef body = makeBody<double>(*sim, "bead", 1.0, Vec3<double>(0, 0, 0));
+  RigidBodyRef body = makeBody<double>(*sim, "bead", 1.0, Vec3T<double>(0, 0, 0));
   CubicSplineRef spline = new CubicSpline();
-  spline->add(Vec3<double>(0, 0, 0));
-  FrameRef frame = frameAt<double>(Vec3<double>::Zero(), Vec3<double>::UnitX());
+  spline->add(Vec3T<double>(0, 0, 0));
+  FrameRef frame = frameAt<double>(Vec3T<double>::Zero(), Vec3T<double>::UnitX());
   CHECK_THROWS_WITH_AS(SplineJointRef(new SplineJoint(body.get(), frame.get(), nullptr)),
                        doctest::Contains("SplineJoint"), spook::Error);
   CHECK_THROWS_WITH_AS(SplineJointRef(new SplineJoint(body.get(), frame.get(), spline.get())),
                        doctest::Contains("at least two points, got 1"), spook::Error);
-  spline->add(Vec3<double>(1, 0, 0));
-  FrameRef backwards = frameAt<double>(Vec3<double>::Zero(), -Vec3<double>::UnitX());
+  spline->add(Vec3T<double>(1, 0, 0));
+  FrameRef backwards = frameAt<double>(Vec3T<double>::Zero(), -Vec3T<double>::UnitX());
   CHECK_THROWS_WITH_AS(SplineJointRef(new SplineJoint(body.get(), backwards.get(), spline.get())),
                        doctest::Contains("got -1"), spook::Error);
   CHECK_THROWS_WITH_AS(SplineJointRef(new SplineJoint(nullptr, frame.get(), spline.get())),

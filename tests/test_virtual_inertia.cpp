@@ -22,13 +22,13 @@ namespace {
 template <class S>
 ref_ptr<SimulationT<S>> weightless(Solver* solver = nullptr) {
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
-  sim->setUniformGravity(Vec3<S>::Zero());
+  sim->setUniformGravity(Vec3T<S>::Zero());
   if (solver) sim->setSolver(solver);
   return sim;
 }
 
 template <class S>
-void stepWithForce(SimulationT<S>& sim, RigidBodyT<S>& body, const Vec3<S>& force, const Vec3<S>& torque,
+void stepWithForce(SimulationT<S>& sim, RigidBodyT<S>& body, const Vec3T<S>& force, const Vec3T<S>& torque,
                    int steps) {
   for (int i = 0; i < steps; ++i) {
     body.addForce(force);
@@ -44,27 +44,27 @@ TEST_CASE_TEMPLATE("virtual mass along a prismatic axis: a = F/(m + m_v) under e
                          static_cast<Solver*>(new HybridSolver())}) {
     ref_ptr<Solver> keep = solver;
     auto sim = weightless<S>(solver);
-    auto slider = makeBody<S>(*sim, "slider", S(2), Vec3<S>::Zero());
-    ref_ptr<PrismaticT<S>> prismatic = new PrismaticT<S>(slider.get(), frameAt<S>(Vec3<S>::Zero(), Vec3<S>::UnitX()).get());
+    auto slider = makeBody<S>(*sim, "slider", S(2), Vec3T<S>::Zero());
+    ref_ptr<PrismaticT<S>> prismatic = new PrismaticT<S>(slider.get(), frameAt<S>(Vec3T<S>::Zero(), Vec3T<S>::UnitX()).get());
     sim->add(prismatic);
     ref_ptr<VirtualConstraintInertiaT<S>> inertia = new VirtualConstraintInertiaT<S>(prismatic.get(), S(3), 0, 0, 0);
     sim->add(inertia);
     CHECK(inertia->getNumDOF() == 1);
-    stepWithForce<S>(*sim, *slider, Vec3<S>(S(10), 0, 0), Vec3<S>::Zero(), 60);
+    stepWithForce<S>(*sim, *slider, Vec3T<S>(S(10), 0, 0), Vec3T<S>::Zero(), 60);
     CHECK(double(slider->getVelocity().x()) == doctest::Approx(10.0 / 5.0).epsilon(tolerance));
 
     // Removed, the body accelerates at F/m again.
     sim->remove(inertia.get());
     const double before = double(slider->getVelocity().x());
-    stepWithForce<S>(*sim, *slider, Vec3<S>(S(10), 0, 0), Vec3<S>::Zero(), 60);
+    stepWithForce<S>(*sim, *slider, Vec3T<S>(S(10), 0, 0), Vec3T<S>::Zero(), 60);
     CHECK(double(slider->getVelocity().x()) - before == doctest::Approx(10.0 / 2.0).epsilon(tolerance));
   }
 }
 
 TEST_CASE_TEMPLATE("virtual mass has no weight: a vertical slider falls at g m/(m + m_v)", S, float, double) {
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
-  auto slider = makeBody<S>(*sim, "slider", S(1), Vec3<S>::Zero());
-  ref_ptr<PrismaticT<S>> prismatic = new PrismaticT<S>(slider.get(), frameAt<S>(Vec3<S>::Zero()).get());
+  auto slider = makeBody<S>(*sim, "slider", S(1), Vec3T<S>::Zero());
+  ref_ptr<PrismaticT<S>> prismatic = new PrismaticT<S>(slider.get(), frameAt<S>(Vec3T<S>::Zero()).get());
   sim->add(prismatic);
   sim->add(ref_ptr<VirtualConstraintInertiaT<S>>(new VirtualConstraintInertiaT<S>(prismatic.get(), S(3), 0, 0, 0)));
   for (int i = 0; i < 60; ++i) sim->stepForward();
@@ -73,12 +73,12 @@ TEST_CASE_TEMPLATE("virtual mass has no weight: a vertical slider falls at g m/(
 
 TEST_CASE_TEMPLATE("virtual moment of inertia about a hinge axis: alpha = T/(I + I_v)", S, float, double) {
   auto sim = weightless<S>(new DirectSolver());
-  auto wheel = makeBody<S>(*sim, "wheel", S(4), Vec3<S>::Zero(), S(0.5));
-  ref_ptr<HingeT<S>> hinge = new HingeT<S>(wheel.get(), frameAt<S>(Vec3<S>::Zero()).get());
+  auto wheel = makeBody<S>(*sim, "wheel", S(4), Vec3T<S>::Zero(), S(0.5));
+  ref_ptr<HingeT<S>> hinge = new HingeT<S>(wheel.get(), frameAt<S>(Vec3T<S>::Zero()).get());
   sim->add(hinge);
   ref_ptr<VirtualConstraintInertiaT<S>> inertia = new VirtualConstraintInertiaT<S>(hinge.get(), S(100), S(1.5), 0, 0);
   sim->add(inertia);
-  stepWithForce<S>(*sim, *wheel, Vec3<S>::Zero(), Vec3<S>(0, 0, S(2)), 60);
+  stepWithForce<S>(*sim, *wheel, Vec3T<S>::Zero(), Vec3T<S>(0, 0, S(2)), 60);
   CHECK(double(wheel->getAngularVelocity().z()) == doctest::Approx(2.0 / 2.0).epsilon(pick<S>(1e-9, 1e-5)));
   CHECK(double(hinge->getAngle()) == doctest::Approx(61.0 / 120.0).epsilon(pick<S>(1e-6, 1e-4)));  // h²α N(N+1)/2
   // The virtual mass along the axis acts on a DOF the hinge already locks.
@@ -88,9 +88,9 @@ TEST_CASE_TEMPLATE("virtual moment of inertia about a hinge axis: alpha = T/(I +
 TEST_CASE_TEMPLATE("virtual inertia split between two bodies acts on each body alone", S, float, double) {
   // Seed 001 §12.19.2: half of the virtual mass on each body of a prismatic.
   auto sim = weightless<S>(new DirectSolver());
-  auto first = makeBody<S>(*sim, "first", S(1), Vec3<S>::Zero());
-  auto second = makeBody<S>(*sim, "second", S(3), Vec3<S>(S(1), 0, 0));
-  ref_ptr<PrismaticT<S>> prismatic = new PrismaticT<S>(first.get(), frameAt<S>(Vec3<S>::Zero(), Vec3<S>::UnitX()).get(),
+  auto first = makeBody<S>(*sim, "first", S(1), Vec3T<S>::Zero());
+  auto second = makeBody<S>(*sim, "second", S(3), Vec3T<S>(S(1), 0, 0));
+  ref_ptr<PrismaticT<S>> prismatic = new PrismaticT<S>(first.get(), frameAt<S>(Vec3T<S>::Zero(), Vec3T<S>::UnitX()).get(),
                                                        second.get(), nullptr);
   sim->add(prismatic);
   ref_ptr<VirtualConstraintInertiaT<S>> inertia =
@@ -109,8 +109,8 @@ TEST_CASE_TEMPLATE("virtual inertia split between two bodies acts on each body a
 
 TEST_CASE("bad virtual inertia input throws spook::Error naming it and the value, and changes nothing") {
   ref_ptr<Simulation> sim = new Simulation();
-  auto body = makeBody<double>(*sim, "slider", 1.0, Vec3<double>::Zero());
-  ref_ptr<Prismatic> prismatic = new Prismatic(body.get(), frameAt<double>(Vec3<double>::Zero()).get());
+  auto body = makeBody<double>(*sim, "slider", 1.0, Vec3T<double>::Zero());
+  ref_ptr<Prismatic> prismatic = new Prismatic(body.get(), frameAt<double>(Vec3T<double>::Zero()).get());
   sim->add(prismatic);
   const auto message = [](auto&& f) -> std::string {
     try {

@@ -29,8 +29,8 @@ struct WheelOnWorldScene {
 
   explicit WheelOnWorldScene(S mass = S(10)) {
     sim->setSolver(new DirectSolver());
-    wheel = makeBody<S>(*sim, "wheel", mass, Vec3<S>::Zero(), S(0.2));
-    const WheelJointFrameT<S> frame(Vec3<S>::Zero(), Vec3<S>::UnitY(), Vec3<S>::UnitZ());
+    wheel = makeBody<S>(*sim, "wheel", mass, Vec3T<S>::Zero(), S(0.2));
+    const WheelJointFrameT<S> frame(Vec3T<S>::Zero(), Vec3T<S>::UnitY(), Vec3T<S>::UnitZ());
     joint = new WheelJointT<S>(frame, wheel.get(), nullptr);
     sim->add(joint);
   }
@@ -40,17 +40,17 @@ struct WheelOnWorldScene {
 // attachment frames.
 template <class S>
 double wheelAxleTilt(const WheelJointT<S>& joint) {
-  const Mat3<S> R1 = joint.getAttachmentFrame(0)->getMatrix().linear();
-  const Mat3<S> R2 = joint.getAttachmentFrame(1)->getMatrix().linear();
+  const Mat3T<S> R1 = joint.getAttachmentFrame(0)->getMatrix().linear();
+  const Mat3T<S> R2 = joint.getAttachmentFrame(1)->getMatrix().linear();
   return std::abs(double(R1.col(1).dot(R2.col(2))));
 }
 
 // Distance of frame 1's origin from the steering axis (m).
 template <class S>
 double wheelOffAxis(const WheelJointT<S>& joint) {
-  const Transform<S> X1 = joint.getAttachmentFrame(0)->getMatrix(), X2 = joint.getAttachmentFrame(1)->getMatrix();
-  const Vec3<S> d = X1.translation() - X2.translation();
-  const Vec3<S> z = X2.linear().col(2);
+  const TransformT<S> X1 = joint.getAttachmentFrame(0)->getMatrix(), X2 = joint.getAttachmentFrame(1)->getMatrix();
+  const Vec3T<S> d = X1.translation() - X2.translation();
+  const Vec3T<S> z = X2.linear().col(2);
   return double((d - d.dot(z) * z).norm());
 }
 
@@ -67,14 +67,14 @@ struct FrontAxleScene {
 
   FrontAxleScene() {
     sim->setSolver(new DirectSolver());
-    chassis = makeBody<S>(*sim, "chassis", S(500), Vec3<S>::Zero(), S(100));
+    chassis = makeBody<S>(*sim, "chassis", S(500), Vec3T<S>::Zero(), S(100));
     chassis->setMotionControl(RigidBodyT<S>::STATIC);
     const S half = S(kSteeringTrack / 2);
-    leftWheel = makeBody<S>(*sim, "left wheel", S(15), Vec3<S>(0, half + S(0.1), 0), S(0.5));
-    rightWheel = makeBody<S>(*sim, "right wheel", S(15), Vec3<S>(0, -half - S(0.1), 0), S(0.5));
-    left = new WheelJointT<S>(WheelJointFrameT<S>(Vec3<S>(0, half, 0), Vec3<S>::UnitY(), Vec3<S>::UnitZ()),
+    leftWheel = makeBody<S>(*sim, "left wheel", S(15), Vec3T<S>(0, half + S(0.1), 0), S(0.5));
+    rightWheel = makeBody<S>(*sim, "right wheel", S(15), Vec3T<S>(0, -half - S(0.1), 0), S(0.5));
+    left = new WheelJointT<S>(WheelJointFrameT<S>(Vec3T<S>(0, half, 0), Vec3T<S>::UnitY(), Vec3T<S>::UnitZ()),
                               leftWheel.get(), chassis.get());
-    right = new WheelJointT<S>(WheelJointFrameT<S>(Vec3<S>(0, -half, 0), Vec3<S>::UnitY(), Vec3<S>::UnitZ()),
+    right = new WheelJointT<S>(WheelJointFrameT<S>(Vec3T<S>(0, -half, 0), Vec3T<S>::UnitY(), Vec3T<S>::UnitZ()),
                                rightWheel.get(), chassis.get());
     sim->add(left);
     sim->add(right);
@@ -127,7 +127,7 @@ TEST_CASE_TEMPLATE("wheel joint: a WHEEL motor spins the wheel at the motor spee
   motor->setEnable(true);
   scene.sim->stepTo(S(1));
   const double speed = double(scene.joint->getCurrentSpeed(WheelJointT<S>::WHEEL));
-  const double spin = double(scene.wheel->getAngularVelocity().dot(Vec3<S>::UnitY()));
+  const double spin = double(scene.wheel->getAngularVelocity().dot(Vec3T<S>::UnitY()));
   MESSAGE("WHEEL speed after 1 s: " << speed << " rad/s (target 5), body ω·y = " << spin);
   CHECK(speed == doctest::Approx(5.0).epsilon(pick<S>(1e-6, 1e-4)));
   CHECK(spin == doctest::Approx(5.0).epsilon(pick<S>(1e-6, 1e-4)));
@@ -227,15 +227,15 @@ TEST_CASE_TEMPLATE("wheel joint: the axle stays perpendicular to the steering ax
 
 TEST_CASE_TEMPLATE("wheel joint: angles measure steering and roll separately", S, float, double) {
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
-  ref_ptr<RigidBodyT<S>> wheel = makeBody<S>(*sim, "wheel", S(1), Vec3<S>::Zero());
-  const WheelJointFrameT<S> frame(Vec3<S>::Zero(), Vec3<S>::UnitY(), Vec3<S>::UnitZ());
+  ref_ptr<RigidBodyT<S>> wheel = makeBody<S>(*sim, "wheel", S(1), Vec3T<S>::Zero());
+  const WheelJointFrameT<S> frame(Vec3T<S>::Zero(), Vec3T<S>::UnitY(), Vec3T<S>::UnitZ());
   ref_ptr<WheelJointT<S>> joint = new WheelJointT<S>(frame, wheel.get(), nullptr);
   const double steer = 0.4, roll = 1.1;
   // Steer about z, then roll about the steered axle.
-  const Quat<S> q = Quat<S>(Eigen::AngleAxis<S>(S(steer), Vec3<S>::UnitZ())) *
-                    Quat<S>(Eigen::AngleAxis<S>(S(roll), Vec3<S>::UnitY()));
+  const QuatT<S> q = QuatT<S>(Eigen::AngleAxis<S>(S(steer), Vec3T<S>::UnitZ())) *
+                    QuatT<S>(Eigen::AngleAxis<S>(S(roll), Vec3T<S>::UnitY()));
   wheel->setRotation(q);
-  wheel->setPosition(Vec3<S>(0, 0, S(0.03)));
+  wheel->setPosition(Vec3T<S>(0, 0, S(0.03)));
   CHECK(double(joint->getAngle(WheelJointT<S>::STEERING)) == doctest::Approx(steer).epsilon(pick<S>(1e-12, 1e-5)));
   CHECK(double(joint->getAngle(WheelJointT<S>::WHEEL)) == doctest::Approx(roll).epsilon(pick<S>(1e-12, 1e-5)));
   CHECK(double(joint->getAngle(WheelJointT<S>::SUSPENSION)) == doctest::Approx(0.03).epsilon(pick<S>(1e-12, 1e-5)));
@@ -254,13 +254,13 @@ TEST_CASE_TEMPLATE("wheel joint: a STEERING motor winds past pi", S, float, doub
 }
 
 TEST_CASE("wheel joint frame rejects bad axes and points") {
-  const Vec3<double> o = Vec3<double>::Zero(), y = Vec3<double>::UnitY(), z = Vec3<double>::UnitZ();
+  const Vec3T<double> o = Vec3T<double>::Zero(), y = Vec3T<double>::UnitY(), z = Vec3T<double>::UnitZ();
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  CHECK_THROWS_AS(WheelJointFrame(o, y, Vec3<double>(0, 0.01, 1)), Error);
-  CHECK_THROWS_AS(WheelJointFrame(o, Vec3<double>::Zero(), z), Error);
-  CHECK_THROWS_AS(WheelJointFrame(o, y, Vec3<double>(0, 0, nan)), Error);
-  CHECK_THROWS_AS(WheelJointFrame(Vec3<double>(nan, 0, 0), y, z), Error);
-  CHECK_NOTHROW(WheelJointFrame(o, Vec3<double>(3, 0, 0), Vec3<double>(0, 0, 0.5)));
+  CHECK_THROWS_AS(WheelJointFrame(o, y, Vec3T<double>(0, 0.01, 1)), Error);
+  CHECK_THROWS_AS(WheelJointFrame(o, Vec3T<double>::Zero(), z), Error);
+  CHECK_THROWS_AS(WheelJointFrame(o, y, Vec3T<double>(0, 0, nan)), Error);
+  CHECK_THROWS_AS(WheelJointFrame(Vec3T<double>(nan, 0, 0), y, z), Error);
+  CHECK_NOTHROW(WheelJointFrame(o, Vec3T<double>(3, 0, 0), Vec3T<double>(0, 0, 0.5)));
   try {
     WheelJointFrame(o, y, y);
     FAIL("parallel axes accepted");
@@ -273,8 +273,8 @@ TEST_CASE("wheel joint frame rejects bad axes and points") {
 
 TEST_CASE("wheel joint rejects bad indices and a missing wheel") {
   ref_ptr<Simulation> sim = new Simulation();
-  ref_ptr<RigidBody> wheel = makeBody<double>(*sim, "wheel", 1.0, Vec3<double>::Zero());
-  const WheelJointFrame frame(Vec3<double>::Zero(), Vec3<double>::UnitY(), Vec3<double>::UnitZ());
+  ref_ptr<RigidBody> wheel = makeBody<double>(*sim, "wheel", 1.0, Vec3T<double>::Zero());
+  const WheelJointFrame frame(Vec3T<double>::Zero(), Vec3T<double>::UnitY(), Vec3T<double>::UnitZ());
   CHECK_THROWS_AS(WheelJointRef(new WheelJoint(frame, nullptr, nullptr)), Error);
   WheelJointRef joint = new WheelJoint(frame, wheel.get(), nullptr);
   joint->setName("front left");
@@ -394,10 +394,10 @@ TEST_CASE("steering: added to a simulation it keeps the wheels steered") {
 TEST_CASE("steering: bad input throws and leaves the mechanism unchanged") {
   FrontAxleScene<double> scene;
   // A wheel joint on another chassis.
-  ref_ptr<RigidBody> trailer = makeBody<double>(*scene.sim, "trailer", 100.0, Vec3<double>(-3, 0, 0), 10.0);
-  ref_ptr<RigidBody> trailerWheel = makeBody<double>(*scene.sim, "trailer wheel", 10.0, Vec3<double>(-3, 1, 0));
+  ref_ptr<RigidBody> trailer = makeBody<double>(*scene.sim, "trailer", 100.0, Vec3T<double>(-3, 0, 0), 10.0);
+  ref_ptr<RigidBody> trailerWheel = makeBody<double>(*scene.sim, "trailer wheel", 10.0, Vec3T<double>(-3, 1, 0));
   WheelJointRef other =
-      new WheelJoint(WheelJointFrame(Vec3<double>(-3, 0.9, 0), Vec3<double>::UnitY(), Vec3<double>::UnitZ()),
+      new WheelJoint(WheelJointFrame(Vec3T<double>(-3, 0.9, 0), Vec3T<double>::UnitY(), Vec3T<double>::UnitZ()),
                      trailerWheel.get(), trailer.get());
   CHECK_THROWS_AS(AckermannRef(new Ackermann(nullptr, scene.right.get())), Error);
   CHECK_THROWS_AS(DavisRef(new Davis(nullptr, nullptr)), Error);

@@ -186,27 +186,31 @@ template <class T>
 
 namespace spook {
 
-// Math types are Eigen types behind short aliases, templated on the scalar
-// (default double, so `spook::Vec3(0, 0, 5)` deduces a double vector).
+// Math types are Eigen types behind short aliases, named like the classes:
+// `Vec3T<S>` is the template, `spook::Vec3` the double type and
+// `spook::f32::Vec3` the float one (as RigidBodyT<S> / RigidBody), so that
+// `spook::Vec3 x = spook::Vec3(0, 0, 1);` is plain C++.
 // Right-handed coordinates, SI units throughout.
 
 /// 3-vector.
-template <class S = double>
-using Vec3 = Eigen::Matrix<S, 3, 1>;
+template <class S>
+using Vec3T = Eigen::Matrix<S, 3, 1>;
 /// Unit quaternion for rotations (Hamilton convention, as Eigen).
-template <class S = double>
-using Quat = Eigen::Quaternion<S>;
+template <class S>
+using QuatT = Eigen::Quaternion<S>;
 /// 3×3 matrix.
-template <class S = double>
-using Mat3 = Eigen::Matrix<S, 3, 3>;
+template <class S>
+using Mat3T = Eigen::Matrix<S, 3, 3>;
 /// Rigid transform: rotation and translation, no scale (AGX's AffineMatrix4x4).
-template <class S = double>
-using Transform = Eigen::Transform<S, 3, Eigen::Isometry>;
+template <class S>
+using TransformT = Eigen::Transform<S, 3, Eigen::Isometry>;
 
 /// Rotation angles in radians about the fixed x, y and z axes, applied in
 /// that order: R = Rz(z) · Ry(y) · Rx(x) (roll, pitch, yaw).
-template <class S = double>
-struct EulerAngles {
+template <class S>
+struct EulerAnglesT {
+  EulerAnglesT() = default;
+  EulerAnglesT(S x_, S y_, S z_) : x(x_), y(y_), z(z_) {}
   S x = S(0);
   S y = S(0);
   S z = S(0);
@@ -214,18 +218,18 @@ struct EulerAngles {
 
 /// A symmetric positive-definite 3×3 matrix, such as an inertia tensor
 /// (kg·m²). Construction checks the property and throws spook::Error.
-template <class S = double>
-class SPDMat3 {
+template <class S>
+class SPDMat3T {
  public:
   /// The identity.
-  SPDMat3() : m_(Mat3<S>::Identity()) {}
+  SPDMat3T() : m_(Mat3T<S>::Identity()) {}
   /// From a 3-vector (a diagonal matrix) or a full 3×3 matrix; throws unless
   /// the result is finite, symmetric and positive definite.
   template <class Derived>
-  explicit SPDMat3(const Eigen::MatrixBase<Derived>& value) {
-    Mat3<S> m;
+  explicit SPDMat3T(const Eigen::MatrixBase<Derived>& value) {
+    Mat3T<S> m;
     if constexpr (Derived::ColsAtCompileTime == 1) {
-      m = Vec3<S>(value).asDiagonal();
+      m = Vec3T<S>(value).asDiagonal();
     } else {
       m = value;
     }
@@ -234,26 +238,26 @@ class SPDMat3 {
   }
 
   /// Why `m` is not symmetric positive definite, or nullptr when it is.
-  [[nodiscard]] static const char* defect(const Mat3<S>& m) {
+  [[nodiscard]] static const char* defect(const Mat3T<S>& m) {
     if (!m.allFinite()) return "matrix must be finite";
     const S scale = m.cwiseAbs().maxCoeff();
     if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= ScalarTraits<S>::symmetryTolerance() * scale))
       return "matrix must be symmetric";
-    const Mat3<S> sym = S(0.5) * (m + m.transpose());
+    const Mat3T<S> sym = S(0.5) * (m + m.transpose());
     // Relative to the largest eigenvalue, so that round-off cannot pass a
     // singular matrix off as positive definite.
-    const Vec3<S> eigenvalues = Eigen::SelfAdjointEigenSolver<Mat3<S>>(sym, Eigen::EigenvaluesOnly).eigenvalues();
+    const Vec3T<S> eigenvalues = Eigen::SelfAdjointEigenSolver<Mat3T<S>>(sym, Eigen::EigenvaluesOnly).eigenvalues();
     if (!(eigenvalues.minCoeff() > S(16) * ScalarTraits<S>::epsilon() * eigenvalues.maxCoeff()))
       return "matrix must be positive definite";
     return nullptr;
   }
 
-  [[nodiscard]] const Mat3<S>& matrix() const { return m_; }
-  [[nodiscard]] Mat3<S> inverse() const { return m_.inverse(); }
-  [[nodiscard]] Vec3<S> diagonal() const { return m_.diagonal(); }
+  [[nodiscard]] const Mat3T<S>& matrix() const { return m_; }
+  [[nodiscard]] Mat3T<S> inverse() const { return m_.inverse(); }
+  [[nodiscard]] Vec3T<S> diagonal() const { return m_.diagonal(); }
 
   /// Row-major entries, for error messages.
-  static Eigen::Matrix<S, 9, 1> flat(const Mat3<S>& m) {
+  static Eigen::Matrix<S, 9, 1> flat(const Mat3T<S>& m) {
     Eigen::Matrix<S, 9, 1> v;
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) v[3 * r + c] = m(r, c);
@@ -261,14 +265,14 @@ class SPDMat3 {
   }
 
  private:
-  Mat3<S> m_;
+  Mat3T<S> m_;
 };
 
 /// True when R is finite, orthonormal (to ScalarTraits::rotationTolerance)
 /// and right-handed: the linear part of a rigid transform.
 template <class S>
-[[nodiscard]] bool isRotation(const Mat3<S>& R) {
-  return R.allFinite() && (R.transpose() * R - Mat3<S>::Identity()).norm() <= ScalarTraits<S>::rotationTolerance() &&
+[[nodiscard]] bool isRotation(const Mat3T<S>& R) {
+  return R.allFinite() && (R.transpose() * R - Mat3T<S>::Identity()).norm() <= ScalarTraits<S>::rotationTolerance() &&
          R.determinant() > S(0);
 }
 
@@ -278,7 +282,7 @@ template <class Derived>
   return m.allFinite();
 }
 template <class S>
-[[nodiscard]] bool isFinite(const Quat<S>& q) {
+[[nodiscard]] bool isFinite(const QuatT<S>& q) {
   return q.coeffs().allFinite();
 }
 
@@ -286,35 +290,35 @@ template <class S>
 /// Quat::rotate). Antiparallel vectors give a half turn about an axis
 /// perpendicular to both.
 template <class S>
-[[nodiscard]] Quat<S> rotate(const Vec3<S>& from, const Vec3<S>& to) {
+[[nodiscard]] QuatT<S> rotate(const Vec3T<S>& from, const Vec3T<S>& to) {
   if (!(from.norm() > S(0)) || !(to.norm() > S(0)) || !from.allFinite() || !to.allFinite())
     throw detail::makeError("rotate", "", "vectors must be finite and non-zero",
                             Eigen::Matrix<S, 6, 1>(from.x(), from.y(), from.z(), to.x(), to.y(), to.z()));
-  return Quat<S>::FromTwoVectors(from, to);
+  return QuatT<S>::FromTwoVectors(from, to);
 }
 
 /// Rotation matrix of Euler angles (R = Rz · Ry · Rx).
 template <class S>
-[[nodiscard]] Mat3<S> toMatrix(const EulerAngles<S>& e) {
-  return (Eigen::AngleAxis<S>(e.z, Vec3<S>::UnitZ()) * Eigen::AngleAxis<S>(e.y, Vec3<S>::UnitY()) *
-          Eigen::AngleAxis<S>(e.x, Vec3<S>::UnitX()))
+[[nodiscard]] Mat3T<S> toMatrix(const EulerAnglesT<S>& e) {
+  return (Eigen::AngleAxis<S>(e.z, Vec3T<S>::UnitZ()) * Eigen::AngleAxis<S>(e.y, Vec3T<S>::UnitY()) *
+          Eigen::AngleAxis<S>(e.x, Vec3T<S>::UnitX()))
       .toRotationMatrix();
 }
 
 /// Quaternion of Euler angles.
 template <class S>
-[[nodiscard]] Quat<S> toQuat(const EulerAngles<S>& e) {
-  return Quat<S>(Eigen::AngleAxis<S>(e.z, Vec3<S>::UnitZ()) * Eigen::AngleAxis<S>(e.y, Vec3<S>::UnitY()) *
-                 Eigen::AngleAxis<S>(e.x, Vec3<S>::UnitX()));
+[[nodiscard]] QuatT<S> toQuat(const EulerAnglesT<S>& e) {
+  return QuatT<S>(Eigen::AngleAxis<S>(e.z, Vec3T<S>::UnitZ()) * Eigen::AngleAxis<S>(e.y, Vec3T<S>::UnitY()) *
+                 Eigen::AngleAxis<S>(e.x, Vec3T<S>::UnitX()));
 }
 
 /// Euler angles of a rotation matrix, with y in [−π/2, π/2]. At y = ±π/2
 /// (gimbal lock) only x ∓ z is defined; z is set to 0. y comes from atan2,
 /// which stays accurate near ±π/2 where asin would not.
 template <class S>
-[[nodiscard]] EulerAngles<S> toEulerAngles(const Mat3<S>& R) {
+[[nodiscard]] EulerAnglesT<S> toEulerAngles(const Mat3T<S>& R) {
   using std::atan2;
-  EulerAngles<S> e;
+  EulerAnglesT<S> e;
   const S cosY = std::hypot(R(0, 0), R(1, 0));
   e.y = atan2(-R(2, 0), cosY);
   if (cosY > S(16) * ScalarTraits<S>::epsilon()) {
@@ -329,14 +333,14 @@ template <class S>
 
 /// Euler angles of a quaternion.
 template <class S>
-[[nodiscard]] EulerAngles<S> toEulerAngles(const Quat<S>& q) {
+[[nodiscard]] EulerAnglesT<S> toEulerAngles(const QuatT<S>& q) {
   return toEulerAngles<S>(q.normalized().toRotationMatrix());
 }
 
 /// Transform from translation and rotation.
 template <class S>
-[[nodiscard]] Transform<S> makeTransform(const Vec3<S>& translate, const Quat<S>& rotate = Quat<S>::Identity()) {
-  Transform<S> X = Transform<S>::Identity();
+[[nodiscard]] TransformT<S> makeTransform(const Vec3T<S>& translate, const QuatT<S>& rotate = QuatT<S>::Identity()) {
+  TransformT<S> X = TransformT<S>::Identity();
   X.linear() = rotate.normalized().toRotationMatrix();
   X.translation() = translate;
   return X;
@@ -344,35 +348,76 @@ template <class S>
 
 /// Skew-symmetric cross-product matrix: skew(a) b = a × b.
 template <class S>
-[[nodiscard]] Mat3<S> skew(const Vec3<S>& a) {
-  Mat3<S> m;
+[[nodiscard]] Mat3T<S> skew(const Vec3T<S>& a) {
+  Mat3T<S> m;
   m << S(0), -a.z(), a.y(), a.z(), S(0), -a.x(), -a.y(), a.x(), S(0);
   return m;
 }
 
 /// exp of the rotation vector `phi` (radians): the rotation by |phi| about phi/|phi|.
 template <class S>
-[[nodiscard]] Quat<S> expRotation(const Vec3<S>& phi) {
+[[nodiscard]] QuatT<S> expRotation(const Vec3T<S>& phi) {
   const S angle = phi.norm();
   if (angle < S(1e-4)) {
     // Taylor series of cos(θ/2) and sin(θ/2)/θ, exact to round-off here.
     const S a2 = angle * angle;
     const S w = S(1) - a2 / S(8) + a2 * a2 / S(384);
     const S k = S(0.5) - a2 / S(48);
-    return Quat<S>(w, k * phi.x(), k * phi.y(), k * phi.z()).normalized();
+    return QuatT<S>(w, k * phi.x(), k * phi.y(), k * phi.z()).normalized();
   }
-  return Quat<S>(Eigen::AngleAxis<S>(angle, phi / angle));
+  return QuatT<S>(Eigen::AngleAxis<S>(angle, phi / angle));
 }
 
 /// log of a rotation: the rotation vector (radians, |result| ≤ π).
 template <class S>
-[[nodiscard]] Vec3<S> logRotation(const Quat<S>& q) {
-  Quat<S> u = q.normalized();
+[[nodiscard]] Vec3T<S> logRotation(const QuatT<S>& q) {
+  QuatT<S> u = q.normalized();
   if (u.w() < S(0)) u.coeffs() = -u.coeffs();
   const S s = u.vec().norm();
   if (s < S(1e-6)) return S(2) * u.vec() / u.w();
   return S(2) * std::atan2(s, u.w()) * u.vec() / s;
 }
+
+/// The double math types (what user code writes) and their float twins.
+using Vec3 = Vec3T<double>;
+using Quat = QuatT<double>;
+using Mat3 = Mat3T<double>;
+using Transform = TransformT<double>;
+using EulerAngles = EulerAnglesT<double>;
+using SPDMat3 = SPDMat3T<double>;
+namespace f32 {
+using Vec3 = Vec3T<float>;
+using Quat = QuatT<float>;
+using Mat3 = Mat3T<float>;
+using Transform = TransformT<float>;
+using EulerAngles = EulerAnglesT<float>;
+using SPDMat3 = SPDMat3T<float>;
+}  // namespace f32
+
+/// π and its halves and quarters, as in the seeds (agx::PI, agx::PI_2, agx::PI_4).
+inline constexpr double PI = 3.14159265358979323846;
+inline constexpr double PI_2 = PI / 2;
+inline constexpr double PI_4 = PI / 4;
+
+/// Degrees to radians and back.
+template <class S>
+[[nodiscard]] constexpr S degreesToRadians(S degrees) {
+  return degrees * S(PI / 180.0);
+}
+template <class S>
+[[nodiscard]] constexpr S radiansToDegrees(S radians) {
+  return radians * S(180.0 / PI);
+}
+
+/// The unit axes (agx::X_AXIS; Eigen spells them Vec3::UnitX()).
+inline const Vec3 X_AXIS = Vec3::UnitX();
+inline const Vec3 Y_AXIS = Vec3::UnitY();
+inline const Vec3 Z_AXIS = Vec3::UnitZ();
+namespace f32 {
+inline const Vec3 X_AXIS = Vec3::UnitX();
+inline const Vec3 Y_AXIS = Vec3::UnitY();
+inline const Vec3 Z_AXIS = Vec3::UnitZ();
+}  // namespace f32
 
 }  // namespace spook
 // --- end spook/core/math.hpp ---
@@ -382,12 +427,12 @@ namespace spook {
 /// Axis-aligned box [min, max] (m), in whatever frame its owner states.
 template <Scalar S>
 struct BoundingBoxT {
-  Vec3<S> min = Vec3<S>::Zero();
-  Vec3<S> max = Vec3<S>::Zero();
+  Vec3T<S> min = Vec3T<S>::Zero();
+  Vec3T<S> max = Vec3T<S>::Zero();
 
-  [[nodiscard]] Vec3<S> center() const { return S(0.5) * (min + max); }
-  [[nodiscard]] Vec3<S> halfExtents() const { return S(0.5) * (max - min); }
-  [[nodiscard]] bool contains(const Vec3<S>& p, S tolerance = S(0)) const {
+  [[nodiscard]] Vec3T<S> center() const { return S(0.5) * (min + max); }
+  [[nodiscard]] Vec3T<S> halfExtents() const { return S(0.5) * (max - min); }
+  [[nodiscard]] bool contains(const Vec3T<S>& p, S tolerance = S(0)) const {
     return (p.array() >= min.array() - tolerance).all() && (p.array() <= max.array() + tolerance).all();
   }
 };
@@ -540,7 +585,7 @@ namespace spook {
 template <Scalar S>
 class ShapeT : public Referenced {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   /// Which kind of shape this is; every concrete shape class also states it
   /// as `static constexpr ShapeType kType`.
@@ -550,7 +595,7 @@ class ShapeT : public Referenced {
   [[nodiscard]] virtual S getVolume() const = 0;
   /// Inertia tensor about the shape origin, in the shape frame, for a
   /// uniform body of `mass` kg (kg·m²).
-  [[nodiscard]] virtual SPDMat3<S> calculateInertia(S mass) const = 0;
+  [[nodiscard]] virtual SPDMat3T<S> calculateInertia(S mass) const = 0;
   /// Tight axis-aligned box in the shape frame (m).
   [[nodiscard]] virtual BoundingBoxT<S> getBoundingBox() const = 0;
   /// Center of volume in the shape frame (m); the origin for primitives.
@@ -577,7 +622,7 @@ template <Scalar S, class Convex>
 BoundingBoxT<S> boundingBoxFromSupport(const Convex& shape) {
   BoundingBoxT<S> box;
   for (int i = 0; i < 3; ++i) {
-    const Vec3<S> axis = Vec3<S>::Unit(i);
+    const Vec3T<S> axis = Vec3T<S>::Unit(i);
     box.max[i] = shape.support(axis)[i];
     box.min[i] = shape.support(-axis)[i];
   }
@@ -595,7 +640,7 @@ template <Scalar S>
 class BoxT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::BOX;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   explicit BoxT(const Vec3& halfExtents) { setHalfExtents(halfExtents); }
 
@@ -611,10 +656,10 @@ class BoxT : public ShapeT<S> {
   [[nodiscard]] S getVolume() const override { return S(8) * halfExtents_.prod(); }
 
   /// I = m/3 (b² + c², a² + c², a² + b²) for half extents a, b, c.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Box", mass);
     const Vec3 sq = halfExtents_.cwiseAbs2();
-    return SPDMat3<S>(Vec3(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()) * (mass / S(3)));
+    return SPDMat3T<S>(Vec3(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()) * (mass / S(3)));
   }
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return {-halfExtents_, halfExtents_}; }
@@ -655,7 +700,7 @@ template <Scalar S>
 class CapsuleT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::CAPSULE;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   CapsuleT(S radius, S height) {
     setRadius(radius);
@@ -678,14 +723,14 @@ class CapsuleT : public ShapeT<S> {
   /// I_yy = m_c r²/2 + 2/5 m_s r²,
   /// I_xx = I_zz = m_c (3r² + h²)/12 + m_s (2r²/5 + h²/4 + 3hr/8), the last
   /// term from each hemisphere's centroid at 3r/8 and the parallel-axis rule.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Capsule", mass);
     const S r = radius_, h = height_, r2 = r * r;
     const S cylinderShare = h / (h + S(4) / S(3) * r);
     const S mc = mass * cylinderShare, ms = mass - mc;
     const S axial = S(0.5) * mc * r2 + S(0.4) * ms * r2;
     const S across = mc * (S(3) * r2 + h * h) / S(12) + ms * (S(0.4) * r2 + S(0.25) * h * h + S(0.375) * h * r);
-    return SPDMat3<S>(Vec3(across, axial, across));
+    return SPDMat3T<S>(Vec3(across, axial, across));
   }
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return detail::boundingBoxFromSupport<S>(*this); }
@@ -730,9 +775,9 @@ template <Scalar S>
 class CompositeT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::COMPOSITE;
-  using Vec3 = spook::Vec3<S>;
-  using Mat3 = spook::Mat3<S>;
-  using Transform = spook::Transform<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
+  using Transform = spook::TransformT<S>;
   using Shape = ShapeT<S>;
 
   struct Child {
@@ -752,8 +797,8 @@ class CompositeT : public ShapeT<S> {
       throw detail::makeError("Composite", "", "a composite cannot contain itself", "a composite of its own chain");
     if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
       throw detail::makeError("Composite", "", "child transform must be finite and rigid",
-                              SPDMat3<S>::flat(transform.linear()));
-    children_.push_back({std::move(shape), makeTransform<S>(transform.translation(), Quat<S>(transform.linear()))});
+                              SPDMat3T<S>::flat(transform.linear()));
+    children_.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
   }
 
   [[nodiscard]] const std::vector<Child>& getChildren() const { return children_; }
@@ -789,7 +834,7 @@ class CompositeT : public ShapeT<S> {
   /// turned into the composite frame and moved to the origin (parallel-axis
   /// theorem both ways, J(m, d) = m(|d|² 1 − d dᵀ)):
   /// I = Σ Rᵢ (Iᵢ − J(mᵢ, cᵢ)) Rᵢᵀ + J(mᵢ, Xᵢ cᵢ).
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Composite", mass);
     const S volume = getVolume();
     if (!(volume > S(0))) throw detail::makeError("Composite", "", "inertia needs a positive volume (m^3)", volume);
@@ -805,7 +850,7 @@ class CompositeT : public ShapeT<S> {
       const Mat3 R = c.transform.linear();
       inertia += R * aboutCenter * R.transpose() + shift(childMass, c.transform * center);
     }
-    return SPDMat3<S>(inertia);
+    return SPDMat3T<S>(inertia);
   }
 
   /// Union of the children's boxes, each child box's corners transformed;
@@ -874,14 +919,14 @@ namespace spook::detail {
 template <Scalar S>
 struct ConvexFace {
   std::vector<int> vertices;         ///< corner indices, counter-clockwise seen from outside
-  Vec3<S> normal = Vec3<S>::Zero();  ///< unit outward normal (shape frame)
+  Vec3T<S> normal = Vec3T<S>::Zero();  ///< unit outward normal (shape frame)
   S offset = S(0);                   ///< largest normal·x of its corners and merged points (m)
 };
 
 /// A convex hull: its corners, its outward triangles and its polygon faces.
 template <Scalar S>
 struct ConvexHull {
-  std::vector<Vec3<S>> vertices;              ///< the hull's corners, in input order (m)
+  std::vector<Vec3T<S>> vertices;              ///< the hull's corners, in input order (m)
   std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
   std::vector<ConvexFace<S>> faces;           ///< coplanar triangles merged into polygons
   S tolerance = S(0);                         ///< distance below which points counted as on a face (m)
@@ -897,7 +942,7 @@ struct ConvexHull {
 /// true points.
 class QuickHull {
  public:
-  using V = Vec3<double>;
+  using V = Vec3T<double>;
 
   /// A polygon of the hull: its loop of point indices (counter-clockwise seen
   /// from outside), every point its triangles used, and its unit normal.
@@ -1274,8 +1319,8 @@ inline constexpr double kHullRelativeTolerance = std::is_same_v<S, float> ? 16 *
 /// Convex hull of `points` (finite, in any frame), or nothing when they are
 /// (within the tolerance) coplanar, collinear, coincident or fewer than 4.
 template <Scalar S>
-[[nodiscard]] std::optional<ConvexHull<S>> convexHull(const std::vector<Vec3<S>>& points) {
-  using V = Vec3<double>;
+[[nodiscard]] std::optional<ConvexHull<S>> convexHull(const std::vector<Vec3T<S>>& points) {
+  using V = Vec3T<double>;
   if (points.size() < 4) return std::nullopt;
   V lo = points.front().template cast<double>(), hi = lo;
   for (const auto& p : points) {
@@ -1360,8 +1405,8 @@ namespace spook::detail {
 template <Scalar S>
 struct PolyhedronMass {
   S volume = S(0);               ///< m³
-  Vec3<S> center = Vec3<S>::Zero();  ///< center of volume, mesh frame (m)
-  Mat3<S> inertia = Mat3<S>::Zero();  ///< unit-density inertia about `center`, mesh frame (m⁵)
+  Vec3T<S> center = Vec3T<S>::Zero();  ///< center of volume, mesh frame (m)
+  Mat3T<S> inertia = Mat3T<S>::Zero();  ///< unit-density inertia about `center`, mesh frame (m⁵)
 };
 
 /// Exact integrals over the polyhedron by the divergence theorem, one
@@ -1369,9 +1414,9 @@ struct PolyhedronMass {
 /// Properties (Revisited)", 2002; after Mirtich 1996). The vertices are first
 /// shifted to their mean so that far-from-origin meshes keep their digits.
 template <Scalar S>
-[[nodiscard]] PolyhedronMass<S> polyhedronMass(const std::vector<Vec3<S>>& vertices,
+[[nodiscard]] PolyhedronMass<S> polyhedronMass(const std::vector<Vec3T<S>>& vertices,
                                                const std::vector<std::array<int, 3>>& triangles) {
-  Vec3<S> reference = Vec3<S>::Zero();
+  Vec3T<S> reference = Vec3T<S>::Zero();
   for (const auto& v : vertices) reference += v;
   if (!vertices.empty()) reference /= S(vertices.size());
 
@@ -1387,10 +1432,10 @@ template <Scalar S>
     g2 = f2 + w2 * (f1 + w2);
   };
   for (const auto& t : triangles) {
-    const Vec3<S> p0 = vertices[static_cast<std::size_t>(t[0])] - reference;
-    const Vec3<S> p1 = vertices[static_cast<std::size_t>(t[1])] - reference;
-    const Vec3<S> p2 = vertices[static_cast<std::size_t>(t[2])] - reference;
-    const Vec3<S> d = (p1 - p0).cross(p2 - p0);
+    const Vec3T<S> p0 = vertices[static_cast<std::size_t>(t[0])] - reference;
+    const Vec3T<S> p1 = vertices[static_cast<std::size_t>(t[1])] - reference;
+    const Vec3T<S> p2 = vertices[static_cast<std::size_t>(t[2])] - reference;
+    const Vec3T<S> d = (p1 - p0).cross(p2 - p0);
     S f1x, f2x, f3x, g0x, g1x, g2x, f1y, f2y, f3y, g0y, g1y, g2y, f1z, f2z, f3z, g0z, g1z, g2z;
     subexpressions(p0.x(), p1.x(), p2.x(), f1x, f2x, f3x, g0x, g1x, g2x);
     subexpressions(p0.y(), p1.y(), p2.y(), f1y, f2y, f3y, g0y, g1y, g2y);
@@ -1413,17 +1458,17 @@ template <Scalar S>
   PolyhedronMass<S> mass;
   mass.volume = integral[0];
   if (!(mass.volume > S(0))) return mass;
-  const Vec3<S> c(integral[1] / mass.volume, integral[2] / mass.volume, integral[3] / mass.volume);
+  const Vec3T<S> c(integral[1] / mass.volume, integral[2] / mass.volume, integral[3] / mass.volume);
   // Second moments about the reference point, then moved to the center
   // (parallel-axis theorem with the unit-density mass V).
-  Mat3<S> I;
+  Mat3T<S> I;
   I(0, 0) = integral[5] + integral[6];
   I(1, 1) = integral[4] + integral[6];
   I(2, 2) = integral[4] + integral[5];
   I(0, 1) = I(1, 0) = -integral[7];
   I(1, 2) = I(2, 1) = -integral[8];
   I(0, 2) = I(2, 0) = -integral[9];
-  mass.inertia = I - mass.volume * (c.squaredNorm() * Mat3<S>::Identity() - c * c.transpose());
+  mass.inertia = I - mass.volume * (c.squaredNorm() * Mat3T<S>::Identity() - c * c.transpose());
   mass.center = c + reference;
   return mass;
 }
@@ -1441,8 +1486,8 @@ template <Scalar S>
 class ConvexT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::CONVEX;
-  using Vec3 = spook::Vec3<S>;
-  using Mat3 = spook::Mat3<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
   using Triangle = std::array<int, 3>;
   using Face = detail::ConvexFace<S>;
   /// A hull edge from corner `from` to corner `to`, as it runs in the loop
@@ -1465,7 +1510,7 @@ class ConvexT : public ShapeT<S> {
     tolerance_ = hull->tolerance;
 
     // Mass properties in double, whatever S, from the exact corner positions.
-    std::vector<spook::Vec3<double>> corners;
+    std::vector<spook::Vec3T<double>> corners;
     for (const Vec3& v : vertices_) corners.push_back(v.template cast<double>());
     const auto mass = detail::polyhedronMass<double>(corners, triangles_);
     volume_ = S(mass.volume);
@@ -1500,10 +1545,10 @@ class ConvexT : public ShapeT<S> {
 
   /// About the shape origin: I = m/V · I_c + m (|c|² 1 − c cᵀ), with I_c the
   /// unit-density tensor about the center c (kg·m²).
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Convex", mass);
     const Vec3& c = center_;
-    return SPDMat3<S>(
+    return SPDMat3T<S>(
         Mat3((mass / volume_) * unitInertia_ + mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())));
   }
 
@@ -1618,7 +1663,7 @@ template <Scalar S>
 class CylinderT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::CYLINDER;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   CylinderT(S radius, S height) {
     setRadius(radius);
@@ -1636,10 +1681,10 @@ class CylinderT : public ShapeT<S> {
   [[nodiscard]] S getVolume() const override { return std::numbers::pi_v<S> * radius_ * radius_ * height_; }
 
   /// I_yy = m r²/2 about the axis; I_xx = I_zz = m (3r² + h²)/12.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Cylinder", mass);
     const S r2 = radius_ * radius_, across = mass * (S(3) * r2 + height_ * height_) / S(12);
-    return SPDMat3<S>(Vec3(across, S(0.5) * mass * r2, across));
+    return SPDMat3T<S>(Vec3(across, S(0.5) * mass * r2, across));
   }
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return detail::boundingBoxFromSupport<S>(*this); }
@@ -1701,9 +1746,9 @@ template <Scalar S>
 /// The axis-aligned box, in the target frame, around `box` moved by the
 /// rigid transform X (source → target): center X c, half extents |R| h.
 template <Scalar S>
-[[nodiscard]] BoundingBoxT<S> transformBox(const BoundingBoxT<S>& box, const Transform<S>& X) {
-  const Vec3<S> center = X.linear() * box.center() + X.translation();
-  const Vec3<S> reach = X.linear().cwiseAbs() * box.halfExtents();
+[[nodiscard]] BoundingBoxT<S> transformBox(const BoundingBoxT<S>& box, const TransformT<S>& X) {
+  const Vec3T<S> center = X.linear() * box.center() + X.translation();
+  const Vec3T<S> reach = X.linear().cwiseAbs() * box.halfExtents();
   return {center - reach, center + reach};
 }
 
@@ -1717,7 +1762,7 @@ template <Scalar S>
 class AabbTree {
  public:
   using Box = BoundingBoxT<S>;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   static constexpr std::size_t kMaxLeafSize = 4;
 
   /// An empty tree; every query visits nothing.
@@ -1764,10 +1809,10 @@ class AabbTree {
   /// by X_thisOther (other → this). Primitive j is tested with
   /// transformBox(its box, X_thisOther).
   template <class F>
-  void queryPairs(const AabbTree& other, const Transform<S>& X_thisOther, F&& visit) const {
+  void queryPairs(const AabbTree& other, const TransformT<S>& X_thisOther, F&& visit) const {
     if (nodes_.empty() || other.nodes_.empty()) return;
-    const Mat3<S> R = X_thisOther.linear();
-    const Mat3<S> absR = R.cwiseAbs();
+    const Mat3T<S> R = X_thisOther.linear();
+    const Mat3T<S> absR = R.cwiseAbs();
     const Vec3 t = X_thisOther.translation();
     // Node boxes of `other` grow by a few ulps of their coordinates, so that
     // round-off in the transform never culls a pair its leaves would report.
@@ -1892,7 +1937,7 @@ template <Scalar S>
 class HeightFieldT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::HEIGHTFIELD;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   using Vec2 = Eigen::Matrix<S, 2, 1>;
 
   /// Throws spook::Error on fewer than 2 × 2 samples, a heights vector not of
@@ -1988,7 +2033,7 @@ class HeightFieldT : public ShapeT<S> {
   [[nodiscard]] S getVolume() const override { return S(0); }
 
   /// Always throws: a HeightField has no volume, so no inertia.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     throw detail::makeError("HeightField", "", "a HeightField has no volume, hence no inertia; mass (kg)", mass);
   }
 
@@ -2078,7 +2123,7 @@ template <Scalar S>
 class LineT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::LINE;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   /// Segment from `first` to `second` (shape frame, m).
   LineT(const Vec3& first, const Vec3& second) { setPoints(first, second); }
@@ -2109,7 +2154,7 @@ class LineT : public ShapeT<S> {
   [[nodiscard]] Vec3 getCenterOfVolume() const override { return S(0.5) * (first_ + second_); }
   /// Always throws: a line has no volume, and a rod of zero thickness has a
   /// singular inertia (none about its own axis).
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     throw detail::makeError("Line", "", "a Line has no volume and no inertia (kg)", mass);
   }
   /// Box around both endpoints, shape frame (m).
@@ -2152,7 +2197,7 @@ template <Scalar S>
 class PlaneT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::PLANE;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   /// Plane through `point` (m) with normal `normal` (any non-zero length; normalized).
   explicit PlaneT(const Vec3& normal, const Vec3& point = Vec3::Zero()) { set(normal, point); }
@@ -2185,7 +2230,7 @@ class PlaneT : public ShapeT<S> {
   /// A plane encloses no volume: 0 m³.
   [[nodiscard]] S getVolume() const override { return S(0); }
   /// Always throws: a plane has no volume and so no inertia.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     throw detail::makeError("Plane", "", "a Plane has no volume and no inertia (kg)", mass);
   }
   /// Unbounded: every component ±infinity (the Space treats such boxes apart).
@@ -2231,7 +2276,7 @@ template <Scalar S>
 class SphereT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::SPHERE;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   explicit SphereT(S radius) { setRadius(radius); }
 
@@ -2246,9 +2291,9 @@ class SphereT : public ShapeT<S> {
   }
 
   /// I = 2/5 m r² about every axis.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Sphere", mass);
-    return SPDMat3<S>(Vec3::Constant(S(0.4) * mass * radius_ * radius_));
+    return SPDMat3T<S>(Vec3::Constant(S(0.4) * mass * radius_ * radius_));
   }
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
@@ -2299,8 +2344,8 @@ template <Scalar S>
 class TrimeshT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::TRIMESH;
-  using Vec3 = spook::Vec3<S>;
-  using Mat3 = spook::Mat3<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
   using Triangle = std::array<int, 3>;
 
   /// Throws spook::Error on no triangles, a non-finite vertex, an index out
@@ -2353,7 +2398,7 @@ class TrimeshT : public ShapeT<S> {
   /// About the shape origin, shape frame (kg·m²): the tensor about the center
   /// of volume c scaled to `mass`, plus m(|c|² 1 − c cᵀ). Throws for a mesh
   /// enclosing no volume.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Trimesh", mass);
     if (openEdges_ > 0)
       throw detail::makeError("Trimesh", "", "an open Trimesh has no volume, hence no inertia; edges without a twin",
@@ -2362,7 +2407,7 @@ class TrimeshT : public ShapeT<S> {
       throw detail::makeError("Trimesh", "", "a closed Trimesh enclosing no volume has no inertia; volume (m^3)",
                               enclosed_);
     const Mat3 shift = mass * (center_.squaredNorm() * Mat3::Identity() - center_ * center_.transpose());
-    return SPDMat3<S>(Mat3((mass / volume_) * inertia_ + shift));
+    return SPDMat3T<S>(Mat3((mass / volume_) * inertia_ + shift));
   }
 
   /// Box around all vertices, shape frame (m).
@@ -2499,20 +2544,20 @@ namespace spook {
 /// deepest points of the first and the second shape.
 template <Scalar S>
 struct ContactPointT {
-  Vec3<S> point = Vec3<S>::Zero();   ///< world (m)
-  Vec3<S> normal = Vec3<S>::UnitZ();  ///< world, unit, from the first shape toward the second
+  Vec3T<S> point = Vec3T<S>::Zero();   ///< world (m)
+  Vec3T<S> normal = Vec3T<S>::UnitZ();  ///< world, unit, from the first shape toward the second
   S depth = S(0);                     ///< penetration along the normal (m), >= 0
   bool enabled = true;                ///< false once contact reduction or a listener has dropped it
-  Vec3<S> force = Vec3<S>::Zero();    ///< contact force on the second shape's body (N), after the solve
+  Vec3T<S> force = Vec3T<S>::Zero();    ///< contact force on the second shape's body (N), after the solve
   S normalForce = S(0);               ///< its component along the normal (N); negative only under adhesion
   std::uint32_t faceIndex1 = 0;       ///< the triangle touched when the first shape is a Trimesh or HeightField
   std::uint32_t faceIndex2 = 0;       ///< the same for the second shape
 
   [[nodiscard]] bool getEnabled() const { return enabled; }
-  [[nodiscard]] const Vec3<S>& getPoint() const { return point; }
-  [[nodiscard]] const Vec3<S>& getNormal() const { return normal; }
+  [[nodiscard]] const Vec3T<S>& getPoint() const { return point; }
+  [[nodiscard]] const Vec3T<S>& getNormal() const { return normal; }
   [[nodiscard]] S getDepth() const { return depth; }
-  [[nodiscard]] const Vec3<S>& getForce() const { return force; }
+  [[nodiscard]] const Vec3T<S>& getForce() const { return force; }
   /// Normal and tangential (friction) magnitudes of getForce (N).
   [[nodiscard]] S getNormalForceMagnitude() const { return normalForce; }
   [[nodiscard]] S getTangentialForceMagnitude() const { return (force - normal * normalForce).norm(); }
@@ -2537,11 +2582,11 @@ class ContactSinkT {
 
   /// Adds a point: world position (m), unit normal from the collider's first
   /// shape toward its second, penetration depth (m, clamped at 0).
-  void add(const Vec3<S>& point, const Vec3<S>& normal, S depth) {
+  void add(const Vec3T<S>& point, const Vec3T<S>& normal, S depth) {
     if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) return;
     ContactPointT<S> contact;
     contact.point = point;
-    contact.normal = flipped_ ? Vec3<S>(-normal) : normal;
+    contact.normal = flipped_ ? Vec3T<S>(-normal) : normal;
     contact.depth = depth > S(0) ? depth : S(0);
     contact.faceIndex1 = flipped_ ? faces_[1] : faces_[0];
     contact.faceIndex2 = flipped_ ? faces_[0] : faces_[1];
@@ -2589,11 +2634,11 @@ template <class Shape>
 struct CcdObject {
   using S = typename Shape::Vec3::Scalar;
   const Shape* shape;
-  Mat3<double> R;     // shape → world rotation
-  Vec3<double> p;     // shape origin in world (m)
-  Vec3<double> center;  // a point inside the shape, world (m)
+  Mat3T<double> R;     // shape → world rotation
+  Vec3T<double> p;     // shape origin in world (m)
+  Vec3T<double> center;  // a point inside the shape, world (m)
 
-  CcdObject(const Shape& s, const Transform<S>& X_W)
+  CcdObject(const Shape& s, const TransformT<S>& X_W)
       : shape(&s),
         R(X_W.linear().template cast<double>()),
         p(X_W.translation().template cast<double>()),
@@ -2601,9 +2646,9 @@ struct CcdObject {
 
   static void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
     const auto& o = *static_cast<const CcdObject*>(object);
-    const Vec3<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
-    const Vec3<S> d_local = (o.R.transpose() * d_W).template cast<S>();
-    const Vec3<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
+    const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
+    const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
+    const Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
     for (int i = 0; i < 3; ++i) out->v[i] = s_W[i];
   }
   static void centerOf(const void* object, ccd_vec3_t* out) {
@@ -2633,12 +2678,12 @@ struct ProjectionOverlap {
   const CcdObject<A>& a;
   const CcdObject<B>& b;
 
-  [[nodiscard]] Vec3<double> supportOf(const auto& object, const Vec3<double>& n_W) const {
+  [[nodiscard]] Vec3T<double> supportOf(const auto& object, const Vec3T<double>& n_W) const {
     using S = typename std::remove_cvref_t<decltype(object)>::S;
-    const Vec3<S> d = (object.R.transpose() * n_W).template cast<S>();
+    const Vec3T<S> d = (object.R.transpose() * n_W).template cast<S>();
     return object.R * object.shape->support(d).template cast<double>() + object.p;
   }
-  [[nodiscard]] Vec3<double> gradient(const Vec3<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
+  [[nodiscard]] Vec3T<double> gradient(const Vec3T<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
 };
 
 /// Where f has a kink (an edge or a corner of a box-like shape is involved)
@@ -2647,13 +2692,13 @@ struct ProjectionOverlap {
 /// over the tangent plane of n (Nelder & Mead 1965) stretches along the
 /// crease and walks down it, to 1e-10 rad.
 template <class A, class B>
-double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3<double>& n, double f, double size,
+double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double size,
                              double turn) {
-  const Vec3<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
-  const Vec3<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
-  const auto direction = [&](const Eigen::Vector2d& x) { return Vec3<double>((n0 + x[0] * t1 + x[1] * t2).normalized()); };
+  const Vec3T<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
+  const Vec3T<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
+  const auto direction = [&](const Eigen::Vector2d& x) { return Vec3T<double>((n0 + x[0] * t1 + x[1] * t2).normalized()); };
   const auto value = [&](const Eigen::Vector2d& x) {
-    const Vec3<double> d = direction(x);
+    const Vec3T<double> d = direction(x);
     return d.dot(overlap.gradient(d));
   };
   std::array<Eigen::Vector2d, 3> x = {Eigen::Vector2d(0, 0), Eigen::Vector2d(size, 0), Eigen::Vector2d(0, size)};
@@ -2712,21 +2757,21 @@ double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3<double
 /// the descent ended where the gradient vanishes (a smooth minimum, done)
 /// rather than on a kink of f, where the simplex search must take over.
 template <class A, class B>
-double descend(const ProjectionOverlap<A, B>& overlap, Vec3<double>& n, double scale, bool& smooth) {
-  Vec3<double> w = overlap.gradient(n);
+double descend(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double scale, bool& smooth) {
+  Vec3T<double> w = overlap.gradient(n);
   double f = n.dot(w);
-  Vec3<double> g = w - n.dot(w) * n;
+  Vec3T<double> g = w - n.dot(w) * n;
   double step = 1.0 / scale;
   for (int iteration = 0; iteration < 64 && g.norm() > 1e-13 * scale && step > 1e-12 / scale; ++iteration) {
-    const Vec3<double> trial = (n - step * g).normalized();
-    const Vec3<double> wTrial = overlap.gradient(trial);
+    const Vec3T<double> trial = (n - step * g).normalized();
+    const Vec3T<double> wTrial = overlap.gradient(trial);
     const double fTrial = trial.dot(wTrial);
     if (!(fTrial < f)) {
       step *= 0.5;
       continue;
     }
-    const Vec3<double> gTrial = wTrial - trial.dot(wTrial) * trial;
-    const Vec3<double> sStep = trial - n, yStep = gTrial - g;
+    const Vec3T<double> gTrial = wTrial - trial.dot(wTrial) * trial;
+    const Vec3T<double> sStep = trial - n, yStep = gTrial - g;
     const double curvature = sStep.dot(yStep);
     step = curvature > 0.0 ? sStep.squaredNorm() / curvature : 2.0 * step;
     n = trial;
@@ -2741,7 +2786,7 @@ double descend(const ProjectionOverlap<A, B>& overlap, Vec3<double>& n, double s
 /// Restarts of the simplex search with fresh, turned simplices: the usual
 /// cure for one that collapsed across a crease.
 template <class A, class B>
-double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3<double>& n, double f, double scale) {
+double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double scale) {
   for (int restart = 0; restart < 6; ++restart) {
     const double before = f;
     f = polishBySimplexSearch(overlap, n, f, restart % 2 ? 0.1 : 0.02, 0.5 * restart);
@@ -2758,15 +2803,15 @@ double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3<double>& n, do
 /// near one of these axes (face normals and edge–edge directions, as in the
 /// separating axis theorem).
 template <class A, class B>
-std::vector<Vec3<double>> startingDirections(const CcdObject<A>& a, const CcdObject<B>& b,
-                                             const Vec3<double>& fromCcd, std::size_t count) {
+std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdObject<B>& b,
+                                             const Vec3T<double>& fromCcd, std::size_t count) {
   const ProjectionOverlap<A, B> overlap{a, b};
-  std::vector<std::pair<double, Vec3<double>>> candidates;
-  const auto consider = [&](const Vec3<double>& direction) {
+  std::vector<std::pair<double, Vec3T<double>>> candidates;
+  const auto consider = [&](const Vec3T<double>& direction) {
     const double length = direction.norm();
     if (!(length > 1e-9)) return;
     for (const double sign : {1.0, -1.0}) {
-      const Vec3<double> d = direction * (sign / length);
+      const Vec3T<double> d = direction * (sign / length);
       candidates.emplace_back(d.dot(overlap.gradient(d)), d);
     }
   };
@@ -2782,13 +2827,13 @@ std::vector<Vec3<double>> startingDirections(const CcdObject<A>& a, const CcdObj
   const double golden = 3.141592653589793 * (3.0 - std::sqrt(5.0));
   for (int i = 0; i < kLattice; ++i) {
     const double z = 1.0 - (i + 0.5) / kLattice, rho = std::sqrt(1.0 - z * z), phi = golden * i;
-    consider(Vec3<double>(rho * std::cos(phi), rho * std::sin(phi), z));
+    consider(Vec3T<double>(rho * std::cos(phi), rho * std::sin(phi), z));
   }
   std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<Vec3<double>> starts{fromCcd};
+  std::vector<Vec3T<double>> starts{fromCcd};
   for (const auto& [f, d] : candidates) {
     if (starts.size() > count) break;
-    if (std::none_of(starts.begin(), starts.end(), [&](const Vec3<double>& s) { return s.dot(d) > 0.999; }))
+    if (std::none_of(starts.begin(), starts.end(), [&](const Vec3T<double>& s) { return s.dot(d) > 0.999; }))
       starts.push_back(d);
   }
   return starts;
@@ -2798,7 +2843,7 @@ std::vector<Vec3<double>> startingDirections(const CcdObject<A>& a, const CcdObj
 /// above: one contact at libccd's point, with the direction that separates
 /// b from a.
 template <Scalar S, class A, class B>
-void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB, ContactSinkT<S>& sink) {
+void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
   const CcdObject<A> objectA(a, X_WA);
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;
@@ -2812,7 +2857,7 @@ void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transf
   ccd_real_t depth = 0;
   ccd_vec3_t direction, position;
   if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) return;
-  Vec3<double> n(direction.v[0], direction.v[1], direction.v[2]);
+  Vec3T<double> n(direction.v[0], direction.v[1], direction.v[2]);
   const double length = n.norm();
   if (!(length > 0.0)) return;  // touching at a single point: no direction to push along
   n /= length;
@@ -2822,7 +2867,7 @@ void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transf
   // search the kinks where a descent stalled.
   const ProjectionOverlap<A, B> overlap{objectA, objectB};
   double refined = std::numeric_limits<double>::infinity();
-  for (Vec3<double> start : startingDirections(objectA, objectB, n, kStarts)) {
+  for (Vec3T<double> start : startingDirections(objectA, objectB, n, kStarts)) {
     bool smooth = false;
     double f = descend(overlap, start, scale, smooth);
     if (!smooth) f = polishOnKinks(overlap, start, f, scale);
@@ -2832,7 +2877,7 @@ void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transf
     }
   }
   if (!(refined >= 0.0)) return;  // the polished direction separates them
-  const Vec3<double> point(position.v[0], position.v[1], position.v[2]);
+  const Vec3T<double> point(position.v[0], position.v[1], position.v[2]);
   sink.add(point.cast<S>(), n.cast<S>(), S(refined));
 }
 
@@ -2860,7 +2905,7 @@ struct Collider {};
 template <ConvexShape A, ConvexShape B>
 struct Collider<A, B> {
   using S = typename A::Vec3::Scalar;
-  static void collide(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB,
+  static void collide(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     detail::collideByCcd<S>(a, X_WA, b, X_WB, sink);
   }
@@ -2868,7 +2913,7 @@ struct Collider<A, B> {
 
 /// True when the ordered pair (A, B) has a collider.
 template <class A, class B>
-concept HasCollider = requires(const A& a, const B& b, const Transform<typename A::Vec3::Scalar>& X,
+concept HasCollider = requires(const A& a, const B& b, const TransformT<typename A::Vec3::Scalar>& X,
                                ContactSinkT<typename A::Vec3::Scalar>& sink) {
   Collider<A, B>::collide(a, X, b, X, sink);
 };
@@ -2878,8 +2923,8 @@ concept HasCollider = requires(const A& a, const B& b, const Transform<typename 
 /// the one place where a reversed pair is handled.
 template <class A, class B>
   requires(A::kType <= B::kType ? HasCollider<A, B> : HasCollider<B, A>)
-void collide(const A& a, const Transform<typename A::Vec3::Scalar>& X_WA, const B& b,
-             const Transform<typename A::Vec3::Scalar>& X_WB, ContactSinkT<typename A::Vec3::Scalar>& sink) {
+void collide(const A& a, const TransformT<typename A::Vec3::Scalar>& X_WA, const B& b,
+             const TransformT<typename A::Vec3::Scalar>& X_WB, ContactSinkT<typename A::Vec3::Scalar>& sink) {
   if constexpr (A::kType <= B::kType) {
     Collider<A, B>::collide(a, X_WA, b, X_WB, sink);
   } else {
@@ -2918,10 +2963,10 @@ namespace spook::detail {
 template <Scalar S>
 struct ClipPolygon {
   static constexpr std::size_t kCapacity = 8;
-  std::array<Vec3<S>, kCapacity> points;
+  std::array<Vec3T<S>, kCapacity> points;
   std::size_t count = 0;
 
-  void push(const Vec3<S>& p) {
+  void push(const Vec3T<S>& p) {
     if (count < kCapacity) points[count++] = p;
   }
 };
@@ -2930,14 +2975,14 @@ struct ClipPolygon {
 /// normal·x <= offset. A corner on the plane is kept (once); an edge that
 /// strictly crosses the plane gains its crossing point.
 template <Scalar S>
-[[nodiscard]] ClipPolygon<S> clipPolygon(const ClipPolygon<S>& polygon, const Vec3<S>& normal, S offset) {
+[[nodiscard]] ClipPolygon<S> clipPolygon(const ClipPolygon<S>& polygon, const Vec3T<S>& normal, S offset) {
   ClipPolygon<S> out;
   for (std::size_t i = 0; i < polygon.count; ++i) {
-    const Vec3<S>& p = polygon.points[i];
-    const Vec3<S>& q = polygon.points[(i + 1) % polygon.count];
+    const Vec3T<S>& p = polygon.points[i];
+    const Vec3T<S>& q = polygon.points[(i + 1) % polygon.count];
     const S dp = normal.dot(p) - offset, dq = normal.dot(q) - offset;
     if (dp <= S(0)) out.push(p);
-    if ((dp < S(0) && dq > S(0)) || (dp > S(0) && dq < S(0))) out.push(Vec3<S>(p + (q - p) * (dp / (dp - dq))));
+    if ((dp < S(0) && dq > S(0)) || (dp > S(0) && dq < S(0))) out.push(Vec3T<S>(p + (q - p) * (dp / (dp - dq))));
   }
   return out;
 }
@@ -2947,9 +2992,9 @@ template <Scalar S>
 /// capsule axis of the box colliders): the closest points of the two lines,
 /// then each parameter clamped with the other one re-projected onto it.
 template <Scalar S>
-void clampedLineClosest(const Vec3<S>& p, const Vec3<S>& u, S sMax, const Vec3<S>& q, const Vec3<S>& v, S tMax, S& s,
+void clampedLineClosest(const Vec3T<S>& p, const Vec3T<S>& u, S sMax, const Vec3T<S>& q, const Vec3T<S>& v, S tMax, S& s,
                         S& t) {
-  const Vec3<S> w = q - p;
+  const Vec3T<S> w = q - p;
   const S b = u.dot(v), d = u.dot(w), e = v.dot(w);
   const S denominator = S(1) - b * b;  // |u × v|²
   s = denominator > S(0) ? (d - b * e) / denominator : S(0);
@@ -2968,15 +3013,15 @@ namespace detail::box_box {
 /// A box seen from box A's frame: center, axes (columns) and half extents.
 template <Scalar S>
 struct Placed {
-  Vec3<S> center;
-  Mat3<S> axes;
-  Vec3<S> half;
+  Vec3T<S> center;
+  Mat3T<S> axes;
+  Vec3T<S> half;
 
   /// Half-width of the box's projection onto the unit axis n.
-  [[nodiscard]] S radius(const Vec3<S>& n) const { return (axes.transpose() * n).cwiseAbs().dot(half); }
+  [[nodiscard]] S radius(const Vec3T<S>& n) const { return (axes.transpose() * n).cwiseAbs().dot(half); }
   /// The corner farthest along n (a zero component picks +).
-  [[nodiscard]] Vec3<S> corner(const Vec3<S>& n) const {
-    Vec3<S> p = center;
+  [[nodiscard]] Vec3T<S> corner(const Vec3T<S>& n) const {
+    Vec3T<S> p = center;
     for (int k = 0; k < 3; ++k) p += axes.col(k) * (axes.col(k).dot(n) < S(0) ? -half[k] : half[k]);
     return p;
   }
@@ -2989,7 +3034,7 @@ struct Placed {
 /// `index % 3`.
 template <Scalar S>
 struct Axis {
-  Vec3<S> axis = Vec3<S>::UnitZ();
+  Vec3T<S> axis = Vec3T<S>::UnitZ();
   S depth = std::numeric_limits<S>::infinity();
   int kind = -1;
   int index = -1;
@@ -3022,8 +3067,8 @@ inline constexpr double kEdgeBias = 1.05;
 /// lost to round-off, and the face axes then separate the boxes anyway.
 template <Scalar S>
 struct Collider<BoxT<S>, BoxT<S>> {
-  using Vec3 = spook::Vec3<S>;
-  using Mat3 = spook::Mat3<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
   using Placed = detail::box_box::Placed<S>;
   using Axis = detail::box_box::Axis<S>;
 
@@ -3032,7 +3077,7 @@ struct Collider<BoxT<S>, BoxT<S>> {
   /// error |a × b|·size of skipping it.
   static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
 
-  static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const BoxT<S>& b, const Transform<S>& X_WB,
+  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const BoxT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     // Everything in A's frame, where A is axis-aligned at the origin.
     const Mat3 R_WA = X_WA.linear();
@@ -3162,7 +3207,7 @@ namespace detail::box_capsule {
 
 /// Squared distance (m²) from x to the solid box |x_k| <= e_k.
 template <Scalar S>
-[[nodiscard]] S boxDistanceSquared(const Vec3<S>& x, const Vec3<S>& e) {
+[[nodiscard]] S boxDistanceSquared(const Vec3T<S>& x, const Vec3T<S>& e) {
   return (x.cwiseAbs() - e).cwiseMax(S(0)).squaredNorm();
 }
 
@@ -3172,7 +3217,7 @@ template <Scalar S>
 /// planes; on each piece it is Σ (c_k + t u_k ∓ e_k)² over the coordinates
 /// outside the box, minimized in closed form and clamped to the piece.
 template <Scalar S>
-[[nodiscard]] S closestOnSegment(const Vec3<S>& c, const Vec3<S>& u, S h, const Vec3<S>& e) {
+[[nodiscard]] S closestOnSegment(const Vec3T<S>& c, const Vec3T<S>& u, S h, const Vec3T<S>& e) {
   std::array<S, 8> knots{};
   std::size_t count = 0;
   knots[count++] = -h;
@@ -3200,7 +3245,7 @@ template <Scalar S>
       }
     }
     const S t = curvature > S(0) ? std::clamp(-slope / curvature, lo, hi) : lo;
-    const S g = boxDistanceSquared<S>(Vec3<S>(c + t * u), e);
+    const S g = boxDistanceSquared<S>(Vec3T<S>(c + t * u), e);
     if (g < best) {
       best = g;
       bestT = t;
@@ -3229,15 +3274,15 @@ template <Scalar S>
 /// one otherwise.
 template <Scalar S>
 struct Collider<BoxT<S>, CapsuleT<S>> {
-  using Vec3 = spook::Vec3<S>;
-  using Mat3 = spook::Mat3<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
 
   /// |u × axis| below this (u the capsule axis, about √ε) skips the edge
   /// axis u × axis; the face axes cover the parallel case (as for two boxes).
   static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
 
-  static void collide(const BoxT<S>& box, const Transform<S>& X_WA, const CapsuleT<S>& capsule,
-                      const Transform<S>& X_WB, ContactSinkT<S>& sink) {
+  static void collide(const BoxT<S>& box, const TransformT<S>& X_WA, const CapsuleT<S>& capsule,
+                      const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
     // Box frame: the box is |x_k| <= e_k, the segment c + t·u, |t| <= h.
     const Mat3 R_WA = X_WA.linear();
     const Vec3 e = box.getHalfExtents();
@@ -3408,8 +3453,8 @@ namespace spook::detail {
 /// Parameter t ∈ [0, 1] of the point of segment p + t (q − p) closest to x
 /// (0 for a degenerate segment).
 template <Scalar S>
-[[nodiscard]] S closestParameterOnSegment(const Vec3<S>& p, const Vec3<S>& q, const Vec3<S>& x) {
-  const Vec3<S> d = q - p;
+[[nodiscard]] S closestParameterOnSegment(const Vec3T<S>& p, const Vec3T<S>& q, const Vec3T<S>& x) {
+  const Vec3T<S> d = q - p;
   const S dd = d.squaredNorm();
   if (!(dd > S(0))) return S(0);
   return std::clamp(d.dot(x - p) / dd, S(0), S(1));
@@ -3417,21 +3462,21 @@ template <Scalar S>
 
 /// The point of segment [p, q] closest to x.
 template <Scalar S>
-[[nodiscard]] Vec3<S> closestPointOnSegment(const Vec3<S>& p, const Vec3<S>& q, const Vec3<S>& x) {
+[[nodiscard]] Vec3T<S> closestPointOnSegment(const Vec3T<S>& p, const Vec3T<S>& q, const Vec3T<S>& x) {
   return p + closestParameterOnSegment(p, q, x) * (q - p);
 }
 
 /// A unit vector perpendicular to d (any non-zero d), chosen deterministically:
 /// d crossed with the coordinate axis least aligned with it.
 template <Scalar S>
-[[nodiscard]] Vec3<S> unitPerpendicular(const Vec3<S>& d) {
+[[nodiscard]] Vec3T<S> unitPerpendicular(const Vec3T<S>& d) {
   int axis = 0;
-  const Vec3<S> a = d.cwiseAbs();
+  const Vec3T<S> a = d.cwiseAbs();
   if (a.y() < a[axis]) axis = 1;
   if (a.z() < a[axis]) axis = 2;
-  const Vec3<S> n = d.cross(Vec3<S>::Unit(axis));
+  const Vec3T<S> n = d.cross(Vec3T<S>::Unit(axis));
   const S length = n.norm();
-  return length > S(0) ? Vec3<S>(n / length) : Vec3<S>(Vec3<S>::UnitX());
+  return length > S(0) ? Vec3T<S>(n / length) : Vec3T<S>(Vec3T<S>::UnitX());
 }
 
 /// The closest points of segments [p1, q1] and [p2, q2]: parameters s, t
@@ -3441,8 +3486,8 @@ template <Scalar S>
 struct SegmentClosestPoints {
   S s = S(0);
   S t = S(0);
-  Vec3<S> onFirst = Vec3<S>::Zero();
-  Vec3<S> onSecond = Vec3<S>::Zero();
+  Vec3T<S> onFirst = Vec3T<S>::Zero();
+  Vec3T<S> onSecond = Vec3T<S>::Zero();
   bool parallel = false;
 };
 
@@ -3452,9 +3497,9 @@ struct SegmentClosestPoints {
 /// first is recomputed once. Parallel (or degenerate) segments, where the
 /// determinant a e − b² vanishes relative to a e, start from s = 0.
 template <Scalar S>
-[[nodiscard]] SegmentClosestPoints<S> closestPointsBetweenSegments(const Vec3<S>& p1, const Vec3<S>& q1,
-                                                                   const Vec3<S>& p2, const Vec3<S>& q2) {
-  const Vec3<S> d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+[[nodiscard]] SegmentClosestPoints<S> closestPointsBetweenSegments(const Vec3T<S>& p1, const Vec3T<S>& q1,
+                                                                   const Vec3T<S>& p2, const Vec3T<S>& q2) {
+  const Vec3T<S> d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
   const S a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
   SegmentClosestPoints<S> result;
   if (!(a > S(0)) && !(e > S(0))) {
@@ -3523,21 +3568,21 @@ template <Scalar S>
 struct Collider<BoxT<S>, LineT<S>> {
   static constexpr S kParallelSine = S(1e-2);
 
-  static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const LineT<S>& b, const Transform<S>& X_WB,
+  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const LineT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Transform<S> X_AB = X_WA.inverse(Eigen::Isometry) * X_WB;
-    const Vec3<S> p = X_AB * b.getFirstPoint(), q = X_AB * b.getSecondPoint();
-    const Vec3<S> d = q - p;
-    const Vec3<S>& h = a.getHalfExtents();
+    const TransformT<S> X_AB = X_WA.inverse(Eigen::Isometry) * X_WB;
+    const Vec3T<S> p = X_AB * b.getFirstPoint(), q = X_AB * b.getSecondPoint();
+    const Vec3T<S> d = q - p;
+    const Vec3T<S>& h = a.getHalfExtents();
     const S length = d.norm();
     const S tiny = S(16) * ScalarTraits<S>::epsilon() * (h.norm() + p.norm() + q.norm());
 
     // Separating axis test: the smallest overlap and its axis, from the box toward the line.
     S depth = S(0);
-    Vec3<S> n = Vec3<S>::UnitZ();
+    Vec3T<S> n = Vec3T<S>::UnitZ();
     int edge = -1;  // the box edge direction of a cross-product axis, -1 for a face normal
     bool first = true;
-    const auto tryAxis = [&](const Vec3<S>& axis, int edgeAxis) {
+    const auto tryAxis = [&](const Vec3T<S>& axis, int edgeAxis) {
       const S support = h.dot(axis.cwiseAbs());
       const S lowest = std::min(axis.dot(p), axis.dot(q)), highest = std::max(axis.dot(p), axis.dot(q));
       const S up = support - lowest, down = support + highest;  // overlaps along +axis and −axis
@@ -3553,21 +3598,21 @@ struct Collider<BoxT<S>, LineT<S>> {
         edge = edgeAxis;
       }
     };
-    for (int i = 0; i < 3; ++i) tryAxis(Vec3<S>::Unit(i), -1);
+    for (int i = 0; i < 3; ++i) tryAxis(Vec3T<S>::Unit(i), -1);
     for (int i = 0; i < 3; ++i) {
-      const Vec3<S> axis = d.cross(Vec3<S>::Unit(i));
+      const Vec3T<S> axis = d.cross(Vec3T<S>::Unit(i));
       const S axisLength = axis.norm();
       if (axisLength > S(16) * ScalarTraits<S>::epsilon() * length) tryAxis(axis / axisLength, i);
     }
     if (!(depth >= S(0))) return;
 
-    const auto add = [&](const Vec3<S>& onLine, S pointDepth) {
-      sink.add(X_WA * Vec3<S>(onLine + S(0.5) * pointDepth * n), X_WA.linear() * n, pointDepth);
+    const auto add = [&](const Vec3T<S>& onLine, S pointDepth) {
+      sink.add(X_WA * Vec3T<S>(onLine + S(0.5) * pointDepth * n), X_WA.linear() * n, pointDepth);
     };
     if (edge >= 0) {
       // The box edge along e_edge through the corner farthest along n.
-      Vec3<S> corner = a.support(n);
-      Vec3<S> otherEnd = corner;
+      Vec3T<S> corner = a.support(n);
+      Vec3T<S> otherEnd = corner;
       corner[edge] = -h[edge];
       otherEnd[edge] = h[edge];
       add(detail::closestPointsBetweenSegments<S>(p, q, corner, otherEnd).onFirst, depth);
@@ -3617,18 +3662,18 @@ namespace spook {
 /// edge, one on a corner. The normal points from the box into the plane, −n.
 template <Scalar S>
 struct Collider<BoxT<S>, PlaneT<S>> {
-  static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> n = X_WB.linear() * b.getNormal();
-    const Vec3<S>& h = a.getHalfExtents();
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S>& h = a.getHalfExtents();
     // Heights relative to the box center: corner height = center height + Σ ±h_i (n · axis_i).
     const S centerHeight = n.dot(X_WA.translation() - X_WB * b.getPoint());
-    const Vec3<S> reach = (X_WA.linear().transpose() * n).cwiseProduct(h);
+    const Vec3T<S> reach = (X_WA.linear().transpose() * n).cwiseProduct(h);
     for (int corner = 0; corner < 8; ++corner) {
-      const Vec3<S> sign((corner & 1) ? S(1) : S(-1), (corner & 2) ? S(1) : S(-1), (corner & 4) ? S(1) : S(-1));
+      const Vec3T<S> sign((corner & 1) ? S(1) : S(-1), (corner & 2) ? S(1) : S(-1), (corner & 4) ? S(1) : S(-1));
       const S height = centerHeight + sign.dot(reach);
       if (!(height <= S(0))) continue;
-      const Vec3<S> p = X_WA * Vec3<S>(sign.cwiseProduct(h));
+      const Vec3T<S> p = X_WA * Vec3T<S>(sign.cwiseProduct(h));
       // Midway between the corner and the plane point under it.
       sink.add(p - S(0.5) * height * n, -n, -height);
     }
@@ -3650,16 +3695,16 @@ namespace spook {
 /// lowest axis on a tie, the + face when c_i = 0): depth r + h_i − |c_i|.
 template <Scalar S>
 struct Collider<BoxT<S>, SphereT<S>> {
-  static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S>& h = a.getHalfExtents();
+    const Vec3T<S>& h = a.getHalfExtents();
     const S r = b.getRadius();
-    const Vec3<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
-    const Vec3<S> q = c.cwiseMax(-h).cwiseMin(h);
-    const Vec3<S> d = c - q;
+    const Vec3T<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
+    const Vec3T<S> q = c.cwiseMax(-h).cwiseMin(h);
+    const Vec3T<S> d = c - q;
     const S distance = d.norm();
-    Vec3<S> n;      // box frame, from the box toward the sphere
-    Vec3<S> onBox;  // the box's deepest point along n
+    Vec3T<S> n;      // box frame, from the box toward the sphere
+    Vec3T<S> onBox;  // the box's deepest point along n
     S depth;
     if (distance > ScalarTraits<S>::epsilon() * (h.norm() + r)) {
       depth = r - distance;
@@ -3676,13 +3721,13 @@ struct Collider<BoxT<S>, SphereT<S>> {
           axis = i;
         }
       }
-      n = Vec3<S>::Zero();
+      n = Vec3T<S>::Zero();
       n[axis] = c[axis] < S(0) ? S(-1) : S(1);
       depth = r + gap;
       onBox = c + gap * n;
     }
     // Midway between the box's deepest point and the sphere's, c − r n.
-    sink.add(X_WA * Vec3<S>(S(0.5) * (onBox + c - r * n)), X_WA.linear() * n, depth);
+    sink.add(X_WA * Vec3T<S>(S(0.5) * (onBox + c - r * n)), X_WA.linear() * n, depth);
   }
 };
 
@@ -3712,19 +3757,19 @@ template <Scalar S>
 struct Collider<CapsuleT<S>, CapsuleT<S>> {
   static constexpr S kParallelSine = S(1e-2);
 
-  static void collide(const CapsuleT<S>& a, const Transform<S>& X_WA, const CapsuleT<S>& b, const Transform<S>& X_WB,
+  static void collide(const CapsuleT<S>& a, const TransformT<S>& X_WA, const CapsuleT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> halfA = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
-    const Vec3<S> halfB = X_WB.linear().col(1) * (S(0.5) * b.getHeight());
-    const Vec3<S> pA = X_WA.translation() - halfA, qA = X_WA.translation() + halfA;
-    const Vec3<S> pB = X_WB.translation() - halfB, qB = X_WB.translation() + halfB;
+    const Vec3T<S> halfA = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
+    const Vec3T<S> halfB = X_WB.linear().col(1) * (S(0.5) * b.getHeight());
+    const Vec3T<S> pA = X_WA.translation() - halfA, qA = X_WA.translation() + halfA;
+    const Vec3T<S> pB = X_WB.translation() - halfB, qB = X_WB.translation() + halfB;
     const S rA = a.getRadius(), rB = b.getRadius();
     const S scale = rA + rB + a.getHeight() + b.getHeight();
     const auto closest = detail::closestPointsBetweenSegments<S>(pA, qA, pB, qB);
 
     // The direction for points closer than round-off, where b − a has none.
-    Vec3<S> fallback;
-    const Vec3<S> across = halfA.cross(halfB);
+    Vec3T<S> fallback;
+    const Vec3T<S> across = halfA.cross(halfB);
     if (!closest.parallel && across.norm() > S(0)) {
       fallback = across.normalized();
       if (fallback.dot(X_WB.translation() - X_WA.translation()) < S(0)) fallback = -fallback;
@@ -3732,16 +3777,16 @@ struct Collider<CapsuleT<S>, CapsuleT<S>> {
       fallback = X_WA.linear().col(0);
     }
     const S tiny = ScalarTraits<S>::epsilon() * scale;
-    const auto addAlong = [&](const Vec3<S>& onA, const Vec3<S>& onB, const Vec3<S>& n, S distance) {
+    const auto addAlong = [&](const Vec3T<S>& onA, const Vec3T<S>& onB, const Vec3T<S>& n, S distance) {
       const S depth = rA + rB - distance;
       if (!(depth >= S(0))) return false;
       sink.add(S(0.5) * (onA + onB + (rA - rB) * n), n, depth);
       return true;
     };
-    const auto add = [&](const Vec3<S>& onA, const Vec3<S>& onB) {
-      const Vec3<S> d = onB - onA;
+    const auto add = [&](const Vec3T<S>& onA, const Vec3T<S>& onB) {
+      const Vec3T<S> d = onB - onA;
       const S distance = d.norm();
-      return addAlong(onA, onB, distance > tiny ? Vec3<S>(d / distance) : fallback, distance);
+      return addAlong(onA, onB, distance > tiny ? Vec3T<S>(d / distance) : fallback, distance);
     };
     const bool inside = closest.s > S(0) && closest.s < S(1) && closest.t > S(0) && closest.t < S(1);
     if (inside && !closest.parallel) {
@@ -3749,14 +3794,14 @@ struct Collider<CapsuleT<S>, CapsuleT<S>> {
       // normal is their common perpendicular and the distance its projection
       // of pB − pA, both free of the round-off in s and t, which would tilt
       // the normal by ε/distance for nearly crossing axes.
-      const Vec3<S> d = closest.onSecond - closest.onFirst;
-      const Vec3<S> n = d.dot(fallback) < S(0) ? Vec3<S>(-fallback) : fallback;
+      const Vec3T<S> d = closest.onSecond - closest.onFirst;
+      const Vec3T<S> n = d.dot(fallback) < S(0) ? Vec3T<S>(-fallback) : fallback;
       if (!addAlong(closest.onFirst, closest.onSecond, n, std::abs(n.dot(pB - pA)))) return;
     } else if (!add(closest.onFirst, closest.onSecond)) {
       return;
     }
 
-    const Vec3<S> dA = qA - pA, dB = qB - pB;
+    const Vec3T<S> dA = qA - pA, dB = qB - pB;
     const S lengthA2 = dA.squaredNorm();
     if (!(across.squaredNorm() * S(16) <= kParallelSine * kParallelSine * lengthA2 * dB.squaredNorm())) return;
     // The stretch of a's segment (parameters on a) that b's projects onto.
@@ -3767,7 +3812,7 @@ struct Collider<CapsuleT<S>, CapsuleT<S>> {
     const S lengthA = std::sqrt(lengthA2);
     for (const S s : {lo, hi}) {
       if (std::abs(s - closest.s) * lengthA <= apart) continue;
-      const Vec3<S> onA = pA + s * dA;
+      const Vec3T<S> onA = pA + s * dA;
       add(onA, detail::closestPointOnSegment<S>(pB, qB, onA));
     }
   }
@@ -3785,14 +3830,14 @@ namespace spook {
 /// The normal points from the capsule into the plane, −n.
 template <Scalar S>
 struct Collider<CapsuleT<S>, PlaneT<S>> {
-  static void collide(const CapsuleT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+  static void collide(const CapsuleT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> n = X_WB.linear() * b.getNormal();
-    const Vec3<S> onPlane = X_WB * b.getPoint();
-    const Vec3<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S> onPlane = X_WB * b.getPoint();
+    const Vec3T<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
     const S r = a.getRadius();
     for (const S side : {S(-1), S(1)}) {
-      const Vec3<S> e = X_WA.translation() + side * halfAxis;
+      const Vec3T<S> e = X_WA.translation() + side * halfAxis;
       const S height = n.dot(e - onPlane);
       const S depth = r - height;
       // Midway between the capsule's deepest point e − r n and the plane point under e, e − s n.
@@ -3814,14 +3859,14 @@ namespace spook {
 /// perpendicular to the segment.
 template <Scalar S>
 struct Collider<CapsuleT<S>, SphereT<S>> {
-  static void collide(const CapsuleT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+  static void collide(const CapsuleT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
-    const Vec3<S> center = X_WA.translation(), c = X_WB.translation();
+    const Vec3T<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
+    const Vec3T<S> center = X_WA.translation(), c = X_WB.translation();
     const S t = detail::closestParameterOnSegment<S>(center - halfAxis, center + halfAxis, c);
-    const Vec3<S> q = center + (S(2) * t - S(1)) * halfAxis;
+    const Vec3T<S> q = center + (S(2) * t - S(1)) * halfAxis;
     const S rA = a.getRadius(), rB = b.getRadius();
-    Vec3<S> d = c - q;
+    Vec3T<S> d = c - q;
     // Off an end the closest point is that end; along the side, c − q is
     // perpendicular to the axis, and making it exactly so keeps the normal
     // from tilting toward the axis by round-off when c is near it.
@@ -3829,8 +3874,8 @@ struct Collider<CapsuleT<S>, SphereT<S>> {
     const S distance = d.norm();
     const S depth = rA + rB - distance;
     if (!(depth >= S(0))) return;
-    const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB + a.getHeight()) ? Vec3<S>(d / distance)
-                                                                                        : Vec3<S>(X_WA.linear().col(0));
+    const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB + a.getHeight()) ? Vec3T<S>(d / distance)
+                                                                                        : Vec3T<S>(X_WA.linear().col(0));
     sink.add(S(0.5) * (q + c + (rA - rB) * n), n, depth);
   }
 };
@@ -3854,22 +3899,22 @@ namespace spook {
 /// them. The normal points from the cylinder into the plane, −n.
 template <Scalar S>
 struct Collider<CylinderT<S>, PlaneT<S>> {
-  static void collide(const CylinderT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+  static void collide(const CylinderT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> n = X_WB.linear() * b.getNormal();
-    const Vec3<S> u = X_WA.linear().col(1);
-    const Vec3<S> across = (n.dot(u)) * u - n;  // along the rim, away from the plane's outside
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S> u = X_WA.linear().col(1);
+    const Vec3T<S> across = (n.dot(u)) * u - n;  // along the rim, away from the plane's outside
     const S acrossLength = across.norm();
-    const Vec3<S> v =
-        acrossLength > ScalarTraits<S>::epsilon() ? Vec3<S>(across / acrossLength) : Vec3<S>(X_WA.linear().col(0));
-    const Vec3<S> w = u.cross(v);
-    const std::array<Vec3<S>, 4> rim = {v, w, Vec3<S>(-v), Vec3<S>(-w)};
+    const Vec3T<S> v =
+        acrossLength > ScalarTraits<S>::epsilon() ? Vec3T<S>(across / acrossLength) : Vec3T<S>(X_WA.linear().col(0));
+    const Vec3T<S> w = u.cross(v);
+    const std::array<Vec3T<S>, 4> rim = {v, w, Vec3T<S>(-v), Vec3T<S>(-w)};
     const S r = a.getRadius(), halfHeight = S(0.5) * a.getHeight();
-    const Vec3<S> onPlane = X_WB * b.getPoint();
+    const Vec3T<S> onPlane = X_WB * b.getPoint();
     for (const S side : {S(-1), S(1)}) {
-      const Vec3<S> capCenter = X_WA.translation() + side * halfHeight * u;
+      const Vec3T<S> capCenter = X_WA.translation() + side * halfHeight * u;
       const S capHeight = n.dot(capCenter - onPlane);
-      for (const Vec3<S>& direction : rim) {
+      for (const Vec3T<S>& direction : rim) {
         const S height = capHeight + r * n.dot(direction);
         if (!(height <= S(0))) continue;
         // Midway between the rim point and the plane point under it.
@@ -3897,21 +3942,21 @@ namespace spook {
 /// cylinder's x axis when c is on the axis: depth r + gap.
 template <Scalar S>
 struct Collider<CylinderT<S>, SphereT<S>> {
-  static void collide(const CylinderT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+  static void collide(const CylinderT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     const S R = a.getRadius(), k = S(0.5) * a.getHeight(), r = b.getRadius();
-    const Vec3<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
+    const Vec3T<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
     const S radial = std::hypot(c.x(), c.z());
-    Vec3<S> q(c.x(), std::clamp(c.y(), -k, k), c.z());
+    Vec3T<S> q(c.x(), std::clamp(c.y(), -k, k), c.z());
     if (radial > R) {
       q.x() *= R / radial;
       q.z() *= R / radial;
     }
-    const Vec3<S> d = c - q;
+    const Vec3T<S> d = c - q;
     const S distance = d.norm();
     const S tiny = ScalarTraits<S>::epsilon() * (R + k + r);
-    Vec3<S> n;           // cylinder frame, from the cylinder toward the sphere
-    Vec3<S> onCylinder;  // the cylinder's deepest point along n
+    Vec3T<S> n;           // cylinder frame, from the cylinder toward the sphere
+    Vec3T<S> onCylinder;  // the cylinder's deepest point along n
     S depth;
     if (distance > tiny) {
       depth = r - distance;
@@ -3922,16 +3967,16 @@ struct Collider<CylinderT<S>, SphereT<S>> {
       const S capGap = k - std::abs(c.y()), barrelGap = R - radial;
       const S gap = std::min(capGap, barrelGap);
       if (capGap <= barrelGap)
-        n = Vec3<S>(S(0), c.y() < S(0) ? S(-1) : S(1), S(0));
+        n = Vec3T<S>(S(0), c.y() < S(0) ? S(-1) : S(1), S(0));
       else if (radial > tiny)
-        n = Vec3<S>(c.x() / radial, S(0), c.z() / radial);
+        n = Vec3T<S>(c.x() / radial, S(0), c.z() / radial);
       else
-        n = Vec3<S>::UnitX();
+        n = Vec3T<S>::UnitX();
       depth = r + gap;
       onCylinder = c + gap * n;
     }
     // Midway between the cylinder's deepest point and the sphere's, c − r n.
-    sink.add(X_WA * Vec3<S>(S(0.5) * (onCylinder + c - r * n)), X_WA.linear() * n, depth);
+    sink.add(X_WA * Vec3T<S>(S(0.5) * (onCylinder + c - r * n)), X_WA.linear() * n, depth);
   }
 };
 
@@ -3946,12 +3991,12 @@ namespace spook {
 /// plane has two. The normal points from the line into the plane, −n.
 template <Scalar S>
 struct Collider<LineT<S>, PlaneT<S>> {
-  static void collide(const LineT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+  static void collide(const LineT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> n = X_WB.linear() * b.getNormal();
-    const Vec3<S> onPlane = X_WB * b.getPoint();
-    for (const Vec3<S>& end : {a.getFirstPoint(), a.getSecondPoint()}) {
-      const Vec3<S> e = X_WA * end;
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S> onPlane = X_WB * b.getPoint();
+    for (const Vec3T<S>& end : {a.getFirstPoint(), a.getSecondPoint()}) {
+      const Vec3T<S> e = X_WA * end;
       const S height = n.dot(e - onPlane);
       // Midway between the endpoint and the plane point under it.
       if (height <= S(0)) sink.add(e - S(0.5) * height * n, -n, -height);
@@ -3970,21 +4015,21 @@ namespace spook {
 /// segment pushes along a fixed perpendicular of the segment.
 template <Scalar S>
 struct Collider<LineT<S>, SphereT<S>> {
-  static void collide(const LineT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+  static void collide(const LineT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> p = X_WA * a.getFirstPoint(), q = X_WA * a.getSecondPoint();
-    const Vec3<S> c = X_WB.translation();
+    const Vec3T<S> p = X_WA * a.getFirstPoint(), q = X_WA * a.getSecondPoint();
+    const Vec3T<S> c = X_WB.translation();
     const S t = detail::closestParameterOnSegment<S>(p, q, c);
-    const Vec3<S> onLine = p + t * (q - p);
+    const Vec3T<S> onLine = p + t * (q - p);
     const S r = b.getRadius();
-    Vec3<S> d = c - onLine;
+    Vec3T<S> d = c - onLine;
     // Along the segment's interior c − q is perpendicular to it: made exactly
     // so, round-off cannot tilt the normal toward the segment.
     if (t > S(0) && t < S(1)) d -= (q - p) * ((q - p).dot(d) / (q - p).squaredNorm());
     const S distance = d.norm();
     const S depth = r - distance;
     if (!(depth >= S(0))) return;
-    const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (r + a.getLength()) ? Vec3<S>(d / distance)
+    const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (r + a.getLength()) ? Vec3T<S>(d / distance)
                                                                                   : detail::unitPerpendicular<S>(q - p);
     // Midway between the segment point and the sphere's deepest point c − r n.
     sink.add(S(0.5) * (onLine + c - r * n), n, depth);
@@ -4002,10 +4047,10 @@ namespace spook {
 /// r − s (also when c is below the plane), along the plane normal.
 template <Scalar S>
 struct Collider<PlaneT<S>, SphereT<S>> {
-  static void collide(const PlaneT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+  static void collide(const PlaneT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> n = X_WA.linear() * a.getNormal();
-    const Vec3<S> c = X_WB.translation();
+    const Vec3T<S> n = X_WA.linear() * a.getNormal();
+    const Vec3T<S> c = X_WB.translation();
     const S height = n.dot(c - X_WA * a.getPoint());
     const S r = b.getRadius();
     const S depth = r - height;
@@ -4046,7 +4091,7 @@ namespace spook::detail {
 /// outside (the solid side is behind the face).
 template <Scalar S>
 struct Triangle {
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   std::array<Vec3, 3> v;
 
   [[nodiscard]] Vec3 support(const Vec3& d) const {
@@ -4079,7 +4124,7 @@ namespace spook::detail {
 struct Polytope {
   using S = double;
   struct Face {
-    Vec3<S> normal;         // unit, outward (world)
+    Vec3T<S> normal;         // unit, outward (world)
     std::vector<int> loop;  // corners, counter-clockwise about the normal
   };
   /// An edge and the two faces that meet there; a triangle's or segment's
@@ -4089,23 +4134,23 @@ struct Polytope {
     int left = -1, right = -1;
   };
 
-  std::vector<Vec3<S>> vertices;  // world (m)
+  std::vector<Vec3T<S>> vertices;  // world (m)
   std::vector<Face> faces;
   std::vector<Edge> edges;
   bool twoSided = false;
 
   /// The largest n·x over the corners (m) and the corner that reaches it.
-  [[nodiscard]] std::pair<S, int> support(const Vec3<S>& n) const {
+  [[nodiscard]] std::pair<S, int> support(const Vec3T<S>& n) const {
     int best = 0;
     S height = n.dot(vertices[0]);
     for (std::size_t i = 1; i < vertices.size(); ++i)
       if (const S h = n.dot(vertices[i]); h > height) height = h, best = static_cast<int>(i);
     return {height, best};
   }
-  [[nodiscard]] Vec3<S> edgeVector(const Edge& e) const {
+  [[nodiscard]] Vec3T<S> edgeVector(const Edge& e) const {
     return vertices[static_cast<std::size_t>(e.to)] - vertices[static_cast<std::size_t>(e.from)];
   }
-  [[nodiscard]] const Vec3<S>& vertex(int i) const { return vertices[static_cast<std::size_t>(i)]; }
+  [[nodiscard]] const Vec3T<S>& vertex(int i) const { return vertices[static_cast<std::size_t>(i)]; }
 };
 
 /// Edges from the face loops: each undirected loop edge once, with the two
@@ -4127,14 +4172,14 @@ inline void linkEdges(Polytope& polytope) {
 }
 
 template <Scalar T>
-void makeBoxPolytope(const BoxT<T>& box, const Transform<T>& X_WT, Polytope& out) {
+void makeBoxPolytope(const BoxT<T>& box, const TransformT<T>& X_WT, Polytope& out) {
   using S = double;
-  const Vec3<S> h = box.getHalfExtents().template cast<S>();
-  const Transform<S> X_W = X_WT.template cast<S>();
+  const Vec3T<S> h = box.getHalfExtents().template cast<S>();
+  const TransformT<S> X_W = X_WT.template cast<S>();
   out.vertices.resize(8);
   for (int c = 0; c < 8; ++c)
     out.vertices[std::size_t(c)] =
-        X_W * Vec3<S>((c & 1) ? h.x() : -h.x(), (c & 2) ? h.y() : -h.y(), (c & 4) ? h.z() : -h.z());
+        X_W * Vec3T<S>((c & 1) ? h.x() : -h.x(), (c & 2) ? h.y() : -h.y(), (c & 4) ? h.z() : -h.z());
   // Corner c has bit i set where its coordinate i is +h_i; each loop runs
   // counter-clockwise seen from outside.
   static constexpr std::array<std::array<int, 4>, 6> kLoops = {{{0, 4, 6, 2},    // −x
@@ -4145,8 +4190,8 @@ void makeBoxPolytope(const BoxT<T>& box, const Transform<T>& X_WT, Polytope& out
                                                                {4, 5, 7, 6}}};  // +z
   out.faces.resize(6);
   for (int f = 0; f < 6; ++f) {
-    const Vec3<S> axis = X_W.linear().col(f / 2);
-    out.faces[std::size_t(f)].normal = (f % 2) ? axis : Vec3<S>(-axis);
+    const Vec3T<S> axis = X_W.linear().col(f / 2);
+    out.faces[std::size_t(f)].normal = (f % 2) ? axis : Vec3T<S>(-axis);
     out.faces[std::size_t(f)].loop.assign(kLoops[std::size_t(f)].begin(), kLoops[std::size_t(f)].end());
   }
   out.twoSided = false;
@@ -4154,8 +4199,8 @@ void makeBoxPolytope(const BoxT<T>& box, const Transform<T>& X_WT, Polytope& out
 }
 
 template <Scalar T>
-void makeConvexPolytope(const ConvexT<T>& convex, const Transform<T>& X_WT, Polytope& out) {
-  const Transform<double> X_W = X_WT.template cast<double>();
+void makeConvexPolytope(const ConvexT<T>& convex, const TransformT<T>& X_WT, Polytope& out) {
+  const TransformT<double> X_W = X_WT.template cast<double>();
   out.vertices.resize(convex.getVertices().size());
   for (std::size_t i = 0; i < out.vertices.size(); ++i)
     out.vertices[i] = X_W * convex.getVertices()[i].template cast<double>();
@@ -4184,7 +4229,7 @@ void makeTrianglePolytope(const Triangle<T>& t_WT, Polytope& out) {
 }
 
 template <Scalar T>
-void makeSegmentPolytope(const Vec3<T>& p_W, const Vec3<T>& q_W, Polytope& out) {
+void makeSegmentPolytope(const Vec3T<T>& p_W, const Vec3T<T>& q_W, Polytope& out) {
   out.vertices = {p_W.template cast<double>(), q_W.template cast<double>()};
   out.faces.clear();
   out.edges = {{0, 1}};
@@ -4193,15 +4238,15 @@ void makeSegmentPolytope(const Vec3<T>& p_W, const Vec3<T>& q_W, Polytope& out) 
 
 /// The polytope of a box, a hull or a segment placed at X_W.
 template <Scalar T>
-void makePolytope(const BoxT<T>& box, const Transform<T>& X_W, Polytope& out) {
+void makePolytope(const BoxT<T>& box, const TransformT<T>& X_W, Polytope& out) {
   makeBoxPolytope(box, X_W, out);
 }
 template <Scalar T>
-void makePolytope(const ConvexT<T>& convex, const Transform<T>& X_W, Polytope& out) {
+void makePolytope(const ConvexT<T>& convex, const TransformT<T>& X_W, Polytope& out) {
   makeConvexPolytope(convex, X_W, out);
 }
 template <Scalar T>
-void makePolytope(const LineT<T>& line, const Transform<T>& X_W, Polytope& out) {
+void makePolytope(const LineT<T>& line, const TransformT<T>& X_W, Polytope& out) {
   makeSegmentPolytope<T>(X_W * line.getFirstPoint(), X_W * line.getSecondPoint(), out);
 }
 
@@ -4215,7 +4260,7 @@ struct SeparatingAxis {
   using S = double;
   enum Kind { FACE_OF_A, FACE_OF_B, EDGES };
   S depth = std::numeric_limits<S>::infinity();  // overlap of the projections on n (m)
-  Vec3<S> n = Vec3<S>::UnitZ();
+  Vec3T<S> n = Vec3T<S>::UnitZ();
   Kind kind = FACE_OF_A;
   int first = -1, second = -1;  // the face, or the edge of a and the edge of b
 };
@@ -4225,9 +4270,9 @@ struct SeparatingAxis {
 /// −c–−d cross on the Gauss map (Gregorius, "The Separating Axis Test
 /// between Convex Polyhedra", GDC 2013). Only such edge pairs can give the
 /// least overlap, which prunes most of the E_a·E_b cross products.
-[[nodiscard]] inline bool arcsCross(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
-                                    const Vec3<double>& d) {
-  const Vec3<double> bxa = b.cross(a), dxc = d.cross(c);
+[[nodiscard]] inline bool arcsCross(const Vec3T<double>& a, const Vec3T<double>& b, const Vec3T<double>& c,
+                                    const Vec3T<double>& d) {
+  const Vec3T<double> bxa = b.cross(a), dxc = d.cross(c);
   const double cba = c.dot(bxa), dba = d.dot(bxa), adc = a.dot(dxc), bdc = b.dot(dxc);
   return cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0;
 }
@@ -4239,19 +4284,19 @@ struct SeparatingAxis {
 [[nodiscard]] inline bool leastOverlap(const Polytope& a, const Polytope& b, SeparatingAxis& best) {
   using S = double;
   using Kind = SeparatingAxis::Kind;
-  const auto overlap = [&](const Vec3<S>& n) { return a.support(n).first + b.support(-n).first; };
-  const auto consider = [&](const Vec3<S>& n, Kind kind, int first, int second) {
+  const auto overlap = [&](const Vec3T<S>& n) { return a.support(n).first + b.support(-n).first; };
+  const auto consider = [&](const Vec3T<S>& n, Kind kind, int first, int second) {
     const S f = overlap(n);
     if (f < best.depth) best = {f, n, kind, first, second};
     return f >= S(0);
   };
   for (std::size_t i = 0; i < a.faces.size(); ++i) {
-    const Vec3<S>& n = a.faces[i].normal;
+    const Vec3T<S>& n = a.faces[i].normal;
     if (!consider(n, Kind::FACE_OF_A, int(i), -1)) return false;
     if (a.twoSided && !consider(-n, Kind::FACE_OF_A, int(i), -1)) return false;
   }
   for (std::size_t j = 0; j < b.faces.size(); ++j) {
-    const Vec3<S>& m = b.faces[j].normal;
+    const Vec3T<S>& m = b.faces[j].normal;
     if (!consider(-m, Kind::FACE_OF_B, int(j), -1)) return false;
     if (b.twoSided && !consider(m, Kind::FACE_OF_B, int(j), -1)) return false;
   }
@@ -4259,16 +4304,16 @@ struct SeparatingAxis {
   const S parallel = S(1e3) * ScalarTraits<S>::epsilon();
   for (std::size_t i = 0; i < a.edges.size(); ++i) {
     const auto& ea = a.edges[i];
-    const Vec3<S> u = a.edgeVector(ea);
+    const Vec3T<S> u = a.edgeVector(ea);
     for (std::size_t j = 0; j < b.edges.size(); ++j) {
       const auto& eb = b.edges[j];
       if (ea.right >= 0 && eb.right >= 0 &&
           !arcsCross(a.faces[std::size_t(ea.left)].normal, a.faces[std::size_t(ea.right)].normal,
-                        Vec3<S>(-b.faces[std::size_t(eb.left)].normal),
-                        Vec3<S>(-b.faces[std::size_t(eb.right)].normal)))
+                        Vec3T<S>(-b.faces[std::size_t(eb.left)].normal),
+                        Vec3T<S>(-b.faces[std::size_t(eb.right)].normal)))
         continue;
-      const Vec3<S> v = b.edgeVector(eb);
-      Vec3<S> n = u.cross(v);
+      const Vec3T<S> v = b.edgeVector(eb);
+      Vec3T<S> n = u.cross(v);
       const S length = n.norm();
       if (!(length > parallel * u.norm() * v.norm())) continue;
       n /= length;
@@ -4281,7 +4326,7 @@ struct SeparatingAxis {
 /// The face of `p` whose outward normal points most against `r` (for a
 /// two-sided face, the side that does), as a corner loop; a segment gives
 /// its two ends.
-inline void incidentFeature(const Polytope& p, const Vec3<double>& r, std::vector<Vec3<double>>& corners) {
+inline void incidentFeature(const Polytope& p, const Vec3T<double>& r, std::vector<Vec3T<double>>& corners) {
   using S = double;
   corners.clear();
   if (p.faces.empty()) {
@@ -4299,15 +4344,15 @@ inline void incidentFeature(const Polytope& p, const Vec3<double>& r, std::vecto
 
 /// Clips a polygon (or a segment, two corners) to the half-space
 /// s·x <= offset, Sutherland–Hodgman.
-inline void clipToHalfSpace(std::vector<Vec3<double>>& corners, const Vec3<double>& s, double offset,
-                            std::vector<Vec3<double>>& scratch) {
+inline void clipToHalfSpace(std::vector<Vec3T<double>>& corners, const Vec3T<double>& s, double offset,
+                            std::vector<Vec3T<double>>& scratch) {
   using S = double;
   scratch.clear();
   const std::size_t count = corners.size();
   const std::size_t edges = count == 2 ? 1 : count;
   for (std::size_t i = 0; i < edges; ++i) {
-    const Vec3<S>& p = corners[i];
-    const Vec3<S>& q = corners[(i + 1) % count];
+    const Vec3T<S>& p = corners[i];
+    const Vec3T<S>& q = corners[(i + 1) % count];
     const S dp = s.dot(p) - offset, dq = s.dot(q) - offset;
     if (dp <= S(0)) scratch.push_back(p);
     if ((dp < S(0) && dq > S(0)) || (dp > S(0) && dq < S(0))) scratch.push_back(p + (q - p) * (dp / (dp - dq)));
@@ -4331,10 +4376,10 @@ inline void clipToHalfSpace(std::vector<Vec3<double>>& corners, const Vec3<doubl
 template <Scalar T>
 void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink) {
   using S = double;
-  const auto add = [&](const Vec3<S>& point, S depth) {
+  const auto add = [&](const Vec3T<S>& point, S depth) {
     sink.add(point.template cast<T>(), axis.n.template cast<T>(), T(depth));
   };
-  const Vec3<S>& n = axis.n;
+  const Vec3T<S>& n = axis.n;
   if (axis.kind == SeparatingAxis::EDGES) {
     const auto& ea = a.edges[std::size_t(axis.first)];
     const auto& eb = b.edges[std::size_t(axis.second)];
@@ -4346,19 +4391,19 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
   const bool onA = axis.kind == SeparatingAxis::FACE_OF_A;
   const Polytope& reference = onA ? a : b;
   const Polytope& incident = onA ? b : a;
-  const Vec3<S> r = onA ? n : Vec3<S>(-n);  // the reference face's outward normal, toward the incident polytope
+  const Vec3T<S> r = onA ? n : Vec3T<S>(-n);  // the reference face's outward normal, toward the incident polytope
   const auto& loop = reference.faces[std::size_t(axis.first)].loop;
   const S planeOffset = r.dot(reference.vertex(loop[0]));
 
-  thread_local std::vector<Vec3<S>> corners, scratch;
+  thread_local std::vector<Vec3T<S>> corners, scratch;
   incidentFeature(incident, r, corners);
-  Vec3<S> centroid = Vec3<S>::Zero();
+  Vec3T<S> centroid = Vec3T<S>::Zero();
   for (const int k : loop) centroid += reference.vertex(k);
   centroid /= S(loop.size());
   for (std::size_t k = 0; k < loop.size() && !corners.empty(); ++k) {
-    const Vec3<S>& p = reference.vertex(loop[k]);
-    const Vec3<S> edge = reference.vertex(loop[(k + 1) % loop.size()]) - p;
-    Vec3<S> side = edge.cross(r);
+    const Vec3T<S>& p = reference.vertex(loop[k]);
+    const Vec3T<S> edge = reference.vertex(loop[(k + 1) % loop.size()]) - p;
+    Vec3T<S> side = edge.cross(r);
     if (side.dot(centroid - p) > S(0)) side = -side;
     const S length = side.norm();
     if (!(length > S(0))) continue;  // a repeated corner of a degenerate face
@@ -4367,14 +4412,14 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
   }
   S deepest = -std::numeric_limits<S>::infinity();
   const S tolerance = S(64) * ScalarTraits<S>::epsilon() * (S(1) + std::abs(planeOffset));
-  for (const Vec3<S>& x : corners) {
+  for (const Vec3T<S>& x : corners) {
     const S depth = planeOffset - r.dot(x);
     if (depth < -tolerance) continue;
     add(x + r * (S(0.5) * depth), depth);
     deepest = std::max(deepest, depth);
   }
   if (deepest < axis.depth - tolerance * S(16)) {
-    const Vec3<S>& x = incident.vertex(incident.support(-r).second);
+    const Vec3T<S>& x = incident.vertex(incident.support(-r).second);
     add(x + r * (S(0.5) * axis.depth), axis.depth);
   }
 }
@@ -4401,7 +4446,7 @@ namespace detail {
 template <class A, class B>
 struct PolytopeCollider {
   using S = typename A::Vec3::Scalar;
-  static void collide(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB,
+  static void collide(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     thread_local Polytope pa, pb;
     makePolytope(a, X_WA, pa);
@@ -4429,15 +4474,15 @@ namespace spook {
 /// the radii) have no line of centers; they push along world +z.
 template <Scalar S>
 struct Collider<SphereT<S>, SphereT<S>> {
-  static void collide(const SphereT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+  static void collide(const SphereT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> cA = X_WA.translation(), cB = X_WB.translation();
+    const Vec3T<S> cA = X_WA.translation(), cB = X_WB.translation();
     const S rA = a.getRadius(), rB = b.getRadius();
-    const Vec3<S> d = cB - cA;
+    const Vec3T<S> d = cB - cA;
     const S distance = d.norm();
     const S depth = rA + rB - distance;
     if (!(depth >= S(0))) return;
-    const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB) ? Vec3<S>(d / distance) : Vec3<S>::UnitZ();
+    const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB) ? Vec3T<S>(d / distance) : Vec3T<S>::UnitZ();
     // Midway between a's deepest point cA + rA n and b's, cB − rB n.
     sink.add(S(0.5) * (cA + cB + (rA - rB) * n), n, depth);
   }
@@ -4461,8 +4506,8 @@ concept TriangleSoup = T::kType == ShapeType::TRIMESH || T::kType == ShapeType::
 
 /// The point of segment [a, b] closest to p (a for a zero-length segment).
 template <Scalar S>
-[[nodiscard]] Vec3<S> closestOnSegment(const Vec3<S>& a, const Vec3<S>& b, const Vec3<S>& p) {
-  const Vec3<S> ab = b - a;
+[[nodiscard]] Vec3T<S> closestOnSegment(const Vec3T<S>& a, const Vec3T<S>& b, const Vec3T<S>& p) {
+  const Vec3T<S> ab = b - a;
   const S length2 = ab.squaredNorm();
   if (!(length2 > S(0))) return a;
   return a + ab * std::clamp((p - a).dot(ab) / length2, S(0), S(1));
@@ -4473,18 +4518,18 @@ template <Scalar S>
 /// three edges for a degenerate one (repeated or collinear corners), where
 /// the region tests would divide round-off by round-off.
 template <Scalar S>
-[[nodiscard]] Vec3<S> closestOnTriangle(const Triangle<S>& t, const Vec3<S>& p, bool& onFace) {
-  const Vec3<S>&a = t.v[0], &b = t.v[1], &c = t.v[2];
-  const Vec3<S> ab = b - a, ac = c - a;
+[[nodiscard]] Vec3T<S> closestOnTriangle(const Triangle<S>& t, const Vec3T<S>& p, bool& onFace) {
+  const Vec3T<S>&a = t.v[0], &b = t.v[1], &c = t.v[2];
+  const Vec3T<S> ab = b - a, ac = c - a;
   const S longest2 = std::max({ab.squaredNorm(), ac.squaredNorm(), (c - b).squaredNorm()});
   onFace = false;
   if (!(ab.cross(ac).norm() > S(64) * ScalarTraits<S>::epsilon() * longest2)) {
-    Vec3<S> best = closestOnSegment<S>(a, b, p);
-    for (const Vec3<S>& q : {closestOnSegment<S>(b, c, p), closestOnSegment<S>(c, a, p)})
+    Vec3T<S> best = closestOnSegment<S>(a, b, p);
+    for (const Vec3T<S>& q : {closestOnSegment<S>(b, c, p), closestOnSegment<S>(c, a, p)})
       if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
     return best;
   }
-  const Vec3<S> ap = p - a, bp = p - b, cp = p - c;
+  const Vec3T<S> ap = p - a, bp = p - b, cp = p - c;
   const S d1 = ab.dot(ap), d2 = ac.dot(ap), d3 = ab.dot(bp), d4 = ac.dot(bp), d5 = ab.dot(cp), d6 = ac.dot(cp);
   if (d1 <= S(0) && d2 <= S(0)) return a;
   if (d3 >= S(0) && d4 <= d3) return b;
@@ -4506,20 +4551,20 @@ template <Scalar S>
 /// c − q otherwise; a center on an edge or corner pushes along the face
 /// normal.
 template <Scalar S>
-void collideSphereTriangle(const SphereT<S>& sphere, const Vec3<S>& c_W, const Triangle<S>& t_W,
+void collideSphereTriangle(const SphereT<S>& sphere, const Vec3T<S>& c_W, const Triangle<S>& t_W,
                            ContactSinkT<S>& sink) {
   bool onFace = false;
-  const Vec3<S> q = closestOnTriangle<S>(t_W, c_W, onFace);
-  const Vec3<S> toCenter = c_W - q;
+  const Vec3T<S> q = closestOnTriangle<S>(t_W, c_W, onFace);
+  const Vec3T<S> toCenter = c_W - q;
   const S distance = toCenter.norm();
   const S r = sphere.getRadius();
   if (distance > r) return;
-  const Vec3<S> faceNormal = t_W.normal();
-  Vec3<S> n;
+  const Vec3T<S> faceNormal = t_W.normal();
+  Vec3T<S> n;
   if (onFace)
-    n = toCenter.dot(faceNormal) >= S(0) ? Vec3<S>(-faceNormal) : faceNormal;
+    n = toCenter.dot(faceNormal) >= S(0) ? Vec3T<S>(-faceNormal) : faceNormal;
   else
-    n = distance > ScalarTraits<S>::epsilon() * r ? Vec3<S>(-toCenter / distance) : Vec3<S>(-faceNormal);
+    n = distance > ScalarTraits<S>::epsilon() * r ? Vec3T<S>(-toCenter / distance) : Vec3T<S>(-faceNormal);
   const S depth = r - distance;
   sink.add(q + n * (depth * S(0.5)), n, depth);  // midway: q and c + n r bound the overlap
 }
@@ -4533,12 +4578,12 @@ inline constexpr bool kIsPolytope =
 /// separating axes with a clipped manifold (polytope_sat.hpp), spheres in
 /// closed form, capsules and cylinders through libccd.
 template <Scalar S, class A, class Soup>
-void collideWithTriangles(const A& a, const Transform<S>& X_WA, const Soup& soup, const Transform<S>& X_WM,
+void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
                           ContactSinkT<S>& sink) {
   const BoundingBoxT<S> box_M = transformBox<S>(a.getBoundingBox(), X_WM.inverse() * X_WA);
   thread_local Polytope shape, triangle;
   if constexpr (kIsPolytope<A>) makePolytope(a, X_WA, shape);
-  soup.forEachTriangle(box_M, [&](std::size_t i, const Vec3<S>& p0, const Vec3<S>& p1, const Vec3<S>& p2) {
+  soup.forEachTriangle(box_M, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
     sink.setFaceIndices(0, i);
     if constexpr (A::kType == ShapeType::SPHERE) {
       const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
@@ -4556,14 +4601,14 @@ void collideWithTriangles(const A& a, const Transform<S>& X_WA, const Soup& soup
 
 /// Triangle pairs of two soups whose boxes overlap, each collided by libccd.
 template <Scalar S, class SoupA, class SoupB>
-void collideSoups(const SoupA& a, const Transform<S>& X_WA, const SoupB& b, const Transform<S>& X_WB,
+void collideSoups(const SoupA& a, const TransformT<S>& X_WA, const SoupB& b, const TransformT<S>& X_WB,
                   ContactSinkT<S>& sink) {
-  const Transform<S> X_BA = X_WB.inverse() * X_WA;
+  const TransformT<S> X_BA = X_WB.inverse() * X_WA;
   const BoundingBoxT<S> a_B = transformBox<S>(a.getBoundingBox(), X_BA);
-  b.forEachTriangle(a_B, [&](std::size_t j, const Vec3<S>& q0, const Vec3<S>& q1, const Vec3<S>& q2) {
+  b.forEachTriangle(a_B, [&](std::size_t j, const Vec3T<S>& q0, const Vec3T<S>& q1, const Vec3T<S>& q2) {
     const Triangle<S> t_B{{q0, q1, q2}};
     const BoundingBoxT<S> t_A = transformBox<S>(t_B.getBoundingBox(), X_BA.inverse());
-    a.forEachTriangle(t_A, [&](std::size_t i, const Vec3<S>& p0, const Vec3<S>& p1, const Vec3<S>& p2) {
+    a.forEachTriangle(t_A, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
       const Triangle<S> t_A2{{p0, p1, p2}};
       sink.setFaceIndices(i, j);
       collideByCcd<S>(t_A2, X_WA, t_B, X_WB, sink);
@@ -4575,16 +4620,16 @@ void collideSoups(const SoupA& a, const Transform<S>& X_WA, const SoupB& b, cons
 /// Every vertex of `points` (frame A) at or below the plane is a contact,
 /// with the normal from the points' shape into the plane (−n).
 template <Scalar S, class Points>
-void collideVerticesWithPlane(const Points& vertices, const Transform<S>& X_WA, const PlaneT<S>& plane,
-                              const Transform<S>& X_WP, ContactSinkT<S>& sink, bool planeFirst) {
-  const Vec3<S> n = X_WP.linear() * plane.getNormal();
-  const Vec3<S> o = X_WP * plane.getPoint();
+void collideVerticesWithPlane(const Points& vertices, const TransformT<S>& X_WA, const PlaneT<S>& plane,
+                              const TransformT<S>& X_WP, ContactSinkT<S>& sink, bool planeFirst) {
+  const Vec3T<S> n = X_WP.linear() * plane.getNormal();
+  const Vec3T<S> o = X_WP * plane.getPoint();
   for (const auto& v : vertices) {
-    const Vec3<S> p = X_WA * v;
+    const Vec3T<S> p = X_WA * v;
     const S height = n.dot(p - o);
     if (height > S(0)) continue;
-    const Vec3<S> mid = p - n * (height * S(0.5));
-    sink.add(mid, planeFirst ? n : Vec3<S>(-n), -height);
+    const Vec3T<S> mid = p - n * (height * S(0.5));
+    sink.add(mid, planeFirst ? n : Vec3T<S>(-n), -height);
   }
 }
 
@@ -4595,7 +4640,7 @@ void collideVerticesWithPlane(const Points& vertices, const Transform<S>& X_WA, 
 template <ConvexShape A, detail::TriangleSoup B>
 requires(A::kType < B::kType) struct Collider<A, B> {
   using S = typename A::Vec3::Scalar;
-  static void collide(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB,
+  static void collide(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     detail::collideWithTriangles<S>(a, X_WA, b, X_WB, sink);
   }
@@ -4604,7 +4649,7 @@ requires(A::kType < B::kType) struct Collider<A, B> {
 /// Plane–trimesh: the mesh vertices at or below the plane.
 template <Scalar S>
 struct Collider<PlaneT<S>, TrimeshT<S>> {
-  static void collide(const PlaneT<S>& a, const Transform<S>& X_WA, const TrimeshT<S>& b, const Transform<S>& X_WB,
+  static void collide(const PlaneT<S>& a, const TransformT<S>& X_WA, const TrimeshT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     detail::collideVerticesWithPlane<S>(b.getVertices(), X_WB, a, X_WA, sink, true);
   }
@@ -4613,7 +4658,7 @@ struct Collider<PlaneT<S>, TrimeshT<S>> {
 /// Convex–plane: the hull vertices at or below the plane.
 template <Scalar S>
 struct Collider<ConvexT<S>, PlaneT<S>> {
-  static void collide(const ConvexT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+  static void collide(const ConvexT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     detail::collideVerticesWithPlane<S>(a.getVertices(), X_WA, b, X_WB, sink, false);
   }
@@ -4622,15 +4667,15 @@ struct Collider<ConvexT<S>, PlaneT<S>> {
 /// Trimesh–trimesh and trimesh–height field: triangle pairs.
 template <Scalar S>
 struct Collider<TrimeshT<S>, TrimeshT<S>> {
-  static void collide(const TrimeshT<S>& a, const Transform<S>& X_WA, const TrimeshT<S>& b, const Transform<S>& X_WB,
+  static void collide(const TrimeshT<S>& a, const TransformT<S>& X_WA, const TrimeshT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     detail::collideSoups<S>(a, X_WA, b, X_WB, sink);
   }
 };
 template <Scalar S>
 struct Collider<TrimeshT<S>, HeightFieldT<S>> {
-  static void collide(const TrimeshT<S>& a, const Transform<S>& X_WA, const HeightFieldT<S>& b,
-                      const Transform<S>& X_WB, ContactSinkT<S>& sink) {
+  static void collide(const TrimeshT<S>& a, const TransformT<S>& X_WA, const HeightFieldT<S>& b,
+                      const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
     detail::collideSoups<S>(a, X_WA, b, X_WB, sink);
   }
 };
@@ -4654,7 +4699,7 @@ class ColliderMatrixT<S, ShapeList<Shapes...>> {
  public:
   using List = ShapeList<Shapes...>;
   using Shape = ShapeT<S>;
-  using Transform = spook::Transform<S>;
+  using Transform = spook::TransformT<S>;
   using Sink = ContactSinkT<S>;
   using Function = void (*)(const Shape&, const Transform&, const Shape&, const Transform&, Sink&);
   static constexpr std::size_t N = sizeof...(Shapes);
@@ -4787,7 +4832,7 @@ template <Scalar S>
 void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
   if (resolution < 1 || resolution > 3) throw detail::makeError("ContactReduction", "", "bin resolution must be 1, 2 or 3", resolution);
   if (points.size() <= 4) return;
-  Vec3<S> centroid = Vec3<S>::Zero();
+  Vec3T<S> centroid = Vec3T<S>::Zero();
   for (const auto* p : points) centroid += p->point;
   centroid /= S(points.size());
   S reach = S(0);
@@ -4805,8 +4850,8 @@ void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
   };
   std::vector<Bin> bins;
   for (auto* p : points) {
-    const Vec3<S> arm = (p->point - centroid) * scale;
-    const Vec3<S> moment = p->normal.cross(arm);
+    const Vec3T<S> arm = (p->point - centroid) * scale;
+    const Vec3T<S> moment = p->normal.cross(arm);
     const std::array<int, 6> key = {binOf(p->normal.x()), binOf(p->normal.y()), binOf(p->normal.z()),
                                     binOf(moment.x()),    binOf(moment.y()),    binOf(moment.z())};
     auto it = std::find_if(bins.begin(), bins.end(), [&](const Bin& b) { return b.key == key; });
@@ -4844,9 +4889,9 @@ namespace spook {
 template <Scalar S>
 class FrameT : public Referenced {
  public:
-  using Vec3 = spook::Vec3<S>;
-  using Quat = spook::Quat<S>;
-  using Transform = spook::Transform<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Quat = spook::QuatT<S>;
+  using Transform = spook::TransformT<S>;
 
   FrameT() = default;
   explicit FrameT(const Transform& localMatrix) { setLocalMatrix(localMatrix); }
@@ -4932,7 +4977,7 @@ class FrameT : public Referenced {
   static void checkMatrix(const Transform& X) {
     if (!X.matrix().allFinite() || !isRotation<S>(X.linear()))
       throw detail::makeError("Frame", "", "transform must be finite with a rotation as linear part",
-                              SPDMat3<S>::flat(X.linear()));
+                              SPDMat3T<S>::flat(X.linear()));
   }
 
   ref_ptr<FrameT> parent_;
@@ -5142,8 +5187,8 @@ struct GeometryAccess;
 template <Scalar S>
 class GeometryT : public Referenced {
  public:
-  using Vec3 = spook::Vec3<S>;
-  using Transform = spook::Transform<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Transform = spook::TransformT<S>;
   using Shape = ShapeT<S>;
   using Frame = FrameT<S>;
 
@@ -5171,10 +5216,10 @@ class GeometryT : public Referenced {
   void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
     if (!shape) throw error("cannot add a null shape", "nullptr");
     if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
-      throw error("shape transform must be finite and rigid", SPDMat3<S>::flat(transform.linear()));
+      throw error("shape transform must be finite and rigid", SPDMat3T<S>::flat(transform.linear()));
     if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
       throw error("shape already added to this geometry", std::string(shapeTypeName(shape->getType())));
-    shapes_.push_back({std::move(shape), makeTransform<S>(transform.translation(), Quat<S>(transform.linear()))});
+    shapes_.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
     changed();
   }
   /// Removes a shape; false when it is not here.
@@ -5293,7 +5338,7 @@ class GeometryT : public Referenced {
     for (const ShapeEntry& e : shapes_) {
       const Transform X_WS = X_WG * e.transform;
       const BoundingBoxT<S> local = e.shape->getBoundingBox();
-      const Mat3<S> R = X_WS.linear();
+      const Mat3T<S> R = X_WS.linear();
       if (!(local.min.allFinite() && local.max.allFinite())) {
         box.min = box.min.cwiseMin(Vec3::Constant(-std::numeric_limits<S>::infinity()));
         box.max = box.max.cwiseMax(Vec3::Constant(std::numeric_limits<S>::infinity()));
@@ -5518,17 +5563,17 @@ class SweepAndPrune {
   }
   // The axis along which the finite box centers spread the most.
   static int sweepAxis(const std::vector<BoundingBoxT<S>>& boxes) {
-    Vec3<S> sum = Vec3<S>::Zero(), sumSq = Vec3<S>::Zero();
+    Vec3T<S> sum = Vec3T<S>::Zero(), sumSq = Vec3T<S>::Zero();
     std::size_t n = 0;
     for (const auto& b : boxes) {
       if (!(b.min.allFinite() && b.max.allFinite())) continue;
-      const Vec3<S> c = b.center();
+      const Vec3T<S> c = b.center();
       sum += c;
       sumSq += c.cwiseAbs2();
       ++n;
     }
     if (n == 0) return 0;
-    const Vec3<S> variance = sumSq / S(n) - (sum / S(n)).cwiseAbs2();
+    const Vec3T<S> variance = sumSq / S(n) - (sum / S(n)).cwiseAbs2();
     int axis = 0;
     variance.maxCoeff(&axis);
     return axis;
@@ -5568,8 +5613,8 @@ namespace spook::detail {
 template <Scalar S>
 struct GeneratedMass {
   S mass = S(0);                        ///< kg
-  Vec3<S> center = Vec3<S>::Zero();     ///< model frame (m)
-  Mat3<S> inertia = Mat3<S>::Zero();    ///< about `center`, model frame axes (kg·m²)
+  Vec3T<S> center = Vec3T<S>::Zero();     ///< model frame (m)
+  Mat3T<S> inertia = Mat3T<S>::Zero();    ///< about `center`, model frame axes (kg·m²)
 };
 
 /// Each shape of volume V contributes m = ρV (ρ its geometry's material
@@ -5581,26 +5626,26 @@ template <Scalar S>
 [[nodiscard]] std::optional<GeneratedMass<S>> massFromGeometries(const std::vector<ref_ptr<GeometryT<S>>>& geometries) {
   struct Part {
     S mass;
-    Vec3<S> center;
-    Mat3<S> inertia;
+    Vec3T<S> center;
+    Mat3T<S> inertia;
   };
-  const auto shift = [](S m, const Vec3<S>& d) {
-    return Mat3<S>(m * (d.squaredNorm() * Mat3<S>::Identity() - d * d.transpose()));
+  const auto shift = [](S m, const Vec3T<S>& d) {
+    return Mat3T<S>(m * (d.squaredNorm() * Mat3T<S>::Identity() - d * d.transpose()));
   };
   std::vector<Part> parts;
   GeneratedMass<S> total;
-  Vec3<S> moment = Vec3<S>::Zero();
+  Vec3T<S> moment = Vec3T<S>::Zero();
   for (const auto& geometry : geometries) {
     const S density = geometry->getMaterial()->getBulkMaterial()->getDensity();
-    const Transform<S> X_BG = geometry->getLocalTransform();
+    const TransformT<S> X_BG = geometry->getLocalTransform();
     for (const auto& entry : geometry->getShapes()) {
       const S volume = entry.shape->getVolume();
       if (!(volume > S(0))) continue;
       const S m = density * volume;
-      const Transform<S> X_BS = X_BG * entry.transform;
-      const Vec3<S> c_S = entry.shape->getCenterOfVolume();
-      const Mat3<S> R = X_BS.linear();
-      const Mat3<S> aboutCenter = entry.shape->calculateInertia(m).matrix() - shift(m, c_S);
+      const TransformT<S> X_BS = X_BG * entry.transform;
+      const Vec3T<S> c_S = entry.shape->getCenterOfVolume();
+      const Mat3T<S> R = X_BS.linear();
+      const Mat3T<S> aboutCenter = entry.shape->calculateInertia(m).matrix() - shift(m, c_S);
       parts.push_back({m, X_BS * c_S, R * aboutCenter * R.transpose()});
       total.mass += m;
       moment += m * parts.back().center;
@@ -5629,8 +5674,8 @@ namespace spook {
 template <Scalar S>
 class MassPropertiesT {
  public:
-  using Vec3 = spook::Vec3<S>;
-  using Mat3 = spook::Mat3<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
 
   /// Which properties the body recomputes from its geometries (shape
   /// volumes times material density) when geometries, shapes or materials
@@ -5663,17 +5708,17 @@ class MassPropertiesT {
       const Vec3 diagonal = value;
       if (!(diagonal.allFinite() && diagonal.minCoeff() > S(0)))
         throw error("inertia diagonal must be finite and > 0 kg·m²", diagonal);
-      inertia_ = SPDMat3<S>(diagonal);
+      inertia_ = SPDMat3T<S>(diagonal);
       autoGenerate_ &= ~unsigned(INERTIA);
     } else {
       const Mat3 inertia = value;
-      if (const char* why = SPDMat3<S>::defect(inertia))
-        throw error(std::string("inertia tensor: ") + why, SPDMat3<S>::flat(inertia));
-      inertia_ = SPDMat3<S>(inertia);
+      if (const char* why = SPDMat3T<S>::defect(inertia))
+        throw error(std::string("inertia tensor: ") + why, SPDMat3T<S>::flat(inertia));
+      inertia_ = SPDMat3T<S>(inertia);
       autoGenerate_ &= ~unsigned(INERTIA);
     }
   }
-  void setInertiaTensor(const SPDMat3<S>& inertia) {
+  void setInertiaTensor(const SPDMat3T<S>& inertia) {
     inertia_ = inertia;
     autoGenerate_ &= ~unsigned(INERTIA);
   }
@@ -5697,7 +5742,7 @@ class MassPropertiesT {
   template <Scalar>
   friend class RigidBodyT;
   // Generated values, set by the body without touching the mask.
-  void generate(S mass, const SPDMat3<S>& inertia) {
+  void generate(S mass, const SPDMat3T<S>& inertia) {
     if (autoGenerate_ & MASS) mass_ = mass;
     if (autoGenerate_ & INERTIA) inertia_ = inertia;
   }
@@ -5709,7 +5754,7 @@ class MassPropertiesT {
 
   const std::string* ownerName_;
   S mass_ = S(1);
-  SPDMat3<S> inertia_;
+  SPDMat3T<S> inertia_;
   Vec3 massCoefficients_ = Vec3::Zero();
   unsigned autoGenerate_ = ALL;
 };
@@ -5736,10 +5781,10 @@ struct SimulationMembership;
 template <Scalar S>
 class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
  public:
-  using Vec3 = spook::Vec3<S>;
-  using Quat = spook::Quat<S>;
-  using Mat3 = spook::Mat3<S>;
-  using Transform = spook::Transform<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Quat = spook::QuatT<S>;
+  using Mat3 = spook::Mat3T<S>;
+  using Transform = spook::TransformT<S>;
   using Frame = FrameT<S>;
   using Geometry = GeometryT<S>;
 
@@ -5991,7 +6036,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
     // The tensor is stored in the CM frame, whose axes are the model axes
     // turned by the CM frame's local rotation.
     const Mat3 R = cmFrame_->getLocalRotate().toRotationMatrix();
-    massProperties_.generate(mass, SPDMat3<S>(Mat3(R.transpose() * inertia * R)));
+    massProperties_.generate(mass, SPDMat3T<S>(Mat3(R.transpose() * inertia * R)));
     if (mask & MassPropertiesT<S>::CM_OFFSET) {
       const Vec3 oldCm = getCmPosition();
       cmFrame_->setLocalTranslate(generated->center);
@@ -6071,7 +6116,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   void requireTransform(const Transform& X, const std::string& what) const {
     requireFinite(Vec3(X.translation()), (what + " translation must be finite (m)").c_str());
     if (!isRotation<S>(X.linear()))
-      throw error(what + " rotation must be orthonormal and right-handed", SPDMat3<S>::flat(X.linear()));
+      throw error(what + " rotation must be orthonormal and right-handed", SPDMat3T<S>::flat(X.linear()));
   }
   Vec3 checkedDamping(const Vec3& d, const char* kind) const {
     if (!(d.allFinite() && d.minCoeff() >= S(0)))
@@ -6122,7 +6167,7 @@ namespace detail {
 /// that defines SPOOK_IMPLEMENTATION, instead of in every one that makes a
 /// default Space or Simulation.
 template <Scalar S, class List>
-bool collideThrough(const ShapeT<S>& a, const Transform<S>& X_WA, const ShapeT<S>& b, const Transform<S>& X_WB,
+bool collideThrough(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<S>& b, const TransformT<S>& X_WB,
                     ContactSinkT<S>& sink) {
   return ColliderMatrixT<S, List>::collide(a, X_WA, b, X_WB, sink);
 }
@@ -6130,19 +6175,19 @@ bool collideThrough(const ShapeT<S>& a, const Transform<S>& X_WA, const ShapeT<S
 }  // namespace detail
 
 #if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENTATION)
-extern template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const Transform<double>&,
-                                                               const ShapeT<double>&, const Transform<double>&,
+extern template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
+                                                               const ShapeT<double>&, const TransformT<double>&,
                                                                ContactSinkT<double>&);
-extern template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const Transform<float>&,
-                                                              const ShapeT<float>&, const Transform<float>&,
+extern template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
+                                                              const ShapeT<float>&, const TransformT<float>&,
                                                               ContactSinkT<float>&);
 #endif
 #if defined(SPOOK_IMPLEMENTATION)
-template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const Transform<double>&,
-                                                        const ShapeT<double>&, const Transform<double>&,
+template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
+                                                        const ShapeT<double>&, const TransformT<double>&,
                                                         ContactSinkT<double>&);
-template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const Transform<float>&,
-                                                       const ShapeT<float>&, const Transform<float>&,
+template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
+                                                       const ShapeT<float>&, const TransformT<float>&,
                                                        ContactSinkT<float>&);
 #endif
 
@@ -6271,7 +6316,7 @@ class SpaceT : public Referenced {
 
  private:
   using Access = detail::GeometryAccess<S>;
-  using CollideFunction = bool (*)(const ShapeT<S>&, const Transform<S>&, const ShapeT<S>&, const Transform<S>&,
+  using CollideFunction = bool (*)(const ShapeT<S>&, const TransformT<S>&, const ShapeT<S>&, const TransformT<S>&,
                                    ContactSinkT<S>&);
 
   static bool isFixed(const Body* body) { return !body || body->getMotionControl() == Body::STATIC; }
@@ -6313,7 +6358,7 @@ class SpaceT : public Referenced {
     if (first->getId() > second->getId()) std::swap(first, second);
     Contact contact(first, second);
     ContactSinkT<S> sink(contact.points());
-    const Transform<S> X_W1 = first->getTransform(), X_W2 = second->getTransform();
+    const TransformT<S> X_W1 = first->getTransform(), X_W2 = second->getTransform();
     for (const auto& e1 : first->getShapes())
       for (const auto& e2 : second->getShapes())
         collide_(*e1.shape, X_W1 * e1.transform, *e2.shape, X_W2 * e2.transform, sink);
@@ -6712,8 +6757,8 @@ struct ConstraintAccess;
 template <Scalar S>
 class ConstraintT : public Referenced {
  public:
-  using Vec3 = spook::Vec3<S>;
-  using Quat = spook::Quat<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Quat = spook::QuatT<S>;
   using Body = RigidBodyT<S>;
   using Frame = FrameT<S>;
 
@@ -6798,9 +6843,9 @@ class ConstraintT : public Referenced {
     if (!axis.allFinite() || !(axis.norm() > S(0)))
       throw detail::makeError("Constraint", "", "frame axis must be finite and non-zero", axis);
     if (!body1) throw detail::makeError("Constraint", "", "calculateFrames needs a first body", "nullptr");
-    const Transform<S> world = makeTransform<S>(point, Quat::FromTwoVectors(Vec3::UnitZ(), axis.normalized()));
-    frame1 = new Frame(Transform<S>(body1->getTransform().inverse() * world));
-    frame2 = new Frame(body2 ? Transform<S>(body2->getTransform().inverse() * world) : world);
+    const TransformT<S> world = makeTransform<S>(point, Quat::FromTwoVectors(Vec3::UnitZ(), axis.normalized()));
+    frame1 = new Frame(TransformT<S>(body1->getTransform().inverse() * world));
+    frame2 = new Frame(body2 ? TransformT<S>(body2->getTransform().inverse() * world) : world);
   }
   /// A joint of type `Joint` at a world point with its z axis along a world
   /// axis (seed 001 §12.18), relaxed in the current configuration.
@@ -6826,7 +6871,7 @@ class ConstraintT : public Referenced {
     if (!body1) throw detail::makeError("Constraint", "", "calculateFrames needs a first body", "nullptr");
     if (!point.allFinite()) throw detail::makeError("Constraint", "", "frame point must be finite (m)", point);
     if (!axis.allFinite()) throw detail::makeError("Constraint", "", "frame axis must be finite and non-zero", axis);
-    const Transform<S> X = body1->getTransform();
+    const TransformT<S> X = body1->getTransform();
     calculateFramesFromWorld(X * point, X.linear() * axis, body1, frame1, body2, frame2);
   }
 
@@ -6876,7 +6921,7 @@ class ConstraintT : public Referenced {
   /// The attachment frames and the bodies' state, in world coordinates.
   [[nodiscard]] detail::Attachments attachments() const {
     detail::Attachments a;
-    const Transform<S> X1 = frame1_->getMatrix(), X2 = frame2_->getMatrix();
+    const TransformT<S> X1 = frame1_->getMatrix(), X2 = frame2_->getMatrix();
     a.p1 = X1.translation().template cast<double>();
     a.p2 = X2.translation().template cast<double>();
     a.q1 = detail::Quatd(Quat(X1.linear()).template cast<double>()).normalized();
@@ -8376,7 +8421,7 @@ class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
     holdCurrentDistance();
   }
   /// From body1's frame to a fixed world point (m).
-  DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, const Vec3<S>& worldPoint)
+  DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, const Vec3T<S>& worldPoint)
       : Base("DistanceJoint", body1, frame1, nullptr, worldFrame(worldPoint).get()) {
     holdCurrentDistance();
   }
@@ -8390,7 +8435,7 @@ class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
   }
 
  private:
-  static ref_ptr<FrameT<S>> worldFrame(const Vec3<S>& p) {
+  static ref_ptr<FrameT<S>> worldFrame(const Vec3T<S>& p) {
     if (!p.allFinite()) throw detail::makeError("DistanceJoint", "", "world point must be finite (m)", p);
     ref_ptr<FrameT<S>> frame = new FrameT<S>();
     frame->setTranslate(p);
@@ -9034,7 +9079,7 @@ namespace spook {
 template <Scalar S>
 class CubicSplineT : public Referenced {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   CubicSplineT() = default;
 
@@ -9188,7 +9233,7 @@ class CubicSplineT : public Referenced {
   }
   // `normal` turned with the smallest rotation taking tangent `from` to `to`.
   static Vec3 carried(const Vec3& normal, const Vec3& from, const Vec3& to) {
-    const Vec3 turned = Quat<S>::FromTwoVectors(from, to) * normal;
+    const Vec3 turned = QuatT<S>::FromTwoVectors(from, to) * normal;
     const Vec3 across = turned - turned.dot(to) * to;
     const S norm = across.norm();
     return norm > S(0) ? Vec3(across / norm) : startNormal(to);
@@ -9494,7 +9539,7 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
   /// `spline` (at least two points) is in the world, or in `body2`'s model frame.
   SplineJointT(Body* body, Frame* frame, Spline* spline, Body* body2 = nullptr)
       : Base("SplineJoint", checked(body, frame, spline, body2), frame, body2, nullptr), spline_(spline) {
-    this->getAttachmentFrame(1)->setLocalMatrix(Transform<S>::Identity());
+    this->getAttachmentFrame(1)->setLocalMatrix(TransformT<S>::Identity());
     const detail::Attachments a = this->attachments();
     parameter_ = spline_->findNearestParameter(splinePoint(a));
     restart(a);
@@ -9567,12 +9612,12 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
     if (spline->getNumPoints() < 2)
       throw detail::makeError("SplineJoint", "", "spline needs at least two points", spline->getNumPoints());
     if (!body) return body;  // reported by ConstraintT
-    const Transform<S> X1 = !frame ? body->getTransform()
+    const TransformT<S> X1 = !frame ? body->getTransform()
                             : frame->getParent() ? frame->getMatrix()
-                                                 : Transform<S>(body->getTransform() * frame->getLocalMatrix());
+                                                 : TransformT<S>(body->getTransform() * frame->getLocalMatrix());
     if (!X1.matrix().allFinite())
       throw detail::makeError("SplineJoint", "", "attachment frame must be finite (m)", X1.translation());
-    const Transform<S> X2 = body2 ? body2->getTransform() : Transform<S>::Identity();
+    const TransformT<S> X2 = body2 ? body2->getTransform() : TransformT<S>::Identity();
     const S t = spline->findNearestParameter(X2.inverse() * X1.translation());
     const S alignment = X1.linear().col(2).dot(X2.linear() * spline->getUnitTangent(t));
     if (!(alignment > S(0)))
@@ -9592,7 +9637,7 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
   }
 
   /// Frame 1's origin in the spline's frame (m).
-  [[nodiscard]] static Vec3<S> splinePoint(const detail::Attachments& a) {
+  [[nodiscard]] static Vec3T<S> splinePoint(const detail::Attachments& a) {
     return (a.R2.transpose() * (a.p1 - a.p2)).template cast<S>();
   }
 
@@ -9907,7 +9952,7 @@ struct WheelRollAngle {
 template <Scalar S>
 class WheelJointFrameT {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   /// |cos| of the angle between the axes accepted as perpendicular.
   static constexpr S perpendicularTolerance() { return std::is_same_v<S, float> ? S(1e-4) : S(1e-6); }
@@ -9938,14 +9983,14 @@ class WheelJointFrameT {
 
   /// The joint frame in world: origin at the attachment point, y along the
   /// axle made exactly perpendicular to z, z along the steering axis.
-  [[nodiscard]] Transform<S> getWorldTransform() const {
+  [[nodiscard]] TransformT<S> getWorldTransform() const {
     const Vec3 z = steering_;
     const Vec3 y = (wheel_ - wheel_.dot(z) * z).normalized();
-    Mat3<S> R;
+    Mat3T<S> R;
     R.col(0) = y.cross(z);
     R.col(1) = y;
     R.col(2) = z;
-    Transform<S> X = Transform<S>::Identity();
+    TransformT<S> X = TransformT<S>::Identity();
     X.linear() = R;
     X.translation() = attach_;
     return X;
@@ -10025,11 +10070,11 @@ class WheelJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>,
   }
 
   /// The steering axis z₂ (unit, world).
-  [[nodiscard]] Vec3<S> getWorldSteeringAxis() const {
-    return Vec3<S>(this->attachments().R2.col(2).template cast<S>());
+  [[nodiscard]] Vec3T<S> getWorldSteeringAxis() const {
+    return Vec3T<S>(this->attachments().R2.col(2).template cast<S>());
   }
   /// Frame 2's origin, the steering pivot on the chassis (m, world).
-  [[nodiscard]] Vec3<S> getWorldSteeringPivot() const { return Vec3<S>(this->attachments().p2.template cast<S>()); }
+  [[nodiscard]] Vec3T<S> getWorldSteeringPivot() const { return Vec3T<S>(this->attachments().p2.template cast<S>()); }
 
  protected:
   ~WheelJointT() override = default;
@@ -10061,8 +10106,8 @@ class WheelJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>,
 
  private:
   static ref_ptr<FrameT<S>> localFrame(const WheelJointFrameT<S>& frame, const RigidBodyT<S>* body) {
-    const Transform<S> world = frame.getWorldTransform();
-    return new FrameT<S>(body ? Transform<S>(body->getTransform().inverse() * world) : world);
+    const TransformT<S> world = frame.getWorldTransform();
+    return new FrameT<S>(body ? TransformT<S>(body->getTransform().inverse() * world) : world);
   }
 
   template <class F>
@@ -10898,10 +10943,10 @@ class FrictionModelT : public Referenced {
   /// tangent follows the sliding direction.
   [[nodiscard]] bool hasPrimaryDirection() const { return hasPrimaryDirection_; }
   /// The primary friction direction (world, unit); zero when unset.
-  [[nodiscard]] const Vec3<S>& getPrimaryDirection() const { return primaryDirection_; }
+  [[nodiscard]] const Vec3T<S>& getPrimaryDirection() const { return primaryDirection_; }
   /// Sets the primary friction direction (world, any finite nonzero length;
   /// stored normalized).
-  void setPrimaryDirection(const Vec3<S>& direction) {
+  void setPrimaryDirection(const Vec3T<S>& direction) {
     const S length = direction.norm();
     if (!(direction.allFinite() && std::isfinite(length) && length > S(0)))
       throw error("primary direction must be finite and nonzero", direction);
@@ -10909,7 +10954,7 @@ class FrictionModelT : public Referenced {
     hasPrimaryDirection_ = true;
   }
   void clearPrimaryDirection() {
-    primaryDirection_ = Vec3<S>::Zero();
+    primaryDirection_ = Vec3T<S>::Zero();
     hasPrimaryDirection_ = false;
   }
 
@@ -10929,7 +10974,7 @@ class FrictionModelT : public Referenced {
   Type type_;
   SolveType solveType_ = SolveType::SPLIT;
   bool hasPrimaryDirection_ = false;
-  Vec3<S> primaryDirection_ = Vec3<S>::Zero();
+  Vec3T<S> primaryDirection_ = Vec3T<S>::Zero();
 };
 
 /// Fixed friction bounds ±μN per tangent, decoupled from the solved normal
@@ -11225,7 +11270,7 @@ namespace spook {
 template <Scalar S>
 class GravityFieldT : public Referenced {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   /// Gravitational acceleration at world point p_W (m/s²).
   [[nodiscard]] virtual Vec3 calculateGravity(const Vec3& p_W) const = 0;
 
@@ -11237,7 +11282,7 @@ class GravityFieldT : public Referenced {
 template <Scalar S>
 class UniformGravityFieldT : public GravityFieldT<S> {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   explicit UniformGravityFieldT(const Vec3& gravity = Vec3(S(0), S(0), S(-9.80665))) { setGravity(gravity); }
 
   /// Acceleration in world coordinates (m/s²).
@@ -11261,7 +11306,7 @@ class UniformGravityFieldT : public GravityFieldT<S> {
 template <Scalar S>
 class PointGravityFieldT : public GravityFieldT<S> {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   PointGravityFieldT(const Vec3& center, S strength) {
     setCenter(center);
     setStrength(strength);
@@ -11519,9 +11564,9 @@ namespace spook {
 template <Scalar S>
 class AssemblyT : public CollectionT<S> {
  public:
-  using Vec3 = spook::Vec3<S>;
-  using Quat = spook::Quat<S>;
-  using Transform = spook::Transform<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Quat = spook::QuatT<S>;
+  using Transform = spook::TransformT<S>;
 
   explicit AssemblyT(std::string name = "") : CollectionT<S>(std::move(name)) {}
 
@@ -13366,8 +13411,8 @@ namespace spook::detail {
 /// Result of advancing a torque-free rotation over one step.
 template <Scalar S>
 struct FreeRotation {
-  Quat<S> increment;  ///< body-frame rotation over the step: R⁺ = R · increment
-  Vec3<S> momentum;   ///< body-frame angular momentum at the end, Π⁺ (kg·m²/s)
+  QuatT<S> increment;  ///< body-frame rotation over the step: R⁺ = R · increment
+  Vec3T<S> momentum;   ///< body-frame angular momentum at the end, Π⁺ (kg·m²/s)
   bool converged;
 };
 
@@ -13382,12 +13427,12 @@ struct FreeRotation {
 /// should, and flips about its intermediate axis (Dzhanibekov). The implicit
 /// equation is solved by Newton steps with the Jacobian I − (h/2)[Π]ₓ I⁻¹.
 template <Scalar S>
-FreeRotation<S> freeRotationStep(const Mat3<S>& inertiaInverse, const Vec3<S>& momentum, S h) {
-  using Vec3 = spook::Vec3<S>;
+FreeRotation<S> freeRotationStep(const Mat3T<S>& inertiaInverse, const Vec3T<S>& momentum, S h) {
+  using Vec3 = spook::Vec3T<S>;
   const S scale = momentum.norm();
-  if (!(scale > S(0))) return {Quat<S>::Identity(), momentum, true};
+  if (!(scale > S(0))) return {QuatT<S>::Identity(), momentum, true};
   const S tolerance = ScalarTraits<S>::solveTolerance() * scale;
-  const Mat3<S> jacobian = Mat3<S>::Identity() - S(0.5) * h * skew<S>(momentum) * inertiaInverse;
+  const Mat3T<S> jacobian = Mat3T<S>::Identity() - S(0.5) * h * skew<S>(momentum) * inertiaInverse;
   const auto jacobianLu = jacobian.partialPivLu();
 
   Vec3 next = momentum;
@@ -13402,7 +13447,7 @@ FreeRotation<S> freeRotationStep(const Mat3<S>& inertiaInverse, const Vec3<S>& m
     converged = correction.norm() <= tolerance;
   }
   meanVelocity = S(0.5) * inertiaInverse * (momentum + next);
-  const Quat<S> increment = expRotation<S>(h * meanVelocity);
+  const QuatT<S> increment = expRotation<S>(h * meanVelocity);
   // Π⁺ from the final rotation, so that the world momentum is exact.
   return {increment, increment.conjugate() * momentum, converged};
 }
@@ -13410,10 +13455,10 @@ FreeRotation<S> freeRotationStep(const Mat3<S>& inertiaInverse, const Vec3<S>& m
 /// freeRotationStep, split into 2, 4, … 64 substeps when the Newton solve
 /// does not converge in one (very fast spin relative to the step).
 template <Scalar S>
-FreeRotation<S> rotateFreely(const Mat3<S>& inertiaInverse, const Vec3<S>& momentum, S h) {
+FreeRotation<S> rotateFreely(const Mat3T<S>& inertiaInverse, const Vec3T<S>& momentum, S h) {
   FreeRotation<S> result{};
   for (int substeps = 1; substeps <= 64; substeps *= 2) {
-    result = {Quat<S>::Identity(), momentum, true};
+    result = {QuatT<S>::Identity(), momentum, true};
     const S dt = h / S(substeps);
     for (int k = 0; k < substeps; ++k) {
       const FreeRotation<S> part = freeRotationStep<S>(inertiaInverse, result.momentum, dt);
@@ -13437,9 +13482,9 @@ namespace spook::detail {
 /// impulses, and `move` advances the pose with the final velocities.
 template <Scalar S>
 struct BodyIntegrator {
-  using Vec3 = spook::Vec3<S>;
-  using Quat = spook::Quat<S>;
-  using Mat3 = spook::Mat3<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Quat = spook::QuatT<S>;
+  using Mat3 = spook::Mat3T<S>;
   using Body = RigidBodyT<S>;
 
   /// The body as the solver sees it. Dynamic bodies get their force-driven
@@ -13590,7 +13635,7 @@ namespace spook {
 template <Scalar S>
 class SimulationT : public Referenced, public detail::ContentSink<S> {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   using Body = RigidBodyT<S>;
   using Listener = StepEventListenerT<S>;
   using Collection = CollectionT<S>;

@@ -18,7 +18,7 @@ using Matrix = spook::ColliderMatrixT<double, Shapes>;
 
 int main() {
   spook::SpaceRef space = new spook::Space(Shapes{});
-  space->add(new spook::Geometry(new spook::Plane(spook::Vec3<double>::UnitZ())));
+  space->add(new spook::Geometry(new spook::Plane(spook::Vec3::UnitZ())));
   spook::RigidBodyRef body = new spook::RigidBody("ball");
   spook::GeometryRef ball = new spook::Geometry(new spook::Sphere(0.5));
   body->add(ball);
@@ -26,12 +26,12 @@ int main() {
   space->update({body});
   std::vector<spook::ContactPointT<double>> points;
   spook::ContactSinkT<double> sink(points);
-  const spook::Transform<double> X = spook::Transform<double>::Identity();
+  const spook::Transform X = spook::Transform::Identity();
 #ifdef SPOOK_ADD_A_BOX
-  spook::BoxRef box = new spook::Box(spook::Vec3<double>::Ones());
+  spook::BoxRef box = new spook::Box(spook::Vec3::Ones());
   Matrix::collide(*box, X, *static_cast<spook::Sphere*>(ball->getShape()), X, sink);
 #else
-  spook::PlaneRef ground = new spook::Plane(spook::Vec3<double>::UnitZ());
+  spook::PlaneRef ground = new spook::Plane(spook::Vec3::UnitZ());
   Matrix::collide(*static_cast<spook::Sphere*>(ball->getShape()), X, *ground, X, sink);
 #endif
   const bool ok = space->getGeometryContacts().size() == 1 && points.size() == 1;

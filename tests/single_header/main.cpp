@@ -14,7 +14,7 @@ namespace {
 
 int failures = 0;
 
-void expectNear(const char* what, const spook::Vec3<>& actual, const spook::Vec3<>& expected, double rel) {
+void expectNear(const char* what, const spook::Vec3& actual, const spook::Vec3& expected, double rel) {
   const double error = (actual - expected).norm();
   if (!(error <= rel * expected.norm())) {
     std::printf("FAIL %s: got (%.17g, %.17g, %.17g), expected (%.17g, %.17g, %.17g), |error| = %.3g > %.1g relative\n",
@@ -35,9 +35,9 @@ void expectNear(const char* what, double actual, double expected, double rel) {
 int main() {
   const double h = 1.0 / 60.0;
   const int n = 120;
-  const spook::Vec3<> g(0, 0, -9.80665);  // default gravity (m/s²)
-  const spook::Vec3<> x0(0, 0, 10);       // m
-  const spook::Vec3<> v0(1, 0, 3);        // m/s
+  const spook::Vec3 g(0, 0, -9.80665);  // default gravity (m/s²)
+  const spook::Vec3 x0(0, 0, 10);       // m
+  const spook::Vec3 v0(1, 0, 3);        // m/s
 
   spook::SimulationRef sim = new spook::Simulation();
   sim->setTimeStep(h);
@@ -48,8 +48,8 @@ int main() {
   sim->add(ball);
   for (int i = 0; i < n; ++i) sim->stepForward();
 
-  const spook::Vec3<> v = v0 + n * h * g;
-  const spook::Vec3<> x = x0 + n * h * v0 + h * h * g * (n * (n + 1) / 2.0);
+  const spook::Vec3 v = v0 + n * h * g;
+  const spook::Vec3 x = x0 + n * h * v0 + h * h * g * (n * (n + 1) / 2.0);
   expectNear("velocity after 120 steps", ball->getVelocity(), v, 1e-12);
   expectNear("position after 120 steps", ball->getPosition(), x, 1e-12);
   expectNear("time stamp after 120 steps", sim->getTimeStamp(), n * h, 1e-12);

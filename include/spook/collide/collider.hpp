@@ -27,7 +27,7 @@ struct Collider {};
 template <ConvexShape A, ConvexShape B>
 struct Collider<A, B> {
   using S = typename A::Vec3::Scalar;
-  static void collide(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB,
+  static void collide(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     detail::collideByCcd<S>(a, X_WA, b, X_WB, sink);
   }
@@ -35,7 +35,7 @@ struct Collider<A, B> {
 
 /// True when the ordered pair (A, B) has a collider.
 template <class A, class B>
-concept HasCollider = requires(const A& a, const B& b, const Transform<typename A::Vec3::Scalar>& X,
+concept HasCollider = requires(const A& a, const B& b, const TransformT<typename A::Vec3::Scalar>& X,
                                ContactSinkT<typename A::Vec3::Scalar>& sink) {
   Collider<A, B>::collide(a, X, b, X, sink);
 };
@@ -45,8 +45,8 @@ concept HasCollider = requires(const A& a, const B& b, const Transform<typename 
 /// the one place where a reversed pair is handled.
 template <class A, class B>
   requires(A::kType <= B::kType ? HasCollider<A, B> : HasCollider<B, A>)
-void collide(const A& a, const Transform<typename A::Vec3::Scalar>& X_WA, const B& b,
-             const Transform<typename A::Vec3::Scalar>& X_WB, ContactSinkT<typename A::Vec3::Scalar>& sink) {
+void collide(const A& a, const TransformT<typename A::Vec3::Scalar>& X_WA, const B& b,
+             const TransformT<typename A::Vec3::Scalar>& X_WB, ContactSinkT<typename A::Vec3::Scalar>& sink) {
   if constexpr (A::kType <= B::kType) {
     Collider<A, B>::collide(a, X_WA, b, X_WB, sink);
   } else {

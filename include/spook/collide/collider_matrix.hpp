@@ -26,7 +26,7 @@ class ColliderMatrixT<S, ShapeList<Shapes...>> {
  public:
   using List = ShapeList<Shapes...>;
   using Shape = ShapeT<S>;
-  using Transform = spook::Transform<S>;
+  using Transform = spook::TransformT<S>;
   using Sink = ContactSinkT<S>;
   using Function = void (*)(const Shape&, const Transform&, const Shape&, const Transform&, Sink&);
   static constexpr std::size_t N = sizeof...(Shapes);

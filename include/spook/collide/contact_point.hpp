@@ -13,20 +13,20 @@ namespace spook {
 /// deepest points of the first and the second shape.
 template <Scalar S>
 struct ContactPointT {
-  Vec3<S> point = Vec3<S>::Zero();   ///< world (m)
-  Vec3<S> normal = Vec3<S>::UnitZ();  ///< world, unit, from the first shape toward the second
+  Vec3T<S> point = Vec3T<S>::Zero();   ///< world (m)
+  Vec3T<S> normal = Vec3T<S>::UnitZ();  ///< world, unit, from the first shape toward the second
   S depth = S(0);                     ///< penetration along the normal (m), >= 0
   bool enabled = true;                ///< false once contact reduction or a listener has dropped it
-  Vec3<S> force = Vec3<S>::Zero();    ///< contact force on the second shape's body (N), after the solve
+  Vec3T<S> force = Vec3T<S>::Zero();    ///< contact force on the second shape's body (N), after the solve
   S normalForce = S(0);               ///< its component along the normal (N); negative only under adhesion
   std::uint32_t faceIndex1 = 0;       ///< the triangle touched when the first shape is a Trimesh or HeightField
   std::uint32_t faceIndex2 = 0;       ///< the same for the second shape
 
   [[nodiscard]] bool getEnabled() const { return enabled; }
-  [[nodiscard]] const Vec3<S>& getPoint() const { return point; }
-  [[nodiscard]] const Vec3<S>& getNormal() const { return normal; }
+  [[nodiscard]] const Vec3T<S>& getPoint() const { return point; }
+  [[nodiscard]] const Vec3T<S>& getNormal() const { return normal; }
   [[nodiscard]] S getDepth() const { return depth; }
-  [[nodiscard]] const Vec3<S>& getForce() const { return force; }
+  [[nodiscard]] const Vec3T<S>& getForce() const { return force; }
   /// Normal and tangential (friction) magnitudes of getForce (N).
   [[nodiscard]] S getNormalForceMagnitude() const { return normalForce; }
   [[nodiscard]] S getTangentialForceMagnitude() const { return (force - normal * normalForce).norm(); }

@@ -31,7 +31,7 @@ template <Scalar S>
 void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
   if (resolution < 1 || resolution > 3) throw detail::makeError("ContactReduction", "", "bin resolution must be 1, 2 or 3", resolution);
   if (points.size() <= 4) return;
-  Vec3<S> centroid = Vec3<S>::Zero();
+  Vec3T<S> centroid = Vec3T<S>::Zero();
   for (const auto* p : points) centroid += p->point;
   centroid /= S(points.size());
   S reach = S(0);
@@ -49,8 +49,8 @@ void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
   };
   std::vector<Bin> bins;
   for (auto* p : points) {
-    const Vec3<S> arm = (p->point - centroid) * scale;
-    const Vec3<S> moment = p->normal.cross(arm);
+    const Vec3T<S> arm = (p->point - centroid) * scale;
+    const Vec3T<S> moment = p->normal.cross(arm);
     const std::array<int, 6> key = {binOf(p->normal.x()), binOf(p->normal.y()), binOf(p->normal.z()),
                                     binOf(moment.x()),    binOf(moment.y()),    binOf(moment.z())};
     auto it = std::find_if(bins.begin(), bins.end(), [&](const Bin& b) { return b.key == key; });

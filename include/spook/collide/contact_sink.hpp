@@ -22,11 +22,11 @@ class ContactSinkT {
 
   /// Adds a point: world position (m), unit normal from the collider's first
   /// shape toward its second, penetration depth (m, clamped at 0).
-  void add(const Vec3<S>& point, const Vec3<S>& normal, S depth) {
+  void add(const Vec3T<S>& point, const Vec3T<S>& normal, S depth) {
     if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) return;
     ContactPointT<S> contact;
     contact.point = point;
-    contact.normal = flipped_ ? Vec3<S>(-normal) : normal;
+    contact.normal = flipped_ ? Vec3T<S>(-normal) : normal;
     contact.depth = depth > S(0) ? depth : S(0);
     contact.faceIndex1 = flipped_ ? faces_[1] : faces_[0];
     contact.faceIndex2 = flipped_ ? faces_[0] : faces_[1];

@@ -42,8 +42,8 @@ struct GeometryAccess;
 template <Scalar S>
 class GeometryT : public Referenced {
  public:
-  using Vec3 = spook::Vec3<S>;
-  using Transform = spook::Transform<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Transform = spook::TransformT<S>;
   using Shape = ShapeT<S>;
   using Frame = FrameT<S>;
 
@@ -71,10 +71,10 @@ class GeometryT : public Referenced {
   void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
     if (!shape) throw error("cannot add a null shape", "nullptr");
     if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
-      throw error("shape transform must be finite and rigid", SPDMat3<S>::flat(transform.linear()));
+      throw error("shape transform must be finite and rigid", SPDMat3T<S>::flat(transform.linear()));
     if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
       throw error("shape already added to this geometry", std::string(shapeTypeName(shape->getType())));
-    shapes_.push_back({std::move(shape), makeTransform<S>(transform.translation(), Quat<S>(transform.linear()))});
+    shapes_.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
     changed();
   }
   /// Removes a shape; false when it is not here.
@@ -193,7 +193,7 @@ class GeometryT : public Referenced {
     for (const ShapeEntry& e : shapes_) {
       const Transform X_WS = X_WG * e.transform;
       const BoundingBoxT<S> local = e.shape->getBoundingBox();
-      const Mat3<S> R = X_WS.linear();
+      const Mat3T<S> R = X_WS.linear();
       if (!(local.min.allFinite() && local.max.allFinite())) {
         box.min = box.min.cwiseMin(Vec3::Constant(-std::numeric_limits<S>::infinity()));
         box.max = box.max.cwiseMax(Vec3::Constant(std::numeric_limits<S>::infinity()));

@@ -32,7 +32,7 @@ namespace detail {
 /// that defines SPOOK_IMPLEMENTATION, instead of in every one that makes a
 /// default Space or Simulation.
 template <Scalar S, class List>
-bool collideThrough(const ShapeT<S>& a, const Transform<S>& X_WA, const ShapeT<S>& b, const Transform<S>& X_WB,
+bool collideThrough(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<S>& b, const TransformT<S>& X_WB,
                     ContactSinkT<S>& sink) {
   return ColliderMatrixT<S, List>::collide(a, X_WA, b, X_WB, sink);
 }
@@ -40,19 +40,19 @@ bool collideThrough(const ShapeT<S>& a, const Transform<S>& X_WA, const ShapeT<S
 }  // namespace detail
 
 #if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENTATION)
-extern template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const Transform<double>&,
-                                                               const ShapeT<double>&, const Transform<double>&,
+extern template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
+                                                               const ShapeT<double>&, const TransformT<double>&,
                                                                ContactSinkT<double>&);
-extern template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const Transform<float>&,
-                                                              const ShapeT<float>&, const Transform<float>&,
+extern template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
+                                                              const ShapeT<float>&, const TransformT<float>&,
                                                               ContactSinkT<float>&);
 #endif
 #if defined(SPOOK_IMPLEMENTATION)
-template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const Transform<double>&,
-                                                        const ShapeT<double>&, const Transform<double>&,
+template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
+                                                        const ShapeT<double>&, const TransformT<double>&,
                                                         ContactSinkT<double>&);
-template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const Transform<float>&,
-                                                       const ShapeT<float>&, const Transform<float>&,
+template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
+                                                       const ShapeT<float>&, const TransformT<float>&,
                                                        ContactSinkT<float>&);
 #endif
 
@@ -181,7 +181,7 @@ class SpaceT : public Referenced {
 
  private:
   using Access = detail::GeometryAccess<S>;
-  using CollideFunction = bool (*)(const ShapeT<S>&, const Transform<S>&, const ShapeT<S>&, const Transform<S>&,
+  using CollideFunction = bool (*)(const ShapeT<S>&, const TransformT<S>&, const ShapeT<S>&, const TransformT<S>&,
                                    ContactSinkT<S>&);
 
   static bool isFixed(const Body* body) { return !body || body->getMotionControl() == Body::STATIC; }
@@ -223,7 +223,7 @@ class SpaceT : public Referenced {
     if (first->getId() > second->getId()) std::swap(first, second);
     Contact contact(first, second);
     ContactSinkT<S> sink(contact.points());
-    const Transform<S> X_W1 = first->getTransform(), X_W2 = second->getTransform();
+    const TransformT<S> X_W1 = first->getTransform(), X_W2 = second->getTransform();
     for (const auto& e1 : first->getShapes())
       for (const auto& e2 : second->getShapes())
         collide_(*e1.shape, X_W1 * e1.transform, *e2.shape, X_W2 * e2.transform, sink);

@@ -31,8 +31,8 @@ struct ConstraintAccess;
 template <Scalar S>
 class ConstraintT : public Referenced {
  public:
-  using Vec3 = spook::Vec3<S>;
-  using Quat = spook::Quat<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Quat = spook::QuatT<S>;
   using Body = RigidBodyT<S>;
   using Frame = FrameT<S>;
 
@@ -117,9 +117,9 @@ class ConstraintT : public Referenced {
     if (!axis.allFinite() || !(axis.norm() > S(0)))
       throw detail::makeError("Constraint", "", "frame axis must be finite and non-zero", axis);
     if (!body1) throw detail::makeError("Constraint", "", "calculateFrames needs a first body", "nullptr");
-    const Transform<S> world = makeTransform<S>(point, Quat::FromTwoVectors(Vec3::UnitZ(), axis.normalized()));
-    frame1 = new Frame(Transform<S>(body1->getTransform().inverse() * world));
-    frame2 = new Frame(body2 ? Transform<S>(body2->getTransform().inverse() * world) : world);
+    const TransformT<S> world = makeTransform<S>(point, Quat::FromTwoVectors(Vec3::UnitZ(), axis.normalized()));
+    frame1 = new Frame(TransformT<S>(body1->getTransform().inverse() * world));
+    frame2 = new Frame(body2 ? TransformT<S>(body2->getTransform().inverse() * world) : world);
   }
   /// A joint of type `Joint` at a world point with its z axis along a world
   /// axis (seed 001 §12.18), relaxed in the current configuration.
@@ -145,7 +145,7 @@ class ConstraintT : public Referenced {
     if (!body1) throw detail::makeError("Constraint", "", "calculateFrames needs a first body", "nullptr");
     if (!point.allFinite()) throw detail::makeError("Constraint", "", "frame point must be finite (m)", point);
     if (!axis.allFinite()) throw detail::makeError("Constraint", "", "frame axis must be finite and non-zero", axis);
-    const Transform<S> X = body1->getTransform();
+    const TransformT<S> X = body1->getTransform();
     calculateFramesFromWorld(X * point, X.linear() * axis, body1, frame1, body2, frame2);
   }
 
@@ -195,7 +195,7 @@ class ConstraintT : public Referenced {
   /// The attachment frames and the bodies' state, in world coordinates.
   [[nodiscard]] detail::Attachments attachments() const {
     detail::Attachments a;
-    const Transform<S> X1 = frame1_->getMatrix(), X2 = frame2_->getMatrix();
+    const TransformT<S> X1 = frame1_->getMatrix(), X2 = frame2_->getMatrix();
     a.p1 = X1.translation().template cast<double>();
     a.p2 = X2.translation().template cast<double>();
     a.q1 = detail::Quatd(Quat(X1.linear()).template cast<double>()).normalized();

@@ -13,9 +13,9 @@ namespace spook {
 template <Scalar S>
 class FrameT : public Referenced {
  public:
-  using Vec3 = spook::Vec3<S>;
-  using Quat = spook::Quat<S>;
-  using Transform = spook::Transform<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Quat = spook::QuatT<S>;
+  using Transform = spook::TransformT<S>;
 
   FrameT() = default;
   explicit FrameT(const Transform& localMatrix) { setLocalMatrix(localMatrix); }
@@ -101,7 +101,7 @@ class FrameT : public Referenced {
   static void checkMatrix(const Transform& X) {
     if (!X.matrix().allFinite() || !isRotation<S>(X.linear()))
       throw detail::makeError("Frame", "", "transform must be finite with a rotation as linear part",
-                              SPDMat3<S>::flat(X.linear()));
+                              SPDMat3T<S>::flat(X.linear()));
   }
 
   ref_ptr<FrameT> parent_;

@@ -10,27 +10,31 @@
 
 namespace spook {
 
-// Math types are Eigen types behind short aliases, templated on the scalar
-// (default double, so `spook::Vec3(0, 0, 5)` deduces a double vector).
+// Math types are Eigen types behind short aliases, named like the classes:
+// `Vec3T<S>` is the template, `spook::Vec3` the double type and
+// `spook::f32::Vec3` the float one (as RigidBodyT<S> / RigidBody), so that
+// `spook::Vec3 x = spook::Vec3(0, 0, 1);` is plain C++.
 // Right-handed coordinates, SI units throughout.
 
 /// 3-vector.
-template <class S = double>
-using Vec3 = Eigen::Matrix<S, 3, 1>;
+template <class S>
+using Vec3T = Eigen::Matrix<S, 3, 1>;
 /// Unit quaternion for rotations (Hamilton convention, as Eigen).
-template <class S = double>
-using Quat = Eigen::Quaternion<S>;
+template <class S>
+using QuatT = Eigen::Quaternion<S>;
 /// 3×3 matrix.
-template <class S = double>
-using Mat3 = Eigen::Matrix<S, 3, 3>;
+template <class S>
+using Mat3T = Eigen::Matrix<S, 3, 3>;
 /// Rigid transform: rotation and translation, no scale (AGX's AffineMatrix4x4).
-template <class S = double>
-using Transform = Eigen::Transform<S, 3, Eigen::Isometry>;
+template <class S>
+using TransformT = Eigen::Transform<S, 3, Eigen::Isometry>;
 
 /// Rotation angles in radians about the fixed x, y and z axes, applied in
 /// that order: R = Rz(z) · Ry(y) · Rx(x) (roll, pitch, yaw).
-template <class S = double>
-struct EulerAngles {
+template <class S>
+struct EulerAnglesT {
+  EulerAnglesT() = default;
+  EulerAnglesT(S x_, S y_, S z_) : x(x_), y(y_), z(z_) {}
   S x = S(0);
   S y = S(0);
   S z = S(0);
@@ -38,18 +42,18 @@ struct EulerAngles {
 
 /// A symmetric positive-definite 3×3 matrix, such as an inertia tensor
 /// (kg·m²). Construction checks the property and throws spook::Error.
-template <class S = double>
-class SPDMat3 {
+template <class S>
+class SPDMat3T {
  public:
   /// The identity.
-  SPDMat3() : m_(Mat3<S>::Identity()) {}
+  SPDMat3T() : m_(Mat3T<S>::Identity()) {}
   /// From a 3-vector (a diagonal matrix) or a full 3×3 matrix; throws unless
   /// the result is finite, symmetric and positive definite.
   template <class Derived>
-  explicit SPDMat3(const Eigen::MatrixBase<Derived>& value) {
-    Mat3<S> m;
+  explicit SPDMat3T(const Eigen::MatrixBase<Derived>& value) {
+    Mat3T<S> m;
     if constexpr (Derived::ColsAtCompileTime == 1) {
-      m = Vec3<S>(value).asDiagonal();
+      m = Vec3T<S>(value).asDiagonal();
     } else {
       m = value;
     }
@@ -58,26 +62,26 @@ class SPDMat3 {
   }
 
   /// Why `m` is not symmetric positive definite, or nullptr when it is.
-  [[nodiscard]] static const char* defect(const Mat3<S>& m) {
+  [[nodiscard]] static const char* defect(const Mat3T<S>& m) {
     if (!m.allFinite()) return "matrix must be finite";
     const S scale = m.cwiseAbs().maxCoeff();
     if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= ScalarTraits<S>::symmetryTolerance() * scale))
       return "matrix must be symmetric";
-    const Mat3<S> sym = S(0.5) * (m + m.transpose());
+    const Mat3T<S> sym = S(0.5) * (m + m.transpose());
     // Relative to the largest eigenvalue, so that round-off cannot pass a
     // singular matrix off as positive definite.
-    const Vec3<S> eigenvalues = Eigen::SelfAdjointEigenSolver<Mat3<S>>(sym, Eigen::EigenvaluesOnly).eigenvalues();
+    const Vec3T<S> eigenvalues = Eigen::SelfAdjointEigenSolver<Mat3T<S>>(sym, Eigen::EigenvaluesOnly).eigenvalues();
     if (!(eigenvalues.minCoeff() > S(16) * ScalarTraits<S>::epsilon() * eigenvalues.maxCoeff()))
       return "matrix must be positive definite";
     return nullptr;
   }
 
-  [[nodiscard]] const Mat3<S>& matrix() const { return m_; }
-  [[nodiscard]] Mat3<S> inverse() const { return m_.inverse(); }
-  [[nodiscard]] Vec3<S> diagonal() const { return m_.diagonal(); }
+  [[nodiscard]] const Mat3T<S>& matrix() const { return m_; }
+  [[nodiscard]] Mat3T<S> inverse() const { return m_.inverse(); }
+  [[nodiscard]] Vec3T<S> diagonal() const { return m_.diagonal(); }
 
   /// Row-major entries, for error messages.
-  static Eigen::Matrix<S, 9, 1> flat(const Mat3<S>& m) {
+  static Eigen::Matrix<S, 9, 1> flat(const Mat3T<S>& m) {
     Eigen::Matrix<S, 9, 1> v;
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) v[3 * r + c] = m(r, c);
@@ -85,14 +89,14 @@ class SPDMat3 {
   }
 
  private:
-  Mat3<S> m_;
+  Mat3T<S> m_;
 };
 
 /// True when R is finite, orthonormal (to ScalarTraits::rotationTolerance)
 /// and right-handed: the linear part of a rigid transform.
 template <class S>
-[[nodiscard]] bool isRotation(const Mat3<S>& R) {
-  return R.allFinite() && (R.transpose() * R - Mat3<S>::Identity()).norm() <= ScalarTraits<S>::rotationTolerance() &&
+[[nodiscard]] bool isRotation(const Mat3T<S>& R) {
+  return R.allFinite() && (R.transpose() * R - Mat3T<S>::Identity()).norm() <= ScalarTraits<S>::rotationTolerance() &&
          R.determinant() > S(0);
 }
 
@@ -102,7 +106,7 @@ template <class Derived>
   return m.allFinite();
 }
 template <class S>
-[[nodiscard]] bool isFinite(const Quat<S>& q) {
+[[nodiscard]] bool isFinite(const QuatT<S>& q) {
   return q.coeffs().allFinite();
 }
 
@@ -110,35 +114,35 @@ template <class S>
 /// Quat::rotate). Antiparallel vectors give a half turn about an axis
 /// perpendicular to both.
 template <class S>
-[[nodiscard]] Quat<S> rotate(const Vec3<S>& from, const Vec3<S>& to) {
+[[nodiscard]] QuatT<S> rotate(const Vec3T<S>& from, const Vec3T<S>& to) {
   if (!(from.norm() > S(0)) || !(to.norm() > S(0)) || !from.allFinite() || !to.allFinite())
     throw detail::makeError("rotate", "", "vectors must be finite and non-zero",
                             Eigen::Matrix<S, 6, 1>(from.x(), from.y(), from.z(), to.x(), to.y(), to.z()));
-  return Quat<S>::FromTwoVectors(from, to);
+  return QuatT<S>::FromTwoVectors(from, to);
 }
 
 /// Rotation matrix of Euler angles (R = Rz · Ry · Rx).
 template <class S>
-[[nodiscard]] Mat3<S> toMatrix(const EulerAngles<S>& e) {
-  return (Eigen::AngleAxis<S>(e.z, Vec3<S>::UnitZ()) * Eigen::AngleAxis<S>(e.y, Vec3<S>::UnitY()) *
-          Eigen::AngleAxis<S>(e.x, Vec3<S>::UnitX()))
+[[nodiscard]] Mat3T<S> toMatrix(const EulerAnglesT<S>& e) {
+  return (Eigen::AngleAxis<S>(e.z, Vec3T<S>::UnitZ()) * Eigen::AngleAxis<S>(e.y, Vec3T<S>::UnitY()) *
+          Eigen::AngleAxis<S>(e.x, Vec3T<S>::UnitX()))
       .toRotationMatrix();
 }
 
 /// Quaternion of Euler angles.
 template <class S>
-[[nodiscard]] Quat<S> toQuat(const EulerAngles<S>& e) {
-  return Quat<S>(Eigen::AngleAxis<S>(e.z, Vec3<S>::UnitZ()) * Eigen::AngleAxis<S>(e.y, Vec3<S>::UnitY()) *
-                 Eigen::AngleAxis<S>(e.x, Vec3<S>::UnitX()));
+[[nodiscard]] QuatT<S> toQuat(const EulerAnglesT<S>& e) {
+  return QuatT<S>(Eigen::AngleAxis<S>(e.z, Vec3T<S>::UnitZ()) * Eigen::AngleAxis<S>(e.y, Vec3T<S>::UnitY()) *
+                 Eigen::AngleAxis<S>(e.x, Vec3T<S>::UnitX()));
 }
 
 /// Euler angles of a rotation matrix, with y in [−π/2, π/2]. At y = ±π/2
 /// (gimbal lock) only x ∓ z is defined; z is set to 0. y comes from atan2,
 /// which stays accurate near ±π/2 where asin would not.
 template <class S>
-[[nodiscard]] EulerAngles<S> toEulerAngles(const Mat3<S>& R) {
+[[nodiscard]] EulerAnglesT<S> toEulerAngles(const Mat3T<S>& R) {
   using std::atan2;
-  EulerAngles<S> e;
+  EulerAnglesT<S> e;
   const S cosY = std::hypot(R(0, 0), R(1, 0));
   e.y = atan2(-R(2, 0), cosY);
   if (cosY > S(16) * ScalarTraits<S>::epsilon()) {
@@ -153,14 +157,14 @@ template <class S>
 
 /// Euler angles of a quaternion.
 template <class S>
-[[nodiscard]] EulerAngles<S> toEulerAngles(const Quat<S>& q) {
+[[nodiscard]] EulerAnglesT<S> toEulerAngles(const QuatT<S>& q) {
   return toEulerAngles<S>(q.normalized().toRotationMatrix());
 }
 
 /// Transform from translation and rotation.
 template <class S>
-[[nodiscard]] Transform<S> makeTransform(const Vec3<S>& translate, const Quat<S>& rotate = Quat<S>::Identity()) {
-  Transform<S> X = Transform<S>::Identity();
+[[nodiscard]] TransformT<S> makeTransform(const Vec3T<S>& translate, const QuatT<S>& rotate = QuatT<S>::Identity()) {
+  TransformT<S> X = TransformT<S>::Identity();
   X.linear() = rotate.normalized().toRotationMatrix();
   X.translation() = translate;
   return X;
@@ -168,34 +172,75 @@ template <class S>
 
 /// Skew-symmetric cross-product matrix: skew(a) b = a × b.
 template <class S>
-[[nodiscard]] Mat3<S> skew(const Vec3<S>& a) {
-  Mat3<S> m;
+[[nodiscard]] Mat3T<S> skew(const Vec3T<S>& a) {
+  Mat3T<S> m;
   m << S(0), -a.z(), a.y(), a.z(), S(0), -a.x(), -a.y(), a.x(), S(0);
   return m;
 }
 
 /// exp of the rotation vector `phi` (radians): the rotation by |phi| about phi/|phi|.
 template <class S>
-[[nodiscard]] Quat<S> expRotation(const Vec3<S>& phi) {
+[[nodiscard]] QuatT<S> expRotation(const Vec3T<S>& phi) {
   const S angle = phi.norm();
   if (angle < S(1e-4)) {
     // Taylor series of cos(θ/2) and sin(θ/2)/θ, exact to round-off here.
     const S a2 = angle * angle;
     const S w = S(1) - a2 / S(8) + a2 * a2 / S(384);
     const S k = S(0.5) - a2 / S(48);
-    return Quat<S>(w, k * phi.x(), k * phi.y(), k * phi.z()).normalized();
+    return QuatT<S>(w, k * phi.x(), k * phi.y(), k * phi.z()).normalized();
   }
-  return Quat<S>(Eigen::AngleAxis<S>(angle, phi / angle));
+  return QuatT<S>(Eigen::AngleAxis<S>(angle, phi / angle));
 }
 
 /// log of a rotation: the rotation vector (radians, |result| ≤ π).
 template <class S>
-[[nodiscard]] Vec3<S> logRotation(const Quat<S>& q) {
-  Quat<S> u = q.normalized();
+[[nodiscard]] Vec3T<S> logRotation(const QuatT<S>& q) {
+  QuatT<S> u = q.normalized();
   if (u.w() < S(0)) u.coeffs() = -u.coeffs();
   const S s = u.vec().norm();
   if (s < S(1e-6)) return S(2) * u.vec() / u.w();
   return S(2) * std::atan2(s, u.w()) * u.vec() / s;
 }
+
+/// The double math types (what user code writes) and their float twins.
+using Vec3 = Vec3T<double>;
+using Quat = QuatT<double>;
+using Mat3 = Mat3T<double>;
+using Transform = TransformT<double>;
+using EulerAngles = EulerAnglesT<double>;
+using SPDMat3 = SPDMat3T<double>;
+namespace f32 {
+using Vec3 = Vec3T<float>;
+using Quat = QuatT<float>;
+using Mat3 = Mat3T<float>;
+using Transform = TransformT<float>;
+using EulerAngles = EulerAnglesT<float>;
+using SPDMat3 = SPDMat3T<float>;
+}  // namespace f32
+
+/// π and its halves and quarters, as in the seeds (agx::PI, agx::PI_2, agx::PI_4).
+inline constexpr double PI = 3.14159265358979323846;
+inline constexpr double PI_2 = PI / 2;
+inline constexpr double PI_4 = PI / 4;
+
+/// Degrees to radians and back.
+template <class S>
+[[nodiscard]] constexpr S degreesToRadians(S degrees) {
+  return degrees * S(PI / 180.0);
+}
+template <class S>
+[[nodiscard]] constexpr S radiansToDegrees(S radians) {
+  return radians * S(180.0 / PI);
+}
+
+/// The unit axes (agx::X_AXIS; Eigen spells them Vec3::UnitX()).
+inline const Vec3 X_AXIS = Vec3::UnitX();
+inline const Vec3 Y_AXIS = Vec3::UnitY();
+inline const Vec3 Z_AXIS = Vec3::UnitZ();
+namespace f32 {
+inline const Vec3 X_AXIS = Vec3::UnitX();
+inline const Vec3 Y_AXIS = Vec3::UnitY();
+inline const Vec3 Z_AXIS = Vec3::UnitZ();
+}  // namespace f32
 
 }  // namespace spook

@@ -50,10 +50,10 @@ class FrictionModelT : public Referenced {
   /// tangent follows the sliding direction.
   [[nodiscard]] bool hasPrimaryDirection() const { return hasPrimaryDirection_; }
   /// The primary friction direction (world, unit); zero when unset.
-  [[nodiscard]] const Vec3<S>& getPrimaryDirection() const { return primaryDirection_; }
+  [[nodiscard]] const Vec3T<S>& getPrimaryDirection() const { return primaryDirection_; }
   /// Sets the primary friction direction (world, any finite nonzero length;
   /// stored normalized).
-  void setPrimaryDirection(const Vec3<S>& direction) {
+  void setPrimaryDirection(const Vec3T<S>& direction) {
     const S length = direction.norm();
     if (!(direction.allFinite() && std::isfinite(length) && length > S(0)))
       throw error("primary direction must be finite and nonzero", direction);
@@ -61,7 +61,7 @@ class FrictionModelT : public Referenced {
     hasPrimaryDirection_ = true;
   }
   void clearPrimaryDirection() {
-    primaryDirection_ = Vec3<S>::Zero();
+    primaryDirection_ = Vec3T<S>::Zero();
     hasPrimaryDirection_ = false;
   }
 
@@ -81,7 +81,7 @@ class FrictionModelT : public Referenced {
   Type type_;
   SolveType solveType_ = SolveType::SPLIT;
   bool hasPrimaryDirection_ = false;
-  Vec3<S> primaryDirection_ = Vec3<S>::Zero();
+  Vec3T<S> primaryDirection_ = Vec3T<S>::Zero();
 };
 
 /// Fixed friction bounds ±μN per tangent, decoupled from the solved normal

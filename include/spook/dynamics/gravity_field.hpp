@@ -12,7 +12,7 @@ namespace spook {
 template <Scalar S>
 class GravityFieldT : public Referenced {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   /// Gravitational acceleration at world point p_W (m/s²).
   [[nodiscard]] virtual Vec3 calculateGravity(const Vec3& p_W) const = 0;
 
@@ -24,7 +24,7 @@ class GravityFieldT : public Referenced {
 template <Scalar S>
 class UniformGravityFieldT : public GravityFieldT<S> {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   explicit UniformGravityFieldT(const Vec3& gravity = Vec3(S(0), S(0), S(-9.80665))) { setGravity(gravity); }
 
   /// Acceleration in world coordinates (m/s²).
@@ -48,7 +48,7 @@ class UniformGravityFieldT : public GravityFieldT<S> {
 template <Scalar S>
 class PointGravityFieldT : public GravityFieldT<S> {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   PointGravityFieldT(const Vec3& center, S strength) {
     setCenter(center);
     setStrength(strength);

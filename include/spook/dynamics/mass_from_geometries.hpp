@@ -13,8 +13,8 @@ namespace spook::detail {
 template <Scalar S>
 struct GeneratedMass {
   S mass = S(0);                        ///< kg
-  Vec3<S> center = Vec3<S>::Zero();     ///< model frame (m)
-  Mat3<S> inertia = Mat3<S>::Zero();    ///< about `center`, model frame axes (kg·m²)
+  Vec3T<S> center = Vec3T<S>::Zero();     ///< model frame (m)
+  Mat3T<S> inertia = Mat3T<S>::Zero();    ///< about `center`, model frame axes (kg·m²)
 };
 
 /// Each shape of volume V contributes m = ρV (ρ its geometry's material
@@ -26,26 +26,26 @@ template <Scalar S>
 [[nodiscard]] std::optional<GeneratedMass<S>> massFromGeometries(const std::vector<ref_ptr<GeometryT<S>>>& geometries) {
   struct Part {
     S mass;
-    Vec3<S> center;
-    Mat3<S> inertia;
+    Vec3T<S> center;
+    Mat3T<S> inertia;
   };
-  const auto shift = [](S m, const Vec3<S>& d) {
-    return Mat3<S>(m * (d.squaredNorm() * Mat3<S>::Identity() - d * d.transpose()));
+  const auto shift = [](S m, const Vec3T<S>& d) {
+    return Mat3T<S>(m * (d.squaredNorm() * Mat3T<S>::Identity() - d * d.transpose()));
   };
   std::vector<Part> parts;
   GeneratedMass<S> total;
-  Vec3<S> moment = Vec3<S>::Zero();
+  Vec3T<S> moment = Vec3T<S>::Zero();
   for (const auto& geometry : geometries) {
     const S density = geometry->getMaterial()->getBulkMaterial()->getDensity();
-    const Transform<S> X_BG = geometry->getLocalTransform();
+    const TransformT<S> X_BG = geometry->getLocalTransform();
     for (const auto& entry : geometry->getShapes()) {
       const S volume = entry.shape->getVolume();
       if (!(volume > S(0))) continue;
       const S m = density * volume;
-      const Transform<S> X_BS = X_BG * entry.transform;
-      const Vec3<S> c_S = entry.shape->getCenterOfVolume();
-      const Mat3<S> R = X_BS.linear();
-      const Mat3<S> aboutCenter = entry.shape->calculateInertia(m).matrix() - shift(m, c_S);
+      const TransformT<S> X_BS = X_BG * entry.transform;
+      const Vec3T<S> c_S = entry.shape->getCenterOfVolume();
+      const Mat3T<S> R = X_BS.linear();
+      const Mat3T<S> aboutCenter = entry.shape->calculateInertia(m).matrix() - shift(m, c_S);
       parts.push_back({m, X_BS * c_S, R * aboutCenter * R.transpose()});
       total.mass += m;
       moment += m * parts.back().center;

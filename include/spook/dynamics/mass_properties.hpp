@@ -15,8 +15,8 @@ namespace spook {
 template <Scalar S>
 class MassPropertiesT {
  public:
-  using Vec3 = spook::Vec3<S>;
-  using Mat3 = spook::Mat3<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
 
   /// Which properties the body recomputes from its geometries (shape
   /// volumes times material density) when geometries, shapes or materials
@@ -49,17 +49,17 @@ class MassPropertiesT {
       const Vec3 diagonal = value;
       if (!(diagonal.allFinite() && diagonal.minCoeff() > S(0)))
         throw error("inertia diagonal must be finite and > 0 kg·m²", diagonal);
-      inertia_ = SPDMat3<S>(diagonal);
+      inertia_ = SPDMat3T<S>(diagonal);
       autoGenerate_ &= ~unsigned(INERTIA);
     } else {
       const Mat3 inertia = value;
-      if (const char* why = SPDMat3<S>::defect(inertia))
-        throw error(std::string("inertia tensor: ") + why, SPDMat3<S>::flat(inertia));
-      inertia_ = SPDMat3<S>(inertia);
+      if (const char* why = SPDMat3T<S>::defect(inertia))
+        throw error(std::string("inertia tensor: ") + why, SPDMat3T<S>::flat(inertia));
+      inertia_ = SPDMat3T<S>(inertia);
       autoGenerate_ &= ~unsigned(INERTIA);
     }
   }
-  void setInertiaTensor(const SPDMat3<S>& inertia) {
+  void setInertiaTensor(const SPDMat3T<S>& inertia) {
     inertia_ = inertia;
     autoGenerate_ &= ~unsigned(INERTIA);
   }
@@ -83,7 +83,7 @@ class MassPropertiesT {
   template <Scalar>
   friend class RigidBodyT;
   // Generated values, set by the body without touching the mask.
-  void generate(S mass, const SPDMat3<S>& inertia) {
+  void generate(S mass, const SPDMat3T<S>& inertia) {
     if (autoGenerate_ & MASS) mass_ = mass;
     if (autoGenerate_ & INERTIA) inertia_ = inertia;
   }
@@ -95,7 +95,7 @@ class MassPropertiesT {
 
   const std::string* ownerName_;
   S mass_ = S(1);
-  SPDMat3<S> inertia_;
+  SPDMat3T<S> inertia_;
   Vec3 massCoefficients_ = Vec3::Zero();
   unsigned autoGenerate_ = ALL;
 };

@@ -32,10 +32,10 @@ struct SimulationMembership;
 template <Scalar S>
 class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
  public:
-  using Vec3 = spook::Vec3<S>;
-  using Quat = spook::Quat<S>;
-  using Mat3 = spook::Mat3<S>;
-  using Transform = spook::Transform<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Quat = spook::QuatT<S>;
+  using Mat3 = spook::Mat3T<S>;
+  using Transform = spook::TransformT<S>;
   using Frame = FrameT<S>;
   using Geometry = GeometryT<S>;
 
@@ -287,7 +287,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
     // The tensor is stored in the CM frame, whose axes are the model axes
     // turned by the CM frame's local rotation.
     const Mat3 R = cmFrame_->getLocalRotate().toRotationMatrix();
-    massProperties_.generate(mass, SPDMat3<S>(Mat3(R.transpose() * inertia * R)));
+    massProperties_.generate(mass, SPDMat3T<S>(Mat3(R.transpose() * inertia * R)));
     if (mask & MassPropertiesT<S>::CM_OFFSET) {
       const Vec3 oldCm = getCmPosition();
       cmFrame_->setLocalTranslate(generated->center);
@@ -367,7 +367,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   void requireTransform(const Transform& X, const std::string& what) const {
     requireFinite(Vec3(X.translation()), (what + " translation must be finite (m)").c_str());
     if (!isRotation<S>(X.linear()))
-      throw error(what + " rotation must be orthonormal and right-handed", SPDMat3<S>::flat(X.linear()));
+      throw error(what + " rotation must be orthonormal and right-handed", SPDMat3T<S>::flat(X.linear()));
   }
   Vec3 checkedDamping(const Vec3& d, const char* kind) const {
     if (!(d.allFinite() && d.minCoeff() >= S(0)))

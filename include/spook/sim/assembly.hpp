@@ -14,9 +14,9 @@ namespace spook {
 template <Scalar S>
 class AssemblyT : public CollectionT<S> {
  public:
-  using Vec3 = spook::Vec3<S>;
-  using Quat = spook::Quat<S>;
-  using Transform = spook::Transform<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Quat = spook::QuatT<S>;
+  using Transform = spook::TransformT<S>;
 
   explicit AssemblyT(std::string name = "") : CollectionT<S>(std::move(name)) {}
 

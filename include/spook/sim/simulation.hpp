@@ -37,7 +37,7 @@ namespace spook {
 template <Scalar S>
 class SimulationT : public Referenced, public detail::ContentSink<S> {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   using Body = RigidBodyT<S>;
   using Listener = StepEventListenerT<S>;
   using Collection = CollectionT<S>;

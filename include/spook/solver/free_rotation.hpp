@@ -8,8 +8,8 @@ namespace spook::detail {
 /// Result of advancing a torque-free rotation over one step.
 template <Scalar S>
 struct FreeRotation {
-  Quat<S> increment;  ///< body-frame rotation over the step: R⁺ = R · increment
-  Vec3<S> momentum;   ///< body-frame angular momentum at the end, Π⁺ (kg·m²/s)
+  QuatT<S> increment;  ///< body-frame rotation over the step: R⁺ = R · increment
+  Vec3T<S> momentum;   ///< body-frame angular momentum at the end, Π⁺ (kg·m²/s)
   bool converged;
 };
 
@@ -24,12 +24,12 @@ struct FreeRotation {
 /// should, and flips about its intermediate axis (Dzhanibekov). The implicit
 /// equation is solved by Newton steps with the Jacobian I − (h/2)[Π]ₓ I⁻¹.
 template <Scalar S>
-FreeRotation<S> freeRotationStep(const Mat3<S>& inertiaInverse, const Vec3<S>& momentum, S h) {
-  using Vec3 = spook::Vec3<S>;
+FreeRotation<S> freeRotationStep(const Mat3T<S>& inertiaInverse, const Vec3T<S>& momentum, S h) {
+  using Vec3 = spook::Vec3T<S>;
   const S scale = momentum.norm();
-  if (!(scale > S(0))) return {Quat<S>::Identity(), momentum, true};
+  if (!(scale > S(0))) return {QuatT<S>::Identity(), momentum, true};
   const S tolerance = ScalarTraits<S>::solveTolerance() * scale;
-  const Mat3<S> jacobian = Mat3<S>::Identity() - S(0.5) * h * skew<S>(momentum) * inertiaInverse;
+  const Mat3T<S> jacobian = Mat3T<S>::Identity() - S(0.5) * h * skew<S>(momentum) * inertiaInverse;
   const auto jacobianLu = jacobian.partialPivLu();
 
   Vec3 next = momentum;
@@ -44,7 +44,7 @@ FreeRotation<S> freeRotationStep(const Mat3<S>& inertiaInverse, const Vec3<S>& m
     converged = correction.norm() <= tolerance;
   }
   meanVelocity = S(0.5) * inertiaInverse * (momentum + next);
-  const Quat<S> increment = expRotation<S>(h * meanVelocity);
+  const QuatT<S> increment = expRotation<S>(h * meanVelocity);
   // Π⁺ from the final rotation, so that the world momentum is exact.
   return {increment, increment.conjugate() * momentum, converged};
 }
@@ -52,10 +52,10 @@ FreeRotation<S> freeRotationStep(const Mat3<S>& inertiaInverse, const Vec3<S>& m
 /// freeRotationStep, split into 2, 4, … 64 substeps when the Newton solve
 /// does not converge in one (very fast spin relative to the step).
 template <Scalar S>
-FreeRotation<S> rotateFreely(const Mat3<S>& inertiaInverse, const Vec3<S>& momentum, S h) {
+FreeRotation<S> rotateFreely(const Mat3T<S>& inertiaInverse, const Vec3T<S>& momentum, S h) {
   FreeRotation<S> result{};
   for (int substeps = 1; substeps <= 64; substeps *= 2) {
-    result = {Quat<S>::Identity(), momentum, true};
+    result = {QuatT<S>::Identity(), momentum, true};
     const S dt = h / S(substeps);
     for (int k = 0; k < substeps; ++k) {
       const FreeRotation<S> part = freeRotationStep<S>(inertiaInverse, result.momentum, dt);

@@ -14,9 +14,9 @@ namespace spook::detail {
 /// impulses, and `move` advances the pose with the final velocities.
 template <Scalar S>
 struct BodyIntegrator {
-  using Vec3 = spook::Vec3<S>;
-  using Quat = spook::Quat<S>;
-  using Mat3 = spook::Mat3<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Quat = spook::QuatT<S>;
+  using Mat3 = spook::Mat3T<S>;
   using Body = RigidBodyT<S>;
 
   /// The body as the solver sees it. Dynamic bodies get their force-driven

@@ -9,7 +9,7 @@
 int main() {
   const double h = 1.0 / 100.0;
   const int n = 100;
-  const spook::Vec3<> g(0, 0, -9.80665), x0(1, 2, 0), v0(0, -1, 5);
+  const spook::Vec3 g(0, 0, -9.80665), x0(1, 2, 0), v0(0, -1, 5);
 
   spook::SimulationRef sim = new spook::Simulation();
   sim->setTimeStep(h);
@@ -20,8 +20,8 @@ int main() {
   sim->add(ball);
   sim->stepTo(n * h);
 
-  const spook::Vec3<> x = x0 + n * h * v0 + h * h * g * (n * (n + 1) / 2.0);
-  const spook::Vec3<> v = v0 + n * h * g;
+  const spook::Vec3 x = x0 + n * h * v0 + h * h * g * (n * (n + 1) / 2.0);
+  const spook::Vec3 v = v0 + n * h * g;
   const double dx = (ball->getPosition() - x).norm(), dv = (ball->getVelocity() - v).norm();
   if (!(dx <= 1e-12 * x.norm() && dv <= 1e-12 * v.norm())) {
     std::printf("FAIL: after %d steps |x - exact| = %.3g m, |v - exact| = %.3g m/s\n", n, dx, dv);

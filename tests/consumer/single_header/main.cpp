@@ -10,7 +10,7 @@
 int main() {
   const double h = 1.0 / 60.0;
   const int n = 120;
-  const spook::Vec3<> g(0, 0, -9.80665), x0(0, 0, 10), v0(1, 0, 3);
+  const spook::Vec3 g(0, 0, -9.80665), x0(0, 0, 10), v0(1, 0, 3);
 
   spook::SimulationRef sim = new spook::Simulation();
   sim->setTimeStep(h);
@@ -21,8 +21,8 @@ int main() {
   sim->add(ball);
   for (int i = 0; i < n; ++i) sim->stepForward();
 
-  const spook::Vec3<> x = x0 + n * h * v0 + h * h * g * (n * (n + 1) / 2.0);
-  const spook::Vec3<> v = v0 + n * h * g;
+  const spook::Vec3 x = x0 + n * h * v0 + h * h * g * (n * (n + 1) / 2.0);
+  const spook::Vec3 v = v0 + n * h * g;
   const double dx = (ball->getPosition() - x).norm(), dv = (ball->getVelocity() - v).norm();
   const double dt = std::abs(sim->getTimeStamp() - n * h);
   if (!(dx <= 1e-12 * x.norm() && dv <= 1e-12 * v.norm() && dt <= 1e-12 * n * h)) {

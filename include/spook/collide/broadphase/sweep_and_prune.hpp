@@ -71,17 +71,17 @@ class SweepAndPrune {
   }
   // The axis along which the finite box centers spread the most.
   static int sweepAxis(const std::vector<BoundingBoxT<S>>& boxes) {
-    Vec3<S> sum = Vec3<S>::Zero(), sumSq = Vec3<S>::Zero();
+    Vec3T<S> sum = Vec3T<S>::Zero(), sumSq = Vec3T<S>::Zero();
     std::size_t n = 0;
     for (const auto& b : boxes) {
       if (!(b.min.allFinite() && b.max.allFinite())) continue;
-      const Vec3<S> c = b.center();
+      const Vec3T<S> c = b.center();
       sum += c;
       sumSq += c.cwiseAbs2();
       ++n;
     }
     if (n == 0) return 0;
-    const Vec3<S> variance = sumSq / S(n) - (sum / S(n)).cwiseAbs2();
+    const Vec3T<S> variance = sumSq / S(n) - (sum / S(n)).cwiseAbs2();
     int axis = 0;
     variance.maxCoeff(&axis);
     return axis;

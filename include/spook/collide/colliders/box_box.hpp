@@ -17,15 +17,15 @@ namespace detail::box_box {
 /// A box seen from box A's frame: center, axes (columns) and half extents.
 template <Scalar S>
 struct Placed {
-  Vec3<S> center;
-  Mat3<S> axes;
-  Vec3<S> half;
+  Vec3T<S> center;
+  Mat3T<S> axes;
+  Vec3T<S> half;
 
   /// Half-width of the box's projection onto the unit axis n.
-  [[nodiscard]] S radius(const Vec3<S>& n) const { return (axes.transpose() * n).cwiseAbs().dot(half); }
+  [[nodiscard]] S radius(const Vec3T<S>& n) const { return (axes.transpose() * n).cwiseAbs().dot(half); }
   /// The corner farthest along n (a zero component picks +).
-  [[nodiscard]] Vec3<S> corner(const Vec3<S>& n) const {
-    Vec3<S> p = center;
+  [[nodiscard]] Vec3T<S> corner(const Vec3T<S>& n) const {
+    Vec3T<S> p = center;
     for (int k = 0; k < 3; ++k) p += axes.col(k) * (axes.col(k).dot(n) < S(0) ? -half[k] : half[k]);
     return p;
   }
@@ -38,7 +38,7 @@ struct Placed {
 /// `index % 3`.
 template <Scalar S>
 struct Axis {
-  Vec3<S> axis = Vec3<S>::UnitZ();
+  Vec3T<S> axis = Vec3T<S>::UnitZ();
   S depth = std::numeric_limits<S>::infinity();
   int kind = -1;
   int index = -1;
@@ -71,8 +71,8 @@ inline constexpr double kEdgeBias = 1.05;
 /// lost to round-off, and the face axes then separate the boxes anyway.
 template <Scalar S>
 struct Collider<BoxT<S>, BoxT<S>> {
-  using Vec3 = spook::Vec3<S>;
-  using Mat3 = spook::Mat3<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
   using Placed = detail::box_box::Placed<S>;
   using Axis = detail::box_box::Axis<S>;
 
@@ -81,7 +81,7 @@ struct Collider<BoxT<S>, BoxT<S>> {
   /// error |a × b|·size of skipping it.
   static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
 
-  static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const BoxT<S>& b, const Transform<S>& X_WB,
+  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const BoxT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     // Everything in A's frame, where A is axis-aligned at the origin.
     const Mat3 R_WA = X_WA.linear();

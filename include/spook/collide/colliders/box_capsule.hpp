@@ -18,7 +18,7 @@ namespace detail::box_capsule {
 
 /// Squared distance (m²) from x to the solid box |x_k| <= e_k.
 template <Scalar S>
-[[nodiscard]] S boxDistanceSquared(const Vec3<S>& x, const Vec3<S>& e) {
+[[nodiscard]] S boxDistanceSquared(const Vec3T<S>& x, const Vec3T<S>& e) {
   return (x.cwiseAbs() - e).cwiseMax(S(0)).squaredNorm();
 }
 
@@ -28,7 +28,7 @@ template <Scalar S>
 /// planes; on each piece it is Σ (c_k + t u_k ∓ e_k)² over the coordinates
 /// outside the box, minimized in closed form and clamped to the piece.
 template <Scalar S>
-[[nodiscard]] S closestOnSegment(const Vec3<S>& c, const Vec3<S>& u, S h, const Vec3<S>& e) {
+[[nodiscard]] S closestOnSegment(const Vec3T<S>& c, const Vec3T<S>& u, S h, const Vec3T<S>& e) {
   std::array<S, 8> knots{};
   std::size_t count = 0;
   knots[count++] = -h;
@@ -56,7 +56,7 @@ template <Scalar S>
       }
     }
     const S t = curvature > S(0) ? std::clamp(-slope / curvature, lo, hi) : lo;
-    const S g = boxDistanceSquared<S>(Vec3<S>(c + t * u), e);
+    const S g = boxDistanceSquared<S>(Vec3T<S>(c + t * u), e);
     if (g < best) {
       best = g;
       bestT = t;
@@ -85,15 +85,15 @@ template <Scalar S>
 /// one otherwise.
 template <Scalar S>
 struct Collider<BoxT<S>, CapsuleT<S>> {
-  using Vec3 = spook::Vec3<S>;
-  using Mat3 = spook::Mat3<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
 
   /// |u × axis| below this (u the capsule axis, about √ε) skips the edge
   /// axis u × axis; the face axes cover the parallel case (as for two boxes).
   static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
 
-  static void collide(const BoxT<S>& box, const Transform<S>& X_WA, const CapsuleT<S>& capsule,
-                      const Transform<S>& X_WB, ContactSinkT<S>& sink) {
+  static void collide(const BoxT<S>& box, const TransformT<S>& X_WA, const CapsuleT<S>& capsule,
+                      const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
     // Box frame: the box is |x_k| <= e_k, the segment c + t·u, |t| <= h.
     const Mat3 R_WA = X_WA.linear();
     const Vec3 e = box.getHalfExtents();

@@ -37,21 +37,21 @@ template <Scalar S>
 struct Collider<BoxT<S>, LineT<S>> {
   static constexpr S kParallelSine = S(1e-2);
 
-  static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const LineT<S>& b, const Transform<S>& X_WB,
+  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const LineT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Transform<S> X_AB = X_WA.inverse(Eigen::Isometry) * X_WB;
-    const Vec3<S> p = X_AB * b.getFirstPoint(), q = X_AB * b.getSecondPoint();
-    const Vec3<S> d = q - p;
-    const Vec3<S>& h = a.getHalfExtents();
+    const TransformT<S> X_AB = X_WA.inverse(Eigen::Isometry) * X_WB;
+    const Vec3T<S> p = X_AB * b.getFirstPoint(), q = X_AB * b.getSecondPoint();
+    const Vec3T<S> d = q - p;
+    const Vec3T<S>& h = a.getHalfExtents();
     const S length = d.norm();
     const S tiny = S(16) * ScalarTraits<S>::epsilon() * (h.norm() + p.norm() + q.norm());
 
     // Separating axis test: the smallest overlap and its axis, from the box toward the line.
     S depth = S(0);
-    Vec3<S> n = Vec3<S>::UnitZ();
+    Vec3T<S> n = Vec3T<S>::UnitZ();
     int edge = -1;  // the box edge direction of a cross-product axis, -1 for a face normal
     bool first = true;
-    const auto tryAxis = [&](const Vec3<S>& axis, int edgeAxis) {
+    const auto tryAxis = [&](const Vec3T<S>& axis, int edgeAxis) {
       const S support = h.dot(axis.cwiseAbs());
       const S lowest = std::min(axis.dot(p), axis.dot(q)), highest = std::max(axis.dot(p), axis.dot(q));
       const S up = support - lowest, down = support + highest;  // overlaps along +axis and −axis
@@ -67,21 +67,21 @@ struct Collider<BoxT<S>, LineT<S>> {
         edge = edgeAxis;
       }
     };
-    for (int i = 0; i < 3; ++i) tryAxis(Vec3<S>::Unit(i), -1);
+    for (int i = 0; i < 3; ++i) tryAxis(Vec3T<S>::Unit(i), -1);
     for (int i = 0; i < 3; ++i) {
-      const Vec3<S> axis = d.cross(Vec3<S>::Unit(i));
+      const Vec3T<S> axis = d.cross(Vec3T<S>::Unit(i));
       const S axisLength = axis.norm();
       if (axisLength > S(16) * ScalarTraits<S>::epsilon() * length) tryAxis(axis / axisLength, i);
     }
     if (!(depth >= S(0))) return;
 
-    const auto add = [&](const Vec3<S>& onLine, S pointDepth) {
-      sink.add(X_WA * Vec3<S>(onLine + S(0.5) * pointDepth * n), X_WA.linear() * n, pointDepth);
+    const auto add = [&](const Vec3T<S>& onLine, S pointDepth) {
+      sink.add(X_WA * Vec3T<S>(onLine + S(0.5) * pointDepth * n), X_WA.linear() * n, pointDepth);
     };
     if (edge >= 0) {
       // The box edge along e_edge through the corner farthest along n.
-      Vec3<S> corner = a.support(n);
-      Vec3<S> otherEnd = corner;
+      Vec3T<S> corner = a.support(n);
+      Vec3T<S> otherEnd = corner;
       corner[edge] = -h[edge];
       otherEnd[edge] = h[edge];
       add(detail::closestPointsBetweenSegments<S>(p, q, corner, otherEnd).onFirst, depth);

@@ -11,18 +11,18 @@ namespace spook {
 /// edge, one on a corner. The normal points from the box into the plane, −n.
 template <Scalar S>
 struct Collider<BoxT<S>, PlaneT<S>> {
-  static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> n = X_WB.linear() * b.getNormal();
-    const Vec3<S>& h = a.getHalfExtents();
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S>& h = a.getHalfExtents();
     // Heights relative to the box center: corner height = center height + Σ ±h_i (n · axis_i).
     const S centerHeight = n.dot(X_WA.translation() - X_WB * b.getPoint());
-    const Vec3<S> reach = (X_WA.linear().transpose() * n).cwiseProduct(h);
+    const Vec3T<S> reach = (X_WA.linear().transpose() * n).cwiseProduct(h);
     for (int corner = 0; corner < 8; ++corner) {
-      const Vec3<S> sign((corner & 1) ? S(1) : S(-1), (corner & 2) ? S(1) : S(-1), (corner & 4) ? S(1) : S(-1));
+      const Vec3T<S> sign((corner & 1) ? S(1) : S(-1), (corner & 2) ? S(1) : S(-1), (corner & 4) ? S(1) : S(-1));
       const S height = centerHeight + sign.dot(reach);
       if (!(height <= S(0))) continue;
-      const Vec3<S> p = X_WA * Vec3<S>(sign.cwiseProduct(h));
+      const Vec3T<S> p = X_WA * Vec3T<S>(sign.cwiseProduct(h));
       // Midway between the corner and the plane point under it.
       sink.add(p - S(0.5) * height * n, -n, -height);
     }

@@ -15,16 +15,16 @@ namespace spook {
 /// lowest axis on a tie, the + face when c_i = 0): depth r + h_i − |c_i|.
 template <Scalar S>
 struct Collider<BoxT<S>, SphereT<S>> {
-  static void collide(const BoxT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S>& h = a.getHalfExtents();
+    const Vec3T<S>& h = a.getHalfExtents();
     const S r = b.getRadius();
-    const Vec3<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
-    const Vec3<S> q = c.cwiseMax(-h).cwiseMin(h);
-    const Vec3<S> d = c - q;
+    const Vec3T<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
+    const Vec3T<S> q = c.cwiseMax(-h).cwiseMin(h);
+    const Vec3T<S> d = c - q;
     const S distance = d.norm();
-    Vec3<S> n;      // box frame, from the box toward the sphere
-    Vec3<S> onBox;  // the box's deepest point along n
+    Vec3T<S> n;      // box frame, from the box toward the sphere
+    Vec3T<S> onBox;  // the box's deepest point along n
     S depth;
     if (distance > ScalarTraits<S>::epsilon() * (h.norm() + r)) {
       depth = r - distance;
@@ -41,13 +41,13 @@ struct Collider<BoxT<S>, SphereT<S>> {
           axis = i;
         }
       }
-      n = Vec3<S>::Zero();
+      n = Vec3T<S>::Zero();
       n[axis] = c[axis] < S(0) ? S(-1) : S(1);
       depth = r + gap;
       onBox = c + gap * n;
     }
     // Midway between the box's deepest point and the sphere's, c − r n.
-    sink.add(X_WA * Vec3<S>(S(0.5) * (onBox + c - r * n)), X_WA.linear() * n, depth);
+    sink.add(X_WA * Vec3T<S>(S(0.5) * (onBox + c - r * n)), X_WA.linear() * n, depth);
   }
 };
 

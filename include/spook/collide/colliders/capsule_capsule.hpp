@@ -26,19 +26,19 @@ template <Scalar S>
 struct Collider<CapsuleT<S>, CapsuleT<S>> {
   static constexpr S kParallelSine = S(1e-2);
 
-  static void collide(const CapsuleT<S>& a, const Transform<S>& X_WA, const CapsuleT<S>& b, const Transform<S>& X_WB,
+  static void collide(const CapsuleT<S>& a, const TransformT<S>& X_WA, const CapsuleT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> halfA = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
-    const Vec3<S> halfB = X_WB.linear().col(1) * (S(0.5) * b.getHeight());
-    const Vec3<S> pA = X_WA.translation() - halfA, qA = X_WA.translation() + halfA;
-    const Vec3<S> pB = X_WB.translation() - halfB, qB = X_WB.translation() + halfB;
+    const Vec3T<S> halfA = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
+    const Vec3T<S> halfB = X_WB.linear().col(1) * (S(0.5) * b.getHeight());
+    const Vec3T<S> pA = X_WA.translation() - halfA, qA = X_WA.translation() + halfA;
+    const Vec3T<S> pB = X_WB.translation() - halfB, qB = X_WB.translation() + halfB;
     const S rA = a.getRadius(), rB = b.getRadius();
     const S scale = rA + rB + a.getHeight() + b.getHeight();
     const auto closest = detail::closestPointsBetweenSegments<S>(pA, qA, pB, qB);
 
     // The direction for points closer than round-off, where b − a has none.
-    Vec3<S> fallback;
-    const Vec3<S> across = halfA.cross(halfB);
+    Vec3T<S> fallback;
+    const Vec3T<S> across = halfA.cross(halfB);
     if (!closest.parallel && across.norm() > S(0)) {
       fallback = across.normalized();
       if (fallback.dot(X_WB.translation() - X_WA.translation()) < S(0)) fallback = -fallback;
@@ -46,16 +46,16 @@ struct Collider<CapsuleT<S>, CapsuleT<S>> {
       fallback = X_WA.linear().col(0);
     }
     const S tiny = ScalarTraits<S>::epsilon() * scale;
-    const auto addAlong = [&](const Vec3<S>& onA, const Vec3<S>& onB, const Vec3<S>& n, S distance) {
+    const auto addAlong = [&](const Vec3T<S>& onA, const Vec3T<S>& onB, const Vec3T<S>& n, S distance) {
       const S depth = rA + rB - distance;
       if (!(depth >= S(0))) return false;
       sink.add(S(0.5) * (onA + onB + (rA - rB) * n), n, depth);
       return true;
     };
-    const auto add = [&](const Vec3<S>& onA, const Vec3<S>& onB) {
-      const Vec3<S> d = onB - onA;
+    const auto add = [&](const Vec3T<S>& onA, const Vec3T<S>& onB) {
+      const Vec3T<S> d = onB - onA;
       const S distance = d.norm();
-      return addAlong(onA, onB, distance > tiny ? Vec3<S>(d / distance) : fallback, distance);
+      return addAlong(onA, onB, distance > tiny ? Vec3T<S>(d / distance) : fallback, distance);
     };
     const bool inside = closest.s > S(0) && closest.s < S(1) && closest.t > S(0) && closest.t < S(1);
     if (inside && !closest.parallel) {
@@ -63,14 +63,14 @@ struct Collider<CapsuleT<S>, CapsuleT<S>> {
       // normal is their common perpendicular and the distance its projection
       // of pB − pA, both free of the round-off in s and t, which would tilt
       // the normal by ε/distance for nearly crossing axes.
-      const Vec3<S> d = closest.onSecond - closest.onFirst;
-      const Vec3<S> n = d.dot(fallback) < S(0) ? Vec3<S>(-fallback) : fallback;
+      const Vec3T<S> d = closest.onSecond - closest.onFirst;
+      const Vec3T<S> n = d.dot(fallback) < S(0) ? Vec3T<S>(-fallback) : fallback;
       if (!addAlong(closest.onFirst, closest.onSecond, n, std::abs(n.dot(pB - pA)))) return;
     } else if (!add(closest.onFirst, closest.onSecond)) {
       return;
     }
 
-    const Vec3<S> dA = qA - pA, dB = qB - pB;
+    const Vec3T<S> dA = qA - pA, dB = qB - pB;
     const S lengthA2 = dA.squaredNorm();
     if (!(across.squaredNorm() * S(16) <= kParallelSine * kParallelSine * lengthA2 * dB.squaredNorm())) return;
     // The stretch of a's segment (parameters on a) that b's projects onto.
@@ -81,7 +81,7 @@ struct Collider<CapsuleT<S>, CapsuleT<S>> {
     const S lengthA = std::sqrt(lengthA2);
     for (const S s : {lo, hi}) {
       if (std::abs(s - closest.s) * lengthA <= apart) continue;
-      const Vec3<S> onA = pA + s * dA;
+      const Vec3T<S> onA = pA + s * dA;
       add(onA, detail::closestPointOnSegment<S>(pB, qB, onA));
     }
   }

@@ -12,14 +12,14 @@ namespace spook {
 /// The normal points from the capsule into the plane, −n.
 template <Scalar S>
 struct Collider<CapsuleT<S>, PlaneT<S>> {
-  static void collide(const CapsuleT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+  static void collide(const CapsuleT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> n = X_WB.linear() * b.getNormal();
-    const Vec3<S> onPlane = X_WB * b.getPoint();
-    const Vec3<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S> onPlane = X_WB * b.getPoint();
+    const Vec3T<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
     const S r = a.getRadius();
     for (const S side : {S(-1), S(1)}) {
-      const Vec3<S> e = X_WA.translation() + side * halfAxis;
+      const Vec3T<S> e = X_WA.translation() + side * halfAxis;
       const S height = n.dot(e - onPlane);
       const S depth = r - height;
       // Midway between the capsule's deepest point e − r n and the plane point under e, e − s n.

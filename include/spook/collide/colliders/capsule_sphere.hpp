@@ -14,14 +14,14 @@ namespace spook {
 /// perpendicular to the segment.
 template <Scalar S>
 struct Collider<CapsuleT<S>, SphereT<S>> {
-  static void collide(const CapsuleT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+  static void collide(const CapsuleT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
-    const Vec3<S> center = X_WA.translation(), c = X_WB.translation();
+    const Vec3T<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
+    const Vec3T<S> center = X_WA.translation(), c = X_WB.translation();
     const S t = detail::closestParameterOnSegment<S>(center - halfAxis, center + halfAxis, c);
-    const Vec3<S> q = center + (S(2) * t - S(1)) * halfAxis;
+    const Vec3T<S> q = center + (S(2) * t - S(1)) * halfAxis;
     const S rA = a.getRadius(), rB = b.getRadius();
-    Vec3<S> d = c - q;
+    Vec3T<S> d = c - q;
     // Off an end the closest point is that end; along the side, c − q is
     // perpendicular to the axis, and making it exactly so keeps the normal
     // from tilting toward the axis by round-off when c is near it.
@@ -29,8 +29,8 @@ struct Collider<CapsuleT<S>, SphereT<S>> {
     const S distance = d.norm();
     const S depth = rA + rB - distance;
     if (!(depth >= S(0))) return;
-    const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB + a.getHeight()) ? Vec3<S>(d / distance)
-                                                                                        : Vec3<S>(X_WA.linear().col(0));
+    const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB + a.getHeight()) ? Vec3T<S>(d / distance)
+                                                                                        : Vec3T<S>(X_WA.linear().col(0));
     sink.add(S(0.5) * (q + c + (rA - rB) * n), n, depth);
   }
 };

@@ -19,22 +19,22 @@ namespace spook {
 /// them. The normal points from the cylinder into the plane, −n.
 template <Scalar S>
 struct Collider<CylinderT<S>, PlaneT<S>> {
-  static void collide(const CylinderT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+  static void collide(const CylinderT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> n = X_WB.linear() * b.getNormal();
-    const Vec3<S> u = X_WA.linear().col(1);
-    const Vec3<S> across = (n.dot(u)) * u - n;  // along the rim, away from the plane's outside
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S> u = X_WA.linear().col(1);
+    const Vec3T<S> across = (n.dot(u)) * u - n;  // along the rim, away from the plane's outside
     const S acrossLength = across.norm();
-    const Vec3<S> v =
-        acrossLength > ScalarTraits<S>::epsilon() ? Vec3<S>(across / acrossLength) : Vec3<S>(X_WA.linear().col(0));
-    const Vec3<S> w = u.cross(v);
-    const std::array<Vec3<S>, 4> rim = {v, w, Vec3<S>(-v), Vec3<S>(-w)};
+    const Vec3T<S> v =
+        acrossLength > ScalarTraits<S>::epsilon() ? Vec3T<S>(across / acrossLength) : Vec3T<S>(X_WA.linear().col(0));
+    const Vec3T<S> w = u.cross(v);
+    const std::array<Vec3T<S>, 4> rim = {v, w, Vec3T<S>(-v), Vec3T<S>(-w)};
     const S r = a.getRadius(), halfHeight = S(0.5) * a.getHeight();
-    const Vec3<S> onPlane = X_WB * b.getPoint();
+    const Vec3T<S> onPlane = X_WB * b.getPoint();
     for (const S side : {S(-1), S(1)}) {
-      const Vec3<S> capCenter = X_WA.translation() + side * halfHeight * u;
+      const Vec3T<S> capCenter = X_WA.translation() + side * halfHeight * u;
       const S capHeight = n.dot(capCenter - onPlane);
-      for (const Vec3<S>& direction : rim) {
+      for (const Vec3T<S>& direction : rim) {
         const S height = capHeight + r * n.dot(direction);
         if (!(height <= S(0))) continue;
         // Midway between the rim point and the plane point under it.

@@ -18,21 +18,21 @@ namespace spook {
 /// cylinder's x axis when c is on the axis: depth r + gap.
 template <Scalar S>
 struct Collider<CylinderT<S>, SphereT<S>> {
-  static void collide(const CylinderT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+  static void collide(const CylinderT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     const S R = a.getRadius(), k = S(0.5) * a.getHeight(), r = b.getRadius();
-    const Vec3<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
+    const Vec3T<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
     const S radial = std::hypot(c.x(), c.z());
-    Vec3<S> q(c.x(), std::clamp(c.y(), -k, k), c.z());
+    Vec3T<S> q(c.x(), std::clamp(c.y(), -k, k), c.z());
     if (radial > R) {
       q.x() *= R / radial;
       q.z() *= R / radial;
     }
-    const Vec3<S> d = c - q;
+    const Vec3T<S> d = c - q;
     const S distance = d.norm();
     const S tiny = ScalarTraits<S>::epsilon() * (R + k + r);
-    Vec3<S> n;           // cylinder frame, from the cylinder toward the sphere
-    Vec3<S> onCylinder;  // the cylinder's deepest point along n
+    Vec3T<S> n;           // cylinder frame, from the cylinder toward the sphere
+    Vec3T<S> onCylinder;  // the cylinder's deepest point along n
     S depth;
     if (distance > tiny) {
       depth = r - distance;
@@ -43,16 +43,16 @@ struct Collider<CylinderT<S>, SphereT<S>> {
       const S capGap = k - std::abs(c.y()), barrelGap = R - radial;
       const S gap = std::min(capGap, barrelGap);
       if (capGap <= barrelGap)
-        n = Vec3<S>(S(0), c.y() < S(0) ? S(-1) : S(1), S(0));
+        n = Vec3T<S>(S(0), c.y() < S(0) ? S(-1) : S(1), S(0));
       else if (radial > tiny)
-        n = Vec3<S>(c.x() / radial, S(0), c.z() / radial);
+        n = Vec3T<S>(c.x() / radial, S(0), c.z() / radial);
       else
-        n = Vec3<S>::UnitX();
+        n = Vec3T<S>::UnitX();
       depth = r + gap;
       onCylinder = c + gap * n;
     }
     // Midway between the cylinder's deepest point and the sphere's, c − r n.
-    sink.add(X_WA * Vec3<S>(S(0.5) * (onCylinder + c - r * n)), X_WA.linear() * n, depth);
+    sink.add(X_WA * Vec3T<S>(S(0.5) * (onCylinder + c - r * n)), X_WA.linear() * n, depth);
   }
 };
 

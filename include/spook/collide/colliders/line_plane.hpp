@@ -11,12 +11,12 @@ namespace spook {
 /// plane has two. The normal points from the line into the plane, −n.
 template <Scalar S>
 struct Collider<LineT<S>, PlaneT<S>> {
-  static void collide(const LineT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+  static void collide(const LineT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> n = X_WB.linear() * b.getNormal();
-    const Vec3<S> onPlane = X_WB * b.getPoint();
-    for (const Vec3<S>& end : {a.getFirstPoint(), a.getSecondPoint()}) {
-      const Vec3<S> e = X_WA * end;
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S> onPlane = X_WB * b.getPoint();
+    for (const Vec3T<S>& end : {a.getFirstPoint(), a.getSecondPoint()}) {
+      const Vec3T<S> e = X_WA * end;
       const S height = n.dot(e - onPlane);
       // Midway between the endpoint and the plane point under it.
       if (height <= S(0)) sink.add(e - S(0.5) * height * n, -n, -height);

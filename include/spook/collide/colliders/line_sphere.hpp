@@ -12,21 +12,21 @@ namespace spook {
 /// segment pushes along a fixed perpendicular of the segment.
 template <Scalar S>
 struct Collider<LineT<S>, SphereT<S>> {
-  static void collide(const LineT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+  static void collide(const LineT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> p = X_WA * a.getFirstPoint(), q = X_WA * a.getSecondPoint();
-    const Vec3<S> c = X_WB.translation();
+    const Vec3T<S> p = X_WA * a.getFirstPoint(), q = X_WA * a.getSecondPoint();
+    const Vec3T<S> c = X_WB.translation();
     const S t = detail::closestParameterOnSegment<S>(p, q, c);
-    const Vec3<S> onLine = p + t * (q - p);
+    const Vec3T<S> onLine = p + t * (q - p);
     const S r = b.getRadius();
-    Vec3<S> d = c - onLine;
+    Vec3T<S> d = c - onLine;
     // Along the segment's interior c − q is perpendicular to it: made exactly
     // so, round-off cannot tilt the normal toward the segment.
     if (t > S(0) && t < S(1)) d -= (q - p) * ((q - p).dot(d) / (q - p).squaredNorm());
     const S distance = d.norm();
     const S depth = r - distance;
     if (!(depth >= S(0))) return;
-    const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (r + a.getLength()) ? Vec3<S>(d / distance)
+    const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (r + a.getLength()) ? Vec3T<S>(d / distance)
                                                                                   : detail::unitPerpendicular<S>(q - p);
     // Midway between the segment point and the sphere's deepest point c − r n.
     sink.add(S(0.5) * (onLine + c - r * n), n, depth);

@@ -25,8 +25,8 @@ concept TriangleSoup = T::kType == ShapeType::TRIMESH || T::kType == ShapeType::
 
 /// The point of segment [a, b] closest to p (a for a zero-length segment).
 template <Scalar S>
-[[nodiscard]] Vec3<S> closestOnSegment(const Vec3<S>& a, const Vec3<S>& b, const Vec3<S>& p) {
-  const Vec3<S> ab = b - a;
+[[nodiscard]] Vec3T<S> closestOnSegment(const Vec3T<S>& a, const Vec3T<S>& b, const Vec3T<S>& p) {
+  const Vec3T<S> ab = b - a;
   const S length2 = ab.squaredNorm();
   if (!(length2 > S(0))) return a;
   return a + ab * std::clamp((p - a).dot(ab) / length2, S(0), S(1));
@@ -37,18 +37,18 @@ template <Scalar S>
 /// three edges for a degenerate one (repeated or collinear corners), where
 /// the region tests would divide round-off by round-off.
 template <Scalar S>
-[[nodiscard]] Vec3<S> closestOnTriangle(const Triangle<S>& t, const Vec3<S>& p, bool& onFace) {
-  const Vec3<S>&a = t.v[0], &b = t.v[1], &c = t.v[2];
-  const Vec3<S> ab = b - a, ac = c - a;
+[[nodiscard]] Vec3T<S> closestOnTriangle(const Triangle<S>& t, const Vec3T<S>& p, bool& onFace) {
+  const Vec3T<S>&a = t.v[0], &b = t.v[1], &c = t.v[2];
+  const Vec3T<S> ab = b - a, ac = c - a;
   const S longest2 = std::max({ab.squaredNorm(), ac.squaredNorm(), (c - b).squaredNorm()});
   onFace = false;
   if (!(ab.cross(ac).norm() > S(64) * ScalarTraits<S>::epsilon() * longest2)) {
-    Vec3<S> best = closestOnSegment<S>(a, b, p);
-    for (const Vec3<S>& q : {closestOnSegment<S>(b, c, p), closestOnSegment<S>(c, a, p)})
+    Vec3T<S> best = closestOnSegment<S>(a, b, p);
+    for (const Vec3T<S>& q : {closestOnSegment<S>(b, c, p), closestOnSegment<S>(c, a, p)})
       if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
     return best;
   }
-  const Vec3<S> ap = p - a, bp = p - b, cp = p - c;
+  const Vec3T<S> ap = p - a, bp = p - b, cp = p - c;
   const S d1 = ab.dot(ap), d2 = ac.dot(ap), d3 = ab.dot(bp), d4 = ac.dot(bp), d5 = ab.dot(cp), d6 = ac.dot(cp);
   if (d1 <= S(0) && d2 <= S(0)) return a;
   if (d3 >= S(0) && d4 <= d3) return b;
@@ -70,20 +70,20 @@ template <Scalar S>
 /// c − q otherwise; a center on an edge or corner pushes along the face
 /// normal.
 template <Scalar S>
-void collideSphereTriangle(const SphereT<S>& sphere, const Vec3<S>& c_W, const Triangle<S>& t_W,
+void collideSphereTriangle(const SphereT<S>& sphere, const Vec3T<S>& c_W, const Triangle<S>& t_W,
                            ContactSinkT<S>& sink) {
   bool onFace = false;
-  const Vec3<S> q = closestOnTriangle<S>(t_W, c_W, onFace);
-  const Vec3<S> toCenter = c_W - q;
+  const Vec3T<S> q = closestOnTriangle<S>(t_W, c_W, onFace);
+  const Vec3T<S> toCenter = c_W - q;
   const S distance = toCenter.norm();
   const S r = sphere.getRadius();
   if (distance > r) return;
-  const Vec3<S> faceNormal = t_W.normal();
-  Vec3<S> n;
+  const Vec3T<S> faceNormal = t_W.normal();
+  Vec3T<S> n;
   if (onFace)
-    n = toCenter.dot(faceNormal) >= S(0) ? Vec3<S>(-faceNormal) : faceNormal;
+    n = toCenter.dot(faceNormal) >= S(0) ? Vec3T<S>(-faceNormal) : faceNormal;
   else
-    n = distance > ScalarTraits<S>::epsilon() * r ? Vec3<S>(-toCenter / distance) : Vec3<S>(-faceNormal);
+    n = distance > ScalarTraits<S>::epsilon() * r ? Vec3T<S>(-toCenter / distance) : Vec3T<S>(-faceNormal);
   const S depth = r - distance;
   sink.add(q + n * (depth * S(0.5)), n, depth);  // midway: q and c + n r bound the overlap
 }
@@ -97,12 +97,12 @@ inline constexpr bool kIsPolytope =
 /// separating axes with a clipped manifold (polytope_sat.hpp), spheres in
 /// closed form, capsules and cylinders through libccd.
 template <Scalar S, class A, class Soup>
-void collideWithTriangles(const A& a, const Transform<S>& X_WA, const Soup& soup, const Transform<S>& X_WM,
+void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
                           ContactSinkT<S>& sink) {
   const BoundingBoxT<S> box_M = transformBox<S>(a.getBoundingBox(), X_WM.inverse() * X_WA);
   thread_local Polytope shape, triangle;
   if constexpr (kIsPolytope<A>) makePolytope(a, X_WA, shape);
-  soup.forEachTriangle(box_M, [&](std::size_t i, const Vec3<S>& p0, const Vec3<S>& p1, const Vec3<S>& p2) {
+  soup.forEachTriangle(box_M, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
     sink.setFaceIndices(0, i);
     if constexpr (A::kType == ShapeType::SPHERE) {
       const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
@@ -120,14 +120,14 @@ void collideWithTriangles(const A& a, const Transform<S>& X_WA, const Soup& soup
 
 /// Triangle pairs of two soups whose boxes overlap, each collided by libccd.
 template <Scalar S, class SoupA, class SoupB>
-void collideSoups(const SoupA& a, const Transform<S>& X_WA, const SoupB& b, const Transform<S>& X_WB,
+void collideSoups(const SoupA& a, const TransformT<S>& X_WA, const SoupB& b, const TransformT<S>& X_WB,
                   ContactSinkT<S>& sink) {
-  const Transform<S> X_BA = X_WB.inverse() * X_WA;
+  const TransformT<S> X_BA = X_WB.inverse() * X_WA;
   const BoundingBoxT<S> a_B = transformBox<S>(a.getBoundingBox(), X_BA);
-  b.forEachTriangle(a_B, [&](std::size_t j, const Vec3<S>& q0, const Vec3<S>& q1, const Vec3<S>& q2) {
+  b.forEachTriangle(a_B, [&](std::size_t j, const Vec3T<S>& q0, const Vec3T<S>& q1, const Vec3T<S>& q2) {
     const Triangle<S> t_B{{q0, q1, q2}};
     const BoundingBoxT<S> t_A = transformBox<S>(t_B.getBoundingBox(), X_BA.inverse());
-    a.forEachTriangle(t_A, [&](std::size_t i, const Vec3<S>& p0, const Vec3<S>& p1, const Vec3<S>& p2) {
+    a.forEachTriangle(t_A, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
       const Triangle<S> t_A2{{p0, p1, p2}};
       sink.setFaceIndices(i, j);
       collideByCcd<S>(t_A2, X_WA, t_B, X_WB, sink);
@@ -139,16 +139,16 @@ void collideSoups(const SoupA& a, const Transform<S>& X_WA, const SoupB& b, cons
 /// Every vertex of `points` (frame A) at or below the plane is a contact,
 /// with the normal from the points' shape into the plane (−n).
 template <Scalar S, class Points>
-void collideVerticesWithPlane(const Points& vertices, const Transform<S>& X_WA, const PlaneT<S>& plane,
-                              const Transform<S>& X_WP, ContactSinkT<S>& sink, bool planeFirst) {
-  const Vec3<S> n = X_WP.linear() * plane.getNormal();
-  const Vec3<S> o = X_WP * plane.getPoint();
+void collideVerticesWithPlane(const Points& vertices, const TransformT<S>& X_WA, const PlaneT<S>& plane,
+                              const TransformT<S>& X_WP, ContactSinkT<S>& sink, bool planeFirst) {
+  const Vec3T<S> n = X_WP.linear() * plane.getNormal();
+  const Vec3T<S> o = X_WP * plane.getPoint();
   for (const auto& v : vertices) {
-    const Vec3<S> p = X_WA * v;
+    const Vec3T<S> p = X_WA * v;
     const S height = n.dot(p - o);
     if (height > S(0)) continue;
-    const Vec3<S> mid = p - n * (height * S(0.5));
-    sink.add(mid, planeFirst ? n : Vec3<S>(-n), -height);
+    const Vec3T<S> mid = p - n * (height * S(0.5));
+    sink.add(mid, planeFirst ? n : Vec3T<S>(-n), -height);
   }
 }
 
@@ -159,7 +159,7 @@ void collideVerticesWithPlane(const Points& vertices, const Transform<S>& X_WA, 
 template <ConvexShape A, detail::TriangleSoup B>
 requires(A::kType < B::kType) struct Collider<A, B> {
   using S = typename A::Vec3::Scalar;
-  static void collide(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB,
+  static void collide(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     detail::collideWithTriangles<S>(a, X_WA, b, X_WB, sink);
   }
@@ -168,7 +168,7 @@ requires(A::kType < B::kType) struct Collider<A, B> {
 /// Plane–trimesh: the mesh vertices at or below the plane.
 template <Scalar S>
 struct Collider<PlaneT<S>, TrimeshT<S>> {
-  static void collide(const PlaneT<S>& a, const Transform<S>& X_WA, const TrimeshT<S>& b, const Transform<S>& X_WB,
+  static void collide(const PlaneT<S>& a, const TransformT<S>& X_WA, const TrimeshT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     detail::collideVerticesWithPlane<S>(b.getVertices(), X_WB, a, X_WA, sink, true);
   }
@@ -177,7 +177,7 @@ struct Collider<PlaneT<S>, TrimeshT<S>> {
 /// Convex–plane: the hull vertices at or below the plane.
 template <Scalar S>
 struct Collider<ConvexT<S>, PlaneT<S>> {
-  static void collide(const ConvexT<S>& a, const Transform<S>& X_WA, const PlaneT<S>& b, const Transform<S>& X_WB,
+  static void collide(const ConvexT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     detail::collideVerticesWithPlane<S>(a.getVertices(), X_WA, b, X_WB, sink, false);
   }
@@ -186,15 +186,15 @@ struct Collider<ConvexT<S>, PlaneT<S>> {
 /// Trimesh–trimesh and trimesh–height field: triangle pairs.
 template <Scalar S>
 struct Collider<TrimeshT<S>, TrimeshT<S>> {
-  static void collide(const TrimeshT<S>& a, const Transform<S>& X_WA, const TrimeshT<S>& b, const Transform<S>& X_WB,
+  static void collide(const TrimeshT<S>& a, const TransformT<S>& X_WA, const TrimeshT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     detail::collideSoups<S>(a, X_WA, b, X_WB, sink);
   }
 };
 template <Scalar S>
 struct Collider<TrimeshT<S>, HeightFieldT<S>> {
-  static void collide(const TrimeshT<S>& a, const Transform<S>& X_WA, const HeightFieldT<S>& b,
-                      const Transform<S>& X_WB, ContactSinkT<S>& sink) {
+  static void collide(const TrimeshT<S>& a, const TransformT<S>& X_WA, const HeightFieldT<S>& b,
+                      const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
     detail::collideSoups<S>(a, X_WA, b, X_WB, sink);
   }
 };

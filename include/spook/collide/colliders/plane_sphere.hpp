@@ -11,10 +11,10 @@ namespace spook {
 /// r − s (also when c is below the plane), along the plane normal.
 template <Scalar S>
 struct Collider<PlaneT<S>, SphereT<S>> {
-  static void collide(const PlaneT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+  static void collide(const PlaneT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> n = X_WA.linear() * a.getNormal();
-    const Vec3<S> c = X_WB.translation();
+    const Vec3T<S> n = X_WA.linear() * a.getNormal();
+    const Vec3T<S> c = X_WB.translation();
     const S height = n.dot(c - X_WA * a.getPoint());
     const S r = b.getRadius();
     const S depth = r - height;

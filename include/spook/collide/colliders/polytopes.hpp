@@ -17,7 +17,7 @@ namespace detail {
 template <class A, class B>
 struct PolytopeCollider {
   using S = typename A::Vec3::Scalar;
-  static void collide(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB,
+  static void collide(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
     thread_local Polytope pa, pb;
     makePolytope(a, X_WA, pa);

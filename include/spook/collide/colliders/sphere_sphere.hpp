@@ -10,15 +10,15 @@ namespace spook {
 /// the radii) have no line of centers; they push along world +z.
 template <Scalar S>
 struct Collider<SphereT<S>, SphereT<S>> {
-  static void collide(const SphereT<S>& a, const Transform<S>& X_WA, const SphereT<S>& b, const Transform<S>& X_WB,
+  static void collide(const SphereT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    const Vec3<S> cA = X_WA.translation(), cB = X_WB.translation();
+    const Vec3T<S> cA = X_WA.translation(), cB = X_WB.translation();
     const S rA = a.getRadius(), rB = b.getRadius();
-    const Vec3<S> d = cB - cA;
+    const Vec3T<S> d = cB - cA;
     const S distance = d.norm();
     const S depth = rA + rB - distance;
     if (!(depth >= S(0))) return;
-    const Vec3<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB) ? Vec3<S>(d / distance) : Vec3<S>::UnitZ();
+    const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB) ? Vec3T<S>(d / distance) : Vec3T<S>::UnitZ();
     // Midway between a's deepest point cA + rA n and b's, cB − rB n.
     sink.add(S(0.5) * (cA + cB + (rA - rB) * n), n, depth);
   }

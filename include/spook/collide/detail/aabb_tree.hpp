@@ -23,9 +23,9 @@ template <Scalar S>
 /// The axis-aligned box, in the target frame, around `box` moved by the
 /// rigid transform X (source → target): center X c, half extents |R| h.
 template <Scalar S>
-[[nodiscard]] BoundingBoxT<S> transformBox(const BoundingBoxT<S>& box, const Transform<S>& X) {
-  const Vec3<S> center = X.linear() * box.center() + X.translation();
-  const Vec3<S> reach = X.linear().cwiseAbs() * box.halfExtents();
+[[nodiscard]] BoundingBoxT<S> transformBox(const BoundingBoxT<S>& box, const TransformT<S>& X) {
+  const Vec3T<S> center = X.linear() * box.center() + X.translation();
+  const Vec3T<S> reach = X.linear().cwiseAbs() * box.halfExtents();
   return {center - reach, center + reach};
 }
 
@@ -39,7 +39,7 @@ template <Scalar S>
 class AabbTree {
  public:
   using Box = BoundingBoxT<S>;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   static constexpr std::size_t kMaxLeafSize = 4;
 
   /// An empty tree; every query visits nothing.
@@ -86,10 +86,10 @@ class AabbTree {
   /// by X_thisOther (other → this). Primitive j is tested with
   /// transformBox(its box, X_thisOther).
   template <class F>
-  void queryPairs(const AabbTree& other, const Transform<S>& X_thisOther, F&& visit) const {
+  void queryPairs(const AabbTree& other, const TransformT<S>& X_thisOther, F&& visit) const {
     if (nodes_.empty() || other.nodes_.empty()) return;
-    const Mat3<S> R = X_thisOther.linear();
-    const Mat3<S> absR = R.cwiseAbs();
+    const Mat3T<S> R = X_thisOther.linear();
+    const Mat3T<S> absR = R.cwiseAbs();
     const Vec3 t = X_thisOther.translation();
     // Node boxes of `other` grow by a few ulps of their coordinates, so that
     // round-off in the transform never culls a pair its leaves would report.

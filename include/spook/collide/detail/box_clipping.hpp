@@ -14,10 +14,10 @@ namespace spook::detail {
 template <Scalar S>
 struct ClipPolygon {
   static constexpr std::size_t kCapacity = 8;
-  std::array<Vec3<S>, kCapacity> points;
+  std::array<Vec3T<S>, kCapacity> points;
   std::size_t count = 0;
 
-  void push(const Vec3<S>& p) {
+  void push(const Vec3T<S>& p) {
     if (count < kCapacity) points[count++] = p;
   }
 };
@@ -26,14 +26,14 @@ struct ClipPolygon {
 /// normal·x <= offset. A corner on the plane is kept (once); an edge that
 /// strictly crosses the plane gains its crossing point.
 template <Scalar S>
-[[nodiscard]] ClipPolygon<S> clipPolygon(const ClipPolygon<S>& polygon, const Vec3<S>& normal, S offset) {
+[[nodiscard]] ClipPolygon<S> clipPolygon(const ClipPolygon<S>& polygon, const Vec3T<S>& normal, S offset) {
   ClipPolygon<S> out;
   for (std::size_t i = 0; i < polygon.count; ++i) {
-    const Vec3<S>& p = polygon.points[i];
-    const Vec3<S>& q = polygon.points[(i + 1) % polygon.count];
+    const Vec3T<S>& p = polygon.points[i];
+    const Vec3T<S>& q = polygon.points[(i + 1) % polygon.count];
     const S dp = normal.dot(p) - offset, dq = normal.dot(q) - offset;
     if (dp <= S(0)) out.push(p);
-    if ((dp < S(0) && dq > S(0)) || (dp > S(0) && dq < S(0))) out.push(Vec3<S>(p + (q - p) * (dp / (dp - dq))));
+    if ((dp < S(0) && dq > S(0)) || (dp > S(0) && dq < S(0))) out.push(Vec3T<S>(p + (q - p) * (dp / (dp - dq))));
   }
   return out;
 }
@@ -43,9 +43,9 @@ template <Scalar S>
 /// capsule axis of the box colliders): the closest points of the two lines,
 /// then each parameter clamped with the other one re-projected onto it.
 template <Scalar S>
-void clampedLineClosest(const Vec3<S>& p, const Vec3<S>& u, S sMax, const Vec3<S>& q, const Vec3<S>& v, S tMax, S& s,
+void clampedLineClosest(const Vec3T<S>& p, const Vec3T<S>& u, S sMax, const Vec3T<S>& q, const Vec3T<S>& v, S tMax, S& s,
                         S& t) {
-  const Vec3<S> w = q - p;
+  const Vec3T<S> w = q - p;
   const S b = u.dot(v), d = u.dot(w), e = v.dot(w);
   const S denominator = S(1) - b * b;  // |u × v|²
   s = denominator > S(0) ? (d - b * e) / denominator : S(0);

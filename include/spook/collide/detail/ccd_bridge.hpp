@@ -22,11 +22,11 @@ template <class Shape>
 struct CcdObject {
   using S = typename Shape::Vec3::Scalar;
   const Shape* shape;
-  Mat3<double> R;     // shape → world rotation
-  Vec3<double> p;     // shape origin in world (m)
-  Vec3<double> center;  // a point inside the shape, world (m)
+  Mat3T<double> R;     // shape → world rotation
+  Vec3T<double> p;     // shape origin in world (m)
+  Vec3T<double> center;  // a point inside the shape, world (m)
 
-  CcdObject(const Shape& s, const Transform<S>& X_W)
+  CcdObject(const Shape& s, const TransformT<S>& X_W)
       : shape(&s),
         R(X_W.linear().template cast<double>()),
         p(X_W.translation().template cast<double>()),
@@ -34,9 +34,9 @@ struct CcdObject {
 
   static void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
     const auto& o = *static_cast<const CcdObject*>(object);
-    const Vec3<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
-    const Vec3<S> d_local = (o.R.transpose() * d_W).template cast<S>();
-    const Vec3<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
+    const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
+    const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
+    const Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
     for (int i = 0; i < 3; ++i) out->v[i] = s_W[i];
   }
   static void centerOf(const void* object, ccd_vec3_t* out) {
@@ -66,12 +66,12 @@ struct ProjectionOverlap {
   const CcdObject<A>& a;
   const CcdObject<B>& b;
 
-  [[nodiscard]] Vec3<double> supportOf(const auto& object, const Vec3<double>& n_W) const {
+  [[nodiscard]] Vec3T<double> supportOf(const auto& object, const Vec3T<double>& n_W) const {
     using S = typename std::remove_cvref_t<decltype(object)>::S;
-    const Vec3<S> d = (object.R.transpose() * n_W).template cast<S>();
+    const Vec3T<S> d = (object.R.transpose() * n_W).template cast<S>();
     return object.R * object.shape->support(d).template cast<double>() + object.p;
   }
-  [[nodiscard]] Vec3<double> gradient(const Vec3<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
+  [[nodiscard]] Vec3T<double> gradient(const Vec3T<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
 };
 
 /// Where f has a kink (an edge or a corner of a box-like shape is involved)
@@ -80,13 +80,13 @@ struct ProjectionOverlap {
 /// over the tangent plane of n (Nelder & Mead 1965) stretches along the
 /// crease and walks down it, to 1e-10 rad.
 template <class A, class B>
-double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3<double>& n, double f, double size,
+double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double size,
                              double turn) {
-  const Vec3<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
-  const Vec3<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
-  const auto direction = [&](const Eigen::Vector2d& x) { return Vec3<double>((n0 + x[0] * t1 + x[1] * t2).normalized()); };
+  const Vec3T<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
+  const Vec3T<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
+  const auto direction = [&](const Eigen::Vector2d& x) { return Vec3T<double>((n0 + x[0] * t1 + x[1] * t2).normalized()); };
   const auto value = [&](const Eigen::Vector2d& x) {
-    const Vec3<double> d = direction(x);
+    const Vec3T<double> d = direction(x);
     return d.dot(overlap.gradient(d));
   };
   std::array<Eigen::Vector2d, 3> x = {Eigen::Vector2d(0, 0), Eigen::Vector2d(size, 0), Eigen::Vector2d(0, size)};
@@ -145,21 +145,21 @@ double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3<double
 /// the descent ended where the gradient vanishes (a smooth minimum, done)
 /// rather than on a kink of f, where the simplex search must take over.
 template <class A, class B>
-double descend(const ProjectionOverlap<A, B>& overlap, Vec3<double>& n, double scale, bool& smooth) {
-  Vec3<double> w = overlap.gradient(n);
+double descend(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double scale, bool& smooth) {
+  Vec3T<double> w = overlap.gradient(n);
   double f = n.dot(w);
-  Vec3<double> g = w - n.dot(w) * n;
+  Vec3T<double> g = w - n.dot(w) * n;
   double step = 1.0 / scale;
   for (int iteration = 0; iteration < 64 && g.norm() > 1e-13 * scale && step > 1e-12 / scale; ++iteration) {
-    const Vec3<double> trial = (n - step * g).normalized();
-    const Vec3<double> wTrial = overlap.gradient(trial);
+    const Vec3T<double> trial = (n - step * g).normalized();
+    const Vec3T<double> wTrial = overlap.gradient(trial);
     const double fTrial = trial.dot(wTrial);
     if (!(fTrial < f)) {
       step *= 0.5;
       continue;
     }
-    const Vec3<double> gTrial = wTrial - trial.dot(wTrial) * trial;
-    const Vec3<double> sStep = trial - n, yStep = gTrial - g;
+    const Vec3T<double> gTrial = wTrial - trial.dot(wTrial) * trial;
+    const Vec3T<double> sStep = trial - n, yStep = gTrial - g;
     const double curvature = sStep.dot(yStep);
     step = curvature > 0.0 ? sStep.squaredNorm() / curvature : 2.0 * step;
     n = trial;
@@ -174,7 +174,7 @@ double descend(const ProjectionOverlap<A, B>& overlap, Vec3<double>& n, double s
 /// Restarts of the simplex search with fresh, turned simplices: the usual
 /// cure for one that collapsed across a crease.
 template <class A, class B>
-double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3<double>& n, double f, double scale) {
+double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double scale) {
   for (int restart = 0; restart < 6; ++restart) {
     const double before = f;
     f = polishBySimplexSearch(overlap, n, f, restart % 2 ? 0.1 : 0.02, 0.5 * restart);
@@ -191,15 +191,15 @@ double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3<double>& n, do
 /// near one of these axes (face normals and edge–edge directions, as in the
 /// separating axis theorem).
 template <class A, class B>
-std::vector<Vec3<double>> startingDirections(const CcdObject<A>& a, const CcdObject<B>& b,
-                                             const Vec3<double>& fromCcd, std::size_t count) {
+std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdObject<B>& b,
+                                             const Vec3T<double>& fromCcd, std::size_t count) {
   const ProjectionOverlap<A, B> overlap{a, b};
-  std::vector<std::pair<double, Vec3<double>>> candidates;
-  const auto consider = [&](const Vec3<double>& direction) {
+  std::vector<std::pair<double, Vec3T<double>>> candidates;
+  const auto consider = [&](const Vec3T<double>& direction) {
     const double length = direction.norm();
     if (!(length > 1e-9)) return;
     for (const double sign : {1.0, -1.0}) {
-      const Vec3<double> d = direction * (sign / length);
+      const Vec3T<double> d = direction * (sign / length);
       candidates.emplace_back(d.dot(overlap.gradient(d)), d);
     }
   };
@@ -215,13 +215,13 @@ std::vector<Vec3<double>> startingDirections(const CcdObject<A>& a, const CcdObj
   const double golden = 3.141592653589793 * (3.0 - std::sqrt(5.0));
   for (int i = 0; i < kLattice; ++i) {
     const double z = 1.0 - (i + 0.5) / kLattice, rho = std::sqrt(1.0 - z * z), phi = golden * i;
-    consider(Vec3<double>(rho * std::cos(phi), rho * std::sin(phi), z));
+    consider(Vec3T<double>(rho * std::cos(phi), rho * std::sin(phi), z));
   }
   std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<Vec3<double>> starts{fromCcd};
+  std::vector<Vec3T<double>> starts{fromCcd};
   for (const auto& [f, d] : candidates) {
     if (starts.size() > count) break;
-    if (std::none_of(starts.begin(), starts.end(), [&](const Vec3<double>& s) { return s.dot(d) > 0.999; }))
+    if (std::none_of(starts.begin(), starts.end(), [&](const Vec3T<double>& s) { return s.dot(d) > 0.999; }))
       starts.push_back(d);
   }
   return starts;
@@ -231,7 +231,7 @@ std::vector<Vec3<double>> startingDirections(const CcdObject<A>& a, const CcdObj
 /// above: one contact at libccd's point, with the direction that separates
 /// b from a.
 template <Scalar S, class A, class B>
-void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transform<S>& X_WB, ContactSinkT<S>& sink) {
+void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
   const CcdObject<A> objectA(a, X_WA);
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;
@@ -245,7 +245,7 @@ void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transf
   ccd_real_t depth = 0;
   ccd_vec3_t direction, position;
   if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) return;
-  Vec3<double> n(direction.v[0], direction.v[1], direction.v[2]);
+  Vec3T<double> n(direction.v[0], direction.v[1], direction.v[2]);
   const double length = n.norm();
   if (!(length > 0.0)) return;  // touching at a single point: no direction to push along
   n /= length;
@@ -255,7 +255,7 @@ void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transf
   // search the kinks where a descent stalled.
   const ProjectionOverlap<A, B> overlap{objectA, objectB};
   double refined = std::numeric_limits<double>::infinity();
-  for (Vec3<double> start : startingDirections(objectA, objectB, n, kStarts)) {
+  for (Vec3T<double> start : startingDirections(objectA, objectB, n, kStarts)) {
     bool smooth = false;
     double f = descend(overlap, start, scale, smooth);
     if (!smooth) f = polishOnKinks(overlap, start, f, scale);
@@ -265,7 +265,7 @@ void collideByCcd(const A& a, const Transform<S>& X_WA, const B& b, const Transf
     }
   }
   if (!(refined >= 0.0)) return;  // the polished direction separates them
-  const Vec3<double> point(position.v[0], position.v[1], position.v[2]);
+  const Vec3T<double> point(position.v[0], position.v[1], position.v[2]);
   sink.add(point.cast<S>(), n.cast<S>(), S(refined));
 }
 

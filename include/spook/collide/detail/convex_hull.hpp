@@ -21,14 +21,14 @@ namespace spook::detail {
 template <Scalar S>
 struct ConvexFace {
   std::vector<int> vertices;         ///< corner indices, counter-clockwise seen from outside
-  Vec3<S> normal = Vec3<S>::Zero();  ///< unit outward normal (shape frame)
+  Vec3T<S> normal = Vec3T<S>::Zero();  ///< unit outward normal (shape frame)
   S offset = S(0);                   ///< largest normal·x of its corners and merged points (m)
 };
 
 /// A convex hull: its corners, its outward triangles and its polygon faces.
 template <Scalar S>
 struct ConvexHull {
-  std::vector<Vec3<S>> vertices;              ///< the hull's corners, in input order (m)
+  std::vector<Vec3T<S>> vertices;              ///< the hull's corners, in input order (m)
   std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
   std::vector<ConvexFace<S>> faces;           ///< coplanar triangles merged into polygons
   S tolerance = S(0);                         ///< distance below which points counted as on a face (m)
@@ -44,7 +44,7 @@ struct ConvexHull {
 /// true points.
 class QuickHull {
  public:
-  using V = Vec3<double>;
+  using V = Vec3T<double>;
 
   /// A polygon of the hull: its loop of point indices (counter-clockwise seen
   /// from outside), every point its triangles used, and its unit normal.
@@ -421,8 +421,8 @@ inline constexpr double kHullRelativeTolerance = std::is_same_v<S, float> ? 16 *
 /// Convex hull of `points` (finite, in any frame), or nothing when they are
 /// (within the tolerance) coplanar, collinear, coincident or fewer than 4.
 template <Scalar S>
-[[nodiscard]] std::optional<ConvexHull<S>> convexHull(const std::vector<Vec3<S>>& points) {
-  using V = Vec3<double>;
+[[nodiscard]] std::optional<ConvexHull<S>> convexHull(const std::vector<Vec3T<S>>& points) {
+  using V = Vec3T<double>;
   if (points.size() < 4) return std::nullopt;
   V lo = points.front().template cast<double>(), hi = lo;
   for (const auto& p : points) {

@@ -13,8 +13,8 @@ namespace spook::detail {
 template <Scalar S>
 struct PolyhedronMass {
   S volume = S(0);               ///< m³
-  Vec3<S> center = Vec3<S>::Zero();  ///< center of volume, mesh frame (m)
-  Mat3<S> inertia = Mat3<S>::Zero();  ///< unit-density inertia about `center`, mesh frame (m⁵)
+  Vec3T<S> center = Vec3T<S>::Zero();  ///< center of volume, mesh frame (m)
+  Mat3T<S> inertia = Mat3T<S>::Zero();  ///< unit-density inertia about `center`, mesh frame (m⁵)
 };
 
 /// Exact integrals over the polyhedron by the divergence theorem, one
@@ -22,9 +22,9 @@ struct PolyhedronMass {
 /// Properties (Revisited)", 2002; after Mirtich 1996). The vertices are first
 /// shifted to their mean so that far-from-origin meshes keep their digits.
 template <Scalar S>
-[[nodiscard]] PolyhedronMass<S> polyhedronMass(const std::vector<Vec3<S>>& vertices,
+[[nodiscard]] PolyhedronMass<S> polyhedronMass(const std::vector<Vec3T<S>>& vertices,
                                                const std::vector<std::array<int, 3>>& triangles) {
-  Vec3<S> reference = Vec3<S>::Zero();
+  Vec3T<S> reference = Vec3T<S>::Zero();
   for (const auto& v : vertices) reference += v;
   if (!vertices.empty()) reference /= S(vertices.size());
 
@@ -40,10 +40,10 @@ template <Scalar S>
     g2 = f2 + w2 * (f1 + w2);
   };
   for (const auto& t : triangles) {
-    const Vec3<S> p0 = vertices[static_cast<std::size_t>(t[0])] - reference;
-    const Vec3<S> p1 = vertices[static_cast<std::size_t>(t[1])] - reference;
-    const Vec3<S> p2 = vertices[static_cast<std::size_t>(t[2])] - reference;
-    const Vec3<S> d = (p1 - p0).cross(p2 - p0);
+    const Vec3T<S> p0 = vertices[static_cast<std::size_t>(t[0])] - reference;
+    const Vec3T<S> p1 = vertices[static_cast<std::size_t>(t[1])] - reference;
+    const Vec3T<S> p2 = vertices[static_cast<std::size_t>(t[2])] - reference;
+    const Vec3T<S> d = (p1 - p0).cross(p2 - p0);
     S f1x, f2x, f3x, g0x, g1x, g2x, f1y, f2y, f3y, g0y, g1y, g2y, f1z, f2z, f3z, g0z, g1z, g2z;
     subexpressions(p0.x(), p1.x(), p2.x(), f1x, f2x, f3x, g0x, g1x, g2x);
     subexpressions(p0.y(), p1.y(), p2.y(), f1y, f2y, f3y, g0y, g1y, g2y);
@@ -66,17 +66,17 @@ template <Scalar S>
   PolyhedronMass<S> mass;
   mass.volume = integral[0];
   if (!(mass.volume > S(0))) return mass;
-  const Vec3<S> c(integral[1] / mass.volume, integral[2] / mass.volume, integral[3] / mass.volume);
+  const Vec3T<S> c(integral[1] / mass.volume, integral[2] / mass.volume, integral[3] / mass.volume);
   // Second moments about the reference point, then moved to the center
   // (parallel-axis theorem with the unit-density mass V).
-  Mat3<S> I;
+  Mat3T<S> I;
   I(0, 0) = integral[5] + integral[6];
   I(1, 1) = integral[4] + integral[6];
   I(2, 2) = integral[4] + integral[5];
   I(0, 1) = I(1, 0) = -integral[7];
   I(1, 2) = I(2, 1) = -integral[8];
   I(0, 2) = I(2, 0) = -integral[9];
-  mass.inertia = I - mass.volume * (c.squaredNorm() * Mat3<S>::Identity() - c * c.transpose());
+  mass.inertia = I - mass.volume * (c.squaredNorm() * Mat3T<S>::Identity() - c * c.transpose());
   mass.center = c + reference;
   return mass;
 }

@@ -23,7 +23,7 @@ namespace spook::detail {
 struct Polytope {
   using S = double;
   struct Face {
-    Vec3<S> normal;         // unit, outward (world)
+    Vec3T<S> normal;         // unit, outward (world)
     std::vector<int> loop;  // corners, counter-clockwise about the normal
   };
   /// An edge and the two faces that meet there; a triangle's or segment's
@@ -33,23 +33,23 @@ struct Polytope {
     int left = -1, right = -1;
   };
 
-  std::vector<Vec3<S>> vertices;  // world (m)
+  std::vector<Vec3T<S>> vertices;  // world (m)
   std::vector<Face> faces;
   std::vector<Edge> edges;
   bool twoSided = false;
 
   /// The largest n·x over the corners (m) and the corner that reaches it.
-  [[nodiscard]] std::pair<S, int> support(const Vec3<S>& n) const {
+  [[nodiscard]] std::pair<S, int> support(const Vec3T<S>& n) const {
     int best = 0;
     S height = n.dot(vertices[0]);
     for (std::size_t i = 1; i < vertices.size(); ++i)
       if (const S h = n.dot(vertices[i]); h > height) height = h, best = static_cast<int>(i);
     return {height, best};
   }
-  [[nodiscard]] Vec3<S> edgeVector(const Edge& e) const {
+  [[nodiscard]] Vec3T<S> edgeVector(const Edge& e) const {
     return vertices[static_cast<std::size_t>(e.to)] - vertices[static_cast<std::size_t>(e.from)];
   }
-  [[nodiscard]] const Vec3<S>& vertex(int i) const { return vertices[static_cast<std::size_t>(i)]; }
+  [[nodiscard]] const Vec3T<S>& vertex(int i) const { return vertices[static_cast<std::size_t>(i)]; }
 };
 
 /// Edges from the face loops: each undirected loop edge once, with the two
@@ -71,14 +71,14 @@ inline void linkEdges(Polytope& polytope) {
 }
 
 template <Scalar T>
-void makeBoxPolytope(const BoxT<T>& box, const Transform<T>& X_WT, Polytope& out) {
+void makeBoxPolytope(const BoxT<T>& box, const TransformT<T>& X_WT, Polytope& out) {
   using S = double;
-  const Vec3<S> h = box.getHalfExtents().template cast<S>();
-  const Transform<S> X_W = X_WT.template cast<S>();
+  const Vec3T<S> h = box.getHalfExtents().template cast<S>();
+  const TransformT<S> X_W = X_WT.template cast<S>();
   out.vertices.resize(8);
   for (int c = 0; c < 8; ++c)
     out.vertices[std::size_t(c)] =
-        X_W * Vec3<S>((c & 1) ? h.x() : -h.x(), (c & 2) ? h.y() : -h.y(), (c & 4) ? h.z() : -h.z());
+        X_W * Vec3T<S>((c & 1) ? h.x() : -h.x(), (c & 2) ? h.y() : -h.y(), (c & 4) ? h.z() : -h.z());
   // Corner c has bit i set where its coordinate i is +h_i; each loop runs
   // counter-clockwise seen from outside.
   static constexpr std::array<std::array<int, 4>, 6> kLoops = {{{0, 4, 6, 2},    // −x
@@ -89,8 +89,8 @@ void makeBoxPolytope(const BoxT<T>& box, const Transform<T>& X_WT, Polytope& out
                                                                {4, 5, 7, 6}}};  // +z
   out.faces.resize(6);
   for (int f = 0; f < 6; ++f) {
-    const Vec3<S> axis = X_W.linear().col(f / 2);
-    out.faces[std::size_t(f)].normal = (f % 2) ? axis : Vec3<S>(-axis);
+    const Vec3T<S> axis = X_W.linear().col(f / 2);
+    out.faces[std::size_t(f)].normal = (f % 2) ? axis : Vec3T<S>(-axis);
     out.faces[std::size_t(f)].loop.assign(kLoops[std::size_t(f)].begin(), kLoops[std::size_t(f)].end());
   }
   out.twoSided = false;
@@ -98,8 +98,8 @@ void makeBoxPolytope(const BoxT<T>& box, const Transform<T>& X_WT, Polytope& out
 }
 
 template <Scalar T>
-void makeConvexPolytope(const ConvexT<T>& convex, const Transform<T>& X_WT, Polytope& out) {
-  const Transform<double> X_W = X_WT.template cast<double>();
+void makeConvexPolytope(const ConvexT<T>& convex, const TransformT<T>& X_WT, Polytope& out) {
+  const TransformT<double> X_W = X_WT.template cast<double>();
   out.vertices.resize(convex.getVertices().size());
   for (std::size_t i = 0; i < out.vertices.size(); ++i)
     out.vertices[i] = X_W * convex.getVertices()[i].template cast<double>();
@@ -128,7 +128,7 @@ void makeTrianglePolytope(const Triangle<T>& t_WT, Polytope& out) {
 }
 
 template <Scalar T>
-void makeSegmentPolytope(const Vec3<T>& p_W, const Vec3<T>& q_W, Polytope& out) {
+void makeSegmentPolytope(const Vec3T<T>& p_W, const Vec3T<T>& q_W, Polytope& out) {
   out.vertices = {p_W.template cast<double>(), q_W.template cast<double>()};
   out.faces.clear();
   out.edges = {{0, 1}};
@@ -137,15 +137,15 @@ void makeSegmentPolytope(const Vec3<T>& p_W, const Vec3<T>& q_W, Polytope& out) 
 
 /// The polytope of a box, a hull or a segment placed at X_W.
 template <Scalar T>
-void makePolytope(const BoxT<T>& box, const Transform<T>& X_W, Polytope& out) {
+void makePolytope(const BoxT<T>& box, const TransformT<T>& X_W, Polytope& out) {
   makeBoxPolytope(box, X_W, out);
 }
 template <Scalar T>
-void makePolytope(const ConvexT<T>& convex, const Transform<T>& X_W, Polytope& out) {
+void makePolytope(const ConvexT<T>& convex, const TransformT<T>& X_W, Polytope& out) {
   makeConvexPolytope(convex, X_W, out);
 }
 template <Scalar T>
-void makePolytope(const LineT<T>& line, const Transform<T>& X_W, Polytope& out) {
+void makePolytope(const LineT<T>& line, const TransformT<T>& X_W, Polytope& out) {
   makeSegmentPolytope<T>(X_W * line.getFirstPoint(), X_W * line.getSecondPoint(), out);
 }
 

@@ -18,7 +18,7 @@ struct SeparatingAxis {
   using S = double;
   enum Kind { FACE_OF_A, FACE_OF_B, EDGES };
   S depth = std::numeric_limits<S>::infinity();  // overlap of the projections on n (m)
-  Vec3<S> n = Vec3<S>::UnitZ();
+  Vec3T<S> n = Vec3T<S>::UnitZ();
   Kind kind = FACE_OF_A;
   int first = -1, second = -1;  // the face, or the edge of a and the edge of b
 };
@@ -28,9 +28,9 @@ struct SeparatingAxis {
 /// −c–−d cross on the Gauss map (Gregorius, "The Separating Axis Test
 /// between Convex Polyhedra", GDC 2013). Only such edge pairs can give the
 /// least overlap, which prunes most of the E_a·E_b cross products.
-[[nodiscard]] inline bool arcsCross(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
-                                    const Vec3<double>& d) {
-  const Vec3<double> bxa = b.cross(a), dxc = d.cross(c);
+[[nodiscard]] inline bool arcsCross(const Vec3T<double>& a, const Vec3T<double>& b, const Vec3T<double>& c,
+                                    const Vec3T<double>& d) {
+  const Vec3T<double> bxa = b.cross(a), dxc = d.cross(c);
   const double cba = c.dot(bxa), dba = d.dot(bxa), adc = a.dot(dxc), bdc = b.dot(dxc);
   return cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0;
 }
@@ -42,19 +42,19 @@ struct SeparatingAxis {
 [[nodiscard]] inline bool leastOverlap(const Polytope& a, const Polytope& b, SeparatingAxis& best) {
   using S = double;
   using Kind = SeparatingAxis::Kind;
-  const auto overlap = [&](const Vec3<S>& n) { return a.support(n).first + b.support(-n).first; };
-  const auto consider = [&](const Vec3<S>& n, Kind kind, int first, int second) {
+  const auto overlap = [&](const Vec3T<S>& n) { return a.support(n).first + b.support(-n).first; };
+  const auto consider = [&](const Vec3T<S>& n, Kind kind, int first, int second) {
     const S f = overlap(n);
     if (f < best.depth) best = {f, n, kind, first, second};
     return f >= S(0);
   };
   for (std::size_t i = 0; i < a.faces.size(); ++i) {
-    const Vec3<S>& n = a.faces[i].normal;
+    const Vec3T<S>& n = a.faces[i].normal;
     if (!consider(n, Kind::FACE_OF_A, int(i), -1)) return false;
     if (a.twoSided && !consider(-n, Kind::FACE_OF_A, int(i), -1)) return false;
   }
   for (std::size_t j = 0; j < b.faces.size(); ++j) {
-    const Vec3<S>& m = b.faces[j].normal;
+    const Vec3T<S>& m = b.faces[j].normal;
     if (!consider(-m, Kind::FACE_OF_B, int(j), -1)) return false;
     if (b.twoSided && !consider(m, Kind::FACE_OF_B, int(j), -1)) return false;
   }
@@ -62,16 +62,16 @@ struct SeparatingAxis {
   const S parallel = S(1e3) * ScalarTraits<S>::epsilon();
   for (std::size_t i = 0; i < a.edges.size(); ++i) {
     const auto& ea = a.edges[i];
-    const Vec3<S> u = a.edgeVector(ea);
+    const Vec3T<S> u = a.edgeVector(ea);
     for (std::size_t j = 0; j < b.edges.size(); ++j) {
       const auto& eb = b.edges[j];
       if (ea.right >= 0 && eb.right >= 0 &&
           !arcsCross(a.faces[std::size_t(ea.left)].normal, a.faces[std::size_t(ea.right)].normal,
-                        Vec3<S>(-b.faces[std::size_t(eb.left)].normal),
-                        Vec3<S>(-b.faces[std::size_t(eb.right)].normal)))
+                        Vec3T<S>(-b.faces[std::size_t(eb.left)].normal),
+                        Vec3T<S>(-b.faces[std::size_t(eb.right)].normal)))
         continue;
-      const Vec3<S> v = b.edgeVector(eb);
-      Vec3<S> n = u.cross(v);
+      const Vec3T<S> v = b.edgeVector(eb);
+      Vec3T<S> n = u.cross(v);
       const S length = n.norm();
       if (!(length > parallel * u.norm() * v.norm())) continue;
       n /= length;
@@ -84,7 +84,7 @@ struct SeparatingAxis {
 /// The face of `p` whose outward normal points most against `r` (for a
 /// two-sided face, the side that does), as a corner loop; a segment gives
 /// its two ends.
-inline void incidentFeature(const Polytope& p, const Vec3<double>& r, std::vector<Vec3<double>>& corners) {
+inline void incidentFeature(const Polytope& p, const Vec3T<double>& r, std::vector<Vec3T<double>>& corners) {
   using S = double;
   corners.clear();
   if (p.faces.empty()) {
@@ -102,15 +102,15 @@ inline void incidentFeature(const Polytope& p, const Vec3<double>& r, std::vecto
 
 /// Clips a polygon (or a segment, two corners) to the half-space
 /// s·x <= offset, Sutherland–Hodgman.
-inline void clipToHalfSpace(std::vector<Vec3<double>>& corners, const Vec3<double>& s, double offset,
-                            std::vector<Vec3<double>>& scratch) {
+inline void clipToHalfSpace(std::vector<Vec3T<double>>& corners, const Vec3T<double>& s, double offset,
+                            std::vector<Vec3T<double>>& scratch) {
   using S = double;
   scratch.clear();
   const std::size_t count = corners.size();
   const std::size_t edges = count == 2 ? 1 : count;
   for (std::size_t i = 0; i < edges; ++i) {
-    const Vec3<S>& p = corners[i];
-    const Vec3<S>& q = corners[(i + 1) % count];
+    const Vec3T<S>& p = corners[i];
+    const Vec3T<S>& q = corners[(i + 1) % count];
     const S dp = s.dot(p) - offset, dq = s.dot(q) - offset;
     if (dp <= S(0)) scratch.push_back(p);
     if ((dp < S(0) && dq > S(0)) || (dp > S(0) && dq < S(0))) scratch.push_back(p + (q - p) * (dp / (dp - dq)));
@@ -134,10 +134,10 @@ inline void clipToHalfSpace(std::vector<Vec3<double>>& corners, const Vec3<doubl
 template <Scalar T>
 void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink) {
   using S = double;
-  const auto add = [&](const Vec3<S>& point, S depth) {
+  const auto add = [&](const Vec3T<S>& point, S depth) {
     sink.add(point.template cast<T>(), axis.n.template cast<T>(), T(depth));
   };
-  const Vec3<S>& n = axis.n;
+  const Vec3T<S>& n = axis.n;
   if (axis.kind == SeparatingAxis::EDGES) {
     const auto& ea = a.edges[std::size_t(axis.first)];
     const auto& eb = b.edges[std::size_t(axis.second)];
@@ -149,19 +149,19 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
   const bool onA = axis.kind == SeparatingAxis::FACE_OF_A;
   const Polytope& reference = onA ? a : b;
   const Polytope& incident = onA ? b : a;
-  const Vec3<S> r = onA ? n : Vec3<S>(-n);  // the reference face's outward normal, toward the incident polytope
+  const Vec3T<S> r = onA ? n : Vec3T<S>(-n);  // the reference face's outward normal, toward the incident polytope
   const auto& loop = reference.faces[std::size_t(axis.first)].loop;
   const S planeOffset = r.dot(reference.vertex(loop[0]));
 
-  thread_local std::vector<Vec3<S>> corners, scratch;
+  thread_local std::vector<Vec3T<S>> corners, scratch;
   incidentFeature(incident, r, corners);
-  Vec3<S> centroid = Vec3<S>::Zero();
+  Vec3T<S> centroid = Vec3T<S>::Zero();
   for (const int k : loop) centroid += reference.vertex(k);
   centroid /= S(loop.size());
   for (std::size_t k = 0; k < loop.size() && !corners.empty(); ++k) {
-    const Vec3<S>& p = reference.vertex(loop[k]);
-    const Vec3<S> edge = reference.vertex(loop[(k + 1) % loop.size()]) - p;
-    Vec3<S> side = edge.cross(r);
+    const Vec3T<S>& p = reference.vertex(loop[k]);
+    const Vec3T<S> edge = reference.vertex(loop[(k + 1) % loop.size()]) - p;
+    Vec3T<S> side = edge.cross(r);
     if (side.dot(centroid - p) > S(0)) side = -side;
     const S length = side.norm();
     if (!(length > S(0))) continue;  // a repeated corner of a degenerate face
@@ -170,14 +170,14 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
   }
   S deepest = -std::numeric_limits<S>::infinity();
   const S tolerance = S(64) * ScalarTraits<S>::epsilon() * (S(1) + std::abs(planeOffset));
-  for (const Vec3<S>& x : corners) {
+  for (const Vec3T<S>& x : corners) {
     const S depth = planeOffset - r.dot(x);
     if (depth < -tolerance) continue;
     add(x + r * (S(0.5) * depth), depth);
     deepest = std::max(deepest, depth);
   }
   if (deepest < axis.depth - tolerance * S(16)) {
-    const Vec3<S>& x = incident.vertex(incident.support(-r).second);
+    const Vec3T<S>& x = incident.vertex(incident.support(-r).second);
     add(x + r * (S(0.5) * axis.depth), axis.depth);
   }
 }

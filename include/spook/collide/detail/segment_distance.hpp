@@ -15,8 +15,8 @@ namespace spook::detail {
 /// Parameter t ∈ [0, 1] of the point of segment p + t (q − p) closest to x
 /// (0 for a degenerate segment).
 template <Scalar S>
-[[nodiscard]] S closestParameterOnSegment(const Vec3<S>& p, const Vec3<S>& q, const Vec3<S>& x) {
-  const Vec3<S> d = q - p;
+[[nodiscard]] S closestParameterOnSegment(const Vec3T<S>& p, const Vec3T<S>& q, const Vec3T<S>& x) {
+  const Vec3T<S> d = q - p;
   const S dd = d.squaredNorm();
   if (!(dd > S(0))) return S(0);
   return std::clamp(d.dot(x - p) / dd, S(0), S(1));
@@ -24,21 +24,21 @@ template <Scalar S>
 
 /// The point of segment [p, q] closest to x.
 template <Scalar S>
-[[nodiscard]] Vec3<S> closestPointOnSegment(const Vec3<S>& p, const Vec3<S>& q, const Vec3<S>& x) {
+[[nodiscard]] Vec3T<S> closestPointOnSegment(const Vec3T<S>& p, const Vec3T<S>& q, const Vec3T<S>& x) {
   return p + closestParameterOnSegment(p, q, x) * (q - p);
 }
 
 /// A unit vector perpendicular to d (any non-zero d), chosen deterministically:
 /// d crossed with the coordinate axis least aligned with it.
 template <Scalar S>
-[[nodiscard]] Vec3<S> unitPerpendicular(const Vec3<S>& d) {
+[[nodiscard]] Vec3T<S> unitPerpendicular(const Vec3T<S>& d) {
   int axis = 0;
-  const Vec3<S> a = d.cwiseAbs();
+  const Vec3T<S> a = d.cwiseAbs();
   if (a.y() < a[axis]) axis = 1;
   if (a.z() < a[axis]) axis = 2;
-  const Vec3<S> n = d.cross(Vec3<S>::Unit(axis));
+  const Vec3T<S> n = d.cross(Vec3T<S>::Unit(axis));
   const S length = n.norm();
-  return length > S(0) ? Vec3<S>(n / length) : Vec3<S>(Vec3<S>::UnitX());
+  return length > S(0) ? Vec3T<S>(n / length) : Vec3T<S>(Vec3T<S>::UnitX());
 }
 
 /// The closest points of segments [p1, q1] and [p2, q2]: parameters s, t
@@ -48,8 +48,8 @@ template <Scalar S>
 struct SegmentClosestPoints {
   S s = S(0);
   S t = S(0);
-  Vec3<S> onFirst = Vec3<S>::Zero();
-  Vec3<S> onSecond = Vec3<S>::Zero();
+  Vec3T<S> onFirst = Vec3T<S>::Zero();
+  Vec3T<S> onSecond = Vec3T<S>::Zero();
   bool parallel = false;
 };
 
@@ -59,9 +59,9 @@ struct SegmentClosestPoints {
 /// first is recomputed once. Parallel (or degenerate) segments, where the
 /// determinant a e − b² vanishes relative to a e, start from s = 0.
 template <Scalar S>
-[[nodiscard]] SegmentClosestPoints<S> closestPointsBetweenSegments(const Vec3<S>& p1, const Vec3<S>& q1,
-                                                                   const Vec3<S>& p2, const Vec3<S>& q2) {
-  const Vec3<S> d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+[[nodiscard]] SegmentClosestPoints<S> closestPointsBetweenSegments(const Vec3T<S>& p1, const Vec3T<S>& q1,
+                                                                   const Vec3T<S>& p2, const Vec3T<S>& q2) {
+  const Vec3T<S> d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
   const S a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
   SegmentClosestPoints<S> result;
   if (!(a > S(0)) && !(e > S(0))) {

@@ -13,7 +13,7 @@ namespace spook::detail {
 /// outside (the solid side is behind the face).
 template <Scalar S>
 struct Triangle {
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   std::array<Vec3, 3> v;
 
   [[nodiscard]] Vec3 support(const Vec3& d) const {

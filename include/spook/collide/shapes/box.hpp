@@ -9,7 +9,7 @@ template <Scalar S>
 class BoxT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::BOX;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   explicit BoxT(const Vec3& halfExtents) { setHalfExtents(halfExtents); }
 
@@ -25,10 +25,10 @@ class BoxT : public ShapeT<S> {
   [[nodiscard]] S getVolume() const override { return S(8) * halfExtents_.prod(); }
 
   /// I = m/3 (b² + c², a² + c², a² + b²) for half extents a, b, c.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Box", mass);
     const Vec3 sq = halfExtents_.cwiseAbs2();
-    return SPDMat3<S>(Vec3(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()) * (mass / S(3)));
+    return SPDMat3T<S>(Vec3(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()) * (mass / S(3)));
   }
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return {-halfExtents_, halfExtents_}; }

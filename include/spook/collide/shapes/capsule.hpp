@@ -13,7 +13,7 @@ template <Scalar S>
 class CapsuleT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::CAPSULE;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   CapsuleT(S radius, S height) {
     setRadius(radius);
@@ -36,14 +36,14 @@ class CapsuleT : public ShapeT<S> {
   /// I_yy = m_c r²/2 + 2/5 m_s r²,
   /// I_xx = I_zz = m_c (3r² + h²)/12 + m_s (2r²/5 + h²/4 + 3hr/8), the last
   /// term from each hemisphere's centroid at 3r/8 and the parallel-axis rule.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Capsule", mass);
     const S r = radius_, h = height_, r2 = r * r;
     const S cylinderShare = h / (h + S(4) / S(3) * r);
     const S mc = mass * cylinderShare, ms = mass - mc;
     const S axial = S(0.5) * mc * r2 + S(0.4) * ms * r2;
     const S across = mc * (S(3) * r2 + h * h) / S(12) + ms * (S(0.4) * r2 + S(0.25) * h * h + S(0.375) * h * r);
-    return SPDMat3<S>(Vec3(across, axial, across));
+    return SPDMat3T<S>(Vec3(across, axial, across));
   }
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return detail::boundingBoxFromSupport<S>(*this); }

@@ -16,9 +16,9 @@ template <Scalar S>
 class CompositeT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::COMPOSITE;
-  using Vec3 = spook::Vec3<S>;
-  using Mat3 = spook::Mat3<S>;
-  using Transform = spook::Transform<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
+  using Transform = spook::TransformT<S>;
   using Shape = ShapeT<S>;
 
   struct Child {
@@ -38,8 +38,8 @@ class CompositeT : public ShapeT<S> {
       throw detail::makeError("Composite", "", "a composite cannot contain itself", "a composite of its own chain");
     if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
       throw detail::makeError("Composite", "", "child transform must be finite and rigid",
-                              SPDMat3<S>::flat(transform.linear()));
-    children_.push_back({std::move(shape), makeTransform<S>(transform.translation(), Quat<S>(transform.linear()))});
+                              SPDMat3T<S>::flat(transform.linear()));
+    children_.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
   }
 
   [[nodiscard]] const std::vector<Child>& getChildren() const { return children_; }
@@ -75,7 +75,7 @@ class CompositeT : public ShapeT<S> {
   /// turned into the composite frame and moved to the origin (parallel-axis
   /// theorem both ways, J(m, d) = m(|d|² 1 − d dᵀ)):
   /// I = Σ Rᵢ (Iᵢ − J(mᵢ, cᵢ)) Rᵢᵀ + J(mᵢ, Xᵢ cᵢ).
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Composite", mass);
     const S volume = getVolume();
     if (!(volume > S(0))) throw detail::makeError("Composite", "", "inertia needs a positive volume (m^3)", volume);
@@ -91,7 +91,7 @@ class CompositeT : public ShapeT<S> {
       const Mat3 R = c.transform.linear();
       inertia += R * aboutCenter * R.transpose() + shift(childMass, c.transform * center);
     }
-    return SPDMat3<S>(inertia);
+    return SPDMat3T<S>(inertia);
   }
 
   /// Union of the children's boxes, each child box's corners transformed;

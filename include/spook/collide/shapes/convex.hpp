@@ -21,8 +21,8 @@ template <Scalar S>
 class ConvexT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::CONVEX;
-  using Vec3 = spook::Vec3<S>;
-  using Mat3 = spook::Mat3<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
   using Triangle = std::array<int, 3>;
   using Face = detail::ConvexFace<S>;
   /// A hull edge from corner `from` to corner `to`, as it runs in the loop
@@ -45,7 +45,7 @@ class ConvexT : public ShapeT<S> {
     tolerance_ = hull->tolerance;
 
     // Mass properties in double, whatever S, from the exact corner positions.
-    std::vector<spook::Vec3<double>> corners;
+    std::vector<spook::Vec3T<double>> corners;
     for (const Vec3& v : vertices_) corners.push_back(v.template cast<double>());
     const auto mass = detail::polyhedronMass<double>(corners, triangles_);
     volume_ = S(mass.volume);
@@ -80,10 +80,10 @@ class ConvexT : public ShapeT<S> {
 
   /// About the shape origin: I = m/V · I_c + m (|c|² 1 − c cᵀ), with I_c the
   /// unit-density tensor about the center c (kg·m²).
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Convex", mass);
     const Vec3& c = center_;
-    return SPDMat3<S>(
+    return SPDMat3T<S>(
         Mat3((mass / volume_) * unitInertia_ + mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())));
   }
 

@@ -13,7 +13,7 @@ template <Scalar S>
 class CylinderT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::CYLINDER;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   CylinderT(S radius, S height) {
     setRadius(radius);
@@ -31,10 +31,10 @@ class CylinderT : public ShapeT<S> {
   [[nodiscard]] S getVolume() const override { return std::numbers::pi_v<S> * radius_ * radius_ * height_; }
 
   /// I_yy = m r²/2 about the axis; I_xx = I_zz = m (3r² + h²)/12.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Cylinder", mass);
     const S r2 = radius_ * radius_, across = mass * (S(3) * r2 + height_ * height_) / S(12);
-    return SPDMat3<S>(Vec3(across, S(0.5) * mass * r2, across));
+    return SPDMat3T<S>(Vec3(across, S(0.5) * mass * r2, across));
   }
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return detail::boundingBoxFromSupport<S>(*this); }

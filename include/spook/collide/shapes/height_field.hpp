@@ -25,7 +25,7 @@ template <Scalar S>
 class HeightFieldT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::HEIGHTFIELD;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
   using Vec2 = Eigen::Matrix<S, 2, 1>;
 
   /// Throws spook::Error on fewer than 2 × 2 samples, a heights vector not of
@@ -121,7 +121,7 @@ class HeightFieldT : public ShapeT<S> {
   [[nodiscard]] S getVolume() const override { return S(0); }
 
   /// Always throws: a HeightField has no volume, so no inertia.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     throw detail::makeError("HeightField", "", "a HeightField has no volume, hence no inertia; mass (kg)", mass);
   }
 

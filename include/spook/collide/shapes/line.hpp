@@ -10,7 +10,7 @@ template <Scalar S>
 class LineT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::LINE;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   /// Segment from `first` to `second` (shape frame, m).
   LineT(const Vec3& first, const Vec3& second) { setPoints(first, second); }
@@ -41,7 +41,7 @@ class LineT : public ShapeT<S> {
   [[nodiscard]] Vec3 getCenterOfVolume() const override { return S(0.5) * (first_ + second_); }
   /// Always throws: a line has no volume, and a rod of zero thickness has a
   /// singular inertia (none about its own axis).
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     throw detail::makeError("Line", "", "a Line has no volume and no inertia (kg)", mass);
   }
   /// Box around both endpoints, shape frame (m).

@@ -13,7 +13,7 @@ template <Scalar S>
 class PlaneT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::PLANE;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   /// Plane through `point` (m) with normal `normal` (any non-zero length; normalized).
   explicit PlaneT(const Vec3& normal, const Vec3& point = Vec3::Zero()) { set(normal, point); }
@@ -46,7 +46,7 @@ class PlaneT : public ShapeT<S> {
   /// A plane encloses no volume: 0 m³.
   [[nodiscard]] S getVolume() const override { return S(0); }
   /// Always throws: a plane has no volume and so no inertia.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     throw detail::makeError("Plane", "", "a Plane has no volume and no inertia (kg)", mass);
   }
   /// Unbounded: every component ±infinity (the Space treats such boxes apart).

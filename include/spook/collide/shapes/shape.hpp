@@ -18,7 +18,7 @@ namespace spook {
 template <Scalar S>
 class ShapeT : public Referenced {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   /// Which kind of shape this is; every concrete shape class also states it
   /// as `static constexpr ShapeType kType`.
@@ -28,7 +28,7 @@ class ShapeT : public Referenced {
   [[nodiscard]] virtual S getVolume() const = 0;
   /// Inertia tensor about the shape origin, in the shape frame, for a
   /// uniform body of `mass` kg (kg·m²).
-  [[nodiscard]] virtual SPDMat3<S> calculateInertia(S mass) const = 0;
+  [[nodiscard]] virtual SPDMat3T<S> calculateInertia(S mass) const = 0;
   /// Tight axis-aligned box in the shape frame (m).
   [[nodiscard]] virtual BoundingBoxT<S> getBoundingBox() const = 0;
   /// Center of volume in the shape frame (m); the origin for primitives.
@@ -55,7 +55,7 @@ template <Scalar S, class Convex>
 BoundingBoxT<S> boundingBoxFromSupport(const Convex& shape) {
   BoundingBoxT<S> box;
   for (int i = 0; i < 3; ++i) {
-    const Vec3<S> axis = Vec3<S>::Unit(i);
+    const Vec3T<S> axis = Vec3T<S>::Unit(i);
     box.max[i] = shape.support(axis)[i];
     box.min[i] = shape.support(-axis)[i];
   }

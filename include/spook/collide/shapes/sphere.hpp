@@ -11,7 +11,7 @@ template <Scalar S>
 class SphereT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::SPHERE;
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   explicit SphereT(S radius) { setRadius(radius); }
 
@@ -26,9 +26,9 @@ class SphereT : public ShapeT<S> {
   }
 
   /// I = 2/5 m r² about every axis.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Sphere", mass);
-    return SPDMat3<S>(Vec3::Constant(S(0.4) * mass * radius_ * radius_));
+    return SPDMat3T<S>(Vec3::Constant(S(0.4) * mass * radius_ * radius_));
   }
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {

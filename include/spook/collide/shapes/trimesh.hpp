@@ -24,8 +24,8 @@ template <Scalar S>
 class TrimeshT : public ShapeT<S> {
  public:
   static constexpr ShapeType kType = ShapeType::TRIMESH;
-  using Vec3 = spook::Vec3<S>;
-  using Mat3 = spook::Mat3<S>;
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
   using Triangle = std::array<int, 3>;
 
   /// Throws spook::Error on no triangles, a non-finite vertex, an index out
@@ -78,7 +78,7 @@ class TrimeshT : public ShapeT<S> {
   /// About the shape origin, shape frame (kg·m²): the tensor about the center
   /// of volume c scaled to `mass`, plus m(|c|² 1 − c cᵀ). Throws for a mesh
   /// enclosing no volume.
-  [[nodiscard]] SPDMat3<S> calculateInertia(S mass) const override {
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
     this->requireMass("Trimesh", mass);
     if (openEdges_ > 0)
       throw detail::makeError("Trimesh", "", "an open Trimesh has no volume, hence no inertia; edges without a twin",
@@ -87,7 +87,7 @@ class TrimeshT : public ShapeT<S> {
       throw detail::makeError("Trimesh", "", "a closed Trimesh enclosing no volume has no inertia; volume (m^3)",
                               enclosed_);
     const Mat3 shift = mass * (center_.squaredNorm() * Mat3::Identity() - center_ * center_.transpose());
-    return SPDMat3<S>(Mat3((mass / volume_) * inertia_ + shift));
+    return SPDMat3T<S>(Mat3((mass / volume_) * inertia_ + shift));
   }
 
   /// Box around all vertices, shape frame (m).

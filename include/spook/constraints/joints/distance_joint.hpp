@@ -21,7 +21,7 @@ class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
     holdCurrentDistance();
   }
   /// From body1's frame to a fixed world point (m).
-  DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, const Vec3<S>& worldPoint)
+  DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, const Vec3T<S>& worldPoint)
       : Base("DistanceJoint", body1, frame1, nullptr, worldFrame(worldPoint).get()) {
     holdCurrentDistance();
   }
@@ -35,7 +35,7 @@ class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
   }
 
  private:
-  static ref_ptr<FrameT<S>> worldFrame(const Vec3<S>& p) {
+  static ref_ptr<FrameT<S>> worldFrame(const Vec3T<S>& p) {
     if (!p.allFinite()) throw detail::makeError("DistanceJoint", "", "world point must be finite (m)", p);
     ref_ptr<FrameT<S>> frame = new FrameT<S>();
     frame->setTranslate(p);

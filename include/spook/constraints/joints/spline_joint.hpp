@@ -119,7 +119,7 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
   /// `spline` (at least two points) is in the world, or in `body2`'s model frame.
   SplineJointT(Body* body, Frame* frame, Spline* spline, Body* body2 = nullptr)
       : Base("SplineJoint", checked(body, frame, spline, body2), frame, body2, nullptr), spline_(spline) {
-    this->getAttachmentFrame(1)->setLocalMatrix(Transform<S>::Identity());
+    this->getAttachmentFrame(1)->setLocalMatrix(TransformT<S>::Identity());
     const detail::Attachments a = this->attachments();
     parameter_ = spline_->findNearestParameter(splinePoint(a));
     restart(a);
@@ -192,12 +192,12 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
     if (spline->getNumPoints() < 2)
       throw detail::makeError("SplineJoint", "", "spline needs at least two points", spline->getNumPoints());
     if (!body) return body;  // reported by ConstraintT
-    const Transform<S> X1 = !frame ? body->getTransform()
+    const TransformT<S> X1 = !frame ? body->getTransform()
                             : frame->getParent() ? frame->getMatrix()
-                                                 : Transform<S>(body->getTransform() * frame->getLocalMatrix());
+                                                 : TransformT<S>(body->getTransform() * frame->getLocalMatrix());
     if (!X1.matrix().allFinite())
       throw detail::makeError("SplineJoint", "", "attachment frame must be finite (m)", X1.translation());
-    const Transform<S> X2 = body2 ? body2->getTransform() : Transform<S>::Identity();
+    const TransformT<S> X2 = body2 ? body2->getTransform() : TransformT<S>::Identity();
     const S t = spline->findNearestParameter(X2.inverse() * X1.translation());
     const S alignment = X1.linear().col(2).dot(X2.linear() * spline->getUnitTangent(t));
     if (!(alignment > S(0)))
@@ -217,7 +217,7 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
   }
 
   /// Frame 1's origin in the spline's frame (m).
-  [[nodiscard]] static Vec3<S> splinePoint(const detail::Attachments& a) {
+  [[nodiscard]] static Vec3T<S> splinePoint(const detail::Attachments& a) {
     return (a.R2.transpose() * (a.p1 - a.p2)).template cast<S>();
   }
 

@@ -58,7 +58,7 @@ struct WheelRollAngle {
 template <Scalar S>
 class WheelJointFrameT {
  public:
-  using Vec3 = spook::Vec3<S>;
+  using Vec3 = spook::Vec3T<S>;
 
   /// |cos| of the angle between the axes accepted as perpendicular.
   static constexpr S perpendicularTolerance() { return std::is_same_v<S, float> ? S(1e-4) : S(1e-6); }
@@ -89,14 +89,14 @@ class WheelJointFrameT {
 
   /// The joint frame in world: origin at the attachment point, y along the
   /// axle made exactly perpendicular to z, z along the steering axis.
-  [[nodiscard]] Transform<S> getWorldTransform() const {
+  [[nodiscard]] TransformT<S> getWorldTransform() const {
     const Vec3 z = steering_;
     const Vec3 y = (wheel_ - wheel_.dot(z) * z).normalized();
-    Mat3<S> R;
+    Mat3T<S> R;
     R.col(0) = y.cross(z);
     R.col(1) = y;
     R.col(2) = z;
-    Transform<S> X = Transform<S>::Identity();
+    TransformT<S> X = TransformT<S>::Identity();
     X.linear() = R;
     X.translation() = attach_;
     return X;
@@ -176,11 +176,11 @@ class WheelJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>,
   }
 
   /// The steering axis z₂ (unit, world).
-  [[nodiscard]] Vec3<S> getWorldSteeringAxis() const {
-    return Vec3<S>(this->attachments().R2.col(2).template cast<S>());
+  [[nodiscard]] Vec3T<S> getWorldSteeringAxis() const {
+    return Vec3T<S>(this->attachments().R2.col(2).template cast<S>());
   }
   /// Frame 2's origin, the steering pivot on the chassis (m, world).
-  [[nodiscard]] Vec3<S> getWorldSteeringPivot() const { return Vec3<S>(this->attachments().p2.template cast<S>()); }
+  [[nodiscard]] Vec3T<S> getWorldSteeringPivot() const { return Vec3T<S>(this->attachments().p2.template cast<S>()); }
 
  protected:
   ~WheelJointT() override = default;
@@ -212,8 +212,8 @@ class WheelJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>,
 
  private:
   static ref_ptr<FrameT<S>> localFrame(const WheelJointFrameT<S>& frame, const RigidBodyT<S>* body) {
-    const Transform<S> world = frame.getWorldTransform();
-    return new FrameT<S>(body ? Transform<S>(body->getTransform().inverse() * world) : world);
+    const TransformT<S> world = frame.getWorldTransform();
+    return new FrameT<S>(body ? TransformT<S>(body->getTransform().inverse() * world) : world);
   }
 
   template <class F>
