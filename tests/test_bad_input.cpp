@@ -136,8 +136,8 @@ TEST_CASE_TEMPLATE("a NaN or zero rotation quaternion is rejected", S, float, do
   checkRejected(y, [&] { y.crate->setTransform(X); }, {"'crate'", "nan"});
 }
 
-// A finite quaternion whose squared norm overflows (components ~1e154 in
-// double, ~1e19 in float) or underflows is still a rotation: it is
+// A finite quaternion whose squared norm overflows (components ~2e154 in
+// double, ~3e19 in float) or underflows is still a rotation: it is
 // normalized after scaling by its largest component, not stored as zero.
 TEST_CASE_TEMPLATE("a finite quaternion too large or too small to square is normalized, not zeroed", S, float, double) {
   using Quat = spook::QuatT<S>;
