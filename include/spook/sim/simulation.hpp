@@ -80,12 +80,15 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void stepForward();
 
   /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps,
-  /// recounted after each step in case a listener changes h.
+  /// recounted after each step in case a listener changes h. stepTo(now),
+  /// or any t less than half a step ahead, takes no step. Throws before
+  /// stepping when t is not finite, is in the past, or is more than 2³¹
+  /// steps away (1e9 s at 60 Hz would take 6e10 steps).
   void stepTo(S t) {
     if (!std::isfinite(t)) throw error("stepTo time must be finite (s)", t);
     const S now = getTimeStamp();
     if (t < now) throw error("stepTo time must not be in the past (now " + std::to_string(now) + " s)", t);
-    while (std::llround((t - getTimeStamp()) / timeStep_) > 0) stepForward();
+    while (stepsTo(t) > 0) stepForward();
   }
 
   // --- Solver ----------------------------------------------------------------
@@ -286,6 +289,15 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     });
   }
 
+  // round((t − now)/h), in double so that neither the quotient nor its
+  // rounding overflows; more than 2³¹ steps are refused.
+  [[nodiscard]] long long stepsTo(S t) const {
+    const double steps = std::round((double(t) - double(getTimeStamp())) / double(timeStep_));
+    if (steps > 2147483648.0)
+      throw error("stepTo time is more than 2^31 steps of " + std::to_string(timeStep_) + " s away", t);
+    return static_cast<long long>(steps);
+  }
+
   void applyPendingTimeStep() {
     if (pendingTimeStep_) setTimeStep(*std::exchange(pendingTimeStep_, std::nullopt));
   }
@@ -358,7 +370,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     for (detail::Row& r : rows_) r.speed = predicted_[r.impulse].violation;
     if (rows_.empty()) return;
     solverBodies_.clear();
-    for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body));
+    for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
     geometricStiffness_.addInertia(solverBodies_);
     islands_.project(rows_, solverBodies_, h, *solver_, statistics_.solver);
     for (std::size_t i = 0; i < bodies_.size(); ++i)
