@@ -31,6 +31,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace spook::fuzz {
@@ -73,6 +74,27 @@ class Reader {
   std::size_t at_ = 0;
 };
 
+/// Known findings, open on main, that the target steers around: the names
+/// in SPOOK_FUZZ_SKIP (comma-separated). An input that would reach one is
+/// dropped like refused input; every other finding still aborts. A name
+/// leaves the CI's list (.ci/run) when its defect is fixed.
+///   heightfield-size   a HeightField whose resolutionX * resolutionY wraps
+///                      around (accepted with no samples; the step then fails)
+///   quat-overflow      a quaternion whose squared norm overflows or
+///                      underflows (stored as zero; every later step throws)
+///   unreported-nonfinite  a non-finite body not in frozenBodies
+inline bool skipping(const char* name) {
+  static const std::string list = [] {
+    const char* env = std::getenv("SPOOK_FUZZ_SKIP");
+    return "," + std::string(env ? env : "") + ",";
+  }();
+  return list.find("," + std::string(name) + ",") != std::string::npos;
+}
+struct Skipped {};
+inline void skipIf(const char* name, bool reaches) {
+  if (reaches && skipping(name)) throw Skipped{};
+}
+
 [[noreturn]] inline void finding(const char* what, int step, const char* detail) {
   std::fprintf(stderr, "spook fuzz finding: %s (step %d): %s\n", what, step, detail);
   std::abort();
@@ -105,7 +127,10 @@ struct Builder {
       }
       default: {  // raw components, not normalized: the API normalizes or refuses
         const S w = real(-1, 1), x = real(-1, 1), y = real(-1, 1), z = real(-1, 1);
-        return Quat(w, x, y, z);
+        const Quat q(w, x, y, z);
+        skipIf("quat-overflow", q.coeffs().allFinite() && (q.coeffs().array() != S(0)).any() &&
+                                   !std::isnormal(q.squaredNorm()));
+        return q;
       }
     }
   }
@@ -143,6 +168,7 @@ struct Builder {
     }
     const S sx = real(0.1, 20), sy = real(0.1, 20);
     const std::size_t count = rx * ry;  // wraps as the library's own product would
+    skipIf("heightfield-size", rx != 0 && count / rx != ry);
     std::vector<S> heights(count <= kMaxHeights ? count : kMaxHeights);
     const S amplitude = real(0, 1);
     for (std::size_t k = 0; k < heights.size(); ++k) heights[k] = amplitude * S(std::sin(0.7 * double(k)));
@@ -381,6 +407,8 @@ struct Builder {
       scene(*sim);
     } catch (const spook::Error&) {
       return;  // refused input
+    } catch (const Skipped&) {
+      return;  // a known finding (SPOOK_FUZZ_SKIP)
     }
     for (int step = 0; step < kSteps; ++step) {
       const auto start = std::chrono::steady_clock::now();
@@ -400,7 +428,7 @@ struct Builder {
         if (finite(*b)) continue;
         bool reported = false;
         for (const auto& f : frozen) reported = reported || f.get() == b.get();
-        if (!reported) finding("non-finite body state not reported frozen", step, b->getName().c_str());
+        if (!reported && !skipping("unreported-nonfinite")) finding("non-finite body state not reported frozen", step, b->getName().c_str());
       }
     }
   }
