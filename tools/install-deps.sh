@@ -3,7 +3,10 @@
 # Does nothing (and needs no network or root) when everything is present.
 set -euo pipefail
 
-packages=(cmake g++ make python3 libeigen3-dev libccd-dev doctest-dev libbenchmark-dev libfcl-dev)
+# clang and libclang-rt-14-dev (libFuzzer and the sanitizer runtimes, only
+# recommended by clang): the single-header clang test and tools/run-fuzz.sh.
+packages=(cmake g++ make python3 libeigen3-dev libccd-dev doctest-dev libbenchmark-dev libfcl-dev
+  clang libclang-rt-14-dev)
 
 missing=()
 for package in "${packages[@]}"; do

@@ -221,7 +221,7 @@ std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdOb
   std::vector<Vec3T<double>> starts{fromCcd};
   for (const auto& [f, d] : candidates) {
     if (starts.size() > count) break;
-    if (std::none_of(starts.begin(), starts.end(), [&](const Vec3T<double>& s) { return s.dot(d) > 0.999; }))
+    if (std::none_of(starts.begin(), starts.end(), [&d = d](const Vec3T<double>& s) { return s.dot(d) > 0.999; }))
       starts.push_back(d);
   }
   return starts;

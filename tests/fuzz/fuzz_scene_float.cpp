@@ -1,0 +1,6 @@
+// The float half of the fuzz target (fuzz_scene.cpp).
+#include "scene_builder.hpp"
+
+namespace spook::fuzz {
+void runFloatScene(Reader& in) { Builder<float>{in}.run(); }
+}  // namespace spook::fuzz
