@@ -98,6 +98,7 @@ struct ShapeList {
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Dense>
 
@@ -286,6 +287,27 @@ template <class S>
   return q.coeffs().allFinite();
 }
 
+/// True when q is a rotation up to scale: every component finite and at
+/// least one non-zero.
+template <class S>
+[[nodiscard]] bool isRotationQuaternion(const QuatT<S>& q) {
+  return q.coeffs().allFinite() && q.coeffs().cwiseAbs().maxCoeff() > S(0);
+}
+
+/// q / |q| for any finite non-zero q. Eigen's normalized() squares the
+/// components: |q|² overflows to inf from components ~1e154 (double), ~1e19
+/// (float), which would give (0, 0, 0, 0), and underflows to 0 below ~1e-154
+/// (~1e-19), which would leave q as it is. Such q are first divided by their
+/// largest |component|; ordinary ones take the plain (bit-identical) path.
+template <class S>
+[[nodiscard]] QuatT<S> unitQuaternion(const QuatT<S>& q) {
+  const S squared = q.squaredNorm();
+  if (squared >= std::numeric_limits<S>::min() && squared <= std::numeric_limits<S>::max()) return q.normalized();
+  const S largest = q.coeffs().cwiseAbs().maxCoeff();
+  if (!(largest > S(0))) return q;
+  return QuatT<S>(q.coeffs() / largest).normalized();
+}
+
 /// The shortest rotation taking direction `from` onto direction `to` (AGX's
 /// Quat::rotate). Antiparallel vectors give a half turn about an axis
 /// perpendicular to both.
@@ -334,14 +356,14 @@ template <class S>
 /// Euler angles of a quaternion.
 template <class S>
 [[nodiscard]] EulerAnglesT<S> toEulerAngles(const QuatT<S>& q) {
-  return toEulerAngles<S>(q.normalized().toRotationMatrix());
+  return toEulerAngles<S>(unitQuaternion<S>(q).toRotationMatrix());
 }
 
 /// Transform from translation and rotation.
 template <class S>
 [[nodiscard]] TransformT<S> makeTransform(const Vec3T<S>& translate, const QuatT<S>& rotate = QuatT<S>::Identity()) {
   TransformT<S> X = TransformT<S>::Identity();
-  X.linear() = rotate.normalized().toRotationMatrix();
+  X.linear() = unitQuaternion<S>(rotate).toRotationMatrix();
   X.translation() = translate;
   return X;
 }
@@ -371,7 +393,7 @@ template <class S>
 /// log of a rotation: the rotation vector (radians, |result| ≤ π).
 template <class S>
 [[nodiscard]] Vec3T<S> logRotation(const QuatT<S>& q) {
-  QuatT<S> u = q.normalized();
+  QuatT<S> u = unitQuaternion<S>(q);
   if (u.w() < S(0)) u.coeffs() = -u.coeffs();
   const S s = u.vec().norm();
   if (s < S(1e-6)) return S(2) * u.vec() / u.w();
@@ -2833,7 +2855,7 @@ std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdOb
   std::vector<Vec3T<double>> starts{fromCcd};
   for (const auto& [f, d] : candidates) {
     if (starts.size() > count) break;
-    if (std::none_of(starts.begin(), starts.end(), [&](const Vec3T<double>& s) { return s.dot(d) > 0.999; }))
+    if (std::none_of(starts.begin(), starts.end(), [&d = d](const Vec3T<double>& s) { return s.dot(d) > 0.999; }))
       starts.push_back(d);
   }
   return starts;
@@ -4945,7 +4967,7 @@ class FrameT : public Referenced {
   [[nodiscard]] Quat getRotate() const { return parent_ ? Quat(parent_->getRotate() * localRotate_) : localRotate_; }
   void setRotate(const Quat& q_W) {
     checkQuat(q_W);
-    setLocalRotate(parent_ ? Quat(parent_->getRotate().conjugate() * q_W.normalized()) : q_W);
+    setLocalRotate(parent_ ? Quat(parent_->getRotate().conjugate() * unitQuaternion<S>(q_W)) : q_W);
   }
 
   /// A point given in this frame, expressed in world coordinates.
@@ -4965,13 +4987,13 @@ class FrameT : public Referenced {
     checkVector(p, "translate must be finite");
     checkQuat(q);
     localTranslate_ = p;
-    localRotate_ = q.normalized();
+    localRotate_ = unitQuaternion<S>(q);
   }
   static void checkVector(const Vec3& v, const char* what) {
     if (!v.allFinite()) throw detail::makeError("Frame", "", what, v);
   }
   static void checkQuat(const Quat& q) {
-    if (!q.coeffs().allFinite() || !(q.norm() > S(0)))
+    if (!isRotationQuaternion<S>(q))
       throw detail::makeError("Frame", "", "rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
   }
   static void checkMatrix(const Transform& X) {
@@ -5707,10 +5729,20 @@ class MassPropertiesT {
   }
 
   /// Mass in kg; must be finite and > 0 (a body of infinite mass is STATIC).
-  /// Stops the mass from being generated from the geometries.
+  /// Stops the mass from being generated from the geometries. An inertia
+  /// generated from the geometries (shape volumes × density) is
+  /// proportional to the mass and scales with it, so setting the mass
+  /// before or after adding the geometries gives the same tensor; a tensor
+  /// set by hand (setInertiaTensor) stays as set.
   [[nodiscard]] S getMass() const { return mass_; }
   void setMass(S mass) {
     if (!(std::isfinite(mass) && mass > S(0))) throw error("mass must be finite and > 0 kg", mass);
+    if (inertiaGenerated_ && (autoGenerate_ & INERTIA)) {
+      const Mat3 scaled = inertia_.matrix() * (mass / mass_);
+      if (SPDMat3T<S>::defect(scaled))
+        throw error("mass would scale the inertia generated from the geometries out of range (kg)", mass);
+      inertia_ = SPDMat3T<S>(scaled);
+    }
     mass_ = mass;
     autoGenerate_ &= ~unsigned(MASS);
   }
@@ -5729,17 +5761,20 @@ class MassPropertiesT {
         throw error("inertia diagonal must be finite and > 0 kg·m²", diagonal);
       inertia_ = SPDMat3T<S>(diagonal);
       autoGenerate_ &= ~unsigned(INERTIA);
+      inertiaGenerated_ = false;
     } else {
       const Mat3 inertia = value;
       if (const char* why = SPDMat3T<S>::defect(inertia))
         throw error(std::string("inertia tensor: ") + why, SPDMat3T<S>::flat(inertia));
       inertia_ = SPDMat3T<S>(inertia);
       autoGenerate_ &= ~unsigned(INERTIA);
+      inertiaGenerated_ = false;
     }
   }
   void setInertiaTensor(const SPDMat3T<S>& inertia) {
     inertia_ = inertia;
     autoGenerate_ &= ~unsigned(INERTIA);
+    inertiaGenerated_ = false;
   }
 
   /// Added-mass coefficients c along the CM frame axes (dimensionless, ≥ 0):
@@ -5763,7 +5798,10 @@ class MassPropertiesT {
   // Generated values, set by the body without touching the mask.
   void generate(S mass, const SPDMat3T<S>& inertia) {
     if (autoGenerate_ & MASS) mass_ = mass;
-    if (autoGenerate_ & INERTIA) inertia_ = inertia;
+    if (autoGenerate_ & INERTIA) {
+      inertia_ = inertia;
+      inertiaGenerated_ = true;
+    }
   }
 
   template <class T>
@@ -5776,6 +5814,7 @@ class MassPropertiesT {
   SPDMat3T<S> inertia_;
   Vec3 massCoefficients_ = Vec3::Zero();
   unsigned autoGenerate_ = ALL;
+  bool inertiaGenerated_ = false;  // inertia_ came from the geometries (generate)
 };
 
 using MassProperties = MassPropertiesT<double>;
@@ -6129,7 +6168,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
     if (!v.allFinite()) throw error(what, v);
   }
   void requireRotation(const Quat& q) const {
-    if (!q.coeffs().allFinite() || !(q.norm() > S(0)))
+    if (!isRotationQuaternion<S>(q))
       throw error("rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
   }
   void requireTransform(const Transform& X, const std::string& what) const {
@@ -11605,7 +11644,7 @@ class AssemblyT : public CollectionT<S> {
   /// Assembly orientation, world.
   [[nodiscard]] Quat getRotation() const { return frame_->getRotate(); }
   void setRotation(const Quat& q_W) {
-    if (!q_W.coeffs().allFinite() || !(q_W.norm() > S(0)))
+    if (!isRotationQuaternion<S>(q_W))
       throw this->error("rotation must be a finite non-zero quaternion (x, y, z, w)", q_W.coeffs());
     setTransform(makeTransform<S>(getPosition(), q_W));
   }
@@ -13513,6 +13552,19 @@ struct BodyIntegrator {
   /// The body as the solver sees it. Dynamic bodies get their force-driven
   /// velocities v*; kinematic ones re-aim a moveTo; static and disabled ones
   /// stand still with infinite mass.
+  ///
+  /// Velocity damping dv/dt = −D v is implicit, a force −h D̃ v⁺ on the end
+  /// velocity, so it belongs in the mass: M(v⁺ − v) = h f − h D̃ v⁺ + Gᵀλ
+  /// is M_d v⁺ = M v + h f + Gᵀλ with the damped mass M_d = M + h D̃, and
+  /// the solver gets M_d⁻¹: v⁺ = v* + M_d⁻¹Gᵀλ with v* = M_d⁻¹(M v + h f).
+  /// Damping then slows the body but does not scale the loads it carries: a
+  /// damped body at rest still puts its whole weight on its contacts and
+  /// joints. In the CM frame, with D = diag(dᵢ) (1/s) and D̃ = D^½ M D^½:
+  ///   linear   M_d = diag(mᵢ(1 + cᵢ)(1 + h dᵢ)), i.e. vᵢ / (1 + h dᵢ) free;
+  ///   angular  I_d = I + h D^½ I D^½, i.e. (I_d)ᵢⱼ = Iᵢⱼ(1 + h√(dᵢdⱼ)).
+  /// I_d is symmetric positive definite; it is (1 + h d) I for isotropic
+  /// damping and Iᵢ(1 + h dᵢ) on principal axes; its damping torque
+  /// D^½ I D^½ Ω is positive semi-definite, so damping never adds energy.
   static SolverBody solverBody(Body& body, const GravityFieldT<S>& gravity, S h) {
     SolverBody b;
     if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
@@ -13528,22 +13580,17 @@ struct BodyIntegrator {
     b.velocity = stack(body.velocity_, body.angularVelocity_);
     const MassPropertiesT<S>& mass = body.massProperties_;
     const Mat3 R = body.getCmRotation().toRotationMatrix();
-    // v⁺ = (v + h(M⁻¹f + g)) / (1 + h d) per CM axis: the applied force sees
-    // the inertial mass m(1 + c), gravity is an acceleration; damping is
-    // implicit. Angular: Π = I Ω + h Rᵀτ (body frame), damped the same way.
+    // Linear, per CM axis: v* = (v + h(M⁻¹f + g)) / (1 + h d); the applied
+    // force sees the inertial mass m(1 + c), gravity is an acceleration.
     const Vec3 damping = Vec3::Ones() + h * body.linearDamping_;
     const Vec3 acceleration = R * (R.transpose() * body.force_).cwiseQuotient(mass.getEffectiveMass()) +
                               gravity.calculateGravity(body.getCmPosition());
     const Vec3 v = R * (R.transpose() * (body.velocity_ + h * acceleration)).cwiseQuotient(damping);
-    const Mat3& inertia = mass.getInertiaTensor();
-    const Mat3 inertiaInverse = inertia.inverse();
-    Vec3 omega =
-        inertiaInverse * (inertia * (R.transpose() * body.angularVelocity_) + h * (R.transpose() * body.torque_));
-    omega = omega.cwiseQuotient(Vec3::Ones() + h * body.angularDamping_);
+    // Angular, CM frame: Ω* = I_d⁻¹ (I Ω + h Rᵀτ).
+    const Mat3 dampedInertiaInverse = setDampedInverseMass(body, R, h, b);
+    const Vec3 omega = dampedInertiaInverse * (mass.getInertiaTensor() * (R.transpose() * body.angularVelocity_) +
+                                               h * (R.transpose() * body.torque_));
     b.freeVelocity = stack(v, R * omega);
-    const Mat3 massInverse = R * mass.getEffectiveMass().cwiseInverse().asDiagonal() * R.transpose();
-    b.inverseMass = massInverse.template cast<double>();
-    b.inverseInertia = (R * inertiaInverse * R.transpose()).template cast<double>();
     return b;
   }
 
@@ -13565,18 +13612,17 @@ struct BodyIntegrator {
 
   static void clearForces(Body& body) { body.force_ = body.torque_ = Vec3::Zero(); }
 
-  /// Inverse mass and inertia at the current pose and the current velocities
-  /// (dynamic bodies; the others stand still with infinite mass).
-  static SolverBody massAndVelocity(const Body& body) {
+  /// Inverse damped mass and inertia (as in solverBody, for a step of h) at
+  /// the current pose, and the current velocities (dynamic bodies; the
+  /// others stand still with infinite mass). Post-stabilization distributes
+  /// its corrections with the same mass as the step's impulses.
+  static SolverBody massAndVelocity(const Body& body, S h) {
     SolverBody b;
     if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
     b.velocity = stack(body.velocity_, body.angularVelocity_);
     if (body.motionControl_ != Body::DYNAMICS) return b;
     b.dynamic = true;
-    const MassPropertiesT<S>& mass = body.massProperties_;
-    const Mat3 R = body.getCmRotation().toRotationMatrix();
-    b.inverseMass = (R * mass.getEffectiveMass().cwiseInverse().asDiagonal() * R.transpose()).template cast<double>();
-    b.inverseInertia = (R * mass.getInertiaTensor().inverse() * R.transpose()).template cast<double>();
+    setDampedInverseMass(body, body.getCmRotation().toRotationMatrix(), h, b);
     return b;
   }
 
@@ -13592,6 +13638,19 @@ struct BodyIntegrator {
   }
 
  private:
+  // Sets b's inverse damped mass M_d⁻¹ and inertia I_d⁻¹ (world; solverBody
+  // has the forms) for the CM rotation R; returns I_d⁻¹ in the CM frame.
+  static Mat3 setDampedInverseMass(const Body& body, const Mat3& R, S h, SolverBody& b) {
+    const MassPropertiesT<S>& mass = body.massProperties_;
+    const Vec3 dampedMass = mass.getEffectiveMass().cwiseProduct(Vec3::Ones() + h * body.linearDamping_);
+    const Mat3& inertia = mass.getInertiaTensor();
+    const Vec3 root = body.angularDamping_.cwiseSqrt();
+    const Mat3 dampedInertiaInverse = Mat3(inertia + h * (root.asDiagonal() * inertia * root.asDiagonal())).inverse();
+    b.inverseMass = (R * dampedMass.cwiseInverse().asDiagonal() * R.transpose()).template cast<double>();
+    b.inverseInertia = (R * dampedInertiaInverse * R.transpose()).template cast<double>();
+    return dampedInertiaInverse;
+  }
+
   static Vec6d stack(const Vec3& v, const Vec3& w) {
     Vec6d out;
     out << v.template cast<double>(), w.template cast<double>();
@@ -13700,12 +13759,15 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void stepForward();
 
   /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps,
-  /// recounted after each step in case a listener changes h.
+  /// recounted after each step in case a listener changes h. stepTo(now),
+  /// or any t less than half a step ahead, takes no step. Throws before
+  /// stepping when t is not finite, is in the past, or is more than 2³¹
+  /// steps away (1e9 s at 60 Hz would take 6e10 steps).
   void stepTo(S t) {
     if (!std::isfinite(t)) throw error("stepTo time must be finite (s)", t);
     const S now = getTimeStamp();
     if (t < now) throw error("stepTo time must not be in the past (now " + std::to_string(now) + " s)", t);
-    while (std::llround((t - getTimeStamp()) / timeStep_) > 0) stepForward();
+    while (stepsTo(t) > 0) stepForward();
   }
 
   // --- Solver ----------------------------------------------------------------
@@ -13906,6 +13968,15 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     });
   }
 
+  // round((t − now)/h), in double so that neither the quotient nor its
+  // rounding overflows; more than 2³¹ steps are refused.
+  [[nodiscard]] long long stepsTo(S t) const {
+    const double steps = std::round((double(t) - double(getTimeStamp())) / double(timeStep_));
+    if (steps > 2147483648.0)
+      throw error("stepTo time is more than 2^31 steps of " + std::to_string(timeStep_) + " s away", t);
+    return static_cast<long long>(steps);
+  }
+
   void applyPendingTimeStep() {
     if (pendingTimeStep_) setTimeStep(*std::exchange(pendingTimeStep_, std::nullopt));
   }
@@ -13978,7 +14049,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     for (detail::Row& r : rows_) r.speed = predicted_[r.impulse].violation;
     if (rows_.empty()) return;
     solverBodies_.clear();
-    for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body));
+    for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
     geometricStiffness_.addInertia(solverBodies_);
     islands_.project(rows_, solverBodies_, h, *solver_, statistics_.solver);
     for (std::size_t i = 0; i < bodies_.size(); ++i)
