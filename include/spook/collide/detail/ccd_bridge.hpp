@@ -11,6 +11,7 @@
 #include <ccd/ccd.h>
 
 #include <spook/collide/contact_sink.hpp>
+#include <spook/collide/detail/supporting_feature.hpp>
 #include <spook/core/math.hpp>
 
 namespace spook::detail {
@@ -228,8 +229,14 @@ std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdOb
 }
 
 /// Penetration of two convex shapes by GJK + EPA (libccd), polished as
-/// above: one contact at libccd's point, with the direction that separates
-/// b from a.
+/// above, with the direction that separates b from a. The contact points
+/// lie in the overlap: the deepest point of the shape whose support along
+/// the normal is unique (the curved or smaller feature) moved depth/2 into
+/// the overlap, the midpoint of the two witness points where both are
+/// unique, and where both shapes touch with an extended feature (a face, an
+/// edge, a cylinder's side or cap, a capsule's side) the manifold of the one
+/// clipped against the other (featureContacts). Never a support point
+/// chosen among a flat face's corners.
 template <Scalar S, class A, class B>
 void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
   const CcdObject<A> objectA(a, X_WA);
@@ -243,7 +250,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   ccd.max_iterations = kCcdMaxIterations;
   ccd.epa_tolerance = kCcdEpaTolerance;
   ccd_real_t depth = 0;
-  ccd_vec3_t direction, position;
+  ccd_vec3_t direction, position;  // libccd's position is not used (see below)
   if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) return;
   Vec3T<double> n(direction.v[0], direction.v[1], direction.v[2]);
   const double length = n.norm();
@@ -265,8 +272,15 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     }
   }
   if (!(refined >= 0.0)) return;  // the polished direction separates them
-  const Vec3T<double> point(position.v[0], position.v[1], position.v[2]);
-  sink.add(point.cast<S>(), n.cast<S>(), S(refined));
+  // libccd's point is a midpoint of support points, one of which may be any
+  // corner of a large face, far from the contact: the points come from the
+  // supporting features instead (supporting_feature.hpp, featureContacts).
+  thread_local FeaturePoints fa, fb;
+  worldFeature(a, objectA.R, objectA.p, n, fa);
+  worldFeature(b, objectB.R, objectB.p, Vec3T<double>(-n), fb);
+  if (!featureContacts(fa, fb, n, refined, sink))
+    sink.add(Vec3T<double>(0.5 * (overlap.supportOf(objectA, n) + overlap.supportOf(objectB, Vec3T<double>(-n)))).cast<S>(),
+             n.cast<S>(), S(refined));
 }
 
 }  // namespace spook::detail
