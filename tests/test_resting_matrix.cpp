@@ -193,7 +193,8 @@ void checkRestingMatrix(const std::vector<S>& sizes) {
     for (const S size : sizes)
       for (const Body kind : kBodies) {
         const Rest r = rest<S>(ground, size, kind);
-        CAPTURE(std::string(bodyName(kind)) + " on " + groundName(ground) + " of " + std::to_string(size) + " m");
+        const std::string scene = std::string(bodyName(kind)) + " on " + groundName(ground) + " of " + std::to_string(size) + " m";
+        CAPTURE(scene);
         CAPTURE(r.sink);
         CAPTURE(r.drift);
         CAPTURE(r.speed);
@@ -260,9 +261,9 @@ TEST_CASE_TEMPLATE("rolling: sphere, cylinder and capsule roll down 10 and 20 de
       for (const double degrees : {10.0, 20.0}) {
         const std::pair<double, double> result = roll<S>(ground, kind, degrees);
         const double error = result.first, slip = result.second;
-        CAPTURE(groundName(ground));
-        CAPTURE(int(kind));
-        CAPTURE(degrees);
+        const std::string scene = std::string(kind == Roller::SPHERE ? "sphere" : kind == Roller::CYLINDER ? "cylinder" : "capsule") +
+                                  " on " + groundName(ground) + " at " + std::to_string(degrees) + " degrees";
+        CAPTURE(scene);
         CAPTURE(error);
         CAPTURE(slip);
         CHECK(std::abs(error) <= 0.01);

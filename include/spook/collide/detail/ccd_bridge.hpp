@@ -18,7 +18,11 @@ namespace spook::detail {
 
 // The libccd bridge: each convex shape lends libccd its support function
 // through a stack object that holds the shape and its world pose. libccd is
-// built with double, so a float shape converts at this boundary.
+// built with double, so a float shape converts at this boundary. libccd
+// sees each shape grown by kCcdMargin, so that shapes exactly touching (a
+// body placed on the ground) are found, at depth 0, as the analytic
+// colliders find them; the depth itself comes from the exact shapes.
+inline constexpr double kCcdMargin = 1e-7;  // m
 template <class Shape>
 struct CcdObject {
   using S = typename Shape::Vec3::Scalar;
@@ -37,7 +41,9 @@ struct CcdObject {
     const auto& o = *static_cast<const CcdObject*>(object);
     const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
     const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
-    const Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
+    const double length = d_W.norm();
+    const Vec3T<double> grown = length > 0.0 ? Vec3T<double>(d_W * (kCcdMargin / length)) : Vec3T<double>::Zero();
+    const Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p + grown;
     for (int i = 0; i < 3; ++i) out->v[i] = s_W[i];
   }
   static void centerOf(const void* object, ccd_vec3_t* out) {
@@ -271,16 +277,22 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
       n = start;
     }
   }
-  if (!(refined >= 0.0)) return;  // the polished direction separates them
+  if (!(refined >= -2.0 * kCcdMargin)) return;  // the polished direction separates them
+  refined = std::max(refined, 0.0);  // touching within the margin: depth 0
   // libccd's point is a midpoint of support points, one of which may be any
   // corner of a large face, far from the contact: the points come from the
   // supporting features instead (supporting_feature.hpp, featureContacts).
   thread_local FeaturePoints fa, fb;
   worldFeature(a, objectA.R, objectA.p, n, fa);
   worldFeature(b, objectB.R, objectB.p, Vec3T<double>(-n), fb);
-  if (!featureContacts(fa, fb, n, refined, sink))
-    sink.add(Vec3T<double>(0.5 * (overlap.supportOf(objectA, n) + overlap.supportOf(objectB, Vec3T<double>(-n)))).cast<S>(),
-             n.cast<S>(), S(refined));
+  if (featureContacts(fa, fb, n, refined, sink)) return;
+  // Nothing left by the clipping (touching to round-off): one point at the
+  // center of the smaller feature, moved depth/2 into the overlap.
+  const bool onA = fa.size() <= fb.size();
+  Vec3T<double> center = Vec3T<double>::Zero();
+  for (const auto& x : onA ? fa : fb) center += x;
+  center = center / double(onA ? fa.size() : fb.size()) + (onA ? -0.5 : 0.5) * refined * n;
+  sink.add(center.cast<S>(), n.cast<S>(), S(refined));
 }
 
 }  // namespace spook::detail

@@ -219,7 +219,7 @@ bool featureContacts(const FeaturePoints& fa, const FeaturePoints& fb, const Vec
   }
   thread_local FeaturePoints corners, scratch;
   const double scale = 1.0 + std::abs(n.dot(fa[0])) + std::abs(n.dot(fb[0]));
-  const double tolerance = 1e-12 * scale;
+  const double tolerance = 1e-9 * scale;  // touching to round-off still counts (at depth 0)
   std::size_t added = 0;
   if (fa.size() == 2 && fb.size() == 2) {
     const Vec3T<double> e = fa[1] - fa[0], f = fb[1] - fb[0];
