@@ -1,3 +1,4 @@
+// (Not yet in examples/CMakeLists.txt: never compiled; see the ground helper's report.)
 // A four-wheeled vehicle on a height-field terrain: a box chassis on four
 // cylinder wheels, each on a WheelJoint (steering locked, suspension
 // locked), driven by the wheel motors up a 6° slope. Prints the speed and
