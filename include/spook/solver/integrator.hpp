@@ -74,6 +74,13 @@ struct BodyIntegrator {
 
   static void clearForces(Body& body) { body.force_ = body.torque_ = Vec3::Zero(); }
 
+  /// Freezes a body for this step: pose kept, velocities zeroed, a moveTo
+  /// dropped.
+  static void freeze(Body& body) {
+    body.velocity_ = body.angularVelocity_ = Vec3::Zero();
+    body.target_.reset();
+  }
+
   /// Inverse mass and inertia at the current pose and the current velocities
   /// (dynamic bodies; the others stand still with infinite mass).
   static SolverBody massAndVelocity(const Body& body) {
@@ -143,8 +150,7 @@ struct BodyIntegrator {
   // Writes the new center-of-mass state back through the model frame.
   static bool commit(Body& body, const Vec3& x, const Quat& q, const Vec3& v, const Vec3& omega) {
     if (!(x.allFinite() && q.coeffs().allFinite() && v.allFinite() && omega.allFinite())) {
-      body.velocity_ = body.angularVelocity_ = Vec3::Zero();
-      body.target_.reset();
+      freeze(body);
       return false;
     }
     const Quat modelRotation = (q * body.cmFrame_->getLocalRotate().conjugate()).normalized();

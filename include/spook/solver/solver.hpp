@@ -157,8 +157,8 @@ class Solver : public Referenced {
   }
 
   /// Solves one island in place and accumulates the statistics. Impulses that
-  /// come out non-finite are dropped (set to zero) and counted.
-  void solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  /// come out non-finite are dropped (set to zero) and counted; false then.
+  bool solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
     const auto start = std::chrono::steady_clock::now();
     ++statistics.numIslands;
     statistics.numRows += static_cast<int>(problem.rows.size());
@@ -172,6 +172,7 @@ class Solver : public Referenced {
     }
     statistics.complementarityError = std::max(statistics.complementarityError, complementarityError(problem));
     statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return finite;
   }
 
  protected:
