@@ -33,7 +33,9 @@ struct SolverStatistics {
   double complementarityError = 0.0;
   bool converged = true;   ///< every pivoting solve found its solution, every sweep met the tolerance
   double solveTime = 0.0;  ///< wall-clock time spent solving (s)
-  int nonFiniteIslands = 0;  ///< islands whose impulses were not finite and were dropped
+  /// Islands whose impulses were not finite and were dropped; the
+  /// simulation freezes their bodies (SimulationStatisticsT::frozenBodies).
+  int nonFiniteIslands = 0;
 };
 
 /// Solves the rows of an island: the simulation's solver policy. Subclasses
