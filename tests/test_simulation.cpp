@@ -560,6 +560,6 @@ TEST_CASE_TEMPLATE("the bodies of an island whose impulses are not finite are fr
     // The other crate steps as in a scene without the broken island.
     CHECK((scene.other->getPosition() - reference.other->getPosition()).norm() <= pick<S>(1e-12, 1e-6));
   }
-  MESSAGE("broken crate z after 30 steps: ", double(scene.broken->getPosition().z()));
+  MESSAGE("broken crate z after 30 steps: " << double(scene.broken->getPosition().z()));
   CHECK(std::abs(double(scene.other->getPosition().z()) - 0.5) < 1e-2);  // resting on the ground
 }
