@@ -9,15 +9,15 @@ namespace {
 
 class Reporter : public spook::ContactEventListener {
  public:
-  KeepContactPolicy impact(double t, spook::GeometryContact* contact) override {
+  KeepContactPolicy impact(const spook::TimeStamp& t, spook::GeometryContact* contact) override {
     std::printf("%.3f s  impact      %zu point(s), depth %.4f m\n", t, contact->points().size(), deepest(*contact));
     return KEEP_CONTACT;
   }
-  KeepContactPolicy contact(double t, spook::GeometryContact* contact) override {
+  KeepContactPolicy contact(const spook::TimeStamp& t, spook::GeometryContact* contact) override {
     std::printf("%.3f s  contact     %zu point(s), depth %.4f m\n", t, contact->points().size(), deepest(*contact));
     return KEEP_CONTACT;
   }
-  void separation(double t, spook::GeometryPair&) override { std::printf("%.3f s  separation\n", t); }
+  void separation(const spook::TimeStamp& t, spook::GeometryPair&) override { std::printf("%.3f s  separation\n", t); }
 
  private:
   static double deepest(const spook::GeometryContact& contact) {

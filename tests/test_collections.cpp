@@ -29,7 +29,7 @@ using Capture = spook::test::SceneState<S>;
 template <class S>
 class Counter : public spook::StepEventListenerT<S> {
  public:
-  void pre(S) override { ++calls; }
+  void pre(const spook::TimeStampT<S>&) override { ++calls; }
   int calls = 0;
 
  protected:

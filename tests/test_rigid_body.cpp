@@ -164,7 +164,8 @@ TEST_CASE_TEMPLATE("a body whose state would overflow is frozen and reported, no
   dust.addForce(spook::Vec3T<S>(std::numeric_limits<S>::max(), S(0), S(0)));  // finite, but F/m overflows
   scene.sim->stepForward();
   REQUIRE(scene.sim->getStatistics().frozenBodies.size() == 1);
-  CHECK(scene.sim->getStatistics().frozenBodies[0].get() == &dust);
+  CHECK(scene.sim->getStatistics().frozenBodies[0].body.get() == &dust);
+  CHECK(scene.sim->getStatistics().frozenBodies[0].reason == spook::FreezeReason::NON_FINITE_STATE);
   CHECK(dust.getPosition() == start);
   CHECK(dust.getVelocity() == spook::Vec3T<S>::Zero());
   scene.sim->stepForward();

@@ -39,6 +39,7 @@
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
 #include <spook/core/scalar.hpp>
+#include <spook/core/time_stamp.hpp>
 #include <spook/dynamics/contact_material.hpp>
 #include <spook/dynamics/friction_model.hpp>
 #include <spook/dynamics/gravity_field.hpp>

@@ -439,7 +439,7 @@ struct Builder {
       for (const auto& b : sim->getRigidBodies()) {
         if (finite(*b)) continue;
         bool reported = false;
-        for (const auto& f : frozen) reported = reported || f.get() == b.get();
+        for (const auto& f : frozen) reported = reported || f.body.get() == b.get();
         if (!reported && !skipping("unreported-nonfinite")) finding("non-finite body state not reported frozen", step, b->getName().c_str());
       }
     }

@@ -32,8 +32,8 @@ class GeometryContactT {
     for (const auto& p : points_) n += p.enabled ? 1 : 0;
     return n;
   }
-  /// False once a contact listener returned REMOVE_CONTACT: later listeners
-  /// and the solver do not see it.
+  /// False once a contact listener returned REMOVE_CONTACT: the solver does
+  /// not see it; the listeners called after that one see it disabled.
   [[nodiscard]] bool isEnabled() const { return enabled_; }
   void setEnable(bool enable) { enabled_ = enable; }
   /// True when the two geometries did not touch in the previous pass.

@@ -62,6 +62,17 @@ class CollectionT : public Referenced {
     if (simulation_) simulation_->add(body);
     bodies_.push_back(std::move(body));
   }
+  /// Adds a listener of class L, checked at compile time as by
+  /// SimulationT::add (detail::requireStepCallbacks).
+  template <detail::StepEventListenerClass<S> L>
+  void add(const ref_ptr<L>& listener) {
+    detail::requireStepCallbacks<L, S>();
+    add(ref_ptr<Listener>(listener));
+  }
+  template <detail::StepEventListenerClass<S> L>
+  void add(L* listener) {
+    add(ref_ptr<L>(listener));
+  }
   void add(ref_ptr<Listener> listener) {
     if (!listener) throw error("cannot add a null StepEventListener", "nullptr");
     if (contains(listeners_, listener.get())) throw error("StepEventListener already added", "listener");

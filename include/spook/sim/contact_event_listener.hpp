@@ -1,11 +1,14 @@
 #pragma once
 
+#include <concepts>
 #include <cstdint>
 
 #include <spook/collide/geometry_contact.hpp>
 #include <spook/core/observer_ptr.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
+#include <spook/core/time_stamp.hpp>
+#include <spook/sim/listener_callbacks.hpp>
 
 namespace spook {
 
@@ -19,9 +22,13 @@ struct SimulationMembership;
 /// the `pre` step listeners: impact (the first pass in which two geometries
 /// touch), contact (each later pass while they touch) and separation (the
 /// first pass after). Returning REMOVE_CONTACT from impact or contact
-/// disables the contact: listeners called later and the solver do not see
-/// it. An execution filter of one or two geometries restricts the events
-/// to contacts involving them. Listeners are called in the order added.
+/// removes the contact from the solver (no rows, no forces); the other
+/// listeners still see it, with isEnabled() false. An execution filter of
+/// one or two geometries restricts the events to contacts involving them.
+/// Listeners are called in the order added. Override the callbacks as
+/// `KeepContactPolicy impact(const spook::TimeStamp& t, spook::GeometryContact* contact) override`;
+/// adding a class whose member named like a callback does not override it,
+/// or that overrides none of them, fails to compile.
 template <Scalar S>
 class ContactEventListenerT : public Referenced {
  public:
@@ -32,12 +39,13 @@ class ContactEventListenerT : public Referenced {
     DEFAULT = IMPACT | CONTACT | SEPARATION
   };
   enum KeepContactPolicy { KEEP_CONTACT, REMOVE_CONTACT };
+  using TimeStamp = TimeStampT<S>;
 
   explicit ContactEventListenerT(std::uint32_t mask = DEFAULT) : mask_(mask) {}
 
-  virtual KeepContactPolicy impact(S /*timeStamp*/, GeometryContactT<S>* /*contact*/) { return KEEP_CONTACT; }
-  virtual KeepContactPolicy contact(S /*timeStamp*/, GeometryContactT<S>* /*contact*/) { return KEEP_CONTACT; }
-  virtual void separation(S /*timeStamp*/, GeometryPairT<S>& /*pair*/) {}
+  virtual KeepContactPolicy impact(const TimeStamp& /*t*/, GeometryContactT<S>* /*contact*/) { return KEEP_CONTACT; }
+  virtual KeepContactPolicy contact(const TimeStamp& /*t*/, GeometryContactT<S>* /*contact*/) { return KEEP_CONTACT; }
+  virtual void separation(const TimeStamp& /*t*/, GeometryPairT<S>& /*pair*/) {}
 
   [[nodiscard]] std::uint32_t getMask() const { return mask_; }
   void setMask(std::uint32_t mask) { mask_ = mask; }
@@ -78,6 +86,62 @@ class ContactEventListenerT : public Referenced {
   observer_ptr<GeometryT<S>> filterSecond_;
   SimulationT<S>* simulation_ = nullptr;
 };
+
+namespace detail {
+/// The callbacks of a ContactEventListener subclass L as `&L::name` shows them.
+template <class L, Scalar S>
+struct ContactCallbacks {
+  using Base = ContactEventListenerT<S>;
+  using Touch = typename Base::KeepContactPolicy(const TimeStampT<S>&, GeometryContactT<S>*);
+  using Separation = void(const TimeStampT<S>&, GeometryPairT<S>&);
+  static constexpr CallbackState impact = [] {
+    if constexpr (requires { &L::impact; })
+      return callbackState<Base, Touch, decltype(&L::impact)>();
+    else
+      return CallbackState::UNKNOWN;
+  }();
+  static constexpr CallbackState contact = [] {
+    if constexpr (requires { &L::contact; })
+      return callbackState<Base, Touch, decltype(&L::contact)>();
+    else
+      return CallbackState::UNKNOWN;
+  }();
+  static constexpr CallbackState separation = [] {
+    if constexpr (requires { &L::separation; })
+      return callbackState<Base, Separation, decltype(&L::separation)>();
+    else
+      return CallbackState::UNKNOWN;
+  }();
+  static constexpr bool overridesAny = impact != CallbackState::INHERITED || contact != CallbackState::INHERITED ||
+                                       separation != CallbackState::INHERITED;
+};
+
+/// Stops the compilation where a listener class L is added when one of its
+/// callbacks would silently never be called.
+template <class L, Scalar S>
+constexpr void requireContactCallbacks() {
+  using C = ContactCallbacks<L, S>;
+  static_assert(C::impact != CallbackState::MISMATCHED,
+                "ContactEventListener: this impact does not override ContactEventListener::impact and would never be "
+                "called; declare it as KeepContactPolicy impact(const spook::TimeStamp& t, spook::GeometryContact* "
+                "contact) override");
+  static_assert(C::contact != CallbackState::MISMATCHED,
+                "ContactEventListener: this contact does not override ContactEventListener::contact and would never "
+                "be called; declare it as KeepContactPolicy contact(const spook::TimeStamp& t, "
+                "spook::GeometryContact* contact) override");
+  static_assert(C::separation != CallbackState::MISMATCHED,
+                "ContactEventListener: this separation does not override ContactEventListener::separation and would "
+                "never be called; declare it as void separation(const spook::TimeStamp& t, spook::GeometryPair& "
+                "pair) override");
+  static_assert(C::overridesAny,
+                "ContactEventListener: this class overrides none of impact, contact, separation (a misspelt name?)");
+}
+
+/// A class derived from ContactEventListenerT<S> (not the base itself).
+template <class L, class S>
+concept ContactEventListenerClass =
+    std::derived_from<L, ContactEventListenerT<S>> && !std::same_as<L, ContactEventListenerT<S>>;
+}  // namespace detail
 
 using ContactEventListener = ContactEventListenerT<double>;
 using ContactEventListenerRef = ref_ptr<ContactEventListener>;

@@ -155,6 +155,17 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// Removes a static geometry; false when it is not here.
   bool remove(Geometry* geometry) { return space_->remove(geometry); }
 
+  /// Adds a listener of class L, checked at compile time: a member named
+  /// like a callback must override it (detail::requireContactCallbacks).
+  template <detail::ContactEventListenerClass<S> L>
+  void add(const ref_ptr<L>& listener) {
+    detail::requireContactCallbacks<L, S>();
+    add(ref_ptr<ContactListener>(listener));
+  }
+  template <detail::ContactEventListenerClass<S> L>
+  void add(L* listener) {
+    add(ref_ptr<L>(listener));
+  }
   void add(ref_ptr<ContactListener> listener) {
     checkAddable(listener.get(), "ContactEventListener");
     Membership::simulationOf(*listener) = this;
@@ -186,6 +197,17 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     Membership::simulationOf(*body) = nullptr;
   }
 
+  /// Adds a listener of class L, checked at compile time: a member named
+  /// like a callback must override it (detail::requireStepCallbacks).
+  template <detail::StepEventListenerClass<S> L>
+  void add(const ref_ptr<L>& listener) {
+    detail::requireStepCallbacks<L, S>();
+    add(ref_ptr<Listener>(listener));
+  }
+  template <detail::StepEventListenerClass<S> L>
+  void add(L* listener) {
+    add(ref_ptr<L>(listener));
+  }
   void add(ref_ptr<Listener> listener) override {
     checkAddable(listener.get(), "StepEventListener");
     Membership::simulationOf(*listener) = this;
@@ -319,13 +341,18 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       geometricStiffness_.apply(rows_, solverBodies_, double(h), solver_->getGeometricStiffnessThreshold());
     else
       geometricStiffness_.clear();
-    if (!rows_.empty()) islands_.solve(rows_, solverBodies_, double(h), *solver_, statistics_.solver);
+    frozen_.assign(bodies_.size(), 0);
+    if (!rows_.empty()) {
+      islands_.solve(rows_, solverBodies_, double(h), *solver_, statistics_.solver);
+      for (int i : islands_.getNonFiniteBodies()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
+    }
     readBackForces(double(h));
     contactRows_.readBack(double(h));
     predictViolations(double(h));
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
       Body& body = *bodies_[i];
-      if (!detail::BodyIntegrator<S>::move(body, solverBodies_[i], h)) statistics_.frozenBodies.emplace_back(&body);
+      if (!frozen_[i] && !detail::BodyIntegrator<S>::move(body, solverBodies_[i], h))
+        freeze(i, FreezeReason::NON_FINITE_STATE);
       detail::BodyIntegrator<S>::clearForces(body);
     }
     if (!rows_.empty())
@@ -372,10 +399,22 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     solverBodies_.clear();
     for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
     geometricStiffness_.addInertia(solverBodies_);
+    // Frozen bodies stand still, like static ones.
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+      if (frozen_[i]) solverBodies_[i] = detail::SolverBody{};
     islands_.project(rows_, solverBodies_, h, *solver_, statistics_.solver);
     for (std::size_t i = 0; i < bodies_.size(); ++i)
       if (!detail::BodyIntegrator<S>::displace(*bodies_[i], solverBodies_[i], S(h)))
-        statistics_.frozenBodies.emplace_back(bodies_[i].get());
+        freeze(i, FreezeReason::NON_FINITE_STATE);
+  }
+
+  // Keeps body i as it was before the step (pose kept, velocities zeroed)
+  // and reports it, once per step.
+  void freeze(std::size_t i, FreezeReason reason) {
+    detail::BodyIntegrator<S>::freeze(*bodies_[i]);
+    solverBodies_[i].freeVelocity.setZero();  // as the rows' predictions (predictViolations) should see it
+    if (std::exchange(frozen_[i], char(1))) return;
+    statistics_.frozenBodies.push_back({bodies_[i].get(), reason});
   }
 
   void collectRows(double h) {
@@ -446,9 +485,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     }
   }
 
-  // Impact and contact callbacks per enabled contact, in the order the
-  // listeners were added, over a snapshot; a REMOVE_CONTACT hides the
-  // contact from the rest. Then the separations.
+  // Impact and contact callbacks per contact, in the order the listeners
+  // were added, over a snapshot; a REMOVE_CONTACT disables the contact for
+  // the solver, and the listeners after it see it disabled (seed 000). Then
+  // the separations.
   void notifyContacts() {
     if (contactListeners_.empty()) return;
     const std::vector<ref_ptr<ContactListener>> snapshot = contactListeners_;
@@ -456,7 +496,6 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     for (auto& contact : space_->getGeometryContacts()) {
       const auto stage = contact.isImpact() ? ContactListener::IMPACT : ContactListener::CONTACT;
       for (const auto& l : snapshot) {
-        if (!contact.isEnabled()) break;
         if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage) ||
             !l->matches(contact.geometry(0), contact.geometry(1)))
           continue;
@@ -590,6 +629,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   SimulationStatisticsT<S> statistics_;
   ref_ptr<Solver> solver_ = new HybridSolver();
   std::vector<detail::SolverBody> solverBodies_;
+  std::vector<char> frozen_;  ///< per body: frozen in this step
   std::vector<detail::Row> rows_;
   std::vector<Constraint*> rowOwners_;
   std::size_t numConstraintRows_ = 0;  ///< rows_ holds the constraints' rows, then the contacts'

@@ -9,14 +9,31 @@
 
 namespace spook {
 
+/// Why a body was frozen in a step (SimulationStatisticsT::frozenBodies).
+enum class FreezeReason {
+  /// Its own new position, orientation or velocity would not have been finite.
+  NON_FINITE_STATE,
+  /// The constraint and contact impulses of its island (the bodies joined to
+  /// it by constraints and contacts) came out non-finite: they were dropped,
+  /// and every body of the island was frozen rather than moved without them.
+  NON_FINITE_ISLAND
+};
+
 /// What the last step did, readable after stepForward().
 template <Scalar S>
 struct SimulationStatisticsT {
+  /// A body frozen in the last step and why.
+  struct FrozenBody {
+    observer_ptr<RigidBodyT<S>> body;
+    FreezeReason reason;
+  };
+
   /// Steps taken since the simulation was created.
   std::uint64_t numSteps = 0;
-  /// Bodies whose state would have become non-finite in the last step; they
-  /// were frozen (velocities zeroed, pose kept) instead.
-  std::vector<observer_ptr<RigidBodyT<S>>> frozenBodies;
+  /// Bodies frozen in the last step: their state was kept as it was before
+  /// the step (pose kept, velocities zeroed) instead of becoming non-finite
+  /// or moving without their constraints. Each body appears once.
+  std::vector<FrozenBody> frozenBodies;
   /// What the constraint solver did in the last step.
   SolverStatistics solver;
 };

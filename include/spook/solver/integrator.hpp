@@ -82,11 +82,24 @@ struct BodyIntegrator {
 
   static void clearForces(Body& body) { body.force_ = body.torque_ = Vec3::Zero(); }
 
+<<<<<<< HEAD
   /// Inverse damped mass and inertia (as in solverBody, for a step of h) at
   /// the current pose, and the current velocities (dynamic bodies; the
   /// others stand still with infinite mass). Post-stabilization distributes
   /// its corrections with the same mass as the step's impulses.
   static SolverBody massAndVelocity(const Body& body, S h) {
+=======
+  /// Freezes a body for this step: pose kept, velocities zeroed, a moveTo
+  /// dropped.
+  static void freeze(Body& body) {
+    body.velocity_ = body.angularVelocity_ = Vec3::Zero();
+    body.target_.reset();
+  }
+
+  /// Inverse mass and inertia at the current pose and the current velocities
+  /// (dynamic bodies; the others stand still with infinite mass).
+  static SolverBody massAndVelocity(const Body& body) {
+>>>>>>> h/events
     SolverBody b;
     if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
     b.velocity = stack(body.velocity_, body.angularVelocity_);
@@ -163,8 +176,7 @@ struct BodyIntegrator {
   // Writes the new center-of-mass state back through the model frame.
   static bool commit(Body& body, const Vec3& x, const Quat& q, const Vec3& v, const Vec3& omega) {
     if (!(x.allFinite() && q.coeffs().allFinite() && v.allFinite() && omega.allFinite())) {
-      body.velocity_ = body.angularVelocity_ = Vec3::Zero();
-      body.target_.reset();
+      freeze(body);
       return false;
     }
     const Quat modelRotation = (q * body.cmFrame_->getLocalRotate().conjugate()).normalized();

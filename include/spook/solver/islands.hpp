@@ -19,7 +19,8 @@ namespace spook::detail {
 /// static and kinematic bodies do not join islands), turns each island into
 /// an IslandProblem for step h, lets `solver` solve it, and writes the
 /// impulses back to the rows' owners and the velocity changes to `bodies`
-/// (freeVelocity becomes v⁺).
+/// (freeVelocity becomes v⁺). The bodies of an island whose impulses came
+/// out non-finite are listed in getNonFiniteBodies().
 class IslandStepper {
  public:
   /// Smallest damping τ/h the stepper uses; a smaller τ (0 included) is raised to it.
@@ -54,12 +55,18 @@ class IslandStepper {
     }
   }
 
+  /// The dynamic bodies (indices into `bodies`) of the islands whose
+  /// impulses the last solve() dropped as non-finite.
+  [[nodiscard]] const std::vector<int>& getNonFiniteBodies() const { return nonFiniteBodies_; }
+
   void solve(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, Solver& solver,
              SolverStatistics& statistics) {
     partition(rows, bodies);
+    nonFiniteBodies_.clear();
     for (const std::vector<int>& island : islands_) {
       buildProblem(rows, bodies, island, h, solver.getEnableWarmStarting());
-      solver.solve(problem_, statistics);
+      if (!solver.solve(problem_, statistics))
+        nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
       for (std::size_t k = 0; k < island.size(); ++k) *rows[static_cast<std::size_t>(island[k])].impulse = problem_.rows[k].impulse;
       for (std::size_t k = 0; k < problem_.rows.size(); ++k) {
         const auto& e = problem_.rows[k];
@@ -194,7 +201,7 @@ class IslandStepper {
     return llt.solve(Mat3d::Identity());
   }
 
-  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_;
+  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_;
   std::vector<std::vector<int>> islands_;
   IslandProblem problem_;
 };

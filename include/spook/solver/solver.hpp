@@ -33,7 +33,9 @@ struct SolverStatistics {
   double complementarityError = 0.0;
   bool converged = true;   ///< every pivoting solve found its solution, every sweep met the tolerance
   double solveTime = 0.0;  ///< wall-clock time spent solving (s)
-  int nonFiniteIslands = 0;  ///< islands whose impulses were not finite and were dropped
+  /// Islands whose impulses were not finite and were dropped; the
+  /// simulation freezes their bodies (SimulationStatisticsT::frozenBodies).
+  int nonFiniteIslands = 0;
 };
 
 /// Solves the rows of an island: the simulation's solver policy. Subclasses
@@ -157,8 +159,8 @@ class Solver : public Referenced {
   }
 
   /// Solves one island in place and accumulates the statistics. Impulses that
-  /// come out non-finite are dropped (set to zero) and counted.
-  void solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  /// come out non-finite are dropped (set to zero) and counted; false then.
+  bool solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
     const auto start = std::chrono::steady_clock::now();
     ++statistics.numIslands;
     statistics.numRows += static_cast<int>(problem.rows.size());
@@ -172,6 +174,7 @@ class Solver : public Referenced {
     }
     statistics.complementarityError = std::max(statistics.complementarityError, complementarityError(problem));
     statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return finite;
   }
 
  protected:

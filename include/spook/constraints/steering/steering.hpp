@@ -76,7 +76,7 @@ class SteeringT : public StepEventListenerT<S> {
     apply();
   }
 
-  void pre(S) override { apply(); }
+  void pre(const TimeStampT<S>&) override { apply(); }
 
  protected:
   SteeringT(const char* kind, WheelJoint* left, WheelJoint* right, const SteeringParameters& parameters)
