@@ -50,9 +50,8 @@ struct BodyIntegrator {
         inertiaInverse * (inertia * (R.transpose() * body.angularVelocity_) + h * (R.transpose() * body.torque_));
     omega = omega.cwiseQuotient(Vec3::Ones() + h * body.angularDamping_);
     b.freeVelocity = stack(v, R * omega);
-    const Mat3 massInverse = R * mass.getEffectiveMass().cwiseInverse().asDiagonal() * R.transpose();
-    b.inverseMass = massInverse.template cast<double>();
-    b.inverseInertia = (R * inertiaInverse * R.transpose()).template cast<double>();
+    b.inverseMass = toWorld(R, mass.getEffectiveMass().cwiseInverse().asDiagonal());
+    b.inverseInertia = toWorld(R, inertiaInverse);
     return b;
   }
 
@@ -84,9 +83,20 @@ struct BodyIntegrator {
     b.dynamic = true;
     const MassPropertiesT<S>& mass = body.massProperties_;
     const Mat3 R = body.getCmRotation().toRotationMatrix();
-    b.inverseMass = (R * mass.getEffectiveMass().cwiseInverse().asDiagonal() * R.transpose()).template cast<double>();
-    b.inverseInertia = (R * mass.getInertiaTensor().inverse() * R.transpose()).template cast<double>();
+    b.inverseMass = toWorld(R, mass.getEffectiveMass().cwiseInverse().asDiagonal());
+    b.inverseInertia = toWorld(R, mass.getInertiaTensor().inverse());
     return b;
+  }
+
+  /// R B Rᵀ in double and exactly symmetric. Formed in a float body's own
+  /// precision it is symmetric only to ~1e-7, and where many rows share a
+  /// body's few degrees of freedom (contacts fighting a joint) that
+  /// asymmetry, larger than the rows' regularization, makes the solver's
+  /// matrix G M⁻¹Gᵀ + Σ indefinite and the direct solve's pivoting cycle.
+  static Mat3d toWorld(const Mat3& R, const Mat3& inBody) {
+    const Mat3d Rd = R.template cast<double>();
+    const Mat3d world = Rd * inBody.template cast<double>() * Rd.transpose();
+    return 0.5 * (world + world.transpose());
   }
 
   /// Moves a body by a post-stabilization displacement: its center by Δx,
