@@ -1,5 +1,8 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include <spook/core/math.hpp>
 #include <spook/dynamics/gravity_field.hpp>
 #include <spook/dynamics/rigid_body.hpp>
@@ -101,16 +104,43 @@ struct BodyIntegrator {
 
   /// Moves a body by a post-stabilization displacement: its center by Δx,
   /// its orientation by the rotation vector Δθ (world); the velocities take
-  /// Δx/h and Δθ/h so that they stay consistent with the motion.
+  /// Δx/h and Δθ/h so that they stay consistent with the motion, as far as
+  /// that adds no more than kProjectionEnergyShare of the body's kinetic
+  /// energy. The projection removes the step's higher-order drift, whose
+  /// velocity is tiny; where a large violation (contacts tearing a joint)
+  /// makes the linearized projection overshoot, Δq/h would otherwise pump
+  /// energy into the motion each step, and the chain diverges.
   static bool displace(Body& body, const SolverBody& b, S h) {
     if (!b.dynamic || b.displacement.isZero(0.0)) return true;
     const Vec3 dx = b.displacement.head<3>().template cast<S>();
     const Vec3 dtheta = b.displacement.tail<3>().template cast<S>();
     const Quat q = (expRotation<S>(dtheta) * body.getCmRotation()).normalized();
-    return commit(body, body.getCmPosition() + dx, q, body.velocity_ + dx / h, body.angularVelocity_ + dtheta / h);
+    const S share = S(energyBoundedShare(body, b.displacement / double(h)));
+    return commit(body, body.getCmPosition() + dx, q, body.velocity_ + share * dx / h,
+                  body.angularVelocity_ + share * dtheta / h);
   }
+  /// The kinetic energy a projection's velocity change may add, as a share
+  /// of the body's.
+  static constexpr double kProjectionEnergyShare = 0.01;
 
  private:
+  // The largest s in [0, 1] with ΔE(s) = s vᵀMu + ½s² uᵀMu ≤ share·½vᵀMv
+  // for the velocity change u (M: effective mass and world inertia).
+  static double energyBoundedShare(const Body& body, const Vec6d& u) {
+    const MassPropertiesT<S>& mass = body.massProperties_;
+    const Mat3d R = body.getCmRotation().toRotationMatrix().template cast<double>();
+    const Vec3d m = mass.getEffectiveMass().template cast<double>();
+    const Mat3d I = mass.getInertiaTensor().template cast<double>();
+    const Vec6d v = stack(body.velocity_, body.angularVelocity_);
+    const auto dot = [&](const Vec6d& a, const Vec6d& c) {
+      return (R.transpose() * a.head<3>()).cwiseProduct(m).dot(R.transpose() * c.head<3>()) +
+             (R.transpose() * a.tail<3>()).dot(I * (R.transpose() * c.tail<3>()));
+    };
+    const double B = dot(v, u), C = dot(u, u), allowed = kProjectionEnergyShare * 0.5 * dot(v, v);
+    if (B + 0.5 * C <= allowed) return 1.0;
+    return std::clamp((-B + std::sqrt(B * B + 2.0 * C * allowed)) / C, 0.0, 1.0);
+  }
+
   static Vec6d stack(const Vec3& v, const Vec3& w) {
     Vec6d out;
     out << v.template cast<double>(), w.template cast<double>();
