@@ -121,8 +121,15 @@ class SpaceT : public Referenced {
     return !disabledNames_.count(std::minmax(a, b));
   }
 
+  /// Vetoes pairs of geometries on two bodies: returns true for a pair that
+  /// must not collide. A simulation sets it to leave out the bodies its
+  /// constraints join (Constraint::setEnableCollisions).
+  using BodyPairFilter = std::function<bool(const Body&, const Body&)>;
+  void setBodyPairFilter(BodyPairFilter filter) { bodyPairFilter_ = std::move(filter); }
+
   /// True when the pair passes every filter: both enabled and colliding,
-  /// not on one body, not both static, not disabled pairwise or by groups.
+  /// not on one body, not both static, not disabled pairwise or by groups,
+  /// not vetoed by the body pair filter.
   [[nodiscard]] bool canCollide(const Geometry& a, const Geometry& b) const {
     if (&a == &b || !a.getEnable() || !b.getEnable() || !a.getEnableCollisions() || !b.getEnableCollisions())
       return false;
@@ -137,7 +144,7 @@ class SpaceT : public Referenced {
     for (const auto& name : a.getGroupNames())
       for (const auto& other : b.getGroupNames())
         if (disabledNames_.count(std::minmax(name, other))) return false;
-    return true;
+    return !(bodyA && bodyB && bodyPairFilter_ && bodyPairFilter_(*bodyA, *bodyB));
   }
 
   // --- Contact reduction -----------------------------------------------------
@@ -288,6 +295,7 @@ class SpaceT : public Referenced {
   std::set<std::pair<std::string, std::string>> disabledNames_;
   ContactReductionMode reductionMode_ = ContactReductionMode::REDUCE_GEOMETRY;
   ReductionRule reductionRule_;
+  BodyPairFilter bodyPairFilter_;
   int binResolution_ = 2;
 
   std::vector<Geometry*> active_;

@@ -49,6 +49,15 @@ class ConstraintT : public Referenced {
   [[nodiscard]] bool getEnable() const { return enable_; }
   void setEnable(bool enable) { enable_ = enable; }
 
+  /// Whether the geometries of the two bodies collide with each other while
+  /// this constraint is enabled. Default false: jointed bodies do not
+  /// collide (a machine's links overlap at their pins), as with PhysX's
+  /// joints and MuJoCo's parent–child filter. Other filters
+  /// (Geometry::setEnableCollisions, groups) still apply when on. A body
+  /// constrained to the world keeps colliding with static geometry.
+  [[nodiscard]] bool getEnableCollisions() const { return enableCollisions_; }
+  void setEnableCollisions(bool enable) { enableCollisions_ = enable; }
+
   /// Body 0 or 1 (nullptr for the world).
   [[nodiscard]] Body* getBodyAt(int index) const { return index == 0 ? body1_.get() : index == 1 ? body2_.get() : nullptr; }
   /// Attachment frame 0 or 1.
@@ -240,6 +249,7 @@ class ConstraintT : public Referenced {
   const char* kind_;
   std::string name_;
   bool enable_ = true;
+  bool enableCollisions_ = false;
   SolveType solveType_ = SolveType::DIRECT_AND_ITERATIVE;
   bool computeForces_ = false;
   std::array<detail::Vec6d, 2> wrench_{detail::Vec6d::Zero(), detail::Vec6d::Zero()};

@@ -48,6 +48,12 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   explicit RigidBodyT(std::string name = "") : name_(std::move(name)), massProperties_(&name_) {
     cmFrame_->setParent(frame_.get());
   }
+  /// A body with one geometry, its mass properties generated from it (AGX's
+  /// `new RigidBody(geometry)`). Throws as add() does: for a null geometry
+  /// or one that belongs to a body or stands in a space.
+  explicit RigidBodyT(ref_ptr<Geometry> geometry, std::string name = "") : RigidBodyT(std::move(name)) {
+    add(std::move(geometry));
+  }
 
   [[nodiscard]] const std::string& getName() const { return name_; }
   void setName(std::string name) { name_ = std::move(name); }

@@ -21,6 +21,7 @@
 #include <spook/sim/collection.hpp>
 #include <spook/sim/contact_event_listener.hpp>
 #include <spook/sim/contact_rows.hpp>
+#include <spook/sim/jointed_pairs.hpp>
 #include <spook/sim/material_manager.hpp>
 #include <spook/sim/membership.hpp>
 #include <spook/sim/statistics.hpp>
@@ -47,12 +48,12 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   using Constraint = ConstraintT<S>;
 
   /// A simulation whose space collides every shape type.
-  SimulationT() : space_(new SpaceT<S>()) { followContactMaterials(); }
+  SimulationT() : space_(new SpaceT<S>()) { installSpaceRules(); }
   /// A simulation for the shape types of `List` only, e.g.
   /// `Simulation(ShapeList<SphereT, PlaneT>{})`: only the colliders between
   /// them are compiled, and a geometry of another type is refused.
   template <template <class> class... Shapes>
-  explicit SimulationT(ShapeList<Shapes...> list) : space_(new SpaceT<S>(list)) { followContactMaterials(); }
+  explicit SimulationT(ShapeList<Shapes...> list) : space_(new SpaceT<S>(list)) { installSpaceRules(); }
 
   // --- Time ------------------------------------------------------------------
 
@@ -245,6 +246,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     checkBodiesOf(*constraint, nullptr);
     Membership::indexOf(*constraint) = constraints_.size();
     Membership::simulationOf(*constraint) = this;
+    jointedPairs_.add(*constraint);
     constraints_.push_back(std::move(constraint));
   }
   void remove(Constraint* constraint) override {
@@ -254,6 +256,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     std::swap(constraints_[index], constraints_.back());
     Membership::indexOf(*constraints_[index]) = index;
     constraints_.pop_back();
+    jointedPairs_.remove(*constraint);
     Membership::simulationOf(*constraint) = nullptr;
     predicted_.clear();  // keyed by row storage a later constraint may reuse
   }
@@ -301,8 +304,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
  private:
   using Membership = detail::SimulationMembership;
 
-  // Pairs with an explicit contact material reduce their points as it says.
-  void followContactMaterials() {
+  // Pairs with an explicit contact material reduce their points as it says;
+  // jointed bodies do not collide unless their constraint asks (jointed_pairs.hpp).
+  void installSpaceRules() {
+    space_->setBodyPairFilter([this](const Body& a, const Body& b) { return jointedPairs_.filters(&a, &b); });
     space_->setReductionRule([this](const Geometry& a, const Geometry& b) {
       std::optional<std::pair<ContactReductionMode, int>> rule;
       if (const auto* cm = materials_.getContactMaterial(a.getMaterial(), b.getMaterial()))
@@ -626,6 +631,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   ref_ptr<SpaceT<S>> space_;
   std::vector<ref_ptr<Collection>> collections_;
   std::vector<ref_ptr<Constraint>> constraints_;
+  detail::JointedPairs<S> jointedPairs_;
   SimulationStatisticsT<S> statistics_;
   ref_ptr<Solver> solver_ = new HybridSolver();
   std::vector<detail::SolverBody> solverBodies_;
@@ -665,6 +671,7 @@ void SimulationT<S>::stepForward() {
   notify(Listener::LAST_STEP);
   ++stepsSinceBase_;
   ++statistics_.numSteps;
+  if (statistics_.solver.directFallbacks > 0) ++statistics_.numFallbackSteps;
   stepping_ = false;
   applyPendingTimeStep();
 }

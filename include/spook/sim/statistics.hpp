@@ -34,6 +34,9 @@ struct SimulationStatisticsT {
   /// the step (pose kept, velocities zeroed) instead of becoming non-finite
   /// or moving without their constraints. Each body appears once.
   std::vector<FrozenBody> frozenBodies;
+  /// Steps, since the simulation was created, in which a direct solve did
+  /// not converge and fell back to its safe answer (SolverStatistics::directFallbacks).
+  std::uint64_t numFallbackSteps = 0;
   /// What the constraint solver did in the last step.
   SolverStatistics solver;
 };

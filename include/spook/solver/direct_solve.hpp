@@ -11,6 +11,7 @@
 
 #include <spook/solver/body_space_solve.hpp>
 #include <spook/solver/island_problem.hpp>
+#include <spook/solver/iterative_solve.hpp>
 
 namespace spook::detail {
 
@@ -18,6 +19,7 @@ namespace spook::detail {
 struct DirectSolveResult {
   int factorizations = 0;  ///< sparse LDLᵀ factorizations (one per pivot step)
   bool converged = true;   ///< a complementary solution was found
+  bool fellBack = false;   ///< the pivoting gave up; the safe fallback answered
 };
 
 /// Solves the rows `subset` of an island exactly, the impulses of the other
@@ -38,10 +40,22 @@ struct DirectSolveResult {
 /// the number of infeasible rows for kBlockPivotingStrikes steps, it switches
 /// to Murty's single principal pivoting (swap only the infeasible row of
 /// largest index), which cannot cycle on a positive definite matrix (Murty
-/// 1974). Should the step cap be reached, the iterate with the fewest
-/// infeasible rows is kept, clamped to the bounds.
+/// 1974). Murty's guarantee is exact arithmetic's: where contacts fight a
+/// joint, many rows share a body's few degrees of freedom, S is singular,
+/// and only Σ (1e-5 and less of the rows' mobility) keeps the matrix
+/// definite; round-off can then flip a Schur complement's sign and a row
+/// cycles between free and bound. Should the step cap be reached, the solve
+/// falls back to a safe answer: of the clamped best iterate (fewest
+/// infeasible rows) and no impulse at all, the one of lower merit
+/// f(Λ) = ½ΛᵀAΛ − qᵀΛ (whose minimum over the bounds is the LCP's solution;
+/// f(Λ) − f(0) bounds the kinetic energy the impulses add), refined by
+/// projected Gauss–Seidel, which never raises f. The solve is reported as
+/// not converged.
 class DirectSolve {
  public:
+  /// Gauss–Seidel sweeps of the fallback.
+  static constexpr int kFallbackSweeps = 64;
+
   /// Block pivoting steps allowed without a new fewest-infeasible count
   /// before single pivots: friction in a 210-cube pyramid needs tens of such
   /// steps, and Murty's one row per step then takes hundreds.
@@ -98,9 +112,10 @@ class DirectSolve {
         ++strikes;
       }
       if (step >= maxPivotSteps) {
+        fallBack(problem, subset, bestX);
         result.converged = false;
-        x = bestX;
-        break;
+        result.fellBack = true;
+        return result;
       }
       if (strikes >= kBlockPivotingStrikes) infeasible.erase(infeasible.begin(), infeasible.end() - 1);
       for (int k : infeasible) {
@@ -119,6 +134,26 @@ class DirectSolve {
   }
 
  private:
+  // The safe answer of a solve whose pivoting gave up (see the class note).
+  void fallBack(IslandProblem& problem, const std::vector<int>& subset, Eigen::VectorXd x) {
+    const auto n = static_cast<Eigen::Index>(subset.size());
+    Eigen::VectorXd none(n);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      x[k] = std::clamp(x[k], e.lower, e.upper);
+      none[k] = std::clamp(0.0, e.lower, e.upper);
+    }
+    const auto merit = [&](const Eigen::VectorXd& y) { return 0.5 * y.dot(residual(problem, subset, y) - q_); };
+    const double fx = merit(x);
+    if (!(std::isfinite(fx) && fx <= merit(none))) x = none;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      e.impulse = x[k];
+    }
+    iterativeSolve(problem, subset, kFallbackSweeps, 0.0, false);
+    for (int i : subset) problem.rows[static_cast<std::size_t>(i)].guess = problem.rows[static_cast<std::size_t>(i)].impulse;
+  }
+
   static bool isBounded(const IslandProblem::Entry& e) {
     return e.lower > -std::numeric_limits<double>::infinity() || e.upper < std::numeric_limits<double>::infinity();
   }

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include <spook/core/math.hpp>
 #include <spook/dynamics/gravity_field.hpp>
 #include <spook/dynamics/rigid_body.hpp>
@@ -82,43 +85,45 @@ struct BodyIntegrator {
 
   static void clearForces(Body& body) { body.force_ = body.torque_ = Vec3::Zero(); }
 
-<<<<<<< HEAD
   /// Inverse damped mass and inertia (as in solverBody, for a step of h) at
   /// the current pose, and the current velocities (dynamic bodies; the
   /// others stand still with infinite mass). Post-stabilization distributes
   /// its corrections with the same mass as the step's impulses.
   static SolverBody massAndVelocity(const Body& body, S h) {
-=======
-  /// Freezes a body for this step: pose kept, velocities zeroed, a moveTo
-  /// dropped.
-  static void freeze(Body& body) {
-    body.velocity_ = body.angularVelocity_ = Vec3::Zero();
-    body.target_.reset();
+    return b;
   }
 
-  /// Inverse mass and inertia at the current pose and the current velocities
-  /// (dynamic bodies; the others stand still with infinite mass).
-  static SolverBody massAndVelocity(const Body& body) {
->>>>>>> h/events
-    SolverBody b;
-    if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
-    b.velocity = stack(body.velocity_, body.angularVelocity_);
-    if (body.motionControl_ != Body::DYNAMICS) return b;
-    b.dynamic = true;
-    setDampedInverseMass(body, body.getCmRotation().toRotationMatrix(), h, b);
-    return b;
+  /// R B Rᵀ in double and exactly symmetric. Formed in a float body's own
+  /// precision it is symmetric only to ~1e-7, and where many rows share a
+  /// body's few degrees of freedom (contacts fighting a joint) that
+  /// asymmetry, larger than the rows' regularization, makes the solver's
+  /// matrix G M⁻¹Gᵀ + Σ indefinite and the direct solve's pivoting cycle.
+  static Mat3d toWorld(const Mat3& R, const Mat3& inBody) {
+    const Mat3d Rd = R.template cast<double>();
+    const Mat3d world = Rd * inBody.template cast<double>() * Rd.transpose();
+    return 0.5 * (world + world.transpose());
   }
 
   /// Moves a body by a post-stabilization displacement: its center by Δx,
   /// its orientation by the rotation vector Δθ (world); the velocities take
-  /// Δx/h and Δθ/h so that they stay consistent with the motion.
+  /// Δx/h and Δθ/h so that they stay consistent with the motion, as far as
+  /// that adds no more than kProjectionEnergyShare of the body's kinetic
+  /// energy. The projection removes the step's higher-order drift, whose
+  /// velocity is tiny; where a large violation (contacts tearing a joint)
+  /// makes the linearized projection overshoot, Δq/h would otherwise pump
+  /// energy into the motion each step, and the chain diverges.
   static bool displace(Body& body, const SolverBody& b, S h) {
     if (!b.dynamic || b.displacement.isZero(0.0)) return true;
     const Vec3 dx = b.displacement.head<3>().template cast<S>();
     const Vec3 dtheta = b.displacement.tail<3>().template cast<S>();
     const Quat q = (expRotation<S>(dtheta) * body.getCmRotation()).normalized();
-    return commit(body, body.getCmPosition() + dx, q, body.velocity_ + dx / h, body.angularVelocity_ + dtheta / h);
+    const S share = S(energyBoundedShare(body, b.displacement / double(h)));
+    return commit(body, body.getCmPosition() + dx, q, body.velocity_ + share * dx / h,
+                  body.angularVelocity_ + share * dtheta / h);
   }
+  /// The kinetic energy a projection's velocity change may add, as a share
+  /// of the body's.
+  static constexpr double kProjectionEnergyShare = 0.01;
 
  private:
   // Sets b's inverse damped mass M_d⁻¹ and inertia I_d⁻¹ (world; solverBody
@@ -129,9 +134,26 @@ struct BodyIntegrator {
     const Mat3& inertia = mass.getInertiaTensor();
     const Vec3 root = body.angularDamping_.cwiseSqrt();
     const Mat3 dampedInertiaInverse = Mat3(inertia + h * (root.asDiagonal() * inertia * root.asDiagonal())).inverse();
-    b.inverseMass = (R * dampedMass.cwiseInverse().asDiagonal() * R.transpose()).template cast<double>();
-    b.inverseInertia = (R * dampedInertiaInverse * R.transpose()).template cast<double>();
+    b.inverseMass = toWorld(R, dampedMass.cwiseInverse().asDiagonal());
+    b.inverseInertia = toWorld(R, dampedInertiaInverse);
     return dampedInertiaInverse;
+  }
+
+  // The largest s in [0, 1] with ΔE(s) = s vᵀMu + ½s² uᵀMu ≤ share·½vᵀMv
+  // for the velocity change u (M: effective mass and world inertia).
+  static double energyBoundedShare(const Body& body, const Vec6d& u) {
+    const MassPropertiesT<S>& mass = body.massProperties_;
+    const Mat3d R = body.getCmRotation().toRotationMatrix().template cast<double>();
+    const Vec3d m = mass.getEffectiveMass().template cast<double>();
+    const Mat3d I = mass.getInertiaTensor().template cast<double>();
+    const Vec6d v = stack(body.velocity_, body.angularVelocity_);
+    const auto dot = [&](const Vec6d& a, const Vec6d& c) {
+      return (R.transpose() * a.head<3>()).cwiseProduct(m).dot(R.transpose() * c.head<3>()) +
+             (R.transpose() * a.tail<3>()).dot(I * (R.transpose() * c.tail<3>()));
+    };
+    const double B = dot(v, u), C = dot(u, u), allowed = kProjectionEnergyShare * 0.5 * dot(v, v);
+    if (B + 0.5 * C <= allowed) return 1.0;
+    return std::clamp((-B + std::sqrt(B * B + 2.0 * C * allowed)) / C, 0.0, 1.0);
   }
 
   static Vec6d stack(const Vec3& v, const Vec3& w) {

@@ -32,6 +32,10 @@ struct SolverStatistics {
   /// w = (S+Σ)Λ − q (PHYSICS.md §2.1). Zero to round-off for a direct solve.
   double complementarityError = 0.0;
   bool converged = true;   ///< every pivoting solve found its solution, every sweep met the tolerance
+  /// Direct solves whose pivoting reached getMaxPivotSteps and that fell back
+  /// to the safe answer (direct_solve.hpp): the best iterate or no impulse,
+  /// refined by Gauss–Seidel.
+  int directFallbacks = 0;
   double solveTime = 0.0;  ///< wall-clock time spent solving (s)
   /// Islands whose impulses were not finite and were dropped; the
   /// simulation freezes their bodies (SimulationStatisticsT::frozenBodies).
@@ -185,6 +189,7 @@ class Solver : public Referenced {
     const detail::DirectSolveResult r = direct_.solve(problem, subset, maxPivotSteps_);
     statistics.factorizations += r.factorizations;
     statistics.converged = statistics.converged && r.converged;
+    statistics.directFallbacks += r.fellBack ? 1 : 0;
   }
   /// A direct solve repeated over the friction bounds that follow the normal
   /// impulses (getNumFrictionIterations); rows flagged in `keep` keep theirs.
