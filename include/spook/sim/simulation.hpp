@@ -13,6 +13,7 @@
 #include <spook/core/error.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
+#include <spook/collide/continuous.hpp>
 #include <spook/collide/space.hpp>
 #include <spook/constraints/constraint.hpp>
 #include <spook/dynamics/gravity_field.hpp>
@@ -74,8 +75,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   /// Takes one step:
   /// preCollide listeners → collision detection → contact events → pre
-  /// listeners → rows, islands, solve → integrate → post listeners → last
-  /// listeners → t += h.
+  /// listeners → rows, islands, solve → integrate → continuous collision
+  /// (RigidBody::setEnableCCD) → post listeners → last listeners → t += h.
   void stepForward() {
     if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
     applyPendingTimeStep();  // left over when a listener threw in the last step
@@ -89,6 +90,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     notifyContacts();
     notify(Listener::PRE_STEP);
     integrate(timeStep_);
+    detail::stopAtFirstContact(bodies_, *space_, timeStep_);
     notify(Listener::POST_STEP);
     notify(Listener::LAST_STEP);
     ++stepsSinceBase_;
