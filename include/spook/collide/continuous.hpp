@@ -94,9 +94,9 @@ struct CoreSphere {
   [[nodiscard]] Vec3 getCenterOfVolume() const { return center; }
 };
 
-/// Whether two convex objects overlap (libccd's GJK).
+/// libccd's settings for a pair of bridged objects.
 template <class A, class B>
-[[nodiscard]] bool ccdOverlap(const CcdObject<A>& a, const CcdObject<B>& b) {
+[[nodiscard]] ccd_t ccdSettings() {
   ccd_t ccd;
   CCD_INIT(&ccd);
   ccd.support1 = &CcdObject<A>::support;
@@ -104,6 +104,13 @@ template <class A, class B>
   ccd.center1 = &CcdObject<A>::centerOf;
   ccd.center2 = &CcdObject<B>::centerOf;
   ccd.max_iterations = kCcdMaxIterations;
+  return ccd;
+}
+
+/// Whether two convex objects overlap (libccd's GJK).
+template <class A, class B>
+[[nodiscard]] bool ccdOverlap(const CcdObject<A>& a, const CcdObject<B>& b) {
+  const ccd_t ccd = ccdSettings<A, B>();
   return ccdGJKIntersect(&a, &b, &ccd) != 0;
 }
 
@@ -244,13 +251,7 @@ class BodySweep {
     X_hit.translation() -= ((1.0 - *t) * motion_).template cast<S>();
     const CcdObject<A> objectA(a, X_hit);
     const CcdObject<B> objectB(b, X_WB);
-    ccd_t ccd;
-    CCD_INIT(&ccd);
-    ccd.support1 = &CcdObject<A>::support;
-    ccd.support2 = &CcdObject<B>::support;
-    ccd.center1 = &CcdObject<A>::centerOf;
-    ccd.center2 = &CcdObject<B>::centerOf;
-    ccd.max_iterations = kCcdMaxIterations;
+    const ccd_t ccd = ccdSettings<A, B>();
     ccd_real_t depth = 0;
     ccd_vec3_t direction, position;
     double approach = length_;
