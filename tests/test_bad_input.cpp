@@ -5,9 +5,11 @@
 #include <string>
 #include <string_view>
 
+#include <spook/sim/assembly.hpp>
 #include <spook/sim/simulation.hpp>
 
 #include "scene_state.hpp"
+#include "tolerance.hpp"
 
 // Bad input throws spook::Error naming the object and the offending value,
 // and leaves everything exactly as it was (DESIGN.md, "Errors").
@@ -132,6 +134,50 @@ TEST_CASE_TEMPLATE("a NaN or zero rotation quaternion is rejected", S, float, do
   spook::TransformT<S> X = spook::TransformT<S>::Identity();
   X.linear()(1, 1) = kNaN<S>;
   checkRejected(y, [&] { y.crate->setTransform(X); }, {"'crate'", "nan"});
+}
+
+// A finite quaternion whose squared norm overflows (components ~2e154 in
+// double, ~3e19 in float) or underflows is still a rotation: it is
+// normalized after scaling by its largest component, not stored as zero.
+TEST_CASE_TEMPLATE("a finite quaternion too large or too small to square is normalized, not zeroed", S, float, double) {
+  using Quat = spook::QuatT<S>;
+  const S tol = spook::test::pick<S>(1e-14, 1e-6);
+  const Quat q = spook::toQuat(spook::EulerAnglesT<S>{S(0.1), S(0.2), S(0.3)});
+  const auto same = [&](const Quat& a) {
+    return std::abs(std::abs(a.dot(q)) - S(1)) < tol && std::abs(a.norm() - S(1)) < tol;
+  };
+  for (const S scale :
+       {spook::test::pick<S>(2e154, 3e19), spook::test::pick<S>(1e-170, 1e-25), std::numeric_limits<S>::max() / S(2)}) {
+    CAPTURE(scale);
+    const Quat scaled(Quat(q.coeffs() * scale));
+    Yard<S> y;
+    CHECK_NOTHROW(y.crate->setRotation(scaled));
+    MESSAGE("setRotation of q * ", scale, " stored ", y.crate->getRotation().coeffs().transpose());
+    CHECK(same(y.crate->getRotation()));
+    for (int step = 0; step < 10; ++step) CHECK_NOTHROW(y.sim->stepForward());
+    CHECK(y.crate->getPosition().allFinite());
+
+    spook::ref_ptr<spook::FrameT<S>> parent = new spook::FrameT<S>(), child = new spook::FrameT<S>();
+    child->setParent(parent.get());
+    parent->setRotate(spook::toQuat(spook::EulerAnglesT<S>{S(0.5), S(0), S(0)}));
+    CHECK_NOTHROW(child->setRotate(scaled));
+    CHECK(same(child->getRotate()));
+    CHECK_NOTHROW(child->setLocalRotate(scaled));
+    CHECK(same(child->getLocalRotate()));
+    spook::ref_ptr<spook::AssemblyT<S>> assembly = new spook::AssemblyT<S>("rig");
+    CHECK_NOTHROW(assembly->setRotation(scaled));
+    CHECK(same(assembly->getRotation()));
+    CHECK(std::abs(spook::toEulerAngles<S>(scaled).z - S(0.3)) < tol);
+    CHECK((spook::logRotation<S>(scaled) - spook::logRotation<S>(q)).norm() < tol);
+  }
+  // Zero and non-finite quaternions are still refused, the scene unchanged.
+  Yard<S> y;
+  checkRejected(y, [&] { y.crate->setRotation(Quat(kInf<S>, S(0), S(0), S(1))); }, {"'crate'", "inf"});
+  checkRejected(y, [&] { y.crate->setRotation(Quat(S(0), S(0), S(0), S(0))); }, {"'crate'", "got (0, 0, 0, 0)"});
+  spook::ref_ptr<spook::FrameT<S>> frame = new spook::FrameT<S>();
+  CHECK_THROWS_AS(frame->setRotate(Quat(S(0), S(0), S(0), S(0))), spook::Error);
+  CHECK_THROWS_AS(frame->setLocalRotate(Quat(S(0), kNaN<S>, S(0), S(1))), spook::Error);
+  CHECK(frame->getRotate().coeffs() == Quat::Identity().coeffs());
 }
 
 // A zero rotation block is the transform form of the zero quaternion;

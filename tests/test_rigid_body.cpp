@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include <spook/collide/shapes/box.hpp>
 #include <spook/sim/simulation.hpp>
 
 #include "tolerance.hpp"
@@ -169,4 +170,59 @@ TEST_CASE_TEMPLATE("a body whose state would overflow is frozen and reported, no
   scene.sim->stepForward();
   CHECK(scene.sim->getStatistics().frozenBodies.empty());
   CHECK(dust.getPosition().allFinite());
+}
+
+// A 1 m cube of water (1000 kg, I = m (0.5² + 0.5²)/3 per axis) set to
+// 100 kg: its inertia comes from its geometry, so it scales with the mass
+// whichever comes first; a tensor set by hand stays as set.
+TEST_CASE_TEMPLATE("setMass scales an inertia generated from the geometries, in either order", S, float, double) {
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
+  const S tol = pick<S>(1e-12, 1e-5);
+  const auto cube = [](const Vec3& at) {
+    return spook::ref_ptr<spook::GeometryT<S>>(
+        new spook::GeometryT<S>(new spook::BoxT<S>(Vec3::Constant(S(0.5))), spook::makeTransform<S>(at)));
+  };
+  const Mat3 expected = Mat3::Identity() * (S(100) * S(0.5) / S(3));
+  spook::ref_ptr<spook::RigidBodyT<S>> after = new spook::RigidBodyT<S>("after");
+  after->add(cube(Vec3::Zero()));
+  REQUIRE(std::abs(after->getMassProperties()->getMass() - S(1000)) < S(1000) * tol);
+  after->getMassProperties()->setMass(S(100));
+  MESSAGE("inertia after setMass(100): ", after->getMassProperties()->getInertiaTensor()(0, 0), " kg m^2, expected ",
+          expected(0, 0));
+  CHECK((after->getMassProperties()->getInertiaTensor() - expected).norm() < tol * expected.norm());
+
+  spook::ref_ptr<spook::RigidBodyT<S>> before = new spook::RigidBodyT<S>("before");
+  before->getMassProperties()->setMass(S(100));
+  before->add(cube(Vec3::Zero()));
+  CHECK((before->getMassProperties()->getInertiaTensor() - expected).norm() < tol * expected.norm());
+
+  // Two cubes side by side (parallel-axis terms): setMass gives what a
+  // regeneration with the hand-set mass gives.
+  spook::ref_ptr<spook::RigidBodyT<S>> pair = new spook::RigidBodyT<S>("pair");
+  pair->add(cube(Vec3(S(-1), S(0), S(0))));
+  pair->add(cube(Vec3(S(1), S(0.5), S(0))));
+  pair->getMassProperties()->setMass(S(30));
+  const Mat3 scaled = pair->getMassProperties()->getInertiaTensor();
+  pair->updateMassProperties();
+  CHECK((scaled - pair->getMassProperties()->getInertiaTensor()).norm() < tol * scaled.norm());
+  CHECK(pair->getMassProperties()->getMass() == S(30));
+
+  // A tensor set by hand is kept, set before or after the geometry.
+  const Vec3 byHand(S(1), S(2), S(3));
+  spook::ref_ptr<spook::RigidBodyT<S>> handFirst = new spook::RigidBodyT<S>("handFirst");
+  handFirst->getMassProperties()->setInertiaTensor(byHand);
+  handFirst->add(cube(Vec3::Zero()));
+  handFirst->getMassProperties()->setMass(S(100));
+  CHECK(handFirst->getMassProperties()->getInertiaTensor() == Mat3(byHand.asDiagonal()));
+  spook::ref_ptr<spook::RigidBodyT<S>> handLast = new spook::RigidBodyT<S>("handLast");
+  handLast->add(cube(Vec3::Zero()));
+  handLast->getMassProperties()->setInertiaTensor(byHand);
+  handLast->getMassProperties()->setMass(S(100));
+  CHECK(handLast->getMassProperties()->getInertiaTensor() == Mat3(byHand.asDiagonal()));
+  // A body without geometries keeps its default tensor.
+  spook::ref_ptr<spook::RigidBodyT<S>> bare = new spook::RigidBodyT<S>("bare");
+  const Mat3 defaultTensor = bare->getMassProperties()->getInertiaTensor();
+  bare->getMassProperties()->setMass(S(100));
+  CHECK(bare->getMassProperties()->getInertiaTensor() == defaultTensor);
 }

@@ -1,7 +1,11 @@
 #include <doctest/doctest.h>
 
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -121,6 +125,40 @@ TEST_CASE_TEMPLATE("stepTo(t) lands on t when t is a whole number of steps away"
   scene.sim->stepTo(S(2.5));
   CHECK(scene.sim->getStatistics().numSteps == 150);
   CHECK(std::abs(scene.sim->getTimeStamp() - S(2.5)) < pick<S>(1e-12, 1e-5));
+}
+
+// A target more than 2³¹ steps away is refused before the first step (it
+// would run for days: 1e9 s at 60 Hz is 6e10 steps); stepTo(now) takes none.
+TEST_CASE_TEMPLATE("stepTo a time more than 2^31 steps away throws before stepping; stepTo(now) does nothing", S, float,
+                   double) {
+  Scene<S> scene;
+  auto probe = scene.probe("probe");
+  scene.sim->stepForward();
+  // Any further step fails the test at once instead of hanging it.
+  probe->onPre = [](S) { throw std::logic_error("stepTo stepped"); };
+  const S now = scene.sim->getTimeStamp();
+  const S h = scene.sim->getTimeStep();
+  for (const S t : {S(1e9), S(1e12), std::numeric_limits<S>::max(), now + S(2.01) * S(1u << 30) * h}) {
+    CAPTURE(t);
+    std::string what = "(no spook::Error)";
+    try {
+      scene.sim->stepTo(t);
+    } catch (const spook::Error& e) {
+      what = e.what();
+    } catch (const std::logic_error& e) {
+      what = e.what();
+    }
+    MESSAGE("stepTo(", t, "): ", what);
+    CHECK(what.find("Simulation") != std::string::npos);
+    CHECK(what.find("2^31") != std::string::npos);
+    std::array<char, 64> printed{};
+    const auto end = std::to_chars(printed.data(), printed.data() + printed.size(), t).ptr;
+    CHECK(what.find("got " + std::string(printed.data(), end)) != std::string::npos);
+  }
+  CHECK(scene.sim->getStatistics().numSteps == 1);
+  CHECK(scene.sim->getTimeStamp() == now);
+  CHECK_NOTHROW(scene.sim->stepTo(now));
+  CHECK(scene.sim->getStatistics().numSteps == 1);
 }
 
 // Summing h 6000 times in float drifts by 7e-3 s (0.4 h); n·h does not.

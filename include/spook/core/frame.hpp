@@ -69,7 +69,7 @@ class FrameT : public Referenced {
   [[nodiscard]] Quat getRotate() const { return parent_ ? Quat(parent_->getRotate() * localRotate_) : localRotate_; }
   void setRotate(const Quat& q_W) {
     checkQuat(q_W);
-    setLocalRotate(parent_ ? Quat(parent_->getRotate().conjugate() * q_W.normalized()) : q_W);
+    setLocalRotate(parent_ ? Quat(parent_->getRotate().conjugate() * unitQuaternion<S>(q_W)) : q_W);
   }
 
   /// A point given in this frame, expressed in world coordinates.
@@ -89,13 +89,13 @@ class FrameT : public Referenced {
     checkVector(p, "translate must be finite");
     checkQuat(q);
     localTranslate_ = p;
-    localRotate_ = q.normalized();
+    localRotate_ = unitQuaternion<S>(q);
   }
   static void checkVector(const Vec3& v, const char* what) {
     if (!v.allFinite()) throw detail::makeError("Frame", "", what, v);
   }
   static void checkQuat(const Quat& q) {
-    if (!q.coeffs().allFinite() || !(q.norm() > S(0)))
+    if (!isRotationQuaternion<S>(q))
       throw detail::makeError("Frame", "", "rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
   }
   static void checkMatrix(const Transform& X) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Dense>
 
@@ -110,6 +111,27 @@ template <class S>
   return q.coeffs().allFinite();
 }
 
+/// True when q is a rotation up to scale: every component finite and at
+/// least one non-zero.
+template <class S>
+[[nodiscard]] bool isRotationQuaternion(const QuatT<S>& q) {
+  return q.coeffs().allFinite() && q.coeffs().cwiseAbs().maxCoeff() > S(0);
+}
+
+/// q / |q| for any finite non-zero q. Eigen's normalized() squares the
+/// components: |q|² overflows to inf from components ~1e154 (double), ~1e19
+/// (float), which would give (0, 0, 0, 0), and underflows to 0 below ~1e-154
+/// (~1e-19), which would leave q as it is. Such q are first divided by their
+/// largest |component|; ordinary ones take the plain (bit-identical) path.
+template <class S>
+[[nodiscard]] QuatT<S> unitQuaternion(const QuatT<S>& q) {
+  const S squared = q.squaredNorm();
+  if (squared >= std::numeric_limits<S>::min() && squared <= std::numeric_limits<S>::max()) return q.normalized();
+  const S largest = q.coeffs().cwiseAbs().maxCoeff();
+  if (!(largest > S(0))) return q;
+  return QuatT<S>(q.coeffs() / largest).normalized();
+}
+
 /// The shortest rotation taking direction `from` onto direction `to` (AGX's
 /// Quat::rotate). Antiparallel vectors give a half turn about an axis
 /// perpendicular to both.
@@ -158,14 +180,14 @@ template <class S>
 /// Euler angles of a quaternion.
 template <class S>
 [[nodiscard]] EulerAnglesT<S> toEulerAngles(const QuatT<S>& q) {
-  return toEulerAngles<S>(q.normalized().toRotationMatrix());
+  return toEulerAngles<S>(unitQuaternion<S>(q).toRotationMatrix());
 }
 
 /// Transform from translation and rotation.
 template <class S>
 [[nodiscard]] TransformT<S> makeTransform(const Vec3T<S>& translate, const QuatT<S>& rotate = QuatT<S>::Identity()) {
   TransformT<S> X = TransformT<S>::Identity();
-  X.linear() = rotate.normalized().toRotationMatrix();
+  X.linear() = unitQuaternion<S>(rotate).toRotationMatrix();
   X.translation() = translate;
   return X;
 }
@@ -195,7 +217,7 @@ template <class S>
 /// log of a rotation: the rotation vector (radians, |result| ≤ π).
 template <class S>
 [[nodiscard]] Vec3T<S> logRotation(const QuatT<S>& q) {
-  QuatT<S> u = q.normalized();
+  QuatT<S> u = unitQuaternion<S>(q);
   if (u.w() < S(0)) u.coeffs() = -u.coeffs();
   const S s = u.vec().norm();
   if (s < S(1e-6)) return S(2) * u.vec() / u.w();

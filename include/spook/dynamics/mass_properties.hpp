@@ -29,10 +29,20 @@ class MassPropertiesT {
   }
 
   /// Mass in kg; must be finite and > 0 (a body of infinite mass is STATIC).
-  /// Stops the mass from being generated from the geometries.
+  /// Stops the mass from being generated from the geometries. An inertia
+  /// generated from the geometries (shape volumes × density) is
+  /// proportional to the mass and scales with it, so setting the mass
+  /// before or after adding the geometries gives the same tensor; a tensor
+  /// set by hand (setInertiaTensor) stays as set.
   [[nodiscard]] S getMass() const { return mass_; }
   void setMass(S mass) {
     if (!(std::isfinite(mass) && mass > S(0))) throw error("mass must be finite and > 0 kg", mass);
+    if (inertiaGenerated_ && (autoGenerate_ & INERTIA)) {
+      const Mat3 scaled = inertia_.matrix() * (mass / mass_);
+      if (SPDMat3T<S>::defect(scaled))
+        throw error("mass would scale the inertia generated from the geometries out of range (kg)", mass);
+      inertia_ = SPDMat3T<S>(scaled);
+    }
     mass_ = mass;
     autoGenerate_ &= ~unsigned(MASS);
   }
@@ -51,17 +61,20 @@ class MassPropertiesT {
         throw error("inertia diagonal must be finite and > 0 kg·m²", diagonal);
       inertia_ = SPDMat3T<S>(diagonal);
       autoGenerate_ &= ~unsigned(INERTIA);
+      inertiaGenerated_ = false;
     } else {
       const Mat3 inertia = value;
       if (const char* why = SPDMat3T<S>::defect(inertia))
         throw error(std::string("inertia tensor: ") + why, SPDMat3T<S>::flat(inertia));
       inertia_ = SPDMat3T<S>(inertia);
       autoGenerate_ &= ~unsigned(INERTIA);
+      inertiaGenerated_ = false;
     }
   }
   void setInertiaTensor(const SPDMat3T<S>& inertia) {
     inertia_ = inertia;
     autoGenerate_ &= ~unsigned(INERTIA);
+    inertiaGenerated_ = false;
   }
 
   /// Added-mass coefficients c along the CM frame axes (dimensionless, ≥ 0):
@@ -85,7 +98,10 @@ class MassPropertiesT {
   // Generated values, set by the body without touching the mask.
   void generate(S mass, const SPDMat3T<S>& inertia) {
     if (autoGenerate_ & MASS) mass_ = mass;
-    if (autoGenerate_ & INERTIA) inertia_ = inertia;
+    if (autoGenerate_ & INERTIA) {
+      inertia_ = inertia;
+      inertiaGenerated_ = true;
+    }
   }
 
   template <class T>
@@ -98,6 +114,7 @@ class MassPropertiesT {
   SPDMat3T<S> inertia_;
   Vec3 massCoefficients_ = Vec3::Zero();
   unsigned autoGenerate_ = ALL;
+  bool inertiaGenerated_ = false;  // inertia_ came from the geometries (generate)
 };
 
 using MassProperties = MassPropertiesT<double>;

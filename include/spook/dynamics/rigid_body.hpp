@@ -370,7 +370,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
     if (!v.allFinite()) throw error(what, v);
   }
   void requireRotation(const Quat& q) const {
-    if (!q.coeffs().allFinite() || !(q.norm() > S(0)))
+    if (!isRotationQuaternion<S>(q))
       throw error("rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
   }
   void requireTransform(const Transform& X, const std::string& what) const {

@@ -32,7 +32,7 @@ class AssemblyT : public CollectionT<S> {
   /// Assembly orientation, world.
   [[nodiscard]] Quat getRotation() const { return frame_->getRotate(); }
   void setRotation(const Quat& q_W) {
-    if (!q_W.coeffs().allFinite() || !(q_W.norm() > S(0)))
+    if (!isRotationQuaternion<S>(q_W))
       throw this->error("rotation must be a finite non-zero quaternion (x, y, z, w)", q_W.coeffs());
     setTransform(makeTransform<S>(getPosition(), q_W));
   }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <spook/core/error.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
 #include <spook/collide/continuous.hpp>
@@ -77,35 +78,18 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// preCollide listeners → collision detection → contact events → pre
   /// listeners → rows, islands, solve → integrate → continuous collision
   /// (RigidBody::setEnableCCD) → post listeners → last listeners → t += h.
-  void stepForward() {
-    if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
-    applyPendingTimeStep();  // left over when a listener threw in the last step
-    stepping_ = true;
-    struct ResetOnExit {
-      bool& flag;
-      ~ResetOnExit() { flag = false; }
-    } reset{stepping_};
-    notify(Listener::PRE_COLLIDE);
-    space_->update(bodies_);
-    notifyContacts();
-    notify(Listener::PRE_STEP);
-    integrate(timeStep_);
-    detail::stopAtFirstContact(bodies_, *space_, timeStep_);
-    notify(Listener::POST_STEP);
-    notify(Listener::LAST_STEP);
-    ++stepsSinceBase_;
-    ++statistics_.numSteps;
-    stepping_ = false;
-    applyPendingTimeStep();
-  }
+  void stepForward();
 
   /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps,
-  /// recounted after each step in case a listener changes h.
+  /// recounted after each step in case a listener changes h. stepTo(now),
+  /// or any t less than half a step ahead, takes no step. Throws before
+  /// stepping when t is not finite, is in the past, or is more than 2³¹
+  /// steps away (1e9 s at 60 Hz would take 6e10 steps).
   void stepTo(S t) {
     if (!std::isfinite(t)) throw error("stepTo time must be finite (s)", t);
     const S now = getTimeStamp();
     if (t < now) throw error("stepTo time must not be in the past (now " + std::to_string(now) + " s)", t);
-    while (std::llround((t - getTimeStamp()) / timeStep_) > 0) stepForward();
+    while (stepsTo(t) > 0) stepForward();
   }
 
   // --- Solver ----------------------------------------------------------------
@@ -306,6 +290,15 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     });
   }
 
+  // round((t − now)/h), in double so that neither the quotient nor its
+  // rounding overflows; more than 2³¹ steps are refused.
+  [[nodiscard]] long long stepsTo(S t) const {
+    const double steps = std::round((double(t) - double(getTimeStamp())) / double(timeStep_));
+    if (steps > 2147483648.0)
+      throw error("stepTo time is more than 2^31 steps of " + std::to_string(timeStep_) + " s away", t);
+    return static_cast<long long>(steps);
+  }
+
   void applyPendingTimeStep() {
     if (pendingTimeStep_) setTimeStep(*std::exchange(pendingTimeStep_, std::nullopt));
   }
@@ -378,7 +371,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     for (detail::Row& r : rows_) r.speed = predicted_[r.impulse].violation;
     if (rows_.empty()) return;
     solverBodies_.clear();
-    for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body));
+    for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
     geometricStiffness_.addInertia(solverBodies_);
     islands_.project(rows_, solverBodies_, h, *solver_, statistics_.solver);
     for (std::size_t i = 0; i < bodies_.size(); ++i)
@@ -611,6 +604,45 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   detail::IslandStepper islands_;
   detail::GeometricStiffness geometricStiffness_;
 };
+
+// The step is defined outside the class (not inline), so that a program
+// compiled with SPOOK_EXTERN_TEMPLATES does not instantiate it, nor the
+// solver, contact and collision code behind it (core/implementation.hpp).
+template <Scalar S>
+void SimulationT<S>::stepForward() {
+  if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
+  applyPendingTimeStep();  // left over when a listener threw in the last step
+  stepping_ = true;
+  struct ResetOnExit {
+    bool& flag;
+    ~ResetOnExit() { flag = false; }
+  } reset{stepping_};
+  notify(Listener::PRE_COLLIDE);
+  space_->update(bodies_);
+  notifyContacts();
+  notify(Listener::PRE_STEP);
+  integrate(timeStep_);
+  detail::stopAtFirstContact(bodies_, *space_, timeStep_);
+  notify(Listener::POST_STEP);
+  notify(Listener::LAST_STEP);
+  ++stepsSinceBase_;
+  ++statistics_.numSteps;
+  stepping_ = false;
+  applyPendingTimeStep();
+}
+
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+extern template class SimulationT<double>;
+#endif
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+extern template class SimulationT<float>;
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+template class SimulationT<double>;
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+template class SimulationT<float>;
+#endif
 
 using Simulation = SimulationT<double>;
 using SimulationRef = ref_ptr<Simulation>;

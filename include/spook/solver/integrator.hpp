@@ -22,6 +22,19 @@ struct BodyIntegrator {
   /// The body as the solver sees it. Dynamic bodies get their force-driven
   /// velocities v*; kinematic ones re-aim a moveTo; static and disabled ones
   /// stand still with infinite mass.
+  ///
+  /// Velocity damping dv/dt = −D v is implicit, a force −h D̃ v⁺ on the end
+  /// velocity, so it belongs in the mass: M(v⁺ − v) = h f − h D̃ v⁺ + Gᵀλ
+  /// is M_d v⁺ = M v + h f + Gᵀλ with the damped mass M_d = M + h D̃, and
+  /// the solver gets M_d⁻¹: v⁺ = v* + M_d⁻¹Gᵀλ with v* = M_d⁻¹(M v + h f).
+  /// Damping then slows the body but does not scale the loads it carries: a
+  /// damped body at rest still puts its whole weight on its contacts and
+  /// joints. In the CM frame, with D = diag(dᵢ) (1/s) and D̃ = D^½ M D^½:
+  ///   linear   M_d = diag(mᵢ(1 + cᵢ)(1 + h dᵢ)), i.e. vᵢ / (1 + h dᵢ) free;
+  ///   angular  I_d = I + h D^½ I D^½, i.e. (I_d)ᵢⱼ = Iᵢⱼ(1 + h√(dᵢdⱼ)).
+  /// I_d is symmetric positive definite; it is (1 + h d) I for isotropic
+  /// damping and Iᵢ(1 + h dᵢ) on principal axes; its damping torque
+  /// D^½ I D^½ Ω is positive semi-definite, so damping never adds energy.
   static SolverBody solverBody(Body& body, const GravityFieldT<S>& gravity, S h) {
     SolverBody b;
     if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
@@ -37,22 +50,17 @@ struct BodyIntegrator {
     b.velocity = stack(body.velocity_, body.angularVelocity_);
     const MassPropertiesT<S>& mass = body.massProperties_;
     const Mat3 R = body.getCmRotation().toRotationMatrix();
-    // v⁺ = (v + h(M⁻¹f + g)) / (1 + h d) per CM axis: the applied force sees
-    // the inertial mass m(1 + c), gravity is an acceleration; damping is
-    // implicit. Angular: Π = I Ω + h Rᵀτ (body frame), damped the same way.
+    // Linear, per CM axis: v* = (v + h(M⁻¹f + g)) / (1 + h d); the applied
+    // force sees the inertial mass m(1 + c), gravity is an acceleration.
     const Vec3 damping = Vec3::Ones() + h * body.linearDamping_;
     const Vec3 acceleration = R * (R.transpose() * body.force_).cwiseQuotient(mass.getEffectiveMass()) +
                               gravity.calculateGravity(body.getCmPosition());
     const Vec3 v = R * (R.transpose() * (body.velocity_ + h * acceleration)).cwiseQuotient(damping);
-    const Mat3& inertia = mass.getInertiaTensor();
-    const Mat3 inertiaInverse = inertia.inverse();
-    Vec3 omega =
-        inertiaInverse * (inertia * (R.transpose() * body.angularVelocity_) + h * (R.transpose() * body.torque_));
-    omega = omega.cwiseQuotient(Vec3::Ones() + h * body.angularDamping_);
+    // Angular, CM frame: Ω* = I_d⁻¹ (I Ω + h Rᵀτ).
+    const Mat3 dampedInertiaInverse = setDampedInverseMass(body, R, h, b);
+    const Vec3 omega = dampedInertiaInverse * (mass.getInertiaTensor() * (R.transpose() * body.angularVelocity_) +
+                                               h * (R.transpose() * body.torque_));
     b.freeVelocity = stack(v, R * omega);
-    const Mat3 massInverse = R * mass.getEffectiveMass().cwiseInverse().asDiagonal() * R.transpose();
-    b.inverseMass = massInverse.template cast<double>();
-    b.inverseInertia = (R * inertiaInverse * R.transpose()).template cast<double>();
     return b;
   }
 
@@ -74,18 +82,17 @@ struct BodyIntegrator {
 
   static void clearForces(Body& body) { body.force_ = body.torque_ = Vec3::Zero(); }
 
-  /// Inverse mass and inertia at the current pose and the current velocities
-  /// (dynamic bodies; the others stand still with infinite mass).
-  static SolverBody massAndVelocity(const Body& body) {
+  /// Inverse damped mass and inertia (as in solverBody, for a step of h) at
+  /// the current pose, and the current velocities (dynamic bodies; the
+  /// others stand still with infinite mass). Post-stabilization distributes
+  /// its corrections with the same mass as the step's impulses.
+  static SolverBody massAndVelocity(const Body& body, S h) {
     SolverBody b;
     if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
     b.velocity = stack(body.velocity_, body.angularVelocity_);
     if (body.motionControl_ != Body::DYNAMICS) return b;
     b.dynamic = true;
-    const MassPropertiesT<S>& mass = body.massProperties_;
-    const Mat3 R = body.getCmRotation().toRotationMatrix();
-    b.inverseMass = (R * mass.getEffectiveMass().cwiseInverse().asDiagonal() * R.transpose()).template cast<double>();
-    b.inverseInertia = (R * mass.getInertiaTensor().inverse() * R.transpose()).template cast<double>();
+    setDampedInverseMass(body, body.getCmRotation().toRotationMatrix(), h, b);
     return b;
   }
 
@@ -101,6 +108,19 @@ struct BodyIntegrator {
   }
 
  private:
+  // Sets b's inverse damped mass M_d⁻¹ and inertia I_d⁻¹ (world; solverBody
+  // has the forms) for the CM rotation R; returns I_d⁻¹ in the CM frame.
+  static Mat3 setDampedInverseMass(const Body& body, const Mat3& R, S h, SolverBody& b) {
+    const MassPropertiesT<S>& mass = body.massProperties_;
+    const Vec3 dampedMass = mass.getEffectiveMass().cwiseProduct(Vec3::Ones() + h * body.linearDamping_);
+    const Mat3& inertia = mass.getInertiaTensor();
+    const Vec3 root = body.angularDamping_.cwiseSqrt();
+    const Mat3 dampedInertiaInverse = Mat3(inertia + h * (root.asDiagonal() * inertia * root.asDiagonal())).inverse();
+    b.inverseMass = (R * dampedMass.cwiseInverse().asDiagonal() * R.transpose()).template cast<double>();
+    b.inverseInertia = (R * dampedInertiaInverse * R.transpose()).template cast<double>();
+    return dampedInertiaInverse;
+  }
+
   static Vec6d stack(const Vec3& v, const Vec3& w) {
     Vec6d out;
     out << v.template cast<double>(), w.template cast<double>();
