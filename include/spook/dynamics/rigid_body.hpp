@@ -219,6 +219,15 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
     return S(0.5) * (velocity_.dot(getLinearMomentum()) + angularVelocity_.dot(getAngularMomentum()));
   }
 
+  // --- Continuous collision detection ---------------------------------------
+
+  /// Off by default. When on, a dynamic body that moves more than its
+  /// thinnest half-width in a step is swept along its path and stopped at
+  /// its first contact instead of passing through (collide/continuous.hpp
+  /// states what is covered and what is not).
+  [[nodiscard]] bool getEnableCCD() const { return enableCCD_; }
+  void setEnableCCD(bool enable) { enableCCD_ = enable; }
+
   // --- Kinematic control -----------------------------------------------------
 
   /// Sets, on a KINEMATICS body, the constant velocities that bring the
@@ -383,6 +392,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
 
   std::string name_;
   bool enable_ = true;
+  bool enableCCD_ = false;
   MotionControl motionControl_ = DYNAMICS;
   ref_ptr<Frame> frame_ = new Frame();
   ref_ptr<Frame> cmFrame_ = new Frame();

@@ -14,6 +14,7 @@
 #include <spook/core/implementation.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
+#include <spook/collide/continuous.hpp>
 #include <spook/collide/space.hpp>
 #include <spook/constraints/constraint.hpp>
 #include <spook/dynamics/gravity_field.hpp>
@@ -76,8 +77,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   /// Takes one step:
   /// preCollide listeners → collision detection → contact events → pre
-  /// listeners → rows, islands, solve → integrate → post listeners → last
-  /// listeners → t += h.
+  /// listeners → rows, islands, solve → integrate → continuous collision
+  /// (RigidBody::setEnableCCD) → post listeners → last listeners → t += h.
   void stepForward();
 
   /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps,
@@ -667,6 +668,7 @@ void SimulationT<S>::stepForward() {
   notifyContacts();
   notify(Listener::PRE_STEP);
   integrate(timeStep_);
+  detail::stopAtFirstContact(bodies_, *space_, timeStep_);
   notify(Listener::POST_STEP);
   notify(Listener::LAST_STEP);
   ++stepsSinceBase_;
