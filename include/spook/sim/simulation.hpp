@@ -86,6 +86,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     } reset{stepping_};
     notify(Listener::PRE_COLLIDE);
     space_->update(bodies_);
+    statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
     notifyContacts();
     notify(Listener::PRE_STEP);
     integrate(timeStep_);

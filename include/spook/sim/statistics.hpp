@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -17,6 +18,11 @@ struct SimulationStatisticsT {
   /// Bodies whose state would have become non-finite in the last step; they
   /// were frozen (velocities zeroed, pose kept) instead.
   std::vector<observer_ptr<RigidBodyT<S>>> frozenBodies;
+  /// Contact points the last step's collision detection dropped before
+  /// contact reduction because their position, normal or depth was not
+  /// finite (shapes posed near the largest finite coordinate); they exert
+  /// no force.
+  std::size_t numDroppedContactPoints = 0;
   /// What the constraint solver did in the last step.
   SolverStatistics solver;
 };
