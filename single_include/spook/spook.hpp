@@ -5591,6 +5591,25 @@ class SweepAndPrune {
 
 }  // namespace spook::detail
 // --- end spook/collide/broadphase/sweep_and_prune.hpp ---
+// --- begin spook/core/implementation.hpp ---
+
+// Compiled once instead of header-only (the stb convention). A program that
+// defines SPOOK_EXTERN_TEMPLATES everywhere declares spook's heavy templates
+// extern (the simulation step with its solvers and contact code, the
+// colliders of the full shape list) for float and double; one translation
+// unit that defines SPOOK_IMPLEMENTATION before including <spook/spook.hpp>
+// compiles them. A build may instead split that work over several
+// translation units, each defining one or more of the parts below (CMake's
+// spook::spook_compiled does, so that its parts compile in parallel).
+#if defined(SPOOK_IMPLEMENTATION) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) &&   \
+    !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT) && !defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE) && \
+    !defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
+#define SPOOK_IMPLEMENT_SIMULATION_DOUBLE
+#define SPOOK_IMPLEMENT_SIMULATION_FLOAT
+#define SPOOK_IMPLEMENT_COLLIDERS_DOUBLE
+#define SPOOK_IMPLEMENT_COLLIDERS_FLOAT
+#endif
+// --- end spook/core/implementation.hpp ---
 // --- begin spook/dynamics/rigid_body.hpp ---
 
 #include <algorithm>
@@ -6163,9 +6182,9 @@ namespace detail {
 
 /// The narrow-phase entry point of a space for one shape list. A plain
 /// (not inline) function template, so that with SPOOK_EXTERN_TEMPLATES the
-/// full shape list's colliders are compiled once, in the translation unit
-/// that defines SPOOK_IMPLEMENTATION, instead of in every one that makes a
-/// default Space or Simulation.
+/// full shape list's colliders are compiled once (core/implementation.hpp)
+/// instead of in every translation unit that makes a default Space or
+/// Simulation.
 template <Scalar S, class List>
 bool collideThrough(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<S>& b, const TransformT<S>& X_WB,
                     ContactSinkT<S>& sink) {
@@ -6174,18 +6193,22 @@ bool collideThrough(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<
 
 }  // namespace detail
 
-#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENTATION)
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
 extern template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
                                                                const ShapeT<double>&, const TransformT<double>&,
                                                                ContactSinkT<double>&);
+#endif
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
 extern template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
                                                               const ShapeT<float>&, const TransformT<float>&,
                                                               ContactSinkT<float>&);
 #endif
-#if defined(SPOOK_IMPLEMENTATION)
+#if defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
 template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
                                                         const ShapeT<double>&, const TransformT<double>&,
                                                         ContactSinkT<double>&);
+#endif
+#if defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
 template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
                                                        const ShapeT<float>&, const TransformT<float>&,
                                                        ContactSinkT<float>&);
@@ -13674,26 +13697,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// preCollide listeners → collision detection → contact events → pre
   /// listeners → rows, islands, solve → integrate → post listeners → last
   /// listeners → t += h.
-  void stepForward() {
-    if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
-    applyPendingTimeStep();  // left over when a listener threw in the last step
-    stepping_ = true;
-    struct ResetOnExit {
-      bool& flag;
-      ~ResetOnExit() { flag = false; }
-    } reset{stepping_};
-    notify(Listener::PRE_COLLIDE);
-    space_->update(bodies_);
-    notifyContacts();
-    notify(Listener::PRE_STEP);
-    integrate(timeStep_);
-    notify(Listener::POST_STEP);
-    notify(Listener::LAST_STEP);
-    ++stepsSinceBase_;
-    ++statistics_.numSteps;
-    stepping_ = false;
-    applyPendingTimeStep();
-  }
+  void stepForward();
 
   /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps,
   /// recounted after each step in case a listener changes h.
@@ -14207,6 +14211,44 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   detail::IslandStepper islands_;
   detail::GeometricStiffness geometricStiffness_;
 };
+
+// The step is defined outside the class (not inline), so that a program
+// compiled with SPOOK_EXTERN_TEMPLATES does not instantiate it, nor the
+// solver, contact and collision code behind it (core/implementation.hpp).
+template <Scalar S>
+void SimulationT<S>::stepForward() {
+  if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
+  applyPendingTimeStep();  // left over when a listener threw in the last step
+  stepping_ = true;
+  struct ResetOnExit {
+    bool& flag;
+    ~ResetOnExit() { flag = false; }
+  } reset{stepping_};
+  notify(Listener::PRE_COLLIDE);
+  space_->update(bodies_);
+  notifyContacts();
+  notify(Listener::PRE_STEP);
+  integrate(timeStep_);
+  notify(Listener::POST_STEP);
+  notify(Listener::LAST_STEP);
+  ++stepsSinceBase_;
+  ++statistics_.numSteps;
+  stepping_ = false;
+  applyPendingTimeStep();
+}
+
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+extern template class SimulationT<double>;
+#endif
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+extern template class SimulationT<float>;
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+template class SimulationT<double>;
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+template class SimulationT<float>;
+#endif
 
 using Simulation = SimulationT<double>;
 using SimulationRef = ref_ptr<Simulation>;

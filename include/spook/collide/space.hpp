@@ -19,6 +19,7 @@
 #include <spook/collide/geometry.hpp>
 #include <spook/collide/geometry_contact.hpp>
 #include <spook/core/error.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
 #include <spook/dynamics/rigid_body.hpp>
@@ -29,9 +30,9 @@ namespace detail {
 
 /// The narrow-phase entry point of a space for one shape list. A plain
 /// (not inline) function template, so that with SPOOK_EXTERN_TEMPLATES the
-/// full shape list's colliders are compiled once, in the translation unit
-/// that defines SPOOK_IMPLEMENTATION, instead of in every one that makes a
-/// default Space or Simulation.
+/// full shape list's colliders are compiled once (core/implementation.hpp)
+/// instead of in every translation unit that makes a default Space or
+/// Simulation.
 template <Scalar S, class List>
 bool collideThrough(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<S>& b, const TransformT<S>& X_WB,
                     ContactSinkT<S>& sink) {
@@ -40,18 +41,22 @@ bool collideThrough(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<
 
 }  // namespace detail
 
-#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENTATION)
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
 extern template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
                                                                const ShapeT<double>&, const TransformT<double>&,
                                                                ContactSinkT<double>&);
+#endif
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
 extern template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
                                                               const ShapeT<float>&, const TransformT<float>&,
                                                               ContactSinkT<float>&);
 #endif
-#if defined(SPOOK_IMPLEMENTATION)
+#if defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
 template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
                                                         const ShapeT<double>&, const TransformT<double>&,
                                                         ContactSinkT<double>&);
+#endif
+#if defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
 template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
                                                        const ShapeT<float>&, const TransformT<float>&,
                                                        ContactSinkT<float>&);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <spook/core/error.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
 #include <spook/collide/space.hpp>
@@ -76,27 +77,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// preCollide listeners → collision detection → contact events → pre
   /// listeners → rows, islands, solve → integrate → post listeners → last
   /// listeners → t += h.
-  void stepForward() {
-    if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
-    applyPendingTimeStep();  // left over when a listener threw in the last step
-    stepping_ = true;
-    struct ResetOnExit {
-      bool& flag;
-      ~ResetOnExit() { flag = false; }
-    } reset{stepping_};
-    notify(Listener::PRE_COLLIDE);
-    space_->update(bodies_);
-    statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
-    notifyContacts();
-    notify(Listener::PRE_STEP);
-    integrate(timeStep_);
-    notify(Listener::POST_STEP);
-    notify(Listener::LAST_STEP);
-    ++stepsSinceBase_;
-    ++statistics_.numSteps;
-    stepping_ = false;
-    applyPendingTimeStep();
-  }
+  void stepForward();
 
   /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps,
   /// recounted after each step in case a listener changes h.
@@ -610,6 +591,45 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   detail::IslandStepper islands_;
   detail::GeometricStiffness geometricStiffness_;
 };
+
+// The step is defined outside the class (not inline), so that a program
+// compiled with SPOOK_EXTERN_TEMPLATES does not instantiate it, nor the
+// solver, contact and collision code behind it (core/implementation.hpp).
+template <Scalar S>
+void SimulationT<S>::stepForward() {
+  if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
+  applyPendingTimeStep();  // left over when a listener threw in the last step
+  stepping_ = true;
+  struct ResetOnExit {
+    bool& flag;
+    ~ResetOnExit() { flag = false; }
+  } reset{stepping_};
+  notify(Listener::PRE_COLLIDE);
+  space_->update(bodies_);
+  statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
+  notifyContacts();
+  notify(Listener::PRE_STEP);
+  integrate(timeStep_);
+  notify(Listener::POST_STEP);
+  notify(Listener::LAST_STEP);
+  ++stepsSinceBase_;
+  ++statistics_.numSteps;
+  stepping_ = false;
+  applyPendingTimeStep();
+}
+
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+extern template class SimulationT<double>;
+#endif
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+extern template class SimulationT<float>;
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+template class SimulationT<double>;
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+template class SimulationT<float>;
+#endif
 
 using Simulation = SimulationT<double>;
 using SimulationRef = ref_ptr<Simulation>;

@@ -1,0 +1,18 @@
+#pragma once
+
+// Compiled once instead of header-only (the stb convention). A program that
+// defines SPOOK_EXTERN_TEMPLATES everywhere declares spook's heavy templates
+// extern (the simulation step with its solvers and contact code, the
+// colliders of the full shape list) for float and double; one translation
+// unit that defines SPOOK_IMPLEMENTATION before including <spook/spook.hpp>
+// compiles them. A build may instead split that work over several
+// translation units, each defining one or more of the parts below (CMake's
+// spook::spook_compiled does, so that its parts compile in parallel).
+#if defined(SPOOK_IMPLEMENTATION) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) &&   \
+    !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT) && !defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE) && \
+    !defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
+#define SPOOK_IMPLEMENT_SIMULATION_DOUBLE
+#define SPOOK_IMPLEMENT_SIMULATION_FLOAT
+#define SPOOK_IMPLEMENT_COLLIDERS_DOUBLE
+#define SPOOK_IMPLEMENT_COLLIDERS_FLOAT
+#endif
