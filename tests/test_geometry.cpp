@@ -1,12 +1,15 @@
 #include <doctest/doctest.h>
 
 #include <string>
+#include <type_traits>
 
 #include <spook/collide/shapes/box.hpp>
 #include <spook/collide/shapes/composite.hpp>
 #include <spook/collide/shapes/sphere.hpp>
 #include <spook/dynamics/rigid_body.hpp>
+#include <spook/sim/simulation.hpp>
 
+#include "scene_state.hpp"
 #include "shape_helpers.hpp"
 #include "tolerance.hpp"
 
@@ -125,6 +128,81 @@ TEST_CASE_TEMPLATE("bad geometry input throws and leaves body and geometry uncha
   CHECK(a->getGeometries().size() == 1);
   CHECK(g->getShapes().size() == 1);
   CHECK(a->getMassProperties()->getMass() == mass);
+}
+
+// A box of half extents 1e200 m (1e30 m in float) has a volume of inf m³;
+// a density of 1e300 kg/m³ (1e38 in float) on a box of half extents 100 m
+// (10 m) makes m/3·(b² + c²), or already m, overflow. Each change is refused
+// before it is made, naming the geometry or body and the offending value.
+TEST_CASE_TEMPLATE("a geometry, shape, material or placement whose mass would overflow is refused before it is in place",
+                   S, float, double) {
+  using V = spook::Vec3T<S>;
+  const double hugeSize = pick<S>(1e200, 1e30);
+  constexpr bool isDouble = std::is_same_v<S, double>;
+  const std::string hugeText = isDouble ? "1e+200" : "1e+30";
+  spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
+  spook::ref_ptr<spook::RigidBodyT<S>> crate = new spook::RigidBodyT<S>("crate");
+  spook::ref_ptr<spook::GeometryT<S>> lid =
+      new spook::GeometryT<S>(new spook::BoxT<S>(V(S(100), S(100), S(pick<S>(100, 10)))), at<S>(0, 0, 0), "lid");
+  crate->add(lid);
+  crate->add(new spook::GeometryT<S>(new spook::BoxT<S>(V::Ones()), at<S>(0, 0, 0), "base"));
+  crate->setVelocity(S(1), S(2), S(3));
+  crate->setAngularVelocity(S(0.5), S(0), S(0));
+  sim->add(crate);
+  sim->stepForward();
+  const auto before = spook::test::SceneState<S>::capture(*sim);
+  const S mass = crate->getMassProperties()->getMass();
+  const auto unchanged = [&] {
+    CHECK(spook::test::firstDifference(before, spook::test::SceneState<S>::capture(*sim)) == "");
+    CHECK(crate->getMassProperties()->getMass() == mass);
+    CHECK(crate->getGeometries().size() == 2);
+    CHECK(lid->getShapes().size() == 1);
+    CHECK(lid->getMaterial() == spook::GeometryT<S>::defaultMaterial());
+    CHECK(lid->getLocalTransform().matrix() == at<S>(0, 0, 0).matrix());
+  };
+
+  spook::ref_ptr<spook::GeometryT<S>> huge =
+      new spook::GeometryT<S>(new spook::BoxT<S>(V::Constant(S(hugeSize))), at<S>(0, 0, 0), "huge");
+  CHECK_THROWS_WITH_AS(crate->add(huge), doctest::Contains("Geometry 'huge': Box of bounding half extents (" + hugeText),
+                       spook::Error);
+  CHECK(huge->getRigidBody() == nullptr);
+  CHECK(huge->getFrame()->getParent() == nullptr);
+  unchanged();
+
+  CHECK_THROWS_WITH_AS(lid->add(new spook::BoxT<S>(V::Constant(S(hugeSize)))),
+                       doctest::Contains("Geometry 'lid': Box of bounding half extents (" + hugeText), spook::Error);
+  unchanged();
+
+  const auto dense = material<S>(pick<S>(1e300, 1e38));
+  CHECK_THROWS_WITH_AS(lid->setMaterial(dense),
+                       doctest::Contains("Geometry 'lid': Box of bounding half extents (100, 100, ") &&
+                           doctest::Contains(isDouble ? "density 1e+300" : "density 1e+38"),
+                       spook::Error);
+  unchanged();
+
+  // Moved 1e200 m (1e30 m) away from the base, the body's parallel-axis
+  // terms m·d² (or in float already the moment m·d) overflow.
+  CHECK_THROWS_WITH_AS(lid->setLocalTransform(at<S>(hugeSize, 0, 0)),
+                       doctest::Contains("RigidBody 'crate'") && doctest::Contains("inf"), spook::Error);
+  unchanged();
+  CHECK_THROWS_WITH_AS(lid->setPosition(V(S(hugeSize), S(0), S(0))), doctest::Contains("RigidBody 'crate'"),
+                       spook::Error);
+  unchanged();
+
+  // A density raised on the material in place is only seen by
+  // updateMassProperties, which refuses it the same way.
+  spook::ref_ptr<spook::MaterialT<S>> steel = material<S>(7800);
+  lid->setMaterial(steel);
+  sim->stepForward();
+  const auto withSteel = spook::test::SceneState<S>::capture(*sim);
+  steel->getBulkMaterial()->setDensity(S(pick<S>(1e300, 1e38)));
+  CHECK_THROWS_WITH_AS(crate->updateMassProperties(), doctest::Contains("Geometry 'lid'"), spook::Error);
+  CHECK(spook::test::firstDifference(withSteel, spook::test::SceneState<S>::capture(*sim)) == "");
+
+  // Still usable once the density is sane again.
+  steel->getBulkMaterial()->setDensity(S(7800));
+  crate->add(new spook::GeometryT<S>(new spook::SphereT<S>(S(1))));
+  CHECK(crate->getGeometries().size() == 3);
 }
 
 TEST_CASE_TEMPLATE("pairwise collision disabling is symmetric and forgets dead partners", S, float, double) {

@@ -361,6 +361,31 @@ TEST_CASE_TEMPLATE("height-field triangle queries match brute force; setHeight m
   CHECK(field->getBoundingBox().min.z() == S(-7));
 }
 
+// 2^32 × 2^32 samples wrap the sample count to 0 in 64 bits: an empty
+// heights vector then matched it, and the constructor read the minimum of
+// no heights (a null dereference under ASan).
+TEST_CASE_TEMPLATE("a height field refuses a sample count that overflows or a cell spacing that underflows", S, float,
+                   double) {
+  const auto field = [](std::size_t nx, std::size_t ny, S sx, S sy, std::vector<S> h) {
+    return [=] { Field<S> f = new spook::HeightFieldT<S>(nx, ny, sx, sy, h); };
+  };
+  const std::size_t n32 = std::size_t(1) << 32;
+  checkRejects(field(n32, n32, S(1), S(1), {}), "HeightField", "(4294967296, 4294967296)");
+  checkRejects(field(n32 + 1, n32, S(1), S(1), {}), "triangles", "(4294967297, 4294967296)");
+  // 2 (2^31 + 1 − 1)(2 − 1) = 2^32 triangles: one more than a 32-bit face index numbers.
+  checkRejects(field((std::size_t(1) << 31) + 1, 2, S(1), S(1), {}), "triangles", "(2147483649, 2)");
+  const S tiny = std::numeric_limits<S>::denorm_min();
+  checkRejects(field(3, 2, tiny, S(1), std::vector<S>(6)), "spacing", "(0, 1)");
+  checkRejects(field(2, 2, S(1), S(-0.0), std::vector<S>(4)), "sizeY", "-0");
+  checkRejects(field(2, 2, std::numeric_limits<S>::quiet_NaN(), S(1), std::vector<S>(4)), "sizeX", "nan");
+  // The largest finite extent is still a field: one cell spanning it.
+  const S big = std::numeric_limits<S>::max();
+  const Field<S> wide = new spook::HeightFieldT<S>(2, 2, big, big, {S(0), S(1), S(2), S(3)});
+  CHECK(wide->getSpacing().x() == big);
+  CHECK(wide->heightAt(S(0), S(0)) == S(1.5));
+  CHECK(wide->getBoundingBox().max.allFinite());
+}
+
 TEST_CASE_TEMPLATE("meshes and height fields reject bad input, naming the value", S, float, double) {
   const S inf = std::numeric_limits<S>::infinity();
   const std::vector<spook::Vec3T<S>> corners{{S(0), S(0), S(0)}, {S(1), S(0), S(0)}, {S(0), S(1), S(0)}};

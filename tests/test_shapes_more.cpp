@@ -320,6 +320,62 @@ TEST_CASE_TEMPLATE("a plane's normal is normalized and its solid lies below it",
   CHECK(box.max == spook::Vec3T<S>::Constant(std::numeric_limits<S>::infinity()));
 }
 
+// AGX's four Plane constructors: (normal, point), (normal, distance),
+// three points (normal by the right-hand rule), a·x + b·y + c·z = d.
+TEST_CASE_TEMPLATE("every plane constructor gives the plane its arguments describe", S, float, double) {
+  using V = spook::Vec3T<S>;
+  using PlaneRef = spook::ref_ptr<spook::PlaneT<S>>;
+  const S tol = pick<S>(1e-15, 1e-6);
+  // The plane 2x − y + 2z = 6: unit normal (2, −1, 2)/3, distance 2, through (1, −2, 1).
+  const V n(S(2) / S(3), S(-1) / S(3), S(2) / S(3));
+  const auto describes = [&](const PlaneRef& plane) {
+    CHECK((plane->getNormal() - n).norm() <= tol);
+    CHECK(std::abs(plane->getDistance() - S(2)) <= S(2) * tol);
+    CHECK(std::abs(plane->signedDistance(V(S(1), S(-2), S(1)))) <= S(4) * tol);
+    CHECK(std::abs(plane->signedDistance(V(S(3), S(-3), S(3))) - S(3)) <= S(8) * tol);  // 3 above along n
+  };
+  describes(new spook::PlaneT<S>(V(S(2), S(-1), S(2)), V(S(1), S(-2), S(1))));
+  describes(new spook::PlaneT<S>(V(S(4), S(-2), S(4)), S(2)));
+  describes(new spook::PlaneT<S>(S(2), S(-1), S(2), S(6)));
+  describes(new spook::PlaneT<S>(S(4e-20), S(-2e-20), S(4e-20), S(12e-20)));  // squares underflow in float
+  // Points (1, −2, 1), (2, 0, 1), (1, 0, 2): (p2 − p1) × (p3 − p1) = (1, 2, 0) × (0, 2, 1) = (2, −1, 2).
+  describes(new spook::PlaneT<S>(V(S(1), S(-2), S(1)), V(S(2), S(0), S(1)), V(S(1), S(0), S(2))));
+  // Clockwise order flips the normal: the solid is then on the other side.
+  const PlaneRef flipped = new spook::PlaneT<S>(V(S(1), S(-2), S(1)), V(S(1), S(0), S(2)), V(S(2), S(0), S(1)));
+  CHECK((flipped->getNormal() + n).norm() <= tol);
+  CHECK(flipped->getPoint() == V(S(1), S(-2), S(1)));
+  // Through three points far apart in scale: huge and tiny triangles give the same unit normal.
+  const PlaneRef huge = new spook::PlaneT<S>(V::Zero(), V(S(1e30), S(0), S(0)), V(S(0), S(1e30), S(0)));
+  const PlaneRef tiny = new spook::PlaneT<S>(V::Zero(), V(S(1e-30), S(0), S(0)), V(S(0), S(1e-30), S(0)));
+  CHECK(huge->getNormal() == V::UnitZ());
+  CHECK(tiny->getNormal() == V::UnitZ());
+  // a·x + b·y + c·z = d with the ground's numbers: z = 0.5.
+  const PlaneRef ground = new spook::PlaneT<S>(0, 0, 1, S(0.5));
+  CHECK(ground->getNormal() == V::UnitZ());
+  CHECK(ground->getPoint() == V(S(0), S(0), S(0.5)));
+}
+
+TEST_CASE_TEMPLATE("plane constructors refuse coincident or collinear points and a zero normal, naming the value", S,
+                   float, double) {
+  using V = spook::Vec3T<S>;
+  const S nan = std::numeric_limits<S>::quiet_NaN(), inf = std::numeric_limits<S>::infinity();
+  const S big = std::numeric_limits<S>::max();
+  const auto three = [](V a, V b, V c) { return [=] { spook::ref_ptr<spook::PlaneT<S>> p = new spook::PlaneT<S>(a, b, c); }; };
+  const auto four = [](S a, S b, S c, S d) { return [=] { spook::ref_ptr<spook::PlaneT<S>> p = new spook::PlaneT<S>(a, b, c, d); }; };
+  checkRejects(three(V::Ones(), V::Ones(), V::UnitX()), "coincide", "(1, 1, 1, 1, 1, 1, 1, 0, 0)");
+  checkRejects(three(V::Zero(), V::UnitX(), V::UnitX()), "coincide", "(0, 0, 0, 1, 0, 0, 1, 0, 0)");
+  checkRejects(three(V::Zero(), V(S(1), S(2), S(3)), V(S(-2), S(-4), S(-6))), "collinear",
+               "(0, 0, 0, 1, 2, 3, -2, -4, -6)");
+  checkRejects(three(V::Zero(), V(S(1), S(1), S(0)), V(S(4), S(4), S(1e-20))), "collinear",
+               "(0, 0, 0, 1, 1, 0, 4, 4, 1e-20)");
+  checkRejects(three(V::Zero(), V(nan, S(0), S(0)), V::UnitY()), "finite", "(0, 0, 0, nan, 0, 0, 0, 1, 0)");
+  checkRejects(three(V(-big, S(0), S(0)), V(big, S(0), S(0)), V::UnitY()), "finite", "(-");
+  checkRejects(four(S(0), S(0), S(0), S(1)), "non-zero", "(0, 0, 0)");
+  checkRejects(four(S(0), inf, S(1), S(1)), "non-zero", "(0, inf, 1)");
+  checkRejects(four(S(0), S(0), S(1), nan), "Plane", "(0, 0, 1, nan)");
+  checkRejects(four(S(0), S(0), S(1e-30), big), "Plane", "(0, 0, 1e-30, ");
+}
+
 TEST_CASE_TEMPLATE("plane, line and convex reject bad input and name the value", S, float, double) {
   const S nan = std::numeric_limits<S>::quiet_NaN(), inf = std::numeric_limits<S>::infinity();
   using V = spook::Vec3T<S>;

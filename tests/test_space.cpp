@@ -1,9 +1,13 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include <spook/collide/space.hpp>
+#include <spook/sim/simulation.hpp>
 
 #include "shape_helpers.hpp"
 #include "tolerance.hpp"
@@ -192,4 +196,95 @@ TEST_CASE_TEMPLATE("a space refuses shapes outside its list and keeps what it ha
   CHECK_THROWS_WITH_AS(space->setContactBinResolution(4), doctest::Contains("got 4"), spook::Error);
   CHECK(space->getGeometries().size() == 1);
   CHECK(space->getContactBinResolution() == 2);
+}
+
+// Eight points of a flat patch, 2 × 4 cells of `cell` m, at `origin`, with
+// depths that differ so that ties do not decide.
+namespace {
+
+template <class S>
+std::vector<spook::ContactPointT<S>> reductionPatch(const spook::Vec3T<S>& origin, S cell) {
+  std::vector<spook::ContactPointT<S>> points;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 4; ++i) {
+      spook::ContactPointT<S> p;
+      p.point = origin + cell * spook::Vec3T<S>(S(i), S(j), S(0));
+      p.depth = S(0.001) * S(1 + i + 4 * j);
+      points.push_back(p);
+    }
+  return points;
+}
+
+template <class S>
+std::vector<bool> reducedFlags(std::vector<spook::ContactPointT<S>>& points) {
+  std::vector<spook::ContactPointT<S>*> pointers;
+  for (auto& p : points) pointers.push_back(&p);
+  spook::detail::reduceContacts<S>(pointers, 2);
+  std::vector<bool> enabled;
+  for (const auto& p : points) enabled.push_back(p.enabled);
+  return enabled;
+}
+
+}  // namespace
+
+// The reduction only looks at arms relative to the patch's centroid and size,
+// so the same patch kept near the largest finite coordinate, where the sum of
+// its eight points overflows, keeps the same points (1.5·2^1023 m in double,
+// 1.5·2^127 m in float, cells of 2^1015 or 2^119 m, so that every coordinate,
+// the centroid and the arms are exact). Before, the centroid was inf, the
+// arms NaN and their bins a NaN cast to int (undefined behaviour).
+TEST_CASE_TEMPLATE("contact reduction near the largest finite coordinate keeps the points it keeps near the origin", S,
+                   float, double) {
+  using V = spook::Vec3T<S>;
+  constexpr int top = std::numeric_limits<S>::max_exponent - 1;  // 1023 or 127
+  const S far = std::ldexp(S(1.5), top), cell = std::ldexp(S(1), top - 8);
+  auto nearOrigin = reductionPatch<S>(V::Zero(), S(1));
+  auto nearMax = reductionPatch<S>(V(far, far, S(0)), cell);
+  REQUIRE(nearMax[7].point.x() == far + S(3) * cell);  // representable: the patch is not collapsed
+  const std::vector<bool> expected = reducedFlags<S>(nearOrigin);
+  CHECK(std::count(expected.begin(), expected.end(), true) == 4);
+  CHECK(reducedFlags<S>(nearMax) == expected);
+
+  // A non-finite point handed to the reduction is disabled and left out; the rest reduce as before.
+  auto withNan = reductionPatch<S>(V::Zero(), S(1));
+  spook::ContactPointT<S> bad;
+  bad.point = V(std::numeric_limits<S>::quiet_NaN(), S(0), S(0));
+  withNan.push_back(bad);
+  bad.point = V::Zero();
+  bad.normal = V(S(0), S(0), std::numeric_limits<S>::infinity());
+  withNan.push_back(bad);
+  std::vector<bool> withNanExpected = expected;
+  withNanExpected.push_back(false);
+  withNanExpected.push_back(false);
+  CHECK(reducedFlags<S>(withNan) == withNanExpected);
+}
+
+// A line fixed in a body from its origin to 1 m above, reaching out to
+// x = 1.5·max: that endpoint is at x = inf and 1/10 of it below a plane
+// tilted toward −x, so the line–plane collider reports a point at infinity,
+// which the space drops and counts, and the simulation's statistics too.
+TEST_CASE_TEMPLATE("a non-finite contact point is dropped before reduction and counted in the statistics", S, float,
+                   double) {
+  using V = spook::Vec3T<S>;
+  const S max = std::numeric_limits<S>::max();
+  spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
+  sim->add(new spook::GeometryT<S>(new spook::PlaneT<S>(V(S(-0.1), S(0), S(1)), V(S(0.5) * max, S(0), S(0)))));
+  spook::ref_ptr<spook::RigidBodyT<S>> rod = new spook::RigidBodyT<S>("rod");
+  rod->add(new spook::GeometryT<S>(new spook::LineT<S>(V(S(0), S(0), S(1)), V(max, S(0), S(1)))));
+  rod->setPosition(S(0.5) * max, S(0), S(0));
+  sim->add(rod);
+  spook::SpaceT<S>& space = *sim->getSpace();
+  space.update(sim->getRigidBodies());
+  CHECK(space.getNumDroppedContactPoints() == 1);
+  CHECK(space.getGeometryContacts().empty());
+
+  CHECK(sim->getStatistics().numDroppedContactPoints == 0);
+  sim->stepForward();
+  CHECK(sim->getStatistics().numDroppedContactPoints == 1);
+  CHECK(rod->getPosition().allFinite());
+  // Lifted clear of the plane (which rises to 0.05·max at x = max), nothing is dropped any more.
+  rod->setPosition(S(0), S(0), S(0.1) * max);
+  sim->stepForward();
+  CHECK(sim->getStatistics().numDroppedContactPoints == 0);
+  CHECK(sim->getStatistics().frozenBodies.empty());
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -26,16 +27,31 @@ namespace detail {
 /// bin the point farthest from the centroid survives (so the survivors span
 /// the largest area, as the seeds put it), ties going to the deeper one.
 /// Resolution 2 keeps at most one point per quadrant of a flat contact
-/// patch, 3 keeps more. Disabled points stay in the list.
+/// patch, 3 keeps more. Disabled points stay in the list. A point whose
+/// position, normal or depth is not finite is disabled and left out of the
+/// binning (the Space's sinks never let one through); the others are scaled
+/// by a power of two first, so that points near the largest finite
+/// coordinate cannot overflow the centroid or the arms.
 template <Scalar S>
 void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
   if (resolution < 1 || resolution > 3) throw detail::makeError("ContactReduction", "", "bin resolution must be 1, 2 or 3", resolution);
+  std::erase_if(points, [](ContactPointT<S>* p) {
+    const bool finite = p->point.allFinite() && p->normal.allFinite() && std::isfinite(p->depth);
+    if (!finite) p->enabled = false;
+    return !finite;
+  });
   if (points.size() <= 4) return;
+  // Positions in units of 2^e, e the largest coordinate's exponent: an exact
+  // scaling that leaves every coordinate below 2 in magnitude.
+  S largest = S(0);
+  for (const auto* p : points) largest = std::max(largest, p->point.cwiseAbs().maxCoeff());
+  const S unit = largest > S(0) ? std::ldexp(S(1), std::ilogb(largest)) : S(1);
+  const auto scaled = [&](const ContactPointT<S>* p) { return Vec3T<S>(p->point / unit); };
   Vec3T<S> centroid = Vec3T<S>::Zero();
-  for (const auto* p : points) centroid += p->point;
+  for (const auto* p : points) centroid += scaled(p);
   centroid /= S(points.size());
   S reach = S(0);
-  for (const auto* p : points) reach = std::max(reach, (p->point - centroid).norm());
+  for (const auto* p : points) reach = std::max(reach, (scaled(p) - centroid).norm());
   const S scale = reach > S(0) ? S(1) / reach : S(0);
   // The small shift keeps round-off from splitting a bin whose edge sits at
   // 0 (resolution 2): a component of ±1e-17 lands on the + side either way.
@@ -49,7 +65,7 @@ void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
   };
   std::vector<Bin> bins;
   for (auto* p : points) {
-    const Vec3T<S> arm = (p->point - centroid) * scale;
+    const Vec3T<S> arm = (scaled(p) - centroid) * scale;
     const Vec3T<S> moment = p->normal.cross(arm);
     const std::array<int, 6> key = {binOf(p->normal.x()), binOf(p->normal.y()), binOf(p->normal.z()),
                                     binOf(moment.x()),    binOf(moment.y()),    binOf(moment.z())};
@@ -58,7 +74,7 @@ void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
       bins.push_back({key, p});
       continue;
     }
-    const S current = (it->best->point - centroid).squaredNorm(), candidate = (p->point - centroid).squaredNorm();
+    const S current = (scaled(it->best) - centroid).squaredNorm(), candidate = (scaled(p) - centroid).squaredNorm();
     const bool better = candidate > current * (S(1) + S(1e-6)) ||
                         (candidate >= current * (S(1) - S(1e-6)) && p->depth > it->best->depth);
     (better ? it->best : p)->enabled = false;

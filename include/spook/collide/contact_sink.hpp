@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include <spook/collide/contact_point.hpp>
@@ -13,17 +15,20 @@ namespace spook {
 /// Where a collider writes the contact points of one shape pair. It keeps
 /// the "first toward second" normal convention when the pair was handed to
 /// the collider in reverse order (flipped), and never lets a non-finite
-/// point through.
+/// point through: it drops it and counts it in getNumDropped().
 template <Scalar S>
 class ContactSinkT {
  public:
   explicit ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped = false)
-      : points_(&points), flipped_(flipped) {}
+      : ContactSinkT(points, flipped, std::make_shared<std::size_t>(0)) {}
 
   /// Adds a point: world position (m), unit normal from the collider's first
   /// shape toward its second, penetration depth (m, clamped at 0).
   void add(const Vec3T<S>& point, const Vec3T<S>& normal, S depth) {
-    if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) return;
+    if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) {
+      ++*dropped_;
+      return;
+    }
     ContactPointT<S> contact;
     contact.point = point;
     contact.normal = flipped_ ? Vec3T<S>(-normal) : normal;
@@ -39,15 +44,22 @@ class ContactSinkT {
     faces_ = {static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(second)};
   }
 
-  /// The same output with the shape order swapped.
-  [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_); }
+  /// The same output with the shape order swapped (sharing the drop count).
+  [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_, dropped_); }
 
   /// Number of points written so far.
   [[nodiscard]] std::size_t size() const { return points_->size(); }
+  /// Number of points refused so far because their position, normal or
+  /// depth was not finite (this sink and its reversed() copies).
+  [[nodiscard]] std::size_t getNumDropped() const { return *dropped_; }
 
  private:
+  ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped, std::shared_ptr<std::size_t> dropped)
+      : points_(&points), flipped_(flipped), dropped_(std::move(dropped)) {}
+
   std::vector<ContactPointT<S>>* points_;
   bool flipped_;
+  std::shared_ptr<std::size_t> dropped_;
   std::array<std::uint32_t, 2> faces_{};
 };
 

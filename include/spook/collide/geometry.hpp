@@ -22,10 +22,15 @@ template <Scalar S>
 class RigidBodyT;
 
 namespace detail {
-/// Told when a geometry's shapes or material change, so that a body can
-/// recompute its mass properties.
+template <Scalar S>
+struct GeometryEdit;
+/// Asked before, and told after, a geometry's shapes, material or placement
+/// change, so that a body can refuse a change whose mass properties would
+/// not be valid and recompute them once it is made.
 template <Scalar S>
 struct GeometryOwner {
+  /// Throws spook::Error when the body could not take `edit`; changes nothing.
+  virtual void checkGeometryChange(const GeometryEdit<S>& edit) const = 0;
   virtual void geometryChanged() = 0;
 
  protected:
@@ -67,14 +72,18 @@ class GeometryT : public Referenced {
   // --- Shapes ----------------------------------------------------------------
 
   /// Adds a shape at `transform` (shape → geometry frame, rigid). Updates the
-  /// owning body's mass properties.
+  /// owning body's mass properties; throws, and adds nothing, when they would
+  /// not be finite and valid (e.g. a box whose mass or inertia overflows).
   void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
     if (!shape) throw error("cannot add a null shape", "nullptr");
     if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
       throw error("shape transform must be finite and rigid", SPDMat3T<S>::flat(transform.linear()));
     if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
       throw error("shape already added to this geometry", std::string(shapeTypeName(shape->getType())));
-    shapes_.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+    std::vector<ShapeEntry> shapes = shapes_;
+    shapes.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+    check({this, &shapes, nullptr, nullptr});
+    shapes_ = std::move(shapes);
     changed();
   }
   /// Removes a shape; false when it is not here.
@@ -97,13 +106,18 @@ class GeometryT : public Referenced {
   /// Geometry → world transform.
   [[nodiscard]] Transform getTransform() const { return frame_->getMatrix(); }
   /// Sets the world transform (a body-owned geometry moves relative to its
-  /// body so that it lands there). Updates the owning body's mass.
+  /// body so that it lands there). Updates the owning body's mass; throws,
+  /// and stays put, when it would not be finite and valid.
   void setTransform(const Transform& X_W) {
+    checkWorldPlacement(X_W);
     frame_->setMatrix(X_W);
     changed();
   }
   [[nodiscard]] Vec3 getPosition() const { return frame_->getTranslate(); }
   void setPosition(const Vec3& p_W) {
+    Transform X_W = getTransform();
+    X_W.translation() = p_W;
+    checkWorldPlacement(X_W);
     frame_->setTranslate(p_W);
     changed();
   }
@@ -111,6 +125,7 @@ class GeometryT : public Referenced {
   /// Geometry → body model frame (or world, without a body).
   [[nodiscard]] Transform getLocalTransform() const { return frame_->getLocalMatrix(); }
   void setLocalTransform(const Transform& X) {
+    if (X.matrix().allFinite() && isRotation<S>(X.linear())) check({this, nullptr, nullptr, &X});
     frame_->setLocalMatrix(X);
     changed();
   }
@@ -120,10 +135,13 @@ class GeometryT : public Referenced {
   // --- Material --------------------------------------------------------------
 
   /// The material; a geometry made without one uses a shared default
-  /// (density 1000 kg/m³). Assigning updates the owning body's mass.
+  /// (density 1000 kg/m³). Assigning updates the owning body's mass; throws,
+  /// and keeps the old material, when that would not be finite and valid
+  /// (e.g. a density whose mass overflows).
   [[nodiscard]] MaterialT<S>* getMaterial() const { return material_ ? material_.get() : defaultMaterial(); }
   void setMaterial(ref_ptr<MaterialT<S>> material) {
     if (!material) throw error("material must not be null", "nullptr");
+    check({this, nullptr, material.get(), nullptr});
     material_ = std::move(material);
     changed();
   }
@@ -217,6 +235,17 @@ class GeometryT : public Referenced {
     static std::atomic<std::uint64_t> counter{0};
     return ++counter;
   }
+  void check(const detail::GeometryEdit<S>& edit) const {
+    if (owner_) owner_->checkGeometryChange(edit);
+  }
+  // A would-be world transform of a body's geometry, checked as the local
+  // transform it makes (to round-off, the one the frame then sets); a
+  // transform that is not finite and rigid is left for the frame to refuse.
+  void checkWorldPlacement(const Transform& X_W) const {
+    if (!(owner_ && X_W.matrix().allFinite() && isRotation<S>(X_W.linear()))) return;
+    const Transform X_local = frame_->getParent()->getMatrix().inverse() * X_W;
+    check({this, nullptr, nullptr, &X_local});
+  }
   void changed() {
     if (owner_) owner_->geometryChanged();
   }
@@ -249,6 +278,16 @@ class GeometryT : public Referenced {
 };
 
 namespace detail {
+/// A change to one geometry, described before it is made: its shapes,
+/// material or local transform as they would be (nullptr: unchanged).
+template <Scalar S>
+struct GeometryEdit {
+  const GeometryT<S>* geometry = nullptr;
+  const std::vector<typename GeometryT<S>::ShapeEntry>* shapes = nullptr;
+  const MaterialT<S>* material = nullptr;
+  const TransformT<S>* localTransform = nullptr;
+};
+
 /// The owning body's and the space's handle on a geometry's membership.
 template <Scalar S>
 struct GeometryAccess {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -175,6 +176,7 @@ class SpaceT : public Referenced {
     boxes_.clear();
     for (const Geometry* g : active_) boxes_.push_back(g->getBoundingBox());
     contacts_.clear();
+    numDroppedContactPoints_ = 0;
     broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(*active_[i], *active_[j]); });
     reduce();
     trackEvents();
@@ -185,6 +187,10 @@ class SpaceT : public Referenced {
   [[nodiscard]] const std::vector<Contact>& getGeometryContacts() const { return contacts_; }
   /// Pairs that were in contact the update before the last and no longer are.
   [[nodiscard]] const std::vector<GeometryPairT<S>>& getSeparations() const { return separations_; }
+  /// Contact points the last update() dropped, before reduction, because a
+  /// collider produced a non-finite position, normal or depth (e.g. shapes
+  /// posed near the largest finite coordinate).
+  [[nodiscard]] std::size_t getNumDroppedContactPoints() const { return numDroppedContactPoints_; }
 
  protected:
   ~SpaceT() override {
@@ -239,6 +245,7 @@ class SpaceT : public Referenced {
     for (const auto& e1 : first->getShapes())
       for (const auto& e2 : second->getShapes())
         collide_(*e1.shape, X_W1 * e1.transform, *e2.shape, X_W2 * e2.transform, sink);
+    numDroppedContactPoints_ += sink.getNumDropped();
     if (!contact.points().empty()) contacts_.push_back(std::move(contact));
   }
 
@@ -304,6 +311,7 @@ class SpaceT : public Referenced {
   std::vector<Contact> contacts_;
   std::map<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>> touching_;
   std::vector<GeometryPairT<S>> separations_;
+  std::size_t numDroppedContactPoints_ = 0;
 };
 
 using Space = SpaceT<double>;

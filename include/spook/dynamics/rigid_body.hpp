@@ -248,18 +248,23 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   // --- Geometries ------------------------------------------------------------
 
   /// Adds a geometry; its local transform is now relative to the model
-  /// frame. Recomputes the generated mass properties. Throws if the
-  /// geometry is null, belongs to a body, or stands on its own in a space.
+  /// frame. Recomputes the generated mass properties. Throws, and adds
+  /// nothing, if the geometry is null, belongs to a body, stands on its own
+  /// in a space, or would make mass properties that are not finite and
+  /// valid (e.g. a box whose mass or inertia overflows).
   void add(ref_ptr<Geometry> geometry) {
     if (!geometry) throw error("cannot add a null Geometry", "nullptr");
     if (geometry->getRigidBody() == this) throw error("Geometry already added to this body", geometry->getName());
     if (geometry->getRigidBody()) throw error("Geometry already belongs to another body", geometry->getName());
     if (Access::space(*geometry)) throw error("Geometry is in a space on its own; remove it first", geometry->getName());
+    std::vector<ref_ptr<Geometry>> geometries = geometries_;
+    geometries.push_back(geometry);
+    const auto update = planMassProperties(geometries);
+    geometry->getFrame()->setParent(frame_.get());
     Access::body(*geometry) = this;
     Access::owner(*geometry) = this;
-    geometry->getFrame()->setParent(frame_.get());
-    geometries_.push_back(std::move(geometry));
-    updateMassProperties();
+    geometries_ = std::move(geometries);
+    if (update) applyMassProperties(*update);
   }
   /// Removes a geometry (it keeps its local transform, now a world one);
   /// false when it is not this body's.
@@ -287,27 +292,11 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   /// auto-generate mask (a hand-set mass scales the generated inertia). The
   /// model frame stays put; the center-of-mass velocity follows the new
   /// center so that no body point changes velocity. Nothing changes when no
-  /// shape has volume.
+  /// shape has volume. Throws, changing nothing, when the result would not
+  /// be finite and valid (e.g. after a material's density was raised until
+  /// the mass overflows).
   void updateMassProperties() {
-    const auto generated = detail::massFromGeometries<S>(geometries_);
-    if (!generated) return;
-    const unsigned mask = massProperties_.getAutoGenerateMask();
-    const S mass = (mask & MassPropertiesT<S>::MASS) ? generated->mass : massProperties_.getMass();
-    Mat3 inertia = generated->inertia * (mass / generated->mass);
-    if (!(mask & MassPropertiesT<S>::CM_OFFSET)) {
-      // About the user's center instead of the generated one.
-      const Vec3 d = getCmLocalTranslate() - generated->center;
-      inertia += mass * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
-    }
-    // The tensor is stored in the CM frame, whose axes are the model axes
-    // turned by the CM frame's local rotation.
-    const Mat3 R = cmFrame_->getLocalRotate().toRotationMatrix();
-    massProperties_.generate(mass, SPDMat3T<S>(Mat3(R.transpose() * inertia * R)));
-    if (mask & MassPropertiesT<S>::CM_OFFSET) {
-      const Vec3 oldCm = getCmPosition();
-      cmFrame_->setLocalTranslate(generated->center);
-      velocity_ += angularVelocity_.cross(getCmPosition() - oldCm);
-    }
+    if (const auto update = planMassProperties(geometries_)) applyMassProperties(*update);
   }
 
   // --- Attachments -----------------------------------------------------------
@@ -350,7 +339,48 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
 
  private:
   using Access = detail::GeometryAccess<S>;
+  void checkGeometryChange(const detail::GeometryEdit<S>& edit) const override {
+    static_cast<void>(planMassProperties(geometries_, edit));
+  }
   void geometryChanged() override { updateMassProperties(); }
+
+  // Generated mass properties, validated and ready to store.
+  struct MassUpdate {
+    S mass;                // kg
+    SPDMat3T<S> inertia;   // CM frame (kg·m²)
+    Vec3 center;           // generated center of mass, model frame (m)
+  };
+  // What updateMassProperties would store for `geometries` (with `edit`
+  // applied); throws, naming the body or geometry and the value, when it
+  // would not be finite and valid. Changes nothing.
+  [[nodiscard]] std::optional<MassUpdate> planMassProperties(const std::vector<ref_ptr<Geometry>>& geometries,
+                                                             const detail::GeometryEdit<S>& edit = {}) const {
+    const auto generated = detail::massFromGeometries<S>(geometries, name_, edit);
+    if (!generated) return std::nullopt;
+    const unsigned mask = massProperties_.getAutoGenerateMask();
+    const S mass = (mask & MassPropertiesT<S>::MASS) ? generated->mass : massProperties_.getMass();
+    Mat3 inertia = generated->inertia * (mass / generated->mass);
+    if (!(mask & MassPropertiesT<S>::CM_OFFSET)) {
+      // About the user's center instead of the generated one.
+      const Vec3 d = getCmLocalTranslate() - generated->center;
+      inertia += mass * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+    }
+    // The tensor is stored in the CM frame, whose axes are the model axes
+    // turned by the CM frame's local rotation.
+    const Mat3 R = cmFrame_->getLocalRotate().toRotationMatrix();
+    const Mat3 inertiaCm = R.transpose() * inertia * R;
+    if (const char* why = SPDMat3T<S>::defect(inertiaCm))
+      throw error(std::string("inertia generated from the geometries (kg·m²): ") + why, SPDMat3T<S>::flat(inertiaCm));
+    return MassUpdate{mass, SPDMat3T<S>(inertiaCm), generated->center};
+  }
+  void applyMassProperties(const MassUpdate& update) {
+    massProperties_.generate(update.mass, update.inertia);
+    if (massProperties_.getAutoGenerateMask() & MassPropertiesT<S>::CM_OFFSET) {
+      const Vec3 oldCm = getCmPosition();
+      cmFrame_->setLocalTranslate(update.center);
+      velocity_ += angularVelocity_.cross(getCmPosition() - oldCm);
+    }
+  }
 
   friend struct detail::BodyIntegrator<S>;
   friend struct detail::SimulationMembership;

@@ -665,6 +665,7 @@ void SimulationT<S>::stepForward() {
   } reset{stepping_};
   notify(Listener::PRE_COLLIDE);
   space_->update(bodies_);
+  statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
   notifyContacts();
   notify(Listener::PRE_STEP);
   integrate(timeStep_);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -37,6 +38,11 @@ struct SimulationStatisticsT {
   /// Steps, since the simulation was created, in which a direct solve did
   /// not converge and fell back to its safe answer (SolverStatistics::directFallbacks).
   std::uint64_t numFallbackSteps = 0;
+  /// Contact points the last step's collision detection dropped before
+  /// contact reduction because their position, normal or depth was not
+  /// finite (shapes posed near the largest finite coordinate); they exert
+  /// no force.
+  std::size_t numDroppedContactPoints = 0;
   /// What the constraint solver did in the last step.
   SolverStatistics solver;
 };

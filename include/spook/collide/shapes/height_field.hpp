@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,14 +30,22 @@ class HeightFieldT : public ShapeT<S> {
   using Vec3 = spook::Vec3T<S>;
   using Vec2 = Eigen::Matrix<S, 2, 1>;
 
-  /// Throws spook::Error on fewer than 2 × 2 samples, a heights vector not of
-  /// resolutionX·resolutionY entries, a non-finite height, or a size that is
-  /// not finite and > 0 m.
+  /// Throws spook::Error on fewer than 2 × 2 samples, more triangles than a
+  /// contact's 32-bit face index can number, a heights vector not of
+  /// resolutionX·resolutionY entries, a non-finite height, a size that is
+  /// not finite and > 0 m, or a cell so small that its spacing underflows.
   HeightFieldT(std::size_t resolutionX, std::size_t resolutionY, S sizeX, S sizeY, std::vector<S> heights)
       : resolutionX_(resolutionX), resolutionY_(resolutionY), heights_(std::move(heights)) {
+    const std::array<std::size_t, 2> resolution{resolutionX, resolutionY};
     if (resolutionX < 2 || resolutionY < 2)
       throw detail::makeError("HeightField", "", "needs at least 2 x 2 height samples (resolutionX, resolutionY)",
-                              std::array<std::size_t, 2>{resolutionX, resolutionY});
+                              resolution);
+    // Checked before any product of the resolutions is formed, so that none wraps around.
+    if ((resolutionX - 1) > kMaxTriangles / 2 / (resolutionY - 1))
+      throw detail::makeError("HeightField", "",
+                              "2 (resolutionX - 1)(resolutionY - 1) triangles must not exceed " +
+                                  std::to_string(kMaxTriangles),
+                              resolution);
     sizeX_ = this->requireLength("HeightField", "sizeX", sizeX);
     sizeY_ = this->requireLength("HeightField", "sizeY", sizeY);
     if (heights_.size() != resolutionX * resolutionY)
@@ -47,6 +57,8 @@ class HeightFieldT : public ShapeT<S> {
       if (!std::isfinite(heights_[k]))
         throw detail::makeError("HeightField", "", "height " + std::to_string(k) + " must be finite (m)", heights_[k]);
     spacing_ = Vec2(sizeX_ / S(resolutionX - 1), sizeY_ / S(resolutionY - 1));
+    if (!(spacing_.minCoeff() >= std::numeric_limits<S>::min()))
+      throw detail::makeError("HeightField", "", "cell spacing size / (resolution - 1) must not underflow (m)", spacing_);
     updateHeightRange();
   }
 
@@ -181,6 +193,9 @@ class HeightFieldT : public ShapeT<S> {
     const S last = std::clamp(std::floor((hi + S(0.5) * size) / spacing) + S(1), S(0), cells - S(1));
     return {static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
   }
+
+  // Contact points number the triangles with 32 bits.
+  static constexpr std::size_t kMaxTriangles = std::numeric_limits<std::uint32_t>::max();
 
   std::size_t resolutionX_;
   std::size_t resolutionY_;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <limits>
 
 #include <spook/collide/shapes/shape.hpp>
@@ -23,6 +24,13 @@ class PlaneT : public ShapeT<S> {
     const Vec3 n = unitNormal(normal);
     set(n, Vec3(n * distance));
   }
+  /// Plane through three points (m), its normal (p2 − p1) × (p3 − p1) by the
+  /// right-hand rule (counter-clockwise points seen from above the plane);
+  /// throws on coincident or collinear points.
+  PlaneT(const Vec3& p1, const Vec3& p2, const Vec3& p3) { set(normalThrough(p1, p2, p3), p1); }
+  /// Plane a·x + b·y + c·z = d (AGX's order): normal (a, b, c) normalized,
+  /// d (m·|(a, b, c)|) scaled with it to the distance d / |(a, b, c)| (m).
+  PlaneT(S a, S b, S c, S d) : PlaneT(Vec3(a, b, c), distanceOf(Vec3(a, b, c), d)) {}
 
   /// Unit outward normal, shape frame.
   [[nodiscard]] const Vec3& getNormal() const { return normal_; }
@@ -66,6 +74,37 @@ class PlaneT : public ShapeT<S> {
     if (!(normal.allFinite() && largest > S(0)))
       throw detail::makeError("Plane", "", "normal must be finite and non-zero", normal);
     return (normal / largest).normalized();
+  }
+
+  // Each edge scaled by its largest component first, so that the cross
+  // product neither overflows nor underflows. The points are collinear when
+  // the sine of the angle between the edges is within round-off of zero.
+  static Vec3 normalThrough(const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+    const Vec3 e1 = p2 - p1, e2 = p3 - p1;
+    const auto points = [&] {
+      Eigen::Matrix<S, 9, 1> all;
+      all << p1, p2, p3;
+      return all;
+    };
+    if (!(e1.allFinite() && e2.allFinite()))
+      throw detail::makeError("Plane", "", "three points must be finite and their differences too (m)", points());
+    const S l1 = e1.cwiseAbs().maxCoeff(), l2 = e2.cwiseAbs().maxCoeff();
+    if (!(l1 > S(0) && l2 > S(0))) throw detail::makeError("Plane", "", "three points must not coincide (m)", points());
+    const Vec3 u1 = (e1 / l1).normalized(), u2 = (e2 / l2).normalized();
+    const Vec3 n = u1.cross(u2);
+    if (!(n.norm() > S(16) * std::numeric_limits<S>::epsilon()))
+      throw detail::makeError("Plane", "", "three points must not be collinear (m)", points());
+    return n;
+  }
+  // d / |n| without squaring n's components (which could overflow or underflow).
+  static S distanceOf(const Vec3& normal, S d) {
+    const S largest = normal.cwiseAbs().maxCoeff();
+    if (!(normal.allFinite() && largest > S(0)))
+      throw detail::makeError("Plane", "", "normal (a, b, c) must be finite and non-zero", normal);
+    const S distance = (d / largest) / (normal / largest).norm();
+    if (!std::isfinite(distance))
+      throw detail::makeError("Plane", "", "d / |(a, b, c)| must be finite (m)", Eigen::Matrix<S, 4, 1>(normal.x(), normal.y(), normal.z(), d));
+    return distance;
   }
 
   Vec3 normal_ = Vec3::UnitZ();
