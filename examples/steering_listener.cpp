@@ -11,7 +11,7 @@
 
 class SteeringListener : public spook::StepEventListener {
  public:
-  explicit SteeringListener(spook::Ackermann* ackermann) : StepEventListener(PRE_STEP), ackermann(ackermann) {}
+  explicit SteeringListener(spook::Ackermann* ackermann) : spook::StepEventListener(PRE_STEP), ackermann(ackermann) {}
   void pre(double t) override {
     if (t < 1.0) {
       ackermann->setSteeringAngle(t);
