@@ -144,6 +144,65 @@ TEST_CASE_TEMPLATE("getLastForce of a hanging body equals its weight", S, float,
   CHECK_FALSE(hinge->getLastForce(body.get(), force, torque));
 }
 
+// A horizontal beam of mass m and length L locked to the world at its left
+// end (seed 000: getLastForce(rb, force, torque, giveForceAtCm = false)). At
+// rest the lock carries the weight, F = (0, 0, m g); about the attachment
+// point, the body's end at c − (L/2) x, the torque that balances gravity's
+// lever is (L/2 x) × F = (0, −m g L/2, 0): the default. About the center of
+// mass (giveForceAtCm true) the lock's wrench balances a force through the
+// center: zero torque.
+TEST_CASE_TEMPLATE("getLastForce reports the torque about the attachment point unless asked for the center of mass", S,
+                   float, double) {
+  ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+  sim->setSolver(new DirectSolver());
+  const S m = S(4), L = S(2);
+  auto beam = makeBody<S>(*sim, "beam", m, Vec3T<S>(S(3), S(0), S(1)), S(m * L * L / 12));
+  ref_ptr<LockJointT<S>> lock = new LockJointT<S>(beam.get(), frameAt<S>(Vec3T<S>(-L / 2, 0, 0)).get());
+  lock->setEnableComputeForces(true);
+  sim->add(lock);
+  sim->stepTo(S(2));
+  const double weight = double(m) * spook::test::kG, moment = weight * double(L) / 2;
+  Vec3T<S> force = Vec3T<S>::Zero(), torque = Vec3T<S>::Zero();
+  REQUIRE(lock->getLastForce(beam.get(), force, torque));
+  MESSAGE("force " << force.transpose() << " N, torque " << torque.transpose() << " N m; m g = " << weight
+                   << " N, m g L/2 = " << moment << " N m");
+  CHECK(std::abs(double(force.z()) / weight - 1.0) < pick<S>(1e-6, 1e-4));
+  CHECK(std::hypot(double(force.x()), double(force.y())) < pick<S>(1e-9, 1e-4) * weight);
+  CHECK(std::abs(double(torque.y()) / -moment - 1.0) < pick<S>(1e-6, 1e-4));
+  CHECK(std::hypot(double(torque.x()), double(torque.z())) < pick<S>(1e-9, 1e-4) * moment);
+  // The same by index; about the center of mass on request.
+  Vec3T<S> byIndex = Vec3T<S>::Zero(), torqueByIndex = Vec3T<S>::Zero();
+  REQUIRE(lock->getLastForce(0, byIndex, torqueByIndex));
+  CHECK(double((torqueByIndex - torque).norm()) <= pick<S>(1e-12, 1e-6) * moment);
+  Vec3T<S> atCm = Vec3T<S>::Zero(), torqueAtCm = Vec3T<S>::Zero();
+  REQUIRE(lock->getLastForce(beam.get(), atCm, torqueAtCm, true));
+  MESSAGE("torque about the center of mass " << torqueAtCm.transpose() << " N m");
+  CHECK(double((atCm - force).norm()) <= pick<S>(1e-12, 1e-6) * weight);
+  CHECK(double(torqueAtCm.norm()) < pick<S>(1e-6, 1e-4) * moment);
+}
+
+// A mass m hanging 1 m below a world point on a DistanceJoint of compliance
+// c set on the joint (seed 001 §12.1.2, §12.7: one translational DOF) stretches
+// by Hooke's law d = m g c (§12.1.3); the joint's damping is that DOF's too.
+TEST_CASE_TEMPLATE("a DistanceJoint has one DOF, and its compliance stretches a hanging mass by m g c", S, float,
+                   double) {
+  ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+  sim->setSolver(new DirectSolver());
+  const S m = S(10), c = S(1e-4), damping = S(0.05);
+  auto body = makeBody<S>(*sim, "hanging", m, Vec3T<S>(0, 0, -1));
+  ref_ptr<DistanceJointT<S>> rope = new DistanceJointT<S>(body.get(), new FrameT<S>(), Vec3T<S>::Zero());
+  CHECK(rope->getNumDOF() == 1);
+  for (int dof = 0; dof < rope->getNumDOF(); ++dof) rope->getRegularizationParameters(dof)->setDamping(damping);
+  rope->setCompliance(c);
+  sim->add(rope);
+  sim->stepTo(S(4));
+  const double stretch = double(rope->getAngle()) - 1.0, hooke = double(m * c) * spook::test::kG;
+  MESSAGE("DistanceJoint stretch " << stretch << " m, m g c = " << hooke << " m");
+  CHECK(std::abs(stretch / hooke - 1.0) < 0.01);
+  CHECK(rope->getCompliance(0) == c);
+  CHECK(rope->getDamping(0) == damping);
+}
+
 // A screw jack: a CylindricalJoint along the vertical with a Screw1D of lead
 // L. Gravity drives the body down and the screw turns it, so it falls with
 // a = g m / (m + I (2π/L)²) (energy: m g x = ½ m v² + ½ I (2π v/L)²).

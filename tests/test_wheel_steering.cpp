@@ -374,8 +374,57 @@ TEST_CASE("steering: maximum angles are finite, positive, and where the linkage 
     CHECK(std::isfinite(maximum));
     CHECK(maximum > 0.1);
     CHECK(maximum < std::numbers::pi / 2.0);
-    CHECK_THROWS_AS(m->setSteeringAngle(maximum * 1.01), Error);
+    m->setSteeringAngle(maximum * 1.01);  // clamped
+    CHECK(m->getSteeringAngle() == maximum);
   }
+}
+
+// Requests beyond the linkage's reach are clamped to ±getMaximumSteeringAngle()
+// (as AGX does): the mechanism holds the wheels where the clamped input puts
+// them, in the simulation too. Only a non-finite request is refused.
+template <class S, class Mechanism>
+void steerBeyondReach() {
+  FrontAxleScene<S> scene;
+  ref_ptr<Mechanism> steering = new Mechanism(scene.left.get(), scene.right.get());
+  scene.sim->add(steering);
+  const S maximum = steering->getMaximumSteeringAngle();
+  steering->setSteeringAngle(maximum);
+  const auto atMax = steering->getWheelAngles();
+  steering->setSteeringAngle(-maximum);
+  const auto atMin = steering->getWheelAngles();
+  for (const S request : {S(1), S(2) * maximum, S(1e6), -S(2) * maximum, -S(1e30)}) {
+    CAPTURE(request);
+    const S expected = std::clamp(request, -maximum, maximum);
+    CHECK_NOTHROW(steering->setSteeringAngle(request));
+    MESSAGE(std::string(steering->getKind()) << ": asked " << request << " rad, holds " << steering->getSteeringAngle()
+                                << " rad (reach +-" << maximum << " rad)");
+    CHECK(steering->getSteeringAngle() == expected);
+    CHECK(steering->getRequestedSteeringAngle() == request);
+    if (std::abs(request) > maximum) {
+      const auto& wheels = request > S(0) ? atMax : atMin;
+      CHECK(steering->getWheelAngles().left == wheels.left);
+      CHECK(steering->getWheelAngles().right == wheels.right);
+    }
+  }
+  // Held by the simulation at the clamped angles.
+  steering->setSteeringAngle(S(3) * maximum);
+  scene.sim->stepTo(S(1));
+  CHECK(std::abs(scene.angle(*scene.left) - double(atMax.left)) < 1e-3);
+  CHECK(std::abs(scene.angle(*scene.right) - double(atMax.right)) < 1e-3);
+  // Non-finite input throws and changes nothing.
+  for (const S bad : {std::numeric_limits<S>::quiet_NaN(), std::numeric_limits<S>::infinity()}) {
+    CHECK_THROWS_AS(steering->setSteeringAngle(bad), Error);
+    CHECK(steering->getSteeringAngle() == maximum);
+    CHECK(steering->getWheelAngles().left == atMax.left);
+  }
+}
+
+TEST_CASE_TEMPLATE("steering: every mechanism clamps requests beyond its reach and reports the angle it holds", S,
+                   float, double) {
+  steerBeyondReach<S, AckermannT<S>>();
+  steerBeyondReach<S, BellCrankT<S>>();
+  steerBeyondReach<S, RackPinionT<S>>();
+  steerBeyondReach<S, DavisT<S>>();
 }
 
 TEST_CASE("steering: added to a simulation it keeps the wheels steered") {
@@ -433,17 +482,16 @@ TEST_CASE("steering: bad input throws and leaves the mechanism unchanged") {
   steering->setSteeringAngle(0.2);
   const auto before = steering->getWheelAngles();
   const double lockBefore = scene.right->getLock1D(WheelJoint::STEERING)->getPosition();
-  const double tooFar = 1.5 * steering->getMaximumSteeringAngle();
   try {
-    steering->setSteeringAngle(tooFar);
-    FAIL("steering beyond the maximum accepted");
+    steering->setSteeringAngle(nan);
+    FAIL("a NaN steering angle accepted");
   } catch (const Error& e) {
     const std::string what = e.what();
     MESSAGE(what);
     CHECK(what.find("Ackermann 'front'") != std::string::npos);
-    CHECK(what.find("getMaximumSteeringAngle") != std::string::npos);
+    CHECK(what.find("nan") != std::string::npos);
   }
-  CHECK_THROWS_AS(steering->setSteeringAngle(nan), Error);
+  CHECK_THROWS_AS(steering->setSteeringAngle(std::numeric_limits<double>::infinity()), Error);
   CHECK(steering->getSteeringAngle() == 0.2);
   CHECK(steering->getWheelAngles().left == before.left);
   CHECK(steering->getWheelAngles().right == before.right);

@@ -65,7 +65,7 @@ class ConstraintT : public Referenced {
     return index == 0 ? frame1_.get() : index == 1 ? frame2_.get() : nullptr;
   }
 
-  /// Elementary rows of the joint (its DOF enum's NUM_DOF).
+  /// Degrees of freedom the joint removes (its DOF enum's NUM_DOF, seed 001 table 12.4).
   [[nodiscard]] virtual int getNumDOF() const = 0;
 
   /// Which solver handles the rows under the hybrid policy (default
@@ -85,26 +85,29 @@ class ConstraintT : public Referenced {
     if (!enable) wrench_[0] = wrench_[1] = detail::Vec6d::Zero();
   }
   /// The force (N) and torque (N·m) the constraint applied on body `index`
-  /// (0 or 1) in the last step; the torque about the center of mass, or with
-  /// atCm false about the body's attachment frame origin. False (and zeros)
+  /// (0 or 1) in the last step, in world coordinates. As AGX's getLastForce
+  /// (seed 000), the torque is about the body's attachment point (its
+  /// attachment frame origin) by default, and about its center of mass with
+  /// giveForceAtCm true; the two differ by (c − p) × force. False (and zeros)
   /// when force computation is off or the index names no body.
-  bool getLastForce(int index, Vec3& force, Vec3& torque, bool atCm = true) const {
+  bool getLastForce(int index, Vec3& force, Vec3& torque, bool giveForceAtCm = false) const {
     force = torque = Vec3::Zero();
     Body* body = getBodyAt(index);
     if (!computeForces_ || !body) return false;
     const detail::Vec6d& w = wrench_[static_cast<std::size_t>(index)];
     force = w.head<3>().template cast<S>();
     torque = w.tail<3>().template cast<S>();
-    if (!atCm) torque += (body->getCmPosition() - getAttachmentFrame(index)->getTranslate()).cross(force);
+    if (!giveForceAtCm) torque += (body->getCmPosition() - getAttachmentFrame(index)->getTranslate()).cross(force);
     return true;
   }
-  bool getLastForce(const Body* body, Vec3& force, Vec3& torque, bool atCm = true) const {
+  /// As getLastForce(index, ...) for the constraint's body `body`; false for another body.
+  bool getLastForce(const Body* body, Vec3& force, Vec3& torque, bool giveForceAtCm = false) const {
     const int index = body && body == body1_.get() ? 0 : body && body == body2_.get() ? 1 : -1;
     if (index < 0) {
       force = torque = Vec3::Zero();
       return false;
     }
-    return getLastForce(index, force, torque, atCm);
+    return getLastForce(index, force, torque, giveForceAtCm);
   }
 
   /// Takes the current configuration as the relaxed one: frame 2 is moved

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstddef>
+#include <utility>
 
 #include <spook/constraints/constraint.hpp>
 #include <spook/constraints/rows/elementary.hpp>
@@ -15,7 +16,9 @@ namespace spook {
 
 /// A joint made of elementary constraints at compile time (seed 001
 /// table 12.5): its rows are the elementary rows in order, one DOF each, each
-/// with its own compliance and damping. No virtual call per row.
+/// with its own compliance and damping. No virtual call per row. A joint
+/// whose DOF is held by another row (DistanceJoint: its Lock1D) overrides
+/// getNumDOF and dofParameters.
 template <Scalar S, class... Elementary>
 class ElementaryJointT : public ConstraintT<S> {
  public:
@@ -40,7 +43,7 @@ class ElementaryJointT : public ConstraintT<S> {
   [[nodiscard]] S getDamping(int dof) const { return parameters(dof).getDamping(); }
   [[nodiscard]] RegularizationParametersT<S>* getRegularizationParameters(int dof) {
     checkDof(dof, false);
-    return &parameters_[static_cast<std::size_t>(dof)];
+    return &mutableDofParameters(dof);
   }
 
   /// Quaternion-based rows (QuatLock) follow Hooke's law in radians when on
@@ -54,6 +57,11 @@ class ElementaryJointT : public ConstraintT<S> {
   ElementaryJointT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
       : ConstraintT<S>(kind, body1, frame1, body2, frame2) {}
   ~ElementaryJointT() override = default;
+
+  /// Compliance and damping of DOF `dof` (0 ≤ dof < getNumDOF()).
+  [[nodiscard]] virtual const RegularizationParametersT<S>& dofParameters(int dof) const {
+    return parameters_[static_cast<std::size_t>(dof)];
+  }
 
   void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
     addElementaryRows(a, sink);
@@ -70,19 +78,23 @@ class ElementaryJointT : public ConstraintT<S> {
 
  private:
   void checkDof(int dof, bool allowAll = true) const {
-    if (!((allowAll && dof == ALL_DOF) || (dof >= 0 && dof < kNumRows)))
-      throw this->error("DOF index out of range 0.." + std::to_string(kNumRows - 1), dof);
+    const int count = this->getNumDOF();
+    if (!((allowAll && dof == ALL_DOF) || (dof >= 0 && dof < count)))
+      throw this->error("DOF index out of range 0.." + std::to_string(count - 1), dof);
   }
   template <class F>
   void forDof(int dof, F&& f) {
     if (dof == ALL_DOF)
-      for (auto& p : parameters_) f(p);
+      for (int i = 0; i < this->getNumDOF(); ++i) f(mutableDofParameters(i));
     else
-      f(parameters_[static_cast<std::size_t>(dof)]);
+      f(mutableDofParameters(dof));
+  }
+  [[nodiscard]] RegularizationParametersT<S>& mutableDofParameters(int dof) {
+    return const_cast<RegularizationParametersT<S>&>(std::as_const(*this).dofParameters(dof));
   }
   [[nodiscard]] const RegularizationParametersT<S>& parameters(int dof) const {
     checkDof(dof, false);
-    return parameters_[static_cast<std::size_t>(dof)];
+    return dofParameters(dof);
   }
 
   std::array<RegularizationParametersT<S>, kNumRows> parameters_{};

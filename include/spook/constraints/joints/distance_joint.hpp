@@ -4,17 +4,22 @@
 
 namespace spook {
 
-/// Keeps the distance between the frame origins (seed 001 §12.7): its Lock1D
-/// is enabled at the distance at creation, so the joint acts as a stiff rod or,
-/// with the lock's compliance, a spring; disable the lock to drive the
-/// distance with the motor (a hydraulic actuator) or bound it with the range.
+/// Keeps the distance between the frame origins (seed 001 §12.7): one
+/// translational DOF (table 12.4), held by its Lock1D, which is enabled at the
+/// distance at creation. The joint's compliance and damping (setCompliance,
+/// setDamping, getRegularizationParameters(TRANSLATIONAL_1)) are that lock's,
+/// so the joint acts as a stiff rod or, with a compliance c (m/N), a spring
+/// that a load F stretches by F·c. Disable the lock to drive the distance
+/// with the motor (a hydraulic actuator) or bound it with the range.
 /// getAngle is the distance (m).
 template <Scalar S>
 class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
   using Base = Constraint1DOFT<S, detail::DistanceBetween>;
 
  public:
-  enum DOF { ALL_DOF = -1, NUM_DOF = 0 };
+  enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, NUM_DOF = 1 };
+
+  [[nodiscard]] int getNumDOF() const override { return NUM_DOF; }
 
   DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr, FrameT<S>* frame2 = nullptr)
       : Base("DistanceJoint", body1, frame1, body2, frame2) {
@@ -28,6 +33,9 @@ class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
 
  protected:
   ~DistanceJointT() override = default;
+  [[nodiscard]] const RegularizationParametersT<S>& dofParameters(int) const override {
+    return *this->getLock1D()->getRegularizationParameters();
+  }
   [[nodiscard]] bool rebindsFrames() const override { return false; }
   void onRebind() override {
     Base::onRebind();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -28,8 +29,9 @@ namespace spook {
 /// setSteeringAngle applies at once, so a mechanism works without being
 /// added anywhere; added to a simulation (sim->add(steering)) it also
 /// re-applies its targets before every step, so the locks cannot be left
-/// disabled while it is enabled. Angles beyond ±getMaximumSteeringAngle()
-/// are refused.
+/// disabled while it is enabled. As in AGX, requests beyond the reachable
+/// range ±getMaximumSteeringAngle() are clamped to it: getSteeringAngle is
+/// the angle held, getRequestedSteeringAngle the one asked for.
 ///
 /// The left wheel joint is the one whose steering pivot (frame 2 origin) the
 /// mechanism's x axis starts from; see SteeringParameters for the plane.
@@ -58,20 +60,23 @@ class SteeringT : public StepEventListenerT<S> {
   /// the input (no dead centre), in both directions.
   [[nodiscard]] S getMaximumSteeringAngle() const { return S(maximum_); }
 
-  /// The steering input (rad).
+  /// The steering input the mechanism holds (rad): the last request clamped
+  /// to ±getMaximumSteeringAngle().
   [[nodiscard]] S getSteeringAngle() const { return S(input_); }
+  /// The last steering input asked for (rad), before clamping.
+  [[nodiscard]] S getRequestedSteeringAngle() const { return S(requested_); }
   /// The wheel angles the mechanism holds for the current input (rad).
   [[nodiscard]] WheelAngles getWheelAngles() const { return {S(angles_.left), S(angles_.right)}; }
 
-  /// Steers to `angle` (rad, finite, |angle| ≤ getMaximumSteeringAngle()).
+  /// Steers to `angle` (rad) clamped to ±getMaximumSteeringAngle(); only a
+  /// non-finite angle throws (and changes nothing).
   void setSteeringAngle(S angle) {
     if (!std::isfinite(angle)) throw error("steering angle must be finite (rad)", angle);
-    if (!(std::abs(double(angle)) <= maximum_))
-      throw error("steering angle must be within +-getMaximumSteeringAngle() = " + std::to_string(maximum_) + " rad",
-                  angle);
-    const auto angles = solve(double(angle));
-    if (!angles) throw error("linkage does not close at this steering angle (rad)", angle);
-    input_ = double(angle);
+    const double held = std::clamp(double(angle), -maximum_, maximum_);
+    const auto angles = solve(held);
+    if (!angles) throw error("linkage does not close at this steering angle (rad)", held);
+    requested_ = double(angle);
+    input_ = held;
     angles_ = *angles;
     apply();
   }
@@ -135,6 +140,7 @@ class SteeringT : public StepEventListenerT<S> {
   double straightLeft_ = 0.0, straightRight_ = 0.0;
   double maximum_ = 0.0;
   double input_ = 0.0;
+  double requested_ = 0.0;
   detail::LinkageAngles angles_;
 };
 
