@@ -11,19 +11,19 @@
 class MyContactEventListener : public spook::ContactEventListener {
  public:
   MyContactEventListener() { setMask(IMPACT | CONTACT | SEPARATION); }
-  KeepContactPolicy impact(double t, spook::GeometryContact* /*gc*/) override {
+  KeepContactPolicy impact(const spook::TimeStamp& t, spook::GeometryContact* /*gc*/) override {
     // Contact kept if impacting (i.e., the geometries didn't overlap last update).
     std::printf("impact:     %.5f s\n", t);
     ++impacts;
     return KEEP_CONTACT;
   }
-  KeepContactPolicy contact(double t, spook::GeometryContact* /*gc*/) override {
+  KeepContactPolicy contact(const spook::TimeStamp& t, spook::GeometryContact* /*gc*/) override {
     // Remove contact: the solver won't see it.
     std::printf("contact:    %.5f s\n", t);
     ++contacts;
     return REMOVE_CONTACT;
   }
-  void separation(double t, spook::GeometryPair& /*gp*/) override {
+  void separation(const spook::TimeStamp& t, spook::GeometryPair& /*gp*/) override {
     // The geometries don't overlap anymore.
     std::printf("separation: %.5f s\n", t);
     ++separations;

@@ -12,7 +12,7 @@
 class SteeringListener : public spook::StepEventListener {
  public:
   explicit SteeringListener(spook::Ackermann* ackermann) : spook::StepEventListener(PRE_STEP), ackermann(ackermann) {}
-  void pre(double t) override {
+  void pre(const spook::TimeStamp& t) override {
     if (t < 1.0) {
       ackermann->setSteeringAngle(t);
     } else if (t <= 3.0) {
