@@ -85,11 +85,24 @@ struct BodyIntegrator {
 
   static void clearForces(Body& body) { body.force_ = body.torque_ = Vec3::Zero(); }
 
+  /// Freezes a body for this step: pose kept, velocities zeroed, a moveTo
+  /// dropped.
+  static void freeze(Body& body) {
+    body.velocity_ = body.angularVelocity_ = Vec3::Zero();
+    body.target_.reset();
+  }
+
   /// Inverse damped mass and inertia (as in solverBody, for a step of h) at
   /// the current pose, and the current velocities (dynamic bodies; the
   /// others stand still with infinite mass). Post-stabilization distributes
   /// its corrections with the same mass as the step's impulses.
   static SolverBody massAndVelocity(const Body& body, S h) {
+    SolverBody b;
+    if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
+    b.velocity = stack(body.velocity_, body.angularVelocity_);
+    if (body.motionControl_ != Body::DYNAMICS) return b;
+    b.dynamic = true;
+    setDampedInverseMass(body, body.getCmRotation().toRotationMatrix(), h, b);
     return b;
   }
 
