@@ -163,30 +163,44 @@ TEST_CASE_TEMPLATE("a geometry, shape, material or placement whose mass would ov
 
   spook::ref_ptr<spook::GeometryT<S>> huge =
       new spook::GeometryT<S>(new spook::BoxT<S>(V::Constant(S(hugeSize))), at<S>(0, 0, 0), "huge");
-  CHECK_THROWS_WITH_AS(crate->add(huge), doctest::Contains("Geometry 'huge': Box of bounding half extents (" + hugeText),
-                       spook::Error);
+  // The message of the spook::Error that `f` throws ("" when it throws none).
+  const auto thrown = [](const auto& f) -> std::string {
+    try {
+      f();
+    } catch (const spook::Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const auto contains = [](const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+  };
+
+  std::string message = thrown([&] { crate->add(huge); });
+  CAPTURE(message);
+  CHECK(contains(message, "Geometry 'huge': Box of bounding half extents (" + hugeText));
   CHECK(huge->getRigidBody() == nullptr);
   CHECK(huge->getFrame()->getParent() == nullptr);
   unchanged();
 
-  CHECK_THROWS_WITH_AS(lid->add(new spook::BoxT<S>(V::Constant(S(hugeSize)))),
-                       doctest::Contains("Geometry 'lid': Box of bounding half extents (" + hugeText), spook::Error);
+  message = thrown([&] { lid->add(new spook::BoxT<S>(V::Constant(S(hugeSize)))); });
+  CHECK(contains(message, "Geometry 'lid': Box of bounding half extents (" + hugeText));
   unchanged();
 
   const auto dense = material<S>(pick<S>(1e300, 1e38));
-  CHECK_THROWS_WITH_AS(lid->setMaterial(dense),
-                       doctest::Contains("Geometry 'lid': Box of bounding half extents (100, 100, ") &&
-                           doctest::Contains(isDouble ? "density 1e+300" : "density 1e+38"),
-                       spook::Error);
+  message = thrown([&] { lid->setMaterial(dense); });
+  CHECK(contains(message, "Geometry 'lid': Box of bounding half extents (100, 100, "));
+  CHECK(contains(message, isDouble ? "density 1e+300" : "density 1e+38"));
   unchanged();
 
   // Moved 1e200 m (1e30 m) away from the base, the body's parallel-axis
   // terms m·d² (or in float already the moment m·d) overflow.
-  CHECK_THROWS_WITH_AS(lid->setLocalTransform(at<S>(hugeSize, 0, 0)),
-                       doctest::Contains("RigidBody 'crate'") && doctest::Contains("inf"), spook::Error);
+  message = thrown([&] { lid->setLocalTransform(at<S>(hugeSize, 0, 0)); });
+  CHECK(contains(message, "RigidBody 'crate'"));
+  CHECK(contains(message, "inf"));
   unchanged();
-  CHECK_THROWS_WITH_AS(lid->setPosition(V(S(hugeSize), S(0), S(0))), doctest::Contains("RigidBody 'crate'"),
-                       spook::Error);
+  message = thrown([&] { lid->setPosition(V(S(hugeSize), S(0), S(0))); });
+  CHECK(contains(message, "RigidBody 'crate'"));
   unchanged();
 
   // A density raised on the material in place is only seen by
