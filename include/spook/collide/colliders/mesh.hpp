@@ -1,13 +1,10 @@
 #pragma once
 
 #include <algorithm>
-#include <cstddef>
-#include <utility>
 #include <vector>
 
 #include <spook/collide/collider.hpp>
 #include <spook/collide/detail/polytope_sat.hpp>
-#include <spook/collide/detail/supporting_feature.hpp>
 #include <spook/collide/detail/triangle.hpp>
 #include <spook/collide/shapes/box.hpp>
 #include <spook/collide/shapes/convex.hpp>
@@ -95,92 +92,29 @@ template <class A>
 inline constexpr bool kIsPolytope =
     A::kType == ShapeType::BOX || A::kType == ShapeType::CONVEX || A::kType == ShapeType::LINE;
 
-/// The contacts of a convex shape on the front face of one triangle: the
-/// shape's supporting feature toward the face (along −m, m the triangle's
-/// outward normal) clipped to the prism over the triangle, each clipped
-/// point below the face's plane a contact along −m (from the shape into
-/// the soup) of its own depth. Only where the shape's center is in front of
-/// the face. A shape lying over several triangles of a flat region so gets
-/// the one manifold of that surface, with the face normal everywhere and no
-/// bump at the triangles' internal edges (what Bullet's
-/// btAdjustInternalEdgeContacts and Jolt's active edges achieve). Returns
-/// false, adding nothing, where no such point is found.
-template <Scalar S, class A>
-bool collideWithFace(const A& a, const TransformT<S>& X_WA, const Triangle<double>& t_W, ContactSinkT<S>& sink) {
-  const Vec3T<double> m = t_W.normal();
-  const TransformT<double> X = X_WA.template cast<double>();
-  if (!(m.dot(X * a.getCenterOfVolume().template cast<double>() - t_W.v[0]) > 0.0)) return false;
-  thread_local FeaturePoints feature, loop, scratch;
-  worldFeature(a, X.linear(), X.translation(), Vec3T<double>(-m), feature);
-  loop.assign(t_W.v.begin(), t_W.v.end());
-  clipToPrism(feature, loop, m, scratch);
-  const double offset = m.dot(t_W.v[0]);
-  bool found = false;
-  for (const Vec3T<double>& x : feature) {
-    const double depth = offset - m.dot(x);
-    if (depth < 0.0) continue;
-    sink.add(Vec3T<double>(x + 0.5 * depth * m).cast<S>(), Vec3T<double>(-m).cast<S>(), S(depth));
-    found = true;
-  }
-  return found;
-}
-
-/// Contacts of a shape against the triangles of a soup near it. First each
-/// triangle's face (collideWithFace); then the triangles that gave none and
-/// do not lie in the plane of one that did (an internal edge of a flat
-/// region gives no contact of its own) as convex shapes of their own:
-/// boxes, hulls and segments by the separating axes with a clipped manifold
-/// (polytope_sat.hpp), spheres in closed form, capsules and cylinders
-/// through libccd.
+/// Contacts of a shape against the triangles of a soup near it, each
+/// triangle a convex shape of its own: boxes, hulls and segments by the
+/// separating axes with a clipped manifold (polytope_sat.hpp), spheres in
+/// closed form, capsules and cylinders through libccd.
 template <Scalar S, class A, class Soup>
 void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
                           ContactSinkT<S>& sink) {
   const BoundingBoxT<S> box_M = transformBox<S>(a.getBoundingBox(), X_WM.inverse() * X_WA);
-  thread_local std::vector<std::pair<std::size_t, Triangle<S>>> near;
-  thread_local std::vector<std::pair<Vec3T<double>, double>> faces;  // planes m·x = offset that gave contacts
-  thread_local std::vector<char> touched;
-  near.clear();
-  faces.clear();
-  soup.forEachTriangle(box_M, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
-    near.push_back({i, Triangle<S>{{X_WM * p0, X_WM * p1, X_WM * p2}}});
-  });
-  touched.assign(near.size(), 0);
-  const auto inDouble = [](const Triangle<S>& t) {
-    return Triangle<double>{{t.v[0].template cast<double>(), t.v[1].template cast<double>(), t.v[2].template cast<double>()}};
-  };
-  for (std::size_t k = 0; k < near.size(); ++k) {
-    sink.setFaceIndices(0, near[k].first);
-    const Triangle<double> t_W = inDouble(near[k].second);
-    if (collideWithFace<S>(a, X_WA, t_W, sink)) {
-      touched[k] = 1;
-      faces.emplace_back(t_W.normal(), t_W.normal().dot(t_W.v[0]));
-    }
-  }
-  // Coplanar within float round-off of the corners (1e-5 relative).
-  const double size = (a.getBoundingBox().halfExtents().template cast<double>().norm() + 1.0);
-  const auto coplanar = [&](const Triangle<double>& t) {
-    const Vec3T<double> m = t.normal();
-    return std::any_of(faces.begin(), faces.end(), [&](const auto& face) {
-      const double tolerance = 1e-5 * (size + std::abs(face.second));
-      return (m - face.first).norm() <= 1e-5 &&
-             std::all_of(t.v.begin(), t.v.end(), [&](const Vec3T<double>& v) { return std::abs(face.first.dot(v) - face.second) <= tolerance; });
-    });
-  };
   thread_local Polytope shape, triangle;
   if constexpr (kIsPolytope<A>) makePolytope(a, X_WA, shape);
-  for (std::size_t k = 0; k < near.size(); ++k) {
-    const Triangle<S>& t_W = near[k].second;
-    if (touched[k] || coplanar(inDouble(t_W))) continue;
-    sink.setFaceIndices(0, near[k].first);
+  soup.forEachTriangle(box_M, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
+    sink.setFaceIndices(0, i);
     if constexpr (A::kType == ShapeType::SPHERE) {
+      const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
       collideSphereTriangle<S>(a, X_WA.translation(), t_W, sink);
     } else if constexpr (kIsPolytope<A>) {
-      makeTrianglePolytope<S>(t_W, triangle);
+      makeTrianglePolytope<S>(Triangle<S>{{X_WM * p0, X_WM * p1, X_WM * p2}}, triangle);
       collidePolytopes(shape, triangle, sink);
     } else {
-      collideByCcd<S>(a, X_WA, t_W, TransformT<S>::Identity(), sink);
+      const Triangle<S> t_M{{p0, p1, p2}};
+      collideByCcd<S>(a, X_WA, t_M, X_WM, sink);
     }
-  }
+  });
   sink.setFaceIndices(0, 0);
 }
 

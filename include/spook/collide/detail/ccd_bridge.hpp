@@ -11,18 +11,13 @@
 #include <ccd/ccd.h>
 
 #include <spook/collide/contact_sink.hpp>
-#include <spook/collide/detail/supporting_feature.hpp>
 #include <spook/core/math.hpp>
 
 namespace spook::detail {
 
 // The libccd bridge: each convex shape lends libccd its support function
 // through a stack object that holds the shape and its world pose. libccd is
-// built with double, so a float shape converts at this boundary. libccd
-// sees each shape grown by kCcdMargin, so that shapes exactly touching (a
-// body placed on the ground) are found, at depth 0, as the analytic
-// colliders find them; the depth itself comes from the exact shapes.
-inline constexpr double kCcdMargin = 1e-7;  // m
+// built with double, so a float shape converts at this boundary.
 template <class Shape>
 struct CcdObject {
   using S = typename Shape::Vec3::Scalar;
@@ -41,9 +36,7 @@ struct CcdObject {
     const auto& o = *static_cast<const CcdObject*>(object);
     const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
     const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
-    const double length = d_W.norm();
-    const Vec3T<double> grown = length > 0.0 ? Vec3T<double>(d_W * (kCcdMargin / length)) : Vec3T<double>::Zero();
-    const Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p + grown;
+    const Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
     for (int i = 0; i < 3; ++i) out->v[i] = s_W[i];
   }
   static void centerOf(const void* object, ccd_vec3_t* out) {
@@ -235,14 +228,8 @@ std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdOb
 }
 
 /// Penetration of two convex shapes by GJK + EPA (libccd), polished as
-/// above, with the direction that separates b from a. The contact points
-/// lie in the overlap: the deepest point of the shape whose support along
-/// the normal is unique (the curved or smaller feature) moved depth/2 into
-/// the overlap, the midpoint of the two witness points where both are
-/// unique, and where both shapes touch with an extended feature (a face, an
-/// edge, a cylinder's side or cap, a capsule's side) the manifold of the one
-/// clipped against the other (featureContacts). Never a support point
-/// chosen among a flat face's corners.
+/// above: one contact at libccd's point, with the direction that separates
+/// b from a.
 template <Scalar S, class A, class B>
 void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
   const CcdObject<A> objectA(a, X_WA);
@@ -256,7 +243,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   ccd.max_iterations = kCcdMaxIterations;
   ccd.epa_tolerance = kCcdEpaTolerance;
   ccd_real_t depth = 0;
-  ccd_vec3_t direction, position;  // libccd's position is not used (see below)
+  ccd_vec3_t direction, position;
   if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) return;
   Vec3T<double> n(direction.v[0], direction.v[1], direction.v[2]);
   const double length = n.norm();
@@ -277,22 +264,9 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
       n = start;
     }
   }
-  if (!(refined >= -2.0 * kCcdMargin)) return;  // the polished direction separates them
-  refined = std::max(refined, 0.0);  // touching within the margin: depth 0
-  // libccd's point is a midpoint of support points, one of which may be any
-  // corner of a large face, far from the contact: the points come from the
-  // supporting features instead (supporting_feature.hpp, featureContacts).
-  thread_local FeaturePoints fa, fb;
-  worldFeature(a, objectA.R, objectA.p, n, fa);
-  worldFeature(b, objectB.R, objectB.p, Vec3T<double>(-n), fb);
-  if (featureContacts(fa, fb, n, refined, sink)) return;
-  // Nothing left by the clipping (touching to round-off): one point at the
-  // center of the smaller feature, moved depth/2 into the overlap.
-  const bool onA = fa.size() <= fb.size();
-  Vec3T<double> center = Vec3T<double>::Zero();
-  for (const auto& x : onA ? fa : fb) center += x;
-  center = center / double(onA ? fa.size() : fb.size()) + (onA ? -0.5 : 0.5) * refined * n;
-  sink.add(center.cast<S>(), n.cast<S>(), S(refined));
+  if (!(refined >= 0.0)) return;  // the polished direction separates them
+  const Vec3T<double> point(position.v[0], position.v[1], position.v[2]);
+  sink.add(point.cast<S>(), n.cast<S>(), S(refined));
 }
 
 }  // namespace spook::detail
