@@ -1742,6 +1742,8 @@ using CylinderRef = ref_ptr<Cylinder>;
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -1962,14 +1964,22 @@ class HeightFieldT : public ShapeT<S> {
   using Vec3 = spook::Vec3T<S>;
   using Vec2 = Eigen::Matrix<S, 2, 1>;
 
-  /// Throws spook::Error on fewer than 2 × 2 samples, a heights vector not of
-  /// resolutionX·resolutionY entries, a non-finite height, or a size that is
-  /// not finite and > 0 m.
+  /// Throws spook::Error on fewer than 2 × 2 samples, more triangles than a
+  /// contact's 32-bit face index can number, a heights vector not of
+  /// resolutionX·resolutionY entries, a non-finite height, a size that is
+  /// not finite and > 0 m, or a cell so small that its spacing underflows.
   HeightFieldT(std::size_t resolutionX, std::size_t resolutionY, S sizeX, S sizeY, std::vector<S> heights)
       : resolutionX_(resolutionX), resolutionY_(resolutionY), heights_(std::move(heights)) {
+    const std::array<std::size_t, 2> resolution{resolutionX, resolutionY};
     if (resolutionX < 2 || resolutionY < 2)
       throw detail::makeError("HeightField", "", "needs at least 2 x 2 height samples (resolutionX, resolutionY)",
-                              std::array<std::size_t, 2>{resolutionX, resolutionY});
+                              resolution);
+    // Checked before any product of the resolutions is formed, so that none wraps around.
+    if ((resolutionX - 1) > kMaxTriangles / 2 / (resolutionY - 1))
+      throw detail::makeError("HeightField", "",
+                              "2 (resolutionX - 1)(resolutionY - 1) triangles must not exceed " +
+                                  std::to_string(kMaxTriangles),
+                              resolution);
     sizeX_ = this->requireLength("HeightField", "sizeX", sizeX);
     sizeY_ = this->requireLength("HeightField", "sizeY", sizeY);
     if (heights_.size() != resolutionX * resolutionY)
@@ -1981,6 +1991,8 @@ class HeightFieldT : public ShapeT<S> {
       if (!std::isfinite(heights_[k]))
         throw detail::makeError("HeightField", "", "height " + std::to_string(k) + " must be finite (m)", heights_[k]);
     spacing_ = Vec2(sizeX_ / S(resolutionX - 1), sizeY_ / S(resolutionY - 1));
+    if (!(spacing_.minCoeff() >= std::numeric_limits<S>::min()))
+      throw detail::makeError("HeightField", "", "cell spacing size / (resolution - 1) must not underflow (m)", spacing_);
     updateHeightRange();
   }
 
@@ -2116,6 +2128,9 @@ class HeightFieldT : public ShapeT<S> {
     return {static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
   }
 
+  // Contact points number the triangles with 32 bits.
+  static constexpr std::size_t kMaxTriangles = std::numeric_limits<std::uint32_t>::max();
+
   std::size_t resolutionX_;
   std::size_t resolutionY_;
   S sizeX_ = S(0);
@@ -2208,6 +2223,7 @@ using LineRef = ref_ptr<Line>;
 // --- end spook/collide/shapes/line.hpp ---
 // --- begin spook/collide/shapes/plane.hpp ---
 
+#include <cmath>
 #include <limits>
 
 namespace spook {
@@ -2229,6 +2245,13 @@ class PlaneT : public ShapeT<S> {
     const Vec3 n = unitNormal(normal);
     set(n, Vec3(n * distance));
   }
+  /// Plane through three points (m), its normal (p2 − p1) × (p3 − p1) by the
+  /// right-hand rule (counter-clockwise points seen from above the plane);
+  /// throws on coincident or collinear points.
+  PlaneT(const Vec3& p1, const Vec3& p2, const Vec3& p3) { set(normalThrough(p1, p2, p3), p1); }
+  /// Plane a·x + b·y + c·z = d (AGX's order): normal (a, b, c) normalized,
+  /// d (m·|(a, b, c)|) scaled with it to the distance d / |(a, b, c)| (m).
+  PlaneT(S a, S b, S c, S d) : PlaneT(Vec3(a, b, c), distanceOf(Vec3(a, b, c), d)) {}
 
   /// Unit outward normal, shape frame.
   [[nodiscard]] const Vec3& getNormal() const { return normal_; }
@@ -2272,6 +2295,37 @@ class PlaneT : public ShapeT<S> {
     if (!(normal.allFinite() && largest > S(0)))
       throw detail::makeError("Plane", "", "normal must be finite and non-zero", normal);
     return (normal / largest).normalized();
+  }
+
+  // Each edge scaled by its largest component first, so that the cross
+  // product neither overflows nor underflows. The points are collinear when
+  // the sine of the angle between the edges is within round-off of zero.
+  static Vec3 normalThrough(const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+    const Vec3 e1 = p2 - p1, e2 = p3 - p1;
+    const auto points = [&] {
+      Eigen::Matrix<S, 9, 1> all;
+      all << p1, p2, p3;
+      return all;
+    };
+    if (!(e1.allFinite() && e2.allFinite()))
+      throw detail::makeError("Plane", "", "three points must be finite and their differences too (m)", points());
+    const S l1 = e1.cwiseAbs().maxCoeff(), l2 = e2.cwiseAbs().maxCoeff();
+    if (!(l1 > S(0) && l2 > S(0))) throw detail::makeError("Plane", "", "three points must not coincide (m)", points());
+    const Vec3 u1 = (e1 / l1).normalized(), u2 = (e2 / l2).normalized();
+    const Vec3 n = u1.cross(u2);
+    if (!(n.norm() > S(16) * std::numeric_limits<S>::epsilon()))
+      throw detail::makeError("Plane", "", "three points must not be collinear (m)", points());
+    return n;
+  }
+  // d / |n| without squaring n's components (which could overflow or underflow).
+  static S distanceOf(const Vec3& normal, S d) {
+    const S largest = normal.cwiseAbs().maxCoeff();
+    if (!(normal.allFinite() && largest > S(0)))
+      throw detail::makeError("Plane", "", "normal (a, b, c) must be finite and non-zero", normal);
+    const S distance = (d / largest) / (normal / largest).norm();
+    if (!std::isfinite(distance))
+      throw detail::makeError("Plane", "", "d / |(a, b, c)| must be finite (m)", Eigen::Matrix<S, 4, 1>(normal.x(), normal.y(), normal.z(), d));
+    return distance;
   }
 
   Vec3 normal_ = Vec3::UnitZ();
@@ -2551,6 +2605,8 @@ using AllShapes =
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 // --- begin spook/collide/contact_point.hpp ---
@@ -2595,17 +2651,20 @@ namespace spook {
 /// Where a collider writes the contact points of one shape pair. It keeps
 /// the "first toward second" normal convention when the pair was handed to
 /// the collider in reverse order (flipped), and never lets a non-finite
-/// point through.
+/// point through: it drops it and counts it in getNumDropped().
 template <Scalar S>
 class ContactSinkT {
  public:
   explicit ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped = false)
-      : points_(&points), flipped_(flipped) {}
+      : ContactSinkT(points, flipped, std::make_shared<std::size_t>(0)) {}
 
   /// Adds a point: world position (m), unit normal from the collider's first
   /// shape toward its second, penetration depth (m, clamped at 0).
   void add(const Vec3T<S>& point, const Vec3T<S>& normal, S depth) {
-    if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) return;
+    if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) {
+      ++*dropped_;
+      return;
+    }
     ContactPointT<S> contact;
     contact.point = point;
     contact.normal = flipped_ ? Vec3T<S>(-normal) : normal;
@@ -2621,15 +2680,22 @@ class ContactSinkT {
     faces_ = {static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(second)};
   }
 
-  /// The same output with the shape order swapped.
-  [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_); }
+  /// The same output with the shape order swapped (sharing the drop count).
+  [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_, dropped_); }
 
   /// Number of points written so far.
   [[nodiscard]] std::size_t size() const { return points_->size(); }
+  /// Number of points refused so far because their position, normal or
+  /// depth was not finite (this sink and its reversed() copies).
+  [[nodiscard]] std::size_t getNumDropped() const { return *dropped_; }
 
  private:
+  ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped, std::shared_ptr<std::size_t> dropped)
+      : points_(&points), flipped_(flipped), dropped_(std::move(dropped)) {}
+
   std::vector<ContactPointT<S>>* points_;
   bool flipped_;
+  std::shared_ptr<std::size_t> dropped_;
   std::array<std::uint32_t, 2> faces_{};
 };
 
@@ -4828,6 +4894,7 @@ class ColliderMatrixT<S, ShapeList<Shapes...>> {
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -4849,16 +4916,31 @@ namespace detail {
 /// bin the point farthest from the centroid survives (so the survivors span
 /// the largest area, as the seeds put it), ties going to the deeper one.
 /// Resolution 2 keeps at most one point per quadrant of a flat contact
-/// patch, 3 keeps more. Disabled points stay in the list.
+/// patch, 3 keeps more. Disabled points stay in the list. A point whose
+/// position, normal or depth is not finite is disabled and left out of the
+/// binning (the Space's sinks never let one through); the others are scaled
+/// by a power of two first, so that points near the largest finite
+/// coordinate cannot overflow the centroid or the arms.
 template <Scalar S>
 void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
   if (resolution < 1 || resolution > 3) throw detail::makeError("ContactReduction", "", "bin resolution must be 1, 2 or 3", resolution);
+  std::erase_if(points, [](ContactPointT<S>* p) {
+    const bool finite = p->point.allFinite() && p->normal.allFinite() && std::isfinite(p->depth);
+    if (!finite) p->enabled = false;
+    return !finite;
+  });
   if (points.size() <= 4) return;
+  // Positions in units of 2^e, e the largest coordinate's exponent: an exact
+  // scaling that leaves every coordinate below 2 in magnitude.
+  S largest = S(0);
+  for (const auto* p : points) largest = std::max(largest, p->point.cwiseAbs().maxCoeff());
+  const S unit = largest > S(0) ? std::ldexp(S(1), std::ilogb(largest)) : S(1);
+  const auto scaled = [&](const ContactPointT<S>* p) { return Vec3T<S>(p->point / unit); };
   Vec3T<S> centroid = Vec3T<S>::Zero();
-  for (const auto* p : points) centroid += p->point;
+  for (const auto* p : points) centroid += scaled(p);
   centroid /= S(points.size());
   S reach = S(0);
-  for (const auto* p : points) reach = std::max(reach, (p->point - centroid).norm());
+  for (const auto* p : points) reach = std::max(reach, (scaled(p) - centroid).norm());
   const S scale = reach > S(0) ? S(1) / reach : S(0);
   // The small shift keeps round-off from splitting a bin whose edge sits at
   // 0 (resolution 2): a component of ±1e-17 lands on the + side either way.
@@ -4872,7 +4954,7 @@ void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
   };
   std::vector<Bin> bins;
   for (auto* p : points) {
-    const Vec3T<S> arm = (p->point - centroid) * scale;
+    const Vec3T<S> arm = (scaled(p) - centroid) * scale;
     const Vec3T<S> moment = p->normal.cross(arm);
     const std::array<int, 6> key = {binOf(p->normal.x()), binOf(p->normal.y()), binOf(p->normal.z()),
                                     binOf(moment.x()),    binOf(moment.y()),    binOf(moment.z())};
@@ -4881,7 +4963,7 @@ void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
       bins.push_back({key, p});
       continue;
     }
-    const S current = (it->best->point - centroid).squaredNorm(), candidate = (p->point - centroid).squaredNorm();
+    const S current = (scaled(it->best) - centroid).squaredNorm(), candidate = (scaled(p) - centroid).squaredNorm();
     const bool better = candidate > current * (S(1) + S(1e-6)) ||
                         (candidate >= current * (S(1) - S(1e-6)) && p->depth > it->best->depth);
     (better ? it->best : p)->enabled = false;
@@ -5189,10 +5271,15 @@ template <Scalar S>
 class RigidBodyT;
 
 namespace detail {
-/// Told when a geometry's shapes or material change, so that a body can
-/// recompute its mass properties.
+template <Scalar S>
+struct GeometryEdit;
+/// Asked before, and told after, a geometry's shapes, material or placement
+/// change, so that a body can refuse a change whose mass properties would
+/// not be valid and recompute them once it is made.
 template <Scalar S>
 struct GeometryOwner {
+  /// Throws spook::Error when the body could not take `edit`; changes nothing.
+  virtual void checkGeometryChange(const GeometryEdit<S>& edit) const = 0;
   virtual void geometryChanged() = 0;
 
  protected:
@@ -5234,14 +5321,18 @@ class GeometryT : public Referenced {
   // --- Shapes ----------------------------------------------------------------
 
   /// Adds a shape at `transform` (shape → geometry frame, rigid). Updates the
-  /// owning body's mass properties.
+  /// owning body's mass properties; throws, and adds nothing, when they would
+  /// not be finite and valid (e.g. a box whose mass or inertia overflows).
   void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
     if (!shape) throw error("cannot add a null shape", "nullptr");
     if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
       throw error("shape transform must be finite and rigid", SPDMat3T<S>::flat(transform.linear()));
     if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
       throw error("shape already added to this geometry", std::string(shapeTypeName(shape->getType())));
-    shapes_.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+    std::vector<ShapeEntry> shapes = shapes_;
+    shapes.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+    check({this, &shapes, nullptr, nullptr});
+    shapes_ = std::move(shapes);
     changed();
   }
   /// Removes a shape; false when it is not here.
@@ -5264,13 +5355,18 @@ class GeometryT : public Referenced {
   /// Geometry → world transform.
   [[nodiscard]] Transform getTransform() const { return frame_->getMatrix(); }
   /// Sets the world transform (a body-owned geometry moves relative to its
-  /// body so that it lands there). Updates the owning body's mass.
+  /// body so that it lands there). Updates the owning body's mass; throws,
+  /// and stays put, when it would not be finite and valid.
   void setTransform(const Transform& X_W) {
+    checkWorldPlacement(X_W);
     frame_->setMatrix(X_W);
     changed();
   }
   [[nodiscard]] Vec3 getPosition() const { return frame_->getTranslate(); }
   void setPosition(const Vec3& p_W) {
+    Transform X_W = getTransform();
+    X_W.translation() = p_W;
+    checkWorldPlacement(X_W);
     frame_->setTranslate(p_W);
     changed();
   }
@@ -5278,6 +5374,7 @@ class GeometryT : public Referenced {
   /// Geometry → body model frame (or world, without a body).
   [[nodiscard]] Transform getLocalTransform() const { return frame_->getLocalMatrix(); }
   void setLocalTransform(const Transform& X) {
+    if (X.matrix().allFinite() && isRotation<S>(X.linear())) check({this, nullptr, nullptr, &X});
     frame_->setLocalMatrix(X);
     changed();
   }
@@ -5287,10 +5384,13 @@ class GeometryT : public Referenced {
   // --- Material --------------------------------------------------------------
 
   /// The material; a geometry made without one uses a shared default
-  /// (density 1000 kg/m³). Assigning updates the owning body's mass.
+  /// (density 1000 kg/m³). Assigning updates the owning body's mass; throws,
+  /// and keeps the old material, when that would not be finite and valid
+  /// (e.g. a density whose mass overflows).
   [[nodiscard]] MaterialT<S>* getMaterial() const { return material_ ? material_.get() : defaultMaterial(); }
   void setMaterial(ref_ptr<MaterialT<S>> material) {
     if (!material) throw error("material must not be null", "nullptr");
+    check({this, nullptr, material.get(), nullptr});
     material_ = std::move(material);
     changed();
   }
@@ -5384,6 +5484,17 @@ class GeometryT : public Referenced {
     static std::atomic<std::uint64_t> counter{0};
     return ++counter;
   }
+  void check(const detail::GeometryEdit<S>& edit) const {
+    if (owner_) owner_->checkGeometryChange(edit);
+  }
+  // A would-be world transform of a body's geometry, checked as the local
+  // transform it makes (to round-off, the one the frame then sets); a
+  // transform that is not finite and rigid is left for the frame to refuse.
+  void checkWorldPlacement(const Transform& X_W) const {
+    if (!(owner_ && X_W.matrix().allFinite() && isRotation<S>(X_W.linear()))) return;
+    const Transform X_local = frame_->getParent()->getMatrix().inverse() * X_W;
+    check({this, nullptr, nullptr, &X_local});
+  }
   void changed() {
     if (owner_) owner_->geometryChanged();
   }
@@ -5416,6 +5527,16 @@ class GeometryT : public Referenced {
 };
 
 namespace detail {
+/// A change to one geometry, described before it is made: its shapes,
+/// material or local transform as they would be (nullptr: unchanged).
+template <Scalar S>
+struct GeometryEdit {
+  const GeometryT<S>* geometry = nullptr;
+  const std::vector<typename GeometryT<S>::ShapeEntry>* shapes = nullptr;
+  const MaterialT<S>* material = nullptr;
+  const TransformT<S>* localTransform = nullptr;
+};
+
 /// The owning body's and the space's handle on a geometry's membership.
 template <Scalar S>
 struct GeometryAccess {
@@ -5467,8 +5588,8 @@ class GeometryContactT {
     for (const auto& p : points_) n += p.enabled ? 1 : 0;
     return n;
   }
-  /// False once a contact listener returned REMOVE_CONTACT: later listeners
-  /// and the solver do not see it.
+  /// False once a contact listener returned REMOVE_CONTACT: the solver does
+  /// not see it; the listeners called after that one see it disabled.
   [[nodiscard]] bool isEnabled() const { return enabled_; }
   void setEnable(bool enable) { enabled_ = enable; }
   /// True when the two geometries did not touch in the previous pass.
@@ -5504,6 +5625,7 @@ using GeometryPair = GeometryPairT<float>;
 // --- begin spook/collide/space.hpp ---
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -5645,6 +5767,9 @@ class SweepAndPrune {
 // --- begin spook/dynamics/mass_from_geometries.hpp ---
 
 #include <optional>
+#include <sstream>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace spook::detail {
@@ -5658,13 +5783,36 @@ struct GeneratedMass {
   Mat3T<S> inertia = Mat3T<S>::Zero();    ///< about `center`, model frame axes (kg·m²)
 };
 
+/// "spook::Geometry 'g': Box of bounding half extents (1e200, 1e200, 1e200) m,
+/// volume inf m^3, density 1000 kg/m^3: <what>, got <value>".
+template <Scalar S, class T>
+[[nodiscard]] Error shapeMassError(const GeometryT<S>& geometry, const ShapeT<S>& shape, S density,
+                                   const std::string& what, const T& value) {
+  std::ostringstream out;
+  out << shapeTypeName(shape.getType()) << " of bounding half extents ";
+  appendValue(out, Vec3T<S>(shape.getBoundingBox().halfExtents()));
+  out << " m, volume ";
+  appendScalar(out, shape.getVolume());
+  out << " m^3, density ";
+  appendScalar(out, density);
+  out << " kg/m^3: " << what;
+  return makeError("Geometry", geometry.getName(), out.str(), value);
+}
+
 /// Each shape of volume V contributes m = ρV (ρ its geometry's material
 /// density) at its center of volume; its tensor about its own origin is
 /// moved to its center, turned into the model frame, then moved to the
 /// common center (parallel-axis theorem, J(m, d) = m(|d|² 1 − d dᵀ)).
-/// Empty when no shape has volume.
+/// `edit` stands in for one geometry's shapes, material or local transform
+/// as a change not yet made would leave them. Empty when no shape has
+/// volume. Throws spook::Error, naming the geometry, its shape and its size,
+/// when a shape's mass or inertia is not finite, or naming the body
+/// (`bodyName`) when the total mass or its moment overflows (the caller
+/// checks the total inertia); computes only, changes nothing.
 template <Scalar S>
-[[nodiscard]] std::optional<GeneratedMass<S>> massFromGeometries(const std::vector<ref_ptr<GeometryT<S>>>& geometries) {
+[[nodiscard]] std::optional<GeneratedMass<S>> massFromGeometries(const std::vector<ref_ptr<GeometryT<S>>>& geometries,
+                                                                 std::string_view bodyName,
+                                                                 const GeometryEdit<S>& edit = {}) {
   struct Part {
     S mass;
     Vec3T<S> center;
@@ -5677,22 +5825,41 @@ template <Scalar S>
   GeneratedMass<S> total;
   Vec3T<S> moment = Vec3T<S>::Zero();
   for (const auto& geometry : geometries) {
-    const S density = geometry->getMaterial()->getBulkMaterial()->getDensity();
-    const TransformT<S> X_BG = geometry->getLocalTransform();
-    for (const auto& entry : geometry->getShapes()) {
-      const S volume = entry.shape->getVolume();
+    const bool edited = geometry.get() == edit.geometry;
+    const MaterialT<S>* material = edited && edit.material ? edit.material : geometry->getMaterial();
+    const S density = material->getBulkMaterial()->getDensity();
+    const TransformT<S> X_BG =
+        edited && edit.localTransform ? *edit.localTransform : geometry->getLocalTransform();
+    for (const auto& entry : edited && edit.shapes ? *edit.shapes : geometry->getShapes()) {
+      const ShapeT<S>& shape = *entry.shape;
+      const S volume = shape.getVolume();
       if (!(volume > S(0))) continue;
       const S m = density * volume;
+      if (!(std::isfinite(m) && m > S(0)))
+        throw shapeMassError(*geometry, shape, density, "mass density * volume must be finite and > 0 kg", m);
+      SPDMat3T<S> aboutOrigin;
+      try {
+        aboutOrigin = shape.calculateInertia(m);
+      } catch (const Error& e) {
+        throw shapeMassError(*geometry, shape, density, std::string("no valid inertia (") + e.what() + "); mass (kg)", m);
+      }
       const TransformT<S> X_BS = X_BG * entry.transform;
-      const Vec3T<S> c_S = entry.shape->getCenterOfVolume();
+      const Vec3T<S> c_S = shape.getCenterOfVolume();
       const Mat3T<S> R = X_BS.linear();
-      const Mat3T<S> aboutCenter = entry.shape->calculateInertia(m).matrix() - shift(m, c_S);
+      const Mat3T<S> aboutCenter = aboutOrigin.matrix() - shift(m, c_S);
       parts.push_back({m, X_BS * c_S, R * aboutCenter * R.transpose()});
+      if (!(parts.back().center.allFinite() && parts.back().inertia.allFinite()))
+        throw shapeMassError(*geometry, shape, density,
+                             "its inertia at its center in the body frame must be finite; center (m)",
+                             parts.back().center);
       total.mass += m;
       moment += m * parts.back().center;
     }
   }
   if (parts.empty()) return std::nullopt;
+  if (!(std::isfinite(total.mass) && moment.allFinite()))
+    throw makeError("RigidBody", bodyName, "mass and its moment from the geometries must be finite (kg, kg·m)",
+                    Eigen::Matrix<S, 4, 1>(total.mass, moment.x(), moment.y(), moment.z()));
   total.center = moment / total.mass;
   for (const Part& p : parts) total.inertia += p.inertia + shift(p.mass, p.center - total.center);
   total.inertia = S(0.5) * (total.inertia + total.inertia.transpose());
@@ -5854,6 +6021,12 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
 
   explicit RigidBodyT(std::string name = "") : name_(std::move(name)), massProperties_(&name_) {
     cmFrame_->setParent(frame_.get());
+  }
+  /// A body with one geometry, its mass properties generated from it (AGX's
+  /// `new RigidBody(geometry)`). Throws as add() does: for a null geometry
+  /// or one that belongs to a body or stands in a space.
+  explicit RigidBodyT(ref_ptr<Geometry> geometry, std::string name = "") : RigidBodyT(std::move(name)) {
+    add(std::move(geometry));
   }
 
   [[nodiscard]] const std::string& getName() const { return name_; }
@@ -6020,6 +6193,15 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
     return S(0.5) * (velocity_.dot(getLinearMomentum()) + angularVelocity_.dot(getAngularMomentum()));
   }
 
+  // --- Continuous collision detection ---------------------------------------
+
+  /// Off by default. When on, a dynamic body that moves more than its
+  /// thinnest half-width in a step is swept along its path and stopped at
+  /// its first contact instead of passing through (collide/continuous.hpp
+  /// states what is covered and what is not).
+  [[nodiscard]] bool getEnableCCD() const { return enableCCD_; }
+  void setEnableCCD(bool enable) { enableCCD_ = enable; }
+
   // --- Kinematic control -----------------------------------------------------
 
   /// Sets, on a KINEMATICS body, the constant velocities that bring the
@@ -6040,18 +6222,23 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   // --- Geometries ------------------------------------------------------------
 
   /// Adds a geometry; its local transform is now relative to the model
-  /// frame. Recomputes the generated mass properties. Throws if the
-  /// geometry is null, belongs to a body, or stands on its own in a space.
+  /// frame. Recomputes the generated mass properties. Throws, and adds
+  /// nothing, if the geometry is null, belongs to a body, stands on its own
+  /// in a space, or would make mass properties that are not finite and
+  /// valid (e.g. a box whose mass or inertia overflows).
   void add(ref_ptr<Geometry> geometry) {
     if (!geometry) throw error("cannot add a null Geometry", "nullptr");
     if (geometry->getRigidBody() == this) throw error("Geometry already added to this body", geometry->getName());
     if (geometry->getRigidBody()) throw error("Geometry already belongs to another body", geometry->getName());
     if (Access::space(*geometry)) throw error("Geometry is in a space on its own; remove it first", geometry->getName());
+    std::vector<ref_ptr<Geometry>> geometries = geometries_;
+    geometries.push_back(geometry);
+    const auto update = planMassProperties(geometries);
+    geometry->getFrame()->setParent(frame_.get());
     Access::body(*geometry) = this;
     Access::owner(*geometry) = this;
-    geometry->getFrame()->setParent(frame_.get());
-    geometries_.push_back(std::move(geometry));
-    updateMassProperties();
+    geometries_ = std::move(geometries);
+    if (update) applyMassProperties(*update);
   }
   /// Removes a geometry (it keeps its local transform, now a world one);
   /// false when it is not this body's.
@@ -6079,27 +6266,11 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   /// auto-generate mask (a hand-set mass scales the generated inertia). The
   /// model frame stays put; the center-of-mass velocity follows the new
   /// center so that no body point changes velocity. Nothing changes when no
-  /// shape has volume.
+  /// shape has volume. Throws, changing nothing, when the result would not
+  /// be finite and valid (e.g. after a material's density was raised until
+  /// the mass overflows).
   void updateMassProperties() {
-    const auto generated = detail::massFromGeometries<S>(geometries_);
-    if (!generated) return;
-    const unsigned mask = massProperties_.getAutoGenerateMask();
-    const S mass = (mask & MassPropertiesT<S>::MASS) ? generated->mass : massProperties_.getMass();
-    Mat3 inertia = generated->inertia * (mass / generated->mass);
-    if (!(mask & MassPropertiesT<S>::CM_OFFSET)) {
-      // About the user's center instead of the generated one.
-      const Vec3 d = getCmLocalTranslate() - generated->center;
-      inertia += mass * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
-    }
-    // The tensor is stored in the CM frame, whose axes are the model axes
-    // turned by the CM frame's local rotation.
-    const Mat3 R = cmFrame_->getLocalRotate().toRotationMatrix();
-    massProperties_.generate(mass, SPDMat3T<S>(Mat3(R.transpose() * inertia * R)));
-    if (mask & MassPropertiesT<S>::CM_OFFSET) {
-      const Vec3 oldCm = getCmPosition();
-      cmFrame_->setLocalTranslate(generated->center);
-      velocity_ += angularVelocity_.cross(getCmPosition() - oldCm);
-    }
+    if (const auto update = planMassProperties(geometries_)) applyMassProperties(*update);
   }
 
   // --- Attachments -----------------------------------------------------------
@@ -6142,7 +6313,48 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
 
  private:
   using Access = detail::GeometryAccess<S>;
+  void checkGeometryChange(const detail::GeometryEdit<S>& edit) const override {
+    static_cast<void>(planMassProperties(geometries_, edit));
+  }
   void geometryChanged() override { updateMassProperties(); }
+
+  // Generated mass properties, validated and ready to store.
+  struct MassUpdate {
+    S mass;                // kg
+    SPDMat3T<S> inertia;   // CM frame (kg·m²)
+    Vec3 center;           // generated center of mass, model frame (m)
+  };
+  // What updateMassProperties would store for `geometries` (with `edit`
+  // applied); throws, naming the body or geometry and the value, when it
+  // would not be finite and valid. Changes nothing.
+  [[nodiscard]] std::optional<MassUpdate> planMassProperties(const std::vector<ref_ptr<Geometry>>& geometries,
+                                                             const detail::GeometryEdit<S>& edit = {}) const {
+    const auto generated = detail::massFromGeometries<S>(geometries, name_, edit);
+    if (!generated) return std::nullopt;
+    const unsigned mask = massProperties_.getAutoGenerateMask();
+    const S mass = (mask & MassPropertiesT<S>::MASS) ? generated->mass : massProperties_.getMass();
+    Mat3 inertia = generated->inertia * (mass / generated->mass);
+    if (!(mask & MassPropertiesT<S>::CM_OFFSET)) {
+      // About the user's center instead of the generated one.
+      const Vec3 d = getCmLocalTranslate() - generated->center;
+      inertia += mass * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+    }
+    // The tensor is stored in the CM frame, whose axes are the model axes
+    // turned by the CM frame's local rotation.
+    const Mat3 R = cmFrame_->getLocalRotate().toRotationMatrix();
+    const Mat3 inertiaCm = R.transpose() * inertia * R;
+    if (const char* why = SPDMat3T<S>::defect(inertiaCm))
+      throw error(std::string("inertia generated from the geometries (kg·m²): ") + why, SPDMat3T<S>::flat(inertiaCm));
+    return MassUpdate{mass, SPDMat3T<S>(inertiaCm), generated->center};
+  }
+  void applyMassProperties(const MassUpdate& update) {
+    massProperties_.generate(update.mass, update.inertia);
+    if (massProperties_.getAutoGenerateMask() & MassPropertiesT<S>::CM_OFFSET) {
+      const Vec3 oldCm = getCmPosition();
+      cmFrame_->setLocalTranslate(update.center);
+      velocity_ += angularVelocity_.cross(getCmPosition() - oldCm);
+    }
+  }
 
   friend struct detail::BodyIntegrator<S>;
   friend struct detail::SimulationMembership;
@@ -6184,6 +6396,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
 
   std::string name_;
   bool enable_ = true;
+  bool enableCCD_ = false;
   MotionControl motionControl_ = DYNAMICS;
   ref_ptr<Frame> frame_ = new Frame();
   ref_ptr<Frame> cmFrame_ = new Frame();
@@ -6313,8 +6526,15 @@ class SpaceT : public Referenced {
     return !disabledNames_.count(std::minmax(a, b));
   }
 
+  /// Vetoes pairs of geometries on two bodies: returns true for a pair that
+  /// must not collide. A simulation sets it to leave out the bodies its
+  /// constraints join (Constraint::setEnableCollisions).
+  using BodyPairFilter = std::function<bool(const Body&, const Body&)>;
+  void setBodyPairFilter(BodyPairFilter filter) { bodyPairFilter_ = std::move(filter); }
+
   /// True when the pair passes every filter: both enabled and colliding,
-  /// not on one body, not both static, not disabled pairwise or by groups.
+  /// not on one body, not both static, not disabled pairwise or by groups,
+  /// not vetoed by the body pair filter.
   [[nodiscard]] bool canCollide(const Geometry& a, const Geometry& b) const {
     if (&a == &b || !a.getEnable() || !b.getEnable() || !a.getEnableCollisions() || !b.getEnableCollisions())
       return false;
@@ -6329,7 +6549,7 @@ class SpaceT : public Referenced {
     for (const auto& name : a.getGroupNames())
       for (const auto& other : b.getGroupNames())
         if (disabledNames_.count(std::minmax(name, other))) return false;
-    return true;
+    return !(bodyA && bodyB && bodyPairFilter_ && bodyPairFilter_(*bodyA, *bodyB));
   }
 
   // --- Contact reduction -----------------------------------------------------
@@ -6360,6 +6580,7 @@ class SpaceT : public Referenced {
     boxes_.clear();
     for (const Geometry* g : active_) boxes_.push_back(g->getBoundingBox());
     contacts_.clear();
+    numDroppedContactPoints_ = 0;
     broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(*active_[i], *active_[j]); });
     reduce();
     trackEvents();
@@ -6370,6 +6591,10 @@ class SpaceT : public Referenced {
   [[nodiscard]] const std::vector<Contact>& getGeometryContacts() const { return contacts_; }
   /// Pairs that were in contact the update before the last and no longer are.
   [[nodiscard]] const std::vector<GeometryPairT<S>>& getSeparations() const { return separations_; }
+  /// Contact points the last update() dropped, before reduction, because a
+  /// collider produced a non-finite position, normal or depth (e.g. shapes
+  /// posed near the largest finite coordinate).
+  [[nodiscard]] std::size_t getNumDroppedContactPoints() const { return numDroppedContactPoints_; }
 
  protected:
   ~SpaceT() override {
@@ -6424,6 +6649,7 @@ class SpaceT : public Referenced {
     for (const auto& e1 : first->getShapes())
       for (const auto& e2 : second->getShapes())
         collide_(*e1.shape, X_W1 * e1.transform, *e2.shape, X_W2 * e2.transform, sink);
+    numDroppedContactPoints_ += sink.getNumDropped();
     if (!contact.points().empty()) contacts_.push_back(std::move(contact));
   }
 
@@ -6480,6 +6706,7 @@ class SpaceT : public Referenced {
   std::set<std::pair<std::string, std::string>> disabledNames_;
   ContactReductionMode reductionMode_ = ContactReductionMode::REDUCE_GEOMETRY;
   ReductionRule reductionRule_;
+  BodyPairFilter bodyPairFilter_;
   int binResolution_ = 2;
 
   std::vector<Geometry*> active_;
@@ -6488,6 +6715,7 @@ class SpaceT : public Referenced {
   std::vector<Contact> contacts_;
   std::map<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>> touching_;
   std::vector<GeometryPairT<S>> separations_;
+  std::size_t numDroppedContactPoints_ = 0;
 };
 
 using Space = SpaceT<double>;
@@ -6837,6 +7065,15 @@ class ConstraintT : public Referenced {
   [[nodiscard]] bool getEnable() const { return enable_; }
   void setEnable(bool enable) { enable_ = enable; }
 
+  /// Whether the geometries of the two bodies collide with each other while
+  /// this constraint is enabled. Default false: jointed bodies do not
+  /// collide (a machine's links overlap at their pins), as with PhysX's
+  /// joints and MuJoCo's parent–child filter. Other filters
+  /// (Geometry::setEnableCollisions, groups) still apply when on. A body
+  /// constrained to the world keeps colliding with static geometry.
+  [[nodiscard]] bool getEnableCollisions() const { return enableCollisions_; }
+  void setEnableCollisions(bool enable) { enableCollisions_ = enable; }
+
   /// Body 0 or 1 (nullptr for the world).
   [[nodiscard]] Body* getBodyAt(int index) const { return index == 0 ? body1_.get() : index == 1 ? body2_.get() : nullptr; }
   /// Attachment frame 0 or 1.
@@ -6844,7 +7081,7 @@ class ConstraintT : public Referenced {
     return index == 0 ? frame1_.get() : index == 1 ? frame2_.get() : nullptr;
   }
 
-  /// Elementary rows of the joint (its DOF enum's NUM_DOF).
+  /// Degrees of freedom the joint removes (its DOF enum's NUM_DOF, seed 001 table 12.4).
   [[nodiscard]] virtual int getNumDOF() const = 0;
 
   /// Which solver handles the rows under the hybrid policy (default
@@ -6864,26 +7101,29 @@ class ConstraintT : public Referenced {
     if (!enable) wrench_[0] = wrench_[1] = detail::Vec6d::Zero();
   }
   /// The force (N) and torque (N·m) the constraint applied on body `index`
-  /// (0 or 1) in the last step; the torque about the center of mass, or with
-  /// atCm false about the body's attachment frame origin. False (and zeros)
+  /// (0 or 1) in the last step, in world coordinates. As AGX's getLastForce
+  /// (seed 000), the torque is about the body's attachment point (its
+  /// attachment frame origin) by default, and about its center of mass with
+  /// giveForceAtCm true; the two differ by (c − p) × force. False (and zeros)
   /// when force computation is off or the index names no body.
-  bool getLastForce(int index, Vec3& force, Vec3& torque, bool atCm = true) const {
+  bool getLastForce(int index, Vec3& force, Vec3& torque, bool giveForceAtCm = false) const {
     force = torque = Vec3::Zero();
     Body* body = getBodyAt(index);
     if (!computeForces_ || !body) return false;
     const detail::Vec6d& w = wrench_[static_cast<std::size_t>(index)];
     force = w.head<3>().template cast<S>();
     torque = w.tail<3>().template cast<S>();
-    if (!atCm) torque += (body->getCmPosition() - getAttachmentFrame(index)->getTranslate()).cross(force);
+    if (!giveForceAtCm) torque += (body->getCmPosition() - getAttachmentFrame(index)->getTranslate()).cross(force);
     return true;
   }
-  bool getLastForce(const Body* body, Vec3& force, Vec3& torque, bool atCm = true) const {
+  /// As getLastForce(index, ...) for the constraint's body `body`; false for another body.
+  bool getLastForce(const Body* body, Vec3& force, Vec3& torque, bool giveForceAtCm = false) const {
     const int index = body && body == body1_.get() ? 0 : body && body == body2_.get() ? 1 : -1;
     if (index < 0) {
       force = torque = Vec3::Zero();
       return false;
     }
-    return getLastForce(index, force, torque, atCm);
+    return getLastForce(index, force, torque, giveForceAtCm);
   }
 
   /// Takes the current configuration as the relaxed one: frame 2 is moved
@@ -7028,6 +7268,7 @@ class ConstraintT : public Referenced {
   const char* kind_;
   std::string name_;
   bool enable_ = true;
+  bool enableCollisions_ = false;
   SolveType solveType_ = SolveType::DIRECT_AND_ITERATIVE;
   bool computeForces_ = false;
   std::array<detail::Vec6d, 2> wrench_{detail::Vec6d::Zero(), detail::Vec6d::Zero()};
@@ -7085,6 +7326,7 @@ using ConstraintRef = ref_ptr<Constraint>;
 
 #include <array>
 #include <cstddef>
+#include <utility>
 
 // --- begin spook/constraints/rows/elementary.hpp ---
 
@@ -7757,7 +7999,9 @@ namespace spook {
 
 /// A joint made of elementary constraints at compile time (seed 001
 /// table 12.5): its rows are the elementary rows in order, one DOF each, each
-/// with its own compliance and damping. No virtual call per row.
+/// with its own compliance and damping. No virtual call per row. A joint
+/// whose DOF is held by another row (DistanceJoint: its Lock1D) overrides
+/// getNumDOF and dofParameters.
 template <Scalar S, class... Elementary>
 class ElementaryJointT : public ConstraintT<S> {
  public:
@@ -7782,7 +8026,7 @@ class ElementaryJointT : public ConstraintT<S> {
   [[nodiscard]] S getDamping(int dof) const { return parameters(dof).getDamping(); }
   [[nodiscard]] RegularizationParametersT<S>* getRegularizationParameters(int dof) {
     checkDof(dof, false);
-    return &parameters_[static_cast<std::size_t>(dof)];
+    return &mutableDofParameters(dof);
   }
 
   /// Quaternion-based rows (QuatLock) follow Hooke's law in radians when on
@@ -7796,6 +8040,11 @@ class ElementaryJointT : public ConstraintT<S> {
   ElementaryJointT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
       : ConstraintT<S>(kind, body1, frame1, body2, frame2) {}
   ~ElementaryJointT() override = default;
+
+  /// Compliance and damping of DOF `dof` (0 ≤ dof < getNumDOF()).
+  [[nodiscard]] virtual const RegularizationParametersT<S>& dofParameters(int dof) const {
+    return parameters_[static_cast<std::size_t>(dof)];
+  }
 
   void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
     addElementaryRows(a, sink);
@@ -7812,19 +8061,23 @@ class ElementaryJointT : public ConstraintT<S> {
 
  private:
   void checkDof(int dof, bool allowAll = true) const {
-    if (!((allowAll && dof == ALL_DOF) || (dof >= 0 && dof < kNumRows)))
-      throw this->error("DOF index out of range 0.." + std::to_string(kNumRows - 1), dof);
+    const int count = this->getNumDOF();
+    if (!((allowAll && dof == ALL_DOF) || (dof >= 0 && dof < count)))
+      throw this->error("DOF index out of range 0.." + std::to_string(count - 1), dof);
   }
   template <class F>
   void forDof(int dof, F&& f) {
     if (dof == ALL_DOF)
-      for (auto& p : parameters_) f(p);
+      for (int i = 0; i < this->getNumDOF(); ++i) f(mutableDofParameters(i));
     else
-      f(parameters_[static_cast<std::size_t>(dof)]);
+      f(mutableDofParameters(dof));
+  }
+  [[nodiscard]] RegularizationParametersT<S>& mutableDofParameters(int dof) {
+    return const_cast<RegularizationParametersT<S>&>(std::as_const(*this).dofParameters(dof));
   }
   [[nodiscard]] const RegularizationParametersT<S>& parameters(int dof) const {
     checkDof(dof, false);
-    return parameters_[static_cast<std::size_t>(dof)];
+    return dofParameters(dof);
   }
 
   std::array<RegularizationParametersT<S>, kNumRows> parameters_{};
@@ -8466,17 +8719,22 @@ using PlaneJointRef = ref_ptr<PlaneJoint>;
 
 namespace spook {
 
-/// Keeps the distance between the frame origins (seed 001 §12.7): its Lock1D
-/// is enabled at the distance at creation, so the joint acts as a stiff rod or,
-/// with the lock's compliance, a spring; disable the lock to drive the
-/// distance with the motor (a hydraulic actuator) or bound it with the range.
+/// Keeps the distance between the frame origins (seed 001 §12.7): one
+/// translational DOF (table 12.4), held by its Lock1D, which is enabled at the
+/// distance at creation. The joint's compliance and damping (setCompliance,
+/// setDamping, getRegularizationParameters(TRANSLATIONAL_1)) are that lock's,
+/// so the joint acts as a stiff rod or, with a compliance c (m/N), a spring
+/// that a load F stretches by F·c. Disable the lock to drive the distance
+/// with the motor (a hydraulic actuator) or bound it with the range.
 /// getAngle is the distance (m).
 template <Scalar S>
 class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
   using Base = Constraint1DOFT<S, detail::DistanceBetween>;
 
  public:
-  enum DOF { ALL_DOF = -1, NUM_DOF = 0 };
+  enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, NUM_DOF = 1 };
+
+  [[nodiscard]] int getNumDOF() const override { return NUM_DOF; }
 
   DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr, FrameT<S>* frame2 = nullptr)
       : Base("DistanceJoint", body1, frame1, body2, frame2) {
@@ -8490,6 +8748,9 @@ class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
 
  protected:
   ~DistanceJointT() override = default;
+  [[nodiscard]] const RegularizationParametersT<S>& dofParameters(int) const override {
+    return *this->getLock1D()->getRegularizationParameters();
+  }
   [[nodiscard]] bool rebindsFrames() const override { return false; }
   void onRebind() override {
     Base::onRebind();
@@ -10219,6 +10480,7 @@ using WheelJointRef = ref_ptr<WheelJoint>;
 // --- end spook/constraints/joints/wheel_joint.hpp ---
 // --- begin spook/constraints/steering/steering.hpp ---
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -10582,7 +10844,71 @@ template <class Linkage>
 // --- end spook/constraints/steering/linkages.hpp ---
 // --- begin spook/sim/step_event_listener.hpp ---
 
+#include <concepts>
 #include <cstdint>
+
+// --- begin spook/core/time_stamp.hpp ---
+
+namespace spook {
+
+/// Simulated time (s), the argument of every listener callback: AGX's
+/// agx::TimeStamp, a plain scalar. Callbacks take it by const reference, as
+/// in the seeds: `void pre(const spook::TimeStamp& t) override`.
+template <Scalar S>
+using TimeStampT = S;
+
+using TimeStamp = TimeStampT<double>;
+namespace f32 {
+using TimeStamp = TimeStampT<float>;
+}  // namespace f32
+
+}  // namespace spook
+// --- end spook/core/time_stamp.hpp ---
+// --- begin spook/sim/listener_callbacks.hpp ---
+
+#include <type_traits>
+
+namespace spook::detail {
+
+/// What `&L::name` says about a listener callback `name` of class L.
+enum class CallbackState {
+  INHERITED,   ///< L does not redeclare it: the base's empty callback runs
+  OVERRIDDEN,  ///< L (or a class between) declares it with the base's signature
+  MISMATCHED,  ///< L declares a `name` with another signature, or static, or const: it hides the callback and is never called
+  UNKNOWN      ///< not inspectable from here (overloaded, or not public): the compiler's own rules apply
+};
+
+template <class Pointer>
+struct MemberFunctionOf {
+  static constexpr bool known = false;
+};
+template <class R, class C, class... A>
+struct MemberFunctionOf<R (C::*)(A...)> {
+  static constexpr bool known = true;
+  using Class = C;
+  using Type = R(A...);
+};
+// An override may add noexcept.
+template <class R, class C, class... A>
+struct MemberFunctionOf<R (C::*)(A...) noexcept> : MemberFunctionOf<R (C::*)(A...)> {};
+
+/// The state of a callback of `Base` with `Signature`, seen through
+/// `Pointer` = decltype(&L::name).
+template <class Base, class Signature, class Pointer>
+consteval CallbackState callbackState() {
+  using F = MemberFunctionOf<Pointer>;
+  if constexpr (!F::known)
+    return CallbackState::MISMATCHED;
+  else if constexpr (!std::is_same_v<typename F::Type, Signature>)
+    return CallbackState::MISMATCHED;
+  else if constexpr (std::is_same_v<typename F::Class, Base>)
+    return CallbackState::INHERITED;
+  else
+    return CallbackState::OVERRIDDEN;
+}
+
+}  // namespace spook::detail
+// --- end spook/sim/listener_callbacks.hpp ---
 
 namespace spook {
 
@@ -10592,11 +10918,15 @@ namespace detail {
 struct SimulationMembership;
 }
 
-/// User code in the step loop. Override the callbacks you need and select
-/// them with the mask; each receives the time stamp at the start of the step
-/// (s). A listener may add or remove objects, itself included, from its
-/// callbacks. Listeners with a higher priority are called first; equal
-/// priorities run in the order they were added.
+/// User code in the step loop. Override the callbacks you need, as
+/// `void pre(const spook::TimeStamp& t) override`, and select them with the
+/// mask; each receives the time stamp at the start of the step (s). Adding a
+/// listener to a simulation or collection refuses, at compile time, a class
+/// with a member named like a callback that does not override it (another
+/// signature) or that overrides none of them. A listener may add or remove
+/// objects, itself included, from its callbacks. Listeners with a higher
+/// priority are called first; equal priorities run in the order they were
+/// added.
 template <Scalar S>
 class StepEventListenerT : public Referenced {
  public:
@@ -10608,12 +10938,14 @@ class StepEventListenerT : public Referenced {
     DEFAULT = PRE_COLLIDE | PRE_STEP | POST_STEP | LAST_STEP
   };
 
+  using TimeStamp = TimeStampT<S>;
+
   explicit StepEventListenerT(std::uint32_t mask = DEFAULT, int priority = 0) : mask_(mask), priority_(priority) {}
 
-  virtual void preCollide(S /*timeStamp*/) {}
-  virtual void pre(S /*timeStamp*/) {}
-  virtual void post(S /*timeStamp*/) {}
-  virtual void last(S /*timeStamp*/) {}
+  virtual void preCollide(const TimeStamp& /*t*/) {}
+  virtual void pre(const TimeStamp& /*t*/) {}
+  virtual void post(const TimeStamp& /*t*/) {}
+  virtual void last(const TimeStamp& /*t*/) {}
 
   [[nodiscard]] std::uint32_t getMask() const { return mask_; }
   void setMask(std::uint32_t mask) { mask_ = mask; }
@@ -10635,6 +10967,67 @@ class StepEventListenerT : public Referenced {
   bool enable_ = true;
   SimulationT<S>* simulation_ = nullptr;
 };
+
+namespace detail {
+/// The callbacks of a StepEventListener subclass L as `&L::name` shows them.
+template <class L, Scalar S>
+struct StepCallbacks {
+  using Base = StepEventListenerT<S>;
+  using Signature = void(const TimeStampT<S>&);
+  static constexpr CallbackState preCollide = [] {
+    if constexpr (requires { &L::preCollide; })
+      return callbackState<Base, Signature, decltype(&L::preCollide)>();
+    else
+      return CallbackState::UNKNOWN;
+  }();
+  static constexpr CallbackState pre = [] {
+    if constexpr (requires { &L::pre; })
+      return callbackState<Base, Signature, decltype(&L::pre)>();
+    else
+      return CallbackState::UNKNOWN;
+  }();
+  static constexpr CallbackState post = [] {
+    if constexpr (requires { &L::post; })
+      return callbackState<Base, Signature, decltype(&L::post)>();
+    else
+      return CallbackState::UNKNOWN;
+  }();
+  static constexpr CallbackState last = [] {
+    if constexpr (requires { &L::last; })
+      return callbackState<Base, Signature, decltype(&L::last)>();
+    else
+      return CallbackState::UNKNOWN;
+  }();
+  static constexpr bool overridesAny = preCollide != CallbackState::INHERITED || pre != CallbackState::INHERITED ||
+                                       post != CallbackState::INHERITED || last != CallbackState::INHERITED;
+};
+
+/// Stops the compilation where a listener class L is added when one of its
+/// callbacks would silently never be called.
+template <class L, Scalar S>
+constexpr void requireStepCallbacks() {
+  using C = StepCallbacks<L, S>;
+  static_assert(C::preCollide != CallbackState::MISMATCHED,
+                "StepEventListener: this preCollide does not override StepEventListener::preCollide and would never "
+                "be called; declare it as void preCollide(const spook::TimeStamp& t) override");
+  static_assert(C::pre != CallbackState::MISMATCHED,
+                "StepEventListener: this pre does not override StepEventListener::pre and would never be called; "
+                "declare it as void pre(const spook::TimeStamp& t) override");
+  static_assert(C::post != CallbackState::MISMATCHED,
+                "StepEventListener: this post does not override StepEventListener::post and would never be called; "
+                "declare it as void post(const spook::TimeStamp& t) override");
+  static_assert(C::last != CallbackState::MISMATCHED,
+                "StepEventListener: this last does not override StepEventListener::last and would never be called; "
+                "declare it as void last(const spook::TimeStamp& t) override");
+  static_assert(C::overridesAny,
+                "StepEventListener: this class overrides none of preCollide, pre, post, last (a misspelt name?); "
+                "declare them as void pre(const spook::TimeStamp& t) override");
+}
+
+/// A class derived from StepEventListenerT<S> (not the base itself).
+template <class L, class S>
+concept StepEventListenerClass = std::derived_from<L, StepEventListenerT<S>> && !std::same_as<L, StepEventListenerT<S>>;
+}  // namespace detail
 
 using StepEventListener = StepEventListenerT<double>;
 using StepEventListenerRef = ref_ptr<StepEventListener>;
@@ -10662,8 +11055,9 @@ namespace spook {
 /// setSteeringAngle applies at once, so a mechanism works without being
 /// added anywhere; added to a simulation (sim->add(steering)) it also
 /// re-applies its targets before every step, so the locks cannot be left
-/// disabled while it is enabled. Angles beyond ±getMaximumSteeringAngle()
-/// are refused.
+/// disabled while it is enabled. As in AGX, requests beyond the reachable
+/// range ±getMaximumSteeringAngle() are clamped to it: getSteeringAngle is
+/// the angle held, getRequestedSteeringAngle the one asked for.
 ///
 /// The left wheel joint is the one whose steering pivot (frame 2 origin) the
 /// mechanism's x axis starts from; see SteeringParameters for the plane.
@@ -10692,25 +11086,28 @@ class SteeringT : public StepEventListenerT<S> {
   /// the input (no dead centre), in both directions.
   [[nodiscard]] S getMaximumSteeringAngle() const { return S(maximum_); }
 
-  /// The steering input (rad).
+  /// The steering input the mechanism holds (rad): the last request clamped
+  /// to ±getMaximumSteeringAngle().
   [[nodiscard]] S getSteeringAngle() const { return S(input_); }
+  /// The last steering input asked for (rad), before clamping.
+  [[nodiscard]] S getRequestedSteeringAngle() const { return S(requested_); }
   /// The wheel angles the mechanism holds for the current input (rad).
   [[nodiscard]] WheelAngles getWheelAngles() const { return {S(angles_.left), S(angles_.right)}; }
 
-  /// Steers to `angle` (rad, finite, |angle| ≤ getMaximumSteeringAngle()).
+  /// Steers to `angle` (rad) clamped to ±getMaximumSteeringAngle(); only a
+  /// non-finite angle throws (and changes nothing).
   void setSteeringAngle(S angle) {
     if (!std::isfinite(angle)) throw error("steering angle must be finite (rad)", angle);
-    if (!(std::abs(double(angle)) <= maximum_))
-      throw error("steering angle must be within +-getMaximumSteeringAngle() = " + std::to_string(maximum_) + " rad",
-                  angle);
-    const auto angles = solve(double(angle));
-    if (!angles) throw error("linkage does not close at this steering angle (rad)", angle);
-    input_ = double(angle);
+    const double held = std::clamp(double(angle), -maximum_, maximum_);
+    const auto angles = solve(held);
+    if (!angles) throw error("linkage does not close at this steering angle (rad)", held);
+    requested_ = double(angle);
+    input_ = held;
     angles_ = *angles;
     apply();
   }
 
-  void pre(S) override { apply(); }
+  void pre(const TimeStampT<S>&) override { apply(); }
 
  protected:
   SteeringT(const char* kind, WheelJoint* left, WheelJoint* right, const SteeringParameters& parameters)
@@ -10769,6 +11166,7 @@ class SteeringT : public StepEventListenerT<S> {
   double straightLeft_ = 0.0, straightRight_ = 0.0;
   double maximum_ = 0.0;
   double input_ = 0.0;
+  double requested_ = 0.0;
   detail::LinkageAngles angles_;
 };
 
@@ -11503,6 +11901,17 @@ class CollectionT : public Referenced {
     if (simulation_) simulation_->add(body);
     bodies_.push_back(std::move(body));
   }
+  /// Adds a listener of class L, checked at compile time as by
+  /// SimulationT::add (detail::requireStepCallbacks).
+  template <detail::StepEventListenerClass<S> L>
+  void add(const ref_ptr<L>& listener) {
+    detail::requireStepCallbacks<L, S>();
+    add(ref_ptr<Listener>(listener));
+  }
+  template <detail::StepEventListenerClass<S> L>
+  void add(L* listener) {
+    add(ref_ptr<L>(listener));
+  }
   void add(ref_ptr<Listener> listener) {
     if (!listener) throw error("cannot add a null StepEventListener", "nullptr");
     if (contains(listeners_, listener.get())) throw error("StepEventListener already added", "listener");
@@ -11691,6 +12100,7 @@ using AssemblyRef = ref_ptr<Assembly>;
 // --- end spook/sim/assembly.hpp ---
 // --- begin spook/sim/contact_event_listener.hpp ---
 
+#include <concepts>
 #include <cstdint>
 
 namespace spook {
@@ -11705,9 +12115,13 @@ struct SimulationMembership;
 /// the `pre` step listeners: impact (the first pass in which two geometries
 /// touch), contact (each later pass while they touch) and separation (the
 /// first pass after). Returning REMOVE_CONTACT from impact or contact
-/// disables the contact: listeners called later and the solver do not see
-/// it. An execution filter of one or two geometries restricts the events
-/// to contacts involving them. Listeners are called in the order added.
+/// removes the contact from the solver (no rows, no forces); the other
+/// listeners still see it, with isEnabled() false. An execution filter of
+/// one or two geometries restricts the events to contacts involving them.
+/// Listeners are called in the order added. Override the callbacks as
+/// `KeepContactPolicy impact(const spook::TimeStamp& t, spook::GeometryContact* contact) override`;
+/// adding a class whose member named like a callback does not override it,
+/// or that overrides none of them, fails to compile.
 template <Scalar S>
 class ContactEventListenerT : public Referenced {
  public:
@@ -11718,12 +12132,13 @@ class ContactEventListenerT : public Referenced {
     DEFAULT = IMPACT | CONTACT | SEPARATION
   };
   enum KeepContactPolicy { KEEP_CONTACT, REMOVE_CONTACT };
+  using TimeStamp = TimeStampT<S>;
 
   explicit ContactEventListenerT(std::uint32_t mask = DEFAULT) : mask_(mask) {}
 
-  virtual KeepContactPolicy impact(S /*timeStamp*/, GeometryContactT<S>* /*contact*/) { return KEEP_CONTACT; }
-  virtual KeepContactPolicy contact(S /*timeStamp*/, GeometryContactT<S>* /*contact*/) { return KEEP_CONTACT; }
-  virtual void separation(S /*timeStamp*/, GeometryPairT<S>& /*pair*/) {}
+  virtual KeepContactPolicy impact(const TimeStamp& /*t*/, GeometryContactT<S>* /*contact*/) { return KEEP_CONTACT; }
+  virtual KeepContactPolicy contact(const TimeStamp& /*t*/, GeometryContactT<S>* /*contact*/) { return KEEP_CONTACT; }
+  virtual void separation(const TimeStamp& /*t*/, GeometryPairT<S>& /*pair*/) {}
 
   [[nodiscard]] std::uint32_t getMask() const { return mask_; }
   void setMask(std::uint32_t mask) { mask_ = mask; }
@@ -11764,6 +12179,62 @@ class ContactEventListenerT : public Referenced {
   observer_ptr<GeometryT<S>> filterSecond_;
   SimulationT<S>* simulation_ = nullptr;
 };
+
+namespace detail {
+/// The callbacks of a ContactEventListener subclass L as `&L::name` shows them.
+template <class L, Scalar S>
+struct ContactCallbacks {
+  using Base = ContactEventListenerT<S>;
+  using Touch = typename Base::KeepContactPolicy(const TimeStampT<S>&, GeometryContactT<S>*);
+  using Separation = void(const TimeStampT<S>&, GeometryPairT<S>&);
+  static constexpr CallbackState impact = [] {
+    if constexpr (requires { &L::impact; })
+      return callbackState<Base, Touch, decltype(&L::impact)>();
+    else
+      return CallbackState::UNKNOWN;
+  }();
+  static constexpr CallbackState contact = [] {
+    if constexpr (requires { &L::contact; })
+      return callbackState<Base, Touch, decltype(&L::contact)>();
+    else
+      return CallbackState::UNKNOWN;
+  }();
+  static constexpr CallbackState separation = [] {
+    if constexpr (requires { &L::separation; })
+      return callbackState<Base, Separation, decltype(&L::separation)>();
+    else
+      return CallbackState::UNKNOWN;
+  }();
+  static constexpr bool overridesAny = impact != CallbackState::INHERITED || contact != CallbackState::INHERITED ||
+                                       separation != CallbackState::INHERITED;
+};
+
+/// Stops the compilation where a listener class L is added when one of its
+/// callbacks would silently never be called.
+template <class L, Scalar S>
+constexpr void requireContactCallbacks() {
+  using C = ContactCallbacks<L, S>;
+  static_assert(C::impact != CallbackState::MISMATCHED,
+                "ContactEventListener: this impact does not override ContactEventListener::impact and would never be "
+                "called; declare it as KeepContactPolicy impact(const spook::TimeStamp& t, spook::GeometryContact* "
+                "contact) override");
+  static_assert(C::contact != CallbackState::MISMATCHED,
+                "ContactEventListener: this contact does not override ContactEventListener::contact and would never "
+                "be called; declare it as KeepContactPolicy contact(const spook::TimeStamp& t, "
+                "spook::GeometryContact* contact) override");
+  static_assert(C::separation != CallbackState::MISMATCHED,
+                "ContactEventListener: this separation does not override ContactEventListener::separation and would "
+                "never be called; declare it as void separation(const spook::TimeStamp& t, spook::GeometryPair& "
+                "pair) override");
+  static_assert(C::overridesAny,
+                "ContactEventListener: this class overrides none of impact, contact, separation (a misspelt name?)");
+}
+
+/// A class derived from ContactEventListenerT<S> (not the base itself).
+template <class L, class S>
+concept ContactEventListenerClass =
+    std::derived_from<L, ContactEventListenerT<S>> && !std::same_as<L, ContactEventListenerT<S>>;
+}  // namespace detail
 
 using ContactEventListener = ContactEventListenerT<double>;
 using ContactEventListenerRef = ref_ptr<ContactEventListener>;
@@ -11889,6 +12360,385 @@ using MaterialManager = MaterialManagerT<float>;
 #include <utility>
 #include <vector>
 
+// --- begin spook/collide/continuous.hpp ---
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include <ccd/ccd.h>
+
+/// Continuous collision detection (CCD), a stage of the step that runs after
+/// the bodies have moved (Simulation::stepForward).
+///
+/// Covers: dynamic bodies with RigidBody::setEnableCCD(true) whose step
+/// displacement h·v exceeds their thinnest half-width w (below that the
+/// discrete contacts catch every wall: the body cannot reach a wall's far
+/// side in one step). Their sphere, box, capsule, cylinder and convex shapes
+/// (composites of them included) are swept linearly, in the orientation
+/// they end the step with, from where the center-of-mass motion h·v started
+/// them to where it left them, against every geometry the space lets them
+/// collide with: planes, boxes, spheres, capsules, cylinders, convex hulls,
+/// lines, and the triangles of trimeshes and height fields (composites of
+/// them included). The time of impact is found on the shapes' support
+/// functions: the shape swept over [0, t·h·v] is convex (its support is
+/// s(d) + max(0, d·Δ)/(d·Δ)·Δ along d, with Δ = t·h·v), it overlaps a
+/// target from the first contact on, so bisection on t with libccd's GJK
+/// overlap test brackets the first contact to w/200; planes are solved in
+/// closed form. The body is then put back along its path to first contact
+/// plus a penetration of w/100 (between w/200 and w/100), so that the next
+/// step's discrete contacts take over; its velocities are kept and the
+/// contact rows handle the impact (restitution included).
+///
+/// A target the shape already overlaps at the start of the sweep (a resting
+/// or sliding contact, or an impact the contact rows have not stopped yet:
+/// a damped SPOOK contact takes a few steps to stop a fast body) is swept
+/// with the shape's core instead, the sphere of radius w/2 at its center of
+/// volume, and the body is placed just short of the core's first contact:
+/// it then overlaps the target by at most about w/2 and its center stays on
+/// the near side, where the discrete contacts push it back out.
+///
+/// Leaves to the discrete contacts: hits whose motion along the contact
+/// normal is at most w (a grazing approach, e.g. a fast body sliding across
+/// a floor; the discrete contacts hold such penetrations), and cores that
+/// start inside a target. The normal is the plane's, the triangle's face
+/// normal, or libccd's penetration direction for convex targets.
+///
+/// Does not cover: rotation (the sweep keeps the end orientation: a fast
+/// spinning thin body may still tunnel, and a rotation into a wall counts as
+/// starting in contact); kinematic bodies (they go where they are told);
+/// trimesh, height field, plane and line shapes on the moving body; other
+/// bodies are taken where the step left them (no relative motion between
+/// two moving bodies: two fast bodies may pass through each other); sensor
+/// geometries and contacts a listener would remove are not anticipated.
+namespace spook::detail {
+
+/// A convex shape swept along the segment [0, motion] of its own frame: the
+/// Minkowski sum of the two, which is convex, with the support below.
+template <class Shape>
+struct SweptShape {
+  using Vec3 = typename Shape::Vec3;
+  using S = typename Vec3::Scalar;
+  const Shape* shape;
+  Vec3 motion;  // shape frame (m)
+
+  [[nodiscard]] Vec3 support(const Vec3& d) const {
+    const Vec3 s = shape->support(d);
+    return d.dot(motion) > S(0) ? Vec3(s + motion) : s;
+  }
+  [[nodiscard]] Vec3 getCenterOfVolume() const { return shape->getCenterOfVolume() + S(0.5) * motion; }
+};
+
+/// The core of a swept shape: a sphere of `radius` at `center` (shape frame).
+template <Scalar S>
+struct CoreSphere {
+  using Vec3 = spook::Vec3T<S>;
+  Vec3 center;
+  S radius;
+
+  [[nodiscard]] Vec3 support(const Vec3& d) const {
+    const S length = d.norm();
+    return length > S(0) ? Vec3(center + (radius / length) * d) : center;
+  }
+  [[nodiscard]] Vec3 getCenterOfVolume() const { return center; }
+};
+
+/// libccd's settings for a pair of bridged objects.
+template <class A, class B>
+[[nodiscard]] ccd_t ccdSettings() {
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = &CcdObject<A>::support;
+  ccd.support2 = &CcdObject<B>::support;
+  ccd.center1 = &CcdObject<A>::centerOf;
+  ccd.center2 = &CcdObject<B>::centerOf;
+  ccd.max_iterations = kCcdMaxIterations;
+  return ccd;
+}
+
+/// Whether two convex objects overlap (libccd's GJK).
+template <class A, class B>
+[[nodiscard]] bool ccdOverlap(const CcdObject<A>& a, const CcdObject<B>& b) {
+  const ccd_t ccd = ccdSettings<A, B>();
+  return ccdGJKIntersect(&a, &b, &ccd) != 0;
+}
+
+/// The first contact of one body's sweep, kept across its shapes and targets.
+struct SweepHit {
+  double fraction = 1.0;  ///< of the step's motion, at or just past first contact
+  bool found = false;
+};
+
+/// The sweep of one body over one step: its motion Δ = h·v (world, m), its
+/// thinnest half-width w (m) and the tolerances derived from it.
+template <Scalar S>
+class BodySweep {
+ public:
+  using Vec3 = spook::Vec3T<S>;
+  using Transform = spook::TransformT<S>;
+  using Shape = ShapeT<S>;
+
+  BodySweep(const Vec3& motion, double halfWidth)
+      : motion_(motion.template cast<double>()), length_(motion_.norm()), halfWidth_(halfWidth) {}
+
+  /// The depth that the body is placed at past first contact (m).
+  [[nodiscard]] double contactDepth() const { return 0.01 * halfWidth_; }
+  [[nodiscard]] const SweepHit& hit() const { return hit_; }
+
+  /// Sweeps the moving shape `a` (at X_end, the end of the step) against
+  /// the target shape `b` at X_WB.
+  void sweep(const Shape& a, const Transform& X_end, const Shape& b, const Transform& X_WB) {
+    switch (a.getType()) {
+      case ShapeType::BOX:
+        return against(static_cast<const BoxT<S>&>(a), X_end, b, X_WB);
+      case ShapeType::CAPSULE:
+        return against(static_cast<const CapsuleT<S>&>(a), X_end, b, X_WB);
+      case ShapeType::CONVEX:
+        return against(static_cast<const ConvexT<S>&>(a), X_end, b, X_WB);
+      case ShapeType::CYLINDER:
+        return against(static_cast<const CylinderT<S>&>(a), X_end, b, X_WB);
+      case ShapeType::SPHERE:
+        return against(static_cast<const SphereT<S>&>(a), X_end, b, X_WB);
+      case ShapeType::COMPOSITE:
+        for (const auto& child : static_cast<const CompositeT<S>&>(a).getChildren())
+          sweep(*child.shape, X_end * child.transform, b, X_WB);
+        return;
+      default:
+        return;  // not swept: see the header
+    }
+  }
+
+ private:
+  template <class A>
+  void against(const A& a, const Transform& X_end, const Shape& b, const Transform& X_WB) {
+    switch (b.getType()) {
+      case ShapeType::BOX:
+        return convex(a, X_end, static_cast<const BoxT<S>&>(b), X_WB);
+      case ShapeType::CAPSULE:
+        return convex(a, X_end, static_cast<const CapsuleT<S>&>(b), X_WB);
+      case ShapeType::CONVEX:
+        return convex(a, X_end, static_cast<const ConvexT<S>&>(b), X_WB);
+      case ShapeType::CYLINDER:
+        return convex(a, X_end, static_cast<const CylinderT<S>&>(b), X_WB);
+      case ShapeType::LINE:
+        return convex(a, X_end, static_cast<const LineT<S>&>(b), X_WB);
+      case ShapeType::SPHERE:
+        return convex(a, X_end, static_cast<const SphereT<S>&>(b), X_WB);
+      case ShapeType::PLANE:
+        return plane(a, X_end, static_cast<const PlaneT<S>&>(b), X_WB);
+      case ShapeType::TRIMESH:
+        return triangles(a, X_end, static_cast<const TrimeshT<S>&>(b), X_WB);
+      case ShapeType::HEIGHTFIELD:
+        return triangles(a, X_end, static_cast<const HeightFieldT<S>&>(b), X_WB);
+      case ShapeType::COMPOSITE:
+        for (const auto& child : static_cast<const CompositeT<S>&>(b).getChildren()) against(a, X_end, *child.shape, X_WB * child.transform);
+        return;
+    }
+  }
+
+  // Records a hit at `fraction` unless the approach (m), the motion along
+  // the contact normal, is one the discrete contacts hold: at most the
+  // half-width per step.
+  void record(double fraction, double approach) {
+    if (!(approach > halfWidth_) || !(fraction < hit_.fraction)) return;
+    hit_.fraction = fraction;
+    hit_.found = true;
+  }
+
+  [[nodiscard]] Transform startOf(const Transform& X_end) const {
+    Transform X = X_end;
+    X.translation() -= motion_.template cast<S>();
+    return X;
+  }
+  [[nodiscard]] CoreSphere<S> coreOf(const auto& a) const {
+    return {a.getCenterOfVolume(), S(0.5 * halfWidth_)};
+  }
+
+  // A half-space: the deepest point along −n of the shape (or, when the
+  // shape starts inside, of its core) reaches the plane after the gap over
+  // the approach, in closed form.
+  template <class A>
+  void plane(const A& a, const Transform& X_end, const PlaneT<S>& b, const Transform& X_WB) {
+    const Vec3T<double> n = (X_WB.linear() * b.getNormal()).template cast<double>();
+    const Vec3T<double> point = (X_WB * b.getPoint()).template cast<double>();
+    const Transform X_start = startOf(X_end);
+    const Vec3 down = X_start.linear().transpose() * (-n).template cast<S>();
+    const auto gapOf = [&](const auto& shape) {
+      return n.dot((X_start * shape.support(down)).template cast<double>() - point);
+    };
+    const double approach = -n.dot(motion_);
+    double gap = gapOf(a), depth = contactDepth();
+    if (!(gap > 0.0)) {
+      gap = gapOf(coreOf(a));
+      depth = 0.0;
+    }
+    if (gap > 0.0 && approach > gap) record(std::min(1.0, gap / approach + depth / length_), approach);
+  }
+
+  // Each triangle of a mesh or height field near the sweep, as a convex
+  // target whose contact normal is its face normal (either side).
+  template <class A, class Soup>
+  void triangles(const A& a, const Transform& X_end, const Soup& b, const Transform& X_WB) {
+    const BoundingBoxT<S> local = a.getBoundingBox();
+    const BoundingBoxT<S> end = transformBox<S>(local, X_end), start = transformBox<S>(local, startOf(X_end));
+    const BoundingBoxT<S> swept{end.min.cwiseMin(start.min), end.max.cwiseMax(start.max)};
+    const Transform X_BW = X_WB.inverse();
+    b.forEachTriangle(transformBox<S>(swept, X_BW), [&](std::size_t, const Vec3& p, const Vec3& q, const Vec3& r) {
+      const Triangle<S> triangle{{p, q, r}};
+      if (const std::optional<double> t = placement(a, X_end, triangle, X_WB))
+        record(*t, std::abs(motion_.dot((X_WB.linear() * triangle.normal()).template cast<double>())));
+    });
+  }
+
+  // A convex target: the contact normal is libccd's penetration direction
+  // at the placed pose (the motion's direction when libccd finds none).
+  template <class A, class B>
+  void convex(const A& a, const Transform& X_end, const B& b, const Transform& X_WB) {
+    const std::optional<double> t = placement(a, X_end, b, X_WB);
+    if (!t) return;
+    Transform X_hit = X_end;
+    X_hit.translation() -= ((1.0 - *t) * motion_).template cast<S>();
+    const CcdObject<A> objectA(a, X_hit);
+    const CcdObject<B> objectB(b, X_WB);
+    const ccd_t ccd = ccdSettings<A, B>();
+    ccd_real_t depth = 0;
+    ccd_vec3_t direction, position;
+    double approach = length_;
+    if (ccdMPRPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) == 0) {
+      const Vec3T<double> d(direction.v[0], direction.v[1], direction.v[2]);
+      if (d.norm() > 0.0) approach = std::abs(motion_.dot(d.normalized()));
+    }
+    record(*t, approach);
+  }
+
+  // The fraction of the motion at which the body is to be placed against
+  // convex b: the first contact of the shape plus the contact depth or,
+  // when the shape starts overlapping b (a contact the solver has not yet
+  // stopped), the first contact of its core; none when out of reach.
+  template <class A, class B>
+  [[nodiscard]] std::optional<double> placement(const A& a, const Transform& X_end, const B& b,
+                                                const Transform& X_WB) const {
+    const Contact shape = firstContact(a, X_end, b, X_WB, contactDepth());
+    if (!shape.startsInside) return shape.fraction;
+    return firstContact(coreOf(a), X_end, b, X_WB, 0.0).fraction;
+  }
+
+  struct Contact {
+    bool startsInside = false;
+    std::optional<double> fraction;  ///< where to place the body
+  };
+  // First contact of convex a swept against convex b, bracketed by bisection
+  // to half the contact depth; placed `depth` (m) past it, or just short of
+  // it for a depth of 0.
+  template <class A, class B>
+  [[nodiscard]] Contact firstContact(const A& a, const Transform& X_end, const B& b, const Transform& X_WB,
+                                     double depth) const {
+    const Transform X_start = startOf(X_end);
+    const Vec3T<double> motionLocal = X_start.linear().transpose().template cast<double>() * motion_;
+    const CcdObject<B> objectB(b, X_WB);
+    const auto reaches = [&](double t) {
+      const SweptShape<A> swept{&a, (t * motionLocal).template cast<S>()};
+      return ccdOverlap(CcdObject<SweptShape<A>>(swept, X_start), objectB);
+    };
+    if (reaches(0.0)) return {true, std::nullopt};
+    if (!reaches(1.0)) return {};
+    double lo = 0.0, hi = 1.0;
+    while ((hi - lo) * length_ > 0.5 * contactDepth()) {
+      const double mid = 0.5 * (lo + hi);
+      (reaches(mid) ? hi : lo) = mid;
+    }
+    return {false, depth > 0.0 ? std::min(1.0, hi + (depth - 0.5 * contactDepth()) / length_) : lo};
+  }
+
+  Vec3T<double> motion_;
+  double length_;
+  double halfWidth_;
+  SweepHit hit_;
+};
+
+/// The thinnest half-width of the shapes swept for a body (m): the least of
+/// (h(d) + h(−d))/2 over the 13 directions of the axes and the face and body
+/// diagonals of each shape's frame (exact for spheres, boxes, capsules and
+/// cylinders); infinity when none is swept.
+template <Scalar S>
+[[nodiscard]] double sweptHalfWidth(const ShapeT<S>& shape) {
+  const auto width = [](const auto& convex) {
+    double least = std::numeric_limits<double>::infinity();
+    for (int x = -1; x <= 1; ++x)
+      for (int y = -1; y <= 1; ++y)
+        for (int z = 0; z <= 1; ++z) {
+          const Vec3T<S> d = Vec3T<S>(S(x), S(y), S(z));
+          if (z == 0 && (y < 0 || (y == 0 && x <= 0))) continue;  // one of ±d, and not 0
+          const Vec3T<S> u = d.normalized();
+          least = std::min(least, 0.5 * double(u.dot(convex.support(u)) - u.dot(convex.support(Vec3T<S>(-u)))));
+        }
+    return least;
+  };
+  switch (shape.getType()) {
+    case ShapeType::BOX:
+      return width(static_cast<const BoxT<S>&>(shape));
+    case ShapeType::CAPSULE:
+      return width(static_cast<const CapsuleT<S>&>(shape));
+    case ShapeType::CONVEX:
+      return width(static_cast<const ConvexT<S>&>(shape));
+    case ShapeType::CYLINDER:
+      return width(static_cast<const CylinderT<S>&>(shape));
+    case ShapeType::SPHERE:
+      return width(static_cast<const SphereT<S>&>(shape));
+    case ShapeType::COMPOSITE: {
+      double least = std::numeric_limits<double>::infinity();
+      for (const auto& child : static_cast<const CompositeT<S>&>(shape).getChildren())
+        least = std::min(least, sweptHalfWidth<S>(*child.shape));
+      return least;
+    }
+    default:
+      return std::numeric_limits<double>::infinity();
+  }
+}
+
+/// The CCD stage of the step (see the top of this file): after the bodies
+/// have moved, puts each fast CCD body back to its first contact along its
+/// path. Velocities are left as they are.
+template <Scalar S>
+void stopAtFirstContact(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const SpaceT<S>& space, S h) {
+  using Body = RigidBodyT<S>;
+  using Geometry = GeometryT<S>;
+  for (const auto& body : bodies) {
+    if (!body->getEnableCCD() || !body->getEnable() || body->getMotionControl() != Body::DYNAMICS) continue;
+    const Vec3T<S> motion = h * body->getVelocity();
+    double halfWidth = std::numeric_limits<double>::infinity();
+    for (const auto& g : body->getGeometries())
+      if (!g->isSensor())
+        for (const auto& e : g->getShapes()) halfWidth = std::min(halfWidth, sweptHalfWidth<S>(*e.shape));
+    if (!(motion.allFinite() && double(motion.norm()) > halfWidth)) continue;
+    BodySweep<S> sweep(motion, halfWidth);
+    const auto against = [&](const Geometry& target) {
+      for (const auto& g : body->getGeometries()) {
+        if (g->isSensor() || !space.canCollide(*g, target)) continue;
+        const BoundingBoxT<S> end = g->getBoundingBox();
+        const BoundingBoxT<S> swept{end.min.cwiseMin(end.min - motion), end.max.cwiseMax(end.max - motion)};
+        if (!overlaps<S>(swept, target.getBoundingBox())) continue;
+        const TransformT<S> X_WG = g->getTransform(), X_WT = target.getTransform();
+        for (const auto& a : g->getShapes())
+          for (const auto& b : target.getShapes()) sweep.sweep(*a.shape, X_WG * a.transform, *b.shape, X_WT * b.transform);
+      }
+    };
+    for (const auto& target : space.getGeometries())
+      if (!target->isSensor()) against(*target);
+    for (const auto& other : bodies)
+      if (other != body && other->getEnable())
+        for (const auto& target : other->getGeometries())
+          if (!target->isSensor()) against(*target);
+    if (sweep.hit().found)
+      body->setCmPosition(body->getCmPosition() - S(1.0 - sweep.hit().fraction) * motion);
+  }
+}
+
+}  // namespace spook::detail
+// --- end spook/collide/continuous.hpp ---
 // --- begin spook/sim/contact_rows.hpp ---
 
 #include <algorithm>
@@ -12056,237 +12906,13 @@ class BodySpaceSolve {
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
-namespace spook::detail {
+// --- begin spook/solver/iterative_solve.hpp ---
 
-/// What a direct solve did.
-struct DirectSolveResult {
-  int factorizations = 0;  ///< sparse LDLᵀ factorizations (one per pivot step)
-  bool converged = true;   ///< a complementary solution was found
-};
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
 
-/// Solves the rows `subset` of an island exactly, the impulses of the other
-/// rows held fixed: (S + Σ)_DD Λ_D = q_D − (S Λ)_D,fixed within the bounds.
-///
-/// S + Σ is assembled in block-sparse form (a row couples only to the rows
-/// sharing one of its bodies) and factorized by a sparse LDLᵀ with an
-/// approximate-minimum-degree ordering, so a chain or a tree of n bodies costs
-/// O(n). Σ > 0 keeps the matrix positive definite. Where rows far outnumber
-/// the bodies' degrees of freedom and all are compliant (contacts), the same
-/// system is solved through the bodies' mass matrix instead
-/// (body_space_solve.hpp).
-///
-/// Bounded rows make a box-constrained LCP, solved by block principal
-/// pivoting (Júdice & Pires 1994): every row is free, at its lower or at its
-/// upper bound; each step solves the free rows with the others at their
-/// bounds and swaps every infeasible row at once. When that stops reducing
-/// the number of infeasible rows for kBlockPivotingStrikes steps, it switches
-/// to Murty's single principal pivoting (swap only the infeasible row of
-/// largest index), which cannot cycle on a positive definite matrix (Murty
-/// 1974). Should the step cap be reached, the iterate with the fewest
-/// infeasible rows is kept, clamped to the bounds.
-class DirectSolve {
- public:
-  /// Block pivoting steps allowed without a new fewest-infeasible count
-  /// before single pivots: friction in a 210-cube pyramid needs tens of such
-  /// steps, and Murty's one row per step then takes hundreds.
-  static constexpr int kBlockPivotingStrikes = 30;
-
-  DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps) {
-    DirectSolveResult result;
-    const int n = static_cast<int>(subset.size());
-    if (n == 0) return result;
-    bodySpace_ = BodySpaceSolve::pays(problem, subset);
-    assembleRhs(problem, subset);
-    if (!bodySpace_) assembleMatrix(problem, subset);
-
-    // The state of each row: free, or clamped at its lower or upper bound.
-    // Warm start: a row whose guess (the last solution) is at a bound starts there.
-    enum State : unsigned char { FREE, LOWER, UPPER };
-    std::vector<State> state(static_cast<std::size_t>(n), FREE);
-    bool anyBounded = false;
-    for (int k = 0; k < n; ++k) {
-      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-      if (!isBounded(e)) continue;
-      anyBounded = true;
-      if (e.guess <= e.lower) state[static_cast<std::size_t>(k)] = LOWER;
-      else if (e.guess >= e.upper) state[static_cast<std::size_t>(k)] = UPPER;
-    }
-
-    Eigen::VectorXd x(n), bestX;
-    int best = std::numeric_limits<int>::max();
-    int strikes = 0;
-    std::vector<int> infeasible;
-    for (int step = 0;; ++step) {
-      solveFree(problem, subset, state, x);
-      ++result.factorizations;
-      if (!anyBounded) break;
-      const Eigen::VectorXd w = residual(problem, subset, x);
-      infeasible.clear();
-      for (int k = 0; k < n; ++k) {
-        const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-        const double tolX = 1e-12 * (1.0 + std::abs(x[k]));
-        const double tolW = 1e-12 * (1.0 + std::abs(q_[k]));
-        const State s = state[static_cast<std::size_t>(k)];
-        if (e.upper <= e.lower) continue;  // a zero-width box: held at its bound from the start
-        if ((s == FREE && (x[k] < e.lower - tolX || x[k] > e.upper + tolX)) || (s == LOWER && w[k] < -tolW) ||
-            (s == UPPER && w[k] > tolW))
-          infeasible.push_back(k);
-      }
-      if (infeasible.empty()) break;
-      const int count = static_cast<int>(infeasible.size());
-      if (count < best) {
-        best = count;
-        bestX = x;
-        strikes = 0;
-      } else {
-        ++strikes;
-      }
-      if (step >= maxPivotSteps) {
-        result.converged = false;
-        x = bestX;
-        break;
-      }
-      if (strikes >= kBlockPivotingStrikes) infeasible.erase(infeasible.begin(), infeasible.end() - 1);
-      for (int k : infeasible) {
-        const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-        State& s = state[static_cast<std::size_t>(k)];
-        if (s != FREE) s = FREE;
-        else s = x[k] < e.lower ? LOWER : UPPER;
-      }
-    }
-    for (int k = 0; k < n; ++k) {
-      auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-      e.impulse = std::clamp(x[k], e.lower, e.upper);
-      e.guess = e.impulse;
-    }
-    return result;
-  }
-
- private:
-  static bool isBounded(const IslandProblem::Entry& e) {
-    return e.lower > -std::numeric_limits<double>::infinity() || e.upper < std::numeric_limits<double>::infinity();
-  }
-
-  // q_ = q_D − G_D Δv(rows outside D).
-  void assembleRhs(const IslandProblem& problem, const std::vector<int>& subset) {
-    std::vector<char> inSubset(problem.rows.size(), 0);
-    for (int i : subset) inSubset[static_cast<std::size_t>(i)] = 1;
-    std::vector<int> others;
-    for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i)
-      if (!inSubset[static_cast<std::size_t>(i)]) others.push_back(i);
-    const std::vector<Vec6d> fixed = problem.velocityChange(others);
-    q_.resize(static_cast<Eigen::Index>(subset.size()));
-    for (std::size_t k = 0; k < subset.size(); ++k)
-      q_[static_cast<Eigen::Index>(k)] = problem.rows[static_cast<std::size_t>(subset[k])].q - problem.rowVelocity(subset[k], fixed);
-  }
-
-  // w = (S + Σ)_DD x − q_D.
-  Eigen::VectorXd residual(const IslandProblem& problem, const std::vector<int>& subset, const Eigen::VectorXd& x) const {
-    if (!bodySpace_) return A_ * x - q_;
-    std::vector<Vec6d> dv(static_cast<std::size_t>(problem.numBodies), Vec6d::Zero());
-    for (std::size_t k = 0; k < subset.size(); ++k) problem.addImpulse(dv, subset[k], x[static_cast<Eigen::Index>(k)]);
-    Eigen::VectorXd w(x.size());
-    for (std::size_t k = 0; k < subset.size(); ++k) {
-      const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
-      const auto j = static_cast<Eigen::Index>(k);
-      w[j] = problem.rowVelocity(subset[k], dv) + e.sigma * x[j] - q_[j];
-    }
-    return w;
-  }
-
-  // A_ = (S + Σ)_DD, full symmetric.
-  void assembleMatrix(const IslandProblem& problem, const std::vector<int>& subset) {
-    const int n = static_cast<int>(subset.size());
-    std::vector<std::vector<int>> rowsOfBody(static_cast<std::size_t>(problem.numBodies));
-    for (int k = 0; k < n; ++k) {
-      const int i = subset[static_cast<std::size_t>(k)];
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (e.body1 >= 0) rowsOfBody[static_cast<std::size_t>(e.body1)].push_back(k);
-      if (e.body2 >= 0 && e.body2 != e.body1) rowsOfBody[static_cast<std::size_t>(e.body2)].push_back(k);
-    }
-    triplets_.clear();
-    for (int k = 0; k < n; ++k) {
-      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-      triplets_.emplace_back(k, k, e.diagonal);
-    }
-    // Off-diagonal blocks body by body; two rows sharing both bodies meet
-    // twice and coupling() already sums both, so each pair is added once.
-    std::vector<int> lastSeen(static_cast<std::size_t>(n), -1);
-    for (int k = 0; k < n; ++k) {
-      const int i = subset[static_cast<std::size_t>(k)];
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      for (int body : {e.body1, e.body2}) {
-        if (body < 0) continue;
-        for (int m : rowsOfBody[static_cast<std::size_t>(body)]) {
-          if (m <= k || lastSeen[static_cast<std::size_t>(m)] == k) continue;
-          lastSeen[static_cast<std::size_t>(m)] = k;
-          const double s = problem.coupling(i, subset[static_cast<std::size_t>(m)]);
-          if (s == 0.0) continue;
-          triplets_.emplace_back(k, m, s);
-          triplets_.emplace_back(m, k, s);
-        }
-      }
-    }
-    A_.resize(n, n);
-    A_.setFromTriplets(triplets_.begin(), triplets_.end());
-  }
-
-  // Solves the free rows with the clamped ones at their bounds.
-  template <class States>
-  void solveFree(const IslandProblem& problem, const std::vector<int>& subset, const States& state,
-                 Eigen::VectorXd& x) {
-    const int n = static_cast<int>(subset.size());
-    std::vector<int> freeIndex(static_cast<std::size_t>(n), -1);
-    int numFree = 0;
-    for (int k = 0; k < n; ++k) {
-      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-      if (state[static_cast<std::size_t>(k)] == 0) freeIndex[static_cast<std::size_t>(k)] = numFree++;
-      else x[k] = state[static_cast<std::size_t>(k)] == 1 ? e.lower : e.upper;
-    }
-    if (numFree == 0) return;
-    Eigen::VectorXd rhs(numFree);
-    for (int k = 0; k < n; ++k)
-      if (freeIndex[static_cast<std::size_t>(k)] >= 0) rhs[freeIndex[static_cast<std::size_t>(k)]] = q_[k];
-    if (bodySpace_) {
-      std::vector<Vec6d> clamped(static_cast<std::size_t>(problem.numBodies), Vec6d::Zero());
-      for (int k = 0; k < n; ++k)
-        if (freeIndex[static_cast<std::size_t>(k)] < 0) problem.addImpulse(clamped, subset[static_cast<std::size_t>(k)], x[k]);
-      for (int k = 0; k < n; ++k)
-        if (const int f = freeIndex[static_cast<std::size_t>(k)]; f >= 0)
-          rhs[f] -= problem.rowVelocity(subset[static_cast<std::size_t>(k)], clamped);
-      bodySpaceSolve_.solve(problem, subset, freeIndex, rhs, x);
-      return;
-    }
-    subTriplets_.clear();
-    for (int col = 0; col < n; ++col)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A_, col); it; ++it) {
-        const int fr = freeIndex[static_cast<std::size_t>(it.row())];
-        if (fr < 0) continue;
-        const int fc = freeIndex[static_cast<std::size_t>(col)];
-        if (fc >= 0) {
-          if (fr >= fc) subTriplets_.emplace_back(fr, fc, it.value());
-        } else {
-          rhs[fr] -= it.value() * x[col];
-        }
-      }
-    Eigen::SparseMatrix<double> sub(numFree, numFree);
-    sub.setFromTriplets(subTriplets_.begin(), subTriplets_.end());
-    ldlt_.compute(sub);
-    const Eigen::VectorXd solution = ldlt_.solve(rhs);
-    for (int k = 0; k < n; ++k)
-      if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[freeIndex[static_cast<std::size_t>(k)]];
-  }
-
-  bool bodySpace_ = false;
-  BodySpaceSolve bodySpaceSolve_;
-  Eigen::SparseMatrix<double> A_;
-  Eigen::VectorXd q_;
-  std::vector<Eigen::Triplet<double>> triplets_, subTriplets_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
-};
-
-}  // namespace spook::detail
-// --- end spook/solver/direct_solve.hpp ---
 // --- begin spook/solver/friction_bounds.hpp ---
 
 #include <algorithm>
@@ -12431,12 +13057,6 @@ inline void freezeConeShares(IslandProblem& problem, const std::vector<int>& sub
 
 }  // namespace spook::detail
 // --- end spook/solver/friction_bounds.hpp ---
-// --- begin spook/solver/iterative_solve.hpp ---
-
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
-#include <vector>
 
 namespace spook::detail {
 
@@ -12565,6 +13185,272 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
 }  // namespace spook::detail
 // --- end spook/solver/iterative_solve.hpp ---
 
+namespace spook::detail {
+
+/// What a direct solve did.
+struct DirectSolveResult {
+  int factorizations = 0;  ///< sparse LDLᵀ factorizations (one per pivot step)
+  bool converged = true;   ///< a complementary solution was found
+  bool fellBack = false;   ///< the pivoting gave up; the safe fallback answered
+};
+
+/// Solves the rows `subset` of an island exactly, the impulses of the other
+/// rows held fixed: (S + Σ)_DD Λ_D = q_D − (S Λ)_D,fixed within the bounds.
+///
+/// S + Σ is assembled in block-sparse form (a row couples only to the rows
+/// sharing one of its bodies) and factorized by a sparse LDLᵀ with an
+/// approximate-minimum-degree ordering, so a chain or a tree of n bodies costs
+/// O(n). Σ > 0 keeps the matrix positive definite. Where rows far outnumber
+/// the bodies' degrees of freedom and all are compliant (contacts), the same
+/// system is solved through the bodies' mass matrix instead
+/// (body_space_solve.hpp).
+///
+/// Bounded rows make a box-constrained LCP, solved by block principal
+/// pivoting (Júdice & Pires 1994): every row is free, at its lower or at its
+/// upper bound; each step solves the free rows with the others at their
+/// bounds and swaps every infeasible row at once. When that stops reducing
+/// the number of infeasible rows for kBlockPivotingStrikes steps, it switches
+/// to Murty's single principal pivoting (swap only the infeasible row of
+/// largest index), which cannot cycle on a positive definite matrix (Murty
+/// 1974). Murty's guarantee is exact arithmetic's: where contacts fight a
+/// joint, many rows share a body's few degrees of freedom, S is singular,
+/// and only Σ (1e-5 and less of the rows' mobility) keeps the matrix
+/// definite; round-off can then flip a Schur complement's sign and a row
+/// cycles between free and bound. Should the step cap be reached, the solve
+/// falls back to a safe answer: of the clamped best iterate (fewest
+/// infeasible rows) and no impulse at all, the one of lower merit
+/// f(Λ) = ½ΛᵀAΛ − qᵀΛ (whose minimum over the bounds is the LCP's solution;
+/// f(Λ) − f(0) bounds the kinetic energy the impulses add), refined by
+/// projected Gauss–Seidel, which never raises f. The solve is reported as
+/// not converged.
+class DirectSolve {
+ public:
+  /// Gauss–Seidel sweeps of the fallback.
+  static constexpr int kFallbackSweeps = 64;
+
+  /// Block pivoting steps allowed without a new fewest-infeasible count
+  /// before single pivots: friction in a 210-cube pyramid needs tens of such
+  /// steps, and Murty's one row per step then takes hundreds.
+  static constexpr int kBlockPivotingStrikes = 30;
+
+  DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps) {
+    DirectSolveResult result;
+    const int n = static_cast<int>(subset.size());
+    if (n == 0) return result;
+    bodySpace_ = BodySpaceSolve::pays(problem, subset);
+    assembleRhs(problem, subset);
+    if (!bodySpace_) assembleMatrix(problem, subset);
+
+    // The state of each row: free, or clamped at its lower or upper bound.
+    // Warm start: a row whose guess (the last solution) is at a bound starts there.
+    enum State : unsigned char { FREE, LOWER, UPPER };
+    std::vector<State> state(static_cast<std::size_t>(n), FREE);
+    bool anyBounded = false;
+    for (int k = 0; k < n; ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      if (!isBounded(e)) continue;
+      anyBounded = true;
+      if (e.guess <= e.lower) state[static_cast<std::size_t>(k)] = LOWER;
+      else if (e.guess >= e.upper) state[static_cast<std::size_t>(k)] = UPPER;
+    }
+
+    Eigen::VectorXd x(n), bestX;
+    int best = std::numeric_limits<int>::max();
+    int strikes = 0;
+    std::vector<int> infeasible;
+    for (int step = 0;; ++step) {
+      solveFree(problem, subset, state, x);
+      ++result.factorizations;
+      if (!anyBounded) break;
+      const Eigen::VectorXd w = residual(problem, subset, x);
+      infeasible.clear();
+      for (int k = 0; k < n; ++k) {
+        const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+        const double tolX = 1e-12 * (1.0 + std::abs(x[k]));
+        const double tolW = 1e-12 * (1.0 + std::abs(q_[k]));
+        const State s = state[static_cast<std::size_t>(k)];
+        if (e.upper <= e.lower) continue;  // a zero-width box: held at its bound from the start
+        if ((s == FREE && (x[k] < e.lower - tolX || x[k] > e.upper + tolX)) || (s == LOWER && w[k] < -tolW) ||
+            (s == UPPER && w[k] > tolW))
+          infeasible.push_back(k);
+      }
+      if (infeasible.empty()) break;
+      const int count = static_cast<int>(infeasible.size());
+      if (count < best) {
+        best = count;
+        bestX = x;
+        strikes = 0;
+      } else {
+        ++strikes;
+      }
+      if (step >= maxPivotSteps) {
+        fallBack(problem, subset, bestX);
+        result.converged = false;
+        result.fellBack = true;
+        return result;
+      }
+      if (strikes >= kBlockPivotingStrikes) infeasible.erase(infeasible.begin(), infeasible.end() - 1);
+      for (int k : infeasible) {
+        const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+        State& s = state[static_cast<std::size_t>(k)];
+        if (s != FREE) s = FREE;
+        else s = x[k] < e.lower ? LOWER : UPPER;
+      }
+    }
+    for (int k = 0; k < n; ++k) {
+      auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      e.impulse = std::clamp(x[k], e.lower, e.upper);
+      e.guess = e.impulse;
+    }
+    return result;
+  }
+
+ private:
+  // The safe answer of a solve whose pivoting gave up (see the class note).
+  void fallBack(IslandProblem& problem, const std::vector<int>& subset, Eigen::VectorXd x) {
+    const auto n = static_cast<Eigen::Index>(subset.size());
+    Eigen::VectorXd none(n);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      x[k] = std::clamp(x[k], e.lower, e.upper);
+      none[k] = std::clamp(0.0, e.lower, e.upper);
+    }
+    const auto merit = [&](const Eigen::VectorXd& y) { return 0.5 * y.dot(residual(problem, subset, y) - q_); };
+    const double fx = merit(x);
+    if (!(std::isfinite(fx) && fx <= merit(none))) x = none;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      e.impulse = x[k];
+    }
+    iterativeSolve(problem, subset, kFallbackSweeps, 0.0, false);
+    for (int i : subset) problem.rows[static_cast<std::size_t>(i)].guess = problem.rows[static_cast<std::size_t>(i)].impulse;
+  }
+
+  static bool isBounded(const IslandProblem::Entry& e) {
+    return e.lower > -std::numeric_limits<double>::infinity() || e.upper < std::numeric_limits<double>::infinity();
+  }
+
+  // q_ = q_D − G_D Δv(rows outside D).
+  void assembleRhs(const IslandProblem& problem, const std::vector<int>& subset) {
+    std::vector<char> inSubset(problem.rows.size(), 0);
+    for (int i : subset) inSubset[static_cast<std::size_t>(i)] = 1;
+    std::vector<int> others;
+    for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i)
+      if (!inSubset[static_cast<std::size_t>(i)]) others.push_back(i);
+    const std::vector<Vec6d> fixed = problem.velocityChange(others);
+    q_.resize(static_cast<Eigen::Index>(subset.size()));
+    for (std::size_t k = 0; k < subset.size(); ++k)
+      q_[static_cast<Eigen::Index>(k)] = problem.rows[static_cast<std::size_t>(subset[k])].q - problem.rowVelocity(subset[k], fixed);
+  }
+
+  // w = (S + Σ)_DD x − q_D.
+  Eigen::VectorXd residual(const IslandProblem& problem, const std::vector<int>& subset, const Eigen::VectorXd& x) const {
+    if (!bodySpace_) return A_ * x - q_;
+    std::vector<Vec6d> dv(static_cast<std::size_t>(problem.numBodies), Vec6d::Zero());
+    for (std::size_t k = 0; k < subset.size(); ++k) problem.addImpulse(dv, subset[k], x[static_cast<Eigen::Index>(k)]);
+    Eigen::VectorXd w(x.size());
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
+      const auto j = static_cast<Eigen::Index>(k);
+      w[j] = problem.rowVelocity(subset[k], dv) + e.sigma * x[j] - q_[j];
+    }
+    return w;
+  }
+
+  // A_ = (S + Σ)_DD, full symmetric.
+  void assembleMatrix(const IslandProblem& problem, const std::vector<int>& subset) {
+    const int n = static_cast<int>(subset.size());
+    std::vector<std::vector<int>> rowsOfBody(static_cast<std::size_t>(problem.numBodies));
+    for (int k = 0; k < n; ++k) {
+      const int i = subset[static_cast<std::size_t>(k)];
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      if (e.body1 >= 0) rowsOfBody[static_cast<std::size_t>(e.body1)].push_back(k);
+      if (e.body2 >= 0 && e.body2 != e.body1) rowsOfBody[static_cast<std::size_t>(e.body2)].push_back(k);
+    }
+    triplets_.clear();
+    for (int k = 0; k < n; ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      triplets_.emplace_back(k, k, e.diagonal);
+    }
+    // Off-diagonal blocks body by body; two rows sharing both bodies meet
+    // twice and coupling() already sums both, so each pair is added once.
+    std::vector<int> lastSeen(static_cast<std::size_t>(n), -1);
+    for (int k = 0; k < n; ++k) {
+      const int i = subset[static_cast<std::size_t>(k)];
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      for (int body : {e.body1, e.body2}) {
+        if (body < 0) continue;
+        for (int m : rowsOfBody[static_cast<std::size_t>(body)]) {
+          if (m <= k || lastSeen[static_cast<std::size_t>(m)] == k) continue;
+          lastSeen[static_cast<std::size_t>(m)] = k;
+          const double s = problem.coupling(i, subset[static_cast<std::size_t>(m)]);
+          if (s == 0.0) continue;
+          triplets_.emplace_back(k, m, s);
+          triplets_.emplace_back(m, k, s);
+        }
+      }
+    }
+    A_.resize(n, n);
+    A_.setFromTriplets(triplets_.begin(), triplets_.end());
+  }
+
+  // Solves the free rows with the clamped ones at their bounds.
+  template <class States>
+  void solveFree(const IslandProblem& problem, const std::vector<int>& subset, const States& state,
+                 Eigen::VectorXd& x) {
+    const int n = static_cast<int>(subset.size());
+    std::vector<int> freeIndex(static_cast<std::size_t>(n), -1);
+    int numFree = 0;
+    for (int k = 0; k < n; ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      if (state[static_cast<std::size_t>(k)] == 0) freeIndex[static_cast<std::size_t>(k)] = numFree++;
+      else x[k] = state[static_cast<std::size_t>(k)] == 1 ? e.lower : e.upper;
+    }
+    if (numFree == 0) return;
+    Eigen::VectorXd rhs(numFree);
+    for (int k = 0; k < n; ++k)
+      if (freeIndex[static_cast<std::size_t>(k)] >= 0) rhs[freeIndex[static_cast<std::size_t>(k)]] = q_[k];
+    if (bodySpace_) {
+      std::vector<Vec6d> clamped(static_cast<std::size_t>(problem.numBodies), Vec6d::Zero());
+      for (int k = 0; k < n; ++k)
+        if (freeIndex[static_cast<std::size_t>(k)] < 0) problem.addImpulse(clamped, subset[static_cast<std::size_t>(k)], x[k]);
+      for (int k = 0; k < n; ++k)
+        if (const int f = freeIndex[static_cast<std::size_t>(k)]; f >= 0)
+          rhs[f] -= problem.rowVelocity(subset[static_cast<std::size_t>(k)], clamped);
+      bodySpaceSolve_.solve(problem, subset, freeIndex, rhs, x);
+      return;
+    }
+    subTriplets_.clear();
+    for (int col = 0; col < n; ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A_, col); it; ++it) {
+        const int fr = freeIndex[static_cast<std::size_t>(it.row())];
+        if (fr < 0) continue;
+        const int fc = freeIndex[static_cast<std::size_t>(col)];
+        if (fc >= 0) {
+          if (fr >= fc) subTriplets_.emplace_back(fr, fc, it.value());
+        } else {
+          rhs[fr] -= it.value() * x[col];
+        }
+      }
+    Eigen::SparseMatrix<double> sub(numFree, numFree);
+    sub.setFromTriplets(subTriplets_.begin(), subTriplets_.end());
+    ldlt_.compute(sub);
+    const Eigen::VectorXd solution = ldlt_.solve(rhs);
+    for (int k = 0; k < n; ++k)
+      if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[freeIndex[static_cast<std::size_t>(k)]];
+  }
+
+  bool bodySpace_ = false;
+  BodySpaceSolve bodySpaceSolve_;
+  Eigen::SparseMatrix<double> A_;
+  Eigen::VectorXd q_;
+  std::vector<Eigen::Triplet<double>> triplets_, subTriplets_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+};
+
+}  // namespace spook::detail
+// --- end spook/solver/direct_solve.hpp ---
+
 namespace spook {
 
 /// What the solver did in the last step, summed or maximized over islands.
@@ -12583,8 +13469,14 @@ struct SolverStatistics {
   /// w = (S+Σ)Λ − q (PHYSICS.md §2.1). Zero to round-off for a direct solve.
   double complementarityError = 0.0;
   bool converged = true;   ///< every pivoting solve found its solution, every sweep met the tolerance
+  /// Direct solves whose pivoting reached getMaxPivotSteps and that fell back
+  /// to the safe answer (direct_solve.hpp): the best iterate or no impulse,
+  /// refined by Gauss–Seidel.
+  int directFallbacks = 0;
   double solveTime = 0.0;  ///< wall-clock time spent solving (s)
-  int nonFiniteIslands = 0;  ///< islands whose impulses were not finite and were dropped
+  /// Islands whose impulses were not finite and were dropped; the
+  /// simulation freezes their bodies (SimulationStatisticsT::frozenBodies).
+  int nonFiniteIslands = 0;
 };
 
 /// Solves the rows of an island: the simulation's solver policy. Subclasses
@@ -12708,8 +13600,8 @@ class Solver : public Referenced {
   }
 
   /// Solves one island in place and accumulates the statistics. Impulses that
-  /// come out non-finite are dropped (set to zero) and counted.
-  void solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  /// come out non-finite are dropped (set to zero) and counted; false then.
+  bool solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
     const auto start = std::chrono::steady_clock::now();
     ++statistics.numIslands;
     statistics.numRows += static_cast<int>(problem.rows.size());
@@ -12723,6 +13615,7 @@ class Solver : public Referenced {
     }
     statistics.complementarityError = std::max(statistics.complementarityError, complementarityError(problem));
     statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return finite;
   }
 
  protected:
@@ -12733,6 +13626,7 @@ class Solver : public Referenced {
     const detail::DirectSolveResult r = direct_.solve(problem, subset, maxPivotSteps_);
     statistics.factorizations += r.factorizations;
     statistics.converged = statistics.converged && r.converged;
+    statistics.directFallbacks += r.fellBack ? 1 : 0;
   }
   /// A direct solve repeated over the friction bounds that follow the normal
   /// impulses (getNumFrictionIterations); rows flagged in `keep` keep theirs.
@@ -12909,7 +13803,8 @@ namespace spook::detail {
 /// static and kinematic bodies do not join islands), turns each island into
 /// an IslandProblem for step h, lets `solver` solve it, and writes the
 /// impulses back to the rows' owners and the velocity changes to `bodies`
-/// (freeVelocity becomes v⁺).
+/// (freeVelocity becomes v⁺). The bodies of an island whose impulses came
+/// out non-finite are listed in getNonFiniteBodies().
 class IslandStepper {
  public:
   /// Smallest damping τ/h the stepper uses; a smaller τ (0 included) is raised to it.
@@ -12944,12 +13839,18 @@ class IslandStepper {
     }
   }
 
+  /// The dynamic bodies (indices into `bodies`) of the islands whose
+  /// impulses the last solve() dropped as non-finite.
+  [[nodiscard]] const std::vector<int>& getNonFiniteBodies() const { return nonFiniteBodies_; }
+
   void solve(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, Solver& solver,
              SolverStatistics& statistics) {
     partition(rows, bodies);
+    nonFiniteBodies_.clear();
     for (const std::vector<int>& island : islands_) {
       buildProblem(rows, bodies, island, h, solver.getEnableWarmStarting());
-      solver.solve(problem_, statistics);
+      if (!solver.solve(problem_, statistics))
+        nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
       for (std::size_t k = 0; k < island.size(); ++k) *rows[static_cast<std::size_t>(island[k])].impulse = problem_.rows[k].impulse;
       for (std::size_t k = 0; k < problem_.rows.size(); ++k) {
         const auto& e = problem_.rows[k];
@@ -13084,7 +13985,7 @@ class IslandStepper {
     return llt.solve(Mat3d::Identity());
   }
 
-  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_;
+  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_;
   std::vector<std::vector<int>> islands_;
   IslandProblem problem_;
 };
@@ -13321,21 +14222,112 @@ class ContactRows {
 
 }  // namespace spook::detail
 // --- end spook/sim/contact_rows.hpp ---
+// --- begin spook/sim/jointed_pairs.hpp ---
+
+#include <algorithm>
+#include <optional>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace spook::detail {
+
+/// The body pairs that a simulation's constraints join directly, for the
+/// default collision filter: the geometries of two bodies held together by
+/// an enabled constraint do not collide with each other unless the
+/// constraint asks for it (Constraint::setEnableCollisions), as PhysX's
+/// joints and MuJoCo's parent–child filter do. A machine's links overlap at
+/// their pins; contacts there would fight the joints. The world (a
+/// constraint's missing second body) is no body: a body hinged to the world
+/// still collides with the ground.
+///
+/// Kept up to date as constraints are added and removed (a constraint's
+/// bodies never change); whether a pair is filtered is read at query time
+/// from its few constraints, so enabling, disabling or switching collisions
+/// on a constraint takes effect at once, without a scan of all constraints.
+template <Scalar S>
+class JointedPairs {
+ public:
+  using Body = RigidBodyT<S>;
+  using Constraint = ConstraintT<S>;
+
+  void add(const Constraint& constraint) {
+    if (const auto key = keyOf(constraint)) byPair_[*key].push_back(&constraint);
+  }
+  void remove(const Constraint& constraint) {
+    const auto key = keyOf(constraint);
+    if (!key) return;
+    const auto it = byPair_.find(*key);
+    if (it == byPair_.end()) return;
+    std::erase(it->second, &constraint);
+    if (it->second.empty()) byPair_.erase(it);
+  }
+
+  /// True when an enabled constraint joins `a` and `b` without allowing
+  /// their geometries to collide.
+  [[nodiscard]] bool filters(const Body* a, const Body* b) const {
+    if (!a || !b || byPair_.empty()) return false;
+    const auto it = byPair_.find(std::minmax(a, b));
+    if (it == byPair_.end()) return false;
+    return std::any_of(it->second.begin(), it->second.end(),
+                       [](const Constraint* c) { return c->getEnable() && !c->getEnableCollisions(); });
+  }
+
+ private:
+  using Key = std::pair<const Body*, const Body*>;
+  static std::optional<Key> keyOf(const Constraint& constraint) {
+    const Body* a = constraint.getBodyAt(0);
+    const Body* b = constraint.getBodyAt(1);
+    if (!a || !b) return std::nullopt;
+    return std::minmax(a, b);
+  }
+
+  std::unordered_map<Key, std::vector<const Constraint*>, PointerPairHash> byPair_;
+};
+
+}  // namespace spook::detail
+// --- end spook/sim/jointed_pairs.hpp ---
 // --- begin spook/sim/statistics.hpp ---
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace spook {
 
+/// Why a body was frozen in a step (SimulationStatisticsT::frozenBodies).
+enum class FreezeReason {
+  /// Its own new position, orientation or velocity would not have been finite.
+  NON_FINITE_STATE,
+  /// The constraint and contact impulses of its island (the bodies joined to
+  /// it by constraints and contacts) came out non-finite: they were dropped,
+  /// and every body of the island was frozen rather than moved without them.
+  NON_FINITE_ISLAND
+};
+
 /// What the last step did, readable after stepForward().
 template <Scalar S>
 struct SimulationStatisticsT {
+  /// A body frozen in the last step and why.
+  struct FrozenBody {
+    observer_ptr<RigidBodyT<S>> body;
+    FreezeReason reason;
+  };
+
   /// Steps taken since the simulation was created.
   std::uint64_t numSteps = 0;
-  /// Bodies whose state would have become non-finite in the last step; they
-  /// were frozen (velocities zeroed, pose kept) instead.
-  std::vector<observer_ptr<RigidBodyT<S>>> frozenBodies;
+  /// Bodies frozen in the last step: their state was kept as it was before
+  /// the step (pose kept, velocities zeroed) instead of becoming non-finite
+  /// or moving without their constraints. Each body appears once.
+  std::vector<FrozenBody> frozenBodies;
+  /// Steps, since the simulation was created, in which a direct solve did
+  /// not converge and fell back to its safe answer (SolverStatistics::directFallbacks).
+  std::uint64_t numFallbackSteps = 0;
+  /// Contact points the last step's collision detection dropped before
+  /// contact reduction because their position, normal or depth was not
+  /// finite (shapes posed near the largest finite coordinate); they exert
+  /// no force.
+  std::size_t numDroppedContactPoints = 0;
   /// What the constraint solver did in the last step.
   SolverStatistics solver;
 };
@@ -13465,6 +14457,9 @@ class GeometricStiffness {
 }  // namespace spook::detail
 // --- end spook/solver/geometric_stiffness.hpp ---
 // --- begin spook/solver/integrator.hpp ---
+
+#include <algorithm>
+#include <cmath>
 
 // --- begin spook/solver/free_rotation.hpp ---
 
@@ -13612,6 +14607,13 @@ struct BodyIntegrator {
 
   static void clearForces(Body& body) { body.force_ = body.torque_ = Vec3::Zero(); }
 
+  /// Freezes a body for this step: pose kept, velocities zeroed, a moveTo
+  /// dropped.
+  static void freeze(Body& body) {
+    body.velocity_ = body.angularVelocity_ = Vec3::Zero();
+    body.target_.reset();
+  }
+
   /// Inverse damped mass and inertia (as in solverBody, for a step of h) at
   /// the current pose, and the current velocities (dynamic bodies; the
   /// others stand still with infinite mass). Post-stabilization distributes
@@ -13626,16 +14628,37 @@ struct BodyIntegrator {
     return b;
   }
 
+  /// R B Rᵀ in double and exactly symmetric. Formed in a float body's own
+  /// precision it is symmetric only to ~1e-7, and where many rows share a
+  /// body's few degrees of freedom (contacts fighting a joint) that
+  /// asymmetry, larger than the rows' regularization, makes the solver's
+  /// matrix G M⁻¹Gᵀ + Σ indefinite and the direct solve's pivoting cycle.
+  static Mat3d toWorld(const Mat3& R, const Mat3& inBody) {
+    const Mat3d Rd = R.template cast<double>();
+    const Mat3d world = Rd * inBody.template cast<double>() * Rd.transpose();
+    return 0.5 * (world + world.transpose());
+  }
+
   /// Moves a body by a post-stabilization displacement: its center by Δx,
   /// its orientation by the rotation vector Δθ (world); the velocities take
-  /// Δx/h and Δθ/h so that they stay consistent with the motion.
+  /// Δx/h and Δθ/h so that they stay consistent with the motion, as far as
+  /// that adds no more than kProjectionEnergyShare of the body's kinetic
+  /// energy. The projection removes the step's higher-order drift, whose
+  /// velocity is tiny; where a large violation (contacts tearing a joint)
+  /// makes the linearized projection overshoot, Δq/h would otherwise pump
+  /// energy into the motion each step, and the chain diverges.
   static bool displace(Body& body, const SolverBody& b, S h) {
     if (!b.dynamic || b.displacement.isZero(0.0)) return true;
     const Vec3 dx = b.displacement.head<3>().template cast<S>();
     const Vec3 dtheta = b.displacement.tail<3>().template cast<S>();
     const Quat q = (expRotation<S>(dtheta) * body.getCmRotation()).normalized();
-    return commit(body, body.getCmPosition() + dx, q, body.velocity_ + dx / h, body.angularVelocity_ + dtheta / h);
+    const S share = S(energyBoundedShare(body, b.displacement / double(h)));
+    return commit(body, body.getCmPosition() + dx, q, body.velocity_ + share * dx / h,
+                  body.angularVelocity_ + share * dtheta / h);
   }
+  /// The kinetic energy a projection's velocity change may add, as a share
+  /// of the body's.
+  static constexpr double kProjectionEnergyShare = 0.01;
 
  private:
   // Sets b's inverse damped mass M_d⁻¹ and inertia I_d⁻¹ (world; solverBody
@@ -13646,9 +14669,26 @@ struct BodyIntegrator {
     const Mat3& inertia = mass.getInertiaTensor();
     const Vec3 root = body.angularDamping_.cwiseSqrt();
     const Mat3 dampedInertiaInverse = Mat3(inertia + h * (root.asDiagonal() * inertia * root.asDiagonal())).inverse();
-    b.inverseMass = (R * dampedMass.cwiseInverse().asDiagonal() * R.transpose()).template cast<double>();
-    b.inverseInertia = (R * dampedInertiaInverse * R.transpose()).template cast<double>();
+    b.inverseMass = toWorld(R, dampedMass.cwiseInverse().asDiagonal());
+    b.inverseInertia = toWorld(R, dampedInertiaInverse);
     return dampedInertiaInverse;
+  }
+
+  // The largest s in [0, 1] with ΔE(s) = s vᵀMu + ½s² uᵀMu ≤ share·½vᵀMv
+  // for the velocity change u (M: effective mass and world inertia).
+  static double energyBoundedShare(const Body& body, const Vec6d& u) {
+    const MassPropertiesT<S>& mass = body.massProperties_;
+    const Mat3d R = body.getCmRotation().toRotationMatrix().template cast<double>();
+    const Vec3d m = mass.getEffectiveMass().template cast<double>();
+    const Mat3d I = mass.getInertiaTensor().template cast<double>();
+    const Vec6d v = stack(body.velocity_, body.angularVelocity_);
+    const auto dot = [&](const Vec6d& a, const Vec6d& c) {
+      return (R.transpose() * a.head<3>()).cwiseProduct(m).dot(R.transpose() * c.head<3>()) +
+             (R.transpose() * a.tail<3>()).dot(I * (R.transpose() * c.tail<3>()));
+    };
+    const double B = dot(v, u), C = dot(u, u), allowed = kProjectionEnergyShare * 0.5 * dot(v, v);
+    if (B + 0.5 * C <= allowed) return 1.0;
+    return std::clamp((-B + std::sqrt(B * B + 2.0 * C * allowed)) / C, 0.0, 1.0);
   }
 
   static Vec6d stack(const Vec3& v, const Vec3& w) {
@@ -13693,8 +14733,7 @@ struct BodyIntegrator {
   // Writes the new center-of-mass state back through the model frame.
   static bool commit(Body& body, const Vec3& x, const Quat& q, const Vec3& v, const Vec3& omega) {
     if (!(x.allFinite() && q.coeffs().allFinite() && v.allFinite() && omega.allFinite())) {
-      body.velocity_ = body.angularVelocity_ = Vec3::Zero();
-      body.target_.reset();
+      freeze(body);
       return false;
     }
     const Quat modelRotation = (q * body.cmFrame_->getLocalRotate().conjugate()).normalized();
@@ -13726,12 +14765,12 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   using Constraint = ConstraintT<S>;
 
   /// A simulation whose space collides every shape type.
-  SimulationT() : space_(new SpaceT<S>()) { followContactMaterials(); }
+  SimulationT() : space_(new SpaceT<S>()) { installSpaceRules(); }
   /// A simulation for the shape types of `List` only, e.g.
   /// `Simulation(ShapeList<SphereT, PlaneT>{})`: only the colliders between
   /// them are compiled, and a geometry of another type is refused.
   template <template <class> class... Shapes>
-  explicit SimulationT(ShapeList<Shapes...> list) : space_(new SpaceT<S>(list)) { followContactMaterials(); }
+  explicit SimulationT(ShapeList<Shapes...> list) : space_(new SpaceT<S>(list)) { installSpaceRules(); }
 
   // --- Time ------------------------------------------------------------------
 
@@ -13754,8 +14793,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   /// Takes one step:
   /// preCollide listeners → collision detection → contact events → pre
-  /// listeners → rows, islands, solve → integrate → post listeners → last
-  /// listeners → t += h.
+  /// listeners → rows, islands, solve → integrate → continuous collision
+  /// (RigidBody::setEnableCCD) → post listeners → last listeners → t += h.
   void stepForward();
 
   /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps,
@@ -13834,6 +14873,17 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// Removes a static geometry; false when it is not here.
   bool remove(Geometry* geometry) { return space_->remove(geometry); }
 
+  /// Adds a listener of class L, checked at compile time: a member named
+  /// like a callback must override it (detail::requireContactCallbacks).
+  template <detail::ContactEventListenerClass<S> L>
+  void add(const ref_ptr<L>& listener) {
+    detail::requireContactCallbacks<L, S>();
+    add(ref_ptr<ContactListener>(listener));
+  }
+  template <detail::ContactEventListenerClass<S> L>
+  void add(L* listener) {
+    add(ref_ptr<L>(listener));
+  }
   void add(ref_ptr<ContactListener> listener) {
     checkAddable(listener.get(), "ContactEventListener");
     Membership::simulationOf(*listener) = this;
@@ -13865,6 +14915,17 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     Membership::simulationOf(*body) = nullptr;
   }
 
+  /// Adds a listener of class L, checked at compile time: a member named
+  /// like a callback must override it (detail::requireStepCallbacks).
+  template <detail::StepEventListenerClass<S> L>
+  void add(const ref_ptr<L>& listener) {
+    detail::requireStepCallbacks<L, S>();
+    add(ref_ptr<Listener>(listener));
+  }
+  template <detail::StepEventListenerClass<S> L>
+  void add(L* listener) {
+    add(ref_ptr<L>(listener));
+  }
   void add(ref_ptr<Listener> listener) override {
     checkAddable(listener.get(), "StepEventListener");
     Membership::simulationOf(*listener) = this;
@@ -13902,6 +14963,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     checkBodiesOf(*constraint, nullptr);
     Membership::indexOf(*constraint) = constraints_.size();
     Membership::simulationOf(*constraint) = this;
+    jointedPairs_.add(*constraint);
     constraints_.push_back(std::move(constraint));
   }
   void remove(Constraint* constraint) override {
@@ -13911,6 +14973,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     std::swap(constraints_[index], constraints_.back());
     Membership::indexOf(*constraints_[index]) = index;
     constraints_.pop_back();
+    jointedPairs_.remove(*constraint);
     Membership::simulationOf(*constraint) = nullptr;
     predicted_.clear();  // keyed by row storage a later constraint may reuse
   }
@@ -13958,8 +15021,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
  private:
   using Membership = detail::SimulationMembership;
 
-  // Pairs with an explicit contact material reduce their points as it says.
-  void followContactMaterials() {
+  // Pairs with an explicit contact material reduce their points as it says;
+  // jointed bodies do not collide unless their constraint asks (jointed_pairs.hpp).
+  void installSpaceRules() {
+    space_->setBodyPairFilter([this](const Body& a, const Body& b) { return jointedPairs_.filters(&a, &b); });
     space_->setReductionRule([this](const Geometry& a, const Geometry& b) {
       std::optional<std::pair<ContactReductionMode, int>> rule;
       if (const auto* cm = materials_.getContactMaterial(a.getMaterial(), b.getMaterial()))
@@ -13998,13 +15063,18 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       geometricStiffness_.apply(rows_, solverBodies_, double(h), solver_->getGeometricStiffnessThreshold());
     else
       geometricStiffness_.clear();
-    if (!rows_.empty()) islands_.solve(rows_, solverBodies_, double(h), *solver_, statistics_.solver);
+    frozen_.assign(bodies_.size(), 0);
+    if (!rows_.empty()) {
+      islands_.solve(rows_, solverBodies_, double(h), *solver_, statistics_.solver);
+      for (int i : islands_.getNonFiniteBodies()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
+    }
     readBackForces(double(h));
     contactRows_.readBack(double(h));
     predictViolations(double(h));
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
       Body& body = *bodies_[i];
-      if (!detail::BodyIntegrator<S>::move(body, solverBodies_[i], h)) statistics_.frozenBodies.emplace_back(&body);
+      if (!frozen_[i] && !detail::BodyIntegrator<S>::move(body, solverBodies_[i], h))
+        freeze(i, FreezeReason::NON_FINITE_STATE);
       detail::BodyIntegrator<S>::clearForces(body);
     }
     if (!rows_.empty())
@@ -14051,10 +15121,22 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     solverBodies_.clear();
     for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
     geometricStiffness_.addInertia(solverBodies_);
+    // Frozen bodies stand still, like static ones.
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+      if (frozen_[i]) solverBodies_[i] = detail::SolverBody{};
     islands_.project(rows_, solverBodies_, h, *solver_, statistics_.solver);
     for (std::size_t i = 0; i < bodies_.size(); ++i)
       if (!detail::BodyIntegrator<S>::displace(*bodies_[i], solverBodies_[i], S(h)))
-        statistics_.frozenBodies.emplace_back(bodies_[i].get());
+        freeze(i, FreezeReason::NON_FINITE_STATE);
+  }
+
+  // Keeps body i as it was before the step (pose kept, velocities zeroed)
+  // and reports it, once per step.
+  void freeze(std::size_t i, FreezeReason reason) {
+    detail::BodyIntegrator<S>::freeze(*bodies_[i]);
+    solverBodies_[i].freeVelocity.setZero();  // as the rows' predictions (predictViolations) should see it
+    if (std::exchange(frozen_[i], char(1))) return;
+    statistics_.frozenBodies.push_back({bodies_[i].get(), reason});
   }
 
   void collectRows(double h) {
@@ -14125,9 +15207,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     }
   }
 
-  // Impact and contact callbacks per enabled contact, in the order the
-  // listeners were added, over a snapshot; a REMOVE_CONTACT hides the
-  // contact from the rest. Then the separations.
+  // Impact and contact callbacks per contact, in the order the listeners
+  // were added, over a snapshot; a REMOVE_CONTACT disables the contact for
+  // the solver, and the listeners after it see it disabled (seed 000). Then
+  // the separations.
   void notifyContacts() {
     if (contactListeners_.empty()) return;
     const std::vector<ref_ptr<ContactListener>> snapshot = contactListeners_;
@@ -14135,7 +15218,6 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     for (auto& contact : space_->getGeometryContacts()) {
       const auto stage = contact.isImpact() ? ContactListener::IMPACT : ContactListener::CONTACT;
       for (const auto& l : snapshot) {
-        if (!contact.isEnabled()) break;
         if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage) ||
             !l->matches(contact.geometry(0), contact.geometry(1)))
           continue;
@@ -14266,9 +15348,11 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   ref_ptr<SpaceT<S>> space_;
   std::vector<ref_ptr<Collection>> collections_;
   std::vector<ref_ptr<Constraint>> constraints_;
+  detail::JointedPairs<S> jointedPairs_;
   SimulationStatisticsT<S> statistics_;
   ref_ptr<Solver> solver_ = new HybridSolver();
   std::vector<detail::SolverBody> solverBodies_;
+  std::vector<char> frozen_;  ///< per body: frozen in this step
   std::vector<detail::Row> rows_;
   std::vector<Constraint*> rowOwners_;
   std::size_t numConstraintRows_ = 0;  ///< rows_ holds the constraints' rows, then the contacts'
@@ -14297,13 +15381,16 @@ void SimulationT<S>::stepForward() {
   } reset{stepping_};
   notify(Listener::PRE_COLLIDE);
   space_->update(bodies_);
+  statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
   notifyContacts();
   notify(Listener::PRE_STEP);
   integrate(timeStep_);
+  detail::stopAtFirstContact(bodies_, *space_, timeStep_);
   notify(Listener::POST_STEP);
   notify(Listener::LAST_STEP);
   ++stepsSinceBase_;
   ++statistics_.numSteps;
+  if (statistics_.solver.directFallbacks > 0) ++statistics_.numFallbackSteps;
   stepping_ = false;
   applyPendingTimeStep();
 }
