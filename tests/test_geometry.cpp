@@ -197,7 +197,7 @@ TEST_CASE_TEMPLATE("a geometry, shape, material or placement whose mass would ov
   // terms m·d² (or in float already the moment m·d) overflow.
   message = thrown([&] { lid->setLocalTransform(at<S>(hugeSize, 0, 0)); });
   CHECK(contains(message, "RigidBody 'crate'"));
-  CHECK(contains(message, "must be finite"));
+  CHECK((contains(message, "inf") || contains(message, "must be finite")));
   unchanged();
   message = thrown([&] { lid->setPosition(V(S(hugeSize), S(0), S(0))); });
   CHECK(contains(message, "RigidBody 'crate'"));
