@@ -43,7 +43,7 @@ constexpr double kStep = 1.0 / 60.0;  // s
 spook::FrameRef frameAt(const Vec3& point, const Vec3& axis = Vec3::UnitZ()) {
   spook::FrameRef f = new spook::Frame();
   f->setLocalTranslate(point);
-  f->setLocalRotate(spook::Quat::FromTwoVectors(Vec3::UnitZ(), axis));
+  f->setLocalRotate(spook::rotate<double>(Vec3::UnitZ(), axis));
   return f;
 }
 

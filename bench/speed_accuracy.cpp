@@ -91,7 +91,7 @@ spook::RigidBodyRef addBody(Scene& scene, const char* name, double mass, const V
 spook::FrameRef frameAt(const Vec3& point, const Vec3& axis = Vec3::UnitZ()) {
   spook::FrameRef f = new spook::Frame();
   f->setLocalTranslate(point);
-  f->setLocalRotate(Quat::FromTwoVectors(Vec3::UnitZ(), axis.normalized()));
+  f->setLocalRotate(spook::rotate<double>(Vec3::UnitZ(), axis));
   return f;
 }
 
@@ -128,7 +128,7 @@ Scene crane(bool mixed) {
   constexpr double kCompliance = 1e-10;
   const double elevation = std::numbers::pi / 6.0;
   const Vec3 along(std::cos(elevation), 0, std::sin(elevation));  // the boom's axis
-  const Quat boomRotation = Quat::FromTwoVectors(Vec3::UnitX(), along);
+  const Quat boomRotation = spook::rotate<double>(Vec3::UnitX(), along);
   // Slender beams along their local x: I = m(L²/12) across, small along.
   auto boom = addBody(scene, "boom", 500.0, Vec3(20, 500.0 * 64 / 12, 500.0 * 64 / 12), 4.0 * along, boomRotation);
   auto telescope =

@@ -33,7 +33,7 @@ template <class S>
 ref_ptr<FrameT<S>> frameAt(const Vec3T<S>& point, const Vec3T<S>& axis = Vec3T<S>::UnitZ()) {
   ref_ptr<FrameT<S>> f = new FrameT<S>();
   f->setLocalTranslate(point);
-  f->setLocalRotate(QuatT<S>::FromTwoVectors(Vec3T<S>::UnitZ(), axis.normalized()));
+  f->setLocalRotate(spook::rotate<S>(Vec3T<S>::UnitZ(), axis));
   return f;
 }
 

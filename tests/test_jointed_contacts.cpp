@@ -65,7 +65,7 @@ ref_ptr<RigidBodyT<S>> addLink(SimulationT<S>& sim, const Vec3T<S>& a, const Vec
   body->getMassProperties()->setMass(S(1));
   body->updateMassProperties();
   body->setPosition((a + b) / 2);
-  body->setRotation(QuatT<S>::FromTwoVectors(Vec3T<S>::UnitX(), d / length));
+  body->setRotation(spook::rotate<S>(Vec3T<S>::UnitX(), d));
   sim.add(body);
   return body;
 }

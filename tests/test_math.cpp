@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <random>
 
@@ -62,6 +64,21 @@ TEST_CASE_TEMPLATE("rotate(a, b) takes direction a onto direction b", S, float, 
   CHECK((flip * V::UnitX() + V::UnitX()).norm() < tol);
   CHECK(std::abs(flip.norm() - S(1)) < tol);
   CHECK_THROWS_AS((void)spook::rotate<S>(V::Zero(), V::UnitX()), spook::Error);
+  // Random and nearly antiparallel pairs: a unit quaternion taking a onto b,
+  // with no component about a × b's normal plane (the shortest arc: its
+  // angle is acos(a·b)).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < 200; ++i) {
+    const V a = V(S(u(rng)), S(u(rng)), S(u(rng))).normalized();
+    const S tilt = S(std::pow(10.0, -8.0 * (i % 5) / 4.0));
+    const V b = i % 2 ? V((-a + tilt * a.unitOrthogonal()).normalized()) : V(V(S(u(rng)), S(u(rng)), S(u(rng))).normalized());
+    const spook::QuatT<S> q = spook::rotate<S>(a, b);
+    CHECK(std::abs(q.norm() - S(1)) < tol);
+    CHECK((q * a - b).norm() < S(10) * tol);
+    const S angle = S(2) * std::atan2(q.vec().norm(), std::abs(q.w()));
+    CHECK(std::abs(angle - std::acos(std::clamp(a.dot(b), S(-1), S(1)))) < S(10) * std::sqrt(tol));
+  }
 }
 
 TEST_CASE_TEMPLATE("exp and log of rotations are inverse, small angles included", S, float, double) {

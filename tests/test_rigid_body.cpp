@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <spook/collide/shapes/box.hpp>
 #include <spook/sim/simulation.hpp>
@@ -171,6 +172,25 @@ TEST_CASE_TEMPLATE("a body whose state would overflow is frozen and reported, no
   scene.sim->stepForward();
   CHECK(scene.sim->getStatistics().frozenBodies.empty());
   CHECK(dust.getPosition().allFinite());
+}
+
+// The center of mass stays finite but the model frame, 0.6·max from it,
+// would not after the half turn of one step: the body is frozen, not the
+// Frame asked to take an infinite translation (which throws).
+TEST_CASE_TEMPLATE("a body whose model frame would overflow is frozen and reported, the step does not throw", S, float,
+                   double) {
+  OneBody<S> scene;
+  spook::RigidBodyT<S>& body = *scene.body;
+  const S big = S(0.6) * std::numeric_limits<S>::max();
+  body.setCmLocalTranslate(spook::Vec3T<S>(big, S(0), S(0)));
+  body.setCmPosition(spook::Vec3T<S>(big, S(0), S(0)));
+  const spook::Vec3T<S> start = body.getPosition();
+  body.setAngularVelocity(spook::Vec3T<S>(S(0), S(0), S(std::numbers::pi) / scene.sim->getTimeStep()));
+  CHECK_NOTHROW(scene.sim->stepForward());
+  REQUIRE(scene.sim->getStatistics().frozenBodies.size() == 1);
+  CHECK(scene.sim->getStatistics().frozenBodies[0].reason == spook::FreezeReason::NON_FINITE_STATE);
+  CHECK(body.getPosition() == start);
+  CHECK(body.getAngularVelocity() == spook::Vec3T<S>::Zero());
 }
 
 // A 1 m cube of water (1000 kg, I = m (0.5² + 0.5²)/3 per axis) set to

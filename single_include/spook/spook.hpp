@@ -308,6 +308,29 @@ template <class S>
   return QuatT<S>(q.coeffs() / largest).normalized();
 }
 
+namespace detail {
+/// The shortest rotation taking non-zero `from` onto `to`, for unit a, b:
+/// q ∝ (|a + b|²/2, a × (a + b)), the half-angle form (1 + a·b, a × b) with
+/// both parts taken from the sum a + b, which is exact where b nears −a and
+/// keeps the axis accurate to round-off there (a × b would not be). Exact
+/// antiparallels take a half turn about the axis perpendicular to a and to
+/// its least aligned cardinal axis. (Eigen's FromTwoVectors needs an SVD for
+/// those, a heavy instantiation in every program.)
+template <class S>
+[[nodiscard]] QuatT<S> shortestArc(const Vec3T<S>& from, const Vec3T<S>& to) {
+  const Vec3T<S> a = from.normalized(), b = to.normalized();
+  const Vec3T<S> sum = a + b;
+  if (sum.norm() > S(8) * std::numeric_limits<S>::epsilon()) {
+    const Vec3T<S> v = a.cross(sum);
+    return QuatT<S>(S(0.5) * sum.squaredNorm(), v.x(), v.y(), v.z()).normalized();
+  }
+  Eigen::Index least = 0;
+  a.cwiseAbs().minCoeff(&least);
+  const Vec3T<S> axis = a.cross(Vec3T<S>::Unit(least)).normalized();
+  return QuatT<S>(S(0), axis.x(), axis.y(), axis.z());
+}
+}  // namespace detail
+
 /// The shortest rotation taking direction `from` onto direction `to` (AGX's
 /// Quat::rotate). Antiparallel vectors give a half turn about an axis
 /// perpendicular to both.
@@ -316,7 +339,7 @@ template <class S>
   if (!(from.norm() > S(0)) || !(to.norm() > S(0)) || !from.allFinite() || !to.allFinite())
     throw detail::makeError("rotate", "", "vectors must be finite and non-zero",
                             Eigen::Matrix<S, 6, 1>(from.x(), from.y(), from.z(), to.x(), to.y(), to.z()));
-  return QuatT<S>::FromTwoVectors(from, to);
+  return detail::shortestArc<S>(from, to);
 }
 
 /// Rotation matrix of Euler angles (R = Rz · Ry · Rx).
@@ -2927,9 +2950,57 @@ std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdOb
   return starts;
 }
 
+/// A shape's supporting feature along the unit direction n, sampled: its
+/// support at n and at n tilted by kFeatureTilt toward eight directions of
+/// the tangent plane. A unique support (a vertex, a curved surface) keeps the
+/// samples within ~size·tilt of each other; an edge or a face spreads them
+/// over itself (its ends or corners), and their mean lies inside it.
+struct SupportingFeature {
+  Vec3T<double> center;  // mean of the samples, world (m)
+  double spread = 0.0;   // largest distance of a sample from the support at n (m)
+};
+inline constexpr double kFeatureTilt = 1e-3;  // rad
+
+template <class Object>
+SupportingFeature sampleSupportingFeature(const Object& object, const Vec3T<double>& n) {
+  using S = typename Object::S;
+  const auto support = [&](const Vec3T<double>& d) {
+    return Vec3T<double>(object.R * object.shape->support((object.R.transpose() * d).template cast<S>()).template cast<double>() +
+                         object.p);
+  };
+  const Vec3T<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+  const Vec3T<double> atN = support(n);
+  SupportingFeature feature{atN, 0.0};
+  for (int k = 0; k < 8; ++k) {
+    const double angle = k * 0.7853981633974483;
+    const Vec3T<double> sample = support(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2));
+    feature.center += sample;
+    feature.spread = std::max(feature.spread, (sample - atN).norm());
+  }
+  feature.center /= 9.0;
+  return feature;
+}
+
+/// The contact point of a penetration of the given depth along n (from a
+/// toward b): in the overlap, half the depth inside both surfaces, at the
+/// middle of the narrower of the two supporting features (the curved or the
+/// smaller shape's), or between both middles where they are alike (two
+/// faces of one size). Never a support point chosen among a wide face's
+/// corners, whose lever arm would spin the body that rests on it.
+template <class A, class B>
+Vec3T<double> contactPointInOverlap(const CcdObject<A>& a, const CcdObject<B>& b, const Vec3T<double>& n,
+                                    double depth) {
+  const SupportingFeature onA = sampleSupportingFeature(a, n), onB = sampleSupportingFeature(b, -n);
+  const Vec3T<double> fromA = onA.center - 0.5 * depth * n, fromB = onB.center + 0.5 * depth * n;
+  if (onA.spread < 0.5 * onB.spread) return fromA;
+  if (onB.spread < 0.5 * onA.spread) return fromB;
+  return 0.5 * (fromA + fromB);
+}
+
 /// Penetration of two convex shapes by GJK + EPA (libccd), polished as
-/// above: one contact at libccd's point, with the direction that separates
-/// b from a.
+/// above: one contact with the direction that separates b from a, at
+/// contactPointInOverlap (not at libccd's point, a midpoint of support
+/// points that may lie on a far corner of a large face).
 template <Scalar S, class A, class B>
 void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
   const CcdObject<A> objectA(a, X_WA);
@@ -2965,7 +3036,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     }
   }
   if (!(refined >= 0.0)) return;  // the polished direction separates them
-  const Vec3T<double> point(position.v[0], position.v[1], position.v[2]);
+  const Vec3T<double> point = contactPointInOverlap(objectA, objectB, n, refined);
   sink.add(point.cast<S>(), n.cast<S>(), S(refined));
 }
 
@@ -7145,7 +7216,7 @@ class ConstraintT : public Referenced {
     if (!axis.allFinite() || !(axis.norm() > S(0)))
       throw detail::makeError("Constraint", "", "frame axis must be finite and non-zero", axis);
     if (!body1) throw detail::makeError("Constraint", "", "calculateFrames needs a first body", "nullptr");
-    const TransformT<S> world = makeTransform<S>(point, Quat::FromTwoVectors(Vec3::UnitZ(), axis.normalized()));
+    const TransformT<S> world = makeTransform<S>(point, detail::shortestArc<S>(Vec3::UnitZ(), axis));
     frame1 = new Frame(TransformT<S>(body1->getTransform().inverse() * world));
     frame2 = new Frame(body2 ? TransformT<S>(body2->getTransform().inverse() * world) : world);
   }
@@ -9556,7 +9627,7 @@ class CubicSplineT : public Referenced {
   }
   // `normal` turned with the smallest rotation taking tangent `from` to `to`.
   static Vec3 carried(const Vec3& normal, const Vec3& from, const Vec3& to) {
-    const Vec3 turned = QuatT<S>::FromTwoVectors(from, to) * normal;
+    const Vec3 turned = detail::shortestArc<S>(from, to) * normal;
     const Vec3 across = turned - turned.dot(to) * to;
     const S norm = across.norm();
     return norm > S(0) ? Vec3(across / norm) : startNormal(to);
@@ -14731,14 +14802,19 @@ struct BodyIntegrator {
   }
 
   // Writes the new center-of-mass state back through the model frame.
+  // A state that is not finite, or whose model frame would not be (a body
+  // near the overflow limit, a quaternion that normalized to zero), freezes
+  // the body instead of reaching the Frame, which would refuse it.
   static bool commit(Body& body, const Vec3& x, const Quat& q, const Vec3& v, const Vec3& omega) {
-    if (!(x.allFinite() && q.coeffs().allFinite() && v.allFinite() && omega.allFinite())) {
+    const Quat modelRotation = (q * body.cmFrame_->getLocalRotate().conjugate()).normalized();
+    const Vec3 modelTranslation = x - modelRotation * body.getCmLocalTranslate();
+    const bool unitRotation = modelRotation.coeffs().allFinite() && std::abs(modelRotation.norm() - S(1)) < S(0.01);
+    if (!(x.allFinite() && unitRotation && modelTranslation.allFinite() && v.allFinite() && omega.allFinite())) {
       freeze(body);
       return false;
     }
-    const Quat modelRotation = (q * body.cmFrame_->getLocalRotate().conjugate()).normalized();
     body.frame_->setRotate(modelRotation);
-    body.frame_->setTranslate(x - modelRotation * body.getCmLocalTranslate());
+    body.frame_->setTranslate(modelTranslation);
     body.velocity_ = v;
     body.angularVelocity_ = omega;
     return true;

@@ -129,7 +129,7 @@ class ConstraintT : public Referenced {
     if (!axis.allFinite() || !(axis.norm() > S(0)))
       throw detail::makeError("Constraint", "", "frame axis must be finite and non-zero", axis);
     if (!body1) throw detail::makeError("Constraint", "", "calculateFrames needs a first body", "nullptr");
-    const TransformT<S> world = makeTransform<S>(point, Quat::FromTwoVectors(Vec3::UnitZ(), axis.normalized()));
+    const TransformT<S> world = makeTransform<S>(point, detail::shortestArc<S>(Vec3::UnitZ(), axis));
     frame1 = new Frame(TransformT<S>(body1->getTransform().inverse() * world));
     frame2 = new Frame(body2 ? TransformT<S>(body2->getTransform().inverse() * world) : world);
   }

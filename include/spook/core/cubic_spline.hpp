@@ -186,7 +186,7 @@ class CubicSplineT : public Referenced {
   }
   // `normal` turned with the smallest rotation taking tangent `from` to `to`.
   static Vec3 carried(const Vec3& normal, const Vec3& from, const Vec3& to) {
-    const Vec3 turned = QuatT<S>::FromTwoVectors(from, to) * normal;
+    const Vec3 turned = detail::shortestArc<S>(from, to) * normal;
     const Vec3 across = turned - turned.dot(to) * to;
     const S norm = across.norm();
     return norm > S(0) ? Vec3(across / norm) : startNormal(to);

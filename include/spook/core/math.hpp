@@ -132,6 +132,29 @@ template <class S>
   return QuatT<S>(q.coeffs() / largest).normalized();
 }
 
+namespace detail {
+/// The shortest rotation taking non-zero `from` onto `to`, for unit a, b:
+/// q ∝ (|a + b|²/2, a × (a + b)), the half-angle form (1 + a·b, a × b) with
+/// both parts taken from the sum a + b, which is exact where b nears −a and
+/// keeps the axis accurate to round-off there (a × b would not be). Exact
+/// antiparallels take a half turn about the axis perpendicular to a and to
+/// its least aligned cardinal axis. (Eigen's FromTwoVectors needs an SVD for
+/// those, a heavy instantiation in every program.)
+template <class S>
+[[nodiscard]] QuatT<S> shortestArc(const Vec3T<S>& from, const Vec3T<S>& to) {
+  const Vec3T<S> a = from.normalized(), b = to.normalized();
+  const Vec3T<S> sum = a + b;
+  if (sum.norm() > S(8) * std::numeric_limits<S>::epsilon()) {
+    const Vec3T<S> v = a.cross(sum);
+    return QuatT<S>(S(0.5) * sum.squaredNorm(), v.x(), v.y(), v.z()).normalized();
+  }
+  Eigen::Index least = 0;
+  a.cwiseAbs().minCoeff(&least);
+  const Vec3T<S> axis = a.cross(Vec3T<S>::Unit(least)).normalized();
+  return QuatT<S>(S(0), axis.x(), axis.y(), axis.z());
+}
+}  // namespace detail
+
 /// The shortest rotation taking direction `from` onto direction `to` (AGX's
 /// Quat::rotate). Antiparallel vectors give a half turn about an axis
 /// perpendicular to both.
@@ -140,7 +163,7 @@ template <class S>
   if (!(from.norm() > S(0)) || !(to.norm() > S(0)) || !from.allFinite() || !to.allFinite())
     throw detail::makeError("rotate", "", "vectors must be finite and non-zero",
                             Eigen::Matrix<S, 6, 1>(from.x(), from.y(), from.z(), to.x(), to.y(), to.z()));
-  return QuatT<S>::FromTwoVectors(from, to);
+  return detail::shortestArc<S>(from, to);
 }
 
 /// Rotation matrix of Euler angles (R = Rz · Ry · Rx).

@@ -209,14 +209,19 @@ struct BodyIntegrator {
   }
 
   // Writes the new center-of-mass state back through the model frame.
+  // A state that is not finite, or whose model frame would not be (a body
+  // near the overflow limit, a quaternion that normalized to zero), freezes
+  // the body instead of reaching the Frame, which would refuse it.
   static bool commit(Body& body, const Vec3& x, const Quat& q, const Vec3& v, const Vec3& omega) {
-    if (!(x.allFinite() && q.coeffs().allFinite() && v.allFinite() && omega.allFinite())) {
+    const Quat modelRotation = (q * body.cmFrame_->getLocalRotate().conjugate()).normalized();
+    const Vec3 modelTranslation = x - modelRotation * body.getCmLocalTranslate();
+    const bool unitRotation = modelRotation.coeffs().allFinite() && std::abs(modelRotation.norm() - S(1)) < S(0.01);
+    if (!(x.allFinite() && unitRotation && modelTranslation.allFinite() && v.allFinite() && omega.allFinite())) {
       freeze(body);
       return false;
     }
-    const Quat modelRotation = (q * body.cmFrame_->getLocalRotate().conjugate()).normalized();
     body.frame_->setRotate(modelRotation);
-    body.frame_->setTranslate(x - modelRotation * body.getCmLocalTranslate());
+    body.frame_->setTranslate(modelTranslation);
     body.velocity_ = v;
     body.angularVelocity_ = omega;
     return true;

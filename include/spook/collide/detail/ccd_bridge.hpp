@@ -227,9 +227,57 @@ std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdOb
   return starts;
 }
 
+/// A shape's supporting feature along the unit direction n, sampled: its
+/// support at n and at n tilted by kFeatureTilt toward eight directions of
+/// the tangent plane. A unique support (a vertex, a curved surface) keeps the
+/// samples within ~size·tilt of each other; an edge or a face spreads them
+/// over itself (its ends or corners), and their mean lies inside it.
+struct SupportingFeature {
+  Vec3T<double> center;  // mean of the samples, world (m)
+  double spread = 0.0;   // largest distance of a sample from the support at n (m)
+};
+inline constexpr double kFeatureTilt = 1e-3;  // rad
+
+template <class Object>
+SupportingFeature sampleSupportingFeature(const Object& object, const Vec3T<double>& n) {
+  using S = typename Object::S;
+  const auto support = [&](const Vec3T<double>& d) {
+    return Vec3T<double>(object.R * object.shape->support((object.R.transpose() * d).template cast<S>()).template cast<double>() +
+                         object.p);
+  };
+  const Vec3T<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+  const Vec3T<double> atN = support(n);
+  SupportingFeature feature{atN, 0.0};
+  for (int k = 0; k < 8; ++k) {
+    const double angle = k * 0.7853981633974483;
+    const Vec3T<double> sample = support(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2));
+    feature.center += sample;
+    feature.spread = std::max(feature.spread, (sample - atN).norm());
+  }
+  feature.center /= 9.0;
+  return feature;
+}
+
+/// The contact point of a penetration of the given depth along n (from a
+/// toward b): in the overlap, half the depth inside both surfaces, at the
+/// middle of the narrower of the two supporting features (the curved or the
+/// smaller shape's), or between both middles where they are alike (two
+/// faces of one size). Never a support point chosen among a wide face's
+/// corners, whose lever arm would spin the body that rests on it.
+template <class A, class B>
+Vec3T<double> contactPointInOverlap(const CcdObject<A>& a, const CcdObject<B>& b, const Vec3T<double>& n,
+                                    double depth) {
+  const SupportingFeature onA = sampleSupportingFeature(a, n), onB = sampleSupportingFeature(b, -n);
+  const Vec3T<double> fromA = onA.center - 0.5 * depth * n, fromB = onB.center + 0.5 * depth * n;
+  if (onA.spread < 0.5 * onB.spread) return fromA;
+  if (onB.spread < 0.5 * onA.spread) return fromB;
+  return 0.5 * (fromA + fromB);
+}
+
 /// Penetration of two convex shapes by GJK + EPA (libccd), polished as
-/// above: one contact at libccd's point, with the direction that separates
-/// b from a.
+/// above: one contact with the direction that separates b from a, at
+/// contactPointInOverlap (not at libccd's point, a midpoint of support
+/// points that may lie on a far corner of a large face).
 template <Scalar S, class A, class B>
 void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
   const CcdObject<A> objectA(a, X_WA);
@@ -265,7 +313,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     }
   }
   if (!(refined >= 0.0)) return;  // the polished direction separates them
-  const Vec3T<double> point(position.v[0], position.v[1], position.v[2]);
+  const Vec3T<double> point = contactPointInOverlap(objectA, objectB, n, refined);
   sink.add(point.cast<S>(), n.cast<S>(), S(refined));
 }
 
