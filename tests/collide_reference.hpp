@@ -1192,26 +1192,31 @@ auto withFclIntersection(auto exact) {
 /// judged by checkDifferential with depth within kCcdDepth; then
 /// kCcdDeepCases deep overlaps (near, the second shape's center within
 /// `reach` of the first's), intersecting or not and contacts judged, the
-/// depth error only logged. The bridge reports one contact, its deepest and
-/// only point, which is what checkDifferential compares.
+/// depth error only logged. The bridge reports the corners of the overlap
+/// of the two supporting features (one point for a vertex or a curved
+/// surface, up to 16 for two faces, FeatureClipping); the deepest is what
+/// checkDifferential compares.
 ///
 /// Every contact point is also judged against the overlap of the two shapes
-/// (pointExcess) and the count of points outside it logged; the callers
-/// require none for the pairs where the bridge's rule (a narrower feature's
-/// middle) already keeps them in (issue 24: the flat-on-flat pairs need the
-/// features clipped). Returns the shallow and the deep agreement.
+/// (pointExcess): at most 1 in 500 may lie outside it by more than the depth
+/// tolerance (libccd's own point was outside in up to 56% of the cases, by
+/// up to 0.6 m; the sampled features leave a few within ~1 mm, and a few
+/// cylinder–segment cases farther, issue 24). Returns the shallow and the
+/// deep agreement.
 template <class S, class A, class B>
 std::pair<Agreement, Agreement> checkCcd(const std::string& name, std::uint64_t seed, auto&& makeA, auto&& makeB,
                                          double reach, auto&& reference) {
   const Agreement shallow = checkDifferential<S, A, B>(
       name, seed, [&](RandomPoses& random) { return touching(random, makeA(random), makeB(random)); }, collideByBridge,
       reference, kCcdDepth, kCcdCases);
-  CHECK(shallow.maxContacts <= 1);
+  CHECK(shallow.maxContacts <= 16);
+  CHECK(shallow.pointsOutside * 500 <= shallow.cases);
   const Agreement deep = checkDifferential<S, A, B>(
       name + " (deep)", seed + 1000,
       [&](RandomPoses& random) { return near(random, makeA(random), makeB(random), reach); }, collideByBridge,
       reference, kCcdDepth, kCcdDeepCases, 0.0);
-  CHECK(deep.maxContacts <= 1);
+  CHECK(deep.maxContacts <= 16);
+  CHECK(deep.pointsOutside * 500 <= deep.cases);
   return {shallow, deep};
 }
 

@@ -2736,6 +2736,208 @@ class ContactSinkT {
 
 #include <ccd/ccd.h>
 
+// --- begin spook/collide/detail/feature_clipping.hpp ---
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace spook::detail {
+
+/// The contact manifold of two convex shapes in contact along a normal,
+/// from their supporting features (the part of each shape that is extreme
+/// along the normal: a point, an edge or a face), as Jolt's
+/// ManifoldBetweenTwoFaces and Box2D's b2ClipPolygons build it: both
+/// features are projected onto the contact plane, one is clipped against
+/// the other (Sutherland–Hodgman), and each corner of the overlap is a
+/// contact point, its depth the distance between the two features above
+/// it. Works in double, in the plane spanned by t1, t2 ⟂ n.
+struct FeatureClipping {
+  using Vec2 = Eigen::Vector2d;
+  using Vec3 = Vec3T<double>;
+
+  /// A supporting feature: world points on it (m) and the size below which
+  /// two of them are the same point (the spread that sampling a curved
+  /// surface leaves).
+  struct Feature {
+    std::vector<Vec3> points;
+    double merge = 0.0;
+  };
+  struct Contact {
+    Vec3 point;    // world, halfway between the features (m)
+    double depth;  // m
+  };
+
+  Vec3 n, t1, t2;
+
+  explicit FeatureClipping(const Vec3& normal)
+      : n(normal), t1(normal.unitOrthogonal()), t2(normal.cross(normal.unitOrthogonal())) {}
+
+  /// The overlap's corners as contacts, for features `top` (of the shape
+  /// behind the normal, its points highest along n) and `bottom` (of the
+  /// shape ahead, lowest along n) and the penetration depth along n, which
+  /// bounds every contact's. Empty when the projections do not overlap
+  /// (the caller then places one contact by itself).
+  [[nodiscard]] std::vector<Contact> contacts(const Feature& top, const Feature& bottom, double depth) const {
+    const double merge = std::min(top.merge, bottom.merge);
+    const std::vector<Vec2> a = hull(project(top.points), top.merge);
+    const std::vector<Vec2> b = hull(project(bottom.points), bottom.merge);
+    std::vector<Vec2> overlap;
+    if (b.size() >= 3)
+      overlap = clip(a, b);
+    else if (a.size() >= 3)
+      overlap = clip(b, a);
+    else
+      overlap = crossing(a, b, merge);
+    overlap = hull(overlap, merge);
+    // Depths from the heights of the features over each corner, shifted so
+    // that the deepest is the penetration depth (the features are sampled,
+    // their heights fitted); a deepest corner farther than the sampling
+    // size from it means the overlap is not where the shapes penetrate most
+    // (sampled features that miss a part of the true ones): no manifold.
+    const HeightPlane topHeight(top.points, *this), bottomHeight(bottom.points, *this);
+    std::vector<Contact> out;
+    double deepest = -std::numeric_limits<double>::infinity();
+    for (const Vec2& v : overlap) {
+      const double high = topHeight.at(v), low = bottomHeight.at(v);
+      out.push_back({v.x() * t1 + v.y() * t2 + 0.5 * (high + low) * n, high - low});
+      deepest = std::max(deepest, high - low);
+    }
+    if (!(std::abs(deepest - depth) <= std::max(top.merge, bottom.merge))) return {};
+    std::erase_if(out, [&](Contact& c) {
+      c.depth = std::min(c.depth + (depth - deepest), depth);
+      return !(c.depth >= 0.0);
+    });
+    return out;
+  }
+
+ private:
+  [[nodiscard]] Vec2 flat(const Vec3& p) const { return {t1.dot(p), t2.dot(p)}; }
+
+  [[nodiscard]] std::vector<Vec2> project(const std::vector<Vec3>& points) const {
+    std::vector<Vec2> out;
+    out.reserve(points.size());
+    for (const Vec3& p : points) out.push_back(flat(p));
+    return out;
+  }
+
+  static double cross(const Vec2& o, const Vec2& a, const Vec2& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  }
+
+  /// Counter-clockwise convex hull (Andrew's monotone chain) without points
+  /// within `merge` of one kept and without corners within `merge` of the
+  /// line through their neighbours: 1 point, 2 (a segment) or a polygon.
+  static std::vector<Vec2> hull(std::vector<Vec2> points, double merge) {
+    std::sort(points.begin(), points.end(),
+              [](const Vec2& p, const Vec2& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); });
+    std::vector<Vec2> unique;
+    for (const Vec2& p : points)
+      if (std::none_of(unique.begin(), unique.end(), [&](const Vec2& q) { return (p - q).norm() <= merge; }))
+        unique.push_back(p);
+    if (unique.size() < 3) return unique;
+    std::vector<Vec2> chain(2 * unique.size());
+    std::size_t k = 0;
+    const auto turnsLeft = [&](const Vec2& p) {
+      return cross(chain[k - 2], chain[k - 1], p) > merge * (chain[k - 1] - chain[k - 2]).norm();
+    };
+    for (const Vec2& p : unique) {
+      while (k >= 2 && !turnsLeft(p)) --k;
+      chain[k++] = p;
+    }
+    const std::size_t lower = k + 1;
+    for (std::size_t i = unique.size() - 1; i-- > 0;) {
+      while (k >= lower && !turnsLeft(unique[i])) --k;
+      chain[k++] = unique[i];
+    }
+    chain.resize(k - 1);
+    return chain;
+  }
+
+  /// The part of `subject` (a point, a segment or a convex polygon) inside
+  /// the counter-clockwise convex polygon `window` (Sutherland–Hodgman).
+  static std::vector<Vec2> clip(std::vector<Vec2> subject, const std::vector<Vec2>& window) {
+    for (std::size_t e = 0; e < window.size() && !subject.empty(); ++e) {
+      const Vec2 a = window[e], edge = window[(e + 1) % window.size()] - a;
+      const Vec2 inward(-edge.y(), edge.x());
+      std::vector<Vec2> kept;
+      for (std::size_t i = 0; i < subject.size(); ++i) {
+        const Vec2 p = subject[i], q = subject[(i + 1) % subject.size()];
+        const double dp = inward.dot(p - a), dq = inward.dot(q - a);
+        if (dp >= 0.0) kept.push_back(p);
+        if ((dp > 0.0 && dq < 0.0) || (dp < 0.0 && dq > 0.0)) kept.push_back(p + (q - p) * (dp / (dp - dq)));
+      }
+      subject = std::move(kept);
+    }
+    return subject;
+  }
+
+  /// Two features that are points or segments: a point meets anything where
+  /// it is; two segments meet at their closest points, or along the
+  /// overlap of their ranges when they are parallel.
+  static std::vector<Vec2> crossing(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double merge) {
+    if (a.empty() || b.empty()) return {};
+    if (a.size() == 1) return a;
+    if (b.size() == 1) return b;
+    const Vec2 u = a[1] - a[0], v = b[1] - b[0];
+    const double lu = u.norm(), lv = v.norm();
+    if (std::abs(cross(Vec2::Zero(), u, v)) <= merge * std::max(lu, lv)) {
+      const Vec2 d = u / lu;
+      const double s0 = std::max(0.0, std::min(d.dot(b[0] - a[0]), d.dot(b[1] - a[0])));
+      const double s1 = std::min(lu, std::max(d.dot(b[0] - a[0]), d.dot(b[1] - a[0])));
+      const Vec2 offset = 0.5 * ((b[0] - a[0]) - d.dot(b[0] - a[0]) * d);  // halfway across to b's line
+      if (s0 > s1) return {a[0] + 0.5 * (s0 + s1) * d + offset};
+      return {a[0] + s0 * d + offset, a[0] + s1 * d + offset};
+    }
+    // Closest points of the segments a[0] + s u and b[0] + t v, s, t in [0, 1].
+    const Vec2 w = a[0] - b[0];
+    const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
+    const double denominator = uu * vv - uv * uv;
+    double s = std::clamp((uv * vw - vv * uw) / denominator, 0.0, 1.0);
+    const double t = std::clamp((uv * s + vw) / vv, 0.0, 1.0);
+    s = std::clamp((uv * t - uw) / uu, 0.0, 1.0);
+    return {0.5 * (a[0] + s * u + b[0] + t * v)};
+  }
+
+  /// A feature's height along n over the contact plane: the least-squares
+  /// affine fit h(x) = h̄ + g·(x − x̄) to its points, with a tiny ridge on g
+  /// so that a point or a segment (no slope across it) stays level.
+  struct HeightPlane {
+    Vec2 center = Vec2::Zero();
+    double mean = 0.0;
+    Vec2 slope = Vec2::Zero();
+
+    HeightPlane(const std::vector<Vec3>& points, const FeatureClipping& frame) {
+      for (const Vec3& p : points) {
+        center += frame.flat(p);
+        mean += frame.n.dot(p);
+      }
+      center /= double(points.size());
+      mean /= double(points.size());
+      Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
+      Vec2 right = Vec2::Zero();
+      for (const Vec3& p : points) {
+        const Vec2 d = frame.flat(p) - center;
+        normal += d * d.transpose();
+        right += d * (frame.n.dot(p) - mean);
+      }
+      const double ridge = 1e-12 * normal.trace();
+      if (!(ridge > 0.0)) return;  // a single point: level
+      normal += ridge * Eigen::Matrix2d::Identity();
+      const double determinant = normal(0, 0) * normal(1, 1) - normal(0, 1) * normal(1, 0);
+      slope = Vec2(normal(1, 1) * right.x() - normal(0, 1) * right.y(),
+                   normal(0, 0) * right.y() - normal(1, 0) * right.x()) /
+              determinant;
+    }
+    [[nodiscard]] double at(const Vec2& x) const { return mean + slope.dot(x - center); }
+  };
+};
+
+}  // namespace spook::detail
+// --- end spook/collide/detail/feature_clipping.hpp ---
+
 namespace spook::detail {
 
 // The libccd bridge: each convex shape lends libccd its support function
@@ -2958,6 +3160,7 @@ std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdOb
 struct SupportingFeature {
   Vec3T<double> center;  // mean of the samples, world (m)
   double spread = 0.0;   // largest distance of a sample from the support at n (m)
+  std::vector<Vec3T<double>> samples;
 };
 inline constexpr double kFeatureTilt = 1e-3;  // rad
 
@@ -2970,12 +3173,13 @@ SupportingFeature sampleSupportingFeature(const Object& object, const Vec3T<doub
   };
   const Vec3T<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
   const Vec3T<double> atN = support(n);
-  SupportingFeature feature{atN, 0.0};
+  SupportingFeature feature{atN, 0.0, {atN}};
   for (int k = 0; k < 8; ++k) {
     const double angle = k * 0.7853981633974483;
     const Vec3T<double> sample = support(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2));
     feature.center += sample;
     feature.spread = std::max(feature.spread, (sample - atN).norm());
+    feature.samples.push_back(sample);
   }
   feature.center /= 9.0;
   return feature;
@@ -2987,22 +3191,43 @@ SupportingFeature sampleSupportingFeature(const Object& object, const Vec3T<doub
 /// smaller shape's), or between both middles where they are alike (two
 /// faces of one size). Never a support point chosen among a wide face's
 /// corners, whose lever arm would spin the body that rests on it.
-template <class A, class B>
-Vec3T<double> contactPointInOverlap(const CcdObject<A>& a, const CcdObject<B>& b, const Vec3T<double>& n,
+inline Vec3T<double> contactPointInOverlap(const SupportingFeature& onA, const SupportingFeature& onB, const Vec3T<double>& n,
                                     double depth) {
-  const SupportingFeature onA = sampleSupportingFeature(a, n), onB = sampleSupportingFeature(b, -n);
   const Vec3T<double> fromA = onA.center - 0.5 * depth * n, fromB = onB.center + 0.5 * depth * n;
   if (onA.spread < 0.5 * onB.spread) return fromA;
   if (onB.spread < 0.5 * onA.spread) return fromB;
   return 0.5 * (fromA + fromB);
 }
 
+/// The contacts of a penetration of `depth` along n (from a toward b): the
+/// corners of the overlap of the two supporting features (FeatureClipping:
+/// a resting face, cylinder side or cap gets its manifold in one step), or,
+/// where the sampled features do not overlap, one point by
+/// contactPointInOverlap. Samples closer than 4·kFeatureTilt·size are one
+/// point (the spread a curved surface leaves).
+template <class A, class B>
+std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, const CcdObject<B>& b,
+                                                         const Vec3T<double>& n, double depth) {
+  const SupportingFeature onA = sampleSupportingFeature(a, n), onB = sampleSupportingFeature(b, -n);
+  const auto size = [](const auto& object) {
+    return object.shape->getBoundingBox().halfExtents().template cast<double>().norm();
+  };
+  const FeatureClipping clipping(n);
+  std::vector<FeatureClipping::Contact> contacts =
+      clipping.contacts({onA.samples, 4.0 * kFeatureTilt * size(a)}, {onB.samples, 4.0 * kFeatureTilt * size(b)}, depth);
+  if (contacts.empty()) contacts.push_back({contactPointInOverlap(onA, onB, n, depth), depth});
+  return contacts;
+}
+
 /// Penetration of two convex shapes by GJK + EPA (libccd), polished as
-/// above: one contact with the direction that separates b from a, at
-/// contactPointInOverlap (not at libccd's point, a midpoint of support
-/// points that may lie on a far corner of a large face).
+/// above: the direction that separates b from a, with the contacts of
+/// contactsOfFeatures (not libccd's point, a midpoint of support points
+/// that may lie on a far corner of a large face), or only the deepest of
+/// them when `manifold` is false (triangle pairs of two meshes, one contact
+/// per intersecting pair).
 template <Scalar S, class A, class B>
-void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
+void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
+                  bool manifold = true) {
   const CcdObject<A> objectA(a, X_WA);
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;
@@ -3036,8 +3261,13 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     }
   }
   if (!(refined >= 0.0)) return;  // the polished direction separates them
-  const Vec3T<double> point = contactPointInOverlap(objectA, objectB, n, refined);
-  sink.add(point.cast<S>(), n.cast<S>(), S(refined));
+  std::vector<FeatureClipping::Contact> contacts = contactsOfFeatures(objectA, objectB, n, refined);
+  if (!manifold) {
+    const auto deepest = std::max_element(contacts.begin(), contacts.end(),
+                                          [](const auto& x, const auto& y) { return x.depth < y.depth; });
+    contacts = {*deepest};
+  }
+  for (const FeatureClipping::Contact& contact : contacts) sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
 }
 
 }  // namespace spook::detail
@@ -4758,7 +4988,8 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
   sink.setFaceIndices(0, 0);
 }
 
-/// Triangle pairs of two soups whose boxes overlap, each collided by libccd.
+/// Triangle pairs of two soups whose boxes overlap, each collided by libccd
+/// (one contact per pair: the deepest).
 template <Scalar S, class SoupA, class SoupB>
 void collideSoups(const SoupA& a, const TransformT<S>& X_WA, const SoupB& b, const TransformT<S>& X_WB,
                   ContactSinkT<S>& sink) {
@@ -4770,7 +5001,7 @@ void collideSoups(const SoupA& a, const TransformT<S>& X_WA, const SoupB& b, con
     a.forEachTriangle(t_A, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
       const Triangle<S> t_A2{{p0, p1, p2}};
       sink.setFaceIndices(i, j);
-      collideByCcd<S>(t_A2, X_WA, t_B, X_WB, sink);
+      collideByCcd<S>(t_A2, X_WA, t_B, X_WB, sink, false);
     });
   });
   sink.setFaceIndices(0, 0);
@@ -7955,6 +8186,12 @@ class Lock1DT : public SecondaryConstraintT<S> {
   S position_ = S(0);
 };
 
+/// The seeds' spelling (AGX's agx::Lock1D): `spook::Lock1D* m = hinge->getLock1D();`.
+using Lock1D = Lock1DT<double>;
+namespace f32 {
+using Lock1D = Lock1DT<float>;
+}  // namespace f32
+
 }  // namespace spook
 // --- end spook/constraints/secondary/lock_1d.hpp ---
 // --- begin spook/constraints/secondary/motor_1d.hpp ---
@@ -8007,6 +8244,12 @@ class Motor1DT : public SecondaryConstraintT<S> {
   bool lockedAtZeroSpeed_ = false;
   std::optional<double> lockPosition_;
 };
+
+/// The seeds' spelling (AGX's agx::Motor1D): `spook::Motor1D* m = hinge->getMotor1D();`.
+using Motor1D = Motor1DT<double>;
+namespace f32 {
+using Motor1D = Motor1DT<float>;
+}  // namespace f32
 
 }  // namespace spook
 // --- end spook/constraints/secondary/motor_1d.hpp ---
@@ -8062,6 +8305,12 @@ class Range1DT : public SecondaryConstraintT<S> {
  private:
   RangeT<S> range_;
 };
+
+/// The seeds' spelling (AGX's agx::Range1D): `spook::Range1D* m = hinge->getRange1D();`.
+using Range1D = Range1DT<double>;
+namespace f32 {
+using Range1D = Range1DT<float>;
+}  // namespace f32
 
 }  // namespace spook
 // --- end spook/constraints/secondary/range_1d.hpp ---
@@ -8717,6 +8966,12 @@ class Screw1DT : public SecondaryConstraintT<S> {
   S lead_ = S(0);
   std::optional<Reference> reference_;
 };
+
+/// The seeds' spelling (AGX's agx::Screw1D): `spook::Screw1D* s = cylindrical->getScrew1D();`.
+using Screw1D = Screw1DT<double>;
+namespace f32 {
+using Screw1D = Screw1DT<float>;
+}  // namespace f32
 
 }  // namespace spook
 // --- end spook/constraints/secondary/screw_1d.hpp ---

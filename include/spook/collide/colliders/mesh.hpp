@@ -118,7 +118,8 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
   sink.setFaceIndices(0, 0);
 }
 
-/// Triangle pairs of two soups whose boxes overlap, each collided by libccd.
+/// Triangle pairs of two soups whose boxes overlap, each collided by libccd
+/// (one contact per pair: the deepest).
 template <Scalar S, class SoupA, class SoupB>
 void collideSoups(const SoupA& a, const TransformT<S>& X_WA, const SoupB& b, const TransformT<S>& X_WB,
                   ContactSinkT<S>& sink) {
@@ -130,7 +131,7 @@ void collideSoups(const SoupA& a, const TransformT<S>& X_WA, const SoupB& b, con
     a.forEachTriangle(t_A, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
       const Triangle<S> t_A2{{p0, p1, p2}};
       sink.setFaceIndices(i, j);
-      collideByCcd<S>(t_A2, X_WA, t_B, X_WB, sink);
+      collideByCcd<S>(t_A2, X_WA, t_B, X_WB, sink, false);
     });
   });
   sink.setFaceIndices(0, 0);

@@ -11,6 +11,7 @@
 #include <ccd/ccd.h>
 
 #include <spook/collide/contact_sink.hpp>
+#include <spook/collide/detail/feature_clipping.hpp>
 #include <spook/core/math.hpp>
 
 namespace spook::detail {
@@ -235,6 +236,7 @@ std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdOb
 struct SupportingFeature {
   Vec3T<double> center;  // mean of the samples, world (m)
   double spread = 0.0;   // largest distance of a sample from the support at n (m)
+  std::vector<Vec3T<double>> samples;
 };
 inline constexpr double kFeatureTilt = 1e-3;  // rad
 
@@ -247,12 +249,13 @@ SupportingFeature sampleSupportingFeature(const Object& object, const Vec3T<doub
   };
   const Vec3T<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
   const Vec3T<double> atN = support(n);
-  SupportingFeature feature{atN, 0.0};
+  SupportingFeature feature{atN, 0.0, {atN}};
   for (int k = 0; k < 8; ++k) {
     const double angle = k * 0.7853981633974483;
     const Vec3T<double> sample = support(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2));
     feature.center += sample;
     feature.spread = std::max(feature.spread, (sample - atN).norm());
+    feature.samples.push_back(sample);
   }
   feature.center /= 9.0;
   return feature;
@@ -264,22 +267,43 @@ SupportingFeature sampleSupportingFeature(const Object& object, const Vec3T<doub
 /// smaller shape's), or between both middles where they are alike (two
 /// faces of one size). Never a support point chosen among a wide face's
 /// corners, whose lever arm would spin the body that rests on it.
-template <class A, class B>
-Vec3T<double> contactPointInOverlap(const CcdObject<A>& a, const CcdObject<B>& b, const Vec3T<double>& n,
+inline Vec3T<double> contactPointInOverlap(const SupportingFeature& onA, const SupportingFeature& onB, const Vec3T<double>& n,
                                     double depth) {
-  const SupportingFeature onA = sampleSupportingFeature(a, n), onB = sampleSupportingFeature(b, -n);
   const Vec3T<double> fromA = onA.center - 0.5 * depth * n, fromB = onB.center + 0.5 * depth * n;
   if (onA.spread < 0.5 * onB.spread) return fromA;
   if (onB.spread < 0.5 * onA.spread) return fromB;
   return 0.5 * (fromA + fromB);
 }
 
+/// The contacts of a penetration of `depth` along n (from a toward b): the
+/// corners of the overlap of the two supporting features (FeatureClipping:
+/// a resting face, cylinder side or cap gets its manifold in one step), or,
+/// where the sampled features do not overlap, one point by
+/// contactPointInOverlap. Samples closer than 4·kFeatureTilt·size are one
+/// point (the spread a curved surface leaves).
+template <class A, class B>
+std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, const CcdObject<B>& b,
+                                                         const Vec3T<double>& n, double depth) {
+  const SupportingFeature onA = sampleSupportingFeature(a, n), onB = sampleSupportingFeature(b, -n);
+  const auto size = [](const auto& object) {
+    return object.shape->getBoundingBox().halfExtents().template cast<double>().norm();
+  };
+  const FeatureClipping clipping(n);
+  std::vector<FeatureClipping::Contact> contacts =
+      clipping.contacts({onA.samples, 4.0 * kFeatureTilt * size(a)}, {onB.samples, 4.0 * kFeatureTilt * size(b)}, depth);
+  if (contacts.empty()) contacts.push_back({contactPointInOverlap(onA, onB, n, depth), depth});
+  return contacts;
+}
+
 /// Penetration of two convex shapes by GJK + EPA (libccd), polished as
-/// above: one contact with the direction that separates b from a, at
-/// contactPointInOverlap (not at libccd's point, a midpoint of support
-/// points that may lie on a far corner of a large face).
+/// above: the direction that separates b from a, with the contacts of
+/// contactsOfFeatures (not libccd's point, a midpoint of support points
+/// that may lie on a far corner of a large face), or only the deepest of
+/// them when `manifold` is false (triangle pairs of two meshes, one contact
+/// per intersecting pair).
 template <Scalar S, class A, class B>
-void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
+void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
+                  bool manifold = true) {
   const CcdObject<A> objectA(a, X_WA);
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;
@@ -313,8 +337,13 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     }
   }
   if (!(refined >= 0.0)) return;  // the polished direction separates them
-  const Vec3T<double> point = contactPointInOverlap(objectA, objectB, n, refined);
-  sink.add(point.cast<S>(), n.cast<S>(), S(refined));
+  std::vector<FeatureClipping::Contact> contacts = contactsOfFeatures(objectA, objectB, n, refined);
+  if (!manifold) {
+    const auto deepest = std::max_element(contacts.begin(), contacts.end(),
+                                          [](const auto& x, const auto& y) { return x.depth < y.depth; });
+    contacts = {*deepest};
+  }
+  for (const FeatureClipping::Contact& contact : contacts) sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
 }
 
 }  // namespace spook::detail

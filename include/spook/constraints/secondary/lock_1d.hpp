@@ -40,4 +40,10 @@ class Lock1DT : public SecondaryConstraintT<S> {
   S position_ = S(0);
 };
 
+/// The seeds' spelling (AGX's agx::Lock1D): `spook::Lock1D* m = hinge->getLock1D();`.
+using Lock1D = Lock1DT<double>;
+namespace f32 {
+using Lock1D = Lock1DT<float>;
+}  // namespace f32
+
 }  // namespace spook

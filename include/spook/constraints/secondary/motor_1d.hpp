@@ -51,4 +51,10 @@ class Motor1DT : public SecondaryConstraintT<S> {
   std::optional<double> lockPosition_;
 };
 
+/// The seeds' spelling (AGX's agx::Motor1D): `spook::Motor1D* m = hinge->getMotor1D();`.
+using Motor1D = Motor1DT<double>;
+namespace f32 {
+using Motor1D = Motor1DT<float>;
+}  // namespace f32
+
 }  // namespace spook

@@ -53,4 +53,10 @@ class Range1DT : public SecondaryConstraintT<S> {
   RangeT<S> range_;
 };
 
+/// The seeds' spelling (AGX's agx::Range1D): `spook::Range1D* m = hinge->getRange1D();`.
+using Range1D = Range1DT<double>;
+namespace f32 {
+using Range1D = Range1DT<float>;
+}  // namespace f32
+
 }  // namespace spook

@@ -48,4 +48,10 @@ class Screw1DT : public SecondaryConstraintT<S> {
   std::optional<Reference> reference_;
 };
 
+/// The seeds' spelling (AGX's agx::Screw1D): `spook::Screw1D* s = cylindrical->getScrew1D();`.
+using Screw1D = Screw1DT<double>;
+namespace f32 {
+using Screw1D = Screw1DT<float>;
+}  // namespace f32
+
 }  // namespace spook
