@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -64,6 +65,11 @@ TEST_CASE_TEMPLATE("rotate(a, b) takes direction a onto direction b", S, float, 
   CHECK((flip * V::UnitX() + V::UnitX()).norm() < tol);
   CHECK(std::abs(flip.norm() - S(1)) < tol);
   CHECK_THROWS_AS((void)spook::rotate<S>(V::Zero(), V::UnitX()), spook::Error);
+  // Vectors whose squared norm overflows or underflows keep their direction.
+  const S huge = std::numeric_limits<S>::max() / S(4), tiny = std::numeric_limits<S>::denorm_min();
+  CHECK((spook::rotate<S>(V(huge, huge, S(0)), V(S(0), S(0), huge)) * V(S(1), S(1), S(0)).normalized() - V::UnitZ())
+            .norm() < tol);
+  CHECK((spook::rotate<S>(V(tiny, S(0), S(0)), V(S(0), tiny, S(0))) * V::UnitX() - V::UnitY()).norm() < tol);
   // Random and nearly antiparallel pairs: a unit quaternion taking a onto b,
   // with no component about a × b's normal plane (the shortest arc: its
   // angle is acos(a·b)).

@@ -142,7 +142,9 @@ namespace detail {
 /// those, a heavy instantiation in every program.)
 template <class S>
 [[nodiscard]] QuatT<S> shortestArc(const Vec3T<S>& from, const Vec3T<S>& to) {
-  const Vec3T<S> a = from.normalized(), b = to.normalized();
+  // Divided by the largest |component| first, so that vectors whose squared
+  // norm overflows or underflows keep their direction.
+  const Vec3T<S> a = (from / from.cwiseAbs().maxCoeff()).normalized(), b = (to / to.cwiseAbs().maxCoeff()).normalized();
   const Vec3T<S> sum = a + b;
   if (sum.norm() > S(8) * std::numeric_limits<S>::epsilon()) {
     const Vec3T<S> v = a.cross(sum);
@@ -160,7 +162,7 @@ template <class S>
 /// perpendicular to both.
 template <class S>
 [[nodiscard]] QuatT<S> rotate(const Vec3T<S>& from, const Vec3T<S>& to) {
-  if (!(from.norm() > S(0)) || !(to.norm() > S(0)) || !from.allFinite() || !to.allFinite())
+  if (!from.allFinite() || !to.allFinite() || !(from.cwiseAbs().maxCoeff() > S(0)) || !(to.cwiseAbs().maxCoeff() > S(0)))
     throw detail::makeError("rotate", "", "vectors must be finite and non-zero",
                             Eigen::Matrix<S, 6, 1>(from.x(), from.y(), from.z(), to.x(), to.y(), to.z()));
   return detail::shortestArc<S>(from, to);
