@@ -2808,10 +2808,8 @@ struct FeatureClipping {
       deepest = std::max(deepest, high - low);
     }
     if (!(std::abs(deepest - depth) <= std::max(top.merge, bottom.merge))) return {};
-    std::erase_if(out, [&](Contact& c) {
-      c.depth = std::min(c.depth + (depth - deepest), depth);
-      return !(c.depth >= 0.0);
-    });
+    for (Contact& c : out) c.depth = std::min(c.depth + (depth - deepest), depth);
+    std::erase_if(out, [](const Contact& c) { return !(c.depth >= 0.0); });
     return out;
   }
 
