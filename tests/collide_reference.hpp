@@ -1090,7 +1090,7 @@ inline constexpr double kCcdDepth = 1e-4;
 /// Cases per libccd pair and scalar: 10,000 contacts as a simulation makes
 /// them (and a twentieth as many deep overlaps, logged) in optimized
 /// builds. Without NDEBUG (the Debug + AddressSanitizer build of CI, some
-/// 20 times slower) a tenth of that, 1,000 (and 50): the bridge's polishing
+/// 20 times slower) 400 (and 20): the bridge's polishing
 /// (0.08–0.65 ms a call in Release) and the brute-force references
 /// would take most of an hour there. -DSPOOK_CCD_CASES=n sets the count
 /// for quick runs.
@@ -1099,7 +1099,7 @@ inline constexpr int kCcdCases = SPOOK_CCD_CASES;
 #elif defined(NDEBUG)
 inline constexpr int kCcdCases = 10000;
 #else
-inline constexpr int kCcdCases = 1000;
+inline constexpr int kCcdCases = 400;
 #endif
 inline constexpr int kCcdDeepCases = kCcdCases / 20;
 

@@ -26,6 +26,8 @@
 #include <spook/collide/shapes/trimesh.hpp>
 #include <spook/sim/simulation.hpp>
 
+#include "tolerance.hpp"
+
 namespace {
 
 constexpr double kG = 9.80665;   // m/s²
@@ -169,6 +171,9 @@ struct Rest {
   double sink = 0, drift = 0, speed = 0;  // m, m, m/s
 };
 
+/// Steps of 1/60 s a body rests (3 s; 1 s in the sanitized build).
+const int kRestSteps = spook::test::sweep(180, 60);
+
 /// A body placed touching the ground (off the mesh vertices), left for 3 s:
 /// how far it sank below its touching height, how far it ended from where
 /// it started, its final speed (of its points, including spin).
@@ -183,7 +188,7 @@ Rest rest(Ground ground, S size, Body kind) {
   const spook::Vec3T<S> start(S(0.07), S(0.11), height);
   auto body = addBody<S>(*sim, shape, start, rotation);
   Rest r;
-  for (int step = 0; step < 180; ++step) {
+  for (int step = 0; step < kRestSteps; ++step) {
     sim->stepForward();
     r.sink = std::max(r.sink, double(height - body->getPosition().z()));
   }
@@ -214,7 +219,7 @@ void checkResting(const std::vector<S>& sizes) {
           ++held;
         else
           MESSAGE("not yet at rest within 1 mm: " << scene << ": sank " << r.sink << " m, moved " << r.drift
-                                                  << " m, " << r.speed << " m/s after 3 s");
+                                                  << " m, " << r.speed << " m/s after " << kRestSteps / 60 << " s");
       }
   MESSAGE(held << " of " << cells << " cells at rest within 1 mm");
 }
@@ -238,7 +243,7 @@ enum class Roller { SPHERE, CYLINDER, CAPSULE };
 /// with I the moment of inertia about the rolling axis. Under the
 /// symplectic Euler step the position after N steps of h is
 /// a h² N (N + 1)/2, the discrete value of a t²/2. Returns the travel over
-/// 2 s relative to that value, minus 1, and the slip (m): travel minus
+/// 2 s (1 s in the sanitized build) relative to that value, minus 1, and the slip (m): travel minus
 /// r × the angle rolled.
 template <class S>
 std::pair<double, double> roll(Ground ground, Roller kind, double degrees) {
@@ -256,7 +261,7 @@ std::pair<double, double> roll(Ground ground, Roller kind, double degrees) {
   const double I = double(body->getMassProperties()->getInertiaTensor()(1, 1));  // about the rolling axis y
   const double k = 1.0 / (1.0 + I / (m * double(r) * double(r)));
   const double h = 1.0 / 60.0;
-  const int steps = 120;
+  const int steps = spook::test::sweep(120, 60);
   double angle = 0;
   for (int step = 0; step < steps; ++step) {
     sim->stepForward();
