@@ -1198,11 +1198,12 @@ auto withFclIntersection(auto exact) {
 /// checkDifferential compares.
 ///
 /// Every contact point is also judged against the overlap of the two shapes
-/// (pointExcess): at most 1 in 500 may lie outside it by more than the depth
-/// tolerance (libccd's own point was outside in up to 56% of the cases, by
-/// up to 0.6 m; the sampled features leave a few within ~1 mm, and a few
-/// cylinder–segment cases farther, issue 24). Returns the shallow and the
-/// deep agreement.
+/// (pointExcess): at most 1 in 5,000 may lie outside it by more than the
+/// depth tolerance (libccd's own point was outside in up to 56% of the
+/// cases, by up to 0.6 m; features sampled by tilted supports left up to
+/// 0.4%, by up to 0.4 m; the shapes' own supporting features leave one
+/// float convex–convex case of 10,000, issue 24). Returns the shallow and
+/// the deep agreement.
 template <class S, class A, class B>
 std::pair<Agreement, Agreement> checkCcd(const std::string& name, std::uint64_t seed, auto&& makeA, auto&& makeB,
                                          double reach, auto&& reference) {
@@ -1210,13 +1211,13 @@ std::pair<Agreement, Agreement> checkCcd(const std::string& name, std::uint64_t 
       name, seed, [&](RandomPoses& random) { return touching(random, makeA(random), makeB(random)); }, collideByBridge,
       reference, kCcdDepth, kCcdCases);
   CHECK(shallow.maxContacts <= 16);
-  CHECK(shallow.pointsOutside * 500 <= shallow.cases);
+  CHECK(shallow.pointsOutside * 5000 <= shallow.cases);
   const Agreement deep = checkDifferential<S, A, B>(
       name + " (deep)", seed + 1000,
       [&](RandomPoses& random) { return near(random, makeA(random), makeB(random), reach); }, collideByBridge,
       reference, kCcdDepth, kCcdDeepCases, 0.0);
   CHECK(deep.maxContacts <= 16);
-  CHECK(deep.pointsOutside * 500 <= deep.cases);
+  CHECK(deep.pointsOutside * 5000 <= deep.cases);
   return {shallow, deep};
 }
 

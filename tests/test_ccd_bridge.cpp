@@ -6,6 +6,8 @@
 #include <vector>
 
 #include <spook/collide/detail/ccd_bridge.hpp>
+#include <spook/collide/shapes/box.hpp>
+#include <spook/collide/shapes/cylinder.hpp>
 #include <spook/collide/shapes/sphere.hpp>
 
 #include "tolerance.hpp"
@@ -50,4 +52,46 @@ TEST_CASE_TEMPLATE("libccd bridge finds the exact overlap of two spheres", S, fl
   CHECK(missed * 1000 <= cases);  // 99.9 %
   CHECK(worstDepth <= double(pick<S>(1e-9, 2e-5)));
   CHECK(worstAngle <= 1e-3);
+}
+
+// A small shape resting on a large one overlaps it by micrometres: libccd's
+// GJK alone called 0.7 % of such overlaps (1e-9..1e-4 m on boxes of
+// 0.5..500 m) apart, each a step of free fall through a resting contact.
+// Every one must be found, its depth within 1e-10 of the box's size, and a
+// gap wider than the touch margin (1e-7 of the smaller shape) must give
+// nothing.
+TEST_CASE("libccd bridge finds every shallow overlap of a cylinder resting on a large box, and no gap") {
+  spook::ref_ptr<spook::Cylinder> cylinder = new spook::Cylinder(0.2, 0.4);  // lying: axis along y
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int missed = 0, phantom = 0, cases = 0;
+  double worstDepth = 0;
+  for (const double half : {0.5, 5.0, 25.0, 50.0, 500.0})
+    for (int k = 0; k < spook::test::sweep(1000, 100); ++k) {
+      const double overlap = std::pow(10.0, -9.0 + 2.5 * (u(rng) + 1.0));  // 1e-9 .. 1e-4 m
+      const bool apart = k % 4 == 0;                                       // a gap of that size (≥ 1e-7 m) instead
+      spook::ref_ptr<spook::Box> box = new spook::Box(spook::Vec3(half, half, 0.5));
+      spook::Transform X_A = spook::Transform::Identity(), X_B = spook::Transform::Identity();
+      X_A.translation() = spook::Vec3(0.9 * half * u(rng), 0.9 * half * u(rng), -0.5);
+      const double gap = apart ? std::max(overlap, 1e-6) : -overlap;
+      X_B.translation() = spook::Vec3(0.07 * u(rng), 0.11 * u(rng), 0.2 + gap);
+      std::vector<spook::ContactPointT<double>> points;
+      spook::ContactSinkT<double> sink(points);
+      spook::detail::collideByCcd<double>(*box, X_A, *cylinder, X_B, sink);
+      ++cases;
+      if (apart) {
+        phantom += points.empty() ? 0 : 1;
+        continue;
+      }
+      if (points.size() != 2) {  // the two ends of the side line
+        ++missed;
+        continue;
+      }
+      for (const auto& p : points) worstDepth = std::max(worstDepth, std::abs(p.depth - overlap) / half);
+    }
+  MESSAGE(cases << " cases: " << missed << " overlaps missed, " << phantom << " gaps touching, worst depth error "
+                << worstDepth << " of the box's half size");
+  CHECK(missed == 0);
+  CHECK(phantom == 0);
+  CHECK(worstDepth <= 1e-10);
 }

@@ -87,6 +87,9 @@ struct ShapeList {
 // --- end spook/collide/shape_list.hpp ---
 // --- begin spook/collide/shapes/box.hpp ---
 
+#include <cmath>
+#include <utility>
+
 // --- begin spook/collide/shapes/shape.hpp ---
 
 #include <cmath>
@@ -486,6 +489,50 @@ struct BoundingBoxT {
 
 }  // namespace spook
 // --- end spook/collide/bounding_box.hpp ---
+// --- begin spook/collide/supporting_feature.hpp ---
+
+#include <array>
+#include <cstddef>
+
+namespace spook {
+
+/// The part of a convex shape that is extreme along a direction, as contact
+/// manifolds need it (the reference and incident faces of Box2D's and
+/// Jolt's manifolds): a face (its corners, counter-clockwise or not), an
+/// edge (its two ends) or one point, in the shape's frame (m). A face or an
+/// edge is supporting when it is within the angle kSupportingFeatureSin of
+/// perpendicular to the direction; the colliders clip the two features and
+/// keep only the points that penetrate, so a feature tilted within that
+/// angle yields the contacts of its low side alone.
+template <Scalar S>
+struct SupportingFeatureT {
+  static constexpr std::size_t kCapacity = 16;
+  std::array<Vec3T<S>, kCapacity> points;
+  std::size_t count = 0;
+  /// A round face (a cylinder's cap) has radius > 0: the disc about
+  /// `center` with unit normal `axis`, whose rim the points sample.
+  S radius = S(0);
+  Vec3T<S> center = Vec3T<S>::Zero();
+  Vec3T<S> axis = Vec3T<S>::UnitZ();
+
+  void add(const Vec3T<S>& p) {
+    if (count < kCapacity) points[count++] = p;
+  }
+};
+
+/// Sine of the angle (~3°) within which a face or an edge counts as
+/// supporting: wide enough for a resting body rocking under its contacts'
+/// compliance, narrow enough that two crossing edges stay edges.
+inline constexpr double kSupportingFeatureSin = 0.05;
+/// Its cosine, sqrt(1 − 0.05²).
+inline constexpr double kSupportingFeatureCos = 0.99874921777190895;
+
+/// Corners of a cylinder's or a cone's cap a cap feature has (a regular
+/// polygon inscribed in the rim).
+inline constexpr int kCapCorners = 8;
+
+}  // namespace spook
+// --- end spook/collide/supporting_feature.hpp ---
 // --- begin spook/core/ref_ptr.hpp ---
 
 #include <concepts>
@@ -718,6 +765,40 @@ class BoxT : public ShapeT<S> {
                 direction.z() < S(0) ? -halfExtents_.z() : halfExtents_.z());
   }
 
+  /// The face, edge or corner supporting `direction` (SupportingFeatureT):
+  /// the face whose normal is within the feature angle of it, else the edge
+  /// across which it is, else the corner.
+  void supportingFeature(const Vec3& direction, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    const Vec3 corner = support(direction);
+    const S length = direction.norm();
+    if (!(length > S(0))) {
+      out.add(corner);
+      return;
+    }
+    int most = 0, least = 0;
+    direction.cwiseAbs().maxCoeff(&most);
+    direction.cwiseAbs().minCoeff(&least);
+    if (std::abs(direction[most]) >= S(kSupportingFeatureCos) * length) {
+      // The face across axis `most`: its corners, counter-clockwise.
+      const int i = (most + 1) % 3, j = (most + 2) % 3;
+      for (const auto& [si, sj] : {std::pair{1, 1}, std::pair{-1, 1}, std::pair{-1, -1}, std::pair{1, -1}}) {
+        Vec3 p = corner;
+        p[i] = S(si) * halfExtents_[i];
+        p[j] = S(sj) * halfExtents_[j];
+        out.add(p);
+      }
+    } else if (std::abs(direction[least]) <= S(kSupportingFeatureSin) * length) {
+      Vec3 p = corner;
+      p[least] = halfExtents_[least];
+      out.add(p);
+      p[least] = -halfExtents_[least];
+      out.add(p);
+    } else {
+      out.add(corner);
+    }
+  }
+
  protected:
   ~BoxT() override = default;
 
@@ -736,6 +817,7 @@ using BoxRef = ref_ptr<Box>;
 // --- end spook/collide/shapes/box.hpp ---
 // --- begin spook/collide/shapes/capsule.hpp ---
 
+#include <cmath>
 #include <numbers>
 
 namespace spook {
@@ -787,6 +869,20 @@ class CapsuleT : public ShapeT<S> {
     const Vec3 end(S(0), direction.y() < S(0) ? -S(0.5) * height_ : S(0.5) * height_, S(0));
     const S length = direction.norm();
     return length > S(0) ? Vec3(end + direction * (radius_ / length)) : Vec3(end + Vec3(radius_, S(0), S(0)));
+  }
+
+  /// Across its axis (within the feature angle) the side line, from one end
+  /// sphere's support to the other's; else the support point.
+  void supportingFeature(const Vec3& direction, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    const S length = direction.norm();
+    if (length > S(0) && std::abs(direction.y()) <= S(kSupportingFeatureSin) * length) {
+      const Vec3 side = direction * (radius_ / length);
+      out.add(Vec3(side + Vec3(S(0), S(0.5) * height_, S(0))));
+      out.add(Vec3(side - Vec3(S(0), S(0.5) * height_, S(0))));
+      return;
+    }
+    out.add(support(direction));
   }
 
  protected:
@@ -940,7 +1036,9 @@ using CompositeRef = ref_ptr<Composite>;
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -1565,6 +1663,7 @@ class ConvexT : public ShapeT<S> {
     unitInertia_ = mass.inertia.template cast<S>();
     buildAdjacency();
     buildEdges();
+    buildVertexFaces();
   }
 
   /// Hull corners, shape frame (m).
@@ -1611,13 +1710,58 @@ class ConvexT : public ShapeT<S> {
 
   /// The corner farthest along `direction`, shape frame (m): a scan of the
   /// corners for small hulls, a climb along the hull's edges for large ones.
-  [[nodiscard]] Vec3 support(const Vec3& direction) const {
+  [[nodiscard]] Vec3 support(const Vec3& direction) const { return vertices_[supportIndex(direction)]; }
+
+  /// The face or edge at the support corner that is across `direction`
+  /// within the feature angle (SupportingFeatureT), else that corner. A
+  /// face of more corners than the feature holds keeps every k-th.
+  void supportingFeature(const Vec3& direction, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    const std::size_t top = supportIndex(direction);
+    const S length = direction.norm();
+    if (length > S(0)) {
+      int face = -1;
+      S nearest = -std::numeric_limits<S>::infinity();
+      for (int k = vertexFacesStart_[top]; k < vertexFacesStart_[top + 1]; ++k)
+        if (const S c = faces_[static_cast<std::size_t>(vertexFaces_[k])].normal.dot(direction); c > nearest)
+          nearest = c, face = vertexFaces_[k];
+      if (face >= 0 && nearest >= S(kSupportingFeatureCos) * length) {
+        const auto& loop = faces_[static_cast<std::size_t>(face)].vertices;
+        const std::size_t n = loop.size(), kept = std::min(n, SupportingFeatureT<S>::kCapacity);
+        for (std::size_t k = 0; k < kept; ++k) out.add(vertices_[static_cast<std::size_t>(loop[k * n / kept])]);
+        return;
+      }
+      int edge = -1;
+      S flattest = S(kSupportingFeatureSin);
+      for (int k = adjacencyStart_[top]; k < adjacencyStart_[top + 1]; ++k) {
+        const Vec3 along = vertices_[static_cast<std::size_t>(adjacency_[k])] - vertices_[top];
+        const S along_length = along.norm();
+        if (!(along_length > S(0))) continue;
+        if (const S slope = std::abs(along.dot(direction)) / (along_length * length); slope <= flattest)
+          flattest = slope, edge = adjacency_[k];
+      }
+      if (edge >= 0) {
+        out.add(vertices_[top]);
+        out.add(vertices_[static_cast<std::size_t>(edge)]);
+        return;
+      }
+    }
+    out.add(vertices_[top]);
+  }
+
+ protected:
+  ~ConvexT() override = default;
+
+ private:
+  static constexpr std::size_t kScanLimit = 64;
+
+  [[nodiscard]] std::size_t supportIndex(const Vec3& direction) const {
     std::size_t best = 0;
     S bestDot = vertices_[0].dot(direction);
     if (vertices_.size() <= kScanLimit) {
       for (std::size_t i = 1; i < vertices_.size(); ++i)
         if (const S d = vertices_[i].dot(direction); d > bestDot) best = i, bestDot = d;
-      return vertices_[best];
+      return best;
     }
     // On a convex polyhedron a corner no neighbour beats is the farthest.
     for (bool climbed = true; climbed;) {
@@ -1627,14 +1771,20 @@ class ConvexT : public ShapeT<S> {
         if (const S d = vertices_[j].dot(direction); d > bestDot) best = j, bestDot = d, climbed = true;
       }
     }
-    return vertices_[best];
+    return best;
   }
 
- protected:
-  ~ConvexT() override = default;
-
- private:
-  static constexpr std::size_t kScanLimit = 64;
+  // The polygon faces around each corner, in compressed rows.
+  void buildVertexFaces() {
+    std::vector<std::vector<int>> around(vertices_.size());
+    for (std::size_t f = 0; f < faces_.size(); ++f)
+      for (const int v : faces_[f].vertices) around[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
+    vertexFacesStart_.assign(1, 0);
+    for (const auto& list : around) {
+      vertexFaces_.insert(vertexFaces_.end(), list.begin(), list.end());
+      vertexFacesStart_.push_back(static_cast<int>(vertexFaces_.size()));
+    }
+  }
 
   // Neighbours of each corner along the triangles' edges, in compressed rows.
   void buildAdjacency() {
@@ -1686,6 +1836,8 @@ class ConvexT : public ShapeT<S> {
   Mat3 unitInertia_ = Mat3::Zero();  // unit density, about center_ (m⁵)
   std::vector<int> adjacency_;
   std::vector<int> adjacencyStart_;
+  std::vector<int> vertexFaces_;
+  std::vector<int> vertexFacesStart_;
 };
 
 using Convex = ConvexT<double>;
@@ -1742,6 +1894,34 @@ class CylinderT : public ShapeT<S> {
     const S y = direction.y() < S(0) ? -S(0.5) * height_ : S(0.5) * height_;
     if (!(radial > S(0))) return Vec3(S(0), y, S(0));
     return Vec3(direction.x() * (radius_ / radial), y, direction.z() * (radius_ / radial));
+  }
+
+  /// Along its axis (within the feature angle) a cap, a disc with
+  /// kCapCorners rim points starting from the rim's support; across it the side line at
+  /// the support's azimuth; else the support point (on a rim).
+  void supportingFeature(const Vec3& direction, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    out.radius = S(0);
+    const S length = direction.norm(), radial = std::hypot(direction.x(), direction.z());
+    const S y = direction.y() < S(0) ? -S(0.5) * height_ : S(0.5) * height_;
+    if (length > S(0) && std::abs(direction.y()) >= S(kSupportingFeatureCos) * length) {
+      const S start = radial > S(0) ? std::atan2(direction.z(), direction.x()) : S(0);
+      for (int k = 0; k < kCapCorners; ++k) {
+        const S angle = start + S(2) * std::numbers::pi_v<S> * S(k) / S(kCapCorners);
+        out.add(Vec3(radius_ * std::cos(angle), y, radius_ * std::sin(angle)));
+      }
+      out.radius = radius_;
+      out.center = Vec3(S(0), y, S(0));
+      out.axis = Vec3::UnitY();
+      return;
+    }
+    if (radial > S(0) && std::abs(direction.y()) <= S(kSupportingFeatureSin) * length) {
+      const S x = direction.x() * (radius_ / radial), z = direction.z() * (radius_ / radial);
+      out.add(Vec3(x, S(0.5) * height_, z));
+      out.add(Vec3(x, -S(0.5) * height_, z));
+      return;
+    }
+    out.add(support(direction));
   }
 
  protected:
@@ -2177,6 +2357,8 @@ using HeightFieldRef = ref_ptr<HeightField>;
 // --- end spook/collide/shapes/height_field.hpp ---
 // --- begin spook/collide/shapes/line.hpp ---
 
+#include <cmath>
+
 namespace spook {
 
 /// A straight segment from a first to a second point in the shape frame (m).
@@ -2227,6 +2409,19 @@ class LineT : public ShapeT<S> {
   /// The endpoint farther along `direction`, the first one on a tie (shape frame, m).
   [[nodiscard]] Vec3 support(const Vec3& direction) const {
     return second_.dot(direction) > first_.dot(direction) ? second_ : first_;
+  }
+
+  /// Both endpoints when the line is across `direction` within the feature
+  /// angle, else the supporting endpoint.
+  void supportingFeature(const Vec3& direction, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    const Vec3 along = second_ - first_;
+    if (std::abs(along.dot(direction)) <= S(kSupportingFeatureSin) * along.norm() * direction.norm()) {
+      out.add(first_);
+      out.add(second_);
+      return;
+    }
+    out.add(support(direction));
   }
 
  protected:
@@ -2405,6 +2600,12 @@ class SphereT : public ShapeT<S> {
   [[nodiscard]] Vec3 support(const Vec3& direction) const {
     const S length = direction.norm();
     return length > S(0) ? Vec3(direction * (radius_ / length)) : Vec3(radius_, S(0), S(0));
+  }
+
+  /// A sphere's supporting feature is always its support point.
+  void supportingFeature(const Vec3& direction, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    out.add(support(direction));
   }
 
  protected:
@@ -2760,12 +2961,20 @@ struct FeatureClipping {
   using Vec2 = Eigen::Vector2d;
   using Vec3 = Vec3T<double>;
 
-  /// A supporting feature: world points on it (m) and the size below which
+  /// A round face: the disc about `center` with unit normal `axis`.
+  struct Disc {
+    Vec3 center = Vec3::Zero();
+    Vec3 axis = Vec3::UnitZ();
+    double radius = 0.0;  // m; 0: not a disc
+  };
+  /// A supporting feature: world points on it (m), the size below which
   /// two of them are the same point (the spread that sampling a curved
-  /// surface leaves).
+  /// surface leaves), and for a round face its disc (the points then an
+  /// inscribed polygon of its rim).
   struct Feature {
     std::vector<Vec3> points;
     double merge = 0.0;
+    Disc disc = {};
   };
   struct Contact {
     Vec3 point;    // world, halfway between the features (m)
@@ -2793,6 +3002,11 @@ struct FeatureClipping {
       overlap = clip(b, a);
     else
       overlap = crossing(a, b, merge);
+    // A round face's polygon is inscribed in its rim: the other feature's
+    // corners inside the disc, and its edges' crossings with the rim, are
+    // part of the overlap too.
+    addInsideDisc(top.disc, b, overlap);
+    addInsideDisc(bottom.disc, a, overlap);
     overlap = hull(overlap, merge);
     // Depths from the heights of the features over each corner, shifted so
     // that the deepest is the penetration depth (the features are sampled,
@@ -2813,8 +3027,61 @@ struct FeatureClipping {
     return out;
   }
 
+  /// One contact of the given depth where two features that do not overlap
+  /// on the contact plane come nearest there: midway between the closest
+  /// points of their projected hulls, and between their heights over it.
+  [[nodiscard]] Contact nearest(const Feature& top, const Feature& bottom, double depth) const {
+    const std::vector<Vec2> a = hull(project(top.points), top.merge);
+    const std::vector<Vec2> b = hull(project(bottom.points), bottom.merge);
+    Vec2 onA = a.front(), onB = b.front();
+    double closest = std::numeric_limits<double>::infinity();
+    const auto consider = [&](const Vec2& p, const std::vector<Vec2>& polygon, bool pOnA) {
+      for (std::size_t k = 0; k < polygon.size(); ++k) {
+        const Vec2 q = polygon[k], edge = polygon[(k + 1) % polygon.size()] - q;
+        const double length2 = edge.squaredNorm();
+        const double t = length2 > 0.0 ? std::clamp(edge.dot(p - q) / length2, 0.0, 1.0) : 0.0;
+        const Vec2 x = q + t * edge;
+        if (const double d = (x - p).squaredNorm(); d < closest) {
+          closest = d;
+          onA = pOnA ? p : x;
+          onB = pOnA ? x : p;
+        }
+      }
+    };
+    for (const Vec2& p : a) consider(p, b, true);
+    for (const Vec2& p : b) consider(p, a, false);
+    const Vec2 v = 0.5 * (onA + onB);
+    const double high = HeightPlane(top.points, *this).at(v), low = HeightPlane(bottom.points, *this).at(v);
+    return {v.x() * t1 + v.y() * t2 + 0.5 * (high + low) * n, depth};
+  }
+
  private:
   [[nodiscard]] Vec2 flat(const Vec3& p) const { return {t1.dot(p), t2.dot(p)}; }
+
+  /// Appends the points of `polygon` (a point, a segment or a polygon on the
+  /// contact plane) inside the projection of `disc`, and the crossings of
+  /// its edges with the rim's, each lifted along n onto the disc's plane.
+  void addInsideDisc(const Disc& disc, const std::vector<Vec2>& polygon, std::vector<Vec2>& out) const {
+    const double across = disc.axis.dot(n);
+    if (!(disc.radius > 0.0) || polygon.empty() || !(std::abs(across) > 0.5)) return;
+    const auto lifted = [&](const Vec2& v) {  // from the disc's center, in its plane
+      const Vec3 p = v.x() * t1 + v.y() * t2 - disc.center;
+      return Vec3(p - (disc.axis.dot(p) / across) * n);
+    };
+    const double r2 = disc.radius * disc.radius;
+    for (const Vec2& v : polygon)
+      if (lifted(v).squaredNorm() <= r2) out.push_back(v);
+    const std::size_t edges = polygon.size() == 1 ? 0 : polygon.size() == 2 ? 1 : polygon.size();
+    for (std::size_t k = 0; k < edges; ++k) {
+      const Vec2 p = polygon[k], q = polygon[(k + 1) % polygon.size()];
+      const Vec3 d = lifted(p), e = lifted(q) - d;
+      // |d + t e|² = r²: e·e t² + 2 d·e t + d·d − r² = 0.
+      const double a = e.squaredNorm(), b = d.dot(e), c = d.squaredNorm() - r2, discriminant = b * b - a * c;
+      if (!(a > 0.0) || discriminant < 0.0) continue;
+      for (const double sign : {-1.0, 1.0})
+        if (const double t = (-b + sign * std::sqrt(discriminant)) / a; t > 0.0 && t < 1.0) out.push_back(p + t * (q - p));
+    }
+  }
 
   [[nodiscard]] std::vector<Vec2> project(const std::vector<Vec3>& points) const {
     std::vector<Vec2> out;
@@ -2950,18 +3217,21 @@ struct CcdObject {
   Mat3T<double> R;     // shape → world rotation
   Vec3T<double> p;     // shape origin in world (m)
   Vec3T<double> center;  // a point inside the shape, world (m)
+  double margin = 0.0;   // libccd sees the shape grown by this much (m)
 
-  CcdObject(const Shape& s, const TransformT<S>& X_W)
+  CcdObject(const Shape& s, const TransformT<S>& X_W, double grownBy = 0.0)
       : shape(&s),
         R(X_W.linear().template cast<double>()),
         p(X_W.translation().template cast<double>()),
-        center(R * s.getCenterOfVolume().template cast<double>() + p) {}
+        center(R * s.getCenterOfVolume().template cast<double>() + p),
+        margin(grownBy) {}
 
   static void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
     const auto& o = *static_cast<const CcdObject*>(object);
     const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
     const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
-    const Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
+    Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
+    if (const double length = d_W.norm(); o.margin > 0.0 && length > 0.0) s_W += (o.margin / length) * d_W;
     for (int i = 0; i < 3; ++i) out->v[i] = s_W[i];
   }
   static void centerOf(const void* object, ccd_vec3_t* out) {
@@ -2971,6 +3241,9 @@ struct CcdObject {
 };
 
 inline constexpr double kCcdEpaTolerance = 1e-6;  // m
+/// Gap, relative to the smaller shape's size, within which two shapes
+/// count as touching (a contact of depth 0).
+inline constexpr double kCcdTouchMargin = 1e-7;
 inline constexpr unsigned long kCcdMaxIterations = 200;
 /// Polishing: starts besides libccd's direction, and the gradient
 /// (relative to the shapes' size) below which a descent ended on a smooth
@@ -3152,36 +3425,51 @@ std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdOb
   return starts;
 }
 
-/// A shape's supporting feature along the unit direction n, sampled: its
-/// support at n and at n tilted by kFeatureTilt toward eight directions of
-/// the tangent plane. A unique support (a vertex, a curved surface) keeps the
-/// samples within ~size·tilt of each other; an edge or a face spreads them
-/// over itself (its ends or corners), and their mean lies inside it.
+/// A shape's supporting feature along the unit direction n, world (m): its
+/// points, their mean and how far they spread from the support at n.
 struct SupportingFeature {
-  Vec3T<double> center;  // mean of the samples, world (m)
-  double spread = 0.0;   // largest distance of a sample from the support at n (m)
+  Vec3T<double> center;  // mean of the points, world (m)
+  double spread = 0.0;   // largest distance of a point from the support at n (m)
   std::vector<Vec3T<double>> samples;
+  FeatureClipping::Disc disc;  // a round face (radius > 0), world
 };
+/// Tilt of the sampled features (shapes without supportingFeature).
 inline constexpr double kFeatureTilt = 1e-3;  // rad
 
+/// The supporting feature of a shape along n: the shape's own
+/// supportingFeature (a face, an edge or a point within the feature angle,
+/// SupportingFeatureT) or, for a shape without one, sampled: its support at
+/// n and at n tilted by kFeatureTilt toward eight directions of the tangent
+/// plane, which spread over a face or an edge (its corners or ends) that is
+/// within that tilt of supporting and stay together otherwise.
 template <class Object>
-SupportingFeature sampleSupportingFeature(const Object& object, const Vec3T<double>& n) {
+SupportingFeature supportingFeature(const Object& object, const Vec3T<double>& n) {
   using S = typename Object::S;
+  const auto toWorld = [&](const Vec3T<S>& p) { return Vec3T<double>(object.R * p.template cast<double>() + object.p); };
   const auto support = [&](const Vec3T<double>& d) {
-    return Vec3T<double>(object.R * object.shape->support((object.R.transpose() * d).template cast<S>()).template cast<double>() +
-                         object.p);
+    return toWorld(object.shape->support((object.R.transpose() * d).template cast<S>()));
   };
-  const Vec3T<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-  const Vec3T<double> atN = support(n);
-  SupportingFeature feature{atN, 0.0, {atN}};
-  for (int k = 0; k < 8; ++k) {
-    const double angle = k * 0.7853981633974483;
-    const Vec3T<double> sample = support(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2));
-    feature.center += sample;
-    feature.spread = std::max(feature.spread, (sample - atN).norm());
-    feature.samples.push_back(sample);
+  SupportingFeature feature{Vec3T<double>::Zero(), 0.0, {}, {}};
+  if constexpr (requires(SupportingFeatureT<S>& out) { object.shape->supportingFeature(Vec3T<S>(), out); }) {
+    SupportingFeatureT<S> local;
+    object.shape->supportingFeature((object.R.transpose() * n).template cast<S>(), local);
+    for (std::size_t k = 0; k < local.count; ++k) feature.samples.push_back(toWorld(local.points[k]));
+    if (local.radius > S(0))
+      feature.disc = {toWorld(local.center), object.R * local.axis.template cast<double>(), double(local.radius)};
+  } else {
+    const Vec3T<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    feature.samples.push_back(support(n));
+    for (int k = 0; k < 8; ++k) {
+      const double angle = k * 0.7853981633974483;
+      feature.samples.push_back(support(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2)));
+    }
   }
-  feature.center /= 9.0;
+  const Vec3T<double> atN = support(n);
+  for (const Vec3T<double>& p : feature.samples) {
+    feature.center += p;
+    feature.spread = std::max(feature.spread, (p - atN).norm());
+  }
+  feature.center /= double(feature.samples.size());
   return feature;
 }
 
@@ -3202,21 +3490,51 @@ inline Vec3T<double> contactPointInOverlap(const SupportingFeature& onA, const S
 /// The contacts of a penetration of `depth` along n (from a toward b): the
 /// corners of the overlap of the two supporting features (FeatureClipping:
 /// a resting face, cylinder side or cap gets its manifold in one step), or,
-/// where the sampled features do not overlap, one point by
-/// contactPointInOverlap. Samples closer than 4·kFeatureTilt·size are one
-/// point (the spread a curved surface leaves).
+/// where the features do not overlap, one point by contactPointInOverlap.
+/// Points closer than 4·kFeatureTilt·size are one point (the spread a
+/// sampled curved surface leaves).
 template <class A, class B>
 std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, const CcdObject<B>& b,
                                                          const Vec3T<double>& n, double depth) {
-  const SupportingFeature onA = sampleSupportingFeature(a, n), onB = sampleSupportingFeature(b, -n);
+  const SupportingFeature onA = supportingFeature(a, n), onB = supportingFeature(b, -n);
   const auto size = [](const auto& object) {
     return object.shape->getBoundingBox().halfExtents().template cast<double>().norm();
   };
   const FeatureClipping clipping(n);
-  std::vector<FeatureClipping::Contact> contacts =
-      clipping.contacts({onA.samples, 4.0 * kFeatureTilt * size(a)}, {onB.samples, 4.0 * kFeatureTilt * size(b)}, depth);
-  if (contacts.empty()) contacts.push_back({contactPointInOverlap(onA, onB, n, depth), depth});
+  std::vector<FeatureClipping::Contact> contacts = clipping.contacts(
+      {onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc}, {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth);
+  if (contacts.empty()) {
+    // A point feature (a vertex, a curved surface's support) is the contact
+    // itself; two extended ones that miss each other on the contact plane
+    // (a cap's inscribed polygon, round-off at a rim) meet where they come
+    // nearest.
+    if (onA.samples.size() == 1 || onB.samples.size() == 1)
+      contacts.push_back({contactPointInOverlap(onA, onB, n, depth), depth});
+    else
+      contacts.push_back(clipping.nearest({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
+                                          {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth));
+  }
   return contacts;
+}
+
+/// True when one of the directions ±(axes of a's and b's frames) or ±(the
+/// line between their centers) has a projection overlap f below `below`:
+/// the shapes are apart by at least −below along it.
+template <class A, class B>
+bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double below) {
+  const auto apart = [&](const Vec3T<double>& direction) {
+    const double length = direction.norm();
+    if (!(length > 0.0)) return false;
+    for (const double sign : {1.0, -1.0}) {
+      const Vec3T<double> d = direction * (sign / length);
+      if (d.dot(overlap.gradient(d)) < below) return true;
+    }
+    return false;
+  };
+  if (apart(overlap.b.center - overlap.a.center)) return true;
+  for (int i = 0; i < 3; ++i)
+    if (apart(overlap.a.R.col(i)) || apart(overlap.b.R.col(i))) return true;
+  return false;
 }
 
 /// Penetration of two convex shapes by GJK + EPA (libccd), polished as
@@ -3228,7 +3546,12 @@ std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, 
 template <Scalar S, class A, class B>
 void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
                   bool manifold = true) {
-  const CcdObject<A> objectA(a, X_WA);
+  // libccd sees a grown by kCcdTouchMargin of the smaller shape's size, so
+  // that shapes placed exactly touching (a body set down on a ground) are
+  // found touching, not left to fall a step; the polishing below measures
+  // the true overlap, and a gap within the margin is a contact of depth 0.
+  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
+  const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeOf(a), sizeOf(b)));
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;
   CCD_INIT(&ccd);
@@ -3240,16 +3563,28 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   ccd.epa_tolerance = kCcdEpaTolerance;
   ccd_real_t depth = 0;
   ccd_vec3_t direction, position;
-  if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) return;
+  const ProjectionOverlap<A, B> overlap{objectA, objectB};
+  if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) {
+    // libccd's GJK misses a few shallow overlaps of a small shape on a large
+    // one (0.7 % of those 1e-9..1e-4 m deep on boxes of 0.5..500 m, each a
+    // step of free fall through a resting contact): "apart" stands only
+    // with a separating axis among the shapes' axes and the line between
+    // their centers; otherwise the polishing below decides.
+    if (separatedAlongFrameAxes(overlap, -objectA.margin)) return;
+    direction = {{0.0, 0.0, 0.0}};
+  }
+  // libccd reports a penetration far smaller than the shapes (within the
+  // margin) as touching, without a direction: the polishing below finds it
+  // from its other starts.
   Vec3T<double> n(direction.v[0], direction.v[1], direction.v[2]);
-  const double length = n.norm();
-  if (!(length > 0.0)) return;  // touching at a single point: no direction to push along
-  n /= length;
+  if (const double length = n.norm(); length > 0.0 && std::isfinite(length))
+    n /= length;
+  else
+    n = Vec3T<double>::UnitZ();
   const double scale = (a.getBoundingBox().halfExtents().template cast<double>().norm() +
                         b.getBoundingBox().halfExtents().template cast<double>().norm());
   // f may have several local minima: descend from several starts, then
   // search the kinks where a descent stalled.
-  const ProjectionOverlap<A, B> overlap{objectA, objectB};
   double refined = std::numeric_limits<double>::infinity();
   for (Vec3T<double> start : startingDirections(objectA, objectB, n, kStarts)) {
     bool smooth = false;
@@ -3260,8 +3595,8 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
       n = start;
     }
   }
-  if (!(refined >= 0.0)) return;  // the polished direction separates them
-  std::vector<FeatureClipping::Contact> contacts = contactsOfFeatures(objectA, objectB, n, refined);
+  if (!(refined >= -objectA.margin)) return;  // the polished direction separates them
+  std::vector<FeatureClipping::Contact> contacts = contactsOfFeatures(objectA, objectB, n, std::max(refined, 0.0));
   if (!manifold) {
     const auto deepest = std::max_element(contacts.begin(), contacts.end(),
                                           [](const auto& x, const auto& y) { return x.depth < y.depth; });
@@ -4292,7 +4627,12 @@ struct Collider<CylinderT<S>, PlaneT<S>> {
                       ContactSinkT<S>& sink) {
     const Vec3T<S> n = X_WB.linear() * b.getNormal();
     const Vec3T<S> u = X_WA.linear().col(1);
-    const Vec3T<S> across = (n.dot(u)) * u - n;  // along the rim, away from the plane's outside
+    // Along the rim, away from the plane's outside; projected off u once
+    // more, since for a cylinder standing nearly upright (n ≈ ±u) the first
+    // difference is round-off that need not be ⟂ u (in float it made rim
+    // points below the cap).
+    Vec3T<S> across = (n.dot(u)) * u - n;
+    across -= across.dot(u) * u;
     const S acrossLength = across.norm();
     const Vec3T<S> v =
         acrossLength > ScalarTraits<S>::epsilon() ? Vec3T<S>(across / acrossLength) : Vec3T<S>(X_WA.linear().col(0));
@@ -4472,6 +4812,7 @@ struct Collider<PlaneT<S>, SphereT<S>> {
 // --- begin spook/collide/detail/triangle.hpp ---
 
 #include <array>
+#include <cmath>
 
 namespace spook::detail {
 
@@ -4486,6 +4827,28 @@ struct Triangle {
   [[nodiscard]] Vec3 support(const Vec3& d) const {
     const S a = v[0].dot(d), b = v[1].dot(d), c = v[2].dot(d);
     return a >= b ? (a >= c ? v[0] : v[2]) : (b >= c ? v[1] : v[2]);
+  }
+  /// The whole triangle when its plane is across `d` within the feature
+  /// angle (from either side), else the edge across `d`, else the corner.
+  void supportingFeature(const Vec3& d, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    const S length = d.norm();
+    const Vec3 area = (v[1] - v[0]).cross(v[2] - v[0]);
+    if (length > S(0) && std::abs(area.dot(d)) >= S(kSupportingFeatureCos) * area.norm() * length) {
+      for (const Vec3& p : v) out.add(p);
+      return;
+    }
+    const Vec3 top = support(d);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = v[k];
+      const Vec3& q = v[(k + 1) % 3];
+      if ((p == top || q == top) && std::abs((q - p).dot(d)) <= S(kSupportingFeatureSin) * (q - p).norm() * length) {
+        out.add(p);
+        out.add(q);
+        return;
+      }
+    }
+    out.add(top);
   }
   [[nodiscard]] Vec3 getCenterOfVolume() const { return (v[0] + v[1] + v[2]) / S(3); }
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
@@ -4674,9 +5037,27 @@ struct SeparatingAxis {
   using S = double;
   using Kind = SeparatingAxis::Kind;
   const auto overlap = [&](const Vec3T<S>& n) { return a.support(n).first + b.support(-n).first; };
+  // An edge pair's axis replaces a face's only when it is shallower by more
+  // than round-off: two edges lying in a face (a box resting on a mesh
+  // triangle's edge) span that face's own normal, and their contact point
+  // is undetermined where the face's manifold is not.
+  const S roundOff = S(64) * ScalarTraits<S>::epsilon() *
+                     (S(1) + std::max(a.vertices[0].cwiseAbs().maxCoeff(), b.vertices[0].cwiseAbs().maxCoeff()));
+  // An edge pair's axis counts only where both edges are extreme along it
+  // (they touch there); for other pairs it may still separate the shapes.
+  const auto edgesSupport = [&](const Polytope::Edge& ea, const Polytope::Edge& eb, const Vec3T<S>& n) {
+    const auto extreme = [&](const Polytope& p, const Polytope::Edge& e, const Vec3T<S>& d) {
+      return std::max(d.dot(p.vertex(e.from)), d.dot(p.vertex(e.to))) >= p.support(d).first - roundOff;
+    };
+    return extreme(a, ea, n) && extreme(b, eb, -n);
+  };
   const auto consider = [&](const Vec3T<S>& n, Kind kind, int first, int second) {
     const S f = overlap(n);
-    if (f < best.depth) best = {f, n, kind, first, second};
+    const bool faceHeld = kind == Kind::EDGES && best.kind != Kind::EDGES && f >= best.depth - roundOff;
+    if (f < best.depth && !faceHeld &&
+        (kind != Kind::EDGES ||
+         edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n)))
+      best = {f, n, kind, first, second};
     return f >= S(0);
   };
   for (std::size_t i = 0; i < a.faces.size(); ++i) {
@@ -4753,15 +5134,17 @@ inline void clipToHalfSpace(std::vector<Vec3T<double>>& corners, const Vec3T<dou
 /// Contacts of two overlapping polytopes along their axis of least overlap.
 ///
 /// Edge against edge: one point, midway between the two edges' closest
-/// points, at the least overlap. Face against anything: the face is the
-/// reference, the other polytope's face most against it (or its segment)
-/// is clipped to the reference face's side planes (Sutherland–Hodgman), and
-/// each clipped corner below the reference plane is a contact at its own
-/// depth, midway to the plane: a full manifold, as for box–box. Where
+/// points, at the least overlap; two, at the ends of their common range,
+/// for edges within the feature angle of parallel. Face against anything:
+/// the face is the reference, the other polytope's face most against it (or
+/// its segment) is clipped to the reference face's side planes
+/// (Sutherland–Hodgman), and each clipped corner below the reference plane
+/// is a contact at its own depth, midway to the plane: a full manifold, as
+/// for box–box. Where
 /// clipping keeps no corner as deep as the least overlap (the deepest one
-/// hangs over the reference face's rim) the deepest corner of the other
-/// polytope is added at the least overlap, so that the deepest contact is
-/// always the penetration depth of the pair.
+/// hangs over the reference face's rim) a contact at the least overlap is
+/// added where the clipped feature comes nearest to that corner, so that
+/// the deepest contact is always the penetration depth of the pair.
 template <Scalar T>
 void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink) {
   using S = double;
@@ -4772,8 +5155,28 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
   if (axis.kind == SeparatingAxis::EDGES) {
     const auto& ea = a.edges[std::size_t(axis.first)];
     const auto& eb = b.edges[std::size_t(axis.second)];
-    const auto closest = closestPointsBetweenSegments<S>(a.vertex(ea.from), a.vertex(ea.to), b.vertex(eb.from),
-                                                         b.vertex(eb.to));
+    const Vec3T<S> p = a.vertex(ea.from), u = a.vertex(ea.to) - p;
+    const Vec3T<S> q = b.vertex(eb.from), v = b.vertex(eb.to) - q;
+    if (u.cross(v).norm() <= S(kSupportingFeatureSin) * u.norm() * v.norm()) {
+      // Edges within the feature angle of parallel touch along a line (their
+      // closest points are undetermined): its two ends, where the edges'
+      // ranges along u overlap, midway across to b's edge.
+      const S uu = u.squaredNorm(), s0 = u.dot(q - p) / uu, s1 = u.dot(q + v - p) / uu;
+      const S from = std::max(S(0), std::min(s0, s1)), to = std::min(S(1), std::max(s0, s1));
+      const auto addAt = [&](S s) {
+        const Vec3T<S> onA = p + s * u;
+        const S t = std::clamp(v.dot(onA - q) / v.squaredNorm(), S(0), S(1));
+        add(S(0.5) * (onA + q + t * v), axis.depth);
+      };
+      if (from < to) {
+        addAt(from);
+        addAt(to);
+      } else {
+        addAt(std::clamp(S(0.5) * (from + to), S(0), S(1)));
+      }
+      return;
+    }
+    const auto closest = closestPointsBetweenSegments<S>(p, a.vertex(ea.to), q, b.vertex(eb.to));
     add(S(0.5) * (closest.onFirst + closest.onSecond), axis.depth);
     return;
   }
@@ -4808,8 +5211,17 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
     deepest = std::max(deepest, depth);
   }
   if (deepest < axis.depth - tolerance * S(16)) {
+    // The deepest point of the incident polytope is off the reference face:
+    // the contact at the least overlap goes where the clipped feature comes
+    // nearest to it, on the reference face (never at that point itself,
+    // which may lie metres away on a large mesh triangle under a small
+    // shape), or at that point when nothing is left after clipping.
     const Vec3T<S>& x = incident.vertex(incident.support(-r).second);
-    add(x + r * (S(0.5) * axis.depth), axis.depth);
+    Vec3T<S> at = x;
+    S nearest = std::numeric_limits<S>::infinity();
+    for (const Vec3T<S>& c : corners)
+      if (const S d = (c - x).squaredNorm(); d < nearest) nearest = d, at = c + r * (planeOffset - r.dot(c));
+    add(at - r * (S(0.5) * axis.depth), axis.depth);
   }
 }
 

@@ -23,7 +23,12 @@ struct Collider<CylinderT<S>, PlaneT<S>> {
                       ContactSinkT<S>& sink) {
     const Vec3T<S> n = X_WB.linear() * b.getNormal();
     const Vec3T<S> u = X_WA.linear().col(1);
-    const Vec3T<S> across = (n.dot(u)) * u - n;  // along the rim, away from the plane's outside
+    // Along the rim, away from the plane's outside; projected off u once
+    // more, since for a cylinder standing nearly upright (n ≈ ±u) the first
+    // difference is round-off that need not be ⟂ u (in float it made rim
+    // points below the cap).
+    Vec3T<S> across = (n.dot(u)) * u - n;
+    across -= across.dot(u) * u;
     const S acrossLength = across.norm();
     const Vec3T<S> v =
         acrossLength > ScalarTraits<S>::epsilon() ? Vec3T<S>(across / acrossLength) : Vec3T<S>(X_WA.linear().col(0));

@@ -22,12 +22,20 @@ struct FeatureClipping {
   using Vec2 = Eigen::Vector2d;
   using Vec3 = Vec3T<double>;
 
-  /// A supporting feature: world points on it (m) and the size below which
+  /// A round face: the disc about `center` with unit normal `axis`.
+  struct Disc {
+    Vec3 center = Vec3::Zero();
+    Vec3 axis = Vec3::UnitZ();
+    double radius = 0.0;  // m; 0: not a disc
+  };
+  /// A supporting feature: world points on it (m), the size below which
   /// two of them are the same point (the spread that sampling a curved
-  /// surface leaves).
+  /// surface leaves), and for a round face its disc (the points then an
+  /// inscribed polygon of its rim).
   struct Feature {
     std::vector<Vec3> points;
     double merge = 0.0;
+    Disc disc = {};
   };
   struct Contact {
     Vec3 point;    // world, halfway between the features (m)
@@ -55,6 +63,11 @@ struct FeatureClipping {
       overlap = clip(b, a);
     else
       overlap = crossing(a, b, merge);
+    // A round face's polygon is inscribed in its rim: the other feature's
+    // corners inside the disc, and its edges' crossings with the rim, are
+    // part of the overlap too.
+    addInsideDisc(top.disc, b, overlap);
+    addInsideDisc(bottom.disc, a, overlap);
     overlap = hull(overlap, merge);
     // Depths from the heights of the features over each corner, shifted so
     // that the deepest is the penetration depth (the features are sampled,
@@ -75,8 +88,61 @@ struct FeatureClipping {
     return out;
   }
 
+  /// One contact of the given depth where two features that do not overlap
+  /// on the contact plane come nearest there: midway between the closest
+  /// points of their projected hulls, and between their heights over it.
+  [[nodiscard]] Contact nearest(const Feature& top, const Feature& bottom, double depth) const {
+    const std::vector<Vec2> a = hull(project(top.points), top.merge);
+    const std::vector<Vec2> b = hull(project(bottom.points), bottom.merge);
+    Vec2 onA = a.front(), onB = b.front();
+    double closest = std::numeric_limits<double>::infinity();
+    const auto consider = [&](const Vec2& p, const std::vector<Vec2>& polygon, bool pOnA) {
+      for (std::size_t k = 0; k < polygon.size(); ++k) {
+        const Vec2 q = polygon[k], edge = polygon[(k + 1) % polygon.size()] - q;
+        const double length2 = edge.squaredNorm();
+        const double t = length2 > 0.0 ? std::clamp(edge.dot(p - q) / length2, 0.0, 1.0) : 0.0;
+        const Vec2 x = q + t * edge;
+        if (const double d = (x - p).squaredNorm(); d < closest) {
+          closest = d;
+          onA = pOnA ? p : x;
+          onB = pOnA ? x : p;
+        }
+      }
+    };
+    for (const Vec2& p : a) consider(p, b, true);
+    for (const Vec2& p : b) consider(p, a, false);
+    const Vec2 v = 0.5 * (onA + onB);
+    const double high = HeightPlane(top.points, *this).at(v), low = HeightPlane(bottom.points, *this).at(v);
+    return {v.x() * t1 + v.y() * t2 + 0.5 * (high + low) * n, depth};
+  }
+
  private:
   [[nodiscard]] Vec2 flat(const Vec3& p) const { return {t1.dot(p), t2.dot(p)}; }
+
+  /// Appends the points of `polygon` (a point, a segment or a polygon on the
+  /// contact plane) inside the projection of `disc`, and the crossings of
+  /// its edges with the rim's, each lifted along n onto the disc's plane.
+  void addInsideDisc(const Disc& disc, const std::vector<Vec2>& polygon, std::vector<Vec2>& out) const {
+    const double across = disc.axis.dot(n);
+    if (!(disc.radius > 0.0) || polygon.empty() || !(std::abs(across) > 0.5)) return;
+    const auto lifted = [&](const Vec2& v) {  // from the disc's center, in its plane
+      const Vec3 p = v.x() * t1 + v.y() * t2 - disc.center;
+      return Vec3(p - (disc.axis.dot(p) / across) * n);
+    };
+    const double r2 = disc.radius * disc.radius;
+    for (const Vec2& v : polygon)
+      if (lifted(v).squaredNorm() <= r2) out.push_back(v);
+    const std::size_t edges = polygon.size() == 1 ? 0 : polygon.size() == 2 ? 1 : polygon.size();
+    for (std::size_t k = 0; k < edges; ++k) {
+      const Vec2 p = polygon[k], q = polygon[(k + 1) % polygon.size()];
+      const Vec3 d = lifted(p), e = lifted(q) - d;
+      // |d + t e|² = r²: e·e t² + 2 d·e t + d·d − r² = 0.
+      const double a = e.squaredNorm(), b = d.dot(e), c = d.squaredNorm() - r2, discriminant = b * b - a * c;
+      if (!(a > 0.0) || discriminant < 0.0) continue;
+      for (const double sign : {-1.0, 1.0})
+        if (const double t = (-b + sign * std::sqrt(discriminant)) / a; t > 0.0 && t < 1.0) out.push_back(p + t * (q - p));
+    }
+  }
 
   [[nodiscard]] std::vector<Vec2> project(const std::vector<Vec3>& points) const {
     std::vector<Vec2> out;

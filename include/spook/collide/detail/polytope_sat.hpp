@@ -9,6 +9,7 @@
 #include <spook/collide/contact_sink.hpp>
 #include <spook/collide/detail/polytope.hpp>
 #include <spook/collide/detail/segment_distance.hpp>
+#include <spook/collide/supporting_feature.hpp>
 #include <spook/core/math.hpp>
 
 namespace spook::detail {
@@ -43,9 +44,27 @@ struct SeparatingAxis {
   using S = double;
   using Kind = SeparatingAxis::Kind;
   const auto overlap = [&](const Vec3T<S>& n) { return a.support(n).first + b.support(-n).first; };
+  // An edge pair's axis replaces a face's only when it is shallower by more
+  // than round-off: two edges lying in a face (a box resting on a mesh
+  // triangle's edge) span that face's own normal, and their contact point
+  // is undetermined where the face's manifold is not.
+  const S roundOff = S(64) * ScalarTraits<S>::epsilon() *
+                     (S(1) + std::max(a.vertices[0].cwiseAbs().maxCoeff(), b.vertices[0].cwiseAbs().maxCoeff()));
+  // An edge pair's axis counts only where both edges are extreme along it
+  // (they touch there); for other pairs it may still separate the shapes.
+  const auto edgesSupport = [&](const Polytope::Edge& ea, const Polytope::Edge& eb, const Vec3T<S>& n) {
+    const auto extreme = [&](const Polytope& p, const Polytope::Edge& e, const Vec3T<S>& d) {
+      return std::max(d.dot(p.vertex(e.from)), d.dot(p.vertex(e.to))) >= p.support(d).first - roundOff;
+    };
+    return extreme(a, ea, n) && extreme(b, eb, -n);
+  };
   const auto consider = [&](const Vec3T<S>& n, Kind kind, int first, int second) {
     const S f = overlap(n);
-    if (f < best.depth) best = {f, n, kind, first, second};
+    const bool faceHeld = kind == Kind::EDGES && best.kind != Kind::EDGES && f >= best.depth - roundOff;
+    if (f < best.depth && !faceHeld &&
+        (kind != Kind::EDGES ||
+         edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n)))
+      best = {f, n, kind, first, second};
     return f >= S(0);
   };
   for (std::size_t i = 0; i < a.faces.size(); ++i) {
@@ -122,15 +141,17 @@ inline void clipToHalfSpace(std::vector<Vec3T<double>>& corners, const Vec3T<dou
 /// Contacts of two overlapping polytopes along their axis of least overlap.
 ///
 /// Edge against edge: one point, midway between the two edges' closest
-/// points, at the least overlap. Face against anything: the face is the
-/// reference, the other polytope's face most against it (or its segment)
-/// is clipped to the reference face's side planes (Sutherland–Hodgman), and
-/// each clipped corner below the reference plane is a contact at its own
-/// depth, midway to the plane: a full manifold, as for box–box. Where
+/// points, at the least overlap; two, at the ends of their common range,
+/// for edges within the feature angle of parallel. Face against anything:
+/// the face is the reference, the other polytope's face most against it (or
+/// its segment) is clipped to the reference face's side planes
+/// (Sutherland–Hodgman), and each clipped corner below the reference plane
+/// is a contact at its own depth, midway to the plane: a full manifold, as
+/// for box–box. Where
 /// clipping keeps no corner as deep as the least overlap (the deepest one
-/// hangs over the reference face's rim) the deepest corner of the other
-/// polytope is added at the least overlap, so that the deepest contact is
-/// always the penetration depth of the pair.
+/// hangs over the reference face's rim) a contact at the least overlap is
+/// added where the clipped feature comes nearest to that corner, so that
+/// the deepest contact is always the penetration depth of the pair.
 template <Scalar T>
 void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink) {
   using S = double;
@@ -141,8 +162,28 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
   if (axis.kind == SeparatingAxis::EDGES) {
     const auto& ea = a.edges[std::size_t(axis.first)];
     const auto& eb = b.edges[std::size_t(axis.second)];
-    const auto closest = closestPointsBetweenSegments<S>(a.vertex(ea.from), a.vertex(ea.to), b.vertex(eb.from),
-                                                         b.vertex(eb.to));
+    const Vec3T<S> p = a.vertex(ea.from), u = a.vertex(ea.to) - p;
+    const Vec3T<S> q = b.vertex(eb.from), v = b.vertex(eb.to) - q;
+    if (u.cross(v).norm() <= S(kSupportingFeatureSin) * u.norm() * v.norm()) {
+      // Edges within the feature angle of parallel touch along a line (their
+      // closest points are undetermined): its two ends, where the edges'
+      // ranges along u overlap, midway across to b's edge.
+      const S uu = u.squaredNorm(), s0 = u.dot(q - p) / uu, s1 = u.dot(q + v - p) / uu;
+      const S from = std::max(S(0), std::min(s0, s1)), to = std::min(S(1), std::max(s0, s1));
+      const auto addAt = [&](S s) {
+        const Vec3T<S> onA = p + s * u;
+        const S t = std::clamp(v.dot(onA - q) / v.squaredNorm(), S(0), S(1));
+        add(S(0.5) * (onA + q + t * v), axis.depth);
+      };
+      if (from < to) {
+        addAt(from);
+        addAt(to);
+      } else {
+        addAt(std::clamp(S(0.5) * (from + to), S(0), S(1)));
+      }
+      return;
+    }
+    const auto closest = closestPointsBetweenSegments<S>(p, a.vertex(ea.to), q, b.vertex(eb.to));
     add(S(0.5) * (closest.onFirst + closest.onSecond), axis.depth);
     return;
   }
@@ -177,8 +218,17 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
     deepest = std::max(deepest, depth);
   }
   if (deepest < axis.depth - tolerance * S(16)) {
+    // The deepest point of the incident polytope is off the reference face:
+    // the contact at the least overlap goes where the clipped feature comes
+    // nearest to it, on the reference face (never at that point itself,
+    // which may lie metres away on a large mesh triangle under a small
+    // shape), or at that point when nothing is left after clipping.
     const Vec3T<S>& x = incident.vertex(incident.support(-r).second);
-    add(x + r * (S(0.5) * axis.depth), axis.depth);
+    Vec3T<S> at = x;
+    S nearest = std::numeric_limits<S>::infinity();
+    for (const Vec3T<S>& c : corners)
+      if (const S d = (c - x).squaredNorm(); d < nearest) nearest = d, at = c + r * (planeOffset - r.dot(c));
+    add(at - r * (S(0.5) * axis.depth), axis.depth);
   }
 }
 

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <cmath>
+#include <utility>
+
 #include <spook/collide/shapes/shape.hpp>
 
 namespace spook {
@@ -38,6 +41,40 @@ class BoxT : public ShapeT<S> {
     return Vec3(direction.x() < S(0) ? -halfExtents_.x() : halfExtents_.x(),
                 direction.y() < S(0) ? -halfExtents_.y() : halfExtents_.y(),
                 direction.z() < S(0) ? -halfExtents_.z() : halfExtents_.z());
+  }
+
+  /// The face, edge or corner supporting `direction` (SupportingFeatureT):
+  /// the face whose normal is within the feature angle of it, else the edge
+  /// across which it is, else the corner.
+  void supportingFeature(const Vec3& direction, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    const Vec3 corner = support(direction);
+    const S length = direction.norm();
+    if (!(length > S(0))) {
+      out.add(corner);
+      return;
+    }
+    int most = 0, least = 0;
+    direction.cwiseAbs().maxCoeff(&most);
+    direction.cwiseAbs().minCoeff(&least);
+    if (std::abs(direction[most]) >= S(kSupportingFeatureCos) * length) {
+      // The face across axis `most`: its corners, counter-clockwise.
+      const int i = (most + 1) % 3, j = (most + 2) % 3;
+      for (const auto& [si, sj] : {std::pair{1, 1}, std::pair{-1, 1}, std::pair{-1, -1}, std::pair{1, -1}}) {
+        Vec3 p = corner;
+        p[i] = S(si) * halfExtents_[i];
+        p[j] = S(sj) * halfExtents_[j];
+        out.add(p);
+      }
+    } else if (std::abs(direction[least]) <= S(kSupportingFeatureSin) * length) {
+      Vec3 p = corner;
+      p[least] = halfExtents_[least];
+      out.add(p);
+      p[least] = -halfExtents_[least];
+      out.add(p);
+    } else {
+      out.add(corner);
+    }
   }
 
  protected:

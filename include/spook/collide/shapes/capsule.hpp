@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <numbers>
 
 #include <spook/collide/shapes/shape.hpp>
@@ -53,6 +54,20 @@ class CapsuleT : public ShapeT<S> {
     const Vec3 end(S(0), direction.y() < S(0) ? -S(0.5) * height_ : S(0.5) * height_, S(0));
     const S length = direction.norm();
     return length > S(0) ? Vec3(end + direction * (radius_ / length)) : Vec3(end + Vec3(radius_, S(0), S(0)));
+  }
+
+  /// Across its axis (within the feature angle) the side line, from one end
+  /// sphere's support to the other's; else the support point.
+  void supportingFeature(const Vec3& direction, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    const S length = direction.norm();
+    if (length > S(0) && std::abs(direction.y()) <= S(kSupportingFeatureSin) * length) {
+      const Vec3 side = direction * (radius_ / length);
+      out.add(Vec3(side + Vec3(S(0), S(0.5) * height_, S(0))));
+      out.add(Vec3(side - Vec3(S(0), S(0.5) * height_, S(0))));
+      return;
+    }
+    out.add(support(direction));
   }
 
  protected:

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -53,6 +55,7 @@ class ConvexT : public ShapeT<S> {
     unitInertia_ = mass.inertia.template cast<S>();
     buildAdjacency();
     buildEdges();
+    buildVertexFaces();
   }
 
   /// Hull corners, shape frame (m).
@@ -99,13 +102,58 @@ class ConvexT : public ShapeT<S> {
 
   /// The corner farthest along `direction`, shape frame (m): a scan of the
   /// corners for small hulls, a climb along the hull's edges for large ones.
-  [[nodiscard]] Vec3 support(const Vec3& direction) const {
+  [[nodiscard]] Vec3 support(const Vec3& direction) const { return vertices_[supportIndex(direction)]; }
+
+  /// The face or edge at the support corner that is across `direction`
+  /// within the feature angle (SupportingFeatureT), else that corner. A
+  /// face of more corners than the feature holds keeps every k-th.
+  void supportingFeature(const Vec3& direction, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    const std::size_t top = supportIndex(direction);
+    const S length = direction.norm();
+    if (length > S(0)) {
+      int face = -1;
+      S nearest = -std::numeric_limits<S>::infinity();
+      for (int k = vertexFacesStart_[top]; k < vertexFacesStart_[top + 1]; ++k)
+        if (const S c = faces_[static_cast<std::size_t>(vertexFaces_[k])].normal.dot(direction); c > nearest)
+          nearest = c, face = vertexFaces_[k];
+      if (face >= 0 && nearest >= S(kSupportingFeatureCos) * length) {
+        const auto& loop = faces_[static_cast<std::size_t>(face)].vertices;
+        const std::size_t n = loop.size(), kept = std::min(n, SupportingFeatureT<S>::kCapacity);
+        for (std::size_t k = 0; k < kept; ++k) out.add(vertices_[static_cast<std::size_t>(loop[k * n / kept])]);
+        return;
+      }
+      int edge = -1;
+      S flattest = S(kSupportingFeatureSin);
+      for (int k = adjacencyStart_[top]; k < adjacencyStart_[top + 1]; ++k) {
+        const Vec3 along = vertices_[static_cast<std::size_t>(adjacency_[k])] - vertices_[top];
+        const S along_length = along.norm();
+        if (!(along_length > S(0))) continue;
+        if (const S slope = std::abs(along.dot(direction)) / (along_length * length); slope <= flattest)
+          flattest = slope, edge = adjacency_[k];
+      }
+      if (edge >= 0) {
+        out.add(vertices_[top]);
+        out.add(vertices_[static_cast<std::size_t>(edge)]);
+        return;
+      }
+    }
+    out.add(vertices_[top]);
+  }
+
+ protected:
+  ~ConvexT() override = default;
+
+ private:
+  static constexpr std::size_t kScanLimit = 64;
+
+  [[nodiscard]] std::size_t supportIndex(const Vec3& direction) const {
     std::size_t best = 0;
     S bestDot = vertices_[0].dot(direction);
     if (vertices_.size() <= kScanLimit) {
       for (std::size_t i = 1; i < vertices_.size(); ++i)
         if (const S d = vertices_[i].dot(direction); d > bestDot) best = i, bestDot = d;
-      return vertices_[best];
+      return best;
     }
     // On a convex polyhedron a corner no neighbour beats is the farthest.
     for (bool climbed = true; climbed;) {
@@ -115,14 +163,20 @@ class ConvexT : public ShapeT<S> {
         if (const S d = vertices_[j].dot(direction); d > bestDot) best = j, bestDot = d, climbed = true;
       }
     }
-    return vertices_[best];
+    return best;
   }
 
- protected:
-  ~ConvexT() override = default;
-
- private:
-  static constexpr std::size_t kScanLimit = 64;
+  // The polygon faces around each corner, in compressed rows.
+  void buildVertexFaces() {
+    std::vector<std::vector<int>> around(vertices_.size());
+    for (std::size_t f = 0; f < faces_.size(); ++f)
+      for (const int v : faces_[f].vertices) around[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
+    vertexFacesStart_.assign(1, 0);
+    for (const auto& list : around) {
+      vertexFaces_.insert(vertexFaces_.end(), list.begin(), list.end());
+      vertexFacesStart_.push_back(static_cast<int>(vertexFaces_.size()));
+    }
+  }
 
   // Neighbours of each corner along the triangles' edges, in compressed rows.
   void buildAdjacency() {
@@ -174,6 +228,8 @@ class ConvexT : public ShapeT<S> {
   Mat3 unitInertia_ = Mat3::Zero();  // unit density, about center_ (m⁵)
   std::vector<int> adjacency_;
   std::vector<int> adjacencyStart_;
+  std::vector<int> vertexFaces_;
+  std::vector<int> vertexFacesStart_;
 };
 
 using Convex = ConvexT<double>;

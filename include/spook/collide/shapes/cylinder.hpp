@@ -47,6 +47,34 @@ class CylinderT : public ShapeT<S> {
     return Vec3(direction.x() * (radius_ / radial), y, direction.z() * (radius_ / radial));
   }
 
+  /// Along its axis (within the feature angle) a cap, a disc with
+  /// kCapCorners rim points starting from the rim's support; across it the side line at
+  /// the support's azimuth; else the support point (on a rim).
+  void supportingFeature(const Vec3& direction, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    out.radius = S(0);
+    const S length = direction.norm(), radial = std::hypot(direction.x(), direction.z());
+    const S y = direction.y() < S(0) ? -S(0.5) * height_ : S(0.5) * height_;
+    if (length > S(0) && std::abs(direction.y()) >= S(kSupportingFeatureCos) * length) {
+      const S start = radial > S(0) ? std::atan2(direction.z(), direction.x()) : S(0);
+      for (int k = 0; k < kCapCorners; ++k) {
+        const S angle = start + S(2) * std::numbers::pi_v<S> * S(k) / S(kCapCorners);
+        out.add(Vec3(radius_ * std::cos(angle), y, radius_ * std::sin(angle)));
+      }
+      out.radius = radius_;
+      out.center = Vec3(S(0), y, S(0));
+      out.axis = Vec3::UnitY();
+      return;
+    }
+    if (radial > S(0) && std::abs(direction.y()) <= S(kSupportingFeatureSin) * length) {
+      const S x = direction.x() * (radius_ / radial), z = direction.z() * (radius_ / radial);
+      out.add(Vec3(x, S(0.5) * height_, z));
+      out.add(Vec3(x, -S(0.5) * height_, z));
+      return;
+    }
+    out.add(support(direction));
+  }
+
  protected:
   ~CylinderT() override = default;
 

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cmath>
+
 #include <spook/collide/shapes/shape.hpp>
 
 namespace spook {
@@ -52,6 +54,19 @@ class LineT : public ShapeT<S> {
   /// The endpoint farther along `direction`, the first one on a tie (shape frame, m).
   [[nodiscard]] Vec3 support(const Vec3& direction) const {
     return second_.dot(direction) > first_.dot(direction) ? second_ : first_;
+  }
+
+  /// Both endpoints when the line is across `direction` within the feature
+  /// angle, else the supporting endpoint.
+  void supportingFeature(const Vec3& direction, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    const Vec3 along = second_ - first_;
+    if (std::abs(along.dot(direction)) <= S(kSupportingFeatureSin) * along.norm() * direction.norm()) {
+      out.add(first_);
+      out.add(second_);
+      return;
+    }
+    out.add(support(direction));
   }
 
  protected:

@@ -5,6 +5,7 @@
 
 #include <spook/collide/bounding_box.hpp>
 #include <spook/collide/shapes/shape_type.hpp>
+#include <spook/collide/supporting_feature.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/math.hpp>
 #include <spook/core/ref_ptr.hpp>

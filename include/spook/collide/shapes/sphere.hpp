@@ -41,6 +41,12 @@ class SphereT : public ShapeT<S> {
     return length > S(0) ? Vec3(direction * (radius_ / length)) : Vec3(radius_, S(0), S(0));
   }
 
+  /// A sphere's supporting feature is always its support point.
+  void supportingFeature(const Vec3& direction, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    out.add(support(direction));
+  }
+
  protected:
   ~SphereT() override = default;
 
