@@ -54,6 +54,9 @@ inline constexpr double kCcdEpaTolerance = 1e-6;  // m
 /// Gap, relative to the smaller shape's size, within which two shapes
 /// count as touching (a contact of depth 0).
 inline constexpr double kCcdTouchMargin = 1e-7;
+/// Gap, relative to the smaller shape's size, beyond which libccd's GJK is
+/// trusted to call two shapes apart.
+inline constexpr double kCcdNearMargin = 1e-3;
 inline constexpr unsigned long kCcdMaxIterations = 200;
 /// Polishing: starts besides libccd's direction, and the gradient
 /// (relative to the shapes' size) below which a descent ended on a smooth
@@ -377,10 +380,12 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) {
     // libccd's GJK misses a few shallow overlaps of a small shape on a large
     // one (0.7 % of those 1e-9..1e-4 m deep on boxes of 0.5..500 m, each a
-    // step of free fall through a resting contact): "apart" stands only
-    // with a separating axis among the shapes' axes and the line between
-    // their centers; otherwise the polishing below decides.
-    if (separatedAlongFrameAxes(overlap, -objectA.margin)) return;
+    // step of free fall through a resting contact): "apart" stands when a
+    // grown by kCcdNearMargin is still apart, or with a separating axis
+    // among the shapes' axes and the line between their centers; otherwise
+    // the polishing below decides.
+    const CcdObject<A> grownA(a, X_WA, kCcdNearMargin * std::min(sizeOf(a), sizeOf(b)));
+    if (!ccdGJKIntersect(&grownA, &objectB, &ccd) || separatedAlongFrameAxes(overlap, -objectA.margin)) return;
     direction = {{0.0, 0.0, 0.0}};
   }
   // libccd reports a penetration far smaller than the shapes (within the
