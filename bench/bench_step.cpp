@@ -2,6 +2,7 @@
 // about skewed axes so that the free-rotation solve does real work.
 #include <benchmark/benchmark.h>
 
+#include <spook/solver/free_rotation.hpp>
 #include <spook/spook.hpp>
 
 namespace {

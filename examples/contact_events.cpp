@@ -3,6 +3,7 @@
 // contacts and the separation once the capsule is lifted.
 #include <cstdio>
 
+#include <spook/collide/collide_through.hpp>  // the colliders of a shape list of its own
 #include <spook/spook.hpp>
 
 namespace {

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include <spook/collide/collide_through.hpp>  // the colliders of a shape list of its own
 #include <spook/sim/simulation.hpp>
 
 #include "tolerance.hpp"

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <spook/collide/collide_through.hpp>  // ColliderMatrixT, the colliders of a shape list
 #include <spook/collide/space.hpp>
 #include <spook/sim/simulation.hpp>
 

@@ -46,9 +46,14 @@ SPOOK_INCLUDE = re.compile(
 # a path relative to the including file means nothing in the single header.
 QUOTED_INCLUDE = re.compile(r'^\s*#\s*include\s*"(?P<path>[^"]+)"')
 PRAGMA_ONCE = re.compile(r"^\s*#\s*pragma\s+once\b")
-# Preprocessor conditionals, to refuse a spook include inside #if: it would be
-# inlined once, under the condition, and skipped at every later include.
+# Preprocessor conditionals. A spook include inside #if (the definitions a
+# program that compiles spook once leaves out, core/implementation.hpp) is
+# inlined there, under its condition; a header reached again under other
+# conditions is inlined again, and every inlined header carries its own
+# include guard (SPOOK_SINGLE_<path>), so the preprocessor keeps the first
+# copy that its conditions let through, as #pragma once would.
 COND_OPEN = re.compile(r"^\s*#\s*(if|ifdef|ifndef)\b")
+COND_ELSE = re.compile(r"^\s*#\s*(else|elif)\b")
 COND_CLOSE = re.compile(r"^\s*#\s*endif\b")
 
 
@@ -80,6 +85,8 @@ class Amalgamator:
     def __init__(self, include_dir: Path):
         self.include_dir = include_dir
         self.seen: set[str] = set()
+        # The conditions (stacks of #if lines) under which each header was inlined.
+        self.inlined_under: dict[str, set[tuple[str, ...]]] = {}
         self.out: list[str] = []
 
     def resolve(self, name: str, where: str) -> Path:
@@ -93,30 +100,30 @@ class Amalgamator:
             )
         return path
 
-    def inline(self, name: str, where: str) -> None:
+    def inline(self, name: str, where: str, conditions: tuple[str, ...] = ()) -> None:
         # Mark before descending, as #pragma once does: a cycle is cut at its
-        # second visit, exactly where the compiler would cut it.
+        # second visit, exactly where the compiler would cut it. A header
+        # inlined without conditions, or under these same ones, is there.
         path = self.resolve(name, where)
         key = path.relative_to(self.include_dir.resolve()).as_posix()
-        if key in self.seen:
+        under = self.inlined_under.setdefault(key, set())
+        if () in under or conditions in under:
             return
+        under.add(conditions)
         self.seen.add(key)
 
+        guard = "SPOOK_SINGLE_" + re.sub(r"[^A-Za-z0-9]", "_", key).upper()
         self.out.append(f"// --- begin {key} ---")
-        depth = 0
+        self.out.append(f"#ifndef {guard}")
+        self.out.append(f"#define {guard}")
+        stack: list[str] = []
         for number, line in enumerate(read_lines(path), start=1):
             here = f"{rel(path)}:{number}"
             if PRAGMA_ONCE.match(line):
                 continue
             match = SPOOK_INCLUDE.match(line)
             if match:
-                if depth > 0:
-                    raise AmalgamationError(
-                        f"{here}: error: spook include inside a preprocessor conditional; "
-                        "the single header would inline it only once, under that condition. "
-                        "Include it unconditionally."
-                    )
-                self.inline(match.group("angle") or match.group("quote"), here)
+                self.inline(match.group("angle") or match.group("quote"), here, conditions + tuple(stack))
                 continue
             quoted = QUOTED_INCLUDE.match(line)
             if quoted:
@@ -125,12 +132,19 @@ class Amalgamator:
                     "each other as #include <spook/...> (path relative to include/)"
                 )
             if COND_OPEN.match(line):
-                depth += 1
+                stack.append(f"{rel(path)}:{number}")
+            elif COND_ELSE.match(line):
+                if not stack:
+                    raise AmalgamationError(f"{here}: error: #else or #elif without #if")
+                stack[-1] = f"{rel(path)}:{number}"
             elif COND_CLOSE.match(line):
-                depth -= 1
+                if not stack:
+                    raise AmalgamationError(f"{here}: error: #endif without #if")
+                stack.pop()
             self.out.append(line.rstrip())
-        if depth != 0:
-            raise AmalgamationError(f"{rel(path)}: error: unbalanced #if/#endif ({depth:+d})")
+        if stack:
+            raise AmalgamationError(f"{rel(path)}: error: unbalanced #if/#endif ({len(stack):+d})")
+        self.out.append(f"#endif  // {guard}")
         self.out.append(f"// --- end {key} ---")
 
 

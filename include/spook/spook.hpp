@@ -5,7 +5,6 @@
 
 #include <spook/collide/all_shapes.hpp>
 #include <spook/collide/bounding_box.hpp>
-#include <spook/collide/collider_matrix.hpp>
 #include <spook/collide/contact_reduction.hpp>
 #include <spook/collide/geometry.hpp>
 #include <spook/collide/geometry_contact.hpp>

@@ -6,17 +6,25 @@
 #pragma once
 
 // --- begin spook/spook.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SPOOK_HPP
+#define SPOOK_SINGLE_SPOOK_SPOOK_HPP
 
 // spook: header-only SPOOK multibody dynamics. Include this umbrella header,
 // or single_include/spook/spook.hpp, its generated amalgamation.
 
 // --- begin spook/collide/all_shapes.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_ALL_SHAPES_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_ALL_SHAPES_HPP
 
 // --- begin spook/collide/shape_list.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPE_LIST_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPE_LIST_HPP
 
 #include <cstddef>
 
 // --- begin spook/collide/shapes/shape_type.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_SHAPE_TYPE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_SHAPE_TYPE_HPP
 
 #include <array>
 #include <cstddef>
@@ -39,8 +47,11 @@ inline constexpr std::array<std::string_view, kNumShapeTypes> kShapeTypeNames = 
 }
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_SHAPE_TYPE_HPP
 // --- end spook/collide/shapes/shape_type.hpp ---
 // --- begin spook/core/scalar.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_SCALAR_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_SCALAR_HPP
 
 #include <concepts>
 #include <limits>
@@ -65,6 +76,7 @@ struct ScalarTraits {
 };
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CORE_SCALAR_HPP
 // --- end spook/core/scalar.hpp ---
 
 namespace spook {
@@ -84,20 +96,29 @@ struct ShapeList {
 };
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPE_LIST_HPP
 // --- end spook/collide/shape_list.hpp ---
 // --- begin spook/collide/shapes/box.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_BOX_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_BOX_HPP
 
 #include <cmath>
 #include <utility>
 
 // --- begin spook/collide/shapes/shape.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_SHAPE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_SHAPE_HPP
 
 #include <cmath>
 #include <string>
 
 // --- begin spook/collide/bounding_box.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_BOUNDING_BOX_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_BOUNDING_BOX_HPP
 
 // --- begin spook/core/math.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_MATH_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_MATH_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -106,6 +127,8 @@ struct ShapeList {
 #include <Eigen/Dense>
 
 // --- begin spook/core/error.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_ERROR_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_ERROR_HPP
 
 #include <array>
 #include <charconv>
@@ -186,6 +209,7 @@ template <class T>
 
 }  // namespace detail
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CORE_ERROR_HPP
 // --- end spook/core/error.hpp ---
 
 namespace spook {
@@ -470,6 +494,7 @@ inline const Vec3 Z_AXIS = Vec3::UnitZ();
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CORE_MATH_HPP
 // --- end spook/core/math.hpp ---
 
 namespace spook {
@@ -488,8 +513,11 @@ struct BoundingBoxT {
 };
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_BOUNDING_BOX_HPP
 // --- end spook/collide/bounding_box.hpp ---
 // --- begin spook/collide/supporting_feature.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SUPPORTING_FEATURE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SUPPORTING_FEATURE_HPP
 
 #include <array>
 #include <cstddef>
@@ -532,8 +560,11 @@ inline constexpr double kSupportingFeatureCos = 0.99874921777190895;
 inline constexpr int kCapCorners = 8;
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SUPPORTING_FEATURE_HPP
 // --- end spook/collide/supporting_feature.hpp ---
 // --- begin spook/core/ref_ptr.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_REF_PTR_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_REF_PTR_HPP
 
 #include <concepts>
 #include <cstddef>
@@ -596,8 +627,11 @@ template <class T>
 struct std::hash<spook::ref_ptr<T>> {
   std::size_t operator()(const spook::ref_ptr<T>& p) const noexcept { return std::hash<T*>()(p.get()); }
 };
+#endif  // SPOOK_SINGLE_SPOOK_CORE_REF_PTR_HPP
 // --- end spook/core/ref_ptr.hpp ---
 // --- begin spook/core/referenced.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_REFERENCED_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_REFERENCED_HPP
 
 #include <atomic>
 
@@ -669,6 +703,7 @@ class Referenced {
 };
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CORE_REFERENCED_HPP
 // --- end spook/core/referenced.hpp ---
 
 namespace spook {
@@ -725,6 +760,7 @@ BoundingBoxT<S> boundingBoxFromSupport(const Convex& shape) {
 
 }  // namespace detail
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_SHAPE_HPP
 // --- end spook/collide/shapes/shape.hpp ---
 
 namespace spook {
@@ -814,8 +850,11 @@ using BoxRef = ref_ptr<Box>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_BOX_HPP
 // --- end spook/collide/shapes/box.hpp ---
 // --- begin spook/collide/shapes/capsule.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_CAPSULE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_CAPSULE_HPP
 
 #include <cmath>
 #include <numbers>
@@ -901,8 +940,11 @@ using CapsuleRef = ref_ptr<Capsule>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_CAPSULE_HPP
 // --- end spook/collide/shapes/capsule.hpp ---
 // --- begin spook/collide/shapes/composite.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_COMPOSITE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_COMPOSITE_HPP
 
 #include <limits>
 #include <string>
@@ -1031,8 +1073,11 @@ using CompositeRef = ref_ptr<Composite>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_COMPOSITE_HPP
 // --- end spook/collide/shapes/composite.hpp ---
 // --- begin spook/collide/shapes/convex.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_CONVEX_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_CONVEX_HPP
 
 #include <algorithm>
 #include <array>
@@ -1044,6 +1089,8 @@ using CompositeRef = ref_ptr<Composite>;
 #include <vector>
 
 // --- begin spook/collide/detail/convex_hull.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CONVEX_HULL_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CONVEX_HULL_HPP
 
 #include <algorithm>
 #include <array>
@@ -1536,8 +1583,11 @@ template <Scalar S>
 }
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CONVEX_HULL_HPP
 // --- end spook/collide/detail/convex_hull.hpp ---
 // --- begin spook/collide/detail/polyhedron_mass.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_POLYHEDRON_MASS_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_POLYHEDRON_MASS_HPP
 
 #include <array>
 #include <cstddef>
@@ -1619,6 +1669,7 @@ template <Scalar S>
 }
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_POLYHEDRON_MASS_HPP
 // --- end spook/collide/detail/polyhedron_mass.hpp ---
 
 namespace spook {
@@ -1848,8 +1899,11 @@ using ConvexRef = ref_ptr<Convex>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_CONVEX_HPP
 // --- end spook/collide/shapes/convex.hpp ---
 // --- begin spook/collide/shapes/cylinder.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_CYLINDER_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_CYLINDER_HPP
 
 #include <cmath>
 #include <numbers>
@@ -1940,8 +1994,11 @@ using CylinderRef = ref_ptr<Cylinder>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_CYLINDER_HPP
 // --- end spook/collide/shapes/cylinder.hpp ---
 // --- begin spook/collide/shapes/height_field.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_HEIGHT_FIELD_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_HEIGHT_FIELD_HPP
 
 #include <algorithm>
 #include <array>
@@ -1954,6 +2011,8 @@ using CylinderRef = ref_ptr<Cylinder>;
 #include <vector>
 
 // --- begin spook/collide/detail/aabb_tree.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_AABB_TREE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_AABB_TREE_HPP
 
 #include <algorithm>
 #include <array>
@@ -2150,6 +2209,7 @@ class AabbTree {
 };
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_AABB_TREE_HPP
 // --- end spook/collide/detail/aabb_tree.hpp ---
 
 namespace spook {
@@ -2354,8 +2414,11 @@ using HeightFieldRef = ref_ptr<HeightField>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_HEIGHT_FIELD_HPP
 // --- end spook/collide/shapes/height_field.hpp ---
 // --- begin spook/collide/shapes/line.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_LINE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_LINE_HPP
 
 #include <cmath>
 
@@ -2440,8 +2503,11 @@ using LineRef = ref_ptr<Line>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_LINE_HPP
 // --- end spook/collide/shapes/line.hpp ---
 // --- begin spook/collide/shapes/plane.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_PLANE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_PLANE_HPP
 
 #include <cmath>
 #include <limits>
@@ -2560,8 +2626,11 @@ using PlaneRef = ref_ptr<Plane>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_PLANE_HPP
 // --- end spook/collide/shapes/plane.hpp ---
 // --- begin spook/collide/shapes/sphere.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_SPHERE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_SPHERE_HPP
 
 #include <numbers>
 
@@ -2623,8 +2692,11 @@ using SphereRef = ref_ptr<Sphere>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_SPHERE_HPP
 // --- end spook/collide/shapes/sphere.hpp ---
 // --- begin spook/collide/shapes/trimesh.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_TRIMESH_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_TRIMESH_HPP
 
 #include <algorithm>
 #include <array>
@@ -2803,6 +2875,7 @@ using TrimeshRef = ref_ptr<Trimesh>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_TRIMESH_HPP
 // --- end spook/collide/shapes/trimesh.hpp ---
 
 namespace spook {
@@ -2813,29 +2886,21 @@ using AllShapes =
     ShapeList<BoxT, CapsuleT, ConvexT, CylinderT, LineT, PlaneT, SphereT, TrimeshT, CompositeT, HeightFieldT>;
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_ALL_SHAPES_HPP
 // --- end spook/collide/all_shapes.hpp ---
-// --- begin spook/collide/collider_matrix.hpp ---
+// --- begin spook/collide/contact_reduction.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_REDUCTION_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_REDUCTION_HPP
 
-#include <array>
-#include <cstddef>
-#include <string>
-#include <utility>
-
-// --- begin spook/collide/collider.hpp ---
-
-#include <concepts>
-
-// --- begin spook/collide/contact_sink.hpp ---
-
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
-#include <memory>
-#include <utility>
 #include <vector>
 
 // --- begin spook/collide/contact_point.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_POINT_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_POINT_HPP
 
 #include <cstdint>
 
@@ -2870,2752 +2935,8 @@ struct ContactPointT {
 };
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_POINT_HPP
 // --- end spook/collide/contact_point.hpp ---
-
-namespace spook {
-
-/// Where a collider writes the contact points of one shape pair. It keeps
-/// the "first toward second" normal convention when the pair was handed to
-/// the collider in reverse order (flipped), and never lets a non-finite
-/// point through: it drops it and counts it in getNumDropped().
-template <Scalar S>
-class ContactSinkT {
- public:
-  explicit ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped = false)
-      : ContactSinkT(points, flipped, std::make_shared<std::size_t>(0)) {}
-
-  /// Adds a point: world position (m), unit normal from the collider's first
-  /// shape toward its second, penetration depth (m, clamped at 0).
-  void add(const Vec3T<S>& point, const Vec3T<S>& normal, S depth) {
-    if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) {
-      ++*dropped_;
-      return;
-    }
-    ContactPointT<S> contact;
-    contact.point = point;
-    contact.normal = flipped_ ? Vec3T<S>(-normal) : normal;
-    contact.depth = depth > S(0) ? depth : S(0);
-    contact.faceIndex1 = flipped_ ? faces_[1] : faces_[0];
-    contact.faceIndex2 = flipped_ ? faces_[0] : faces_[1];
-    points_->push_back(contact);
-  }
-
-  /// The triangles (of a Trimesh or HeightField) of the collider's first
-  /// and second shape that the next points touch; 0 for other shapes.
-  void setFaceIndices(std::size_t first, std::size_t second) {
-    faces_ = {static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(second)};
-  }
-
-  /// The same output with the shape order swapped (sharing the drop count).
-  [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_, dropped_); }
-
-  /// Number of points written so far.
-  [[nodiscard]] std::size_t size() const { return points_->size(); }
-  /// Number of points refused so far because their position, normal or
-  /// depth was not finite (this sink and its reversed() copies).
-  [[nodiscard]] std::size_t getNumDropped() const { return *dropped_; }
-
- private:
-  ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped, std::shared_ptr<std::size_t> dropped)
-      : points_(&points), flipped_(flipped), dropped_(std::move(dropped)) {}
-
-  std::vector<ContactPointT<S>>* points_;
-  bool flipped_;
-  std::shared_ptr<std::size_t> dropped_;
-  std::array<std::uint32_t, 2> faces_{};
-};
-
-}  // namespace spook
-// --- end spook/collide/contact_sink.hpp ---
-// --- begin spook/collide/detail/ccd_bridge.hpp ---
-
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <limits>
-#include <utility>
-#include <vector>
-#include <type_traits>
-
-#include <ccd/ccd.h>
-
-// --- begin spook/collide/detail/feature_clipping.hpp ---
-
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
-#include <limits>
-#include <vector>
-
-namespace spook::detail {
-
-/// The contact manifold of two convex shapes in contact along a normal,
-/// from their supporting features (the part of each shape that is extreme
-/// along the normal: a point, an edge or a face), as Jolt's
-/// ManifoldBetweenTwoFaces and Box2D's b2ClipPolygons build it: both
-/// features are projected onto the contact plane, one is clipped against
-/// the other (Sutherland–Hodgman), and each corner of the overlap is a
-/// contact point, its depth the distance between the two features above
-/// it. Works in double, in the plane spanned by t1, t2 ⟂ n.
-struct FeatureClipping {
-  using Vec2 = Eigen::Vector2d;
-  using Vec3 = Vec3T<double>;
-
-  /// A round face: the disc about `center` with unit normal `axis`.
-  struct Disc {
-    Vec3 center = Vec3::Zero();
-    Vec3 axis = Vec3::UnitZ();
-    double radius = 0.0;  // m; 0: not a disc
-  };
-  /// A supporting feature: world points on it (m), the size below which
-  /// two of them are the same point (the spread that sampling a curved
-  /// surface leaves), and for a round face its disc (the points then an
-  /// inscribed polygon of its rim).
-  struct Feature {
-    std::vector<Vec3> points;
-    double merge = 0.0;
-    Disc disc = {};
-  };
-  struct Contact {
-    Vec3 point;    // world, halfway between the features (m)
-    double depth;  // m
-  };
-
-  Vec3 n, t1, t2;
-
-  explicit FeatureClipping(const Vec3& normal)
-      : n(normal), t1(normal.unitOrthogonal()), t2(normal.cross(normal.unitOrthogonal())) {}
-
-  /// The overlap's corners as contacts, for features `top` (of the shape
-  /// behind the normal, its points highest along n) and `bottom` (of the
-  /// shape ahead, lowest along n) and the penetration depth along n, which
-  /// bounds every contact's. Empty when the projections do not overlap
-  /// (the caller then places one contact by itself).
-  [[nodiscard]] std::vector<Contact> contacts(const Feature& top, const Feature& bottom, double depth) const {
-    const double merge = std::min(top.merge, bottom.merge);
-    const std::vector<Vec2> a = hull(project(top.points), top.merge);
-    const std::vector<Vec2> b = hull(project(bottom.points), bottom.merge);
-    std::vector<Vec2> overlap;
-    if (b.size() >= 3)
-      overlap = clip(a, b);
-    else if (a.size() >= 3)
-      overlap = clip(b, a);
-    else
-      overlap = crossing(a, b, merge);
-    // A round face's polygon is inscribed in its rim: the other feature's
-    // corners inside the disc, and its edges' crossings with the rim, are
-    // part of the overlap too.
-    addInsideDisc(top.disc, b, overlap);
-    addInsideDisc(bottom.disc, a, overlap);
-    overlap = hull(overlap, merge);
-    // Depths from the heights of the features over each corner, shifted so
-    // that the deepest is the penetration depth (the features are sampled,
-    // their heights fitted); a deepest corner farther than the sampling
-    // size from it means the overlap is not where the shapes penetrate most
-    // (sampled features that miss a part of the true ones): no manifold.
-    const HeightPlane topHeight(top.points, *this), bottomHeight(bottom.points, *this);
-    std::vector<Contact> out;
-    double deepest = -std::numeric_limits<double>::infinity();
-    for (const Vec2& v : overlap) {
-      const double high = topHeight.at(v), low = bottomHeight.at(v);
-      out.push_back({v.x() * t1 + v.y() * t2 + 0.5 * (high + low) * n, high - low});
-      deepest = std::max(deepest, high - low);
-    }
-    if (!(std::abs(deepest - depth) <= std::max(top.merge, bottom.merge))) return {};
-    for (Contact& c : out) c.depth = std::min(c.depth + (depth - deepest), depth);
-    std::erase_if(out, [](const Contact& c) { return !(c.depth >= 0.0); });
-    return out;
-  }
-
-  /// One contact of the given depth where two features that do not overlap
-  /// on the contact plane come nearest there: midway between the closest
-  /// points of their projected hulls, and between their heights over it.
-  [[nodiscard]] Contact nearest(const Feature& top, const Feature& bottom, double depth) const {
-    const std::vector<Vec2> a = hull(project(top.points), top.merge);
-    const std::vector<Vec2> b = hull(project(bottom.points), bottom.merge);
-    Vec2 onA = a.front(), onB = b.front();
-    double closest = std::numeric_limits<double>::infinity();
-    const auto consider = [&](const Vec2& p, const std::vector<Vec2>& polygon, bool pOnA) {
-      for (std::size_t k = 0; k < polygon.size(); ++k) {
-        const Vec2 q = polygon[k], edge = polygon[(k + 1) % polygon.size()] - q;
-        const double length2 = edge.squaredNorm();
-        const double t = length2 > 0.0 ? std::clamp(edge.dot(p - q) / length2, 0.0, 1.0) : 0.0;
-        const Vec2 x = q + t * edge;
-        if (const double d = (x - p).squaredNorm(); d < closest) {
-          closest = d;
-          onA = pOnA ? p : x;
-          onB = pOnA ? x : p;
-        }
-      }
-    };
-    for (const Vec2& p : a) consider(p, b, true);
-    for (const Vec2& p : b) consider(p, a, false);
-    const Vec2 v = 0.5 * (onA + onB);
-    const double high = HeightPlane(top.points, *this).at(v), low = HeightPlane(bottom.points, *this).at(v);
-    return {v.x() * t1 + v.y() * t2 + 0.5 * (high + low) * n, depth};
-  }
-
- private:
-  [[nodiscard]] Vec2 flat(const Vec3& p) const { return {t1.dot(p), t2.dot(p)}; }
-
-  /// Appends the points of `polygon` (a point, a segment or a polygon on the
-  /// contact plane) inside the projection of `disc`, and the crossings of
-  /// its edges with the rim's, each lifted along n onto the disc's plane.
-  void addInsideDisc(const Disc& disc, const std::vector<Vec2>& polygon, std::vector<Vec2>& out) const {
-    const double across = disc.axis.dot(n);
-    if (!(disc.radius > 0.0) || polygon.empty() || !(std::abs(across) > 0.5)) return;
-    const auto lifted = [&](const Vec2& v) {  // from the disc's center, in its plane
-      const Vec3 p = v.x() * t1 + v.y() * t2 - disc.center;
-      return Vec3(p - (disc.axis.dot(p) / across) * n);
-    };
-    const double r2 = disc.radius * disc.radius;
-    for (const Vec2& v : polygon)
-      if (lifted(v).squaredNorm() <= r2) out.push_back(v);
-    const std::size_t edges = polygon.size() == 1 ? 0 : polygon.size() == 2 ? 1 : polygon.size();
-    for (std::size_t k = 0; k < edges; ++k) {
-      const Vec2 p = polygon[k], q = polygon[(k + 1) % polygon.size()];
-      const Vec3 d = lifted(p), e = lifted(q) - d;
-      // |d + t e|² = r²: e·e t² + 2 d·e t + d·d − r² = 0.
-      const double a = e.squaredNorm(), b = d.dot(e), c = d.squaredNorm() - r2, discriminant = b * b - a * c;
-      if (!(a > 0.0) || discriminant < 0.0) continue;
-      for (const double sign : {-1.0, 1.0})
-        if (const double t = (-b + sign * std::sqrt(discriminant)) / a; t > 0.0 && t < 1.0) out.push_back(p + t * (q - p));
-    }
-  }
-
-  [[nodiscard]] std::vector<Vec2> project(const std::vector<Vec3>& points) const {
-    std::vector<Vec2> out;
-    out.reserve(points.size());
-    for (const Vec3& p : points) out.push_back(flat(p));
-    return out;
-  }
-
-  static double cross(const Vec2& o, const Vec2& a, const Vec2& b) {
-    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-  }
-
-  /// Counter-clockwise convex hull (Andrew's monotone chain) without points
-  /// within `merge` of one kept and without corners within `merge` of the
-  /// line through their neighbours: 1 point, 2 (a segment) or a polygon.
-  static std::vector<Vec2> hull(std::vector<Vec2> points, double merge) {
-    std::sort(points.begin(), points.end(),
-              [](const Vec2& p, const Vec2& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); });
-    std::vector<Vec2> unique;
-    for (const Vec2& p : points)
-      if (std::none_of(unique.begin(), unique.end(), [&](const Vec2& q) { return (p - q).norm() <= merge; }))
-        unique.push_back(p);
-    if (unique.size() < 3) return unique;
-    std::vector<Vec2> chain(2 * unique.size());
-    std::size_t k = 0;
-    const auto turnsLeft = [&](const Vec2& p) {
-      return cross(chain[k - 2], chain[k - 1], p) > merge * (chain[k - 1] - chain[k - 2]).norm();
-    };
-    for (const Vec2& p : unique) {
-      while (k >= 2 && !turnsLeft(p)) --k;
-      chain[k++] = p;
-    }
-    const std::size_t lower = k + 1;
-    for (std::size_t i = unique.size() - 1; i-- > 0;) {
-      while (k >= lower && !turnsLeft(unique[i])) --k;
-      chain[k++] = unique[i];
-    }
-    chain.resize(k - 1);
-    return chain;
-  }
-
-  /// The part of `subject` (a point, a segment or a convex polygon) inside
-  /// the counter-clockwise convex polygon `window` (Sutherland–Hodgman).
-  static std::vector<Vec2> clip(std::vector<Vec2> subject, const std::vector<Vec2>& window) {
-    for (std::size_t e = 0; e < window.size() && !subject.empty(); ++e) {
-      const Vec2 a = window[e], edge = window[(e + 1) % window.size()] - a;
-      const Vec2 inward(-edge.y(), edge.x());
-      std::vector<Vec2> kept;
-      for (std::size_t i = 0; i < subject.size(); ++i) {
-        const Vec2 p = subject[i], q = subject[(i + 1) % subject.size()];
-        const double dp = inward.dot(p - a), dq = inward.dot(q - a);
-        if (dp >= 0.0) kept.push_back(p);
-        if ((dp > 0.0 && dq < 0.0) || (dp < 0.0 && dq > 0.0)) kept.push_back(p + (q - p) * (dp / (dp - dq)));
-      }
-      subject = std::move(kept);
-    }
-    return subject;
-  }
-
-  /// Two features that are points or segments: a point meets anything where
-  /// it is; two segments meet at their closest points, or along the
-  /// overlap of their ranges when they are parallel.
-  static std::vector<Vec2> crossing(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double merge) {
-    if (a.empty() || b.empty()) return {};
-    if (a.size() == 1) return a;
-    if (b.size() == 1) return b;
-    const Vec2 u = a[1] - a[0], v = b[1] - b[0];
-    const double lu = u.norm(), lv = v.norm();
-    if (std::abs(cross(Vec2::Zero(), u, v)) <= merge * std::max(lu, lv)) {
-      const Vec2 d = u / lu;
-      const double s0 = std::max(0.0, std::min(d.dot(b[0] - a[0]), d.dot(b[1] - a[0])));
-      const double s1 = std::min(lu, std::max(d.dot(b[0] - a[0]), d.dot(b[1] - a[0])));
-      const Vec2 offset = 0.5 * ((b[0] - a[0]) - d.dot(b[0] - a[0]) * d);  // halfway across to b's line
-      if (s0 > s1) return {a[0] + 0.5 * (s0 + s1) * d + offset};
-      return {a[0] + s0 * d + offset, a[0] + s1 * d + offset};
-    }
-    // Closest points of the segments a[0] + s u and b[0] + t v, s, t in [0, 1].
-    const Vec2 w = a[0] - b[0];
-    const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
-    const double denominator = uu * vv - uv * uv;
-    double s = std::clamp((uv * vw - vv * uw) / denominator, 0.0, 1.0);
-    const double t = std::clamp((uv * s + vw) / vv, 0.0, 1.0);
-    s = std::clamp((uv * t - uw) / uu, 0.0, 1.0);
-    return {0.5 * (a[0] + s * u + b[0] + t * v)};
-  }
-
-  /// A feature's height along n over the contact plane: the least-squares
-  /// affine fit h(x) = h̄ + g·(x − x̄) to its points, with a tiny ridge on g
-  /// so that a point or a segment (no slope across it) stays level.
-  struct HeightPlane {
-    Vec2 center = Vec2::Zero();
-    double mean = 0.0;
-    Vec2 slope = Vec2::Zero();
-
-    HeightPlane(const std::vector<Vec3>& points, const FeatureClipping& frame) {
-      for (const Vec3& p : points) {
-        center += frame.flat(p);
-        mean += frame.n.dot(p);
-      }
-      center /= double(points.size());
-      mean /= double(points.size());
-      Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
-      Vec2 right = Vec2::Zero();
-      for (const Vec3& p : points) {
-        const Vec2 d = frame.flat(p) - center;
-        normal += d * d.transpose();
-        right += d * (frame.n.dot(p) - mean);
-      }
-      const double ridge = 1e-12 * normal.trace();
-      if (!(ridge > 0.0)) return;  // a single point: level
-      normal += ridge * Eigen::Matrix2d::Identity();
-      const double determinant = normal(0, 0) * normal(1, 1) - normal(0, 1) * normal(1, 0);
-      slope = Vec2(normal(1, 1) * right.x() - normal(0, 1) * right.y(),
-                   normal(0, 0) * right.y() - normal(1, 0) * right.x()) /
-              determinant;
-    }
-    [[nodiscard]] double at(const Vec2& x) const { return mean + slope.dot(x - center); }
-  };
-};
-
-}  // namespace spook::detail
-// --- end spook/collide/detail/feature_clipping.hpp ---
-
-namespace spook::detail {
-
-// The libccd bridge: each convex shape lends libccd its support function
-// through a stack object that holds the shape and its world pose. libccd is
-// built with double, so a float shape converts at this boundary.
-template <class Shape>
-struct CcdObject {
-  using S = typename Shape::Vec3::Scalar;
-  const Shape* shape;
-  Mat3T<double> R;     // shape → world rotation
-  Vec3T<double> p;     // shape origin in world (m)
-  Vec3T<double> center;  // a point inside the shape, world (m)
-  double margin = 0.0;   // libccd sees the shape grown by this much (m)
-
-  CcdObject(const Shape& s, const TransformT<S>& X_W, double grownBy = 0.0)
-      : shape(&s),
-        R(X_W.linear().template cast<double>()),
-        p(X_W.translation().template cast<double>()),
-        center(R * s.getCenterOfVolume().template cast<double>() + p),
-        margin(grownBy) {}
-
-  static void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
-    const auto& o = *static_cast<const CcdObject*>(object);
-    const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
-    const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
-    Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
-    if (const double length = d_W.norm(); o.margin > 0.0 && length > 0.0) s_W += (o.margin / length) * d_W;
-    for (int i = 0; i < 3; ++i) out->v[i] = s_W[i];
-  }
-  static void centerOf(const void* object, ccd_vec3_t* out) {
-    const auto& o = *static_cast<const CcdObject*>(object);
-    for (int i = 0; i < 3; ++i) out->v[i] = o.center[i];
-  }
-};
-
-inline constexpr double kCcdEpaTolerance = 1e-6;  // m
-/// Gap, relative to the smaller shape's size, within which two shapes
-/// count as touching (a contact of depth 0).
-inline constexpr double kCcdTouchMargin = 1e-7;
-/// Gap, relative to the smaller shape's size, beyond which libccd's GJK is
-/// trusted to call two shapes apart.
-inline constexpr double kCcdNearMargin = 1e-3;
-inline constexpr unsigned long kCcdMaxIterations = 200;
-/// Polishing: starts besides libccd's direction, and the gradient
-/// (relative to the shapes' size) below which a descent ended on a smooth
-/// minimum and needs no simplex search. Polishing only the starts within
-/// 1 % of the lowest descent loses 1e-4 m on capsule– and cylinder–triangle
-/// pairs; skipping the simplex search where the descent ends smooth loses
-/// nothing and makes the capsule, sphere and smooth hull pairs five times
-/// faster.
-inline constexpr std::size_t kStarts = 10;
-inline constexpr double kSmoothGradient = 1e-9;
-
-/// The overlap of the projections of a and b onto the unit direction n
-/// (from a toward b): f(n) = h_a(n) + h_b(−n), with h the support function.
-/// By the separating axis theorem the penetration depth is min f over unit
-/// n, and by Danskin's theorem ∇f = s_a(n) − s_b(−n) =: w.
-template <class A, class B>
-struct ProjectionOverlap {
-  const CcdObject<A>& a;
-  const CcdObject<B>& b;
-
-  [[nodiscard]] Vec3T<double> supportOf(const auto& object, const Vec3T<double>& n_W) const {
-    using S = typename std::remove_cvref_t<decltype(object)>::S;
-    const Vec3T<S> d = (object.R.transpose() * n_W).template cast<S>();
-    return object.R * object.shape->support(d).template cast<double>() + object.p;
-  }
-  [[nodiscard]] Vec3T<double> gradient(const Vec3T<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
-};
-
-/// Where f has a kink (an edge or a corner of a box-like shape is involved)
-/// its minimum may sit at the bottom of a narrow crease, which neither the
-/// gradient nor a fixed pattern of steps can follow; a Nelder–Mead simplex
-/// over the tangent plane of n (Nelder & Mead 1965) stretches along the
-/// crease and walks down it, to 1e-10 rad.
-template <class A, class B>
-double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double size,
-                             double turn) {
-  const Vec3T<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
-  const Vec3T<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
-  const auto direction = [&](const Eigen::Vector2d& x) { return Vec3T<double>((n0 + x[0] * t1 + x[1] * t2).normalized()); };
-  const auto value = [&](const Eigen::Vector2d& x) {
-    const Vec3T<double> d = direction(x);
-    return d.dot(overlap.gradient(d));
-  };
-  std::array<Eigen::Vector2d, 3> x = {Eigen::Vector2d(0, 0), Eigen::Vector2d(size, 0), Eigen::Vector2d(0, size)};
-  std::array<double, 3> fx = {f, value(x[1]), value(x[2])};
-  for (int iteration = 0; iteration < 400; ++iteration) {
-    // Order best, middle, worst.
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2 - i; ++j)
-        if (fx[j + 1] < fx[j]) {
-          std::swap(fx[j], fx[j + 1]);
-          std::swap(x[j], x[j + 1]);
-        }
-    if ((x[1] - x[0]).norm() + (x[2] - x[0]).norm() < 1e-10) break;
-    const Eigen::Vector2d centroid = 0.5 * (x[0] + x[1]);
-    const Eigen::Vector2d reflected = centroid + (centroid - x[2]);
-    const double fr = value(reflected);
-    if (fr < fx[0]) {
-      const Eigen::Vector2d expanded = centroid + 2.0 * (centroid - x[2]);
-      const double fe = value(expanded);
-      if (fe < fr) {
-        x[2] = expanded;
-        fx[2] = fe;
-      } else {
-        x[2] = reflected;
-        fx[2] = fr;
-      }
-    } else if (fr < fx[1]) {
-      x[2] = reflected;
-      fx[2] = fr;
-    } else {
-      const Eigen::Vector2d contracted = centroid + 0.5 * (x[2] - centroid);
-      const double fc = value(contracted);
-      if (fc < fx[2]) {
-        x[2] = contracted;
-        fx[2] = fc;
-      } else {
-        for (int i = 1; i < 3; ++i) {
-          x[i] = x[0] + 0.5 * (x[i] - x[0]);
-          fx[i] = value(x[i]);
-        }
-      }
-    }
-  }
-  const int best = fx[0] <= fx[1] ? (fx[0] <= fx[2] ? 0 : 2) : (fx[1] <= fx[2] ? 1 : 2);
-  if (fx[best] < f) {
-    n = direction(x[best]);
-    f = fx[best];
-  }
-  return f;
-}
-
-/// Descends f on the unit sphere from n (Barzilai–Borwein steps with
-/// backtracking): libccd's EPA stops some 1e-4 to 1e-3 short of the
-/// boundary on curved shapes. Returns f at the final direction, an upper
-/// bound on the depth that is exact at the minimum; `smooth` tells whether
-/// the descent ended where the gradient vanishes (a smooth minimum, done)
-/// rather than on a kink of f, where the simplex search must take over.
-template <class A, class B>
-double descend(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double scale, bool& smooth) {
-  Vec3T<double> w = overlap.gradient(n);
-  double f = n.dot(w);
-  Vec3T<double> g = w - n.dot(w) * n;
-  double step = 1.0 / scale;
-  for (int iteration = 0; iteration < 64 && g.norm() > 1e-13 * scale && step > 1e-12 / scale; ++iteration) {
-    const Vec3T<double> trial = (n - step * g).normalized();
-    const Vec3T<double> wTrial = overlap.gradient(trial);
-    const double fTrial = trial.dot(wTrial);
-    if (!(fTrial < f)) {
-      step *= 0.5;
-      continue;
-    }
-    const Vec3T<double> gTrial = wTrial - trial.dot(wTrial) * trial;
-    const Vec3T<double> sStep = trial - n, yStep = gTrial - g;
-    const double curvature = sStep.dot(yStep);
-    step = curvature > 0.0 ? sStep.squaredNorm() / curvature : 2.0 * step;
-    n = trial;
-    w = wTrial;
-    f = fTrial;
-    g = gTrial;
-  }
-  smooth = g.norm() <= kSmoothGradient * scale;
-  return f;
-}
-
-/// Restarts of the simplex search with fresh, turned simplices: the usual
-/// cure for one that collapsed across a crease.
-template <class A, class B>
-double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double scale) {
-  for (int restart = 0; restart < 6; ++restart) {
-    const double before = f;
-    f = polishBySimplexSearch(overlap, n, f, restart % 2 ? 0.1 : 0.02, 0.5 * restart);
-    if (restart > 0 && !(f < before - 1e-15 * scale)) break;
-  }
-  return f;
-}
-
-/// Starting directions for the polishing: libccd's, then the most promising
-/// of the line of centers, each shape's frame axes and their cross products
-/// (both signs) and a coarse lattice of directions, lowest overlap first. libccd's EPA sometimes returns a poor
-/// direction on deep or curved overlaps, and f may have several local
-/// minima; for box-like and cylindrical shapes the true minimum lies on or
-/// near one of these axes (face normals and edge–edge directions, as in the
-/// separating axis theorem).
-template <class A, class B>
-std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdObject<B>& b,
-                                             const Vec3T<double>& fromCcd, std::size_t count) {
-  const ProjectionOverlap<A, B> overlap{a, b};
-  std::vector<std::pair<double, Vec3T<double>>> candidates;
-  const auto consider = [&](const Vec3T<double>& direction) {
-    const double length = direction.norm();
-    if (!(length > 1e-9)) return;
-    for (const double sign : {1.0, -1.0}) {
-      const Vec3T<double> d = direction * (sign / length);
-      candidates.emplace_back(d.dot(overlap.gradient(d)), d);
-    }
-  };
-  consider(b.center - a.center);
-  for (int i = 0; i < 3; ++i) {
-    consider(a.R.col(i));
-    consider(b.R.col(i));
-    for (int j = 0; j < 3; ++j) consider(a.R.col(i).cross(b.R.col(j)));
-  }
-  // And a coarse, even spread (a Fibonacci lattice of 48 pairs ±d, some
-  // 0.25 rad apart) so that no basin of f is far from a start.
-  constexpr int kLattice = 96;
-  const double golden = 3.141592653589793 * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < kLattice; ++i) {
-    const double z = 1.0 - (i + 0.5) / kLattice, rho = std::sqrt(1.0 - z * z), phi = golden * i;
-    consider(Vec3T<double>(rho * std::cos(phi), rho * std::sin(phi), z));
-  }
-  std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<Vec3T<double>> starts{fromCcd};
-  for (const auto& [f, d] : candidates) {
-    if (starts.size() > count) break;
-    if (std::none_of(starts.begin(), starts.end(), [&d = d](const Vec3T<double>& s) { return s.dot(d) > 0.999; }))
-      starts.push_back(d);
-  }
-  return starts;
-}
-
-/// A shape's supporting feature along the unit direction n, world (m): its
-/// points, their mean and how far they spread from the support at n.
-struct SupportingFeature {
-  Vec3T<double> center;  // mean of the points, world (m)
-  double spread = 0.0;   // largest distance of a point from the support at n (m)
-  std::vector<Vec3T<double>> samples;
-  FeatureClipping::Disc disc;  // a round face (radius > 0), world
-};
-/// Tilt of the sampled features (shapes without supportingFeature).
-inline constexpr double kFeatureTilt = 1e-3;  // rad
-
-/// The supporting feature of a shape along n: the shape's own
-/// supportingFeature (a face, an edge or a point within the feature angle,
-/// SupportingFeatureT) or, for a shape without one, sampled: its support at
-/// n and at n tilted by kFeatureTilt toward eight directions of the tangent
-/// plane, which spread over a face or an edge (its corners or ends) that is
-/// within that tilt of supporting and stay together otherwise.
-template <class Object>
-SupportingFeature supportingFeature(const Object& object, const Vec3T<double>& n) {
-  using S = typename Object::S;
-  const auto toWorld = [&](const Vec3T<S>& p) { return Vec3T<double>(object.R * p.template cast<double>() + object.p); };
-  const auto support = [&](const Vec3T<double>& d) {
-    return toWorld(object.shape->support((object.R.transpose() * d).template cast<S>()));
-  };
-  SupportingFeature feature{Vec3T<double>::Zero(), 0.0, {}, {}};
-  if constexpr (requires(SupportingFeatureT<S>& out) { object.shape->supportingFeature(Vec3T<S>(), out); }) {
-    SupportingFeatureT<S> local;
-    object.shape->supportingFeature((object.R.transpose() * n).template cast<S>(), local);
-    for (std::size_t k = 0; k < local.count; ++k) feature.samples.push_back(toWorld(local.points[k]));
-    if (local.radius > S(0))
-      feature.disc = {toWorld(local.center), object.R * local.axis.template cast<double>(), double(local.radius)};
-  } else {
-    const Vec3T<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-    feature.samples.push_back(support(n));
-    for (int k = 0; k < 8; ++k) {
-      const double angle = k * 0.7853981633974483;
-      feature.samples.push_back(support(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2)));
-    }
-  }
-  const Vec3T<double> atN = support(n);
-  for (const Vec3T<double>& p : feature.samples) {
-    feature.center += p;
-    feature.spread = std::max(feature.spread, (p - atN).norm());
-  }
-  feature.center /= double(feature.samples.size());
-  return feature;
-}
-
-/// The contact point of a penetration of the given depth along n (from a
-/// toward b): in the overlap, half the depth inside both surfaces, at the
-/// middle of the narrower of the two supporting features (the curved or the
-/// smaller shape's), or between both middles where they are alike (two
-/// faces of one size). Never a support point chosen among a wide face's
-/// corners, whose lever arm would spin the body that rests on it.
-inline Vec3T<double> contactPointInOverlap(const SupportingFeature& onA, const SupportingFeature& onB, const Vec3T<double>& n,
-                                    double depth) {
-  const Vec3T<double> fromA = onA.center - 0.5 * depth * n, fromB = onB.center + 0.5 * depth * n;
-  if (onA.spread < 0.5 * onB.spread) return fromA;
-  if (onB.spread < 0.5 * onA.spread) return fromB;
-  return 0.5 * (fromA + fromB);
-}
-
-/// The contacts of a penetration of `depth` along n (from a toward b): the
-/// corners of the overlap of the two supporting features (FeatureClipping:
-/// a resting face, cylinder side or cap gets its manifold in one step), or,
-/// where the features do not overlap, one point by contactPointInOverlap.
-/// Points closer than 4·kFeatureTilt·size are one point (the spread a
-/// sampled curved surface leaves).
-template <class A, class B>
-std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, const CcdObject<B>& b,
-                                                         const Vec3T<double>& n, double depth) {
-  const SupportingFeature onA = supportingFeature(a, n), onB = supportingFeature(b, -n);
-  const auto size = [](const auto& object) {
-    return object.shape->getBoundingBox().halfExtents().template cast<double>().norm();
-  };
-  const FeatureClipping clipping(n);
-  std::vector<FeatureClipping::Contact> contacts = clipping.contacts(
-      {onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc}, {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth);
-  if (contacts.empty()) {
-    // A point feature (a vertex, a curved surface's support) is the contact
-    // itself; two extended ones that miss each other on the contact plane
-    // (a cap's inscribed polygon, round-off at a rim) meet where they come
-    // nearest.
-    if (onA.samples.size() == 1 || onB.samples.size() == 1)
-      contacts.push_back({contactPointInOverlap(onA, onB, n, depth), depth});
-    else
-      contacts.push_back(clipping.nearest({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
-                                          {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth));
-  }
-  return contacts;
-}
-
-/// True when one of the directions ±(axes of a's and b's frames) or ±(the
-/// line between their centers) has a projection overlap f below `below`:
-/// the shapes are apart by at least −below along it.
-template <class A, class B>
-bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double below) {
-  const auto apart = [&](const Vec3T<double>& direction) {
-    const double length = direction.norm();
-    if (!(length > 0.0)) return false;
-    for (const double sign : {1.0, -1.0}) {
-      const Vec3T<double> d = direction * (sign / length);
-      if (d.dot(overlap.gradient(d)) < below) return true;
-    }
-    return false;
-  };
-  if (apart(overlap.b.center - overlap.a.center)) return true;
-  for (int i = 0; i < 3; ++i)
-    if (apart(overlap.a.R.col(i)) || apart(overlap.b.R.col(i))) return true;
-  return false;
-}
-
-/// Penetration of two convex shapes by GJK + EPA (libccd), polished as
-/// above: the direction that separates b from a, with the contacts of
-/// contactsOfFeatures (not libccd's point, a midpoint of support points
-/// that may lie on a far corner of a large face), or only the deepest of
-/// them when `manifold` is false (triangle pairs of two meshes, one contact
-/// per intersecting pair).
-template <Scalar S, class A, class B>
-void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
-                  bool manifold = true) {
-  // libccd sees a grown by kCcdTouchMargin of the smaller shape's size, so
-  // that shapes placed exactly touching (a body set down on a ground) are
-  // found touching, not left to fall a step; the polishing below measures
-  // the true overlap, and a gap within the margin is a contact of depth 0.
-  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
-  const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeOf(a), sizeOf(b)));
-  const CcdObject<B> objectB(b, X_WB);
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = &CcdObject<A>::support;
-  ccd.support2 = &CcdObject<B>::support;
-  ccd.center1 = &CcdObject<A>::centerOf;
-  ccd.center2 = &CcdObject<B>::centerOf;
-  ccd.max_iterations = kCcdMaxIterations;
-  ccd.epa_tolerance = kCcdEpaTolerance;
-  ccd_real_t depth = 0;
-  ccd_vec3_t direction, position;
-  const ProjectionOverlap<A, B> overlap{objectA, objectB};
-  if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) {
-    // libccd's GJK misses a few shallow overlaps of a small shape on a large
-    // one (0.7 % of those 1e-9..1e-4 m deep on boxes of 0.5..500 m, each a
-    // step of free fall through a resting contact): "apart" stands when a
-    // grown by kCcdNearMargin is still apart, or with a separating axis
-    // among the shapes' axes and the line between their centers; otherwise
-    // the polishing below decides.
-    const CcdObject<A> grownA(a, X_WA, kCcdNearMargin * std::min(sizeOf(a), sizeOf(b)));
-    if (!ccdGJKIntersect(&grownA, &objectB, &ccd) || separatedAlongFrameAxes(overlap, -objectA.margin)) return;
-    direction = {{0.0, 0.0, 0.0}};
-  }
-  // libccd reports a penetration far smaller than the shapes (within the
-  // margin) as touching, without a direction: the polishing below finds it
-  // from its other starts.
-  Vec3T<double> n(direction.v[0], direction.v[1], direction.v[2]);
-  if (const double length = n.norm(); length > 0.0 && std::isfinite(length))
-    n /= length;
-  else
-    n = Vec3T<double>::UnitZ();
-  const double scale = (a.getBoundingBox().halfExtents().template cast<double>().norm() +
-                        b.getBoundingBox().halfExtents().template cast<double>().norm());
-  // f may have several local minima: descend from several starts, then
-  // search the kinks where a descent stalled.
-  double refined = std::numeric_limits<double>::infinity();
-  for (Vec3T<double> start : startingDirections(objectA, objectB, n, kStarts)) {
-    bool smooth = false;
-    double f = descend(overlap, start, scale, smooth);
-    if (!smooth) f = polishOnKinks(overlap, start, f, scale);
-    if (f < refined) {
-      refined = f;
-      n = start;
-    }
-  }
-  if (!(refined >= -objectA.margin)) return;  // the polished direction separates them
-  std::vector<FeatureClipping::Contact> contacts = contactsOfFeatures(objectA, objectB, n, std::max(refined, 0.0));
-  if (!manifold) {
-    const auto deepest = std::max_element(contacts.begin(), contacts.end(),
-                                          [](const auto& x, const auto& y) { return x.depth < y.depth; });
-    contacts = {*deepest};
-  }
-  for (const FeatureClipping::Contact& contact : contacts) sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
-}
-
-}  // namespace spook::detail
-// --- end spook/collide/detail/ccd_bridge.hpp ---
-
-namespace spook {
-
-/// A shape with a support function `support(direction)` in its own frame:
-/// every convex shape, which libccd can then collide with any other.
-template <class T>
-concept ConvexShape = requires(const T& shape, const typename T::Vec3& direction) {
-  { shape.support(direction) } -> std::convertible_to<typename T::Vec3>;
-};
-
-/// The collider of an ordered shape pair (A, B) with A::kType <= B::kType:
-/// `Collider<A, B>::collide(a, X_WA, b, X_WB, sink)` writes the contact
-/// points of a placed at X_WA and b placed at X_WB (shape frame → world).
-/// Analytic pairs specialize it, one file per pair in colliders/; a pair of
-/// convex shapes without one goes through libccd; any other pair has none
-/// (a hole in the collider matrix).
-template <class A, class B>
-struct Collider {};
-
-template <ConvexShape A, ConvexShape B>
-struct Collider<A, B> {
-  using S = typename A::Vec3::Scalar;
-  static void collide(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    detail::collideByCcd<S>(a, X_WA, b, X_WB, sink);
-  }
-};
-
-/// True when the ordered pair (A, B) has a collider.
-template <class A, class B>
-concept HasCollider = requires(const A& a, const B& b, const TransformT<typename A::Vec3::Scalar>& X,
-                               ContactSinkT<typename A::Vec3::Scalar>& sink) {
-  Collider<A, B>::collide(a, X, b, X, sink);
-};
-
-/// Collides a and b in either order: the pair is handed to its collider with
-/// the lower ShapeType first, and the sink flips the normals back. This is
-/// the one place where a reversed pair is handled.
-template <class A, class B>
-  requires(A::kType <= B::kType ? HasCollider<A, B> : HasCollider<B, A>)
-void collide(const A& a, const TransformT<typename A::Vec3::Scalar>& X_WA, const B& b,
-             const TransformT<typename A::Vec3::Scalar>& X_WB, ContactSinkT<typename A::Vec3::Scalar>& sink) {
-  if constexpr (A::kType <= B::kType) {
-    Collider<A, B>::collide(a, X_WA, b, X_WB, sink);
-  } else {
-    ContactSinkT<typename A::Vec3::Scalar> reversed = sink.reversed();
-    Collider<B, A>::collide(b, X_WB, a, X_WA, reversed);
-  }
-}
-
-}  // namespace spook
-// --- end spook/collide/collider.hpp ---
-// --- begin spook/collide/colliders.hpp ---
-
-// Every analytic collider. The collider matrix includes them all so that a
-// pair means the same collider in every translation unit; only the pairs of
-// a shape list that is used get instantiated.
-
-// --- begin spook/collide/colliders/box_box.hpp ---
-
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
-#include <limits>
-#include <type_traits>
-
-// --- begin spook/collide/detail/box_clipping.hpp ---
-
-#include <algorithm>
-#include <array>
-#include <cstddef>
-
-namespace spook::detail {
-
-/// A convex polygon of at most 8 corners on the stack: a quadrilateral
-/// clipped by the 4 side planes of a rectangle gains at most one corner per
-/// plane.
-template <Scalar S>
-struct ClipPolygon {
-  static constexpr std::size_t kCapacity = 8;
-  std::array<Vec3T<S>, kCapacity> points;
-  std::size_t count = 0;
-
-  void push(const Vec3T<S>& p) {
-    if (count < kCapacity) points[count++] = p;
-  }
-};
-
-/// One Sutherland–Hodgman step: the part of `polygon` in the half-space
-/// normal·x <= offset. A corner on the plane is kept (once); an edge that
-/// strictly crosses the plane gains its crossing point.
-template <Scalar S>
-[[nodiscard]] ClipPolygon<S> clipPolygon(const ClipPolygon<S>& polygon, const Vec3T<S>& normal, S offset) {
-  ClipPolygon<S> out;
-  for (std::size_t i = 0; i < polygon.count; ++i) {
-    const Vec3T<S>& p = polygon.points[i];
-    const Vec3T<S>& q = polygon.points[(i + 1) % polygon.count];
-    const S dp = normal.dot(p) - offset, dq = normal.dot(q) - offset;
-    if (dp <= S(0)) out.push(p);
-    if ((dp < S(0) && dq > S(0)) || (dp > S(0) && dq < S(0))) out.push(Vec3T<S>(p + (q - p) * (dp / (dp - dq))));
-  }
-  return out;
-}
-
-/// Closest points of the segments p + s·u, |s| <= sMax, and q + t·v,
-/// |t| <= tMax, for unit u and v that are not parallel (the box edges and
-/// capsule axis of the box colliders): the closest points of the two lines,
-/// then each parameter clamped with the other one re-projected onto it.
-template <Scalar S>
-void clampedLineClosest(const Vec3T<S>& p, const Vec3T<S>& u, S sMax, const Vec3T<S>& q, const Vec3T<S>& v, S tMax, S& s,
-                        S& t) {
-  const Vec3T<S> w = q - p;
-  const S b = u.dot(v), d = u.dot(w), e = v.dot(w);
-  const S denominator = S(1) - b * b;  // |u × v|²
-  s = denominator > S(0) ? (d - b * e) / denominator : S(0);
-  s = std::clamp(s, -sMax, sMax);
-  t = std::clamp(b * s - e, -tMax, tMax);
-  s = std::clamp(b * t + d, -sMax, sMax);
-}
-
-}  // namespace spook::detail
-// --- end spook/collide/detail/box_clipping.hpp ---
-
-namespace spook {
-
-namespace detail::box_box {
-
-/// A box seen from box A's frame: center, axes (columns) and half extents.
-template <Scalar S>
-struct Placed {
-  Vec3T<S> center;
-  Mat3T<S> axes;
-  Vec3T<S> half;
-
-  /// Half-width of the box's projection onto the unit axis n.
-  [[nodiscard]] S radius(const Vec3T<S>& n) const { return (axes.transpose() * n).cwiseAbs().dot(half); }
-  /// The corner farthest along n (a zero component picks +).
-  [[nodiscard]] Vec3T<S> corner(const Vec3T<S>& n) const {
-    Vec3T<S> p = center;
-    for (int k = 0; k < 3; ++k) p += axes.col(k) * (axes.col(k).dot(n) < S(0) ? -half[k] : half[k]);
-    return p;
-  }
-};
-
-/// The candidate separating axis of least penetration: `axis` points from A
-/// toward B, `depth` is the overlap of the two projections on it (m).
-/// kind 0: a face normal of A (index = axis of A); kind 1: a face normal of
-/// B; kind 2: the cross product of A's edge `index / 3` and B's edge
-/// `index % 3`.
-template <Scalar S>
-struct Axis {
-  Vec3T<S> axis = Vec3T<S>::UnitZ();
-  S depth = std::numeric_limits<S>::infinity();
-  int kind = -1;
-  int index = -1;
-};
-
-/// Edge–edge axes win only when their overlap is below that of the best face
-/// axis divided by this factor: a resting box then keeps its face manifold
-/// instead of flickering to a single edge point. 1.05 is the value of ODE's
-/// dBoxBox, also used by Bullet and FCL.
-inline constexpr double kEdgeBias = 1.05;
-
-}  // namespace detail::box_box
-
-/// Box–box contacts by the separating axis theorem (Gottschalk's 15 axes)
-/// and face clipping, after ODE's dBoxBox:
-///  - the overlap of the two boxes' projections onto each candidate axis
-///    (3 + 3 face normals, 9 cross products of edge directions) is
-///    r_A(n) + r_B(n) − |n·(c_B − c_A)|, r the projected half-width; a
-///    positive gap on any axis separates the boxes, otherwise the axis of
-///    least overlap gives the normal and the depth: the least edge axis
-///    against the least face axis with kEdgeBias (dBoxBox also applies the
-///    bias between two edge axes, so it may keep one up to 5 % deeper);
-///  - on a face axis, the face of the other (incident) box most opposed to
-///    it is clipped against the side planes of the reference face
-///    (Sutherland–Hodgman), and every clipped corner below the reference
-///    face becomes a contact with its own depth: up to 8 points;
-///  - on an edge axis, one contact midway between the closest points of the
-///    two edges, with the axis overlap as depth.
-/// Cross products of near-parallel edges are skipped: their direction is
-/// lost to round-off, and the face axes then separate the boxes anyway.
-template <Scalar S>
-struct Collider<BoxT<S>, BoxT<S>> {
-  using Vec3 = spook::Vec3T<S>;
-  using Mat3 = spook::Mat3T<S>;
-  using Placed = detail::box_box::Placed<S>;
-  using Axis = detail::box_box::Axis<S>;
-
-  /// |a × b| below this (unit a and b, about √ε) skips the edge axis a × b:
-  /// the direction error ε/|a × b| of keeping it then balances the depth
-  /// error |a × b|·size of skipping it.
-  static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
-
-  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const BoxT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    // Everything in A's frame, where A is axis-aligned at the origin.
-    const Mat3 R_WA = X_WA.linear();
-    const Placed boxA{Vec3::Zero(), Mat3::Identity(), a.getHalfExtents()};
-    const Placed boxB{R_WA.transpose() * (X_WB.translation() - X_WA.translation()), R_WA.transpose() * X_WB.linear(),
-                      b.getHalfExtents()};
-    const Vec3 d = boxB.center;
-
-    Axis face, edge;
-    // Overlap along the unit axis n; returns false when n separates them.
-    auto consider = [&](const Vec3& n, int kind, int index, Axis& best) {
-      const S along = n.dot(d);
-      const S overlap = boxA.radius(n) + boxB.radius(n) - std::abs(along);
-      if (overlap < S(0)) return false;
-      if (overlap < best.depth) best = Axis{along < S(0) ? Vec3(-n) : n, overlap, kind, index};
-      return true;
-    };
-    for (int i = 0; i < 3; ++i)
-      if (!consider(boxA.axes.col(i), 0, i, face)) return;
-    for (int j = 0; j < 3; ++j)
-      if (!consider(boxB.axes.col(j), 1, j, face)) return;
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        const Vec3 n = boxA.axes.col(i).cross(boxB.axes.col(j));
-        const S length = n.norm();
-        if (!(length > kParallel)) continue;
-        if (!consider(n / length, 2, 3 * i + j, edge)) return;
-      }
-    }
-
-    auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
-      sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
-    };
-    if (edge.kind == 2 && S(detail::box_box::kEdgeBias) * edge.depth < face.depth) {
-      emitEdge(boxA, boxB, edge, emit);
-      return;
-    }
-    // The face case: reference face on the box that owns the axis.
-    const bool onA = face.kind == 0;
-    const Placed& reference = onA ? boxA : boxB;
-    const Placed& incident = onA ? boxB : boxA;
-    const Vec3 n = onA ? face.axis : Vec3(-face.axis);  // out of the reference face, toward the incident box
-    if (emitFace(reference, face.index, n, incident, face.axis, face.depth, emit) == 0) {
-      // Round-off (or the face bias) left no clipped corner below the
-      // reference face: one point at the incident box's deepest corner.
-      const Vec3 deepest = incident.corner(-n);
-      emit(Vec3(deepest + n * (S(0.5) * face.depth)), face.axis, face.depth);
-    }
-  }
-
- private:
-  template <class Emit>
-  static void emitEdge(const Placed& boxA, const Placed& boxB, const Axis& edge, Emit& emit) {
-    const int i = edge.index / 3, j = edge.index % 3;
-    const Vec3& n = edge.axis;
-    // The edge of A farthest along n and the edge of B farthest along −n,
-    // each through its midpoint.
-    Vec3 midA = boxA.corner(n), midB = boxB.corner(-n);
-    midA -= boxA.axes.col(i) * boxA.axes.col(i).dot(midA - boxA.center);
-    midB -= boxB.axes.col(j) * boxB.axes.col(j).dot(midB - boxB.center);
-    S s = S(0), t = S(0);
-    detail::clampedLineClosest<S>(midA, boxA.axes.col(i), boxA.half[i], midB, boxB.axes.col(j), boxB.half[j], s, t);
-    const Vec3 pointA = midA + boxA.axes.col(i) * s, pointB = midB + boxB.axes.col(j) * t;
-    emit(Vec3(S(0.5) * (pointA + pointB)), n, edge.depth);
-  }
-
-  /// Clips the incident face against the reference face `axis` whose
-  /// outward normal is n and writes the points below it with the normal
-  /// normal_AB (from A toward B); returns how many.
-  template <class Emit>
-  static int emitFace(const Placed& reference, int axis, const Vec3& n, const Placed& incident, const Vec3& normal_AB,
-                      S depthOfAxis, Emit& emit) {
-    // Incident face: the face of the incident box most opposed to n.
-    const Vec3 alignment = incident.axes.transpose() * n;
-    int k = 0;
-    alignment.cwiseAbs().maxCoeff(&k);
-    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-    const Vec3 faceCenter =
-        incident.center - incident.axes.col(k) * (alignment[k] > S(0) ? incident.half[k] : -incident.half[k]);
-    const Vec3 e1 = incident.axes.col(k1) * incident.half[k1], e2 = incident.axes.col(k2) * incident.half[k2];
-    detail::ClipPolygon<S> polygon;
-    polygon.push(faceCenter - e1 - e2);
-    polygon.push(faceCenter + e1 - e2);
-    polygon.push(faceCenter + e1 + e2);
-    polygon.push(faceCenter - e1 + e2);
-
-    // Side planes of the reference face: |(x − c)·t| <= h for its two
-    // tangent axes t.
-    for (const int side : {(axis + 1) % 3, (axis + 2) % 3}) {
-      const Vec3 tangent = reference.axes.col(side);
-      const S offset = tangent.dot(reference.center);
-      polygon = detail::clipPolygon<S>(polygon, tangent, offset + reference.half[side]);
-      polygon = detail::clipPolygon<S>(polygon, Vec3(-tangent), reference.half[side] - offset);
-    }
-
-    // Depth of each clipped corner below the reference face plane
-    // n·x = n·c + h; the contact point is midway to that plane. No corner
-    // lies deeper than the axis overlap but by round-off, which the min
-    // removes.
-    const S facePlane = n.dot(reference.center) + reference.half[axis];
-    int written = 0;
-    for (std::size_t m = 0; m < polygon.count; ++m) {
-      const Vec3& x = polygon.points[m];
-      const S depth = std::min(facePlane - n.dot(x), depthOfAxis);
-      if (!(depth >= S(0))) continue;
-      emit(Vec3(x + n * (S(0.5) * depth)), normal_AB, depth);
-      ++written;
-    }
-    return written;
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/box_box.hpp ---
-// --- begin spook/collide/colliders/box_capsule.hpp ---
-
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstddef>
-#include <limits>
-#include <type_traits>
-
-namespace spook {
-
-namespace detail::box_capsule {
-
-/// Squared distance (m²) from x to the solid box |x_k| <= e_k.
-template <Scalar S>
-[[nodiscard]] S boxDistanceSquared(const Vec3T<S>& x, const Vec3T<S>& e) {
-  return (x.cwiseAbs() - e).cwiseMax(S(0)).squaredNorm();
-}
-
-/// The parameter t in [−h, h] of the point c + t·u of a segment closest to
-/// the solid box |x_k| <= e_k. The squared distance g(t) is convex and
-/// piecewise quadratic, with knots where the segment crosses the six face
-/// planes; on each piece it is Σ (c_k + t u_k ∓ e_k)² over the coordinates
-/// outside the box, minimized in closed form and clamped to the piece.
-template <Scalar S>
-[[nodiscard]] S closestOnSegment(const Vec3T<S>& c, const Vec3T<S>& u, S h, const Vec3T<S>& e) {
-  std::array<S, 8> knots{};
-  std::size_t count = 0;
-  knots[count++] = -h;
-  for (int k = 0; k < 3; ++k) {
-    if (u[k] == S(0)) continue;
-    for (const S plane : {-e[k], e[k]}) {
-      const S t = (plane - c[k]) / u[k];
-      if (t > -h && t < h) knots[count++] = t;
-    }
-  }
-  knots[count++] = h;
-  // Insertion sort: at most 8 knots (and std::sort trips GCC 12's
-  // -Warray-bounds on a partly filled std::array at -O2).
-  for (std::size_t i = 1; i < count; ++i)
-    for (std::size_t j = i; j > 0 && knots[j] < knots[j - 1]; --j) std::swap(knots[j], knots[j - 1]);
-  S bestT = -h, best = std::numeric_limits<S>::infinity();
-  for (std::size_t i = 0; i + 1 < count; ++i) {
-    const S lo = knots[i], hi = knots[i + 1], mid = S(0.5) * (lo + hi);
-    S slope = S(0), curvature = S(0);  // g/2 on this piece: ½ curvature·t² + slope·t + const
-    for (int k = 0; k < 3; ++k) {
-      const S x = c[k] + mid * u[k];
-      if (x > e[k] || x < -e[k]) {
-        slope += u[k] * (c[k] - (x > S(0) ? e[k] : -e[k]));
-        curvature += u[k] * u[k];
-      }
-    }
-    const S t = curvature > S(0) ? std::clamp(-slope / curvature, lo, hi) : lo;
-    const S g = boxDistanceSquared<S>(Vec3T<S>(c + t * u), e);
-    if (g < best) {
-      best = g;
-      bestT = t;
-    }
-  }
-  return bestT;
-}
-
-}  // namespace detail::box_capsule
-
-/// Box–capsule contacts: the capsule is the set of points within its radius
-/// r of the segment between its hemisphere centers, so everything reduces
-/// to that segment against the box, in the box frame.
-///  - Segment outside the box at distance δ (exact closest points, see
-///    closestOnSegment): depth r − δ along the direction from the box's
-///    closest point to the segment's.
-///  - Segment touching or inside the box: the segment's penetration is the
-///    least overlap of the projections onto the face normals of the
-///    Minkowski sum box ⊕ segment, which are the box's 3 face normals and
-///    the 3 cross products of the capsule axis with the box edges; depth
-///    r + that overlap (exact, the same separating-axis argument as for two
-///    boxes).
-/// When the normal is a box face normal, the segment is clipped to the
-/// face's side planes and each clipped end within r of the face is a
-/// contact with its own depth: two points for a capsule lying on the face,
-/// one otherwise.
-template <Scalar S>
-struct Collider<BoxT<S>, CapsuleT<S>> {
-  using Vec3 = spook::Vec3T<S>;
-  using Mat3 = spook::Mat3T<S>;
-
-  /// |u × axis| below this (u the capsule axis, about √ε) skips the edge
-  /// axis u × axis; the face axes cover the parallel case (as for two boxes).
-  static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
-
-  static void collide(const BoxT<S>& box, const TransformT<S>& X_WA, const CapsuleT<S>& capsule,
-                      const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
-    // Box frame: the box is |x_k| <= e_k, the segment c + t·u, |t| <= h.
-    const Mat3 R_WA = X_WA.linear();
-    const Vec3 e = box.getHalfExtents();
-    const Vec3 c = R_WA.transpose() * (X_WB.translation() - X_WA.translation());
-    const Vec3 u = (R_WA.transpose() * X_WB.linear().col(1)).normalized();
-    const S h = S(0.5) * capsule.getHeight(), r = capsule.getRadius();
-    const S scale = e.maxCoeff() + h + r;
-    const BoxFrame local{e, c, u, h, r, scale};
-    auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
-      sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
-    };
-
-    const S t = detail::box_capsule::closestOnSegment<S>(c, u, h, e);
-    const Vec3 x = c + t * u;
-    const Vec3 q = x.cwiseMax(-e).cwiseMin(e);
-    const Vec3 gap = x - q;
-    const S distance = gap.norm();
-    if (distance > r) return;
-    // Below this distance the direction x − q is round-off: the segment
-    // counts as touching the box and the separating axes take over.
-    const S touching = S(64) * ScalarTraits<S>::epsilon() * scale;
-    if (distance > touching) {
-      const S depth = r - distance;
-      int outside = 0, k = 0, inside = 0;
-      for (int j = 0; j < 3; ++j) {
-        if (gap[j] == S(0)) {
-          inside = j;
-          continue;
-        }
-        ++outside;
-        k = j;
-      }
-      Vec3 n = gap / distance;
-      if (std::abs(t) < h - touching && outside > 1) {
-        // The segment's interior (clear of its ends by more than round-off)
-        // is closest to a box edge or corner, so n is exactly ⊥ u (and ⊥ the
-        // edge): rebuilt that way rather than from the rounded gap, whose
-        // tilt along u would add to the overlap at its kink there.
-        const Vec3 acrossEdge = u.cross(Vec3::Unit(inside));
-        const S length = acrossEdge.norm();
-        const Vec3 rebuilt =
-            outside == 2 && length > kParallel ? Vec3(acrossEdge / length) : Vec3(gap - gap.dot(u) * u);
-        const S size = rebuilt.norm();
-        if (size > S(0)) n = rebuilt.dot(gap) < S(0) ? Vec3(-rebuilt / size) : Vec3(rebuilt / size);
-      }
-      if (outside == 1 && local.emitOnFace(k, gap[k] > S(0) ? S(1) : S(-1), depth, emit) > 0) return;
-      emit(Vec3(S(0.5) * (q + x - n * r)), n, depth);
-      return;
-    }
-
-    // Separating axes of the segment inside the box. An edge axis must beat
-    // the best face axis by more than round-off, so that a capsule lying in
-    // a face (where the two coincide) keeps the face and its two points.
-    S faceDepth = std::numeric_limits<S>::infinity(), edgeDepth = faceDepth;
-    int face = 0, edge = -1;
-    Vec3 edgeAxis = Vec3::UnitZ();
-    for (int k = 0; k < 3; ++k) {
-      const S overlap = e[k] + h * std::abs(u[k]) + r - std::abs(c[k]);
-      if (overlap < faceDepth) {
-        faceDepth = overlap;
-        face = k;
-      }
-    }
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 axis = u.cross(Vec3::Unit(k));
-      const S length = axis.norm();
-      if (!(length > kParallel)) continue;
-      const Vec3 n = axis / length;
-      const S overlap = n.cwiseAbs().dot(e) + r - std::abs(n.dot(c));
-      if (overlap < edgeDepth) {
-        edgeDepth = overlap;
-        edge = k;
-        edgeAxis = n;
-      }
-    }
-    if (!(std::min(faceDepth, edgeDepth) >= S(0))) return;  // only round-off can get here
-
-    if (edge >= 0 && edgeDepth < faceDepth - S(8) * ScalarTraits<S>::epsilon() * scale) {
-      // The segment crosses the box edge along axis `edge` that is farthest
-      // along n: one point midway between the segment and that edge.
-      const Vec3 n = edgeAxis.dot(c) < S(0) ? Vec3(-edgeAxis) : edgeAxis;
-      Vec3 middle = Vec3::Zero();
-      for (int j = 0; j < 3; ++j)
-        if (j != edge) middle[j] = n[j] < S(0) ? -e[j] : e[j];
-      S s = S(0), tOnSegment = S(0);
-      detail::clampedLineClosest<S>(middle, Vec3::Unit(edge), e[edge], c, u, h, s, tOnSegment);
-      const Vec3 onEdge = middle + Vec3::Unit(edge) * s, onSegment = c + u * tOnSegment;
-      emit(Vec3(S(0.5) * (onEdge + onSegment - n * r)), n, edgeDepth);
-      return;
-    }
-    const S sign = c[face] < S(0) ? S(-1) : S(1);
-    if (local.emitOnFace(face, sign, faceDepth, emit) > 0) return;
-    // The deepest end of the segment lies beside the face: one point there.
-    const S along = sign * u[face];
-    const Vec3 deepest = c + u * (along > S(0) ? -h : (along < S(0) ? h : S(0)));
-    Vec3 onFace = deepest.cwiseMax(-e).cwiseMin(e);
-    onFace[face] = sign * e[face];
-    const Vec3 n = Vec3::Unit(face) * sign;
-    emit(Vec3(S(0.5) * (onFace + deepest - n * r)), n, faceDepth);
-  }
-
- private:
-  /// The pair in the box frame: half extents e, segment c + t·u with
-  /// |t| <= h, radius r, and a length scale for tolerances (m).
-  struct BoxFrame {
-    Vec3 e, c, u;
-    S h, r, scale;
-
-    /// Contacts for the normal sign·(unit k), the outward normal of a box
-    /// face: the segment clipped to the face's side planes, each end within
-    /// r of the face plane a contact with depth r − height. Writes nothing
-    /// (returns 0) when the clipped ends miss `depth`, the depth of the
-    /// whole pair: the deepest part of the segment lies beside the face.
-    template <class Emit>
-    int emitOnFace(int k, S sign, S depth, Emit& emit) const {
-      S lo = -h, hi = h;
-      for (const int j : {(k + 1) % 3, (k + 2) % 3}) {
-        if (u[j] == S(0)) {
-          if (std::abs(c[j]) > e[j]) return 0;
-          continue;
-        }
-        const S t0 = (-e[j] - c[j]) / u[j], t1 = (e[j] - c[j]) / u[j];
-        lo = std::max(lo, std::min(t0, t1));
-        hi = std::min(hi, std::max(t0, t1));
-      }
-      if (!(lo <= hi)) return 0;
-      const Vec3 n = Vec3::Unit(k) * sign;
-      const S tolerance = S(64) * ScalarTraits<S>::epsilon() * scale;
-      std::array<S, 2> ends{lo, hi}, depths{};
-      for (std::size_t i = 0; i < 2; ++i) depths[i] = r - (sign * (c[k] + ends[i] * u[k]) - e[k]);
-      if (!(std::max(depths[0], depths[1]) >= depth - tolerance)) return 0;
-      // Ends closer than the tolerance are one point: keep the deeper.
-      const bool single = (hi - lo) <= tolerance;
-      int written = 0;
-      for (std::size_t i = 0; i < 2; ++i) {
-        if (!(depths[i] >= S(0))) continue;
-        if (single && depths[i] < depths[1 - i]) continue;
-        if (single && written > 0) break;
-        const Vec3 x = c + u * ends[i];
-        const S height = r - depths[i];
-        emit(Vec3(x - n * (S(0.5) * (height + r))), n, std::min(depths[i], depth));
-        ++written;
-      }
-      return written;
-    }
-  };
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/box_capsule.hpp ---
-// --- begin spook/collide/colliders/box_line.hpp ---
-
-#include <algorithm>
-#include <cmath>
-
-// --- begin spook/collide/detail/segment_distance.hpp ---
-
-#include <algorithm>
-#include <cmath>
-
-namespace spook::detail {
-
-// Closest points between segments and points, the geometric core of every
-// collider with a capsule or a line (Ericson, Real-Time Collision
-// Detection, §5.1.2 and §5.1.9). All results are finite for any finite
-// input, degenerate segments and parallel segments included.
-
-/// Parameter t ∈ [0, 1] of the point of segment p + t (q − p) closest to x
-/// (0 for a degenerate segment).
-template <Scalar S>
-[[nodiscard]] S closestParameterOnSegment(const Vec3T<S>& p, const Vec3T<S>& q, const Vec3T<S>& x) {
-  const Vec3T<S> d = q - p;
-  const S dd = d.squaredNorm();
-  if (!(dd > S(0))) return S(0);
-  return std::clamp(d.dot(x - p) / dd, S(0), S(1));
-}
-
-/// The point of segment [p, q] closest to x.
-template <Scalar S>
-[[nodiscard]] Vec3T<S> closestPointOnSegment(const Vec3T<S>& p, const Vec3T<S>& q, const Vec3T<S>& x) {
-  return p + closestParameterOnSegment(p, q, x) * (q - p);
-}
-
-/// A unit vector perpendicular to d (any non-zero d), chosen deterministically:
-/// d crossed with the coordinate axis least aligned with it.
-template <Scalar S>
-[[nodiscard]] Vec3T<S> unitPerpendicular(const Vec3T<S>& d) {
-  int axis = 0;
-  const Vec3T<S> a = d.cwiseAbs();
-  if (a.y() < a[axis]) axis = 1;
-  if (a.z() < a[axis]) axis = 2;
-  const Vec3T<S> n = d.cross(Vec3T<S>::Unit(axis));
-  const S length = n.norm();
-  return length > S(0) ? Vec3T<S>(n / length) : Vec3T<S>(Vec3T<S>::UnitX());
-}
-
-/// The closest points of segments [p1, q1] and [p2, q2]: parameters s, t
-/// ∈ [0, 1], the points themselves, and whether the segments are parallel
-/// or degenerate (then the pair is one deterministic choice among many).
-template <Scalar S>
-struct SegmentClosestPoints {
-  S s = S(0);
-  S t = S(0);
-  Vec3T<S> onFirst = Vec3T<S>::Zero();
-  Vec3T<S> onSecond = Vec3T<S>::Zero();
-  bool parallel = false;
-};
-
-/// Minimizes |p1 + s d1 − (p2 + t d2)|² over the unit square (Ericson
-/// §5.1.9): the unconstrained minimum of the line pair is clamped to the
-/// first segment, then the second parameter follows and is clamped, and the
-/// first is recomputed once. Parallel (or degenerate) segments, where the
-/// determinant a e − b² vanishes relative to a e, start from s = 0.
-template <Scalar S>
-[[nodiscard]] SegmentClosestPoints<S> closestPointsBetweenSegments(const Vec3T<S>& p1, const Vec3T<S>& q1,
-                                                                   const Vec3T<S>& p2, const Vec3T<S>& q2) {
-  const Vec3T<S> d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-  const S a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  SegmentClosestPoints<S> result;
-  if (!(a > S(0)) && !(e > S(0))) {
-    result.parallel = true;
-  } else if (!(a > S(0))) {
-    result.t = std::clamp(f / e, S(0), S(1));
-    result.parallel = true;
-  } else {
-    const S c = d1.dot(r);
-    if (!(e > S(0))) {
-      result.s = std::clamp(-c / a, S(0), S(1));
-      result.parallel = true;
-    } else {
-      const S b = d1.dot(d2);
-      // a e − b² = |d1 × d2|², computed as such to keep its relative accuracy
-      // for nearly parallel segments.
-      const S denominator = d1.cross(d2).squaredNorm();
-      result.parallel = !(denominator > S(4) * ScalarTraits<S>::epsilon() * a * e);
-      S s = result.parallel ? S(0) : std::clamp((b * f - c * e) / denominator, S(0), S(1));
-      S t = (b * s + f) / e;
-      if (t < S(0)) {
-        t = S(0);
-        s = std::clamp(-c / a, S(0), S(1));
-      } else if (t > S(1)) {
-        t = S(1);
-        s = std::clamp((b - c) / a, S(0), S(1));
-      }
-      result.s = s;
-      result.t = t;
-    }
-  }
-  result.onFirst = p1 + result.s * d1;
-  result.onSecond = p2 + result.t * d2;
-  return result;
-}
-
-}  // namespace spook::detail
-// --- end spook/collide/detail/segment_distance.hpp ---
-
-namespace spook {
-
-/// Box–line, in the box frame, for a segment x(t) = p + t d, t ∈ [0, 1].
-///
-/// Depth: the penetration depth proper, the shortest distance the line has
-/// to move to leave the box, D = min over unit n of f(n) = h_box(n) −
-/// min_t n·x(t) (the overlap of the two projections on n), the same measure
-/// as every other convex pair and as the libccd fallback. The box ⊕ segment
-/// difference is a polytope whose faces have the box face normals e_i and
-/// the cross products d × e_i as normals, so the minimum is over these six
-/// axes, both signs each (the separating axis theorem); a negative overlap
-/// on any of them separates the shapes. Cross products shorter than
-/// round-off (d along a box edge) are dropped: they are face normals then,
-/// and the overlap they would bound differs from a face's by less than
-/// their length.
-///
-/// Points: the line's deepest point along −n is the contact's line side,
-/// midway to the box surface at depth D. On a face normal that is the
-/// deepest endpoint, unless a point of the segment's part inside the box
-/// (clipped against the three slabs |x_i| <= h_i) is as deep, as for a
-/// segment lying in a face; on an edge axis every segment point is as deep
-/// and the point closest to the box's supporting edge is taken. A segment
-/// nearly parallel to the face (|sin| <= kParallelSine) also gets a contact
-/// at each end of its inside part, with that point's own depth, so that a
-/// rod lying across a face rests on two points.
-template <Scalar S>
-struct Collider<BoxT<S>, LineT<S>> {
-  static constexpr S kParallelSine = S(1e-2);
-
-  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const LineT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    const TransformT<S> X_AB = X_WA.inverse(Eigen::Isometry) * X_WB;
-    const Vec3T<S> p = X_AB * b.getFirstPoint(), q = X_AB * b.getSecondPoint();
-    const Vec3T<S> d = q - p;
-    const Vec3T<S>& h = a.getHalfExtents();
-    const S length = d.norm();
-    const S tiny = S(16) * ScalarTraits<S>::epsilon() * (h.norm() + p.norm() + q.norm());
-
-    // Separating axis test: the smallest overlap and its axis, from the box toward the line.
-    S depth = S(0);
-    Vec3T<S> n = Vec3T<S>::UnitZ();
-    int edge = -1;  // the box edge direction of a cross-product axis, -1 for a face normal
-    bool first = true;
-    const auto tryAxis = [&](const Vec3T<S>& axis, int edgeAxis) {
-      const S support = h.dot(axis.cwiseAbs());
-      const S lowest = std::min(axis.dot(p), axis.dot(q)), highest = std::max(axis.dot(p), axis.dot(q));
-      const S up = support - lowest, down = support + highest;  // overlaps along +axis and −axis
-      if (first || up < depth) {
-        depth = up;
-        n = axis;
-        edge = edgeAxis;
-        first = false;
-      }
-      if (down < depth) {
-        depth = down;
-        n = -axis;
-        edge = edgeAxis;
-      }
-    };
-    for (int i = 0; i < 3; ++i) tryAxis(Vec3T<S>::Unit(i), -1);
-    for (int i = 0; i < 3; ++i) {
-      const Vec3T<S> axis = d.cross(Vec3T<S>::Unit(i));
-      const S axisLength = axis.norm();
-      if (axisLength > S(16) * ScalarTraits<S>::epsilon() * length) tryAxis(axis / axisLength, i);
-    }
-    if (!(depth >= S(0))) return;
-
-    const auto add = [&](const Vec3T<S>& onLine, S pointDepth) {
-      sink.add(X_WA * Vec3T<S>(onLine + S(0.5) * pointDepth * n), X_WA.linear() * n, pointDepth);
-    };
-    if (edge >= 0) {
-      // The box edge along e_edge through the corner farthest along n.
-      Vec3T<S> corner = a.support(n);
-      Vec3T<S> otherEnd = corner;
-      corner[edge] = -h[edge];
-      otherEnd[edge] = h[edge];
-      add(detail::closestPointsBetweenSegments<S>(p, q, corner, otherEnd).onFirst, depth);
-      return;
-    }
-
-    // The part of the segment inside the box, t ∈ [t0, t1] (empty when t0 > t1).
-    S t0 = S(0), t1 = S(1);
-    for (int i = 0; i < 3; ++i) {
-      if (d[i] != S(0)) {
-        const S ta = (-h[i] - p[i]) / d[i], tb = (h[i] - p[i]) / d[i];
-        t0 = std::max(t0, std::min(ta, tb));
-        t1 = std::min(t1, std::max(ta, tb));
-      } else if (std::abs(p[i]) > h[i]) {
-        t0 = S(1);
-        t1 = S(0);
-      }
-    }
-    const S support = h.dot(n.cwiseAbs());
-    const auto depthAt = [&](S t) { return support - n.dot(p + t * d); };
-    S deepest = depthAt(S(0)) >= depthAt(S(1)) ? S(0) : S(1);
-    if (t0 <= t1) {
-      const S inside = depthAt(t0) >= depthAt(t1) ? t0 : t1;
-      if (depthAt(inside) >= depth - tiny) deepest = inside;
-    }
-    add(p + deepest * d, depth);
-    if (!(t0 <= t1 && std::abs(n.dot(d)) <= kParallelSine * length)) return;
-    const S apart = std::sqrt(ScalarTraits<S>::epsilon()) * (h.norm() + length);  // closer is the same contact
-    const S ends[2] = {t0, t1};
-    for (int k = 0; k < 2; ++k) {
-      const S t = ends[k];
-      if (std::abs(t - deepest) * length <= apart || (k == 1 && (t1 - t0) * length <= apart)) continue;
-      const S pointDepth = depthAt(t);
-      if (pointDepth >= S(0)) add(p + t * d, pointDepth);
-    }
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/box_line.hpp ---
-// --- begin spook/collide/colliders/box_plane.hpp ---
-
-namespace spook {
-
-/// Box–plane: every corner at or below the plane (signed height s <= 0) is
-/// a contact of depth −s: four for a box lying flat on a face, two on an
-/// edge, one on a corner. The normal points from the box into the plane, −n.
-template <Scalar S>
-struct Collider<BoxT<S>, PlaneT<S>> {
-  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    const Vec3T<S> n = X_WB.linear() * b.getNormal();
-    const Vec3T<S>& h = a.getHalfExtents();
-    // Heights relative to the box center: corner height = center height + Σ ±h_i (n · axis_i).
-    const S centerHeight = n.dot(X_WA.translation() - X_WB * b.getPoint());
-    const Vec3T<S> reach = (X_WA.linear().transpose() * n).cwiseProduct(h);
-    for (int corner = 0; corner < 8; ++corner) {
-      const Vec3T<S> sign((corner & 1) ? S(1) : S(-1), (corner & 2) ? S(1) : S(-1), (corner & 4) ? S(1) : S(-1));
-      const S height = centerHeight + sign.dot(reach);
-      if (!(height <= S(0))) continue;
-      const Vec3T<S> p = X_WA * Vec3T<S>(sign.cwiseProduct(h));
-      // Midway between the corner and the plane point under it.
-      sink.add(p - S(0.5) * height * n, -n, -height);
-    }
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/box_plane.hpp ---
-// --- begin spook/collide/colliders/box_sphere.hpp ---
-
-#include <cmath>
-
-namespace spook {
-
-/// Box–sphere, in the box frame. A sphere center c outside the box pushes
-/// away from the box point q closest to it (c clamped to the half extents):
-/// depth r − |c − q|. A center inside the box, or on its surface, pushes out
-/// through the nearest face, the one with the smallest h_i − |c_i| (the
-/// lowest axis on a tie, the + face when c_i = 0): depth r + h_i − |c_i|.
-template <Scalar S>
-struct Collider<BoxT<S>, SphereT<S>> {
-  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    const Vec3T<S>& h = a.getHalfExtents();
-    const S r = b.getRadius();
-    const Vec3T<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
-    const Vec3T<S> q = c.cwiseMax(-h).cwiseMin(h);
-    const Vec3T<S> d = c - q;
-    const S distance = d.norm();
-    Vec3T<S> n;      // box frame, from the box toward the sphere
-    Vec3T<S> onBox;  // the box's deepest point along n
-    S depth;
-    if (distance > ScalarTraits<S>::epsilon() * (h.norm() + r)) {
-      depth = r - distance;
-      if (!(depth >= S(0))) return;
-      n = d / distance;
-      onBox = q;
-    } else {
-      int axis = 0;
-      S gap = h[0] - std::abs(c[0]);  // distance from c to the nearest face, >= 0 up to round-off
-      for (int i = 1; i < 3; ++i) {
-        const S g = h[i] - std::abs(c[i]);
-        if (g < gap) {
-          gap = g;
-          axis = i;
-        }
-      }
-      n = Vec3T<S>::Zero();
-      n[axis] = c[axis] < S(0) ? S(-1) : S(1);
-      depth = r + gap;
-      onBox = c + gap * n;
-    }
-    // Midway between the box's deepest point and the sphere's, c − r n.
-    sink.add(X_WA * Vec3T<S>(S(0.5) * (onBox + c - r * n)), X_WA.linear() * n, depth);
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/box_sphere.hpp ---
-// --- begin spook/collide/colliders/capsule_capsule.hpp ---
-
-#include <algorithm>
-#include <cmath>
-
-namespace spook {
-
-/// Capsule–capsule: the closest points a, b of the two core segments give
-/// the deepest contact, depth r_a + r_b − |b − a| along (b − a)/|b − a|.
-/// Segments that meet have no such direction; they push along the common
-/// perpendicular d_a × d_b (turned toward b's center), or, when they are
-/// also parallel, along a fixed perpendicular of a's axis.
-///
-/// Nearly parallel capsules (|sin θ| <= kParallelSine between the axes)
-/// lying side by side touch along a line, and one point would let them roll
-/// about it: the ends of the stretch where their axes overlap (the part of
-/// a's segment onto which b's segment projects) add a contact each, with
-/// the exact depth between that point of a's axis and the nearest point of
-/// b's. The deepest contact is always reported, so the largest depth is the
-/// exact penetration.
-template <Scalar S>
-struct Collider<CapsuleT<S>, CapsuleT<S>> {
-  static constexpr S kParallelSine = S(1e-2);
-
-  static void collide(const CapsuleT<S>& a, const TransformT<S>& X_WA, const CapsuleT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    const Vec3T<S> halfA = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
-    const Vec3T<S> halfB = X_WB.linear().col(1) * (S(0.5) * b.getHeight());
-    const Vec3T<S> pA = X_WA.translation() - halfA, qA = X_WA.translation() + halfA;
-    const Vec3T<S> pB = X_WB.translation() - halfB, qB = X_WB.translation() + halfB;
-    const S rA = a.getRadius(), rB = b.getRadius();
-    const S scale = rA + rB + a.getHeight() + b.getHeight();
-    const auto closest = detail::closestPointsBetweenSegments<S>(pA, qA, pB, qB);
-
-    // The direction for points closer than round-off, where b − a has none.
-    Vec3T<S> fallback;
-    const Vec3T<S> across = halfA.cross(halfB);
-    if (!closest.parallel && across.norm() > S(0)) {
-      fallback = across.normalized();
-      if (fallback.dot(X_WB.translation() - X_WA.translation()) < S(0)) fallback = -fallback;
-    } else {
-      fallback = X_WA.linear().col(0);
-    }
-    const S tiny = ScalarTraits<S>::epsilon() * scale;
-    const auto addAlong = [&](const Vec3T<S>& onA, const Vec3T<S>& onB, const Vec3T<S>& n, S distance) {
-      const S depth = rA + rB - distance;
-      if (!(depth >= S(0))) return false;
-      sink.add(S(0.5) * (onA + onB + (rA - rB) * n), n, depth);
-      return true;
-    };
-    const auto add = [&](const Vec3T<S>& onA, const Vec3T<S>& onB) {
-      const Vec3T<S> d = onB - onA;
-      const S distance = d.norm();
-      return addAlong(onA, onB, distance > tiny ? Vec3T<S>(d / distance) : fallback, distance);
-    };
-    const bool inside = closest.s > S(0) && closest.s < S(1) && closest.t > S(0) && closest.t < S(1);
-    if (inside && !closest.parallel) {
-      // Closest points inside both segments are those of the two lines: the
-      // normal is their common perpendicular and the distance its projection
-      // of pB − pA, both free of the round-off in s and t, which would tilt
-      // the normal by ε/distance for nearly crossing axes.
-      const Vec3T<S> d = closest.onSecond - closest.onFirst;
-      const Vec3T<S> n = d.dot(fallback) < S(0) ? Vec3T<S>(-fallback) : fallback;
-      if (!addAlong(closest.onFirst, closest.onSecond, n, std::abs(n.dot(pB - pA)))) return;
-    } else if (!add(closest.onFirst, closest.onSecond)) {
-      return;
-    }
-
-    const Vec3T<S> dA = qA - pA, dB = qB - pB;
-    const S lengthA2 = dA.squaredNorm();
-    if (!(across.squaredNorm() * S(16) <= kParallelSine * kParallelSine * lengthA2 * dB.squaredNorm())) return;
-    // The stretch of a's segment (parameters on a) that b's projects onto.
-    const S s0 = dA.dot(pB - pA) / lengthA2, s1 = dA.dot(qB - pA) / lengthA2;
-    const S lo = std::max(S(0), std::min(s0, s1)), hi = std::min(S(1), std::max(s0, s1));
-    if (!(lo < hi)) return;
-    const S apart = std::sqrt(ScalarTraits<S>::epsilon()) * scale;  // ends closer than this are the same contact
-    const S lengthA = std::sqrt(lengthA2);
-    for (const S s : {lo, hi}) {
-      if (std::abs(s - closest.s) * lengthA <= apart) continue;
-      const Vec3T<S> onA = pA + s * dA;
-      add(onA, detail::closestPointOnSegment<S>(pB, qB, onA));
-    }
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/capsule_capsule.hpp ---
-// --- begin spook/collide/colliders/capsule_plane.hpp ---
-
-namespace spook {
-
-/// Capsule–plane: each end sphere (hemisphere center e at signed height s
-/// above the plane) that reaches the solid below the plane is a contact of
-/// depth r − s: one for a tilted capsule, two for one lying on the plane.
-/// The normal points from the capsule into the plane, −n.
-template <Scalar S>
-struct Collider<CapsuleT<S>, PlaneT<S>> {
-  static void collide(const CapsuleT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    const Vec3T<S> n = X_WB.linear() * b.getNormal();
-    const Vec3T<S> onPlane = X_WB * b.getPoint();
-    const Vec3T<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
-    const S r = a.getRadius();
-    for (const S side : {S(-1), S(1)}) {
-      const Vec3T<S> e = X_WA.translation() + side * halfAxis;
-      const S height = n.dot(e - onPlane);
-      const S depth = r - height;
-      // Midway between the capsule's deepest point e − r n and the plane point under e, e − s n.
-      if (depth >= S(0)) sink.add(e - S(0.5) * (r + height) * n, -n, depth);
-    }
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/capsule_plane.hpp ---
-// --- begin spook/collide/colliders/capsule_sphere.hpp ---
-
-namespace spook {
-
-/// Capsule–sphere: the sphere center c against the capsule's core segment
-/// (its hemisphere centers, ±height/2 along the capsule's y): one contact
-/// from the segment point q closest to c, depth r_a + r_b − |c − q|. A
-/// center on the segment pushes along the capsule's own x axis, which is
-/// perpendicular to the segment.
-template <Scalar S>
-struct Collider<CapsuleT<S>, SphereT<S>> {
-  static void collide(const CapsuleT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    const Vec3T<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
-    const Vec3T<S> center = X_WA.translation(), c = X_WB.translation();
-    const S t = detail::closestParameterOnSegment<S>(center - halfAxis, center + halfAxis, c);
-    const Vec3T<S> q = center + (S(2) * t - S(1)) * halfAxis;
-    const S rA = a.getRadius(), rB = b.getRadius();
-    Vec3T<S> d = c - q;
-    // Off an end the closest point is that end; along the side, c − q is
-    // perpendicular to the axis, and making it exactly so keeps the normal
-    // from tilting toward the axis by round-off when c is near it.
-    if (t > S(0) && t < S(1)) d -= X_WA.linear().col(1) * X_WA.linear().col(1).dot(d);
-    const S distance = d.norm();
-    const S depth = rA + rB - distance;
-    if (!(depth >= S(0))) return;
-    const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB + a.getHeight()) ? Vec3T<S>(d / distance)
-                                                                                        : Vec3T<S>(X_WA.linear().col(0));
-    sink.add(S(0.5) * (q + c + (rA - rB) * n), n, depth);
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/capsule_sphere.hpp ---
-// --- begin spook/collide/colliders/cylinder_plane.hpp ---
-
-#include <array>
-
-namespace spook {
-
-/// Cylinder–plane: the deepest points of a cylinder are on its rims. On
-/// each cap rim the candidates are four points 90° apart, starting from the
-/// rim point farthest below the plane, v = −(n − (n·u) u)/|…| for axis u
-/// (the cylinder's own x axis when the axis is along n and every rim point
-/// is as deep); each candidate at or below the plane is a contact of depth
-/// −(its signed height). So a tilted cylinder resting on its rim has one
-/// contact, one lying on its side two (one per cap), one standing on a cap
-/// four spread around the rim, and the deepest rim point is always among
-/// them. The normal points from the cylinder into the plane, −n.
-template <Scalar S>
-struct Collider<CylinderT<S>, PlaneT<S>> {
-  static void collide(const CylinderT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    const Vec3T<S> n = X_WB.linear() * b.getNormal();
-    const Vec3T<S> u = X_WA.linear().col(1);
-    // Along the rim, away from the plane's outside; projected off u once
-    // more, since for a cylinder standing nearly upright (n ≈ ±u) the first
-    // difference is round-off that need not be ⟂ u (in float it made rim
-    // points below the cap).
-    Vec3T<S> across = (n.dot(u)) * u - n;
-    across -= across.dot(u) * u;
-    const S acrossLength = across.norm();
-    const Vec3T<S> v =
-        acrossLength > ScalarTraits<S>::epsilon() ? Vec3T<S>(across / acrossLength) : Vec3T<S>(X_WA.linear().col(0));
-    const Vec3T<S> w = u.cross(v);
-    const std::array<Vec3T<S>, 4> rim = {v, w, Vec3T<S>(-v), Vec3T<S>(-w)};
-    const S r = a.getRadius(), halfHeight = S(0.5) * a.getHeight();
-    const Vec3T<S> onPlane = X_WB * b.getPoint();
-    for (const S side : {S(-1), S(1)}) {
-      const Vec3T<S> capCenter = X_WA.translation() + side * halfHeight * u;
-      const S capHeight = n.dot(capCenter - onPlane);
-      for (const Vec3T<S>& direction : rim) {
-        const S height = capHeight + r * n.dot(direction);
-        if (!(height <= S(0))) continue;
-        // Midway between the rim point and the plane point under it.
-        sink.add(capCenter + r * direction - S(0.5) * height * n, -n, -height);
-      }
-    }
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/cylinder_plane.hpp ---
-// --- begin spook/collide/colliders/cylinder_sphere.hpp ---
-
-#include <algorithm>
-#include <cmath>
-
-namespace spook {
-
-/// Cylinder–sphere, in the cylinder frame (axis y, half height k, radius
-/// R). A sphere center c outside the cylinder pushes away from the point q
-/// of the solid cylinder closest to it (c with y clamped to ±k and its
-/// radial part to length R): depth r − |c − q|. A center inside, or on the
-/// surface, pushes out through the nearer of the cap (gap k − |c_y|) and the
-/// barrel (gap R − |c_xz|), the cap on a tie, the barrel along the
-/// cylinder's x axis when c is on the axis: depth r + gap.
-template <Scalar S>
-struct Collider<CylinderT<S>, SphereT<S>> {
-  static void collide(const CylinderT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    const S R = a.getRadius(), k = S(0.5) * a.getHeight(), r = b.getRadius();
-    const Vec3T<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
-    const S radial = std::hypot(c.x(), c.z());
-    Vec3T<S> q(c.x(), std::clamp(c.y(), -k, k), c.z());
-    if (radial > R) {
-      q.x() *= R / radial;
-      q.z() *= R / radial;
-    }
-    const Vec3T<S> d = c - q;
-    const S distance = d.norm();
-    const S tiny = ScalarTraits<S>::epsilon() * (R + k + r);
-    Vec3T<S> n;           // cylinder frame, from the cylinder toward the sphere
-    Vec3T<S> onCylinder;  // the cylinder's deepest point along n
-    S depth;
-    if (distance > tiny) {
-      depth = r - distance;
-      if (!(depth >= S(0))) return;
-      n = d / distance;
-      onCylinder = q;
-    } else {
-      const S capGap = k - std::abs(c.y()), barrelGap = R - radial;
-      const S gap = std::min(capGap, barrelGap);
-      if (capGap <= barrelGap)
-        n = Vec3T<S>(S(0), c.y() < S(0) ? S(-1) : S(1), S(0));
-      else if (radial > tiny)
-        n = Vec3T<S>(c.x() / radial, S(0), c.z() / radial);
-      else
-        n = Vec3T<S>::UnitX();
-      depth = r + gap;
-      onCylinder = c + gap * n;
-    }
-    // Midway between the cylinder's deepest point and the sphere's, c − r n.
-    sink.add(X_WA * Vec3T<S>(S(0.5) * (onCylinder + c - r * n)), X_WA.linear() * n, depth);
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/cylinder_sphere.hpp ---
-// --- begin spook/collide/colliders/line_plane.hpp ---
-
-namespace spook {
-
-/// Line–plane: each segment endpoint at or below the plane (signed height
-/// s <= 0) is a contact of depth −s, so a segment lying in or under the
-/// plane has two. The normal points from the line into the plane, −n.
-template <Scalar S>
-struct Collider<LineT<S>, PlaneT<S>> {
-  static void collide(const LineT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    const Vec3T<S> n = X_WB.linear() * b.getNormal();
-    const Vec3T<S> onPlane = X_WB * b.getPoint();
-    for (const Vec3T<S>& end : {a.getFirstPoint(), a.getSecondPoint()}) {
-      const Vec3T<S> e = X_WA * end;
-      const S height = n.dot(e - onPlane);
-      // Midway between the endpoint and the plane point under it.
-      if (height <= S(0)) sink.add(e - S(0.5) * height * n, -n, -height);
-    }
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/line_plane.hpp ---
-// --- begin spook/collide/colliders/line_sphere.hpp ---
-
-namespace spook {
-
-/// Line–sphere: the segment point q closest to the sphere center c gives
-/// one contact of depth r − |c − q| along (c − q)/|c − q|; a center on the
-/// segment pushes along a fixed perpendicular of the segment.
-template <Scalar S>
-struct Collider<LineT<S>, SphereT<S>> {
-  static void collide(const LineT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    const Vec3T<S> p = X_WA * a.getFirstPoint(), q = X_WA * a.getSecondPoint();
-    const Vec3T<S> c = X_WB.translation();
-    const S t = detail::closestParameterOnSegment<S>(p, q, c);
-    const Vec3T<S> onLine = p + t * (q - p);
-    const S r = b.getRadius();
-    Vec3T<S> d = c - onLine;
-    // Along the segment's interior c − q is perpendicular to it: made exactly
-    // so, round-off cannot tilt the normal toward the segment.
-    if (t > S(0) && t < S(1)) d -= (q - p) * ((q - p).dot(d) / (q - p).squaredNorm());
-    const S distance = d.norm();
-    const S depth = r - distance;
-    if (!(depth >= S(0))) return;
-    const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (r + a.getLength()) ? Vec3T<S>(d / distance)
-                                                                                  : detail::unitPerpendicular<S>(q - p);
-    // Midway between the segment point and the sphere's deepest point c − r n.
-    sink.add(S(0.5) * (onLine + c - r * n), n, depth);
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/line_sphere.hpp ---
-// --- begin spook/collide/colliders/plane_sphere.hpp ---
-
-namespace spook {
-
-/// Plane–sphere: the plane is the solid half-space below it, so a sphere
-/// whose center c lies at signed height s above the plane penetrates by
-/// r − s (also when c is below the plane), along the plane normal.
-template <Scalar S>
-struct Collider<PlaneT<S>, SphereT<S>> {
-  static void collide(const PlaneT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    const Vec3T<S> n = X_WA.linear() * a.getNormal();
-    const Vec3T<S> c = X_WB.translation();
-    const S height = n.dot(c - X_WA * a.getPoint());
-    const S r = b.getRadius();
-    const S depth = r - height;
-    if (!(depth >= S(0))) return;
-    // Midway between the plane point under c, c − s n, and the sphere's deepest point c − r n.
-    sink.add(c - S(0.5) * (height + r) * n, n, depth);
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/plane_sphere.hpp ---
-// --- begin spook/collide/colliders/polytopes.hpp ---
-
-// --- begin spook/collide/detail/polytope_sat.hpp ---
-
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
-#include <limits>
-#include <vector>
-
-// --- begin spook/collide/detail/polytope.hpp ---
-
-#include <algorithm>
-#include <array>
-#include <cstddef>
-#include <utility>
-#include <vector>
-
-// --- begin spook/collide/detail/triangle.hpp ---
-
-#include <array>
-#include <cmath>
-
-namespace spook::detail {
-
-/// One triangle of a mesh or height field, as a convex shape for the
-/// colliders: vertices in the mesh frame, counter-clockwise seen from the
-/// outside (the solid side is behind the face).
-template <Scalar S>
-struct Triangle {
-  using Vec3 = spook::Vec3T<S>;
-  std::array<Vec3, 3> v;
-
-  [[nodiscard]] Vec3 support(const Vec3& d) const {
-    const S a = v[0].dot(d), b = v[1].dot(d), c = v[2].dot(d);
-    return a >= b ? (a >= c ? v[0] : v[2]) : (b >= c ? v[1] : v[2]);
-  }
-  /// The whole triangle when its plane is across `d` within the feature
-  /// angle (from either side), else the edge across `d`, else the corner.
-  void supportingFeature(const Vec3& d, SupportingFeatureT<S>& out) const {
-    out.count = 0;
-    const S length = d.norm();
-    const Vec3 area = (v[1] - v[0]).cross(v[2] - v[0]);
-    if (length > S(0) && std::abs(area.dot(d)) >= S(kSupportingFeatureCos) * area.norm() * length) {
-      for (const Vec3& p : v) out.add(p);
-      return;
-    }
-    const Vec3 top = support(d);
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& p = v[k];
-      const Vec3& q = v[(k + 1) % 3];
-      if ((p == top || q == top) && std::abs((q - p).dot(d)) <= S(kSupportingFeatureSin) * (q - p).norm() * length) {
-        out.add(p);
-        out.add(q);
-        return;
-      }
-    }
-    out.add(top);
-  }
-  [[nodiscard]] Vec3 getCenterOfVolume() const { return (v[0] + v[1] + v[2]) / S(3); }
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
-    return {v[0].cwiseMin(v[1]).cwiseMin(v[2]), v[0].cwiseMax(v[1]).cwiseMax(v[2])};
-  }
-  /// Unit outward normal (+z for a degenerate triangle).
-  [[nodiscard]] Vec3 normal() const {
-    const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
-    const S length = n.norm();
-    return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
-  }
-};
-
-}  // namespace spook::detail
-// --- end spook/collide/detail/triangle.hpp ---
-
-namespace spook::detail {
-
-/// A convex polytope placed in the world, as the separating-axis colliders
-/// see it: corners, polygon faces and edges. A triangle is flat and
-/// two-sided (its one face counts with both normals); a segment has no face.
-/// In double whatever the shapes' scalar: the Gauss-map pruning and the
-/// clipping decide on signs of small products, which float rounds away
-/// (1.8e-4 m errors on hull–height-field pairs).
-struct Polytope {
-  using S = double;
-  struct Face {
-    Vec3T<S> normal;         // unit, outward (world)
-    std::vector<int> loop;  // corners, counter-clockwise about the normal
-  };
-  /// An edge and the two faces that meet there; a triangle's or segment's
-  /// edges have none (-1), and then no Gauss-map pruning applies to them.
-  struct Edge {
-    int from, to;
-    int left = -1, right = -1;
-  };
-
-  std::vector<Vec3T<S>> vertices;  // world (m)
-  std::vector<Face> faces;
-  std::vector<Edge> edges;
-  bool twoSided = false;
-
-  /// The largest n·x over the corners (m) and the corner that reaches it.
-  [[nodiscard]] std::pair<S, int> support(const Vec3T<S>& n) const {
-    int best = 0;
-    S height = n.dot(vertices[0]);
-    for (std::size_t i = 1; i < vertices.size(); ++i)
-      if (const S h = n.dot(vertices[i]); h > height) height = h, best = static_cast<int>(i);
-    return {height, best};
-  }
-  [[nodiscard]] Vec3T<S> edgeVector(const Edge& e) const {
-    return vertices[static_cast<std::size_t>(e.to)] - vertices[static_cast<std::size_t>(e.from)];
-  }
-  [[nodiscard]] const Vec3T<S>& vertex(int i) const { return vertices[static_cast<std::size_t>(i)]; }
-};
-
-/// Edges from the face loops: each undirected loop edge once, with the two
-/// faces on either side.
-inline void linkEdges(Polytope& polytope) {
-  polytope.edges.clear();
-  for (std::size_t f = 0; f < polytope.faces.size(); ++f) {
-    const auto& loop = polytope.faces[f].loop;
-    for (std::size_t k = 0; k < loop.size(); ++k) {
-      const int a = loop[k], b = loop[(k + 1) % loop.size()];
-      const auto shared = std::find_if(polytope.edges.begin(), polytope.edges.end(),
-                                       [&](const auto& e) { return e.from == b && e.to == a; });
-      if (shared != polytope.edges.end())
-        shared->right = static_cast<int>(f);
-      else
-        polytope.edges.push_back({a, b, static_cast<int>(f), -1});
-    }
-  }
-}
-
-template <Scalar T>
-void makeBoxPolytope(const BoxT<T>& box, const TransformT<T>& X_WT, Polytope& out) {
-  using S = double;
-  const Vec3T<S> h = box.getHalfExtents().template cast<S>();
-  const TransformT<S> X_W = X_WT.template cast<S>();
-  out.vertices.resize(8);
-  for (int c = 0; c < 8; ++c)
-    out.vertices[std::size_t(c)] =
-        X_W * Vec3T<S>((c & 1) ? h.x() : -h.x(), (c & 2) ? h.y() : -h.y(), (c & 4) ? h.z() : -h.z());
-  // Corner c has bit i set where its coordinate i is +h_i; each loop runs
-  // counter-clockwise seen from outside.
-  static constexpr std::array<std::array<int, 4>, 6> kLoops = {{{0, 4, 6, 2},    // −x
-                                                               {1, 3, 7, 5},    // +x
-                                                               {0, 1, 5, 4},    // −y
-                                                               {2, 6, 7, 3},    // +y
-                                                               {0, 2, 3, 1},    // −z
-                                                               {4, 5, 7, 6}}};  // +z
-  out.faces.resize(6);
-  for (int f = 0; f < 6; ++f) {
-    const Vec3T<S> axis = X_W.linear().col(f / 2);
-    out.faces[std::size_t(f)].normal = (f % 2) ? axis : Vec3T<S>(-axis);
-    out.faces[std::size_t(f)].loop.assign(kLoops[std::size_t(f)].begin(), kLoops[std::size_t(f)].end());
-  }
-  out.twoSided = false;
-  linkEdges(out);
-}
-
-template <Scalar T>
-void makeConvexPolytope(const ConvexT<T>& convex, const TransformT<T>& X_WT, Polytope& out) {
-  const TransformT<double> X_W = X_WT.template cast<double>();
-  out.vertices.resize(convex.getVertices().size());
-  for (std::size_t i = 0; i < out.vertices.size(); ++i)
-    out.vertices[i] = X_W * convex.getVertices()[i].template cast<double>();
-  out.faces.resize(convex.getFaces().size());
-  for (std::size_t f = 0; f < out.faces.size(); ++f) {
-    out.faces[f].normal = (X_W.linear() * convex.getFaces()[f].normal.template cast<double>()).normalized();
-    out.faces[f].loop = convex.getFaces()[f].vertices;
-  }
-  out.twoSided = false;
-  out.edges.clear();
-  for (const auto& e : convex.getEdges()) out.edges.push_back({e.from, e.to, e.left, e.right});
-}
-
-/// A triangle (world corners); a degenerate one keeps its +z normal and
-/// its edges, which is all the separating axes need of it.
-template <Scalar T>
-void makeTrianglePolytope(const Triangle<T>& t_WT, Polytope& out) {
-  const Triangle<double> t_W{{t_WT.v[0].template cast<double>(), t_WT.v[1].template cast<double>(),
-                              t_WT.v[2].template cast<double>()}};
-  out.vertices.assign(t_W.v.begin(), t_W.v.end());
-  out.faces.resize(1);
-  out.faces[0].normal = t_W.normal();
-  out.faces[0].loop = {0, 1, 2};
-  out.edges = {{0, 1}, {1, 2}, {2, 0}};
-  out.twoSided = true;
-}
-
-template <Scalar T>
-void makeSegmentPolytope(const Vec3T<T>& p_W, const Vec3T<T>& q_W, Polytope& out) {
-  out.vertices = {p_W.template cast<double>(), q_W.template cast<double>()};
-  out.faces.clear();
-  out.edges = {{0, 1}};
-  out.twoSided = false;
-}
-
-/// The polytope of a box, a hull or a segment placed at X_W.
-template <Scalar T>
-void makePolytope(const BoxT<T>& box, const TransformT<T>& X_W, Polytope& out) {
-  makeBoxPolytope(box, X_W, out);
-}
-template <Scalar T>
-void makePolytope(const ConvexT<T>& convex, const TransformT<T>& X_W, Polytope& out) {
-  makeConvexPolytope(convex, X_W, out);
-}
-template <Scalar T>
-void makePolytope(const LineT<T>& line, const TransformT<T>& X_W, Polytope& out) {
-  makeSegmentPolytope<T>(X_W * line.getFirstPoint(), X_W * line.getSecondPoint(), out);
-}
-
-}  // namespace spook::detail
-// --- end spook/collide/detail/polytope.hpp ---
-
-namespace spook::detail {
-
-/// The axis of least overlap of two polytopes, from a toward b.
-struct SeparatingAxis {
-  using S = double;
-  enum Kind { FACE_OF_A, FACE_OF_B, EDGES };
-  S depth = std::numeric_limits<S>::infinity();  // overlap of the projections on n (m)
-  Vec3T<S> n = Vec3T<S>::UnitZ();
-  Kind kind = FACE_OF_A;
-  int first = -1, second = -1;  // the face, or the edge of a and the edge of b
-};
-
-/// Whether edges with face normals (a, b) on one polytope and (c, d) on the
-/// other make a face of their Minkowski difference: the arcs a–b and
-/// −c–−d cross on the Gauss map (Gregorius, "The Separating Axis Test
-/// between Convex Polyhedra", GDC 2013). Only such edge pairs can give the
-/// least overlap, which prunes most of the E_a·E_b cross products.
-[[nodiscard]] inline bool arcsCross(const Vec3T<double>& a, const Vec3T<double>& b, const Vec3T<double>& c,
-                                    const Vec3T<double>& d) {
-  const Vec3T<double> bxa = b.cross(a), dxc = d.cross(c);
-  const double cba = c.dot(bxa), dba = d.dot(bxa), adc = a.dot(dxc), bdc = b.dot(dxc);
-  return cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0;
-}
-
-/// The separating axis theorem for polytopes: the penetration depth is the
-/// least overlap f(n) = h_a(n) + h_b(−n) over the face normals of each and
-/// the cross products of their edges (the face normals of the Minkowski
-/// difference), both signs. Returns false as soon as an axis separates.
-[[nodiscard]] inline bool leastOverlap(const Polytope& a, const Polytope& b, SeparatingAxis& best) {
-  using S = double;
-  using Kind = SeparatingAxis::Kind;
-  const auto overlap = [&](const Vec3T<S>& n) { return a.support(n).first + b.support(-n).first; };
-  // An edge pair's axis replaces a face's only when it is shallower by more
-  // than round-off: two edges lying in a face (a box resting on a mesh
-  // triangle's edge) span that face's own normal, and their contact point
-  // is undetermined where the face's manifold is not.
-  const S roundOff = S(64) * ScalarTraits<S>::epsilon() *
-                     (S(1) + std::max(a.vertices[0].cwiseAbs().maxCoeff(), b.vertices[0].cwiseAbs().maxCoeff()));
-  // An edge pair's axis counts only where both edges are extreme along it
-  // (they touch there); for other pairs it may still separate the shapes.
-  const auto edgesSupport = [&](const Polytope::Edge& ea, const Polytope::Edge& eb, const Vec3T<S>& n) {
-    const auto extreme = [&](const Polytope& p, const Polytope::Edge& e, const Vec3T<S>& d) {
-      return std::max(d.dot(p.vertex(e.from)), d.dot(p.vertex(e.to))) >= p.support(d).first - roundOff;
-    };
-    return extreme(a, ea, n) && extreme(b, eb, -n);
-  };
-  const auto consider = [&](const Vec3T<S>& n, Kind kind, int first, int second) {
-    const S f = overlap(n);
-    const bool faceHeld = kind == Kind::EDGES && best.kind != Kind::EDGES && f >= best.depth - roundOff;
-    if (f < best.depth && !faceHeld &&
-        (kind != Kind::EDGES ||
-         edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n)))
-      best = {f, n, kind, first, second};
-    return f >= S(0);
-  };
-  for (std::size_t i = 0; i < a.faces.size(); ++i) {
-    const Vec3T<S>& n = a.faces[i].normal;
-    if (!consider(n, Kind::FACE_OF_A, int(i), -1)) return false;
-    if (a.twoSided && !consider(-n, Kind::FACE_OF_A, int(i), -1)) return false;
-  }
-  for (std::size_t j = 0; j < b.faces.size(); ++j) {
-    const Vec3T<S>& m = b.faces[j].normal;
-    if (!consider(-m, Kind::FACE_OF_B, int(j), -1)) return false;
-    if (b.twoSided && !consider(m, Kind::FACE_OF_B, int(j), -1)) return false;
-  }
-  // Edge pairs within round-off of parallel span no face of their own.
-  const S parallel = S(1e3) * ScalarTraits<S>::epsilon();
-  for (std::size_t i = 0; i < a.edges.size(); ++i) {
-    const auto& ea = a.edges[i];
-    const Vec3T<S> u = a.edgeVector(ea);
-    for (std::size_t j = 0; j < b.edges.size(); ++j) {
-      const auto& eb = b.edges[j];
-      if (ea.right >= 0 && eb.right >= 0 &&
-          !arcsCross(a.faces[std::size_t(ea.left)].normal, a.faces[std::size_t(ea.right)].normal,
-                        Vec3T<S>(-b.faces[std::size_t(eb.left)].normal),
-                        Vec3T<S>(-b.faces[std::size_t(eb.right)].normal)))
-        continue;
-      const Vec3T<S> v = b.edgeVector(eb);
-      Vec3T<S> n = u.cross(v);
-      const S length = n.norm();
-      if (!(length > parallel * u.norm() * v.norm())) continue;
-      n /= length;
-      if (!consider(n, Kind::EDGES, int(i), int(j)) || !consider(-n, Kind::EDGES, int(i), int(j))) return false;
-    }
-  }
-  return best.depth < std::numeric_limits<S>::infinity();
-}
-
-/// The face of `p` whose outward normal points most against `r` (for a
-/// two-sided face, the side that does), as a corner loop; a segment gives
-/// its two ends.
-inline void incidentFeature(const Polytope& p, const Vec3T<double>& r, std::vector<Vec3T<double>>& corners) {
-  using S = double;
-  corners.clear();
-  if (p.faces.empty()) {
-    corners = p.vertices;
-    return;
-  }
-  std::size_t best = 0;
-  S lowest = std::numeric_limits<S>::infinity();
-  for (std::size_t f = 0; f < p.faces.size(); ++f) {
-    const S alignment = p.twoSided ? -std::abs(p.faces[f].normal.dot(r)) : p.faces[f].normal.dot(r);
-    if (alignment < lowest) lowest = alignment, best = f;
-  }
-  for (const int k : p.faces[best].loop) corners.push_back(p.vertex(k));
-}
-
-/// Clips a polygon (or a segment, two corners) to the half-space
-/// s·x <= offset, Sutherland–Hodgman.
-inline void clipToHalfSpace(std::vector<Vec3T<double>>& corners, const Vec3T<double>& s, double offset,
-                            std::vector<Vec3T<double>>& scratch) {
-  using S = double;
-  scratch.clear();
-  const std::size_t count = corners.size();
-  const std::size_t edges = count == 2 ? 1 : count;
-  for (std::size_t i = 0; i < edges; ++i) {
-    const Vec3T<S>& p = corners[i];
-    const Vec3T<S>& q = corners[(i + 1) % count];
-    const S dp = s.dot(p) - offset, dq = s.dot(q) - offset;
-    if (dp <= S(0)) scratch.push_back(p);
-    if ((dp < S(0) && dq > S(0)) || (dp > S(0) && dq < S(0))) scratch.push_back(p + (q - p) * (dp / (dp - dq)));
-    if (count == 2 && dq <= S(0)) scratch.push_back(q);
-  }
-  corners.swap(scratch);
-}
-
-/// Contacts of two overlapping polytopes along their axis of least overlap.
-///
-/// Edge against edge: one point, midway between the two edges' closest
-/// points, at the least overlap; two, at the ends of their common range,
-/// for edges within the feature angle of parallel. Face against anything:
-/// the face is the reference, the other polytope's face most against it (or
-/// its segment) is clipped to the reference face's side planes
-/// (Sutherland–Hodgman), and each clipped corner below the reference plane
-/// is a contact at its own depth, midway to the plane: a full manifold, as
-/// for box–box. Where
-/// clipping keeps no corner as deep as the least overlap (the deepest one
-/// hangs over the reference face's rim) a contact at the least overlap is
-/// added where the clipped feature comes nearest to that corner, so that
-/// the deepest contact is always the penetration depth of the pair.
-template <Scalar T>
-void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink) {
-  using S = double;
-  const auto add = [&](const Vec3T<S>& point, S depth) {
-    sink.add(point.template cast<T>(), axis.n.template cast<T>(), T(depth));
-  };
-  const Vec3T<S>& n = axis.n;
-  if (axis.kind == SeparatingAxis::EDGES) {
-    const auto& ea = a.edges[std::size_t(axis.first)];
-    const auto& eb = b.edges[std::size_t(axis.second)];
-    const Vec3T<S> p = a.vertex(ea.from), u = a.vertex(ea.to) - p;
-    const Vec3T<S> q = b.vertex(eb.from), v = b.vertex(eb.to) - q;
-    if (u.cross(v).norm() <= S(kSupportingFeatureSin) * u.norm() * v.norm()) {
-      // Edges within the feature angle of parallel touch along a line (their
-      // closest points are undetermined): its two ends, where the edges'
-      // ranges along u overlap, midway across to b's edge.
-      const S uu = u.squaredNorm(), s0 = u.dot(q - p) / uu, s1 = u.dot(q + v - p) / uu;
-      const S from = std::max(S(0), std::min(s0, s1)), to = std::min(S(1), std::max(s0, s1));
-      const auto addAt = [&](S s) {
-        const Vec3T<S> onA = p + s * u;
-        const S t = std::clamp(v.dot(onA - q) / v.squaredNorm(), S(0), S(1));
-        add(S(0.5) * (onA + q + t * v), axis.depth);
-      };
-      if (from < to) {
-        addAt(from);
-        addAt(to);
-      } else {
-        addAt(std::clamp(S(0.5) * (from + to), S(0), S(1)));
-      }
-      return;
-    }
-    const auto closest = closestPointsBetweenSegments<S>(p, a.vertex(ea.to), q, b.vertex(eb.to));
-    add(S(0.5) * (closest.onFirst + closest.onSecond), axis.depth);
-    return;
-  }
-  const bool onA = axis.kind == SeparatingAxis::FACE_OF_A;
-  const Polytope& reference = onA ? a : b;
-  const Polytope& incident = onA ? b : a;
-  const Vec3T<S> r = onA ? n : Vec3T<S>(-n);  // the reference face's outward normal, toward the incident polytope
-  const auto& loop = reference.faces[std::size_t(axis.first)].loop;
-  const S planeOffset = r.dot(reference.vertex(loop[0]));
-
-  thread_local std::vector<Vec3T<S>> corners, scratch;
-  incidentFeature(incident, r, corners);
-  Vec3T<S> centroid = Vec3T<S>::Zero();
-  for (const int k : loop) centroid += reference.vertex(k);
-  centroid /= S(loop.size());
-  for (std::size_t k = 0; k < loop.size() && !corners.empty(); ++k) {
-    const Vec3T<S>& p = reference.vertex(loop[k]);
-    const Vec3T<S> edge = reference.vertex(loop[(k + 1) % loop.size()]) - p;
-    Vec3T<S> side = edge.cross(r);
-    if (side.dot(centroid - p) > S(0)) side = -side;
-    const S length = side.norm();
-    if (!(length > S(0))) continue;  // a repeated corner of a degenerate face
-    side /= length;
-    clipToHalfSpace(corners, side, side.dot(p), scratch);
-  }
-  S deepest = -std::numeric_limits<S>::infinity();
-  const S tolerance = S(64) * ScalarTraits<S>::epsilon() * (S(1) + std::abs(planeOffset));
-  for (const Vec3T<S>& x : corners) {
-    const S depth = planeOffset - r.dot(x);
-    if (depth < -tolerance) continue;
-    add(x + r * (S(0.5) * depth), depth);
-    deepest = std::max(deepest, depth);
-  }
-  if (deepest < axis.depth - tolerance * S(16)) {
-    // The deepest point of the incident polytope is off the reference face:
-    // the contact at the least overlap goes where the clipped feature comes
-    // nearest to it, on the reference face (never at that point itself,
-    // which may lie metres away on a large mesh triangle under a small
-    // shape), or at that point when nothing is left after clipping.
-    const Vec3T<S>& x = incident.vertex(incident.support(-r).second);
-    Vec3T<S> at = x;
-    S nearest = std::numeric_limits<S>::infinity();
-    for (const Vec3T<S>& c : corners)
-      if (const S d = (c - x).squaredNorm(); d < nearest) nearest = d, at = c + r * (planeOffset - r.dot(c));
-    add(at - r * (S(0.5) * axis.depth), axis.depth);
-  }
-}
-
-/// Contacts of two polytopes (from a toward b), none when an axis separates them.
-template <Scalar T>
-void collidePolytopes(const Polytope& a, const Polytope& b, ContactSinkT<T>& sink) {
-  SeparatingAxis axis;
-  if (!leastOverlap(a, b, axis)) return;
-  polytopeContacts(a, b, axis, sink);
-}
-
-}  // namespace spook::detail
-// --- end spook/collide/detail/polytope_sat.hpp ---
-
-namespace spook {
-
-// Pairs of polytopes (boxes, hulls, segments) by the separating axis theorem
-// over face normals and Gauss-map-pruned edge pairs (detail/polytope_sat.hpp):
-// the exact penetration depth, and a clipped manifold where a face touches.
-// Box–box and box–line have their own, leaner colliders.
-
-namespace detail {
-template <class A, class B>
-struct PolytopeCollider {
-  using S = typename A::Vec3::Scalar;
-  static void collide(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    thread_local Polytope pa, pb;
-    makePolytope(a, X_WA, pa);
-    makePolytope(b, X_WB, pb);
-    collidePolytopes(pa, pb, sink);
-  }
-};
-}  // namespace detail
-
-template <Scalar S>
-struct Collider<BoxT<S>, ConvexT<S>> : detail::PolytopeCollider<BoxT<S>, ConvexT<S>> {};
-template <Scalar S>
-struct Collider<ConvexT<S>, ConvexT<S>> : detail::PolytopeCollider<ConvexT<S>, ConvexT<S>> {};
-template <Scalar S>
-struct Collider<ConvexT<S>, LineT<S>> : detail::PolytopeCollider<ConvexT<S>, LineT<S>> {};
-
-}  // namespace spook
-// --- end spook/collide/colliders/polytopes.hpp ---
-// --- begin spook/collide/colliders/sphere_sphere.hpp ---
-
-namespace spook {
-
-/// Sphere–sphere: one contact along the line of centers, depth
-/// r_a + r_b − |c_b − c_a|. Coincident centers (closer than round-off of
-/// the radii) have no line of centers; they push along world +z.
-template <Scalar S>
-struct Collider<SphereT<S>, SphereT<S>> {
-  static void collide(const SphereT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    const Vec3T<S> cA = X_WA.translation(), cB = X_WB.translation();
-    const S rA = a.getRadius(), rB = b.getRadius();
-    const Vec3T<S> d = cB - cA;
-    const S distance = d.norm();
-    const S depth = rA + rB - distance;
-    if (!(depth >= S(0))) return;
-    const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB) ? Vec3T<S>(d / distance) : Vec3T<S>::UnitZ();
-    // Midway between a's deepest point cA + rA n and b's, cB − rB n.
-    sink.add(S(0.5) * (cA + cB + (rA - rB) * n), n, depth);
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/sphere_sphere.hpp ---
-// --- begin spook/collide/colliders/mesh.hpp ---
-
-#include <algorithm>
-#include <vector>
-
-namespace spook {
-
-namespace detail {
-
-/// A triangle soup: a Trimesh or a HeightField, both of which visit the
-/// triangles overlapping a box of their own frame.
-template <class T>
-concept TriangleSoup = T::kType == ShapeType::TRIMESH || T::kType == ShapeType::HEIGHTFIELD;
-
-/// The point of segment [a, b] closest to p (a for a zero-length segment).
-template <Scalar S>
-[[nodiscard]] Vec3T<S> closestOnSegment(const Vec3T<S>& a, const Vec3T<S>& b, const Vec3T<S>& p) {
-  const Vec3T<S> ab = b - a;
-  const S length2 = ab.squaredNorm();
-  if (!(length2 > S(0))) return a;
-  return a + ab * std::clamp((p - a).dot(ab) / length2, S(0), S(1));
-}
-
-/// The point of triangle t closest to p: by Voronoi regions (Ericson,
-/// Real-Time Collision Detection, §5.1.5) for a proper triangle; over its
-/// three edges for a degenerate one (repeated or collinear corners), where
-/// the region tests would divide round-off by round-off.
-template <Scalar S>
-[[nodiscard]] Vec3T<S> closestOnTriangle(const Triangle<S>& t, const Vec3T<S>& p, bool& onFace) {
-  const Vec3T<S>&a = t.v[0], &b = t.v[1], &c = t.v[2];
-  const Vec3T<S> ab = b - a, ac = c - a;
-  const S longest2 = std::max({ab.squaredNorm(), ac.squaredNorm(), (c - b).squaredNorm()});
-  onFace = false;
-  if (!(ab.cross(ac).norm() > S(64) * ScalarTraits<S>::epsilon() * longest2)) {
-    Vec3T<S> best = closestOnSegment<S>(a, b, p);
-    for (const Vec3T<S>& q : {closestOnSegment<S>(b, c, p), closestOnSegment<S>(c, a, p)})
-      if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
-    return best;
-  }
-  const Vec3T<S> ap = p - a, bp = p - b, cp = p - c;
-  const S d1 = ab.dot(ap), d2 = ac.dot(ap), d3 = ab.dot(bp), d4 = ac.dot(bp), d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d1 <= S(0) && d2 <= S(0)) return a;
-  if (d3 >= S(0) && d4 <= d3) return b;
-  if (d6 >= S(0) && d5 <= d6) return c;
-  const S vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-  if (vc <= S(0) && d1 >= S(0) && d3 <= S(0)) return a + ab * (d1 / (d1 - d3));
-  if (vb <= S(0) && d2 >= S(0) && d6 <= S(0)) return a + ac * (d2 / (d2 - d6));
-  if (va <= S(0) && (d4 - d3) >= S(0) && (d5 - d6) >= S(0))
-    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  onFace = true;
-  const S denominator = va + vb + vc;
-  return a + ab * (vb / denominator) + ac * (vc / denominator);
-}
-
-/// Sphere against one triangle: a contact when the triangle's closest point
-/// to the center lies within the radius. The normal, from the sphere toward
-/// the mesh, is the face normal when that point is inside the face (exact,
-/// where c − q is all round-off for a center near the face) and along
-/// c − q otherwise; a center on an edge or corner pushes along the face
-/// normal.
-template <Scalar S>
-void collideSphereTriangle(const SphereT<S>& sphere, const Vec3T<S>& c_W, const Triangle<S>& t_W,
-                           ContactSinkT<S>& sink) {
-  bool onFace = false;
-  const Vec3T<S> q = closestOnTriangle<S>(t_W, c_W, onFace);
-  const Vec3T<S> toCenter = c_W - q;
-  const S distance = toCenter.norm();
-  const S r = sphere.getRadius();
-  if (distance > r) return;
-  const Vec3T<S> faceNormal = t_W.normal();
-  Vec3T<S> n;
-  if (onFace)
-    n = toCenter.dot(faceNormal) >= S(0) ? Vec3T<S>(-faceNormal) : faceNormal;
-  else
-    n = distance > ScalarTraits<S>::epsilon() * r ? Vec3T<S>(-toCenter / distance) : Vec3T<S>(-faceNormal);
-  const S depth = r - distance;
-  sink.add(q + n * (depth * S(0.5)), n, depth);  // midway: q and c + n r bound the overlap
-}
-
-template <class A>
-inline constexpr bool kIsPolytope =
-    A::kType == ShapeType::BOX || A::kType == ShapeType::CONVEX || A::kType == ShapeType::LINE;
-
-/// Contacts of a shape against the triangles of a soup near it, each
-/// triangle a convex shape of its own: boxes, hulls and segments by the
-/// separating axes with a clipped manifold (polytope_sat.hpp), spheres in
-/// closed form, capsules and cylinders through libccd.
-template <Scalar S, class A, class Soup>
-void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
-                          ContactSinkT<S>& sink) {
-  const BoundingBoxT<S> box_M = transformBox<S>(a.getBoundingBox(), X_WM.inverse() * X_WA);
-  thread_local Polytope shape, triangle;
-  if constexpr (kIsPolytope<A>) makePolytope(a, X_WA, shape);
-  soup.forEachTriangle(box_M, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
-    sink.setFaceIndices(0, i);
-    if constexpr (A::kType == ShapeType::SPHERE) {
-      const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
-      collideSphereTriangle<S>(a, X_WA.translation(), t_W, sink);
-    } else if constexpr (kIsPolytope<A>) {
-      makeTrianglePolytope<S>(Triangle<S>{{X_WM * p0, X_WM * p1, X_WM * p2}}, triangle);
-      collidePolytopes(shape, triangle, sink);
-    } else {
-      const Triangle<S> t_M{{p0, p1, p2}};
-      collideByCcd<S>(a, X_WA, t_M, X_WM, sink);
-    }
-  });
-  sink.setFaceIndices(0, 0);
-}
-
-/// Triangle pairs of two soups whose boxes overlap, each collided by libccd
-/// (one contact per pair: the deepest).
-template <Scalar S, class SoupA, class SoupB>
-void collideSoups(const SoupA& a, const TransformT<S>& X_WA, const SoupB& b, const TransformT<S>& X_WB,
-                  ContactSinkT<S>& sink) {
-  const TransformT<S> X_BA = X_WB.inverse() * X_WA;
-  const BoundingBoxT<S> a_B = transformBox<S>(a.getBoundingBox(), X_BA);
-  b.forEachTriangle(a_B, [&](std::size_t j, const Vec3T<S>& q0, const Vec3T<S>& q1, const Vec3T<S>& q2) {
-    const Triangle<S> t_B{{q0, q1, q2}};
-    const BoundingBoxT<S> t_A = transformBox<S>(t_B.getBoundingBox(), X_BA.inverse());
-    a.forEachTriangle(t_A, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
-      const Triangle<S> t_A2{{p0, p1, p2}};
-      sink.setFaceIndices(i, j);
-      collideByCcd<S>(t_A2, X_WA, t_B, X_WB, sink, false);
-    });
-  });
-  sink.setFaceIndices(0, 0);
-}
-
-/// Every vertex of `points` (frame A) at or below the plane is a contact,
-/// with the normal from the points' shape into the plane (−n).
-template <Scalar S, class Points>
-void collideVerticesWithPlane(const Points& vertices, const TransformT<S>& X_WA, const PlaneT<S>& plane,
-                              const TransformT<S>& X_WP, ContactSinkT<S>& sink, bool planeFirst) {
-  const Vec3T<S> n = X_WP.linear() * plane.getNormal();
-  const Vec3T<S> o = X_WP * plane.getPoint();
-  for (const auto& v : vertices) {
-    const Vec3T<S> p = X_WA * v;
-    const S height = n.dot(p - o);
-    if (height > S(0)) continue;
-    const Vec3T<S> mid = p - n * (height * S(0.5));
-    sink.add(mid, planeFirst ? n : Vec3T<S>(-n), -height);
-  }
-}
-
-}  // namespace detail
-
-/// A convex shape against a triangle mesh or a height field, triangle by
-/// triangle among those the mesh's hierarchy (or grid) finds near it.
-template <ConvexShape A, detail::TriangleSoup B>
-requires(A::kType < B::kType) struct Collider<A, B> {
-  using S = typename A::Vec3::Scalar;
-  static void collide(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    detail::collideWithTriangles<S>(a, X_WA, b, X_WB, sink);
-  }
-};
-
-/// Plane–trimesh: the mesh vertices at or below the plane.
-template <Scalar S>
-struct Collider<PlaneT<S>, TrimeshT<S>> {
-  static void collide(const PlaneT<S>& a, const TransformT<S>& X_WA, const TrimeshT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    detail::collideVerticesWithPlane<S>(b.getVertices(), X_WB, a, X_WA, sink, true);
-  }
-};
-
-/// Convex–plane: the hull vertices at or below the plane.
-template <Scalar S>
-struct Collider<ConvexT<S>, PlaneT<S>> {
-  static void collide(const ConvexT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    detail::collideVerticesWithPlane<S>(a.getVertices(), X_WA, b, X_WB, sink, false);
-  }
-};
-
-/// Trimesh–trimesh and trimesh–height field: triangle pairs.
-template <Scalar S>
-struct Collider<TrimeshT<S>, TrimeshT<S>> {
-  static void collide(const TrimeshT<S>& a, const TransformT<S>& X_WA, const TrimeshT<S>& b, const TransformT<S>& X_WB,
-                      ContactSinkT<S>& sink) {
-    detail::collideSoups<S>(a, X_WA, b, X_WB, sink);
-  }
-};
-template <Scalar S>
-struct Collider<TrimeshT<S>, HeightFieldT<S>> {
-  static void collide(const TrimeshT<S>& a, const TransformT<S>& X_WA, const HeightFieldT<S>& b,
-                      const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
-    detail::collideSoups<S>(a, X_WA, b, X_WB, sink);
-  }
-};
-
-}  // namespace spook
-// --- end spook/collide/colliders/mesh.hpp ---
-// --- end spook/collide/colliders.hpp ---
-
-namespace spook {
-
-template <Scalar S, class List>
-class ColliderMatrixT;
-
-/// The narrow phase of one shape list: a constexpr N×N table of collider
-/// entry points, generated at compile time from the list, so that only the
-/// colliders between listed shapes are instantiated. A pair without a
-/// collider is a hole (nullptr). Composites are taken apart into their
-/// children, which go through the same table.
-template <Scalar S, template <Scalar> class... Shapes>
-class ColliderMatrixT<S, ShapeList<Shapes...>> {
- public:
-  using List = ShapeList<Shapes...>;
-  using Shape = ShapeT<S>;
-  using Transform = spook::TransformT<S>;
-  using Sink = ContactSinkT<S>;
-  using Function = void (*)(const Shape&, const Transform&, const Shape&, const Transform&, Sink&);
-  static constexpr std::size_t N = sizeof...(Shapes);
-
-  /// True when a and b are both listed and their pair has a collider.
-  [[nodiscard]] static constexpr bool supports(ShapeType a, ShapeType b) {
-    const int i = kIndex[static_cast<std::size_t>(a)], j = kIndex[static_cast<std::size_t>(b)];
-    return i >= 0 && j >= 0 && kTable[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] != nullptr;
-  }
-
-  /// Contacts between a at X_WA and b at X_WB (shape → world), through the
-  /// table. Returns false, writing nothing, for a pair the table lacks.
-  static bool collide(const Shape& a, const Transform& X_WA, const Shape& b, const Transform& X_WB, Sink& sink) {
-    const int i = kIndex[static_cast<std::size_t>(a.getType())], j = kIndex[static_cast<std::size_t>(b.getType())];
-    if (i < 0 || j < 0) return false;
-    const Function entry = kTable[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
-    if (!entry) return false;
-    entry(a, X_WA, b, X_WB, sink);
-    return true;
-  }
-
-  /// The same with both types known at compile time: no table, and a
-  /// compile-time error for a shape outside the list.
-  template <class A, class B>
-  static void collide(const A& a, const Transform& X_WA, const B& b, const Transform& X_WB, Sink& sink) {
-    static_assert(List::contains(A::kType), "the first shape's type is not in this shape list");
-    static_assert(List::contains(B::kType), "the second shape's type is not in this shape list");
-    static_assert(pairSupported<A, B>(), "this shape pair has no collider (a hole in the collider matrix)");
-    entry<A, B>(a, X_WA, b, X_WB, sink);
-  }
-
-  /// The matrix as a markdown table, rows and columns in list order: X
-  /// where a collider exists, - where the pair is a hole.
-  [[nodiscard]] static std::string describe() {
-    std::string text = "|";
-    for (std::size_t j = 0; j < N; ++j) text += std::string(" | ") + std::string(shapeTypeName(kTypes[j]));
-    text += " |\n|---";
-    for (std::size_t j = 0; j < N; ++j) text += "|---";
-    text += "|\n";
-    for (std::size_t i = 0; i < N; ++i) {
-      text += "| " + std::string(shapeTypeName(kTypes[i]));
-      for (std::size_t j = 0; j < N; ++j) text += kTable[i][j] ? " | X" : " | -";
-      text += " |\n";
-    }
-    return text;
-  }
-
- private:
-  static constexpr std::array<ShapeType, N> kTypes = {Shapes<S>::kType...};
-
-  static constexpr std::array<int, kNumShapeTypes> makeIndex() {
-    std::array<int, kNumShapeTypes> index{};
-    index.fill(-1);
-    for (std::size_t i = 0; i < N; ++i) index[static_cast<std::size_t>(kTypes[i])] = static_cast<int>(i);
-    return index;
-  }
-  static constexpr std::array<int, kNumShapeTypes> kIndex = makeIndex();
-
-  template <class A>
-  static constexpr bool kIsComposite = A::kType == ShapeType::COMPOSITE;
-
-  // A composite pairs with everything listed; its children are dispatched
-  // at run time and skipped where the table has a hole.
-  template <class A, class B>
-  static constexpr bool pairSupported() {
-    if constexpr (kIsComposite<A> || kIsComposite<B>)
-      return true;
-    else if constexpr (A::kType <= B::kType)
-      return HasCollider<A, B>;
-    else
-      return HasCollider<B, A>;
-  }
-
-  template <class A, class B>
-  static void entry(const Shape& a, const Transform& X_WA, const Shape& b, const Transform& X_WB, Sink& sink) {
-    if constexpr (kIsComposite<A>) {
-      for (const auto& child : static_cast<const A&>(a).getChildren())
-        collide(*child.shape, X_WA * child.transform, b, X_WB, sink);
-    } else if constexpr (kIsComposite<B>) {
-      for (const auto& child : static_cast<const B&>(b).getChildren())
-        collide(a, X_WA, *child.shape, X_WB * child.transform, sink);
-    } else {
-      spook::collide(static_cast<const A&>(a), X_WA, static_cast<const B&>(b), X_WB, sink);
-    }
-  }
-
-  template <class A, class B>
-  static constexpr Function make() {
-    if constexpr (pairSupported<A, B>())
-      return &entry<A, B>;
-    else
-      return nullptr;
-  }
-  template <class A>
-  static constexpr std::array<Function, N> makeRow() {
-    return {make<A, Shapes<S>>()...};
-  }
-  static constexpr std::array<std::array<Function, N>, N> kTable = {makeRow<Shapes<S>>()...};
-};
-
-}  // namespace spook
-// --- end spook/collide/collider_matrix.hpp ---
-// --- begin spook/collide/contact_reduction.hpp ---
-
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstddef>
-#include <vector>
 
 namespace spook {
 
@@ -5692,8 +3013,11 @@ void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
 
 }  // namespace detail
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_REDUCTION_HPP
 // --- end spook/collide/contact_reduction.hpp ---
 // --- begin spook/collide/geometry.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_GEOMETRY_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_GEOMETRY_HPP
 
 #include <algorithm>
 #include <atomic>
@@ -5703,6 +3027,8 @@ void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
 #include <vector>
 
 // --- begin spook/core/frame.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_FRAME_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_FRAME_HPP
 
 namespace spook {
 
@@ -5816,8 +3142,11 @@ using FrameRef = ref_ptr<Frame>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CORE_FRAME_HPP
 // --- end spook/core/frame.hpp ---
 // --- begin spook/core/observer_ptr.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_OBSERVER_PTR_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_OBSERVER_PTR_HPP
 
 #include <concepts>
 #include <cstddef>
@@ -5869,8 +3198,11 @@ class observer_ptr {
 };
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CORE_OBSERVER_PTR_HPP
 // --- end spook/core/observer_ptr.hpp ---
 // --- begin spook/dynamics/material.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_DYNAMICS_MATERIAL_HPP
+#define SPOOK_SINGLE_SPOOK_DYNAMICS_MATERIAL_HPP
 
 #include <cmath>
 #include <string>
@@ -5982,6 +3314,7 @@ using MaterialRef = ref_ptr<Material>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_DYNAMICS_MATERIAL_HPP
 // --- end spook/dynamics/material.hpp ---
 
 namespace spook {
@@ -6276,8 +3609,11 @@ using GeometryObserver = observer_ptr<Geometry>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_GEOMETRY_HPP
 // --- end spook/collide/geometry.hpp ---
 // --- begin spook/collide/geometry_contact.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_GEOMETRY_CONTACT_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_GEOMETRY_CONTACT_HPP
 
 #include <cstdint>
 #include <utility>
@@ -6340,8 +3676,11 @@ using GeometryPair = GeometryPairT<float>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_GEOMETRY_CONTACT_HPP
 // --- end spook/collide/geometry_contact.hpp ---
 // --- begin spook/collide/space.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SPACE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SPACE_HPP
 
 #include <algorithm>
 #include <cstddef>
@@ -6352,10 +3691,13 @@ using GeometryPair = GeometryPairT<float>;
 #include <set>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 // --- begin spook/collide/broadphase/sweep_and_prune.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_BROADPHASE_SWEEP_AND_PRUNE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_BROADPHASE_SWEEP_AND_PRUNE_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -6453,8 +3795,79 @@ class SweepAndPrune {
 };
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_BROADPHASE_SWEEP_AND_PRUNE_HPP
 // --- end spook/collide/broadphase/sweep_and_prune.hpp ---
+// --- begin spook/collide/contact_sink.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace spook {
+
+/// Where a collider writes the contact points of one shape pair. It keeps
+/// the "first toward second" normal convention when the pair was handed to
+/// the collider in reverse order (flipped), and never lets a non-finite
+/// point through: it drops it and counts it in getNumDropped().
+template <Scalar S>
+class ContactSinkT {
+ public:
+  explicit ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped = false)
+      : ContactSinkT(points, flipped, std::make_shared<std::size_t>(0)) {}
+
+  /// Adds a point: world position (m), unit normal from the collider's first
+  /// shape toward its second, penetration depth (m, clamped at 0).
+  void add(const Vec3T<S>& point, const Vec3T<S>& normal, S depth) {
+    if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) {
+      ++*dropped_;
+      return;
+    }
+    ContactPointT<S> contact;
+    contact.point = point;
+    contact.normal = flipped_ ? Vec3T<S>(-normal) : normal;
+    contact.depth = depth > S(0) ? depth : S(0);
+    contact.faceIndex1 = flipped_ ? faces_[1] : faces_[0];
+    contact.faceIndex2 = flipped_ ? faces_[0] : faces_[1];
+    points_->push_back(contact);
+  }
+
+  /// The triangles (of a Trimesh or HeightField) of the collider's first
+  /// and second shape that the next points touch; 0 for other shapes.
+  void setFaceIndices(std::size_t first, std::size_t second) {
+    faces_ = {static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(second)};
+  }
+
+  /// The same output with the shape order swapped (sharing the drop count).
+  [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_, dropped_); }
+
+  /// Number of points written so far.
+  [[nodiscard]] std::size_t size() const { return points_->size(); }
+  /// Number of points refused so far because their position, normal or
+  /// depth was not finite (this sink and its reversed() copies).
+  [[nodiscard]] std::size_t getNumDropped() const { return *dropped_; }
+
+ private:
+  ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped, std::shared_ptr<std::size_t> dropped)
+      : points_(&points), flipped_(flipped), dropped_(std::move(dropped)) {}
+
+  std::vector<ContactPointT<S>>* points_;
+  bool flipped_;
+  std::shared_ptr<std::size_t> dropped_;
+  std::array<std::uint32_t, 2> faces_{};
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
+// --- end spook/collide/contact_sink.hpp ---
 // --- begin spook/core/implementation.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
 
 // Compiled once instead of header-only (the stb convention). A program that
 // defines SPOOK_EXTERN_TEMPLATES everywhere declares spook's heavy templates
@@ -6472,8 +3885,32 @@ class SweepAndPrune {
 #define SPOOK_IMPLEMENT_COLLIDERS_DOUBLE
 #define SPOOK_IMPLEMENT_COLLIDERS_FLOAT
 #endif
+
+// What this translation unit sees. Header-only (no SPOOK_EXTERN_TEMPLATES):
+// every definition. Otherwise only the declarations of the step and the
+// solver, unless it implements a simulation part:
+//   SPOOK_DEFINES_STEP    the simulation step's template definitions
+//                         (sim/simulation_step.hpp), for either scalar;
+//   SPOOK_DEFINES_SOLVER  the double-only, non-template solver code
+//                         (solver/solver_impl.hpp), compiled with the double
+//                         simulation and inline (SPOOK_SOLVER_INLINE) when
+//                         header-only.
+#if !defined(SPOOK_EXTERN_TEMPLATES) || defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) || \
+    defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+#define SPOOK_DEFINES_STEP
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+#define SPOOK_DEFINES_SOLVER
+#define SPOOK_SOLVER_INLINE
+#elif !defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_DEFINES_SOLVER
+#define SPOOK_SOLVER_INLINE inline
+#endif
+#endif  // SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
 // --- end spook/core/implementation.hpp ---
 // --- begin spook/dynamics/rigid_body.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_DYNAMICS_RIGID_BODY_HPP
+#define SPOOK_SINGLE_SPOOK_DYNAMICS_RIGID_BODY_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -6484,6 +3921,8 @@ class SweepAndPrune {
 #include <vector>
 
 // --- begin spook/dynamics/mass_from_geometries.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_DYNAMICS_MASS_FROM_GEOMETRIES_HPP
+#define SPOOK_SINGLE_SPOOK_DYNAMICS_MASS_FROM_GEOMETRIES_HPP
 
 #include <optional>
 #include <sstream>
@@ -6586,8 +4025,11 @@ template <Scalar S>
 }
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_DYNAMICS_MASS_FROM_GEOMETRIES_HPP
 // --- end spook/dynamics/mass_from_geometries.hpp ---
 // --- begin spook/dynamics/mass_properties.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_DYNAMICS_MASS_PROPERTIES_HPP
+#define SPOOK_SINGLE_SPOOK_DYNAMICS_MASS_PROPERTIES_HPP
 
 #include <cmath>
 #include <string>
@@ -6709,6 +4151,7 @@ using MassProperties = MassPropertiesT<float>;
 }
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_DYNAMICS_MASS_PROPERTIES_HPP
 // --- end spook/dynamics/mass_properties.hpp ---
 
 namespace spook {
@@ -7145,22 +4588,25 @@ using RigidBodyObserver = observer_ptr<RigidBody>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_DYNAMICS_RIGID_BODY_HPP
 // --- end spook/dynamics/rigid_body.hpp ---
 
 namespace spook {
 
 namespace detail {
 
-/// The narrow-phase entry point of a space for one shape list. A plain
-/// (not inline) function template, so that with SPOOK_EXTERN_TEMPLATES the
-/// full shape list's colliders are compiled once (core/implementation.hpp)
-/// instead of in every translation unit that makes a default Space or
-/// Simulation.
+/// The narrow-phase entry point of a space for one shape list, defined in
+/// collide/collide_through.hpp with the colliders: a plain (not inline)
+/// function template, so that with SPOOK_EXTERN_TEMPLATES the full shape
+/// list's colliders are compiled once (core/implementation.hpp) and a
+/// program that uses the default space does not even parse them.
 template <Scalar S, class List>
 bool collideThrough(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<S>& b, const TransformT<S>& X_WB,
-                    ContactSinkT<S>& sink) {
-  return ColliderMatrixT<S, List>::collide(a, X_WA, b, X_WB, sink);
-}
+                    ContactSinkT<S>& sink);
+
+/// Complete where collideThrough is defined (collide/collide_through.hpp).
+template <class List>
+struct CollidersDefined;
 
 }  // namespace detail
 
@@ -7173,16 +4619,6 @@ extern template bool detail::collideThrough<double, AllShapes>(const ShapeT<doub
 extern template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
                                                               const ShapeT<float>&, const TransformT<float>&,
                                                               ContactSinkT<float>&);
-#endif
-#if defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
-template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
-                                                        const ShapeT<double>&, const TransformT<double>&,
-                                                        ContactSinkT<double>&);
-#endif
-#if defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
-template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
-                                                       const ShapeT<float>&, const TransformT<float>&,
-                                                       ContactSinkT<float>&);
 #endif
 
 /// Collision detection over a set of geometries: a broadphase (sweep and
@@ -7200,9 +4636,17 @@ class SpaceT : public Referenced {
   /// A space for every shape type.
   SpaceT() : SpaceT(AllShapes{}) {}
   /// A space for the shape types of `List`, e.g. ShapeList<SphereT, PlaneT>.
+  /// A program that compiles spook once (SPOOK_EXTERN_TEMPLATES) has the
+  /// full list's colliders compiled; for a list of its own it includes
+  /// <spook/collide/collide_through.hpp>, which compiles that list's.
   template <template <class> class... Shapes>
   explicit SpaceT(ShapeList<Shapes...>)
-      : collide_(&detail::collideThrough<S, ShapeList<Shapes...>>), contains_(&ShapeList<Shapes...>::contains) {}
+      : collide_(&detail::collideThrough<S, ShapeList<Shapes...>>), contains_(&ShapeList<Shapes...>::contains) {
+    static_assert(std::is_same_v<ShapeList<Shapes...>, AllShapes> ||
+                      requires { sizeof(detail::CollidersDefined<ShapeList<Shapes...>>); },
+                  "a Space or Simulation for a ShapeList of its own compiles that list's colliders: with "
+                  "SPOOK_EXTERN_TEMPLATES, include <spook/collide/collide_through.hpp>");
+  }
 
   // --- Content ---------------------------------------------------------------
 
@@ -7445,8 +4889,2828 @@ using SpaceRef = ref_ptr<Space>;
 }  // namespace f32
 
 }  // namespace spook
+
+// The colliders behind collideThrough: in every translation unit of a
+// header-only program, only where a collider part is implemented otherwise.
+#if !defined(SPOOK_EXTERN_TEMPLATES) || defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE) || \
+    defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
+// --- begin spook/collide/collide_through.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDE_THROUGH_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDE_THROUGH_HPP
+
+// The narrow phase of a space for a shape list (detail::collideThrough,
+// declared in collide/space.hpp) with all its colliders. Included by
+// space.hpp in a header-only program and where a collider part is compiled
+// (core/implementation.hpp); a program that compiles spook once includes it
+// itself to build a Space or Simulation for a shape list of its own.
+
+// --- begin spook/collide/collider_matrix.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDER_MATRIX_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDER_MATRIX_HPP
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <utility>
+
+// --- begin spook/collide/collider.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDER_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDER_HPP
+
+#include <concepts>
+
+// --- begin spook/collide/detail/ccd_bridge.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CCD_BRIDGE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CCD_BRIDGE_HPP
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+#include <type_traits>
+
+#include <ccd/ccd.h>
+
+// --- begin spook/collide/detail/feature_clipping.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_FEATURE_CLIPPING_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_FEATURE_CLIPPING_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace spook::detail {
+
+/// The contact manifold of two convex shapes in contact along a normal,
+/// from their supporting features (the part of each shape that is extreme
+/// along the normal: a point, an edge or a face), as Jolt's
+/// ManifoldBetweenTwoFaces and Box2D's b2ClipPolygons build it: both
+/// features are projected onto the contact plane, one is clipped against
+/// the other (Sutherland–Hodgman), and each corner of the overlap is a
+/// contact point, its depth the distance between the two features above
+/// it. Works in double, in the plane spanned by t1, t2 ⟂ n.
+struct FeatureClipping {
+  using Vec2 = Eigen::Vector2d;
+  using Vec3 = Vec3T<double>;
+
+  /// A round face: the disc about `center` with unit normal `axis`.
+  struct Disc {
+    Vec3 center = Vec3::Zero();
+    Vec3 axis = Vec3::UnitZ();
+    double radius = 0.0;  // m; 0: not a disc
+  };
+  /// A supporting feature: world points on it (m), the size below which
+  /// two of them are the same point (the spread that sampling a curved
+  /// surface leaves), and for a round face its disc (the points then an
+  /// inscribed polygon of its rim).
+  struct Feature {
+    std::vector<Vec3> points;
+    double merge = 0.0;
+    Disc disc = {};
+  };
+  struct Contact {
+    Vec3 point;    // world, halfway between the features (m)
+    double depth;  // m
+  };
+
+  Vec3 n, t1, t2;
+
+  explicit FeatureClipping(const Vec3& normal)
+      : n(normal), t1(normal.unitOrthogonal()), t2(normal.cross(normal.unitOrthogonal())) {}
+
+  /// The overlap's corners as contacts, for features `top` (of the shape
+  /// behind the normal, its points highest along n) and `bottom` (of the
+  /// shape ahead, lowest along n) and the penetration depth along n, which
+  /// bounds every contact's. Empty when the projections do not overlap
+  /// (the caller then places one contact by itself).
+  [[nodiscard]] std::vector<Contact> contacts(const Feature& top, const Feature& bottom, double depth) const {
+    const double merge = std::min(top.merge, bottom.merge);
+    const std::vector<Vec2> a = hull(project(top.points), top.merge);
+    const std::vector<Vec2> b = hull(project(bottom.points), bottom.merge);
+    std::vector<Vec2> overlap;
+    if (b.size() >= 3)
+      overlap = clip(a, b);
+    else if (a.size() >= 3)
+      overlap = clip(b, a);
+    else
+      overlap = crossing(a, b, merge);
+    // A round face's polygon is inscribed in its rim: the other feature's
+    // corners inside the disc, and its edges' crossings with the rim, are
+    // part of the overlap too.
+    addInsideDisc(top.disc, b, overlap);
+    addInsideDisc(bottom.disc, a, overlap);
+    overlap = hull(overlap, merge);
+    // Depths from the heights of the features over each corner, shifted so
+    // that the deepest is the penetration depth (the features are sampled,
+    // their heights fitted); a deepest corner farther than the sampling
+    // size from it means the overlap is not where the shapes penetrate most
+    // (sampled features that miss a part of the true ones): no manifold.
+    const HeightPlane topHeight(top.points, *this), bottomHeight(bottom.points, *this);
+    std::vector<Contact> out;
+    double deepest = -std::numeric_limits<double>::infinity();
+    for (const Vec2& v : overlap) {
+      const double high = topHeight.at(v), low = bottomHeight.at(v);
+      out.push_back({v.x() * t1 + v.y() * t2 + 0.5 * (high + low) * n, high - low});
+      deepest = std::max(deepest, high - low);
+    }
+    if (!(std::abs(deepest - depth) <= std::max(top.merge, bottom.merge))) return {};
+    for (Contact& c : out) c.depth = std::min(c.depth + (depth - deepest), depth);
+    std::erase_if(out, [](const Contact& c) { return !(c.depth >= 0.0); });
+    return out;
+  }
+
+  /// One contact of the given depth where two features that do not overlap
+  /// on the contact plane come nearest there: midway between the closest
+  /// points of their projected hulls, and between their heights over it.
+  [[nodiscard]] Contact nearest(const Feature& top, const Feature& bottom, double depth) const {
+    const std::vector<Vec2> a = hull(project(top.points), top.merge);
+    const std::vector<Vec2> b = hull(project(bottom.points), bottom.merge);
+    Vec2 onA = a.front(), onB = b.front();
+    double closest = std::numeric_limits<double>::infinity();
+    const auto consider = [&](const Vec2& p, const std::vector<Vec2>& polygon, bool pOnA) {
+      for (std::size_t k = 0; k < polygon.size(); ++k) {
+        const Vec2 q = polygon[k], edge = polygon[(k + 1) % polygon.size()] - q;
+        const double length2 = edge.squaredNorm();
+        const double t = length2 > 0.0 ? std::clamp(edge.dot(p - q) / length2, 0.0, 1.0) : 0.0;
+        const Vec2 x = q + t * edge;
+        if (const double d = (x - p).squaredNorm(); d < closest) {
+          closest = d;
+          onA = pOnA ? p : x;
+          onB = pOnA ? x : p;
+        }
+      }
+    };
+    for (const Vec2& p : a) consider(p, b, true);
+    for (const Vec2& p : b) consider(p, a, false);
+    const Vec2 v = 0.5 * (onA + onB);
+    const double high = HeightPlane(top.points, *this).at(v), low = HeightPlane(bottom.points, *this).at(v);
+    return {v.x() * t1 + v.y() * t2 + 0.5 * (high + low) * n, depth};
+  }
+
+ private:
+  [[nodiscard]] Vec2 flat(const Vec3& p) const { return {t1.dot(p), t2.dot(p)}; }
+
+  /// Appends the points of `polygon` (a point, a segment or a polygon on the
+  /// contact plane) inside the projection of `disc`, and the crossings of
+  /// its edges with the rim's, each lifted along n onto the disc's plane.
+  void addInsideDisc(const Disc& disc, const std::vector<Vec2>& polygon, std::vector<Vec2>& out) const {
+    const double across = disc.axis.dot(n);
+    if (!(disc.radius > 0.0) || polygon.empty() || !(std::abs(across) > 0.5)) return;
+    const auto lifted = [&](const Vec2& v) {  // from the disc's center, in its plane
+      const Vec3 p = v.x() * t1 + v.y() * t2 - disc.center;
+      return Vec3(p - (disc.axis.dot(p) / across) * n);
+    };
+    const double r2 = disc.radius * disc.radius;
+    for (const Vec2& v : polygon)
+      if (lifted(v).squaredNorm() <= r2) out.push_back(v);
+    const std::size_t edges = polygon.size() == 1 ? 0 : polygon.size() == 2 ? 1 : polygon.size();
+    for (std::size_t k = 0; k < edges; ++k) {
+      const Vec2 p = polygon[k], q = polygon[(k + 1) % polygon.size()];
+      const Vec3 d = lifted(p), e = lifted(q) - d;
+      // |d + t e|² = r²: e·e t² + 2 d·e t + d·d − r² = 0.
+      const double a = e.squaredNorm(), b = d.dot(e), c = d.squaredNorm() - r2, discriminant = b * b - a * c;
+      if (!(a > 0.0) || discriminant < 0.0) continue;
+      for (const double sign : {-1.0, 1.0})
+        if (const double t = (-b + sign * std::sqrt(discriminant)) / a; t > 0.0 && t < 1.0) out.push_back(p + t * (q - p));
+    }
+  }
+
+  [[nodiscard]] std::vector<Vec2> project(const std::vector<Vec3>& points) const {
+    std::vector<Vec2> out;
+    out.reserve(points.size());
+    for (const Vec3& p : points) out.push_back(flat(p));
+    return out;
+  }
+
+  static double cross(const Vec2& o, const Vec2& a, const Vec2& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  }
+
+  /// Counter-clockwise convex hull (Andrew's monotone chain) without points
+  /// within `merge` of one kept and without corners within `merge` of the
+  /// line through their neighbours: 1 point, 2 (a segment) or a polygon.
+  static std::vector<Vec2> hull(std::vector<Vec2> points, double merge) {
+    std::sort(points.begin(), points.end(),
+              [](const Vec2& p, const Vec2& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); });
+    std::vector<Vec2> unique;
+    for (const Vec2& p : points)
+      if (std::none_of(unique.begin(), unique.end(), [&](const Vec2& q) { return (p - q).norm() <= merge; }))
+        unique.push_back(p);
+    if (unique.size() < 3) return unique;
+    std::vector<Vec2> chain(2 * unique.size());
+    std::size_t k = 0;
+    const auto turnsLeft = [&](const Vec2& p) {
+      return cross(chain[k - 2], chain[k - 1], p) > merge * (chain[k - 1] - chain[k - 2]).norm();
+    };
+    for (const Vec2& p : unique) {
+      while (k >= 2 && !turnsLeft(p)) --k;
+      chain[k++] = p;
+    }
+    const std::size_t lower = k + 1;
+    for (std::size_t i = unique.size() - 1; i-- > 0;) {
+      while (k >= lower && !turnsLeft(unique[i])) --k;
+      chain[k++] = unique[i];
+    }
+    chain.resize(k - 1);
+    return chain;
+  }
+
+  /// The part of `subject` (a point, a segment or a convex polygon) inside
+  /// the counter-clockwise convex polygon `window` (Sutherland–Hodgman).
+  static std::vector<Vec2> clip(std::vector<Vec2> subject, const std::vector<Vec2>& window) {
+    for (std::size_t e = 0; e < window.size() && !subject.empty(); ++e) {
+      const Vec2 a = window[e], edge = window[(e + 1) % window.size()] - a;
+      const Vec2 inward(-edge.y(), edge.x());
+      std::vector<Vec2> kept;
+      for (std::size_t i = 0; i < subject.size(); ++i) {
+        const Vec2 p = subject[i], q = subject[(i + 1) % subject.size()];
+        const double dp = inward.dot(p - a), dq = inward.dot(q - a);
+        if (dp >= 0.0) kept.push_back(p);
+        if ((dp > 0.0 && dq < 0.0) || (dp < 0.0 && dq > 0.0)) kept.push_back(p + (q - p) * (dp / (dp - dq)));
+      }
+      subject = std::move(kept);
+    }
+    return subject;
+  }
+
+  /// Two features that are points or segments: a point meets anything where
+  /// it is; two segments meet at their closest points, or along the
+  /// overlap of their ranges when they are parallel.
+  static std::vector<Vec2> crossing(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double merge) {
+    if (a.empty() || b.empty()) return {};
+    if (a.size() == 1) return a;
+    if (b.size() == 1) return b;
+    const Vec2 u = a[1] - a[0], v = b[1] - b[0];
+    const double lu = u.norm(), lv = v.norm();
+    if (std::abs(cross(Vec2::Zero(), u, v)) <= merge * std::max(lu, lv)) {
+      const Vec2 d = u / lu;
+      const double s0 = std::max(0.0, std::min(d.dot(b[0] - a[0]), d.dot(b[1] - a[0])));
+      const double s1 = std::min(lu, std::max(d.dot(b[0] - a[0]), d.dot(b[1] - a[0])));
+      const Vec2 offset = 0.5 * ((b[0] - a[0]) - d.dot(b[0] - a[0]) * d);  // halfway across to b's line
+      if (s0 > s1) return {a[0] + 0.5 * (s0 + s1) * d + offset};
+      return {a[0] + s0 * d + offset, a[0] + s1 * d + offset};
+    }
+    // Closest points of the segments a[0] + s u and b[0] + t v, s, t in [0, 1].
+    const Vec2 w = a[0] - b[0];
+    const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
+    const double denominator = uu * vv - uv * uv;
+    double s = std::clamp((uv * vw - vv * uw) / denominator, 0.0, 1.0);
+    const double t = std::clamp((uv * s + vw) / vv, 0.0, 1.0);
+    s = std::clamp((uv * t - uw) / uu, 0.0, 1.0);
+    return {0.5 * (a[0] + s * u + b[0] + t * v)};
+  }
+
+  /// A feature's height along n over the contact plane: the least-squares
+  /// affine fit h(x) = h̄ + g·(x − x̄) to its points, with a tiny ridge on g
+  /// so that a point or a segment (no slope across it) stays level.
+  struct HeightPlane {
+    Vec2 center = Vec2::Zero();
+    double mean = 0.0;
+    Vec2 slope = Vec2::Zero();
+
+    HeightPlane(const std::vector<Vec3>& points, const FeatureClipping& frame) {
+      for (const Vec3& p : points) {
+        center += frame.flat(p);
+        mean += frame.n.dot(p);
+      }
+      center /= double(points.size());
+      mean /= double(points.size());
+      Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
+      Vec2 right = Vec2::Zero();
+      for (const Vec3& p : points) {
+        const Vec2 d = frame.flat(p) - center;
+        normal += d * d.transpose();
+        right += d * (frame.n.dot(p) - mean);
+      }
+      const double ridge = 1e-12 * normal.trace();
+      if (!(ridge > 0.0)) return;  // a single point: level
+      normal += ridge * Eigen::Matrix2d::Identity();
+      const double determinant = normal(0, 0) * normal(1, 1) - normal(0, 1) * normal(1, 0);
+      slope = Vec2(normal(1, 1) * right.x() - normal(0, 1) * right.y(),
+                   normal(0, 0) * right.y() - normal(1, 0) * right.x()) /
+              determinant;
+    }
+    [[nodiscard]] double at(const Vec2& x) const { return mean + slope.dot(x - center); }
+  };
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_FEATURE_CLIPPING_HPP
+// --- end spook/collide/detail/feature_clipping.hpp ---
+
+namespace spook::detail {
+
+// The libccd bridge: each convex shape lends libccd its support function
+// through a stack object that holds the shape and its world pose. libccd is
+// built with double, so a float shape converts at this boundary.
+template <class Shape>
+struct CcdObject {
+  using S = typename Shape::Vec3::Scalar;
+  const Shape* shape;
+  Mat3T<double> R;     // shape → world rotation
+  Vec3T<double> p;     // shape origin in world (m)
+  Vec3T<double> center;  // a point inside the shape, world (m)
+  double margin = 0.0;   // libccd sees the shape grown by this much (m)
+
+  CcdObject(const Shape& s, const TransformT<S>& X_W, double grownBy = 0.0)
+      : shape(&s),
+        R(X_W.linear().template cast<double>()),
+        p(X_W.translation().template cast<double>()),
+        center(R * s.getCenterOfVolume().template cast<double>() + p),
+        margin(grownBy) {}
+
+  static void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
+    const auto& o = *static_cast<const CcdObject*>(object);
+    const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
+    const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
+    Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
+    if (const double length = d_W.norm(); o.margin > 0.0 && length > 0.0) s_W += (o.margin / length) * d_W;
+    for (int i = 0; i < 3; ++i) out->v[i] = s_W[i];
+  }
+  static void centerOf(const void* object, ccd_vec3_t* out) {
+    const auto& o = *static_cast<const CcdObject*>(object);
+    for (int i = 0; i < 3; ++i) out->v[i] = o.center[i];
+  }
+};
+
+inline constexpr double kCcdEpaTolerance = 1e-6;  // m
+/// Gap, relative to the smaller shape's size, within which two shapes
+/// count as touching (a contact of depth 0).
+inline constexpr double kCcdTouchMargin = 1e-7;
+/// Gap, relative to the smaller shape's size, beyond which libccd's GJK is
+/// trusted to call two shapes apart.
+inline constexpr double kCcdNearMargin = 1e-3;
+inline constexpr unsigned long kCcdMaxIterations = 200;
+/// Polishing: starts besides libccd's direction, and the gradient
+/// (relative to the shapes' size) below which a descent ended on a smooth
+/// minimum and needs no simplex search. Polishing only the starts within
+/// 1 % of the lowest descent loses 1e-4 m on capsule– and cylinder–triangle
+/// pairs; skipping the simplex search where the descent ends smooth loses
+/// nothing and makes the capsule, sphere and smooth hull pairs five times
+/// faster.
+inline constexpr std::size_t kStarts = 10;
+inline constexpr double kSmoothGradient = 1e-9;
+
+/// The overlap of the projections of a and b onto the unit direction n
+/// (from a toward b): f(n) = h_a(n) + h_b(−n), with h the support function.
+/// By the separating axis theorem the penetration depth is min f over unit
+/// n, and by Danskin's theorem ∇f = s_a(n) − s_b(−n) =: w.
+template <class A, class B>
+struct ProjectionOverlap {
+  const CcdObject<A>& a;
+  const CcdObject<B>& b;
+
+  [[nodiscard]] Vec3T<double> supportOf(const auto& object, const Vec3T<double>& n_W) const {
+    using S = typename std::remove_cvref_t<decltype(object)>::S;
+    const Vec3T<S> d = (object.R.transpose() * n_W).template cast<S>();
+    return object.R * object.shape->support(d).template cast<double>() + object.p;
+  }
+  [[nodiscard]] Vec3T<double> gradient(const Vec3T<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
+};
+
+/// Where f has a kink (an edge or a corner of a box-like shape is involved)
+/// its minimum may sit at the bottom of a narrow crease, which neither the
+/// gradient nor a fixed pattern of steps can follow; a Nelder–Mead simplex
+/// over the tangent plane of n (Nelder & Mead 1965) stretches along the
+/// crease and walks down it, to 1e-10 rad.
+template <class A, class B>
+double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double size,
+                             double turn) {
+  const Vec3T<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
+  const Vec3T<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
+  const auto direction = [&](const Eigen::Vector2d& x) { return Vec3T<double>((n0 + x[0] * t1 + x[1] * t2).normalized()); };
+  const auto value = [&](const Eigen::Vector2d& x) {
+    const Vec3T<double> d = direction(x);
+    return d.dot(overlap.gradient(d));
+  };
+  std::array<Eigen::Vector2d, 3> x = {Eigen::Vector2d(0, 0), Eigen::Vector2d(size, 0), Eigen::Vector2d(0, size)};
+  std::array<double, 3> fx = {f, value(x[1]), value(x[2])};
+  for (int iteration = 0; iteration < 400; ++iteration) {
+    // Order best, middle, worst.
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2 - i; ++j)
+        if (fx[j + 1] < fx[j]) {
+          std::swap(fx[j], fx[j + 1]);
+          std::swap(x[j], x[j + 1]);
+        }
+    if ((x[1] - x[0]).norm() + (x[2] - x[0]).norm() < 1e-10) break;
+    const Eigen::Vector2d centroid = 0.5 * (x[0] + x[1]);
+    const Eigen::Vector2d reflected = centroid + (centroid - x[2]);
+    const double fr = value(reflected);
+    if (fr < fx[0]) {
+      const Eigen::Vector2d expanded = centroid + 2.0 * (centroid - x[2]);
+      const double fe = value(expanded);
+      if (fe < fr) {
+        x[2] = expanded;
+        fx[2] = fe;
+      } else {
+        x[2] = reflected;
+        fx[2] = fr;
+      }
+    } else if (fr < fx[1]) {
+      x[2] = reflected;
+      fx[2] = fr;
+    } else {
+      const Eigen::Vector2d contracted = centroid + 0.5 * (x[2] - centroid);
+      const double fc = value(contracted);
+      if (fc < fx[2]) {
+        x[2] = contracted;
+        fx[2] = fc;
+      } else {
+        for (int i = 1; i < 3; ++i) {
+          x[i] = x[0] + 0.5 * (x[i] - x[0]);
+          fx[i] = value(x[i]);
+        }
+      }
+    }
+  }
+  const int best = fx[0] <= fx[1] ? (fx[0] <= fx[2] ? 0 : 2) : (fx[1] <= fx[2] ? 1 : 2);
+  if (fx[best] < f) {
+    n = direction(x[best]);
+    f = fx[best];
+  }
+  return f;
+}
+
+/// Descends f on the unit sphere from n (Barzilai–Borwein steps with
+/// backtracking): libccd's EPA stops some 1e-4 to 1e-3 short of the
+/// boundary on curved shapes. Returns f at the final direction, an upper
+/// bound on the depth that is exact at the minimum; `smooth` tells whether
+/// the descent ended where the gradient vanishes (a smooth minimum, done)
+/// rather than on a kink of f, where the simplex search must take over.
+template <class A, class B>
+double descend(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double scale, bool& smooth) {
+  Vec3T<double> w = overlap.gradient(n);
+  double f = n.dot(w);
+  Vec3T<double> g = w - n.dot(w) * n;
+  double step = 1.0 / scale;
+  for (int iteration = 0; iteration < 64 && g.norm() > 1e-13 * scale && step > 1e-12 / scale; ++iteration) {
+    const Vec3T<double> trial = (n - step * g).normalized();
+    const Vec3T<double> wTrial = overlap.gradient(trial);
+    const double fTrial = trial.dot(wTrial);
+    if (!(fTrial < f)) {
+      step *= 0.5;
+      continue;
+    }
+    const Vec3T<double> gTrial = wTrial - trial.dot(wTrial) * trial;
+    const Vec3T<double> sStep = trial - n, yStep = gTrial - g;
+    const double curvature = sStep.dot(yStep);
+    step = curvature > 0.0 ? sStep.squaredNorm() / curvature : 2.0 * step;
+    n = trial;
+    w = wTrial;
+    f = fTrial;
+    g = gTrial;
+  }
+  smooth = g.norm() <= kSmoothGradient * scale;
+  return f;
+}
+
+/// Restarts of the simplex search with fresh, turned simplices: the usual
+/// cure for one that collapsed across a crease.
+template <class A, class B>
+double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double scale) {
+  for (int restart = 0; restart < 6; ++restart) {
+    const double before = f;
+    f = polishBySimplexSearch(overlap, n, f, restart % 2 ? 0.1 : 0.02, 0.5 * restart);
+    if (restart > 0 && !(f < before - 1e-15 * scale)) break;
+  }
+  return f;
+}
+
+/// Starting directions for the polishing: libccd's, then the most promising
+/// of the line of centers, each shape's frame axes and their cross products
+/// (both signs) and a coarse lattice of directions, lowest overlap first. libccd's EPA sometimes returns a poor
+/// direction on deep or curved overlaps, and f may have several local
+/// minima; for box-like and cylindrical shapes the true minimum lies on or
+/// near one of these axes (face normals and edge–edge directions, as in the
+/// separating axis theorem).
+template <class A, class B>
+std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdObject<B>& b,
+                                             const Vec3T<double>& fromCcd, std::size_t count) {
+  const ProjectionOverlap<A, B> overlap{a, b};
+  std::vector<std::pair<double, Vec3T<double>>> candidates;
+  const auto consider = [&](const Vec3T<double>& direction) {
+    const double length = direction.norm();
+    if (!(length > 1e-9)) return;
+    for (const double sign : {1.0, -1.0}) {
+      const Vec3T<double> d = direction * (sign / length);
+      candidates.emplace_back(d.dot(overlap.gradient(d)), d);
+    }
+  };
+  consider(b.center - a.center);
+  for (int i = 0; i < 3; ++i) {
+    consider(a.R.col(i));
+    consider(b.R.col(i));
+    for (int j = 0; j < 3; ++j) consider(a.R.col(i).cross(b.R.col(j)));
+  }
+  // And a coarse, even spread (a Fibonacci lattice of 48 pairs ±d, some
+  // 0.25 rad apart) so that no basin of f is far from a start.
+  constexpr int kLattice = 96;
+  const double golden = 3.141592653589793 * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < kLattice; ++i) {
+    const double z = 1.0 - (i + 0.5) / kLattice, rho = std::sqrt(1.0 - z * z), phi = golden * i;
+    consider(Vec3T<double>(rho * std::cos(phi), rho * std::sin(phi), z));
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Vec3T<double>> starts{fromCcd};
+  for (const auto& [f, d] : candidates) {
+    if (starts.size() > count) break;
+    if (std::none_of(starts.begin(), starts.end(), [&d = d](const Vec3T<double>& s) { return s.dot(d) > 0.999; }))
+      starts.push_back(d);
+  }
+  return starts;
+}
+
+/// A shape's supporting feature along the unit direction n, world (m): its
+/// points, their mean and how far they spread from the support at n.
+struct SupportingFeature {
+  Vec3T<double> center;  // mean of the points, world (m)
+  double spread = 0.0;   // largest distance of a point from the support at n (m)
+  std::vector<Vec3T<double>> samples;
+  FeatureClipping::Disc disc;  // a round face (radius > 0), world
+};
+/// Tilt of the sampled features (shapes without supportingFeature).
+inline constexpr double kFeatureTilt = 1e-3;  // rad
+
+/// The supporting feature of a shape along n: the shape's own
+/// supportingFeature (a face, an edge or a point within the feature angle,
+/// SupportingFeatureT) or, for a shape without one, sampled: its support at
+/// n and at n tilted by kFeatureTilt toward eight directions of the tangent
+/// plane, which spread over a face or an edge (its corners or ends) that is
+/// within that tilt of supporting and stay together otherwise.
+template <class Object>
+SupportingFeature supportingFeature(const Object& object, const Vec3T<double>& n) {
+  using S = typename Object::S;
+  const auto toWorld = [&](const Vec3T<S>& p) { return Vec3T<double>(object.R * p.template cast<double>() + object.p); };
+  const auto support = [&](const Vec3T<double>& d) {
+    return toWorld(object.shape->support((object.R.transpose() * d).template cast<S>()));
+  };
+  SupportingFeature feature{Vec3T<double>::Zero(), 0.0, {}, {}};
+  if constexpr (requires(SupportingFeatureT<S>& out) { object.shape->supportingFeature(Vec3T<S>(), out); }) {
+    SupportingFeatureT<S> local;
+    object.shape->supportingFeature((object.R.transpose() * n).template cast<S>(), local);
+    for (std::size_t k = 0; k < local.count; ++k) feature.samples.push_back(toWorld(local.points[k]));
+    if (local.radius > S(0))
+      feature.disc = {toWorld(local.center), object.R * local.axis.template cast<double>(), double(local.radius)};
+  } else {
+    const Vec3T<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    feature.samples.push_back(support(n));
+    for (int k = 0; k < 8; ++k) {
+      const double angle = k * 0.7853981633974483;
+      feature.samples.push_back(support(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2)));
+    }
+  }
+  const Vec3T<double> atN = support(n);
+  for (const Vec3T<double>& p : feature.samples) {
+    feature.center += p;
+    feature.spread = std::max(feature.spread, (p - atN).norm());
+  }
+  feature.center /= double(feature.samples.size());
+  return feature;
+}
+
+/// The contact point of a penetration of the given depth along n (from a
+/// toward b): in the overlap, half the depth inside both surfaces, at the
+/// middle of the narrower of the two supporting features (the curved or the
+/// smaller shape's), or between both middles where they are alike (two
+/// faces of one size). Never a support point chosen among a wide face's
+/// corners, whose lever arm would spin the body that rests on it.
+inline Vec3T<double> contactPointInOverlap(const SupportingFeature& onA, const SupportingFeature& onB, const Vec3T<double>& n,
+                                    double depth) {
+  const Vec3T<double> fromA = onA.center - 0.5 * depth * n, fromB = onB.center + 0.5 * depth * n;
+  if (onA.spread < 0.5 * onB.spread) return fromA;
+  if (onB.spread < 0.5 * onA.spread) return fromB;
+  return 0.5 * (fromA + fromB);
+}
+
+/// The contacts of a penetration of `depth` along n (from a toward b): the
+/// corners of the overlap of the two supporting features (FeatureClipping:
+/// a resting face, cylinder side or cap gets its manifold in one step), or,
+/// where the features do not overlap, one point by contactPointInOverlap.
+/// Points closer than 4·kFeatureTilt·size are one point (the spread a
+/// sampled curved surface leaves).
+template <class A, class B>
+std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, const CcdObject<B>& b,
+                                                         const Vec3T<double>& n, double depth) {
+  const SupportingFeature onA = supportingFeature(a, n), onB = supportingFeature(b, -n);
+  const auto size = [](const auto& object) {
+    return object.shape->getBoundingBox().halfExtents().template cast<double>().norm();
+  };
+  const FeatureClipping clipping(n);
+  std::vector<FeatureClipping::Contact> contacts = clipping.contacts(
+      {onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc}, {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth);
+  if (contacts.empty()) {
+    // A point feature (a vertex, a curved surface's support) is the contact
+    // itself; two extended ones that miss each other on the contact plane
+    // (a cap's inscribed polygon, round-off at a rim) meet where they come
+    // nearest.
+    if (onA.samples.size() == 1 || onB.samples.size() == 1)
+      contacts.push_back({contactPointInOverlap(onA, onB, n, depth), depth});
+    else
+      contacts.push_back(clipping.nearest({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
+                                          {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth));
+  }
+  return contacts;
+}
+
+/// True when one of the directions ±(axes of a's and b's frames) or ±(the
+/// line between their centers) has a projection overlap f below `below`:
+/// the shapes are apart by at least −below along it.
+template <class A, class B>
+bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double below) {
+  const auto apart = [&](const Vec3T<double>& direction) {
+    const double length = direction.norm();
+    if (!(length > 0.0)) return false;
+    for (const double sign : {1.0, -1.0}) {
+      const Vec3T<double> d = direction * (sign / length);
+      if (d.dot(overlap.gradient(d)) < below) return true;
+    }
+    return false;
+  };
+  if (apart(overlap.b.center - overlap.a.center)) return true;
+  for (int i = 0; i < 3; ++i)
+    if (apart(overlap.a.R.col(i)) || apart(overlap.b.R.col(i))) return true;
+  return false;
+}
+
+/// Penetration of two convex shapes by GJK + EPA (libccd), polished as
+/// above: the direction that separates b from a, with the contacts of
+/// contactsOfFeatures (not libccd's point, a midpoint of support points
+/// that may lie on a far corner of a large face), or only the deepest of
+/// them when `manifold` is false (triangle pairs of two meshes, one contact
+/// per intersecting pair).
+template <Scalar S, class A, class B>
+void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
+                  bool manifold = true) {
+  // libccd sees a grown by kCcdTouchMargin of the smaller shape's size, so
+  // that shapes placed exactly touching (a body set down on a ground) are
+  // found touching, not left to fall a step; the polishing below measures
+  // the true overlap, and a gap within the margin is a contact of depth 0.
+  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
+  const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeOf(a), sizeOf(b)));
+  const CcdObject<B> objectB(b, X_WB);
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = &CcdObject<A>::support;
+  ccd.support2 = &CcdObject<B>::support;
+  ccd.center1 = &CcdObject<A>::centerOf;
+  ccd.center2 = &CcdObject<B>::centerOf;
+  ccd.max_iterations = kCcdMaxIterations;
+  ccd.epa_tolerance = kCcdEpaTolerance;
+  ccd_real_t depth = 0;
+  ccd_vec3_t direction, position;
+  const ProjectionOverlap<A, B> overlap{objectA, objectB};
+  if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) {
+    // libccd's GJK misses a few shallow overlaps of a small shape on a large
+    // one (0.7 % of those 1e-9..1e-4 m deep on boxes of 0.5..500 m, each a
+    // step of free fall through a resting contact): "apart" stands when a
+    // grown by kCcdNearMargin is still apart, or with a separating axis
+    // among the shapes' axes and the line between their centers; otherwise
+    // the polishing below decides.
+    const CcdObject<A> grownA(a, X_WA, kCcdNearMargin * std::min(sizeOf(a), sizeOf(b)));
+    if (!ccdGJKIntersect(&grownA, &objectB, &ccd) || separatedAlongFrameAxes(overlap, -objectA.margin)) return;
+    direction = {{0.0, 0.0, 0.0}};
+  }
+  // libccd reports a penetration far smaller than the shapes (within the
+  // margin) as touching, without a direction: the polishing below finds it
+  // from its other starts.
+  Vec3T<double> n(direction.v[0], direction.v[1], direction.v[2]);
+  if (const double length = n.norm(); length > 0.0 && std::isfinite(length))
+    n /= length;
+  else
+    n = Vec3T<double>::UnitZ();
+  const double scale = (a.getBoundingBox().halfExtents().template cast<double>().norm() +
+                        b.getBoundingBox().halfExtents().template cast<double>().norm());
+  // f may have several local minima: descend from several starts, then
+  // search the kinks where a descent stalled.
+  double refined = std::numeric_limits<double>::infinity();
+  for (Vec3T<double> start : startingDirections(objectA, objectB, n, kStarts)) {
+    bool smooth = false;
+    double f = descend(overlap, start, scale, smooth);
+    if (!smooth) f = polishOnKinks(overlap, start, f, scale);
+    if (f < refined) {
+      refined = f;
+      n = start;
+    }
+  }
+  if (!(refined >= -objectA.margin)) return;  // the polished direction separates them
+  std::vector<FeatureClipping::Contact> contacts = contactsOfFeatures(objectA, objectB, n, std::max(refined, 0.0));
+  if (!manifold) {
+    const auto deepest = std::max_element(contacts.begin(), contacts.end(),
+                                          [](const auto& x, const auto& y) { return x.depth < y.depth; });
+    contacts = {*deepest};
+  }
+  for (const FeatureClipping::Contact& contact : contacts) sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CCD_BRIDGE_HPP
+// --- end spook/collide/detail/ccd_bridge.hpp ---
+
+namespace spook {
+
+/// A shape with a support function `support(direction)` in its own frame:
+/// every convex shape, which libccd can then collide with any other.
+template <class T>
+concept ConvexShape = requires(const T& shape, const typename T::Vec3& direction) {
+  { shape.support(direction) } -> std::convertible_to<typename T::Vec3>;
+};
+
+/// The collider of an ordered shape pair (A, B) with A::kType <= B::kType:
+/// `Collider<A, B>::collide(a, X_WA, b, X_WB, sink)` writes the contact
+/// points of a placed at X_WA and b placed at X_WB (shape frame → world).
+/// Analytic pairs specialize it, one file per pair in colliders/; a pair of
+/// convex shapes without one goes through libccd; any other pair has none
+/// (a hole in the collider matrix).
+template <class A, class B>
+struct Collider {};
+
+template <ConvexShape A, ConvexShape B>
+struct Collider<A, B> {
+  using S = typename A::Vec3::Scalar;
+  static void collide(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideByCcd<S>(a, X_WA, b, X_WB, sink);
+  }
+};
+
+/// True when the ordered pair (A, B) has a collider.
+template <class A, class B>
+concept HasCollider = requires(const A& a, const B& b, const TransformT<typename A::Vec3::Scalar>& X,
+                               ContactSinkT<typename A::Vec3::Scalar>& sink) {
+  Collider<A, B>::collide(a, X, b, X, sink);
+};
+
+/// Collides a and b in either order: the pair is handed to its collider with
+/// the lower ShapeType first, and the sink flips the normals back. This is
+/// the one place where a reversed pair is handled.
+template <class A, class B>
+  requires(A::kType <= B::kType ? HasCollider<A, B> : HasCollider<B, A>)
+void collide(const A& a, const TransformT<typename A::Vec3::Scalar>& X_WA, const B& b,
+             const TransformT<typename A::Vec3::Scalar>& X_WB, ContactSinkT<typename A::Vec3::Scalar>& sink) {
+  if constexpr (A::kType <= B::kType) {
+    Collider<A, B>::collide(a, X_WA, b, X_WB, sink);
+  } else {
+    ContactSinkT<typename A::Vec3::Scalar> reversed = sink.reversed();
+    Collider<B, A>::collide(b, X_WB, a, X_WA, reversed);
+  }
+}
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDER_HPP
+// --- end spook/collide/collider.hpp ---
+// --- begin spook/collide/colliders.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_HPP
+
+// Every analytic collider. The collider matrix includes them all so that a
+// pair means the same collider in every translation unit; only the pairs of
+// a shape list that is used get instantiated.
+
+// --- begin spook/collide/colliders/box_box.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_BOX_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_BOX_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <type_traits>
+
+// --- begin spook/collide/detail/box_clipping.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_BOX_CLIPPING_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_BOX_CLIPPING_HPP
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+
+namespace spook::detail {
+
+/// A convex polygon of at most 8 corners on the stack: a quadrilateral
+/// clipped by the 4 side planes of a rectangle gains at most one corner per
+/// plane.
+template <Scalar S>
+struct ClipPolygon {
+  static constexpr std::size_t kCapacity = 8;
+  std::array<Vec3T<S>, kCapacity> points;
+  std::size_t count = 0;
+
+  void push(const Vec3T<S>& p) {
+    if (count < kCapacity) points[count++] = p;
+  }
+};
+
+/// One Sutherland–Hodgman step: the part of `polygon` in the half-space
+/// normal·x <= offset. A corner on the plane is kept (once); an edge that
+/// strictly crosses the plane gains its crossing point.
+template <Scalar S>
+[[nodiscard]] ClipPolygon<S> clipPolygon(const ClipPolygon<S>& polygon, const Vec3T<S>& normal, S offset) {
+  ClipPolygon<S> out;
+  for (std::size_t i = 0; i < polygon.count; ++i) {
+    const Vec3T<S>& p = polygon.points[i];
+    const Vec3T<S>& q = polygon.points[(i + 1) % polygon.count];
+    const S dp = normal.dot(p) - offset, dq = normal.dot(q) - offset;
+    if (dp <= S(0)) out.push(p);
+    if ((dp < S(0) && dq > S(0)) || (dp > S(0) && dq < S(0))) out.push(Vec3T<S>(p + (q - p) * (dp / (dp - dq))));
+  }
+  return out;
+}
+
+/// Closest points of the segments p + s·u, |s| <= sMax, and q + t·v,
+/// |t| <= tMax, for unit u and v that are not parallel (the box edges and
+/// capsule axis of the box colliders): the closest points of the two lines,
+/// then each parameter clamped with the other one re-projected onto it.
+template <Scalar S>
+void clampedLineClosest(const Vec3T<S>& p, const Vec3T<S>& u, S sMax, const Vec3T<S>& q, const Vec3T<S>& v, S tMax, S& s,
+                        S& t) {
+  const Vec3T<S> w = q - p;
+  const S b = u.dot(v), d = u.dot(w), e = v.dot(w);
+  const S denominator = S(1) - b * b;  // |u × v|²
+  s = denominator > S(0) ? (d - b * e) / denominator : S(0);
+  s = std::clamp(s, -sMax, sMax);
+  t = std::clamp(b * s - e, -tMax, tMax);
+  s = std::clamp(b * t + d, -sMax, sMax);
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_BOX_CLIPPING_HPP
+// --- end spook/collide/detail/box_clipping.hpp ---
+
+namespace spook {
+
+namespace detail::box_box {
+
+/// A box seen from box A's frame: center, axes (columns) and half extents.
+template <Scalar S>
+struct Placed {
+  Vec3T<S> center;
+  Mat3T<S> axes;
+  Vec3T<S> half;
+
+  /// Half-width of the box's projection onto the unit axis n.
+  [[nodiscard]] S radius(const Vec3T<S>& n) const { return (axes.transpose() * n).cwiseAbs().dot(half); }
+  /// The corner farthest along n (a zero component picks +).
+  [[nodiscard]] Vec3T<S> corner(const Vec3T<S>& n) const {
+    Vec3T<S> p = center;
+    for (int k = 0; k < 3; ++k) p += axes.col(k) * (axes.col(k).dot(n) < S(0) ? -half[k] : half[k]);
+    return p;
+  }
+};
+
+/// The candidate separating axis of least penetration: `axis` points from A
+/// toward B, `depth` is the overlap of the two projections on it (m).
+/// kind 0: a face normal of A (index = axis of A); kind 1: a face normal of
+/// B; kind 2: the cross product of A's edge `index / 3` and B's edge
+/// `index % 3`.
+template <Scalar S>
+struct Axis {
+  Vec3T<S> axis = Vec3T<S>::UnitZ();
+  S depth = std::numeric_limits<S>::infinity();
+  int kind = -1;
+  int index = -1;
+};
+
+/// Edge–edge axes win only when their overlap is below that of the best face
+/// axis divided by this factor: a resting box then keeps its face manifold
+/// instead of flickering to a single edge point. 1.05 is the value of ODE's
+/// dBoxBox, also used by Bullet and FCL.
+inline constexpr double kEdgeBias = 1.05;
+
+}  // namespace detail::box_box
+
+/// Box–box contacts by the separating axis theorem (Gottschalk's 15 axes)
+/// and face clipping, after ODE's dBoxBox:
+///  - the overlap of the two boxes' projections onto each candidate axis
+///    (3 + 3 face normals, 9 cross products of edge directions) is
+///    r_A(n) + r_B(n) − |n·(c_B − c_A)|, r the projected half-width; a
+///    positive gap on any axis separates the boxes, otherwise the axis of
+///    least overlap gives the normal and the depth: the least edge axis
+///    against the least face axis with kEdgeBias (dBoxBox also applies the
+///    bias between two edge axes, so it may keep one up to 5 % deeper);
+///  - on a face axis, the face of the other (incident) box most opposed to
+///    it is clipped against the side planes of the reference face
+///    (Sutherland–Hodgman), and every clipped corner below the reference
+///    face becomes a contact with its own depth: up to 8 points;
+///  - on an edge axis, one contact midway between the closest points of the
+///    two edges, with the axis overlap as depth.
+/// Cross products of near-parallel edges are skipped: their direction is
+/// lost to round-off, and the face axes then separate the boxes anyway.
+template <Scalar S>
+struct Collider<BoxT<S>, BoxT<S>> {
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
+  using Placed = detail::box_box::Placed<S>;
+  using Axis = detail::box_box::Axis<S>;
+
+  /// |a × b| below this (unit a and b, about √ε) skips the edge axis a × b:
+  /// the direction error ε/|a × b| of keeping it then balances the depth
+  /// error |a × b|·size of skipping it.
+  static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
+
+  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const BoxT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    // Everything in A's frame, where A is axis-aligned at the origin.
+    const Mat3 R_WA = X_WA.linear();
+    const Placed boxA{Vec3::Zero(), Mat3::Identity(), a.getHalfExtents()};
+    const Placed boxB{R_WA.transpose() * (X_WB.translation() - X_WA.translation()), R_WA.transpose() * X_WB.linear(),
+                      b.getHalfExtents()};
+    const Vec3 d = boxB.center;
+
+    Axis face, edge;
+    // Overlap along the unit axis n; returns false when n separates them.
+    auto consider = [&](const Vec3& n, int kind, int index, Axis& best) {
+      const S along = n.dot(d);
+      const S overlap = boxA.radius(n) + boxB.radius(n) - std::abs(along);
+      if (overlap < S(0)) return false;
+      if (overlap < best.depth) best = Axis{along < S(0) ? Vec3(-n) : n, overlap, kind, index};
+      return true;
+    };
+    for (int i = 0; i < 3; ++i)
+      if (!consider(boxA.axes.col(i), 0, i, face)) return;
+    for (int j = 0; j < 3; ++j)
+      if (!consider(boxB.axes.col(j), 1, j, face)) return;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        const Vec3 n = boxA.axes.col(i).cross(boxB.axes.col(j));
+        const S length = n.norm();
+        if (!(length > kParallel)) continue;
+        if (!consider(n / length, 2, 3 * i + j, edge)) return;
+      }
+    }
+
+    auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
+      sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
+    };
+    if (edge.kind == 2 && S(detail::box_box::kEdgeBias) * edge.depth < face.depth) {
+      emitEdge(boxA, boxB, edge, emit);
+      return;
+    }
+    // The face case: reference face on the box that owns the axis.
+    const bool onA = face.kind == 0;
+    const Placed& reference = onA ? boxA : boxB;
+    const Placed& incident = onA ? boxB : boxA;
+    const Vec3 n = onA ? face.axis : Vec3(-face.axis);  // out of the reference face, toward the incident box
+    if (emitFace(reference, face.index, n, incident, face.axis, face.depth, emit) == 0) {
+      // Round-off (or the face bias) left no clipped corner below the
+      // reference face: one point at the incident box's deepest corner.
+      const Vec3 deepest = incident.corner(-n);
+      emit(Vec3(deepest + n * (S(0.5) * face.depth)), face.axis, face.depth);
+    }
+  }
+
+ private:
+  template <class Emit>
+  static void emitEdge(const Placed& boxA, const Placed& boxB, const Axis& edge, Emit& emit) {
+    const int i = edge.index / 3, j = edge.index % 3;
+    const Vec3& n = edge.axis;
+    // The edge of A farthest along n and the edge of B farthest along −n,
+    // each through its midpoint.
+    Vec3 midA = boxA.corner(n), midB = boxB.corner(-n);
+    midA -= boxA.axes.col(i) * boxA.axes.col(i).dot(midA - boxA.center);
+    midB -= boxB.axes.col(j) * boxB.axes.col(j).dot(midB - boxB.center);
+    S s = S(0), t = S(0);
+    detail::clampedLineClosest<S>(midA, boxA.axes.col(i), boxA.half[i], midB, boxB.axes.col(j), boxB.half[j], s, t);
+    const Vec3 pointA = midA + boxA.axes.col(i) * s, pointB = midB + boxB.axes.col(j) * t;
+    emit(Vec3(S(0.5) * (pointA + pointB)), n, edge.depth);
+  }
+
+  /// Clips the incident face against the reference face `axis` whose
+  /// outward normal is n and writes the points below it with the normal
+  /// normal_AB (from A toward B); returns how many.
+  template <class Emit>
+  static int emitFace(const Placed& reference, int axis, const Vec3& n, const Placed& incident, const Vec3& normal_AB,
+                      S depthOfAxis, Emit& emit) {
+    // Incident face: the face of the incident box most opposed to n.
+    const Vec3 alignment = incident.axes.transpose() * n;
+    int k = 0;
+    alignment.cwiseAbs().maxCoeff(&k);
+    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+    const Vec3 faceCenter =
+        incident.center - incident.axes.col(k) * (alignment[k] > S(0) ? incident.half[k] : -incident.half[k]);
+    const Vec3 e1 = incident.axes.col(k1) * incident.half[k1], e2 = incident.axes.col(k2) * incident.half[k2];
+    detail::ClipPolygon<S> polygon;
+    polygon.push(faceCenter - e1 - e2);
+    polygon.push(faceCenter + e1 - e2);
+    polygon.push(faceCenter + e1 + e2);
+    polygon.push(faceCenter - e1 + e2);
+
+    // Side planes of the reference face: |(x − c)·t| <= h for its two
+    // tangent axes t.
+    for (const int side : {(axis + 1) % 3, (axis + 2) % 3}) {
+      const Vec3 tangent = reference.axes.col(side);
+      const S offset = tangent.dot(reference.center);
+      polygon = detail::clipPolygon<S>(polygon, tangent, offset + reference.half[side]);
+      polygon = detail::clipPolygon<S>(polygon, Vec3(-tangent), reference.half[side] - offset);
+    }
+
+    // Depth of each clipped corner below the reference face plane
+    // n·x = n·c + h; the contact point is midway to that plane. No corner
+    // lies deeper than the axis overlap but by round-off, which the min
+    // removes.
+    const S facePlane = n.dot(reference.center) + reference.half[axis];
+    int written = 0;
+    for (std::size_t m = 0; m < polygon.count; ++m) {
+      const Vec3& x = polygon.points[m];
+      const S depth = std::min(facePlane - n.dot(x), depthOfAxis);
+      if (!(depth >= S(0))) continue;
+      emit(Vec3(x + n * (S(0.5) * depth)), normal_AB, depth);
+      ++written;
+    }
+    return written;
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_BOX_HPP
+// --- end spook/collide/colliders/box_box.hpp ---
+// --- begin spook/collide/colliders/box_capsule.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_CAPSULE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_CAPSULE_HPP
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <type_traits>
+
+namespace spook {
+
+namespace detail::box_capsule {
+
+/// Squared distance (m²) from x to the solid box |x_k| <= e_k.
+template <Scalar S>
+[[nodiscard]] S boxDistanceSquared(const Vec3T<S>& x, const Vec3T<S>& e) {
+  return (x.cwiseAbs() - e).cwiseMax(S(0)).squaredNorm();
+}
+
+/// The parameter t in [−h, h] of the point c + t·u of a segment closest to
+/// the solid box |x_k| <= e_k. The squared distance g(t) is convex and
+/// piecewise quadratic, with knots where the segment crosses the six face
+/// planes; on each piece it is Σ (c_k + t u_k ∓ e_k)² over the coordinates
+/// outside the box, minimized in closed form and clamped to the piece.
+template <Scalar S>
+[[nodiscard]] S closestOnSegment(const Vec3T<S>& c, const Vec3T<S>& u, S h, const Vec3T<S>& e) {
+  std::array<S, 8> knots{};
+  std::size_t count = 0;
+  knots[count++] = -h;
+  for (int k = 0; k < 3; ++k) {
+    if (u[k] == S(0)) continue;
+    for (const S plane : {-e[k], e[k]}) {
+      const S t = (plane - c[k]) / u[k];
+      if (t > -h && t < h) knots[count++] = t;
+    }
+  }
+  knots[count++] = h;
+  // Insertion sort: at most 8 knots (and std::sort trips GCC 12's
+  // -Warray-bounds on a partly filled std::array at -O2).
+  for (std::size_t i = 1; i < count; ++i)
+    for (std::size_t j = i; j > 0 && knots[j] < knots[j - 1]; --j) std::swap(knots[j], knots[j - 1]);
+  S bestT = -h, best = std::numeric_limits<S>::infinity();
+  for (std::size_t i = 0; i + 1 < count; ++i) {
+    const S lo = knots[i], hi = knots[i + 1], mid = S(0.5) * (lo + hi);
+    S slope = S(0), curvature = S(0);  // g/2 on this piece: ½ curvature·t² + slope·t + const
+    for (int k = 0; k < 3; ++k) {
+      const S x = c[k] + mid * u[k];
+      if (x > e[k] || x < -e[k]) {
+        slope += u[k] * (c[k] - (x > S(0) ? e[k] : -e[k]));
+        curvature += u[k] * u[k];
+      }
+    }
+    const S t = curvature > S(0) ? std::clamp(-slope / curvature, lo, hi) : lo;
+    const S g = boxDistanceSquared<S>(Vec3T<S>(c + t * u), e);
+    if (g < best) {
+      best = g;
+      bestT = t;
+    }
+  }
+  return bestT;
+}
+
+}  // namespace detail::box_capsule
+
+/// Box–capsule contacts: the capsule is the set of points within its radius
+/// r of the segment between its hemisphere centers, so everything reduces
+/// to that segment against the box, in the box frame.
+///  - Segment outside the box at distance δ (exact closest points, see
+///    closestOnSegment): depth r − δ along the direction from the box's
+///    closest point to the segment's.
+///  - Segment touching or inside the box: the segment's penetration is the
+///    least overlap of the projections onto the face normals of the
+///    Minkowski sum box ⊕ segment, which are the box's 3 face normals and
+///    the 3 cross products of the capsule axis with the box edges; depth
+///    r + that overlap (exact, the same separating-axis argument as for two
+///    boxes).
+/// When the normal is a box face normal, the segment is clipped to the
+/// face's side planes and each clipped end within r of the face is a
+/// contact with its own depth: two points for a capsule lying on the face,
+/// one otherwise.
+template <Scalar S>
+struct Collider<BoxT<S>, CapsuleT<S>> {
+  using Vec3 = spook::Vec3T<S>;
+  using Mat3 = spook::Mat3T<S>;
+
+  /// |u × axis| below this (u the capsule axis, about √ε) skips the edge
+  /// axis u × axis; the face axes cover the parallel case (as for two boxes).
+  static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
+
+  static void collide(const BoxT<S>& box, const TransformT<S>& X_WA, const CapsuleT<S>& capsule,
+                      const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
+    // Box frame: the box is |x_k| <= e_k, the segment c + t·u, |t| <= h.
+    const Mat3 R_WA = X_WA.linear();
+    const Vec3 e = box.getHalfExtents();
+    const Vec3 c = R_WA.transpose() * (X_WB.translation() - X_WA.translation());
+    const Vec3 u = (R_WA.transpose() * X_WB.linear().col(1)).normalized();
+    const S h = S(0.5) * capsule.getHeight(), r = capsule.getRadius();
+    const S scale = e.maxCoeff() + h + r;
+    const BoxFrame local{e, c, u, h, r, scale};
+    auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
+      sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
+    };
+
+    const S t = detail::box_capsule::closestOnSegment<S>(c, u, h, e);
+    const Vec3 x = c + t * u;
+    const Vec3 q = x.cwiseMax(-e).cwiseMin(e);
+    const Vec3 gap = x - q;
+    const S distance = gap.norm();
+    if (distance > r) return;
+    // Below this distance the direction x − q is round-off: the segment
+    // counts as touching the box and the separating axes take over.
+    const S touching = S(64) * ScalarTraits<S>::epsilon() * scale;
+    if (distance > touching) {
+      const S depth = r - distance;
+      int outside = 0, k = 0, inside = 0;
+      for (int j = 0; j < 3; ++j) {
+        if (gap[j] == S(0)) {
+          inside = j;
+          continue;
+        }
+        ++outside;
+        k = j;
+      }
+      Vec3 n = gap / distance;
+      if (std::abs(t) < h - touching && outside > 1) {
+        // The segment's interior (clear of its ends by more than round-off)
+        // is closest to a box edge or corner, so n is exactly ⊥ u (and ⊥ the
+        // edge): rebuilt that way rather than from the rounded gap, whose
+        // tilt along u would add to the overlap at its kink there.
+        const Vec3 acrossEdge = u.cross(Vec3::Unit(inside));
+        const S length = acrossEdge.norm();
+        const Vec3 rebuilt =
+            outside == 2 && length > kParallel ? Vec3(acrossEdge / length) : Vec3(gap - gap.dot(u) * u);
+        const S size = rebuilt.norm();
+        if (size > S(0)) n = rebuilt.dot(gap) < S(0) ? Vec3(-rebuilt / size) : Vec3(rebuilt / size);
+      }
+      if (outside == 1 && local.emitOnFace(k, gap[k] > S(0) ? S(1) : S(-1), depth, emit) > 0) return;
+      emit(Vec3(S(0.5) * (q + x - n * r)), n, depth);
+      return;
+    }
+
+    // Separating axes of the segment inside the box. An edge axis must beat
+    // the best face axis by more than round-off, so that a capsule lying in
+    // a face (where the two coincide) keeps the face and its two points.
+    S faceDepth = std::numeric_limits<S>::infinity(), edgeDepth = faceDepth;
+    int face = 0, edge = -1;
+    Vec3 edgeAxis = Vec3::UnitZ();
+    for (int k = 0; k < 3; ++k) {
+      const S overlap = e[k] + h * std::abs(u[k]) + r - std::abs(c[k]);
+      if (overlap < faceDepth) {
+        faceDepth = overlap;
+        face = k;
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 axis = u.cross(Vec3::Unit(k));
+      const S length = axis.norm();
+      if (!(length > kParallel)) continue;
+      const Vec3 n = axis / length;
+      const S overlap = n.cwiseAbs().dot(e) + r - std::abs(n.dot(c));
+      if (overlap < edgeDepth) {
+        edgeDepth = overlap;
+        edge = k;
+        edgeAxis = n;
+      }
+    }
+    if (!(std::min(faceDepth, edgeDepth) >= S(0))) return;  // only round-off can get here
+
+    if (edge >= 0 && edgeDepth < faceDepth - S(8) * ScalarTraits<S>::epsilon() * scale) {
+      // The segment crosses the box edge along axis `edge` that is farthest
+      // along n: one point midway between the segment and that edge.
+      const Vec3 n = edgeAxis.dot(c) < S(0) ? Vec3(-edgeAxis) : edgeAxis;
+      Vec3 middle = Vec3::Zero();
+      for (int j = 0; j < 3; ++j)
+        if (j != edge) middle[j] = n[j] < S(0) ? -e[j] : e[j];
+      S s = S(0), tOnSegment = S(0);
+      detail::clampedLineClosest<S>(middle, Vec3::Unit(edge), e[edge], c, u, h, s, tOnSegment);
+      const Vec3 onEdge = middle + Vec3::Unit(edge) * s, onSegment = c + u * tOnSegment;
+      emit(Vec3(S(0.5) * (onEdge + onSegment - n * r)), n, edgeDepth);
+      return;
+    }
+    const S sign = c[face] < S(0) ? S(-1) : S(1);
+    if (local.emitOnFace(face, sign, faceDepth, emit) > 0) return;
+    // The deepest end of the segment lies beside the face: one point there.
+    const S along = sign * u[face];
+    const Vec3 deepest = c + u * (along > S(0) ? -h : (along < S(0) ? h : S(0)));
+    Vec3 onFace = deepest.cwiseMax(-e).cwiseMin(e);
+    onFace[face] = sign * e[face];
+    const Vec3 n = Vec3::Unit(face) * sign;
+    emit(Vec3(S(0.5) * (onFace + deepest - n * r)), n, faceDepth);
+  }
+
+ private:
+  /// The pair in the box frame: half extents e, segment c + t·u with
+  /// |t| <= h, radius r, and a length scale for tolerances (m).
+  struct BoxFrame {
+    Vec3 e, c, u;
+    S h, r, scale;
+
+    /// Contacts for the normal sign·(unit k), the outward normal of a box
+    /// face: the segment clipped to the face's side planes, each end within
+    /// r of the face plane a contact with depth r − height. Writes nothing
+    /// (returns 0) when the clipped ends miss `depth`, the depth of the
+    /// whole pair: the deepest part of the segment lies beside the face.
+    template <class Emit>
+    int emitOnFace(int k, S sign, S depth, Emit& emit) const {
+      S lo = -h, hi = h;
+      for (const int j : {(k + 1) % 3, (k + 2) % 3}) {
+        if (u[j] == S(0)) {
+          if (std::abs(c[j]) > e[j]) return 0;
+          continue;
+        }
+        const S t0 = (-e[j] - c[j]) / u[j], t1 = (e[j] - c[j]) / u[j];
+        lo = std::max(lo, std::min(t0, t1));
+        hi = std::min(hi, std::max(t0, t1));
+      }
+      if (!(lo <= hi)) return 0;
+      const Vec3 n = Vec3::Unit(k) * sign;
+      const S tolerance = S(64) * ScalarTraits<S>::epsilon() * scale;
+      std::array<S, 2> ends{lo, hi}, depths{};
+      for (std::size_t i = 0; i < 2; ++i) depths[i] = r - (sign * (c[k] + ends[i] * u[k]) - e[k]);
+      if (!(std::max(depths[0], depths[1]) >= depth - tolerance)) return 0;
+      // Ends closer than the tolerance are one point: keep the deeper.
+      const bool single = (hi - lo) <= tolerance;
+      int written = 0;
+      for (std::size_t i = 0; i < 2; ++i) {
+        if (!(depths[i] >= S(0))) continue;
+        if (single && depths[i] < depths[1 - i]) continue;
+        if (single && written > 0) break;
+        const Vec3 x = c + u * ends[i];
+        const S height = r - depths[i];
+        emit(Vec3(x - n * (S(0.5) * (height + r))), n, std::min(depths[i], depth));
+        ++written;
+      }
+      return written;
+    }
+  };
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_CAPSULE_HPP
+// --- end spook/collide/colliders/box_capsule.hpp ---
+// --- begin spook/collide/colliders/box_line.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_LINE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_LINE_HPP
+
+#include <algorithm>
+#include <cmath>
+
+// --- begin spook/collide/detail/segment_distance.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_SEGMENT_DISTANCE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_SEGMENT_DISTANCE_HPP
+
+#include <algorithm>
+#include <cmath>
+
+namespace spook::detail {
+
+// Closest points between segments and points, the geometric core of every
+// collider with a capsule or a line (Ericson, Real-Time Collision
+// Detection, §5.1.2 and §5.1.9). All results are finite for any finite
+// input, degenerate segments and parallel segments included.
+
+/// Parameter t ∈ [0, 1] of the point of segment p + t (q − p) closest to x
+/// (0 for a degenerate segment).
+template <Scalar S>
+[[nodiscard]] S closestParameterOnSegment(const Vec3T<S>& p, const Vec3T<S>& q, const Vec3T<S>& x) {
+  const Vec3T<S> d = q - p;
+  const S dd = d.squaredNorm();
+  if (!(dd > S(0))) return S(0);
+  return std::clamp(d.dot(x - p) / dd, S(0), S(1));
+}
+
+/// The point of segment [p, q] closest to x.
+template <Scalar S>
+[[nodiscard]] Vec3T<S> closestPointOnSegment(const Vec3T<S>& p, const Vec3T<S>& q, const Vec3T<S>& x) {
+  return p + closestParameterOnSegment(p, q, x) * (q - p);
+}
+
+/// A unit vector perpendicular to d (any non-zero d), chosen deterministically:
+/// d crossed with the coordinate axis least aligned with it.
+template <Scalar S>
+[[nodiscard]] Vec3T<S> unitPerpendicular(const Vec3T<S>& d) {
+  int axis = 0;
+  const Vec3T<S> a = d.cwiseAbs();
+  if (a.y() < a[axis]) axis = 1;
+  if (a.z() < a[axis]) axis = 2;
+  const Vec3T<S> n = d.cross(Vec3T<S>::Unit(axis));
+  const S length = n.norm();
+  return length > S(0) ? Vec3T<S>(n / length) : Vec3T<S>(Vec3T<S>::UnitX());
+}
+
+/// The closest points of segments [p1, q1] and [p2, q2]: parameters s, t
+/// ∈ [0, 1], the points themselves, and whether the segments are parallel
+/// or degenerate (then the pair is one deterministic choice among many).
+template <Scalar S>
+struct SegmentClosestPoints {
+  S s = S(0);
+  S t = S(0);
+  Vec3T<S> onFirst = Vec3T<S>::Zero();
+  Vec3T<S> onSecond = Vec3T<S>::Zero();
+  bool parallel = false;
+};
+
+/// Minimizes |p1 + s d1 − (p2 + t d2)|² over the unit square (Ericson
+/// §5.1.9): the unconstrained minimum of the line pair is clamped to the
+/// first segment, then the second parameter follows and is clamped, and the
+/// first is recomputed once. Parallel (or degenerate) segments, where the
+/// determinant a e − b² vanishes relative to a e, start from s = 0.
+template <Scalar S>
+[[nodiscard]] SegmentClosestPoints<S> closestPointsBetweenSegments(const Vec3T<S>& p1, const Vec3T<S>& q1,
+                                                                   const Vec3T<S>& p2, const Vec3T<S>& q2) {
+  const Vec3T<S> d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const S a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  SegmentClosestPoints<S> result;
+  if (!(a > S(0)) && !(e > S(0))) {
+    result.parallel = true;
+  } else if (!(a > S(0))) {
+    result.t = std::clamp(f / e, S(0), S(1));
+    result.parallel = true;
+  } else {
+    const S c = d1.dot(r);
+    if (!(e > S(0))) {
+      result.s = std::clamp(-c / a, S(0), S(1));
+      result.parallel = true;
+    } else {
+      const S b = d1.dot(d2);
+      // a e − b² = |d1 × d2|², computed as such to keep its relative accuracy
+      // for nearly parallel segments.
+      const S denominator = d1.cross(d2).squaredNorm();
+      result.parallel = !(denominator > S(4) * ScalarTraits<S>::epsilon() * a * e);
+      S s = result.parallel ? S(0) : std::clamp((b * f - c * e) / denominator, S(0), S(1));
+      S t = (b * s + f) / e;
+      if (t < S(0)) {
+        t = S(0);
+        s = std::clamp(-c / a, S(0), S(1));
+      } else if (t > S(1)) {
+        t = S(1);
+        s = std::clamp((b - c) / a, S(0), S(1));
+      }
+      result.s = s;
+      result.t = t;
+    }
+  }
+  result.onFirst = p1 + result.s * d1;
+  result.onSecond = p2 + result.t * d2;
+  return result;
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_SEGMENT_DISTANCE_HPP
+// --- end spook/collide/detail/segment_distance.hpp ---
+
+namespace spook {
+
+/// Box–line, in the box frame, for a segment x(t) = p + t d, t ∈ [0, 1].
+///
+/// Depth: the penetration depth proper, the shortest distance the line has
+/// to move to leave the box, D = min over unit n of f(n) = h_box(n) −
+/// min_t n·x(t) (the overlap of the two projections on n), the same measure
+/// as every other convex pair and as the libccd fallback. The box ⊕ segment
+/// difference is a polytope whose faces have the box face normals e_i and
+/// the cross products d × e_i as normals, so the minimum is over these six
+/// axes, both signs each (the separating axis theorem); a negative overlap
+/// on any of them separates the shapes. Cross products shorter than
+/// round-off (d along a box edge) are dropped: they are face normals then,
+/// and the overlap they would bound differs from a face's by less than
+/// their length.
+///
+/// Points: the line's deepest point along −n is the contact's line side,
+/// midway to the box surface at depth D. On a face normal that is the
+/// deepest endpoint, unless a point of the segment's part inside the box
+/// (clipped against the three slabs |x_i| <= h_i) is as deep, as for a
+/// segment lying in a face; on an edge axis every segment point is as deep
+/// and the point closest to the box's supporting edge is taken. A segment
+/// nearly parallel to the face (|sin| <= kParallelSine) also gets a contact
+/// at each end of its inside part, with that point's own depth, so that a
+/// rod lying across a face rests on two points.
+template <Scalar S>
+struct Collider<BoxT<S>, LineT<S>> {
+  static constexpr S kParallelSine = S(1e-2);
+
+  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const LineT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const TransformT<S> X_AB = X_WA.inverse(Eigen::Isometry) * X_WB;
+    const Vec3T<S> p = X_AB * b.getFirstPoint(), q = X_AB * b.getSecondPoint();
+    const Vec3T<S> d = q - p;
+    const Vec3T<S>& h = a.getHalfExtents();
+    const S length = d.norm();
+    const S tiny = S(16) * ScalarTraits<S>::epsilon() * (h.norm() + p.norm() + q.norm());
+
+    // Separating axis test: the smallest overlap and its axis, from the box toward the line.
+    S depth = S(0);
+    Vec3T<S> n = Vec3T<S>::UnitZ();
+    int edge = -1;  // the box edge direction of a cross-product axis, -1 for a face normal
+    bool first = true;
+    const auto tryAxis = [&](const Vec3T<S>& axis, int edgeAxis) {
+      const S support = h.dot(axis.cwiseAbs());
+      const S lowest = std::min(axis.dot(p), axis.dot(q)), highest = std::max(axis.dot(p), axis.dot(q));
+      const S up = support - lowest, down = support + highest;  // overlaps along +axis and −axis
+      if (first || up < depth) {
+        depth = up;
+        n = axis;
+        edge = edgeAxis;
+        first = false;
+      }
+      if (down < depth) {
+        depth = down;
+        n = -axis;
+        edge = edgeAxis;
+      }
+    };
+    for (int i = 0; i < 3; ++i) tryAxis(Vec3T<S>::Unit(i), -1);
+    for (int i = 0; i < 3; ++i) {
+      const Vec3T<S> axis = d.cross(Vec3T<S>::Unit(i));
+      const S axisLength = axis.norm();
+      if (axisLength > S(16) * ScalarTraits<S>::epsilon() * length) tryAxis(axis / axisLength, i);
+    }
+    if (!(depth >= S(0))) return;
+
+    const auto add = [&](const Vec3T<S>& onLine, S pointDepth) {
+      sink.add(X_WA * Vec3T<S>(onLine + S(0.5) * pointDepth * n), X_WA.linear() * n, pointDepth);
+    };
+    if (edge >= 0) {
+      // The box edge along e_edge through the corner farthest along n.
+      Vec3T<S> corner = a.support(n);
+      Vec3T<S> otherEnd = corner;
+      corner[edge] = -h[edge];
+      otherEnd[edge] = h[edge];
+      add(detail::closestPointsBetweenSegments<S>(p, q, corner, otherEnd).onFirst, depth);
+      return;
+    }
+
+    // The part of the segment inside the box, t ∈ [t0, t1] (empty when t0 > t1).
+    S t0 = S(0), t1 = S(1);
+    for (int i = 0; i < 3; ++i) {
+      if (d[i] != S(0)) {
+        const S ta = (-h[i] - p[i]) / d[i], tb = (h[i] - p[i]) / d[i];
+        t0 = std::max(t0, std::min(ta, tb));
+        t1 = std::min(t1, std::max(ta, tb));
+      } else if (std::abs(p[i]) > h[i]) {
+        t0 = S(1);
+        t1 = S(0);
+      }
+    }
+    const S support = h.dot(n.cwiseAbs());
+    const auto depthAt = [&](S t) { return support - n.dot(p + t * d); };
+    S deepest = depthAt(S(0)) >= depthAt(S(1)) ? S(0) : S(1);
+    if (t0 <= t1) {
+      const S inside = depthAt(t0) >= depthAt(t1) ? t0 : t1;
+      if (depthAt(inside) >= depth - tiny) deepest = inside;
+    }
+    add(p + deepest * d, depth);
+    if (!(t0 <= t1 && std::abs(n.dot(d)) <= kParallelSine * length)) return;
+    const S apart = std::sqrt(ScalarTraits<S>::epsilon()) * (h.norm() + length);  // closer is the same contact
+    const S ends[2] = {t0, t1};
+    for (int k = 0; k < 2; ++k) {
+      const S t = ends[k];
+      if (std::abs(t - deepest) * length <= apart || (k == 1 && (t1 - t0) * length <= apart)) continue;
+      const S pointDepth = depthAt(t);
+      if (pointDepth >= S(0)) add(p + t * d, pointDepth);
+    }
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_LINE_HPP
+// --- end spook/collide/colliders/box_line.hpp ---
+// --- begin spook/collide/colliders/box_plane.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_PLANE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_PLANE_HPP
+
+namespace spook {
+
+/// Box–plane: every corner at or below the plane (signed height s <= 0) is
+/// a contact of depth −s: four for a box lying flat on a face, two on an
+/// edge, one on a corner. The normal points from the box into the plane, −n.
+template <Scalar S>
+struct Collider<BoxT<S>, PlaneT<S>> {
+  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S>& h = a.getHalfExtents();
+    // Heights relative to the box center: corner height = center height + Σ ±h_i (n · axis_i).
+    const S centerHeight = n.dot(X_WA.translation() - X_WB * b.getPoint());
+    const Vec3T<S> reach = (X_WA.linear().transpose() * n).cwiseProduct(h);
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3T<S> sign((corner & 1) ? S(1) : S(-1), (corner & 2) ? S(1) : S(-1), (corner & 4) ? S(1) : S(-1));
+      const S height = centerHeight + sign.dot(reach);
+      if (!(height <= S(0))) continue;
+      const Vec3T<S> p = X_WA * Vec3T<S>(sign.cwiseProduct(h));
+      // Midway between the corner and the plane point under it.
+      sink.add(p - S(0.5) * height * n, -n, -height);
+    }
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_PLANE_HPP
+// --- end spook/collide/colliders/box_plane.hpp ---
+// --- begin spook/collide/colliders/box_sphere.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_SPHERE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_SPHERE_HPP
+
+#include <cmath>
+
+namespace spook {
+
+/// Box–sphere, in the box frame. A sphere center c outside the box pushes
+/// away from the box point q closest to it (c clamped to the half extents):
+/// depth r − |c − q|. A center inside the box, or on its surface, pushes out
+/// through the nearest face, the one with the smallest h_i − |c_i| (the
+/// lowest axis on a tie, the + face when c_i = 0): depth r + h_i − |c_i|.
+template <Scalar S>
+struct Collider<BoxT<S>, SphereT<S>> {
+  static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3T<S>& h = a.getHalfExtents();
+    const S r = b.getRadius();
+    const Vec3T<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
+    const Vec3T<S> q = c.cwiseMax(-h).cwiseMin(h);
+    const Vec3T<S> d = c - q;
+    const S distance = d.norm();
+    Vec3T<S> n;      // box frame, from the box toward the sphere
+    Vec3T<S> onBox;  // the box's deepest point along n
+    S depth;
+    if (distance > ScalarTraits<S>::epsilon() * (h.norm() + r)) {
+      depth = r - distance;
+      if (!(depth >= S(0))) return;
+      n = d / distance;
+      onBox = q;
+    } else {
+      int axis = 0;
+      S gap = h[0] - std::abs(c[0]);  // distance from c to the nearest face, >= 0 up to round-off
+      for (int i = 1; i < 3; ++i) {
+        const S g = h[i] - std::abs(c[i]);
+        if (g < gap) {
+          gap = g;
+          axis = i;
+        }
+      }
+      n = Vec3T<S>::Zero();
+      n[axis] = c[axis] < S(0) ? S(-1) : S(1);
+      depth = r + gap;
+      onBox = c + gap * n;
+    }
+    // Midway between the box's deepest point and the sphere's, c − r n.
+    sink.add(X_WA * Vec3T<S>(S(0.5) * (onBox + c - r * n)), X_WA.linear() * n, depth);
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_BOX_SPHERE_HPP
+// --- end spook/collide/colliders/box_sphere.hpp ---
+// --- begin spook/collide/colliders/capsule_capsule.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CAPSULE_CAPSULE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CAPSULE_CAPSULE_HPP
+
+#include <algorithm>
+#include <cmath>
+
+namespace spook {
+
+/// Capsule–capsule: the closest points a, b of the two core segments give
+/// the deepest contact, depth r_a + r_b − |b − a| along (b − a)/|b − a|.
+/// Segments that meet have no such direction; they push along the common
+/// perpendicular d_a × d_b (turned toward b's center), or, when they are
+/// also parallel, along a fixed perpendicular of a's axis.
+///
+/// Nearly parallel capsules (|sin θ| <= kParallelSine between the axes)
+/// lying side by side touch along a line, and one point would let them roll
+/// about it: the ends of the stretch where their axes overlap (the part of
+/// a's segment onto which b's segment projects) add a contact each, with
+/// the exact depth between that point of a's axis and the nearest point of
+/// b's. The deepest contact is always reported, so the largest depth is the
+/// exact penetration.
+template <Scalar S>
+struct Collider<CapsuleT<S>, CapsuleT<S>> {
+  static constexpr S kParallelSine = S(1e-2);
+
+  static void collide(const CapsuleT<S>& a, const TransformT<S>& X_WA, const CapsuleT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3T<S> halfA = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
+    const Vec3T<S> halfB = X_WB.linear().col(1) * (S(0.5) * b.getHeight());
+    const Vec3T<S> pA = X_WA.translation() - halfA, qA = X_WA.translation() + halfA;
+    const Vec3T<S> pB = X_WB.translation() - halfB, qB = X_WB.translation() + halfB;
+    const S rA = a.getRadius(), rB = b.getRadius();
+    const S scale = rA + rB + a.getHeight() + b.getHeight();
+    const auto closest = detail::closestPointsBetweenSegments<S>(pA, qA, pB, qB);
+
+    // The direction for points closer than round-off, where b − a has none.
+    Vec3T<S> fallback;
+    const Vec3T<S> across = halfA.cross(halfB);
+    if (!closest.parallel && across.norm() > S(0)) {
+      fallback = across.normalized();
+      if (fallback.dot(X_WB.translation() - X_WA.translation()) < S(0)) fallback = -fallback;
+    } else {
+      fallback = X_WA.linear().col(0);
+    }
+    const S tiny = ScalarTraits<S>::epsilon() * scale;
+    const auto addAlong = [&](const Vec3T<S>& onA, const Vec3T<S>& onB, const Vec3T<S>& n, S distance) {
+      const S depth = rA + rB - distance;
+      if (!(depth >= S(0))) return false;
+      sink.add(S(0.5) * (onA + onB + (rA - rB) * n), n, depth);
+      return true;
+    };
+    const auto add = [&](const Vec3T<S>& onA, const Vec3T<S>& onB) {
+      const Vec3T<S> d = onB - onA;
+      const S distance = d.norm();
+      return addAlong(onA, onB, distance > tiny ? Vec3T<S>(d / distance) : fallback, distance);
+    };
+    const bool inside = closest.s > S(0) && closest.s < S(1) && closest.t > S(0) && closest.t < S(1);
+    if (inside && !closest.parallel) {
+      // Closest points inside both segments are those of the two lines: the
+      // normal is their common perpendicular and the distance its projection
+      // of pB − pA, both free of the round-off in s and t, which would tilt
+      // the normal by ε/distance for nearly crossing axes.
+      const Vec3T<S> d = closest.onSecond - closest.onFirst;
+      const Vec3T<S> n = d.dot(fallback) < S(0) ? Vec3T<S>(-fallback) : fallback;
+      if (!addAlong(closest.onFirst, closest.onSecond, n, std::abs(n.dot(pB - pA)))) return;
+    } else if (!add(closest.onFirst, closest.onSecond)) {
+      return;
+    }
+
+    const Vec3T<S> dA = qA - pA, dB = qB - pB;
+    const S lengthA2 = dA.squaredNorm();
+    if (!(across.squaredNorm() * S(16) <= kParallelSine * kParallelSine * lengthA2 * dB.squaredNorm())) return;
+    // The stretch of a's segment (parameters on a) that b's projects onto.
+    const S s0 = dA.dot(pB - pA) / lengthA2, s1 = dA.dot(qB - pA) / lengthA2;
+    const S lo = std::max(S(0), std::min(s0, s1)), hi = std::min(S(1), std::max(s0, s1));
+    if (!(lo < hi)) return;
+    const S apart = std::sqrt(ScalarTraits<S>::epsilon()) * scale;  // ends closer than this are the same contact
+    const S lengthA = std::sqrt(lengthA2);
+    for (const S s : {lo, hi}) {
+      if (std::abs(s - closest.s) * lengthA <= apart) continue;
+      const Vec3T<S> onA = pA + s * dA;
+      add(onA, detail::closestPointOnSegment<S>(pB, qB, onA));
+    }
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CAPSULE_CAPSULE_HPP
+// --- end spook/collide/colliders/capsule_capsule.hpp ---
+// --- begin spook/collide/colliders/capsule_plane.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CAPSULE_PLANE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CAPSULE_PLANE_HPP
+
+namespace spook {
+
+/// Capsule–plane: each end sphere (hemisphere center e at signed height s
+/// above the plane) that reaches the solid below the plane is a contact of
+/// depth r − s: one for a tilted capsule, two for one lying on the plane.
+/// The normal points from the capsule into the plane, −n.
+template <Scalar S>
+struct Collider<CapsuleT<S>, PlaneT<S>> {
+  static void collide(const CapsuleT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S> onPlane = X_WB * b.getPoint();
+    const Vec3T<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
+    const S r = a.getRadius();
+    for (const S side : {S(-1), S(1)}) {
+      const Vec3T<S> e = X_WA.translation() + side * halfAxis;
+      const S height = n.dot(e - onPlane);
+      const S depth = r - height;
+      // Midway between the capsule's deepest point e − r n and the plane point under e, e − s n.
+      if (depth >= S(0)) sink.add(e - S(0.5) * (r + height) * n, -n, depth);
+    }
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CAPSULE_PLANE_HPP
+// --- end spook/collide/colliders/capsule_plane.hpp ---
+// --- begin spook/collide/colliders/capsule_sphere.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CAPSULE_SPHERE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CAPSULE_SPHERE_HPP
+
+namespace spook {
+
+/// Capsule–sphere: the sphere center c against the capsule's core segment
+/// (its hemisphere centers, ±height/2 along the capsule's y): one contact
+/// from the segment point q closest to c, depth r_a + r_b − |c − q|. A
+/// center on the segment pushes along the capsule's own x axis, which is
+/// perpendicular to the segment.
+template <Scalar S>
+struct Collider<CapsuleT<S>, SphereT<S>> {
+  static void collide(const CapsuleT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3T<S> halfAxis = X_WA.linear().col(1) * (S(0.5) * a.getHeight());
+    const Vec3T<S> center = X_WA.translation(), c = X_WB.translation();
+    const S t = detail::closestParameterOnSegment<S>(center - halfAxis, center + halfAxis, c);
+    const Vec3T<S> q = center + (S(2) * t - S(1)) * halfAxis;
+    const S rA = a.getRadius(), rB = b.getRadius();
+    Vec3T<S> d = c - q;
+    // Off an end the closest point is that end; along the side, c − q is
+    // perpendicular to the axis, and making it exactly so keeps the normal
+    // from tilting toward the axis by round-off when c is near it.
+    if (t > S(0) && t < S(1)) d -= X_WA.linear().col(1) * X_WA.linear().col(1).dot(d);
+    const S distance = d.norm();
+    const S depth = rA + rB - distance;
+    if (!(depth >= S(0))) return;
+    const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB + a.getHeight()) ? Vec3T<S>(d / distance)
+                                                                                        : Vec3T<S>(X_WA.linear().col(0));
+    sink.add(S(0.5) * (q + c + (rA - rB) * n), n, depth);
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CAPSULE_SPHERE_HPP
+// --- end spook/collide/colliders/capsule_sphere.hpp ---
+// --- begin spook/collide/colliders/cylinder_plane.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CYLINDER_PLANE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CYLINDER_PLANE_HPP
+
+#include <array>
+
+namespace spook {
+
+/// Cylinder–plane: the deepest points of a cylinder are on its rims. On
+/// each cap rim the candidates are four points 90° apart, starting from the
+/// rim point farthest below the plane, v = −(n − (n·u) u)/|…| for axis u
+/// (the cylinder's own x axis when the axis is along n and every rim point
+/// is as deep); each candidate at or below the plane is a contact of depth
+/// −(its signed height). So a tilted cylinder resting on its rim has one
+/// contact, one lying on its side two (one per cap), one standing on a cap
+/// four spread around the rim, and the deepest rim point is always among
+/// them. The normal points from the cylinder into the plane, −n.
+template <Scalar S>
+struct Collider<CylinderT<S>, PlaneT<S>> {
+  static void collide(const CylinderT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S> u = X_WA.linear().col(1);
+    // Along the rim, away from the plane's outside; projected off u once
+    // more, since for a cylinder standing nearly upright (n ≈ ±u) the first
+    // difference is round-off that need not be ⟂ u (in float it made rim
+    // points below the cap).
+    Vec3T<S> across = (n.dot(u)) * u - n;
+    across -= across.dot(u) * u;
+    const S acrossLength = across.norm();
+    const Vec3T<S> v =
+        acrossLength > ScalarTraits<S>::epsilon() ? Vec3T<S>(across / acrossLength) : Vec3T<S>(X_WA.linear().col(0));
+    const Vec3T<S> w = u.cross(v);
+    const std::array<Vec3T<S>, 4> rim = {v, w, Vec3T<S>(-v), Vec3T<S>(-w)};
+    const S r = a.getRadius(), halfHeight = S(0.5) * a.getHeight();
+    const Vec3T<S> onPlane = X_WB * b.getPoint();
+    for (const S side : {S(-1), S(1)}) {
+      const Vec3T<S> capCenter = X_WA.translation() + side * halfHeight * u;
+      const S capHeight = n.dot(capCenter - onPlane);
+      for (const Vec3T<S>& direction : rim) {
+        const S height = capHeight + r * n.dot(direction);
+        if (!(height <= S(0))) continue;
+        // Midway between the rim point and the plane point under it.
+        sink.add(capCenter + r * direction - S(0.5) * height * n, -n, -height);
+      }
+    }
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CYLINDER_PLANE_HPP
+// --- end spook/collide/colliders/cylinder_plane.hpp ---
+// --- begin spook/collide/colliders/cylinder_sphere.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CYLINDER_SPHERE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CYLINDER_SPHERE_HPP
+
+#include <algorithm>
+#include <cmath>
+
+namespace spook {
+
+/// Cylinder–sphere, in the cylinder frame (axis y, half height k, radius
+/// R). A sphere center c outside the cylinder pushes away from the point q
+/// of the solid cylinder closest to it (c with y clamped to ±k and its
+/// radial part to length R): depth r − |c − q|. A center inside, or on the
+/// surface, pushes out through the nearer of the cap (gap k − |c_y|) and the
+/// barrel (gap R − |c_xz|), the cap on a tie, the barrel along the
+/// cylinder's x axis when c is on the axis: depth r + gap.
+template <Scalar S>
+struct Collider<CylinderT<S>, SphereT<S>> {
+  static void collide(const CylinderT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const S R = a.getRadius(), k = S(0.5) * a.getHeight(), r = b.getRadius();
+    const Vec3T<S> c = X_WA.inverse(Eigen::Isometry) * X_WB.translation();
+    const S radial = std::hypot(c.x(), c.z());
+    Vec3T<S> q(c.x(), std::clamp(c.y(), -k, k), c.z());
+    if (radial > R) {
+      q.x() *= R / radial;
+      q.z() *= R / radial;
+    }
+    const Vec3T<S> d = c - q;
+    const S distance = d.norm();
+    const S tiny = ScalarTraits<S>::epsilon() * (R + k + r);
+    Vec3T<S> n;           // cylinder frame, from the cylinder toward the sphere
+    Vec3T<S> onCylinder;  // the cylinder's deepest point along n
+    S depth;
+    if (distance > tiny) {
+      depth = r - distance;
+      if (!(depth >= S(0))) return;
+      n = d / distance;
+      onCylinder = q;
+    } else {
+      const S capGap = k - std::abs(c.y()), barrelGap = R - radial;
+      const S gap = std::min(capGap, barrelGap);
+      if (capGap <= barrelGap)
+        n = Vec3T<S>(S(0), c.y() < S(0) ? S(-1) : S(1), S(0));
+      else if (radial > tiny)
+        n = Vec3T<S>(c.x() / radial, S(0), c.z() / radial);
+      else
+        n = Vec3T<S>::UnitX();
+      depth = r + gap;
+      onCylinder = c + gap * n;
+    }
+    // Midway between the cylinder's deepest point and the sphere's, c − r n.
+    sink.add(X_WA * Vec3T<S>(S(0.5) * (onCylinder + c - r * n)), X_WA.linear() * n, depth);
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_CYLINDER_SPHERE_HPP
+// --- end spook/collide/colliders/cylinder_sphere.hpp ---
+// --- begin spook/collide/colliders/line_plane.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_LINE_PLANE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_LINE_PLANE_HPP
+
+namespace spook {
+
+/// Line–plane: each segment endpoint at or below the plane (signed height
+/// s <= 0) is a contact of depth −s, so a segment lying in or under the
+/// plane has two. The normal points from the line into the plane, −n.
+template <Scalar S>
+struct Collider<LineT<S>, PlaneT<S>> {
+  static void collide(const LineT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S> onPlane = X_WB * b.getPoint();
+    for (const Vec3T<S>& end : {a.getFirstPoint(), a.getSecondPoint()}) {
+      const Vec3T<S> e = X_WA * end;
+      const S height = n.dot(e - onPlane);
+      // Midway between the endpoint and the plane point under it.
+      if (height <= S(0)) sink.add(e - S(0.5) * height * n, -n, -height);
+    }
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_LINE_PLANE_HPP
+// --- end spook/collide/colliders/line_plane.hpp ---
+// --- begin spook/collide/colliders/line_sphere.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_LINE_SPHERE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_LINE_SPHERE_HPP
+
+namespace spook {
+
+/// Line–sphere: the segment point q closest to the sphere center c gives
+/// one contact of depth r − |c − q| along (c − q)/|c − q|; a center on the
+/// segment pushes along a fixed perpendicular of the segment.
+template <Scalar S>
+struct Collider<LineT<S>, SphereT<S>> {
+  static void collide(const LineT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3T<S> p = X_WA * a.getFirstPoint(), q = X_WA * a.getSecondPoint();
+    const Vec3T<S> c = X_WB.translation();
+    const S t = detail::closestParameterOnSegment<S>(p, q, c);
+    const Vec3T<S> onLine = p + t * (q - p);
+    const S r = b.getRadius();
+    Vec3T<S> d = c - onLine;
+    // Along the segment's interior c − q is perpendicular to it: made exactly
+    // so, round-off cannot tilt the normal toward the segment.
+    if (t > S(0) && t < S(1)) d -= (q - p) * ((q - p).dot(d) / (q - p).squaredNorm());
+    const S distance = d.norm();
+    const S depth = r - distance;
+    if (!(depth >= S(0))) return;
+    const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (r + a.getLength()) ? Vec3T<S>(d / distance)
+                                                                                  : detail::unitPerpendicular<S>(q - p);
+    // Midway between the segment point and the sphere's deepest point c − r n.
+    sink.add(S(0.5) * (onLine + c - r * n), n, depth);
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_LINE_SPHERE_HPP
+// --- end spook/collide/colliders/line_sphere.hpp ---
+// --- begin spook/collide/colliders/plane_sphere.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_PLANE_SPHERE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_PLANE_SPHERE_HPP
+
+namespace spook {
+
+/// Plane–sphere: the plane is the solid half-space below it, so a sphere
+/// whose center c lies at signed height s above the plane penetrates by
+/// r − s (also when c is below the plane), along the plane normal.
+template <Scalar S>
+struct Collider<PlaneT<S>, SphereT<S>> {
+  static void collide(const PlaneT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3T<S> n = X_WA.linear() * a.getNormal();
+    const Vec3T<S> c = X_WB.translation();
+    const S height = n.dot(c - X_WA * a.getPoint());
+    const S r = b.getRadius();
+    const S depth = r - height;
+    if (!(depth >= S(0))) return;
+    // Midway between the plane point under c, c − s n, and the sphere's deepest point c − r n.
+    sink.add(c - S(0.5) * (height + r) * n, n, depth);
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_PLANE_SPHERE_HPP
+// --- end spook/collide/colliders/plane_sphere.hpp ---
+// --- begin spook/collide/colliders/polytopes.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_POLYTOPES_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_POLYTOPES_HPP
+
+// --- begin spook/collide/detail/polytope_sat.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_POLYTOPE_SAT_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_POLYTOPE_SAT_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+// --- begin spook/collide/detail/polytope.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_POLYTOPE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_POLYTOPE_HPP
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+// --- begin spook/collide/detail/triangle.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
+
+#include <array>
+#include <cmath>
+
+namespace spook::detail {
+
+/// One triangle of a mesh or height field, as a convex shape for the
+/// colliders: vertices in the mesh frame, counter-clockwise seen from the
+/// outside (the solid side is behind the face).
+template <Scalar S>
+struct Triangle {
+  using Vec3 = spook::Vec3T<S>;
+  std::array<Vec3, 3> v;
+
+  [[nodiscard]] Vec3 support(const Vec3& d) const {
+    const S a = v[0].dot(d), b = v[1].dot(d), c = v[2].dot(d);
+    return a >= b ? (a >= c ? v[0] : v[2]) : (b >= c ? v[1] : v[2]);
+  }
+  /// The whole triangle when its plane is across `d` within the feature
+  /// angle (from either side), else the edge across `d`, else the corner.
+  void supportingFeature(const Vec3& d, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    const S length = d.norm();
+    const Vec3 area = (v[1] - v[0]).cross(v[2] - v[0]);
+    if (length > S(0) && std::abs(area.dot(d)) >= S(kSupportingFeatureCos) * area.norm() * length) {
+      for (const Vec3& p : v) out.add(p);
+      return;
+    }
+    const Vec3 top = support(d);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = v[k];
+      const Vec3& q = v[(k + 1) % 3];
+      if ((p == top || q == top) && std::abs((q - p).dot(d)) <= S(kSupportingFeatureSin) * (q - p).norm() * length) {
+        out.add(p);
+        out.add(q);
+        return;
+      }
+    }
+    out.add(top);
+  }
+  [[nodiscard]] Vec3 getCenterOfVolume() const { return (v[0] + v[1] + v[2]) / S(3); }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
+    return {v[0].cwiseMin(v[1]).cwiseMin(v[2]), v[0].cwiseMax(v[1]).cwiseMax(v[2])};
+  }
+  /// Unit outward normal (+z for a degenerate triangle).
+  [[nodiscard]] Vec3 normal() const {
+    const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
+    const S length = n.norm();
+    return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
+  }
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
+// --- end spook/collide/detail/triangle.hpp ---
+
+namespace spook::detail {
+
+/// A convex polytope placed in the world, as the separating-axis colliders
+/// see it: corners, polygon faces and edges. A triangle is flat and
+/// two-sided (its one face counts with both normals); a segment has no face.
+/// In double whatever the shapes' scalar: the Gauss-map pruning and the
+/// clipping decide on signs of small products, which float rounds away
+/// (1.8e-4 m errors on hull–height-field pairs).
+struct Polytope {
+  using S = double;
+  struct Face {
+    Vec3T<S> normal;         // unit, outward (world)
+    std::vector<int> loop;  // corners, counter-clockwise about the normal
+  };
+  /// An edge and the two faces that meet there; a triangle's or segment's
+  /// edges have none (-1), and then no Gauss-map pruning applies to them.
+  struct Edge {
+    int from, to;
+    int left = -1, right = -1;
+  };
+
+  std::vector<Vec3T<S>> vertices;  // world (m)
+  std::vector<Face> faces;
+  std::vector<Edge> edges;
+  bool twoSided = false;
+
+  /// The largest n·x over the corners (m) and the corner that reaches it.
+  [[nodiscard]] std::pair<S, int> support(const Vec3T<S>& n) const {
+    int best = 0;
+    S height = n.dot(vertices[0]);
+    for (std::size_t i = 1; i < vertices.size(); ++i)
+      if (const S h = n.dot(vertices[i]); h > height) height = h, best = static_cast<int>(i);
+    return {height, best};
+  }
+  [[nodiscard]] Vec3T<S> edgeVector(const Edge& e) const {
+    return vertices[static_cast<std::size_t>(e.to)] - vertices[static_cast<std::size_t>(e.from)];
+  }
+  [[nodiscard]] const Vec3T<S>& vertex(int i) const { return vertices[static_cast<std::size_t>(i)]; }
+};
+
+/// Edges from the face loops: each undirected loop edge once, with the two
+/// faces on either side.
+inline void linkEdges(Polytope& polytope) {
+  polytope.edges.clear();
+  for (std::size_t f = 0; f < polytope.faces.size(); ++f) {
+    const auto& loop = polytope.faces[f].loop;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const int a = loop[k], b = loop[(k + 1) % loop.size()];
+      const auto shared = std::find_if(polytope.edges.begin(), polytope.edges.end(),
+                                       [&](const auto& e) { return e.from == b && e.to == a; });
+      if (shared != polytope.edges.end())
+        shared->right = static_cast<int>(f);
+      else
+        polytope.edges.push_back({a, b, static_cast<int>(f), -1});
+    }
+  }
+}
+
+template <Scalar T>
+void makeBoxPolytope(const BoxT<T>& box, const TransformT<T>& X_WT, Polytope& out) {
+  using S = double;
+  const Vec3T<S> h = box.getHalfExtents().template cast<S>();
+  const TransformT<S> X_W = X_WT.template cast<S>();
+  out.vertices.resize(8);
+  for (int c = 0; c < 8; ++c)
+    out.vertices[std::size_t(c)] =
+        X_W * Vec3T<S>((c & 1) ? h.x() : -h.x(), (c & 2) ? h.y() : -h.y(), (c & 4) ? h.z() : -h.z());
+  // Corner c has bit i set where its coordinate i is +h_i; each loop runs
+  // counter-clockwise seen from outside.
+  static constexpr std::array<std::array<int, 4>, 6> kLoops = {{{0, 4, 6, 2},    // −x
+                                                               {1, 3, 7, 5},    // +x
+                                                               {0, 1, 5, 4},    // −y
+                                                               {2, 6, 7, 3},    // +y
+                                                               {0, 2, 3, 1},    // −z
+                                                               {4, 5, 7, 6}}};  // +z
+  out.faces.resize(6);
+  for (int f = 0; f < 6; ++f) {
+    const Vec3T<S> axis = X_W.linear().col(f / 2);
+    out.faces[std::size_t(f)].normal = (f % 2) ? axis : Vec3T<S>(-axis);
+    out.faces[std::size_t(f)].loop.assign(kLoops[std::size_t(f)].begin(), kLoops[std::size_t(f)].end());
+  }
+  out.twoSided = false;
+  linkEdges(out);
+}
+
+template <Scalar T>
+void makeConvexPolytope(const ConvexT<T>& convex, const TransformT<T>& X_WT, Polytope& out) {
+  const TransformT<double> X_W = X_WT.template cast<double>();
+  out.vertices.resize(convex.getVertices().size());
+  for (std::size_t i = 0; i < out.vertices.size(); ++i)
+    out.vertices[i] = X_W * convex.getVertices()[i].template cast<double>();
+  out.faces.resize(convex.getFaces().size());
+  for (std::size_t f = 0; f < out.faces.size(); ++f) {
+    out.faces[f].normal = (X_W.linear() * convex.getFaces()[f].normal.template cast<double>()).normalized();
+    out.faces[f].loop = convex.getFaces()[f].vertices;
+  }
+  out.twoSided = false;
+  out.edges.clear();
+  for (const auto& e : convex.getEdges()) out.edges.push_back({e.from, e.to, e.left, e.right});
+}
+
+/// A triangle (world corners); a degenerate one keeps its +z normal and
+/// its edges, which is all the separating axes need of it.
+template <Scalar T>
+void makeTrianglePolytope(const Triangle<T>& t_WT, Polytope& out) {
+  const Triangle<double> t_W{{t_WT.v[0].template cast<double>(), t_WT.v[1].template cast<double>(),
+                              t_WT.v[2].template cast<double>()}};
+  out.vertices.assign(t_W.v.begin(), t_W.v.end());
+  out.faces.resize(1);
+  out.faces[0].normal = t_W.normal();
+  out.faces[0].loop = {0, 1, 2};
+  out.edges = {{0, 1}, {1, 2}, {2, 0}};
+  out.twoSided = true;
+}
+
+template <Scalar T>
+void makeSegmentPolytope(const Vec3T<T>& p_W, const Vec3T<T>& q_W, Polytope& out) {
+  out.vertices = {p_W.template cast<double>(), q_W.template cast<double>()};
+  out.faces.clear();
+  out.edges = {{0, 1}};
+  out.twoSided = false;
+}
+
+/// The polytope of a box, a hull or a segment placed at X_W.
+template <Scalar T>
+void makePolytope(const BoxT<T>& box, const TransformT<T>& X_W, Polytope& out) {
+  makeBoxPolytope(box, X_W, out);
+}
+template <Scalar T>
+void makePolytope(const ConvexT<T>& convex, const TransformT<T>& X_W, Polytope& out) {
+  makeConvexPolytope(convex, X_W, out);
+}
+template <Scalar T>
+void makePolytope(const LineT<T>& line, const TransformT<T>& X_W, Polytope& out) {
+  makeSegmentPolytope<T>(X_W * line.getFirstPoint(), X_W * line.getSecondPoint(), out);
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_POLYTOPE_HPP
+// --- end spook/collide/detail/polytope.hpp ---
+
+namespace spook::detail {
+
+/// The axis of least overlap of two polytopes, from a toward b.
+struct SeparatingAxis {
+  using S = double;
+  enum Kind { FACE_OF_A, FACE_OF_B, EDGES };
+  S depth = std::numeric_limits<S>::infinity();  // overlap of the projections on n (m)
+  Vec3T<S> n = Vec3T<S>::UnitZ();
+  Kind kind = FACE_OF_A;
+  int first = -1, second = -1;  // the face, or the edge of a and the edge of b
+};
+
+/// Whether edges with face normals (a, b) on one polytope and (c, d) on the
+/// other make a face of their Minkowski difference: the arcs a–b and
+/// −c–−d cross on the Gauss map (Gregorius, "The Separating Axis Test
+/// between Convex Polyhedra", GDC 2013). Only such edge pairs can give the
+/// least overlap, which prunes most of the E_a·E_b cross products.
+[[nodiscard]] inline bool arcsCross(const Vec3T<double>& a, const Vec3T<double>& b, const Vec3T<double>& c,
+                                    const Vec3T<double>& d) {
+  const Vec3T<double> bxa = b.cross(a), dxc = d.cross(c);
+  const double cba = c.dot(bxa), dba = d.dot(bxa), adc = a.dot(dxc), bdc = b.dot(dxc);
+  return cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0;
+}
+
+/// The separating axis theorem for polytopes: the penetration depth is the
+/// least overlap f(n) = h_a(n) + h_b(−n) over the face normals of each and
+/// the cross products of their edges (the face normals of the Minkowski
+/// difference), both signs. Returns false as soon as an axis separates.
+[[nodiscard]] inline bool leastOverlap(const Polytope& a, const Polytope& b, SeparatingAxis& best) {
+  using S = double;
+  using Kind = SeparatingAxis::Kind;
+  const auto overlap = [&](const Vec3T<S>& n) { return a.support(n).first + b.support(-n).first; };
+  // An edge pair's axis replaces a face's only when it is shallower by more
+  // than round-off: two edges lying in a face (a box resting on a mesh
+  // triangle's edge) span that face's own normal, and their contact point
+  // is undetermined where the face's manifold is not.
+  const S roundOff = S(64) * ScalarTraits<S>::epsilon() *
+                     (S(1) + std::max(a.vertices[0].cwiseAbs().maxCoeff(), b.vertices[0].cwiseAbs().maxCoeff()));
+  // An edge pair's axis counts only where both edges are extreme along it
+  // (they touch there); for other pairs it may still separate the shapes.
+  const auto edgesSupport = [&](const Polytope::Edge& ea, const Polytope::Edge& eb, const Vec3T<S>& n) {
+    const auto extreme = [&](const Polytope& p, const Polytope::Edge& e, const Vec3T<S>& d) {
+      return std::max(d.dot(p.vertex(e.from)), d.dot(p.vertex(e.to))) >= p.support(d).first - roundOff;
+    };
+    return extreme(a, ea, n) && extreme(b, eb, -n);
+  };
+  const auto consider = [&](const Vec3T<S>& n, Kind kind, int first, int second) {
+    const S f = overlap(n);
+    const bool faceHeld = kind == Kind::EDGES && best.kind != Kind::EDGES && f >= best.depth - roundOff;
+    if (f < best.depth && !faceHeld &&
+        (kind != Kind::EDGES ||
+         edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n)))
+      best = {f, n, kind, first, second};
+    return f >= S(0);
+  };
+  for (std::size_t i = 0; i < a.faces.size(); ++i) {
+    const Vec3T<S>& n = a.faces[i].normal;
+    if (!consider(n, Kind::FACE_OF_A, int(i), -1)) return false;
+    if (a.twoSided && !consider(-n, Kind::FACE_OF_A, int(i), -1)) return false;
+  }
+  for (std::size_t j = 0; j < b.faces.size(); ++j) {
+    const Vec3T<S>& m = b.faces[j].normal;
+    if (!consider(-m, Kind::FACE_OF_B, int(j), -1)) return false;
+    if (b.twoSided && !consider(m, Kind::FACE_OF_B, int(j), -1)) return false;
+  }
+  // Edge pairs within round-off of parallel span no face of their own.
+  const S parallel = S(1e3) * ScalarTraits<S>::epsilon();
+  for (std::size_t i = 0; i < a.edges.size(); ++i) {
+    const auto& ea = a.edges[i];
+    const Vec3T<S> u = a.edgeVector(ea);
+    for (std::size_t j = 0; j < b.edges.size(); ++j) {
+      const auto& eb = b.edges[j];
+      if (ea.right >= 0 && eb.right >= 0 &&
+          !arcsCross(a.faces[std::size_t(ea.left)].normal, a.faces[std::size_t(ea.right)].normal,
+                        Vec3T<S>(-b.faces[std::size_t(eb.left)].normal),
+                        Vec3T<S>(-b.faces[std::size_t(eb.right)].normal)))
+        continue;
+      const Vec3T<S> v = b.edgeVector(eb);
+      Vec3T<S> n = u.cross(v);
+      const S length = n.norm();
+      if (!(length > parallel * u.norm() * v.norm())) continue;
+      n /= length;
+      if (!consider(n, Kind::EDGES, int(i), int(j)) || !consider(-n, Kind::EDGES, int(i), int(j))) return false;
+    }
+  }
+  return best.depth < std::numeric_limits<S>::infinity();
+}
+
+/// The face of `p` whose outward normal points most against `r` (for a
+/// two-sided face, the side that does), as a corner loop; a segment gives
+/// its two ends.
+inline void incidentFeature(const Polytope& p, const Vec3T<double>& r, std::vector<Vec3T<double>>& corners) {
+  using S = double;
+  corners.clear();
+  if (p.faces.empty()) {
+    corners = p.vertices;
+    return;
+  }
+  std::size_t best = 0;
+  S lowest = std::numeric_limits<S>::infinity();
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    const S alignment = p.twoSided ? -std::abs(p.faces[f].normal.dot(r)) : p.faces[f].normal.dot(r);
+    if (alignment < lowest) lowest = alignment, best = f;
+  }
+  for (const int k : p.faces[best].loop) corners.push_back(p.vertex(k));
+}
+
+/// Clips a polygon (or a segment, two corners) to the half-space
+/// s·x <= offset, Sutherland–Hodgman.
+inline void clipToHalfSpace(std::vector<Vec3T<double>>& corners, const Vec3T<double>& s, double offset,
+                            std::vector<Vec3T<double>>& scratch) {
+  using S = double;
+  scratch.clear();
+  const std::size_t count = corners.size();
+  const std::size_t edges = count == 2 ? 1 : count;
+  for (std::size_t i = 0; i < edges; ++i) {
+    const Vec3T<S>& p = corners[i];
+    const Vec3T<S>& q = corners[(i + 1) % count];
+    const S dp = s.dot(p) - offset, dq = s.dot(q) - offset;
+    if (dp <= S(0)) scratch.push_back(p);
+    if ((dp < S(0) && dq > S(0)) || (dp > S(0) && dq < S(0))) scratch.push_back(p + (q - p) * (dp / (dp - dq)));
+    if (count == 2 && dq <= S(0)) scratch.push_back(q);
+  }
+  corners.swap(scratch);
+}
+
+/// Contacts of two overlapping polytopes along their axis of least overlap.
+///
+/// Edge against edge: one point, midway between the two edges' closest
+/// points, at the least overlap; two, at the ends of their common range,
+/// for edges within the feature angle of parallel. Face against anything:
+/// the face is the reference, the other polytope's face most against it (or
+/// its segment) is clipped to the reference face's side planes
+/// (Sutherland–Hodgman), and each clipped corner below the reference plane
+/// is a contact at its own depth, midway to the plane: a full manifold, as
+/// for box–box. Where
+/// clipping keeps no corner as deep as the least overlap (the deepest one
+/// hangs over the reference face's rim) a contact at the least overlap is
+/// added where the clipped feature comes nearest to that corner, so that
+/// the deepest contact is always the penetration depth of the pair.
+template <Scalar T>
+void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink) {
+  using S = double;
+  const auto add = [&](const Vec3T<S>& point, S depth) {
+    sink.add(point.template cast<T>(), axis.n.template cast<T>(), T(depth));
+  };
+  const Vec3T<S>& n = axis.n;
+  if (axis.kind == SeparatingAxis::EDGES) {
+    const auto& ea = a.edges[std::size_t(axis.first)];
+    const auto& eb = b.edges[std::size_t(axis.second)];
+    const Vec3T<S> p = a.vertex(ea.from), u = a.vertex(ea.to) - p;
+    const Vec3T<S> q = b.vertex(eb.from), v = b.vertex(eb.to) - q;
+    if (u.cross(v).norm() <= S(kSupportingFeatureSin) * u.norm() * v.norm()) {
+      // Edges within the feature angle of parallel touch along a line (their
+      // closest points are undetermined): its two ends, where the edges'
+      // ranges along u overlap, midway across to b's edge.
+      const S uu = u.squaredNorm(), s0 = u.dot(q - p) / uu, s1 = u.dot(q + v - p) / uu;
+      const S from = std::max(S(0), std::min(s0, s1)), to = std::min(S(1), std::max(s0, s1));
+      const auto addAt = [&](S s) {
+        const Vec3T<S> onA = p + s * u;
+        const S t = std::clamp(v.dot(onA - q) / v.squaredNorm(), S(0), S(1));
+        add(S(0.5) * (onA + q + t * v), axis.depth);
+      };
+      if (from < to) {
+        addAt(from);
+        addAt(to);
+      } else {
+        addAt(std::clamp(S(0.5) * (from + to), S(0), S(1)));
+      }
+      return;
+    }
+    const auto closest = closestPointsBetweenSegments<S>(p, a.vertex(ea.to), q, b.vertex(eb.to));
+    add(S(0.5) * (closest.onFirst + closest.onSecond), axis.depth);
+    return;
+  }
+  const bool onA = axis.kind == SeparatingAxis::FACE_OF_A;
+  const Polytope& reference = onA ? a : b;
+  const Polytope& incident = onA ? b : a;
+  const Vec3T<S> r = onA ? n : Vec3T<S>(-n);  // the reference face's outward normal, toward the incident polytope
+  const auto& loop = reference.faces[std::size_t(axis.first)].loop;
+  const S planeOffset = r.dot(reference.vertex(loop[0]));
+
+  thread_local std::vector<Vec3T<S>> corners, scratch;
+  incidentFeature(incident, r, corners);
+  Vec3T<S> centroid = Vec3T<S>::Zero();
+  for (const int k : loop) centroid += reference.vertex(k);
+  centroid /= S(loop.size());
+  for (std::size_t k = 0; k < loop.size() && !corners.empty(); ++k) {
+    const Vec3T<S>& p = reference.vertex(loop[k]);
+    const Vec3T<S> edge = reference.vertex(loop[(k + 1) % loop.size()]) - p;
+    Vec3T<S> side = edge.cross(r);
+    if (side.dot(centroid - p) > S(0)) side = -side;
+    const S length = side.norm();
+    if (!(length > S(0))) continue;  // a repeated corner of a degenerate face
+    side /= length;
+    clipToHalfSpace(corners, side, side.dot(p), scratch);
+  }
+  S deepest = -std::numeric_limits<S>::infinity();
+  const S tolerance = S(64) * ScalarTraits<S>::epsilon() * (S(1) + std::abs(planeOffset));
+  for (const Vec3T<S>& x : corners) {
+    const S depth = planeOffset - r.dot(x);
+    if (depth < -tolerance) continue;
+    add(x + r * (S(0.5) * depth), depth);
+    deepest = std::max(deepest, depth);
+  }
+  if (deepest < axis.depth - tolerance * S(16)) {
+    // The deepest point of the incident polytope is off the reference face:
+    // the contact at the least overlap goes where the clipped feature comes
+    // nearest to it, on the reference face (never at that point itself,
+    // which may lie metres away on a large mesh triangle under a small
+    // shape), or at that point when nothing is left after clipping.
+    const Vec3T<S>& x = incident.vertex(incident.support(-r).second);
+    Vec3T<S> at = x;
+    S nearest = std::numeric_limits<S>::infinity();
+    for (const Vec3T<S>& c : corners)
+      if (const S d = (c - x).squaredNorm(); d < nearest) nearest = d, at = c + r * (planeOffset - r.dot(c));
+    add(at - r * (S(0.5) * axis.depth), axis.depth);
+  }
+}
+
+/// Contacts of two polytopes (from a toward b), none when an axis separates them.
+template <Scalar T>
+void collidePolytopes(const Polytope& a, const Polytope& b, ContactSinkT<T>& sink) {
+  SeparatingAxis axis;
+  if (!leastOverlap(a, b, axis)) return;
+  polytopeContacts(a, b, axis, sink);
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_POLYTOPE_SAT_HPP
+// --- end spook/collide/detail/polytope_sat.hpp ---
+
+namespace spook {
+
+// Pairs of polytopes (boxes, hulls, segments) by the separating axis theorem
+// over face normals and Gauss-map-pruned edge pairs (detail/polytope_sat.hpp):
+// the exact penetration depth, and a clipped manifold where a face touches.
+// Box–box and box–line have their own, leaner colliders.
+
+namespace detail {
+template <class A, class B>
+struct PolytopeCollider {
+  using S = typename A::Vec3::Scalar;
+  static void collide(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    thread_local Polytope pa, pb;
+    makePolytope(a, X_WA, pa);
+    makePolytope(b, X_WB, pb);
+    collidePolytopes(pa, pb, sink);
+  }
+};
+}  // namespace detail
+
+template <Scalar S>
+struct Collider<BoxT<S>, ConvexT<S>> : detail::PolytopeCollider<BoxT<S>, ConvexT<S>> {};
+template <Scalar S>
+struct Collider<ConvexT<S>, ConvexT<S>> : detail::PolytopeCollider<ConvexT<S>, ConvexT<S>> {};
+template <Scalar S>
+struct Collider<ConvexT<S>, LineT<S>> : detail::PolytopeCollider<ConvexT<S>, LineT<S>> {};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_POLYTOPES_HPP
+// --- end spook/collide/colliders/polytopes.hpp ---
+// --- begin spook/collide/colliders/sphere_sphere.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_SPHERE_SPHERE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_SPHERE_SPHERE_HPP
+
+namespace spook {
+
+/// Sphere–sphere: one contact along the line of centers, depth
+/// r_a + r_b − |c_b − c_a|. Coincident centers (closer than round-off of
+/// the radii) have no line of centers; they push along world +z.
+template <Scalar S>
+struct Collider<SphereT<S>, SphereT<S>> {
+  static void collide(const SphereT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    const Vec3T<S> cA = X_WA.translation(), cB = X_WB.translation();
+    const S rA = a.getRadius(), rB = b.getRadius();
+    const Vec3T<S> d = cB - cA;
+    const S distance = d.norm();
+    const S depth = rA + rB - distance;
+    if (!(depth >= S(0))) return;
+    const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB) ? Vec3T<S>(d / distance) : Vec3T<S>::UnitZ();
+    // Midway between a's deepest point cA + rA n and b's, cB − rB n.
+    sink.add(S(0.5) * (cA + cB + (rA - rB) * n), n, depth);
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_SPHERE_SPHERE_HPP
+// --- end spook/collide/colliders/sphere_sphere.hpp ---
+// --- begin spook/collide/colliders/mesh.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_MESH_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_MESH_HPP
+
+#include <algorithm>
+#include <vector>
+
+namespace spook {
+
+namespace detail {
+
+/// A triangle soup: a Trimesh or a HeightField, both of which visit the
+/// triangles overlapping a box of their own frame.
+template <class T>
+concept TriangleSoup = T::kType == ShapeType::TRIMESH || T::kType == ShapeType::HEIGHTFIELD;
+
+/// The point of segment [a, b] closest to p (a for a zero-length segment).
+template <Scalar S>
+[[nodiscard]] Vec3T<S> closestOnSegment(const Vec3T<S>& a, const Vec3T<S>& b, const Vec3T<S>& p) {
+  const Vec3T<S> ab = b - a;
+  const S length2 = ab.squaredNorm();
+  if (!(length2 > S(0))) return a;
+  return a + ab * std::clamp((p - a).dot(ab) / length2, S(0), S(1));
+}
+
+/// The point of triangle t closest to p: by Voronoi regions (Ericson,
+/// Real-Time Collision Detection, §5.1.5) for a proper triangle; over its
+/// three edges for a degenerate one (repeated or collinear corners), where
+/// the region tests would divide round-off by round-off.
+template <Scalar S>
+[[nodiscard]] Vec3T<S> closestOnTriangle(const Triangle<S>& t, const Vec3T<S>& p, bool& onFace) {
+  const Vec3T<S>&a = t.v[0], &b = t.v[1], &c = t.v[2];
+  const Vec3T<S> ab = b - a, ac = c - a;
+  const S longest2 = std::max({ab.squaredNorm(), ac.squaredNorm(), (c - b).squaredNorm()});
+  onFace = false;
+  if (!(ab.cross(ac).norm() > S(64) * ScalarTraits<S>::epsilon() * longest2)) {
+    Vec3T<S> best = closestOnSegment<S>(a, b, p);
+    for (const Vec3T<S>& q : {closestOnSegment<S>(b, c, p), closestOnSegment<S>(c, a, p)})
+      if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
+    return best;
+  }
+  const Vec3T<S> ap = p - a, bp = p - b, cp = p - c;
+  const S d1 = ab.dot(ap), d2 = ac.dot(ap), d3 = ab.dot(bp), d4 = ac.dot(bp), d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d1 <= S(0) && d2 <= S(0)) return a;
+  if (d3 >= S(0) && d4 <= d3) return b;
+  if (d6 >= S(0) && d5 <= d6) return c;
+  const S vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+  if (vc <= S(0) && d1 >= S(0) && d3 <= S(0)) return a + ab * (d1 / (d1 - d3));
+  if (vb <= S(0) && d2 >= S(0) && d6 <= S(0)) return a + ac * (d2 / (d2 - d6));
+  if (va <= S(0) && (d4 - d3) >= S(0) && (d5 - d6) >= S(0))
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  onFace = true;
+  const S denominator = va + vb + vc;
+  return a + ab * (vb / denominator) + ac * (vc / denominator);
+}
+
+/// Sphere against one triangle: a contact when the triangle's closest point
+/// to the center lies within the radius. The normal, from the sphere toward
+/// the mesh, is the face normal when that point is inside the face (exact,
+/// where c − q is all round-off for a center near the face) and along
+/// c − q otherwise; a center on an edge or corner pushes along the face
+/// normal.
+template <Scalar S>
+void collideSphereTriangle(const SphereT<S>& sphere, const Vec3T<S>& c_W, const Triangle<S>& t_W,
+                           ContactSinkT<S>& sink) {
+  bool onFace = false;
+  const Vec3T<S> q = closestOnTriangle<S>(t_W, c_W, onFace);
+  const Vec3T<S> toCenter = c_W - q;
+  const S distance = toCenter.norm();
+  const S r = sphere.getRadius();
+  if (distance > r) return;
+  const Vec3T<S> faceNormal = t_W.normal();
+  Vec3T<S> n;
+  if (onFace)
+    n = toCenter.dot(faceNormal) >= S(0) ? Vec3T<S>(-faceNormal) : faceNormal;
+  else
+    n = distance > ScalarTraits<S>::epsilon() * r ? Vec3T<S>(-toCenter / distance) : Vec3T<S>(-faceNormal);
+  const S depth = r - distance;
+  sink.add(q + n * (depth * S(0.5)), n, depth);  // midway: q and c + n r bound the overlap
+}
+
+template <class A>
+inline constexpr bool kIsPolytope =
+    A::kType == ShapeType::BOX || A::kType == ShapeType::CONVEX || A::kType == ShapeType::LINE;
+
+/// Contacts of a shape against the triangles of a soup near it, each
+/// triangle a convex shape of its own: boxes, hulls and segments by the
+/// separating axes with a clipped manifold (polytope_sat.hpp), spheres in
+/// closed form, capsules and cylinders through libccd.
+template <Scalar S, class A, class Soup>
+void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
+                          ContactSinkT<S>& sink) {
+  const BoundingBoxT<S> box_M = transformBox<S>(a.getBoundingBox(), X_WM.inverse() * X_WA);
+  thread_local Polytope shape, triangle;
+  if constexpr (kIsPolytope<A>) makePolytope(a, X_WA, shape);
+  soup.forEachTriangle(box_M, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
+    sink.setFaceIndices(0, i);
+    if constexpr (A::kType == ShapeType::SPHERE) {
+      const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
+      collideSphereTriangle<S>(a, X_WA.translation(), t_W, sink);
+    } else if constexpr (kIsPolytope<A>) {
+      makeTrianglePolytope<S>(Triangle<S>{{X_WM * p0, X_WM * p1, X_WM * p2}}, triangle);
+      collidePolytopes(shape, triangle, sink);
+    } else {
+      const Triangle<S> t_M{{p0, p1, p2}};
+      collideByCcd<S>(a, X_WA, t_M, X_WM, sink);
+    }
+  });
+  sink.setFaceIndices(0, 0);
+}
+
+/// Triangle pairs of two soups whose boxes overlap, each collided by libccd
+/// (one contact per pair: the deepest).
+template <Scalar S, class SoupA, class SoupB>
+void collideSoups(const SoupA& a, const TransformT<S>& X_WA, const SoupB& b, const TransformT<S>& X_WB,
+                  ContactSinkT<S>& sink) {
+  const TransformT<S> X_BA = X_WB.inverse() * X_WA;
+  const BoundingBoxT<S> a_B = transformBox<S>(a.getBoundingBox(), X_BA);
+  b.forEachTriangle(a_B, [&](std::size_t j, const Vec3T<S>& q0, const Vec3T<S>& q1, const Vec3T<S>& q2) {
+    const Triangle<S> t_B{{q0, q1, q2}};
+    const BoundingBoxT<S> t_A = transformBox<S>(t_B.getBoundingBox(), X_BA.inverse());
+    a.forEachTriangle(t_A, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
+      const Triangle<S> t_A2{{p0, p1, p2}};
+      sink.setFaceIndices(i, j);
+      collideByCcd<S>(t_A2, X_WA, t_B, X_WB, sink, false);
+    });
+  });
+  sink.setFaceIndices(0, 0);
+}
+
+/// Every vertex of `points` (frame A) at or below the plane is a contact,
+/// with the normal from the points' shape into the plane (−n).
+template <Scalar S, class Points>
+void collideVerticesWithPlane(const Points& vertices, const TransformT<S>& X_WA, const PlaneT<S>& plane,
+                              const TransformT<S>& X_WP, ContactSinkT<S>& sink, bool planeFirst) {
+  const Vec3T<S> n = X_WP.linear() * plane.getNormal();
+  const Vec3T<S> o = X_WP * plane.getPoint();
+  for (const auto& v : vertices) {
+    const Vec3T<S> p = X_WA * v;
+    const S height = n.dot(p - o);
+    if (height > S(0)) continue;
+    const Vec3T<S> mid = p - n * (height * S(0.5));
+    sink.add(mid, planeFirst ? n : Vec3T<S>(-n), -height);
+  }
+}
+
+}  // namespace detail
+
+/// A convex shape against a triangle mesh or a height field, triangle by
+/// triangle among those the mesh's hierarchy (or grid) finds near it.
+template <ConvexShape A, detail::TriangleSoup B>
+requires(A::kType < B::kType) struct Collider<A, B> {
+  using S = typename A::Vec3::Scalar;
+  static void collide(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideWithTriangles<S>(a, X_WA, b, X_WB, sink);
+  }
+};
+
+/// Plane–trimesh: the mesh vertices at or below the plane.
+template <Scalar S>
+struct Collider<PlaneT<S>, TrimeshT<S>> {
+  static void collide(const PlaneT<S>& a, const TransformT<S>& X_WA, const TrimeshT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideVerticesWithPlane<S>(b.getVertices(), X_WB, a, X_WA, sink, true);
+  }
+};
+
+/// Convex–plane: the hull vertices at or below the plane.
+template <Scalar S>
+struct Collider<ConvexT<S>, PlaneT<S>> {
+  static void collide(const ConvexT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideVerticesWithPlane<S>(a.getVertices(), X_WA, b, X_WB, sink, false);
+  }
+};
+
+/// Trimesh–trimesh and trimesh–height field: triangle pairs.
+template <Scalar S>
+struct Collider<TrimeshT<S>, TrimeshT<S>> {
+  static void collide(const TrimeshT<S>& a, const TransformT<S>& X_WA, const TrimeshT<S>& b, const TransformT<S>& X_WB,
+                      ContactSinkT<S>& sink) {
+    detail::collideSoups<S>(a, X_WA, b, X_WB, sink);
+  }
+};
+template <Scalar S>
+struct Collider<TrimeshT<S>, HeightFieldT<S>> {
+  static void collide(const TrimeshT<S>& a, const TransformT<S>& X_WA, const HeightFieldT<S>& b,
+                      const TransformT<S>& X_WB, ContactSinkT<S>& sink) {
+    detail::collideSoups<S>(a, X_WA, b, X_WB, sink);
+  }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_MESH_HPP
+// --- end spook/collide/colliders/mesh.hpp ---
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_HPP
+// --- end spook/collide/colliders.hpp ---
+
+namespace spook {
+
+template <Scalar S, class List>
+class ColliderMatrixT;
+
+/// The narrow phase of one shape list: a constexpr N×N table of collider
+/// entry points, generated at compile time from the list, so that only the
+/// colliders between listed shapes are instantiated. A pair without a
+/// collider is a hole (nullptr). Composites are taken apart into their
+/// children, which go through the same table.
+template <Scalar S, template <Scalar> class... Shapes>
+class ColliderMatrixT<S, ShapeList<Shapes...>> {
+ public:
+  using List = ShapeList<Shapes...>;
+  using Shape = ShapeT<S>;
+  using Transform = spook::TransformT<S>;
+  using Sink = ContactSinkT<S>;
+  using Function = void (*)(const Shape&, const Transform&, const Shape&, const Transform&, Sink&);
+  static constexpr std::size_t N = sizeof...(Shapes);
+
+  /// True when a and b are both listed and their pair has a collider.
+  [[nodiscard]] static constexpr bool supports(ShapeType a, ShapeType b) {
+    const int i = kIndex[static_cast<std::size_t>(a)], j = kIndex[static_cast<std::size_t>(b)];
+    return i >= 0 && j >= 0 && kTable[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] != nullptr;
+  }
+
+  /// Contacts between a at X_WA and b at X_WB (shape → world), through the
+  /// table. Returns false, writing nothing, for a pair the table lacks.
+  static bool collide(const Shape& a, const Transform& X_WA, const Shape& b, const Transform& X_WB, Sink& sink) {
+    const int i = kIndex[static_cast<std::size_t>(a.getType())], j = kIndex[static_cast<std::size_t>(b.getType())];
+    if (i < 0 || j < 0) return false;
+    const Function entry = kTable[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+    if (!entry) return false;
+    entry(a, X_WA, b, X_WB, sink);
+    return true;
+  }
+
+  /// The same with both types known at compile time: no table, and a
+  /// compile-time error for a shape outside the list.
+  template <class A, class B>
+  static void collide(const A& a, const Transform& X_WA, const B& b, const Transform& X_WB, Sink& sink) {
+    static_assert(List::contains(A::kType), "the first shape's type is not in this shape list");
+    static_assert(List::contains(B::kType), "the second shape's type is not in this shape list");
+    static_assert(pairSupported<A, B>(), "this shape pair has no collider (a hole in the collider matrix)");
+    entry<A, B>(a, X_WA, b, X_WB, sink);
+  }
+
+  /// The matrix as a markdown table, rows and columns in list order: X
+  /// where a collider exists, - where the pair is a hole.
+  [[nodiscard]] static std::string describe() {
+    std::string text = "|";
+    for (std::size_t j = 0; j < N; ++j) text += std::string(" | ") + std::string(shapeTypeName(kTypes[j]));
+    text += " |\n|---";
+    for (std::size_t j = 0; j < N; ++j) text += "|---";
+    text += "|\n";
+    for (std::size_t i = 0; i < N; ++i) {
+      text += "| " + std::string(shapeTypeName(kTypes[i]));
+      for (std::size_t j = 0; j < N; ++j) text += kTable[i][j] ? " | X" : " | -";
+      text += " |\n";
+    }
+    return text;
+  }
+
+ private:
+  static constexpr std::array<ShapeType, N> kTypes = {Shapes<S>::kType...};
+
+  static constexpr std::array<int, kNumShapeTypes> makeIndex() {
+    std::array<int, kNumShapeTypes> index{};
+    index.fill(-1);
+    for (std::size_t i = 0; i < N; ++i) index[static_cast<std::size_t>(kTypes[i])] = static_cast<int>(i);
+    return index;
+  }
+  static constexpr std::array<int, kNumShapeTypes> kIndex = makeIndex();
+
+  template <class A>
+  static constexpr bool kIsComposite = A::kType == ShapeType::COMPOSITE;
+
+  // A composite pairs with everything listed; its children are dispatched
+  // at run time and skipped where the table has a hole.
+  template <class A, class B>
+  static constexpr bool pairSupported() {
+    if constexpr (kIsComposite<A> || kIsComposite<B>)
+      return true;
+    else if constexpr (A::kType <= B::kType)
+      return HasCollider<A, B>;
+    else
+      return HasCollider<B, A>;
+  }
+
+  template <class A, class B>
+  static void entry(const Shape& a, const Transform& X_WA, const Shape& b, const Transform& X_WB, Sink& sink) {
+    if constexpr (kIsComposite<A>) {
+      for (const auto& child : static_cast<const A&>(a).getChildren())
+        collide(*child.shape, X_WA * child.transform, b, X_WB, sink);
+    } else if constexpr (kIsComposite<B>) {
+      for (const auto& child : static_cast<const B&>(b).getChildren())
+        collide(a, X_WA, *child.shape, X_WB * child.transform, sink);
+    } else {
+      spook::collide(static_cast<const A&>(a), X_WA, static_cast<const B&>(b), X_WB, sink);
+    }
+  }
+
+  template <class A, class B>
+  static constexpr Function make() {
+    if constexpr (pairSupported<A, B>())
+      return &entry<A, B>;
+    else
+      return nullptr;
+  }
+  template <class A>
+  static constexpr std::array<Function, N> makeRow() {
+    return {make<A, Shapes<S>>()...};
+  }
+  static constexpr std::array<std::array<Function, N>, N> kTable = {makeRow<Shapes<S>>()...};
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDER_MATRIX_HPP
+// --- end spook/collide/collider_matrix.hpp ---
+
+namespace spook {
+
+namespace detail {
+
+template <Scalar S, class List>
+bool collideThrough(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<S>& b, const TransformT<S>& X_WB,
+                    ContactSinkT<S>& sink) {
+  return ColliderMatrixT<S, List>::collide(a, X_WA, b, X_WB, sink);
+}
+
+template <class List>
+struct CollidersDefined {};
+
+}  // namespace detail
+
+#if defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
+template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
+                                                        const ShapeT<double>&, const TransformT<double>&,
+                                                        ContactSinkT<double>&);
+#endif
+#if defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
+template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
+                                                       const ShapeT<float>&, const TransformT<float>&,
+                                                       ContactSinkT<float>&);
+#endif
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDE_THROUGH_HPP
+// --- end spook/collide/collide_through.hpp ---
+#endif
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SPACE_HPP
 // --- end spook/collide/space.hpp ---
 // --- begin spook/constraints/constraint.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_CONSTRAINT_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_CONSTRAINT_HPP
 
 #include <array>
 #include <cstddef>
@@ -7454,6 +7718,8 @@ using SpaceRef = ref_ptr<Space>;
 #include <utility>
 
 // --- begin spook/constraints/attachments.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_ATTACHMENTS_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_ATTACHMENTS_HPP
 
 #include <cmath>
 #include <numbers>
@@ -7462,6 +7728,8 @@ using SpaceRef = ref_ptr<Space>;
 #include <Eigen/Geometry>
 
 // --- begin spook/solver/island_problem.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_ISLAND_PROBLEM_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_ISLAND_PROBLEM_HPP
 
 #include <algorithm>
 #include <cstddef>
@@ -7470,6 +7738,8 @@ using SpaceRef = ref_ptr<Space>;
 #include <Eigen/Core>
 
 // --- begin spook/solver/row.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_ROW_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_ROW_HPP
 
 #include <cstdint>
 #include <limits>
@@ -7548,6 +7818,7 @@ struct Row {
 
 }  // namespace detail
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_ROW_HPP
 // --- end spook/solver/row.hpp ---
 
 namespace spook::detail {
@@ -7657,6 +7928,7 @@ struct IslandProblem {
 }
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_ISLAND_PROBLEM_HPP
 // --- end spook/solver/island_problem.hpp ---
 
 namespace spook::detail {
@@ -7747,6 +8019,7 @@ class Winding {
 };
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_ATTACHMENTS_HPP
 // --- end spook/constraints/attachments.hpp ---
 
 namespace spook {
@@ -8034,20 +8307,27 @@ using ConstraintRef = ref_ptr<Constraint>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_CONSTRAINT_HPP
 // --- end spook/constraints/constraint.hpp ---
 // --- begin spook/constraints/joints/ball_joint.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_BALL_JOINT_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_BALL_JOINT_HPP
 
 #include <array>
 #include <cstddef>
 #include <vector>
 
 // --- begin spook/constraints/joint.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINT_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINT_HPP
 
 #include <array>
 #include <cstddef>
 #include <utility>
 
 // --- begin spook/constraints/rows/elementary.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_ROWS_ELEMENTARY_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_ROWS_ELEMENTARY_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -8225,8 +8505,11 @@ inline Coordinate distanceCoordinate(const Attachments& a) {
 }
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_ROWS_ELEMENTARY_HPP
 // --- end spook/constraints/rows/elementary.hpp ---
 // --- begin spook/constraints/regularization.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_REGULARIZATION_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_REGULARIZATION_HPP
 
 #include <cmath>
 #include <string>
@@ -8293,8 +8576,11 @@ template <Scalar S>
 }
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_REGULARIZATION_HPP
 // --- end spook/constraints/regularization.hpp ---
 // --- begin spook/constraints/secondary/friction_controller.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_FRICTION_CONTROLLER_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_FRICTION_CONTROLLER_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -8304,6 +8590,8 @@ template <Scalar S>
 #include <vector>
 
 // --- begin spook/constraints/secondary/secondary_constraint.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_SECONDARY_CONSTRAINT_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_SECONDARY_CONSTRAINT_HPP
 
 #include <cmath>
 #include <limits>
@@ -8386,6 +8674,7 @@ class SecondaryConstraintT : public Referenced {
 };
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_SECONDARY_CONSTRAINT_HPP
 // --- end spook/constraints/secondary/secondary_constraint.hpp ---
 
 namespace spook {
@@ -8562,8 +8851,11 @@ using FrictionControllerRef = ref_ptr<FrictionController>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_FRICTION_CONTROLLER_HPP
 // --- end spook/constraints/secondary/friction_controller.hpp ---
 // --- begin spook/constraints/secondary/lock_1d.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_LOCK_1D_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_LOCK_1D_HPP
 
 #include <cmath>
 
@@ -8610,8 +8902,11 @@ using Lock1D = Lock1DT<float>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_LOCK_1D_HPP
 // --- end spook/constraints/secondary/lock_1d.hpp ---
 // --- begin spook/constraints/secondary/motor_1d.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_MOTOR_1D_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_MOTOR_1D_HPP
 
 #include <cmath>
 #include <optional>
@@ -8669,8 +8964,11 @@ using Motor1D = Motor1DT<float>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_MOTOR_1D_HPP
 // --- end spook/constraints/secondary/motor_1d.hpp ---
 // --- begin spook/constraints/secondary/range_1d.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_RANGE_1D_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_RANGE_1D_HPP
 
 #include <cmath>
 #include <limits>
@@ -8730,6 +9028,7 @@ using Range1D = Range1DT<float>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_RANGE_1D_HPP
 // --- end spook/constraints/secondary/range_1d.hpp ---
 
 namespace spook {
@@ -9012,8 +9311,11 @@ struct DistanceBetween {
 }  // namespace detail
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINT_HPP
 // --- end spook/constraints/joint.hpp ---
 // --- begin spook/constraints/secondary/cone_limit.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_CONE_LIMIT_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_CONE_LIMIT_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -9125,8 +9427,11 @@ using ConeLimitRef = ref_ptr<ConeLimit>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_CONE_LIMIT_HPP
 // --- end spook/constraints/secondary/cone_limit.hpp ---
 // --- begin spook/constraints/secondary/twist_range.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_TWIST_RANGE_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_TWIST_RANGE_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -9230,6 +9535,7 @@ using TwistRangeControllerRef = ref_ptr<TwistRangeController>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_TWIST_RANGE_HPP
 // --- end spook/constraints/secondary/twist_range.hpp ---
 
 namespace spook {
@@ -9333,10 +9639,15 @@ using BallJointRef = ref_ptr<BallJoint>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_BALL_JOINT_HPP
 // --- end spook/constraints/joints/ball_joint.hpp ---
 // --- begin spook/constraints/joints/cylindrical_joint.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_CYLINDRICAL_JOINT_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_CYLINDRICAL_JOINT_HPP
 
 // --- begin spook/constraints/secondary/screw_1d.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_SCREW_1D_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_SCREW_1D_HPP
 
 #include <cmath>
 #include <numbers>
@@ -9391,6 +9702,7 @@ using Screw1D = Screw1DT<float>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_SCREW_1D_HPP
 // --- end spook/constraints/secondary/screw_1d.hpp ---
 
 namespace spook {
@@ -9457,8 +9769,11 @@ using PlaneJointRef = ref_ptr<PlaneJoint>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_CYLINDRICAL_JOINT_HPP
 // --- end spook/constraints/joints/cylindrical_joint.hpp ---
 // --- begin spook/constraints/joints/distance_joint.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_DISTANCE_JOINT_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_DISTANCE_JOINT_HPP
 
 namespace spook {
 
@@ -9521,8 +9836,11 @@ using DistanceJointRef = ref_ptr<DistanceJoint>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_DISTANCE_JOINT_HPP
 // --- end spook/constraints/joints/distance_joint.hpp ---
 // --- begin spook/constraints/joints/dot1_joint.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_DOT1_JOINT_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_DOT1_JOINT_HPP
 
 namespace spook {
 
@@ -9554,8 +9872,11 @@ using Dot1JointRef = ref_ptr<Dot1Joint>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_DOT1_JOINT_HPP
 // --- end spook/constraints/joints/dot1_joint.hpp ---
 // --- begin spook/constraints/joints/hinge.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_HINGE_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_HINGE_HPP
 
 namespace spook {
 
@@ -9586,8 +9907,11 @@ using HingeRef = ref_ptr<Hinge>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_HINGE_HPP
 // --- end spook/constraints/joints/hinge.hpp ---
 // --- begin spook/constraints/joints/lock_joint.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_LOCK_JOINT_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_LOCK_JOINT_HPP
 
 namespace spook {
 
@@ -9638,8 +9962,11 @@ using AngularLockJointRef = ref_ptr<AngularLockJoint>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_LOCK_JOINT_HPP
 // --- end spook/constraints/joints/lock_joint.hpp ---
 // --- begin spook/constraints/joints/prismatic.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_PRISMATIC_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_PRISMATIC_HPP
 
 namespace spook {
 
@@ -9669,8 +9996,11 @@ using PrismaticRef = ref_ptr<Prismatic>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_PRISMATIC_HPP
 // --- end spook/constraints/joints/prismatic.hpp ---
 // --- begin spook/constraints/joints/slack_joints.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_SLACK_JOINTS_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_SLACK_JOINTS_HPP
 
 #include <array>
 #include <cmath>
@@ -9679,6 +10009,8 @@ using PrismaticRef = ref_ptr<Prismatic>;
 #include <type_traits>
 
 // --- begin spook/constraints/rows/slack.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_ROWS_SLACK_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_ROWS_SLACK_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -9855,6 +10187,7 @@ struct SlackInterval {
 };
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_ROWS_SLACK_HPP
 // --- end spook/constraints/rows/slack.hpp ---
 
 namespace spook {
@@ -10108,8 +10441,11 @@ using SlackCylindricalJointRef = ref_ptr<SlackCylindricalJoint>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_SLACK_JOINTS_HPP
 // --- end spook/constraints/joints/slack_joints.hpp ---
 // --- begin spook/constraints/joints/spline_joint.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_SPLINE_JOINT_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_SPLINE_JOINT_HPP
 
 #include <array>
 #include <cmath>
@@ -10117,6 +10453,8 @@ using SlackCylindricalJointRef = ref_ptr<SlackCylindricalJoint>;
 #include <vector>
 
 // --- begin spook/core/cubic_spline.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_CUBIC_SPLINE_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_CUBIC_SPLINE_HPP
 
 #include <algorithm>
 #include <array>
@@ -10492,6 +10830,7 @@ using CubicSplineRef = ref_ptr<CubicSpline>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CORE_CUBIC_SPLINE_HPP
 // --- end spook/core/cubic_spline.hpp ---
 
 namespace spook {
@@ -10782,8 +11121,11 @@ using SplineJointRef = ref_ptr<SplineJoint>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_SPLINE_JOINT_HPP
 // --- end spook/constraints/joints/spline_joint.hpp ---
 // --- begin spook/constraints/joints/universal_joint.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_UNIVERSAL_JOINT_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_UNIVERSAL_JOINT_HPP
 
 #include <cmath>
 
@@ -10959,8 +11301,11 @@ using PrismaticUniversalJointRef = ref_ptr<PrismaticUniversalJoint>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_UNIVERSAL_JOINT_HPP
 // --- end spook/constraints/joints/universal_joint.hpp ---
 // --- begin spook/constraints/joints/wheel_joint.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_WHEEL_JOINT_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_WHEEL_JOINT_HPP
 
 #include <cmath>
 #include <string>
@@ -11220,8 +11565,11 @@ using WheelJointRef = ref_ptr<WheelJoint>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINTS_WHEEL_JOINT_HPP
 // --- end spook/constraints/joints/wheel_joint.hpp ---
 // --- begin spook/constraints/steering/steering.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_STEERING_STEERING_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_STEERING_STEERING_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -11230,6 +11578,8 @@ using WheelJointRef = ref_ptr<WheelJoint>;
 #include <utility>
 
 // --- begin spook/constraints/steering/linkages.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_STEERING_LINKAGES_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_STEERING_LINKAGES_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -11240,6 +11590,8 @@ using WheelJointRef = ref_ptr<WheelJoint>;
 #include <Eigen/Core>
 
 // --- begin spook/constraints/steering/steering_parameters.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_STEERING_STEERING_PARAMETERS_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_STEERING_STEERING_PARAMETERS_HPP
 
 #include <numbers>
 
@@ -11282,6 +11634,7 @@ struct SteeringParameters {
 };
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_STEERING_STEERING_PARAMETERS_HPP
 // --- end spook/constraints/steering/steering_parameters.hpp ---
 
 // Closed-form kinematics of the steering linkages of seed 001 §12.13 in the
@@ -11584,13 +11937,18 @@ template <class Linkage>
 }
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_STEERING_LINKAGES_HPP
 // --- end spook/constraints/steering/linkages.hpp ---
 // --- begin spook/sim/step_event_listener.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_STEP_EVENT_LISTENER_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_STEP_EVENT_LISTENER_HPP
 
 #include <concepts>
 #include <cstdint>
 
 // --- begin spook/core/time_stamp.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_TIME_STAMP_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_TIME_STAMP_HPP
 
 namespace spook {
 
@@ -11606,8 +11964,11 @@ using TimeStamp = TimeStampT<float>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CORE_TIME_STAMP_HPP
 // --- end spook/core/time_stamp.hpp ---
 // --- begin spook/sim/listener_callbacks.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_LISTENER_CALLBACKS_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_LISTENER_CALLBACKS_HPP
 
 #include <type_traits>
 
@@ -11651,6 +12012,7 @@ consteval CallbackState callbackState() {
 }
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SIM_LISTENER_CALLBACKS_HPP
 // --- end spook/sim/listener_callbacks.hpp ---
 
 namespace spook {
@@ -11780,6 +12142,7 @@ using StepEventListenerRef = ref_ptr<StepEventListener>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_SIM_STEP_EVENT_LISTENER_HPP
 // --- end spook/sim/step_event_listener.hpp ---
 
 namespace spook {
@@ -11975,8 +12338,11 @@ using DavisRef = ref_ptr<Davis>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_STEERING_STEERING_HPP
 // --- end spook/constraints/steering/steering.hpp ---
 // --- begin spook/constraints/virtual_constraint_inertia.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CONSTRAINTS_VIRTUAL_CONSTRAINT_INERTIA_HPP
+#define SPOOK_SINGLE_SPOOK_CONSTRAINTS_VIRTUAL_CONSTRAINT_INERTIA_HPP
 
 #include <array>
 #include <cmath>
@@ -12092,8 +12458,11 @@ using VirtualConstraintInertiaRef = ref_ptr<VirtualConstraintInertia>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_VIRTUAL_CONSTRAINT_INERTIA_HPP
 // --- end spook/constraints/virtual_constraint_inertia.hpp ---
 // --- begin spook/dynamics/contact_material.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_DYNAMICS_CONTACT_MATERIAL_HPP
+#define SPOOK_SINGLE_SPOOK_DYNAMICS_CONTACT_MATERIAL_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -12102,6 +12471,8 @@ using VirtualConstraintInertiaRef = ref_ptr<VirtualConstraintInertia>;
 #include <utility>
 
 // --- begin spook/dynamics/friction_model.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_DYNAMICS_FRICTION_MODEL_HPP
+#define SPOOK_SINGLE_SPOOK_DYNAMICS_FRICTION_MODEL_HPP
 
 #include <cmath>
 #include <string>
@@ -12251,6 +12622,7 @@ using FrictionModelRef = ref_ptr<FrictionModel>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_DYNAMICS_FRICTION_MODEL_HPP
 // --- end spook/dynamics/friction_model.hpp ---
 
 namespace spook {
@@ -12463,8 +12835,11 @@ using ContactMaterialRef = ref_ptr<ContactMaterial>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_DYNAMICS_CONTACT_MATERIAL_HPP
 // --- end spook/dynamics/contact_material.hpp ---
 // --- begin spook/dynamics/gravity_field.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_DYNAMICS_GRAVITY_FIELD_HPP
+#define SPOOK_SINGLE_SPOOK_DYNAMICS_GRAVITY_FIELD_HPP
 
 namespace spook {
 
@@ -12560,13 +12935,18 @@ using PointGravityFieldRef = ref_ptr<PointGravityField>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_DYNAMICS_GRAVITY_FIELD_HPP
 // --- end spook/dynamics/gravity_field.hpp ---
 // --- begin spook/sim/assembly.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_ASSEMBLY_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_ASSEMBLY_HPP
 
 #include <unordered_set>
 #include <vector>
 
 // --- begin spook/sim/collection.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_COLLECTION_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_COLLECTION_HPP
 
 #include <algorithm>
 #include <string>
@@ -12574,6 +12954,8 @@ using PointGravityFieldRef = ref_ptr<PointGravityField>;
 #include <vector>
 
 // --- begin spook/sim/membership.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_MEMBERSHIP_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_MEMBERSHIP_HPP
 
 namespace spook::detail {
 
@@ -12595,6 +12977,7 @@ struct SimulationMembership {
 };
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SIM_MEMBERSHIP_HPP
 // --- end spook/sim/membership.hpp ---
 
 namespace spook {
@@ -12768,6 +13151,7 @@ using CollectionRef = ref_ptr<Collection>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_SIM_COLLECTION_HPP
 // --- end spook/sim/collection.hpp ---
 
 namespace spook {
@@ -12840,8 +13224,11 @@ using AssemblyRef = ref_ptr<Assembly>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_SIM_ASSEMBLY_HPP
 // --- end spook/sim/assembly.hpp ---
 // --- begin spook/sim/contact_event_listener.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_CONTACT_EVENT_LISTENER_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_CONTACT_EVENT_LISTENER_HPP
 
 #include <concepts>
 #include <cstdint>
@@ -12987,8 +13374,11 @@ using ContactEventListenerRef = ref_ptr<ContactEventListener>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_SIM_CONTACT_EVENT_LISTENER_HPP
 // --- end spook/sim/contact_event_listener.hpp ---
 // --- begin spook/sim/material_manager.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_MATERIAL_MANAGER_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_MATERIAL_MANAGER_HPP
 
 #include <cstddef>
 #include <functional>
@@ -12996,6 +13386,8 @@ using ContactEventListenerRef = ref_ptr<ContactEventListener>;
 #include <utility>
 
 // --- begin spook/core/pointer_pair_hash.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_POINTER_PAIR_HASH_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_POINTER_PAIR_HASH_HPP
 
 #include <cstddef>
 #include <functional>
@@ -13015,6 +13407,7 @@ struct PointerPairHash {
 };
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_CORE_POINTER_PAIR_HASH_HPP
 // --- end spook/core/pointer_pair_hash.hpp ---
 
 namespace spook {
@@ -13090,12 +13483,16 @@ using MaterialManager = MaterialManagerT<float>;
 }  // namespace f32
 
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_SIM_MATERIAL_MANAGER_HPP
 // --- end spook/sim/material_manager.hpp ---
 // --- begin spook/sim/simulation.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_SIMULATION_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_SIMULATION_HPP
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -13103,7 +13500,1801 @@ using MaterialManager = MaterialManagerT<float>;
 #include <utility>
 #include <vector>
 
+// --- begin spook/sim/contact_settings.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_CONTACT_SETTINGS_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_CONTACT_SETTINGS_HPP
+
+namespace spook::detail {
+
+/// The simulation's settings of the contact rows (sim/contact_rows.hpp).
+struct ContactSettings {
+  /// Approach speed (m/s) above which restitution acts; slower contacts rest.
+  double restitutionThreshold = 0.2;
+  /// Cap on the speed (m/s) at which the stabilization of the normal rows
+  /// pushes overlapping shapes apart.
+  double maxDepenetrationSpeed = 1.0;
+  /// A point of this step continues a point of the last step (same geometry
+  /// pair) when they lie within this distance (m) in the first geometry's
+  /// frame: its rows start from that point's force.
+  double persistenceDistance = 0.01;
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SIM_CONTACT_SETTINGS_HPP
+// --- end spook/sim/contact_settings.hpp ---
+// --- begin spook/sim/jointed_pairs.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_JOINTED_PAIRS_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_JOINTED_PAIRS_HPP
+
+#include <algorithm>
+#include <optional>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace spook::detail {
+
+/// The body pairs that a simulation's constraints join directly, for the
+/// default collision filter: the geometries of two bodies held together by
+/// an enabled constraint do not collide with each other unless the
+/// constraint asks for it (Constraint::setEnableCollisions), as PhysX's
+/// joints and MuJoCo's parent–child filter do. A machine's links overlap at
+/// their pins; contacts there would fight the joints. The world (a
+/// constraint's missing second body) is no body: a body hinged to the world
+/// still collides with the ground.
+///
+/// Kept up to date as constraints are added and removed (a constraint's
+/// bodies never change); whether a pair is filtered is read at query time
+/// from its few constraints, so enabling, disabling or switching collisions
+/// on a constraint takes effect at once, without a scan of all constraints.
+template <Scalar S>
+class JointedPairs {
+ public:
+  using Body = RigidBodyT<S>;
+  using Constraint = ConstraintT<S>;
+
+  void add(const Constraint& constraint) {
+    if (const auto key = keyOf(constraint)) byPair_[*key].push_back(&constraint);
+  }
+  void remove(const Constraint& constraint) {
+    const auto key = keyOf(constraint);
+    if (!key) return;
+    const auto it = byPair_.find(*key);
+    if (it == byPair_.end()) return;
+    std::erase(it->second, &constraint);
+    if (it->second.empty()) byPair_.erase(it);
+  }
+
+  /// True when an enabled constraint joins `a` and `b` without allowing
+  /// their geometries to collide.
+  [[nodiscard]] bool filters(const Body* a, const Body* b) const {
+    if (!a || !b || byPair_.empty()) return false;
+    const auto it = byPair_.find(std::minmax(a, b));
+    if (it == byPair_.end()) return false;
+    return std::any_of(it->second.begin(), it->second.end(),
+                       [](const Constraint* c) { return c->getEnable() && !c->getEnableCollisions(); });
+  }
+
+ private:
+  using Key = std::pair<const Body*, const Body*>;
+  static std::optional<Key> keyOf(const Constraint& constraint) {
+    const Body* a = constraint.getBodyAt(0);
+    const Body* b = constraint.getBodyAt(1);
+    if (!a || !b) return std::nullopt;
+    return std::minmax(a, b);
+  }
+
+  std::unordered_map<Key, std::vector<const Constraint*>, PointerPairHash> byPair_;
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SIM_JOINTED_PAIRS_HPP
+// --- end spook/sim/jointed_pairs.hpp ---
+// --- begin spook/sim/statistics.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_STATISTICS_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_STATISTICS_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+// --- begin spook/solver/solver.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_SOLVER_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_SOLVER_HPP
+
+#include <algorithm>
+#include <memory>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace spook {
+
+namespace detail {
+struct IslandProblem;
+class DirectSolve;
+}  // namespace detail
+
+/// What the solver did in the last step, summed or maximized over islands.
+struct SolverStatistics {
+  int numIslands = 0;
+  int numRows = 0;
+  int numDirectRows = 0;     ///< rows that went through a direct solve
+  int numIterativeRows = 0;  ///< rows that went through projected Gauss–Seidel
+  int iterations = 0;        ///< most Gauss–Seidel (or Jacobi) sweeps in one island
+  int factorizations = 0;    ///< sparse factorizations, one per pivoting step
+  /// Most friction iterations of one direct solve (getNumFrictionIterations);
+  /// reaching the maximum means its bounds had not settled to the tolerance.
+  int frictionIterations = 0;
+  /// Largest complementarity error over all rows (m/s or rad/s): |w| for a
+  /// row inside its bounds, the wrong-signed part of w at a bound, with
+  /// w = (S+Σ)Λ − q (PHYSICS.md §2.1). Zero to round-off for a direct solve.
+  double complementarityError = 0.0;
+  bool converged = true;   ///< every pivoting solve found its solution, every sweep met the tolerance
+  /// Direct solves whose pivoting reached getMaxPivotSteps and that fell back
+  /// to the safe answer (direct_solve.hpp): the best iterate or no impulse,
+  /// refined by Gauss–Seidel.
+  int directFallbacks = 0;
+  double solveTime = 0.0;  ///< wall-clock time spent solving (s)
+  /// Islands whose impulses were not finite and were dropped; the
+  /// simulation freezes their bodies (SimulationStatisticsT::frozenBodies).
+  int nonFiniteIslands = 0;
+};
+
+/// Solves the rows of an island: the simulation's solver policy. Subclasses
+/// choose how (DirectSolver, IterativeSolver, HybridSolver); the settings of
+/// the iterative and pivoting parts are common.
+class Solver : public Referenced {
+ public:
+  enum IterativeMethod { GAUSS_SEIDEL, JACOBI };
+
+  [[nodiscard]] virtual const char* getName() const = 0;
+
+  /// Sweeps of projected Gauss–Seidel per step (default 16, AGX's resting iterations).
+  [[nodiscard]] int getNumIterations() const { return iterations_; }
+  void setNumIterations(int n) {
+    if (n < 1) throw detail::makeError("Solver", getName(), "number of iterations must be >= 1", n);
+    iterations_ = n;
+  }
+  /// Sweeps stop early when no impulse changes by more than this, measured
+  /// as a velocity (m/s or rad/s). Default 1e-10.
+  [[nodiscard]] double getTolerance() const { return tolerance_; }
+  void setTolerance(double tolerance) {
+    if (!(tolerance >= 0.0)) throw detail::makeError("Solver", getName(), "tolerance must be >= 0 (m/s)", tolerance);
+    tolerance_ = tolerance;
+  }
+  /// Start each solve from the last step's impulses (default off). It saves
+  /// sweeps on slowly changing systems, but with few sweeps on stiff, badly
+  /// conditioned joints (a light body with small inertia far from its joint)
+  /// the stale impulses feed energy into the system and it can blow up;
+  /// AGX leaves warm starting off by default too (PHYSICS.md §2.2).
+  [[nodiscard]] bool getEnableWarmStarting() const { return warmStarting_; }
+  void setEnableWarmStarting(bool enable) { warmStarting_ = enable; }
+  /// Geometric stiffness (default on): the turning of the joint forces with
+  /// the bodies is taken implicitly, from the last step's forces, for every
+  /// body whose explicit step would be unstable. It keeps light bodies pulled
+  /// by heavy ones stable (a 1 kg link holding 1e6 kg at 60 Hz), at the price
+  /// of backward Euler's damping of the swing those bodies take part in
+  /// (geometric_stiffness.hpp). Bodies below the threshold are untouched.
+  [[nodiscard]] bool getEnableGeometricStiffness() const { return geometricStiffness_; }
+  void setEnableGeometricStiffness(bool enable) { geometricStiffness_ = enable; }
+  /// ρ₀ of the geometric stiffness: a body whose (hω)² from its joint forces
+  /// exceeds ρ₀ gets the implicit term with weight 1 − ρ₀/(hω)². Default 1
+  /// (the explicit step is stable to (hω)² = 4); 0 applies it to every body
+  /// at full weight, which tracks the joints of a swinging chain closest.
+  [[nodiscard]] double getGeometricStiffnessThreshold() const { return geometricStiffnessThreshold_; }
+  void setGeometricStiffnessThreshold(double threshold) {
+    if (!(threshold >= 0.0 && std::isfinite(threshold)))
+      throw detail::makeError("Solver", getName(), "geometric stiffness threshold must be finite and >= 0", threshold);
+    geometricStiffnessThreshold_ = threshold;
+  }
+  [[nodiscard]] IterativeMethod getIterativeMethod() const { return method_; }
+  void setIterativeMethod(IterativeMethod method) {
+    if (method != GAUSS_SEIDEL && method != JACOBI)
+      throw detail::makeError("Solver", getName(), "unknown iterative method", static_cast<int>(method));
+    method_ = method;
+  }
+  /// Cap on the pivoting steps of one direct solve (default 200).
+  [[nodiscard]] int getMaxPivotSteps() const { return maxPivotSteps_; }
+  void setMaxPivotSteps(int n) {
+    if (n < 1) throw detail::makeError("Solver", getName(), "maximum pivot steps must be >= 1", n);
+    maxPivotSteps_ = n;
+  }
+
+  /// Outer iterations of a direct solve over the friction bounds that follow
+  /// the normal forces (scaled box and cone friction; PHYSICS.md §2.4's
+  /// non-linear iterations): each solves the LCP exactly, then moves the
+  /// bounds to μΛn of the new normal impulses and, for a cone, onto the
+  /// direction of sliding. Default 8.
+  [[nodiscard]] int getNumFrictionIterations() const { return frictionIterations_; }
+  void setNumFrictionIterations(int n) {
+    if (n < 1) throw detail::makeError("Solver", getName(), "number of friction iterations must be >= 1", n);
+    frictionIterations_ = n;
+  }
+  /// The friction iterations stop when no bound moves by more than this
+  /// fraction of the largest one. Default 1e-6.
+  [[nodiscard]] double getFrictionTolerance() const { return frictionTolerance_; }
+  void setFrictionTolerance(double tolerance) {
+    if (!(tolerance >= 0.0 && std::isfinite(tolerance)))
+      throw detail::makeError("Solver", getName(), "friction tolerance must be finite and >= 0", tolerance);
+    frictionTolerance_ = tolerance;
+  }
+  /// Hybrid solver: the most (iterative, direct) passes that couple the two
+  /// subsystems of an island; they stop once the direct impulses change by
+  /// less than 1e-6 of the largest. Default 16: the coupling converges
+  /// linearly, and a box resting on a 30° incline under SPLIT friction creeps
+  /// 4.7 mm in 2 s after AGX's 7 dry-friction iterations, 0.05 mm after 16.
+  [[nodiscard]] int getNumCouplingIterations() const { return couplingIterations_; }
+  void setNumCouplingIterations(int n) {
+    if (n < 1) throw detail::makeError("Solver", getName(), "number of coupling iterations must be >= 1", n);
+    couplingIterations_ = n;
+  }
+
+  /// Post-stabilization (on by default for DirectSolver, off for the
+  /// others; one Newton iteration): after the positions are advanced, the
+  /// direct solver's equality rows (and slack rows held at an end) are
+  /// projected, mass-weighted, onto the violation their second-order
+  /// prediction gives, g* = g + h(G v⁺ + hκ) (Row::curvature):
+  /// Δq = M⁻¹Gᵀδ with G M⁻¹Gᵀ δ = g* − g(q⁺), and the velocities take Δq/h.
+  /// This removes the drift of the velocity-level step beyond second order,
+  /// which grows with angular speed and mass ratio, and leaves the rows'
+  /// compliance and damping alone: the joint catalogue holds within 1e-6 m
+  /// (3e-7 m at the default compliance) where the plain step drifts
+  /// 1e-4..5e-3 m. Costs one more row assembly and factorization per step.
+  /// Iterative rows are not projected.
+  [[nodiscard]] bool getEnablePostStabilization() const { return postStabilization_; }
+  void setEnablePostStabilization(bool enable) { postStabilization_ = enable; }
+  [[nodiscard]] int getNumPostStabilizationIterations() const { return postStabilization_ ? projectionIterations_ : 0; }
+  void setNumPostStabilizationIterations(int n) {
+    if (n < 1) throw detail::makeError("Solver", getName(), "post-stabilization iterations must be >= 1", n);
+    projectionIterations_ = n;
+  }
+  /// Whether rows of this solve type are projected.
+  [[nodiscard]] virtual bool projects(SolveType type) const { return postStabilization_ && type != SolveType::ITERATIVE; }
+
+  /// Solves a projection island (unbounded rows) directly.
+  void project(detail::IslandProblem& problem, SolverStatistics& statistics);
+
+  /// Solves one island in place and accumulates the statistics. Impulses that
+  /// come out non-finite are dropped (set to zero) and counted; false then.
+  bool solve(detail::IslandProblem& problem, SolverStatistics& statistics);
+
+ protected:
+  Solver();
+  ~Solver() override;
+  virtual void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) = 0;
+
+  void direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics);
+  /// A direct solve repeated over the friction bounds that follow the normal
+  /// impulses (getNumFrictionIterations); rows flagged in `keep` keep theirs.
+  void directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
+                          SolverStatistics& statistics, const std::vector<char>* keep = nullptr);
+  void iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const;
+  static std::vector<int> allRows(const detail::IslandProblem& problem);
+
+ private:
+  static double complementarityError(const detail::IslandProblem& problem);
+
+  int iterations_ = 16;
+  double tolerance_ = 1e-10;
+  IterativeMethod method_ = GAUSS_SEIDEL;
+  int maxPivotSteps_ = 200;
+  bool postStabilization_ = false;
+  bool warmStarting_ = false;
+  bool geometricStiffness_ = true;
+  double geometricStiffnessThreshold_ = 1.0;
+  int projectionIterations_ = 1;
+  int frictionIterations_ = 8;
+  double frictionTolerance_ = 1e-6;
+  int couplingIterations_ = 16;
+  std::unique_ptr<detail::DirectSolve> direct_;  ///< the pivoting solver's workspace
+};
+
+/// Every row by the direct solver: exact to round-off, whatever the mass
+/// ratios and stiffness; O(n) for chains and trees, more where loops and
+/// contacts fill in the factor.
+class DirectSolver final : public Solver {
+ public:
+  DirectSolver() { setEnablePostStabilization(true); }
+  [[nodiscard]] const char* getName() const override { return "direct"; }
+  [[nodiscard]] bool projects(SolveType) const override { return getEnablePostStabilization(); }
+
+ protected:
+  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
+};
+
+/// Every row by projected Gauss–Seidel (or Jacobi), optionally warm-started
+/// from the last step: cheap per sweep, approximate; stiff joints and large
+/// mass ratios come out softer than they are.
+class IterativeSolver final : public Solver {
+ public:
+  [[nodiscard]] const char* getName() const override { return "iterative"; }
+  [[nodiscard]] bool projects(SolveType) const override { return false; }
+
+ protected:
+  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
+};
+
+/// Each row as its constraint or friction model asks (setSolveType): DIRECT
+/// rows by the direct solver, ITERATIVE rows by Gauss–Seidel,
+/// DIRECT_AND_ITERATIVE rows by both, coupling the two subsystems (seed 001
+/// §12.17), and SPLIT contacts with their normals direct and their friction
+/// iterative. An island without iterative-only rows is solved directly
+/// (DIRECT_AND_ITERATIVE then means DIRECT). Otherwise: a direct pass
+/// (iterative rows at their warm start), then up to getNumCouplingIterations
+/// passes of Gauss–Seidel (direct-only rows fixed) followed by a direct solve
+/// with the iterative impulses, in which DIRECT_AND_ITERATIVE friction keeps
+/// the bounds the iterative pass found (PHYSICS.md §2.5).
+class HybridSolver final : public Solver {
+ public:
+  [[nodiscard]] const char* getName() const override { return "hybrid"; }
+
+ protected:
+  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
+};
+
+using SolverRef = ref_ptr<Solver>;
+
+}  // namespace spook
+
+// The solves themselves are compiled once (solver_impl.hpp): inline in a
+// header-only program, in the translation unit that implements the double
+// simulation otherwise (core/implementation.hpp).
+#if defined(SPOOK_DEFINES_SOLVER)
+// --- begin spook/solver/solver_impl.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_SOLVER_IMPL_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_SOLVER_IMPL_HPP
+
+// The solves of the solver policies (solver.hpp): non-template code, inline
+// in a header-only program and compiled once otherwise
+// (SPOOK_SOLVER_INLINE, core/implementation.hpp).
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+// --- begin spook/solver/direct_solve.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_DIRECT_SOLVE_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_DIRECT_SOLVE_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+// --- begin spook/solver/body_space_solve.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+namespace spook::detail {
+
+/// The free rows of a direct solve through the bodies instead of the rows:
+/// by the Woodbury identity, (G M⁻¹Gᵀ + Σ) x = r is
+///   (M + GᵀΣ⁻¹G) y = GᵀΣ⁻¹r,   x = Σ⁻¹(r − G y).
+/// K = M + GᵀΣ⁻¹G has a 6×6 block per body and per pair of bodies sharing
+/// rows, whatever the number of rows, whereas G M⁻¹Gᵀ couples every two rows
+/// on a body: a box touching four others at four points each fills a 48×48
+/// block. Contact scenes, where rows far outnumber the bodies' degrees of
+/// freedom, factorize in a fraction of the time.
+///
+/// x = Σ⁻¹(r − G y) cancels digits where Σ is small against the row's
+/// mobility G M⁻¹Gᵀ (about log₁₀ of their ratio), so the form is used only
+/// when every row is at least kSofterThan as compliant as it is mobile:
+/// contacts (compliance 1/E) qualify, rigid joints (Σ at its 1e-12 floor)
+/// do not.
+class BodySpaceSolve {
+ public:
+  static constexpr double kSofterThan = 1e-6;
+
+  /// Whether `numRows` rows outnumber the degrees of freedom of `numBodies`.
+  [[nodiscard]] static bool outnumbers(std::size_t numRows, std::size_t numBodies) { return numRows > 6 * numBodies; }
+
+  /// Whether the rows `subset` are better solved in body space: more rows
+  /// than 6 per body, every body's mass known, every row soft enough.
+  [[nodiscard]] static bool pays(const IslandProblem& problem, const std::vector<int>& subset) {
+    if (!outnumbers(subset.size(), static_cast<std::size_t>(problem.numBodies))) return false;
+    if (static_cast<int>(problem.mass.size()) != problem.numBodies) return false;
+    for (int b = 0; b < problem.numBodies; ++b)
+      if (!problem.mass[static_cast<std::size_t>(b)].allFinite()) return false;
+    for (int i : subset) {
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      if (!(e.sigma >= kSofterThan * (e.diagonal - e.sigma))) return false;
+    }
+    return true;
+  }
+
+  /// Solves the rows of `subset` flagged free (freeIndex[k] ≥ 0) for the
+  /// right-hand side r (`rhs`, one entry per free row); writes x into `x`
+  /// at the free rows' positions.
+  void solve(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex,
+             const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+    const int numBodies = problem.numBodies;
+    blocks_.clear();
+    blockOf_.clear();
+    diagonal_.assign(static_cast<std::size_t>(numBodies), Mat6d::Zero());
+    for (int b = 0; b < numBodies; ++b) diagonal_[static_cast<std::size_t>(b)] = problem.mass[static_cast<std::size_t>(b)];
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(6 * numBodies);
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      const int f = freeIndex[k];
+      if (f < 0) continue;
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
+      const double inverseSigma = 1.0 / e.sigma;
+      const double s = rhs[f] * inverseSigma;
+      if (e.body1 >= 0 && e.body1 == e.body2) {
+        addRow(e.body1, e.J1 + e.J2, inverseSigma, s, b);
+        continue;
+      }
+      if (e.body1 >= 0) addRow(e.body1, e.J1, inverseSigma, s, b);
+      if (e.body2 >= 0) addRow(e.body2, e.J2, inverseSigma, s, b);
+      if (e.body1 >= 0 && e.body2 >= 0) {
+        // K's lower triangle: the block (larger body, smaller body).
+        const bool firstLarger = e.body1 > e.body2;
+        blockAt(firstLarger ? e.body1 : e.body2, firstLarger ? e.body2 : e.body1) +=
+            inverseSigma * (firstLarger ? e.J1 : e.J2) * (firstLarger ? e.J2 : e.J1).transpose();
+      }
+    }
+
+    triplets_.clear();
+    for (int body = 0; body < numBodies; ++body)
+      for (int c = 0; c < 6; ++c)
+        for (int r = c; r < 6; ++r)
+          triplets_.emplace_back(6 * body + r, 6 * body + c, diagonal_[static_cast<std::size_t>(body)](r, c));
+    for (const auto& [key, index] : blockOf_) {
+      const int row = static_cast<int>(key >> 32), col = static_cast<int>(key & 0xffffffffu);
+      const Mat6d& block = blocks_[index];
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r < 6; ++r) triplets_.emplace_back(6 * row + r, 6 * col + c, block(r, c));
+    }
+    K_.resize(6 * numBodies, 6 * numBodies);
+    K_.setFromTriplets(triplets_.begin(), triplets_.end());
+    ldlt_.compute(K_);
+    const Eigen::VectorXd y = ldlt_.solve(b);
+
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      const int f = freeIndex[k];
+      if (f < 0) continue;
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
+      double gy = 0.0;  // G y
+      if (e.body1 >= 0) gy += e.J1.dot(y.segment<6>(6 * e.body1));
+      if (e.body2 >= 0) gy += e.J2.dot(y.segment<6>(6 * e.body2));
+      x[static_cast<Eigen::Index>(k)] = (rhs[f] - gy) / e.sigma;
+    }
+  }
+
+ private:
+  void addRow(int body, const Vec6d& J, double inverseSigma, double s, Eigen::VectorXd& b) {
+    diagonal_[static_cast<std::size_t>(body)] += inverseSigma * J * J.transpose();
+    b.segment<6>(6 * body) += s * J;
+  }
+
+  Mat6d& blockAt(int row, int col) {
+    const std::uint64_t key = (static_cast<std::uint64_t>(row) << 32) | static_cast<std::uint32_t>(col);
+    const auto [it, inserted] = blockOf_.try_emplace(key, blocks_.size());
+    if (inserted) blocks_.push_back(Mat6d::Zero());
+    return blocks_[it->second];
+  }
+
+  std::vector<Mat6d> diagonal_, blocks_;
+  std::unordered_map<std::uint64_t, std::size_t> blockOf_;
+  std::vector<Eigen::Triplet<double>> triplets_;
+  Eigen::SparseMatrix<double> K_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
+// --- end spook/solver/body_space_solve.hpp ---
+// --- begin spook/solver/iterative_solve.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_ITERATIVE_SOLVE_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_ITERATIVE_SOLVE_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+// --- begin spook/solver/friction_bounds.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_FRICTION_BOUNDS_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_FRICTION_BOUNDS_HPP
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace spook::detail {
+
+/// The friction limit μΛn (N·s) of friction row e from its normal's current impulse.
+[[nodiscard]] inline double frictionLimit(const IslandProblem& problem, const IslandProblem::Entry& e) {
+  return e.mu * std::max(0.0, problem.rows[static_cast<std::size_t>(e.normal)].impulse);
+}
+
+/// Sets the bounds of the friction rows among `subset` that follow their
+/// normal: ±μΛn for a scaled box, ±μΛn·|d_i| for a cone row (the direct
+/// solver's box around the cone, see updateConeDirections).
+/// Returns the largest change of a bound (N·s).
+inline double applyFrictionBounds(IslandProblem& problem, const std::vector<int>& subset) {
+  double change = 0.0;
+  for (int i : subset) {
+    IslandProblem::Entry& e = problem.rows[static_cast<std::size_t>(i)];
+    if (!e.followsNormal()) continue;
+    const double limit = frictionLimit(problem, e) * (e.frictionBound == FrictionBound::CONE ? e.coneShare : 1.0);
+    change = std::max(change, std::abs(limit - e.upper));
+    e.lower = -limit;
+    e.upper = limit;
+  }
+  return change;
+}
+
+/// The point of the disk |x| ≤ radius closest to `target` in the metric of
+/// the 2×2 block A (a00, a01, a11): the cone step of Gauss–Seidel, where the
+/// pair of tangent impulses minimizes its quadratic within the disk.
+/// Projected gradient with step 1/λmax(A) from the radial projection.
+[[nodiscard]] inline std::array<double, 2> projectOntoDisk(std::array<double, 2> target, double radius, double a00,
+                                                          double a01, double a11) {
+  const auto clampToDisk = [radius](std::array<double, 2> x) {
+    const double r = std::hypot(x[0], x[1]);
+    if (r > radius) {
+      const double f = r > 0.0 ? radius / r : 0.0;
+      x = {x[0] * f, x[1] * f};
+    }
+    return x;
+  };
+  std::array<double, 2> x = clampToDisk(target);
+  const double half = 0.5 * (a00 + a11);
+  const double largest = half + std::sqrt(0.25 * (a00 - a11) * (a00 - a11) + a01 * a01);
+  if (!(largest > 0.0)) return x;
+  for (int k = 0; k < 16; ++k) {
+    const double g0 = a00 * (x[0] - target[0]) + a01 * (x[1] - target[1]);
+    const double g1 = a01 * (x[0] - target[0]) + a11 * (x[1] - target[1]);
+    const std::array<double, 2> next = clampToDisk({x[0] - g0 / largest, x[1] - g1 / largest});
+    const double moved = std::hypot(next[0] - x[0], next[1] - x[1]);
+    x = next;
+    if (moved <= 1e-12 * (radius + 1e-300)) break;
+  }
+  return x;
+}
+
+/// The cone in a direct (box-constrained) solve, as an outer iteration: each
+/// tangent pair (t1, t2) gets the box |Λ_i| ≤ μΛn|d_i|, whose corner d·μΛn
+/// lies on the cone. d is the direction of the friction force: opposite the
+/// slip w = (S+Σ)Λ − q of the pair while it slides (Coulomb's law), or the
+/// force itself when it sticks outside the disk. A sticking pair inside the
+/// disk keeps its box. At the fixed point every sliding pair carries μΛn
+/// against its slip and every sticking one lies in the disk: the cone's
+/// solution. Returns the largest change of a bound (N·s).
+inline double updateConeDirections(IslandProblem& problem, const std::vector<int>& subset) {
+  const std::vector<Vec6d> dv = problem.velocityChange();
+  const auto slip = [&](int i) {
+    const IslandProblem::Entry& e = problem.rows[static_cast<std::size_t>(i)];
+    return problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
+  };
+  std::vector<char> inSubset(problem.rows.size(), 0);
+  for (int i : subset) inSubset[static_cast<std::size_t>(i)] = 1;
+  double change = 0.0;
+  for (int a : subset) {
+    IslandProblem::Entry& ea = problem.rows[static_cast<std::size_t>(a)];
+    if (ea.frictionBound != FrictionBound::CONE || ea.partner < a || !inSubset[static_cast<std::size_t>(ea.partner)])
+      continue;
+    IslandProblem::Entry& eb = problem.rows[static_cast<std::size_t>(ea.partner)];
+    const double limit = frictionLimit(problem, ea);
+    // Only a row held at its bound slips; inside, w is round-off.
+    const auto held = [](const IslandProblem::Entry& e) {
+      return e.upper <= e.lower || std::abs(e.impulse) >= e.upper * (1.0 - 1e-9);
+    };
+    const double wa = held(ea) ? slip(a) : 0.0, wb = held(eb) ? slip(ea.partner) : 0.0;
+    const double slipSpeed = std::hypot(wa, wb);
+    const double force = std::hypot(ea.impulse, eb.impulse);
+    double da = ea.coneShare, db = eb.coneShare;
+    if (slipSpeed > 0.0) {
+      // The force turns against the slip: fully on the first update (from
+      // the square around the disk), then halfway from the last direction:
+      // the slips of points on one body answer each other's turns, and full
+      // turns can oscillate.
+      const double oa = std::copysign(ea.coneShare, ea.impulse), ob = std::copysign(eb.coneShare, eb.impulse);
+      const double ta = -wa / slipSpeed, tb = -wb / slipSpeed;
+      const bool full = ea.coneShare == 1.0 && eb.coneShare == 1.0;
+      const double sa = full ? ta : oa + ta, sb = full ? tb : ob + tb;
+      const double norm = std::hypot(sa, sb);
+      da = norm > 1e-12 ? std::abs(sa) / norm : std::abs(ta);
+      db = norm > 1e-12 ? std::abs(sb) / norm : std::abs(tb);
+    } else if (force > limit * (1.0 + 1e-9) && force > 0.0) {
+      da = std::abs(ea.impulse) / force;
+      db = std::abs(eb.impulse) / force;
+    }
+    change = std::max(change, limit * std::max(std::abs(da - ea.coneShare), std::abs(db - eb.coneShare)));
+    ea.coneShare = da;
+    eb.coneShare = db;
+  }
+  return change;
+}
+
+/// Freezes the cone rows among `subset` whose `keep` flag is set at the
+/// friction their last (iterative) solve found: the box |Λ_i| ≤ μΛn|f_i|/|f|
+/// holds f and has its corner on the cone (the inscribed square when f = 0).
+inline void freezeConeShares(IslandProblem& problem, const std::vector<int>& subset, const std::vector<char>& keep) {
+  for (int a : subset) {
+    IslandProblem::Entry& ea = problem.rows[static_cast<std::size_t>(a)];
+    if (!keep[static_cast<std::size_t>(a)] || ea.frictionBound != FrictionBound::CONE || ea.partner < a) continue;
+    IslandProblem::Entry& eb = problem.rows[static_cast<std::size_t>(ea.partner)];
+    const double force = std::hypot(ea.impulse, eb.impulse);
+    ea.coneShare = force > 0.0 ? std::abs(ea.impulse) / force : std::sqrt(0.5);
+    eb.coneShare = force > 0.0 ? std::abs(eb.impulse) / force : std::sqrt(0.5);
+  }
+}
+
+/// Complementarity error of a cone pair (m/s): its slip w must oppose its
+/// force f when |f| = μΛn and vanish inside the disk.
+[[nodiscard]] inline double coneComplementarityError(const IslandProblem::Entry& a, const IslandProblem::Entry& b,
+                                                     double limit, double wa, double wb) {
+  const double force = std::hypot(a.impulse, b.impulse);
+  // On the cone to within the friction iterations' reach (their last solve
+  // moves Λn after the bounds were set).
+  if (force < limit * (1.0 - 1e-4) || force == 0.0) return std::hypot(wa, wb);
+  const double fa = a.impulse / force, fb = b.impulse / force;
+  const double along = wa * fa + wb * fb;  // must be <= 0
+  return std::max(0.0, along) + std::abs(wa * fb - wb * fa);
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_FRICTION_BOUNDS_HPP
+// --- end spook/solver/friction_bounds.hpp ---
+
+namespace spook::detail {
+
+/// What an iterative solve did.
+struct IterativeSolveResult {
+  int iterations = 0;     ///< sweeps over the rows
+  double change = 0.0;    ///< largest |ΔΛ|·(S+Σ)_ii of the last sweep (m/s)
+  bool converged = false; ///< `change` fell below the tolerance
+};
+
+/// Projected Gauss–Seidel on the rows `subset` (PHYSICS.md §2.2), the other
+/// rows' impulses held fixed, starting from the impulses in the problem
+/// (the last step's when warm starting): Λᵢ ← clamp(Λᵢ + rᵢ/(S+Σ)ᵢᵢ, loᵢ, hiᵢ) with rᵢ = qᵢ − GᵢΔv − ΣᵢΛᵢ,
+/// keeping Δv = M⁻¹GᵀΛ current so that one row costs O(1).
+///
+/// Friction rows take their bounds from the current impulse of their normal
+/// row: ±μΛn (scaled box), and a cone's tangent pair is updated as a block,
+/// its two impulses minimizing their quadratic within the disk of radius
+/// μΛn (projectOntoDisk), the projected cone of PHYSICS.md §2.2.
+///
+/// The Jacobi variant computes every update of a sweep from the same Δv and
+/// applies it scaled by 1/k, k the largest number of swept rows on either of
+/// the row's bodies, which keeps it from overshooting where rows share a body.
+inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::vector<int>& subset, int maxIterations,
+                                           double tolerance, bool jacobi) {
+  IterativeSolveResult result;
+  if (subset.empty()) return result;
+  std::vector<Vec6d> dv = problem.velocityChange();
+
+  std::vector<double> relaxation;
+  if (jacobi) {
+    std::vector<int> count(static_cast<std::size_t>(problem.numBodies), 0);
+    for (int i : subset) {
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      if (e.body1 >= 0) ++count[static_cast<std::size_t>(e.body1)];
+      if (e.body2 >= 0) ++count[static_cast<std::size_t>(e.body2)];
+    }
+    for (int i : subset) {
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      const int k = std::max(e.body1 >= 0 ? count[static_cast<std::size_t>(e.body1)] : 1,
+                             e.body2 >= 0 ? count[static_cast<std::size_t>(e.body2)] : 1);
+      relaxation.push_back(1.0 / std::max(k, 1));
+    }
+  }
+  std::vector<double> delta(subset.size(), 0.0);
+  std::vector<char> inSubset(problem.rows.size(), 0);
+  for (int i : subset) inSubset[static_cast<std::size_t>(i)] = 1;
+  const auto conePair = [&](int i) {
+    const auto& e = problem.rows[static_cast<std::size_t>(i)];
+    return e.frictionBound == FrictionBound::CONE && e.normal >= 0 && e.partner >= 0 &&
+           inSubset[static_cast<std::size_t>(e.partner)];
+  };
+
+  for (int sweep = 0; sweep < maxIterations; ++sweep) {
+    double change = 0.0;
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      const int i = subset[k];
+      auto& e = problem.rows[static_cast<std::size_t>(i)];
+      if (e.followsNormal()) {
+        const double limit = frictionLimit(problem, e);
+        e.lower = -limit;
+        e.upper = limit;
+      }
+      const double r = e.q - problem.rowVelocity(i, dv) - e.sigma * e.impulse;
+      if (!jacobi && conePair(i)) {
+        if (e.partner < i) continue;  // updated with its partner
+        auto& p = problem.rows[static_cast<std::size_t>(e.partner)];
+        p.lower = e.lower;
+        p.upper = e.upper;
+        const double rp = p.q - problem.rowVelocity(e.partner, dv) - p.sigma * p.impulse;
+        const double a01 = problem.coupling(i, e.partner);
+        const double det = e.diagonal * p.diagonal - a01 * a01;
+        const double d0 = (p.diagonal * r - a01 * rp) / det, d1 = (e.diagonal * rp - a01 * r) / det;
+        const auto next = projectOntoDisk({e.impulse + d0, p.impulse + d1}, e.upper, e.diagonal, a01, p.diagonal);
+        const double de = next[0] - e.impulse, dp = next[1] - p.impulse;
+        e.impulse = next[0];
+        p.impulse = next[1];
+        problem.addImpulse(dv, i, de);
+        problem.addImpulse(dv, e.partner, dp);
+        change = std::max({change, std::abs(de) * e.diagonal, std::abs(dp) * p.diagonal});
+        continue;
+      }
+      const double next = std::clamp(e.impulse + r / e.diagonal, e.lower, e.upper);
+      if (jacobi) {
+        delta[k] = relaxation[k] * (next - e.impulse);
+        continue;
+      }
+      const double d = next - e.impulse;
+      e.impulse = next;
+      problem.addImpulse(dv, i, d);
+      change = std::max(change, std::abs(d) * e.diagonal);
+    }
+    if (jacobi) {
+      for (std::size_t k = 0; k < subset.size(); ++k) {
+        const int i = subset[k];
+        auto& e = problem.rows[static_cast<std::size_t>(i)];
+        e.impulse += delta[k];
+        problem.addImpulse(dv, i, delta[k]);
+        change = std::max(change, std::abs(delta[k]) * e.diagonal);
+      }
+      // The box step leaves a cone pair in its square: scale it into the disk.
+      for (int i : subset) {
+        auto& e = problem.rows[static_cast<std::size_t>(i)];
+        if (!conePair(i) || e.partner < i) continue;
+        auto& p = problem.rows[static_cast<std::size_t>(e.partner)];
+        const double limit = frictionLimit(problem, e), force = std::hypot(e.impulse, p.impulse);
+        if (force <= limit) continue;
+        const double f = limit / force;
+        problem.addImpulse(dv, i, e.impulse * (f - 1.0));
+        problem.addImpulse(dv, e.partner, p.impulse * (f - 1.0));
+        e.impulse *= f;
+        p.impulse *= f;
+      }
+    }
+    result.iterations = sweep + 1;
+    result.change = change;
+    if (!std::isfinite(change)) break;
+    if (change <= tolerance) {
+      result.converged = true;
+      break;
+    }
+  }
+  return result;
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_ITERATIVE_SOLVE_HPP
+// --- end spook/solver/iterative_solve.hpp ---
+
+namespace spook::detail {
+
+/// What a direct solve did.
+struct DirectSolveResult {
+  int factorizations = 0;  ///< sparse LDLᵀ factorizations (one per pivot step)
+  bool converged = true;   ///< a complementary solution was found
+  bool fellBack = false;   ///< the pivoting gave up; the safe fallback answered
+};
+
+/// Solves the rows `subset` of an island exactly, the impulses of the other
+/// rows held fixed: (S + Σ)_DD Λ_D = q_D − (S Λ)_D,fixed within the bounds.
+///
+/// S + Σ is assembled in block-sparse form (a row couples only to the rows
+/// sharing one of its bodies) and factorized by a sparse LDLᵀ with an
+/// approximate-minimum-degree ordering, so a chain or a tree of n bodies costs
+/// O(n). Σ > 0 keeps the matrix positive definite. Where rows far outnumber
+/// the bodies' degrees of freedom and all are compliant (contacts), the same
+/// system is solved through the bodies' mass matrix instead
+/// (body_space_solve.hpp).
+///
+/// Bounded rows make a box-constrained LCP, solved by block principal
+/// pivoting (Júdice & Pires 1994): every row is free, at its lower or at its
+/// upper bound; each step solves the free rows with the others at their
+/// bounds and swaps every infeasible row at once. When that stops reducing
+/// the number of infeasible rows for kBlockPivotingStrikes steps, it switches
+/// to Murty's single principal pivoting (swap only the infeasible row of
+/// largest index), which cannot cycle on a positive definite matrix (Murty
+/// 1974). Murty's guarantee is exact arithmetic's: where contacts fight a
+/// joint, many rows share a body's few degrees of freedom, S is singular,
+/// and only Σ (1e-5 and less of the rows' mobility) keeps the matrix
+/// definite; round-off can then flip a Schur complement's sign and a row
+/// cycles between free and bound. Should the step cap be reached, the solve
+/// falls back to a safe answer: of the clamped best iterate (fewest
+/// infeasible rows) and no impulse at all, the one of lower merit
+/// f(Λ) = ½ΛᵀAΛ − qᵀΛ (whose minimum over the bounds is the LCP's solution;
+/// f(Λ) − f(0) bounds the kinetic energy the impulses add), refined by
+/// projected Gauss–Seidel, which never raises f. The solve is reported as
+/// not converged.
+class DirectSolve {
+ public:
+  /// Gauss–Seidel sweeps of the fallback.
+  static constexpr int kFallbackSweeps = 64;
+
+  /// Block pivoting steps allowed without a new fewest-infeasible count
+  /// before single pivots: friction in a 210-cube pyramid needs tens of such
+  /// steps, and Murty's one row per step then takes hundreds.
+  static constexpr int kBlockPivotingStrikes = 30;
+
+  DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps) {
+    DirectSolveResult result;
+    const int n = static_cast<int>(subset.size());
+    if (n == 0) return result;
+    bodySpace_ = BodySpaceSolve::pays(problem, subset);
+    assembleRhs(problem, subset);
+    if (!bodySpace_) assembleMatrix(problem, subset);
+
+    // The state of each row: free, or clamped at its lower or upper bound.
+    // Warm start: a row whose guess (the last solution) is at a bound starts there.
+    enum State : unsigned char { FREE, LOWER, UPPER };
+    std::vector<State> state(static_cast<std::size_t>(n), FREE);
+    bool anyBounded = false;
+    for (int k = 0; k < n; ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      if (!isBounded(e)) continue;
+      anyBounded = true;
+      if (e.guess <= e.lower) state[static_cast<std::size_t>(k)] = LOWER;
+      else if (e.guess >= e.upper) state[static_cast<std::size_t>(k)] = UPPER;
+    }
+
+    Eigen::VectorXd x(n), bestX;
+    int best = std::numeric_limits<int>::max();
+    int strikes = 0;
+    std::vector<int> infeasible;
+    for (int step = 0;; ++step) {
+      solveFree(problem, subset, state, x);
+      ++result.factorizations;
+      if (!anyBounded) break;
+      const Eigen::VectorXd w = residual(problem, subset, x);
+      infeasible.clear();
+      for (int k = 0; k < n; ++k) {
+        const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+        const double tolX = 1e-12 * (1.0 + std::abs(x[k]));
+        const double tolW = 1e-12 * (1.0 + std::abs(q_[k]));
+        const State s = state[static_cast<std::size_t>(k)];
+        if (e.upper <= e.lower) continue;  // a zero-width box: held at its bound from the start
+        if ((s == FREE && (x[k] < e.lower - tolX || x[k] > e.upper + tolX)) || (s == LOWER && w[k] < -tolW) ||
+            (s == UPPER && w[k] > tolW))
+          infeasible.push_back(k);
+      }
+      if (infeasible.empty()) break;
+      const int count = static_cast<int>(infeasible.size());
+      if (count < best) {
+        best = count;
+        bestX = x;
+        strikes = 0;
+      } else {
+        ++strikes;
+      }
+      if (step >= maxPivotSteps) {
+        fallBack(problem, subset, bestX);
+        result.converged = false;
+        result.fellBack = true;
+        return result;
+      }
+      if (strikes >= kBlockPivotingStrikes) infeasible.erase(infeasible.begin(), infeasible.end() - 1);
+      for (int k : infeasible) {
+        const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+        State& s = state[static_cast<std::size_t>(k)];
+        if (s != FREE) s = FREE;
+        else s = x[k] < e.lower ? LOWER : UPPER;
+      }
+    }
+    for (int k = 0; k < n; ++k) {
+      auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      e.impulse = std::clamp(x[k], e.lower, e.upper);
+      e.guess = e.impulse;
+    }
+    return result;
+  }
+
+ private:
+  // The safe answer of a solve whose pivoting gave up (see the class note).
+  void fallBack(IslandProblem& problem, const std::vector<int>& subset, Eigen::VectorXd x) {
+    const auto n = static_cast<Eigen::Index>(subset.size());
+    Eigen::VectorXd none(n);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      x[k] = std::clamp(x[k], e.lower, e.upper);
+      none[k] = std::clamp(0.0, e.lower, e.upper);
+    }
+    const auto merit = [&](const Eigen::VectorXd& y) { return 0.5 * y.dot(residual(problem, subset, y) - q_); };
+    const double fx = merit(x);
+    if (!(std::isfinite(fx) && fx <= merit(none))) x = none;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      e.impulse = x[k];
+    }
+    iterativeSolve(problem, subset, kFallbackSweeps, 0.0, false);
+    for (int i : subset) problem.rows[static_cast<std::size_t>(i)].guess = problem.rows[static_cast<std::size_t>(i)].impulse;
+  }
+
+  static bool isBounded(const IslandProblem::Entry& e) {
+    return e.lower > -std::numeric_limits<double>::infinity() || e.upper < std::numeric_limits<double>::infinity();
+  }
+
+  // q_ = q_D − G_D Δv(rows outside D).
+  void assembleRhs(const IslandProblem& problem, const std::vector<int>& subset) {
+    std::vector<char> inSubset(problem.rows.size(), 0);
+    for (int i : subset) inSubset[static_cast<std::size_t>(i)] = 1;
+    std::vector<int> others;
+    for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i)
+      if (!inSubset[static_cast<std::size_t>(i)]) others.push_back(i);
+    const std::vector<Vec6d> fixed = problem.velocityChange(others);
+    q_.resize(static_cast<Eigen::Index>(subset.size()));
+    for (std::size_t k = 0; k < subset.size(); ++k)
+      q_[static_cast<Eigen::Index>(k)] = problem.rows[static_cast<std::size_t>(subset[k])].q - problem.rowVelocity(subset[k], fixed);
+  }
+
+  // w = (S + Σ)_DD x − q_D.
+  Eigen::VectorXd residual(const IslandProblem& problem, const std::vector<int>& subset, const Eigen::VectorXd& x) const {
+    if (!bodySpace_) return A_ * x - q_;
+    std::vector<Vec6d> dv(static_cast<std::size_t>(problem.numBodies), Vec6d::Zero());
+    for (std::size_t k = 0; k < subset.size(); ++k) problem.addImpulse(dv, subset[k], x[static_cast<Eigen::Index>(k)]);
+    Eigen::VectorXd w(x.size());
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
+      const auto j = static_cast<Eigen::Index>(k);
+      w[j] = problem.rowVelocity(subset[k], dv) + e.sigma * x[j] - q_[j];
+    }
+    return w;
+  }
+
+  // A_ = (S + Σ)_DD, full symmetric.
+  void assembleMatrix(const IslandProblem& problem, const std::vector<int>& subset) {
+    const int n = static_cast<int>(subset.size());
+    std::vector<std::vector<int>> rowsOfBody(static_cast<std::size_t>(problem.numBodies));
+    for (int k = 0; k < n; ++k) {
+      const int i = subset[static_cast<std::size_t>(k)];
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      if (e.body1 >= 0) rowsOfBody[static_cast<std::size_t>(e.body1)].push_back(k);
+      if (e.body2 >= 0 && e.body2 != e.body1) rowsOfBody[static_cast<std::size_t>(e.body2)].push_back(k);
+    }
+    triplets_.clear();
+    for (int k = 0; k < n; ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      triplets_.emplace_back(k, k, e.diagonal);
+    }
+    // Off-diagonal blocks body by body; two rows sharing both bodies meet
+    // twice and coupling() already sums both, so each pair is added once.
+    std::vector<int> lastSeen(static_cast<std::size_t>(n), -1);
+    for (int k = 0; k < n; ++k) {
+      const int i = subset[static_cast<std::size_t>(k)];
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      for (int body : {e.body1, e.body2}) {
+        if (body < 0) continue;
+        for (int m : rowsOfBody[static_cast<std::size_t>(body)]) {
+          if (m <= k || lastSeen[static_cast<std::size_t>(m)] == k) continue;
+          lastSeen[static_cast<std::size_t>(m)] = k;
+          const double s = problem.coupling(i, subset[static_cast<std::size_t>(m)]);
+          if (s == 0.0) continue;
+          triplets_.emplace_back(k, m, s);
+          triplets_.emplace_back(m, k, s);
+        }
+      }
+    }
+    A_.resize(n, n);
+    A_.setFromTriplets(triplets_.begin(), triplets_.end());
+  }
+
+  // Solves the free rows with the clamped ones at their bounds.
+  template <class States>
+  void solveFree(const IslandProblem& problem, const std::vector<int>& subset, const States& state,
+                 Eigen::VectorXd& x) {
+    const int n = static_cast<int>(subset.size());
+    std::vector<int> freeIndex(static_cast<std::size_t>(n), -1);
+    int numFree = 0;
+    for (int k = 0; k < n; ++k) {
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
+      if (state[static_cast<std::size_t>(k)] == 0) freeIndex[static_cast<std::size_t>(k)] = numFree++;
+      else x[k] = state[static_cast<std::size_t>(k)] == 1 ? e.lower : e.upper;
+    }
+    if (numFree == 0) return;
+    Eigen::VectorXd rhs(numFree);
+    for (int k = 0; k < n; ++k)
+      if (freeIndex[static_cast<std::size_t>(k)] >= 0) rhs[freeIndex[static_cast<std::size_t>(k)]] = q_[k];
+    if (bodySpace_) {
+      std::vector<Vec6d> clamped(static_cast<std::size_t>(problem.numBodies), Vec6d::Zero());
+      for (int k = 0; k < n; ++k)
+        if (freeIndex[static_cast<std::size_t>(k)] < 0) problem.addImpulse(clamped, subset[static_cast<std::size_t>(k)], x[k]);
+      for (int k = 0; k < n; ++k)
+        if (const int f = freeIndex[static_cast<std::size_t>(k)]; f >= 0)
+          rhs[f] -= problem.rowVelocity(subset[static_cast<std::size_t>(k)], clamped);
+      bodySpaceSolve_.solve(problem, subset, freeIndex, rhs, x);
+      return;
+    }
+    subTriplets_.clear();
+    for (int col = 0; col < n; ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A_, col); it; ++it) {
+        const int fr = freeIndex[static_cast<std::size_t>(it.row())];
+        if (fr < 0) continue;
+        const int fc = freeIndex[static_cast<std::size_t>(col)];
+        if (fc >= 0) {
+          if (fr >= fc) subTriplets_.emplace_back(fr, fc, it.value());
+        } else {
+          rhs[fr] -= it.value() * x[col];
+        }
+      }
+    Eigen::SparseMatrix<double> sub(numFree, numFree);
+    sub.setFromTriplets(subTriplets_.begin(), subTriplets_.end());
+    ldlt_.compute(sub);
+    const Eigen::VectorXd solution = ldlt_.solve(rhs);
+    for (int k = 0; k < n; ++k)
+      if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[freeIndex[static_cast<std::size_t>(k)]];
+  }
+
+  bool bodySpace_ = false;
+  BodySpaceSolve bodySpaceSolve_;
+  Eigen::SparseMatrix<double> A_;
+  Eigen::VectorXd q_;
+  std::vector<Eigen::Triplet<double>> triplets_, subTriplets_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_DIRECT_SOLVE_HPP
+// --- end spook/solver/direct_solve.hpp ---
+
+namespace spook {
+
+SPOOK_SOLVER_INLINE Solver::Solver() : direct_(std::make_unique<detail::DirectSolve>()) {}
+
+SPOOK_SOLVER_INLINE Solver::~Solver() = default;
+
+SPOOK_SOLVER_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  const auto start = std::chrono::steady_clock::now();
+  direct(problem, allRows(problem), statistics);
+  for (auto& e : problem.rows)
+    if (!std::isfinite(e.impulse)) e.impulse = 0.0;
+  statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+SPOOK_SOLVER_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  const auto start = std::chrono::steady_clock::now();
+  ++statistics.numIslands;
+  statistics.numRows += static_cast<int>(problem.rows.size());
+  solveIsland(problem, statistics);
+  bool finite = true;
+  for (const auto& e : problem.rows) finite = finite && std::isfinite(e.impulse);
+  if (!finite) {
+    for (auto& e : problem.rows) e.impulse = 0.0;
+    ++statistics.nonFiniteIslands;
+    statistics.converged = false;
+  }
+  statistics.complementarityError = std::max(statistics.complementarityError, complementarityError(problem));
+  statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return finite;
+}
+
+SPOOK_SOLVER_INLINE void Solver::direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
+  const detail::DirectSolveResult r = direct_->solve(problem, subset, maxPivotSteps_);
+  statistics.factorizations += r.factorizations;
+  statistics.converged = statistics.converged && r.converged;
+  statistics.directFallbacks += r.fellBack ? 1 : 0;
+}
+
+SPOOK_SOLVER_INLINE void Solver::directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
+                                                    SolverStatistics& statistics, const std::vector<char>* keep) {
+  std::vector<int> following;
+  for (int i : subset) {
+    const auto& e = problem.rows[static_cast<std::size_t>(i)];
+    if (!e.followsNormal() || (keep && (*keep)[static_cast<std::size_t>(i)])) continue;
+    following.push_back(i);
+  }
+  direct(problem, subset, statistics);
+  int k = 1;
+  for (; k < frictionIterations_ && !following.empty(); ++k) {
+    double change = detail::updateConeDirections(problem, following);
+    change = std::max(change, detail::applyFrictionBounds(problem, following));
+    double largest = 0.0;
+    for (int i : following) largest = std::max(largest, problem.rows[static_cast<std::size_t>(i)].upper);
+    if (change <= frictionTolerance_ * largest) break;
+    direct(problem, subset, statistics);
+  }
+  statistics.frictionIterations = std::max(statistics.frictionIterations, k);
+}
+
+SPOOK_SOLVER_INLINE void Solver::iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
+  const detail::IterativeSolveResult r =
+      detail::iterativeSolve(problem, subset, iterations_, tolerance_, method_ == JACOBI);
+  statistics.iterations = std::max(statistics.iterations, r.iterations);
+  statistics.converged = statistics.converged && r.converged;
+}
+
+SPOOK_SOLVER_INLINE std::vector<int> Solver::allRows(const detail::IslandProblem& problem) {
+  std::vector<int> rows(problem.rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<int>(i);
+  return rows;
+}
+
+SPOOK_SOLVER_INLINE double Solver::complementarityError(const detail::IslandProblem& problem) {
+  const std::vector<detail::Vec6d> dv = problem.velocityChange();
+  const auto residual = [&](int i) {
+    const auto& e = problem.rows[static_cast<std::size_t>(i)];
+    return problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
+  };
+  double worst = 0.0;
+  for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
+    const auto& e = problem.rows[static_cast<std::size_t>(i)];
+    if (e.frictionBound == detail::FrictionBound::CONE && e.partner >= 0) {
+      if (e.partner > i)
+        worst = std::max(worst, detail::coneComplementarityError(e, problem.rows[static_cast<std::size_t>(e.partner)],
+                                                                 detail::frictionLimit(problem, e), residual(i),
+                                                                 residual(e.partner)));
+      continue;
+    }
+    worst = std::max(worst, detail::complementarityError(e, residual(i)));
+  }
+  return worst;
+}
+
+SPOOK_SOLVER_INLINE void DirectSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  const std::vector<int> rows = allRows(problem);
+  statistics.numDirectRows += static_cast<int>(rows.size());
+  directWithFriction(problem, rows, statistics);
+}
+
+SPOOK_SOLVER_INLINE void IterativeSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  const std::vector<int> rows = allRows(problem);
+  statistics.numIterativeRows += static_cast<int>(rows.size());
+  iterative(problem, rows, statistics);
+}
+
+SPOOK_SOLVER_INLINE void HybridSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  std::vector<int> directRows, iterativeRows;
+  std::vector<char> keep(problem.rows.size(), 0);
+  bool anyIterativeOnly = false;
+  for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
+    const auto& e = problem.rows[static_cast<std::size_t>(i)];
+    const bool friction = e.normal >= 0;
+    const bool split = e.solveType == SolveType::SPLIT;
+    const bool inDirect = e.solveType != SolveType::ITERATIVE && !(split && friction);
+    const bool inIterative = e.solveType != SolveType::DIRECT && !(split && !friction);
+    if (inDirect) directRows.push_back(i);
+    if (inIterative) iterativeRows.push_back(i);
+    anyIterativeOnly = anyIterativeOnly || (inIterative && !inDirect);
+    keep[static_cast<std::size_t>(i)] = friction && e.solveType == SolveType::DIRECT_AND_ITERATIVE;
+  }
+  statistics.numDirectRows += static_cast<int>(directRows.size());
+  if (!anyIterativeOnly) {
+    directWithFriction(problem, directRows, statistics);
+    return;
+  }
+  statistics.numIterativeRows += static_cast<int>(iterativeRows.size());
+  if (directRows.empty()) {
+    iterative(problem, iterativeRows, statistics);
+    return;
+  }
+  directWithFriction(problem, directRows, statistics);
+  std::vector<double> previous(directRows.size());
+  for (int pass = 0; pass < getNumCouplingIterations(); ++pass) {
+    iterative(problem, iterativeRows, statistics);
+    detail::freezeConeShares(problem, iterativeRows, keep);
+    detail::applyFrictionBounds(problem, iterativeRows);
+    double largest = 0.0;
+    for (std::size_t k = 0; k < directRows.size(); ++k) {
+      previous[k] = problem.rows[static_cast<std::size_t>(directRows[k])].impulse;
+      largest = std::max(largest, std::abs(previous[k]));
+    }
+    directWithFriction(problem, directRows, statistics, &keep);
+    double change = 0.0;
+    for (std::size_t k = 0; k < directRows.size(); ++k)
+      change = std::max(change, std::abs(problem.rows[static_cast<std::size_t>(directRows[k])].impulse - previous[k]));
+    if (change <= 1e-6 * largest) break;
+  }
+}
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_SOLVER_IMPL_HPP
+// --- end spook/solver/solver_impl.hpp ---
+#endif
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_SOLVER_HPP
+// --- end spook/solver/solver.hpp ---
+
+namespace spook {
+
+/// Why a body was frozen in a step (SimulationStatisticsT::frozenBodies).
+enum class FreezeReason {
+  /// Its own new position, orientation or velocity would not have been finite.
+  NON_FINITE_STATE,
+  /// The constraint and contact impulses of its island (the bodies joined to
+  /// it by constraints and contacts) came out non-finite: they were dropped,
+  /// and every body of the island was frozen rather than moved without them.
+  NON_FINITE_ISLAND
+};
+
+/// What the last step did, readable after stepForward().
+template <Scalar S>
+struct SimulationStatisticsT {
+  /// A body frozen in the last step and why.
+  struct FrozenBody {
+    observer_ptr<RigidBodyT<S>> body;
+    FreezeReason reason;
+  };
+
+  /// Steps taken since the simulation was created.
+  std::uint64_t numSteps = 0;
+  /// Bodies frozen in the last step: their state was kept as it was before
+  /// the step (pose kept, velocities zeroed) instead of becoming non-finite
+  /// or moving without their constraints. Each body appears once.
+  std::vector<FrozenBody> frozenBodies;
+  /// Steps, since the simulation was created, in which a direct solve did
+  /// not converge and fell back to its safe answer (SolverStatistics::directFallbacks).
+  std::uint64_t numFallbackSteps = 0;
+  /// Contact points the last step's collision detection dropped before
+  /// contact reduction because their position, normal or depth was not
+  /// finite (shapes posed near the largest finite coordinate); they exert
+  /// no force.
+  std::size_t numDroppedContactPoints = 0;
+  /// What the constraint solver did in the last step.
+  SolverStatistics solver;
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_SIM_STATISTICS_HPP
+// --- end spook/sim/statistics.hpp ---
+
+namespace spook {
+
+namespace detail {
+template <Scalar S>
+struct SimulationWorkspace;
+}  // namespace detail
+
+/// Owns a scene and steps it. Time in seconds; default step 1/60 s; default
+/// gravity uniform (0, 0, −9.80665) m/s². An object belongs to at most one
+/// simulation; a call that throws leaves the simulation unchanged.
+template <Scalar S>
+class SimulationT : public Referenced, public detail::ContentSink<S> {
+ public:
+  using Vec3 = spook::Vec3T<S>;
+  using Body = RigidBodyT<S>;
+  using Listener = StepEventListenerT<S>;
+  using Collection = CollectionT<S>;
+  using ContactListener = ContactEventListenerT<S>;
+  using Geometry = GeometryT<S>;
+  using Constraint = ConstraintT<S>;
+
+  /// A simulation whose space collides every shape type.
+  SimulationT() : SimulationT(ref_ptr<SpaceT<S>>(new SpaceT<S>())) {}
+  /// A simulation for the shape types of `List` only, e.g.
+  /// `Simulation(ShapeList<SphereT, PlaneT>{})`: only the colliders between
+  /// them are compiled, and a geometry of another type is refused.
+  template <template <class> class... Shapes>
+  explicit SimulationT(ShapeList<Shapes...> list) : SimulationT(ref_ptr<SpaceT<S>>(new SpaceT<S>(list))) {}
+
+  // --- Time ------------------------------------------------------------------
+
+  /// Step length h (s), finite and > 0. Set from a listener during a step,
+  /// it takes effect from the next step (a step is taken whole with one h).
+  [[nodiscard]] S getTimeStep() const { return timeStep_; }
+  void setTimeStep(S h) {
+    if (!(std::isfinite(h) && h > S(0))) throw error("time step must be finite and > 0 s", h);
+    if (stepping_) {
+      pendingTimeStep_ = h;
+      return;
+    }
+    timeBase_ = getTimeStamp();
+    stepsSinceBase_ = 0;
+    timeStep_ = h;
+  }
+  /// Simulated time (s), computed as t₀ + n·h rather than summed, so that a
+  /// float simulation does not drift by a step every few thousand steps.
+  [[nodiscard]] S getTimeStamp() const { return timeBase_ + S(stepsSinceBase_) * timeStep_; }
+
+  /// Takes one step:
+  /// preCollide listeners → collision detection → contact events → pre
+  /// listeners → rows, islands, solve → integrate → continuous collision
+  /// (RigidBody::setEnableCCD) → post listeners → last listeners → t += h.
+  void stepForward();
+
+  /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps,
+  /// recounted after each step in case a listener changes h. stepTo(now),
+  /// or any t less than half a step ahead, takes no step. Throws before
+  /// stepping when t is not finite, is in the past, or is more than 2³¹
+  /// steps away (1e9 s at 60 Hz would take 6e10 steps).
+  void stepTo(S t) {
+    if (!std::isfinite(t)) throw error("stepTo time must be finite (s)", t);
+    const S now = getTimeStamp();
+    if (t < now) throw error("stepTo time must not be in the past (now " + std::to_string(now) + " s)", t);
+    while (stepsTo(t) > 0) stepForward();
+  }
+
+  // --- Solver ----------------------------------------------------------------
+
+  /// The solver policy that solves each island: HybridSolver by default
+  /// (rows solved as their constraints ask), DirectSolver or IterativeSolver.
+  [[nodiscard]] Solver* getSolver() const { return solver_.get(); }
+  void setSolver(ref_ptr<Solver> solver) {
+    if (!solver) throw error("solver must not be null", "nullptr");
+    solver_ = std::move(solver);
+  }
+
+  // --- Gravity ---------------------------------------------------------------
+
+  [[nodiscard]] GravityFieldT<S>* getGravityField() const { return gravity_.get(); }
+  void setGravityField(GravityFieldT<S>* field) {
+    if (!field) throw error("gravity field must not be null", "nullptr");
+    gravity_ = field;
+  }
+  /// Replaces the field by a uniform one (m/s²).
+  void setUniformGravity(const Vec3& g) { setGravityField(new UniformGravityFieldT<S>(g)); }
+
+  // --- Collision detection ---------------------------------------------------
+
+  /// The space that finds this simulation's contacts.
+  [[nodiscard]] SpaceT<S>* getSpace() const { return space_.get(); }
+  /// The contacts found in the last step (those with isEnabled() false were
+  /// removed by a contact listener).
+  [[nodiscard]] const std::vector<GeometryContactT<S>>& getGeometryContacts() const {
+    return space_->getGeometryContacts();
+  }
+
+  // --- Contacts --------------------------------------------------------------
+
+  /// The explicit contact materials (getOrCreateContactMaterial); pairs
+  /// without one combine their two materials' implicit values.
+  [[nodiscard]] MaterialManagerT<S>* getMaterialManager() { return &materials_; }
+  [[nodiscard]] const MaterialManagerT<S>* getMaterialManager() const { return &materials_; }
+  /// Approach speed (m/s, >= 0) above which restitution makes a contact
+  /// bounce; slower ones come to rest. Default 0.2.
+  [[nodiscard]] S getRestitutionThreshold() const { return S(contactSettings_.restitutionThreshold); }
+  void setRestitutionThreshold(S speed) {
+    if (!(std::isfinite(speed) && speed >= S(0))) throw error("restitution threshold must be finite and >= 0 m/s", speed);
+    contactSettings_.restitutionThreshold = double(speed);
+  }
+  /// The fastest (m/s, > 0) that contact stabilization separates overlapping
+  /// shapes: a box created half inside another leaves it at about this speed
+  /// instead of being shot out. Default 1.
+  [[nodiscard]] S getMaxDepenetrationSpeed() const { return S(contactSettings_.maxDepenetrationSpeed); }
+  void setMaxDepenetrationSpeed(S speed) {
+    if (!(std::isfinite(speed) && speed > S(0))) throw error("maximum depenetration speed must be finite and > 0 m/s", speed);
+    contactSettings_.maxDepenetrationSpeed = double(speed);
+  }
+
+  // --- Content ---------------------------------------------------------------
+
+  /// Adds a geometry that stands static in the world (a body's geometries
+  /// come with the body).
+  void add(ref_ptr<Geometry> geometry) {
+    if (geometry && geometry->getRigidBody())
+      throw detail::makeError("Geometry", geometry->getName(), "belongs to a body; add the body instead");
+    space_->add(std::move(geometry));
+  }
+  /// Removes a static geometry; false when it is not here.
+  bool remove(Geometry* geometry) { return space_->remove(geometry); }
+
+  /// Adds a listener of class L, checked at compile time: a member named
+  /// like a callback must override it (detail::requireContactCallbacks).
+  template <detail::ContactEventListenerClass<S> L>
+  void add(const ref_ptr<L>& listener) {
+    detail::requireContactCallbacks<L, S>();
+    add(ref_ptr<ContactListener>(listener));
+  }
+  template <detail::ContactEventListenerClass<S> L>
+  void add(L* listener) {
+    add(ref_ptr<L>(listener));
+  }
+  void add(ref_ptr<ContactListener> listener) {
+    checkAddable(listener.get(), "ContactEventListener");
+    Membership::simulationOf(*listener) = this;
+    contactListeners_.push_back(std::move(listener));
+  }
+  void remove(ContactListener* listener) {
+    checkRemovable(listener, "ContactEventListener");
+    std::erase_if(contactListeners_, [&](const auto& l) { return l.get() == listener; });
+    Membership::simulationOf(*listener) = nullptr;
+  }
+  [[nodiscard]] const std::vector<ref_ptr<ContactListener>>& getContactEventListeners() const {
+    return contactListeners_;
+  }
+
+  void add(ref_ptr<Body> body) override {
+    checkAddable(body.get(), "RigidBody");
+    for (const auto& g : body->getGeometries()) space_->requireSupported(*g);
+    Membership::indexOf(*body) = bodies_.size();
+    Membership::simulationOf(*body) = this;
+    bodies_.push_back(std::move(body));
+  }
+  void remove(Body* body) override {
+    checkRemovable(body, "RigidBody");
+    const std::size_t index = Membership::indexOf(*body);
+    ref_ptr<Body> keep = body;
+    std::swap(bodies_[index], bodies_.back());
+    Membership::indexOf(*bodies_[index]) = index;
+    bodies_.pop_back();
+    Membership::simulationOf(*body) = nullptr;
+  }
+
+  /// Adds a listener of class L, checked at compile time: a member named
+  /// like a callback must override it (detail::requireStepCallbacks).
+  template <detail::StepEventListenerClass<S> L>
+  void add(const ref_ptr<L>& listener) {
+    detail::requireStepCallbacks<L, S>();
+    add(ref_ptr<Listener>(listener));
+  }
+  template <detail::StepEventListenerClass<S> L>
+  void add(L* listener) {
+    add(ref_ptr<L>(listener));
+  }
+  void add(ref_ptr<Listener> listener) override {
+    checkAddable(listener.get(), "StepEventListener");
+    Membership::simulationOf(*listener) = this;
+    listeners_.push_back(std::move(listener));
+  }
+  void remove(Listener* listener) override {
+    checkRemovable(listener, "StepEventListener");
+    listeners_.erase(
+        std::find_if(listeners_.begin(), listeners_.end(), [&](const auto& l) { return l.get() == listener; }));
+    Membership::simulationOf(*listener) = nullptr;
+  }
+
+  /// Adds a collection and everything in it, nested collections included.
+  void add(ref_ptr<Collection> collection) {
+    if (!collection) throw error("cannot add a null Collection", "nullptr");
+    addNested(*collection);
+    collections_.push_back(std::move(collection));
+  }
+  /// Removes a collection added with add(), and its content.
+  void remove(Collection* collection) {
+    auto it =
+        std::find_if(collections_.begin(), collections_.end(), [&](const auto& c) { return c.get() == collection; });
+    if (it == collections_.end())
+      throw error("Collection was never added", collection ? collection->getName() : std::string("nullptr"));
+    ref_ptr<Collection> keep = collection;
+    collections_.erase(it);
+    removeNested(*collection);
+  }
+
+  /// Adds a constraint whose bodies are in this simulation already; throws
+  /// when a body is elsewhere or when both are static (or static and world).
+  /// A constraint whose body is later removed adds no rows.
+  void add(ref_ptr<Constraint> constraint) override {
+    checkAddable(constraint.get(), constraint ? constraint->getKind() : "Constraint");
+    checkBodiesOf(*constraint, nullptr);
+    Membership::indexOf(*constraint) = constraints_.size();
+    Membership::simulationOf(*constraint) = this;
+    jointedPairs_.add(*constraint);
+    constraints_.push_back(std::move(constraint));
+  }
+  void remove(Constraint* constraint) override {
+    checkRemovable(constraint, constraint ? constraint->getKind() : "Constraint");
+    const std::size_t index = Membership::indexOf(*constraint);
+    ref_ptr<Constraint> keep = constraint;
+    std::swap(constraints_[index], constraints_.back());
+    Membership::indexOf(*constraints_[index]) = index;
+    constraints_.pop_back();
+    jointedPairs_.remove(*constraint);
+    Membership::simulationOf(*constraint) = nullptr;
+    forgetPredictions();
+  }
+  [[nodiscard]] const std::vector<ref_ptr<Constraint>>& getConstraints() const { return constraints_; }
+  /// The first constraint with this name, or nullptr.
+  [[nodiscard]] Constraint* getConstraint(const std::string& name) const {
+    for (const auto& c : constraints_)
+      if (c->getName() == name) return c.get();
+    return nullptr;
+  }
+  [[nodiscard]] bool contains(const Constraint* constraint) const override {
+    return constraint && Membership::simulationOf(*constraint) == static_cast<const void*>(this);
+  }
+
+  [[nodiscard]] const std::vector<ref_ptr<Body>>& getRigidBodies() const { return bodies_; }
+  [[nodiscard]] const std::vector<ref_ptr<Listener>>& getEventListeners() const { return listeners_; }
+  [[nodiscard]] const std::vector<ref_ptr<Collection>>& getCollections() const { return collections_; }
+  /// The first body with this name, or nullptr.
+  [[nodiscard]] Body* getRigidBody(const std::string& name) const {
+    for (const auto& b : bodies_)
+      if (b->getName() == name) return b.get();
+    return nullptr;
+  }
+  [[nodiscard]] bool contains(const Body* body) const override {
+    return body && Membership::simulationOf(*body) == static_cast<const void*>(this);
+  }
+  [[nodiscard]] bool contains(const Listener* listener) const override {
+    return listener && listener->getSimulation() == this;
+  }
+  [[nodiscard]] bool contains(const ContactListener* listener) const {
+    return listener && listener->getSimulation() == this;
+  }
+
+  [[nodiscard]] const SimulationStatisticsT<S>& getStatistics() const { return statistics_; }
+
+ protected:
+  ~SimulationT() override;
+
+ private:
+  using Membership = detail::SimulationMembership;
+
+  explicit SimulationT(ref_ptr<SpaceT<S>> space);
+  // Predictions are keyed by row storage that a later constraint may reuse.
+  void forgetPredictions();
+
+  // Pairs with an explicit contact material reduce their points as it says;
+  // jointed bodies do not collide unless their constraint asks (jointed_pairs.hpp).
+  void installSpaceRules() {
+    space_->setBodyPairFilter([this](const Body& a, const Body& b) { return jointedPairs_.filters(&a, &b); });
+    space_->setReductionRule([this](const Geometry& a, const Geometry& b) {
+      std::optional<std::pair<ContactReductionMode, int>> rule;
+      if (const auto* cm = materials_.getContactMaterial(a.getMaterial(), b.getMaterial()))
+        rule.emplace(cm->getContactReductionMode(), cm->getContactReductionBinResolution());
+      return rule;
+    });
+  }
+
+  // round((t − now)/h), in double so that neither the quotient nor its
+  // rounding overflows; more than 2³¹ steps are refused.
+  [[nodiscard]] long long stepsTo(S t) const {
+    const double steps = std::round((double(t) - double(getTimeStamp())) / double(timeStep_));
+    if (steps > 2147483648.0)
+      throw error("stepTo time is more than 2^31 steps of " + std::to_string(timeStep_) + " s away", t);
+    return static_cast<long long>(steps);
+  }
+
+  void applyPendingTimeStep() {
+    if (pendingTimeStep_) setTimeStep(*std::exchange(pendingTimeStep_, std::nullopt));
+  }
+
+  // The SPOOK step for every body: force-driven velocities, the rows of the
+  // enabled constraints, islands solved by the policy, then the poses.
+  void integrate(S h);
+
+  // What each holonomic row's linearization makes of the step: the rate
+  // G v⁺ + hκ at which it moves g and the violation g + h·rate it should end
+  // with, which post-stabilization restores (it removes only the
+  // higher-order drift of the step, not the rows' compliant or damped
+  // motion). The rate is the next step's b' term (Row::lastRate).
+  void predictViolations(double h);
+
+  // Projects the direct solver's equality rows back onto their manifold
+  // (Solver::getEnablePostStabilization).
+  void postStabilize(double h);
+
+  // Keeps body i as it was before the step (pose kept, velocities zeroed)
+  // and reports it, once per step.
+  void freeze(std::size_t i, FreezeReason reason);
+
+  void collectRows(double h);
+
+  void readBackForces(double h);
+
+  // Calls the listeners selected by `stage`, highest priority first, over a
+  // snapshot, so that callbacks may add and remove objects freely.
+  void notify(typename Listener::ActivationMask stage) {
+    if (listeners_.empty()) return;
+    std::vector<ref_ptr<Listener>> snapshot;
+    for (const auto& l : listeners_)
+      if (l->getMask() & stage) snapshot.push_back(l);
+    std::stable_sort(snapshot.begin(), snapshot.end(),
+                     [](const auto& a, const auto& b) { return a->getPriority() > b->getPriority(); });
+    const S time = getTimeStamp();
+    for (const auto& l : snapshot) {
+      if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage)) continue;
+      switch (stage) {
+        case Listener::PRE_COLLIDE:
+          l->preCollide(time);
+          break;
+        case Listener::PRE_STEP:
+          l->pre(time);
+          break;
+        case Listener::POST_STEP:
+          l->post(time);
+          break;
+        case Listener::LAST_STEP:
+          l->last(time);
+          break;
+        default:
+          break;
+      }
+    }
+  }
+
+  // Impact and contact callbacks per contact, in the order the listeners
+  // were added, over a snapshot; a REMOVE_CONTACT disables the contact for
+  // the solver, and the listeners after it see it disabled (seed 000). Then
+  // the separations.
+  void notifyContacts() {
+    if (contactListeners_.empty()) return;
+    const std::vector<ref_ptr<ContactListener>> snapshot = contactListeners_;
+    const S time = getTimeStamp();
+    for (auto& contact : space_->getGeometryContacts()) {
+      const auto stage = contact.isImpact() ? ContactListener::IMPACT : ContactListener::CONTACT;
+      for (const auto& l : snapshot) {
+        if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage) ||
+            !l->matches(contact.geometry(0), contact.geometry(1)))
+          continue;
+        const auto policy = contact.isImpact() ? l->impact(time, &contact) : l->contact(time, &contact);
+        if (policy == ContactListener::REMOVE_CONTACT) contact.setEnable(false);
+      }
+    }
+    for (auto pair : space_->getSeparations())
+      for (const auto& l : snapshot)
+        if (l->getSimulation() == this && l->getEnable() && (l->getMask() & ContactListener::SEPARATION) &&
+            l->matches(pair.first.get(), pair.second.get()))
+          l->separation(time, pair);
+  }
+
+  // Collections: validate the whole tree, then register it, so that a failed
+  // add changes nothing.
+  void addNested(Collection& collection) override {
+    std::unordered_set<const void*> seen;
+    validateTree(collection, seen);
+    validateConstraints(collection, seen);
+    registerTree(collection);
+  }
+  void removeNested(Collection& collection) override {
+    ref_ptr<Collection> keep = &collection;
+    for (const auto& b : collection.getRigidBodies())
+      if (contains(b.get())) remove(b.get());
+    for (const auto& l : collection.getEventListeners())
+      if (l->getSimulation() == this) remove(l.get());
+    for (const auto& c : collection.getConstraints())
+      if (contains(c.get())) remove(c.get());
+    Membership::simulationOf(collection) = nullptr;
+    for (const auto& c : collection.getCollections()) removeNested(*c);
+  }
+  void validateTree(const Collection& collection, std::unordered_set<const void*>& seen) const {
+    if (Membership::simulationOf(collection))
+      throw error("Collection is already in a simulation", collection.getName());
+    if (!seen.insert(&collection).second) throw error("Collection appears twice", collection.getName());
+    for (const auto& b : collection.getRigidBodies()) {
+      checkAddable(b.get(), "RigidBody");
+      for (const auto& g : b->getGeometries()) space_->requireSupported(*g);
+      if (!seen.insert(b.get()).second) throw error("RigidBody appears twice in the collection", b->getName());
+    }
+    for (const auto& l : collection.getEventListeners()) {
+      checkAddable(l.get(), "StepEventListener");
+      if (!seen.insert(l.get()).second)
+        throw error("StepEventListener appears twice in the collection", collection.getName());
+    }
+    for (const auto& c : collection.getConstraints()) {
+      checkAddable(c.get(), c ? c->getKind() : "Constraint");
+      if (!seen.insert(c.get()).second) throw detail::makeError(c->getKind(), c->getName(), "appears twice in the collection");
+    }
+    for (const auto& c : collection.getCollections()) validateTree(*c, seen);
+  }
+  // After the whole tree is known: a constraint's bodies are in this
+  // simulation or in the tree.
+  void validateConstraints(const Collection& collection, const std::unordered_set<const void*>& seen) const {
+    for (const auto& c : collection.getConstraints()) checkBodiesOf(*c, &seen);
+    for (const auto& child : collection.getCollections()) validateConstraints(*child, seen);
+  }
+  void checkBodiesOf(const Constraint& c, const std::unordered_set<const void*>* arriving) const {
+    for (int i = 0; i < 2; ++i) {
+      const Body* body = c.getBodyAt(i);
+      if (body && !contains(body) && !(arriving && arriving->count(body)))
+        throw detail::makeError(c.getKind(), c.getName(), "body not in this simulation; add the bodies first",
+                                body->getName());
+    }
+    const auto movable = [](const Body* b) { return b && b->getMotionControl() != Body::STATIC; };
+    if (!movable(c.getBodyAt(0)) && !movable(c.getBodyAt(1)))
+      throw detail::makeError(c.getKind(), c.getName(), "needs at least one body that is not static",
+                              c.getBodyAt(0)->getName());
+  }
+  // Bodies and listeners of the whole tree first, so that every constraint
+  // finds its bodies.
+  void registerTree(Collection& collection) {
+    registerMembers(collection);
+    registerConstraints(collection);
+  }
+  void registerMembers(Collection& collection) {
+    for (const auto& b : collection.getRigidBodies()) add(b);
+    for (const auto& l : collection.getEventListeners()) add(l);
+    Membership::simulationOf(collection) = this;
+    for (const auto& c : collection.getCollections()) registerMembers(*c);
+  }
+  void registerConstraints(Collection& collection) {
+    for (const auto& c : collection.getConstraints()) add(c);
+    for (const auto& c : collection.getCollections()) registerConstraints(*c);
+  }
+  void setCollectionsSink(Collection& collection, detail::ContentSink<S>* sink) {
+    Membership::simulationOf(collection) = sink;
+    for (const auto& c : collection.getCollections()) setCollectionsSink(*c, sink);
+  }
+
+  template <class T>
+  void checkAddable(T* object, const char* kind) const {
+    if (!object) throw error(std::string("cannot add a null ") + kind, "nullptr");
+    const auto* owner = Membership::simulationOf(*object);
+    if (owner == static_cast<const void*>(this))
+      throw detail::makeError(kind, nameOf(*object), "already added to this simulation");
+    if (owner) throw detail::makeError(kind, nameOf(*object), "already belongs to another simulation");
+  }
+  template <class T>
+  void checkRemovable(T* object, const char* kind) const {
+    if (!object) throw error(std::string("cannot remove a null ") + kind, "nullptr");
+    if (Membership::simulationOf(*object) != static_cast<const void*>(this))
+      throw detail::makeError(kind, nameOf(*object), "was never added to this simulation");
+  }
+  template <class T>
+  static std::string nameOf(const T& object) {
+    if constexpr (requires { object.getName(); })
+      return object.getName();
+    else
+      return "";
+  }
+  template <class T>
+  [[nodiscard]] Error error(const std::string& what, const T& value) const {
+    return detail::makeError("Simulation", "", what, value);
+  }
+
+  S timeStep_ = S(1) / S(60);
+  std::optional<S> pendingTimeStep_;
+  S timeBase_ = S(0);
+  std::uint64_t stepsSinceBase_ = 0;
+  bool stepping_ = false;
+  ref_ptr<GravityFieldT<S>> gravity_ = new UniformGravityFieldT<S>();
+  std::vector<ref_ptr<Body>> bodies_;
+  std::vector<ref_ptr<Listener>> listeners_;
+  std::vector<ref_ptr<ContactListener>> contactListeners_;
+  ref_ptr<SpaceT<S>> space_;
+  std::vector<ref_ptr<Collection>> collections_;
+  std::vector<ref_ptr<Constraint>> constraints_;
+  detail::JointedPairs<S> jointedPairs_;
+  SimulationStatisticsT<S> statistics_;
+  ref_ptr<Solver> solver_ = new HybridSolver();
+  MaterialManagerT<S> materials_;
+  detail::ContactSettings contactSettings_;
+  /// The step's own state (rows, solver bodies, contact history,
+  /// predictions: sim/simulation_step.hpp), out of sight of a program that
+  /// compiles spook once.
+  std::unique_ptr<detail::SimulationWorkspace<S>> work_;
+};
+
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+extern template class SimulationT<double>;
+#endif
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+extern template class SimulationT<float>;
+#endif
+
+using Simulation = SimulationT<double>;
+using SimulationRef = ref_ptr<Simulation>;
+namespace f32 {
+using Simulation = SimulationT<float>;
+using SimulationRef = ref_ptr<Simulation>;
+}  // namespace f32
+
+}  // namespace spook
+
+// The step's definitions: in every translation unit of a header-only
+// program, only where a simulation part is implemented otherwise
+// (core/implementation.hpp).
+#if defined(SPOOK_DEFINES_STEP)
+// --- begin spook/sim/simulation_step.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_SIMULATION_STEP_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_SIMULATION_STEP_HPP
+
+// The simulation step (SimulationT::stepForward and its stages): included by
+// sim/simulation.hpp where the step is compiled (SPOOK_DEFINES_STEP,
+// core/implementation.hpp), with the solver, contact and collision code
+// behind it.
+
+#include <cstddef>
+#include <memory>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
 // --- begin spook/collide/continuous.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_CONTINUOUS_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_CONTINUOUS_HPP
 
 #include <algorithm>
 #include <array>
@@ -13113,6 +15304,756 @@ using MaterialManager = MaterialManagerT<float>;
 #include <vector>
 
 #include <ccd/ccd.h>
+
+// --- begin spook/collide/detail/ccd_bridge.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CCD_BRIDGE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CCD_BRIDGE_HPP
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+#include <type_traits>
+
+#include <ccd/ccd.h>
+
+// --- begin spook/collide/detail/feature_clipping.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_FEATURE_CLIPPING_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_FEATURE_CLIPPING_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace spook::detail {
+
+/// The contact manifold of two convex shapes in contact along a normal,
+/// from their supporting features (the part of each shape that is extreme
+/// along the normal: a point, an edge or a face), as Jolt's
+/// ManifoldBetweenTwoFaces and Box2D's b2ClipPolygons build it: both
+/// features are projected onto the contact plane, one is clipped against
+/// the other (Sutherland–Hodgman), and each corner of the overlap is a
+/// contact point, its depth the distance between the two features above
+/// it. Works in double, in the plane spanned by t1, t2 ⟂ n.
+struct FeatureClipping {
+  using Vec2 = Eigen::Vector2d;
+  using Vec3 = Vec3T<double>;
+
+  /// A round face: the disc about `center` with unit normal `axis`.
+  struct Disc {
+    Vec3 center = Vec3::Zero();
+    Vec3 axis = Vec3::UnitZ();
+    double radius = 0.0;  // m; 0: not a disc
+  };
+  /// A supporting feature: world points on it (m), the size below which
+  /// two of them are the same point (the spread that sampling a curved
+  /// surface leaves), and for a round face its disc (the points then an
+  /// inscribed polygon of its rim).
+  struct Feature {
+    std::vector<Vec3> points;
+    double merge = 0.0;
+    Disc disc = {};
+  };
+  struct Contact {
+    Vec3 point;    // world, halfway between the features (m)
+    double depth;  // m
+  };
+
+  Vec3 n, t1, t2;
+
+  explicit FeatureClipping(const Vec3& normal)
+      : n(normal), t1(normal.unitOrthogonal()), t2(normal.cross(normal.unitOrthogonal())) {}
+
+  /// The overlap's corners as contacts, for features `top` (of the shape
+  /// behind the normal, its points highest along n) and `bottom` (of the
+  /// shape ahead, lowest along n) and the penetration depth along n, which
+  /// bounds every contact's. Empty when the projections do not overlap
+  /// (the caller then places one contact by itself).
+  [[nodiscard]] std::vector<Contact> contacts(const Feature& top, const Feature& bottom, double depth) const {
+    const double merge = std::min(top.merge, bottom.merge);
+    const std::vector<Vec2> a = hull(project(top.points), top.merge);
+    const std::vector<Vec2> b = hull(project(bottom.points), bottom.merge);
+    std::vector<Vec2> overlap;
+    if (b.size() >= 3)
+      overlap = clip(a, b);
+    else if (a.size() >= 3)
+      overlap = clip(b, a);
+    else
+      overlap = crossing(a, b, merge);
+    // A round face's polygon is inscribed in its rim: the other feature's
+    // corners inside the disc, and its edges' crossings with the rim, are
+    // part of the overlap too.
+    addInsideDisc(top.disc, b, overlap);
+    addInsideDisc(bottom.disc, a, overlap);
+    overlap = hull(overlap, merge);
+    // Depths from the heights of the features over each corner, shifted so
+    // that the deepest is the penetration depth (the features are sampled,
+    // their heights fitted); a deepest corner farther than the sampling
+    // size from it means the overlap is not where the shapes penetrate most
+    // (sampled features that miss a part of the true ones): no manifold.
+    const HeightPlane topHeight(top.points, *this), bottomHeight(bottom.points, *this);
+    std::vector<Contact> out;
+    double deepest = -std::numeric_limits<double>::infinity();
+    for (const Vec2& v : overlap) {
+      const double high = topHeight.at(v), low = bottomHeight.at(v);
+      out.push_back({v.x() * t1 + v.y() * t2 + 0.5 * (high + low) * n, high - low});
+      deepest = std::max(deepest, high - low);
+    }
+    if (!(std::abs(deepest - depth) <= std::max(top.merge, bottom.merge))) return {};
+    for (Contact& c : out) c.depth = std::min(c.depth + (depth - deepest), depth);
+    std::erase_if(out, [](const Contact& c) { return !(c.depth >= 0.0); });
+    return out;
+  }
+
+  /// One contact of the given depth where two features that do not overlap
+  /// on the contact plane come nearest there: midway between the closest
+  /// points of their projected hulls, and between their heights over it.
+  [[nodiscard]] Contact nearest(const Feature& top, const Feature& bottom, double depth) const {
+    const std::vector<Vec2> a = hull(project(top.points), top.merge);
+    const std::vector<Vec2> b = hull(project(bottom.points), bottom.merge);
+    Vec2 onA = a.front(), onB = b.front();
+    double closest = std::numeric_limits<double>::infinity();
+    const auto consider = [&](const Vec2& p, const std::vector<Vec2>& polygon, bool pOnA) {
+      for (std::size_t k = 0; k < polygon.size(); ++k) {
+        const Vec2 q = polygon[k], edge = polygon[(k + 1) % polygon.size()] - q;
+        const double length2 = edge.squaredNorm();
+        const double t = length2 > 0.0 ? std::clamp(edge.dot(p - q) / length2, 0.0, 1.0) : 0.0;
+        const Vec2 x = q + t * edge;
+        if (const double d = (x - p).squaredNorm(); d < closest) {
+          closest = d;
+          onA = pOnA ? p : x;
+          onB = pOnA ? x : p;
+        }
+      }
+    };
+    for (const Vec2& p : a) consider(p, b, true);
+    for (const Vec2& p : b) consider(p, a, false);
+    const Vec2 v = 0.5 * (onA + onB);
+    const double high = HeightPlane(top.points, *this).at(v), low = HeightPlane(bottom.points, *this).at(v);
+    return {v.x() * t1 + v.y() * t2 + 0.5 * (high + low) * n, depth};
+  }
+
+ private:
+  [[nodiscard]] Vec2 flat(const Vec3& p) const { return {t1.dot(p), t2.dot(p)}; }
+
+  /// Appends the points of `polygon` (a point, a segment or a polygon on the
+  /// contact plane) inside the projection of `disc`, and the crossings of
+  /// its edges with the rim's, each lifted along n onto the disc's plane.
+  void addInsideDisc(const Disc& disc, const std::vector<Vec2>& polygon, std::vector<Vec2>& out) const {
+    const double across = disc.axis.dot(n);
+    if (!(disc.radius > 0.0) || polygon.empty() || !(std::abs(across) > 0.5)) return;
+    const auto lifted = [&](const Vec2& v) {  // from the disc's center, in its plane
+      const Vec3 p = v.x() * t1 + v.y() * t2 - disc.center;
+      return Vec3(p - (disc.axis.dot(p) / across) * n);
+    };
+    const double r2 = disc.radius * disc.radius;
+    for (const Vec2& v : polygon)
+      if (lifted(v).squaredNorm() <= r2) out.push_back(v);
+    const std::size_t edges = polygon.size() == 1 ? 0 : polygon.size() == 2 ? 1 : polygon.size();
+    for (std::size_t k = 0; k < edges; ++k) {
+      const Vec2 p = polygon[k], q = polygon[(k + 1) % polygon.size()];
+      const Vec3 d = lifted(p), e = lifted(q) - d;
+      // |d + t e|² = r²: e·e t² + 2 d·e t + d·d − r² = 0.
+      const double a = e.squaredNorm(), b = d.dot(e), c = d.squaredNorm() - r2, discriminant = b * b - a * c;
+      if (!(a > 0.0) || discriminant < 0.0) continue;
+      for (const double sign : {-1.0, 1.0})
+        if (const double t = (-b + sign * std::sqrt(discriminant)) / a; t > 0.0 && t < 1.0) out.push_back(p + t * (q - p));
+    }
+  }
+
+  [[nodiscard]] std::vector<Vec2> project(const std::vector<Vec3>& points) const {
+    std::vector<Vec2> out;
+    out.reserve(points.size());
+    for (const Vec3& p : points) out.push_back(flat(p));
+    return out;
+  }
+
+  static double cross(const Vec2& o, const Vec2& a, const Vec2& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  }
+
+  /// Counter-clockwise convex hull (Andrew's monotone chain) without points
+  /// within `merge` of one kept and without corners within `merge` of the
+  /// line through their neighbours: 1 point, 2 (a segment) or a polygon.
+  static std::vector<Vec2> hull(std::vector<Vec2> points, double merge) {
+    std::sort(points.begin(), points.end(),
+              [](const Vec2& p, const Vec2& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); });
+    std::vector<Vec2> unique;
+    for (const Vec2& p : points)
+      if (std::none_of(unique.begin(), unique.end(), [&](const Vec2& q) { return (p - q).norm() <= merge; }))
+        unique.push_back(p);
+    if (unique.size() < 3) return unique;
+    std::vector<Vec2> chain(2 * unique.size());
+    std::size_t k = 0;
+    const auto turnsLeft = [&](const Vec2& p) {
+      return cross(chain[k - 2], chain[k - 1], p) > merge * (chain[k - 1] - chain[k - 2]).norm();
+    };
+    for (const Vec2& p : unique) {
+      while (k >= 2 && !turnsLeft(p)) --k;
+      chain[k++] = p;
+    }
+    const std::size_t lower = k + 1;
+    for (std::size_t i = unique.size() - 1; i-- > 0;) {
+      while (k >= lower && !turnsLeft(unique[i])) --k;
+      chain[k++] = unique[i];
+    }
+    chain.resize(k - 1);
+    return chain;
+  }
+
+  /// The part of `subject` (a point, a segment or a convex polygon) inside
+  /// the counter-clockwise convex polygon `window` (Sutherland–Hodgman).
+  static std::vector<Vec2> clip(std::vector<Vec2> subject, const std::vector<Vec2>& window) {
+    for (std::size_t e = 0; e < window.size() && !subject.empty(); ++e) {
+      const Vec2 a = window[e], edge = window[(e + 1) % window.size()] - a;
+      const Vec2 inward(-edge.y(), edge.x());
+      std::vector<Vec2> kept;
+      for (std::size_t i = 0; i < subject.size(); ++i) {
+        const Vec2 p = subject[i], q = subject[(i + 1) % subject.size()];
+        const double dp = inward.dot(p - a), dq = inward.dot(q - a);
+        if (dp >= 0.0) kept.push_back(p);
+        if ((dp > 0.0 && dq < 0.0) || (dp < 0.0 && dq > 0.0)) kept.push_back(p + (q - p) * (dp / (dp - dq)));
+      }
+      subject = std::move(kept);
+    }
+    return subject;
+  }
+
+  /// Two features that are points or segments: a point meets anything where
+  /// it is; two segments meet at their closest points, or along the
+  /// overlap of their ranges when they are parallel.
+  static std::vector<Vec2> crossing(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double merge) {
+    if (a.empty() || b.empty()) return {};
+    if (a.size() == 1) return a;
+    if (b.size() == 1) return b;
+    const Vec2 u = a[1] - a[0], v = b[1] - b[0];
+    const double lu = u.norm(), lv = v.norm();
+    if (std::abs(cross(Vec2::Zero(), u, v)) <= merge * std::max(lu, lv)) {
+      const Vec2 d = u / lu;
+      const double s0 = std::max(0.0, std::min(d.dot(b[0] - a[0]), d.dot(b[1] - a[0])));
+      const double s1 = std::min(lu, std::max(d.dot(b[0] - a[0]), d.dot(b[1] - a[0])));
+      const Vec2 offset = 0.5 * ((b[0] - a[0]) - d.dot(b[0] - a[0]) * d);  // halfway across to b's line
+      if (s0 > s1) return {a[0] + 0.5 * (s0 + s1) * d + offset};
+      return {a[0] + s0 * d + offset, a[0] + s1 * d + offset};
+    }
+    // Closest points of the segments a[0] + s u and b[0] + t v, s, t in [0, 1].
+    const Vec2 w = a[0] - b[0];
+    const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
+    const double denominator = uu * vv - uv * uv;
+    double s = std::clamp((uv * vw - vv * uw) / denominator, 0.0, 1.0);
+    const double t = std::clamp((uv * s + vw) / vv, 0.0, 1.0);
+    s = std::clamp((uv * t - uw) / uu, 0.0, 1.0);
+    return {0.5 * (a[0] + s * u + b[0] + t * v)};
+  }
+
+  /// A feature's height along n over the contact plane: the least-squares
+  /// affine fit h(x) = h̄ + g·(x − x̄) to its points, with a tiny ridge on g
+  /// so that a point or a segment (no slope across it) stays level.
+  struct HeightPlane {
+    Vec2 center = Vec2::Zero();
+    double mean = 0.0;
+    Vec2 slope = Vec2::Zero();
+
+    HeightPlane(const std::vector<Vec3>& points, const FeatureClipping& frame) {
+      for (const Vec3& p : points) {
+        center += frame.flat(p);
+        mean += frame.n.dot(p);
+      }
+      center /= double(points.size());
+      mean /= double(points.size());
+      Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
+      Vec2 right = Vec2::Zero();
+      for (const Vec3& p : points) {
+        const Vec2 d = frame.flat(p) - center;
+        normal += d * d.transpose();
+        right += d * (frame.n.dot(p) - mean);
+      }
+      const double ridge = 1e-12 * normal.trace();
+      if (!(ridge > 0.0)) return;  // a single point: level
+      normal += ridge * Eigen::Matrix2d::Identity();
+      const double determinant = normal(0, 0) * normal(1, 1) - normal(0, 1) * normal(1, 0);
+      slope = Vec2(normal(1, 1) * right.x() - normal(0, 1) * right.y(),
+                   normal(0, 0) * right.y() - normal(1, 0) * right.x()) /
+              determinant;
+    }
+    [[nodiscard]] double at(const Vec2& x) const { return mean + slope.dot(x - center); }
+  };
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_FEATURE_CLIPPING_HPP
+// --- end spook/collide/detail/feature_clipping.hpp ---
+
+namespace spook::detail {
+
+// The libccd bridge: each convex shape lends libccd its support function
+// through a stack object that holds the shape and its world pose. libccd is
+// built with double, so a float shape converts at this boundary.
+template <class Shape>
+struct CcdObject {
+  using S = typename Shape::Vec3::Scalar;
+  const Shape* shape;
+  Mat3T<double> R;     // shape → world rotation
+  Vec3T<double> p;     // shape origin in world (m)
+  Vec3T<double> center;  // a point inside the shape, world (m)
+  double margin = 0.0;   // libccd sees the shape grown by this much (m)
+
+  CcdObject(const Shape& s, const TransformT<S>& X_W, double grownBy = 0.0)
+      : shape(&s),
+        R(X_W.linear().template cast<double>()),
+        p(X_W.translation().template cast<double>()),
+        center(R * s.getCenterOfVolume().template cast<double>() + p),
+        margin(grownBy) {}
+
+  static void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
+    const auto& o = *static_cast<const CcdObject*>(object);
+    const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
+    const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
+    Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
+    if (const double length = d_W.norm(); o.margin > 0.0 && length > 0.0) s_W += (o.margin / length) * d_W;
+    for (int i = 0; i < 3; ++i) out->v[i] = s_W[i];
+  }
+  static void centerOf(const void* object, ccd_vec3_t* out) {
+    const auto& o = *static_cast<const CcdObject*>(object);
+    for (int i = 0; i < 3; ++i) out->v[i] = o.center[i];
+  }
+};
+
+inline constexpr double kCcdEpaTolerance = 1e-6;  // m
+/// Gap, relative to the smaller shape's size, within which two shapes
+/// count as touching (a contact of depth 0).
+inline constexpr double kCcdTouchMargin = 1e-7;
+/// Gap, relative to the smaller shape's size, beyond which libccd's GJK is
+/// trusted to call two shapes apart.
+inline constexpr double kCcdNearMargin = 1e-3;
+inline constexpr unsigned long kCcdMaxIterations = 200;
+/// Polishing: starts besides libccd's direction, and the gradient
+/// (relative to the shapes' size) below which a descent ended on a smooth
+/// minimum and needs no simplex search. Polishing only the starts within
+/// 1 % of the lowest descent loses 1e-4 m on capsule– and cylinder–triangle
+/// pairs; skipping the simplex search where the descent ends smooth loses
+/// nothing and makes the capsule, sphere and smooth hull pairs five times
+/// faster.
+inline constexpr std::size_t kStarts = 10;
+inline constexpr double kSmoothGradient = 1e-9;
+
+/// The overlap of the projections of a and b onto the unit direction n
+/// (from a toward b): f(n) = h_a(n) + h_b(−n), with h the support function.
+/// By the separating axis theorem the penetration depth is min f over unit
+/// n, and by Danskin's theorem ∇f = s_a(n) − s_b(−n) =: w.
+template <class A, class B>
+struct ProjectionOverlap {
+  const CcdObject<A>& a;
+  const CcdObject<B>& b;
+
+  [[nodiscard]] Vec3T<double> supportOf(const auto& object, const Vec3T<double>& n_W) const {
+    using S = typename std::remove_cvref_t<decltype(object)>::S;
+    const Vec3T<S> d = (object.R.transpose() * n_W).template cast<S>();
+    return object.R * object.shape->support(d).template cast<double>() + object.p;
+  }
+  [[nodiscard]] Vec3T<double> gradient(const Vec3T<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
+};
+
+/// Where f has a kink (an edge or a corner of a box-like shape is involved)
+/// its minimum may sit at the bottom of a narrow crease, which neither the
+/// gradient nor a fixed pattern of steps can follow; a Nelder–Mead simplex
+/// over the tangent plane of n (Nelder & Mead 1965) stretches along the
+/// crease and walks down it, to 1e-10 rad.
+template <class A, class B>
+double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double size,
+                             double turn) {
+  const Vec3T<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
+  const Vec3T<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
+  const auto direction = [&](const Eigen::Vector2d& x) { return Vec3T<double>((n0 + x[0] * t1 + x[1] * t2).normalized()); };
+  const auto value = [&](const Eigen::Vector2d& x) {
+    const Vec3T<double> d = direction(x);
+    return d.dot(overlap.gradient(d));
+  };
+  std::array<Eigen::Vector2d, 3> x = {Eigen::Vector2d(0, 0), Eigen::Vector2d(size, 0), Eigen::Vector2d(0, size)};
+  std::array<double, 3> fx = {f, value(x[1]), value(x[2])};
+  for (int iteration = 0; iteration < 400; ++iteration) {
+    // Order best, middle, worst.
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2 - i; ++j)
+        if (fx[j + 1] < fx[j]) {
+          std::swap(fx[j], fx[j + 1]);
+          std::swap(x[j], x[j + 1]);
+        }
+    if ((x[1] - x[0]).norm() + (x[2] - x[0]).norm() < 1e-10) break;
+    const Eigen::Vector2d centroid = 0.5 * (x[0] + x[1]);
+    const Eigen::Vector2d reflected = centroid + (centroid - x[2]);
+    const double fr = value(reflected);
+    if (fr < fx[0]) {
+      const Eigen::Vector2d expanded = centroid + 2.0 * (centroid - x[2]);
+      const double fe = value(expanded);
+      if (fe < fr) {
+        x[2] = expanded;
+        fx[2] = fe;
+      } else {
+        x[2] = reflected;
+        fx[2] = fr;
+      }
+    } else if (fr < fx[1]) {
+      x[2] = reflected;
+      fx[2] = fr;
+    } else {
+      const Eigen::Vector2d contracted = centroid + 0.5 * (x[2] - centroid);
+      const double fc = value(contracted);
+      if (fc < fx[2]) {
+        x[2] = contracted;
+        fx[2] = fc;
+      } else {
+        for (int i = 1; i < 3; ++i) {
+          x[i] = x[0] + 0.5 * (x[i] - x[0]);
+          fx[i] = value(x[i]);
+        }
+      }
+    }
+  }
+  const int best = fx[0] <= fx[1] ? (fx[0] <= fx[2] ? 0 : 2) : (fx[1] <= fx[2] ? 1 : 2);
+  if (fx[best] < f) {
+    n = direction(x[best]);
+    f = fx[best];
+  }
+  return f;
+}
+
+/// Descends f on the unit sphere from n (Barzilai–Borwein steps with
+/// backtracking): libccd's EPA stops some 1e-4 to 1e-3 short of the
+/// boundary on curved shapes. Returns f at the final direction, an upper
+/// bound on the depth that is exact at the minimum; `smooth` tells whether
+/// the descent ended where the gradient vanishes (a smooth minimum, done)
+/// rather than on a kink of f, where the simplex search must take over.
+template <class A, class B>
+double descend(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double scale, bool& smooth) {
+  Vec3T<double> w = overlap.gradient(n);
+  double f = n.dot(w);
+  Vec3T<double> g = w - n.dot(w) * n;
+  double step = 1.0 / scale;
+  for (int iteration = 0; iteration < 64 && g.norm() > 1e-13 * scale && step > 1e-12 / scale; ++iteration) {
+    const Vec3T<double> trial = (n - step * g).normalized();
+    const Vec3T<double> wTrial = overlap.gradient(trial);
+    const double fTrial = trial.dot(wTrial);
+    if (!(fTrial < f)) {
+      step *= 0.5;
+      continue;
+    }
+    const Vec3T<double> gTrial = wTrial - trial.dot(wTrial) * trial;
+    const Vec3T<double> sStep = trial - n, yStep = gTrial - g;
+    const double curvature = sStep.dot(yStep);
+    step = curvature > 0.0 ? sStep.squaredNorm() / curvature : 2.0 * step;
+    n = trial;
+    w = wTrial;
+    f = fTrial;
+    g = gTrial;
+  }
+  smooth = g.norm() <= kSmoothGradient * scale;
+  return f;
+}
+
+/// Restarts of the simplex search with fresh, turned simplices: the usual
+/// cure for one that collapsed across a crease.
+template <class A, class B>
+double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double scale) {
+  for (int restart = 0; restart < 6; ++restart) {
+    const double before = f;
+    f = polishBySimplexSearch(overlap, n, f, restart % 2 ? 0.1 : 0.02, 0.5 * restart);
+    if (restart > 0 && !(f < before - 1e-15 * scale)) break;
+  }
+  return f;
+}
+
+/// Starting directions for the polishing: libccd's, then the most promising
+/// of the line of centers, each shape's frame axes and their cross products
+/// (both signs) and a coarse lattice of directions, lowest overlap first. libccd's EPA sometimes returns a poor
+/// direction on deep or curved overlaps, and f may have several local
+/// minima; for box-like and cylindrical shapes the true minimum lies on or
+/// near one of these axes (face normals and edge–edge directions, as in the
+/// separating axis theorem).
+template <class A, class B>
+std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdObject<B>& b,
+                                             const Vec3T<double>& fromCcd, std::size_t count) {
+  const ProjectionOverlap<A, B> overlap{a, b};
+  std::vector<std::pair<double, Vec3T<double>>> candidates;
+  const auto consider = [&](const Vec3T<double>& direction) {
+    const double length = direction.norm();
+    if (!(length > 1e-9)) return;
+    for (const double sign : {1.0, -1.0}) {
+      const Vec3T<double> d = direction * (sign / length);
+      candidates.emplace_back(d.dot(overlap.gradient(d)), d);
+    }
+  };
+  consider(b.center - a.center);
+  for (int i = 0; i < 3; ++i) {
+    consider(a.R.col(i));
+    consider(b.R.col(i));
+    for (int j = 0; j < 3; ++j) consider(a.R.col(i).cross(b.R.col(j)));
+  }
+  // And a coarse, even spread (a Fibonacci lattice of 48 pairs ±d, some
+  // 0.25 rad apart) so that no basin of f is far from a start.
+  constexpr int kLattice = 96;
+  const double golden = 3.141592653589793 * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < kLattice; ++i) {
+    const double z = 1.0 - (i + 0.5) / kLattice, rho = std::sqrt(1.0 - z * z), phi = golden * i;
+    consider(Vec3T<double>(rho * std::cos(phi), rho * std::sin(phi), z));
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Vec3T<double>> starts{fromCcd};
+  for (const auto& [f, d] : candidates) {
+    if (starts.size() > count) break;
+    if (std::none_of(starts.begin(), starts.end(), [&d = d](const Vec3T<double>& s) { return s.dot(d) > 0.999; }))
+      starts.push_back(d);
+  }
+  return starts;
+}
+
+/// A shape's supporting feature along the unit direction n, world (m): its
+/// points, their mean and how far they spread from the support at n.
+struct SupportingFeature {
+  Vec3T<double> center;  // mean of the points, world (m)
+  double spread = 0.0;   // largest distance of a point from the support at n (m)
+  std::vector<Vec3T<double>> samples;
+  FeatureClipping::Disc disc;  // a round face (radius > 0), world
+};
+/// Tilt of the sampled features (shapes without supportingFeature).
+inline constexpr double kFeatureTilt = 1e-3;  // rad
+
+/// The supporting feature of a shape along n: the shape's own
+/// supportingFeature (a face, an edge or a point within the feature angle,
+/// SupportingFeatureT) or, for a shape without one, sampled: its support at
+/// n and at n tilted by kFeatureTilt toward eight directions of the tangent
+/// plane, which spread over a face or an edge (its corners or ends) that is
+/// within that tilt of supporting and stay together otherwise.
+template <class Object>
+SupportingFeature supportingFeature(const Object& object, const Vec3T<double>& n) {
+  using S = typename Object::S;
+  const auto toWorld = [&](const Vec3T<S>& p) { return Vec3T<double>(object.R * p.template cast<double>() + object.p); };
+  const auto support = [&](const Vec3T<double>& d) {
+    return toWorld(object.shape->support((object.R.transpose() * d).template cast<S>()));
+  };
+  SupportingFeature feature{Vec3T<double>::Zero(), 0.0, {}, {}};
+  if constexpr (requires(SupportingFeatureT<S>& out) { object.shape->supportingFeature(Vec3T<S>(), out); }) {
+    SupportingFeatureT<S> local;
+    object.shape->supportingFeature((object.R.transpose() * n).template cast<S>(), local);
+    for (std::size_t k = 0; k < local.count; ++k) feature.samples.push_back(toWorld(local.points[k]));
+    if (local.radius > S(0))
+      feature.disc = {toWorld(local.center), object.R * local.axis.template cast<double>(), double(local.radius)};
+  } else {
+    const Vec3T<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    feature.samples.push_back(support(n));
+    for (int k = 0; k < 8; ++k) {
+      const double angle = k * 0.7853981633974483;
+      feature.samples.push_back(support(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2)));
+    }
+  }
+  const Vec3T<double> atN = support(n);
+  for (const Vec3T<double>& p : feature.samples) {
+    feature.center += p;
+    feature.spread = std::max(feature.spread, (p - atN).norm());
+  }
+  feature.center /= double(feature.samples.size());
+  return feature;
+}
+
+/// The contact point of a penetration of the given depth along n (from a
+/// toward b): in the overlap, half the depth inside both surfaces, at the
+/// middle of the narrower of the two supporting features (the curved or the
+/// smaller shape's), or between both middles where they are alike (two
+/// faces of one size). Never a support point chosen among a wide face's
+/// corners, whose lever arm would spin the body that rests on it.
+inline Vec3T<double> contactPointInOverlap(const SupportingFeature& onA, const SupportingFeature& onB, const Vec3T<double>& n,
+                                    double depth) {
+  const Vec3T<double> fromA = onA.center - 0.5 * depth * n, fromB = onB.center + 0.5 * depth * n;
+  if (onA.spread < 0.5 * onB.spread) return fromA;
+  if (onB.spread < 0.5 * onA.spread) return fromB;
+  return 0.5 * (fromA + fromB);
+}
+
+/// The contacts of a penetration of `depth` along n (from a toward b): the
+/// corners of the overlap of the two supporting features (FeatureClipping:
+/// a resting face, cylinder side or cap gets its manifold in one step), or,
+/// where the features do not overlap, one point by contactPointInOverlap.
+/// Points closer than 4·kFeatureTilt·size are one point (the spread a
+/// sampled curved surface leaves).
+template <class A, class B>
+std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, const CcdObject<B>& b,
+                                                         const Vec3T<double>& n, double depth) {
+  const SupportingFeature onA = supportingFeature(a, n), onB = supportingFeature(b, -n);
+  const auto size = [](const auto& object) {
+    return object.shape->getBoundingBox().halfExtents().template cast<double>().norm();
+  };
+  const FeatureClipping clipping(n);
+  std::vector<FeatureClipping::Contact> contacts = clipping.contacts(
+      {onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc}, {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth);
+  if (contacts.empty()) {
+    // A point feature (a vertex, a curved surface's support) is the contact
+    // itself; two extended ones that miss each other on the contact plane
+    // (a cap's inscribed polygon, round-off at a rim) meet where they come
+    // nearest.
+    if (onA.samples.size() == 1 || onB.samples.size() == 1)
+      contacts.push_back({contactPointInOverlap(onA, onB, n, depth), depth});
+    else
+      contacts.push_back(clipping.nearest({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
+                                          {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth));
+  }
+  return contacts;
+}
+
+/// True when one of the directions ±(axes of a's and b's frames) or ±(the
+/// line between their centers) has a projection overlap f below `below`:
+/// the shapes are apart by at least −below along it.
+template <class A, class B>
+bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double below) {
+  const auto apart = [&](const Vec3T<double>& direction) {
+    const double length = direction.norm();
+    if (!(length > 0.0)) return false;
+    for (const double sign : {1.0, -1.0}) {
+      const Vec3T<double> d = direction * (sign / length);
+      if (d.dot(overlap.gradient(d)) < below) return true;
+    }
+    return false;
+  };
+  if (apart(overlap.b.center - overlap.a.center)) return true;
+  for (int i = 0; i < 3; ++i)
+    if (apart(overlap.a.R.col(i)) || apart(overlap.b.R.col(i))) return true;
+  return false;
+}
+
+/// Penetration of two convex shapes by GJK + EPA (libccd), polished as
+/// above: the direction that separates b from a, with the contacts of
+/// contactsOfFeatures (not libccd's point, a midpoint of support points
+/// that may lie on a far corner of a large face), or only the deepest of
+/// them when `manifold` is false (triangle pairs of two meshes, one contact
+/// per intersecting pair).
+template <Scalar S, class A, class B>
+void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
+                  bool manifold = true) {
+  // libccd sees a grown by kCcdTouchMargin of the smaller shape's size, so
+  // that shapes placed exactly touching (a body set down on a ground) are
+  // found touching, not left to fall a step; the polishing below measures
+  // the true overlap, and a gap within the margin is a contact of depth 0.
+  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
+  const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeOf(a), sizeOf(b)));
+  const CcdObject<B> objectB(b, X_WB);
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = &CcdObject<A>::support;
+  ccd.support2 = &CcdObject<B>::support;
+  ccd.center1 = &CcdObject<A>::centerOf;
+  ccd.center2 = &CcdObject<B>::centerOf;
+  ccd.max_iterations = kCcdMaxIterations;
+  ccd.epa_tolerance = kCcdEpaTolerance;
+  ccd_real_t depth = 0;
+  ccd_vec3_t direction, position;
+  const ProjectionOverlap<A, B> overlap{objectA, objectB};
+  if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) {
+    // libccd's GJK misses a few shallow overlaps of a small shape on a large
+    // one (0.7 % of those 1e-9..1e-4 m deep on boxes of 0.5..500 m, each a
+    // step of free fall through a resting contact): "apart" stands when a
+    // grown by kCcdNearMargin is still apart, or with a separating axis
+    // among the shapes' axes and the line between their centers; otherwise
+    // the polishing below decides.
+    const CcdObject<A> grownA(a, X_WA, kCcdNearMargin * std::min(sizeOf(a), sizeOf(b)));
+    if (!ccdGJKIntersect(&grownA, &objectB, &ccd) || separatedAlongFrameAxes(overlap, -objectA.margin)) return;
+    direction = {{0.0, 0.0, 0.0}};
+  }
+  // libccd reports a penetration far smaller than the shapes (within the
+  // margin) as touching, without a direction: the polishing below finds it
+  // from its other starts.
+  Vec3T<double> n(direction.v[0], direction.v[1], direction.v[2]);
+  if (const double length = n.norm(); length > 0.0 && std::isfinite(length))
+    n /= length;
+  else
+    n = Vec3T<double>::UnitZ();
+  const double scale = (a.getBoundingBox().halfExtents().template cast<double>().norm() +
+                        b.getBoundingBox().halfExtents().template cast<double>().norm());
+  // f may have several local minima: descend from several starts, then
+  // search the kinks where a descent stalled.
+  double refined = std::numeric_limits<double>::infinity();
+  for (Vec3T<double> start : startingDirections(objectA, objectB, n, kStarts)) {
+    bool smooth = false;
+    double f = descend(overlap, start, scale, smooth);
+    if (!smooth) f = polishOnKinks(overlap, start, f, scale);
+    if (f < refined) {
+      refined = f;
+      n = start;
+    }
+  }
+  if (!(refined >= -objectA.margin)) return;  // the polished direction separates them
+  std::vector<FeatureClipping::Contact> contacts = contactsOfFeatures(objectA, objectB, n, std::max(refined, 0.0));
+  if (!manifold) {
+    const auto deepest = std::max_element(contacts.begin(), contacts.end(),
+                                          [](const auto& x, const auto& y) { return x.depth < y.depth; });
+    contacts = {*deepest};
+  }
+  for (const FeatureClipping::Contact& contact : contacts) sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CCD_BRIDGE_HPP
+// --- end spook/collide/detail/ccd_bridge.hpp ---
+// --- begin spook/collide/detail/triangle.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
+
+#include <array>
+#include <cmath>
+
+namespace spook::detail {
+
+/// One triangle of a mesh or height field, as a convex shape for the
+/// colliders: vertices in the mesh frame, counter-clockwise seen from the
+/// outside (the solid side is behind the face).
+template <Scalar S>
+struct Triangle {
+  using Vec3 = spook::Vec3T<S>;
+  std::array<Vec3, 3> v;
+
+  [[nodiscard]] Vec3 support(const Vec3& d) const {
+    const S a = v[0].dot(d), b = v[1].dot(d), c = v[2].dot(d);
+    return a >= b ? (a >= c ? v[0] : v[2]) : (b >= c ? v[1] : v[2]);
+  }
+  /// The whole triangle when its plane is across `d` within the feature
+  /// angle (from either side), else the edge across `d`, else the corner.
+  void supportingFeature(const Vec3& d, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    const S length = d.norm();
+    const Vec3 area = (v[1] - v[0]).cross(v[2] - v[0]);
+    if (length > S(0) && std::abs(area.dot(d)) >= S(kSupportingFeatureCos) * area.norm() * length) {
+      for (const Vec3& p : v) out.add(p);
+      return;
+    }
+    const Vec3 top = support(d);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = v[k];
+      const Vec3& q = v[(k + 1) % 3];
+      if ((p == top || q == top) && std::abs((q - p).dot(d)) <= S(kSupportingFeatureSin) * (q - p).norm() * length) {
+        out.add(p);
+        out.add(q);
+        return;
+      }
+    }
+    out.add(top);
+  }
+  [[nodiscard]] Vec3 getCenterOfVolume() const { return (v[0] + v[1] + v[2]) / S(3); }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
+    return {v[0].cwiseMin(v[1]).cwiseMin(v[2]), v[0].cwiseMax(v[1]).cwiseMax(v[2])};
+  }
+  /// Unit outward normal (+z for a degenerate triangle).
+  [[nodiscard]] Vec3 normal() const {
+    const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
+    const S length = n.norm();
+    return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
+  }
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
+// --- end spook/collide/detail/triangle.hpp ---
 
 /// Continuous collision detection (CCD), a stage of the step that runs after
 /// the bodies have moved (Simulation::stepForward).
@@ -13481,8 +16422,11 @@ void stopAtFirstContact(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const
 }
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_CONTINUOUS_HPP
 // --- end spook/collide/continuous.hpp ---
 // --- begin spook/sim/contact_rows.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_CONTACT_ROWS_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_CONTACT_ROWS_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -13493,6 +16437,8 @@ void stopAtFirstContact(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const
 #include <vector>
 
 // --- begin spook/solver/islands.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_ISLANDS_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_ISLANDS_HPP
 
 #include <algorithm>
 #include <limits>
@@ -13503,6 +16449,8 @@ void stopAtFirstContact(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const
 #include <Eigen/Cholesky>
 
 // --- begin spook/solver/body_space_solve.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
 
 #include <cmath>
 #include <cstddef>
@@ -13629,916 +16577,8 @@ class BodySpaceSolve {
 };
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
 // --- end spook/solver/body_space_solve.hpp ---
-// --- begin spook/solver/solver.hpp ---
-
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <string>
-#include <vector>
-
-// --- begin spook/solver/direct_solve.hpp ---
-
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
-#include <limits>
-#include <vector>
-
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
-
-// --- begin spook/solver/iterative_solve.hpp ---
-
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
-#include <vector>
-
-// --- begin spook/solver/friction_bounds.hpp ---
-
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstddef>
-#include <vector>
-
-namespace spook::detail {
-
-/// The friction limit μΛn (N·s) of friction row e from its normal's current impulse.
-[[nodiscard]] inline double frictionLimit(const IslandProblem& problem, const IslandProblem::Entry& e) {
-  return e.mu * std::max(0.0, problem.rows[static_cast<std::size_t>(e.normal)].impulse);
-}
-
-/// Sets the bounds of the friction rows among `subset` that follow their
-/// normal: ±μΛn for a scaled box, ±μΛn·|d_i| for a cone row (the direct
-/// solver's box around the cone, see updateConeDirections).
-/// Returns the largest change of a bound (N·s).
-inline double applyFrictionBounds(IslandProblem& problem, const std::vector<int>& subset) {
-  double change = 0.0;
-  for (int i : subset) {
-    IslandProblem::Entry& e = problem.rows[static_cast<std::size_t>(i)];
-    if (!e.followsNormal()) continue;
-    const double limit = frictionLimit(problem, e) * (e.frictionBound == FrictionBound::CONE ? e.coneShare : 1.0);
-    change = std::max(change, std::abs(limit - e.upper));
-    e.lower = -limit;
-    e.upper = limit;
-  }
-  return change;
-}
-
-/// The point of the disk |x| ≤ radius closest to `target` in the metric of
-/// the 2×2 block A (a00, a01, a11): the cone step of Gauss–Seidel, where the
-/// pair of tangent impulses minimizes its quadratic within the disk.
-/// Projected gradient with step 1/λmax(A) from the radial projection.
-[[nodiscard]] inline std::array<double, 2> projectOntoDisk(std::array<double, 2> target, double radius, double a00,
-                                                          double a01, double a11) {
-  const auto clampToDisk = [radius](std::array<double, 2> x) {
-    const double r = std::hypot(x[0], x[1]);
-    if (r > radius) {
-      const double f = r > 0.0 ? radius / r : 0.0;
-      x = {x[0] * f, x[1] * f};
-    }
-    return x;
-  };
-  std::array<double, 2> x = clampToDisk(target);
-  const double half = 0.5 * (a00 + a11);
-  const double largest = half + std::sqrt(0.25 * (a00 - a11) * (a00 - a11) + a01 * a01);
-  if (!(largest > 0.0)) return x;
-  for (int k = 0; k < 16; ++k) {
-    const double g0 = a00 * (x[0] - target[0]) + a01 * (x[1] - target[1]);
-    const double g1 = a01 * (x[0] - target[0]) + a11 * (x[1] - target[1]);
-    const std::array<double, 2> next = clampToDisk({x[0] - g0 / largest, x[1] - g1 / largest});
-    const double moved = std::hypot(next[0] - x[0], next[1] - x[1]);
-    x = next;
-    if (moved <= 1e-12 * (radius + 1e-300)) break;
-  }
-  return x;
-}
-
-/// The cone in a direct (box-constrained) solve, as an outer iteration: each
-/// tangent pair (t1, t2) gets the box |Λ_i| ≤ μΛn|d_i|, whose corner d·μΛn
-/// lies on the cone. d is the direction of the friction force: opposite the
-/// slip w = (S+Σ)Λ − q of the pair while it slides (Coulomb's law), or the
-/// force itself when it sticks outside the disk. A sticking pair inside the
-/// disk keeps its box. At the fixed point every sliding pair carries μΛn
-/// against its slip and every sticking one lies in the disk: the cone's
-/// solution. Returns the largest change of a bound (N·s).
-inline double updateConeDirections(IslandProblem& problem, const std::vector<int>& subset) {
-  const std::vector<Vec6d> dv = problem.velocityChange();
-  const auto slip = [&](int i) {
-    const IslandProblem::Entry& e = problem.rows[static_cast<std::size_t>(i)];
-    return problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
-  };
-  std::vector<char> inSubset(problem.rows.size(), 0);
-  for (int i : subset) inSubset[static_cast<std::size_t>(i)] = 1;
-  double change = 0.0;
-  for (int a : subset) {
-    IslandProblem::Entry& ea = problem.rows[static_cast<std::size_t>(a)];
-    if (ea.frictionBound != FrictionBound::CONE || ea.partner < a || !inSubset[static_cast<std::size_t>(ea.partner)])
-      continue;
-    IslandProblem::Entry& eb = problem.rows[static_cast<std::size_t>(ea.partner)];
-    const double limit = frictionLimit(problem, ea);
-    // Only a row held at its bound slips; inside, w is round-off.
-    const auto held = [](const IslandProblem::Entry& e) {
-      return e.upper <= e.lower || std::abs(e.impulse) >= e.upper * (1.0 - 1e-9);
-    };
-    const double wa = held(ea) ? slip(a) : 0.0, wb = held(eb) ? slip(ea.partner) : 0.0;
-    const double slipSpeed = std::hypot(wa, wb);
-    const double force = std::hypot(ea.impulse, eb.impulse);
-    double da = ea.coneShare, db = eb.coneShare;
-    if (slipSpeed > 0.0) {
-      // The force turns against the slip: fully on the first update (from
-      // the square around the disk), then halfway from the last direction:
-      // the slips of points on one body answer each other's turns, and full
-      // turns can oscillate.
-      const double oa = std::copysign(ea.coneShare, ea.impulse), ob = std::copysign(eb.coneShare, eb.impulse);
-      const double ta = -wa / slipSpeed, tb = -wb / slipSpeed;
-      const bool full = ea.coneShare == 1.0 && eb.coneShare == 1.0;
-      const double sa = full ? ta : oa + ta, sb = full ? tb : ob + tb;
-      const double norm = std::hypot(sa, sb);
-      da = norm > 1e-12 ? std::abs(sa) / norm : std::abs(ta);
-      db = norm > 1e-12 ? std::abs(sb) / norm : std::abs(tb);
-    } else if (force > limit * (1.0 + 1e-9) && force > 0.0) {
-      da = std::abs(ea.impulse) / force;
-      db = std::abs(eb.impulse) / force;
-    }
-    change = std::max(change, limit * std::max(std::abs(da - ea.coneShare), std::abs(db - eb.coneShare)));
-    ea.coneShare = da;
-    eb.coneShare = db;
-  }
-  return change;
-}
-
-/// Freezes the cone rows among `subset` whose `keep` flag is set at the
-/// friction their last (iterative) solve found: the box |Λ_i| ≤ μΛn|f_i|/|f|
-/// holds f and has its corner on the cone (the inscribed square when f = 0).
-inline void freezeConeShares(IslandProblem& problem, const std::vector<int>& subset, const std::vector<char>& keep) {
-  for (int a : subset) {
-    IslandProblem::Entry& ea = problem.rows[static_cast<std::size_t>(a)];
-    if (!keep[static_cast<std::size_t>(a)] || ea.frictionBound != FrictionBound::CONE || ea.partner < a) continue;
-    IslandProblem::Entry& eb = problem.rows[static_cast<std::size_t>(ea.partner)];
-    const double force = std::hypot(ea.impulse, eb.impulse);
-    ea.coneShare = force > 0.0 ? std::abs(ea.impulse) / force : std::sqrt(0.5);
-    eb.coneShare = force > 0.0 ? std::abs(eb.impulse) / force : std::sqrt(0.5);
-  }
-}
-
-/// Complementarity error of a cone pair (m/s): its slip w must oppose its
-/// force f when |f| = μΛn and vanish inside the disk.
-[[nodiscard]] inline double coneComplementarityError(const IslandProblem::Entry& a, const IslandProblem::Entry& b,
-                                                     double limit, double wa, double wb) {
-  const double force = std::hypot(a.impulse, b.impulse);
-  // On the cone to within the friction iterations' reach (their last solve
-  // moves Λn after the bounds were set).
-  if (force < limit * (1.0 - 1e-4) || force == 0.0) return std::hypot(wa, wb);
-  const double fa = a.impulse / force, fb = b.impulse / force;
-  const double along = wa * fa + wb * fb;  // must be <= 0
-  return std::max(0.0, along) + std::abs(wa * fb - wb * fa);
-}
-
-}  // namespace spook::detail
-// --- end spook/solver/friction_bounds.hpp ---
-
-namespace spook::detail {
-
-/// What an iterative solve did.
-struct IterativeSolveResult {
-  int iterations = 0;     ///< sweeps over the rows
-  double change = 0.0;    ///< largest |ΔΛ|·(S+Σ)_ii of the last sweep (m/s)
-  bool converged = false; ///< `change` fell below the tolerance
-};
-
-/// Projected Gauss–Seidel on the rows `subset` (PHYSICS.md §2.2), the other
-/// rows' impulses held fixed, starting from the impulses in the problem
-/// (the last step's when warm starting): Λᵢ ← clamp(Λᵢ + rᵢ/(S+Σ)ᵢᵢ, loᵢ, hiᵢ) with rᵢ = qᵢ − GᵢΔv − ΣᵢΛᵢ,
-/// keeping Δv = M⁻¹GᵀΛ current so that one row costs O(1).
-///
-/// Friction rows take their bounds from the current impulse of their normal
-/// row: ±μΛn (scaled box), and a cone's tangent pair is updated as a block,
-/// its two impulses minimizing their quadratic within the disk of radius
-/// μΛn (projectOntoDisk), the projected cone of PHYSICS.md §2.2.
-///
-/// The Jacobi variant computes every update of a sweep from the same Δv and
-/// applies it scaled by 1/k, k the largest number of swept rows on either of
-/// the row's bodies, which keeps it from overshooting where rows share a body.
-inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::vector<int>& subset, int maxIterations,
-                                           double tolerance, bool jacobi) {
-  IterativeSolveResult result;
-  if (subset.empty()) return result;
-  std::vector<Vec6d> dv = problem.velocityChange();
-
-  std::vector<double> relaxation;
-  if (jacobi) {
-    std::vector<int> count(static_cast<std::size_t>(problem.numBodies), 0);
-    for (int i : subset) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (e.body1 >= 0) ++count[static_cast<std::size_t>(e.body1)];
-      if (e.body2 >= 0) ++count[static_cast<std::size_t>(e.body2)];
-    }
-    for (int i : subset) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      const int k = std::max(e.body1 >= 0 ? count[static_cast<std::size_t>(e.body1)] : 1,
-                             e.body2 >= 0 ? count[static_cast<std::size_t>(e.body2)] : 1);
-      relaxation.push_back(1.0 / std::max(k, 1));
-    }
-  }
-  std::vector<double> delta(subset.size(), 0.0);
-  std::vector<char> inSubset(problem.rows.size(), 0);
-  for (int i : subset) inSubset[static_cast<std::size_t>(i)] = 1;
-  const auto conePair = [&](int i) {
-    const auto& e = problem.rows[static_cast<std::size_t>(i)];
-    return e.frictionBound == FrictionBound::CONE && e.normal >= 0 && e.partner >= 0 &&
-           inSubset[static_cast<std::size_t>(e.partner)];
-  };
-
-  for (int sweep = 0; sweep < maxIterations; ++sweep) {
-    double change = 0.0;
-    for (std::size_t k = 0; k < subset.size(); ++k) {
-      const int i = subset[k];
-      auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (e.followsNormal()) {
-        const double limit = frictionLimit(problem, e);
-        e.lower = -limit;
-        e.upper = limit;
-      }
-      const double r = e.q - problem.rowVelocity(i, dv) - e.sigma * e.impulse;
-      if (!jacobi && conePair(i)) {
-        if (e.partner < i) continue;  // updated with its partner
-        auto& p = problem.rows[static_cast<std::size_t>(e.partner)];
-        p.lower = e.lower;
-        p.upper = e.upper;
-        const double rp = p.q - problem.rowVelocity(e.partner, dv) - p.sigma * p.impulse;
-        const double a01 = problem.coupling(i, e.partner);
-        const double det = e.diagonal * p.diagonal - a01 * a01;
-        const double d0 = (p.diagonal * r - a01 * rp) / det, d1 = (e.diagonal * rp - a01 * r) / det;
-        const auto next = projectOntoDisk({e.impulse + d0, p.impulse + d1}, e.upper, e.diagonal, a01, p.diagonal);
-        const double de = next[0] - e.impulse, dp = next[1] - p.impulse;
-        e.impulse = next[0];
-        p.impulse = next[1];
-        problem.addImpulse(dv, i, de);
-        problem.addImpulse(dv, e.partner, dp);
-        change = std::max({change, std::abs(de) * e.diagonal, std::abs(dp) * p.diagonal});
-        continue;
-      }
-      const double next = std::clamp(e.impulse + r / e.diagonal, e.lower, e.upper);
-      if (jacobi) {
-        delta[k] = relaxation[k] * (next - e.impulse);
-        continue;
-      }
-      const double d = next - e.impulse;
-      e.impulse = next;
-      problem.addImpulse(dv, i, d);
-      change = std::max(change, std::abs(d) * e.diagonal);
-    }
-    if (jacobi) {
-      for (std::size_t k = 0; k < subset.size(); ++k) {
-        const int i = subset[k];
-        auto& e = problem.rows[static_cast<std::size_t>(i)];
-        e.impulse += delta[k];
-        problem.addImpulse(dv, i, delta[k]);
-        change = std::max(change, std::abs(delta[k]) * e.diagonal);
-      }
-      // The box step leaves a cone pair in its square: scale it into the disk.
-      for (int i : subset) {
-        auto& e = problem.rows[static_cast<std::size_t>(i)];
-        if (!conePair(i) || e.partner < i) continue;
-        auto& p = problem.rows[static_cast<std::size_t>(e.partner)];
-        const double limit = frictionLimit(problem, e), force = std::hypot(e.impulse, p.impulse);
-        if (force <= limit) continue;
-        const double f = limit / force;
-        problem.addImpulse(dv, i, e.impulse * (f - 1.0));
-        problem.addImpulse(dv, e.partner, p.impulse * (f - 1.0));
-        e.impulse *= f;
-        p.impulse *= f;
-      }
-    }
-    result.iterations = sweep + 1;
-    result.change = change;
-    if (!std::isfinite(change)) break;
-    if (change <= tolerance) {
-      result.converged = true;
-      break;
-    }
-  }
-  return result;
-}
-
-}  // namespace spook::detail
-// --- end spook/solver/iterative_solve.hpp ---
-
-namespace spook::detail {
-
-/// What a direct solve did.
-struct DirectSolveResult {
-  int factorizations = 0;  ///< sparse LDLᵀ factorizations (one per pivot step)
-  bool converged = true;   ///< a complementary solution was found
-  bool fellBack = false;   ///< the pivoting gave up; the safe fallback answered
-};
-
-/// Solves the rows `subset` of an island exactly, the impulses of the other
-/// rows held fixed: (S + Σ)_DD Λ_D = q_D − (S Λ)_D,fixed within the bounds.
-///
-/// S + Σ is assembled in block-sparse form (a row couples only to the rows
-/// sharing one of its bodies) and factorized by a sparse LDLᵀ with an
-/// approximate-minimum-degree ordering, so a chain or a tree of n bodies costs
-/// O(n). Σ > 0 keeps the matrix positive definite. Where rows far outnumber
-/// the bodies' degrees of freedom and all are compliant (contacts), the same
-/// system is solved through the bodies' mass matrix instead
-/// (body_space_solve.hpp).
-///
-/// Bounded rows make a box-constrained LCP, solved by block principal
-/// pivoting (Júdice & Pires 1994): every row is free, at its lower or at its
-/// upper bound; each step solves the free rows with the others at their
-/// bounds and swaps every infeasible row at once. When that stops reducing
-/// the number of infeasible rows for kBlockPivotingStrikes steps, it switches
-/// to Murty's single principal pivoting (swap only the infeasible row of
-/// largest index), which cannot cycle on a positive definite matrix (Murty
-/// 1974). Murty's guarantee is exact arithmetic's: where contacts fight a
-/// joint, many rows share a body's few degrees of freedom, S is singular,
-/// and only Σ (1e-5 and less of the rows' mobility) keeps the matrix
-/// definite; round-off can then flip a Schur complement's sign and a row
-/// cycles between free and bound. Should the step cap be reached, the solve
-/// falls back to a safe answer: of the clamped best iterate (fewest
-/// infeasible rows) and no impulse at all, the one of lower merit
-/// f(Λ) = ½ΛᵀAΛ − qᵀΛ (whose minimum over the bounds is the LCP's solution;
-/// f(Λ) − f(0) bounds the kinetic energy the impulses add), refined by
-/// projected Gauss–Seidel, which never raises f. The solve is reported as
-/// not converged.
-class DirectSolve {
- public:
-  /// Gauss–Seidel sweeps of the fallback.
-  static constexpr int kFallbackSweeps = 64;
-
-  /// Block pivoting steps allowed without a new fewest-infeasible count
-  /// before single pivots: friction in a 210-cube pyramid needs tens of such
-  /// steps, and Murty's one row per step then takes hundreds.
-  static constexpr int kBlockPivotingStrikes = 30;
-
-  DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps) {
-    DirectSolveResult result;
-    const int n = static_cast<int>(subset.size());
-    if (n == 0) return result;
-    bodySpace_ = BodySpaceSolve::pays(problem, subset);
-    assembleRhs(problem, subset);
-    if (!bodySpace_) assembleMatrix(problem, subset);
-
-    // The state of each row: free, or clamped at its lower or upper bound.
-    // Warm start: a row whose guess (the last solution) is at a bound starts there.
-    enum State : unsigned char { FREE, LOWER, UPPER };
-    std::vector<State> state(static_cast<std::size_t>(n), FREE);
-    bool anyBounded = false;
-    for (int k = 0; k < n; ++k) {
-      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-      if (!isBounded(e)) continue;
-      anyBounded = true;
-      if (e.guess <= e.lower) state[static_cast<std::size_t>(k)] = LOWER;
-      else if (e.guess >= e.upper) state[static_cast<std::size_t>(k)] = UPPER;
-    }
-
-    Eigen::VectorXd x(n), bestX;
-    int best = std::numeric_limits<int>::max();
-    int strikes = 0;
-    std::vector<int> infeasible;
-    for (int step = 0;; ++step) {
-      solveFree(problem, subset, state, x);
-      ++result.factorizations;
-      if (!anyBounded) break;
-      const Eigen::VectorXd w = residual(problem, subset, x);
-      infeasible.clear();
-      for (int k = 0; k < n; ++k) {
-        const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-        const double tolX = 1e-12 * (1.0 + std::abs(x[k]));
-        const double tolW = 1e-12 * (1.0 + std::abs(q_[k]));
-        const State s = state[static_cast<std::size_t>(k)];
-        if (e.upper <= e.lower) continue;  // a zero-width box: held at its bound from the start
-        if ((s == FREE && (x[k] < e.lower - tolX || x[k] > e.upper + tolX)) || (s == LOWER && w[k] < -tolW) ||
-            (s == UPPER && w[k] > tolW))
-          infeasible.push_back(k);
-      }
-      if (infeasible.empty()) break;
-      const int count = static_cast<int>(infeasible.size());
-      if (count < best) {
-        best = count;
-        bestX = x;
-        strikes = 0;
-      } else {
-        ++strikes;
-      }
-      if (step >= maxPivotSteps) {
-        fallBack(problem, subset, bestX);
-        result.converged = false;
-        result.fellBack = true;
-        return result;
-      }
-      if (strikes >= kBlockPivotingStrikes) infeasible.erase(infeasible.begin(), infeasible.end() - 1);
-      for (int k : infeasible) {
-        const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-        State& s = state[static_cast<std::size_t>(k)];
-        if (s != FREE) s = FREE;
-        else s = x[k] < e.lower ? LOWER : UPPER;
-      }
-    }
-    for (int k = 0; k < n; ++k) {
-      auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-      e.impulse = std::clamp(x[k], e.lower, e.upper);
-      e.guess = e.impulse;
-    }
-    return result;
-  }
-
- private:
-  // The safe answer of a solve whose pivoting gave up (see the class note).
-  void fallBack(IslandProblem& problem, const std::vector<int>& subset, Eigen::VectorXd x) {
-    const auto n = static_cast<Eigen::Index>(subset.size());
-    Eigen::VectorXd none(n);
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-      x[k] = std::clamp(x[k], e.lower, e.upper);
-      none[k] = std::clamp(0.0, e.lower, e.upper);
-    }
-    const auto merit = [&](const Eigen::VectorXd& y) { return 0.5 * y.dot(residual(problem, subset, y) - q_); };
-    const double fx = merit(x);
-    if (!(std::isfinite(fx) && fx <= merit(none))) x = none;
-    for (Eigen::Index k = 0; k < n; ++k) {
-      auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-      e.impulse = x[k];
-    }
-    iterativeSolve(problem, subset, kFallbackSweeps, 0.0, false);
-    for (int i : subset) problem.rows[static_cast<std::size_t>(i)].guess = problem.rows[static_cast<std::size_t>(i)].impulse;
-  }
-
-  static bool isBounded(const IslandProblem::Entry& e) {
-    return e.lower > -std::numeric_limits<double>::infinity() || e.upper < std::numeric_limits<double>::infinity();
-  }
-
-  // q_ = q_D − G_D Δv(rows outside D).
-  void assembleRhs(const IslandProblem& problem, const std::vector<int>& subset) {
-    std::vector<char> inSubset(problem.rows.size(), 0);
-    for (int i : subset) inSubset[static_cast<std::size_t>(i)] = 1;
-    std::vector<int> others;
-    for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i)
-      if (!inSubset[static_cast<std::size_t>(i)]) others.push_back(i);
-    const std::vector<Vec6d> fixed = problem.velocityChange(others);
-    q_.resize(static_cast<Eigen::Index>(subset.size()));
-    for (std::size_t k = 0; k < subset.size(); ++k)
-      q_[static_cast<Eigen::Index>(k)] = problem.rows[static_cast<std::size_t>(subset[k])].q - problem.rowVelocity(subset[k], fixed);
-  }
-
-  // w = (S + Σ)_DD x − q_D.
-  Eigen::VectorXd residual(const IslandProblem& problem, const std::vector<int>& subset, const Eigen::VectorXd& x) const {
-    if (!bodySpace_) return A_ * x - q_;
-    std::vector<Vec6d> dv(static_cast<std::size_t>(problem.numBodies), Vec6d::Zero());
-    for (std::size_t k = 0; k < subset.size(); ++k) problem.addImpulse(dv, subset[k], x[static_cast<Eigen::Index>(k)]);
-    Eigen::VectorXd w(x.size());
-    for (std::size_t k = 0; k < subset.size(); ++k) {
-      const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
-      const auto j = static_cast<Eigen::Index>(k);
-      w[j] = problem.rowVelocity(subset[k], dv) + e.sigma * x[j] - q_[j];
-    }
-    return w;
-  }
-
-  // A_ = (S + Σ)_DD, full symmetric.
-  void assembleMatrix(const IslandProblem& problem, const std::vector<int>& subset) {
-    const int n = static_cast<int>(subset.size());
-    std::vector<std::vector<int>> rowsOfBody(static_cast<std::size_t>(problem.numBodies));
-    for (int k = 0; k < n; ++k) {
-      const int i = subset[static_cast<std::size_t>(k)];
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (e.body1 >= 0) rowsOfBody[static_cast<std::size_t>(e.body1)].push_back(k);
-      if (e.body2 >= 0 && e.body2 != e.body1) rowsOfBody[static_cast<std::size_t>(e.body2)].push_back(k);
-    }
-    triplets_.clear();
-    for (int k = 0; k < n; ++k) {
-      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-      triplets_.emplace_back(k, k, e.diagonal);
-    }
-    // Off-diagonal blocks body by body; two rows sharing both bodies meet
-    // twice and coupling() already sums both, so each pair is added once.
-    std::vector<int> lastSeen(static_cast<std::size_t>(n), -1);
-    for (int k = 0; k < n; ++k) {
-      const int i = subset[static_cast<std::size_t>(k)];
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      for (int body : {e.body1, e.body2}) {
-        if (body < 0) continue;
-        for (int m : rowsOfBody[static_cast<std::size_t>(body)]) {
-          if (m <= k || lastSeen[static_cast<std::size_t>(m)] == k) continue;
-          lastSeen[static_cast<std::size_t>(m)] = k;
-          const double s = problem.coupling(i, subset[static_cast<std::size_t>(m)]);
-          if (s == 0.0) continue;
-          triplets_.emplace_back(k, m, s);
-          triplets_.emplace_back(m, k, s);
-        }
-      }
-    }
-    A_.resize(n, n);
-    A_.setFromTriplets(triplets_.begin(), triplets_.end());
-  }
-
-  // Solves the free rows with the clamped ones at their bounds.
-  template <class States>
-  void solveFree(const IslandProblem& problem, const std::vector<int>& subset, const States& state,
-                 Eigen::VectorXd& x) {
-    const int n = static_cast<int>(subset.size());
-    std::vector<int> freeIndex(static_cast<std::size_t>(n), -1);
-    int numFree = 0;
-    for (int k = 0; k < n; ++k) {
-      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-      if (state[static_cast<std::size_t>(k)] == 0) freeIndex[static_cast<std::size_t>(k)] = numFree++;
-      else x[k] = state[static_cast<std::size_t>(k)] == 1 ? e.lower : e.upper;
-    }
-    if (numFree == 0) return;
-    Eigen::VectorXd rhs(numFree);
-    for (int k = 0; k < n; ++k)
-      if (freeIndex[static_cast<std::size_t>(k)] >= 0) rhs[freeIndex[static_cast<std::size_t>(k)]] = q_[k];
-    if (bodySpace_) {
-      std::vector<Vec6d> clamped(static_cast<std::size_t>(problem.numBodies), Vec6d::Zero());
-      for (int k = 0; k < n; ++k)
-        if (freeIndex[static_cast<std::size_t>(k)] < 0) problem.addImpulse(clamped, subset[static_cast<std::size_t>(k)], x[k]);
-      for (int k = 0; k < n; ++k)
-        if (const int f = freeIndex[static_cast<std::size_t>(k)]; f >= 0)
-          rhs[f] -= problem.rowVelocity(subset[static_cast<std::size_t>(k)], clamped);
-      bodySpaceSolve_.solve(problem, subset, freeIndex, rhs, x);
-      return;
-    }
-    subTriplets_.clear();
-    for (int col = 0; col < n; ++col)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A_, col); it; ++it) {
-        const int fr = freeIndex[static_cast<std::size_t>(it.row())];
-        if (fr < 0) continue;
-        const int fc = freeIndex[static_cast<std::size_t>(col)];
-        if (fc >= 0) {
-          if (fr >= fc) subTriplets_.emplace_back(fr, fc, it.value());
-        } else {
-          rhs[fr] -= it.value() * x[col];
-        }
-      }
-    Eigen::SparseMatrix<double> sub(numFree, numFree);
-    sub.setFromTriplets(subTriplets_.begin(), subTriplets_.end());
-    ldlt_.compute(sub);
-    const Eigen::VectorXd solution = ldlt_.solve(rhs);
-    for (int k = 0; k < n; ++k)
-      if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[freeIndex[static_cast<std::size_t>(k)]];
-  }
-
-  bool bodySpace_ = false;
-  BodySpaceSolve bodySpaceSolve_;
-  Eigen::SparseMatrix<double> A_;
-  Eigen::VectorXd q_;
-  std::vector<Eigen::Triplet<double>> triplets_, subTriplets_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
-};
-
-}  // namespace spook::detail
-// --- end spook/solver/direct_solve.hpp ---
-
-namespace spook {
-
-/// What the solver did in the last step, summed or maximized over islands.
-struct SolverStatistics {
-  int numIslands = 0;
-  int numRows = 0;
-  int numDirectRows = 0;     ///< rows that went through a direct solve
-  int numIterativeRows = 0;  ///< rows that went through projected Gauss–Seidel
-  int iterations = 0;        ///< most Gauss–Seidel (or Jacobi) sweeps in one island
-  int factorizations = 0;    ///< sparse factorizations, one per pivoting step
-  /// Most friction iterations of one direct solve (getNumFrictionIterations);
-  /// reaching the maximum means its bounds had not settled to the tolerance.
-  int frictionIterations = 0;
-  /// Largest complementarity error over all rows (m/s or rad/s): |w| for a
-  /// row inside its bounds, the wrong-signed part of w at a bound, with
-  /// w = (S+Σ)Λ − q (PHYSICS.md §2.1). Zero to round-off for a direct solve.
-  double complementarityError = 0.0;
-  bool converged = true;   ///< every pivoting solve found its solution, every sweep met the tolerance
-  /// Direct solves whose pivoting reached getMaxPivotSteps and that fell back
-  /// to the safe answer (direct_solve.hpp): the best iterate or no impulse,
-  /// refined by Gauss–Seidel.
-  int directFallbacks = 0;
-  double solveTime = 0.0;  ///< wall-clock time spent solving (s)
-  /// Islands whose impulses were not finite and were dropped; the
-  /// simulation freezes their bodies (SimulationStatisticsT::frozenBodies).
-  int nonFiniteIslands = 0;
-};
-
-/// Solves the rows of an island: the simulation's solver policy. Subclasses
-/// choose how (DirectSolver, IterativeSolver, HybridSolver); the settings of
-/// the iterative and pivoting parts are common.
-class Solver : public Referenced {
- public:
-  enum IterativeMethod { GAUSS_SEIDEL, JACOBI };
-
-  [[nodiscard]] virtual const char* getName() const = 0;
-
-  /// Sweeps of projected Gauss–Seidel per step (default 16, AGX's resting iterations).
-  [[nodiscard]] int getNumIterations() const { return iterations_; }
-  void setNumIterations(int n) {
-    if (n < 1) throw detail::makeError("Solver", getName(), "number of iterations must be >= 1", n);
-    iterations_ = n;
-  }
-  /// Sweeps stop early when no impulse changes by more than this, measured
-  /// as a velocity (m/s or rad/s). Default 1e-10.
-  [[nodiscard]] double getTolerance() const { return tolerance_; }
-  void setTolerance(double tolerance) {
-    if (!(tolerance >= 0.0)) throw detail::makeError("Solver", getName(), "tolerance must be >= 0 (m/s)", tolerance);
-    tolerance_ = tolerance;
-  }
-  /// Start each solve from the last step's impulses (default off). It saves
-  /// sweeps on slowly changing systems, but with few sweeps on stiff, badly
-  /// conditioned joints (a light body with small inertia far from its joint)
-  /// the stale impulses feed energy into the system and it can blow up;
-  /// AGX leaves warm starting off by default too (PHYSICS.md §2.2).
-  [[nodiscard]] bool getEnableWarmStarting() const { return warmStarting_; }
-  void setEnableWarmStarting(bool enable) { warmStarting_ = enable; }
-  /// Geometric stiffness (default on): the turning of the joint forces with
-  /// the bodies is taken implicitly, from the last step's forces, for every
-  /// body whose explicit step would be unstable. It keeps light bodies pulled
-  /// by heavy ones stable (a 1 kg link holding 1e6 kg at 60 Hz), at the price
-  /// of backward Euler's damping of the swing those bodies take part in
-  /// (geometric_stiffness.hpp). Bodies below the threshold are untouched.
-  [[nodiscard]] bool getEnableGeometricStiffness() const { return geometricStiffness_; }
-  void setEnableGeometricStiffness(bool enable) { geometricStiffness_ = enable; }
-  /// ρ₀ of the geometric stiffness: a body whose (hω)² from its joint forces
-  /// exceeds ρ₀ gets the implicit term with weight 1 − ρ₀/(hω)². Default 1
-  /// (the explicit step is stable to (hω)² = 4); 0 applies it to every body
-  /// at full weight, which tracks the joints of a swinging chain closest.
-  [[nodiscard]] double getGeometricStiffnessThreshold() const { return geometricStiffnessThreshold_; }
-  void setGeometricStiffnessThreshold(double threshold) {
-    if (!(threshold >= 0.0 && std::isfinite(threshold)))
-      throw detail::makeError("Solver", getName(), "geometric stiffness threshold must be finite and >= 0", threshold);
-    geometricStiffnessThreshold_ = threshold;
-  }
-  [[nodiscard]] IterativeMethod getIterativeMethod() const { return method_; }
-  void setIterativeMethod(IterativeMethod method) {
-    if (method != GAUSS_SEIDEL && method != JACOBI)
-      throw detail::makeError("Solver", getName(), "unknown iterative method", static_cast<int>(method));
-    method_ = method;
-  }
-  /// Cap on the pivoting steps of one direct solve (default 200).
-  [[nodiscard]] int getMaxPivotSteps() const { return maxPivotSteps_; }
-  void setMaxPivotSteps(int n) {
-    if (n < 1) throw detail::makeError("Solver", getName(), "maximum pivot steps must be >= 1", n);
-    maxPivotSteps_ = n;
-  }
-
-  /// Outer iterations of a direct solve over the friction bounds that follow
-  /// the normal forces (scaled box and cone friction; PHYSICS.md §2.4's
-  /// non-linear iterations): each solves the LCP exactly, then moves the
-  /// bounds to μΛn of the new normal impulses and, for a cone, onto the
-  /// direction of sliding. Default 8.
-  [[nodiscard]] int getNumFrictionIterations() const { return frictionIterations_; }
-  void setNumFrictionIterations(int n) {
-    if (n < 1) throw detail::makeError("Solver", getName(), "number of friction iterations must be >= 1", n);
-    frictionIterations_ = n;
-  }
-  /// The friction iterations stop when no bound moves by more than this
-  /// fraction of the largest one. Default 1e-6.
-  [[nodiscard]] double getFrictionTolerance() const { return frictionTolerance_; }
-  void setFrictionTolerance(double tolerance) {
-    if (!(tolerance >= 0.0 && std::isfinite(tolerance)))
-      throw detail::makeError("Solver", getName(), "friction tolerance must be finite and >= 0", tolerance);
-    frictionTolerance_ = tolerance;
-  }
-  /// Hybrid solver: the most (iterative, direct) passes that couple the two
-  /// subsystems of an island; they stop once the direct impulses change by
-  /// less than 1e-6 of the largest. Default 16: the coupling converges
-  /// linearly, and a box resting on a 30° incline under SPLIT friction creeps
-  /// 4.7 mm in 2 s after AGX's 7 dry-friction iterations, 0.05 mm after 16.
-  [[nodiscard]] int getNumCouplingIterations() const { return couplingIterations_; }
-  void setNumCouplingIterations(int n) {
-    if (n < 1) throw detail::makeError("Solver", getName(), "number of coupling iterations must be >= 1", n);
-    couplingIterations_ = n;
-  }
-
-  /// Post-stabilization (on by default for DirectSolver, off for the
-  /// others; one Newton iteration): after the positions are advanced, the
-  /// direct solver's equality rows (and slack rows held at an end) are
-  /// projected, mass-weighted, onto the violation their second-order
-  /// prediction gives, g* = g + h(G v⁺ + hκ) (Row::curvature):
-  /// Δq = M⁻¹Gᵀδ with G M⁻¹Gᵀ δ = g* − g(q⁺), and the velocities take Δq/h.
-  /// This removes the drift of the velocity-level step beyond second order,
-  /// which grows with angular speed and mass ratio, and leaves the rows'
-  /// compliance and damping alone: the joint catalogue holds within 1e-6 m
-  /// (3e-7 m at the default compliance) where the plain step drifts
-  /// 1e-4..5e-3 m. Costs one more row assembly and factorization per step.
-  /// Iterative rows are not projected.
-  [[nodiscard]] bool getEnablePostStabilization() const { return postStabilization_; }
-  void setEnablePostStabilization(bool enable) { postStabilization_ = enable; }
-  [[nodiscard]] int getNumPostStabilizationIterations() const { return postStabilization_ ? projectionIterations_ : 0; }
-  void setNumPostStabilizationIterations(int n) {
-    if (n < 1) throw detail::makeError("Solver", getName(), "post-stabilization iterations must be >= 1", n);
-    projectionIterations_ = n;
-  }
-  /// Whether rows of this solve type are projected.
-  [[nodiscard]] virtual bool projects(SolveType type) const { return postStabilization_ && type != SolveType::ITERATIVE; }
-
-  /// Solves a projection island (unbounded rows) directly.
-  void project(detail::IslandProblem& problem, SolverStatistics& statistics) {
-    const auto start = std::chrono::steady_clock::now();
-    direct(problem, allRows(problem), statistics);
-    for (auto& e : problem.rows)
-      if (!std::isfinite(e.impulse)) e.impulse = 0.0;
-    statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
-
-  /// Solves one island in place and accumulates the statistics. Impulses that
-  /// come out non-finite are dropped (set to zero) and counted; false then.
-  bool solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
-    const auto start = std::chrono::steady_clock::now();
-    ++statistics.numIslands;
-    statistics.numRows += static_cast<int>(problem.rows.size());
-    solveIsland(problem, statistics);
-    bool finite = true;
-    for (const auto& e : problem.rows) finite = finite && std::isfinite(e.impulse);
-    if (!finite) {
-      for (auto& e : problem.rows) e.impulse = 0.0;
-      ++statistics.nonFiniteIslands;
-      statistics.converged = false;
-    }
-    statistics.complementarityError = std::max(statistics.complementarityError, complementarityError(problem));
-    statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return finite;
-  }
-
- protected:
-  ~Solver() override = default;
-  virtual void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) = 0;
-
-  void direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
-    const detail::DirectSolveResult r = direct_.solve(problem, subset, maxPivotSteps_);
-    statistics.factorizations += r.factorizations;
-    statistics.converged = statistics.converged && r.converged;
-    statistics.directFallbacks += r.fellBack ? 1 : 0;
-  }
-  /// A direct solve repeated over the friction bounds that follow the normal
-  /// impulses (getNumFrictionIterations); rows flagged in `keep` keep theirs.
-  void directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
-                          SolverStatistics& statistics, const std::vector<char>* keep = nullptr) {
-    std::vector<int> following;
-    for (int i : subset) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (!e.followsNormal() || (keep && (*keep)[static_cast<std::size_t>(i)])) continue;
-      following.push_back(i);
-    }
-    direct(problem, subset, statistics);
-    int k = 1;
-    for (; k < frictionIterations_ && !following.empty(); ++k) {
-      double change = detail::updateConeDirections(problem, following);
-      change = std::max(change, detail::applyFrictionBounds(problem, following));
-      double largest = 0.0;
-      for (int i : following) largest = std::max(largest, problem.rows[static_cast<std::size_t>(i)].upper);
-      if (change <= frictionTolerance_ * largest) break;
-      direct(problem, subset, statistics);
-    }
-    statistics.frictionIterations = std::max(statistics.frictionIterations, k);
-  }
-  void iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
-    const detail::IterativeSolveResult r =
-        detail::iterativeSolve(problem, subset, iterations_, tolerance_, method_ == JACOBI);
-    statistics.iterations = std::max(statistics.iterations, r.iterations);
-    statistics.converged = statistics.converged && r.converged;
-  }
-  static std::vector<int> allRows(const detail::IslandProblem& problem) {
-    std::vector<int> rows(problem.rows.size());
-    for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<int>(i);
-    return rows;
-  }
-
- private:
-  static double complementarityError(const detail::IslandProblem& problem) {
-    const std::vector<detail::Vec6d> dv = problem.velocityChange();
-    const auto residual = [&](int i) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      return problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
-    };
-    double worst = 0.0;
-    for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (e.frictionBound == detail::FrictionBound::CONE && e.partner >= 0) {
-        if (e.partner > i)
-          worst = std::max(worst, detail::coneComplementarityError(e, problem.rows[static_cast<std::size_t>(e.partner)],
-                                                                   detail::frictionLimit(problem, e), residual(i),
-                                                                   residual(e.partner)));
-        continue;
-      }
-      worst = std::max(worst, detail::complementarityError(e, residual(i)));
-    }
-    return worst;
-  }
-
-  int iterations_ = 16;
-  double tolerance_ = 1e-10;
-  IterativeMethod method_ = GAUSS_SEIDEL;
-  int maxPivotSteps_ = 200;
-  bool postStabilization_ = false;
-  bool warmStarting_ = false;
-  bool geometricStiffness_ = true;
-  double geometricStiffnessThreshold_ = 1.0;
-  int projectionIterations_ = 1;
-  int frictionIterations_ = 8;
-  double frictionTolerance_ = 1e-6;
-  int couplingIterations_ = 16;
-  detail::DirectSolve direct_;
-};
-
-/// Every row by the direct solver: exact to round-off, whatever the mass
-/// ratios and stiffness; O(n) for chains and trees, more where loops and
-/// contacts fill in the factor.
-class DirectSolver final : public Solver {
- public:
-  DirectSolver() { setEnablePostStabilization(true); }
-  [[nodiscard]] const char* getName() const override { return "direct"; }
-  [[nodiscard]] bool projects(SolveType) const override { return getEnablePostStabilization(); }
-
- protected:
-  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override {
-    const std::vector<int> rows = allRows(problem);
-    statistics.numDirectRows += static_cast<int>(rows.size());
-    directWithFriction(problem, rows, statistics);
-  }
-};
-
-/// Every row by projected Gauss–Seidel (or Jacobi), optionally warm-started
-/// from the last step: cheap per sweep, approximate; stiff joints and large
-/// mass ratios come out softer than they are.
-class IterativeSolver final : public Solver {
- public:
-  [[nodiscard]] const char* getName() const override { return "iterative"; }
-  [[nodiscard]] bool projects(SolveType) const override { return false; }
-
- protected:
-  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override {
-    const std::vector<int> rows = allRows(problem);
-    statistics.numIterativeRows += static_cast<int>(rows.size());
-    iterative(problem, rows, statistics);
-  }
-};
-
-/// Each row as its constraint or friction model asks (setSolveType): DIRECT
-/// rows by the direct solver, ITERATIVE rows by Gauss–Seidel,
-/// DIRECT_AND_ITERATIVE rows by both, coupling the two subsystems (seed 001
-/// §12.17), and SPLIT contacts with their normals direct and their friction
-/// iterative. An island without iterative-only rows is solved directly
-/// (DIRECT_AND_ITERATIVE then means DIRECT). Otherwise: a direct pass
-/// (iterative rows at their warm start), then up to getNumCouplingIterations
-/// passes of Gauss–Seidel (direct-only rows fixed) followed by a direct solve
-/// with the iterative impulses, in which DIRECT_AND_ITERATIVE friction keeps
-/// the bounds the iterative pass found (PHYSICS.md §2.5).
-class HybridSolver final : public Solver {
- public:
-  [[nodiscard]] const char* getName() const override { return "hybrid"; }
-
- protected:
-  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override {
-    std::vector<int> directRows, iterativeRows;
-    std::vector<char> keep(problem.rows.size(), 0);
-    bool anyIterativeOnly = false;
-    for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      const bool friction = e.normal >= 0;
-      const bool split = e.solveType == SolveType::SPLIT;
-      const bool inDirect = e.solveType != SolveType::ITERATIVE && !(split && friction);
-      const bool inIterative = e.solveType != SolveType::DIRECT && !(split && !friction);
-      if (inDirect) directRows.push_back(i);
-      if (inIterative) iterativeRows.push_back(i);
-      anyIterativeOnly = anyIterativeOnly || (inIterative && !inDirect);
-      keep[static_cast<std::size_t>(i)] = friction && e.solveType == SolveType::DIRECT_AND_ITERATIVE;
-    }
-    statistics.numDirectRows += static_cast<int>(directRows.size());
-    if (!anyIterativeOnly) {
-      directWithFriction(problem, directRows, statistics);
-      return;
-    }
-    statistics.numIterativeRows += static_cast<int>(iterativeRows.size());
-    if (directRows.empty()) {
-      iterative(problem, iterativeRows, statistics);
-      return;
-    }
-    directWithFriction(problem, directRows, statistics);
-    std::vector<double> previous(directRows.size());
-    for (int pass = 0; pass < getNumCouplingIterations(); ++pass) {
-      iterative(problem, iterativeRows, statistics);
-      detail::freezeConeShares(problem, iterativeRows, keep);
-      detail::applyFrictionBounds(problem, iterativeRows);
-      double largest = 0.0;
-      for (std::size_t k = 0; k < directRows.size(); ++k) {
-        previous[k] = problem.rows[static_cast<std::size_t>(directRows[k])].impulse;
-        largest = std::max(largest, std::abs(previous[k]));
-      }
-      directWithFriction(problem, directRows, statistics, &keep);
-      double change = 0.0;
-      for (std::size_t k = 0; k < directRows.size(); ++k)
-        change = std::max(change, std::abs(problem.rows[static_cast<std::size_t>(directRows[k])].impulse - previous[k]));
-      if (change <= 1e-6 * largest) break;
-    }
-  }
-};
-
-using SolverRef = ref_ptr<Solver>;
-
-}  // namespace spook
-// --- end spook/solver/solver.hpp ---
 
 namespace spook::detail {
 
@@ -14734,22 +16774,10 @@ class IslandStepper {
 };
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_ISLANDS_HPP
 // --- end spook/solver/islands.hpp ---
 
 namespace spook::detail {
-
-/// Simulation-wide contact settings.
-struct ContactSettings {
-  /// Approach speed (m/s) above which restitution acts; slower contacts rest.
-  double restitutionThreshold = 0.2;
-  /// Cap on the speed (m/s) at which the stabilization of the normal rows
-  /// pushes overlapping shapes apart.
-  double maxDepenetrationSpeed = 1.0;
-  /// A point of this step continues a point of the last step (same geometry
-  /// pair) when they lie within this distance (m) in the first geometry's
-  /// frame: its rows start from that point's force.
-  double persistenceDistance = 0.01;
-};
 
 /// Turns the solvable contact points into rows (PHYSICS.md §1.4) and reads
 /// their forces back. Per point: a unilateral normal row on the gap
@@ -14964,120 +16992,11 @@ class ContactRows {
 };
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SIM_CONTACT_ROWS_HPP
 // --- end spook/sim/contact_rows.hpp ---
-// --- begin spook/sim/jointed_pairs.hpp ---
-
-#include <algorithm>
-#include <optional>
-#include <unordered_map>
-#include <utility>
-#include <vector>
-
-namespace spook::detail {
-
-/// The body pairs that a simulation's constraints join directly, for the
-/// default collision filter: the geometries of two bodies held together by
-/// an enabled constraint do not collide with each other unless the
-/// constraint asks for it (Constraint::setEnableCollisions), as PhysX's
-/// joints and MuJoCo's parent–child filter do. A machine's links overlap at
-/// their pins; contacts there would fight the joints. The world (a
-/// constraint's missing second body) is no body: a body hinged to the world
-/// still collides with the ground.
-///
-/// Kept up to date as constraints are added and removed (a constraint's
-/// bodies never change); whether a pair is filtered is read at query time
-/// from its few constraints, so enabling, disabling or switching collisions
-/// on a constraint takes effect at once, without a scan of all constraints.
-template <Scalar S>
-class JointedPairs {
- public:
-  using Body = RigidBodyT<S>;
-  using Constraint = ConstraintT<S>;
-
-  void add(const Constraint& constraint) {
-    if (const auto key = keyOf(constraint)) byPair_[*key].push_back(&constraint);
-  }
-  void remove(const Constraint& constraint) {
-    const auto key = keyOf(constraint);
-    if (!key) return;
-    const auto it = byPair_.find(*key);
-    if (it == byPair_.end()) return;
-    std::erase(it->second, &constraint);
-    if (it->second.empty()) byPair_.erase(it);
-  }
-
-  /// True when an enabled constraint joins `a` and `b` without allowing
-  /// their geometries to collide.
-  [[nodiscard]] bool filters(const Body* a, const Body* b) const {
-    if (!a || !b || byPair_.empty()) return false;
-    const auto it = byPair_.find(std::minmax(a, b));
-    if (it == byPair_.end()) return false;
-    return std::any_of(it->second.begin(), it->second.end(),
-                       [](const Constraint* c) { return c->getEnable() && !c->getEnableCollisions(); });
-  }
-
- private:
-  using Key = std::pair<const Body*, const Body*>;
-  static std::optional<Key> keyOf(const Constraint& constraint) {
-    const Body* a = constraint.getBodyAt(0);
-    const Body* b = constraint.getBodyAt(1);
-    if (!a || !b) return std::nullopt;
-    return std::minmax(a, b);
-  }
-
-  std::unordered_map<Key, std::vector<const Constraint*>, PointerPairHash> byPair_;
-};
-
-}  // namespace spook::detail
-// --- end spook/sim/jointed_pairs.hpp ---
-// --- begin spook/sim/statistics.hpp ---
-
-#include <cstddef>
-#include <cstdint>
-#include <vector>
-
-namespace spook {
-
-/// Why a body was frozen in a step (SimulationStatisticsT::frozenBodies).
-enum class FreezeReason {
-  /// Its own new position, orientation or velocity would not have been finite.
-  NON_FINITE_STATE,
-  /// The constraint and contact impulses of its island (the bodies joined to
-  /// it by constraints and contacts) came out non-finite: they were dropped,
-  /// and every body of the island was frozen rather than moved without them.
-  NON_FINITE_ISLAND
-};
-
-/// What the last step did, readable after stepForward().
-template <Scalar S>
-struct SimulationStatisticsT {
-  /// A body frozen in the last step and why.
-  struct FrozenBody {
-    observer_ptr<RigidBodyT<S>> body;
-    FreezeReason reason;
-  };
-
-  /// Steps taken since the simulation was created.
-  std::uint64_t numSteps = 0;
-  /// Bodies frozen in the last step: their state was kept as it was before
-  /// the step (pose kept, velocities zeroed) instead of becoming non-finite
-  /// or moving without their constraints. Each body appears once.
-  std::vector<FrozenBody> frozenBodies;
-  /// Steps, since the simulation was created, in which a direct solve did
-  /// not converge and fell back to its safe answer (SolverStatistics::directFallbacks).
-  std::uint64_t numFallbackSteps = 0;
-  /// Contact points the last step's collision detection dropped before
-  /// contact reduction because their position, normal or depth was not
-  /// finite (shapes posed near the largest finite coordinate); they exert
-  /// no force.
-  std::size_t numDroppedContactPoints = 0;
-  /// What the constraint solver did in the last step.
-  SolverStatistics solver;
-};
-
-}  // namespace spook
-// --- end spook/sim/statistics.hpp ---
 // --- begin spook/solver/geometric_stiffness.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_GEOMETRIC_STIFFNESS_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_GEOMETRIC_STIFFNESS_HPP
 
 #include <algorithm>
 #include <cstddef>
@@ -15198,13 +17117,18 @@ class GeometricStiffness {
 };
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_GEOMETRIC_STIFFNESS_HPP
 // --- end spook/solver/geometric_stiffness.hpp ---
 // --- begin spook/solver/integrator.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_INTEGRATOR_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_INTEGRATOR_HPP
 
 #include <algorithm>
 #include <cmath>
 
 // --- begin spook/solver/free_rotation.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_FREE_ROTATION_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_FREE_ROTATION_HPP
 
 namespace spook::detail {
 
@@ -15272,6 +17196,7 @@ FreeRotation<S> rotateFreely(const Mat3T<S>& inertiaInverse, const Vec3T<S>& mom
 }
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_FREE_ROTATION_HPP
 // --- end spook/solver/free_rotation.hpp ---
 
 namespace spook::detail {
@@ -15494,630 +17419,52 @@ struct BodyIntegrator {
 };
 
 }  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_INTEGRATOR_HPP
 // --- end spook/solver/integrator.hpp ---
 
 namespace spook {
 
-/// Owns a scene and steps it. Time in seconds; default step 1/60 s; default
-/// gravity uniform (0, 0, −9.80665) m/s². An object belongs to at most one
-/// simulation; a call that throws leaves the simulation unchanged.
+namespace detail {
+
+/// What a simulation keeps from step to step besides its content.
 template <Scalar S>
-class SimulationT : public Referenced, public detail::ContentSink<S> {
- public:
-  using Vec3 = spook::Vec3T<S>;
-  using Body = RigidBodyT<S>;
-  using Listener = StepEventListenerT<S>;
-  using Collection = CollectionT<S>;
-  using ContactListener = ContactEventListenerT<S>;
-  using Geometry = GeometryT<S>;
-  using Constraint = ConstraintT<S>;
-
-  /// A simulation whose space collides every shape type.
-  SimulationT() : space_(new SpaceT<S>()) { installSpaceRules(); }
-  /// A simulation for the shape types of `List` only, e.g.
-  /// `Simulation(ShapeList<SphereT, PlaneT>{})`: only the colliders between
-  /// them are compiled, and a geometry of another type is refused.
-  template <template <class> class... Shapes>
-  explicit SimulationT(ShapeList<Shapes...> list) : space_(new SpaceT<S>(list)) { installSpaceRules(); }
-
-  // --- Time ------------------------------------------------------------------
-
-  /// Step length h (s), finite and > 0. Set from a listener during a step,
-  /// it takes effect from the next step (a step is taken whole with one h).
-  [[nodiscard]] S getTimeStep() const { return timeStep_; }
-  void setTimeStep(S h) {
-    if (!(std::isfinite(h) && h > S(0))) throw error("time step must be finite and > 0 s", h);
-    if (stepping_) {
-      pendingTimeStep_ = h;
-      return;
-    }
-    timeBase_ = getTimeStamp();
-    stepsSinceBase_ = 0;
-    timeStep_ = h;
-  }
-  /// Simulated time (s), computed as t₀ + n·h rather than summed, so that a
-  /// float simulation does not drift by a step every few thousand steps.
-  [[nodiscard]] S getTimeStamp() const { return timeBase_ + S(stepsSinceBase_) * timeStep_; }
-
-  /// Takes one step:
-  /// preCollide listeners → collision detection → contact events → pre
-  /// listeners → rows, islands, solve → integrate → continuous collision
-  /// (RigidBody::setEnableCCD) → post listeners → last listeners → t += h.
-  void stepForward();
-
-  /// Steps until the time stamp reaches `t` (s): round((t − now)/h) steps,
-  /// recounted after each step in case a listener changes h. stepTo(now),
-  /// or any t less than half a step ahead, takes no step. Throws before
-  /// stepping when t is not finite, is in the past, or is more than 2³¹
-  /// steps away (1e9 s at 60 Hz would take 6e10 steps).
-  void stepTo(S t) {
-    if (!std::isfinite(t)) throw error("stepTo time must be finite (s)", t);
-    const S now = getTimeStamp();
-    if (t < now) throw error("stepTo time must not be in the past (now " + std::to_string(now) + " s)", t);
-    while (stepsTo(t) > 0) stepForward();
-  }
-
-  // --- Solver ----------------------------------------------------------------
-
-  /// The solver policy that solves each island: HybridSolver by default
-  /// (rows solved as their constraints ask), DirectSolver or IterativeSolver.
-  [[nodiscard]] Solver* getSolver() const { return solver_.get(); }
-  void setSolver(ref_ptr<Solver> solver) {
-    if (!solver) throw error("solver must not be null", "nullptr");
-    solver_ = std::move(solver);
-  }
-
-  // --- Gravity ---------------------------------------------------------------
-
-  [[nodiscard]] GravityFieldT<S>* getGravityField() const { return gravity_.get(); }
-  void setGravityField(GravityFieldT<S>* field) {
-    if (!field) throw error("gravity field must not be null", "nullptr");
-    gravity_ = field;
-  }
-  /// Replaces the field by a uniform one (m/s²).
-  void setUniformGravity(const Vec3& g) { setGravityField(new UniformGravityFieldT<S>(g)); }
-
-  // --- Collision detection ---------------------------------------------------
-
-  /// The space that finds this simulation's contacts.
-  [[nodiscard]] SpaceT<S>* getSpace() const { return space_.get(); }
-  /// The contacts found in the last step (those with isEnabled() false were
-  /// removed by a contact listener).
-  [[nodiscard]] const std::vector<GeometryContactT<S>>& getGeometryContacts() const {
-    return space_->getGeometryContacts();
-  }
-
-  // --- Contacts --------------------------------------------------------------
-
-  /// The explicit contact materials (getOrCreateContactMaterial); pairs
-  /// without one combine their two materials' implicit values.
-  [[nodiscard]] MaterialManagerT<S>* getMaterialManager() { return &materials_; }
-  [[nodiscard]] const MaterialManagerT<S>* getMaterialManager() const { return &materials_; }
-  /// Approach speed (m/s, >= 0) above which restitution makes a contact
-  /// bounce; slower ones come to rest. Default 0.2.
-  [[nodiscard]] S getRestitutionThreshold() const { return S(contactSettings_.restitutionThreshold); }
-  void setRestitutionThreshold(S speed) {
-    if (!(std::isfinite(speed) && speed >= S(0))) throw error("restitution threshold must be finite and >= 0 m/s", speed);
-    contactSettings_.restitutionThreshold = double(speed);
-  }
-  /// The fastest (m/s, > 0) that contact stabilization separates overlapping
-  /// shapes: a box created half inside another leaves it at about this speed
-  /// instead of being shot out. Default 1.
-  [[nodiscard]] S getMaxDepenetrationSpeed() const { return S(contactSettings_.maxDepenetrationSpeed); }
-  void setMaxDepenetrationSpeed(S speed) {
-    if (!(std::isfinite(speed) && speed > S(0))) throw error("maximum depenetration speed must be finite and > 0 m/s", speed);
-    contactSettings_.maxDepenetrationSpeed = double(speed);
-  }
-
-  // --- Content ---------------------------------------------------------------
-
-  /// Adds a geometry that stands static in the world (a body's geometries
-  /// come with the body).
-  void add(ref_ptr<Geometry> geometry) {
-    if (geometry && geometry->getRigidBody())
-      throw detail::makeError("Geometry", geometry->getName(), "belongs to a body; add the body instead");
-    space_->add(std::move(geometry));
-  }
-  /// Removes a static geometry; false when it is not here.
-  bool remove(Geometry* geometry) { return space_->remove(geometry); }
-
-  /// Adds a listener of class L, checked at compile time: a member named
-  /// like a callback must override it (detail::requireContactCallbacks).
-  template <detail::ContactEventListenerClass<S> L>
-  void add(const ref_ptr<L>& listener) {
-    detail::requireContactCallbacks<L, S>();
-    add(ref_ptr<ContactListener>(listener));
-  }
-  template <detail::ContactEventListenerClass<S> L>
-  void add(L* listener) {
-    add(ref_ptr<L>(listener));
-  }
-  void add(ref_ptr<ContactListener> listener) {
-    checkAddable(listener.get(), "ContactEventListener");
-    Membership::simulationOf(*listener) = this;
-    contactListeners_.push_back(std::move(listener));
-  }
-  void remove(ContactListener* listener) {
-    checkRemovable(listener, "ContactEventListener");
-    std::erase_if(contactListeners_, [&](const auto& l) { return l.get() == listener; });
-    Membership::simulationOf(*listener) = nullptr;
-  }
-  [[nodiscard]] const std::vector<ref_ptr<ContactListener>>& getContactEventListeners() const {
-    return contactListeners_;
-  }
-
-  void add(ref_ptr<Body> body) override {
-    checkAddable(body.get(), "RigidBody");
-    for (const auto& g : body->getGeometries()) space_->requireSupported(*g);
-    Membership::indexOf(*body) = bodies_.size();
-    Membership::simulationOf(*body) = this;
-    bodies_.push_back(std::move(body));
-  }
-  void remove(Body* body) override {
-    checkRemovable(body, "RigidBody");
-    const std::size_t index = Membership::indexOf(*body);
-    ref_ptr<Body> keep = body;
-    std::swap(bodies_[index], bodies_.back());
-    Membership::indexOf(*bodies_[index]) = index;
-    bodies_.pop_back();
-    Membership::simulationOf(*body) = nullptr;
-  }
-
-  /// Adds a listener of class L, checked at compile time: a member named
-  /// like a callback must override it (detail::requireStepCallbacks).
-  template <detail::StepEventListenerClass<S> L>
-  void add(const ref_ptr<L>& listener) {
-    detail::requireStepCallbacks<L, S>();
-    add(ref_ptr<Listener>(listener));
-  }
-  template <detail::StepEventListenerClass<S> L>
-  void add(L* listener) {
-    add(ref_ptr<L>(listener));
-  }
-  void add(ref_ptr<Listener> listener) override {
-    checkAddable(listener.get(), "StepEventListener");
-    Membership::simulationOf(*listener) = this;
-    listeners_.push_back(std::move(listener));
-  }
-  void remove(Listener* listener) override {
-    checkRemovable(listener, "StepEventListener");
-    listeners_.erase(
-        std::find_if(listeners_.begin(), listeners_.end(), [&](const auto& l) { return l.get() == listener; }));
-    Membership::simulationOf(*listener) = nullptr;
-  }
-
-  /// Adds a collection and everything in it, nested collections included.
-  void add(ref_ptr<Collection> collection) {
-    if (!collection) throw error("cannot add a null Collection", "nullptr");
-    addNested(*collection);
-    collections_.push_back(std::move(collection));
-  }
-  /// Removes a collection added with add(), and its content.
-  void remove(Collection* collection) {
-    auto it =
-        std::find_if(collections_.begin(), collections_.end(), [&](const auto& c) { return c.get() == collection; });
-    if (it == collections_.end())
-      throw error("Collection was never added", collection ? collection->getName() : std::string("nullptr"));
-    ref_ptr<Collection> keep = collection;
-    collections_.erase(it);
-    removeNested(*collection);
-  }
-
-  /// Adds a constraint whose bodies are in this simulation already; throws
-  /// when a body is elsewhere or when both are static (or static and world).
-  /// A constraint whose body is later removed adds no rows.
-  void add(ref_ptr<Constraint> constraint) override {
-    checkAddable(constraint.get(), constraint ? constraint->getKind() : "Constraint");
-    checkBodiesOf(*constraint, nullptr);
-    Membership::indexOf(*constraint) = constraints_.size();
-    Membership::simulationOf(*constraint) = this;
-    jointedPairs_.add(*constraint);
-    constraints_.push_back(std::move(constraint));
-  }
-  void remove(Constraint* constraint) override {
-    checkRemovable(constraint, constraint ? constraint->getKind() : "Constraint");
-    const std::size_t index = Membership::indexOf(*constraint);
-    ref_ptr<Constraint> keep = constraint;
-    std::swap(constraints_[index], constraints_.back());
-    Membership::indexOf(*constraints_[index]) = index;
-    constraints_.pop_back();
-    jointedPairs_.remove(*constraint);
-    Membership::simulationOf(*constraint) = nullptr;
-    predicted_.clear();  // keyed by row storage a later constraint may reuse
-  }
-  [[nodiscard]] const std::vector<ref_ptr<Constraint>>& getConstraints() const { return constraints_; }
-  /// The first constraint with this name, or nullptr.
-  [[nodiscard]] Constraint* getConstraint(const std::string& name) const {
-    for (const auto& c : constraints_)
-      if (c->getName() == name) return c.get();
-    return nullptr;
-  }
-  [[nodiscard]] bool contains(const Constraint* constraint) const override {
-    return constraint && Membership::simulationOf(*constraint) == static_cast<const void*>(this);
-  }
-
-  [[nodiscard]] const std::vector<ref_ptr<Body>>& getRigidBodies() const { return bodies_; }
-  [[nodiscard]] const std::vector<ref_ptr<Listener>>& getEventListeners() const { return listeners_; }
-  [[nodiscard]] const std::vector<ref_ptr<Collection>>& getCollections() const { return collections_; }
-  /// The first body with this name, or nullptr.
-  [[nodiscard]] Body* getRigidBody(const std::string& name) const {
-    for (const auto& b : bodies_)
-      if (b->getName() == name) return b.get();
-    return nullptr;
-  }
-  [[nodiscard]] bool contains(const Body* body) const override {
-    return body && Membership::simulationOf(*body) == static_cast<const void*>(this);
-  }
-  [[nodiscard]] bool contains(const Listener* listener) const override {
-    return listener && listener->getSimulation() == this;
-  }
-  [[nodiscard]] bool contains(const ContactListener* listener) const {
-    return listener && listener->getSimulation() == this;
-  }
-
-  [[nodiscard]] const SimulationStatisticsT<S>& getStatistics() const { return statistics_; }
-
- protected:
-  ~SimulationT() override {
-    for (auto& b : bodies_) Membership::simulationOf(*b) = nullptr;
-    for (auto& l : listeners_) Membership::simulationOf(*l) = nullptr;
-    for (auto& l : contactListeners_) Membership::simulationOf(*l) = nullptr;
-    for (auto& c : constraints_) Membership::simulationOf(*c) = nullptr;
-    for (auto& c : collections_) setCollectionsSink(*c, nullptr);
-  }
-
- private:
-  using Membership = detail::SimulationMembership;
-
-  // Pairs with an explicit contact material reduce their points as it says;
-  // jointed bodies do not collide unless their constraint asks (jointed_pairs.hpp).
-  void installSpaceRules() {
-    space_->setBodyPairFilter([this](const Body& a, const Body& b) { return jointedPairs_.filters(&a, &b); });
-    space_->setReductionRule([this](const Geometry& a, const Geometry& b) {
-      std::optional<std::pair<ContactReductionMode, int>> rule;
-      if (const auto* cm = materials_.getContactMaterial(a.getMaterial(), b.getMaterial()))
-        rule.emplace(cm->getContactReductionMode(), cm->getContactReductionBinResolution());
-      return rule;
-    });
-  }
-
-  // round((t − now)/h), in double so that neither the quotient nor its
-  // rounding overflows; more than 2³¹ steps are refused.
-  [[nodiscard]] long long stepsTo(S t) const {
-    const double steps = std::round((double(t) - double(getTimeStamp())) / double(timeStep_));
-    if (steps > 2147483648.0)
-      throw error("stepTo time is more than 2^31 steps of " + std::to_string(timeStep_) + " s away", t);
-    return static_cast<long long>(steps);
-  }
-
-  void applyPendingTimeStep() {
-    if (pendingTimeStep_) setTimeStep(*std::exchange(pendingTimeStep_, std::nullopt));
-  }
-
-  // The SPOOK step for every body: force-driven velocities, the rows of the
-  // enabled constraints, islands solved by the policy, then the poses.
-  void integrate(S h) {
-    statistics_.frozenBodies.clear();
-    statistics_.solver = SolverStatistics{};
-    solverBodies_.clear();
-    for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h));
-    collectRows(double(h));
-    numConstraintRows_ = rows_.size();
-    contactRows_.build(
-        space_->getGeometryContacts(), materials_, *gravity_,
-        [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, solverBodies_,
-        double(h), contactSettings_, rows_);
-    if (solver_->getEnableGeometricStiffness() && !rows_.empty())
-      geometricStiffness_.apply(rows_, solverBodies_, double(h), solver_->getGeometricStiffnessThreshold());
-    else
-      geometricStiffness_.clear();
-    frozen_.assign(bodies_.size(), 0);
-    if (!rows_.empty()) {
-      islands_.solve(rows_, solverBodies_, double(h), *solver_, statistics_.solver);
-      for (int i : islands_.getNonFiniteBodies()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
-    }
-    readBackForces(double(h));
-    contactRows_.readBack(double(h));
-    predictViolations(double(h));
-    for (std::size_t i = 0; i < bodies_.size(); ++i) {
-      Body& body = *bodies_[i];
-      if (!frozen_[i] && !detail::BodyIntegrator<S>::move(body, solverBodies_[i], h))
-        freeze(i, FreezeReason::NON_FINITE_STATE);
-      detail::BodyIntegrator<S>::clearForces(body);
-    }
-    if (!rows_.empty())
-      for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(double(h));
-  }
-
-  // What each holonomic row's linearization makes of the step: the rate
-  // G v⁺ + hκ at which it moves g and the violation g + h·rate it should end
-  // with, which post-stabilization restores (it removes only the
-  // higher-order drift of the step, not the rows' compliant or damped
-  // motion). The rate is the next step's b' term (Row::lastRate).
-  void predictViolations(double h) {
-    predicted_.clear();
-    if (!solver_->getEnablePostStabilization()) return;
-    for (std::size_t i = 0; i < numConstraintRows_; ++i) {
-      const detail::Row& r = rows_[i];
-      if (!r.holonomic) continue;
-      const auto speed = [&](int body, const detail::Vec6d& J) {
-        return body < 0 ? 0.0 : J.dot(solverBodies_[static_cast<std::size_t>(body)].freeVelocity);
-      };
-      const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + h * r.curvature;
-      predicted_[r.impulse] = {r.violation + h * rate, rate};
-    }
-  }
-
-  // Projects the direct solver's equality rows back onto their manifold
-  // (Solver::getEnablePostStabilization).
-  void postStabilize(double h) {
-    rows_.clear();
-    for (const auto& c : constraints_) {
-      if (!c->getEnable() || !solver_->projects(c->getSolveType())) continue;
-      Body* body1 = c->getBodyAt(0);
-      Body* body2 = c->getBodyAt(1);
-      if (!contains(body1) || (body2 && !contains(body2))) continue;
-      detail::RowSink sink{&rows_, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
-                           c->getSolveType(), true};
-      detail::ConstraintAccess::addProjectionRows(*c, sink);
-    }
-    // Target: the predicted violation (rows without one, e.g. a lock enabled
-    // by a listener after the solve, are left out).
-    std::erase_if(rows_, [&](const detail::Row& r) { return !predicted_.count(r.impulse); });
-    for (detail::Row& r : rows_) r.speed = predicted_[r.impulse].violation;
-    if (rows_.empty()) return;
-    solverBodies_.clear();
-    for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
-    geometricStiffness_.addInertia(solverBodies_);
-    // Frozen bodies stand still, like static ones.
-    for (std::size_t i = 0; i < bodies_.size(); ++i)
-      if (frozen_[i]) solverBodies_[i] = detail::SolverBody{};
-    islands_.project(rows_, solverBodies_, h, *solver_, statistics_.solver);
-    for (std::size_t i = 0; i < bodies_.size(); ++i)
-      if (!detail::BodyIntegrator<S>::displace(*bodies_[i], solverBodies_[i], S(h)))
-        freeze(i, FreezeReason::NON_FINITE_STATE);
-  }
-
-  // Keeps body i as it was before the step (pose kept, velocities zeroed)
-  // and reports it, once per step.
-  void freeze(std::size_t i, FreezeReason reason) {
-    detail::BodyIntegrator<S>::freeze(*bodies_[i]);
-    solverBodies_[i].freeVelocity.setZero();  // as the rows' predictions (predictViolations) should see it
-    if (std::exchange(frozen_[i], char(1))) return;
-    statistics_.frozenBodies.push_back({bodies_[i].get(), reason});
-  }
-
-  void collectRows(double h) {
-    rows_.clear();
-    rowOwners_.clear();
-    for (const auto& c : constraints_) {
-      if (!c->getEnable()) continue;
-      Body* body1 = c->getBodyAt(0);
-      Body* body2 = c->getBodyAt(1);
-      if (!contains(body1) || (body2 && !contains(body2))) continue;
-      // The second-order terms (Row::curvature, Row::lastRate) need the
-      // projection: without it their error feeds back (the 1:1e6 chain of
-      // test_solvers.cpp diverges).
-      const bool projected = solver_->projects(c->getSolveType());
-      detail::RowSink sink{&rows_, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
-                           c->getSolveType(), projected};
-      const std::size_t first = rows_.size();
-      detail::ConstraintAccess::addRows(*c, sink, h);
-      rowOwners_.resize(rows_.size(), c.get());
-      for (std::size_t i = first; i < rows_.size(); ++i) {
-        detail::Row& r = rows_[i];
-        if (!projected) {
-          r.curvature = 0.0;
-        } else if (const auto it = predicted_.find(r.impulse); r.holonomic && it != predicted_.end()) {
-          r.lastRate = it->second.rate;
-        }
-      }
-    }
-  }
-
-  void readBackForces(double h) {
-    for (const auto& c : constraints_)
-      if (c->getEnableComputeForces()) detail::ConstraintAccess::clearWrench(*c);
-    for (std::size_t i = 0; i < numConstraintRows_; ++i)
-      if (rowOwners_[i]->getEnableComputeForces())
-        detail::ConstraintAccess::addWrench(*rowOwners_[i], rows_[i], *rows_[i].impulse / h);
-    for (const auto& c : constraints_) detail::ConstraintAccess::afterSolve(*c, h);
-  }
-
-  // Calls the listeners selected by `stage`, highest priority first, over a
-  // snapshot, so that callbacks may add and remove objects freely.
-  void notify(typename Listener::ActivationMask stage) {
-    if (listeners_.empty()) return;
-    std::vector<ref_ptr<Listener>> snapshot;
-    for (const auto& l : listeners_)
-      if (l->getMask() & stage) snapshot.push_back(l);
-    std::stable_sort(snapshot.begin(), snapshot.end(),
-                     [](const auto& a, const auto& b) { return a->getPriority() > b->getPriority(); });
-    const S time = getTimeStamp();
-    for (const auto& l : snapshot) {
-      if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage)) continue;
-      switch (stage) {
-        case Listener::PRE_COLLIDE:
-          l->preCollide(time);
-          break;
-        case Listener::PRE_STEP:
-          l->pre(time);
-          break;
-        case Listener::POST_STEP:
-          l->post(time);
-          break;
-        case Listener::LAST_STEP:
-          l->last(time);
-          break;
-        default:
-          break;
-      }
-    }
-  }
-
-  // Impact and contact callbacks per contact, in the order the listeners
-  // were added, over a snapshot; a REMOVE_CONTACT disables the contact for
-  // the solver, and the listeners after it see it disabled (seed 000). Then
-  // the separations.
-  void notifyContacts() {
-    if (contactListeners_.empty()) return;
-    const std::vector<ref_ptr<ContactListener>> snapshot = contactListeners_;
-    const S time = getTimeStamp();
-    for (auto& contact : space_->getGeometryContacts()) {
-      const auto stage = contact.isImpact() ? ContactListener::IMPACT : ContactListener::CONTACT;
-      for (const auto& l : snapshot) {
-        if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage) ||
-            !l->matches(contact.geometry(0), contact.geometry(1)))
-          continue;
-        const auto policy = contact.isImpact() ? l->impact(time, &contact) : l->contact(time, &contact);
-        if (policy == ContactListener::REMOVE_CONTACT) contact.setEnable(false);
-      }
-    }
-    for (auto pair : space_->getSeparations())
-      for (const auto& l : snapshot)
-        if (l->getSimulation() == this && l->getEnable() && (l->getMask() & ContactListener::SEPARATION) &&
-            l->matches(pair.first.get(), pair.second.get()))
-          l->separation(time, pair);
-  }
-
-  // Collections: validate the whole tree, then register it, so that a failed
-  // add changes nothing.
-  void addNested(Collection& collection) override {
-    std::unordered_set<const void*> seen;
-    validateTree(collection, seen);
-    validateConstraints(collection, seen);
-    registerTree(collection);
-  }
-  void removeNested(Collection& collection) override {
-    ref_ptr<Collection> keep = &collection;
-    for (const auto& b : collection.getRigidBodies())
-      if (contains(b.get())) remove(b.get());
-    for (const auto& l : collection.getEventListeners())
-      if (l->getSimulation() == this) remove(l.get());
-    for (const auto& c : collection.getConstraints())
-      if (contains(c.get())) remove(c.get());
-    Membership::simulationOf(collection) = nullptr;
-    for (const auto& c : collection.getCollections()) removeNested(*c);
-  }
-  void validateTree(const Collection& collection, std::unordered_set<const void*>& seen) const {
-    if (Membership::simulationOf(collection))
-      throw error("Collection is already in a simulation", collection.getName());
-    if (!seen.insert(&collection).second) throw error("Collection appears twice", collection.getName());
-    for (const auto& b : collection.getRigidBodies()) {
-      checkAddable(b.get(), "RigidBody");
-      for (const auto& g : b->getGeometries()) space_->requireSupported(*g);
-      if (!seen.insert(b.get()).second) throw error("RigidBody appears twice in the collection", b->getName());
-    }
-    for (const auto& l : collection.getEventListeners()) {
-      checkAddable(l.get(), "StepEventListener");
-      if (!seen.insert(l.get()).second)
-        throw error("StepEventListener appears twice in the collection", collection.getName());
-    }
-    for (const auto& c : collection.getConstraints()) {
-      checkAddable(c.get(), c ? c->getKind() : "Constraint");
-      if (!seen.insert(c.get()).second) throw detail::makeError(c->getKind(), c->getName(), "appears twice in the collection");
-    }
-    for (const auto& c : collection.getCollections()) validateTree(*c, seen);
-  }
-  // After the whole tree is known: a constraint's bodies are in this
-  // simulation or in the tree.
-  void validateConstraints(const Collection& collection, const std::unordered_set<const void*>& seen) const {
-    for (const auto& c : collection.getConstraints()) checkBodiesOf(*c, &seen);
-    for (const auto& child : collection.getCollections()) validateConstraints(*child, seen);
-  }
-  void checkBodiesOf(const Constraint& c, const std::unordered_set<const void*>* arriving) const {
-    for (int i = 0; i < 2; ++i) {
-      const Body* body = c.getBodyAt(i);
-      if (body && !contains(body) && !(arriving && arriving->count(body)))
-        throw detail::makeError(c.getKind(), c.getName(), "body not in this simulation; add the bodies first",
-                                body->getName());
-    }
-    const auto movable = [](const Body* b) { return b && b->getMotionControl() != Body::STATIC; };
-    if (!movable(c.getBodyAt(0)) && !movable(c.getBodyAt(1)))
-      throw detail::makeError(c.getKind(), c.getName(), "needs at least one body that is not static",
-                              c.getBodyAt(0)->getName());
-  }
-  // Bodies and listeners of the whole tree first, so that every constraint
-  // finds its bodies.
-  void registerTree(Collection& collection) {
-    registerMembers(collection);
-    registerConstraints(collection);
-  }
-  void registerMembers(Collection& collection) {
-    for (const auto& b : collection.getRigidBodies()) add(b);
-    for (const auto& l : collection.getEventListeners()) add(l);
-    Membership::simulationOf(collection) = this;
-    for (const auto& c : collection.getCollections()) registerMembers(*c);
-  }
-  void registerConstraints(Collection& collection) {
-    for (const auto& c : collection.getConstraints()) add(c);
-    for (const auto& c : collection.getCollections()) registerConstraints(*c);
-  }
-  void setCollectionsSink(Collection& collection, detail::ContentSink<S>* sink) {
-    Membership::simulationOf(collection) = sink;
-    for (const auto& c : collection.getCollections()) setCollectionsSink(*c, sink);
-  }
-
-  template <class T>
-  void checkAddable(T* object, const char* kind) const {
-    if (!object) throw error(std::string("cannot add a null ") + kind, "nullptr");
-    const auto* owner = Membership::simulationOf(*object);
-    if (owner == static_cast<const void*>(this))
-      throw detail::makeError(kind, nameOf(*object), "already added to this simulation");
-    if (owner) throw detail::makeError(kind, nameOf(*object), "already belongs to another simulation");
-  }
-  template <class T>
-  void checkRemovable(T* object, const char* kind) const {
-    if (!object) throw error(std::string("cannot remove a null ") + kind, "nullptr");
-    if (Membership::simulationOf(*object) != static_cast<const void*>(this))
-      throw detail::makeError(kind, nameOf(*object), "was never added to this simulation");
-  }
-  template <class T>
-  static std::string nameOf(const T& object) {
-    if constexpr (requires { object.getName(); })
-      return object.getName();
-    else
-      return "";
-  }
-  template <class T>
-  [[nodiscard]] Error error(const std::string& what, const T& value) const {
-    return detail::makeError("Simulation", "", what, value);
-  }
-
-  S timeStep_ = S(1) / S(60);
-  std::optional<S> pendingTimeStep_;
-  S timeBase_ = S(0);
-  std::uint64_t stepsSinceBase_ = 0;
-  bool stepping_ = false;
-  ref_ptr<GravityFieldT<S>> gravity_ = new UniformGravityFieldT<S>();
-  std::vector<ref_ptr<Body>> bodies_;
-  std::vector<ref_ptr<Listener>> listeners_;
-  std::vector<ref_ptr<ContactListener>> contactListeners_;
-  ref_ptr<SpaceT<S>> space_;
-  std::vector<ref_ptr<Collection>> collections_;
-  std::vector<ref_ptr<Constraint>> constraints_;
-  detail::JointedPairs<S> jointedPairs_;
-  SimulationStatisticsT<S> statistics_;
-  ref_ptr<Solver> solver_ = new HybridSolver();
-  std::vector<detail::SolverBody> solverBodies_;
-  std::vector<char> frozen_;  ///< per body: frozen in this step
-  std::vector<detail::Row> rows_;
-  std::vector<Constraint*> rowOwners_;
-  std::size_t numConstraintRows_ = 0;  ///< rows_ holds the constraints' rows, then the contacts'
-  MaterialManagerT<S> materials_;
-  detail::ContactSettings contactSettings_;
-  detail::ContactRows<S> contactRows_;
+struct SimulationWorkspace {
+  std::vector<SolverBody> solverBodies;
+  std::vector<char> frozen;  ///< per body: frozen in this step
+  std::vector<Row> rows;
+  std::vector<ConstraintT<S>*> rowOwners;
+  std::size_t numConstraintRows = 0;  ///< rows holds the constraints' rows, then the contacts'
+  ContactRows<S> contactRows;
   struct Prediction {
     double violation = 0.0, rate = 0.0;
   };
-  std::unordered_map<const double*, Prediction> predicted_;
-  detail::IslandStepper islands_;
-  detail::GeometricStiffness geometricStiffness_;
+  std::unordered_map<const double*, Prediction> predicted;
+  IslandStepper islands;
+  GeometricStiffness geometricStiffness;
 };
 
-// The step is defined outside the class (not inline), so that a program
-// compiled with SPOOK_EXTERN_TEMPLATES does not instantiate it, nor the
-// solver, contact and collision code behind it (core/implementation.hpp).
+}  // namespace detail
+
+template <Scalar S>
+SimulationT<S>::SimulationT(ref_ptr<SpaceT<S>> space)
+    : space_(std::move(space)), work_(std::make_unique<detail::SimulationWorkspace<S>>()) {
+  installSpaceRules();
+}
+
+template <Scalar S>
+SimulationT<S>::~SimulationT() {
+  for (auto& b : bodies_) Membership::simulationOf(*b) = nullptr;
+  for (auto& l : listeners_) Membership::simulationOf(*l) = nullptr;
+  for (auto& l : contactListeners_) Membership::simulationOf(*l) = nullptr;
+  for (auto& c : constraints_) Membership::simulationOf(*c) = nullptr;
+  for (auto& c : collections_) setCollectionsSink(*c, nullptr);
+}
+
+template <Scalar S>
+void SimulationT<S>::forgetPredictions() {
+  work_->predicted.clear();
+}
+
 template <Scalar S>
 void SimulationT<S>::stepForward() {
   if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
@@ -16143,12 +17490,137 @@ void SimulationT<S>::stepForward() {
   applyPendingTimeStep();
 }
 
-#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
-extern template class SimulationT<double>;
-#endif
-#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
-extern template class SimulationT<float>;
-#endif
+template <Scalar S>
+void SimulationT<S>::integrate(S h) {
+  auto& w = *work_;
+  statistics_.frozenBodies.clear();
+  statistics_.solver = SolverStatistics{};
+  w.solverBodies.clear();
+  for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h));
+  collectRows(double(h));
+  w.numConstraintRows = w.rows.size();
+  w.contactRows.build(
+      space_->getGeometryContacts(), materials_, *gravity_,
+      [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, w.solverBodies,
+      double(h), contactSettings_, w.rows);
+  if (solver_->getEnableGeometricStiffness() && !w.rows.empty())
+    w.geometricStiffness.apply(w.rows, w.solverBodies, double(h), solver_->getGeometricStiffnessThreshold());
+  else
+    w.geometricStiffness.clear();
+  w.frozen.assign(bodies_.size(), 0);
+  if (!w.rows.empty()) {
+    w.islands.solve(w.rows, w.solverBodies, double(h), *solver_, statistics_.solver);
+    for (int i : w.islands.getNonFiniteBodies()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
+  }
+  readBackForces(double(h));
+  w.contactRows.readBack(double(h));
+  predictViolations(double(h));
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    Body& body = *bodies_[i];
+    if (!w.frozen[i] && !detail::BodyIntegrator<S>::move(body, w.solverBodies[i], h))
+      freeze(i, FreezeReason::NON_FINITE_STATE);
+    detail::BodyIntegrator<S>::clearForces(body);
+  }
+  if (!w.rows.empty())
+    for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(double(h));
+}
+
+template <Scalar S>
+void SimulationT<S>::predictViolations(double h) {
+  auto& w = *work_;
+  w.predicted.clear();
+  if (!solver_->getEnablePostStabilization()) return;
+  for (std::size_t i = 0; i < w.numConstraintRows; ++i) {
+    const detail::Row& r = w.rows[i];
+    if (!r.holonomic) continue;
+    const auto speed = [&](int body, const detail::Vec6d& J) {
+      return body < 0 ? 0.0 : J.dot(w.solverBodies[static_cast<std::size_t>(body)].freeVelocity);
+    };
+    const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + h * r.curvature;
+    w.predicted[r.impulse] = {r.violation + h * rate, rate};
+  }
+}
+
+template <Scalar S>
+void SimulationT<S>::postStabilize(double h) {
+  auto& w = *work_;
+  w.rows.clear();
+  for (const auto& c : constraints_) {
+    if (!c->getEnable() || !solver_->projects(c->getSolveType())) continue;
+    Body* body1 = c->getBodyAt(0);
+    Body* body2 = c->getBodyAt(1);
+    if (!contains(body1) || (body2 && !contains(body2))) continue;
+    detail::RowSink sink{&w.rows, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
+                         c->getSolveType(), true};
+    detail::ConstraintAccess::addProjectionRows(*c, sink);
+  }
+  // Target: the predicted violation (rows without one, e.g. a lock enabled
+  // by a listener after the solve, are left out).
+  std::erase_if(w.rows, [&](const detail::Row& r) { return !w.predicted.count(r.impulse); });
+  for (detail::Row& r : w.rows) r.speed = w.predicted[r.impulse].violation;
+  if (w.rows.empty()) return;
+  w.solverBodies.clear();
+  for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
+  w.geometricStiffness.addInertia(w.solverBodies);
+  // Frozen bodies stand still, like static ones.
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    if (w.frozen[i]) w.solverBodies[i] = detail::SolverBody{};
+  w.islands.project(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    if (!detail::BodyIntegrator<S>::displace(*bodies_[i], w.solverBodies[i], S(h)))
+      freeze(i, FreezeReason::NON_FINITE_STATE);
+}
+
+template <Scalar S>
+void SimulationT<S>::freeze(std::size_t i, FreezeReason reason) {
+  auto& w = *work_;
+  detail::BodyIntegrator<S>::freeze(*bodies_[i]);
+  w.solverBodies[i].freeVelocity.setZero();  // as the rows' predictions (predictViolations) should see it
+  if (std::exchange(w.frozen[i], char(1))) return;
+  statistics_.frozenBodies.push_back({bodies_[i].get(), reason});
+}
+
+template <Scalar S>
+void SimulationT<S>::collectRows(double h) {
+  auto& w = *work_;
+  w.rows.clear();
+  w.rowOwners.clear();
+  for (const auto& c : constraints_) {
+    if (!c->getEnable()) continue;
+    Body* body1 = c->getBodyAt(0);
+    Body* body2 = c->getBodyAt(1);
+    if (!contains(body1) || (body2 && !contains(body2))) continue;
+    // The second-order terms (Row::curvature, Row::lastRate) need the
+    // projection: without it their error feeds back (the 1:1e6 chain of
+    // test_solvers.cpp diverges).
+    const bool projected = solver_->projects(c->getSolveType());
+    detail::RowSink sink{&w.rows, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
+                         c->getSolveType(), projected};
+    const std::size_t first = w.rows.size();
+    detail::ConstraintAccess::addRows(*c, sink, h);
+    w.rowOwners.resize(w.rows.size(), c.get());
+    for (std::size_t i = first; i < w.rows.size(); ++i) {
+      detail::Row& r = w.rows[i];
+      if (!projected) {
+        r.curvature = 0.0;
+      } else if (const auto it = w.predicted.find(r.impulse); r.holonomic && it != w.predicted.end()) {
+        r.lastRate = it->second.rate;
+      }
+    }
+  }
+}
+
+template <Scalar S>
+void SimulationT<S>::readBackForces(double h) {
+  auto& w = *work_;
+  for (const auto& c : constraints_)
+    if (c->getEnableComputeForces()) detail::ConstraintAccess::clearWrench(*c);
+  for (std::size_t i = 0; i < w.numConstraintRows; ++i)
+    if (w.rowOwners[i]->getEnableComputeForces())
+      detail::ConstraintAccess::addWrench(*w.rowOwners[i], w.rows[i], *w.rows[i].impulse / h);
+  for (const auto& c : constraints_) detail::ConstraintAccess::afterSolve(*c, h);
+}
+
 #if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
 template class SimulationT<double>;
 #endif
@@ -16156,13 +17628,11 @@ template class SimulationT<double>;
 template class SimulationT<float>;
 #endif
 
-using Simulation = SimulationT<double>;
-using SimulationRef = ref_ptr<Simulation>;
-namespace f32 {
-using Simulation = SimulationT<float>;
-using SimulationRef = ref_ptr<Simulation>;
-}  // namespace f32
-
 }  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_SIM_SIMULATION_STEP_HPP
+// --- end spook/sim/simulation_step.hpp ---
+#endif
+#endif  // SPOOK_SINGLE_SPOOK_SIM_SIMULATION_HPP
 // --- end spook/sim/simulation.hpp ---
+#endif  // SPOOK_SINGLE_SPOOK_SPOOK_HPP
 // --- end spook/spook.hpp ---

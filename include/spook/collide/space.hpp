@@ -9,12 +9,13 @@
 #include <set>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include <spook/collide/all_shapes.hpp>
 #include <spook/collide/broadphase/sweep_and_prune.hpp>
-#include <spook/collide/collider_matrix.hpp>
+#include <spook/collide/contact_sink.hpp>
 #include <spook/collide/contact_reduction.hpp>
 #include <spook/collide/geometry.hpp>
 #include <spook/collide/geometry_contact.hpp>
@@ -28,16 +29,18 @@ namespace spook {
 
 namespace detail {
 
-/// The narrow-phase entry point of a space for one shape list. A plain
-/// (not inline) function template, so that with SPOOK_EXTERN_TEMPLATES the
-/// full shape list's colliders are compiled once (core/implementation.hpp)
-/// instead of in every translation unit that makes a default Space or
-/// Simulation.
+/// The narrow-phase entry point of a space for one shape list, defined in
+/// collide/collide_through.hpp with the colliders: a plain (not inline)
+/// function template, so that with SPOOK_EXTERN_TEMPLATES the full shape
+/// list's colliders are compiled once (core/implementation.hpp) and a
+/// program that uses the default space does not even parse them.
 template <Scalar S, class List>
 bool collideThrough(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<S>& b, const TransformT<S>& X_WB,
-                    ContactSinkT<S>& sink) {
-  return ColliderMatrixT<S, List>::collide(a, X_WA, b, X_WB, sink);
-}
+                    ContactSinkT<S>& sink);
+
+/// Complete where collideThrough is defined (collide/collide_through.hpp).
+template <class List>
+struct CollidersDefined;
 
 }  // namespace detail
 
@@ -50,16 +53,6 @@ extern template bool detail::collideThrough<double, AllShapes>(const ShapeT<doub
 extern template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
                                                               const ShapeT<float>&, const TransformT<float>&,
                                                               ContactSinkT<float>&);
-#endif
-#if defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
-template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
-                                                        const ShapeT<double>&, const TransformT<double>&,
-                                                        ContactSinkT<double>&);
-#endif
-#if defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
-template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
-                                                       const ShapeT<float>&, const TransformT<float>&,
-                                                       ContactSinkT<float>&);
 #endif
 
 /// Collision detection over a set of geometries: a broadphase (sweep and
@@ -77,9 +70,17 @@ class SpaceT : public Referenced {
   /// A space for every shape type.
   SpaceT() : SpaceT(AllShapes{}) {}
   /// A space for the shape types of `List`, e.g. ShapeList<SphereT, PlaneT>.
+  /// A program that compiles spook once (SPOOK_EXTERN_TEMPLATES) has the
+  /// full list's colliders compiled; for a list of its own it includes
+  /// <spook/collide/collide_through.hpp>, which compiles that list's.
   template <template <class> class... Shapes>
   explicit SpaceT(ShapeList<Shapes...>)
-      : collide_(&detail::collideThrough<S, ShapeList<Shapes...>>), contains_(&ShapeList<Shapes...>::contains) {}
+      : collide_(&detail::collideThrough<S, ShapeList<Shapes...>>), contains_(&ShapeList<Shapes...>::contains) {
+    static_assert(std::is_same_v<ShapeList<Shapes...>, AllShapes> ||
+                      requires { sizeof(detail::CollidersDefined<ShapeList<Shapes...>>); },
+                  "a Space or Simulation for a ShapeList of its own compiles that list's colliders: with "
+                  "SPOOK_EXTERN_TEMPLATES, include <spook/collide/collide_through.hpp>");
+  }
 
   // --- Content ---------------------------------------------------------------
 
@@ -322,3 +323,10 @@ using SpaceRef = ref_ptr<Space>;
 }  // namespace f32
 
 }  // namespace spook
+
+// The colliders behind collideThrough: in every translation unit of a
+// header-only program, only where a collider part is implemented otherwise.
+#if !defined(SPOOK_EXTERN_TEMPLATES) || defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE) || \
+    defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
+#include <spook/collide/collide_through.hpp>
+#endif

@@ -16,3 +16,24 @@
 #define SPOOK_IMPLEMENT_COLLIDERS_DOUBLE
 #define SPOOK_IMPLEMENT_COLLIDERS_FLOAT
 #endif
+
+// What this translation unit sees. Header-only (no SPOOK_EXTERN_TEMPLATES):
+// every definition. Otherwise only the declarations of the step and the
+// solver, unless it implements a simulation part:
+//   SPOOK_DEFINES_STEP    the simulation step's template definitions
+//                         (sim/simulation_step.hpp), for either scalar;
+//   SPOOK_DEFINES_SOLVER  the double-only, non-template solver code
+//                         (solver/solver_impl.hpp), compiled with the double
+//                         simulation and inline (SPOOK_SOLVER_INLINE) when
+//                         header-only.
+#if !defined(SPOOK_EXTERN_TEMPLATES) || defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) || \
+    defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+#define SPOOK_DEFINES_STEP
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+#define SPOOK_DEFINES_SOLVER
+#define SPOOK_SOLVER_INLINE
+#elif !defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_DEFINES_SOLVER
+#define SPOOK_SOLVER_INLINE inline
+#endif

@@ -12,25 +12,13 @@
 #include <spook/core/pointer_pair_hash.hpp>
 #include <spook/dynamics/friction_model.hpp>
 #include <spook/dynamics/gravity_field.hpp>
+#include <spook/sim/contact_settings.hpp>
 #include <spook/sim/material_manager.hpp>
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/islands.hpp>
 #include <spook/solver/row.hpp>
 
 namespace spook::detail {
-
-/// Simulation-wide contact settings.
-struct ContactSettings {
-  /// Approach speed (m/s) above which restitution acts; slower contacts rest.
-  double restitutionThreshold = 0.2;
-  /// Cap on the speed (m/s) at which the stabilization of the normal rows
-  /// pushes overlapping shapes apart.
-  double maxDepenetrationSpeed = 1.0;
-  /// A point of this step continues a point of the last step (same geometry
-  /// pair) when they lie within this distance (m) in the first geometry's
-  /// frame: its rows start from that point's force.
-  double persistenceDistance = 0.01;
-};
 
 /// Turns the solvable contact points into rows (PHYSICS.md §1.4) and reads
 /// their forces back. Per point: a unilateral normal row on the gap

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -14,25 +15,26 @@
 #include <spook/core/implementation.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
-#include <spook/collide/continuous.hpp>
 #include <spook/collide/space.hpp>
 #include <spook/constraints/constraint.hpp>
 #include <spook/dynamics/gravity_field.hpp>
 #include <spook/dynamics/rigid_body.hpp>
 #include <spook/sim/collection.hpp>
 #include <spook/sim/contact_event_listener.hpp>
-#include <spook/sim/contact_rows.hpp>
+#include <spook/sim/contact_settings.hpp>
 #include <spook/sim/jointed_pairs.hpp>
 #include <spook/sim/material_manager.hpp>
 #include <spook/sim/membership.hpp>
 #include <spook/sim/statistics.hpp>
 #include <spook/sim/step_event_listener.hpp>
-#include <spook/solver/geometric_stiffness.hpp>
-#include <spook/solver/integrator.hpp>
-#include <spook/solver/islands.hpp>
 #include <spook/solver/solver.hpp>
 
 namespace spook {
+
+namespace detail {
+template <Scalar S>
+struct SimulationWorkspace;
+}  // namespace detail
 
 /// Owns a scene and steps it. Time in seconds; default step 1/60 s; default
 /// gravity uniform (0, 0, −9.80665) m/s². An object belongs to at most one
@@ -49,12 +51,12 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   using Constraint = ConstraintT<S>;
 
   /// A simulation whose space collides every shape type.
-  SimulationT() : space_(new SpaceT<S>()) { installSpaceRules(); }
+  SimulationT() : SimulationT(ref_ptr<SpaceT<S>>(new SpaceT<S>())) {}
   /// A simulation for the shape types of `List` only, e.g.
   /// `Simulation(ShapeList<SphereT, PlaneT>{})`: only the colliders between
   /// them are compiled, and a geometry of another type is refused.
   template <template <class> class... Shapes>
-  explicit SimulationT(ShapeList<Shapes...> list) : space_(new SpaceT<S>(list)) { installSpaceRules(); }
+  explicit SimulationT(ShapeList<Shapes...> list) : SimulationT(ref_ptr<SpaceT<S>>(new SpaceT<S>(list))) {}
 
   // --- Time ------------------------------------------------------------------
 
@@ -259,7 +261,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     constraints_.pop_back();
     jointedPairs_.remove(*constraint);
     Membership::simulationOf(*constraint) = nullptr;
-    predicted_.clear();  // keyed by row storage a later constraint may reuse
+    forgetPredictions();
   }
   [[nodiscard]] const std::vector<ref_ptr<Constraint>>& getConstraints() const { return constraints_; }
   /// The first constraint with this name, or nullptr.
@@ -294,16 +296,14 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   [[nodiscard]] const SimulationStatisticsT<S>& getStatistics() const { return statistics_; }
 
  protected:
-  ~SimulationT() override {
-    for (auto& b : bodies_) Membership::simulationOf(*b) = nullptr;
-    for (auto& l : listeners_) Membership::simulationOf(*l) = nullptr;
-    for (auto& l : contactListeners_) Membership::simulationOf(*l) = nullptr;
-    for (auto& c : constraints_) Membership::simulationOf(*c) = nullptr;
-    for (auto& c : collections_) setCollectionsSink(*c, nullptr);
-  }
+  ~SimulationT() override;
 
  private:
   using Membership = detail::SimulationMembership;
+
+  explicit SimulationT(ref_ptr<SpaceT<S>> space);
+  // Predictions are keyed by row storage that a later constraint may reuse.
+  void forgetPredictions();
 
   // Pairs with an explicit contact material reduce their points as it says;
   // jointed bodies do not collide unless their constraint asks (jointed_pairs.hpp).
@@ -332,133 +332,26 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   // The SPOOK step for every body: force-driven velocities, the rows of the
   // enabled constraints, islands solved by the policy, then the poses.
-  void integrate(S h) {
-    statistics_.frozenBodies.clear();
-    statistics_.solver = SolverStatistics{};
-    solverBodies_.clear();
-    for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h));
-    collectRows(double(h));
-    numConstraintRows_ = rows_.size();
-    contactRows_.build(
-        space_->getGeometryContacts(), materials_, *gravity_,
-        [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, solverBodies_,
-        double(h), contactSettings_, rows_);
-    if (solver_->getEnableGeometricStiffness() && !rows_.empty())
-      geometricStiffness_.apply(rows_, solverBodies_, double(h), solver_->getGeometricStiffnessThreshold());
-    else
-      geometricStiffness_.clear();
-    frozen_.assign(bodies_.size(), 0);
-    if (!rows_.empty()) {
-      islands_.solve(rows_, solverBodies_, double(h), *solver_, statistics_.solver);
-      for (int i : islands_.getNonFiniteBodies()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
-    }
-    readBackForces(double(h));
-    contactRows_.readBack(double(h));
-    predictViolations(double(h));
-    for (std::size_t i = 0; i < bodies_.size(); ++i) {
-      Body& body = *bodies_[i];
-      if (!frozen_[i] && !detail::BodyIntegrator<S>::move(body, solverBodies_[i], h))
-        freeze(i, FreezeReason::NON_FINITE_STATE);
-      detail::BodyIntegrator<S>::clearForces(body);
-    }
-    if (!rows_.empty())
-      for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(double(h));
-  }
+  void integrate(S h);
 
   // What each holonomic row's linearization makes of the step: the rate
   // G v⁺ + hκ at which it moves g and the violation g + h·rate it should end
   // with, which post-stabilization restores (it removes only the
   // higher-order drift of the step, not the rows' compliant or damped
   // motion). The rate is the next step's b' term (Row::lastRate).
-  void predictViolations(double h) {
-    predicted_.clear();
-    if (!solver_->getEnablePostStabilization()) return;
-    for (std::size_t i = 0; i < numConstraintRows_; ++i) {
-      const detail::Row& r = rows_[i];
-      if (!r.holonomic) continue;
-      const auto speed = [&](int body, const detail::Vec6d& J) {
-        return body < 0 ? 0.0 : J.dot(solverBodies_[static_cast<std::size_t>(body)].freeVelocity);
-      };
-      const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + h * r.curvature;
-      predicted_[r.impulse] = {r.violation + h * rate, rate};
-    }
-  }
+  void predictViolations(double h);
 
   // Projects the direct solver's equality rows back onto their manifold
   // (Solver::getEnablePostStabilization).
-  void postStabilize(double h) {
-    rows_.clear();
-    for (const auto& c : constraints_) {
-      if (!c->getEnable() || !solver_->projects(c->getSolveType())) continue;
-      Body* body1 = c->getBodyAt(0);
-      Body* body2 = c->getBodyAt(1);
-      if (!contains(body1) || (body2 && !contains(body2))) continue;
-      detail::RowSink sink{&rows_, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
-                           c->getSolveType(), true};
-      detail::ConstraintAccess::addProjectionRows(*c, sink);
-    }
-    // Target: the predicted violation (rows without one, e.g. a lock enabled
-    // by a listener after the solve, are left out).
-    std::erase_if(rows_, [&](const detail::Row& r) { return !predicted_.count(r.impulse); });
-    for (detail::Row& r : rows_) r.speed = predicted_[r.impulse].violation;
-    if (rows_.empty()) return;
-    solverBodies_.clear();
-    for (const auto& body : bodies_) solverBodies_.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
-    geometricStiffness_.addInertia(solverBodies_);
-    // Frozen bodies stand still, like static ones.
-    for (std::size_t i = 0; i < bodies_.size(); ++i)
-      if (frozen_[i]) solverBodies_[i] = detail::SolverBody{};
-    islands_.project(rows_, solverBodies_, h, *solver_, statistics_.solver);
-    for (std::size_t i = 0; i < bodies_.size(); ++i)
-      if (!detail::BodyIntegrator<S>::displace(*bodies_[i], solverBodies_[i], S(h)))
-        freeze(i, FreezeReason::NON_FINITE_STATE);
-  }
+  void postStabilize(double h);
 
   // Keeps body i as it was before the step (pose kept, velocities zeroed)
   // and reports it, once per step.
-  void freeze(std::size_t i, FreezeReason reason) {
-    detail::BodyIntegrator<S>::freeze(*bodies_[i]);
-    solverBodies_[i].freeVelocity.setZero();  // as the rows' predictions (predictViolations) should see it
-    if (std::exchange(frozen_[i], char(1))) return;
-    statistics_.frozenBodies.push_back({bodies_[i].get(), reason});
-  }
+  void freeze(std::size_t i, FreezeReason reason);
 
-  void collectRows(double h) {
-    rows_.clear();
-    rowOwners_.clear();
-    for (const auto& c : constraints_) {
-      if (!c->getEnable()) continue;
-      Body* body1 = c->getBodyAt(0);
-      Body* body2 = c->getBodyAt(1);
-      if (!contains(body1) || (body2 && !contains(body2))) continue;
-      // The second-order terms (Row::curvature, Row::lastRate) need the
-      // projection: without it their error feeds back (the 1:1e6 chain of
-      // test_solvers.cpp diverges).
-      const bool projected = solver_->projects(c->getSolveType());
-      detail::RowSink sink{&rows_, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
-                           c->getSolveType(), projected};
-      const std::size_t first = rows_.size();
-      detail::ConstraintAccess::addRows(*c, sink, h);
-      rowOwners_.resize(rows_.size(), c.get());
-      for (std::size_t i = first; i < rows_.size(); ++i) {
-        detail::Row& r = rows_[i];
-        if (!projected) {
-          r.curvature = 0.0;
-        } else if (const auto it = predicted_.find(r.impulse); r.holonomic && it != predicted_.end()) {
-          r.lastRate = it->second.rate;
-        }
-      }
-    }
-  }
+  void collectRows(double h);
 
-  void readBackForces(double h) {
-    for (const auto& c : constraints_)
-      if (c->getEnableComputeForces()) detail::ConstraintAccess::clearWrench(*c);
-    for (std::size_t i = 0; i < numConstraintRows_; ++i)
-      if (rowOwners_[i]->getEnableComputeForces())
-        detail::ConstraintAccess::addWrench(*rowOwners_[i], rows_[i], *rows_[i].impulse / h);
-    for (const auto& c : constraints_) detail::ConstraintAccess::afterSolve(*c, h);
-  }
+  void readBackForces(double h);
 
   // Calls the listeners selected by `stage`, highest priority first, over a
   // snapshot, so that callbacks may add and remove objects freely.
@@ -635,61 +528,19 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   detail::JointedPairs<S> jointedPairs_;
   SimulationStatisticsT<S> statistics_;
   ref_ptr<Solver> solver_ = new HybridSolver();
-  std::vector<detail::SolverBody> solverBodies_;
-  std::vector<char> frozen_;  ///< per body: frozen in this step
-  std::vector<detail::Row> rows_;
-  std::vector<Constraint*> rowOwners_;
-  std::size_t numConstraintRows_ = 0;  ///< rows_ holds the constraints' rows, then the contacts'
   MaterialManagerT<S> materials_;
   detail::ContactSettings contactSettings_;
-  detail::ContactRows<S> contactRows_;
-  struct Prediction {
-    double violation = 0.0, rate = 0.0;
-  };
-  std::unordered_map<const double*, Prediction> predicted_;
-  detail::IslandStepper islands_;
-  detail::GeometricStiffness geometricStiffness_;
+  /// The step's own state (rows, solver bodies, contact history,
+  /// predictions: sim/simulation_step.hpp), out of sight of a program that
+  /// compiles spook once.
+  std::unique_ptr<detail::SimulationWorkspace<S>> work_;
 };
-
-// The step is defined outside the class (not inline), so that a program
-// compiled with SPOOK_EXTERN_TEMPLATES does not instantiate it, nor the
-// solver, contact and collision code behind it (core/implementation.hpp).
-template <Scalar S>
-void SimulationT<S>::stepForward() {
-  if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
-  applyPendingTimeStep();  // left over when a listener threw in the last step
-  stepping_ = true;
-  struct ResetOnExit {
-    bool& flag;
-    ~ResetOnExit() { flag = false; }
-  } reset{stepping_};
-  notify(Listener::PRE_COLLIDE);
-  space_->update(bodies_);
-  statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
-  notifyContacts();
-  notify(Listener::PRE_STEP);
-  integrate(timeStep_);
-  detail::stopAtFirstContact(bodies_, *space_, timeStep_);
-  notify(Listener::POST_STEP);
-  notify(Listener::LAST_STEP);
-  ++stepsSinceBase_;
-  ++statistics_.numSteps;
-  if (statistics_.solver.directFallbacks > 0) ++statistics_.numFallbackSteps;
-  stepping_ = false;
-  applyPendingTimeStep();
-}
 
 #if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
 extern template class SimulationT<double>;
 #endif
 #if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
 extern template class SimulationT<float>;
-#endif
-#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
-template class SimulationT<double>;
-#endif
-#if defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
-template class SimulationT<float>;
 #endif
 
 using Simulation = SimulationT<double>;
@@ -700,3 +551,10 @@ using SimulationRef = ref_ptr<Simulation>;
 }  // namespace f32
 
 }  // namespace spook
+
+// The step's definitions: in every translation unit of a header-only
+// program, only where a simulation part is implemented otherwise
+// (core/implementation.hpp).
+#if defined(SPOOK_DEFINES_STEP)
+#include <spook/sim/simulation_step.hpp>
+#endif

@@ -1,7 +1,7 @@
 #pragma once
 
 #include <algorithm>
-#include <chrono>
+#include <memory>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -9,12 +9,15 @@
 #include <spook/core/error.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
-#include <spook/solver/direct_solve.hpp>
-#include <spook/solver/friction_bounds.hpp>
-#include <spook/solver/island_problem.hpp>
-#include <spook/solver/iterative_solve.hpp>
+#include <spook/core/implementation.hpp>
+#include <spook/solver/row.hpp>
 
 namespace spook {
+
+namespace detail {
+struct IslandProblem;
+class DirectSolve;
+}  // namespace detail
 
 /// What the solver did in the last step, summed or maximized over islands.
 struct SolverStatistics {
@@ -154,98 +157,27 @@ class Solver : public Referenced {
   [[nodiscard]] virtual bool projects(SolveType type) const { return postStabilization_ && type != SolveType::ITERATIVE; }
 
   /// Solves a projection island (unbounded rows) directly.
-  void project(detail::IslandProblem& problem, SolverStatistics& statistics) {
-    const auto start = std::chrono::steady_clock::now();
-    direct(problem, allRows(problem), statistics);
-    for (auto& e : problem.rows)
-      if (!std::isfinite(e.impulse)) e.impulse = 0.0;
-    statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
+  void project(detail::IslandProblem& problem, SolverStatistics& statistics);
 
   /// Solves one island in place and accumulates the statistics. Impulses that
   /// come out non-finite are dropped (set to zero) and counted; false then.
-  bool solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
-    const auto start = std::chrono::steady_clock::now();
-    ++statistics.numIslands;
-    statistics.numRows += static_cast<int>(problem.rows.size());
-    solveIsland(problem, statistics);
-    bool finite = true;
-    for (const auto& e : problem.rows) finite = finite && std::isfinite(e.impulse);
-    if (!finite) {
-      for (auto& e : problem.rows) e.impulse = 0.0;
-      ++statistics.nonFiniteIslands;
-      statistics.converged = false;
-    }
-    statistics.complementarityError = std::max(statistics.complementarityError, complementarityError(problem));
-    statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return finite;
-  }
+  bool solve(detail::IslandProblem& problem, SolverStatistics& statistics);
 
  protected:
-  ~Solver() override = default;
+  Solver();
+  ~Solver() override;
   virtual void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) = 0;
 
-  void direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
-    const detail::DirectSolveResult r = direct_.solve(problem, subset, maxPivotSteps_);
-    statistics.factorizations += r.factorizations;
-    statistics.converged = statistics.converged && r.converged;
-    statistics.directFallbacks += r.fellBack ? 1 : 0;
-  }
+  void direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics);
   /// A direct solve repeated over the friction bounds that follow the normal
   /// impulses (getNumFrictionIterations); rows flagged in `keep` keep theirs.
   void directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
-                          SolverStatistics& statistics, const std::vector<char>* keep = nullptr) {
-    std::vector<int> following;
-    for (int i : subset) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (!e.followsNormal() || (keep && (*keep)[static_cast<std::size_t>(i)])) continue;
-      following.push_back(i);
-    }
-    direct(problem, subset, statistics);
-    int k = 1;
-    for (; k < frictionIterations_ && !following.empty(); ++k) {
-      double change = detail::updateConeDirections(problem, following);
-      change = std::max(change, detail::applyFrictionBounds(problem, following));
-      double largest = 0.0;
-      for (int i : following) largest = std::max(largest, problem.rows[static_cast<std::size_t>(i)].upper);
-      if (change <= frictionTolerance_ * largest) break;
-      direct(problem, subset, statistics);
-    }
-    statistics.frictionIterations = std::max(statistics.frictionIterations, k);
-  }
-  void iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
-    const detail::IterativeSolveResult r =
-        detail::iterativeSolve(problem, subset, iterations_, tolerance_, method_ == JACOBI);
-    statistics.iterations = std::max(statistics.iterations, r.iterations);
-    statistics.converged = statistics.converged && r.converged;
-  }
-  static std::vector<int> allRows(const detail::IslandProblem& problem) {
-    std::vector<int> rows(problem.rows.size());
-    for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<int>(i);
-    return rows;
-  }
+                          SolverStatistics& statistics, const std::vector<char>* keep = nullptr);
+  void iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const;
+  static std::vector<int> allRows(const detail::IslandProblem& problem);
 
  private:
-  static double complementarityError(const detail::IslandProblem& problem) {
-    const std::vector<detail::Vec6d> dv = problem.velocityChange();
-    const auto residual = [&](int i) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      return problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
-    };
-    double worst = 0.0;
-    for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (e.frictionBound == detail::FrictionBound::CONE && e.partner >= 0) {
-        if (e.partner > i)
-          worst = std::max(worst, detail::coneComplementarityError(e, problem.rows[static_cast<std::size_t>(e.partner)],
-                                                                   detail::frictionLimit(problem, e), residual(i),
-                                                                   residual(e.partner)));
-        continue;
-      }
-      worst = std::max(worst, detail::complementarityError(e, residual(i)));
-    }
-    return worst;
-  }
+  static double complementarityError(const detail::IslandProblem& problem);
 
   int iterations_ = 16;
   double tolerance_ = 1e-10;
@@ -259,7 +191,7 @@ class Solver : public Referenced {
   int frictionIterations_ = 8;
   double frictionTolerance_ = 1e-6;
   int couplingIterations_ = 16;
-  detail::DirectSolve direct_;
+  std::unique_ptr<detail::DirectSolve> direct_;  ///< the pivoting solver's workspace
 };
 
 /// Every row by the direct solver: exact to round-off, whatever the mass
@@ -272,11 +204,7 @@ class DirectSolver final : public Solver {
   [[nodiscard]] bool projects(SolveType) const override { return getEnablePostStabilization(); }
 
  protected:
-  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override {
-    const std::vector<int> rows = allRows(problem);
-    statistics.numDirectRows += static_cast<int>(rows.size());
-    directWithFriction(problem, rows, statistics);
-  }
+  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
 };
 
 /// Every row by projected Gauss–Seidel (or Jacobi), optionally warm-started
@@ -288,11 +216,7 @@ class IterativeSolver final : public Solver {
   [[nodiscard]] bool projects(SolveType) const override { return false; }
 
  protected:
-  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override {
-    const std::vector<int> rows = allRows(problem);
-    statistics.numIterativeRows += static_cast<int>(rows.size());
-    iterative(problem, rows, statistics);
-  }
+  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
 };
 
 /// Each row as its constraint or friction model asks (setSolveType): DIRECT
@@ -310,51 +234,16 @@ class HybridSolver final : public Solver {
   [[nodiscard]] const char* getName() const override { return "hybrid"; }
 
  protected:
-  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override {
-    std::vector<int> directRows, iterativeRows;
-    std::vector<char> keep(problem.rows.size(), 0);
-    bool anyIterativeOnly = false;
-    for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      const bool friction = e.normal >= 0;
-      const bool split = e.solveType == SolveType::SPLIT;
-      const bool inDirect = e.solveType != SolveType::ITERATIVE && !(split && friction);
-      const bool inIterative = e.solveType != SolveType::DIRECT && !(split && !friction);
-      if (inDirect) directRows.push_back(i);
-      if (inIterative) iterativeRows.push_back(i);
-      anyIterativeOnly = anyIterativeOnly || (inIterative && !inDirect);
-      keep[static_cast<std::size_t>(i)] = friction && e.solveType == SolveType::DIRECT_AND_ITERATIVE;
-    }
-    statistics.numDirectRows += static_cast<int>(directRows.size());
-    if (!anyIterativeOnly) {
-      directWithFriction(problem, directRows, statistics);
-      return;
-    }
-    statistics.numIterativeRows += static_cast<int>(iterativeRows.size());
-    if (directRows.empty()) {
-      iterative(problem, iterativeRows, statistics);
-      return;
-    }
-    directWithFriction(problem, directRows, statistics);
-    std::vector<double> previous(directRows.size());
-    for (int pass = 0; pass < getNumCouplingIterations(); ++pass) {
-      iterative(problem, iterativeRows, statistics);
-      detail::freezeConeShares(problem, iterativeRows, keep);
-      detail::applyFrictionBounds(problem, iterativeRows);
-      double largest = 0.0;
-      for (std::size_t k = 0; k < directRows.size(); ++k) {
-        previous[k] = problem.rows[static_cast<std::size_t>(directRows[k])].impulse;
-        largest = std::max(largest, std::abs(previous[k]));
-      }
-      directWithFriction(problem, directRows, statistics, &keep);
-      double change = 0.0;
-      for (std::size_t k = 0; k < directRows.size(); ++k)
-        change = std::max(change, std::abs(problem.rows[static_cast<std::size_t>(directRows[k])].impulse - previous[k]));
-      if (change <= 1e-6 * largest) break;
-    }
-  }
+  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
 };
 
 using SolverRef = ref_ptr<Solver>;
 
 }  // namespace spook
+
+// The solves themselves are compiled once (solver_impl.hpp): inline in a
+// header-only program, in the translation unit that implements the double
+// simulation otherwise (core/implementation.hpp).
+#if defined(SPOOK_DEFINES_SOLVER)
+#include <spook/solver/solver_impl.hpp>
+#endif

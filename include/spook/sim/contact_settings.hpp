@@ -1,0 +1,18 @@
+#pragma once
+
+namespace spook::detail {
+
+/// The simulation's settings of the contact rows (sim/contact_rows.hpp).
+struct ContactSettings {
+  /// Approach speed (m/s) above which restitution acts; slower contacts rest.
+  double restitutionThreshold = 0.2;
+  /// Cap on the speed (m/s) at which the stabilization of the normal rows
+  /// pushes overlapping shapes apart.
+  double maxDepenetrationSpeed = 1.0;
+  /// A point of this step continues a point of the last step (same geometry
+  /// pair) when they lie within this distance (m) in the first geometry's
+  /// frame: its rows start from that point's force.
+  double persistenceDistance = 0.01;
+};
+
+}  // namespace spook::detail

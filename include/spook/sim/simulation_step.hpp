@@ -1,0 +1,230 @@
+#pragma once
+
+// The simulation step (SimulationT::stepForward and its stages): included by
+// sim/simulation.hpp where the step is compiled (SPOOK_DEFINES_STEP,
+// core/implementation.hpp), with the solver, contact and collision code
+// behind it.
+
+#include <cstddef>
+#include <memory>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <spook/collide/continuous.hpp>
+#include <spook/sim/contact_rows.hpp>
+#include <spook/sim/simulation.hpp>
+#include <spook/solver/geometric_stiffness.hpp>
+#include <spook/solver/integrator.hpp>
+#include <spook/solver/island_problem.hpp>
+#include <spook/solver/islands.hpp>
+#include <spook/solver/row.hpp>
+#include <spook/solver/solver.hpp>
+
+namespace spook {
+
+namespace detail {
+
+/// What a simulation keeps from step to step besides its content.
+template <Scalar S>
+struct SimulationWorkspace {
+  std::vector<SolverBody> solverBodies;
+  std::vector<char> frozen;  ///< per body: frozen in this step
+  std::vector<Row> rows;
+  std::vector<ConstraintT<S>*> rowOwners;
+  std::size_t numConstraintRows = 0;  ///< rows holds the constraints' rows, then the contacts'
+  ContactRows<S> contactRows;
+  struct Prediction {
+    double violation = 0.0, rate = 0.0;
+  };
+  std::unordered_map<const double*, Prediction> predicted;
+  IslandStepper islands;
+  GeometricStiffness geometricStiffness;
+};
+
+}  // namespace detail
+
+template <Scalar S>
+SimulationT<S>::SimulationT(ref_ptr<SpaceT<S>> space)
+    : space_(std::move(space)), work_(std::make_unique<detail::SimulationWorkspace<S>>()) {
+  installSpaceRules();
+}
+
+template <Scalar S>
+SimulationT<S>::~SimulationT() {
+  for (auto& b : bodies_) Membership::simulationOf(*b) = nullptr;
+  for (auto& l : listeners_) Membership::simulationOf(*l) = nullptr;
+  for (auto& l : contactListeners_) Membership::simulationOf(*l) = nullptr;
+  for (auto& c : constraints_) Membership::simulationOf(*c) = nullptr;
+  for (auto& c : collections_) setCollectionsSink(*c, nullptr);
+}
+
+template <Scalar S>
+void SimulationT<S>::forgetPredictions() {
+  work_->predicted.clear();
+}
+
+template <Scalar S>
+void SimulationT<S>::stepForward() {
+  if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
+  applyPendingTimeStep();  // left over when a listener threw in the last step
+  stepping_ = true;
+  struct ResetOnExit {
+    bool& flag;
+    ~ResetOnExit() { flag = false; }
+  } reset{stepping_};
+  notify(Listener::PRE_COLLIDE);
+  space_->update(bodies_);
+  statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
+  notifyContacts();
+  notify(Listener::PRE_STEP);
+  integrate(timeStep_);
+  detail::stopAtFirstContact(bodies_, *space_, timeStep_);
+  notify(Listener::POST_STEP);
+  notify(Listener::LAST_STEP);
+  ++stepsSinceBase_;
+  ++statistics_.numSteps;
+  if (statistics_.solver.directFallbacks > 0) ++statistics_.numFallbackSteps;
+  stepping_ = false;
+  applyPendingTimeStep();
+}
+
+template <Scalar S>
+void SimulationT<S>::integrate(S h) {
+  auto& w = *work_;
+  statistics_.frozenBodies.clear();
+  statistics_.solver = SolverStatistics{};
+  w.solverBodies.clear();
+  for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h));
+  collectRows(double(h));
+  w.numConstraintRows = w.rows.size();
+  w.contactRows.build(
+      space_->getGeometryContacts(), materials_, *gravity_,
+      [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, w.solverBodies,
+      double(h), contactSettings_, w.rows);
+  if (solver_->getEnableGeometricStiffness() && !w.rows.empty())
+    w.geometricStiffness.apply(w.rows, w.solverBodies, double(h), solver_->getGeometricStiffnessThreshold());
+  else
+    w.geometricStiffness.clear();
+  w.frozen.assign(bodies_.size(), 0);
+  if (!w.rows.empty()) {
+    w.islands.solve(w.rows, w.solverBodies, double(h), *solver_, statistics_.solver);
+    for (int i : w.islands.getNonFiniteBodies()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
+  }
+  readBackForces(double(h));
+  w.contactRows.readBack(double(h));
+  predictViolations(double(h));
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    Body& body = *bodies_[i];
+    if (!w.frozen[i] && !detail::BodyIntegrator<S>::move(body, w.solverBodies[i], h))
+      freeze(i, FreezeReason::NON_FINITE_STATE);
+    detail::BodyIntegrator<S>::clearForces(body);
+  }
+  if (!w.rows.empty())
+    for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(double(h));
+}
+
+template <Scalar S>
+void SimulationT<S>::predictViolations(double h) {
+  auto& w = *work_;
+  w.predicted.clear();
+  if (!solver_->getEnablePostStabilization()) return;
+  for (std::size_t i = 0; i < w.numConstraintRows; ++i) {
+    const detail::Row& r = w.rows[i];
+    if (!r.holonomic) continue;
+    const auto speed = [&](int body, const detail::Vec6d& J) {
+      return body < 0 ? 0.0 : J.dot(w.solverBodies[static_cast<std::size_t>(body)].freeVelocity);
+    };
+    const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + h * r.curvature;
+    w.predicted[r.impulse] = {r.violation + h * rate, rate};
+  }
+}
+
+template <Scalar S>
+void SimulationT<S>::postStabilize(double h) {
+  auto& w = *work_;
+  w.rows.clear();
+  for (const auto& c : constraints_) {
+    if (!c->getEnable() || !solver_->projects(c->getSolveType())) continue;
+    Body* body1 = c->getBodyAt(0);
+    Body* body2 = c->getBodyAt(1);
+    if (!contains(body1) || (body2 && !contains(body2))) continue;
+    detail::RowSink sink{&w.rows, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
+                         c->getSolveType(), true};
+    detail::ConstraintAccess::addProjectionRows(*c, sink);
+  }
+  // Target: the predicted violation (rows without one, e.g. a lock enabled
+  // by a listener after the solve, are left out).
+  std::erase_if(w.rows, [&](const detail::Row& r) { return !w.predicted.count(r.impulse); });
+  for (detail::Row& r : w.rows) r.speed = w.predicted[r.impulse].violation;
+  if (w.rows.empty()) return;
+  w.solverBodies.clear();
+  for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
+  w.geometricStiffness.addInertia(w.solverBodies);
+  // Frozen bodies stand still, like static ones.
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    if (w.frozen[i]) w.solverBodies[i] = detail::SolverBody{};
+  w.islands.project(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    if (!detail::BodyIntegrator<S>::displace(*bodies_[i], w.solverBodies[i], S(h)))
+      freeze(i, FreezeReason::NON_FINITE_STATE);
+}
+
+template <Scalar S>
+void SimulationT<S>::freeze(std::size_t i, FreezeReason reason) {
+  auto& w = *work_;
+  detail::BodyIntegrator<S>::freeze(*bodies_[i]);
+  w.solverBodies[i].freeVelocity.setZero();  // as the rows' predictions (predictViolations) should see it
+  if (std::exchange(w.frozen[i], char(1))) return;
+  statistics_.frozenBodies.push_back({bodies_[i].get(), reason});
+}
+
+template <Scalar S>
+void SimulationT<S>::collectRows(double h) {
+  auto& w = *work_;
+  w.rows.clear();
+  w.rowOwners.clear();
+  for (const auto& c : constraints_) {
+    if (!c->getEnable()) continue;
+    Body* body1 = c->getBodyAt(0);
+    Body* body2 = c->getBodyAt(1);
+    if (!contains(body1) || (body2 && !contains(body2))) continue;
+    // The second-order terms (Row::curvature, Row::lastRate) need the
+    // projection: without it their error feeds back (the 1:1e6 chain of
+    // test_solvers.cpp diverges).
+    const bool projected = solver_->projects(c->getSolveType());
+    detail::RowSink sink{&w.rows, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
+                         c->getSolveType(), projected};
+    const std::size_t first = w.rows.size();
+    detail::ConstraintAccess::addRows(*c, sink, h);
+    w.rowOwners.resize(w.rows.size(), c.get());
+    for (std::size_t i = first; i < w.rows.size(); ++i) {
+      detail::Row& r = w.rows[i];
+      if (!projected) {
+        r.curvature = 0.0;
+      } else if (const auto it = w.predicted.find(r.impulse); r.holonomic && it != w.predicted.end()) {
+        r.lastRate = it->second.rate;
+      }
+    }
+  }
+}
+
+template <Scalar S>
+void SimulationT<S>::readBackForces(double h) {
+  auto& w = *work_;
+  for (const auto& c : constraints_)
+    if (c->getEnableComputeForces()) detail::ConstraintAccess::clearWrench(*c);
+  for (std::size_t i = 0; i < w.numConstraintRows; ++i)
+    if (w.rowOwners[i]->getEnableComputeForces())
+      detail::ConstraintAccess::addWrench(*w.rowOwners[i], w.rows[i], *w.rows[i].impulse / h);
+  for (const auto& c : constraints_) detail::ConstraintAccess::afterSolve(*c, h);
+}
+
+#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+template class SimulationT<double>;
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+template class SimulationT<float>;
+#endif
+
+}  // namespace spook

@@ -1,0 +1,168 @@
+#pragma once
+
+// The solves of the solver policies (solver.hpp): non-template code, inline
+// in a header-only program and compiled once otherwise
+// (SPOOK_SOLVER_INLINE, core/implementation.hpp).
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include <spook/solver/direct_solve.hpp>
+#include <spook/solver/friction_bounds.hpp>
+#include <spook/solver/island_problem.hpp>
+#include <spook/solver/iterative_solve.hpp>
+#include <spook/solver/solver.hpp>
+
+namespace spook {
+
+SPOOK_SOLVER_INLINE Solver::Solver() : direct_(std::make_unique<detail::DirectSolve>()) {}
+
+SPOOK_SOLVER_INLINE Solver::~Solver() = default;
+
+SPOOK_SOLVER_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  const auto start = std::chrono::steady_clock::now();
+  direct(problem, allRows(problem), statistics);
+  for (auto& e : problem.rows)
+    if (!std::isfinite(e.impulse)) e.impulse = 0.0;
+  statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+SPOOK_SOLVER_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  const auto start = std::chrono::steady_clock::now();
+  ++statistics.numIslands;
+  statistics.numRows += static_cast<int>(problem.rows.size());
+  solveIsland(problem, statistics);
+  bool finite = true;
+  for (const auto& e : problem.rows) finite = finite && std::isfinite(e.impulse);
+  if (!finite) {
+    for (auto& e : problem.rows) e.impulse = 0.0;
+    ++statistics.nonFiniteIslands;
+    statistics.converged = false;
+  }
+  statistics.complementarityError = std::max(statistics.complementarityError, complementarityError(problem));
+  statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return finite;
+}
+
+SPOOK_SOLVER_INLINE void Solver::direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
+  const detail::DirectSolveResult r = direct_->solve(problem, subset, maxPivotSteps_);
+  statistics.factorizations += r.factorizations;
+  statistics.converged = statistics.converged && r.converged;
+  statistics.directFallbacks += r.fellBack ? 1 : 0;
+}
+
+SPOOK_SOLVER_INLINE void Solver::directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
+                                                    SolverStatistics& statistics, const std::vector<char>* keep) {
+  std::vector<int> following;
+  for (int i : subset) {
+    const auto& e = problem.rows[static_cast<std::size_t>(i)];
+    if (!e.followsNormal() || (keep && (*keep)[static_cast<std::size_t>(i)])) continue;
+    following.push_back(i);
+  }
+  direct(problem, subset, statistics);
+  int k = 1;
+  for (; k < frictionIterations_ && !following.empty(); ++k) {
+    double change = detail::updateConeDirections(problem, following);
+    change = std::max(change, detail::applyFrictionBounds(problem, following));
+    double largest = 0.0;
+    for (int i : following) largest = std::max(largest, problem.rows[static_cast<std::size_t>(i)].upper);
+    if (change <= frictionTolerance_ * largest) break;
+    direct(problem, subset, statistics);
+  }
+  statistics.frictionIterations = std::max(statistics.frictionIterations, k);
+}
+
+SPOOK_SOLVER_INLINE void Solver::iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
+  const detail::IterativeSolveResult r =
+      detail::iterativeSolve(problem, subset, iterations_, tolerance_, method_ == JACOBI);
+  statistics.iterations = std::max(statistics.iterations, r.iterations);
+  statistics.converged = statistics.converged && r.converged;
+}
+
+SPOOK_SOLVER_INLINE std::vector<int> Solver::allRows(const detail::IslandProblem& problem) {
+  std::vector<int> rows(problem.rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<int>(i);
+  return rows;
+}
+
+SPOOK_SOLVER_INLINE double Solver::complementarityError(const detail::IslandProblem& problem) {
+  const std::vector<detail::Vec6d> dv = problem.velocityChange();
+  const auto residual = [&](int i) {
+    const auto& e = problem.rows[static_cast<std::size_t>(i)];
+    return problem.rowVelocity(i, dv) + e.sigma * e.impulse - e.q;
+  };
+  double worst = 0.0;
+  for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
+    const auto& e = problem.rows[static_cast<std::size_t>(i)];
+    if (e.frictionBound == detail::FrictionBound::CONE && e.partner >= 0) {
+      if (e.partner > i)
+        worst = std::max(worst, detail::coneComplementarityError(e, problem.rows[static_cast<std::size_t>(e.partner)],
+                                                                 detail::frictionLimit(problem, e), residual(i),
+                                                                 residual(e.partner)));
+      continue;
+    }
+    worst = std::max(worst, detail::complementarityError(e, residual(i)));
+  }
+  return worst;
+}
+
+SPOOK_SOLVER_INLINE void DirectSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  const std::vector<int> rows = allRows(problem);
+  statistics.numDirectRows += static_cast<int>(rows.size());
+  directWithFriction(problem, rows, statistics);
+}
+
+SPOOK_SOLVER_INLINE void IterativeSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  const std::vector<int> rows = allRows(problem);
+  statistics.numIterativeRows += static_cast<int>(rows.size());
+  iterative(problem, rows, statistics);
+}
+
+SPOOK_SOLVER_INLINE void HybridSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
+  std::vector<int> directRows, iterativeRows;
+  std::vector<char> keep(problem.rows.size(), 0);
+  bool anyIterativeOnly = false;
+  for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
+    const auto& e = problem.rows[static_cast<std::size_t>(i)];
+    const bool friction = e.normal >= 0;
+    const bool split = e.solveType == SolveType::SPLIT;
+    const bool inDirect = e.solveType != SolveType::ITERATIVE && !(split && friction);
+    const bool inIterative = e.solveType != SolveType::DIRECT && !(split && !friction);
+    if (inDirect) directRows.push_back(i);
+    if (inIterative) iterativeRows.push_back(i);
+    anyIterativeOnly = anyIterativeOnly || (inIterative && !inDirect);
+    keep[static_cast<std::size_t>(i)] = friction && e.solveType == SolveType::DIRECT_AND_ITERATIVE;
+  }
+  statistics.numDirectRows += static_cast<int>(directRows.size());
+  if (!anyIterativeOnly) {
+    directWithFriction(problem, directRows, statistics);
+    return;
+  }
+  statistics.numIterativeRows += static_cast<int>(iterativeRows.size());
+  if (directRows.empty()) {
+    iterative(problem, iterativeRows, statistics);
+    return;
+  }
+  directWithFriction(problem, directRows, statistics);
+  std::vector<double> previous(directRows.size());
+  for (int pass = 0; pass < getNumCouplingIterations(); ++pass) {
+    iterative(problem, iterativeRows, statistics);
+    detail::freezeConeShares(problem, iterativeRows, keep);
+    detail::applyFrictionBounds(problem, iterativeRows);
+    double largest = 0.0;
+    for (std::size_t k = 0; k < directRows.size(); ++k) {
+      previous[k] = problem.rows[static_cast<std::size_t>(directRows[k])].impulse;
+      largest = std::max(largest, std::abs(previous[k]));
+    }
+    directWithFriction(problem, directRows, statistics, &keep);
+    double change = 0.0;
+    for (std::size_t k = 0; k < directRows.size(); ++k)
+      change = std::max(change, std::abs(problem.rows[static_cast<std::size_t>(directRows[k])].impulse - previous[k]));
+    if (change <= 1e-6 * largest) break;
+  }
+}
+
+}  // namespace spook
