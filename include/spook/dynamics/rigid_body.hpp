@@ -11,6 +11,7 @@
 #include <spook/collide/geometry.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/frame.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/math.hpp>
 #include <spook/core/observer_ptr.hpp>
 #include <spook/core/ref_ptr.hpp>
@@ -354,25 +355,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   // applied); throws, naming the body or geometry and the value, when it
   // would not be finite and valid. Changes nothing.
   [[nodiscard]] std::optional<MassUpdate> planMassProperties(const std::vector<ref_ptr<Geometry>>& geometries,
-                                                             const detail::GeometryEdit<S>& edit = {}) const {
-    const auto generated = detail::massFromGeometries<S>(geometries, name_, edit);
-    if (!generated) return std::nullopt;
-    const unsigned mask = massProperties_.getAutoGenerateMask();
-    const S mass = (mask & MassPropertiesT<S>::MASS) ? generated->mass : massProperties_.getMass();
-    Mat3 inertia = generated->inertia * (mass / generated->mass);
-    if (!(mask & MassPropertiesT<S>::CM_OFFSET)) {
-      // About the user's center instead of the generated one.
-      const Vec3 d = getCmLocalTranslate() - generated->center;
-      inertia += mass * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
-    }
-    // The tensor is stored in the CM frame, whose axes are the model axes
-    // turned by the CM frame's local rotation.
-    const Mat3 R = cmFrame_->getLocalRotate().toRotationMatrix();
-    const Mat3 inertiaCm = R.transpose() * inertia * R;
-    if (const char* why = SPDMat3T<S>::defect(inertiaCm))
-      throw error(std::string("inertia generated from the geometries (kg·m²): ") + why, SPDMat3T<S>::flat(inertiaCm));
-    return MassUpdate{mass, SPDMat3T<S>(inertiaCm), generated->center};
-  }
+                                                             const detail::GeometryEdit<S>& edit = {}) const;
   void applyMassProperties(const MassUpdate& update) {
     massProperties_.generate(update.mass, update.inertia);
     if (massProperties_.getAutoGenerateMask() & MassPropertiesT<S>::CM_OFFSET) {
@@ -441,6 +424,44 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   const void* simulation_ = nullptr;
   std::size_t simulationIndex_ = 0;
 };
+
+// Generating mass from geometries is defined outside the class (not inline):
+// with SPOOK_EXTERN_TEMPLATES it is compiled once, with the simulation
+// (core/implementation.hpp), not in every file that makes a body.
+template <Scalar S>
+auto RigidBodyT<S>::planMassProperties(const std::vector<ref_ptr<Geometry>>& geometries,
+                                       const detail::GeometryEdit<S>& edit) const -> std::optional<MassUpdate> {
+  const auto generated = detail::massFromGeometries<S>(geometries, name_, edit);
+  if (!generated) return std::nullopt;
+  const unsigned mask = massProperties_.getAutoGenerateMask();
+  const S mass = (mask & MassPropertiesT<S>::MASS) ? generated->mass : massProperties_.getMass();
+  Mat3 inertia = generated->inertia * (mass / generated->mass);
+  if (!(mask & MassPropertiesT<S>::CM_OFFSET)) {
+    // About the user's center instead of the generated one.
+    const Vec3 d = getCmLocalTranslate() - generated->center;
+    inertia += mass * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+  }
+  // The tensor is stored in the CM frame, whose axes are the model axes
+  // turned by the CM frame's local rotation.
+  const Mat3 R = cmFrame_->getLocalRotate().toRotationMatrix();
+  const Mat3 inertiaCm = R.transpose() * inertia * R;
+  if (const char* why = SPDMat3T<S>::defect(inertiaCm))
+    throw error(std::string("inertia generated from the geometries (kg·m²): ") + why, SPDMat3T<S>::flat(inertiaCm));
+  return MassUpdate{mass, SPDMat3T<S>(inertiaCm), generated->center};
+}
+
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+extern template class RigidBodyT<double>;
+#endif
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+extern template class RigidBodyT<float>;
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+template class RigidBodyT<double>;
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+template class RigidBodyT<float>;
+#endif
 
 using RigidBody = RigidBodyT<double>;
 using RigidBodyRef = ref_ptr<RigidBody>;
