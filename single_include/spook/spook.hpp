@@ -13515,7 +13515,6 @@ using MaterialManager = MaterialManagerT<float>;
 #include <memory>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 #include <vector>
@@ -13623,8 +13622,8 @@ class JointedPairs {
 #define SPOOK_SINGLE_SPOOK_SOLVER_SOLVER_HPP
 
 #include <algorithm>
-#include <memory>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 

@@ -1,15 +1,15 @@
 #pragma once
 
 #include <algorithm>
-#include <memory>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <spook/core/error.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
-#include <spook/core/implementation.hpp>
 #include <spook/solver/row.hpp>
 
 namespace spook {
