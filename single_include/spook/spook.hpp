@@ -2449,6 +2449,10 @@ class LineT : public ShapeT<S> {
     const Vec3 span = second - first;
     if (!(span.allFinite() && span.squaredNorm() > S(0)))
       throw detail::makeError("Line", "", "points must be apart (length > 0 m)", both);
+    // A length whose square overflows made every query on the line overflow
+    // (libccd crashed on such a segment: fuzz finding of 2026-11-26).
+    if (!std::isfinite(span.squaredNorm()))
+      throw detail::makeError("Line", "", "points must be closer than 1e154 m (length squared overflows)", both);
     first_ = first;
     second_ = second;
   }
@@ -5571,6 +5575,8 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
   const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
+  // libccd dereferences a null polytope face when its supports overflow.
+  if (!std::isfinite(sizeOf(a)) || !std::isfinite(sizeOf(b))) return;
   const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeOf(a), sizeOf(b)));
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;
@@ -15956,6 +15962,8 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
   const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
+  // libccd dereferences a null polytope face when its supports overflow.
+  if (!std::isfinite(sizeOf(a)) || !std::isfinite(sizeOf(b))) return;
   const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeOf(a), sizeOf(b)));
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;

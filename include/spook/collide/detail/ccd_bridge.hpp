@@ -364,6 +364,8 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
   const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
+  // libccd dereferences a null polytope face when its supports overflow.
+  if (!std::isfinite(sizeOf(a)) || !std::isfinite(sizeOf(b))) return;
   const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeOf(a), sizeOf(b)));
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;
