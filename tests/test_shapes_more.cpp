@@ -423,10 +423,6 @@ TEST_CASE_TEMPLATE("plane, line and convex reject bad input and name the value",
                "(0, 0, 0, 1, nan, 0)");
   spook::ref_ptr<spook::LineT<S>> line = new spook::LineT<S>(V::Zero(), V::UnitX());
   checkRejects([&] { line->setPoints(V::UnitY(), V::UnitY()); }, "Line", "(0, 1, 0, 0, 1, 0)");
-  // Finite endpoints whose distance squared overflows (the fuzz finding that
-  // crashed libccd through a cylinder-line query).
-  const S huge = std::numeric_limits<S>::max();
-  CHECK_THROWS_AS(line->setPoints(V(S(0), -huge, S(0)), V(S(0), S(0), -huge / S(2))), spook::Error);
   CHECK(line->getFirstPoint() == V::Zero());
   CHECK(line->getSecondPoint() == V::UnitX());
   checkRejects([&] { (void)line->calculateInertia(S(1.5)); }, "Line", "1.5");
