@@ -5571,9 +5571,10 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
   const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
+  const double sizeA = sizeOf(a), sizeB = sizeOf(b);
   // libccd dereferences a null polytope face when its supports overflow.
-  if (!std::isfinite(sizeOf(a)) || !std::isfinite(sizeOf(b))) return;
-  const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeOf(a), sizeOf(b)));
+  if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
+  const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeA, sizeB));
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;
   CCD_INIT(&ccd);
@@ -5593,7 +5594,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     // grown by kCcdNearMargin is still apart, or with a separating axis
     // among the shapes' axes and the line between their centers; otherwise
     // the polishing below decides.
-    const CcdObject<A> grownA(a, X_WA, kCcdNearMargin * std::min(sizeOf(a), sizeOf(b)));
+    const CcdObject<A> grownA(a, X_WA, kCcdNearMargin * std::min(sizeA, sizeB));
     if (!ccdGJKIntersect(&grownA, &objectB, &ccd) || separatedAlongFrameAxes(overlap, -objectA.margin)) return;
     direction = {{0.0, 0.0, 0.0}};
   }
@@ -5605,8 +5606,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     n /= length;
   else
     n = Vec3T<double>::UnitZ();
-  const double scale = (a.getBoundingBox().halfExtents().template cast<double>().norm() +
-                        b.getBoundingBox().halfExtents().template cast<double>().norm());
+  const double scale = sizeA + sizeB;
   // f may have several local minima: descend from several starts, then
   // search the kinks where a descent stalled.
   double refined = std::numeric_limits<double>::infinity();
@@ -15958,9 +15958,10 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
   const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
+  const double sizeA = sizeOf(a), sizeB = sizeOf(b);
   // libccd dereferences a null polytope face when its supports overflow.
-  if (!std::isfinite(sizeOf(a)) || !std::isfinite(sizeOf(b))) return;
-  const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeOf(a), sizeOf(b)));
+  if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
+  const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeA, sizeB));
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;
   CCD_INIT(&ccd);
@@ -15980,7 +15981,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     // grown by kCcdNearMargin is still apart, or with a separating axis
     // among the shapes' axes and the line between their centers; otherwise
     // the polishing below decides.
-    const CcdObject<A> grownA(a, X_WA, kCcdNearMargin * std::min(sizeOf(a), sizeOf(b)));
+    const CcdObject<A> grownA(a, X_WA, kCcdNearMargin * std::min(sizeA, sizeB));
     if (!ccdGJKIntersect(&grownA, &objectB, &ccd) || separatedAlongFrameAxes(overlap, -objectA.margin)) return;
     direction = {{0.0, 0.0, 0.0}};
   }
@@ -15992,8 +15993,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     n /= length;
   else
     n = Vec3T<double>::UnitZ();
-  const double scale = (a.getBoundingBox().halfExtents().template cast<double>().norm() +
-                        b.getBoundingBox().halfExtents().template cast<double>().norm());
+  const double scale = sizeA + sizeB;
   // f may have several local minima: descend from several starts, then
   // search the kinks where a descent stalled.
   double refined = std::numeric_limits<double>::infinity();
