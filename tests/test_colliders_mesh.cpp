@@ -750,15 +750,33 @@ namespace {
 
 /// The reference of a sphere (center c, radius r) and triangle t: one
 /// contact when the distance d to the closest point q is at most r, depth
-/// r − d along (q − c)/d (the face's inward normal when c is on t).
-Reference sphereTriangle(const Vec3d& c, double r, const Tri& t, Vec3d& q) {
+/// r − d along (q − c)/d (the face's inward normal when c is on t). A
+/// triangle of a height field is solid behind (`solidBehind`): a center
+/// behind its plane whose projection falls on the face has depth r + d
+/// along the face's inward normal; behind the plane beside the face, none.
+Reference sphereTriangle(const Vec3d& c, double r, const Tri& t, Vec3d& q, bool solidBehind = false) {
   q = closestOnTriangle(c, t);
   const double d = (q - c).norm();
+  const Vec3d faceNormal = unnormalizedNormal(t).normalized();
   Reference reference;
   reference.depth = r - d;
   reference.intersect = d <= r;
   reference.signedDistance = d - r;
-  reference.normal = d > 0.0 ? Vec3d((q - c) / d) : Vec3d(-unnormalizedNormal(t).normalized());
+  reference.normal = d > 0.0 ? Vec3d((q - c) / d) : Vec3d(-faceNormal);
+  const double height = faceNormal.dot(c - t.v[0]);
+  if (solidBehind && height < 0.0) {
+    // How far the center's projection lies inside the face (m, < 0 outside).
+    const Vec3d p = c - height * faceNormal;
+    double inside = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      const Vec3d edge = t.v[(k + 1) % 3] - t.v[k];
+      inside = std::min(inside, edge.cross(p - t.v[k]).dot(faceNormal) / edge.norm());
+    }
+    reference.intersect = inside >= 0.0 && d <= r;
+    reference.depth = r + d;
+    reference.signedDistance = -std::min(inside, r - d);
+    reference.normal = -faceNormal;
+  }
   return reference;
 }
 
@@ -787,7 +805,8 @@ Tally sphereAgainst(const Soup& soupDouble, std::uint64_t seed, auto&& center) {
     const Transformd X_WMd = XM.template cast<double>(), X_WSd = XS.template cast<double>();
     const Vec3d c = X_WSd.translation();
     for (std::size_t i = 0; i < refs.size(); ++i)
-      refs[i] = sphereTriangle(c, r, worldTriangle(*soup, i, X_WMd), closest[i]);
+      refs[i] = sphereTriangle(c, r, worldTriangle(*soup, i, X_WMd), closest[i],
+                               Soup::kType == spook::ShapeType::HEIGHTFIELD);
     // A normal off by more than kAngle still counts as a tie when the
     // overlap along it is the depth within the tolerance: the direction
     // (q − c)/d of a center d → 0 from the triangle, which float rounding of
@@ -871,6 +890,32 @@ TEST_CASE_TEMPLATE("mesh: a sphere's contact with a triangle lies midway between
   CHECK(withMesh[0].normal.z() == doctest::Approx(-1.0));
   CHECK(withMesh[0].point.z() == doctest::Approx(withPlane[0].point.z()));
   CHECK(withField[0].point.z() == doctest::Approx(withPlane[0].point.z()));
+}
+
+// A height field is solid below its surface: a sphere whose center sank
+// 0.3 m under it is pushed back up, by r + 0.3, with its contact midway
+// between the surface and its lowest point; a trimesh face has no inside of
+// its own and pushes the sphere out on its center's side.
+TEST_CASE_TEMPLATE("mesh: a sphere sunk below a height field is pushed up, below a trimesh face down", S, float,
+                   double) {
+  using V = spook::Vec3T<S>;
+  ref_ptr<TrimeshT<S>> mesh = new TrimeshT<S>({V(-2, -2, 0), V(2, -2, 0), V(0, 2, 0)}, {{0, 1, 2}});
+  ref_ptr<spook::HeightFieldT<S>> field = new HeightFieldT<S>(3, 3, S(4), S(4), std::vector<S>(9, S(0)));
+  ref_ptr<SphereT<S>> sphere = new SphereT<S>(S(1));
+  const auto X = spook::TransformT<S>::Identity();
+  spook::TransformT<S> X_S = X;
+  X_S.translation() = V(S(0.3), S(0.7), S(-0.3));
+  std::vector<ContactPointT<S>> withMesh, withField;
+  ContactSinkT<S> meshSink(withMesh), fieldSink(withField);
+  spook::collide(*sphere, X_S, *mesh, X, meshSink);
+  spook::collide(*sphere, X_S, *field, X, fieldSink);
+  REQUIRE(withMesh.size() == 1);
+  CHECK(withMesh[0].depth == doctest::Approx(0.7));
+  CHECK(withMesh[0].normal.z() == doctest::Approx(1.0));
+  REQUIRE(withField.size() == 1);
+  CHECK(withField[0].depth == doctest::Approx(1.3));
+  CHECK(withField[0].normal.z() == doctest::Approx(-1.0));
+  CHECK(withField[0].point.z() == doctest::Approx(-0.65));
 }
 
 // ---------------------------------------------------------------------------

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include <ccd/ccd.h>
@@ -23,9 +24,10 @@
 /// the bodies have moved (Simulation::stepForward).
 ///
 /// Covers: dynamic bodies with RigidBody::setEnableCCD(true) whose step
-/// displacement h·v exceeds their thinnest half-width w (below that the
-/// discrete contacts catch every wall: the body cannot reach a wall's far
-/// side in one step). Their sphere, box, capsule, cylinder and convex shapes
+/// displacement h·v exceeds their thinnest half-width w less the depth of
+/// their deepest contact of the step (below that the discrete contacts
+/// catch every wall: the body's center cannot cross a wall's near face in
+/// one step, nor a thin wall's far side be reached). Their sphere, box, capsule, cylinder and convex shapes
 /// (composites of them included) are swept linearly, in the orientation
 /// they end the step with, from where the center-of-mass motion h·v started
 /// them to where it left them, against every geometry the space lets them
@@ -50,7 +52,7 @@
 /// the near side, where the discrete contacts push it back out.
 ///
 /// Leaves to the discrete contacts: hits whose motion along the contact
-/// normal is at most w (a grazing approach, e.g. a fast body sliding across
+/// normal is at most that reach (a grazing approach, e.g. a fast body sliding across
 /// a floor; the discrete contacts hold such penetrations), and cores that
 /// start inside a target. The normal is the plane's, the triangle's face
 /// normal, or libccd's penetration direction for convex targets.
@@ -129,8 +131,10 @@ class BodySweep {
   using Transform = spook::TransformT<S>;
   using Shape = ShapeT<S>;
 
-  BodySweep(const Vec3& motion, double halfWidth)
-      : motion_(motion.template cast<double>()), length_(motion_.norm()), halfWidth_(halfWidth) {}
+  /// `reach` (m): the approach along a contact normal that the discrete
+  /// contacts hold, the half-width less the body's present overlap.
+  BodySweep(const Vec3& motion, double halfWidth, double reach)
+      : motion_(motion.template cast<double>()), length_(motion_.norm()), halfWidth_(halfWidth), reach_(reach) {}
 
   /// The depth that the body is placed at past first contact (m).
   [[nodiscard]] double contactDepth() const { return 0.01 * halfWidth_; }
@@ -189,9 +193,9 @@ class BodySweep {
 
   // Records a hit at `fraction` unless the approach (m), the motion along
   // the contact normal, is one the discrete contacts hold: at most the
-  // half-width per step.
+  // reach per step.
   void record(double fraction, double approach) {
-    if (!(approach > halfWidth_) || !(fraction < hit_.fraction)) return;
+    if (!(approach > reach_) || !(fraction < hit_.fraction)) return;
     hit_.fraction = fraction;
     hit_.found = true;
   }
@@ -304,6 +308,7 @@ class BodySweep {
   Vec3T<double> motion_;
   double length_;
   double halfWidth_;
+  double reach_;
   SweepHit hit_;
 };
 
@@ -354,15 +359,28 @@ template <Scalar S>
 void stopAtFirstContact(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const SpaceT<S>& space, S h) {
   using Body = RigidBodyT<S>;
   using Geometry = GeometryT<S>;
+  const auto sweeps = [](const Body& body) {
+    return body.getEnableCCD() && body.getEnable() && body.getMotionControl() == Body::DYNAMICS;
+  };
+  if (std::none_of(bodies.begin(), bodies.end(), [&](const auto& body) { return sweeps(*body); })) return;
+  // Each swept body's deepest contact of the step (m).
+  std::unordered_map<const Body*, double> deepest;
+  for (const auto& contact : space.getGeometryContacts())
+    for (std::size_t i = 0; i < 2; ++i)
+      if (const Body* body = contact.rigidBody(i); body && sweeps(*body))
+        for (const auto& point : contact.points())
+          if (point.enabled && double(point.depth) > 0.0) deepest[body] = std::max(deepest[body], double(point.depth));
   for (const auto& body : bodies) {
-    if (!body->getEnableCCD() || !body->getEnable() || body->getMotionControl() != Body::DYNAMICS) continue;
+    if (!sweeps(*body)) continue;
     const Vec3T<S> motion = h * body->getVelocity();
     double halfWidth = std::numeric_limits<double>::infinity();
     for (const auto& g : body->getGeometries())
       if (!g->isSensor())
         for (const auto& e : g->getShapes()) halfWidth = std::min(halfWidth, sweptHalfWidth<S>(*e.shape));
-    if (!(motion.allFinite() && double(motion.norm()) > halfWidth)) continue;
-    BodySweep<S> sweep(motion, halfWidth);
+    const auto depth = deepest.find(body.get());
+    const double reach = halfWidth - (depth == deepest.end() ? 0.0 : std::min(depth->second, 0.5 * halfWidth));
+    if (!(motion.allFinite() && double(motion.norm()) > reach)) continue;
+    BodySweep<S> sweep(motion, halfWidth, reach);
     const auto against = [&](const Geometry& target) {
       for (const auto& g : body->getGeometries()) {
         if (g->isSensor() || !space.canCollide(*g, target)) continue;

@@ -68,10 +68,14 @@ template <Scalar S>
 /// the mesh, is the face normal when that point is inside the face (exact,
 /// where c − q is all round-off for a center near the face) and along
 /// c − q otherwise; a center on an edge or corner pushes along the face
-/// normal.
+/// normal. A trimesh's face pushes the sphere out on the side of its center;
+/// a height field is solid below its surface (`solidBehind`): a center
+/// behind a face is pushed back out the front, by r plus its distance
+/// behind, and a center behind the face's plane beside the face is left to
+/// the face it lies under.
 template <Scalar S>
 void collideSphereTriangle(const SphereT<S>& sphere, const Vec3T<S>& c_W, const Triangle<S>& t_W,
-                           ContactSinkT<S>& sink) {
+                           ContactSinkT<S>& sink, bool solidBehind = false) {
   bool onFace = false;
   const Vec3T<S> q = closestOnTriangle<S>(t_W, c_W, onFace);
   const Vec3T<S> toCenter = c_W - q;
@@ -79,12 +83,17 @@ void collideSphereTriangle(const SphereT<S>& sphere, const Vec3T<S>& c_W, const 
   const S r = sphere.getRadius();
   if (distance > r) return;
   const Vec3T<S> faceNormal = t_W.normal();
+  const bool behind = toCenter.dot(faceNormal) < S(0);
+  if (solidBehind && behind && !onFace) return;
   Vec3T<S> n;
-  if (onFace)
-    n = toCenter.dot(faceNormal) >= S(0) ? Vec3T<S>(-faceNormal) : faceNormal;
+  S depth = r - distance;
+  if (solidBehind && behind) {
+    n = -faceNormal;
+    depth = r + distance;
+  } else if (onFace)
+    n = behind ? faceNormal : Vec3T<S>(-faceNormal);
   else
     n = distance > ScalarTraits<S>::epsilon() * r ? Vec3T<S>(-toCenter / distance) : Vec3T<S>(-faceNormal);
-  const S depth = r - distance;
   sink.add(q + n * (depth * S(0.5)), n, depth);  // midway: q and c + n r bound the overlap
 }
 
@@ -106,7 +115,7 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
     sink.setFaceIndices(0, i);
     if constexpr (A::kType == ShapeType::SPHERE) {
       const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
-      collideSphereTriangle<S>(a, X_WA.translation(), t_W, sink);
+      collideSphereTriangle<S>(a, X_WA.translation(), t_W, sink, Soup::kType == ShapeType::HEIGHTFIELD);
     } else if constexpr (kIsPolytope<A>) {
       makeTrianglePolytope<S>(Triangle<S>{{X_WM * p0, X_WM * p1, X_WM * p2}}, triangle);
       collidePolytopes(shape, triangle, sink);
