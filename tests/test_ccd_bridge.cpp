@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 #include <spook/collide/detail/ccd_bridge.hpp>
 #include <spook/collide/shapes/box.hpp>
 #include <spook/collide/shapes/cylinder.hpp>
+#include <spook/collide/shapes/line.hpp>
 #include <spook/collide/shapes/sphere.hpp>
 
 #include "tolerance.hpp"
@@ -94,4 +97,31 @@ TEST_CASE("libccd bridge finds every shallow overlap of a cylinder resting on a 
   CHECK(missed == 0);
   CHECK(phantom == 0);
   CHECK(worstDepth <= 1e-10);
+}
+
+// Fuzz finding (tests/fuzz/corpus/finding_line_length_overflow): a segment
+// whose finite endpoints lie more than DBL_MAX m apart (each coordinate's
+// difference finite) has an infinite size; libccd's
+// EPA dereferenced a null face on it. The bridge gives no contact for a
+// shape whose size is not finite (in libccd's double), and a finite long
+// segment still collides.
+TEST_CASE_TEMPLATE("libccd bridge skips a segment whose length overflows, and collides a long finite one", S, float,
+                   double) {
+  using Vec3 = spook::Vec3T<S>;
+  const S far = S(0.8) * std::numeric_limits<S>::max();
+  spook::ref_ptr<spook::CylinderT<S>> cylinder = new spook::CylinderT<S>(S(0.5), S(1));
+  spook::ref_ptr<spook::LineT<S>> overflowing = new spook::LineT<S>(Vec3(S(0), S(0.1), S(0)), Vec3(far, far, S(0)));
+  spook::ref_ptr<spook::LineT<S>> long_ = new spook::LineT<S>(Vec3(S(-1e6), S(0.1), S(0)), Vec3(S(1e6), S(0.1), S(0)));
+  REQUIRE_FALSE(std::isfinite((overflowing->getBoundingBox().max - overflowing->getBoundingBox().min).norm()));
+  const auto X = spook::TransformT<S>::Identity();
+  std::vector<spook::ContactPointT<S>> points;
+  spook::ContactSinkT<S> sink(points);
+  spook::detail::collideByCcd<S>(*cylinder, X, *overflowing, X, sink);
+  // libccd works in double: a float segment's size is finite there.
+  if constexpr (std::is_same_v<S, double>) CHECK(points.empty());
+  for (const auto& point : points) CHECK((point.point.allFinite() && point.normal.allFinite()));
+  points.clear();
+  spook::detail::collideByCcd<S>(*cylinder, X, *long_, X, sink);
+  REQUIRE(points.size() >= 1);
+  for (const auto& point : points) CHECK(std::isfinite(double(point.depth)));
 }
