@@ -44,7 +44,7 @@ void sweep(benchmark::State& state, const spook::ShapeT<double>* a, const spook:
   const double halfWidth = spook::detail::sweptHalfWidth<double>(*a);
   std::size_t hits = 0;
   for (auto _ : state) {
-    spook::detail::BodySweep<double> swept(motion, halfWidth);
+    spook::detail::BodySweep<double> swept(motion, halfWidth, halfWidth);  // reach: nothing touched yet
     swept.sweep(*a, X_end, *b, X_WB);
     hits += swept.hit().found ? 1 : 0;
     benchmark::DoNotOptimize(swept.hit().fraction);
