@@ -219,6 +219,72 @@ TEST_CASE_TEMPLATE("a geometry, shape, material or placement whose mass would ov
   CHECK(crate->getGeometries().size() == 3);
 }
 
+// A shape changed after it is in place (resized, a child added to a
+// composite, nested composites included) is checked like a new one: the
+// body's generated mass follows, and a change whose mass would overflow is
+// refused, leaving the shape and the whole scene as they were. A shape let
+// go by its geometry (or a geometry by its body) no longer reaches the body.
+TEST_CASE_TEMPLATE("a shape changed in place updates its body's mass, or is refused leaving shape and scene unchanged",
+                   S, float, double) {
+  using V = spook::Vec3T<S>;
+  const S tol = pick<S>(1e-12, 1e-6);
+  const double hugeSize = pick<S>(1e200, 1e30);
+  spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
+  spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>("crane hook");
+  spook::ref_ptr<spook::SphereT<S>> ball = new spook::SphereT<S>(S(0.5));
+  spook::ref_ptr<spook::CompositeT<S>> outer = new spook::CompositeT<S>(), inner = new spook::CompositeT<S>();
+  inner->add(new spook::BoxT<S>(V::Constant(S(0.5))));  // 1 m³
+  outer->add(inner, at<S>(-2, 0, 0));
+  spook::ref_ptr<spook::GeometryT<S>> hook = new spook::GeometryT<S>(ball, at<S>(0, 0, 0), "hook");
+  hook->add(outer);
+  body->add(hook);
+  sim->add(body);
+  const S pi = S(3.14159265358979323846);
+  const auto mass = [&] { return body->getMassProperties()->getMass(); };
+  CHECK(std::abs(mass() - S(1000) * (S(1) + pi / S(6))) <= tol * mass());
+
+  ball->setRadius(S(1));
+  CHECK(std::abs(mass() - S(1000) * (S(1) + S(4) * pi / S(3))) <= tol * mass());
+  inner->add(new spook::BoxT<S>(V::Constant(S(0.5))), at<S>(0, 0, 3));
+  const S expected = S(1000) * (S(2) + S(4) * pi / S(3));
+  CHECK(std::abs(mass() - expected) <= tol * mass());
+  // Center of mass: the ball at 0, boxes at (-2, 0, 0) and (-2, 0, 3).
+  const V center = S(1000) * (V(S(-2), S(0), S(0)) + V(S(-2), S(0), S(3))) / expected;
+  CHECK((body->getCmPosition() - center).norm() <= tol * S(10));
+
+  sim->stepForward();
+  const auto before = spook::test::SceneState<S>::capture(*sim);
+  const auto unchanged = [&] {
+    CHECK(spook::test::firstDifference(before, spook::test::SceneState<S>::capture(*sim)) == "");
+    CHECK(mass() == before.bodyStates.front().mass);
+    CHECK(ball->getRadius() == S(1));
+    CHECK(inner->getChildren().size() == 2);
+    CHECK(outer->getChildren().size() == 1);
+  };
+  CHECK_THROWS_WITH_AS(ball->setRadius(S(hugeSize)), doctest::Contains("Geometry 'hook'"), spook::Error);
+  unchanged();
+  CHECK_THROWS_WITH_AS(inner->add(new spook::BoxT<S>(V::Constant(S(hugeSize)))), doctest::Contains("Geometry 'hook'"),
+                       spook::Error);
+  unchanged();
+  CHECK_THROWS_WITH_AS(inner->add(new spook::BoxT<S>(V::Constant(S(1))), at<S>(hugeSize, 0, 0)),
+                       doctest::Contains("Geometry 'hook': Composite"), spook::Error);
+  unchanged();
+
+  // Let go: removed from its geometry, the ball changes alone; so does the
+  // composite of a geometry removed from the body.
+  CHECK(hook->remove(ball.get()));
+  const S withoutBall = mass();
+  ball->setRadius(S(hugeSize));
+  CHECK(mass() == withoutBall);
+  CHECK(body->remove(hook.get()));
+  const S empty = mass();
+  inner->add(new spook::BoxT<S>(V::Constant(S(hugeSize))));
+  CHECK(mass() == empty);
+  hook = nullptr;  // the composites outlive the geometry that held them
+  inner->add(new spook::SphereT<S>(S(1)));
+  CHECK(inner->getChildren().size() == 4);
+}
+
 TEST_CASE_TEMPLATE("pairwise collision disabling is symmetric and forgets dead partners", S, float, double) {
   spook::ref_ptr<spook::GeometryT<S>> a = new spook::GeometryT<S>(), b = new spook::GeometryT<S>();
   a->setEnableCollisions(b.get(), false);

@@ -386,6 +386,26 @@ TEST_CASE_TEMPLATE("a height field refuses a sample count that overflows or a ce
   CHECK(wide->getBoundingBox().max.allFinite());
 }
 
+// Heights of ±0.6·max are each finite, but the field's height range (its
+// bounding box, the depth a contact can have) is not: refused on
+// construction and by setHeight, which keeps the field as it was.
+TEST_CASE_TEMPLATE("a height field refuses heights whose range overflows, on construction and in setHeight", S, float,
+                   double) {
+  const S high = S(0.6) * std::numeric_limits<S>::max();
+  checkRejects([&] { Field<S> f = new spook::HeightFieldT<S>(2, 2, S(1), S(1), {-high, S(0), S(0), high}); },
+               "HeightField", "(-");
+  const Field<S> field = new spook::HeightFieldT<S>(2, 2, S(1), S(1), {-high, S(0), S(0), S(1)});
+  checkRejects([&] { field->setHeight(1, 1, high); }, "HeightField", "(-");
+  CHECK(field->getHeight(1, 1) == S(1));
+  CHECK(field->getMaxHeight() == S(1));
+  CHECK(field->getMinHeight() == -high);
+  field->setHeight(0, 0, S(-2));  // the lowest sample raised: the range shrinks
+  CHECK(field->getMinHeight() == S(-2));
+  field->setHeight(1, 1, high);  // now within range
+  CHECK(field->getMaxHeight() == high);
+  CHECK(std::isfinite(field->getBoundingBox().max.z() - field->getBoundingBox().min.z()));
+}
+
 TEST_CASE_TEMPLATE("meshes and height fields reject bad input, naming the value", S, float, double) {
   const S inf = std::numeric_limits<S>::infinity();
   const std::vector<spook::Vec3T<S>> corners{{S(0), S(0), S(0)}, {S(1), S(0), S(0)}, {S(0), S(1), S(0)}};

@@ -109,8 +109,10 @@ struct ShapeList {
 #ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_SHAPE_HPP
 #define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_SHAPE_HPP
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 // --- begin spook/collide/bounding_box.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_COLLIDE_BOUNDING_BOX_HPP
@@ -708,6 +710,39 @@ class Referenced {
 
 namespace spook {
 
+template <Scalar S>
+class ShapeT;
+
+namespace detail {
+
+/// What holds a shape: a Geometry, or a Composite for its children. Asked,
+/// after a shape it holds has changed (its size, children, heights), whether
+/// it can take the change, and told once the change stands: the body that
+/// owns it all refuses mass properties that would not be valid, and
+/// recomputes them when they are.
+template <Scalar S>
+struct ShapeOwner {
+  /// Throws spook::Error when the change could not be taken; changes nothing.
+  virtual void checkShapeChange() const = 0;
+  virtual void shapeChanged() = 0;
+
+ protected:
+  ~ShapeOwner() = default;
+};
+
+/// How geometries and composites register as the owners of their shapes.
+template <Scalar S>
+struct ShapeOwners {
+  static void add(ShapeT<S>& shape, ShapeOwner<S>* owner) { shape.owners_.push_back(owner); }
+  /// Drops one registration of `owner` (a composite may hold a shape twice).
+  static void remove(ShapeT<S>& shape, ShapeOwner<S>* owner) {
+    const auto it = std::find(shape.owners_.begin(), shape.owners_.end(), owner);
+    if (it != shape.owners_.end()) shape.owners_.erase(it);
+  }
+};
+
+}  // namespace detail
+
 /// A geometric primitive in its own frame (origin at its center of volume).
 /// It knows its volume, its inertia for a given mass and its bounding box;
 /// convex shapes also give their support point. Lengths in meters.
@@ -733,6 +768,26 @@ class ShapeT : public Referenced {
  protected:
   ~ShapeT() override = default;
 
+  /// Makes a change (`apply`) and has every owner check it; when one
+  /// refuses, undoes it (`undo`) and rethrows, else tells them all.
+  template <class Apply, class Undo>
+  void change(Apply&& apply, Undo&& undo) {
+    apply();
+    try {
+      checkOwners();
+    } catch (...) {
+      undo();
+      throw;
+    }
+    notifyOwners();
+  }
+  void checkOwners() const {
+    for (const detail::ShapeOwner<S>* owner : owners_) owner->checkShapeChange();
+  }
+  void notifyOwners() {
+    for (detail::ShapeOwner<S>* owner : owners_) owner->shapeChanged();
+  }
+
   static void requireMass(const char* kind, S mass) {
     if (!(std::isfinite(mass) && mass > S(0)))
       throw detail::makeError(kind, "", "mass for the inertia must be finite and > 0 kg", mass);
@@ -742,6 +797,10 @@ class ShapeT : public Referenced {
       throw detail::makeError(kind, "", std::string(what) + " must be finite and > 0 m", value);
     return value;
   }
+
+ private:
+  friend struct detail::ShapeOwners<S>;
+  std::vector<detail::ShapeOwner<S>*> owners_;
 };
 
 namespace detail {
@@ -778,7 +837,8 @@ class BoxT : public ShapeT<S> {
   void setHalfExtents(const Vec3& halfExtents) {
     if (!(halfExtents.allFinite() && halfExtents.minCoeff() > S(0)))
       throw detail::makeError("Box", "", "half extents must be finite and > 0 m", halfExtents);
-    halfExtents_ = halfExtents;
+    const Vec3 old = halfExtents_;
+    this->change([&] { halfExtents_ = halfExtents; }, [&] { halfExtents_ = old; });
   }
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
@@ -839,7 +899,7 @@ class BoxT : public ShapeT<S> {
   ~BoxT() override = default;
 
  private:
-  Vec3 halfExtents_;
+  Vec3 halfExtents_ = Vec3::Zero();
 };
 
 using Box = BoxT<double>;
@@ -876,9 +936,15 @@ class CapsuleT : public ShapeT<S> {
   }
 
   [[nodiscard]] S getRadius() const { return radius_; }
-  void setRadius(S radius) { radius_ = this->requireLength("Capsule", "radius", radius); }
+  void setRadius(S radius) {
+    const S checked = this->requireLength("Capsule", "radius", radius), old = radius_;
+    this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
+  }
   [[nodiscard]] S getHeight() const { return height_; }
-  void setHeight(S height) { height_ = this->requireLength("Capsule", "height", height); }
+  void setHeight(S height) {
+    const S checked = this->requireLength("Capsule", "height", height), old = height_;
+    this->change([&] { height_ = checked; }, [&] { height_ = old; });
+  }
 
   /// V = π r² h + 4/3 π r³.
   [[nodiscard]] ShapeType getType() const override { return kType; }
@@ -928,8 +994,8 @@ class CapsuleT : public ShapeT<S> {
   ~CapsuleT() override = default;
 
  private:
-  S radius_;
-  S height_;
+  S radius_ = S(0);
+  S height_ = S(0);
 };
 
 using Capsule = CapsuleT<double>;
@@ -957,7 +1023,7 @@ namespace spook {
 /// frame. Volume, inertia and bounding box are those of the union of the
 /// children, assumed not to overlap, all of one density.
 template <Scalar S>
-class CompositeT : public ShapeT<S> {
+class CompositeT : public ShapeT<S>, private detail::ShapeOwner<S> {
  public:
   static constexpr ShapeType kType = ShapeType::COMPOSITE;
   using Vec3 = spook::Vec3T<S>;
@@ -973,8 +1039,11 @@ class CompositeT : public ShapeT<S> {
   CompositeT() = default;
 
   /// Adds a child at `transform` (child to composite); one shape may be
-  /// added several times. Throws on a null child, a child that contains this
-  /// composite, or a transform that is not finite and rigid.
+  /// added several times. Throws, adding nothing, on a null child, a child
+  /// that contains this composite, a transform that is not finite and
+  /// rigid, or a child that a body holding the composite could not take
+  /// (its mass properties would not be finite and valid); else the body's
+  /// generated mass properties follow.
   void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
     if (!shape) throw detail::makeError("Composite", "", "cannot add a null shape", "nullptr");
     const auto* nested = dynamic_cast<const CompositeT*>(shape.get());
@@ -983,7 +1052,13 @@ class CompositeT : public ShapeT<S> {
     if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
       throw detail::makeError("Composite", "", "child transform must be finite and rigid",
                               SPDMat3T<S>::flat(transform.linear()));
-    children_.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+    Shape& child = *shape;
+    this->change(
+        [&] {
+          children_.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+        },
+        [&] { children_.pop_back(); });
+    detail::ShapeOwners<S>::add(child, this);
   }
 
   [[nodiscard]] const std::vector<Child>& getChildren() const { return children_; }
@@ -1059,9 +1134,15 @@ class CompositeT : public ShapeT<S> {
   }
 
  protected:
-  ~CompositeT() override = default;
+  ~CompositeT() override {
+    for (Child& c : children_) detail::ShapeOwners<S>::remove(*c.shape, this);
+  }
 
  private:
+  // A child changed: whatever holds this composite checks it and follows.
+  void checkShapeChange() const override { this->checkOwners(); }
+  void shapeChanged() override { this->notifyOwners(); }
+
   std::vector<Child> children_;
 };
 
@@ -1924,9 +2005,15 @@ class CylinderT : public ShapeT<S> {
   }
 
   [[nodiscard]] S getRadius() const { return radius_; }
-  void setRadius(S radius) { radius_ = this->requireLength("Cylinder", "radius", radius); }
+  void setRadius(S radius) {
+    const S checked = this->requireLength("Cylinder", "radius", radius), old = radius_;
+    this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
+  }
   [[nodiscard]] S getHeight() const { return height_; }
-  void setHeight(S height) { height_ = this->requireLength("Cylinder", "height", height); }
+  void setHeight(S height) {
+    const S checked = this->requireLength("Cylinder", "height", height), old = height_;
+    this->change([&] { height_ = checked; }, [&] { height_ = old; });
+  }
 
   /// V = π r² h.
   [[nodiscard]] ShapeType getType() const override { return kType; }
@@ -1982,8 +2069,8 @@ class CylinderT : public ShapeT<S> {
   ~CylinderT() override = default;
 
  private:
-  S radius_;
-  S height_;
+  S radius_ = S(0);
+  S height_ = S(0);
 };
 
 using Cylinder = CylinderT<double>;
@@ -2231,8 +2318,9 @@ class HeightFieldT : public ShapeT<S> {
 
   /// Throws spook::Error on fewer than 2 × 2 samples, more triangles than a
   /// contact's 32-bit face index can number, a heights vector not of
-  /// resolutionX·resolutionY entries, a non-finite height, a size that is
-  /// not finite and > 0 m, or a cell so small that its spacing underflows.
+  /// resolutionX·resolutionY entries, a non-finite height, heights whose
+  /// range (highest − lowest) overflows, a size that is not finite and
+  /// > 0 m, or a cell so small that its spacing underflows.
   HeightFieldT(std::size_t resolutionX, std::size_t resolutionY, S sizeX, S sizeY, std::vector<S> heights)
       : resolutionX_(resolutionX), resolutionY_(resolutionY), heights_(std::move(heights)) {
     const std::array<std::size_t, 2> resolution{resolutionX, resolutionY};
@@ -2259,6 +2347,7 @@ class HeightFieldT : public ShapeT<S> {
     if (!(spacing_.minCoeff() >= std::numeric_limits<S>::min()))
       throw detail::makeError("HeightField", "", "cell spacing size / (resolution - 1) must not underflow (m)", spacing_);
     updateHeightRange();
+    requireFiniteRange(minHeight_, maxHeight_);
   }
 
   /// Number of samples along x.
@@ -2283,17 +2372,26 @@ class HeightFieldT : public ShapeT<S> {
     requireSample(i, j);
     return height(i, j);
   }
-  /// Sets the height of sample (i, j) (m); throws on an index out of range or a non-finite height.
+  /// Sets the height of sample (i, j) (m); throws, keeping the field, on an
+  /// index out of range, a non-finite height or one whose distance to the
+  /// others overflows.
   void setHeight(std::size_t i, std::size_t j, S h) {
     requireSample(i, j);
     if (!std::isfinite(h)) throw detail::makeError("HeightField", "", "height must be finite (m)", h);
-    const S old = std::exchange(heights_[i + resolutionX_ * j], h);
-    if (old == minHeight_ || old == maxHeight_) {
-      updateHeightRange();
-    } else {
-      minHeight_ = std::min(minHeight_, h);
-      maxHeight_ = std::max(maxHeight_, h);
-    }
+    S& sample = heights_[i + resolutionX_ * j];
+    const S old = sample, oldMin = minHeight_, oldMax = maxHeight_;
+    const auto apply = [&] {
+      sample = h;
+      if (old == oldMin || old == oldMax) return updateHeightRange();
+      minHeight_ = std::min(oldMin, h);
+      maxHeight_ = std::max(oldMax, h);
+    };
+    const auto undo = [&] { sample = old, minHeight_ = oldMin, maxHeight_ = oldMax; };
+    apply();
+    const Vec2 range(minHeight_, maxHeight_);
+    undo();
+    requireFiniteRange(range.x(), range.y());
+    this->change(apply, undo);
   }
 
   /// Sample (i, j) as a point, shape frame (m).
@@ -2377,6 +2475,11 @@ class HeightFieldT : public ShapeT<S> {
                               std::array<std::size_t, 2>{i, j});
   }
 
+  static void requireFiniteRange(S lowest, S highest) {
+    if (!std::isfinite(highest - lowest))
+      throw detail::makeError("HeightField", "", "heights must span a finite range, highest - lowest (m)",
+                              Vec2(lowest, highest));
+  }
   void updateHeightRange() {
     const auto [lo, hi] = std::minmax_element(heights_.begin(), heights_.end());
     minHeight_ = *lo;
@@ -2449,8 +2552,8 @@ class LineT : public ShapeT<S> {
     const Vec3 span = second - first;
     if (!(span.allFinite() && span.squaredNorm() > S(0)))
       throw detail::makeError("Line", "", "points must be apart (length > 0 m)", both);
-    first_ = first;
-    second_ = second;
+    const Vec3 oldFirst = first_, oldSecond = second_;
+    this->change([&] { first_ = first, second_ = second; }, [&] { first_ = oldFirst, second_ = oldSecond; });
   }
 
   /// Which kind of shape this is.
@@ -2491,8 +2594,8 @@ class LineT : public ShapeT<S> {
   ~LineT() override = default;
 
  private:
-  Vec3 first_;
-  Vec3 second_;
+  Vec3 first_ = Vec3::Zero();
+  Vec3 second_ = Vec3::Zero();
 };
 
 using Line = LineT<double>;
@@ -2549,8 +2652,8 @@ class PlaneT : public ShapeT<S> {
   void set(const Vec3& normal, const Vec3& point) {
     const Vec3 n = unitNormal(normal);
     if (!point.allFinite()) throw detail::makeError("Plane", "", "point must be finite (m)", point);
-    normal_ = n;
-    point_ = point;
+    const Vec3 oldNormal = normal_, oldPoint = point_;
+    this->change([&] { normal_ = n, point_ = point; }, [&] { normal_ = oldNormal, point_ = oldPoint; });
   }
 
   /// Signed distance of `p` (shape frame, m) above the plane; negative inside the solid (m).
@@ -2646,7 +2749,12 @@ class SphereT : public ShapeT<S> {
   explicit SphereT(S radius) { setRadius(radius); }
 
   [[nodiscard]] S getRadius() const { return radius_; }
-  void setRadius(S radius) { radius_ = this->requireLength("Sphere", "radius", radius); }
+  /// Throws, keeping the radius, on a value that is not finite and > 0 m or
+  /// that a body holding the sphere could not take.
+  void setRadius(S radius) {
+    const S checked = this->requireLength("Sphere", "radius", radius), old = radius_;
+    this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
+  }
 
   /// V = 4/3 π r³.
   [[nodiscard]] ShapeType getType() const override { return kType; }
@@ -2681,7 +2789,7 @@ class SphereT : public ShapeT<S> {
   ~SphereT() override = default;
 
  private:
-  S radius_;
+  S radius_ = S(0);
 };
 
 using Sphere = SphereT<double>;
@@ -3346,7 +3454,7 @@ struct GeometryAccess;
 /// RigidBody (its frame is then fixed in the body's model frame) or stands
 /// static in the world (its frame is then a world transform).
 template <Scalar S>
-class GeometryT : public Referenced {
+class GeometryT : public Referenced, private detail::ShapeOwner<S> {
  public:
   using Vec3 = spook::Vec3T<S>;
   using Transform = spook::TransformT<S>;
@@ -3375,6 +3483,9 @@ class GeometryT : public Referenced {
   /// Adds a shape at `transform` (shape → geometry frame, rigid). Updates the
   /// owning body's mass properties; throws, and adds nothing, when they would
   /// not be finite and valid (e.g. a box whose mass or inertia overflows).
+  /// A shape changed later (resized, a child added to a composite) is
+  /// checked the same way: refused, it keeps its old value; taken, the
+  /// body's mass properties follow.
   void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
     if (!shape) throw error("cannot add a null shape", "nullptr");
     if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
@@ -3382,15 +3493,17 @@ class GeometryT : public Referenced {
     if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
       throw error("shape already added to this geometry", std::string(shapeTypeName(shape->getType())));
     std::vector<ShapeEntry> shapes = shapes_;
-    shapes.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+    shapes.push_back({shape, makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
     check({this, &shapes, nullptr, nullptr});
     shapes_ = std::move(shapes);
+    detail::ShapeOwners<S>::add(*shape, this);
     changed();
   }
   /// Removes a shape; false when it is not here.
   bool remove(const Shape* shape) {
     const auto it = std::find_if(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; });
     if (it == shapes_.end()) return false;
+    detail::ShapeOwners<S>::remove(*it->shape, this);
     shapes_.erase(it);
     changed();
     return true;
@@ -3527,7 +3640,9 @@ class GeometryT : public Referenced {
   }
 
  protected:
-  ~GeometryT() override = default;
+  ~GeometryT() override {
+    for (ShapeEntry& e : shapes_) detail::ShapeOwners<S>::remove(*e.shape, this);
+  }
 
  private:
   friend struct detail::GeometryAccess<S>;
@@ -3550,6 +3665,9 @@ class GeometryT : public Referenced {
   void changed() {
     if (owner_) owner_->geometryChanged();
   }
+  // One of the shapes changed (its size, children, heights).
+  void checkShapeChange() const override { check({this, nullptr, nullptr, nullptr}); }
+  void shapeChanged() override { changed(); }
   void setPartner(GeometryT* other, bool enable) {
     std::erase_if(disabledWith_, [&](const observer_ptr<GeometryT>& g) { return !g.valid() || g.get() == other; });
     if (!enable) disabledWith_.emplace_back(other);

@@ -45,7 +45,7 @@ struct GeometryAccess;
 /// RigidBody (its frame is then fixed in the body's model frame) or stands
 /// static in the world (its frame is then a world transform).
 template <Scalar S>
-class GeometryT : public Referenced {
+class GeometryT : public Referenced, private detail::ShapeOwner<S> {
  public:
   using Vec3 = spook::Vec3T<S>;
   using Transform = spook::TransformT<S>;
@@ -74,6 +74,9 @@ class GeometryT : public Referenced {
   /// Adds a shape at `transform` (shape → geometry frame, rigid). Updates the
   /// owning body's mass properties; throws, and adds nothing, when they would
   /// not be finite and valid (e.g. a box whose mass or inertia overflows).
+  /// A shape changed later (resized, a child added to a composite) is
+  /// checked the same way: refused, it keeps its old value; taken, the
+  /// body's mass properties follow.
   void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
     if (!shape) throw error("cannot add a null shape", "nullptr");
     if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
@@ -81,15 +84,17 @@ class GeometryT : public Referenced {
     if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
       throw error("shape already added to this geometry", std::string(shapeTypeName(shape->getType())));
     std::vector<ShapeEntry> shapes = shapes_;
-    shapes.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+    shapes.push_back({shape, makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
     check({this, &shapes, nullptr, nullptr});
     shapes_ = std::move(shapes);
+    detail::ShapeOwners<S>::add(*shape, this);
     changed();
   }
   /// Removes a shape; false when it is not here.
   bool remove(const Shape* shape) {
     const auto it = std::find_if(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; });
     if (it == shapes_.end()) return false;
+    detail::ShapeOwners<S>::remove(*it->shape, this);
     shapes_.erase(it);
     changed();
     return true;
@@ -226,7 +231,9 @@ class GeometryT : public Referenced {
   }
 
  protected:
-  ~GeometryT() override = default;
+  ~GeometryT() override {
+    for (ShapeEntry& e : shapes_) detail::ShapeOwners<S>::remove(*e.shape, this);
+  }
 
  private:
   friend struct detail::GeometryAccess<S>;
@@ -249,6 +256,9 @@ class GeometryT : public Referenced {
   void changed() {
     if (owner_) owner_->geometryChanged();
   }
+  // One of the shapes changed (its size, children, heights).
+  void checkShapeChange() const override { check({this, nullptr, nullptr, nullptr}); }
+  void shapeChanged() override { changed(); }
   void setPartner(GeometryT* other, bool enable) {
     std::erase_if(disabledWith_, [&](const observer_ptr<GeometryT>& g) { return !g.valid() || g.get() == other; });
     if (!enable) disabledWith_.emplace_back(other);

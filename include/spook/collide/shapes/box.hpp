@@ -20,7 +20,8 @@ class BoxT : public ShapeT<S> {
   void setHalfExtents(const Vec3& halfExtents) {
     if (!(halfExtents.allFinite() && halfExtents.minCoeff() > S(0)))
       throw detail::makeError("Box", "", "half extents must be finite and > 0 m", halfExtents);
-    halfExtents_ = halfExtents;
+    const Vec3 old = halfExtents_;
+    this->change([&] { halfExtents_ = halfExtents; }, [&] { halfExtents_ = old; });
   }
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
@@ -81,7 +82,7 @@ class BoxT : public ShapeT<S> {
   ~BoxT() override = default;
 
  private:
-  Vec3 halfExtents_;
+  Vec3 halfExtents_ = Vec3::Zero();
 };
 
 using Box = BoxT<double>;

@@ -22,9 +22,15 @@ class CapsuleT : public ShapeT<S> {
   }
 
   [[nodiscard]] S getRadius() const { return radius_; }
-  void setRadius(S radius) { radius_ = this->requireLength("Capsule", "radius", radius); }
+  void setRadius(S radius) {
+    const S checked = this->requireLength("Capsule", "radius", radius), old = radius_;
+    this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
+  }
   [[nodiscard]] S getHeight() const { return height_; }
-  void setHeight(S height) { height_ = this->requireLength("Capsule", "height", height); }
+  void setHeight(S height) {
+    const S checked = this->requireLength("Capsule", "height", height), old = height_;
+    this->change([&] { height_ = checked; }, [&] { height_ = old; });
+  }
 
   /// V = π r² h + 4/3 π r³.
   [[nodiscard]] ShapeType getType() const override { return kType; }
@@ -74,8 +80,8 @@ class CapsuleT : public ShapeT<S> {
   ~CapsuleT() override = default;
 
  private:
-  S radius_;
-  S height_;
+  S radius_ = S(0);
+  S height_ = S(0);
 };
 
 using Capsule = CapsuleT<double>;

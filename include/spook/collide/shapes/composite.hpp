@@ -13,7 +13,7 @@ namespace spook {
 /// frame. Volume, inertia and bounding box are those of the union of the
 /// children, assumed not to overlap, all of one density.
 template <Scalar S>
-class CompositeT : public ShapeT<S> {
+class CompositeT : public ShapeT<S>, private detail::ShapeOwner<S> {
  public:
   static constexpr ShapeType kType = ShapeType::COMPOSITE;
   using Vec3 = spook::Vec3T<S>;
@@ -29,8 +29,11 @@ class CompositeT : public ShapeT<S> {
   CompositeT() = default;
 
   /// Adds a child at `transform` (child to composite); one shape may be
-  /// added several times. Throws on a null child, a child that contains this
-  /// composite, or a transform that is not finite and rigid.
+  /// added several times. Throws, adding nothing, on a null child, a child
+  /// that contains this composite, a transform that is not finite and
+  /// rigid, or a child that a body holding the composite could not take
+  /// (its mass properties would not be finite and valid); else the body's
+  /// generated mass properties follow.
   void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
     if (!shape) throw detail::makeError("Composite", "", "cannot add a null shape", "nullptr");
     const auto* nested = dynamic_cast<const CompositeT*>(shape.get());
@@ -39,7 +42,13 @@ class CompositeT : public ShapeT<S> {
     if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
       throw detail::makeError("Composite", "", "child transform must be finite and rigid",
                               SPDMat3T<S>::flat(transform.linear()));
-    children_.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+    Shape& child = *shape;
+    this->change(
+        [&] {
+          children_.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+        },
+        [&] { children_.pop_back(); });
+    detail::ShapeOwners<S>::add(child, this);
   }
 
   [[nodiscard]] const std::vector<Child>& getChildren() const { return children_; }
@@ -115,9 +124,15 @@ class CompositeT : public ShapeT<S> {
   }
 
  protected:
-  ~CompositeT() override = default;
+  ~CompositeT() override {
+    for (Child& c : children_) detail::ShapeOwners<S>::remove(*c.shape, this);
+  }
 
  private:
+  // A child changed: whatever holds this composite checks it and follows.
+  void checkShapeChange() const override { this->checkOwners(); }
+  void shapeChanged() override { this->notifyOwners(); }
+
   std::vector<Child> children_;
 };
 

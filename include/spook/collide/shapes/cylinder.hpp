@@ -21,9 +21,15 @@ class CylinderT : public ShapeT<S> {
   }
 
   [[nodiscard]] S getRadius() const { return radius_; }
-  void setRadius(S radius) { radius_ = this->requireLength("Cylinder", "radius", radius); }
+  void setRadius(S radius) {
+    const S checked = this->requireLength("Cylinder", "radius", radius), old = radius_;
+    this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
+  }
   [[nodiscard]] S getHeight() const { return height_; }
-  void setHeight(S height) { height_ = this->requireLength("Cylinder", "height", height); }
+  void setHeight(S height) {
+    const S checked = this->requireLength("Cylinder", "height", height), old = height_;
+    this->change([&] { height_ = checked; }, [&] { height_ = old; });
+  }
 
   /// V = π r² h.
   [[nodiscard]] ShapeType getType() const override { return kType; }
@@ -79,8 +85,8 @@ class CylinderT : public ShapeT<S> {
   ~CylinderT() override = default;
 
  private:
-  S radius_;
-  S height_;
+  S radius_ = S(0);
+  S height_ = S(0);
 };
 
 using Cylinder = CylinderT<double>;

@@ -32,8 +32,9 @@ class HeightFieldT : public ShapeT<S> {
 
   /// Throws spook::Error on fewer than 2 × 2 samples, more triangles than a
   /// contact's 32-bit face index can number, a heights vector not of
-  /// resolutionX·resolutionY entries, a non-finite height, a size that is
-  /// not finite and > 0 m, or a cell so small that its spacing underflows.
+  /// resolutionX·resolutionY entries, a non-finite height, heights whose
+  /// range (highest − lowest) overflows, a size that is not finite and
+  /// > 0 m, or a cell so small that its spacing underflows.
   HeightFieldT(std::size_t resolutionX, std::size_t resolutionY, S sizeX, S sizeY, std::vector<S> heights)
       : resolutionX_(resolutionX), resolutionY_(resolutionY), heights_(std::move(heights)) {
     const std::array<std::size_t, 2> resolution{resolutionX, resolutionY};
@@ -60,6 +61,7 @@ class HeightFieldT : public ShapeT<S> {
     if (!(spacing_.minCoeff() >= std::numeric_limits<S>::min()))
       throw detail::makeError("HeightField", "", "cell spacing size / (resolution - 1) must not underflow (m)", spacing_);
     updateHeightRange();
+    requireFiniteRange(minHeight_, maxHeight_);
   }
 
   /// Number of samples along x.
@@ -84,17 +86,26 @@ class HeightFieldT : public ShapeT<S> {
     requireSample(i, j);
     return height(i, j);
   }
-  /// Sets the height of sample (i, j) (m); throws on an index out of range or a non-finite height.
+  /// Sets the height of sample (i, j) (m); throws, keeping the field, on an
+  /// index out of range, a non-finite height or one whose distance to the
+  /// others overflows.
   void setHeight(std::size_t i, std::size_t j, S h) {
     requireSample(i, j);
     if (!std::isfinite(h)) throw detail::makeError("HeightField", "", "height must be finite (m)", h);
-    const S old = std::exchange(heights_[i + resolutionX_ * j], h);
-    if (old == minHeight_ || old == maxHeight_) {
-      updateHeightRange();
-    } else {
-      minHeight_ = std::min(minHeight_, h);
-      maxHeight_ = std::max(maxHeight_, h);
-    }
+    S& sample = heights_[i + resolutionX_ * j];
+    const S old = sample, oldMin = minHeight_, oldMax = maxHeight_;
+    const auto apply = [&] {
+      sample = h;
+      if (old == oldMin || old == oldMax) return updateHeightRange();
+      minHeight_ = std::min(oldMin, h);
+      maxHeight_ = std::max(oldMax, h);
+    };
+    const auto undo = [&] { sample = old, minHeight_ = oldMin, maxHeight_ = oldMax; };
+    apply();
+    const Vec2 range(minHeight_, maxHeight_);
+    undo();
+    requireFiniteRange(range.x(), range.y());
+    this->change(apply, undo);
   }
 
   /// Sample (i, j) as a point, shape frame (m).
@@ -178,6 +189,11 @@ class HeightFieldT : public ShapeT<S> {
                               std::array<std::size_t, 2>{i, j});
   }
 
+  static void requireFiniteRange(S lowest, S highest) {
+    if (!std::isfinite(highest - lowest))
+      throw detail::makeError("HeightField", "", "heights must span a finite range, highest - lowest (m)",
+                              Vec2(lowest, highest));
+  }
   void updateHeightRange() {
     const auto [lo, hi] = std::minmax_element(heights_.begin(), heights_.end());
     minHeight_ = *lo;

@@ -31,8 +31,8 @@ class LineT : public ShapeT<S> {
     const Vec3 span = second - first;
     if (!(span.allFinite() && span.squaredNorm() > S(0)))
       throw detail::makeError("Line", "", "points must be apart (length > 0 m)", both);
-    first_ = first;
-    second_ = second;
+    const Vec3 oldFirst = first_, oldSecond = second_;
+    this->change([&] { first_ = first, second_ = second; }, [&] { first_ = oldFirst, second_ = oldSecond; });
   }
 
   /// Which kind of shape this is.
@@ -73,8 +73,8 @@ class LineT : public ShapeT<S> {
   ~LineT() override = default;
 
  private:
-  Vec3 first_;
-  Vec3 second_;
+  Vec3 first_ = Vec3::Zero();
+  Vec3 second_ = Vec3::Zero();
 };
 
 using Line = LineT<double>;

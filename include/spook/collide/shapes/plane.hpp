@@ -42,8 +42,8 @@ class PlaneT : public ShapeT<S> {
   void set(const Vec3& normal, const Vec3& point) {
     const Vec3 n = unitNormal(normal);
     if (!point.allFinite()) throw detail::makeError("Plane", "", "point must be finite (m)", point);
-    normal_ = n;
-    point_ = point;
+    const Vec3 oldNormal = normal_, oldPoint = point_;
+    this->change([&] { normal_ = n, point_ = point; }, [&] { normal_ = oldNormal, point_ = oldPoint; });
   }
 
   /// Signed distance of `p` (shape frame, m) above the plane; negative inside the solid (m).

@@ -1,7 +1,9 @@
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <spook/collide/bounding_box.hpp>
 #include <spook/collide/shapes/shape_type.hpp>
@@ -12,6 +14,39 @@
 #include <spook/core/referenced.hpp>
 
 namespace spook {
+
+template <Scalar S>
+class ShapeT;
+
+namespace detail {
+
+/// What holds a shape: a Geometry, or a Composite for its children. Asked,
+/// after a shape it holds has changed (its size, children, heights), whether
+/// it can take the change, and told once the change stands: the body that
+/// owns it all refuses mass properties that would not be valid, and
+/// recomputes them when they are.
+template <Scalar S>
+struct ShapeOwner {
+  /// Throws spook::Error when the change could not be taken; changes nothing.
+  virtual void checkShapeChange() const = 0;
+  virtual void shapeChanged() = 0;
+
+ protected:
+  ~ShapeOwner() = default;
+};
+
+/// How geometries and composites register as the owners of their shapes.
+template <Scalar S>
+struct ShapeOwners {
+  static void add(ShapeT<S>& shape, ShapeOwner<S>* owner) { shape.owners_.push_back(owner); }
+  /// Drops one registration of `owner` (a composite may hold a shape twice).
+  static void remove(ShapeT<S>& shape, ShapeOwner<S>* owner) {
+    const auto it = std::find(shape.owners_.begin(), shape.owners_.end(), owner);
+    if (it != shape.owners_.end()) shape.owners_.erase(it);
+  }
+};
+
+}  // namespace detail
 
 /// A geometric primitive in its own frame (origin at its center of volume).
 /// It knows its volume, its inertia for a given mass and its bounding box;
@@ -38,6 +73,26 @@ class ShapeT : public Referenced {
  protected:
   ~ShapeT() override = default;
 
+  /// Makes a change (`apply`) and has every owner check it; when one
+  /// refuses, undoes it (`undo`) and rethrows, else tells them all.
+  template <class Apply, class Undo>
+  void change(Apply&& apply, Undo&& undo) {
+    apply();
+    try {
+      checkOwners();
+    } catch (...) {
+      undo();
+      throw;
+    }
+    notifyOwners();
+  }
+  void checkOwners() const {
+    for (const detail::ShapeOwner<S>* owner : owners_) owner->checkShapeChange();
+  }
+  void notifyOwners() {
+    for (detail::ShapeOwner<S>* owner : owners_) owner->shapeChanged();
+  }
+
   static void requireMass(const char* kind, S mass) {
     if (!(std::isfinite(mass) && mass > S(0)))
       throw detail::makeError(kind, "", "mass for the inertia must be finite and > 0 kg", mass);
@@ -47,6 +102,10 @@ class ShapeT : public Referenced {
       throw detail::makeError(kind, "", std::string(what) + " must be finite and > 0 m", value);
     return value;
   }
+
+ private:
+  friend struct detail::ShapeOwners<S>;
+  std::vector<detail::ShapeOwner<S>*> owners_;
 };
 
 namespace detail {

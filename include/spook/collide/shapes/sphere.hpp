@@ -16,7 +16,12 @@ class SphereT : public ShapeT<S> {
   explicit SphereT(S radius) { setRadius(radius); }
 
   [[nodiscard]] S getRadius() const { return radius_; }
-  void setRadius(S radius) { radius_ = this->requireLength("Sphere", "radius", radius); }
+  /// Throws, keeping the radius, on a value that is not finite and > 0 m or
+  /// that a body holding the sphere could not take.
+  void setRadius(S radius) {
+    const S checked = this->requireLength("Sphere", "radius", radius), old = radius_;
+    this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
+  }
 
   /// V = 4/3 π r³.
   [[nodiscard]] ShapeType getType() const override { return kType; }
@@ -51,7 +56,7 @@ class SphereT : public ShapeT<S> {
   ~SphereT() override = default;
 
  private:
-  S radius_;
+  S radius_ = S(0);
 };
 
 using Sphere = SphereT<double>;
