@@ -138,62 +138,24 @@ inline void clipToHalfSpace(std::vector<Vec3T<double>>& corners, const Vec3T<dou
   corners.swap(scratch);
 }
 
-/// Contacts of two overlapping polytopes along their axis of least overlap.
-///
-/// Edge against edge: one point, midway between the two edges' closest
-/// points, at the least overlap; two, at the ends of their common range,
-/// for edges within the feature angle of parallel. Face against anything:
-/// the face is the reference, the other polytope's face most against it (or
-/// its segment) is clipped to the reference face's side planes
+/// The face manifold of a reference face (outward normal r, toward the
+/// incident polytope): the incident polytope's face most against r (or its
+/// segment) is clipped to the reference face's side planes
 /// (Sutherland–Hodgman), and each clipped corner below the reference plane
-/// is a contact at its own depth, midway to the plane: a full manifold, as
-/// for box–box. Where
-/// clipping keeps no corner as deep as the least overlap (the deepest one
-/// hangs over the reference face's rim) a contact at the least overlap is
-/// added where the clipped feature comes nearest to that corner, so that
-/// the deepest contact is always the penetration depth of the pair.
+/// is a contact at its own depth (at most `depth`), midway to the plane,
+/// with normal n: a full manifold, as for box–box. Where clipping keeps no
+/// corner as deep as `depth` (the deepest one hangs over the reference
+/// face's rim) a contact at `depth` is added where the clipped feature comes
+/// nearest to that corner, so that the deepest contact is always the
+/// penetration depth of the pair.
 template <Scalar T>
-void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink) {
+void faceContacts(const Polytope& reference, const std::vector<int>& loop, const Vec3T<double>& r,
+                  const Polytope& incident, const Vec3T<double>& n, double depth, ContactSinkT<T>& sink) {
   using S = double;
-  const auto add = [&](const Vec3T<S>& point, S depth) {
-    sink.add(point.template cast<T>(), axis.n.template cast<T>(), T(depth));
+  const auto add = [&](const Vec3T<S>& point, S pointDepth) {
+    sink.add(point.template cast<T>(), n.template cast<T>(), T(pointDepth));
   };
-  const Vec3T<S>& n = axis.n;
-  if (axis.kind == SeparatingAxis::EDGES) {
-    const auto& ea = a.edges[std::size_t(axis.first)];
-    const auto& eb = b.edges[std::size_t(axis.second)];
-    const Vec3T<S> p = a.vertex(ea.from), u = a.vertex(ea.to) - p;
-    const Vec3T<S> q = b.vertex(eb.from), v = b.vertex(eb.to) - q;
-    if (u.cross(v).norm() <= S(kSupportingFeatureSin) * u.norm() * v.norm()) {
-      // Edges within the feature angle of parallel touch along a line (their
-      // closest points are undetermined): its two ends, where the edges'
-      // ranges along u overlap, midway across to b's edge.
-      const S uu = u.squaredNorm(), s0 = u.dot(q - p) / uu, s1 = u.dot(q + v - p) / uu;
-      const S from = std::max(S(0), std::min(s0, s1)), to = std::min(S(1), std::max(s0, s1));
-      const auto addAt = [&](S s) {
-        const Vec3T<S> onA = p + s * u;
-        const S t = std::clamp(v.dot(onA - q) / v.squaredNorm(), S(0), S(1));
-        add(S(0.5) * (onA + q + t * v), axis.depth);
-      };
-      if (from < to) {
-        addAt(from);
-        addAt(to);
-      } else {
-        addAt(std::clamp(S(0.5) * (from + to), S(0), S(1)));
-      }
-      return;
-    }
-    const auto closest = closestPointsBetweenSegments<S>(p, a.vertex(ea.to), q, b.vertex(eb.to));
-    add(S(0.5) * (closest.onFirst + closest.onSecond), axis.depth);
-    return;
-  }
-  const bool onA = axis.kind == SeparatingAxis::FACE_OF_A;
-  const Polytope& reference = onA ? a : b;
-  const Polytope& incident = onA ? b : a;
-  const Vec3T<S> r = onA ? n : Vec3T<S>(-n);  // the reference face's outward normal, toward the incident polytope
-  const auto& loop = reference.faces[std::size_t(axis.first)].loop;
   const S planeOffset = r.dot(reference.vertex(loop[0]));
-
   thread_local std::vector<Vec3T<S>> corners, scratch;
   incidentFeature(incident, r, corners);
   Vec3T<S> centroid = Vec3T<S>::Zero();
@@ -212,12 +174,12 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
   S deepest = -std::numeric_limits<S>::infinity();
   const S tolerance = S(64) * ScalarTraits<S>::epsilon() * (S(1) + std::abs(planeOffset));
   for (const Vec3T<S>& x : corners) {
-    const S depth = planeOffset - r.dot(x);
-    if (depth < -tolerance) continue;
-    add(x + r * (S(0.5) * depth), depth);
-    deepest = std::max(deepest, depth);
+    const S pointDepth = std::min(planeOffset - r.dot(x), depth);
+    if (pointDepth < -tolerance) continue;
+    add(x + r * (S(0.5) * pointDepth), pointDepth);
+    deepest = std::max(deepest, pointDepth);
   }
-  if (deepest < axis.depth - tolerance * S(16)) {
+  if (deepest < depth - tolerance * S(16)) {
     // The deepest point of the incident polytope is off the reference face:
     // the contact at the least overlap goes where the clipped feature comes
     // nearest to it, on the reference face (never at that point itself,
@@ -228,8 +190,82 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
     S nearest = std::numeric_limits<S>::infinity();
     for (const Vec3T<S>& c : corners)
       if (const S d = (c - x).squaredNorm(); d < nearest) nearest = d, at = c + r * (planeOffset - r.dot(c));
-    add(at - r * (S(0.5) * axis.depth), axis.depth);
+    add(at - r * (S(0.5) * depth), depth);
   }
+}
+
+/// The face of `p` whose outward normal (either side of a two-sided face)
+/// lies within the feature angle of `d`, the best aligned; -1 when none.
+[[nodiscard]] inline int faceAlong(const Polytope& p, const Vec3T<double>& d, Vec3T<double>& normal) {
+  int best = -1;
+  double alignment = kSupportingFeatureCos;
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    const Vec3T<double>& m = p.faces[f].normal;
+    const double c = p.twoSided ? std::abs(m.dot(d)) : m.dot(d);
+    if (c >= alignment) alignment = c, best = int(f), normal = m.dot(d) >= 0.0 ? m : Vec3T<double>(-m);
+  }
+  return best;
+}
+
+/// Contacts of two overlapping polytopes along their axis of least overlap.
+///
+/// Face against anything: the face manifold (faceContacts) of that face.
+/// Edge against edge: when a face of either polytope lies within the
+/// feature angle of the axis (a face resting across the other's edge: a
+/// hull across the seam of two boxes, a box on a mesh edge) the manifold of
+/// that face, with the axis as normal and every depth at most the least
+/// overlap; else one point, midway between the two edges' closest points,
+/// at the least overlap; two, at the ends of their common range, for edges
+/// within the feature angle of parallel.
+template <Scalar T>
+void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink) {
+  using S = double;
+  const auto add = [&](const Vec3T<S>& point, S depth) {
+    sink.add(point.template cast<T>(), axis.n.template cast<T>(), T(depth));
+  };
+  const Vec3T<S>& n = axis.n;
+  if (axis.kind != SeparatingAxis::EDGES) {
+    const bool onA = axis.kind == SeparatingAxis::FACE_OF_A;
+    const Polytope& reference = onA ? a : b;
+    const Vec3T<S> r = onA ? n : Vec3T<S>(-n);  // the reference face's outward normal, toward the incident polytope
+    faceContacts(reference, reference.faces[std::size_t(axis.first)].loop, r, onA ? b : a, n, axis.depth, sink);
+    return;
+  }
+  Vec3T<S> normalA, normalB;
+  const int faceA = faceAlong(a, n, normalA), faceB = faceAlong(b, Vec3T<S>(-n), normalB);
+  if (faceA >= 0 && (faceB < 0 || normalA.dot(n) >= -normalB.dot(n))) {
+    faceContacts(a, a.faces[std::size_t(faceA)].loop, normalA, b, n, axis.depth, sink);
+    return;
+  }
+  if (faceB >= 0) {
+    faceContacts(b, b.faces[std::size_t(faceB)].loop, normalB, a, n, axis.depth, sink);
+    return;
+  }
+  const auto& ea = a.edges[std::size_t(axis.first)];
+  const auto& eb = b.edges[std::size_t(axis.second)];
+  const Vec3T<S> p = a.vertex(ea.from), u = a.vertex(ea.to) - p;
+  const Vec3T<S> q = b.vertex(eb.from), v = b.vertex(eb.to) - q;
+  if (u.cross(v).norm() <= S(kSupportingFeatureSin) * u.norm() * v.norm()) {
+    // Edges within the feature angle of parallel touch along a line (their
+    // closest points are undetermined): its two ends, where the edges'
+    // ranges along u overlap, midway across to b's edge.
+    const S uu = u.squaredNorm(), s0 = u.dot(q - p) / uu, s1 = u.dot(q + v - p) / uu;
+    const S from = std::max(S(0), std::min(s0, s1)), to = std::min(S(1), std::max(s0, s1));
+    const auto addAt = [&](S s) {
+      const Vec3T<S> onA = p + s * u;
+      const S t = std::clamp(v.dot(onA - q) / v.squaredNorm(), S(0), S(1));
+      add(S(0.5) * (onA + q + t * v), axis.depth);
+    };
+    if (from < to) {
+      addAt(from);
+      addAt(to);
+    } else {
+      addAt(std::clamp(S(0.5) * (from + to), S(0), S(1)));
+    }
+    return;
+  }
+  const auto closest = closestPointsBetweenSegments<S>(p, a.vertex(ea.to), q, b.vertex(eb.to));
+  add(S(0.5) * (closest.onFirst + closest.onSecond), axis.depth);
 }
 
 /// Contacts of two polytopes (from a toward b), none when an axis separates them.
