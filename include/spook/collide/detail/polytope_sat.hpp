@@ -210,13 +210,14 @@ void faceContacts(const Polytope& reference, const std::vector<int>& loop, const
 /// Contacts of two overlapping polytopes along their axis of least overlap.
 ///
 /// Face against anything: the face manifold (faceContacts) of that face.
-/// Edge against edge: when a face of either polytope lies within the
-/// feature angle of the axis (a face resting across the other's edge: a
-/// hull across the seam of two boxes, a box on a mesh edge) the manifold of
-/// that face, with the axis as normal and every depth at most the least
-/// overlap; else one point, midway between the two edges' closest points,
-/// at the least overlap; two, at the ends of their common range, for edges
-/// within the feature angle of parallel.
+/// Edge against edge: when a face of either solid polytope lies within the
+/// feature angle of the axis and its own overlap is the least to within
+/// 1e-4 of the thickness (a face resting across the other's edge: a hull
+/// across the seam of two boxes) the manifold of that face, with the axis
+/// as normal and every depth at most the least overlap; else one point,
+/// midway between the two edges' closest points, at the least overlap; two,
+/// at the ends of their common range, for edges within the feature angle
+/// of parallel.
 template <Scalar T>
 void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink) {
   using S = double;
@@ -231,8 +232,22 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
     faceContacts(reference, reference.faces[std::size_t(axis.first)].loop, r, onA ? b : a, n, axis.depth, sink);
     return;
   }
+  // Not for mesh triangles: a box sliding across a mesh's internal edges
+  // then bumps harder (|v_z| 0.12 -> 0.5 m/s at 3 m/s on 1 m cells). A
+  // face's overlap within 1e-4 of the thinner polytope's thickness of the
+  // least is a tilt of ~1e-4 rad across it; further off, the edges touch
+  // beside the face and its clipped corners would lie outside the overlap
+  // (0.5 m in random poses).
   Vec3T<S> normalA, normalB;
-  const int faceA = faceAlong(a, n, normalA), faceB = faceAlong(b, Vec3T<S>(-n), normalB);
+  const bool solids = !a.twoSided && !b.twoSided;
+  const auto nearlyLeast = [&](const Vec3T<S>& m) {
+    const S thickness = std::min(a.support(m).first + a.support(-m).first, b.support(m).first + b.support(-m).first);
+    return a.support(m).first + b.support(-m).first <= axis.depth + S(1e-4) * thickness;
+  };
+  int faceA = solids ? faceAlong(a, n, normalA) : -1;
+  int faceB = solids ? faceAlong(b, Vec3T<S>(-n), normalB) : -1;
+  if (faceA >= 0 && !nearlyLeast(normalA)) faceA = -1;
+  if (faceB >= 0 && !nearlyLeast(Vec3T<S>(-normalB))) faceB = -1;
   if (faceA >= 0 && (faceB < 0 || normalA.dot(n) >= -normalB.dot(n))) {
     faceContacts(a, a.faces[std::size_t(faceA)].loop, normalA, b, n, axis.depth, sink);
     return;
