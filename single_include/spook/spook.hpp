@@ -16261,11 +16261,12 @@ struct Triangle {
 /// the bodies have moved (Simulation::stepForward).
 ///
 /// Covers: dynamic bodies with RigidBody::setEnableCCD(true) whose step
-/// displacement h·v exceeds their thinnest half-width w less the depth of
-/// their deepest contact of the step (below that the discrete contacts
-/// catch every wall: the body's center cannot cross a wall's near face in
-/// one step, nor a thin wall's far side be reached). Their sphere, box, capsule, cylinder and convex shapes
-/// (composites of them included) are swept linearly, in the orientation
+/// displacement h·v exceeds their reach: their thinnest half-width w less
+/// the depth of their deepest contact of the step (counted up to w/2).
+/// Below that the discrete contacts catch every wall: the body's center
+/// cannot cross a wall's near face in one step, nor reach a thin wall's far
+/// side. Their sphere, box, capsule, cylinder and convex shapes (composites
+/// of them included) are swept linearly, in the orientation
 /// they end the step with, from where the center-of-mass motion h·v started
 /// them to where it left them, against every geometry the space lets them
 /// collide with: planes, boxes, spheres, capsules, cylinders, convex hulls,
@@ -16289,10 +16290,11 @@ struct Triangle {
 /// the near side, where the discrete contacts push it back out.
 ///
 /// Leaves to the discrete contacts: hits whose motion along the contact
-/// normal is at most that reach (a grazing approach, e.g. a fast body sliding across
-/// a floor; the discrete contacts hold such penetrations), and cores that
-/// start inside a target. The normal is the plane's, the triangle's face
-/// normal, or libccd's penetration direction for convex targets.
+/// normal is at most the reach (a grazing approach, e.g. a fast body
+/// sliding across a floor; the discrete contacts hold such penetrations),
+/// and cores that start inside a target. The normal is the plane's, the
+/// triangle's face normal, or libccd's penetration direction for convex
+/// targets.
 ///
 /// Does not cover: rotation (the sweep keeps the end orientation: a fast
 /// spinning thin body may still tunnel, and a rotation into a wall counts as
