@@ -6,15 +6,13 @@
 
 #include <doctest/doctest.h>
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
-#include <numbers>
 #include <type_traits>
 #include <vector>
 
 #include <spook/collide/collider.hpp>
 
+#include "collide_reference.hpp"
 #include "tolerance.hpp"
 
 namespace spook::test {
@@ -36,35 +34,6 @@ spook::TransformT<S> turned(const spook::TransformT<S>& X, S angle, const std::t
   return Y;
 }
 
-// How far a contact point (p, n, depth) lies outside the overlap of two
-// convex shapes beyond its depth (m): the most, over ±n and 128 directions
-// d spread over the sphere, that d·p exceeds either shape's support along d
-// plus the depth. A point in the overlap has none.
-template <class A, class B, class S = typename A::Vec3::Scalar>
-double pointExcess(const A& a, const spook::TransformT<S>& X_WA, const B& b, const spook::TransformT<S>& X_WB,
-                   const spook::ContactPointT<S>& point) {
-  using Vec3d = Eigen::Vector3d;
-  const Vec3d p = point.point.template cast<double>(), n = point.normal.template cast<double>().normalized();
-  double excess = -std::numeric_limits<double>::infinity();
-  const auto judge = [&](const Vec3d& d) {
-    const auto reach = [&](const auto& shape, const spook::TransformT<S>& X) {
-      const spook::Vec3T<S> local = X.linear().transpose() * d.cast<S>();
-      return d.dot((X * shape.support(local)).template cast<double>());
-    };
-    excess = std::max(excess, d.dot(p) - reach(a, X_WA) - double(point.depth));
-    excess = std::max(excess, d.dot(p) - reach(b, X_WB) - double(point.depth));
-  };
-  judge(n);
-  judge(-n);
-  constexpr int kDirections = 128;
-  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < kDirections; ++i) {
-    const double z = 1.0 - (i + 0.5) * 2.0 / kDirections, rho = std::sqrt(1.0 - z * z), phi = golden * i;
-    judge(Vec3d(rho * std::cos(phi), rho * std::sin(phi), z));
-  }
-  return excess;
-}
-
 // spook::collide on the pair, every contact checked finite with a unit
 // normal; between two convex shapes, within its depth (+1e-6 m, 1e-5 m in
 // float) of both shapes' surfaces (pointExcess: in their overlap).
@@ -79,7 +48,8 @@ Points<S> contacts(const A& a, const spook::TransformT<S>& X_WA, const B& b, con
     CHECK(p.depth >= S(0));
     CHECK(std::abs(p.normal.norm() - S(1)) <= pick<S>(1e-12, 1e-6));
     if constexpr (ConvexShape<A> && ConvexShape<B>) {
-      CHECK(pointExcess(a, X_WA, b, X_WB, p) <= pick<S>(1e-6, 1e-5));
+      CHECK(pointExcess(a, X_WA, b, X_WB, p.point.template cast<double>(),
+                        p.normal.template cast<double>().normalized(), double(p.depth)) <= pick<S>(1e-6, 1e-5));
     }
   }
   return points;

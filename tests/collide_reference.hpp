@@ -266,6 +266,12 @@ template <class Shape>
 Vec3d supportWorld(const Shape& shape, const Transformd& X, const Vec3d& n) {
   return X * Vec3d(shape.support(X.linear().transpose() * n));
 }
+/// The same for a float shape at a float pose (support taken in float).
+template <class Shape>
+Vec3d supportWorld(const Shape& shape, const spook::TransformT<float>& X, const Vec3d& n) {
+  const spook::Vec3T<float> local = X.linear().transpose() * n.cast<float>();
+  return (X * shape.support(local)).template cast<double>();
+}
 
 /// The overlap of the projections of a and b on the unit direction n (from
 /// a toward b): h_a(n) + h_b(−n). The penetration depth is its minimum over
@@ -893,8 +899,8 @@ struct Agreement {
 /// directions d (and ±n) for either shape, h its support height at d. A
 /// point in the overlap has none; one on a far corner of a wide face has
 /// the distance to the small shape.
-template <class A, class B>
-double pointExcess(const A& a, const Transformd& X_WA, const B& b, const Transformd& X_WB, const Vec3d& p,
+template <class A, class B, class Transform>
+double pointExcess(const A& a, const Transform& X_WA, const B& b, const Transform& X_WB, const Vec3d& p,
                    const Vec3d& n, double depth) {
   double excess = -std::numeric_limits<double>::infinity();
   const auto judge = [&](const Vec3d& d) {
