@@ -801,7 +801,7 @@ Tally sphereAgainst(const Soup& soupDouble, std::uint64_t seed, auto&& center) {
     ref_ptr<SphereT<double>> sphereDouble = new SphereT<double>(r);
     points.clear();
     ContactSinkT<S> sink(points);
-    spook::collide(*sphere, XS, *soup, XM, sink);
+    spook::detail::collideWithTriangles<S>(*sphere, XS, *soup, XM, sink, spook::detail::TriangleContacts::PER_TRIANGLE);
     const Transformd X_WMd = XM.template cast<double>(), X_WSd = XS.template cast<double>();
     const Vec3d c = X_WSd.translation();
     for (std::size_t i = 0; i < refs.size(); ++i)
@@ -1003,7 +1003,7 @@ Tally shapeAgainstSoup(std::uint64_t seed, auto&& makeShape, auto&& makeSoup, au
     const Transformd XMd = XM.template cast<double>(), XSd = XS.template cast<double>();
     points.clear();
     ContactSinkT<S> sink(points);
-    spook::collide(*shapeS, XS, *soup, XM, sink);
+    spook::detail::collideWithTriangles<S>(*shapeS, XS, *soup, XM, sink, spook::detail::TriangleContacts::PER_TRIANGLE);
     std::vector<Reference> refs;
     std::vector<Tri> triangles;
     for (std::size_t i = 0; i < soup->getNumTriangles(); ++i) {
@@ -1292,9 +1292,9 @@ TEST_CASE_TEMPLATE("mesh: a sphere centered on a triangle's face, edge or vertex
   const std::array<std::pair<V, std::size_t>, 5> centers = {
       std::pair{V(S(0.25), S(0.25), 0), std::size_t(1)},  // on the first face
       std::pair{V(S(0.5), 0, 0), std::size_t(1)},         // on an edge of one triangle
-      std::pair{V(S(0.5), S(0.5), 0), std::size_t(2)},    // on the shared edge
+      std::pair{V(S(0.5), S(0.5), 0), std::size_t(1)},    // on the shared edge: both triangles find it, kept once
       std::pair{V(0, 0, 0), std::size_t(1)},              // on a vertex of one triangle
-      std::pair{V(1, 0, 0), std::size_t(2)}};             // on a shared vertex
+      std::pair{V(1, 0, 0), std::size_t(1)}};             // on a shared vertex, kept once
   for (const auto& [center, count] : centers) {
     CAPTURE(center.transpose());
     const auto points = collideChecked<S>(*sphere, translation<S>(center.x(), center.y(), center.z()), *mesh, I);
@@ -1413,4 +1413,43 @@ TEST_CASE_TEMPLATE("mesh: triangles of zero area give finite contacts, the spher
     collideChecked<S>(*plain, X, mesh, spook::TransformT<S>::Identity());
     collideChecked<S>(*collinear, X, *coincident, spook::TransformT<S>::Identity());
   }
+}
+
+// The surface's contacts (TriangleContacts::SURFACE) over an internal edge
+// of a flat mesh take the face's normal, and points found by both triangles
+// count once; on the rim a contact keeps its own normal.
+TEST_CASE_TEMPLATE("mesh: contacts across a flat mesh's internal edge take the face normal, on its rim their own", S,
+                   float, double) {
+  using V = spook::Vec3T<S>;
+  // Two triangles sharing the edge (1,0,0)–(0,1,0), both facing +z.
+  ref_ptr<TrimeshT<S>> mesh = new TrimeshT<S>({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 0)}, {{0, 1, 2}, {1, 3, 2}});
+  const auto I = spook::TransformT<S>::Identity();
+  // A capsule lying across the shared edge and a box tilted by 0.02 rad
+  // about the edge (so that an edge pair's axis leans off the face) sunk
+  // 1 mm: every contact pushes straight up.
+  ref_ptr<CapsuleT<S>> capsule = new CapsuleT<S>(S(0.1), S(0.4));
+  ref_ptr<BoxT<S>> box = new BoxT<S>(V(S(0.15), S(0.15), S(0.1)));
+  spook::TransformT<S> X_C = translation<S>(S(0.5), S(0.5), S(0.099));
+  X_C.linear() = spook::Mat3T<S>(Eigen::AngleAxis<S>(S(0.3), V::UnitZ()));
+  spook::TransformT<S> X_B = I;
+  X_B.linear() = spook::Mat3T<S>(Eigen::AngleAxis<S>(S(0.02), V(1, -1, 0).normalized()));
+  X_B.translation() = V(S(0.5), S(0.5), (X_B.linear().cwiseAbs() * box->getHalfExtents()).z() - S(0.001));
+  // A sphere sunk over the first triangle, 7 cm from the shared edge: the
+  // second triangle's closest point is on that edge, 19° off the face's
+  // normal, and would see a sphere gliding across as approaching it.
+  ref_ptr<SphereT<S>> ball = new SphereT<S>(S(0.25));
+  const auto overEdge = collideChecked<S>(*ball, translation<S>(S(0.45), S(0.45), S(0.2)), *mesh, I);
+  CHECK(overEdge.size() == 2);
+  for (const auto& points : {overEdge, collideChecked<S>(*capsule, X_C, *mesh, I), collideChecked<S>(*box, X_B, *mesh, I)}) {
+    REQUIRE(!points.empty());
+    for (const auto& p : points) CHECK((p.normal - V(0, 0, -1)).norm() <= S(1e-6));
+    for (std::size_t a = 0; a < points.size(); ++a)
+      for (std::size_t b = a + 1; b < points.size(); ++b) CHECK((points[a].point - points[b].point).norm() > S(1e-4));
+  }
+  // A sphere beside the rim edge x = 0, its center 1 cm below the plane:
+  // the contact pushes it away from the edge, mostly sideways.
+  ref_ptr<SphereT<S>> sphere = new SphereT<S>(S(0.1));
+  const auto beside = collideChecked<S>(*sphere, translation<S>(S(-0.05), S(0.3), S(-0.01)), *mesh, I);
+  REQUIRE(beside.size() == 1);
+  CHECK(beside[0].normal.x() > S(0.9));
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -446,4 +447,59 @@ TEST_CASE_TEMPLATE("meshes and height fields reject bad input, naming the value"
   checkRejects([&] { flat->setHeight(1, 2, -inf); }, "HeightField", "-inf");
   checkRejects([&] { (void)flat->heightAt(std::numeric_limits<S>::quiet_NaN(), S(0)); }, "HeightField", "(nan, 0)");
   CHECK(flat->getMaxHeight() == S(0));
+}
+
+namespace {
+
+/// Two triangles sharing the edge from (0, 0, 0) to (0, 1, 0), the first in
+/// the plane z = 0 over x < 0, the second folded down (convex seen from
+/// above) by `degrees` over x > 0; both counter-clockwise seen from above.
+template <class S>
+Mesh<S> foldedPair(double degrees) {
+  using V = spook::Vec3T<S>;
+  const double a = degrees * std::numbers::pi / 180.0;
+  return new spook::TrimeshT<S>({V(0, 0, 0), V(0, 1, 0), V(-1, 0, 0), V(S(std::cos(a)), 0, S(-std::sin(a)))},
+                                {{0, 1, 2}, {1, 0, 3}});
+}
+
+}  // namespace
+
+// Active edges (detail::edgeActivity): a contact on an edge between two
+// triangles of a flat or gently folded region takes the face's normal; on a
+// rim, a sharp convex fold or from the side the fold turns away from, it
+// keeps its own.
+TEST_CASE_TEMPLATE("mesh edges are active on rims and sharp folds, inactive inside flat and concave regions", S, float,
+                   double) {
+  // Edge 0 of triangle 0 runs (0,0,0) → (0,1,0): the shared one; its other edges are rims.
+  const std::uint8_t rimsOnly = 0b110110;
+  CHECK(foldedPair<S>(0)->getActiveEdges(0) == rimsOnly);
+  CHECK(foldedPair<S>(3)->getActiveEdges(0) == rimsOnly);    // within 5°: flat
+  CHECK(foldedPair<S>(-3)->getActiveEdges(0) == rimsOnly);
+  CHECK(foldedPair<S>(10)->getActiveEdges(0) == (rimsOnly | 0b000001));  // convex from the front
+  CHECK(foldedPair<S>(-10)->getActiveEdges(0) == (rimsOnly | 0b001000));  // concave from the front: active from behind
+  CHECK(foldedPair<S>(90)->getActiveEdges(0) == (rimsOnly | 0b000001));
+  CHECK(foldedPair<S>(179.5)->getActiveEdges(0) == 0b111111);  // back to back: a sheet's rim
+  // Both triangles of a pair see the shared edge alike (it is edge 0 of the second too).
+  CHECK((foldedPair<S>(10)->getActiveEdges(1) & 0b001001) == 0b000001);
+
+  // A height field: flat inside, rims at the border; a ridge along x = 0 folds by 2 × 11.3°.
+  const std::size_t n = 5;
+  std::vector<S> flat(n * n, S(0)), ridge(n * n);
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i) ridge[i + n * j] = S(-0.2 * std::abs(double(i) - 2.0));
+  const Field<S> field = new spook::HeightFieldT<S>(n, n, S(4), S(4), flat);
+  const Field<S> ridged = new spook::HeightFieldT<S>(n, n, S(4), S(4), ridge);
+  const auto cellTriangle = [&](std::size_t i, std::size_t j, std::size_t k) { return 2 * (i + (n - 1) * j) + k; };
+  CHECK(field->getActiveEdges(cellTriangle(1, 1, 0)) == 0);
+  CHECK(field->getActiveEdges(cellTriangle(1, 1, 1)) == 0);
+  CHECK(field->getActiveEdges(cellTriangle(0, 0, 0)) == 0b001001);  // edge 0 on the rim y = -2
+  CHECK(field->getActiveEdges(cellTriangle(0, 0, 1)) == 0b100100);  // edge 2 on the rim x = -2
+  // Cell (1, 1)'s lower triangle has its edge 1 on the ridge line x = 0: convex from above.
+  CHECK(ridged->getActiveEdges(cellTriangle(1, 1, 0)) == 0b000010);
+  // Cell (2, 1)'s upper triangle has its edge 2 there: the same fold, seen from the other side.
+  CHECK(ridged->getActiveEdges(cellTriangle(2, 1, 1)) == 0b000100);
+  // In the valley of the negated ridge the fold is concave from above.
+  for (S& h : ridge) h = -h;
+  const Field<S> valley = new spook::HeightFieldT<S>(n, n, S(4), S(4), ridge);
+  CHECK(valley->getActiveEdges(cellTriangle(1, 1, 0)) == 0b010000);
 }

@@ -118,6 +118,8 @@ struct ShapeList {
 #ifndef SPOOK_SINGLE_SPOOK_COLLIDE_BOUNDING_BOX_HPP
 #define SPOOK_SINGLE_SPOOK_COLLIDE_BOUNDING_BOX_HPP
 
+#include <cmath>
+
 // --- begin spook/core/math.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_CORE_MATH_HPP
 #define SPOOK_SINGLE_SPOOK_CORE_MATH_HPP
@@ -509,6 +511,13 @@ struct BoundingBoxT {
 
   [[nodiscard]] Vec3T<S> center() const { return S(0.5) * (min + max); }
   [[nodiscard]] Vec3T<S> halfExtents() const { return S(0.5) * (max - min); }
+  /// This box grown by `fraction` of its half-diagonal on every side (an
+  /// unbounded box stays as it is).
+  [[nodiscard]] BoundingBoxT grownBy(S fraction) const {
+    const S margin = fraction * halfExtents().norm();
+    if (!std::isfinite(margin)) return *this;
+    return {min.array() - margin, max.array() + margin};
+  }
   [[nodiscard]] bool contains(const Vec3T<S>& p, S tolerance = S(0)) const {
     return (p.array() >= min.array() - tolerance).all() && (p.array() <= max.array() + tolerance).all();
   }
@@ -2093,6 +2102,7 @@ using CylinderRef = ref_ptr<Cylinder>;
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -2298,6 +2308,151 @@ class AabbTree {
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_AABB_TREE_HPP
 // --- end spook/collide/detail/aabb_tree.hpp ---
+// --- begin spook/collide/detail/triangle.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+namespace spook::detail {
+
+/// One triangle of a mesh or height field, as a convex shape for the
+/// colliders: vertices in the mesh frame, counter-clockwise seen from the
+/// outside (the solid side is behind the face).
+template <Scalar S>
+struct Triangle {
+  using Vec3 = spook::Vec3T<S>;
+  std::array<Vec3, 3> v;
+
+  [[nodiscard]] Vec3 support(const Vec3& d) const {
+    const S a = v[0].dot(d), b = v[1].dot(d), c = v[2].dot(d);
+    return a >= b ? (a >= c ? v[0] : v[2]) : (b >= c ? v[1] : v[2]);
+  }
+  /// The whole triangle when its plane is across `d` within the feature
+  /// angle (from either side), else the edge across `d`, else the corner.
+  void supportingFeature(const Vec3& d, SupportingFeatureT<S>& out) const {
+    out.count = 0;
+    const S length = d.norm();
+    const Vec3 area = (v[1] - v[0]).cross(v[2] - v[0]);
+    if (length > S(0) && std::abs(area.dot(d)) >= S(kSupportingFeatureCos) * area.norm() * length) {
+      for (const Vec3& p : v) out.add(p);
+      return;
+    }
+    const Vec3 top = support(d);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = v[k];
+      const Vec3& q = v[(k + 1) % 3];
+      if ((p == top || q == top) && std::abs((q - p).dot(d)) <= S(kSupportingFeatureSin) * (q - p).norm() * length) {
+        out.add(p);
+        out.add(q);
+        return;
+      }
+    }
+    out.add(top);
+  }
+  [[nodiscard]] Vec3 getCenterOfVolume() const { return (v[0] + v[1] + v[2]) / S(3); }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
+    return {v[0].cwiseMin(v[1]).cwiseMin(v[2]), v[0].cwiseMax(v[1]).cwiseMax(v[2])};
+  }
+  /// Unit outward normal (+z for a degenerate triangle).
+  [[nodiscard]] Vec3 normal() const {
+    const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
+    const S length = n.norm();
+    return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
+  }
+};
+
+/// Folds flatter than this between two triangles of a mesh make an inactive
+/// edge (radians, 5°, as Jolt's default active-edge threshold).
+inline constexpr double kActiveEdgeAngle = 0.087266462599716474;
+
+/// Whether the edge from `from` to `to` of a triangle with unit normal n1,
+/// shared with a neighbour of unit normal n2, is active: a contact found on
+/// an active edge keeps its own normal; one on an inactive edge takes the
+/// face's (activeEdgeNormals). Two bits: seen from the front (bit 0) and
+/// from behind (bit 1). An edge is active from a side where the surface
+/// folds away (convex seen from that side) by more than kActiveEdgeAngle;
+/// a back-to-back pair (a sheet's rim) is active from both; a fold toward
+/// the viewer (concave) or a flat one is not, since the neighbour's own face
+/// carries that contact. A zero normal (a degenerate triangle) makes the
+/// edge active.
+template <Scalar S>
+[[nodiscard]] unsigned edgeActivity(const Vec3T<S>& n1, const Vec3T<S>& from, const Vec3T<S>& to,
+                                    const Vec3T<S>& n2) {
+  if (!(n1.squaredNorm() > S(0.5) && n2.squaredNorm() > S(0.5))) return 0b11;
+  const S cosine = n1.dot(n2);
+  if (cosine > S(std::cos(kActiveEdgeAngle))) return 0b00;
+  if (cosine < -S(std::cos(kActiveEdgeAngle))) return 0b11;
+  const Vec3T<S> outward = (to - from).cross(n1);  // in the face's plane, away from the face
+  return n2.dot(outward) > S(0) ? 0b01 : 0b10;
+}
+
+/// The three edges' activity (edgeActivity; edge k runs from corner k to
+/// corner k + 1) of a triangle with unit normal n, from its neighbours' unit
+/// normals (null: no neighbour, an active rim): bits 0-2 seen from the
+/// front, bits 3-5 from behind.
+template <Scalar S>
+[[nodiscard]] std::uint8_t activeEdges(const std::array<Vec3T<S>, 3>& v, const Vec3T<S>& n,
+                                       const std::array<const Vec3T<S>*, 3>& neighbours) {
+  unsigned mask = 0;
+  for (unsigned k = 0; k < 3; ++k) {
+    const unsigned bits = neighbours[k] ? edgeActivity<S>(n, v[k], v[(k + 1) % 3], *neighbours[k]) : 0b11u;
+    mask |= (bits & 1u) << k | (bits >> 1) << (k + 3);
+  }
+  return static_cast<std::uint8_t>(mask);
+}
+
+/// Contact normals on a mesh triangle held to its active edges (Jolt's
+/// active edges, Bullet's btAdjustInternalEdgeContacts solve the same):
+/// a contact whose normal is not the face's keeps it only where it lies on
+/// an active edge, seen from the side the shape is on; else, inside the
+/// face or on an edge between two triangles of a flat region, it takes the
+/// face's normal and keeps its depth (the overlap along the face's normal
+/// is the larger one, so the depth errs low). Otherwise a body sliding over
+/// a flat mesh meets each triangle's edge sideways and bumps. A contact
+/// lies midway between the surfaces, so one within its depth of an edge
+/// counts as on that edge. `points` hold normals from the shape toward the
+/// mesh; `active` is activeEdges()' mask. A surface solid behind its faces
+/// (a height field) is always seen from the front: a shape sunk through a
+/// face is pushed back out of the solid, never on through it.
+template <Scalar S, class Points>
+void activeEdgeNormals(const Triangle<S>& t_W, std::uint8_t active, Points& points, bool solidBehind = false) {
+  if (active == 0b111111) return;
+  const Vec3T<S> e[3] = {t_W.v[1] - t_W.v[0], t_W.v[2] - t_W.v[1], t_W.v[0] - t_W.v[2]};
+  const Vec3T<S> area = e[0].cross(-e[2]);
+  const S longest = std::sqrt(std::max({e[0].squaredNorm(), e[1].squaredNorm(), e[2].squaredNorm()}));
+  if (!(area.norm() > S(64) * ScalarTraits<S>::epsilon() * longest * longest)) return;
+  const Vec3T<S> f = area.normalized();
+  for (auto& c : points) {
+    // Even a normal 0.5° off the face's makes a body sliding at v over the
+    // edge approach it at v·sin(0.5°), and the contact kicks it up.
+    const S front = solidBehind ? S(1) : -c.normal.dot(f);
+    const unsigned seen = front >= S(0) ? active & 7u : active >> 3;
+    if (seen == 0b111) continue;
+    S distance[3];
+    bool inside = true;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3T<S> toPoint = c.point - t_W.v[k];
+      const S along = std::clamp(toPoint.dot(e[k]) / e[k].squaredNorm(), S(0), S(1));
+      distance[k] = (toPoint - e[k] * along).norm();
+      if (e[k].cross(toPoint).dot(f) < S(0)) inside = false;
+    }
+    const S nearest = std::min({distance[0], distance[1], distance[2]});
+    const S slack = c.depth + S(1e-4) * longest;
+    unsigned on = 0;
+    if (!inside || nearest <= slack)
+      for (unsigned k = 0; k < 3; ++k)
+        if (distance[k] <= nearest + slack) on |= 1u << k;
+    if ((on & seen) == 0) c.normal = front >= S(0) ? Vec3T<S>(-f) : f;
+  }
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
+// --- end spook/collide/detail/triangle.hpp ---
 
 namespace spook {
 
@@ -2406,6 +2561,33 @@ class HeightFieldT : public ShapeT<S> {
   [[nodiscard]] Vec3 getNormal(std::size_t index) const {
     const auto [a, b, c] = getTriangle(index);
     return (b - a).cross(c - a).normalized();
+  }
+
+  /// Which edges of triangle `index` may give a contact a normal of its own
+  /// (detail::edgeActivity): bit k for the edge from corner k to corner
+  /// k + 1, bits 0-2 seen from above, 3-5 from below. An edge between two
+  /// triangles is active where the surface folds away by more than 5° from
+  /// the side looking at it; the rim of the grid is active.
+  [[nodiscard]] std::uint8_t getActiveEdges(std::size_t index) const {
+    const std::size_t cell = index / 2, i = cell % (resolutionX_ - 1), j = cell / (resolutionX_ - 1);
+    const std::size_t cellsX = resolutionX_ - 1, cellsY = resolutionY_ - 1;
+    // Neighbours across edges 0, 1, 2 (cell offset, triangle of that cell); see getTriangle.
+    const auto across = [&](long di, long dj, std::size_t k) -> std::optional<std::size_t> {
+      const long ni = static_cast<long>(i) + di, nj = static_cast<long>(j) + dj;
+      if (ni < 0 || nj < 0 || ni >= static_cast<long>(cellsX) || nj >= static_cast<long>(cellsY)) return std::nullopt;
+      return 2 * (static_cast<std::size_t>(ni) + cellsX * static_cast<std::size_t>(nj)) + k;
+    };
+    const std::array<std::optional<std::size_t>, 3> neighbour =
+        index % 2 == 0 ? std::array{across(0, -1, 1), across(1, 0, 1), across(0, 0, 1)}
+                       : std::array{across(0, 0, 0), across(0, 1, 0), across(-1, 0, 0)};
+    std::array<Vec3, 3> normals;
+    std::array<const Vec3*, 3> neighbours{};
+    for (std::size_t k = 0; k < 3; ++k)
+      if (neighbour[k]) {
+        normals[k] = getNormal(*neighbour[k]);
+        neighbours[k] = &normals[k];
+      }
+    return detail::activeEdges<S>(getTriangle(index), getNormal(index), neighbours);
   }
 
   /// Height of the surface above (x, y) (shape frame, m), interpolated on
@@ -2845,6 +3027,7 @@ class TrimeshT : public ShapeT<S> {
     for (const Vec3& v : vertices_) bounds_ = {bounds_.min.cwiseMin(v), bounds_.max.cwiseMax(v)};
     openEdges_ = countOpenEdges();
     if (openEdges_ == 0) computeMass();
+    computeActiveEdges();
   }
 
   /// Vertices, shape frame (m).
@@ -2864,6 +3047,13 @@ class TrimeshT : public ShapeT<S> {
     const auto [a, b, c] = getTriangle(i);
     return (b - a).cross(c - a).normalized();
   }
+  /// Which edges of triangle i may give a contact a normal of its own
+  /// (detail::edgeActivity): bit k for the edge from corner k to corner
+  /// k + 1, bits 0-2 seen from the front, 3-5 from behind. An edge shared
+  /// by exactly two triangles of opposite orientation is active where the
+  /// mesh folds away by more than 5° from the side looking at it; any other
+  /// edge (a rim, or shared by more triangles) is active.
+  [[nodiscard]] std::uint8_t getActiveEdges(std::size_t i) const { return activeEdges_[i]; }
   /// True when every edge is shared by exactly two triangles with opposite orientation.
   [[nodiscard]] bool isClosed() const { return openEdges_ == 0; }
   /// The tree over the triangle boxes, shape frame; primitive i is triangle i.
@@ -2929,16 +3119,18 @@ class TrimeshT : public ShapeT<S> {
     }
   }
 
+  // A directed edge as one sortable number.
+  static std::uint64_t edgeKey(int from, int to) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) | static_cast<std::uint32_t>(to);
+  }
+
   // Directed edges sorted once: the mesh is closed when no directed edge
   // repeats and each one's reverse is present. Counts the edges that fail.
   [[nodiscard]] std::size_t countOpenEdges() const {
     std::vector<std::uint64_t> edges;
     edges.reserve(3 * triangles_.size());
-    const auto key = [](int from, int to) {
-      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) | static_cast<std::uint32_t>(to);
-    };
     for (const Triangle& t : triangles_)
-      for (int k = 0; k < 3; ++k) edges.push_back(key(t[k], t[(k + 1) % 3]));
+      for (int k = 0; k < 3; ++k) edges.push_back(edgeKey(t[k], t[(k + 1) % 3]));
     std::sort(edges.begin(), edges.end());
     std::size_t open = 0;
     for (std::size_t k = 0; k < edges.size(); ++k) {
@@ -2947,6 +3139,41 @@ class TrimeshT : public ShapeT<S> {
       if (repeated || !std::binary_search(edges.begin(), edges.end(), reverse)) ++open;
     }
     return open;
+  }
+
+  // Each directed edge's twin (the reverse edge of exactly one other
+  // triangle, its own direction unrepeated) by a sorted list of edges.
+  void computeActiveEdges() {
+    struct Edge {
+      std::uint64_t key;
+      std::size_t triangle;
+      bool operator<(const Edge& other) const { return key < other.key; }
+    };
+    std::vector<Edge> edges;
+    edges.reserve(3 * triangles_.size());
+    for (std::size_t i = 0; i < triangles_.size(); ++i)
+      for (int k = 0; k < 3; ++k) edges.push_back({edgeKey(triangles_[i][k], triangles_[i][(k + 1) % 3]), i});
+    std::sort(edges.begin(), edges.end());
+    const auto count = [&](std::uint64_t k) {
+      const auto [first, last] = std::equal_range(edges.begin(), edges.end(), Edge{k, 0});
+      return std::pair{first, static_cast<std::size_t>(last - first)};
+    };
+    std::vector<Vec3> normals(triangles_.size());
+    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+      const auto [a, b, c] = getTriangle(i);
+      const Vec3 n = (b - a).cross(c - a);
+      normals[i] = n.norm() > S(0) ? Vec3(n.normalized()) : Vec3::Zero();
+    }
+    activeEdges_.resize(triangles_.size());
+    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+      std::array<const Vec3*, 3> neighbours{};
+      for (int k = 0; k < 3; ++k) {
+        const int from = triangles_[i][k], to = triangles_[i][(k + 1) % 3];
+        const auto [twin, twins] = count(edgeKey(to, from));
+        if (twins == 1 && count(edgeKey(from, to)).second == 1) neighbours[k] = &normals[twin->triangle];
+      }
+      activeEdges_[i] = detail::activeEdges<S>(getTriangle(i), normals[i], neighbours);
+    }
   }
 
   void computeMass() {
@@ -2968,6 +3195,7 @@ class TrimeshT : public ShapeT<S> {
   std::vector<Triangle> triangles_;
   detail::AabbTree<S> tree_;
   BoundingBoxT<S> bounds_;
+  std::vector<std::uint8_t> activeEdges_;
   std::size_t openEdges_ = 0;
   S enclosed_ = S(0);  ///< signed volume of a closed mesh (m³), as computed
   S volume_ = S(0);    ///< m³; 0 unless closed and enclosing a volume
@@ -3929,6 +4157,17 @@ class SweepAndPrune {
 
 namespace spook {
 
+namespace detail {
+/// Gap, relative to the smaller shape's size, within which two shapes, and
+/// the corners of their manifold (FeatureClipping::contacts), count as
+/// touching (contacts of depth 0); a mesh's triangle search grows the
+/// shape's box by it. A body resting on a mesh settles about
+/// 1e-6 m deep, and where its contacts pass from one triangle to the next
+/// the solve lifts or tilts it by about as much: a contact lost at such a
+/// gap lets the body fall freely for a step (2.7 mm at 60 Hz) and bump.
+inline constexpr double kTouchingGap = 1e-5;
+}  // namespace detail
+
 /// Where a collider writes the contact points of one shape pair. It keeps
 /// the "first toward second" normal convention when the pair was handed to
 /// the collider in reverse order (flipped), and never lets a non-finite
@@ -3963,6 +4202,12 @@ class ContactSinkT {
 
   /// The same output with the shape order swapped (sharing the drop count).
   [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_, dropped_); }
+
+  /// A sink into `points`, unflipped, that shares this one's drop count:
+  /// where a collider adjusts its points before it add()s them here.
+  [[nodiscard]] ContactSinkT staging(std::vector<ContactPointT<S>>& points) const {
+    return ContactSinkT(points, false, dropped_);
+  }
 
   /// Number of points written so far.
   [[nodiscard]] std::size_t size() const { return points_->size(); }
@@ -5123,9 +5368,13 @@ struct FeatureClipping {
   /// The overlap's corners as contacts, for features `top` (of the shape
   /// behind the normal, its points highest along n) and `bottom` (of the
   /// shape ahead, lowest along n) and the penetration depth along n, which
-  /// bounds every contact's. Empty when the projections do not overlap
-  /// (the caller then places one contact by itself).
-  [[nodiscard]] std::vector<Contact> contacts(const Feature& top, const Feature& bottom, double depth) const {
+  /// bounds every contact's. A corner apart by less than `touching` (m)
+  /// touches (depth 0): a resting body tilted by round-off keeps its whole
+  /// manifold, where dropping the corner that lifted by 1e-7 m would let
+  /// that end fall freely for a step. Empty when the projections do not
+  /// overlap (the caller then places one contact by itself).
+  [[nodiscard]] std::vector<Contact> contacts(const Feature& top, const Feature& bottom, double depth,
+                                              double touching = 0.0) const {
     const double merge = std::min(top.merge, bottom.merge);
     const std::vector<Vec2> a = hull(project(top.points), top.merge);
     const std::vector<Vec2> b = hull(project(bottom.points), bottom.merge);
@@ -5157,7 +5406,8 @@ struct FeatureClipping {
     }
     if (!(std::abs(deepest - depth) <= std::max(top.merge, bottom.merge))) return {};
     for (Contact& c : out) c.depth = std::min(c.depth + (depth - deepest), depth);
-    std::erase_if(out, [](const Contact& c) { return !(c.depth >= 0.0); });
+    std::erase_if(out, [&](const Contact& c) { return !(c.depth >= -touching); });
+    for (Contact& c : out) c.depth = std::max(c.depth, 0.0);
     return out;
   }
 
@@ -5376,9 +5626,7 @@ struct CcdObject {
 };
 
 inline constexpr double kCcdEpaTolerance = 1e-6;  // m
-/// Gap, relative to the smaller shape's size, within which two shapes
-/// count as touching (a contact of depth 0).
-inline constexpr double kCcdTouchMargin = 1e-7;
+
 /// Gap, relative to the smaller shape's size, beyond which libccd's GJK is
 /// trusted to call two shapes apart.
 inline constexpr double kCcdNearMargin = 1e-3;
@@ -5639,8 +5887,10 @@ std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, 
     return object.shape->getBoundingBox().halfExtents().template cast<double>().norm();
   };
   const FeatureClipping clipping(n);
-  std::vector<FeatureClipping::Contact> contacts = clipping.contacts(
-      {onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc}, {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth);
+  std::vector<FeatureClipping::Contact> contacts =
+      clipping.contacts({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
+                        {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth,
+                        kTouchingGap * std::min(size(a), size(b)));
   if (contacts.empty()) {
     // A point feature (a vertex, a curved surface's support) is the contact
     // itself; two extended ones that miss each other on the contact plane
@@ -5684,7 +5934,7 @@ bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double belo
 template <Scalar S, class A, class B>
 void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
                   bool manifold = true) {
-  // libccd sees a grown by kCcdTouchMargin of the smaller shape's size, so
+  // libccd sees a grown by kTouchingGap of the smaller shape's size, so
   // that shapes placed exactly touching (a body set down on a ground) are
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
@@ -5692,7 +5942,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   const double sizeA = sizeOf(a), sizeB = sizeOf(b);
   // libccd dereferences a null polytope face when its supports overflow.
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
-  const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeA, sizeB));
+  const CcdObject<A> objectA(a, X_WA, kTouchingGap * std::min(sizeA, sizeB));
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;
   CCD_INIT(&ccd);
@@ -7006,65 +7256,6 @@ struct Collider<PlaneT<S>, SphereT<S>> {
 #include <utility>
 #include <vector>
 
-// --- begin spook/collide/detail/triangle.hpp ---
-#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
-#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
-
-#include <array>
-#include <cmath>
-
-namespace spook::detail {
-
-/// One triangle of a mesh or height field, as a convex shape for the
-/// colliders: vertices in the mesh frame, counter-clockwise seen from the
-/// outside (the solid side is behind the face).
-template <Scalar S>
-struct Triangle {
-  using Vec3 = spook::Vec3T<S>;
-  std::array<Vec3, 3> v;
-
-  [[nodiscard]] Vec3 support(const Vec3& d) const {
-    const S a = v[0].dot(d), b = v[1].dot(d), c = v[2].dot(d);
-    return a >= b ? (a >= c ? v[0] : v[2]) : (b >= c ? v[1] : v[2]);
-  }
-  /// The whole triangle when its plane is across `d` within the feature
-  /// angle (from either side), else the edge across `d`, else the corner.
-  void supportingFeature(const Vec3& d, SupportingFeatureT<S>& out) const {
-    out.count = 0;
-    const S length = d.norm();
-    const Vec3 area = (v[1] - v[0]).cross(v[2] - v[0]);
-    if (length > S(0) && std::abs(area.dot(d)) >= S(kSupportingFeatureCos) * area.norm() * length) {
-      for (const Vec3& p : v) out.add(p);
-      return;
-    }
-    const Vec3 top = support(d);
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& p = v[k];
-      const Vec3& q = v[(k + 1) % 3];
-      if ((p == top || q == top) && std::abs((q - p).dot(d)) <= S(kSupportingFeatureSin) * (q - p).norm() * length) {
-        out.add(p);
-        out.add(q);
-        return;
-      }
-    }
-    out.add(top);
-  }
-  [[nodiscard]] Vec3 getCenterOfVolume() const { return (v[0] + v[1] + v[2]) / S(3); }
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
-    return {v[0].cwiseMin(v[1]).cwiseMin(v[2]), v[0].cwiseMax(v[1]).cwiseMax(v[2])};
-  }
-  /// Unit outward normal (+z for a degenerate triangle).
-  [[nodiscard]] Vec3 normal() const {
-    const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
-    const S length = n.norm();
-    return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
-  }
-};
-
-}  // namespace spook::detail
-#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
-// --- end spook/collide/detail/triangle.hpp ---
-
 namespace spook::detail {
 
 /// A convex polytope placed in the world, as the separating-axis colliders
@@ -7238,12 +7429,22 @@ struct SeparatingAxis {
   using S = double;
   using Kind = SeparatingAxis::Kind;
   const auto overlap = [&](const Vec3T<S>& n) { return a.support(n).first + b.support(-n).first; };
-  // An edge pair's axis replaces a face's only when it is shallower by more
-  // than round-off: two edges lying in a face (a box resting on a mesh
-  // triangle's edge) span that face's own normal, and their contact point
-  // is undetermined where the face's manifold is not.
   const S roundOff = S(64) * ScalarTraits<S>::epsilon() *
                      (S(1) + std::max(a.vertices[0].cwiseAbs().maxCoeff(), b.vertices[0].cwiseAbs().maxCoeff()));
+  // An edge pair's axis replaces a face's only when it is shallower by more
+  // than round-off, or, within 1e-3 rad of the face's normal, by more than
+  // 1e-5 of the smaller polytope's size (the face's manifold then takes the
+  // edges' depth): two edges lying in a face (a box
+  // resting on a mesh triangle's edge) span that face's own normal, and a
+  // resting box tilted by 1e-10 rad makes them shallower by 1e-11 m, where
+  // their one contact point would replace the face's manifold (and a box
+  // sliding over a mesh would drop a corner for a step).
+  const auto diameter = [](const Polytope& p) {
+    Vec3T<S> low = p.vertices[0], high = p.vertices[0];
+    for (const Vec3T<S>& v : p.vertices) low = low.cwiseMin(v), high = high.cwiseMax(v);
+    return (high - low).norm();
+  };
+  const S faceTolerance = roundOff + S(1e-5) * std::min(diameter(a), diameter(b));
   // An edge pair's axis counts only where both edges are extreme along it
   // (they touch there); for other pairs it may still separate the shapes.
   const auto edgesSupport = [&](const Polytope::Edge& ea, const Polytope::Edge& eb, const Vec3T<S>& n) {
@@ -7254,7 +7455,12 @@ struct SeparatingAxis {
   };
   const auto consider = [&](const Vec3T<S>& n, Kind kind, int first, int second) {
     const S f = overlap(n);
-    const bool faceHeld = kind == Kind::EDGES && best.kind != Kind::EDGES && f >= best.depth - roundOff;
+    const bool nearFace = kind == Kind::EDGES && best.kind != Kind::EDGES && n.dot(best.n) >= S(1) - S(5e-7);
+    const bool faceHeld =
+        kind == Kind::EDGES && best.kind != Kind::EDGES && f >= best.depth - (nearFace ? faceTolerance : roundOff);
+    // The face's manifold then carries the edges' (exact) penetration depth.
+    if (faceHeld && nearFace && f < best.depth && edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n))
+      best.depth = f;
     if (f < best.depth && !faceHeld &&
         (kind != Kind::EDGES ||
          edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n)))
@@ -7553,6 +7759,8 @@ struct Collider<SphereT<S>, SphereT<S>> {
 #define SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDERS_MESH_HPP
 
 #include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <vector>
 
 namespace spook {
@@ -7642,29 +7850,69 @@ template <class A>
 inline constexpr bool kIsPolytope =
     A::kType == ShapeType::BOX || A::kType == ShapeType::CONVEX || A::kType == ShapeType::LINE;
 
+/// What collideWithTriangles reports: the surface's contacts (the
+/// colliders' choice), or each triangle's own, as a convex shape alone.
+enum class TriangleContacts { SURFACE, PER_TRIANGLE };
+
 /// Contacts of a shape against the triangles of a soup near it, each
 /// triangle a convex shape of its own: boxes, hulls and segments by the
 /// separating axes with a clipped manifold (polytope_sat.hpp), spheres in
-/// closed form, capsules and cylinders through libccd.
+/// closed form, capsules and cylinders through libccd. For the SURFACE,
+/// each triangle's normals are then held to its active edges
+/// (activeEdgeNormals), and a point that two triangles found alike (on the
+/// edge they share: closer than the spread of a sampled feature, normals
+/// within 1°) is kept once, so that a flat region of many triangles pushes
+/// like one face.
 template <Scalar S, class A, class Soup>
 void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
-                          ContactSinkT<S>& sink) {
-  const BoundingBoxT<S> box_M = transformBox<S>(a.getBoundingBox(), X_WM.inverse() * X_WA);
+                          ContactSinkT<S>& sink, TriangleContacts report = TriangleContacts::SURFACE) {
+  const BoundingBoxT<S> boxA = a.getBoundingBox();
+  const BoundingBoxT<S> box_M = transformBox<S>(boxA.grownBy(S(kTouchingGap)), X_WM.inverse() * X_WA);
   thread_local Polytope shape, triangle;
+  thread_local std::vector<ContactPointT<S>> points, found;
+  found.clear();
   if constexpr (kIsPolytope<A>) makePolytope(a, X_WA, shape);
   soup.forEachTriangle(box_M, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
-    sink.setFaceIndices(0, i);
+    const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
+    points.clear();
+    ContactSinkT<S> staged = sink.staging(points);
+    staged.setFaceIndices(0, i);
     if constexpr (A::kType == ShapeType::SPHERE) {
-      const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
-      collideSphereTriangle<S>(a, X_WA.translation(), t_W, sink, Soup::kType == ShapeType::HEIGHTFIELD);
+      collideSphereTriangle<S>(a, X_WA.translation(), t_W, staged, Soup::kType == ShapeType::HEIGHTFIELD);
     } else if constexpr (kIsPolytope<A>) {
-      makeTrianglePolytope<S>(Triangle<S>{{X_WM * p0, X_WM * p1, X_WM * p2}}, triangle);
-      collidePolytopes(shape, triangle, sink);
+      makeTrianglePolytope<S>(t_W, triangle);
+      collidePolytopes(shape, triangle, staged);
     } else {
       const Triangle<S> t_M{{p0, p1, p2}};
-      collideByCcd<S>(a, X_WA, t_M, X_WM, sink);
+      collideByCcd<S>(a, X_WA, t_M, X_WM, staged);
     }
+    if (points.empty()) return;
+    if (report == TriangleContacts::SURFACE)
+      activeEdgeNormals<S>(t_W, soup.getActiveEdges(i), points, Soup::kType == ShapeType::HEIGHTFIELD);
+    found.insert(found.end(), points.begin(), points.end());
   });
+  if (report == TriangleContacts::PER_TRIANGLE) {
+    for (const ContactPointT<S>& c : found) {
+      sink.setFaceIndices(0, c.faceIndex2);
+      sink.add(c.point, c.normal, c.depth);
+    }
+    sink.setFaceIndices(0, 0);
+    return;
+  }
+  const S alike = S(4.0 * kFeatureTilt) * boxA.halfExtents().norm();
+  const S parallel = S(std::cos(0.017453292519943295));  // 1°
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    const ContactPointT<S>& c = found[k];
+    const auto same = [&](const ContactPointT<S>& other) {
+      return (other.point - c.point).norm() <= alike && other.normal.dot(c.normal) >= parallel;
+    };
+    const auto first = found.begin() + static_cast<std::ptrdiff_t>(k);
+    if (std::any_of(found.begin(), first, [&](const auto& o) { return same(o) && o.depth >= c.depth; }) ||
+        std::any_of(first + 1, found.end(), [&](const auto& o) { return same(o) && o.depth > c.depth; }))
+      continue;
+    sink.setFaceIndices(0, c.faceIndex2);
+    sink.add(c.point, c.normal, c.depth);
+  }
   sink.setFaceIndices(0, 0);
 }
 
@@ -15571,9 +15819,13 @@ struct FeatureClipping {
   /// The overlap's corners as contacts, for features `top` (of the shape
   /// behind the normal, its points highest along n) and `bottom` (of the
   /// shape ahead, lowest along n) and the penetration depth along n, which
-  /// bounds every contact's. Empty when the projections do not overlap
-  /// (the caller then places one contact by itself).
-  [[nodiscard]] std::vector<Contact> contacts(const Feature& top, const Feature& bottom, double depth) const {
+  /// bounds every contact's. A corner apart by less than `touching` (m)
+  /// touches (depth 0): a resting body tilted by round-off keeps its whole
+  /// manifold, where dropping the corner that lifted by 1e-7 m would let
+  /// that end fall freely for a step. Empty when the projections do not
+  /// overlap (the caller then places one contact by itself).
+  [[nodiscard]] std::vector<Contact> contacts(const Feature& top, const Feature& bottom, double depth,
+                                              double touching = 0.0) const {
     const double merge = std::min(top.merge, bottom.merge);
     const std::vector<Vec2> a = hull(project(top.points), top.merge);
     const std::vector<Vec2> b = hull(project(bottom.points), bottom.merge);
@@ -15605,7 +15857,8 @@ struct FeatureClipping {
     }
     if (!(std::abs(deepest - depth) <= std::max(top.merge, bottom.merge))) return {};
     for (Contact& c : out) c.depth = std::min(c.depth + (depth - deepest), depth);
-    std::erase_if(out, [](const Contact& c) { return !(c.depth >= 0.0); });
+    std::erase_if(out, [&](const Contact& c) { return !(c.depth >= -touching); });
+    for (Contact& c : out) c.depth = std::max(c.depth, 0.0);
     return out;
   }
 
@@ -15824,9 +16077,7 @@ struct CcdObject {
 };
 
 inline constexpr double kCcdEpaTolerance = 1e-6;  // m
-/// Gap, relative to the smaller shape's size, within which two shapes
-/// count as touching (a contact of depth 0).
-inline constexpr double kCcdTouchMargin = 1e-7;
+
 /// Gap, relative to the smaller shape's size, beyond which libccd's GJK is
 /// trusted to call two shapes apart.
 inline constexpr double kCcdNearMargin = 1e-3;
@@ -16087,8 +16338,10 @@ std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, 
     return object.shape->getBoundingBox().halfExtents().template cast<double>().norm();
   };
   const FeatureClipping clipping(n);
-  std::vector<FeatureClipping::Contact> contacts = clipping.contacts(
-      {onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc}, {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth);
+  std::vector<FeatureClipping::Contact> contacts =
+      clipping.contacts({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
+                        {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth,
+                        kTouchingGap * std::min(size(a), size(b)));
   if (contacts.empty()) {
     // A point feature (a vertex, a curved surface's support) is the contact
     // itself; two extended ones that miss each other on the contact plane
@@ -16132,7 +16385,7 @@ bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double belo
 template <Scalar S, class A, class B>
 void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
                   bool manifold = true) {
-  // libccd sees a grown by kCcdTouchMargin of the smaller shape's size, so
+  // libccd sees a grown by kTouchingGap of the smaller shape's size, so
   // that shapes placed exactly touching (a body set down on a ground) are
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
@@ -16140,7 +16393,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   const double sizeA = sizeOf(a), sizeB = sizeOf(b);
   // libccd dereferences a null polytope face when its supports overflow.
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
-  const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeA, sizeB));
+  const CcdObject<A> objectA(a, X_WA, kTouchingGap * std::min(sizeA, sizeB));
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;
   CCD_INIT(&ccd);
@@ -16198,64 +16451,6 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CCD_BRIDGE_HPP
 // --- end spook/collide/detail/ccd_bridge.hpp ---
-// --- begin spook/collide/detail/triangle.hpp ---
-#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
-#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
-
-#include <array>
-#include <cmath>
-
-namespace spook::detail {
-
-/// One triangle of a mesh or height field, as a convex shape for the
-/// colliders: vertices in the mesh frame, counter-clockwise seen from the
-/// outside (the solid side is behind the face).
-template <Scalar S>
-struct Triangle {
-  using Vec3 = spook::Vec3T<S>;
-  std::array<Vec3, 3> v;
-
-  [[nodiscard]] Vec3 support(const Vec3& d) const {
-    const S a = v[0].dot(d), b = v[1].dot(d), c = v[2].dot(d);
-    return a >= b ? (a >= c ? v[0] : v[2]) : (b >= c ? v[1] : v[2]);
-  }
-  /// The whole triangle when its plane is across `d` within the feature
-  /// angle (from either side), else the edge across `d`, else the corner.
-  void supportingFeature(const Vec3& d, SupportingFeatureT<S>& out) const {
-    out.count = 0;
-    const S length = d.norm();
-    const Vec3 area = (v[1] - v[0]).cross(v[2] - v[0]);
-    if (length > S(0) && std::abs(area.dot(d)) >= S(kSupportingFeatureCos) * area.norm() * length) {
-      for (const Vec3& p : v) out.add(p);
-      return;
-    }
-    const Vec3 top = support(d);
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& p = v[k];
-      const Vec3& q = v[(k + 1) % 3];
-      if ((p == top || q == top) && std::abs((q - p).dot(d)) <= S(kSupportingFeatureSin) * (q - p).norm() * length) {
-        out.add(p);
-        out.add(q);
-        return;
-      }
-    }
-    out.add(top);
-  }
-  [[nodiscard]] Vec3 getCenterOfVolume() const { return (v[0] + v[1] + v[2]) / S(3); }
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
-    return {v[0].cwiseMin(v[1]).cwiseMin(v[2]), v[0].cwiseMax(v[1]).cwiseMax(v[2])};
-  }
-  /// Unit outward normal (+z for a degenerate triangle).
-  [[nodiscard]] Vec3 normal() const {
-    const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
-    const S length = n.norm();
-    return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
-  }
-};
-
-}  // namespace spook::detail
-#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_TRIANGLE_HPP
-// --- end spook/collide/detail/triangle.hpp ---
 
 /// Continuous collision detection (CCD), a stage of the step that runs after
 /// the bodies have moved (Simulation::stepForward).

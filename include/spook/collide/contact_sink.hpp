@@ -12,6 +12,17 @@
 
 namespace spook {
 
+namespace detail {
+/// Gap, relative to the smaller shape's size, within which two shapes, and
+/// the corners of their manifold (FeatureClipping::contacts), count as
+/// touching (contacts of depth 0); a mesh's triangle search grows the
+/// shape's box by it. A body resting on a mesh settles about
+/// 1e-6 m deep, and where its contacts pass from one triangle to the next
+/// the solve lifts or tilts it by about as much: a contact lost at such a
+/// gap lets the body fall freely for a step (2.7 mm at 60 Hz) and bump.
+inline constexpr double kTouchingGap = 1e-5;
+}  // namespace detail
+
 /// Where a collider writes the contact points of one shape pair. It keeps
 /// the "first toward second" normal convention when the pair was handed to
 /// the collider in reverse order (flipped), and never lets a non-finite
@@ -46,6 +57,12 @@ class ContactSinkT {
 
   /// The same output with the shape order swapped (sharing the drop count).
   [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_, dropped_); }
+
+  /// A sink into `points`, unflipped, that shares this one's drop count:
+  /// where a collider adjusts its points before it add()s them here.
+  [[nodiscard]] ContactSinkT staging(std::vector<ContactPointT<S>>& points) const {
+    return ContactSinkT(points, false, dropped_);
+  }
 
   /// Number of points written so far.
   [[nodiscard]] std::size_t size() const { return points_->size(); }

@@ -1,9 +1,13 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include <spook/collide/collider.hpp>
+#include <spook/collide/contact_point.hpp>
+#include <spook/collide/detail/ccd_bridge.hpp>
 #include <spook/collide/detail/polytope_sat.hpp>
 #include <spook/collide/detail/triangle.hpp>
 #include <spook/collide/shapes/box.hpp>
@@ -101,29 +105,69 @@ template <class A>
 inline constexpr bool kIsPolytope =
     A::kType == ShapeType::BOX || A::kType == ShapeType::CONVEX || A::kType == ShapeType::LINE;
 
+/// What collideWithTriangles reports: the surface's contacts (the
+/// colliders' choice), or each triangle's own, as a convex shape alone.
+enum class TriangleContacts { SURFACE, PER_TRIANGLE };
+
 /// Contacts of a shape against the triangles of a soup near it, each
 /// triangle a convex shape of its own: boxes, hulls and segments by the
 /// separating axes with a clipped manifold (polytope_sat.hpp), spheres in
-/// closed form, capsules and cylinders through libccd.
+/// closed form, capsules and cylinders through libccd. For the SURFACE,
+/// each triangle's normals are then held to its active edges
+/// (activeEdgeNormals), and a point that two triangles found alike (on the
+/// edge they share: closer than the spread of a sampled feature, normals
+/// within 1°) is kept once, so that a flat region of many triangles pushes
+/// like one face.
 template <Scalar S, class A, class Soup>
 void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
-                          ContactSinkT<S>& sink) {
-  const BoundingBoxT<S> box_M = transformBox<S>(a.getBoundingBox(), X_WM.inverse() * X_WA);
+                          ContactSinkT<S>& sink, TriangleContacts report = TriangleContacts::SURFACE) {
+  const BoundingBoxT<S> boxA = a.getBoundingBox();
+  const BoundingBoxT<S> box_M = transformBox<S>(boxA.grownBy(S(kTouchingGap)), X_WM.inverse() * X_WA);
   thread_local Polytope shape, triangle;
+  thread_local std::vector<ContactPointT<S>> points, found;
+  found.clear();
   if constexpr (kIsPolytope<A>) makePolytope(a, X_WA, shape);
   soup.forEachTriangle(box_M, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
-    sink.setFaceIndices(0, i);
+    const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
+    points.clear();
+    ContactSinkT<S> staged = sink.staging(points);
+    staged.setFaceIndices(0, i);
     if constexpr (A::kType == ShapeType::SPHERE) {
-      const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
-      collideSphereTriangle<S>(a, X_WA.translation(), t_W, sink, Soup::kType == ShapeType::HEIGHTFIELD);
+      collideSphereTriangle<S>(a, X_WA.translation(), t_W, staged, Soup::kType == ShapeType::HEIGHTFIELD);
     } else if constexpr (kIsPolytope<A>) {
-      makeTrianglePolytope<S>(Triangle<S>{{X_WM * p0, X_WM * p1, X_WM * p2}}, triangle);
-      collidePolytopes(shape, triangle, sink);
+      makeTrianglePolytope<S>(t_W, triangle);
+      collidePolytopes(shape, triangle, staged);
     } else {
       const Triangle<S> t_M{{p0, p1, p2}};
-      collideByCcd<S>(a, X_WA, t_M, X_WM, sink);
+      collideByCcd<S>(a, X_WA, t_M, X_WM, staged);
     }
+    if (points.empty()) return;
+    if (report == TriangleContacts::SURFACE)
+      activeEdgeNormals<S>(t_W, soup.getActiveEdges(i), points, Soup::kType == ShapeType::HEIGHTFIELD);
+    found.insert(found.end(), points.begin(), points.end());
   });
+  if (report == TriangleContacts::PER_TRIANGLE) {
+    for (const ContactPointT<S>& c : found) {
+      sink.setFaceIndices(0, c.faceIndex2);
+      sink.add(c.point, c.normal, c.depth);
+    }
+    sink.setFaceIndices(0, 0);
+    return;
+  }
+  const S alike = S(4.0 * kFeatureTilt) * boxA.halfExtents().norm();
+  const S parallel = S(std::cos(0.017453292519943295));  // 1°
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    const ContactPointT<S>& c = found[k];
+    const auto same = [&](const ContactPointT<S>& other) {
+      return (other.point - c.point).norm() <= alike && other.normal.dot(c.normal) >= parallel;
+    };
+    const auto first = found.begin() + static_cast<std::ptrdiff_t>(k);
+    if (std::any_of(found.begin(), first, [&](const auto& o) { return same(o) && o.depth >= c.depth; }) ||
+        std::any_of(first + 1, found.end(), [&](const auto& o) { return same(o) && o.depth > c.depth; }))
+      continue;
+    sink.setFaceIndices(0, c.faceIndex2);
+    sink.add(c.point, c.normal, c.depth);
+  }
   sink.setFaceIndices(0, 0);
 }
 

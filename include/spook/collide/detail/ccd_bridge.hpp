@@ -51,9 +51,7 @@ struct CcdObject {
 };
 
 inline constexpr double kCcdEpaTolerance = 1e-6;  // m
-/// Gap, relative to the smaller shape's size, within which two shapes
-/// count as touching (a contact of depth 0).
-inline constexpr double kCcdTouchMargin = 1e-7;
+
 /// Gap, relative to the smaller shape's size, beyond which libccd's GJK is
 /// trusted to call two shapes apart.
 inline constexpr double kCcdNearMargin = 1e-3;
@@ -314,8 +312,10 @@ std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, 
     return object.shape->getBoundingBox().halfExtents().template cast<double>().norm();
   };
   const FeatureClipping clipping(n);
-  std::vector<FeatureClipping::Contact> contacts = clipping.contacts(
-      {onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc}, {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth);
+  std::vector<FeatureClipping::Contact> contacts =
+      clipping.contacts({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
+                        {onB.samples, 4.0 * kFeatureTilt * size(b), onB.disc}, depth,
+                        kTouchingGap * std::min(size(a), size(b)));
   if (contacts.empty()) {
     // A point feature (a vertex, a curved surface's support) is the contact
     // itself; two extended ones that miss each other on the contact plane
@@ -359,7 +359,7 @@ bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double belo
 template <Scalar S, class A, class B>
 void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
                   bool manifold = true) {
-  // libccd sees a grown by kCcdTouchMargin of the smaller shape's size, so
+  // libccd sees a grown by kTouchingGap of the smaller shape's size, so
   // that shapes placed exactly touching (a body set down on a ground) are
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
@@ -367,7 +367,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   const double sizeA = sizeOf(a), sizeB = sizeOf(b);
   // libccd dereferences a null polytope face when its supports overflow.
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
-  const CcdObject<A> objectA(a, X_WA, kCcdTouchMargin * std::min(sizeA, sizeB));
+  const CcdObject<A> objectA(a, X_WA, kTouchingGap * std::min(sizeA, sizeB));
   const CcdObject<B> objectB(b, X_WB);
   ccd_t ccd;
   CCD_INIT(&ccd);

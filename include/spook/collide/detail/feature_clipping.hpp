@@ -50,9 +50,13 @@ struct FeatureClipping {
   /// The overlap's corners as contacts, for features `top` (of the shape
   /// behind the normal, its points highest along n) and `bottom` (of the
   /// shape ahead, lowest along n) and the penetration depth along n, which
-  /// bounds every contact's. Empty when the projections do not overlap
-  /// (the caller then places one contact by itself).
-  [[nodiscard]] std::vector<Contact> contacts(const Feature& top, const Feature& bottom, double depth) const {
+  /// bounds every contact's. A corner apart by less than `touching` (m)
+  /// touches (depth 0): a resting body tilted by round-off keeps its whole
+  /// manifold, where dropping the corner that lifted by 1e-7 m would let
+  /// that end fall freely for a step. Empty when the projections do not
+  /// overlap (the caller then places one contact by itself).
+  [[nodiscard]] std::vector<Contact> contacts(const Feature& top, const Feature& bottom, double depth,
+                                              double touching = 0.0) const {
     const double merge = std::min(top.merge, bottom.merge);
     const std::vector<Vec2> a = hull(project(top.points), top.merge);
     const std::vector<Vec2> b = hull(project(bottom.points), bottom.merge);
@@ -84,7 +88,8 @@ struct FeatureClipping {
     }
     if (!(std::abs(deepest - depth) <= std::max(top.merge, bottom.merge))) return {};
     for (Contact& c : out) c.depth = std::min(c.depth + (depth - deepest), depth);
-    std::erase_if(out, [](const Contact& c) { return !(c.depth >= 0.0); });
+    std::erase_if(out, [&](const Contact& c) { return !(c.depth >= -touching); });
+    for (Contact& c : out) c.depth = std::max(c.depth, 0.0);
     return out;
   }
 

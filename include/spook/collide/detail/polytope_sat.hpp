@@ -44,12 +44,22 @@ struct SeparatingAxis {
   using S = double;
   using Kind = SeparatingAxis::Kind;
   const auto overlap = [&](const Vec3T<S>& n) { return a.support(n).first + b.support(-n).first; };
-  // An edge pair's axis replaces a face's only when it is shallower by more
-  // than round-off: two edges lying in a face (a box resting on a mesh
-  // triangle's edge) span that face's own normal, and their contact point
-  // is undetermined where the face's manifold is not.
   const S roundOff = S(64) * ScalarTraits<S>::epsilon() *
                      (S(1) + std::max(a.vertices[0].cwiseAbs().maxCoeff(), b.vertices[0].cwiseAbs().maxCoeff()));
+  // An edge pair's axis replaces a face's only when it is shallower by more
+  // than round-off, or, within 1e-3 rad of the face's normal, by more than
+  // 1e-5 of the smaller polytope's size (the face's manifold then takes the
+  // edges' depth): two edges lying in a face (a box
+  // resting on a mesh triangle's edge) span that face's own normal, and a
+  // resting box tilted by 1e-10 rad makes them shallower by 1e-11 m, where
+  // their one contact point would replace the face's manifold (and a box
+  // sliding over a mesh would drop a corner for a step).
+  const auto diameter = [](const Polytope& p) {
+    Vec3T<S> low = p.vertices[0], high = p.vertices[0];
+    for (const Vec3T<S>& v : p.vertices) low = low.cwiseMin(v), high = high.cwiseMax(v);
+    return (high - low).norm();
+  };
+  const S faceTolerance = roundOff + S(1e-5) * std::min(diameter(a), diameter(b));
   // An edge pair's axis counts only where both edges are extreme along it
   // (they touch there); for other pairs it may still separate the shapes.
   const auto edgesSupport = [&](const Polytope::Edge& ea, const Polytope::Edge& eb, const Vec3T<S>& n) {
@@ -60,7 +70,12 @@ struct SeparatingAxis {
   };
   const auto consider = [&](const Vec3T<S>& n, Kind kind, int first, int second) {
     const S f = overlap(n);
-    const bool faceHeld = kind == Kind::EDGES && best.kind != Kind::EDGES && f >= best.depth - roundOff;
+    const bool nearFace = kind == Kind::EDGES && best.kind != Kind::EDGES && n.dot(best.n) >= S(1) - S(5e-7);
+    const bool faceHeld =
+        kind == Kind::EDGES && best.kind != Kind::EDGES && f >= best.depth - (nearFace ? faceTolerance : roundOff);
+    // The face's manifold then carries the edges' (exact) penetration depth.
+    if (faceHeld && nearFace && f < best.depth && edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n))
+      best.depth = f;
     if (f < best.depth && !faceHeld &&
         (kind != Kind::EDGES ||
          edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n)))

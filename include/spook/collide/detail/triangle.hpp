@@ -1,7 +1,9 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 #include <spook/collide/bounding_box.hpp>
 #include <spook/collide/detail/aabb_tree.hpp>
@@ -55,5 +57,90 @@ struct Triangle {
     return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
   }
 };
+
+/// Folds flatter than this between two triangles of a mesh make an inactive
+/// edge (radians, 5°, as Jolt's default active-edge threshold).
+inline constexpr double kActiveEdgeAngle = 0.087266462599716474;
+
+/// Whether the edge from `from` to `to` of a triangle with unit normal n1,
+/// shared with a neighbour of unit normal n2, is active: a contact found on
+/// an active edge keeps its own normal; one on an inactive edge takes the
+/// face's (activeEdgeNormals). Two bits: seen from the front (bit 0) and
+/// from behind (bit 1). An edge is active from a side where the surface
+/// folds away (convex seen from that side) by more than kActiveEdgeAngle;
+/// a back-to-back pair (a sheet's rim) is active from both; a fold toward
+/// the viewer (concave) or a flat one is not, since the neighbour's own face
+/// carries that contact. A zero normal (a degenerate triangle) makes the
+/// edge active.
+template <Scalar S>
+[[nodiscard]] unsigned edgeActivity(const Vec3T<S>& n1, const Vec3T<S>& from, const Vec3T<S>& to,
+                                    const Vec3T<S>& n2) {
+  if (!(n1.squaredNorm() > S(0.5) && n2.squaredNorm() > S(0.5))) return 0b11;
+  const S cosine = n1.dot(n2);
+  if (cosine > S(std::cos(kActiveEdgeAngle))) return 0b00;
+  if (cosine < -S(std::cos(kActiveEdgeAngle))) return 0b11;
+  const Vec3T<S> outward = (to - from).cross(n1);  // in the face's plane, away from the face
+  return n2.dot(outward) > S(0) ? 0b01 : 0b10;
+}
+
+/// The three edges' activity (edgeActivity; edge k runs from corner k to
+/// corner k + 1) of a triangle with unit normal n, from its neighbours' unit
+/// normals (null: no neighbour, an active rim): bits 0-2 seen from the
+/// front, bits 3-5 from behind.
+template <Scalar S>
+[[nodiscard]] std::uint8_t activeEdges(const std::array<Vec3T<S>, 3>& v, const Vec3T<S>& n,
+                                       const std::array<const Vec3T<S>*, 3>& neighbours) {
+  unsigned mask = 0;
+  for (unsigned k = 0; k < 3; ++k) {
+    const unsigned bits = neighbours[k] ? edgeActivity<S>(n, v[k], v[(k + 1) % 3], *neighbours[k]) : 0b11u;
+    mask |= (bits & 1u) << k | (bits >> 1) << (k + 3);
+  }
+  return static_cast<std::uint8_t>(mask);
+}
+
+/// Contact normals on a mesh triangle held to its active edges (Jolt's
+/// active edges, Bullet's btAdjustInternalEdgeContacts solve the same):
+/// a contact whose normal is not the face's keeps it only where it lies on
+/// an active edge, seen from the side the shape is on; else, inside the
+/// face or on an edge between two triangles of a flat region, it takes the
+/// face's normal and keeps its depth (the overlap along the face's normal
+/// is the larger one, so the depth errs low). Otherwise a body sliding over
+/// a flat mesh meets each triangle's edge sideways and bumps. A contact
+/// lies midway between the surfaces, so one within its depth of an edge
+/// counts as on that edge. `points` hold normals from the shape toward the
+/// mesh; `active` is activeEdges()' mask. A surface solid behind its faces
+/// (a height field) is always seen from the front: a shape sunk through a
+/// face is pushed back out of the solid, never on through it.
+template <Scalar S, class Points>
+void activeEdgeNormals(const Triangle<S>& t_W, std::uint8_t active, Points& points, bool solidBehind = false) {
+  if (active == 0b111111) return;
+  const Vec3T<S> e[3] = {t_W.v[1] - t_W.v[0], t_W.v[2] - t_W.v[1], t_W.v[0] - t_W.v[2]};
+  const Vec3T<S> area = e[0].cross(-e[2]);
+  const S longest = std::sqrt(std::max({e[0].squaredNorm(), e[1].squaredNorm(), e[2].squaredNorm()}));
+  if (!(area.norm() > S(64) * ScalarTraits<S>::epsilon() * longest * longest)) return;
+  const Vec3T<S> f = area.normalized();
+  for (auto& c : points) {
+    // Even a normal 0.5° off the face's makes a body sliding at v over the
+    // edge approach it at v·sin(0.5°), and the contact kicks it up.
+    const S front = solidBehind ? S(1) : -c.normal.dot(f);
+    const unsigned seen = front >= S(0) ? active & 7u : active >> 3;
+    if (seen == 0b111) continue;
+    S distance[3];
+    bool inside = true;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3T<S> toPoint = c.point - t_W.v[k];
+      const S along = std::clamp(toPoint.dot(e[k]) / e[k].squaredNorm(), S(0), S(1));
+      distance[k] = (toPoint - e[k] * along).norm();
+      if (e[k].cross(toPoint).dot(f) < S(0)) inside = false;
+    }
+    const S nearest = std::min({distance[0], distance[1], distance[2]});
+    const S slack = c.depth + S(1e-4) * longest;
+    unsigned on = 0;
+    if (!inside || nearest <= slack)
+      for (unsigned k = 0; k < 3; ++k)
+        if (distance[k] <= nearest + slack) on |= 1u << k;
+    if ((on & seen) == 0) c.normal = front >= S(0) ? Vec3T<S>(-f) : f;
+  }
+}
 
 }  // namespace spook::detail

@@ -6,11 +6,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <spook/collide/detail/aabb_tree.hpp>
+#include <spook/collide/detail/triangle.hpp>
 #include <spook/collide/shapes/shape.hpp>
 
 namespace spook {
@@ -120,6 +122,33 @@ class HeightFieldT : public ShapeT<S> {
   [[nodiscard]] Vec3 getNormal(std::size_t index) const {
     const auto [a, b, c] = getTriangle(index);
     return (b - a).cross(c - a).normalized();
+  }
+
+  /// Which edges of triangle `index` may give a contact a normal of its own
+  /// (detail::edgeActivity): bit k for the edge from corner k to corner
+  /// k + 1, bits 0-2 seen from above, 3-5 from below. An edge between two
+  /// triangles is active where the surface folds away by more than 5° from
+  /// the side looking at it; the rim of the grid is active.
+  [[nodiscard]] std::uint8_t getActiveEdges(std::size_t index) const {
+    const std::size_t cell = index / 2, i = cell % (resolutionX_ - 1), j = cell / (resolutionX_ - 1);
+    const std::size_t cellsX = resolutionX_ - 1, cellsY = resolutionY_ - 1;
+    // Neighbours across edges 0, 1, 2 (cell offset, triangle of that cell); see getTriangle.
+    const auto across = [&](long di, long dj, std::size_t k) -> std::optional<std::size_t> {
+      const long ni = static_cast<long>(i) + di, nj = static_cast<long>(j) + dj;
+      if (ni < 0 || nj < 0 || ni >= static_cast<long>(cellsX) || nj >= static_cast<long>(cellsY)) return std::nullopt;
+      return 2 * (static_cast<std::size_t>(ni) + cellsX * static_cast<std::size_t>(nj)) + k;
+    };
+    const std::array<std::optional<std::size_t>, 3> neighbour =
+        index % 2 == 0 ? std::array{across(0, -1, 1), across(1, 0, 1), across(0, 0, 1)}
+                       : std::array{across(0, 0, 0), across(0, 1, 0), across(-1, 0, 0)};
+    std::array<Vec3, 3> normals;
+    std::array<const Vec3*, 3> neighbours{};
+    for (std::size_t k = 0; k < 3; ++k)
+      if (neighbour[k]) {
+        normals[k] = getNormal(*neighbour[k]);
+        neighbours[k] = &normals[k];
+      }
+    return detail::activeEdges<S>(getTriangle(index), getNormal(index), neighbours);
   }
 
   /// Height of the surface above (x, y) (shape frame, m), interpolated on

@@ -11,6 +11,7 @@
 
 #include <spook/collide/detail/aabb_tree.hpp>
 #include <spook/collide/detail/polyhedron_mass.hpp>
+#include <spook/collide/detail/triangle.hpp>
 #include <spook/collide/shapes/shape.hpp>
 
 namespace spook {
@@ -43,6 +44,7 @@ class TrimeshT : public ShapeT<S> {
     for (const Vec3& v : vertices_) bounds_ = {bounds_.min.cwiseMin(v), bounds_.max.cwiseMax(v)};
     openEdges_ = countOpenEdges();
     if (openEdges_ == 0) computeMass();
+    computeActiveEdges();
   }
 
   /// Vertices, shape frame (m).
@@ -62,6 +64,13 @@ class TrimeshT : public ShapeT<S> {
     const auto [a, b, c] = getTriangle(i);
     return (b - a).cross(c - a).normalized();
   }
+  /// Which edges of triangle i may give a contact a normal of its own
+  /// (detail::edgeActivity): bit k for the edge from corner k to corner
+  /// k + 1, bits 0-2 seen from the front, 3-5 from behind. An edge shared
+  /// by exactly two triangles of opposite orientation is active where the
+  /// mesh folds away by more than 5° from the side looking at it; any other
+  /// edge (a rim, or shared by more triangles) is active.
+  [[nodiscard]] std::uint8_t getActiveEdges(std::size_t i) const { return activeEdges_[i]; }
   /// True when every edge is shared by exactly two triangles with opposite orientation.
   [[nodiscard]] bool isClosed() const { return openEdges_ == 0; }
   /// The tree over the triangle boxes, shape frame; primitive i is triangle i.
@@ -127,16 +136,18 @@ class TrimeshT : public ShapeT<S> {
     }
   }
 
+  // A directed edge as one sortable number.
+  static std::uint64_t edgeKey(int from, int to) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) | static_cast<std::uint32_t>(to);
+  }
+
   // Directed edges sorted once: the mesh is closed when no directed edge
   // repeats and each one's reverse is present. Counts the edges that fail.
   [[nodiscard]] std::size_t countOpenEdges() const {
     std::vector<std::uint64_t> edges;
     edges.reserve(3 * triangles_.size());
-    const auto key = [](int from, int to) {
-      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) | static_cast<std::uint32_t>(to);
-    };
     for (const Triangle& t : triangles_)
-      for (int k = 0; k < 3; ++k) edges.push_back(key(t[k], t[(k + 1) % 3]));
+      for (int k = 0; k < 3; ++k) edges.push_back(edgeKey(t[k], t[(k + 1) % 3]));
     std::sort(edges.begin(), edges.end());
     std::size_t open = 0;
     for (std::size_t k = 0; k < edges.size(); ++k) {
@@ -145,6 +156,41 @@ class TrimeshT : public ShapeT<S> {
       if (repeated || !std::binary_search(edges.begin(), edges.end(), reverse)) ++open;
     }
     return open;
+  }
+
+  // Each directed edge's twin (the reverse edge of exactly one other
+  // triangle, its own direction unrepeated) by a sorted list of edges.
+  void computeActiveEdges() {
+    struct Edge {
+      std::uint64_t key;
+      std::size_t triangle;
+      bool operator<(const Edge& other) const { return key < other.key; }
+    };
+    std::vector<Edge> edges;
+    edges.reserve(3 * triangles_.size());
+    for (std::size_t i = 0; i < triangles_.size(); ++i)
+      for (int k = 0; k < 3; ++k) edges.push_back({edgeKey(triangles_[i][k], triangles_[i][(k + 1) % 3]), i});
+    std::sort(edges.begin(), edges.end());
+    const auto count = [&](std::uint64_t k) {
+      const auto [first, last] = std::equal_range(edges.begin(), edges.end(), Edge{k, 0});
+      return std::pair{first, static_cast<std::size_t>(last - first)};
+    };
+    std::vector<Vec3> normals(triangles_.size());
+    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+      const auto [a, b, c] = getTriangle(i);
+      const Vec3 n = (b - a).cross(c - a);
+      normals[i] = n.norm() > S(0) ? Vec3(n.normalized()) : Vec3::Zero();
+    }
+    activeEdges_.resize(triangles_.size());
+    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+      std::array<const Vec3*, 3> neighbours{};
+      for (int k = 0; k < 3; ++k) {
+        const int from = triangles_[i][k], to = triangles_[i][(k + 1) % 3];
+        const auto [twin, twins] = count(edgeKey(to, from));
+        if (twins == 1 && count(edgeKey(from, to)).second == 1) neighbours[k] = &normals[twin->triangle];
+      }
+      activeEdges_[i] = detail::activeEdges<S>(getTriangle(i), normals[i], neighbours);
+    }
   }
 
   void computeMass() {
@@ -166,6 +212,7 @@ class TrimeshT : public ShapeT<S> {
   std::vector<Triangle> triangles_;
   detail::AabbTree<S> tree_;
   BoundingBoxT<S> bounds_;
+  std::vector<std::uint8_t> activeEdges_;
   std::size_t openEdges_ = 0;
   S enclosed_ = S(0);  ///< signed volume of a closed mesh (m³), as computed
   S volume_ = S(0);    ///< m³; 0 unless closed and enclosing a volume
