@@ -146,25 +146,29 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
       activeEdgeNormals<S>(t_W, soup.getActiveEdges(i), points, Soup::kType == ShapeType::HEIGHTFIELD);
     found.insert(found.end(), points.begin(), points.end());
   });
-  if (report == TriangleContacts::PER_TRIANGLE) {
-    for (const ContactPointT<S>& c : found) {
-      sink.setFaceIndices(0, c.faceIndex2);
-      sink.add(c.point, c.normal, c.depth);
-    }
-    sink.setFaceIndices(0, 0);
-    return;
+  // Alike pairs, found along the points sorted by x: of two, the deeper
+  // stays (the first found on a tie).
+  thread_local std::vector<std::size_t> order;
+  thread_local std::vector<char> kept;
+  kept.assign(found.size(), 1);
+  if (report == TriangleContacts::SURFACE) {
+    const S alike = S(4.0 * kFeatureTilt) * boxA.halfExtents().norm();
+    const S parallel = S(std::cos(0.017453292519943295));  // 1°
+    order.resize(found.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t i, std::size_t j) { return found[i].point.x() < found[j].point.x(); });
+    for (std::size_t m = 0; m < order.size(); ++m)
+      for (std::size_t l = m + 1;
+           l < order.size() && found[order[l]].point.x() - found[order[m]].point.x() <= alike; ++l) {
+        const std::size_t i = std::min(order[m], order[l]), j = std::max(order[m], order[l]);
+        const ContactPointT<S>&p = found[i], &q = found[j];
+        if ((p.point - q.point).norm() <= alike && p.normal.dot(q.normal) >= parallel) kept[q.depth > p.depth ? i : j] = 0;
+      }
   }
-  const S alike = S(4.0 * kFeatureTilt) * boxA.halfExtents().norm();
-  const S parallel = S(std::cos(0.017453292519943295));  // 1°
   for (std::size_t k = 0; k < found.size(); ++k) {
+    if (!kept[k]) continue;
     const ContactPointT<S>& c = found[k];
-    const auto same = [&](const ContactPointT<S>& other) {
-      return (other.point - c.point).norm() <= alike && other.normal.dot(c.normal) >= parallel;
-    };
-    const auto first = found.begin() + static_cast<std::ptrdiff_t>(k);
-    if (std::any_of(found.begin(), first, [&](const auto& o) { return same(o) && o.depth >= c.depth; }) ||
-        std::any_of(first + 1, found.end(), [&](const auto& o) { return same(o) && o.depth > c.depth; }))
-      continue;
     sink.setFaceIndices(0, c.faceIndex2);
     sink.add(c.point, c.normal, c.depth);
   }
