@@ -1295,7 +1295,9 @@ TEST_CASE_TEMPLATE("mesh: a sphere centered on a triangle's face, edge or vertex
       std::pair{V(S(0.5), S(0.5), 0), std::size_t(1)},    // on the shared edge: both triangles find it, kept once
       std::pair{V(0, 0, 0), std::size_t(1)},              // on a vertex of one triangle
       std::pair{V(1, 0, 0), std::size_t(1)}};             // on a shared vertex, kept once
-  for (const auto& [center, count] : centers) {
+  for (const auto& entry : centers) {
+    const V center = entry.first;  // not a structured binding: clang 14 cannot capture one (CAPTURE)
+    const std::size_t count = entry.second;
     CAPTURE(center.transpose());
     const auto points = collideChecked<S>(*sphere, translation<S>(center.x(), center.y(), center.z()), *mesh, I);
     REQUIRE(points.size() == count);

@@ -417,9 +417,10 @@ TEST_CASE_TEMPLATE("bad controller input names the joint and the value and chang
   ball->setName("shoulder");
   auto* cone = ball->getConeLimit();
   cone->setLimitAngles(S(0.3), S(0.4));
-  for (auto [a1, a2] : {std::pair<S, S>(std::numbers::pi_v<S> / 2, S(0.4)), std::pair<S, S>(S(0.3), S(0)),
-                        std::pair<S, S>(S(-0.1), S(0.4)), std::pair<S, S>(S(0.3), S(2)),
-                        std::pair<S, S>(std::numeric_limits<S>::quiet_NaN(), S(0.4))}) {
+  for (const std::pair<S, S>& angles : {std::pair<S, S>(std::numbers::pi_v<S> / 2, S(0.4)), std::pair<S, S>(S(0.3), S(0)),
+                                       std::pair<S, S>(S(-0.1), S(0.4)), std::pair<S, S>(S(0.3), S(2)),
+                                       std::pair<S, S>(std::numeric_limits<S>::quiet_NaN(), S(0.4))}) {
+    const S a1 = angles.first, a2 = angles.second;  // not a structured binding: clang 14 cannot capture one
     m = message([&] { cone->setLimitAngles(a1, a2); });
     CAPTURE(m);
     CHECK(m.find("ConeLimit of BallJoint 'shoulder'") != std::string::npos);

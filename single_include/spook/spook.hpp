@@ -2369,6 +2369,11 @@ struct Triangle {
 /// edge (radians, 5°, as Jolt's default active-edge threshold).
 inline constexpr double kActiveEdgeAngle = 0.087266462599716474;
 
+/// Contacts that two triangles of a mesh find with normals closer than this
+/// (radians, 1°) and points closer than 4·kFeatureTilt of the shape's size
+/// are one contact on their shared edge, kept once.
+inline constexpr double kAlikeNormalAngle = 0.017453292519943295;
+
 /// Whether the edge from `from` to `to` of a triangle with unit normal n1,
 /// shared with a neighbour of unit normal n2, is active: a contact found on
 /// an active edge keeps its own normal; one on an inactive edge takes the
@@ -7455,16 +7460,23 @@ struct SeparatingAxis {
   };
   const auto consider = [&](const Vec3T<S>& n, Kind kind, int first, int second) {
     const S f = overlap(n);
-    const bool nearFace = kind == Kind::EDGES && best.kind != Kind::EDGES && n.dot(best.n) >= S(1) - S(5e-7);
-    const bool faceHeld =
-        kind == Kind::EDGES && best.kind != Kind::EDGES && f >= best.depth - (nearFace ? faceTolerance : roundOff);
-    // The face's manifold then carries the edges' (exact) penetration depth.
-    if (faceHeld && nearFace && f < best.depth && edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n))
-      best.depth = f;
-    if (f < best.depth && !faceHeld &&
-        (kind != Kind::EDGES ||
-         edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n)))
-      best = {f, n, kind, first, second};
+    if (kind != Kind::EDGES) {
+      if (f < best.depth) best = {f, n, kind, first, second};
+      return f >= S(0);
+    }
+    const bool againstFace = best.kind != Kind::EDGES;
+    const bool nearFace = againstFace && n.dot(best.n) >= S(1) - S(5e-7);
+    const bool faceHeld = againstFace && f >= best.depth - (nearFace ? faceTolerance : roundOff);
+    const auto supported = [&] {
+      return edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n);
+    };
+    if (f < best.depth) {
+      if (!faceHeld) {
+        if (supported()) best = {f, n, kind, first, second};
+      } else if (nearFace && supported()) {
+        best.depth = f;  // the face's manifold carries the edges' exact depth
+      }
+    }
     return f >= S(0);
   };
   for (std::size_t i = 0; i < a.faces.size(); ++i) {
@@ -7898,7 +7910,7 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
   kept.assign(found.size(), 1);
   if (report == TriangleContacts::SURFACE) {
     const S alike = S(4.0 * kFeatureTilt) * boxA.halfExtents().norm();
-    const S parallel = S(std::cos(0.017453292519943295));  // 1°
+    const S parallel = S(std::cos(kAlikeNormalAngle));
     order.resize(found.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
     std::sort(order.begin(), order.end(),

@@ -153,7 +153,7 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
   kept.assign(found.size(), 1);
   if (report == TriangleContacts::SURFACE) {
     const S alike = S(4.0 * kFeatureTilt) * boxA.halfExtents().norm();
-    const S parallel = S(std::cos(0.017453292519943295));  // 1°
+    const S parallel = S(std::cos(kAlikeNormalAngle));
     order.resize(found.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
     std::sort(order.begin(), order.end(),

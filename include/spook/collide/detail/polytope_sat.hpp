@@ -70,16 +70,23 @@ struct SeparatingAxis {
   };
   const auto consider = [&](const Vec3T<S>& n, Kind kind, int first, int second) {
     const S f = overlap(n);
-    const bool nearFace = kind == Kind::EDGES && best.kind != Kind::EDGES && n.dot(best.n) >= S(1) - S(5e-7);
-    const bool faceHeld =
-        kind == Kind::EDGES && best.kind != Kind::EDGES && f >= best.depth - (nearFace ? faceTolerance : roundOff);
-    // The face's manifold then carries the edges' (exact) penetration depth.
-    if (faceHeld && nearFace && f < best.depth && edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n))
-      best.depth = f;
-    if (f < best.depth && !faceHeld &&
-        (kind != Kind::EDGES ||
-         edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n)))
-      best = {f, n, kind, first, second};
+    if (kind != Kind::EDGES) {
+      if (f < best.depth) best = {f, n, kind, first, second};
+      return f >= S(0);
+    }
+    const bool againstFace = best.kind != Kind::EDGES;
+    const bool nearFace = againstFace && n.dot(best.n) >= S(1) - S(5e-7);
+    const bool faceHeld = againstFace && f >= best.depth - (nearFace ? faceTolerance : roundOff);
+    const auto supported = [&] {
+      return edgesSupport(a.edges[std::size_t(first)], b.edges[std::size_t(second)], n);
+    };
+    if (f < best.depth) {
+      if (!faceHeld) {
+        if (supported()) best = {f, n, kind, first, second};
+      } else if (nearFace && supported()) {
+        best.depth = f;  // the face's manifold carries the edges' exact depth
+      }
+    }
     return f >= S(0);
   };
   for (std::size_t i = 0; i < a.faces.size(); ++i) {

@@ -62,6 +62,11 @@ struct Triangle {
 /// edge (radians, 5°, as Jolt's default active-edge threshold).
 inline constexpr double kActiveEdgeAngle = 0.087266462599716474;
 
+/// Contacts that two triangles of a mesh find with normals closer than this
+/// (radians, 1°) and points closer than 4·kFeatureTilt of the shape's size
+/// are one contact on their shared edge, kept once.
+inline constexpr double kAlikeNormalAngle = 0.017453292519943295;
+
 /// Whether the edge from `from` to `to` of a triangle with unit normal n1,
 /// shared with a neighbour of unit normal n2, is active: a contact found on
 /// an active edge keeps its own normal; one on an inactive edge takes the
