@@ -200,6 +200,7 @@ void SimulationT<S>::collectRows(double h) {
     w.rowOwners.resize(w.rows.size(), c.get());
     for (std::size_t i = first; i < w.rows.size(); ++i) {
       detail::Row& r = w.rows[i];
+      r.constraint = int(first);
       if (!projected) {
         r.curvature = 0.0;
       } else if (const auto it = w.predicted.find(r.impulse); r.holonomic && it != w.predicted.end()) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -43,6 +44,7 @@ struct IslandProblem {
     /// the last step's, then each direct solve's own result.
     double guess = 0.0;
     SolveType solveType = SolveType::DIRECT;
+    int constraint = -1;                           ///< local index of its constraint's first row (Row::constraint)
     int normal = -1;                               ///< friction rows: local index of their normal row
     int partner = -1;                              ///< cone rows: the other tangent row of the point
     double mu = 0.0;                               ///< friction coefficient
@@ -51,6 +53,9 @@ struct IslandProblem {
     /// tangent gets, d the friction direction of the point (friction_bounds.hpp).
     double coneShare = 1.0;
 
+    [[nodiscard]] bool bounded() const {
+      return lower > -std::numeric_limits<double>::infinity() || upper < std::numeric_limits<double>::infinity();
+    }
     [[nodiscard]] bool followsNormal() const { return normal >= 0 && frictionBound != FrictionBound::FIXED; }
     /// A friction row solved by the iterative pass of a SPLIT contact.
     [[nodiscard]] bool splitFriction() const { return normal >= 0 && solveType == SolveType::SPLIT; }

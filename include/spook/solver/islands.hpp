@@ -175,6 +175,7 @@ class IslandStepper {
       e.guess = std::clamp(*r.impulse, e.lower, e.upper);
       e.impulse = warmStart ? e.guess : std::clamp(0.0, e.lower, e.upper);
       e.solveType = r.solveType;
+      e.constraint = localRow(r.constraint);
       e.normal = localRow(r.frictionNormal);
       e.partner = localRow(r.frictionPartner);
       e.mu = r.frictionCoefficient;

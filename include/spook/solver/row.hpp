@@ -71,6 +71,10 @@ struct Row {
   int frictionPartner = -1;
   double frictionCoefficient = 0.0;
   FrictionBound frictionBound = FrictionBound::FIXED;
+  /// The index in the same row list of the first row of the constraint
+  /// this row belongs to (−1: a contact's): an iterative sweep updates a
+  /// constraint's unbounded rows together (iterative_solve.hpp).
+  int constraint = -1;
 
   [[nodiscard]] bool bounded() const { return lower > -std::numeric_limits<double>::infinity() || upper < std::numeric_limits<double>::infinity(); }
 };
