@@ -314,7 +314,10 @@ TEST_CASE("projected Gauss-Seidel and Jacobi converge to the direct solution of 
 // energy without bound (1e10 m g L in 10 s at 1e-6, 4e3 at 1e-4). Solved
 // per joint as one block (RowBlocks), every policy stays passive: the
 // energy never exceeds its start by more than the integrator's own
-// oscillation (3% of m g L at 60 Hz, issue 23).
+// oscillation (3% of m g L at 60 Hz, issue 23). Nor does it lose more than
+// 10% in 10 s: the geometric stiffness damped the swing of the 1e-6 bob
+// by 59% (its stiff twist about the rod set the weight of every mode of
+// the bob's turn; now each mode has its own).
 TEST_CASE_TEMPLATE("every policy keeps a point-like bob's hinge pendulum passive", S, float, double) {
   for (double inertia : {1e-6, 1e-4, 1e-2})
     for (int policy = 0; policy < 3; ++policy) {
@@ -328,17 +331,18 @@ TEST_CASE_TEMPLATE("every policy keeps a point-like bob's hinge pendulum passive
       auto bob = makeBody<S>(*sim, "bob", S(1), Vec3T<S>(S(1), 0, 0), S(inertia));
       sim->add(ConstraintT<S>::template createFromWorld<HingeT<S>>(Vec3T<S>::Zero(), Vec3T<S>::UnitY(), bob.get()));
       const double mgL = spook::test::kG;
-      double worstGain = -1e300, worstGap = 0.0;
+      double worstGain = -1e300, worstGap = 0.0, energy = 0.0;
       for (int i = 0; i < spook::test::sweep(600, 120); ++i) {
         sim->stepForward();
-        const double energy = double(bob->getKineticEnergy()) + spook::test::kG * double(bob->getPosition().z());
+        energy = double(bob->getKineticEnergy()) + spook::test::kG * double(bob->getPosition().z());
         worstGain = std::max(worstGain, energy / mgL);
         worstGap = std::max(worstGap, std::abs(double(bob->getPosition().norm()) - 1.0));
       }
       CAPTURE(inertia);
       CAPTURE(policy);
-      MESSAGE("energy gain " << worstGain << " m g L, gap " << worstGap << " m");
+      MESSAGE("energy gain " << worstGain << " m g L, at the end " << energy / mgL << ", gap " << worstGap << " m");
       CHECK(worstGain <= 0.03);
+      CHECK(energy / mgL >= -0.10);
       CHECK(worstGap <= 1e-2);
     }
 }

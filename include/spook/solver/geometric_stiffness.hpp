@@ -27,9 +27,10 @@ namespace spook::detail {
 /// in the geometry). K̃ is the symmetric, tension-only (negative) part of K.
 ///
 /// The price is backward Euler's damping of the swing the body takes part
-/// in, ~h²ω² of its energy per step, so each body gets it only in proportion
-/// to how unstable the explicit step would be: with ρ = h² λmax(I⁻¹K̃) = (hω)²,
-/// weight max(0, 1 − ρ₀/ρ) for a threshold ρ₀ (0: every body at full weight).
+/// in, ~h²ω² of its energy per step, so each mode of the body's turn gets it
+/// only in proportion to how unstable the explicit step would be: mode k of
+/// I⁻¹K̃ with ρ_k = h²ω_k² takes weight max(0, 1 − ρ₀/ρ_k) for a threshold ρ₀
+/// (0: every mode at full weight).
 ///
 /// A body held at a single point (a pendulum bob, a load on a hook) has no
 /// such spring: turning about its center moves the held point, so its mode
@@ -63,21 +64,27 @@ class GeometricStiffness {
       const Vec3d tension = (-eigen.eigenvalues()).cwiseMax(0.0);
       if (tension.maxCoeff() <= 0.0) continue;
       const Mat3d stiffness = eigen.eigenvectors() * tension.asDiagonal() * eigen.eigenvectors().transpose();
-      // (hω)² of the stiffest mode: the largest eigenvalue of I⁻¹K̃, i.e. of
-      // Lᵀ K̃ L with I⁻¹ = L Lᵀ.
       const Held& held = heldAt_[i];
       const Mat3d arm = skew<double>(held.arm);
       const Mat3d modeInverseInertia =
           held.single ? Mat3d((b.inverseInertia.inverse() + arm.transpose() * b.inverseMass.inverse() * arm).inverse())
                       : b.inverseInertia;
+      // Modes of the body's turn: I⁻¹K̃ has eigenvalues ω_k²; with
+      // I⁻¹ = L Lᵀ they are those of LᵀK̃L = U diag(ω²) Uᵀ, and mode k adds
+      // L⁻ᵀu_k ω_k² u_kᵀL⁻¹ to K̃. Each mode is taken with its own weight,
+      // so that a stiff turn (a point-like bob twisting about its rod) does
+      // not damp the body's other, soft ones (its swing).
       const Eigen::LLT<Mat3d> inverseInertia(modeInverseInertia);
       const Mat3d L = inverseInertia.matrixL();
-      const double rho =
-          h * h *
-          Eigen::SelfAdjointEigenSolver<Mat3d>(L.transpose() * stiffness * L, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
-      if (rho <= threshold) continue;
-      const double weight = 1.0 - threshold / rho;
-      added_[i] = weight * h * h * stiffness;
+      const Eigen::SelfAdjointEigenSolver<Mat3d> modes(L.transpose() * stiffness * L);
+      const Mat3d toStiffness = L.transpose().inverse() * modes.eigenvectors();
+      Vec3d weighted = Vec3d::Zero();
+      for (int k = 0; k < 3; ++k) {
+        const double rho = h * h * modes.eigenvalues()(k);
+        if (rho > threshold) weighted(k) = (1.0 - threshold / rho) * modes.eigenvalues()(k);
+      }
+      if (weighted.isZero(0.0)) continue;
+      added_[i] = h * h * toStiffness * weighted.asDiagonal() * toStiffness.transpose();
       const Mat3d inertia = b.inverseInertia.inverse();
       b.inverseInertia = (inertia + added_[i]).inverse();
       b.freeVelocity.tail<3>() = b.inverseInertia * (inertia * b.freeVelocity.tail<3>());
