@@ -274,9 +274,10 @@ TEST_CASE_TEMPLATE("a solid-link four-bar closes and its crank turns at the moto
     }
     CHECK(worstGap < (policy == Policy::DIRECT ? 1e-5 : 1e-3));
     // Direct and hybrid hold the motor to 0.5%; Gauss-Seidel lags it on the
-    // closed loop (9.5% in the first step from rest, 3.5% after 1 s; issue 23).
-    MESSAGE(nameOf(policy) << ": worst crank speed error " << worstSpeed);
-    CHECK(worstSpeed < (policy == Policy::ITERATIVE ? 0.1 : 0.005));
+    // closed loop (3.5% with each hinge's rows as one block, 9.5% row by
+    // row; issue 23).
+    MESSAGE(std::string(nameOf(policy)) << ": worst crank speed error " << worstSpeed);
+    CHECK(worstSpeed < (policy == Policy::ITERATIVE ? 0.05 : 0.005));
   }
 }
 
