@@ -4,7 +4,8 @@
 # seed corpus tests/fuzz/corpus. Exits non-zero on any finding; the input
 # that caused it is left in <build>/findings/.
 #   tools/run-fuzz.sh [seconds]
-# Environment: SPOOK_FUZZ_BUILD_DIR (default build-fuzz), SPOOK_FUZZ_SKIP
+# Environment: SPOOK_FUZZ_BUILD_DIR (default build-fuzz; a build configured
+# with -DSPOOK_BUILD_FUZZ=ON is reused), SPOOK_FUZZ_SKIP
 # (comma-separated known findings the target steers around, see
 # tests/fuzz/fuzz_scene.cpp), CMAKE_CXX_COMPILER_LAUNCHER (e.g. ccache).
 set -euo pipefail
@@ -18,9 +19,13 @@ if [ -z "$clangxx" ]; then
   exit 1
 fi
 
-# Debug keeps spook's assertions; -O1 -g1 as the sanitized CI build.
-cmake -S . -B "$build" -DCMAKE_CXX_COMPILER="$clangxx" -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" \
-  -DSPOOK_BUILD_TESTS=OFF -DSPOOK_BUILD_EXAMPLES=OFF -DSPOOK_BUILD_BENCH=OFF -DSPOOK_BUILD_FUZZ=ON
+# A build directory configured with the target already (CI's sanitized
+# build, -DSPOOK_BUILD_FUZZ=ON) is reused as it is. Otherwise: Debug keeps
+# spook's assertions; -O1 -g1 as the sanitized CI build.
+if ! grep -q '^SPOOK_BUILD_FUZZ:BOOL=ON' "$build/CMakeCache.txt" 2>/dev/null; then
+  cmake -S . -B "$build" -DCMAKE_CXX_COMPILER="$clangxx" -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" \
+    -DSPOOK_BUILD_TESTS=OFF -DSPOOK_BUILD_EXAMPLES=OFF -DSPOOK_BUILD_BENCH=OFF -DSPOOK_BUILD_FUZZ=ON
+fi
 cmake --build "$build" -j2 --target spook_fuzz_scene
 
 # New inputs go to <build>/corpus (the first directory); the committed seeds

@@ -43,7 +43,6 @@ class RowBlocks {
       const auto& e = problem.rows[static_cast<std::size_t>(i)];
       return makeBlocks && e.constraint >= 0 && e.normal < 0 && !e.bounded();
     };
-    rows_ = subset;
     for (std::size_t k = 0; k < subset.size();) {
       std::size_t end = k + 1;
       if (blockable(subset[k]))
@@ -64,7 +63,10 @@ class RowBlocks {
           unit.factor = static_cast<int>(factors_.size());
           factors_.push_back(std::move(llt));
         } else {
-          end = k + 1;  // not positive definite to round-off: row by row
+          // Not positive definite to round-off: this row alone, and its
+          // followers start the next block (which may fail again, ending
+          // row by row).
+          end = k + 1;
           unit.count = 1;
         }
       }
@@ -74,13 +76,11 @@ class RowBlocks {
   }
 
   [[nodiscard]] const std::vector<Unit>& units() const { return units_; }
-  [[nodiscard]] int row(const Unit& unit, int k) const { return rows_[static_cast<std::size_t>(unit.first + k)]; }
   [[nodiscard]] const Eigen::LLT<Matrix>& factor(const Unit& unit) const {
     return factors_[static_cast<std::size_t>(unit.factor)];
   }
 
  private:
-  std::vector<int> rows_;
   std::vector<Unit> units_;
   std::vector<Eigen::LLT<Matrix>> factors_;
 };
@@ -138,13 +138,13 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
       if (unit.count > 1) {
         r_B.resize(unit.count);
         for (int a = 0; a < unit.count; ++a) {
-          const int i = blocks.row(unit, a);
+          const int i = subset[static_cast<std::size_t>(unit.first + a)];
           const auto& e = problem.rows[static_cast<std::size_t>(i)];
           r_B(a) = e.q - problem.rowVelocity(i, dv) - e.sigma * e.impulse;
         }
         d_B = blocks.factor(unit).solve(r_B);
         for (int a = 0; a < unit.count; ++a) {
-          const int i = blocks.row(unit, a);
+          const int i = subset[static_cast<std::size_t>(unit.first + a)];
           auto& e = problem.rows[static_cast<std::size_t>(i)];
           e.impulse += d_B(a);
           problem.addImpulse(dv, i, d_B(a));
