@@ -11305,6 +11305,48 @@ using CubicSplineRef = ref_ptr<CubicSpline>;
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_CORE_CUBIC_SPLINE_HPP
 // --- end spook/core/cubic_spline.hpp ---
+// --- begin spook/solver/spook_parameters.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_SPOOK_PARAMETERS_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_SPOOK_PARAMETERS_HPP
+
+#include <algorithm>
+
+namespace spook::detail {
+
+/// SPOOK's discretization of one row for a step h (PHYSICS.md §1.2), the
+/// single place where a row's compliance and damping become the numbers
+/// the solver uses. A holonomic row g with compliance ε and damping τ
+/// (d = τ/h) takes, in impulse form,
+///   (G M⁻¹ Gᵀ + Σ) Λ = −a g + b Gv − G v*,
+/// with a = 4/(h(1+4d)), b = 1/(1+4d), Σ = 4ε/(h²(1+4d)).
+/// A velocity row (a speed target, friction, motors) of compliance γ has
+/// Σ = γ/h.
+struct SpookParameters {
+  /// Smallest d = τ/h used: at d = 0 a rigid row's violation obeys
+  /// g⁺ = −2g − g⁻ (a double root at −1) and grows step by step; d ≥ 0.1
+  /// keeps the roots at |z| = 1/√(1+4d) ≤ 0.85. A smaller τ (0 included)
+  /// is raised to it.
+  static constexpr double kMinimumDamping = 0.1;
+
+  double a = 0.0;      ///< weight of the violation (1/s)
+  double b = 0.0;      ///< weight of the rate Gv
+  double sigma = 0.0;  ///< Σ, the regularization of the row's diagonal
+
+  [[nodiscard]] static SpookParameters holonomic(double compliance, double damping, double h) {
+    const double d = std::max(damping / h, kMinimumDamping);
+    return {4.0 / (h * (1.0 + 4.0 * d)), 1.0 / (1.0 + 4.0 * d), 4.0 * compliance / (h * h * (1.0 + 4.0 * d))};
+  }
+  [[nodiscard]] static double velocitySigma(double compliance, double h) { return compliance / h; }
+
+  /// The violation whose correction a·g is `speed` (m): what SPOOK turns
+  /// into that restoring speed, e.g. the deepest overlap a contact may
+  /// report for a capped depenetration speed.
+  [[nodiscard]] double violationForSpeed(double speed) const { return speed / a; }
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_SPOOK_PARAMETERS_HPP
+// --- end spook/solver/spook_parameters.hpp ---
 
 namespace spook {
 
@@ -11362,12 +11404,13 @@ inline double centripetalCurvature(double curvatureAcross, double rate) {
 
 /// Without post-stabilization (Row::curvature dropped), the same term goes
 /// into the violation: following the curve takes Gv⁺ + ½hQₖ where a
-/// straight row has Gv⁺, and SPOOK's right-hand side is −a g + b'Gv with
-/// a = 4/(h(1 + 4τ/h)), so the shift is ½hQₖ/a = h²(1 + 4τ/h)Qₖ/8 (m). The
-/// curve is fixed, so unlike the body-rotation terms of the other rows this
-/// feedforward does not feed back.
+/// straight row has Gv⁺, and SPOOK's right-hand side is −a g + b'Gv
+/// (SpookParameters), so the shift is ½hQₖ/a (m). The curve is fixed, so
+/// unlike the body-rotation terms of the other rows this feedforward does
+/// not feed back.
 inline double centripetalShift(const Row& row, double curvatureAcross, double rate, double h) {
-  return h * h * (1.0 + 4.0 * row.damping / h) * centripetalCurvature(curvatureAcross, rate) / 4.0;
+  const SpookParameters spook = SpookParameters::holonomic(row.compliance, row.damping, h);
+  return spook.violationForSpeed(h * centripetalCurvature(curvatureAcross, rate));
 }
 
 }  // namespace detail
@@ -17121,9 +17164,6 @@ namespace spook::detail {
 /// out non-finite are listed in getNonFiniteBodies().
 class IslandStepper {
  public:
-  /// Smallest damping τ/h the stepper uses; a smaller τ (0 included) is raised to it.
-  static constexpr double kMinimumSpookDamping = 0.1;
-
   /// Post-stabilization: `rows` evaluated at the new positions with their
   /// target violation in `speed`, bodies with their inverse masses at the new
   /// orientations. Fills each body's displacement (Δx, Δθ) that brings the
@@ -17248,21 +17288,17 @@ class IslandStepper {
       const double freeSpeed = r.J1.dot(velocity(r.body1, true)) + r.J2.dot(velocity(r.body2, true));
       const double mobility = r.J1.dot(e.W1) + r.J2.dot(e.W2);
       if (r.holonomic) {
-        // SPOOK (PHYSICS.md §1.2): a = 4/(h(1+4d)), b' = 1/(1+4d), Σ = 4ε/(h²(1+4d)), d = τ/h.
-        // At d = 0 a rigid row's violation obeys g⁺ = −2g − g⁻ (a double
-        // root at −1) and grows step by step; d ≥ 0.1 keeps the roots at
-        // |z| = 1/√(1+4d) ≤ 0.85.
-        const double d = std::max(r.damping / h, kMinimumSpookDamping);
+        const SpookParameters spook = SpookParameters::holonomic(r.compliance, r.damping, h);
         const double speed = r.J1.dot(velocity(r.body1, false)) + r.J2.dot(velocity(r.body2, false));
         // Second order in h (row.hpp): the b' term reads the rate at which
         // the last step moved g (G v − hκ when not kept); the step aims G v⁺
         // at SPOOK's target minus the drift hκ its motion will add.
         const double rate = std::isnan(r.lastRate) ? speed - h * r.curvature : r.lastRate;
-        e.q = -4.0 / (h * (1.0 + 4.0 * d)) * r.violation + rate / (1.0 + 4.0 * d) - h * r.curvature - freeSpeed;
-        e.sigma = 4.0 * r.compliance / (h * h * (1.0 + 4.0 * d));
+        e.q = -spook.a * r.violation + spook.b * rate - h * r.curvature - freeSpeed;
+        e.sigma = spook.sigma;
       } else {
         e.q = r.speed - freeSpeed;
-        e.sigma = r.compliance / h;
+        e.sigma = SpookParameters::velocitySigma(r.compliance, h);
       }
       // A floor far below any physical compliance keeps redundant rigid rows
       // (compliance 0) positive definite.
@@ -17406,12 +17442,12 @@ class ContactRows {
           normal.holonomic = false;
           normal.speed = -double(p.restitution) * approach;
         } else {
-          const double d = std::max(double(p.damping) / h, IslandStepper::kMinimumSpookDamping);
-          // SPOOK's a·g is the speed at which the overlap is pushed out: capped.
-          const double deepest = -settings.maxDepenetrationSpeed * h * (1.0 + 4.0 * d) / 4.0;
-          normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
           normal.compliance = 1.0 / double(p.youngsModulus);
           normal.damping = double(p.damping);
+          // SPOOK's a·g is the speed at which the overlap is pushed out: capped.
+          const SpookParameters spook = SpookParameters::holonomic(normal.compliance, normal.damping, h);
+          const double deepest = -spook.violationForSpeed(settings.maxDepenetrationSpeed);
+          normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
         }
         rows.push_back(normal);
 

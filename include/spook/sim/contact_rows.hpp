@@ -17,6 +17,7 @@
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/islands.hpp>
 #include <spook/solver/row.hpp>
+#include <spook/solver/spook_parameters.hpp>
 
 namespace spook::detail {
 
@@ -115,12 +116,12 @@ class ContactRows {
           normal.holonomic = false;
           normal.speed = -double(p.restitution) * approach;
         } else {
-          const double d = std::max(double(p.damping) / h, IslandStepper::kMinimumSpookDamping);
-          // SPOOK's a·g is the speed at which the overlap is pushed out: capped.
-          const double deepest = -settings.maxDepenetrationSpeed * h * (1.0 + 4.0 * d) / 4.0;
-          normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
           normal.compliance = 1.0 / double(p.youngsModulus);
           normal.damping = double(p.damping);
+          // SPOOK's a·g is the speed at which the overlap is pushed out: capped.
+          const SpookParameters spook = SpookParameters::holonomic(normal.compliance, normal.damping, h);
+          const double deepest = -spook.violationForSpeed(settings.maxDepenetrationSpeed);
+          normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
         }
         rows.push_back(normal);
 

@@ -12,6 +12,7 @@
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/row.hpp>
 #include <spook/solver/solver.hpp>
+#include <spook/solver/spook_parameters.hpp>
 
 namespace spook::detail {
 
@@ -23,9 +24,6 @@ namespace spook::detail {
 /// out non-finite are listed in getNonFiniteBodies().
 class IslandStepper {
  public:
-  /// Smallest damping τ/h the stepper uses; a smaller τ (0 included) is raised to it.
-  static constexpr double kMinimumSpookDamping = 0.1;
-
   /// Post-stabilization: `rows` evaluated at the new positions with their
   /// target violation in `speed`, bodies with their inverse masses at the new
   /// orientations. Fills each body's displacement (Δx, Δθ) that brings the
@@ -150,21 +148,17 @@ class IslandStepper {
       const double freeSpeed = r.J1.dot(velocity(r.body1, true)) + r.J2.dot(velocity(r.body2, true));
       const double mobility = r.J1.dot(e.W1) + r.J2.dot(e.W2);
       if (r.holonomic) {
-        // SPOOK (PHYSICS.md §1.2): a = 4/(h(1+4d)), b' = 1/(1+4d), Σ = 4ε/(h²(1+4d)), d = τ/h.
-        // At d = 0 a rigid row's violation obeys g⁺ = −2g − g⁻ (a double
-        // root at −1) and grows step by step; d ≥ 0.1 keeps the roots at
-        // |z| = 1/√(1+4d) ≤ 0.85.
-        const double d = std::max(r.damping / h, kMinimumSpookDamping);
+        const SpookParameters spook = SpookParameters::holonomic(r.compliance, r.damping, h);
         const double speed = r.J1.dot(velocity(r.body1, false)) + r.J2.dot(velocity(r.body2, false));
         // Second order in h (row.hpp): the b' term reads the rate at which
         // the last step moved g (G v − hκ when not kept); the step aims G v⁺
         // at SPOOK's target minus the drift hκ its motion will add.
         const double rate = std::isnan(r.lastRate) ? speed - h * r.curvature : r.lastRate;
-        e.q = -4.0 / (h * (1.0 + 4.0 * d)) * r.violation + rate / (1.0 + 4.0 * d) - h * r.curvature - freeSpeed;
-        e.sigma = 4.0 * r.compliance / (h * h * (1.0 + 4.0 * d));
+        e.q = -spook.a * r.violation + spook.b * rate - h * r.curvature - freeSpeed;
+        e.sigma = spook.sigma;
       } else {
         e.q = r.speed - freeSpeed;
-        e.sigma = r.compliance / h;
+        e.sigma = SpookParameters::velocitySigma(r.compliance, h);
       }
       // A floor far below any physical compliance keeps redundant rigid rows
       // (compliance 0) positive definite.

@@ -7,6 +7,7 @@
 
 #include <spook/constraints/joint.hpp>
 #include <spook/core/cubic_spline.hpp>
+#include <spook/solver/spook_parameters.hpp>
 
 namespace spook {
 
@@ -64,12 +65,13 @@ inline double centripetalCurvature(double curvatureAcross, double rate) {
 
 /// Without post-stabilization (Row::curvature dropped), the same term goes
 /// into the violation: following the curve takes Gv⁺ + ½hQₖ where a
-/// straight row has Gv⁺, and SPOOK's right-hand side is −a g + b'Gv with
-/// a = 4/(h(1 + 4τ/h)), so the shift is ½hQₖ/a = h²(1 + 4τ/h)Qₖ/8 (m). The
-/// curve is fixed, so unlike the body-rotation terms of the other rows this
-/// feedforward does not feed back.
+/// straight row has Gv⁺, and SPOOK's right-hand side is −a g + b'Gv
+/// (SpookParameters), so the shift is ½hQₖ/a (m). The curve is fixed, so
+/// unlike the body-rotation terms of the other rows this feedforward does
+/// not feed back.
 inline double centripetalShift(const Row& row, double curvatureAcross, double rate, double h) {
-  return h * h * (1.0 + 4.0 * row.damping / h) * centripetalCurvature(curvatureAcross, rate) / 4.0;
+  const SpookParameters spook = SpookParameters::holonomic(row.compliance, row.damping, h);
+  return spook.violationForSpeed(h * centripetalCurvature(curvatureAcross, rate));
 }
 
 }  // namespace detail
