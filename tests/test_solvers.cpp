@@ -352,10 +352,11 @@ TEST_CASE_TEMPLATE("every policy keeps a point-like bob's hinge pendulum passive
 // (gaps of 1e15 m within 4 s at 60 Hz, every run at h = 0.1). Every policy,
 // float and double, at 60 Hz and at h = 0.1, at heights 0 and 100 m: the
 // state stays finite, the energy never exceeds its start by more than 1% of
-// m g L (m the chain's mass, L a link's length), and under the direct
-// policy at 60 Hz no pin opens by more than 1 cm (measured 1.9 mm; hybrid
-// 6.8 cm, iterative 5.8 cm; at h = 0.1 direct 9.4 mm, hybrid 16.7 cm,
-// iterative 15.5 cm). The links do not collide with each other here: when
+// m g L (m the chain's mass, L a link's length), and under the direct and
+// hybrid policies (both post-stabilized) at 60 Hz no pin opens by more than
+// 1 cm (measured 1.9 mm, iterative 5.8 cm; at h = 0.1 direct and hybrid
+// 9.4 mm, iterative 15.5 cm; the hybrid without post-stabilization opened
+// 6.8 cm and 16.7 cm). The links do not collide with each other here: when
 // they do, the end links whipping at ~10 m/s strike each other 4-5 cm deep
 // within one step and that contact, pushing out against the joints' pull,
 // adds energy (+97% of m g L under the direct policy); an open defect of
@@ -416,7 +417,7 @@ TEST_CASE_TEMPLATE("the 10-link box hinge chain stays closed and passive under e
         MESSAGE("worst pin gap " << worstGap << " m, largest energy gain " << worstGain << " m g L");
         CHECK(finite);
         CHECK(worstGain <= 0.01);
-        CHECK(worstGap <= (policy == 0 && h < 0.05 ? 0.01 : 0.25));
+        CHECK(worstGap <= (policy != 2 && h < 0.05 ? 0.01 : 0.25));
       }
 }
 

@@ -14245,9 +14245,10 @@ class Solver : public Referenced {
     couplingIterations_ = n;
   }
 
-  /// Post-stabilization (on by default for DirectSolver, off for the
-  /// others; one Newton iteration): after the positions are advanced, the
-  /// direct solver's equality rows (and slack rows held at an end) are
+  /// Post-stabilization (on by default for DirectSolver and HybridSolver,
+  /// off for IterativeSolver; one Newton iteration): after the positions
+  /// are advanced, the directly solved equality rows (and slack rows held
+  /// at an end) are
   /// projected, mass-weighted, onto the violation their second-order
   /// prediction gives, g* = g + h(G v⁺ + hκ) (Row::curvature):
   /// Δq = M⁻¹Gᵀδ with G M⁻¹Gᵀ δ = g* − g(q⁺), and the velocities take Δq/h.
@@ -14342,6 +14343,7 @@ class IterativeSolver final : public Solver {
 /// the bounds the iterative pass found (PHYSICS.md §2.5).
 class HybridSolver final : public Solver {
  public:
+  HybridSolver() { setEnablePostStabilization(true); }
   [[nodiscard]] const char* getName() const override { return "hybrid"; }
 
  protected:
