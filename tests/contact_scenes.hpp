@@ -9,20 +9,9 @@
 #include <spook/collide/shapes/sphere.hpp>
 #include <spook/sim/simulation.hpp>
 
+#include "policies.hpp"
+
 namespace spook::test {
-
-/// The three solver policies, by name, for reports.
-enum class Policy { DIRECT, HYBRID, ITERATIVE };
-
-inline std::string policyName(Policy p) {
-  return p == Policy::DIRECT ? "direct" : p == Policy::HYBRID ? "hybrid" : "iterative";
-}
-
-inline ref_ptr<Solver> makeSolver(Policy p) {
-  if (p == Policy::DIRECT) return new DirectSolver();
-  if (p == Policy::HYBRID) return new HybridSolver();
-  return new IterativeSolver();
-}
 
 /// A static ground plane through the origin with normal `up`.
 template <class S>

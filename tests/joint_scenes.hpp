@@ -12,6 +12,8 @@
 #include <spook/constraints/joints/prismatic.hpp>
 #include <spook/sim/simulation.hpp>
 
+#include "policies.hpp"
+
 namespace spook::test {
 
 inline constexpr double kG = 9.80665;  // m/s², standard gravity (the simulation's default)

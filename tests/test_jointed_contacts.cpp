@@ -8,10 +8,15 @@
 #include <spook/constraints/virtual_constraint_inertia.hpp>
 #include <spook/spook.hpp>
 
+#include "policies.hpp"
 #include "tolerance.hpp"
 
 using namespace spook;
+using spook::test::kPolicies;
+using spook::test::makeSolver;
 using spook::test::pick;
+using spook::test::Policy;
+using spook::test::policyName;
 
 // Jointed bodies whose geometries overlap, as every machine is drawn: the
 // links overlap at their pins. By default a constraint's two bodies do not
@@ -26,24 +31,6 @@ constexpr double kSlow = 1.0;  // Release: the stated durations
 #else
 constexpr double kSlow = 0.2;  // Debug and sanitizers: a fifth of them
 #endif
-
-enum class Policy { DIRECT, HYBRID, ITERATIVE };
-constexpr Policy kPolicies[] = {Policy::DIRECT, Policy::HYBRID, Policy::ITERATIVE};
-
-ref_ptr<Solver> makeSolver(Policy policy) {
-  switch (policy) {
-    case Policy::DIRECT:
-      return new DirectSolver();
-    case Policy::HYBRID:
-      return new HybridSolver();
-    case Policy::ITERATIVE:
-      return new IterativeSolver();
-  }
-  return nullptr;
-}
-const char* nameOf(Policy policy) {
-  return policy == Policy::DIRECT ? "direct" : policy == Policy::HYBRID ? "hybrid" : "iterative";
-}
 
 template <class S>
 ref_ptr<SimulationT<S>> simulationFor(Policy policy) {
@@ -242,7 +229,7 @@ TEST_CASE_TEMPLATE("the seeds' hinge snippet: two boxes made at one place stay t
   // Seed 001 §12.19.2: two 2 m boxes created at the same place, hinged with
   // empty frames, virtual inertia on the hinge; they fall together for 2 s.
   for (Policy policy : kPolicies) {
-    CAPTURE(std::string(nameOf(policy)));
+    CAPTURE(std::string(policyName(policy)));
     auto sim = simulationFor<S>(policy);
     ref_ptr<FrameT<S>> frame1 = new FrameT<S>(), frame2 = new FrameT<S>();
     ref_ptr<RigidBodyT<S>> body1 = new RigidBodyT<S>(new GeometryT<S>(new BoxT<S>(Vec3T<S>(1, 1, 1))));
@@ -264,7 +251,7 @@ TEST_CASE_TEMPLATE("the seeds' hinge snippet: two boxes made at one place stay t
 TEST_CASE_TEMPLATE("a solid-link four-bar closes and its crank turns at the motor's speed", S, float, double) {
   const int steps = int(600 * kSlow);  // 10 s
   for (Policy policy : kPolicies) {
-    CAPTURE(std::string(nameOf(policy)));
+    CAPTURE(std::string(policyName(policy)));
     Linkage<S> fourBar(policy, 0.06, true, false);
     double worstGap = 0.0, worstSpeed = 0.0;
     for (int i = 0; i < steps; ++i) {
@@ -276,7 +263,7 @@ TEST_CASE_TEMPLATE("a solid-link four-bar closes and its crank turns at the moto
     // Direct and hybrid hold the motor to 0.5%; Gauss-Seidel lags it on the
     // closed loop (3.5% with each hinge's rows as one block, 9.5% row by
     // row; issue 23).
-    MESSAGE(std::string(nameOf(policy)) << ": worst crank speed error " << worstSpeed);
+    MESSAGE(std::string(policyName(policy)) << ": worst crank speed error " << worstSpeed);
     CHECK(worstSpeed < (policy == Policy::ITERATIVE ? 0.05 : 0.005));
   }
 }
@@ -284,7 +271,7 @@ TEST_CASE_TEMPLATE("a solid-link four-bar closes and its crank turns at the moto
 TEST_CASE_TEMPLATE("a solid-link four-bar with collisions between its links stays finite", S, float, double) {
   const int steps = int(600 * kSlow);
   for (Policy policy : kPolicies) {
-    CAPTURE(std::string(nameOf(policy)));
+    CAPTURE(std::string(policyName(policy)));
     Linkage<S> fourBar(policy, 0.06, true, true);
     bool finite = true;
     for (int i = 0; i < steps && finite; ++i) {
@@ -300,7 +287,7 @@ TEST_CASE_TEMPLATE("a driven crank and coupler fighting their contact stay finit
   const int steps = int(120 * kSlow);  // 2 s
   for (Policy policy : kPolicies)
     for (double thickness : {0.02, 0.03, 0.05, 0.06, 0.07, 0.1}) {
-      CAPTURE(std::string(nameOf(policy)));
+      CAPTURE(std::string(policyName(policy)));
       CAPTURE(thickness);
       Linkage<S> chain(policy, thickness, false, true);
       double worst = 0.0;

@@ -309,42 +309,43 @@ TEST_CASE("projected Gauss-Seidel and Jacobi converge to the direct solution of 
 
 // A 1 kg bob on a 1 m hinge from the world, released horizontally, with
 // the inertia of a point (1e-6 kg m^2 on each axis) up to a 0.16 m sphere
-// (1e-2): the hinge's rows couple through the bob's inverse inertia ~1e6
-// times more than their own mass, and row-by-row Gauss-Seidel gained
-// energy without bound (1e10 m g L in 10 s at 1e-6, 4e3 at 1e-4). Solved
-// per joint as one block (RowBlocks), every policy stays passive: the
-// energy never exceeds its start by more than the integrator's own
-// oscillation (3% of m g L at 60 Hz, issue 23). Nor does it lose more than
-// 10% in 10 s: the geometric stiffness damped the swing of the 1e-6 bob
-// by 59% (its stiff twist about the rod set the weight of every mode of
-// the bob's turn; now each mode has its own).
+// (1e-2), at 60 and 240 Hz: the hinge's rows couple through the bob's
+// inverse inertia ~1e6 times more than their own mass, and row-by-row
+// Gauss-Seidel gained energy without bound (1e10 m g L in 10 s at 1e-6, 4e3
+// at 1e-4). Solved per joint as one block (RowBlocks), every policy stays
+// passive (issue 23): the energy never exceeds its start by more than the
+// integrator's own oscillation, 3% of m g L (measured 2.3% at 60 Hz, 0.6%
+// at 240 Hz); 10 s lose at most 5% under direct and hybrid (1.8%) and 20%
+// under the iterative policy (6.3%; Bullet's sequential impulses lose 17%,
+// bench/joint_study); the hinge opens at most 1 mm under direct and hybrid
+// (8e-7 m in float) and 1 cm under the iterative policy (6.6 mm).
 TEST_CASE_TEMPLATE("every policy keeps a point-like bob's hinge pendulum passive", S, float, double) {
   for (double inertia : {1e-6, 1e-4, 1e-2})
-    for (int policy = 0; policy < 3; ++policy) {
-      ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
-      sim->setTimeStep(S(1.0 / 60.0));
-      ref_ptr<Solver> solver;
-      if (policy == 0) solver = new DirectSolver();
-      if (policy == 1) solver = new IterativeSolver();
-      if (policy == 2) solver = new HybridSolver();
-      sim->setSolver(solver);
-      auto bob = makeBody<S>(*sim, "bob", S(1), Vec3T<S>(S(1), 0, 0), S(inertia));
-      sim->add(ConstraintT<S>::template createFromWorld<HingeT<S>>(Vec3T<S>::Zero(), Vec3T<S>::UnitY(), bob.get()));
-      const double mgL = spook::test::kG;
-      double worstGain = -1e300, worstGap = 0.0, energy = 0.0;
-      for (int i = 0; i < spook::test::sweep(600, 120); ++i) {
-        sim->stepForward();
-        energy = double(bob->getKineticEnergy()) + spook::test::kG * double(bob->getPosition().z());
-        worstGain = std::max(worstGain, energy / mgL);
-        worstGap = std::max(worstGap, std::abs(double(bob->getPosition().norm()) - 1.0));
+    for (double h : {1.0 / 60.0, 1.0 / 240.0})
+      for (test::Policy policy : test::kPolicies) {
+        ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+        sim->setTimeStep(S(h));
+        sim->setSolver(test::makeSolver(policy));
+        auto bob = makeBody<S>(*sim, "bob", S(1), Vec3T<S>(S(1), 0, 0), S(inertia));
+        sim->add(ConstraintT<S>::template createFromWorld<HingeT<S>>(Vec3T<S>::Zero(), Vec3T<S>::UnitY(), bob.get()));
+        const double mgL = spook::test::kG;
+        const bool iterative = policy == test::Policy::ITERATIVE;
+        double worstGain = -1e300, worstGap = 0.0, energy = 0.0;
+        const int steps = static_cast<int>(std::lround(spook::test::sweep(10, 2) / h));
+        for (int i = 0; i < steps; ++i) {
+          sim->stepForward();
+          energy = double(bob->getKineticEnergy()) + spook::test::kG * double(bob->getPosition().z());
+          worstGain = std::max(worstGain, energy / mgL);
+          worstGap = std::max(worstGap, std::abs(double(bob->getPosition().norm()) - 1.0));
+        }
+        CAPTURE(inertia);
+        CAPTURE(h);
+        CAPTURE(test::policyName(policy));
+        MESSAGE("energy gain " << worstGain << " m g L, at the end " << energy / mgL << ", gap " << worstGap << " m");
+        CHECK(worstGain <= 0.03);
+        CHECK(energy / mgL >= (iterative ? -0.20 : -0.05));
+        CHECK(worstGap <= (iterative ? 1e-2 : 1e-3));
       }
-      CAPTURE(inertia);
-      CAPTURE(policy);
-      MESSAGE("energy gain " << worstGain << " m g L, at the end " << energy / mgL << ", gap " << worstGap << " m");
-      CHECK(worstGain <= 0.03);
-      CHECK(energy / mgL >= -0.10);
-      CHECK(worstGap <= 1e-2);
-    }
 }
 
 // Issue 19's hinge chain: 10 box links 0.5 x 0.1 x 0.1 m of 5 kg hinged end
@@ -366,14 +367,10 @@ TEST_CASE_TEMPLATE("the 10-link box hinge chain stays closed and passive under e
   constexpr double kLength = 0.5, kMass = 5.0;
   for (const double h : {1.0 / 60.0, 0.1})
     for (const double height : {0.0, 100.0})
-      for (int policy = 0; policy < 3; ++policy) {
+      for (test::Policy policy : test::kPolicies) {
         ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
         sim->setTimeStep(S(h));
-        ref_ptr<Solver> solver;
-        if (policy == 0) solver = new DirectSolver();
-        if (policy == 1) solver = new HybridSolver();
-        if (policy == 2) solver = new IterativeSolver();
-        sim->setSolver(solver);
+        sim->setSolver(test::makeSolver(policy));
         sim->getSpace()->setEnablePair("chain", "chain", false);
         std::vector<ref_ptr<RigidBodyT<S>>> links;
         std::vector<ref_ptr<HingeT<S>>> pins;
@@ -413,11 +410,11 @@ TEST_CASE_TEMPLATE("the 10-link box hinge chain stays closed and passive under e
         }
         CAPTURE(h);
         CAPTURE(height);
-        CAPTURE(policy);
+        CAPTURE(test::policyName(policy));
         MESSAGE("worst pin gap " << worstGap << " m, largest energy gain " << worstGain << " m g L");
         CHECK(finite);
         CHECK(worstGain <= 0.01);
-        CHECK(worstGap <= (policy != 2 && h < 0.05 ? 0.01 : 0.25));
+        CHECK(worstGap <= (policy != test::Policy::ITERATIVE && h < 0.05 ? 0.01 : 0.25));
       }
 }
 
