@@ -20,7 +20,8 @@
 //
 // Measures:
 //   us/step   wall-clock time of one step (µs), best of three runs;
-//             us/sweep: the same over the sweeps of an iterative solver
+//             us/sweep: the cost of one more sweep of an iterative solver
+//             (the slope between its 10 and 16 sweeps' us/step)
 //   gain      largest energy above the start over the run, in units of the
 //             releasable potential energy (m g L: pendulum 1 kg · g · 1 m,
 //             chain 50 kg · g · 0.5 m, one link's length)
@@ -130,7 +131,8 @@ Scene chain() {
 
 struct Solver {
   std::string name;
-  int sweeps = 0;  ///< iterative solvers: sweeps per step (0: direct)
+  std::string family;  ///< iterative solvers: runs differing only in sweeps
+  int sweeps = 0;      ///< iterative solvers: sweeps per step (0: direct)
   std::function<std::unique_ptr<Engine>(const Description&)> make;
 };
 
@@ -139,17 +141,22 @@ std::vector<Solver> solvers() {
     return [make](const Description& d) -> std::unique_ptr<Engine> { return std::make_unique<SpookEngine>(d, make()); };
   };
   std::vector<Solver> list;
-  list.push_back({"direct", 0, spookSolver([] { return spook::SolverRef(new spook::DirectSolver()); })});
-  list.push_back({"hybrid", 0, spookSolver([] { return spook::SolverRef(new spook::HybridSolver()); })});
+  list.push_back({"direct", "", 0, spookSolver([] { return spook::SolverRef(new spook::DirectSolver()); })});
+  list.push_back({"hybrid", "", 0, spookSolver([] { return spook::SolverRef(new spook::HybridSolver()); })});
   for (int sweeps : {10, 16})
-    list.push_back({"iterative" + std::to_string(sweeps), sweeps, spookSolver([sweeps] {
+    list.push_back({"iterative" + std::to_string(sweeps), "iterative", sweeps, spookSolver([sweeps] {
                       spook::SolverRef s = new spook::IterativeSolver();
                       s->setNumIterations(sweeps);
                       return s;
                     })});
+  list.push_back({"iterative16w", "", 16, spookSolver([] {
+                    spook::SolverRef s = new spook::IterativeSolver();
+                    s->setEnableWarmStarting(true);
+                    return s;
+                  })});
 #ifdef SPOOK_STUDY_BULLET
   for (int sweeps : {10, 16})
-    list.push_back({"bullet SI " + std::to_string(sweeps), sweeps,
+    list.push_back({"bullet SI " + std::to_string(sweeps), "bullet SI", sweeps,
                     [sweeps](const Description& d) { return joint_study::makeBulletEngine(d, sweeps); }});
 #endif
   return list;
@@ -180,8 +187,8 @@ double worstGap(const Engine& engine, const Description& d) {
 }
 
 struct Result {
-  std::string scene, solver;
-  double h = 0, costUs = INFINITY, gain = -INFINITY, energy = 0, gap = 0;
+  std::string scene, solver, family;
+  double h = 0, costUs = INFINITY, sweepUs = NAN, gain = -INFINITY, energy = 0, gap = 0;
   int sweeps = 0;
   bool finite = true;
 };
@@ -189,7 +196,7 @@ struct Result {
 Result run(const Scene& scene, const Solver& solver, double h) {
   Description d = scene.description;
   d.timeStep = h;
-  Result r{scene.name, solver.name, h};
+  Result r{scene.name, solver.name, solver.family, h};
   r.sweeps = solver.sweeps;
   const long steps = std::lround(kDuration / h);
   {
@@ -226,6 +233,12 @@ int main(int argc, char** argv) {
   for (const Scene& scene : scenes)
     for (double h : scene.timeSteps)
       for (const Solver& solver : solvers()) results.push_back(run(scene, solver, h));
+  // The cost of one more sweep: the slope between two sweep counts of one
+  // solver family on one scene and step.
+  for (Result& a : results)
+    for (const Result& b : results)
+      if (!a.family.empty() && a.family == b.family && a.scene == b.scene && a.h == b.h && a.sweeps != b.sweeps)
+        a.sweepUs = (a.costUs - b.costUs) / double(a.sweeps - b.sweeps);
 
   std::printf("%-14s  %-12s  %5s  %8s  %8s  %10s  %10s  %10s  %s\n", "scene", "solver", "h", "us/step", "us/sweep",
               "gain", "dE", "gap (m)", "finite");
@@ -234,14 +247,14 @@ int main(int argc, char** argv) {
     if (r.scene != previous && !previous.empty()) std::printf("\n");
     previous = r.scene;
     char perSweep[16] = "-";
-    if (r.sweeps > 0 && std::isfinite(r.costUs)) std::snprintf(perSweep, sizeof perSweep, "%.2f", r.costUs / r.sweeps);
-    std::printf("%-14s  %-12s  1/%-3.0f  %8.2f  %8s  %+10.2e  %+10.2e  %10.2e  %s\n", r.scene.c_str(),
-                r.solver.c_str(), 1.0 / r.h, r.costUs, perSweep, r.gain, r.energy, r.gap, r.finite ? "yes" : "NO");
+    if (std::isfinite(r.sweepUs)) std::snprintf(perSweep, sizeof perSweep, "%.2f", r.sweepUs);
+    std::printf("%-14s  %-12s  1/%-3.0f  %8.2f  %8s  %+10.2e  %+10.2e  %10.2e  %s\n", r.scene.c_str(), r.solver.c_str(),
+                1.0 / r.h, r.costUs, perSweep, r.gain, r.energy, r.gap, r.finite ? "yes" : "NO");
   }
   std::printf(
       "\ngain: largest energy above the start over the run; dE: energy change at the end; both in m g L.\n"
-      "gap: worst hinge pin separation. us/step: wall-clock, best of three runs of %g s; us/sweep: us/step\n"
-      "over the sweeps of an iterative solver (step overhead included).\n",
+      "gap: worst hinge pin separation. us/step: wall-clock, best of three runs of %g s; us/sweep: the cost\n"
+      "of one more sweep of an iterative solver (the slope between its 10 and 16 sweeps' us/step).\n",
       kDuration);
 
   std::FILE* csv = std::fopen(csvPath.c_str(), "w");
@@ -249,10 +262,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "cannot write %s\n", csvPath.c_str());
     return 1;
   }
-  std::fprintf(csv, "scene,solver,h,sweeps,cost_us_per_step,energy_gain,energy_error,worst_gap_m,finite\n");
+  std::fprintf(
+      csv, "scene,solver,h,sweeps,cost_us_per_step,cost_us_per_sweep,energy_gain,energy_error,worst_gap_m,finite\n");
   for (const Result& r : results)
-    std::fprintf(csv, "%s,%s,%.17g,%d,%.6g,%.6e,%.6e,%.6e,%d\n", r.scene.c_str(), r.solver.c_str(), r.h, r.sweeps,
-                 r.costUs, r.gain, r.energy, r.gap, r.finite ? 1 : 0);
+    std::fprintf(csv, "%s,%s,%.17g,%d,%.6g,%.6g,%.6e,%.6e,%.6e,%d\n", r.scene.c_str(), r.solver.c_str(), r.h, r.sweeps,
+                 r.costUs, r.sweepUs, r.gain, r.energy, r.gap, r.finite ? 1 : 0);
   std::fclose(csv);
   std::printf("CSV written to %s\n", csvPath.c_str());
   return 0;

@@ -248,24 +248,33 @@ TEST_CASE_TEMPLATE("the seeds' hinge snippet: two boxes made at one place stay t
   }
 }
 
+// Direct and hybrid hold the motor to 0.5% (measured 0.47%). Gauss-Seidel
+// converges on the closed loop at ~0.8 per sweep: with its default 16 sweeps
+// the crank lags by 3.5% on the first step (the motor takes the resting
+// linkage to speed in one step) and up to 1.3% after it (9.5% row by row
+// before the joint blocks); 32 sweeps hold it to 0.14%, 48 to 0.014%.
+// Warm starting would hold it to 0.01% after three steps but feeds energy
+// into a swinging hinge chain (+47 m g L in 10 s, bench/joint_study), so it
+// stays off by default.
 TEST_CASE_TEMPLATE("a solid-link four-bar closes and its crank turns at the motor's speed", S, float, double) {
   const int steps = int(600 * kSlow);  // 10 s
-  for (Policy policy : kPolicies) {
-    CAPTURE(std::string(policyName(policy)));
-    Linkage<S> fourBar(policy, 0.06, true, false);
-    double worstGap = 0.0, worstSpeed = 0.0;
-    for (int i = 0; i < steps; ++i) {
-      fourBar.sim->stepForward();
-      worstGap = std::max(worstGap, fourBar.worstGap());
-      worstSpeed = std::max(worstSpeed, std::abs(fourBar.crankSpeed() - Linkage<S>::kSpeed) / Linkage<S>::kSpeed);
+  for (Policy policy : kPolicies)
+    for (int sweeps : {0, 32}) {
+      if (sweeps > 0 && policy != Policy::ITERATIVE) continue;
+      CAPTURE(std::string(policyName(policy)));
+      CAPTURE(sweeps);
+      Linkage<S> fourBar(policy, 0.06, true, false);
+      if (sweeps > 0) fourBar.sim->getSolver()->setNumIterations(sweeps);
+      double worstGap = 0.0, worstSpeed = 0.0;
+      for (int i = 0; i < steps; ++i) {
+        fourBar.sim->stepForward();
+        worstGap = std::max(worstGap, fourBar.worstGap());
+        worstSpeed = std::max(worstSpeed, std::abs(fourBar.crankSpeed() - Linkage<S>::kSpeed) / Linkage<S>::kSpeed);
+      }
+      CHECK(worstGap < (policy == Policy::DIRECT ? 1e-5 : 1e-3));
+      MESSAGE(std::string(policyName(policy)) << ", " << (sweeps > 0 ? std::to_string(sweeps) : "default") << " sweeps: worst crank speed error " << worstSpeed);
+      CHECK(worstSpeed < (policy == Policy::ITERATIVE && sweeps == 0 ? 0.05 : 0.005));
     }
-    CHECK(worstGap < (policy == Policy::DIRECT ? 1e-5 : 1e-3));
-    // Direct and hybrid hold the motor to 0.5%; Gauss-Seidel lags it on the
-    // closed loop (3.5% with each hinge's rows as one block, 9.5% row by
-    // row; issue 23).
-    MESSAGE(std::string(policyName(policy)) << ": worst crank speed error " << worstSpeed);
-    CHECK(worstSpeed < (policy == Policy::ITERATIVE ? 0.05 : 0.005));
-  }
 }
 
 TEST_CASE_TEMPLATE("a solid-link four-bar with collisions between its links stays finite", S, float, double) {

@@ -14525,8 +14525,6 @@ class BodySpaceSolve {
 #include <cstddef>
 #include <vector>
 
-#include <Eigen/Cholesky>
-
 // --- begin spook/solver/friction_bounds.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_FRICTION_BOUNDS_HPP
 #define SPOOK_SINGLE_SPOOK_SOLVER_FRICTION_BOUNDS_HPP
@@ -14684,6 +14682,42 @@ struct IterativeSolveResult {
   bool converged = false; ///< `change` fell below the tolerance
 };
 
+/// The inverse of the symmetric positive definite leading n × n corner of
+/// `A` (lower triangle read), by Cholesky A = LLᵀ and A⁻¹ = L⁻ᵀL⁻¹, in
+/// place of that corner; false, leaving `A` unspecified, when a pivot is
+/// not positive (or not finite). Plain loops: for n ≤ 6 they beat Eigen's
+/// general triangular solves several times over.
+inline bool invertPositiveDefinite(Mat6d& A, int n) {
+  Mat6d L = Mat6d::Zero();
+  for (int j = 0; j < n; ++j) {
+    double d = A(j, j);
+    for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k);
+    if (!(d > 0.0) || !std::isfinite(d)) return false;
+    L(j, j) = std::sqrt(d);
+    for (int i = j + 1; i < n; ++i) {
+      double x = A(i, j);
+      for (int k = 0; k < j; ++k) x -= L(i, k) * L(j, k);
+      L(i, j) = x / L(j, j);
+    }
+  }
+  Mat6d W = Mat6d::Zero();  // L⁻¹, lower triangular
+  for (int j = 0; j < n; ++j) {
+    W(j, j) = 1.0 / L(j, j);
+    for (int i = j + 1; i < n; ++i) {
+      double x = 0.0;
+      for (int k = j; k < i; ++k) x -= L(i, k) * W(k, j);
+      W(i, j) = x / L(i, i);
+    }
+  }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j <= i; ++j) {
+      double x = 0.0;
+      for (int k = i; k < n; ++k) x += W(k, i) * W(k, j);
+      A(i, j) = A(j, i) = x;
+    }
+  return A.topLeftCorner(n, n).allFinite();
+}
+
 /// The units a Gauss–Seidel sweep updates, in the order of `subset`: a
 /// row, or a block of one constraint's consecutive unbounded rows (up to
 /// six) solved together, ΔΛ_B = (S+Σ)_BB⁻¹ r_B (block Gauss–Seidel, as
@@ -14691,15 +14725,15 @@ struct IterativeSolveResult {
 /// couple through its bodies' inverse inertia; for a point-like body on a
 /// long arm that coupling is ~1e6 times a row's own mass and row-by-row
 /// sweeps barely converge, while a block update is exact for the joint.
+/// Each block's inverse is formed once per solve, padded to 6 × 6, so that
+/// a sweep's update is one fixed-size product.
 class RowBlocks {
  public:
   static constexpr int kMaxRows = 6;
-  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxRows>;
-  using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxRows, 1>;
   struct Unit {
-    int first = 0;    ///< position in the subset of its first row
-    int count = 1;    ///< rows in the unit; a block when > 1
-    int factor = -1;  ///< blocks: their factorization
+    int first = 0;     ///< position in the subset of its first row
+    int count = 1;     ///< rows in the unit; a block when > 1
+    int inverse = -1;  ///< blocks: their inverse
   };
 
   /// Units of `subset`; all single rows unless `makeBlocks`.
@@ -14717,16 +14751,17 @@ class RowBlocks {
           ++end;
       Unit unit{static_cast<int>(k), static_cast<int>(end - k), -1};
       if (unit.count > 1) {
-        Matrix A(unit.count, unit.count);
+        // Padded with the identity to 6 × 6: the padding's rows stay
+        // decoupled (their residuals are zero).
+        Mat6d A = Mat6d::Identity();
         for (int a = 0; a < unit.count; ++a)
-          for (int b = 0; b < unit.count; ++b) {
+          for (int b = 0; b <= a; ++b) {
             const int i = subset[k + std::size_t(a)], j = subset[k + std::size_t(b)];
             A(a, b) = a == b ? problem.rows[static_cast<std::size_t>(i)].diagonal : problem.coupling(i, j);
           }
-        Eigen::LLT<Matrix> llt(A);
-        if (llt.info() == Eigen::Success && llt.matrixLLT().allFinite()) {
-          unit.factor = static_cast<int>(factors_.size());
-          factors_.push_back(std::move(llt));
+        if (invertPositiveDefinite(A, unit.count)) {
+          unit.inverse = static_cast<int>(inverses_.size());
+          inverses_.push_back(A);
         } else {
           // Not positive definite to round-off: this row alone, and its
           // followers start the next block (which may fail again, ending
@@ -14741,13 +14776,14 @@ class RowBlocks {
   }
 
   [[nodiscard]] const std::vector<Unit>& units() const { return units_; }
-  [[nodiscard]] const Eigen::LLT<Matrix>& factor(const Unit& unit) const {
-    return factors_[static_cast<std::size_t>(unit.factor)];
+  /// (S+Σ)_BB⁻¹ of a block in its count × count corner (identity beyond).
+  [[nodiscard]] const Mat6d& inverse(const Unit& unit) const {
+    return inverses_[static_cast<std::size_t>(unit.inverse)];
   }
 
  private:
   std::vector<Unit> units_;
-  std::vector<Eigen::LLT<Matrix>> factors_;
+  std::vector<Mat6d> inverses_;
 };
 
 /// Projected Gauss–Seidel on the rows `subset` (PHYSICS.md §2.2), the other
@@ -14796,18 +14832,17 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
   };
 
   const RowBlocks blocks(problem, subset, !jacobi);
-  RowBlocks::Vector r_B, d_B;
   for (int sweep = 0; sweep < maxIterations; ++sweep) {
     double change = 0.0;
     for (const RowBlocks::Unit& unit : blocks.units()) {
       if (unit.count > 1) {
-        r_B.resize(unit.count);
+        Vec6d r_B = Vec6d::Zero();
         for (int a = 0; a < unit.count; ++a) {
           const int i = subset[static_cast<std::size_t>(unit.first + a)];
           const auto& e = problem.rows[static_cast<std::size_t>(i)];
           r_B(a) = e.q - problem.rowVelocity(i, dv) - e.sigma * e.impulse;
         }
-        d_B = blocks.factor(unit).solve(r_B);
+        const Vec6d d_B = blocks.inverse(unit) * r_B;
         for (int a = 0; a < unit.count; ++a) {
           const int i = subset[static_cast<std::size_t>(unit.first + a)];
           auto& e = problem.rows[static_cast<std::size_t>(i)];
