@@ -14,8 +14,10 @@
 #include <spook/collide/collider.hpp>
 #include <spook/collide/colliders/box_box.hpp>
 #include <spook/collide/colliders/box_capsule.hpp>
+#include <spook/collide/colliders/box_plane.hpp>
 #include <spook/collide/shapes/box.hpp>
 #include <spook/collide/shapes/capsule.hpp>
+#include <spook/collide/shapes/plane.hpp>
 
 #include "tolerance.hpp"
 
@@ -640,6 +642,46 @@ TEST_CASE_TEMPLATE("coincident and exactly touching boxes give finite contacts",
   const auto shifted = contactsOf<S>(*a, at<S>(0, 0, 0), *a, at<S>(0.99, 1.39, 1.79));
   CHECK(!shifted.empty());
   CHECK(allFinite(shifted));
+}
+
+// A unit cube resting on another settles ~1e-9 m deep under 1 kg: below
+// float's resolution of its coordinates (6e-8 m at 1 m), and a tilt of a
+// micro-radian lifts two of its corners by more than that. Within the
+// touching gap (kTouchingGap of the smaller box's size, 8.7e-6 m here) the
+// corners still touch (depth 0), and a 1.05 bias cannot hand the contact to
+// an edge axis whose overlap differs from the face's only by round-off:
+// losing corners made a float pyramid of bricks rock and collapse.
+TEST_CASE_TEMPLATE("a cube tilted by round-off on another keeps its four corners", S, float, double) {
+  spook::ref_ptr<spook::BoxT<S>> cube = new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5)));
+  for (const double tilt : {0.0, 1e-6, 5e-6})
+    for (const double lift : {-1e-9, 0.0, 1e-7, 2e-6}) {
+      CAPTURE(tilt);
+      CAPTURE(lift);
+      const auto points =
+          contactsOf<S>(*cube, at<S>(0, 0, 0.5), *cube, at<S>(0.2, 0, 1.5 + lift, turn(tilt, V3(1, 1, 0).normalized())));
+      CHECK(points.size() == 4);
+      for (const auto& p : points) {
+        CHECK((p.normal - spook::Vec3T<S>::UnitZ()).norm() <= pick<S>(1e-5, 1e-5));
+        CHECK(p.depth <= S(tilt + std::max(0.0, -lift)) + pick<S>(1e-12, 1e-6));
+      }
+    }
+  // Beyond the gap they are apart.
+  CHECK(contactsOf<S>(*cube, at<S>(0, 0, 0.5), *cube, at<S>(0.2, 0, 1.5 + 1e-4)).empty());
+}
+
+TEST_CASE_TEMPLATE("a cube tilted by round-off on a plane keeps its four corners", S, float, double) {
+  spook::ref_ptr<spook::BoxT<S>> cube = new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5)));
+  spook::ref_ptr<spook::PlaneT<S>> ground = new spook::PlaneT<S>(spook::Vec3T<S>::UnitZ());
+  for (const double tilt : {0.0, 1e-6, 5e-6})
+    for (const double lift : {-1e-9, 0.0, 1e-7, 2e-6}) {
+      CAPTURE(tilt);
+      CAPTURE(lift);
+      const auto points =
+          contactsOf<S>(*cube, at<S>(3, -2, 0.5 + lift, turn(tilt, V3(1, 1, 0).normalized())), *ground, at<S>(0, 0, 0));
+      CHECK(points.size() == 4);
+      for (const auto& p : points) CHECK(p.depth <= S(tilt + std::max(0.0, -lift)) + pick<S>(1e-12, 1e-6));
+    }
+  CHECK(contactsOf<S>(*cube, at<S>(3, -2, 0.5 + 1e-4), *ground, at<S>(0, 0, 0)).empty());
 }
 
 TEST_CASE_TEMPLATE("a capsule lying flat on a box touches it at both ends", S, float, double) {

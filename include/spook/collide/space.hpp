@@ -175,7 +175,10 @@ class SpaceT : public Referenced {
   void update(const std::vector<ref_ptr<Body>>& bodies = {}) {
     gather(bodies);
     boxes_.clear();
-    for (const Geometry* g : active_) boxes_.push_back(g->getBoundingBox());
+    // Grown by the touching gap, within which the colliders count shapes as
+    // touching: a box resting on another, its settling depth lost to float
+    // round-off, stays a pair.
+    for (const Geometry* g : active_) boxes_.push_back(g->getBoundingBox().grownBy(S(detail::kTouchingGap)));
     contacts_.clear();
     numDroppedContactPoints_ = 0;
     broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(*active_[i], *active_[j]); });

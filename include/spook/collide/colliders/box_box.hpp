@@ -67,6 +67,11 @@ inline constexpr double kEdgeBias = 1.05;
 ///    face becomes a contact with its own depth: up to 8 points;
 ///  - on an edge axis, one contact midway between the closest points of the
 ///    two edges, with the axis overlap as depth.
+/// Boxes apart by less than the touching gap (detail::kTouchingGap of the
+/// smaller box's size) touch, and so do the clipped corners within that gap
+/// of the reference face (contacts of depth 0): a box resting on another
+/// keeps its four corners when it tilts by round-off, or when float
+/// coordinates cannot resolve its settling depth.
 /// Cross products of near-parallel edges are skipped: their direction is
 /// lost to round-off, and the face axes then separate the boxes anyway.
 template <Scalar S>
@@ -89,13 +94,14 @@ struct Collider<BoxT<S>, BoxT<S>> {
     const Placed boxB{R_WA.transpose() * (X_WB.translation() - X_WA.translation()), R_WA.transpose() * X_WB.linear(),
                       b.getHalfExtents()};
     const Vec3 d = boxB.center;
+    const S gap = S(detail::kTouchingGap) * std::min(boxA.half.norm(), boxB.half.norm());
 
     Axis face, edge;
     // Overlap along the unit axis n; returns false when n separates them.
     auto consider = [&](const Vec3& n, int kind, int index, Axis& best) {
       const S along = n.dot(d);
       const S overlap = boxA.radius(n) + boxB.radius(n) - std::abs(along);
-      if (overlap < S(0)) return false;
+      if (overlap < -gap) return false;
       if (overlap < best.depth) best = Axis{along < S(0) ? Vec3(-n) : n, overlap, kind, index};
       return true;
     };
@@ -115,7 +121,9 @@ struct Collider<BoxT<S>, BoxT<S>> {
     auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
       sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
     };
-    if (edge.kind == 2 && S(detail::box_box::kEdgeBias) * edge.depth < face.depth) {
+    // The bias is relative; at depths below round-off (a light box resting
+    // in float) only an edge axis shallower by more than the gap wins.
+    if (edge.kind == 2 && S(detail::box_box::kEdgeBias) * edge.depth < face.depth && edge.depth + gap < face.depth) {
       emitEdge(boxA, boxB, edge, emit);
       return;
     }
@@ -124,7 +132,7 @@ struct Collider<BoxT<S>, BoxT<S>> {
     const Placed& reference = onA ? boxA : boxB;
     const Placed& incident = onA ? boxB : boxA;
     const Vec3 n = onA ? face.axis : Vec3(-face.axis);  // out of the reference face, toward the incident box
-    if (emitFace(reference, face.index, n, incident, face.axis, face.depth, emit) == 0) {
+    if (emitFace(reference, face.index, n, incident, face.axis, face.depth, gap, emit) == 0) {
       // Round-off (or the face bias) left no clipped corner below the
       // reference face: one point at the incident box's deepest corner.
       const Vec3 deepest = incident.corner(-n);
@@ -149,11 +157,12 @@ struct Collider<BoxT<S>, BoxT<S>> {
   }
 
   /// Clips the incident face against the reference face `axis` whose
-  /// outward normal is n and writes the points below it with the normal
-  /// normal_AB (from A toward B); returns how many.
+  /// outward normal is n and writes the points below it, or above it by
+  /// less than `gap`, with the normal normal_AB (from A toward B); returns
+  /// how many.
   template <class Emit>
   static int emitFace(const Placed& reference, int axis, const Vec3& n, const Placed& incident, const Vec3& normal_AB,
-                      S depthOfAxis, Emit& emit) {
+                      S depthOfAxis, S gap, Emit& emit) {
     // Incident face: the face of the incident box most opposed to n.
     const Vec3 alignment = incident.axes.transpose() * n;
     int k = 0;
@@ -186,7 +195,7 @@ struct Collider<BoxT<S>, BoxT<S>> {
     for (std::size_t m = 0; m < polygon.count; ++m) {
       const Vec3& x = polygon.points[m];
       const S depth = std::min(facePlane - n.dot(x), depthOfAxis);
-      if (!(depth >= S(0))) continue;
+      if (!(depth >= -gap)) continue;
       emit(Vec3(x + n * (S(0.5) * depth)), normal_AB, depth);
       ++written;
     }
