@@ -15255,9 +15255,11 @@ SPOOK_SOLVER_INLINE void Solver::directWithFriction(detail::IslandProblem& probl
     if (!e.followsNormal() || (keep && (*keep)[static_cast<std::size_t>(i)])) continue;
     following.push_back(i);
   }
+  const int fallbacks = statistics.directFallbacks;
   direct(problem, subset, statistics);
   int k = 1;
-  for (; k < frictionIterations_ && !following.empty(); ++k) {
+  // A solve that fell back will fall back again on the next bounds: stop.
+  for (; k < frictionIterations_ && !following.empty() && statistics.directFallbacks == fallbacks; ++k) {
     double change = detail::updateConeDirections(problem, following);
     change = std::max(change, detail::applyFrictionBounds(problem, following));
     double largest = 0.0;
@@ -15339,9 +15341,17 @@ SPOOK_SOLVER_INLINE void HybridSolver::solveIsland(detail::IslandProblem& proble
     iterative(problem, iterativeRows, statistics);
     return;
   }
+  const int fallbacks = statistics.directFallbacks;
   directWithFriction(problem, directRows, statistics);
   std::vector<double> previous(directRows.size());
+  // A direct pass that fell back (its pivoting cap reached) would only
+  // repeat at the next coupling pass: the step then ends with one more
+  // iterative pass, which bounds its cost.
   for (int pass = 0; pass < getNumCouplingIterations(); ++pass) {
+    if (statistics.directFallbacks != fallbacks) {
+      iterative(problem, iterativeRows, statistics);
+      break;
+    }
     iterative(problem, iterativeRows, statistics);
     detail::freezeConeShares(problem, iterativeRows, keep);
     detail::applyFrictionBounds(problem, iterativeRows);
