@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "contact_scenes.hpp"
+#include "policies.hpp"
 #include "tolerance.hpp"
 
 // Stacks and heavy-on-light: where iterative solvers go soft (issue 5).
@@ -111,37 +112,51 @@ TEST_CASE_TEMPLATE("a pyramid of 210 unit cubes with a base of 20 stands for 5 s
 // flickered out of the manifolds (and whole pairs out of the broadphase),
 // the cubes rocked, and the pyramid fell apart within a second (drift
 // 1.4 cm, 0.2-1 s steps). Now corners and pairs within the touching gap
-// touch. Hybrid policy, 1 kg and 1000 kg cubes, 5 s at 60 Hz: no cube moves
-// more than 5 mm (measured 3.5e-7 m at 1 kg, 0.35 mm at 1000 kg, float and
-// double).
-TEST_CASE_TEMPLATE("a brick-pattern pyramid of 55 unit cubes stands for 5 s, 1 kg and 1000 kg (hybrid)", S, float,
-                   double) {
-  for (const double mass : {1.0, 1000.0}) {
-    CAPTURE(mass);
-    spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
-    spook::ref_ptr<spook::MaterialT<S>> material = new spook::MaterialT<S>("wood");
-    spook::test::addGround(*sim, material);
-    std::vector<spook::ref_ptr<spook::RigidBodyT<S>>> boxes;
-    constexpr int kBase = 10;
-    constexpr double kPitch = 1.05;
-    for (int level = 0; level < kBase; ++level)
-      for (int i = 0; i < kBase - level; ++i) {
-        auto box = spook::test::addBody(
-            *sim, "brick", new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))), material,
-            spook::Vec3T<S>(S(kPitch * (i - (kBase - 1 - level) / 2.0)), S(0), S(0.5 + level)));
-        box->getMassProperties()->setMass(S(mass));
-        box->updateMassProperties();
-        boxes.push_back(box);
+// touch. Under the direct policy the block pivoting cycled on the redundant
+// corners' round-off and fell back on every step (1.6 cm); friction rows now
+// keep a least compliance (IslandStepper::kFrictionSofterThan) and the
+// pivoting's tolerance follows the island's round-off. Direct and hybrid,
+// 1 kg and 1000 kg cubes, 5 s at 60 Hz: no cube moves more than 5 mm
+// (measured 6e-8..3.5e-7 m at 1 kg, 0.32-0.34 mm at 1000 kg), and the direct
+// solve falls back on at most 5 % of the steps (measured 0-1 of 300; 210
+// cubes: bench/brick_pyramids).
+TEST_CASE_TEMPLATE("a brick-pattern pyramid of 55 unit cubes stands for 5 s, 1 kg and 1000 kg (direct, hybrid)", S,
+                   float, double) {
+  for (const spook::test::Policy policy : {spook::test::Policy::DIRECT, spook::test::Policy::HYBRID})
+    for (const double mass : {1.0, 1000.0}) {
+      CAPTURE(spook::test::policyName(policy));
+      CAPTURE(mass);
+      spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
+      sim->setSolver(spook::test::makeSolver(policy));
+      spook::ref_ptr<spook::MaterialT<S>> material = new spook::MaterialT<S>("wood");
+      spook::test::addGround(*sim, material);
+      std::vector<spook::ref_ptr<spook::RigidBodyT<S>>> boxes;
+      constexpr int kBase = 10;
+      constexpr double kPitch = 1.05;
+      for (int level = 0; level < kBase; ++level)
+        for (int i = 0; i < kBase - level; ++i) {
+          auto box = spook::test::addBody(
+              *sim, "brick", new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))), material,
+              spook::Vec3T<S>(S(kPitch * (i - (kBase - 1 - level) / 2.0)), S(0), S(0.5 + level)));
+          box->getMassProperties()->setMass(S(mass));
+          box->updateMassProperties();
+          boxes.push_back(box);
+        }
+      REQUIRE(boxes.size() == 55);
+      std::vector<spook::Vec3T<S>> start;
+      for (const auto& b : boxes) start.push_back(b->getPosition());
+      const int steps = spook::test::sweep(300, 60);
+      int fallbackSteps = 0;
+      for (int step = 0; step < steps; ++step) {
+        sim->stepForward();
+        fallbackSteps += sim->getStatistics().solver.directFallbacks > 0 ? 1 : 0;
       }
-    REQUIRE(boxes.size() == 55);
-    std::vector<spook::Vec3T<S>> start;
-    for (const auto& b : boxes) start.push_back(b->getPosition());
-    const int steps = spook::test::sweep(300, 60);
-    for (int step = 0; step < steps; ++step) sim->stepForward();
-    double worst = 0.0;
-    for (std::size_t i = 0; i < boxes.size(); ++i)
-      worst = std::max(worst, double((boxes[i]->getPosition() - start[i]).norm()));
-    MESSAGE("worst displacement of a brick in ", steps / 60, " s: ", worst, " m");
-    CHECK(worst < 5e-3);
-  }
+      double worst = 0.0;
+      for (std::size_t i = 0; i < boxes.size(); ++i)
+        worst = std::max(worst, double((boxes[i]->getPosition() - start[i]).norm()));
+      MESSAGE("worst displacement of a brick in ", steps / 60, " s: ", worst, " m; steps falling back ",
+              fallbackSteps);
+      CHECK(worst < 5e-3);
+      CHECK(fallbackSteps * 20 <= steps);  // at most 5 % of the steps
+    }
 }

@@ -56,6 +56,14 @@ class DirectSolve {
   /// Gauss–Seidel sweeps of the fallback.
   static constexpr int kFallbackSweeps = 64;
 
+  /// A row is infeasible when it leaves its bounds, or its residual has the
+  /// wrong sign, by more than this fraction of the island's largest impulse
+  /// or right-hand side. The solve's round-off is relative to those, not to
+  /// each row's own: with a tolerance of 1e-12 of each row's magnitude,
+  /// rows of a 210-cube pyramid flipped on residuals of 1e-10 of the
+  /// largest and the pivoting cycled to its cap.
+  static constexpr double kRoundOff = 1e-10;
+
   /// Block pivoting steps allowed without a new fewest-infeasible count
   /// before single pivots: friction in a 210-cube pyramid needs tens of such
   /// steps, and Murty's one row per step then takes hundreds.
@@ -82,6 +90,7 @@ class DirectSolve {
       else if (e.guess >= e.upper) state[static_cast<std::size_t>(k)] = UPPER;
     }
 
+    const double tolW = kRoundOff * (q_.cwiseAbs().maxCoeff() + std::numeric_limits<double>::min());
     Eigen::VectorXd x(n), bestX;
     int best = std::numeric_limits<int>::max();
     int strikes = 0;
@@ -91,11 +100,10 @@ class DirectSolve {
       ++result.factorizations;
       if (!anyBounded) break;
       const Eigen::VectorXd w = residual(problem, subset, x);
+      const double tolX = kRoundOff * (x.cwiseAbs().maxCoeff() + std::numeric_limits<double>::min());
       infeasible.clear();
       for (int k = 0; k < n; ++k) {
         const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-        const double tolX = 1e-12 * (1.0 + std::abs(x[k]));
-        const double tolW = 1e-12 * (1.0 + std::abs(q_[k]));
         const State s = state[static_cast<std::size_t>(k)];
         if (e.upper <= e.lower) continue;  // a zero-width box: held at its bound from the start
         if ((s == FREE && (x[k] < e.lower - tolX || x[k] > e.upper + tolX)) || (s == LOWER && w[k] < -tolW) ||
