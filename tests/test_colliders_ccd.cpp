@@ -7,9 +7,9 @@
 // as small an overlap along it, see checkDifferential), the deepest (and
 // only) contact compared, on contacts as a simulation makes them: the
 // second shape placed at −5 cm to +10 cm penetration along a random
-// direction (10,000 cases per pair and scalar; 1,000 in builds without
+// direction (10,000 cases per pair and scalar; 200 in builds without
 // NDEBUG, see kCcdCases). Deep overlaps, the second shape's center
-// anywhere within reach of the first's (500; 50 without NDEBUG), are
+// anywhere within reach of the first's (500; 100 without NDEBUG), are
 // measured and logged, intersecting or not checked, the depth not judged.
 //
 // The reference for depth and normal is not FCL: FCL 0.7.0's GST_INDEP

@@ -2,7 +2,7 @@
 // or a segment, and the hull–plane collider, float and double; see
 // test_colliders_ccd.cpp for the pairs with a box, a cylinder or a sphere
 // and for what is judged (checkCcd: 10,000 contacts as a simulation makes
-// them per pair and scalar, 1,000 without NDEBUG, plus deep overlaps;
+// them per pair and scalar, 200 without NDEBUG, plus deep overlaps;
 // intersecting or not agrees in >= 99.9 % of the cases farther than 1e-6 m
 // from touching, depth within 1e-4 m, normal within 1e-3 rad or
 // equivalent). The hulls are randomHull's: half of them 20–40 points on an

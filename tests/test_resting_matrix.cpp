@@ -219,12 +219,24 @@ void checkResting(const std::vector<S>& sizes) {
 
 }  // namespace
 
+// The sanitized build (no NDEBUG) rests each body on one size of each
+// ground, the largest in double and the smallest in float: every collider
+// pair and ground kind still runs under ASan and UBSan, at 2 of the 5 sizes'
+// cost (the cells there spend ~25 ms a step in the libccd polishing).
 TEST_CASE("resting: no shape sinks into or slides off any ground (double, grounds of 1, 10 and 100 m)") {
+#ifdef NDEBUG
   checkResting<double>({1.0, 10.0, 100.0});
+#else
+  checkResting<double>({100.0});
+#endif
 }
 
 TEST_CASE("resting: no shape sinks into or slides off any ground (float, grounds of 1 and 100 m)") {
+#ifdef NDEBUG
   checkResting<float>({1.0f, 100.0f});
+#else
+  checkResting<float>({1.0f});
+#endif
 }
 
 namespace {
