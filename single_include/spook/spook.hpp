@@ -14229,9 +14229,9 @@ class Solver : public Referenced {
   /// that reaches it falls back to its safe answer (direct_solve.hpp) and is
   /// counted in SolverStatistics::directFallbacks. Converging solves of a
   /// 210-cube pyramid take 3-10 steps. The cap counts pivots, not work: a
-  /// falling-back step of that pyramid took 0.6 s where its island is
-  /// solved in body space (1000 kg cubes) and up to 10 s in row space
-  /// (1 kg cubes in float, ~4,800 rows; bench/brick_pyramids).
+  /// falling-back step of that pyramid takes up to 0.8 s in body space
+  /// (~4,800 contact rows on 210 bodies; bench/brick_pyramids) and would
+  /// take seconds where rigid joints keep such an island in row space.
   [[nodiscard]] int getMaxPivotSteps() const { return maxPivotSteps_; }
   void setMaxPivotSteps(int n) {
     if (n < 1) throw detail::makeError("Solver", getName(), "maximum pivot steps must be >= 1", n);
@@ -14432,13 +14432,15 @@ namespace spook::detail {
 /// freedom, factorize in a fraction of the time.
 ///
 /// x = Σ⁻¹(r − G y) cancels digits where Σ is small against the row's
-/// mobility G M⁻¹Gᵀ (about log₁₀ of their ratio), so the form is used only
-/// when every row is at least kSofterThan as compliant as it is mobile:
-/// contacts (compliance 1/E) qualify, rigid joints (Σ at its 1e-12 floor)
-/// do not.
+/// mobility G M⁻¹Gᵀ (about log₁₀ of their ratio); DirectSolve wins them
+/// back by iterative refinement (each pass solves for the residual with the
+/// same factorization). The form is used only when every row is at least
+/// kSofterThan as compliant as it is mobile, where a pass gains at least
+/// five digits: contacts (compliance 1/E: 1e-9..1e-7 of a 1 kg cube's
+/// mobility) qualify, rigid joints (Σ at its 1e-12 floor) do not.
 class BodySpaceSolve {
  public:
-  static constexpr double kSofterThan = 1e-6;
+  static constexpr double kSofterThan = 1e-10;
 
   /// Whether `numRows` rows outnumber the degrees of freedom of `numBodies`.
   [[nodiscard]] static bool outnumbers(std::size_t numRows, std::size_t numBodies) { return numRows > 6 * numBodies; }
@@ -14457,29 +14459,24 @@ class BodySpaceSolve {
     return true;
   }
 
-  /// Solves the rows of `subset` flagged free (freeIndex[k] ≥ 0) for the
-  /// right-hand side r (`rhs`, one entry per free row); writes x into `x`
-  /// at the free rows' positions.
-  void solve(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex,
-             const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+  /// Factorizes K for the rows of `subset` flagged free (freeIndex[k] ≥ 0).
+  void factorize(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex) {
     const int numBodies = problem.numBodies;
     blocks_.clear();
     blockOf_.clear();
     diagonal_.assign(static_cast<std::size_t>(numBodies), Mat6d::Zero());
     for (int b = 0; b < numBodies; ++b) diagonal_[static_cast<std::size_t>(b)] = problem.mass[static_cast<std::size_t>(b)];
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(6 * numBodies);
     for (std::size_t k = 0; k < subset.size(); ++k) {
       const int f = freeIndex[k];
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       const double inverseSigma = 1.0 / e.sigma;
-      const double s = rhs[f] * inverseSigma;
       if (e.body1 >= 0 && e.body1 == e.body2) {
-        addRow(e.body1, e.J1 + e.J2, inverseSigma, s, b);
+        addRow(e.body1, e.J1 + e.J2, inverseSigma);
         continue;
       }
-      if (e.body1 >= 0) addRow(e.body1, e.J1, inverseSigma, s, b);
-      if (e.body2 >= 0) addRow(e.body2, e.J2, inverseSigma, s, b);
+      if (e.body1 >= 0) addRow(e.body1, e.J1, inverseSigma);
+      if (e.body2 >= 0) addRow(e.body2, e.J2, inverseSigma);
       if (e.body1 >= 0 && e.body2 >= 0) {
         // K's lower triangle: the block (larger body, smaller body).
         const bool firstLarger = e.body1 > e.body2;
@@ -14502,6 +14499,26 @@ class BodySpaceSolve {
     K_.resize(6 * numBodies, 6 * numBodies);
     K_.setFromTriplets(triplets_.begin(), triplets_.end());
     ldlt_.compute(K_);
+  }
+
+  /// Solves the free rows of the last factorize() for the right-hand side r
+  /// (`rhs`, one entry per free row); writes x into `x` at the free rows'
+  /// positions.
+  void solve(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex,
+             const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const {
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(6 * problem.numBodies);
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      const int f = freeIndex[k];
+      if (f < 0) continue;
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
+      const double s = rhs[f] / e.sigma;
+      if (e.body1 >= 0 && e.body1 == e.body2) {
+        b.segment<6>(6 * e.body1) += s * (e.J1 + e.J2);
+        continue;
+      }
+      if (e.body1 >= 0) b.segment<6>(6 * e.body1) += s * e.J1;
+      if (e.body2 >= 0) b.segment<6>(6 * e.body2) += s * e.J2;
+    }
     const Eigen::VectorXd y = ldlt_.solve(b);
 
     for (std::size_t k = 0; k < subset.size(); ++k) {
@@ -14516,9 +14533,8 @@ class BodySpaceSolve {
   }
 
  private:
-  void addRow(int body, const Vec6d& J, double inverseSigma, double s, Eigen::VectorXd& b) {
+  void addRow(int body, const Vec6d& J, double inverseSigma) {
     diagonal_[static_cast<std::size_t>(body)] += inverseSigma * J * J.transpose();
-    b.segment<6>(6 * body) += s * J;
   }
 
   Mat6d& blockAt(int row, int col) {
@@ -15188,7 +15204,9 @@ class DirectSolve {
       for (int k = 0; k < n; ++k)
         if (const int f = freeIndex[static_cast<std::size_t>(k)]; f >= 0)
           rhs[f] -= problem.rowVelocity(subset[static_cast<std::size_t>(k)], clamped);
+      bodySpaceSolve_.factorize(problem, subset, freeIndex);
       bodySpaceSolve_.solve(problem, subset, freeIndex, rhs, x);
+      refineInBodySpace(problem, subset, freeIndex, rhs, x);
       return;
     }
     subTriplets_.clear();
@@ -15210,6 +15228,44 @@ class DirectSolve {
     for (int k = 0; k < n; ++k)
       if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[freeIndex[static_cast<std::size_t>(k)]];
   }
+
+  // Iterative refinement of the free rows' body-space solution x of
+  // (S + Σ)_FF x_F = r (Wilkinson 1963; Higham, Accuracy and Stability of
+  // Numerical Algorithms, ch. 12): the residual in row space, solved again
+  // with the same factorization, corrects x by as many digits as the body
+  // space lost, while the residual shrinks (at most kRefinements passes).
+  void refineInBodySpace(const IslandProblem& problem, const std::vector<int>& subset,
+                         const std::vector<int>& freeIndex, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+    const int n = static_cast<int>(subset.size());
+    Eigen::VectorXd rho(rhs.size()), dx(n);
+    const auto residualNorm = [&] {
+      std::vector<Vec6d> dv(static_cast<std::size_t>(problem.numBodies), Vec6d::Zero());
+      for (int k = 0; k < n; ++k)
+        if (freeIndex[static_cast<std::size_t>(k)] >= 0) problem.addImpulse(dv, subset[static_cast<std::size_t>(k)], x[k]);
+      for (int k = 0; k < n; ++k)
+        if (const int f = freeIndex[static_cast<std::size_t>(k)]; f >= 0) {
+          const int i = subset[static_cast<std::size_t>(k)];
+          rho[f] = rhs[f] - problem.rowVelocity(i, dv) - problem.rows[static_cast<std::size_t>(i)].sigma * x[k];
+        }
+      return rho.cwiseAbs().maxCoeff();
+    };
+    const double enough = 1e-15 * rhs.cwiseAbs().maxCoeff();
+    double size = residualNorm();
+    for (int pass = 0; pass < kRefinements && size > enough; ++pass) {
+      const Eigen::VectorXd before = x;
+      bodySpaceSolve_.solve(problem, subset, freeIndex, rho, dx);
+      for (int k = 0; k < n; ++k)
+        if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] += dx[k];
+      const double after = residualNorm();
+      if (!(after < 0.5 * size)) {
+        x = before;
+        break;
+      }
+      size = after;
+    }
+  }
+
+  static constexpr int kRefinements = 4;
 
   bool bodySpace_ = false;
   BodySpaceSolve bodySpaceSolve_;
@@ -17124,13 +17180,15 @@ namespace spook::detail {
 /// freedom, factorize in a fraction of the time.
 ///
 /// x = Σ⁻¹(r − G y) cancels digits where Σ is small against the row's
-/// mobility G M⁻¹Gᵀ (about log₁₀ of their ratio), so the form is used only
-/// when every row is at least kSofterThan as compliant as it is mobile:
-/// contacts (compliance 1/E) qualify, rigid joints (Σ at its 1e-12 floor)
-/// do not.
+/// mobility G M⁻¹Gᵀ (about log₁₀ of their ratio); DirectSolve wins them
+/// back by iterative refinement (each pass solves for the residual with the
+/// same factorization). The form is used only when every row is at least
+/// kSofterThan as compliant as it is mobile, where a pass gains at least
+/// five digits: contacts (compliance 1/E: 1e-9..1e-7 of a 1 kg cube's
+/// mobility) qualify, rigid joints (Σ at its 1e-12 floor) do not.
 class BodySpaceSolve {
  public:
-  static constexpr double kSofterThan = 1e-6;
+  static constexpr double kSofterThan = 1e-10;
 
   /// Whether `numRows` rows outnumber the degrees of freedom of `numBodies`.
   [[nodiscard]] static bool outnumbers(std::size_t numRows, std::size_t numBodies) { return numRows > 6 * numBodies; }
@@ -17149,29 +17207,24 @@ class BodySpaceSolve {
     return true;
   }
 
-  /// Solves the rows of `subset` flagged free (freeIndex[k] ≥ 0) for the
-  /// right-hand side r (`rhs`, one entry per free row); writes x into `x`
-  /// at the free rows' positions.
-  void solve(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex,
-             const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+  /// Factorizes K for the rows of `subset` flagged free (freeIndex[k] ≥ 0).
+  void factorize(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex) {
     const int numBodies = problem.numBodies;
     blocks_.clear();
     blockOf_.clear();
     diagonal_.assign(static_cast<std::size_t>(numBodies), Mat6d::Zero());
     for (int b = 0; b < numBodies; ++b) diagonal_[static_cast<std::size_t>(b)] = problem.mass[static_cast<std::size_t>(b)];
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(6 * numBodies);
     for (std::size_t k = 0; k < subset.size(); ++k) {
       const int f = freeIndex[k];
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       const double inverseSigma = 1.0 / e.sigma;
-      const double s = rhs[f] * inverseSigma;
       if (e.body1 >= 0 && e.body1 == e.body2) {
-        addRow(e.body1, e.J1 + e.J2, inverseSigma, s, b);
+        addRow(e.body1, e.J1 + e.J2, inverseSigma);
         continue;
       }
-      if (e.body1 >= 0) addRow(e.body1, e.J1, inverseSigma, s, b);
-      if (e.body2 >= 0) addRow(e.body2, e.J2, inverseSigma, s, b);
+      if (e.body1 >= 0) addRow(e.body1, e.J1, inverseSigma);
+      if (e.body2 >= 0) addRow(e.body2, e.J2, inverseSigma);
       if (e.body1 >= 0 && e.body2 >= 0) {
         // K's lower triangle: the block (larger body, smaller body).
         const bool firstLarger = e.body1 > e.body2;
@@ -17194,6 +17247,26 @@ class BodySpaceSolve {
     K_.resize(6 * numBodies, 6 * numBodies);
     K_.setFromTriplets(triplets_.begin(), triplets_.end());
     ldlt_.compute(K_);
+  }
+
+  /// Solves the free rows of the last factorize() for the right-hand side r
+  /// (`rhs`, one entry per free row); writes x into `x` at the free rows'
+  /// positions.
+  void solve(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex,
+             const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const {
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(6 * problem.numBodies);
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      const int f = freeIndex[k];
+      if (f < 0) continue;
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
+      const double s = rhs[f] / e.sigma;
+      if (e.body1 >= 0 && e.body1 == e.body2) {
+        b.segment<6>(6 * e.body1) += s * (e.J1 + e.J2);
+        continue;
+      }
+      if (e.body1 >= 0) b.segment<6>(6 * e.body1) += s * e.J1;
+      if (e.body2 >= 0) b.segment<6>(6 * e.body2) += s * e.J2;
+    }
     const Eigen::VectorXd y = ldlt_.solve(b);
 
     for (std::size_t k = 0; k < subset.size(); ++k) {
@@ -17208,9 +17281,8 @@ class BodySpaceSolve {
   }
 
  private:
-  void addRow(int body, const Vec6d& J, double inverseSigma, double s, Eigen::VectorXd& b) {
+  void addRow(int body, const Vec6d& J, double inverseSigma) {
     diagonal_[static_cast<std::size_t>(body)] += inverseSigma * J * J.transpose();
-    b.segment<6>(6 * body) += s * J;
   }
 
   Mat6d& blockAt(int row, int col) {

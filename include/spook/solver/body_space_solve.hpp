@@ -23,13 +23,15 @@ namespace spook::detail {
 /// freedom, factorize in a fraction of the time.
 ///
 /// x = Σ⁻¹(r − G y) cancels digits where Σ is small against the row's
-/// mobility G M⁻¹Gᵀ (about log₁₀ of their ratio), so the form is used only
-/// when every row is at least kSofterThan as compliant as it is mobile:
-/// contacts (compliance 1/E) qualify, rigid joints (Σ at its 1e-12 floor)
-/// do not.
+/// mobility G M⁻¹Gᵀ (about log₁₀ of their ratio); DirectSolve wins them
+/// back by iterative refinement (each pass solves for the residual with the
+/// same factorization). The form is used only when every row is at least
+/// kSofterThan as compliant as it is mobile, where a pass gains at least
+/// five digits: contacts (compliance 1/E: 1e-9..1e-7 of a 1 kg cube's
+/// mobility) qualify, rigid joints (Σ at its 1e-12 floor) do not.
 class BodySpaceSolve {
  public:
-  static constexpr double kSofterThan = 1e-6;
+  static constexpr double kSofterThan = 1e-10;
 
   /// Whether `numRows` rows outnumber the degrees of freedom of `numBodies`.
   [[nodiscard]] static bool outnumbers(std::size_t numRows, std::size_t numBodies) { return numRows > 6 * numBodies; }
@@ -48,29 +50,24 @@ class BodySpaceSolve {
     return true;
   }
 
-  /// Solves the rows of `subset` flagged free (freeIndex[k] ≥ 0) for the
-  /// right-hand side r (`rhs`, one entry per free row); writes x into `x`
-  /// at the free rows' positions.
-  void solve(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex,
-             const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+  /// Factorizes K for the rows of `subset` flagged free (freeIndex[k] ≥ 0).
+  void factorize(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex) {
     const int numBodies = problem.numBodies;
     blocks_.clear();
     blockOf_.clear();
     diagonal_.assign(static_cast<std::size_t>(numBodies), Mat6d::Zero());
     for (int b = 0; b < numBodies; ++b) diagonal_[static_cast<std::size_t>(b)] = problem.mass[static_cast<std::size_t>(b)];
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(6 * numBodies);
     for (std::size_t k = 0; k < subset.size(); ++k) {
       const int f = freeIndex[k];
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       const double inverseSigma = 1.0 / e.sigma;
-      const double s = rhs[f] * inverseSigma;
       if (e.body1 >= 0 && e.body1 == e.body2) {
-        addRow(e.body1, e.J1 + e.J2, inverseSigma, s, b);
+        addRow(e.body1, e.J1 + e.J2, inverseSigma);
         continue;
       }
-      if (e.body1 >= 0) addRow(e.body1, e.J1, inverseSigma, s, b);
-      if (e.body2 >= 0) addRow(e.body2, e.J2, inverseSigma, s, b);
+      if (e.body1 >= 0) addRow(e.body1, e.J1, inverseSigma);
+      if (e.body2 >= 0) addRow(e.body2, e.J2, inverseSigma);
       if (e.body1 >= 0 && e.body2 >= 0) {
         // K's lower triangle: the block (larger body, smaller body).
         const bool firstLarger = e.body1 > e.body2;
@@ -93,6 +90,26 @@ class BodySpaceSolve {
     K_.resize(6 * numBodies, 6 * numBodies);
     K_.setFromTriplets(triplets_.begin(), triplets_.end());
     ldlt_.compute(K_);
+  }
+
+  /// Solves the free rows of the last factorize() for the right-hand side r
+  /// (`rhs`, one entry per free row); writes x into `x` at the free rows'
+  /// positions.
+  void solve(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex,
+             const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const {
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(6 * problem.numBodies);
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      const int f = freeIndex[k];
+      if (f < 0) continue;
+      const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
+      const double s = rhs[f] / e.sigma;
+      if (e.body1 >= 0 && e.body1 == e.body2) {
+        b.segment<6>(6 * e.body1) += s * (e.J1 + e.J2);
+        continue;
+      }
+      if (e.body1 >= 0) b.segment<6>(6 * e.body1) += s * e.J1;
+      if (e.body2 >= 0) b.segment<6>(6 * e.body2) += s * e.J2;
+    }
     const Eigen::VectorXd y = ldlt_.solve(b);
 
     for (std::size_t k = 0; k < subset.size(); ++k) {
@@ -107,9 +124,8 @@ class BodySpaceSolve {
   }
 
  private:
-  void addRow(int body, const Vec6d& J, double inverseSigma, double s, Eigen::VectorXd& b) {
+  void addRow(int body, const Vec6d& J, double inverseSigma) {
     diagonal_[static_cast<std::size_t>(body)] += inverseSigma * J * J.transpose();
-    b.segment<6>(6 * body) += s * J;
   }
 
   Mat6d& blockAt(int row, int col) {

@@ -102,9 +102,9 @@ class Solver : public Referenced {
   /// that reaches it falls back to its safe answer (direct_solve.hpp) and is
   /// counted in SolverStatistics::directFallbacks. Converging solves of a
   /// 210-cube pyramid take 3-10 steps. The cap counts pivots, not work: a
-  /// falling-back step of that pyramid took 0.6 s where its island is
-  /// solved in body space (1000 kg cubes) and up to 10 s in row space
-  /// (1 kg cubes in float, ~4,800 rows; bench/brick_pyramids).
+  /// falling-back step of that pyramid takes up to 0.8 s in body space
+  /// (~4,800 contact rows on 210 bodies; bench/brick_pyramids) and would
+  /// take seconds where rigid joints keep such an island in row space.
   [[nodiscard]] int getMaxPivotSteps() const { return maxPivotSteps_; }
   void setMaxPivotSteps(int n) {
     if (n < 1) throw detail::makeError("Solver", getName(), "maximum pivot steps must be >= 1", n);
