@@ -65,6 +65,23 @@ inline constexpr unsigned long kCcdMaxIterations = 200;
 /// faster.
 inline constexpr std::size_t kStarts = 10;
 inline constexpr double kSmoothGradient = 1e-9;
+/// A simplex search whose best vertex comes within this angle of a
+/// minimum already polished, no lower than it, stops: most starts that
+/// stall on a kink walk down the same crease to the same minimum, and
+/// following each to 1e-10 rad took two thirds of the bridge's time. At
+/// 1e-3 rad depths lost up to 2.5e-5 m (two creases meet that close); at
+/// 1e-5 rad, with snapToFrameAxis, the libccd tests' worst depth errors
+/// stay below 5e-7 m as before (but hull pairs: 4.8e-7 m, were 1.6e-7 m;
+/// they allow 1e-4 m), the mesh tests measure what they did, and calls are
+/// 1.4-2 times faster (box–cylinder 314 → 180-200 µs, box–hull 503 → 252
+/// µs in Release).
+inline constexpr double kJoinAngle = 1e-5;  // rad
+
+/// A polished direction and its overlap f.
+struct PolishedMinimum {
+  double f;
+  Vec3T<double> n;
+};
 
 /// The overlap of the projections of a and b onto the unit direction n
 /// (from a toward b): f(n) = h_a(n) + h_b(−n), with h the support function.
@@ -90,7 +107,8 @@ struct ProjectionOverlap {
 /// crease and walks down it, to 1e-10 rad.
 template <class A, class B>
 double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double size,
-                             double turn) {
+                             double turn, const std::vector<PolishedMinimum>& known, bool& joined) {
+  static const double joinCosine = std::cos(kJoinAngle);
   const Vec3T<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
   const Vec3T<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
   const auto direction = [&](const Eigen::Vector2d& x) { return Vec3T<double>((n0 + x[0] * t1 + x[1] * t2).normalized()); };
@@ -109,6 +127,12 @@ double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<doubl
           std::swap(x[j], x[j + 1]);
         }
     if ((x[1] - x[0]).norm() + (x[2] - x[0]).norm() < 1e-10) break;
+    if (iteration % 4 == 0) {
+      const Vec3T<double> d = direction(x[0]);
+      joined = std::any_of(known.begin(), known.end(),
+                           [&](const PolishedMinimum& m) { return d.dot(m.n) > joinCosine && fx[0] >= m.f; });
+      if (joined) break;
+    }
     const Eigen::Vector2d centroid = 0.5 * (x[0] + x[1]);
     const Eigen::Vector2d reflected = centroid + (centroid - x[2]);
     const double fr = value(reflected);
@@ -181,13 +205,16 @@ double descend(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double 
 }
 
 /// Restarts of the simplex search with fresh, turned simplices: the usual
-/// cure for one that collapsed across a crease.
+/// cure for one that collapsed across a crease. Stops where a search joins
+/// one of the `known` minima (kJoinAngle).
 template <class A, class B>
-double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double scale) {
+double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double scale,
+                     const std::vector<PolishedMinimum>& known) {
   for (int restart = 0; restart < 6; ++restart) {
     const double before = f;
-    f = polishBySimplexSearch(overlap, n, f, restart % 2 ? 0.1 : 0.02, 0.5 * restart);
-    if (restart > 0 && !(f < before - 1e-15 * scale)) break;
+    bool joined = false;
+    f = polishBySimplexSearch(overlap, n, f, restart % 2 ? 0.1 : 0.02, 0.5 * restart, known, joined);
+    if (joined || (restart > 0 && !(f < before - 1e-15 * scale))) break;
   }
   return f;
 }
@@ -330,6 +357,28 @@ std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, 
   return contacts;
 }
 
+/// A frame axis of either shape within kSnapAngle of the polished n takes
+/// its place where its overlap is no larger: a face resting on a face (the
+/// commonest contact) is a sharp kink of f, where the simplex search ends
+/// up to 1e-9 rad off, 5e-7 m of depth beside a 500 m box.
+inline constexpr double kSnapAngle = 1e-3;  // rad
+
+template <class A, class B>
+void snapToFrameAxis(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double& f) {
+  static const double snapCosine = std::cos(kSnapAngle);
+  for (const Mat3T<double>* R : {&overlap.a.R, &overlap.b.R})
+    for (int i = 0; i < 3; ++i)
+      for (const double sign : {1.0, -1.0}) {
+        const Vec3T<double> axis = sign * R->col(i);
+        if (!(axis.dot(n) > snapCosine)) continue;
+        const double fAxis = axis.dot(overlap.gradient(axis));
+        if (fAxis <= f) {
+          f = fAxis;
+          n = axis;
+        }
+      }
+}
+
 /// True when one of the directions ±(axes of a's and b's frames) or ±(the
 /// line between their centers) has a projection overlap f below `below`:
 /// the shapes are apart by at least −below along it.
@@ -401,17 +450,34 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     n = Vec3T<double>::UnitZ();
   const double scale = sizeA + sizeB;
   // f may have several local minima: descend from several starts, then
-  // search the kinks where a descent stalled.
-  double refined = std::numeric_limits<double>::infinity();
+  // search the kinks where a descent stalled, the lowest first.
+  struct Descent {
+    double f;
+    Vec3T<double> n;
+    bool smooth;
+  };
+  std::vector<Descent> descents;
   for (Vec3T<double> start : startingDirections(objectA, objectB, n, kStarts)) {
     bool smooth = false;
-    double f = descend(overlap, start, scale, smooth);
-    if (!smooth) f = polishOnKinks(overlap, start, f, scale);
-    if (f < refined) {
-      refined = f;
-      n = start;
+    const double f = descend(overlap, start, scale, smooth);
+    descents.push_back({f, start, smooth});
+  }
+  // Of equal overlaps the smooth minimum first: a kinked descent that ended
+  // on it then joins it at once.
+  std::stable_sort(descents.begin(), descents.end(), [](const Descent& x, const Descent& y) {
+    return x.f < y.f || (x.f == y.f && x.smooth && !y.smooth);
+  });
+  std::vector<PolishedMinimum> known;
+  double refined = std::numeric_limits<double>::infinity();
+  for (Descent& descent : descents) {
+    if (!descent.smooth) descent.f = polishOnKinks(overlap, descent.n, descent.f, scale, known);
+    known.push_back({descent.f, descent.n});
+    if (descent.f < refined) {
+      refined = descent.f;
+      n = descent.n;
     }
   }
+  snapToFrameAxis(overlap, n, refined);
   if (!(refined >= -objectA.margin)) return;  // the polished direction separates them
   std::vector<FeatureClipping::Contact> contacts = contactsOfFeatures(objectA, objectB, n, std::max(refined, 0.0));
   if (!manifold) {
