@@ -5666,6 +5666,32 @@ struct PolishedMinimum {
   Vec3T<double> n;
 };
 
+/// Whether direction d with overlap f lies within the angle of cosine
+/// `cosine` of a known minimum no higher than f.
+inline bool joinsKnownMinimum(const std::vector<PolishedMinimum>& known, const Vec3T<double>& d, double f,
+                              double cosine) {
+  for (const PolishedMinimum& m : known)
+    if (d.dot(m.n) > cosine && f >= m.f) return true;
+  return false;
+}
+
+/// Where a descent from one start ended: f, the direction, and whether on a
+/// smooth minimum.
+struct Descent {
+  double f;
+  Vec3T<double> n;
+  bool smooth;
+};
+
+/// Lowest f first; of equal overlaps the smooth minimum first, so that a
+/// kinked descent that ended on it joins it at once. (Not a template: one
+/// sort for every shape pair, which keeps the colliders' compile time.)
+inline void sortDescents(std::vector<Descent>& descents) {
+  std::stable_sort(descents.begin(), descents.end(), [](const Descent& x, const Descent& y) {
+    return x.f < y.f || (x.f == y.f && x.smooth && !y.smooth);
+  });
+}
+
 /// The overlap of the projections of a and b onto the unit direction n
 /// (from a toward b): f(n) = h_a(n) + h_b(−n), with h the support function.
 /// By the separating axis theorem the penetration depth is min f over unit
@@ -5712,8 +5738,7 @@ double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<doubl
     if ((x[1] - x[0]).norm() + (x[2] - x[0]).norm() < 1e-10) break;
     if (iteration % 4 == 0) {
       const Vec3T<double> d = direction(x[0]);
-      joined = std::any_of(known.begin(), known.end(),
-                           [&](const PolishedMinimum& m) { return d.dot(m.n) > joinCosine && fx[0] >= m.f; });
+      joined = joinsKnownMinimum(known, d, fx[0], joinCosine);
       if (joined) break;
     }
     const Eigen::Vector2d centroid = 0.5 * (x[0] + x[1]);
@@ -6034,22 +6059,13 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   const double scale = sizeA + sizeB;
   // f may have several local minima: descend from several starts, then
   // search the kinks where a descent stalled, the lowest first.
-  struct Descent {
-    double f;
-    Vec3T<double> n;
-    bool smooth;
-  };
   std::vector<Descent> descents;
   for (Vec3T<double> start : startingDirections(objectA, objectB, n, kStarts)) {
     bool smooth = false;
     const double f = descend(overlap, start, scale, smooth);
     descents.push_back({f, start, smooth});
   }
-  // Of equal overlaps the smooth minimum first: a kinked descent that ended
-  // on it then joins it at once.
-  std::stable_sort(descents.begin(), descents.end(), [](const Descent& x, const Descent& y) {
-    return x.f < y.f || (x.f == y.f && x.smooth && !y.smooth);
-  });
+  sortDescents(descents);
   std::vector<PolishedMinimum> known;
   double refined = std::numeric_limits<double>::infinity();
   for (Descent& descent : descents) {
@@ -16488,6 +16504,32 @@ struct PolishedMinimum {
   Vec3T<double> n;
 };
 
+/// Whether direction d with overlap f lies within the angle of cosine
+/// `cosine` of a known minimum no higher than f.
+inline bool joinsKnownMinimum(const std::vector<PolishedMinimum>& known, const Vec3T<double>& d, double f,
+                              double cosine) {
+  for (const PolishedMinimum& m : known)
+    if (d.dot(m.n) > cosine && f >= m.f) return true;
+  return false;
+}
+
+/// Where a descent from one start ended: f, the direction, and whether on a
+/// smooth minimum.
+struct Descent {
+  double f;
+  Vec3T<double> n;
+  bool smooth;
+};
+
+/// Lowest f first; of equal overlaps the smooth minimum first, so that a
+/// kinked descent that ended on it joins it at once. (Not a template: one
+/// sort for every shape pair, which keeps the colliders' compile time.)
+inline void sortDescents(std::vector<Descent>& descents) {
+  std::stable_sort(descents.begin(), descents.end(), [](const Descent& x, const Descent& y) {
+    return x.f < y.f || (x.f == y.f && x.smooth && !y.smooth);
+  });
+}
+
 /// The overlap of the projections of a and b onto the unit direction n
 /// (from a toward b): f(n) = h_a(n) + h_b(−n), with h the support function.
 /// By the separating axis theorem the penetration depth is min f over unit
@@ -16534,8 +16576,7 @@ double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<doubl
     if ((x[1] - x[0]).norm() + (x[2] - x[0]).norm() < 1e-10) break;
     if (iteration % 4 == 0) {
       const Vec3T<double> d = direction(x[0]);
-      joined = std::any_of(known.begin(), known.end(),
-                           [&](const PolishedMinimum& m) { return d.dot(m.n) > joinCosine && fx[0] >= m.f; });
+      joined = joinsKnownMinimum(known, d, fx[0], joinCosine);
       if (joined) break;
     }
     const Eigen::Vector2d centroid = 0.5 * (x[0] + x[1]);
@@ -16856,22 +16897,13 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   const double scale = sizeA + sizeB;
   // f may have several local minima: descend from several starts, then
   // search the kinks where a descent stalled, the lowest first.
-  struct Descent {
-    double f;
-    Vec3T<double> n;
-    bool smooth;
-  };
   std::vector<Descent> descents;
   for (Vec3T<double> start : startingDirections(objectA, objectB, n, kStarts)) {
     bool smooth = false;
     const double f = descend(overlap, start, scale, smooth);
     descents.push_back({f, start, smooth});
   }
-  // Of equal overlaps the smooth minimum first: a kinked descent that ended
-  // on it then joins it at once.
-  std::stable_sort(descents.begin(), descents.end(), [](const Descent& x, const Descent& y) {
-    return x.f < y.f || (x.f == y.f && x.smooth && !y.smooth);
-  });
+  sortDescents(descents);
   std::vector<PolishedMinimum> known;
   double refined = std::numeric_limits<double>::infinity();
   for (Descent& descent : descents) {
