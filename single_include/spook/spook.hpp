@@ -5967,8 +5967,9 @@ std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, 
 
 /// A frame axis of either shape within kSnapAngle of the polished n takes
 /// its place where its overlap is no larger: a face resting on a face (the
-/// commonest contact) is a sharp kink of f, where the simplex search ends
-/// up to 1e-9 rad off, 5e-7 m of depth beside a 500 m box.
+/// commonest contact) is a sharp kink of f, where a simplex search cut
+/// short by kJoinAngle ended 4e-4 m deep beside a 500 m box (8.6e-7 of its
+/// size; the exact depth 2.8e-17 of it after the snap).
 inline constexpr double kSnapAngle = 1e-3;  // rad
 
 template <class A, class B>
@@ -14519,8 +14520,10 @@ namespace spook::detail {
 /// back by iterative refinement (each pass solves for the residual with the
 /// same factorization). The form is used only when every row is at least
 /// kSofterThan as compliant as it is mobile, where a pass gains at least
-/// five digits: contacts (compliance 1/E: 1e-9..1e-7 of a 1 kg cube's
-/// mobility) qualify, rigid joints (Σ at its 1e-12 floor) do not.
+/// five digits: contacts qualify (the normal rows of 1 kg unit cubes on the
+/// default material are 6e-7..1e-6 as compliant as mobile, which kept them
+/// out of the body space at the former 1e-6), rigid joints (Σ at its 1e-12
+/// floor) do not.
 class BodySpaceSolve {
  public:
   static constexpr double kSofterThan = 1e-10;
@@ -15078,11 +15081,11 @@ struct DirectSolveResult {
 /// such cycles. When the count has not improved for kBlockPivotingStrikes
 /// steps, it switches to Murty's single principal pivoting (swap only the
 /// infeasible row of largest index), which cannot cycle on a positive
-/// definite matrix (Murty 1974). Murty's guarantee is exact arithmetic's: where contacts fight a
-/// joint, many rows share a body's few degrees of freedom, S is singular,
-/// and only Σ (1e-5 and less of the rows' mobility) keeps the matrix
-/// definite; round-off can then flip a Schur complement's sign and a row
-/// cycles between free and bound. Should the step cap be reached, the solve
+/// definite matrix (Murty 1974). Murty's guarantee is exact arithmetic's:
+/// where contacts fight a joint, many rows share a body's few degrees of
+/// freedom, S is singular, and only Σ (1e-5 and less of the rows' mobility)
+/// keeps the matrix definite; round-off can then flip a Schur complement's
+/// sign and a row cycles between free and bound. Should the step cap be reached, the solve
 /// falls back to a safe answer: of the clamped best iterate (fewest
 /// infeasible rows) and no impulse at all, the one of lower merit
 /// f(Λ) = ½ΛᵀAΛ − qᵀΛ (whose minimum over the bounds is the LCP's solution;
@@ -16805,8 +16808,9 @@ std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, 
 
 /// A frame axis of either shape within kSnapAngle of the polished n takes
 /// its place where its overlap is no larger: a face resting on a face (the
-/// commonest contact) is a sharp kink of f, where the simplex search ends
-/// up to 1e-9 rad off, 5e-7 m of depth beside a 500 m box.
+/// commonest contact) is a sharp kink of f, where a simplex search cut
+/// short by kJoinAngle ended 4e-4 m deep beside a 500 m box (8.6e-7 of its
+/// size; the exact depth 2.8e-17 of it after the snap).
 inline constexpr double kSnapAngle = 1e-3;  // rad
 
 template <class A, class B>
@@ -17370,8 +17374,10 @@ namespace spook::detail {
 /// back by iterative refinement (each pass solves for the residual with the
 /// same factorization). The form is used only when every row is at least
 /// kSofterThan as compliant as it is mobile, where a pass gains at least
-/// five digits: contacts (compliance 1/E: 1e-9..1e-7 of a 1 kg cube's
-/// mobility) qualify, rigid joints (Σ at its 1e-12 floor) do not.
+/// five digits: contacts qualify (the normal rows of 1 kg unit cubes on the
+/// default material are 6e-7..1e-6 as compliant as mobile, which kept them
+/// out of the body space at the former 1e-6), rigid joints (Σ at its 1e-12
+/// floor) do not.
 class BodySpaceSolve {
  public:
   static constexpr double kSofterThan = 1e-10;

@@ -27,8 +27,10 @@ namespace spook::detail {
 /// back by iterative refinement (each pass solves for the residual with the
 /// same factorization). The form is used only when every row is at least
 /// kSofterThan as compliant as it is mobile, where a pass gains at least
-/// five digits: contacts (compliance 1/E: 1e-9..1e-7 of a 1 kg cube's
-/// mobility) qualify, rigid joints (Σ at its 1e-12 floor) do not.
+/// five digits: contacts qualify (the normal rows of 1 kg unit cubes on the
+/// default material are 6e-7..1e-6 as compliant as mobile, which kept them
+/// out of the body space at the former 1e-6), rigid joints (Σ at its 1e-12
+/// floor) do not.
 class BodySpaceSolve {
  public:
   static constexpr double kSofterThan = 1e-10;

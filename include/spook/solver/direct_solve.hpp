@@ -45,11 +45,11 @@ struct DirectSolveResult {
 /// such cycles. When the count has not improved for kBlockPivotingStrikes
 /// steps, it switches to Murty's single principal pivoting (swap only the
 /// infeasible row of largest index), which cannot cycle on a positive
-/// definite matrix (Murty 1974). Murty's guarantee is exact arithmetic's: where contacts fight a
-/// joint, many rows share a body's few degrees of freedom, S is singular,
-/// and only Σ (1e-5 and less of the rows' mobility) keeps the matrix
-/// definite; round-off can then flip a Schur complement's sign and a row
-/// cycles between free and bound. Should the step cap be reached, the solve
+/// definite matrix (Murty 1974). Murty's guarantee is exact arithmetic's:
+/// where contacts fight a joint, many rows share a body's few degrees of
+/// freedom, S is singular, and only Σ (1e-5 and less of the rows' mobility)
+/// keeps the matrix definite; round-off can then flip a Schur complement's
+/// sign and a row cycles between free and bound. Should the step cap be reached, the solve
 /// falls back to a safe answer: of the clamped best iterate (fewest
 /// infeasible rows) and no impulse at all, the one of lower merit
 /// f(Λ) = ½ΛᵀAΛ − qᵀΛ (whose minimum over the bounds is the LCP's solution;
