@@ -131,3 +131,40 @@ TEST_CASE_TEMPLATE("libccd bridge skips a segment whose length overflows, and co
   REQUIRE(points.size() >= 1);
   for (const auto& point : points) CHECK(std::isfinite(double(point.depth)));
 }
+
+// Fuzz finding (tests/fuzz/corpus/finding_epa-endless): a small tilted
+// cylinder sunk into a flat cylinder of radius 1e100 (a finite shape the
+// API accepts). libccd's EPA, whose tolerance is absolute (1e-6), never
+// converged on supports of that size and ran for minutes; the bridge caps
+// its support calls (kCcdSupportBudget), and the polishing still finds the
+// exact overlap: the small cylinder's lowest rim point below the top face,
+// along the disk's axis.
+TEST_CASE("libccd bridge ends on a cylinder of radius 1e100 and finds the overlap on its face") {
+  using Transform = spook::TransformT<double>;
+  // The poses and sizes of the finding, bit for bit.
+  const double poseA[12] = {0x0p+0, 0x0p+0, 0x1p+0, 0x1.d8f7f6d0eec7cp-2, 0x1p+0, 0x0p+0,
+                            0x0p+0, 0x1.d8f7f6d0eec7cp-2, 0x0p+0, 0x1p+0, 0x0p+0, 0x1.d8f7f6d0eec7cp-2};
+  const double poseB[12] = {-0x1.3b472155b2bd9p-2, 0x1.81be0406e221dp-3, 0x1.dd7cc1b9c1e85p-1, -0x1.380e738cd28f4p-1,
+                            -0x1.ba01066863cb2p-1, -0x1.de8ad63c12438p-2, -0x1.86667364eb764p-3, -0x1.85a815ac76157p+0,
+                            0x1.9984d5ac4577cp-2,  -0x1.ba4270895f33p-1,  0x1.39d75ab1c4c54p-2,  0x1.f9cda1bbb19b2p+0};
+  Transform X_WA = Transform::Identity(), X_WB = Transform::Identity();
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      X_WA.matrix()(i, j) = poseA[4 * i + j];
+      X_WB.matrix()(i, j) = poseB[4 * i + j];
+    }
+  }
+  spook::ref_ptr<spook::CylinderT<double>> disk = new spook::CylinderT<double>(0x1.249ad2594c37dp+332, 0x1.779ea6afdef03p+0);
+  spook::ref_ptr<spook::CylinderT<double>> small = new spook::CylinderT<double>(0x1.78ff4fab822e7p-1, 0x1.779ea6afdef03p+0);
+  const spook::Vec3 axis = X_WA.linear().col(1);  // the cylinder's axis is its local y
+  const double top = axis.dot(X_WA.translation()) + disk->getHeight() / 2;
+  const double lowest = axis.dot(X_WB * small->support(X_WB.linear().transpose() * -axis));
+  std::vector<spook::ContactPointT<double>> points;
+  spook::ContactSinkT<double> sink(points);
+  spook::detail::collideByCcd(*disk, X_WA, *small, X_WB, sink);
+  REQUIRE(points.size() >= 1);
+  for (const auto& point : points) {
+    CHECK(point.normal.dot(axis) == doctest::Approx(1.0).epsilon(1e-12));
+    CHECK(point.depth == doctest::Approx(top - lowest).epsilon(1e-9));
+  }
+}

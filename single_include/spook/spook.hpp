@@ -5603,6 +5603,18 @@ namespace spook::detail {
 // The libccd bridge: each convex shape lends libccd its support function
 // through a stack object that holds the shape and its world pose. libccd is
 // built with double, so a float shape converts at this boundary.
+//
+// libccd's EPA (ccdGJKPenetration) expands its polytope until a support
+// point gains less than epa_tolerance and has no cap on its iterations: on
+// two cylinders in a near-degenerate pose it ran for minutes (fuzz finding
+// tests/fuzz/corpus/finding_epa-endless). Past a budget of support calls both objects answer
+// the origin, which gains nothing, so EPA stops on its nearest face; the
+// polishing that follows measures the overlap itself.
+struct CcdSupportBudget {
+  unsigned long limit;
+  unsigned long calls = 0;  // counted by the first object (libccd's support1)
+};
+
 template <class Shape>
 struct CcdObject {
   using S = typename Shape::Vec3::Scalar;
@@ -5611,6 +5623,8 @@ struct CcdObject {
   Vec3T<double> p;     // shape origin in world (m)
   Vec3T<double> center;  // a point inside the shape, world (m)
   double margin = 0.0;   // libccd sees the shape grown by this much (m)
+  CcdSupportBudget* budget = nullptr;
+  bool countsCalls = false;  // libccd calls support1, then support2
 
   CcdObject(const Shape& s, const TransformT<S>& X_W, double grownBy = 0.0)
       : shape(&s),
@@ -5621,6 +5635,13 @@ struct CcdObject {
 
   static void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
     const auto& o = *static_cast<const CcdObject*>(object);
+    if (o.budget) {
+      const unsigned long spent = o.countsCalls ? o.budget->calls++ : o.budget->calls - 1;
+      if (spent >= o.budget->limit) {
+        for (int i = 0; i < 3; ++i) out->v[i] = 0.0;
+        return;
+      }
+    }
     const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
     const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
     Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
@@ -5639,6 +5660,9 @@ inline constexpr double kCcdEpaTolerance = 1e-6;  // m
 /// trusted to call two shapes apart.
 inline constexpr double kCcdNearMargin = 1e-3;
 inline constexpr unsigned long kCcdMaxIterations = 200;
+/// Support calls of one ccdGJKPenetration: GJK's kCcdMaxIterations and
+/// EPA's expansions (at most 304 in the 125,685 calls of the collider tests).
+inline constexpr unsigned long kCcdSupportBudget = 1000;
 /// Polishing: starts besides libccd's direction, and the gradient
 /// (relative to the shapes' size) below which a descent ended on a smooth
 /// minimum and needs no simplex search. Polishing only the starts within
@@ -6025,8 +6049,11 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   const double sizeA = sizeOf(a), sizeB = sizeOf(b);
   // libccd dereferences a null polytope face when its supports overflow.
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
-  const CcdObject<A> objectA(a, X_WA, kTouchingGap * std::min(sizeA, sizeB));
-  const CcdObject<B> objectB(b, X_WB);
+  CcdSupportBudget budget{kCcdSupportBudget};
+  CcdObject<A> objectA(a, X_WA, kTouchingGap * std::min(sizeA, sizeB));
+  CcdObject<B> objectB(b, X_WB);
+  objectA.budget = objectB.budget = &budget;
+  objectA.countsCalls = true;
   ccd_t ccd;
   CCD_INIT(&ccd);
   ccd.support1 = &CcdObject<A>::support;
@@ -6038,7 +6065,9 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   ccd_real_t depth = 0;
   ccd_vec3_t direction, position;
   const ProjectionOverlap<A, B> overlap{objectA, objectB};
-  if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) {
+  const int penetration = ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position);
+  objectA.budget = objectB.budget = nullptr;
+  if (penetration != 0) {
     // libccd's GJK misses a few shallow overlaps of a small shape on a large
     // one (0.7 % of those 1e-9..1e-4 m deep on boxes of 0.5..500 m, each a
     // step of free fall through a resting contact): "apart" stands when a
@@ -16444,6 +16473,18 @@ namespace spook::detail {
 // The libccd bridge: each convex shape lends libccd its support function
 // through a stack object that holds the shape and its world pose. libccd is
 // built with double, so a float shape converts at this boundary.
+//
+// libccd's EPA (ccdGJKPenetration) expands its polytope until a support
+// point gains less than epa_tolerance and has no cap on its iterations: on
+// two cylinders in a near-degenerate pose it ran for minutes (fuzz finding
+// tests/fuzz/corpus/finding_epa-endless). Past a budget of support calls both objects answer
+// the origin, which gains nothing, so EPA stops on its nearest face; the
+// polishing that follows measures the overlap itself.
+struct CcdSupportBudget {
+  unsigned long limit;
+  unsigned long calls = 0;  // counted by the first object (libccd's support1)
+};
+
 template <class Shape>
 struct CcdObject {
   using S = typename Shape::Vec3::Scalar;
@@ -16452,6 +16493,8 @@ struct CcdObject {
   Vec3T<double> p;     // shape origin in world (m)
   Vec3T<double> center;  // a point inside the shape, world (m)
   double margin = 0.0;   // libccd sees the shape grown by this much (m)
+  CcdSupportBudget* budget = nullptr;
+  bool countsCalls = false;  // libccd calls support1, then support2
 
   CcdObject(const Shape& s, const TransformT<S>& X_W, double grownBy = 0.0)
       : shape(&s),
@@ -16462,6 +16505,13 @@ struct CcdObject {
 
   static void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
     const auto& o = *static_cast<const CcdObject*>(object);
+    if (o.budget) {
+      const unsigned long spent = o.countsCalls ? o.budget->calls++ : o.budget->calls - 1;
+      if (spent >= o.budget->limit) {
+        for (int i = 0; i < 3; ++i) out->v[i] = 0.0;
+        return;
+      }
+    }
     const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
     const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
     Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
@@ -16480,6 +16530,9 @@ inline constexpr double kCcdEpaTolerance = 1e-6;  // m
 /// trusted to call two shapes apart.
 inline constexpr double kCcdNearMargin = 1e-3;
 inline constexpr unsigned long kCcdMaxIterations = 200;
+/// Support calls of one ccdGJKPenetration: GJK's kCcdMaxIterations and
+/// EPA's expansions (at most 304 in the 125,685 calls of the collider tests).
+inline constexpr unsigned long kCcdSupportBudget = 1000;
 /// Polishing: starts besides libccd's direction, and the gradient
 /// (relative to the shapes' size) below which a descent ended on a smooth
 /// minimum and needs no simplex search. Polishing only the starts within
@@ -16866,8 +16919,11 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   const double sizeA = sizeOf(a), sizeB = sizeOf(b);
   // libccd dereferences a null polytope face when its supports overflow.
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
-  const CcdObject<A> objectA(a, X_WA, kTouchingGap * std::min(sizeA, sizeB));
-  const CcdObject<B> objectB(b, X_WB);
+  CcdSupportBudget budget{kCcdSupportBudget};
+  CcdObject<A> objectA(a, X_WA, kTouchingGap * std::min(sizeA, sizeB));
+  CcdObject<B> objectB(b, X_WB);
+  objectA.budget = objectB.budget = &budget;
+  objectA.countsCalls = true;
   ccd_t ccd;
   CCD_INIT(&ccd);
   ccd.support1 = &CcdObject<A>::support;
@@ -16879,7 +16935,9 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   ccd_real_t depth = 0;
   ccd_vec3_t direction, position;
   const ProjectionOverlap<A, B> overlap{objectA, objectB};
-  if (ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position) != 0) {
+  const int penetration = ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position);
+  objectA.budget = objectB.budget = nullptr;
+  if (penetration != 0) {
     // libccd's GJK misses a few shallow overlaps of a small shape on a large
     // one (0.7 % of those 1e-9..1e-4 m deep on boxes of 0.5..500 m, each a
     // step of free fall through a resting contact): "apart" stands when a
