@@ -109,6 +109,13 @@ void SimulationT<S>::integrate(S h) {
   w.frozen.assign(bodies_.size(), 0);
   if (!w.rows.empty()) {
     w.islands.solve(w.rows, w.solverBodies, double(h), *solver_, statistics_.solver);
+    for (int solves = 1; solves < detail::GeometricStiffness::kMaxSolves && solver_->getEnableGeometricStiffness() &&
+                         w.geometricStiffness.refresh(w.rows, w.solverBodies, double(h), solver_->getGeometricStiffnessThreshold());
+         ++solves) {
+      SolverStatistics again;
+      w.islands.solve(w.rows, w.solverBodies, double(h), *solver_, again);
+      statistics_.solver.addResolve(again);
+    }
     for (int i : w.islands.getNonFiniteBodies()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
   }
   readBackForces(double(h));

@@ -43,6 +43,23 @@ struct SolverStatistics {
   /// Islands whose impulses were not finite and were dropped; the
   /// simulation freezes their bodies (SimulationStatisticsT::frozenBodies).
   int nonFiniteIslands = 0;
+  /// Solves repeated because the geometric stiffness of the forces found
+  /// differed from the one solved with (geometric_stiffness.hpp).
+  int geometricStiffnessResolves = 0;
+
+  /// Takes in a repeated solve of the same rows: its work adds up, its
+  /// answer's figures replace the last ones.
+  void addResolve(const SolverStatistics& again) {
+    iterations = std::max(iterations, again.iterations);
+    factorizations += again.factorizations;
+    frictionIterations = std::max(frictionIterations, again.frictionIterations);
+    complementarityError = again.complementarityError;
+    converged = again.converged;
+    directFallbacks += again.directFallbacks;
+    solveTime += again.solveTime;
+    nonFiniteIslands = again.nonFiniteIslands;
+    ++geometricStiffnessResolves;
+  }
 };
 
 /// Solves the rows of an island: the simulation's solver policy. Subclasses
