@@ -14282,6 +14282,9 @@ struct SolverStatistics {
   /// Islands whose impulses were not finite and were dropped; the
   /// simulation freezes their bodies (SimulationStatisticsT::frozenBodies).
   int nonFiniteIslands = 0;
+  /// Friction iterations and hybrid coupling passes left out because the
+  /// island's pivot budget (Solver::getMaxPivotSteps) ran out.
+  int pivotBudgetCuts = 0;
   /// Solves repeated because the geometric stiffness of the forces found
   /// differed from the one solved with (geometric_stiffness.hpp).
   int geometricStiffnessResolves = 0;
@@ -14295,6 +14298,7 @@ struct SolverStatistics {
     complementarityError = again.complementarityError;
     converged = again.converged;
     directFallbacks += again.directFallbacks;
+    pivotBudgetCuts += again.pivotBudgetCuts;
     solveTime += again.solveTime;
     nonFiniteIslands = again.nonFiniteIslands;
     ++geometricStiffnessResolves;
@@ -14354,13 +14358,18 @@ class Solver : public Referenced {
       throw detail::makeError("Solver", getName(), "unknown iterative method", static_cast<int>(method));
     method_ = method;
   }
-  /// Cap on the pivoting steps of one direct solve (default 80): a solve
-  /// that reaches it falls back to its safe answer (direct_solve.hpp) and is
-  /// counted in SolverStatistics::directFallbacks. Converging solves of a
-  /// 210-cube pyramid take 3-10 steps. The cap counts pivots, not work: a
-  /// falling-back step of that pyramid takes up to 0.8 s in body space
-  /// (~4,800 contact rows on 210 bodies; bench/brick_pyramids) and would
-  /// take seconds where rigid joints keep such an island in row space.
+  /// Pivoting steps (factorizations) of one direct solve (default 80); an
+  /// island's solves in a step take 1.5 times as many in all: its first
+  /// solve, its friction iterations and the hybrid's coupling passes
+  /// (islandPivotBudget). A first solve that reaches the cap falls back to
+  /// its safe answer (direct_solve.hpp), counted in
+  /// SolverStatistics::directFallbacks; a later one that would exceed the
+  /// budget is dropped and the last converged answer stands, with the
+  /// friction bounds it was solved with (SolverStatistics::pivotBudgetCuts).
+  /// Converging solves of a 210-cube pyramid take 3-10 steps; in float its
+  /// eight friction iterations took up to 211 factorizations in a step
+  /// (0.59 s) before the budget bounded them at 121 (0.39 s, the same
+  /// 1.1e-6 m of drift; bench/brick_pyramids).
   [[nodiscard]] int getMaxPivotSteps() const { return maxPivotSteps_; }
   void setMaxPivotSteps(int n) {
     if (n < 1) throw detail::makeError("Solver", getName(), "maximum pivot steps must be >= 1", n);
@@ -14431,11 +14440,20 @@ class Solver : public Referenced {
   ~Solver() override;
   virtual void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) = 0;
 
+  /// A direct solve of the island's first: it may use all the pivot
+  /// budget left, and falls back when it runs out.
   void direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics);
+  /// The pivot steps of all of an island's direct solves in a step.
+  [[nodiscard]] int islandPivotBudget() const { return maxPivotSteps_ + maxPivotSteps_ / 2; }
+  /// A later direct solve (a friction iteration, a coupling pass): when the
+  /// pivot budget runs out it leaves the rows as they were and returns false.
+  bool directAttempt(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics);
   /// A direct solve repeated over the friction bounds that follow the normal
   /// impulses (getNumFrictionIterations); rows flagged in `keep` keep theirs.
-  void directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
-                          SolverStatistics& statistics, const std::vector<char>* keep = nullptr);
+  /// `first`: the island's first direct solve (else its first solve is an
+  /// attempt). False when the first solve fell back or was not made.
+  bool directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
+                          SolverStatistics& statistics, const std::vector<char>* keep = nullptr, bool first = true);
   void iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const;
   static std::vector<int> allRows(const detail::IslandProblem& problem);
 
@@ -14446,6 +14464,7 @@ class Solver : public Referenced {
   double tolerance_ = 1e-10;
   IterativeMethod method_ = GAUSS_SEIDEL;
   int maxPivotSteps_ = 80;
+  int pivotBudget_ = 0;  ///< pivot steps left to the island being solved
   bool postStabilization_ = false;
   bool warmStarting_ = false;
   bool geometricStiffness_ = true;
@@ -15440,6 +15459,7 @@ SPOOK_SOLVER_INLINE Solver::~Solver() = default;
 
 SPOOK_SOLVER_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const auto start = std::chrono::steady_clock::now();
+  pivotBudget_ = islandPivotBudget();
   direct(problem, allRows(problem), statistics);
   for (auto& e : problem.rows)
     if (!std::isfinite(e.impulse)) e.impulse = 0.0;
@@ -15448,6 +15468,7 @@ SPOOK_SOLVER_INLINE void Solver::project(detail::IslandProblem& problem, SolverS
 
 SPOOK_SOLVER_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const auto start = std::chrono::steady_clock::now();
+  pivotBudget_ = islandPivotBudget();
   ++statistics.numIslands;
   statistics.numRows += static_cast<int>(problem.rows.size());
   solveIsland(problem, statistics);
@@ -15464,33 +15485,69 @@ SPOOK_SOLVER_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverSta
 }
 
 SPOOK_SOLVER_INLINE void Solver::direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
-  const detail::DirectSolveResult r = direct_->solve(problem, subset, maxPivotSteps_);
+  const detail::DirectSolveResult r = direct_->solve(problem, subset, std::clamp(pivotBudget_ - 1, 0, maxPivotSteps_));
+  pivotBudget_ -= r.factorizations;
   statistics.factorizations += r.factorizations;
   statistics.converged = statistics.converged && r.converged;
   statistics.directFallbacks += r.fellBack ? 1 : 0;
 }
 
-SPOOK_SOLVER_INLINE void Solver::directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
-                                                    SolverStatistics& statistics, const std::vector<char>* keep) {
+SPOOK_SOLVER_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, const std::vector<int>& subset,
+                                               SolverStatistics& statistics) {
+  if (pivotBudget_ <= 0) return false;
+  std::vector<detail::IslandProblem::Entry> saved;
+  saved.reserve(subset.size());
+  for (int i : subset) saved.push_back(problem.rows[static_cast<std::size_t>(i)]);
+  // A solve capped at m pivot steps factorizes up to m + 1 times.
+  const detail::DirectSolveResult r = direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_));
+  pivotBudget_ -= r.factorizations;
+  statistics.factorizations += r.factorizations;
+  if (!r.fellBack) return true;
+  for (std::size_t k = 0; k < subset.size(); ++k) problem.rows[static_cast<std::size_t>(subset[k])] = saved[k];
+  return false;
+}
+
+SPOOK_SOLVER_INLINE bool Solver::directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
+                                                    SolverStatistics& statistics, const std::vector<char>* keep,
+                                                    bool first) {
   std::vector<int> following;
   for (int i : subset) {
     const auto& e = problem.rows[static_cast<std::size_t>(i)];
     if (!e.followsNormal() || (keep && (*keep)[static_cast<std::size_t>(i)])) continue;
     following.push_back(i);
   }
-  const int fallbacks = statistics.directFallbacks;
-  direct(problem, subset, statistics);
+  if (first) {
+    const int fallbacks = statistics.directFallbacks;
+    direct(problem, subset, statistics);
+    // A solve that fell back will fall back again on the next bounds: stop.
+    if (statistics.directFallbacks != fallbacks) return false;
+  } else if (!directAttempt(problem, subset, statistics)) {
+    return false;
+  }
   int k = 1;
-  // A solve that fell back will fall back again on the next bounds: stop.
-  for (; k < frictionIterations_ && !following.empty() && statistics.directFallbacks == fallbacks; ++k) {
+  for (; k < frictionIterations_ && !following.empty(); ++k) {
+    const std::vector<detail::IslandProblem::Entry> before = [&] {
+      std::vector<detail::IslandProblem::Entry> rows;
+      rows.reserve(following.size());
+      for (int i : following) rows.push_back(problem.rows[static_cast<std::size_t>(i)]);
+      return rows;
+    }();
     double change = detail::updateConeDirections(problem, following);
     change = std::max(change, detail::applyFrictionBounds(problem, following));
     double largest = 0.0;
     for (int i : following) largest = std::max(largest, problem.rows[static_cast<std::size_t>(i)].upper);
     if (change <= frictionTolerance_ * largest) break;
-    direct(problem, subset, statistics);
+    if (!directAttempt(problem, subset, statistics)) {
+      // The budget ran out: the last converged answer stands, with the
+      // bounds (and cone directions) it was solved with.
+      for (std::size_t j = 0; j < following.size(); ++j)
+        problem.rows[static_cast<std::size_t>(following[j])] = before[j];
+      ++statistics.pivotBudgetCuts;
+      break;
+    }
   }
   statistics.frictionIterations = std::max(statistics.frictionIterations, k);
+  return true;
 }
 
 SPOOK_SOLVER_INLINE void Solver::iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
@@ -15564,18 +15621,15 @@ SPOOK_SOLVER_INLINE void HybridSolver::solveIsland(detail::IslandProblem& proble
     iterative(problem, iterativeRows, statistics);
     return;
   }
-  const int fallbacks = statistics.directFallbacks;
-  directWithFriction(problem, directRows, statistics);
+  bool directHeld = directWithFriction(problem, directRows, statistics);
   std::vector<double> previous(directRows.size());
-  // A direct pass that fell back (its pivoting cap reached) would only
+  // A direct pass that fell back (its pivoting cap reached), or that the
+  // pivot budget cut short (the last pass's answer then stands), would only
   // repeat at the next coupling pass: the step then ends with one more
   // iterative pass, which bounds its cost.
   for (int pass = 0; pass < getNumCouplingIterations(); ++pass) {
-    if (statistics.directFallbacks != fallbacks) {
-      iterative(problem, iterativeRows, statistics);
-      break;
-    }
     iterative(problem, iterativeRows, statistics);
+    if (!directHeld) break;
     detail::freezeConeShares(problem, iterativeRows, keep);
     detail::applyFrictionBounds(problem, iterativeRows);
     double largest = 0.0;
@@ -15583,7 +15637,8 @@ SPOOK_SOLVER_INLINE void HybridSolver::solveIsland(detail::IslandProblem& proble
       previous[k] = problem.rows[static_cast<std::size_t>(directRows[k])].impulse;
       largest = std::max(largest, std::abs(previous[k]));
     }
-    directWithFriction(problem, directRows, statistics, &keep);
+    directHeld = directWithFriction(problem, directRows, statistics, &keep, false);
+    if (!directHeld) ++statistics.pivotBudgetCuts;
     double change = 0.0;
     for (std::size_t k = 0; k < directRows.size(); ++k)
       change = std::max(change, std::abs(problem.rows[static_cast<std::size_t>(directRows[k])].impulse - previous[k]));

@@ -43,6 +43,9 @@ struct SolverStatistics {
   /// Islands whose impulses were not finite and were dropped; the
   /// simulation freezes their bodies (SimulationStatisticsT::frozenBodies).
   int nonFiniteIslands = 0;
+  /// Friction iterations and hybrid coupling passes left out because the
+  /// island's pivot budget (Solver::getMaxPivotSteps) ran out.
+  int pivotBudgetCuts = 0;
   /// Solves repeated because the geometric stiffness of the forces found
   /// differed from the one solved with (geometric_stiffness.hpp).
   int geometricStiffnessResolves = 0;
@@ -56,6 +59,7 @@ struct SolverStatistics {
     complementarityError = again.complementarityError;
     converged = again.converged;
     directFallbacks += again.directFallbacks;
+    pivotBudgetCuts += again.pivotBudgetCuts;
     solveTime += again.solveTime;
     nonFiniteIslands = again.nonFiniteIslands;
     ++geometricStiffnessResolves;
@@ -115,13 +119,18 @@ class Solver : public Referenced {
       throw detail::makeError("Solver", getName(), "unknown iterative method", static_cast<int>(method));
     method_ = method;
   }
-  /// Cap on the pivoting steps of one direct solve (default 80): a solve
-  /// that reaches it falls back to its safe answer (direct_solve.hpp) and is
-  /// counted in SolverStatistics::directFallbacks. Converging solves of a
-  /// 210-cube pyramid take 3-10 steps. The cap counts pivots, not work: a
-  /// falling-back step of that pyramid takes up to 0.8 s in body space
-  /// (~4,800 contact rows on 210 bodies; bench/brick_pyramids) and would
-  /// take seconds where rigid joints keep such an island in row space.
+  /// Pivoting steps (factorizations) of one direct solve (default 80); an
+  /// island's solves in a step take 1.5 times as many in all: its first
+  /// solve, its friction iterations and the hybrid's coupling passes
+  /// (islandPivotBudget). A first solve that reaches the cap falls back to
+  /// its safe answer (direct_solve.hpp), counted in
+  /// SolverStatistics::directFallbacks; a later one that would exceed the
+  /// budget is dropped and the last converged answer stands, with the
+  /// friction bounds it was solved with (SolverStatistics::pivotBudgetCuts).
+  /// Converging solves of a 210-cube pyramid take 3-10 steps; in float its
+  /// eight friction iterations took up to 211 factorizations in a step
+  /// (0.59 s) before the budget bounded them at 121 (0.39 s, the same
+  /// 1.1e-6 m of drift; bench/brick_pyramids).
   [[nodiscard]] int getMaxPivotSteps() const { return maxPivotSteps_; }
   void setMaxPivotSteps(int n) {
     if (n < 1) throw detail::makeError("Solver", getName(), "maximum pivot steps must be >= 1", n);
@@ -192,11 +201,20 @@ class Solver : public Referenced {
   ~Solver() override;
   virtual void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) = 0;
 
+  /// A direct solve of the island's first: it may use all the pivot
+  /// budget left, and falls back when it runs out.
   void direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics);
+  /// The pivot steps of all of an island's direct solves in a step.
+  [[nodiscard]] int islandPivotBudget() const { return maxPivotSteps_ + maxPivotSteps_ / 2; }
+  /// A later direct solve (a friction iteration, a coupling pass): when the
+  /// pivot budget runs out it leaves the rows as they were and returns false.
+  bool directAttempt(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics);
   /// A direct solve repeated over the friction bounds that follow the normal
   /// impulses (getNumFrictionIterations); rows flagged in `keep` keep theirs.
-  void directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
-                          SolverStatistics& statistics, const std::vector<char>* keep = nullptr);
+  /// `first`: the island's first direct solve (else its first solve is an
+  /// attempt). False when the first solve fell back or was not made.
+  bool directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
+                          SolverStatistics& statistics, const std::vector<char>* keep = nullptr, bool first = true);
   void iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const;
   static std::vector<int> allRows(const detail::IslandProblem& problem);
 
@@ -207,6 +225,7 @@ class Solver : public Referenced {
   double tolerance_ = 1e-10;
   IterativeMethod method_ = GAUSS_SEIDEL;
   int maxPivotSteps_ = 80;
+  int pivotBudget_ = 0;  ///< pivot steps left to the island being solved
   bool postStabilization_ = false;
   bool warmStarting_ = false;
   bool geometricStiffness_ = true;

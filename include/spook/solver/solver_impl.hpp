@@ -24,6 +24,7 @@ SPOOK_SOLVER_INLINE Solver::~Solver() = default;
 
 SPOOK_SOLVER_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const auto start = std::chrono::steady_clock::now();
+  pivotBudget_ = islandPivotBudget();
   direct(problem, allRows(problem), statistics);
   for (auto& e : problem.rows)
     if (!std::isfinite(e.impulse)) e.impulse = 0.0;
@@ -32,6 +33,7 @@ SPOOK_SOLVER_INLINE void Solver::project(detail::IslandProblem& problem, SolverS
 
 SPOOK_SOLVER_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const auto start = std::chrono::steady_clock::now();
+  pivotBudget_ = islandPivotBudget();
   ++statistics.numIslands;
   statistics.numRows += static_cast<int>(problem.rows.size());
   solveIsland(problem, statistics);
@@ -48,33 +50,69 @@ SPOOK_SOLVER_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverSta
 }
 
 SPOOK_SOLVER_INLINE void Solver::direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
-  const detail::DirectSolveResult r = direct_->solve(problem, subset, maxPivotSteps_);
+  const detail::DirectSolveResult r = direct_->solve(problem, subset, std::clamp(pivotBudget_ - 1, 0, maxPivotSteps_));
+  pivotBudget_ -= r.factorizations;
   statistics.factorizations += r.factorizations;
   statistics.converged = statistics.converged && r.converged;
   statistics.directFallbacks += r.fellBack ? 1 : 0;
 }
 
-SPOOK_SOLVER_INLINE void Solver::directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
-                                                    SolverStatistics& statistics, const std::vector<char>* keep) {
+SPOOK_SOLVER_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, const std::vector<int>& subset,
+                                               SolverStatistics& statistics) {
+  if (pivotBudget_ <= 0) return false;
+  std::vector<detail::IslandProblem::Entry> saved;
+  saved.reserve(subset.size());
+  for (int i : subset) saved.push_back(problem.rows[static_cast<std::size_t>(i)]);
+  // A solve capped at m pivot steps factorizes up to m + 1 times.
+  const detail::DirectSolveResult r = direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_));
+  pivotBudget_ -= r.factorizations;
+  statistics.factorizations += r.factorizations;
+  if (!r.fellBack) return true;
+  for (std::size_t k = 0; k < subset.size(); ++k) problem.rows[static_cast<std::size_t>(subset[k])] = saved[k];
+  return false;
+}
+
+SPOOK_SOLVER_INLINE bool Solver::directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
+                                                    SolverStatistics& statistics, const std::vector<char>* keep,
+                                                    bool first) {
   std::vector<int> following;
   for (int i : subset) {
     const auto& e = problem.rows[static_cast<std::size_t>(i)];
     if (!e.followsNormal() || (keep && (*keep)[static_cast<std::size_t>(i)])) continue;
     following.push_back(i);
   }
-  const int fallbacks = statistics.directFallbacks;
-  direct(problem, subset, statistics);
+  if (first) {
+    const int fallbacks = statistics.directFallbacks;
+    direct(problem, subset, statistics);
+    // A solve that fell back will fall back again on the next bounds: stop.
+    if (statistics.directFallbacks != fallbacks) return false;
+  } else if (!directAttempt(problem, subset, statistics)) {
+    return false;
+  }
   int k = 1;
-  // A solve that fell back will fall back again on the next bounds: stop.
-  for (; k < frictionIterations_ && !following.empty() && statistics.directFallbacks == fallbacks; ++k) {
+  for (; k < frictionIterations_ && !following.empty(); ++k) {
+    const std::vector<detail::IslandProblem::Entry> before = [&] {
+      std::vector<detail::IslandProblem::Entry> rows;
+      rows.reserve(following.size());
+      for (int i : following) rows.push_back(problem.rows[static_cast<std::size_t>(i)]);
+      return rows;
+    }();
     double change = detail::updateConeDirections(problem, following);
     change = std::max(change, detail::applyFrictionBounds(problem, following));
     double largest = 0.0;
     for (int i : following) largest = std::max(largest, problem.rows[static_cast<std::size_t>(i)].upper);
     if (change <= frictionTolerance_ * largest) break;
-    direct(problem, subset, statistics);
+    if (!directAttempt(problem, subset, statistics)) {
+      // The budget ran out: the last converged answer stands, with the
+      // bounds (and cone directions) it was solved with.
+      for (std::size_t j = 0; j < following.size(); ++j)
+        problem.rows[static_cast<std::size_t>(following[j])] = before[j];
+      ++statistics.pivotBudgetCuts;
+      break;
+    }
   }
   statistics.frictionIterations = std::max(statistics.frictionIterations, k);
+  return true;
 }
 
 SPOOK_SOLVER_INLINE void Solver::iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
@@ -148,18 +186,15 @@ SPOOK_SOLVER_INLINE void HybridSolver::solveIsland(detail::IslandProblem& proble
     iterative(problem, iterativeRows, statistics);
     return;
   }
-  const int fallbacks = statistics.directFallbacks;
-  directWithFriction(problem, directRows, statistics);
+  bool directHeld = directWithFriction(problem, directRows, statistics);
   std::vector<double> previous(directRows.size());
-  // A direct pass that fell back (its pivoting cap reached) would only
+  // A direct pass that fell back (its pivoting cap reached), or that the
+  // pivot budget cut short (the last pass's answer then stands), would only
   // repeat at the next coupling pass: the step then ends with one more
   // iterative pass, which bounds its cost.
   for (int pass = 0; pass < getNumCouplingIterations(); ++pass) {
-    if (statistics.directFallbacks != fallbacks) {
-      iterative(problem, iterativeRows, statistics);
-      break;
-    }
     iterative(problem, iterativeRows, statistics);
+    if (!directHeld) break;
     detail::freezeConeShares(problem, iterativeRows, keep);
     detail::applyFrictionBounds(problem, iterativeRows);
     double largest = 0.0;
@@ -167,7 +202,8 @@ SPOOK_SOLVER_INLINE void HybridSolver::solveIsland(detail::IslandProblem& proble
       previous[k] = problem.rows[static_cast<std::size_t>(directRows[k])].impulse;
       largest = std::max(largest, std::abs(previous[k]));
     }
-    directWithFriction(problem, directRows, statistics, &keep);
+    directHeld = directWithFriction(problem, directRows, statistics, &keep, false);
+    if (!directHeld) ++statistics.pivotBudgetCuts;
     double change = 0.0;
     for (std::size_t k = 0; k < directRows.size(); ++k)
       change = std::max(change, std::abs(problem.rows[static_cast<std::size_t>(directRows[k])].impulse - previous[k]));
