@@ -15175,7 +15175,10 @@ class DirectSolve {
   /// steps, and Murty's one row per step then takes hundreds.
   static constexpr int kBlockPivotingStrikes = 30;
 
-  DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps) {
+  /// `safeAnswer`: at the cap, leave the fallback's answer (else the rows'
+  /// impulses are left as they were, for a caller that restores them).
+  DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps,
+                          bool safeAnswer = true) {
     DirectSolveResult result;
     const int n = static_cast<int>(subset.size());
     if (n == 0) return result;
@@ -15226,7 +15229,7 @@ class DirectSolve {
         ++strikes;
       }
       if (step >= maxPivotSteps) {
-        fallBack(problem, subset, bestX);
+        if (safeAnswer) fallBack(problem, subset, bestX);
         result.converged = false;
         result.fellBack = true;
         return result;
@@ -15499,7 +15502,8 @@ SPOOK_SOLVER_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, c
   saved.reserve(subset.size());
   for (int i : subset) saved.push_back(problem.rows[static_cast<std::size_t>(i)]);
   // A solve capped at m pivot steps factorizes up to m + 1 times.
-  const detail::DirectSolveResult r = direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_));
+  const detail::DirectSolveResult r =
+      direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_), /*safeAnswer=*/false);
   pivotBudget_ -= r.factorizations;
   statistics.factorizations += r.factorizations;
   if (!r.fellBack) return true;
@@ -17298,8 +17302,13 @@ class BodySweep {
     if (!t) return;
     Transform X_hit = X_end;
     X_hit.translation() -= ((1.0 - *t) * motion_).template cast<S>();
-    const CcdObject<A> objectA(a, X_hit);
-    const CcdObject<B> objectB(b, X_WB);
+    // libccd's MPR refines its portal without an iteration cap either: the
+    // same support budget as the bridge's EPA (ccd_bridge.hpp) ends it.
+    CcdSupportBudget budget{kCcdSupportBudget};
+    CcdObject<A> objectA(a, X_hit);
+    CcdObject<B> objectB(b, X_WB);
+    objectA.budget = objectB.budget = &budget;
+    objectA.countsCalls = true;
     const ccd_t ccd = ccdSettings<A, B>();
     ccd_real_t depth = 0;
     ccd_vec3_t direction, position;
@@ -18166,9 +18175,10 @@ class GeometricStiffness {
     for (std::size_t k = 0; k < rows.size(); ++k) used_[k] = *rows[k].impulse;
   }
 
-  /// A bound on refresh()'s test, cheap enough for every solve: the
-  /// stiffness of the change of each row's force, h²Σ|Δf||J||r|, against
-  /// ‖(I + h²K̃)⁻¹‖ (Frobenius norms: never below the test's value).
+  /// An upper estimate of refresh()'s test, cheap enough for every solve:
+  /// the stiffness of the change of each row's force, h²Σ|Δf||J||r|,
+  /// against ‖(I + h²K̃)⁻¹‖ in Frobenius norms (the mode weights and the
+  /// tension-only part of the test shrink a change, they do not grow it).
   bool mayHaveChanged(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, double h) {
     change_.assign(bodies.size(), 0.0);
     for (std::size_t k = 0; k < rows.size(); ++k) {

@@ -255,8 +255,13 @@ class BodySweep {
     if (!t) return;
     Transform X_hit = X_end;
     X_hit.translation() -= ((1.0 - *t) * motion_).template cast<S>();
-    const CcdObject<A> objectA(a, X_hit);
-    const CcdObject<B> objectB(b, X_WB);
+    // libccd's MPR refines its portal without an iteration cap either: the
+    // same support budget as the bridge's EPA (ccd_bridge.hpp) ends it.
+    CcdSupportBudget budget{kCcdSupportBudget};
+    CcdObject<A> objectA(a, X_hit);
+    CcdObject<B> objectB(b, X_WB);
+    objectA.budget = objectB.budget = &budget;
+    objectA.countsCalls = true;
     const ccd_t ccd = ccdSettings<A, B>();
     ccd_real_t depth = 0;
     ccd_vec3_t direction, position;

@@ -74,7 +74,10 @@ class DirectSolve {
   /// steps, and Murty's one row per step then takes hundreds.
   static constexpr int kBlockPivotingStrikes = 30;
 
-  DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps) {
+  /// `safeAnswer`: at the cap, leave the fallback's answer (else the rows'
+  /// impulses are left as they were, for a caller that restores them).
+  DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps,
+                          bool safeAnswer = true) {
     DirectSolveResult result;
     const int n = static_cast<int>(subset.size());
     if (n == 0) return result;
@@ -125,7 +128,7 @@ class DirectSolve {
         ++strikes;
       }
       if (step >= maxPivotSteps) {
-        fallBack(problem, subset, bestX);
+        if (safeAnswer) fallBack(problem, subset, bestX);
         result.converged = false;
         result.fellBack = true;
         return result;

@@ -118,9 +118,10 @@ class GeometricStiffness {
     for (std::size_t k = 0; k < rows.size(); ++k) used_[k] = *rows[k].impulse;
   }
 
-  /// A bound on refresh()'s test, cheap enough for every solve: the
-  /// stiffness of the change of each row's force, h²Σ|Δf||J||r|, against
-  /// ‖(I + h²K̃)⁻¹‖ (Frobenius norms: never below the test's value).
+  /// An upper estimate of refresh()'s test, cheap enough for every solve:
+  /// the stiffness of the change of each row's force, h²Σ|Δf||J||r|,
+  /// against ‖(I + h²K̃)⁻¹‖ in Frobenius norms (the mode weights and the
+  /// tension-only part of the test shrink a change, they do not grow it).
   bool mayHaveChanged(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, double h) {
     change_.assign(bodies.size(), 0.0);
     for (std::size_t k = 0; k < rows.size(); ++k) {

@@ -64,7 +64,8 @@ SPOOK_SOLVER_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, c
   saved.reserve(subset.size());
   for (int i : subset) saved.push_back(problem.rows[static_cast<std::size_t>(i)]);
   // A solve capped at m pivot steps factorizes up to m + 1 times.
-  const detail::DirectSolveResult r = direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_));
+  const detail::DirectSolveResult r =
+      direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_), /*safeAnswer=*/false);
   pivotBudget_ -= r.factorizations;
   statistics.factorizations += r.factorizations;
   if (!r.fellBack) return true;
