@@ -14286,7 +14286,7 @@ struct SolverStatistics {
   /// island's pivot budget (Solver::getMaxPivotSteps) ran out.
   int pivotBudgetCuts = 0;
   /// Solves repeated because the geometric stiffness of the forces found
-  /// differed from the one solved with (geometric_stiffness.hpp).
+  /// exceeded the one solved with (geometric_stiffness.hpp).
   int geometricStiffnessResolves = 0;
 
   /// Takes in a repeated solve of the same rows: its work adds up, its
@@ -14440,8 +14440,8 @@ class Solver : public Referenced {
   ~Solver() override;
   virtual void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) = 0;
 
-  /// A direct solve of the island's first: it may use all the pivot
-  /// budget left, and falls back when it runs out.
+  /// The island's first direct solve: up to getMaxPivotSteps pivot steps
+  /// (fewer if the budget has less left), falling back at that cap.
   void direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics);
   /// The pivot steps of all of an island's direct solves in a step.
   [[nodiscard]] int islandPivotBudget() const { return maxPivotSteps_ + maxPivotSteps_ / 2; }
@@ -15121,7 +15121,7 @@ namespace spook::detail {
 struct DirectSolveResult {
   int factorizations = 0;  ///< sparse LDLᵀ factorizations (one per pivot step)
   bool converged = true;   ///< a complementary solution was found
-  bool fellBack = false;   ///< the pivoting gave up; the safe fallback answered
+  bool fellBack = false;   ///< the pivoting gave up (the safe fallback answered, if asked for)
 };
 
 /// Solves the rows `subset` of an island exactly, the impulses of the other

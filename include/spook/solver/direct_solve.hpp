@@ -20,7 +20,7 @@ namespace spook::detail {
 struct DirectSolveResult {
   int factorizations = 0;  ///< sparse LDLᵀ factorizations (one per pivot step)
   bool converged = true;   ///< a complementary solution was found
-  bool fellBack = false;   ///< the pivoting gave up; the safe fallback answered
+  bool fellBack = false;   ///< the pivoting gave up (the safe fallback answered, if asked for)
 };
 
 /// Solves the rows `subset` of an island exactly, the impulses of the other

@@ -47,7 +47,7 @@ struct SolverStatistics {
   /// island's pivot budget (Solver::getMaxPivotSteps) ran out.
   int pivotBudgetCuts = 0;
   /// Solves repeated because the geometric stiffness of the forces found
-  /// differed from the one solved with (geometric_stiffness.hpp).
+  /// exceeded the one solved with (geometric_stiffness.hpp).
   int geometricStiffnessResolves = 0;
 
   /// Takes in a repeated solve of the same rows: its work adds up, its
@@ -201,8 +201,8 @@ class Solver : public Referenced {
   ~Solver() override;
   virtual void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) = 0;
 
-  /// A direct solve of the island's first: it may use all the pivot
-  /// budget left, and falls back when it runs out.
+  /// The island's first direct solve: up to getMaxPivotSteps pivot steps
+  /// (fewer if the budget has less left), falling back at that cap.
   void direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics);
   /// The pivot steps of all of an island's direct solves in a step.
   [[nodiscard]] int islandPivotBudget() const { return maxPivotSteps_ + maxPivotSteps_ / 2; }
