@@ -62,11 +62,12 @@ class GeometricStiffness {
   static constexpr int kMaxSolves = 4;
 
   /// Augments `bodies` (inverse inertia, free angular velocity) from the
-  /// rows' impulses, for a step of length h, and keeps the bodies as they
-  /// were for refresh().
+  /// rows' impulses, for a step of length h, and keeps what it changed for
+  /// refresh().
   void apply(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
-    base_ = bodies;
-    compute(rows, h, threshold, added_);
+    freeVelocity_.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) freeVelocity_[i] = bodies[i].freeVelocity;
+    compute(rows, bodies, h, threshold, added_);
     augment(bodies);
     keepImpulses(rows);
   }
@@ -76,8 +77,13 @@ class GeometricStiffness {
   /// kRefreshTolerance for some body; if so, `bodies` are augmented afresh
   /// with it, to be solved again.
   bool refresh(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
-    if (base_.size() != bodies.size() || used_.size() != rows.size() || !mayHaveChanged(rows, bodies, h)) return false;
-    compute(rows, h, threshold, fresh_);
+    if (added_.size() != bodies.size() || used_.size() != rows.size() || !mayHaveChanged(rows, bodies, h)) return false;
+    // The inverse inertia each body was solved with; the fresh stiffness is
+    // computed on the bodies' own inertia.
+    solvedWith_.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) solvedWith_[i] = bodies[i].inverseInertia;
+    swapOriginalInertia(bodies);
+    compute(rows, bodies, h, threshold, fresh_);
     bool changed = false;
     for (std::size_t i = 0; i < bodies.size() && !changed; ++i) {
       const Mat3d change = fresh_[i] - added_[i];
@@ -85,16 +91,21 @@ class GeometricStiffness {
       // The largest eigenvalue of LᵀΔA L, L Lᵀ = (I + h²K̃)⁻¹: the stiffness
       // the solve left out, in units of the inertia it used, on the worst
       // axis. Stiffness it took in excess only damps more.
-      const Mat3d L = Eigen::LLT<Mat3d>(bodies[i].inverseInertia).matrixL();
+      const Mat3d L = Eigen::LLT<Mat3d>(solvedWith_[i]).matrixL();
       changed = Eigen::SelfAdjointEigenSolver<Mat3d>(L.transpose() * change * L, Eigen::EigenvaluesOnly)
                     .eigenvalues()
                     .maxCoeff() > kRefreshTolerance;
     }
-    if (!changed) return false;
+    if (!changed) {
+      swapOriginalInertia(bodies);
+      return false;
+    }
+    // The bodies as apply() found them (the solve added its impulses to
+    // the free velocities), augmented afresh.
+    for (std::size_t i = 0; i < bodies.size(); ++i) bodies[i].freeVelocity = freeVelocity_[i];
     std::swap(added_, fresh_);
-    bodies = base_;
-    augment(bodies);
     keepImpulses(rows);
+    augment(bodies);
     return true;
   }
 
@@ -108,7 +119,8 @@ class GeometricStiffness {
 
   void clear() {
     added_.clear();
-    base_.clear();
+    original_.clear();
+    freeVelocity_.clear();
     used_.clear();
   }
 
@@ -118,10 +130,12 @@ class GeometricStiffness {
     for (std::size_t k = 0; k < rows.size(); ++k) used_[k] = *rows[k].impulse;
   }
 
-  /// An upper estimate of refresh()'s test, cheap enough for every solve:
-  /// the stiffness of the change of each row's force, h²Σ|Δf||J||r|,
-  /// against ‖(I + h²K̃)⁻¹‖ in Frobenius norms (the mode weights and the
-  /// tension-only part of the test shrink a change, they do not grow it).
+  /// A cheap gate before refresh()'s test: the stiffness of the change of
+  /// each row's force, h²Σ|Δf||J||r|, against ‖(I + h²K̃)⁻¹‖ in Frobenius
+  /// norms. At threshold 0 it bounds the test from above (the tension-only
+  /// part shrinks a change); with a threshold the mode weights (1 − ρ₀/ρ)
+  /// can make a small change of force a larger change of K̃, so it is a
+  /// heuristic there, one that errs on the side of the last solve.
   bool mayHaveChanged(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, double h) {
     change_.assign(bodies.size(), 0.0);
     for (std::size_t k = 0; k < rows.size(); ++k) {
@@ -137,9 +151,9 @@ class GeometricStiffness {
   }
 
   /// h²K̃ per body, mode-weighted (class comment), of the rows' impulses
-  /// acting on the bodies base_.
-  void compute(const std::vector<Row>& rows, double h, double threshold, std::vector<Mat3d>& added) {
-    const std::vector<SolverBody>& bodies = base_;
+  /// acting on `bodies` (not augmented).
+  void compute(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, double h, double threshold,
+               std::vector<Mat3d>& added) {
     added.assign(bodies.size(), Mat3d::Zero());
     stiffness_.assign(bodies.size(), Mat3d::Zero());
     heldAt_.assign(bodies.size(), Held{});
@@ -184,16 +198,25 @@ class GeometricStiffness {
     }
   }
 
-  /// base_ with added_: I → I + h²K̃, and the free angular velocity with
-  /// the same angular momentum.
-  void augment(std::vector<SolverBody>& bodies) const {
+  /// The bodies with added_: I → I + h²K̃, and the free angular velocity
+  /// with the same angular momentum; the inverse inertias it changes are
+  /// kept in original_.
+  void augment(std::vector<SolverBody>& bodies) {
+    original_.clear();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       if (added_[i].isZero(0.0)) continue;
       SolverBody& b = bodies[i];
+      original_.push_back({i, b.inverseInertia});
       const Mat3d inertia = b.inverseInertia.inverse();
       b.inverseInertia = (inertia + added_[i]).inverse();
       b.freeVelocity.tail<3>() = b.inverseInertia * (inertia * b.freeVelocity.tail<3>());
     }
+  }
+
+  /// Exchanges the augmented bodies' inverse inertia with the one they had
+  /// before augment().
+  void swapOriginalInertia(std::vector<SolverBody>& bodies) {
+    for (Original& o : original_) std::swap(bodies[o.body].inverseInertia, o.inverseInertia);
   }
 
   void accumulate(int body, const Vec3d& force, const Vec3d& arm, const std::vector<SolverBody>& bodies) {
@@ -215,8 +238,13 @@ class GeometricStiffness {
     bool single = false;
   };
 
-  std::vector<SolverBody> base_;  ///< the bodies before apply() augmented them
-  std::vector<Mat3d> added_, fresh_, stiffness_;
+  struct Original {
+    std::size_t body;
+    Mat3d inverseInertia;
+  };
+  std::vector<Original> original_;  ///< the augmented bodies' inverse inertia before augment()
+  std::vector<Vec6d> freeVelocity_;  ///< every body's free velocity before apply()
+  std::vector<Mat3d> added_, fresh_, stiffness_, solvedWith_;
   std::vector<double> used_;    ///< the impulses added_ was computed from
   std::vector<double> change_;  ///< per body, mayHaveChanged's bound
   std::vector<Held> heldAt_;

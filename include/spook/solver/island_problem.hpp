@@ -86,6 +86,16 @@ struct IslandProblem {
     if (e.body1 >= 0) dv[static_cast<std::size_t>(e.body1)] += e.W1 * impulse;
     if (e.body2 >= 0) dv[static_cast<std::size_t>(e.body2)] += e.W2 * impulse;
   }
+  /// The entries of `indices`, for restore() after an attempt is dropped.
+  [[nodiscard]] std::vector<Entry> entries(const std::vector<int>& indices) const {
+    std::vector<Entry> kept;
+    kept.reserve(indices.size());
+    for (int i : indices) kept.push_back(rows[static_cast<std::size_t>(i)]);
+    return kept;
+  }
+  void restore(const std::vector<int>& indices, const std::vector<Entry>& kept) {
+    for (std::size_t k = 0; k < indices.size(); ++k) rows[static_cast<std::size_t>(indices[k])] = kept[k];
+  }
   /// G_i Δv.
   [[nodiscard]] double rowVelocity(int i, const std::vector<Vec6d>& dv) const {
     const Entry& e = rows[static_cast<std::size_t>(i)];

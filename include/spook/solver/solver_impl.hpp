@@ -60,16 +60,14 @@ SPOOK_SOLVER_INLINE void Solver::direct(detail::IslandProblem& problem, const st
 SPOOK_SOLVER_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, const std::vector<int>& subset,
                                                SolverStatistics& statistics) {
   if (pivotBudget_ <= 0) return false;
-  std::vector<detail::IslandProblem::Entry> saved;
-  saved.reserve(subset.size());
-  for (int i : subset) saved.push_back(problem.rows[static_cast<std::size_t>(i)]);
+  const std::vector<detail::IslandProblem::Entry> saved = problem.entries(subset);
   // A solve capped at m pivot steps factorizes up to m + 1 times.
   const detail::DirectSolveResult r =
       direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_), /*safeAnswer=*/false);
   pivotBudget_ -= r.factorizations;
   statistics.factorizations += r.factorizations;
   if (!r.fellBack) return true;
-  for (std::size_t k = 0; k < subset.size(); ++k) problem.rows[static_cast<std::size_t>(subset[k])] = saved[k];
+  problem.restore(subset, saved);
   return false;
 }
 
@@ -92,12 +90,7 @@ SPOOK_SOLVER_INLINE bool Solver::directWithFriction(detail::IslandProblem& probl
   }
   int k = 1;
   for (; k < frictionIterations_ && !following.empty(); ++k) {
-    const std::vector<detail::IslandProblem::Entry> before = [&] {
-      std::vector<detail::IslandProblem::Entry> rows;
-      rows.reserve(following.size());
-      for (int i : following) rows.push_back(problem.rows[static_cast<std::size_t>(i)]);
-      return rows;
-    }();
+    const std::vector<detail::IslandProblem::Entry> before = problem.entries(following);
     double change = detail::updateConeDirections(problem, following);
     change = std::max(change, detail::applyFrictionBounds(problem, following));
     double largest = 0.0;
@@ -106,8 +99,7 @@ SPOOK_SOLVER_INLINE bool Solver::directWithFriction(detail::IslandProblem& probl
     if (!directAttempt(problem, subset, statistics)) {
       // The budget ran out: the last converged answer stands, with the
       // bounds (and cone directions) it was solved with.
-      for (std::size_t j = 0; j < following.size(); ++j)
-        problem.rows[static_cast<std::size_t>(following[j])] = before[j];
+      problem.restore(following, before);
       ++statistics.pivotBudgetCuts;
       break;
     }
