@@ -255,8 +255,8 @@ TEST_CASE("block principal pivoting solves random box LCPs exactly") {
 }
 
 // The body-space (Woodbury) form against the row-space one: contact-like
-// LCPs with more compliant rows than the bodies' degrees of freedom have the
-// same unique solution either way.
+// LCPs with more compliant rows than the bodies' degrees of freedom, some of
+// them coupling three bodies, have the same unique solution either way.
 TEST_CASE("the body-space direct solve matches the row-space one on compliant row sets") {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -277,8 +277,15 @@ TEST_CASE("the body-space direct solve matches the row-space one on compliant ro
       }
       e.W1 = e.J1 * inverseMass[static_cast<std::size_t>(e.body1)];
       if (e.body2 >= 0) e.W2 = e.J2 * inverseMass[static_cast<std::size_t>(e.body2)];
+      // Every third row couples a third body, as a wire's bend row does.
+      if (numBodies > 2 && e.body2 >= 0 && i % 3 == 0) {
+        const int third = (i + 2) % numBodies;
+        detail::Vec6d J;
+        for (int k = 0; k < 6; ++k) J[k] = u(rng);
+        problem.addBody(e, third, J, J * inverseMass[static_cast<std::size_t>(third)]);
+      }
       e.sigma = std::pow(10.0, -5.0 + 3.0 * std::abs(u(rng)));
-      e.diagonal = e.J1.dot(e.W1) + e.J2.dot(e.W2) + e.sigma;
+      e.diagonal = problem.mobility(e) + e.sigma;
       e.q = u(rng);
       const double kind = u(rng);
       e.lower = kind < -0.3 ? -std::numeric_limits<double>::infinity() : kind < 0.3 ? 0.0 : -std::abs(u(rng));

@@ -8324,6 +8324,7 @@ template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, con
 #define SPOOK_SINGLE_SPOOK_SOLVER_ISLAND_PROBLEM_HPP
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -8362,28 +8363,34 @@ enum class FrictionBound : std::uint8_t {
 using Vec6d = Eigen::Matrix<double, 6, 1>;
 
 /// One scalar constraint row as the solver sees it, in double whatever the
-/// scene's scalar. G v = J1·(v1, ω1) + J2·(v2, ω2) with velocities of the
-/// centers of mass in world coordinates; a body index of −1 is the world.
+/// scene's scalar. G v = J1·(v1, ω1) + J2·(v2, ω2) (+ J3·(v3, ω3)) with
+/// velocities of the centers of mass in world coordinates; a body index of
+/// −1 is the world. A third body is rare (a wire's bend row couples three
+/// consecutive nodes); it has no lever arm for the geometric stiffness.
 ///
 /// A holonomic row has a violation g and SPOOK parameters (compliance ε,
 /// damping τ): G v⁺ + Σ Λ = −a g + b' G v, Σ = 4ε/(h²(1+4τ/h)) (PHYSICS.md
 /// §1.2). A velocity row (motors, friction) has a target speed u and a
 /// viscosity γ: G v⁺ + (γ/h) Λ = u (§1.3). Bounds are forces (N or N·m).
 struct Row {
+  // Members ordered by size (no padding between them: the step copies
+  // rows by the thousand).
   int body1 = -1;
   int body2 = -1;
+  int body3 = -1;
+  /// The index in the same row list of the first row of the constraint
+  /// this row belongs to (−1: a contact's): an iterative sweep updates a
+  /// constraint's unbounded rows together (iterative_solve.hpp).
+  int constraint = -1;
   Vec6d J1 = Vec6d::Zero();  ///< (linear, angular) of body 1
   Vec6d J2 = Vec6d::Zero();  ///< (linear, angular) of body 2
-  bool holonomic = true;
+  Vec6d J3 = Vec6d::Zero();  ///< (linear, angular) of body 3
   double violation = 0.0;   ///< g (m or rad), holonomic rows
   double speed = 0.0;       ///< target G v (m/s or rad/s), velocity rows
   double compliance = 0.0;  ///< ε, or γ for a velocity row
   double damping = 0.0;     ///< τ (s), holonomic rows
   double lower = -std::numeric_limits<double>::infinity();
   double upper = std::numeric_limits<double>::infinity();
-  SolveType solveType = SolveType::DIRECT;
-  /// Warm start in, solved impulse (N·s) out; owned by the constraint.
-  double* impulse = nullptr;
   /// Holonomic rows: κ = ½ vᵀ(∂²g/∂q²)v at the start of the step (m/s² or
   /// rad/s²), the quadratic velocity term of the index-1 DAE (Ġv/2). A step
   /// with velocity v⁺ moves g by hGv⁺ + h²κ + O(h³), and G_k v_k exceeds the
@@ -8394,6 +8401,8 @@ struct Row {
   /// g (m/s or rad/s), kept by post-stabilization; NaN when unknown, then
   /// G v − hκ stands in for it in SPOOK's b' term.
   double lastRate = std::numeric_limits<double>::quiet_NaN();
+  /// Warm start in, solved impulse (N·s) out; owned by the constraint.
+  double* impulse = nullptr;
   /// Translational rows: lever arms (world, m) from each center of mass to
   /// the point where the row's force acts, for the geometric stiffness
   /// (geometric_stiffness.hpp). Zero for rows that apply pure torques.
@@ -8401,14 +8410,12 @@ struct Row {
   /// Friction rows: the index in the same row list of the normal row whose
   /// impulse bounds this one (−1: not a friction row), the coefficient μ and
   /// the kind of bound; cone rows name their contact's other tangent row.
+  double frictionCoefficient = 0.0;
   int frictionNormal = -1;
   int frictionPartner = -1;
-  double frictionCoefficient = 0.0;
   FrictionBound frictionBound = FrictionBound::FIXED;
-  /// The index in the same row list of the first row of the constraint
-  /// this row belongs to (−1: a contact's): an iterative sweep updates a
-  /// constraint's unbounded rows together (iterative_solve.hpp).
-  int constraint = -1;
+  SolveType solveType = SolveType::DIRECT;
+  bool holonomic = true;
 
   [[nodiscard]] bool bounded() const { return lower > -std::numeric_limits<double>::infinity() || upper < std::numeric_limits<double>::infinity(); }
 };
@@ -8441,7 +8448,10 @@ struct SolverBody {
 /// of PHYSICS.md §2.1. Bodies are numbered locally (−1: none or not dynamic).
 struct IslandProblem {
   struct Entry {
+    /// The row's dynamic bodies (distinct): body1, body2 and, for the rare
+    /// row of three (a wire's bend row), extraBodies[extra].
     int body1 = -1, body2 = -1;
+    int extra = -1;
     Vec6d J1 = Vec6d::Zero(), J2 = Vec6d::Zero();
     Vec6d W1 = Vec6d::Zero(), W2 = Vec6d::Zero();  ///< M⁻¹Jᵀ per body
     double q = 0.0;                                ///< right-hand side, m/s or rad/s
@@ -8470,13 +8480,69 @@ struct IslandProblem {
     [[nodiscard]] bool splitFriction() const { return normal >= 0 && solveType == SolveType::SPLIT; }
   };
 
+  /// A row's third body: its block of G and of M⁻¹Gᵀ.
+  struct ExtraBody {
+    int body = -1;
+    Vec6d J = Vec6d::Zero(), W = Vec6d::Zero();
+  };
+
   std::vector<Entry> rows;
+  std::vector<ExtraBody> extraBodies;
   int numBodies = 0;
   /// Each body's mass matrix M = diag(m, I) (world; the inverse of its
   /// inverse mass and inertia), non-finite where those are singular; empty
   /// unless the rows outnumber the bodies' degrees of freedom
   /// (BodySpaceSolve::outnumbers).
   std::vector<Mat6d> mass;
+
+  /// Calls f(body, J, W) for each body of the entry.
+  template <class F>
+  void forEachBody(const Entry& e, F&& f) const {
+    if (e.body1 >= 0) f(e.body1, e.J1, e.W1);
+    if (e.body2 >= 0) f(e.body2, e.J2, e.W2);
+    if (e.extra >= 0) {
+      const ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
+      f(x.body, x.J, x.W);
+    }
+  }
+  /// The entry's three body slots (−1: none).
+  [[nodiscard]] std::array<int, 3> bodiesOf(const Entry& e) const {
+    return {e.body1, e.body2, e.extra >= 0 ? extraBodies[static_cast<std::size_t>(e.extra)].body : -1};
+  }
+  /// Adds body b's block (J, W = M⁻¹Jᵀ) to the entry, or adds to the
+  /// block it has for b.
+  void addBody(Entry& e, int b, const Vec6d& J, const Vec6d& W) {
+    if (e.body1 < 0) {
+      e.body1 = b;
+      e.J1 = J;
+      e.W1 = W;
+    } else if (e.body1 == b) {
+      e.J1 += J;
+      e.W1 += W;
+    } else if (e.body2 < 0) {
+      e.body2 = b;
+      e.J2 = J;
+      e.W2 = W;
+    } else if (e.body2 == b) {
+      e.J2 += J;
+      e.W2 += W;
+    } else if (e.extra < 0) {
+      e.extra = static_cast<int>(extraBodies.size());
+      extraBodies.push_back({b, J, W});
+    } else {
+      ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
+      x.J += J;
+      x.W += W;
+    }
+  }
+  /// J·W over the entry's bodies: its diagonal of S = G M⁻¹ Gᵀ.
+  [[nodiscard]] double mobility(const Entry& e) const {
+    double s = 0.0;
+    if (e.body1 >= 0) s += e.J1.dot(e.W1);
+    if (e.body2 >= 0) s += e.J2.dot(e.W2);
+    if (e.extra >= 0) s += extraBodies[static_cast<std::size_t>(e.extra)].J.dot(extraBodies[static_cast<std::size_t>(e.extra)].W);
+    return s;
+  }
 
   /// Δv of every body from the impulses of all rows.
   [[nodiscard]] std::vector<Vec6d> velocityChange() const {
@@ -8491,9 +8557,14 @@ struct IslandProblem {
     return dv;
   }
   void addImpulse(std::vector<Vec6d>& dv, int i, double impulse) const {
+    // Written out (not forEachBody): the iterative sweeps' innermost loop.
     const Entry& e = rows[static_cast<std::size_t>(i)];
     if (e.body1 >= 0) dv[static_cast<std::size_t>(e.body1)] += e.W1 * impulse;
     if (e.body2 >= 0) dv[static_cast<std::size_t>(e.body2)] += e.W2 * impulse;
+    if (e.extra >= 0) {
+      const ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
+      dv[static_cast<std::size_t>(x.body)] += x.W * impulse;
+    }
   }
   /// The entries of `indices`, for restore() after an attempt is dropped.
   [[nodiscard]] std::vector<Entry> entries(const std::vector<int>& indices) const {
@@ -8511,6 +8582,10 @@ struct IslandProblem {
     double v = 0.0;
     if (e.body1 >= 0) v += e.J1.dot(dv[static_cast<std::size_t>(e.body1)]);
     if (e.body2 >= 0) v += e.J2.dot(dv[static_cast<std::size_t>(e.body2)]);
+    if (e.extra >= 0) {
+      const ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
+      v += x.J.dot(dv[static_cast<std::size_t>(x.body)]);
+    }
     return v;
   }
   /// (S + Σ)_ij for rows i ≠ j: the coupling through their shared bodies.
@@ -8518,10 +8593,11 @@ struct IslandProblem {
     const Entry& a = rows[static_cast<std::size_t>(i)];
     const Entry& b = rows[static_cast<std::size_t>(j)];
     double s = 0.0;
-    if (a.body1 >= 0 && a.body1 == b.body1) s += a.J1.dot(b.W1);
-    if (a.body1 >= 0 && a.body1 == b.body2) s += a.J1.dot(b.W2);
-    if (a.body2 >= 0 && a.body2 == b.body1) s += a.J2.dot(b.W1);
-    if (a.body2 >= 0 && a.body2 == b.body2) s += a.J2.dot(b.W2);
+    forEachBody(a, [&](int bodyA, const Vec6d& J, const Vec6d&) {
+      forEachBody(b, [&](int bodyB, const Vec6d&, const Vec6d& W) {
+        if (bodyA == bodyB) s += J.dot(W);
+      });
+    });
     return s;
   }
 };
@@ -14570,6 +14646,7 @@ using SolverRef = ref_ptr<Solver>;
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
 #define SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -14632,17 +14709,22 @@ class BodySpaceSolve {
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       const double inverseSigma = 1.0 / e.sigma;
-      if (e.body1 >= 0 && e.body1 == e.body2) {
-        addRow(e.body1, e.J1 + e.J2, inverseSigma);
-        continue;
-      }
-      if (e.body1 >= 0) addRow(e.body1, e.J1, inverseSigma);
-      if (e.body2 >= 0) addRow(e.body2, e.J2, inverseSigma);
-      if (e.body1 >= 0 && e.body2 >= 0) {
+      // The row's bodies are distinct (IslandProblem::addBody).
+      std::array<int, 3> body{};
+      std::array<const Vec6d*, 3> J{};
+      int n = 0;
+      problem.forEachBody(e, [&](int b, const Vec6d& j, const Vec6d&) {
+        body[static_cast<std::size_t>(n)] = b;
+        J[static_cast<std::size_t>(n++)] = &j;
+      });
+      for (std::size_t x = 0; x < static_cast<std::size_t>(n); ++x) {
+        addRow(body[x], *J[x], inverseSigma);
         // K's lower triangle: the block (larger body, smaller body).
-        const bool firstLarger = e.body1 > e.body2;
-        blockAt(firstLarger ? e.body1 : e.body2, firstLarger ? e.body2 : e.body1) +=
-            inverseSigma * (firstLarger ? e.J1 : e.J2) * (firstLarger ? e.J2 : e.J1).transpose();
+        for (std::size_t y = 0; y < x; ++y) {
+          const bool xLarger = body[x] > body[y];
+          blockAt(xLarger ? body[x] : body[y], xLarger ? body[y] : body[x]) +=
+              inverseSigma * (xLarger ? *J[x] : *J[y]) * (xLarger ? *J[y] : *J[x]).transpose();
+        }
       }
     }
 
@@ -14673,12 +14755,7 @@ class BodySpaceSolve {
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       const double s = rhs[f] / e.sigma;
-      if (e.body1 >= 0 && e.body1 == e.body2) {
-        b.segment<6>(6 * e.body1) += s * (e.J1 + e.J2);
-        continue;
-      }
-      if (e.body1 >= 0) b.segment<6>(6 * e.body1) += s * e.J1;
-      if (e.body2 >= 0) b.segment<6>(6 * e.body2) += s * e.J2;
+      problem.forEachBody(e, [&](int body, const Vec6d& J, const Vec6d&) { b.segment<6>(6 * body) += s * J; });
     }
     const Eigen::VectorXd y = ldlt_.solve(b);
 
@@ -14687,8 +14764,7 @@ class BodySpaceSolve {
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       double gy = 0.0;  // G y
-      if (e.body1 >= 0) gy += e.J1.dot(y.segment<6>(6 * e.body1));
-      if (e.body2 >= 0) gy += e.J2.dot(y.segment<6>(6 * e.body2));
+      problem.forEachBody(e, [&](int body, const Vec6d& J, const Vec6d&) { gy += J.dot(y.segment<6>(6 * body)); });
       x[static_cast<Eigen::Index>(k)] = (rhs[f] - gy) / e.sigma;
     }
   }
@@ -15011,14 +15087,14 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
     std::vector<int> count(static_cast<std::size_t>(problem.numBodies), 0);
     for (int i : subset) {
       const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (e.body1 >= 0) ++count[static_cast<std::size_t>(e.body1)];
-      if (e.body2 >= 0) ++count[static_cast<std::size_t>(e.body2)];
+      for (int body : problem.bodiesOf(e))
+        if (body >= 0) ++count[static_cast<std::size_t>(body)];
     }
     for (int i : subset) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      const int k = std::max(e.body1 >= 0 ? count[static_cast<std::size_t>(e.body1)] : 1,
-                             e.body2 >= 0 ? count[static_cast<std::size_t>(e.body2)] : 1);
-      relaxation.push_back(1.0 / std::max(k, 1));
+      int k = 1;
+      for (int body : problem.bodiesOf(problem.rows[static_cast<std::size_t>(i)]))
+        if (body >= 0) k = std::max(k, count[static_cast<std::size_t>(body)]);
+      relaxation.push_back(1.0 / k);
     }
   }
   std::vector<double> delta(subset.size(), 0.0);
@@ -15336,8 +15412,7 @@ class DirectSolve {
     for (int k = 0; k < n; ++k) {
       const int i = subset[static_cast<std::size_t>(k)];
       const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (e.body1 >= 0) rowsOfBody[static_cast<std::size_t>(e.body1)].push_back(k);
-      if (e.body2 >= 0 && e.body2 != e.body1) rowsOfBody[static_cast<std::size_t>(e.body2)].push_back(k);
+      problem.forEachBody(e, [&](int body, const Vec6d&, const Vec6d&) { rowsOfBody[static_cast<std::size_t>(body)].push_back(k); });
     }
     triplets_.clear();
     for (int k = 0; k < n; ++k) {
@@ -15350,8 +15425,7 @@ class DirectSolve {
     for (int k = 0; k < n; ++k) {
       const int i = subset[static_cast<std::size_t>(k)];
       const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      for (int body : {e.body1, e.body2}) {
-        if (body < 0) continue;
+      problem.forEachBody(e, [&](int body, const Vec6d&, const Vec6d&) {
         for (int m : rowsOfBody[static_cast<std::size_t>(body)]) {
           if (m <= k || lastSeen[static_cast<std::size_t>(m)] == k) continue;
           lastSeen[static_cast<std::size_t>(m)] = k;
@@ -15360,7 +15434,7 @@ class DirectSolve {
           triplets_.emplace_back(k, m, s);
           triplets_.emplace_back(m, k, s);
         }
-      }
+      });
     }
     A_.resize(n, n);
     A_.setFromTriplets(triplets_.begin(), triplets_.end());
@@ -15701,6 +15775,153 @@ struct SimulationStatisticsT {
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_SIM_STATISTICS_HPP
 // --- end spook/sim/statistics.hpp ---
+// --- begin spook/sim/step_extension.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_STEP_EXTENSION_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_STEP_EXTENSION_HPP
+
+// The doors through which new physics enters a step without edits to the
+// simulation: body stores (bodies the step integrates beside its rigid
+// bodies: particles, a wire's lumped nodes) and row producers (sources of
+// constraint rows: a wire's stretch and bend rows, granular contacts).
+// Both work in double whatever the scene's scalar; a simulation holds them
+// with add()/remove() like its other content.
+
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace spook {
+
+class BodyStore;
+template <Scalar S>
+class SimulationT;
+
+/// What stores and producers see of the step they take part in.
+class StepContext {
+ public:
+  using Vec3d = Eigen::Vector3d;
+
+  StepContext(double timeStep, std::function<Vec3d(const Vec3d&)> gravity)
+      : timeStep_(timeStep), gravity_(std::move(gravity)) {}
+
+  /// h (s).
+  [[nodiscard]] double getTimeStep() const { return timeStep_; }
+  /// The simulation's gravity (m/s²) at a world point (m).
+  [[nodiscard]] Vec3d gravity(const Vec3d& point) const { return gravity_(point); }
+  /// The solver index of body i of `store` in this step (for Row::body1..3),
+  /// −1 when the store is not in the step or i is out of its range.
+  [[nodiscard]] int indexOf(const BodyStore& store, std::size_t i) const;
+
+ private:
+  template <Scalar>
+  friend class SimulationT;
+  double timeStep_;
+  std::function<Vec3d(const Vec3d&)> gravity_;
+  std::vector<std::pair<const BodyStore*, std::size_t>> firstIndex_;  ///< per store in the step
+  std::vector<std::size_t> sizes_;
+};
+
+/// Appends rows for the solver. A row is written in double with the
+/// solver's conventions (solver/row.hpp): body indices from
+/// StepContext::indexOf (−1: the world), Jacobian blocks (linear, angular),
+/// a holonomic row's violation, compliance and damping (SPOOK), a velocity
+/// row's target speed and viscosity, force bounds (N or N·m).
+class RowWriter {
+ public:
+  RowWriter(std::vector<detail::Row>& rows, std::vector<double>& impulses) : rows_(rows), impulses_(impulses) {}
+
+  /// A new row, warm started from `impulse` (N·s, the row's impulse last
+  /// step) when the solver warm starts.
+  detail::Row& add(double impulse = 0.0) {
+    impulses_.push_back(impulse);
+    return rows_.emplace_back();
+  }
+  /// Rows written so far by every producer of the step.
+  [[nodiscard]] std::size_t size() const { return rows_.size(); }
+
+ private:
+  std::vector<detail::Row>& rows_;
+  std::vector<double>& impulses_;
+};
+
+/// Bodies the step integrates and solves beside the rigid bodies, held by
+/// the store in whatever layout suits it (contiguous arrays for particles).
+/// The solver sees each one as a detail::SolverBody: velocity, free
+/// velocity, inverse mass and inertia (world); a body that cannot turn has a
+/// zero inverse inertia.
+class BodyStore : public Referenced {
+ public:
+  [[nodiscard]] const std::string& getName() const { return name_; }
+  void setName(std::string name) { name_ = std::move(name); }
+
+  /// Number of bodies now.
+  [[nodiscard]] virtual std::size_t size() const = 0;
+  /// Start of a step, before any row is written: the only place a store
+  /// may add or remove bodies.
+  virtual void beginStep(const StepContext& /*step*/) {}
+  /// Each body as the solver sees it at the start of the step: velocity v,
+  /// free velocity v* = v + h M⁻¹ f (applied forces, gravity), inverse mass
+  /// and inertia, dynamic. `bodies` has size() entries, zero-initialized.
+  virtual void writeSolverBodies(std::span<detail::SolverBody> bodies, const StepContext& step) const = 0;
+  /// Moves the bodies by one step with the solved velocities
+  /// (bodies[i].freeVelocity holds v⁺).
+  virtual void move(std::span<const detail::SolverBody> bodies, const StepContext& step) = 0;
+  /// Post-stabilization: displaces the bodies by bodies[i].displacement
+  /// ((Δx, Δθ), m and rad), velocities unchanged.
+  virtual void displace(std::span<const detail::SolverBody> bodies) = 0;
+
+ protected:
+  ~BodyStore() override = default;
+
+ private:
+  friend struct detail::SimulationMembership;
+  const void* simulation_ = nullptr;
+  std::string name_;
+};
+
+/// A source of rows: it writes its rows each step and reads back their
+/// impulses after the solve; it keeps its own history (warm starts, forces,
+/// tensions, persistence).
+class RowProducer : public Referenced {
+ public:
+  [[nodiscard]] const std::string& getName() const { return name_; }
+  void setName(std::string name) { name_ = std::move(name); }
+
+  /// Start of a step, after the stores' beginStep.
+  virtual void beginStep(const StepContext& /*step*/) {}
+  /// Appends this step's rows. A row naming a body index outside the step
+  /// stops the step with a spook::Error naming the producer.
+  virtual void writeRows(RowWriter& rows, const StepContext& step) = 0;
+  /// The rows' impulses (N·s) after the solve, in the order written.
+  virtual void readBack(std::span<const double> impulses, const StepContext& step) = 0;
+  /// Post-stabilization (when the solver projects): holonomic rows at the
+  /// moved positions, each with the violation to reach in Row::speed (m or
+  /// rad; usually 0); none by default.
+  virtual void writeProjectionRows(RowWriter& /*rows*/, const StepContext& /*step*/) {}
+
+ protected:
+  ~RowProducer() override = default;
+
+ private:
+  friend struct detail::SimulationMembership;
+  const void* simulation_ = nullptr;
+  std::string name_;
+};
+
+inline int StepContext::indexOf(const BodyStore& store, std::size_t i) const {
+  for (std::size_t k = 0; k < firstIndex_.size(); ++k)
+    if (firstIndex_[k].first == &store) return i < sizes_[k] ? static_cast<int>(firstIndex_[k].second + i) : -1;
+  return -1;
+}
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_SIM_STEP_EXTENSION_HPP
+// --- end spook/sim/step_extension.hpp ---
 
 namespace spook {
 
@@ -15947,6 +16168,35 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     return constraint && Membership::simulationOf(*constraint) == static_cast<const void*>(this);
   }
 
+  /// Adds a body store (sim/step_extension.hpp): its bodies are integrated
+  /// and solved with the rigid bodies from the next step on.
+  void add(ref_ptr<BodyStore> store) {
+    checkAddable(store.get(), "BodyStore");
+    addExtension(stores_, std::move(store));
+  }
+  void remove(BodyStore* store) {
+    checkRemovable(store, "BodyStore");
+    removeExtension(stores_, store);
+  }
+  /// Adds a row producer (sim/step_extension.hpp): its rows enter the solve
+  /// from the next step on.
+  void add(ref_ptr<RowProducer> producer) {
+    checkAddable(producer.get(), "RowProducer");
+    addExtension(producers_, std::move(producer));
+  }
+  void remove(RowProducer* producer) {
+    checkRemovable(producer, "RowProducer");
+    removeExtension(producers_, producer);
+  }
+  [[nodiscard]] bool contains(const BodyStore* store) const {
+    return store && Membership::simulationOf(*store) == static_cast<const void*>(this);
+  }
+  [[nodiscard]] bool contains(const RowProducer* producer) const {
+    return producer && Membership::simulationOf(*producer) == static_cast<const void*>(this);
+  }
+  [[nodiscard]] const std::vector<ref_ptr<BodyStore>>& getBodyStores() const { return stores_; }
+  [[nodiscard]] const std::vector<ref_ptr<RowProducer>>& getRowProducers() const { return producers_; }
+
   [[nodiscard]] const std::vector<ref_ptr<Body>>& getRigidBodies() const { return bodies_; }
   [[nodiscard]] const std::vector<ref_ptr<Listener>>& getEventListeners() const { return listeners_; }
   [[nodiscard]] const std::vector<ref_ptr<Collection>>& getCollections() const { return collections_; }
@@ -16016,13 +16266,18 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   // Projects the direct solver's equality rows back onto their manifold
   // (Solver::getEnablePostStabilization).
-  void postStabilize(double h);
+  void postStabilize(const StepContext& step);
 
   // Keeps body i as it was before the step (pose kept, velocities zeroed)
   // and reports it, once per step.
   void freeze(std::size_t i, FreezeReason reason);
 
   void collectRows(double h);
+
+  // The stores' and producers' part of a step (sim/step_extension.hpp).
+  StepContext beginExtensions(double h);
+  void collectStoreBodies(const StepContext& step);
+  void collectProducerRows(const StepContext& step, bool projection);
 
   void readBackForces(double h);
 
@@ -16169,6 +16424,18 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     if (owner) throw detail::makeError(kind, nameOf(*object), "already belongs to another simulation");
   }
   template <class T>
+  void addExtension(std::vector<ref_ptr<T>>& list, ref_ptr<T> object) {
+    Membership::simulationOf(*object) = this;
+    list.push_back(std::move(object));
+  }
+  template <class T>
+  void removeExtension(std::vector<ref_ptr<T>>& list, T* object) {
+    ref_ptr<T> keep = object;
+    // Order kept: the stores' solver indices follow it.
+    list.erase(std::find_if(list.begin(), list.end(), [&](const auto& o) { return o.get() == object; }));
+    Membership::simulationOf(*object) = nullptr;
+  }
+  template <class T>
   void checkRemovable(T* object, const char* kind) const {
     if (!object) throw error(std::string("cannot remove a null ") + kind, "nullptr");
     if (Membership::simulationOf(*object) != static_cast<const void*>(this))
@@ -16198,6 +16465,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   ref_ptr<SpaceT<S>> space_;
   std::vector<ref_ptr<Collection>> collections_;
   std::vector<ref_ptr<Constraint>> constraints_;
+  std::vector<ref_ptr<BodyStore>> stores_;
+  std::vector<ref_ptr<RowProducer>> producers_;
   detail::JointedPairs<S> jointedPairs_;
   SimulationStatisticsT<S> statistics_;
   ref_ptr<Solver> solver_ = new HybridSolver();
@@ -16240,6 +16509,7 @@ using SimulationRef = ref_ptr<Simulation>;
 
 #include <cstddef>
 #include <memory>
+#include <span>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -17479,6 +17749,7 @@ void stopAtFirstContact(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const
 #define SPOOK_SINGLE_SPOOK_SOLVER_ISLANDS_HPP
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <cstddef>
 #include <numeric>
@@ -17490,6 +17761,7 @@ void stopAtFirstContact(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
 #define SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -17552,17 +17824,22 @@ class BodySpaceSolve {
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       const double inverseSigma = 1.0 / e.sigma;
-      if (e.body1 >= 0 && e.body1 == e.body2) {
-        addRow(e.body1, e.J1 + e.J2, inverseSigma);
-        continue;
-      }
-      if (e.body1 >= 0) addRow(e.body1, e.J1, inverseSigma);
-      if (e.body2 >= 0) addRow(e.body2, e.J2, inverseSigma);
-      if (e.body1 >= 0 && e.body2 >= 0) {
+      // The row's bodies are distinct (IslandProblem::addBody).
+      std::array<int, 3> body{};
+      std::array<const Vec6d*, 3> J{};
+      int n = 0;
+      problem.forEachBody(e, [&](int b, const Vec6d& j, const Vec6d&) {
+        body[static_cast<std::size_t>(n)] = b;
+        J[static_cast<std::size_t>(n++)] = &j;
+      });
+      for (std::size_t x = 0; x < static_cast<std::size_t>(n); ++x) {
+        addRow(body[x], *J[x], inverseSigma);
         // K's lower triangle: the block (larger body, smaller body).
-        const bool firstLarger = e.body1 > e.body2;
-        blockAt(firstLarger ? e.body1 : e.body2, firstLarger ? e.body2 : e.body1) +=
-            inverseSigma * (firstLarger ? e.J1 : e.J2) * (firstLarger ? e.J2 : e.J1).transpose();
+        for (std::size_t y = 0; y < x; ++y) {
+          const bool xLarger = body[x] > body[y];
+          blockAt(xLarger ? body[x] : body[y], xLarger ? body[y] : body[x]) +=
+              inverseSigma * (xLarger ? *J[x] : *J[y]) * (xLarger ? *J[y] : *J[x]).transpose();
+        }
       }
     }
 
@@ -17593,12 +17870,7 @@ class BodySpaceSolve {
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       const double s = rhs[f] / e.sigma;
-      if (e.body1 >= 0 && e.body1 == e.body2) {
-        b.segment<6>(6 * e.body1) += s * (e.J1 + e.J2);
-        continue;
-      }
-      if (e.body1 >= 0) b.segment<6>(6 * e.body1) += s * e.J1;
-      if (e.body2 >= 0) b.segment<6>(6 * e.body2) += s * e.J2;
+      problem.forEachBody(e, [&](int body, const Vec6d& J, const Vec6d&) { b.segment<6>(6 * body) += s * J; });
     }
     const Eigen::VectorXd y = ldlt_.solve(b);
 
@@ -17607,8 +17879,7 @@ class BodySpaceSolve {
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       double gy = 0.0;  // G y
-      if (e.body1 >= 0) gy += e.J1.dot(y.segment<6>(6 * e.body1));
-      if (e.body2 >= 0) gy += e.J2.dot(y.segment<6>(6 * e.body2));
+      problem.forEachBody(e, [&](int body, const Vec6d& J, const Vec6d&) { gy += J.dot(y.segment<6>(6 * body)); });
       x[static_cast<Eigen::Index>(k)] = (rhs[f] - gy) / e.sigma;
     }
   }
@@ -17683,8 +17954,7 @@ class IslandStepper {
       }
       solver.project(problem_, statistics);
       for (const auto& e : problem_.rows) {
-        if (e.body1 >= 0) bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(e.body1)])].displacement += e.W1 * e.impulse;
-        if (e.body2 >= 0) bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(e.body2)])].displacement += e.W2 * e.impulse;
+        addToBodies(bodies, &SolverBody::displacement, e);
       }
     }
   }
@@ -17704,8 +17974,7 @@ class IslandStepper {
       for (std::size_t k = 0; k < island.size(); ++k) *rows[static_cast<std::size_t>(island[k])].impulse = problem_.rows[k].impulse;
       for (std::size_t k = 0; k < problem_.rows.size(); ++k) {
         const auto& e = problem_.rows[k];
-        if (e.body1 >= 0) bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(e.body1)])].freeVelocity += e.W1 * e.impulse;
-        if (e.body2 >= 0) bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(e.body2)])].freeVelocity += e.W2 * e.impulse;
+        addToBodies(bodies, &SolverBody::freeVelocity, e);
       }
     }
   }
@@ -17725,13 +17994,24 @@ class IslandStepper {
   void partition(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies) {
     parent_.resize(bodies.size());
     std::iota(parent_.begin(), parent_.end(), 0);
-    for (const Row& r : rows)
-      if (isDynamic(bodies, r.body1) && isDynamic(bodies, r.body2)) parent_[static_cast<std::size_t>(find(r.body1))] = find(r.body2);
+    const auto join = [&](int a, int b) {
+      if (isDynamic(bodies, a) && isDynamic(bodies, b)) parent_[static_cast<std::size_t>(find(a))] = find(b);
+    };
+    for (const Row& r : rows) {
+      join(r.body1, r.body2);
+      if (r.body3 >= 0) {
+        join(r.body1, r.body3);
+        join(r.body2, r.body3);
+      }
+    }
     islandOfRoot_.assign(bodies.size(), -1);
     islands_.clear();
     for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
       const Row& r = rows[static_cast<std::size_t>(i)];
-      const int body = isDynamic(bodies, r.body1) ? r.body1 : isDynamic(bodies, r.body2) ? r.body2 : -1;
+      const int body = isDynamic(bodies, r.body1)   ? r.body1
+                       : isDynamic(bodies, r.body2) ? r.body2
+                       : isDynamic(bodies, r.body3) ? r.body3
+                                                    : -1;
       if (body < 0) continue;
       int& island = islandOfRoot_[static_cast<std::size_t>(find(body))];
       if (island < 0) {
@@ -17755,37 +18035,32 @@ class IslandStepper {
       }
       return l;
     };
-    auto velocity = [&](int body, bool free) -> Vec6d {
-      if (body < 0) return Vec6d::Zero();
-      const SolverBody& b = bodies[static_cast<std::size_t>(body)];
-      return free ? b.freeVelocity : b.velocity;
-    };
-    auto weighted = [&](int body, const Vec6d& J) -> Vec6d {
-      if (!isDynamic(bodies, body)) return Vec6d::Zero();
-      const SolverBody& b = bodies[static_cast<std::size_t>(body)];
-      Vec6d W;
-      W << b.inverseMass * J.head<3>(), b.inverseInertia * J.tail<3>();
-      return W;
-    };
-
     rowLocal_.resize(rows.size(), -1);
     for (std::size_t k = 0; k < island.size(); ++k) rowLocal_[static_cast<std::size_t>(island[k])] = static_cast<int>(k);
     const auto localRow = [&](int i) { return i < 0 ? -1 : rowLocal_[static_cast<std::size_t>(i)]; };
     problem_.rows.resize(island.size());
+    problem_.extraBodies.clear();
     for (std::size_t k = 0; k < island.size(); ++k) {
       const Row& r = rows[static_cast<std::size_t>(island[k])];
       IslandProblem::Entry& e = problem_.rows[k];
-      e.body1 = localIndex(r.body1);
-      e.body2 = localIndex(r.body2);
-      e.J1 = r.J1;
-      e.J2 = r.J2;
-      e.W1 = weighted(r.body1, r.J1);
-      e.W2 = weighted(r.body2, r.J2);
-      const double freeSpeed = r.J1.dot(velocity(r.body1, true)) + r.J2.dot(velocity(r.body2, true));
-      const double mobility = r.J1.dot(e.W1) + r.J2.dot(e.W2);
+      e.body1 = e.body2 = e.extra = -1;
+      // G v and G v* over every body (kinematic ones move too), M⁻¹Gᵀ over
+      // the dynamic ones.
+      double speed = 0.0, freeSpeed = 0.0;
+      const std::array<std::pair<int, const Vec6d*>, 3> blocks{{{r.body1, &r.J1}, {r.body2, &r.J2}, {r.body3, &r.J3}}};
+      for (const auto& [body, J] : blocks) {
+        if (body < 0) continue;
+        const SolverBody& b = bodies[static_cast<std::size_t>(body)];
+        speed += J->dot(b.velocity);
+        freeSpeed += J->dot(b.freeVelocity);
+        if (!b.dynamic) continue;
+        Vec6d W;
+        W << b.inverseMass * J->head<3>(), b.inverseInertia * J->tail<3>();
+        problem_.addBody(e, localIndex(body), *J, W);
+      }
+      const double mobility = problem_.mobility(e);
       if (r.holonomic) {
         const SpookParameters spook = SpookParameters::holonomic(r.compliance, r.damping, h);
-        const double speed = r.J1.dot(velocity(r.body1, false)) + r.J2.dot(velocity(r.body2, false));
         // Second order in h (row.hpp): the b' term reads the rate at which
         // the last step moved g (G v − hκ when not kept); the step aims G v⁺
         // at SPOOK's target minus the drift hκ its motion will add.
@@ -17824,6 +18099,16 @@ class IslandStepper {
       M.bottomRightCorner<3, 3>() = inverseOf(b.inverseInertia);
     }
     for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
+  }
+
+  // Adds M⁻¹Gᵀ Λ of an entry of problem_ to a field of its bodies.
+  void addToBodies(std::vector<SolverBody>& bodies, Vec6d SolverBody::*field, const IslandProblem::Entry& e) const {
+    const auto add = [&](int body, const Vec6d& W) {
+      bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(body)])].*field += W * e.impulse;
+    };
+    if (e.body1 >= 0) add(e.body1, e.W1);
+    if (e.body2 >= 0) add(e.body2, e.W2);
+    if (e.extra >= 0) add(problem_.extraBodies[static_cast<std::size_t>(e.extra)].body, problem_.extraBodies[static_cast<std::size_t>(e.extra)].W);
   }
 
   // The inverse of a symmetric 3×3 matrix, NaN when it is not positive definite.
@@ -18633,6 +18918,11 @@ struct SimulationWorkspace {
     double violation = 0.0, rate = 0.0;
   };
   std::unordered_map<const double*, Prediction> predicted;
+  /// The row producers' rows: impulses (warm start in, solved out) of the
+  /// rows from firstProducerRow on, and where each producer's rows end.
+  std::vector<double> producerImpulses;
+  std::size_t firstProducerRow = 0;
+  std::vector<std::size_t> producerRowsEnd;
   IslandStepper islands;
   GeometricStiffness geometricStiffness;
 };
@@ -18651,6 +18941,8 @@ SimulationT<S>::~SimulationT() {
   for (auto& l : listeners_) Membership::simulationOf(*l) = nullptr;
   for (auto& l : contactListeners_) Membership::simulationOf(*l) = nullptr;
   for (auto& c : constraints_) Membership::simulationOf(*c) = nullptr;
+  for (auto& s : stores_) Membership::simulationOf(*s) = nullptr;
+  for (auto& p : producers_) Membership::simulationOf(*p) = nullptr;
   for (auto& c : collections_) setCollectionsSink(*c, nullptr);
 }
 
@@ -18689,14 +18981,17 @@ void SimulationT<S>::integrate(S h) {
   auto& w = *work_;
   statistics_.frozenBodies.clear();
   statistics_.solver = SolverStatistics{};
+  const StepContext step = beginExtensions(double(h));
   w.solverBodies.clear();
   for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h));
+  collectStoreBodies(step);
   collectRows(double(h));
   w.numConstraintRows = w.rows.size();
   w.contactRows.build(
       space_->getGeometryContacts(), materials_, *gravity_,
       [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, w.solverBodies,
       double(h), contactSettings_, w.rows);
+  collectProducerRows(step, false);
   if (solver_->getEnableGeometricStiffness() && !w.rows.empty())
     w.geometricStiffness.apply(w.rows, w.solverBodies, double(h), solver_->getGeometricStiffnessThreshold());
   else
@@ -18711,10 +19006,15 @@ void SimulationT<S>::integrate(S h) {
       w.islands.solve(w.rows, w.solverBodies, double(h), *solver_, again);
       statistics_.solver.addResolve(again);
     }
-    for (int i : w.islands.getNonFiniteBodies()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
+    for (int i : w.islands.getNonFiniteBodies())
+      if (std::size_t(i) < bodies_.size()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
   }
   readBackForces(double(h));
   w.contactRows.readBack(double(h));
+  for (std::size_t k = 0, begin = w.firstProducerRow; k < producers_.size(); begin = w.producerRowsEnd[k++]) {
+    const std::size_t first = begin - w.firstProducerRow;
+    producers_[k]->readBack(std::span<const double>(w.producerImpulses).subspan(first, w.producerRowsEnd[k] - begin), step);
+  }
   predictViolations(double(h));
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     Body& body = *bodies_[i];
@@ -18722,8 +19022,67 @@ void SimulationT<S>::integrate(S h) {
       freeze(i, FreezeReason::NON_FINITE_STATE);
     detail::BodyIntegrator<S>::clearForces(body);
   }
+  for (std::size_t k = 0, first = bodies_.size(); k < stores_.size(); first += step.sizes_[k++])
+    stores_[k]->move(std::span<const detail::SolverBody>(w.solverBodies).subspan(first, step.sizes_[k]), step);
   if (!w.rows.empty())
-    for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(double(h));
+    for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(step);
+}
+
+template <Scalar S>
+StepContext SimulationT<S>::beginExtensions(double h) {
+  StepContext step(h, [gravity = gravity_](const Eigen::Vector3d& p) {
+    return Eigen::Vector3d(gravity->calculateGravity(p.cast<S>()).template cast<double>());
+  });
+  for (const auto& s : stores_) s->beginStep(step);
+  for (const auto& p : producers_) p->beginStep(step);
+  std::size_t first = bodies_.size();
+  for (const auto& s : stores_) {
+    step.firstIndex_.emplace_back(s.get(), first);
+    step.sizes_.push_back(s->size());
+    first += s->size();
+  }
+  return step;
+}
+
+template <Scalar S>
+void SimulationT<S>::collectStoreBodies(const StepContext& step) {
+  auto& w = *work_;
+  std::size_t first = w.solverBodies.size();
+  std::size_t total = first;
+  for (std::size_t size : step.sizes_) total += size;
+  w.solverBodies.resize(total);
+  for (std::size_t k = 0; k < stores_.size(); first += step.sizes_[k++]) {
+    const std::span<detail::SolverBody> bodies = std::span<detail::SolverBody>(w.solverBodies).subspan(first, step.sizes_[k]);
+    stores_[k]->writeSolverBodies(bodies, step);
+  }
+}
+
+template <Scalar S>
+void SimulationT<S>::collectProducerRows(const StepContext& step, bool projection) {
+  auto& w = *work_;
+  w.firstProducerRow = w.rows.size();
+  w.producerImpulses.clear();
+  w.producerRowsEnd.clear();
+  RowWriter writer(w.rows, w.producerImpulses);
+  const int numBodies = int(w.solverBodies.size());
+  for (const auto& p : producers_) {
+    const std::size_t begin = w.rows.size();
+    if (projection)
+      p->writeProjectionRows(writer, step);
+    else
+      p->writeRows(writer, step);
+    for (std::size_t i = begin; i < w.rows.size(); ++i)
+      for (int body : {w.rows[i].body1, w.rows[i].body2, w.rows[i].body3})
+        if (body < -1 || body >= numBodies) {
+          w.rows.resize(w.firstProducerRow);
+          throw detail::makeError("RowProducer", p->getName(), "wrote a row with a body index out of range", body);
+        }
+    w.producerRowsEnd.push_back(w.rows.size());
+  }
+  for (std::size_t i = w.firstProducerRow; i < w.rows.size(); ++i) {
+    w.rows[i].impulse = &w.producerImpulses[i - w.firstProducerRow];
+    w.rows[i].constraint = -1;
+  }
 }
 
 template <Scalar S>
@@ -18737,13 +19096,14 @@ void SimulationT<S>::predictViolations(double h) {
     const auto speed = [&](int body, const detail::Vec6d& J) {
       return body < 0 ? 0.0 : J.dot(w.solverBodies[static_cast<std::size_t>(body)].freeVelocity);
     };
-    const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + h * r.curvature;
+    const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + speed(r.body3, r.J3) + h * r.curvature;
     w.predicted[r.impulse] = {r.violation + h * rate, rate};
   }
 }
 
 template <Scalar S>
-void SimulationT<S>::postStabilize(double h) {
+void SimulationT<S>::postStabilize(const StepContext& step) {
+  const double h = step.getTimeStep();
   auto& w = *work_;
   w.rows.clear();
   for (const auto& c : constraints_) {
@@ -18759,9 +19119,12 @@ void SimulationT<S>::postStabilize(double h) {
   // by a listener after the solve, are left out).
   std::erase_if(w.rows, [&](const detail::Row& r) { return !w.predicted.count(r.impulse); });
   for (detail::Row& r : w.rows) r.speed = w.predicted[r.impulse].violation;
-  if (w.rows.empty()) return;
+  if (w.rows.empty() && producers_.empty()) return;
   w.solverBodies.clear();
   for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
+  collectStoreBodies(step);
+  collectProducerRows(step, true);
+  if (w.rows.empty()) return;
   w.geometricStiffness.addInertia(w.solverBodies);
   // Frozen bodies stand still, like static ones.
   for (std::size_t i = 0; i < bodies_.size(); ++i)
@@ -18770,6 +19133,8 @@ void SimulationT<S>::postStabilize(double h) {
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (!detail::BodyIntegrator<S>::displace(*bodies_[i], w.solverBodies[i], S(h)))
       freeze(i, FreezeReason::NON_FINITE_STATE);
+  for (std::size_t k = 0, first = bodies_.size(); k < stores_.size(); first += step.sizes_[k++])
+    stores_[k]->displace(std::span<const detail::SolverBody>(w.solverBodies).subspan(first, step.sizes_[k]));
 }
 
 template <Scalar S>

@@ -25,6 +25,7 @@
 #include <spook/sim/material_manager.hpp>
 #include <spook/sim/membership.hpp>
 #include <spook/sim/statistics.hpp>
+#include <spook/sim/step_extension.hpp>
 #include <spook/sim/step_event_listener.hpp>
 #include <spook/solver/solver.hpp>
 
@@ -273,6 +274,35 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     return constraint && Membership::simulationOf(*constraint) == static_cast<const void*>(this);
   }
 
+  /// Adds a body store (sim/step_extension.hpp): its bodies are integrated
+  /// and solved with the rigid bodies from the next step on.
+  void add(ref_ptr<BodyStore> store) {
+    checkAddable(store.get(), "BodyStore");
+    addExtension(stores_, std::move(store));
+  }
+  void remove(BodyStore* store) {
+    checkRemovable(store, "BodyStore");
+    removeExtension(stores_, store);
+  }
+  /// Adds a row producer (sim/step_extension.hpp): its rows enter the solve
+  /// from the next step on.
+  void add(ref_ptr<RowProducer> producer) {
+    checkAddable(producer.get(), "RowProducer");
+    addExtension(producers_, std::move(producer));
+  }
+  void remove(RowProducer* producer) {
+    checkRemovable(producer, "RowProducer");
+    removeExtension(producers_, producer);
+  }
+  [[nodiscard]] bool contains(const BodyStore* store) const {
+    return store && Membership::simulationOf(*store) == static_cast<const void*>(this);
+  }
+  [[nodiscard]] bool contains(const RowProducer* producer) const {
+    return producer && Membership::simulationOf(*producer) == static_cast<const void*>(this);
+  }
+  [[nodiscard]] const std::vector<ref_ptr<BodyStore>>& getBodyStores() const { return stores_; }
+  [[nodiscard]] const std::vector<ref_ptr<RowProducer>>& getRowProducers() const { return producers_; }
+
   [[nodiscard]] const std::vector<ref_ptr<Body>>& getRigidBodies() const { return bodies_; }
   [[nodiscard]] const std::vector<ref_ptr<Listener>>& getEventListeners() const { return listeners_; }
   [[nodiscard]] const std::vector<ref_ptr<Collection>>& getCollections() const { return collections_; }
@@ -342,13 +372,18 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   // Projects the direct solver's equality rows back onto their manifold
   // (Solver::getEnablePostStabilization).
-  void postStabilize(double h);
+  void postStabilize(const StepContext& step);
 
   // Keeps body i as it was before the step (pose kept, velocities zeroed)
   // and reports it, once per step.
   void freeze(std::size_t i, FreezeReason reason);
 
   void collectRows(double h);
+
+  // The stores' and producers' part of a step (sim/step_extension.hpp).
+  StepContext beginExtensions(double h);
+  void collectStoreBodies(const StepContext& step);
+  void collectProducerRows(const StepContext& step, bool projection);
 
   void readBackForces(double h);
 
@@ -495,6 +530,18 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     if (owner) throw detail::makeError(kind, nameOf(*object), "already belongs to another simulation");
   }
   template <class T>
+  void addExtension(std::vector<ref_ptr<T>>& list, ref_ptr<T> object) {
+    Membership::simulationOf(*object) = this;
+    list.push_back(std::move(object));
+  }
+  template <class T>
+  void removeExtension(std::vector<ref_ptr<T>>& list, T* object) {
+    ref_ptr<T> keep = object;
+    // Order kept: the stores' solver indices follow it.
+    list.erase(std::find_if(list.begin(), list.end(), [&](const auto& o) { return o.get() == object; }));
+    Membership::simulationOf(*object) = nullptr;
+  }
+  template <class T>
   void checkRemovable(T* object, const char* kind) const {
     if (!object) throw error(std::string("cannot remove a null ") + kind, "nullptr");
     if (Membership::simulationOf(*object) != static_cast<const void*>(this))
@@ -524,6 +571,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   ref_ptr<SpaceT<S>> space_;
   std::vector<ref_ptr<Collection>> collections_;
   std::vector<ref_ptr<Constraint>> constraints_;
+  std::vector<ref_ptr<BodyStore>> stores_;
+  std::vector<ref_ptr<RowProducer>> producers_;
   detail::JointedPairs<S> jointedPairs_;
   SimulationStatisticsT<S> statistics_;
   ref_ptr<Solver> solver_ = new HybridSolver();

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <span>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -38,6 +39,11 @@ struct SimulationWorkspace {
     double violation = 0.0, rate = 0.0;
   };
   std::unordered_map<const double*, Prediction> predicted;
+  /// The row producers' rows: impulses (warm start in, solved out) of the
+  /// rows from firstProducerRow on, and where each producer's rows end.
+  std::vector<double> producerImpulses;
+  std::size_t firstProducerRow = 0;
+  std::vector<std::size_t> producerRowsEnd;
   IslandStepper islands;
   GeometricStiffness geometricStiffness;
 };
@@ -56,6 +62,8 @@ SimulationT<S>::~SimulationT() {
   for (auto& l : listeners_) Membership::simulationOf(*l) = nullptr;
   for (auto& l : contactListeners_) Membership::simulationOf(*l) = nullptr;
   for (auto& c : constraints_) Membership::simulationOf(*c) = nullptr;
+  for (auto& s : stores_) Membership::simulationOf(*s) = nullptr;
+  for (auto& p : producers_) Membership::simulationOf(*p) = nullptr;
   for (auto& c : collections_) setCollectionsSink(*c, nullptr);
 }
 
@@ -94,14 +102,17 @@ void SimulationT<S>::integrate(S h) {
   auto& w = *work_;
   statistics_.frozenBodies.clear();
   statistics_.solver = SolverStatistics{};
+  const StepContext step = beginExtensions(double(h));
   w.solverBodies.clear();
   for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h));
+  collectStoreBodies(step);
   collectRows(double(h));
   w.numConstraintRows = w.rows.size();
   w.contactRows.build(
       space_->getGeometryContacts(), materials_, *gravity_,
       [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, w.solverBodies,
       double(h), contactSettings_, w.rows);
+  collectProducerRows(step, false);
   if (solver_->getEnableGeometricStiffness() && !w.rows.empty())
     w.geometricStiffness.apply(w.rows, w.solverBodies, double(h), solver_->getGeometricStiffnessThreshold());
   else
@@ -116,10 +127,15 @@ void SimulationT<S>::integrate(S h) {
       w.islands.solve(w.rows, w.solverBodies, double(h), *solver_, again);
       statistics_.solver.addResolve(again);
     }
-    for (int i : w.islands.getNonFiniteBodies()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
+    for (int i : w.islands.getNonFiniteBodies())
+      if (std::size_t(i) < bodies_.size()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
   }
   readBackForces(double(h));
   w.contactRows.readBack(double(h));
+  for (std::size_t k = 0, begin = w.firstProducerRow; k < producers_.size(); begin = w.producerRowsEnd[k++]) {
+    const std::size_t first = begin - w.firstProducerRow;
+    producers_[k]->readBack(std::span<const double>(w.producerImpulses).subspan(first, w.producerRowsEnd[k] - begin), step);
+  }
   predictViolations(double(h));
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     Body& body = *bodies_[i];
@@ -127,8 +143,67 @@ void SimulationT<S>::integrate(S h) {
       freeze(i, FreezeReason::NON_FINITE_STATE);
     detail::BodyIntegrator<S>::clearForces(body);
   }
+  for (std::size_t k = 0, first = bodies_.size(); k < stores_.size(); first += step.sizes_[k++])
+    stores_[k]->move(std::span<const detail::SolverBody>(w.solverBodies).subspan(first, step.sizes_[k]), step);
   if (!w.rows.empty())
-    for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(double(h));
+    for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(step);
+}
+
+template <Scalar S>
+StepContext SimulationT<S>::beginExtensions(double h) {
+  StepContext step(h, [gravity = gravity_](const Eigen::Vector3d& p) {
+    return Eigen::Vector3d(gravity->calculateGravity(p.cast<S>()).template cast<double>());
+  });
+  for (const auto& s : stores_) s->beginStep(step);
+  for (const auto& p : producers_) p->beginStep(step);
+  std::size_t first = bodies_.size();
+  for (const auto& s : stores_) {
+    step.firstIndex_.emplace_back(s.get(), first);
+    step.sizes_.push_back(s->size());
+    first += s->size();
+  }
+  return step;
+}
+
+template <Scalar S>
+void SimulationT<S>::collectStoreBodies(const StepContext& step) {
+  auto& w = *work_;
+  std::size_t first = w.solverBodies.size();
+  std::size_t total = first;
+  for (std::size_t size : step.sizes_) total += size;
+  w.solverBodies.resize(total);
+  for (std::size_t k = 0; k < stores_.size(); first += step.sizes_[k++]) {
+    const std::span<detail::SolverBody> bodies = std::span<detail::SolverBody>(w.solverBodies).subspan(first, step.sizes_[k]);
+    stores_[k]->writeSolverBodies(bodies, step);
+  }
+}
+
+template <Scalar S>
+void SimulationT<S>::collectProducerRows(const StepContext& step, bool projection) {
+  auto& w = *work_;
+  w.firstProducerRow = w.rows.size();
+  w.producerImpulses.clear();
+  w.producerRowsEnd.clear();
+  RowWriter writer(w.rows, w.producerImpulses);
+  const int numBodies = int(w.solverBodies.size());
+  for (const auto& p : producers_) {
+    const std::size_t begin = w.rows.size();
+    if (projection)
+      p->writeProjectionRows(writer, step);
+    else
+      p->writeRows(writer, step);
+    for (std::size_t i = begin; i < w.rows.size(); ++i)
+      for (int body : {w.rows[i].body1, w.rows[i].body2, w.rows[i].body3})
+        if (body < -1 || body >= numBodies) {
+          w.rows.resize(w.firstProducerRow);
+          throw detail::makeError("RowProducer", p->getName(), "wrote a row with a body index out of range", body);
+        }
+    w.producerRowsEnd.push_back(w.rows.size());
+  }
+  for (std::size_t i = w.firstProducerRow; i < w.rows.size(); ++i) {
+    w.rows[i].impulse = &w.producerImpulses[i - w.firstProducerRow];
+    w.rows[i].constraint = -1;
+  }
 }
 
 template <Scalar S>
@@ -142,13 +217,14 @@ void SimulationT<S>::predictViolations(double h) {
     const auto speed = [&](int body, const detail::Vec6d& J) {
       return body < 0 ? 0.0 : J.dot(w.solverBodies[static_cast<std::size_t>(body)].freeVelocity);
     };
-    const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + h * r.curvature;
+    const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + speed(r.body3, r.J3) + h * r.curvature;
     w.predicted[r.impulse] = {r.violation + h * rate, rate};
   }
 }
 
 template <Scalar S>
-void SimulationT<S>::postStabilize(double h) {
+void SimulationT<S>::postStabilize(const StepContext& step) {
+  const double h = step.getTimeStep();
   auto& w = *work_;
   w.rows.clear();
   for (const auto& c : constraints_) {
@@ -164,9 +240,12 @@ void SimulationT<S>::postStabilize(double h) {
   // by a listener after the solve, are left out).
   std::erase_if(w.rows, [&](const detail::Row& r) { return !w.predicted.count(r.impulse); });
   for (detail::Row& r : w.rows) r.speed = w.predicted[r.impulse].violation;
-  if (w.rows.empty()) return;
+  if (w.rows.empty() && producers_.empty()) return;
   w.solverBodies.clear();
   for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
+  collectStoreBodies(step);
+  collectProducerRows(step, true);
+  if (w.rows.empty()) return;
   w.geometricStiffness.addInertia(w.solverBodies);
   // Frozen bodies stand still, like static ones.
   for (std::size_t i = 0; i < bodies_.size(); ++i)
@@ -175,6 +254,8 @@ void SimulationT<S>::postStabilize(double h) {
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (!detail::BodyIntegrator<S>::displace(*bodies_[i], w.solverBodies[i], S(h)))
       freeze(i, FreezeReason::NON_FINITE_STATE);
+  for (std::size_t k = 0, first = bodies_.size(); k < stores_.size(); first += step.sizes_[k++])
+    stores_[k]->displace(std::span<const detail::SolverBody>(w.solverBodies).subspan(first, step.sizes_[k]));
 }
 
 template <Scalar S>

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -64,17 +65,22 @@ class BodySpaceSolve {
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       const double inverseSigma = 1.0 / e.sigma;
-      if (e.body1 >= 0 && e.body1 == e.body2) {
-        addRow(e.body1, e.J1 + e.J2, inverseSigma);
-        continue;
-      }
-      if (e.body1 >= 0) addRow(e.body1, e.J1, inverseSigma);
-      if (e.body2 >= 0) addRow(e.body2, e.J2, inverseSigma);
-      if (e.body1 >= 0 && e.body2 >= 0) {
+      // The row's bodies are distinct (IslandProblem::addBody).
+      std::array<int, 3> body{};
+      std::array<const Vec6d*, 3> J{};
+      int n = 0;
+      problem.forEachBody(e, [&](int b, const Vec6d& j, const Vec6d&) {
+        body[static_cast<std::size_t>(n)] = b;
+        J[static_cast<std::size_t>(n++)] = &j;
+      });
+      for (std::size_t x = 0; x < static_cast<std::size_t>(n); ++x) {
+        addRow(body[x], *J[x], inverseSigma);
         // K's lower triangle: the block (larger body, smaller body).
-        const bool firstLarger = e.body1 > e.body2;
-        blockAt(firstLarger ? e.body1 : e.body2, firstLarger ? e.body2 : e.body1) +=
-            inverseSigma * (firstLarger ? e.J1 : e.J2) * (firstLarger ? e.J2 : e.J1).transpose();
+        for (std::size_t y = 0; y < x; ++y) {
+          const bool xLarger = body[x] > body[y];
+          blockAt(xLarger ? body[x] : body[y], xLarger ? body[y] : body[x]) +=
+              inverseSigma * (xLarger ? *J[x] : *J[y]) * (xLarger ? *J[y] : *J[x]).transpose();
+        }
       }
     }
 
@@ -105,12 +111,7 @@ class BodySpaceSolve {
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       const double s = rhs[f] / e.sigma;
-      if (e.body1 >= 0 && e.body1 == e.body2) {
-        b.segment<6>(6 * e.body1) += s * (e.J1 + e.J2);
-        continue;
-      }
-      if (e.body1 >= 0) b.segment<6>(6 * e.body1) += s * e.J1;
-      if (e.body2 >= 0) b.segment<6>(6 * e.body2) += s * e.J2;
+      problem.forEachBody(e, [&](int body, const Vec6d& J, const Vec6d&) { b.segment<6>(6 * body) += s * J; });
     }
     const Eigen::VectorXd y = ldlt_.solve(b);
 
@@ -119,8 +120,7 @@ class BodySpaceSolve {
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       double gy = 0.0;  // G y
-      if (e.body1 >= 0) gy += e.J1.dot(y.segment<6>(6 * e.body1));
-      if (e.body2 >= 0) gy += e.J2.dot(y.segment<6>(6 * e.body2));
+      problem.forEachBody(e, [&](int body, const Vec6d& J, const Vec6d&) { gy += J.dot(y.segment<6>(6 * body)); });
       x[static_cast<Eigen::Index>(k)] = (rhs[f] - gy) / e.sigma;
     }
   }

@@ -225,8 +225,7 @@ class DirectSolve {
     for (int k = 0; k < n; ++k) {
       const int i = subset[static_cast<std::size_t>(k)];
       const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (e.body1 >= 0) rowsOfBody[static_cast<std::size_t>(e.body1)].push_back(k);
-      if (e.body2 >= 0 && e.body2 != e.body1) rowsOfBody[static_cast<std::size_t>(e.body2)].push_back(k);
+      problem.forEachBody(e, [&](int body, const Vec6d&, const Vec6d&) { rowsOfBody[static_cast<std::size_t>(body)].push_back(k); });
     }
     triplets_.clear();
     for (int k = 0; k < n; ++k) {
@@ -239,8 +238,7 @@ class DirectSolve {
     for (int k = 0; k < n; ++k) {
       const int i = subset[static_cast<std::size_t>(k)];
       const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      for (int body : {e.body1, e.body2}) {
-        if (body < 0) continue;
+      problem.forEachBody(e, [&](int body, const Vec6d&, const Vec6d&) {
         for (int m : rowsOfBody[static_cast<std::size_t>(body)]) {
           if (m <= k || lastSeen[static_cast<std::size_t>(m)] == k) continue;
           lastSeen[static_cast<std::size_t>(m)] = k;
@@ -249,7 +247,7 @@ class DirectSolve {
           triplets_.emplace_back(k, m, s);
           triplets_.emplace_back(m, k, s);
         }
-      }
+      });
     }
     A_.resize(n, n);
     A_.setFromTriplets(triplets_.begin(), triplets_.end());

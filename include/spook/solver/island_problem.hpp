@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -32,7 +33,10 @@ struct SolverBody {
 /// of PHYSICS.md §2.1. Bodies are numbered locally (−1: none or not dynamic).
 struct IslandProblem {
   struct Entry {
+    /// The row's dynamic bodies (distinct): body1, body2 and, for the rare
+    /// row of three (a wire's bend row), extraBodies[extra].
     int body1 = -1, body2 = -1;
+    int extra = -1;
     Vec6d J1 = Vec6d::Zero(), J2 = Vec6d::Zero();
     Vec6d W1 = Vec6d::Zero(), W2 = Vec6d::Zero();  ///< M⁻¹Jᵀ per body
     double q = 0.0;                                ///< right-hand side, m/s or rad/s
@@ -61,13 +65,69 @@ struct IslandProblem {
     [[nodiscard]] bool splitFriction() const { return normal >= 0 && solveType == SolveType::SPLIT; }
   };
 
+  /// A row's third body: its block of G and of M⁻¹Gᵀ.
+  struct ExtraBody {
+    int body = -1;
+    Vec6d J = Vec6d::Zero(), W = Vec6d::Zero();
+  };
+
   std::vector<Entry> rows;
+  std::vector<ExtraBody> extraBodies;
   int numBodies = 0;
   /// Each body's mass matrix M = diag(m, I) (world; the inverse of its
   /// inverse mass and inertia), non-finite where those are singular; empty
   /// unless the rows outnumber the bodies' degrees of freedom
   /// (BodySpaceSolve::outnumbers).
   std::vector<Mat6d> mass;
+
+  /// Calls f(body, J, W) for each body of the entry.
+  template <class F>
+  void forEachBody(const Entry& e, F&& f) const {
+    if (e.body1 >= 0) f(e.body1, e.J1, e.W1);
+    if (e.body2 >= 0) f(e.body2, e.J2, e.W2);
+    if (e.extra >= 0) {
+      const ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
+      f(x.body, x.J, x.W);
+    }
+  }
+  /// The entry's three body slots (−1: none).
+  [[nodiscard]] std::array<int, 3> bodiesOf(const Entry& e) const {
+    return {e.body1, e.body2, e.extra >= 0 ? extraBodies[static_cast<std::size_t>(e.extra)].body : -1};
+  }
+  /// Adds body b's block (J, W = M⁻¹Jᵀ) to the entry, or adds to the
+  /// block it has for b.
+  void addBody(Entry& e, int b, const Vec6d& J, const Vec6d& W) {
+    if (e.body1 < 0) {
+      e.body1 = b;
+      e.J1 = J;
+      e.W1 = W;
+    } else if (e.body1 == b) {
+      e.J1 += J;
+      e.W1 += W;
+    } else if (e.body2 < 0) {
+      e.body2 = b;
+      e.J2 = J;
+      e.W2 = W;
+    } else if (e.body2 == b) {
+      e.J2 += J;
+      e.W2 += W;
+    } else if (e.extra < 0) {
+      e.extra = static_cast<int>(extraBodies.size());
+      extraBodies.push_back({b, J, W});
+    } else {
+      ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
+      x.J += J;
+      x.W += W;
+    }
+  }
+  /// J·W over the entry's bodies: its diagonal of S = G M⁻¹ Gᵀ.
+  [[nodiscard]] double mobility(const Entry& e) const {
+    double s = 0.0;
+    if (e.body1 >= 0) s += e.J1.dot(e.W1);
+    if (e.body2 >= 0) s += e.J2.dot(e.W2);
+    if (e.extra >= 0) s += extraBodies[static_cast<std::size_t>(e.extra)].J.dot(extraBodies[static_cast<std::size_t>(e.extra)].W);
+    return s;
+  }
 
   /// Δv of every body from the impulses of all rows.
   [[nodiscard]] std::vector<Vec6d> velocityChange() const {
@@ -82,9 +142,14 @@ struct IslandProblem {
     return dv;
   }
   void addImpulse(std::vector<Vec6d>& dv, int i, double impulse) const {
+    // Written out (not forEachBody): the iterative sweeps' innermost loop.
     const Entry& e = rows[static_cast<std::size_t>(i)];
     if (e.body1 >= 0) dv[static_cast<std::size_t>(e.body1)] += e.W1 * impulse;
     if (e.body2 >= 0) dv[static_cast<std::size_t>(e.body2)] += e.W2 * impulse;
+    if (e.extra >= 0) {
+      const ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
+      dv[static_cast<std::size_t>(x.body)] += x.W * impulse;
+    }
   }
   /// The entries of `indices`, for restore() after an attempt is dropped.
   [[nodiscard]] std::vector<Entry> entries(const std::vector<int>& indices) const {
@@ -102,6 +167,10 @@ struct IslandProblem {
     double v = 0.0;
     if (e.body1 >= 0) v += e.J1.dot(dv[static_cast<std::size_t>(e.body1)]);
     if (e.body2 >= 0) v += e.J2.dot(dv[static_cast<std::size_t>(e.body2)]);
+    if (e.extra >= 0) {
+      const ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
+      v += x.J.dot(dv[static_cast<std::size_t>(x.body)]);
+    }
     return v;
   }
   /// (S + Σ)_ij for rows i ≠ j: the coupling through their shared bodies.
@@ -109,10 +178,11 @@ struct IslandProblem {
     const Entry& a = rows[static_cast<std::size_t>(i)];
     const Entry& b = rows[static_cast<std::size_t>(j)];
     double s = 0.0;
-    if (a.body1 >= 0 && a.body1 == b.body1) s += a.J1.dot(b.W1);
-    if (a.body1 >= 0 && a.body1 == b.body2) s += a.J1.dot(b.W2);
-    if (a.body2 >= 0 && a.body2 == b.body1) s += a.J2.dot(b.W1);
-    if (a.body2 >= 0 && a.body2 == b.body2) s += a.J2.dot(b.W2);
+    forEachBody(a, [&](int bodyA, const Vec6d& J, const Vec6d&) {
+      forEachBody(b, [&](int bodyB, const Vec6d&, const Vec6d& W) {
+        if (bodyA == bodyB) s += J.dot(W);
+      });
+    });
     return s;
   }
 };

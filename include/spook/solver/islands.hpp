@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <cstddef>
 #include <numeric>
@@ -61,8 +62,7 @@ class IslandStepper {
       }
       solver.project(problem_, statistics);
       for (const auto& e : problem_.rows) {
-        if (e.body1 >= 0) bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(e.body1)])].displacement += e.W1 * e.impulse;
-        if (e.body2 >= 0) bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(e.body2)])].displacement += e.W2 * e.impulse;
+        addToBodies(bodies, &SolverBody::displacement, e);
       }
     }
   }
@@ -82,8 +82,7 @@ class IslandStepper {
       for (std::size_t k = 0; k < island.size(); ++k) *rows[static_cast<std::size_t>(island[k])].impulse = problem_.rows[k].impulse;
       for (std::size_t k = 0; k < problem_.rows.size(); ++k) {
         const auto& e = problem_.rows[k];
-        if (e.body1 >= 0) bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(e.body1)])].freeVelocity += e.W1 * e.impulse;
-        if (e.body2 >= 0) bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(e.body2)])].freeVelocity += e.W2 * e.impulse;
+        addToBodies(bodies, &SolverBody::freeVelocity, e);
       }
     }
   }
@@ -103,13 +102,24 @@ class IslandStepper {
   void partition(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies) {
     parent_.resize(bodies.size());
     std::iota(parent_.begin(), parent_.end(), 0);
-    for (const Row& r : rows)
-      if (isDynamic(bodies, r.body1) && isDynamic(bodies, r.body2)) parent_[static_cast<std::size_t>(find(r.body1))] = find(r.body2);
+    const auto join = [&](int a, int b) {
+      if (isDynamic(bodies, a) && isDynamic(bodies, b)) parent_[static_cast<std::size_t>(find(a))] = find(b);
+    };
+    for (const Row& r : rows) {
+      join(r.body1, r.body2);
+      if (r.body3 >= 0) {
+        join(r.body1, r.body3);
+        join(r.body2, r.body3);
+      }
+    }
     islandOfRoot_.assign(bodies.size(), -1);
     islands_.clear();
     for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
       const Row& r = rows[static_cast<std::size_t>(i)];
-      const int body = isDynamic(bodies, r.body1) ? r.body1 : isDynamic(bodies, r.body2) ? r.body2 : -1;
+      const int body = isDynamic(bodies, r.body1)   ? r.body1
+                       : isDynamic(bodies, r.body2) ? r.body2
+                       : isDynamic(bodies, r.body3) ? r.body3
+                                                    : -1;
       if (body < 0) continue;
       int& island = islandOfRoot_[static_cast<std::size_t>(find(body))];
       if (island < 0) {
@@ -133,37 +143,32 @@ class IslandStepper {
       }
       return l;
     };
-    auto velocity = [&](int body, bool free) -> Vec6d {
-      if (body < 0) return Vec6d::Zero();
-      const SolverBody& b = bodies[static_cast<std::size_t>(body)];
-      return free ? b.freeVelocity : b.velocity;
-    };
-    auto weighted = [&](int body, const Vec6d& J) -> Vec6d {
-      if (!isDynamic(bodies, body)) return Vec6d::Zero();
-      const SolverBody& b = bodies[static_cast<std::size_t>(body)];
-      Vec6d W;
-      W << b.inverseMass * J.head<3>(), b.inverseInertia * J.tail<3>();
-      return W;
-    };
-
     rowLocal_.resize(rows.size(), -1);
     for (std::size_t k = 0; k < island.size(); ++k) rowLocal_[static_cast<std::size_t>(island[k])] = static_cast<int>(k);
     const auto localRow = [&](int i) { return i < 0 ? -1 : rowLocal_[static_cast<std::size_t>(i)]; };
     problem_.rows.resize(island.size());
+    problem_.extraBodies.clear();
     for (std::size_t k = 0; k < island.size(); ++k) {
       const Row& r = rows[static_cast<std::size_t>(island[k])];
       IslandProblem::Entry& e = problem_.rows[k];
-      e.body1 = localIndex(r.body1);
-      e.body2 = localIndex(r.body2);
-      e.J1 = r.J1;
-      e.J2 = r.J2;
-      e.W1 = weighted(r.body1, r.J1);
-      e.W2 = weighted(r.body2, r.J2);
-      const double freeSpeed = r.J1.dot(velocity(r.body1, true)) + r.J2.dot(velocity(r.body2, true));
-      const double mobility = r.J1.dot(e.W1) + r.J2.dot(e.W2);
+      e.body1 = e.body2 = e.extra = -1;
+      // G v and G v* over every body (kinematic ones move too), M⁻¹Gᵀ over
+      // the dynamic ones.
+      double speed = 0.0, freeSpeed = 0.0;
+      const std::array<std::pair<int, const Vec6d*>, 3> blocks{{{r.body1, &r.J1}, {r.body2, &r.J2}, {r.body3, &r.J3}}};
+      for (const auto& [body, J] : blocks) {
+        if (body < 0) continue;
+        const SolverBody& b = bodies[static_cast<std::size_t>(body)];
+        speed += J->dot(b.velocity);
+        freeSpeed += J->dot(b.freeVelocity);
+        if (!b.dynamic) continue;
+        Vec6d W;
+        W << b.inverseMass * J->head<3>(), b.inverseInertia * J->tail<3>();
+        problem_.addBody(e, localIndex(body), *J, W);
+      }
+      const double mobility = problem_.mobility(e);
       if (r.holonomic) {
         const SpookParameters spook = SpookParameters::holonomic(r.compliance, r.damping, h);
-        const double speed = r.J1.dot(velocity(r.body1, false)) + r.J2.dot(velocity(r.body2, false));
         // Second order in h (row.hpp): the b' term reads the rate at which
         // the last step moved g (G v − hκ when not kept); the step aims G v⁺
         // at SPOOK's target minus the drift hκ its motion will add.
@@ -202,6 +207,16 @@ class IslandStepper {
       M.bottomRightCorner<3, 3>() = inverseOf(b.inverseInertia);
     }
     for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
+  }
+
+  // Adds M⁻¹Gᵀ Λ of an entry of problem_ to a field of its bodies.
+  void addToBodies(std::vector<SolverBody>& bodies, Vec6d SolverBody::*field, const IslandProblem::Entry& e) const {
+    const auto add = [&](int body, const Vec6d& W) {
+      bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(body)])].*field += W * e.impulse;
+    };
+    if (e.body1 >= 0) add(e.body1, e.W1);
+    if (e.body2 >= 0) add(e.body2, e.W2);
+    if (e.extra >= 0) add(problem_.extraBodies[static_cast<std::size_t>(e.extra)].body, problem_.extraBodies[static_cast<std::size_t>(e.extra)].W);
   }
 
   // The inverse of a symmetric 3×3 matrix, NaN when it is not positive definite.

@@ -148,14 +148,14 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
     std::vector<int> count(static_cast<std::size_t>(problem.numBodies), 0);
     for (int i : subset) {
       const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (e.body1 >= 0) ++count[static_cast<std::size_t>(e.body1)];
-      if (e.body2 >= 0) ++count[static_cast<std::size_t>(e.body2)];
+      for (int body : problem.bodiesOf(e))
+        if (body >= 0) ++count[static_cast<std::size_t>(body)];
     }
     for (int i : subset) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      const int k = std::max(e.body1 >= 0 ? count[static_cast<std::size_t>(e.body1)] : 1,
-                             e.body2 >= 0 ? count[static_cast<std::size_t>(e.body2)] : 1);
-      relaxation.push_back(1.0 / std::max(k, 1));
+      int k = 1;
+      for (int body : problem.bodiesOf(problem.rows[static_cast<std::size_t>(i)]))
+        if (body >= 0) k = std::max(k, count[static_cast<std::size_t>(body)]);
+      relaxation.push_back(1.0 / k);
     }
   }
   std::vector<double> delta(subset.size(), 0.0);

@@ -28,28 +28,34 @@ enum class FrictionBound : std::uint8_t {
 using Vec6d = Eigen::Matrix<double, 6, 1>;
 
 /// One scalar constraint row as the solver sees it, in double whatever the
-/// scene's scalar. G v = J1·(v1, ω1) + J2·(v2, ω2) with velocities of the
-/// centers of mass in world coordinates; a body index of −1 is the world.
+/// scene's scalar. G v = J1·(v1, ω1) + J2·(v2, ω2) (+ J3·(v3, ω3)) with
+/// velocities of the centers of mass in world coordinates; a body index of
+/// −1 is the world. A third body is rare (a wire's bend row couples three
+/// consecutive nodes); it has no lever arm for the geometric stiffness.
 ///
 /// A holonomic row has a violation g and SPOOK parameters (compliance ε,
 /// damping τ): G v⁺ + Σ Λ = −a g + b' G v, Σ = 4ε/(h²(1+4τ/h)) (PHYSICS.md
 /// §1.2). A velocity row (motors, friction) has a target speed u and a
 /// viscosity γ: G v⁺ + (γ/h) Λ = u (§1.3). Bounds are forces (N or N·m).
 struct Row {
+  // Members ordered by size (no padding between them: the step copies
+  // rows by the thousand).
   int body1 = -1;
   int body2 = -1;
+  int body3 = -1;
+  /// The index in the same row list of the first row of the constraint
+  /// this row belongs to (−1: a contact's): an iterative sweep updates a
+  /// constraint's unbounded rows together (iterative_solve.hpp).
+  int constraint = -1;
   Vec6d J1 = Vec6d::Zero();  ///< (linear, angular) of body 1
   Vec6d J2 = Vec6d::Zero();  ///< (linear, angular) of body 2
-  bool holonomic = true;
+  Vec6d J3 = Vec6d::Zero();  ///< (linear, angular) of body 3
   double violation = 0.0;   ///< g (m or rad), holonomic rows
   double speed = 0.0;       ///< target G v (m/s or rad/s), velocity rows
   double compliance = 0.0;  ///< ε, or γ for a velocity row
   double damping = 0.0;     ///< τ (s), holonomic rows
   double lower = -std::numeric_limits<double>::infinity();
   double upper = std::numeric_limits<double>::infinity();
-  SolveType solveType = SolveType::DIRECT;
-  /// Warm start in, solved impulse (N·s) out; owned by the constraint.
-  double* impulse = nullptr;
   /// Holonomic rows: κ = ½ vᵀ(∂²g/∂q²)v at the start of the step (m/s² or
   /// rad/s²), the quadratic velocity term of the index-1 DAE (Ġv/2). A step
   /// with velocity v⁺ moves g by hGv⁺ + h²κ + O(h³), and G_k v_k exceeds the
@@ -60,6 +66,8 @@ struct Row {
   /// g (m/s or rad/s), kept by post-stabilization; NaN when unknown, then
   /// G v − hκ stands in for it in SPOOK's b' term.
   double lastRate = std::numeric_limits<double>::quiet_NaN();
+  /// Warm start in, solved impulse (N·s) out; owned by the constraint.
+  double* impulse = nullptr;
   /// Translational rows: lever arms (world, m) from each center of mass to
   /// the point where the row's force acts, for the geometric stiffness
   /// (geometric_stiffness.hpp). Zero for rows that apply pure torques.
@@ -67,14 +75,12 @@ struct Row {
   /// Friction rows: the index in the same row list of the normal row whose
   /// impulse bounds this one (−1: not a friction row), the coefficient μ and
   /// the kind of bound; cone rows name their contact's other tangent row.
+  double frictionCoefficient = 0.0;
   int frictionNormal = -1;
   int frictionPartner = -1;
-  double frictionCoefficient = 0.0;
   FrictionBound frictionBound = FrictionBound::FIXED;
-  /// The index in the same row list of the first row of the constraint
-  /// this row belongs to (−1: a contact's): an iterative sweep updates a
-  /// constraint's unbounded rows together (iterative_solve.hpp).
-  int constraint = -1;
+  SolveType solveType = SolveType::DIRECT;
+  bool holonomic = true;
 
   [[nodiscard]] bool bounded() const { return lower > -std::numeric_limits<double>::infinity() || upper < std::numeric_limits<double>::infinity(); }
 };

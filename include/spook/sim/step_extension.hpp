@@ -1,0 +1,149 @@
+#pragma once
+
+// The doors through which new physics enters a step without edits to the
+// simulation: body stores (bodies the step integrates beside its rigid
+// bodies: particles, a wire's lumped nodes) and row producers (sources of
+// constraint rows: a wire's stretch and bend rows, granular contacts).
+// Both work in double whatever the scene's scalar; a simulation holds them
+// with add()/remove() like its other content.
+
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include <spook/core/referenced.hpp>
+#include <spook/core/scalar.hpp>
+#include <spook/sim/membership.hpp>
+#include <spook/solver/island_problem.hpp>
+#include <spook/solver/row.hpp>
+
+namespace spook {
+
+class BodyStore;
+template <Scalar S>
+class SimulationT;
+
+/// What stores and producers see of the step they take part in.
+class StepContext {
+ public:
+  using Vec3d = Eigen::Vector3d;
+
+  StepContext(double timeStep, std::function<Vec3d(const Vec3d&)> gravity)
+      : timeStep_(timeStep), gravity_(std::move(gravity)) {}
+
+  /// h (s).
+  [[nodiscard]] double getTimeStep() const { return timeStep_; }
+  /// The simulation's gravity (m/s²) at a world point (m).
+  [[nodiscard]] Vec3d gravity(const Vec3d& point) const { return gravity_(point); }
+  /// The solver index of body i of `store` in this step (for Row::body1..3),
+  /// −1 when the store is not in the step or i is out of its range.
+  [[nodiscard]] int indexOf(const BodyStore& store, std::size_t i) const;
+
+ private:
+  template <Scalar>
+  friend class SimulationT;
+  double timeStep_;
+  std::function<Vec3d(const Vec3d&)> gravity_;
+  std::vector<std::pair<const BodyStore*, std::size_t>> firstIndex_;  ///< per store in the step
+  std::vector<std::size_t> sizes_;
+};
+
+/// Appends rows for the solver. A row is written in double with the
+/// solver's conventions (solver/row.hpp): body indices from
+/// StepContext::indexOf (−1: the world), Jacobian blocks (linear, angular),
+/// a holonomic row's violation, compliance and damping (SPOOK), a velocity
+/// row's target speed and viscosity, force bounds (N or N·m).
+class RowWriter {
+ public:
+  RowWriter(std::vector<detail::Row>& rows, std::vector<double>& impulses) : rows_(rows), impulses_(impulses) {}
+
+  /// A new row, warm started from `impulse` (N·s, the row's impulse last
+  /// step) when the solver warm starts.
+  detail::Row& add(double impulse = 0.0) {
+    impulses_.push_back(impulse);
+    return rows_.emplace_back();
+  }
+  /// Rows written so far by every producer of the step.
+  [[nodiscard]] std::size_t size() const { return rows_.size(); }
+
+ private:
+  std::vector<detail::Row>& rows_;
+  std::vector<double>& impulses_;
+};
+
+/// Bodies the step integrates and solves beside the rigid bodies, held by
+/// the store in whatever layout suits it (contiguous arrays for particles).
+/// The solver sees each one as a detail::SolverBody: velocity, free
+/// velocity, inverse mass and inertia (world); a body that cannot turn has a
+/// zero inverse inertia.
+class BodyStore : public Referenced {
+ public:
+  [[nodiscard]] const std::string& getName() const { return name_; }
+  void setName(std::string name) { name_ = std::move(name); }
+
+  /// Number of bodies now.
+  [[nodiscard]] virtual std::size_t size() const = 0;
+  /// Start of a step, before any row is written: the only place a store
+  /// may add or remove bodies.
+  virtual void beginStep(const StepContext& /*step*/) {}
+  /// Each body as the solver sees it at the start of the step: velocity v,
+  /// free velocity v* = v + h M⁻¹ f (applied forces, gravity), inverse mass
+  /// and inertia, dynamic. `bodies` has size() entries, zero-initialized.
+  virtual void writeSolverBodies(std::span<detail::SolverBody> bodies, const StepContext& step) const = 0;
+  /// Moves the bodies by one step with the solved velocities
+  /// (bodies[i].freeVelocity holds v⁺).
+  virtual void move(std::span<const detail::SolverBody> bodies, const StepContext& step) = 0;
+  /// Post-stabilization: displaces the bodies by bodies[i].displacement
+  /// ((Δx, Δθ), m and rad), velocities unchanged.
+  virtual void displace(std::span<const detail::SolverBody> bodies) = 0;
+
+ protected:
+  ~BodyStore() override = default;
+
+ private:
+  friend struct detail::SimulationMembership;
+  const void* simulation_ = nullptr;
+  std::string name_;
+};
+
+/// A source of rows: it writes its rows each step and reads back their
+/// impulses after the solve; it keeps its own history (warm starts, forces,
+/// tensions, persistence).
+class RowProducer : public Referenced {
+ public:
+  [[nodiscard]] const std::string& getName() const { return name_; }
+  void setName(std::string name) { name_ = std::move(name); }
+
+  /// Start of a step, after the stores' beginStep.
+  virtual void beginStep(const StepContext& /*step*/) {}
+  /// Appends this step's rows. A row naming a body index outside the step
+  /// stops the step with a spook::Error naming the producer.
+  virtual void writeRows(RowWriter& rows, const StepContext& step) = 0;
+  /// The rows' impulses (N·s) after the solve, in the order written.
+  virtual void readBack(std::span<const double> impulses, const StepContext& step) = 0;
+  /// Post-stabilization (when the solver projects): holonomic rows at the
+  /// moved positions, each with the violation to reach in Row::speed (m or
+  /// rad; usually 0); none by default.
+  virtual void writeProjectionRows(RowWriter& /*rows*/, const StepContext& /*step*/) {}
+
+ protected:
+  ~RowProducer() override = default;
+
+ private:
+  friend struct detail::SimulationMembership;
+  const void* simulation_ = nullptr;
+  std::string name_;
+};
+
+inline int StepContext::indexOf(const BodyStore& store, std::size_t i) const {
+  for (std::size_t k = 0; k < firstIndex_.size(); ++k)
+    if (firstIndex_[k].first == &store) return i < sizes_[k] ? static_cast<int>(firstIndex_[k].second + i) : -1;
+  return -1;
+}
+
+}  // namespace spook
