@@ -8535,6 +8535,30 @@ struct IslandProblem {
       x.W += W;
     }
   }
+  /// The same with W = M⁻¹Jᵀ of a body of inverse mass and inertia
+  /// (world), formed in the entry's own storage where the body is new to it.
+  void addBody(Entry& e, int b, const Vec6d& J, const Mat3d& inverseMass, const Mat3d& inverseInertia) {
+    Vec6d* slotJ = nullptr;
+    Vec6d* slotW = nullptr;
+    if (e.body1 < 0) {
+      e.body1 = b;
+      slotJ = &e.J1;
+      slotW = &e.W1;
+    } else if (e.body2 < 0 && e.body1 != b) {
+      e.body2 = b;
+      slotJ = &e.J2;
+      slotW = &e.W2;
+    }
+    if (slotJ) {
+      *slotJ = J;
+      slotW->head<3>().noalias() = inverseMass * J.head<3>();
+      slotW->tail<3>().noalias() = inverseInertia * J.tail<3>();
+      return;
+    }
+    Vec6d W;
+    W << inverseMass * J.head<3>(), inverseInertia * J.tail<3>();
+    addBody(e, b, J, W);
+  }
   /// J·W over the entry's bodies: its diagonal of S = G M⁻¹ Gᵀ.
   [[nodiscard]] double mobility(const Entry& e) const {
     double s = 0.0;
@@ -16274,6 +16298,15 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   void collectRows(double h);
 
+  // The stages of a step (their order: sim/step_stages.hpp).
+  void collide();
+  void gatherSolverBodies(const StepContext& step);
+  void gatherRows(const StepContext& step);
+  void solveRows(const StepContext& step);
+  void readBackImpulses(const StepContext& step);
+  void moveBodies(const StepContext& step);
+  void projectRows(const StepContext& step);
+
   // The stores' and producers' part of a step (sim/step_extension.hpp).
   StepContext beginExtensions(double h);
   void collectStoreBodies(const StepContext& step);
@@ -16502,7 +16535,7 @@ using SimulationRef = ref_ptr<Simulation>;
 #ifndef SPOOK_SINGLE_SPOOK_SIM_SIMULATION_STEP_HPP
 #define SPOOK_SINGLE_SPOOK_SIM_SIMULATION_STEP_HPP
 
-// The simulation step (SimulationT::stepForward and its stages): included by
+// The stages of a simulation step (their order: sim/step_stages.hpp): included by
 // sim/simulation.hpp where the step is compiled (SPOOK_DEFINES_STEP,
 // core/implementation.hpp), with the solver, contact and collision code
 // behind it.
@@ -18053,10 +18086,7 @@ class IslandStepper {
         const SolverBody& b = bodies[static_cast<std::size_t>(body)];
         speed += J->dot(b.velocity);
         freeSpeed += J->dot(b.freeVelocity);
-        if (!b.dynamic) continue;
-        Vec6d W;
-        W << b.inverseMass * J->head<3>(), b.inverseInertia * J->tail<3>();
-        problem_.addBody(e, localIndex(body), *J, W);
+        if (b.dynamic) problem_.addBody(e, localIndex(body), *J, b.inverseMass, b.inverseInertia);
       }
       const double mobility = problem_.mobility(e);
       if (r.holonomic) {
@@ -18344,6 +18374,56 @@ class ContactRows {
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_SIM_CONTACT_ROWS_HPP
 // --- end spook/sim/contact_rows.hpp ---
+// --- begin spook/sim/step_stages.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_STEP_STAGES_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_STEP_STAGES_HPP
+
+// One step of a simulation, stage by stage, in order. Each stage is a
+// member of SimulationT defined in sim/simulation_step.hpp; body stores and
+// row producers (sim/step_extension.hpp) take part in the stages of
+// integrate(). Compiled where the step is (sim/simulation_step.hpp).
+
+namespace spook {
+
+template <Scalar S>
+void SimulationT<S>::stepForward() {
+  if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
+  applyPendingTimeStep();  // left over when a listener threw in the last step
+  stepping_ = true;
+  struct ResetOnExit {
+    bool& flag;
+    ~ResetOnExit() { flag = false; }
+  } reset{stepping_};
+
+  notify(Listener::PRE_COLLIDE);
+  collide();  // broadphase, narrow phase, contact events
+  notify(Listener::PRE_STEP);
+  integrate(timeStep_);
+  detail::stopAtFirstContact(bodies_, *space_, timeStep_);  // continuous collision, opt-in per body
+  notify(Listener::POST_STEP);
+  notify(Listener::LAST_STEP);
+
+  ++stepsSinceBase_;
+  ++statistics_.numSteps;
+  if (statistics_.solver.directFallbacks > 0) ++statistics_.numFallbackSteps;
+  stepping_ = false;
+  applyPendingTimeStep();
+}
+
+template <Scalar S>
+void SimulationT<S>::integrate(S h) {
+  const StepContext step = beginExtensions(double(h));  // stores and producers may add or remove bodies
+  gatherSolverBodies(step);  // v, v* = v + hM⁻¹f, M⁻¹: rigid bodies, then each store's
+  gatherRows(step);          // joints, contacts, then each producer's rows
+  solveRows(step);           // islands under the solver policy; geometric stiffness
+  readBackImpulses(step);    // joint forces, contact forces and persistence, producers
+  moveBodies(step);          // positions from v⁺
+  projectRows(step);         // post-stabilization of the joints and producers' projection rows
+}
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_SIM_STEP_STAGES_HPP
+// --- end spook/sim/step_stages.hpp ---
 // --- begin spook/solver/geometric_stiffness.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_GEOMETRIC_STIFFNESS_HPP
 #define SPOOK_SINGLE_SPOOK_SOLVER_GEOMETRIC_STIFFNESS_HPP
@@ -18952,70 +19032,78 @@ void SimulationT<S>::forgetPredictions() {
 }
 
 template <Scalar S>
-void SimulationT<S>::stepForward() {
-  if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
-  applyPendingTimeStep();  // left over when a listener threw in the last step
-  stepping_ = true;
-  struct ResetOnExit {
-    bool& flag;
-    ~ResetOnExit() { flag = false; }
-  } reset{stepping_};
-  notify(Listener::PRE_COLLIDE);
+void SimulationT<S>::collide() {
   space_->update(bodies_);
   statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
   notifyContacts();
-  notify(Listener::PRE_STEP);
-  integrate(timeStep_);
-  detail::stopAtFirstContact(bodies_, *space_, timeStep_);
-  notify(Listener::POST_STEP);
-  notify(Listener::LAST_STEP);
-  ++stepsSinceBase_;
-  ++statistics_.numSteps;
-  if (statistics_.solver.directFallbacks > 0) ++statistics_.numFallbackSteps;
-  stepping_ = false;
-  applyPendingTimeStep();
 }
 
 template <Scalar S>
-void SimulationT<S>::integrate(S h) {
+void SimulationT<S>::gatherSolverBodies(const StepContext& step) {
   auto& w = *work_;
   statistics_.frozenBodies.clear();
   statistics_.solver = SolverStatistics{};
-  const StepContext step = beginExtensions(double(h));
+  const S h = S(step.getTimeStep());
   w.solverBodies.clear();
   for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h));
   collectStoreBodies(step);
-  collectRows(double(h));
+  w.frozen.assign(bodies_.size(), 0);
+}
+
+template <Scalar S>
+void SimulationT<S>::gatherRows(const StepContext& step) {
+  auto& w = *work_;
+  const double h = step.getTimeStep();
+  collectRows(h);
   w.numConstraintRows = w.rows.size();
   w.contactRows.build(
       space_->getGeometryContacts(), materials_, *gravity_,
-      [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, w.solverBodies,
-      double(h), contactSettings_, w.rows);
+      [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, w.solverBodies, h,
+      contactSettings_, w.rows);
   collectProducerRows(step, false);
-  if (solver_->getEnableGeometricStiffness() && !w.rows.empty())
-    w.geometricStiffness.apply(w.rows, w.solverBodies, double(h), solver_->getGeometricStiffnessThreshold());
+}
+
+template <Scalar S>
+void SimulationT<S>::solveRows(const StepContext& step) {
+  auto& w = *work_;
+  const double h = step.getTimeStep();
+  const bool stiffness = solver_->getEnableGeometricStiffness() && !w.rows.empty();
+  if (stiffness)
+    w.geometricStiffness.apply(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
   else
     w.geometricStiffness.clear();
-  w.frozen.assign(bodies_.size(), 0);
-  if (!w.rows.empty()) {
-    w.islands.solve(w.rows, w.solverBodies, double(h), *solver_, statistics_.solver);
-    for (int solves = 1; solves < detail::GeometricStiffness::kMaxSolves && solver_->getEnableGeometricStiffness() &&
-                         w.geometricStiffness.refresh(w.rows, w.solverBodies, double(h), solver_->getGeometricStiffnessThreshold());
-         ++solves) {
-      SolverStatistics again;
-      w.islands.solve(w.rows, w.solverBodies, double(h), *solver_, again);
-      statistics_.solver.addResolve(again);
-    }
-    for (int i : w.islands.getNonFiniteBodies())
-      if (std::size_t(i) < bodies_.size()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
+  if (w.rows.empty()) return;
+  w.islands.solve(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  // Again while the forces just found need more geometric stiffness than
+  // the solve had (geometric_stiffness.hpp).
+  for (int solves = 1; stiffness && solves < detail::GeometricStiffness::kMaxSolves &&
+                       w.geometricStiffness.refresh(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
+       ++solves) {
+    SolverStatistics again;
+    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again);
+    statistics_.solver.addResolve(again);
   }
-  readBackForces(double(h));
-  w.contactRows.readBack(double(h));
+  for (int i : w.islands.getNonFiniteBodies())
+    if (std::size_t(i) < bodies_.size()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
+}
+
+template <Scalar S>
+void SimulationT<S>::readBackImpulses(const StepContext& step) {
+  auto& w = *work_;
+  const double h = step.getTimeStep();
+  readBackForces(h);
+  w.contactRows.readBack(h);
   for (std::size_t k = 0, begin = w.firstProducerRow; k < producers_.size(); begin = w.producerRowsEnd[k++]) {
     const std::size_t first = begin - w.firstProducerRow;
     producers_[k]->readBack(std::span<const double>(w.producerImpulses).subspan(first, w.producerRowsEnd[k] - begin), step);
   }
-  predictViolations(double(h));
+}
+
+template <Scalar S>
+void SimulationT<S>::moveBodies(const StepContext& step) {
+  auto& w = *work_;
+  const S h = S(step.getTimeStep());
+  predictViolations(step.getTimeStep());
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     Body& body = *bodies_[i];
     if (!w.frozen[i] && !detail::BodyIntegrator<S>::move(body, w.solverBodies[i], h))
@@ -19024,8 +19112,12 @@ void SimulationT<S>::integrate(S h) {
   }
   for (std::size_t k = 0, first = bodies_.size(); k < stores_.size(); first += step.sizes_[k++])
     stores_[k]->move(std::span<const detail::SolverBody>(w.solverBodies).subspan(first, step.sizes_[k]), step);
-  if (!w.rows.empty())
-    for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(step);
+}
+
+template <Scalar S>
+void SimulationT<S>::projectRows(const StepContext& step) {
+  if (work_->rows.empty()) return;
+  for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(step);
 }
 
 template <Scalar S>

@@ -380,6 +380,15 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   void collectRows(double h);
 
+  // The stages of a step (their order: sim/step_stages.hpp).
+  void collide();
+  void gatherSolverBodies(const StepContext& step);
+  void gatherRows(const StepContext& step);
+  void solveRows(const StepContext& step);
+  void readBackImpulses(const StepContext& step);
+  void moveBodies(const StepContext& step);
+  void projectRows(const StepContext& step);
+
   // The stores' and producers' part of a step (sim/step_extension.hpp).
   StepContext beginExtensions(double h);
   void collectStoreBodies(const StepContext& step);

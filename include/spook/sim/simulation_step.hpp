@@ -1,6 +1,6 @@
 #pragma once
 
-// The simulation step (SimulationT::stepForward and its stages): included by
+// The stages of a simulation step (their order: sim/step_stages.hpp): included by
 // sim/simulation.hpp where the step is compiled (SPOOK_DEFINES_STEP,
 // core/implementation.hpp), with the solver, contact and collision code
 // behind it.
@@ -15,6 +15,7 @@
 #include <spook/collide/continuous.hpp>
 #include <spook/sim/contact_rows.hpp>
 #include <spook/sim/simulation.hpp>
+#include <spook/sim/step_stages.hpp>
 #include <spook/solver/geometric_stiffness.hpp>
 #include <spook/solver/integrator.hpp>
 #include <spook/solver/island_problem.hpp>
@@ -73,70 +74,78 @@ void SimulationT<S>::forgetPredictions() {
 }
 
 template <Scalar S>
-void SimulationT<S>::stepForward() {
-  if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
-  applyPendingTimeStep();  // left over when a listener threw in the last step
-  stepping_ = true;
-  struct ResetOnExit {
-    bool& flag;
-    ~ResetOnExit() { flag = false; }
-  } reset{stepping_};
-  notify(Listener::PRE_COLLIDE);
+void SimulationT<S>::collide() {
   space_->update(bodies_);
   statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
   notifyContacts();
-  notify(Listener::PRE_STEP);
-  integrate(timeStep_);
-  detail::stopAtFirstContact(bodies_, *space_, timeStep_);
-  notify(Listener::POST_STEP);
-  notify(Listener::LAST_STEP);
-  ++stepsSinceBase_;
-  ++statistics_.numSteps;
-  if (statistics_.solver.directFallbacks > 0) ++statistics_.numFallbackSteps;
-  stepping_ = false;
-  applyPendingTimeStep();
 }
 
 template <Scalar S>
-void SimulationT<S>::integrate(S h) {
+void SimulationT<S>::gatherSolverBodies(const StepContext& step) {
   auto& w = *work_;
   statistics_.frozenBodies.clear();
   statistics_.solver = SolverStatistics{};
-  const StepContext step = beginExtensions(double(h));
+  const S h = S(step.getTimeStep());
   w.solverBodies.clear();
   for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h));
   collectStoreBodies(step);
-  collectRows(double(h));
+  w.frozen.assign(bodies_.size(), 0);
+}
+
+template <Scalar S>
+void SimulationT<S>::gatherRows(const StepContext& step) {
+  auto& w = *work_;
+  const double h = step.getTimeStep();
+  collectRows(h);
   w.numConstraintRows = w.rows.size();
   w.contactRows.build(
       space_->getGeometryContacts(), materials_, *gravity_,
-      [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, w.solverBodies,
-      double(h), contactSettings_, w.rows);
+      [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, w.solverBodies, h,
+      contactSettings_, w.rows);
   collectProducerRows(step, false);
-  if (solver_->getEnableGeometricStiffness() && !w.rows.empty())
-    w.geometricStiffness.apply(w.rows, w.solverBodies, double(h), solver_->getGeometricStiffnessThreshold());
+}
+
+template <Scalar S>
+void SimulationT<S>::solveRows(const StepContext& step) {
+  auto& w = *work_;
+  const double h = step.getTimeStep();
+  const bool stiffness = solver_->getEnableGeometricStiffness() && !w.rows.empty();
+  if (stiffness)
+    w.geometricStiffness.apply(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
   else
     w.geometricStiffness.clear();
-  w.frozen.assign(bodies_.size(), 0);
-  if (!w.rows.empty()) {
-    w.islands.solve(w.rows, w.solverBodies, double(h), *solver_, statistics_.solver);
-    for (int solves = 1; solves < detail::GeometricStiffness::kMaxSolves && solver_->getEnableGeometricStiffness() &&
-                         w.geometricStiffness.refresh(w.rows, w.solverBodies, double(h), solver_->getGeometricStiffnessThreshold());
-         ++solves) {
-      SolverStatistics again;
-      w.islands.solve(w.rows, w.solverBodies, double(h), *solver_, again);
-      statistics_.solver.addResolve(again);
-    }
-    for (int i : w.islands.getNonFiniteBodies())
-      if (std::size_t(i) < bodies_.size()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
+  if (w.rows.empty()) return;
+  w.islands.solve(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  // Again while the forces just found need more geometric stiffness than
+  // the solve had (geometric_stiffness.hpp).
+  for (int solves = 1; stiffness && solves < detail::GeometricStiffness::kMaxSolves &&
+                       w.geometricStiffness.refresh(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
+       ++solves) {
+    SolverStatistics again;
+    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again);
+    statistics_.solver.addResolve(again);
   }
-  readBackForces(double(h));
-  w.contactRows.readBack(double(h));
+  for (int i : w.islands.getNonFiniteBodies())
+    if (std::size_t(i) < bodies_.size()) freeze(std::size_t(i), FreezeReason::NON_FINITE_ISLAND);
+}
+
+template <Scalar S>
+void SimulationT<S>::readBackImpulses(const StepContext& step) {
+  auto& w = *work_;
+  const double h = step.getTimeStep();
+  readBackForces(h);
+  w.contactRows.readBack(h);
   for (std::size_t k = 0, begin = w.firstProducerRow; k < producers_.size(); begin = w.producerRowsEnd[k++]) {
     const std::size_t first = begin - w.firstProducerRow;
     producers_[k]->readBack(std::span<const double>(w.producerImpulses).subspan(first, w.producerRowsEnd[k] - begin), step);
   }
-  predictViolations(double(h));
+}
+
+template <Scalar S>
+void SimulationT<S>::moveBodies(const StepContext& step) {
+  auto& w = *work_;
+  const S h = S(step.getTimeStep());
+  predictViolations(step.getTimeStep());
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     Body& body = *bodies_[i];
     if (!w.frozen[i] && !detail::BodyIntegrator<S>::move(body, w.solverBodies[i], h))
@@ -145,8 +154,12 @@ void SimulationT<S>::integrate(S h) {
   }
   for (std::size_t k = 0, first = bodies_.size(); k < stores_.size(); first += step.sizes_[k++])
     stores_[k]->move(std::span<const detail::SolverBody>(w.solverBodies).subspan(first, step.sizes_[k]), step);
-  if (!w.rows.empty())
-    for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(step);
+}
+
+template <Scalar S>
+void SimulationT<S>::projectRows(const StepContext& step) {
+  if (work_->rows.empty()) return;
+  for (int i = 0; i < solver_->getNumPostStabilizationIterations(); ++i) postStabilize(step);
 }
 
 template <Scalar S>

@@ -120,6 +120,30 @@ struct IslandProblem {
       x.W += W;
     }
   }
+  /// The same with W = M⁻¹Jᵀ of a body of inverse mass and inertia
+  /// (world), formed in the entry's own storage where the body is new to it.
+  void addBody(Entry& e, int b, const Vec6d& J, const Mat3d& inverseMass, const Mat3d& inverseInertia) {
+    Vec6d* slotJ = nullptr;
+    Vec6d* slotW = nullptr;
+    if (e.body1 < 0) {
+      e.body1 = b;
+      slotJ = &e.J1;
+      slotW = &e.W1;
+    } else if (e.body2 < 0 && e.body1 != b) {
+      e.body2 = b;
+      slotJ = &e.J2;
+      slotW = &e.W2;
+    }
+    if (slotJ) {
+      *slotJ = J;
+      slotW->head<3>().noalias() = inverseMass * J.head<3>();
+      slotW->tail<3>().noalias() = inverseInertia * J.tail<3>();
+      return;
+    }
+    Vec6d W;
+    W << inverseMass * J.head<3>(), inverseInertia * J.tail<3>();
+    addBody(e, b, J, W);
+  }
   /// J·W over the entry's bodies: its diagonal of S = G M⁻¹ Gᵀ.
   [[nodiscard]] double mobility(const Entry& e) const {
     double s = 0.0;

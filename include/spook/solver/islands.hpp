@@ -161,10 +161,7 @@ class IslandStepper {
         const SolverBody& b = bodies[static_cast<std::size_t>(body)];
         speed += J->dot(b.velocity);
         freeSpeed += J->dot(b.freeVelocity);
-        if (!b.dynamic) continue;
-        Vec6d W;
-        W << b.inverseMass * J->head<3>(), b.inverseInertia * J->tail<3>();
-        problem_.addBody(e, localIndex(body), *J, W);
+        if (b.dynamic) problem_.addBody(e, localIndex(body), *J, b.inverseMass, b.inverseInertia);
       }
       const double mobility = problem_.mobility(e);
       if (r.holonomic) {

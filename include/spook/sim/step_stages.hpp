@@ -1,0 +1,49 @@
+#pragma once
+
+// One step of a simulation, stage by stage, in order. Each stage is a
+// member of SimulationT defined in sim/simulation_step.hpp; body stores and
+// row producers (sim/step_extension.hpp) take part in the stages of
+// integrate(). Compiled where the step is (sim/simulation_step.hpp).
+
+#include <spook/collide/continuous.hpp>
+#include <spook/sim/simulation.hpp>
+
+namespace spook {
+
+template <Scalar S>
+void SimulationT<S>::stepForward() {
+  if (stepping_) throw error("stepForward called from inside a step", getTimeStamp());
+  applyPendingTimeStep();  // left over when a listener threw in the last step
+  stepping_ = true;
+  struct ResetOnExit {
+    bool& flag;
+    ~ResetOnExit() { flag = false; }
+  } reset{stepping_};
+
+  notify(Listener::PRE_COLLIDE);
+  collide();  // broadphase, narrow phase, contact events
+  notify(Listener::PRE_STEP);
+  integrate(timeStep_);
+  detail::stopAtFirstContact(bodies_, *space_, timeStep_);  // continuous collision, opt-in per body
+  notify(Listener::POST_STEP);
+  notify(Listener::LAST_STEP);
+
+  ++stepsSinceBase_;
+  ++statistics_.numSteps;
+  if (statistics_.solver.directFallbacks > 0) ++statistics_.numFallbackSteps;
+  stepping_ = false;
+  applyPendingTimeStep();
+}
+
+template <Scalar S>
+void SimulationT<S>::integrate(S h) {
+  const StepContext step = beginExtensions(double(h));  // stores and producers may add or remove bodies
+  gatherSolverBodies(step);  // v, v* = v + hM⁻¹f, M⁻¹: rigid bodies, then each store's
+  gatherRows(step);          // joints, contacts, then each producer's rows
+  solveRows(step);           // islands under the solver policy; geometric stiffness
+  readBackImpulses(step);    // joint forces, contact forces and persistence, producers
+  moveBodies(step);          // positions from v⁺
+  projectRows(step);         // post-stabilization of the joints and producers' projection rows
+}
+
+}  // namespace spook
