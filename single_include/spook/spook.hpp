@@ -8570,9 +8570,13 @@ struct IslandProblem {
 
   /// Δv of every body from the impulses of all rows.
   [[nodiscard]] std::vector<Vec6d> velocityChange() const {
-    std::vector<Vec6d> dv(static_cast<std::size_t>(numBodies), Vec6d::Zero());
-    for (int i = 0; i < static_cast<int>(rows.size()); ++i) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
+    std::vector<Vec6d> dv;
+    velocityChange(dv);
     return dv;
+  }
+  void velocityChange(std::vector<Vec6d>& dv) const {
+    dv.assign(static_cast<std::size_t>(numBodies), Vec6d::Zero());
+    for (int i = 0; i < static_cast<int>(rows.size()); ++i) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
   }
   /// Δv of every body from the impulses of `subset` (rows not in it count zero).
   [[nodiscard]] std::vector<Vec6d> velocityChange(const std::vector<int>& subset) const {
@@ -15859,13 +15863,15 @@ class RowWriter {
  public:
   RowWriter(std::vector<detail::Row>& rows, std::vector<double>& impulses) : rows_(rows), impulses_(impulses) {}
 
-  /// A new row, warm started from `impulse` (N·s, the row's impulse last
-  /// step) when the solver warm starts.
+  /// A new row. `impulse` (N·s, usually the row's impulse last step) is the
+  /// iterative solvers' warm start when they warm start and the direct
+  /// solver's first guess of the row's state (at a bound or free) always.
   detail::Row& add(double impulse = 0.0) {
     impulses_.push_back(impulse);
     return rows_.emplace_back();
   }
-  /// Rows written so far by every producer of the step.
+  /// Rows written so far in the step: the index the next row gets (for
+  /// Row::frictionNormal).
   [[nodiscard]] std::size_t size() const { return rows_.size(); }
 
  private:
@@ -15893,7 +15899,10 @@ class BodyStore : public Referenced {
   /// and inertia, dynamic. `bodies` has size() entries, zero-initialized.
   virtual void writeSolverBodies(std::span<detail::SolverBody> bodies, const StepContext& step) const = 0;
   /// Moves the bodies by one step with the solved velocities
-  /// (bodies[i].freeVelocity holds v⁺).
+  /// (bodies[i].freeVelocity holds v⁺). A body of an island whose solve was
+  /// not finite gets no impulses (v⁺ is its free velocity); unlike a rigid
+  /// body it is not frozen: a store that may write non-finite velocities
+  /// checks them here.
   virtual void move(std::span<const detail::SolverBody> bodies, const StepContext& step) = 0;
   /// Post-stabilization: displaces the bodies by bodies[i].displacement
   /// ((Δx, Δθ), m and rad), velocities unchanged.
@@ -17986,9 +17995,7 @@ class IslandStepper {
         e.guess = 0.0;
       }
       solver.project(problem_, statistics);
-      for (const auto& e : problem_.rows) {
-        addToBodies(bodies, &SolverBody::displacement, e);
-      }
+      addToBodies(bodies, &SolverBody::displacement);
     }
   }
 
@@ -18005,10 +18012,7 @@ class IslandStepper {
       if (!solver.solve(problem_, statistics))
         nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
       for (std::size_t k = 0; k < island.size(); ++k) *rows[static_cast<std::size_t>(island[k])].impulse = problem_.rows[k].impulse;
-      for (std::size_t k = 0; k < problem_.rows.size(); ++k) {
-        const auto& e = problem_.rows[k];
-        addToBodies(bodies, &SolverBody::freeVelocity, e);
-      }
+      addToBodies(bodies, &SolverBody::freeVelocity);
     }
   }
 
@@ -18131,14 +18135,11 @@ class IslandStepper {
     for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
   }
 
-  // Adds M⁻¹Gᵀ Λ of an entry of problem_ to a field of its bodies.
-  void addToBodies(std::vector<SolverBody>& bodies, Vec6d SolverBody::*field, const IslandProblem::Entry& e) const {
-    const auto add = [&](int body, const Vec6d& W) {
-      bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(body)])].*field += W * e.impulse;
-    };
-    if (e.body1 >= 0) add(e.body1, e.W1);
-    if (e.body2 >= 0) add(e.body2, e.W2);
-    if (e.extra >= 0) add(problem_.extraBodies[static_cast<std::size_t>(e.extra)].body, problem_.extraBodies[static_cast<std::size_t>(e.extra)].W);
+  // Adds M⁻¹Gᵀ Λ of problem_'s impulses to a field of the island's bodies.
+  void addToBodies(std::vector<SolverBody>& bodies, Vec6d SolverBody::*field) {
+    problem_.velocityChange(velocityChange_);
+    for (std::size_t k = 0; k < islandBodies_.size(); ++k)
+      bodies[static_cast<std::size_t>(islandBodies_[k])].*field += velocityChange_[k];
   }
 
   // The inverse of a symmetric 3×3 matrix, NaN when it is not positive definite.
@@ -18151,6 +18152,7 @@ class IslandStepper {
   std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_;
   std::vector<std::vector<int>> islands_;
   IslandProblem problem_;
+  std::vector<Vec6d> velocityChange_;
 };
 
 }  // namespace spook::detail
@@ -19122,6 +19124,7 @@ void SimulationT<S>::projectRows(const StepContext& step) {
 
 template <Scalar S>
 StepContext SimulationT<S>::beginExtensions(double h) {
+  if (stores_.empty() && producers_.empty()) return StepContext(h, nullptr);
   StepContext step(h, [gravity = gravity_](const Eigen::Vector3d& p) {
     return Eigen::Vector3d(gravity->calculateGravity(p.cast<S>()).template cast<double>());
   });

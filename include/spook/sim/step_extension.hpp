@@ -62,13 +62,15 @@ class RowWriter {
  public:
   RowWriter(std::vector<detail::Row>& rows, std::vector<double>& impulses) : rows_(rows), impulses_(impulses) {}
 
-  /// A new row, warm started from `impulse` (N·s, the row's impulse last
-  /// step) when the solver warm starts.
+  /// A new row. `impulse` (N·s, usually the row's impulse last step) is the
+  /// iterative solvers' warm start when they warm start and the direct
+  /// solver's first guess of the row's state (at a bound or free) always.
   detail::Row& add(double impulse = 0.0) {
     impulses_.push_back(impulse);
     return rows_.emplace_back();
   }
-  /// Rows written so far by every producer of the step.
+  /// Rows written so far in the step: the index the next row gets (for
+  /// Row::frictionNormal).
   [[nodiscard]] std::size_t size() const { return rows_.size(); }
 
  private:
@@ -96,7 +98,10 @@ class BodyStore : public Referenced {
   /// and inertia, dynamic. `bodies` has size() entries, zero-initialized.
   virtual void writeSolverBodies(std::span<detail::SolverBody> bodies, const StepContext& step) const = 0;
   /// Moves the bodies by one step with the solved velocities
-  /// (bodies[i].freeVelocity holds v⁺).
+  /// (bodies[i].freeVelocity holds v⁺). A body of an island whose solve was
+  /// not finite gets no impulses (v⁺ is its free velocity); unlike a rigid
+  /// body it is not frozen: a store that may write non-finite velocities
+  /// checks them here.
   virtual void move(std::span<const detail::SolverBody> bodies, const StepContext& step) = 0;
   /// Post-stabilization: displaces the bodies by bodies[i].displacement
   /// ((Δx, Δθ), m and rad), velocities unchanged.

@@ -155,9 +155,13 @@ struct IslandProblem {
 
   /// Δv of every body from the impulses of all rows.
   [[nodiscard]] std::vector<Vec6d> velocityChange() const {
-    std::vector<Vec6d> dv(static_cast<std::size_t>(numBodies), Vec6d::Zero());
-    for (int i = 0; i < static_cast<int>(rows.size()); ++i) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
+    std::vector<Vec6d> dv;
+    velocityChange(dv);
     return dv;
+  }
+  void velocityChange(std::vector<Vec6d>& dv) const {
+    dv.assign(static_cast<std::size_t>(numBodies), Vec6d::Zero());
+    for (int i = 0; i < static_cast<int>(rows.size()); ++i) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
   }
   /// Δv of every body from the impulses of `subset` (rows not in it count zero).
   [[nodiscard]] std::vector<Vec6d> velocityChange(const std::vector<int>& subset) const {

@@ -61,9 +61,7 @@ class IslandStepper {
         e.guess = 0.0;
       }
       solver.project(problem_, statistics);
-      for (const auto& e : problem_.rows) {
-        addToBodies(bodies, &SolverBody::displacement, e);
-      }
+      addToBodies(bodies, &SolverBody::displacement);
     }
   }
 
@@ -80,10 +78,7 @@ class IslandStepper {
       if (!solver.solve(problem_, statistics))
         nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
       for (std::size_t k = 0; k < island.size(); ++k) *rows[static_cast<std::size_t>(island[k])].impulse = problem_.rows[k].impulse;
-      for (std::size_t k = 0; k < problem_.rows.size(); ++k) {
-        const auto& e = problem_.rows[k];
-        addToBodies(bodies, &SolverBody::freeVelocity, e);
-      }
+      addToBodies(bodies, &SolverBody::freeVelocity);
     }
   }
 
@@ -206,14 +201,11 @@ class IslandStepper {
     for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
   }
 
-  // Adds M⁻¹Gᵀ Λ of an entry of problem_ to a field of its bodies.
-  void addToBodies(std::vector<SolverBody>& bodies, Vec6d SolverBody::*field, const IslandProblem::Entry& e) const {
-    const auto add = [&](int body, const Vec6d& W) {
-      bodies[static_cast<std::size_t>(islandBodies_[static_cast<std::size_t>(body)])].*field += W * e.impulse;
-    };
-    if (e.body1 >= 0) add(e.body1, e.W1);
-    if (e.body2 >= 0) add(e.body2, e.W2);
-    if (e.extra >= 0) add(problem_.extraBodies[static_cast<std::size_t>(e.extra)].body, problem_.extraBodies[static_cast<std::size_t>(e.extra)].W);
+  // Adds M⁻¹Gᵀ Λ of problem_'s impulses to a field of the island's bodies.
+  void addToBodies(std::vector<SolverBody>& bodies, Vec6d SolverBody::*field) {
+    problem_.velocityChange(velocityChange_);
+    for (std::size_t k = 0; k < islandBodies_.size(); ++k)
+      bodies[static_cast<std::size_t>(islandBodies_[k])].*field += velocityChange_[k];
   }
 
   // The inverse of a symmetric 3×3 matrix, NaN when it is not positive definite.
@@ -226,6 +218,7 @@ class IslandStepper {
   std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_;
   std::vector<std::vector<int>> islands_;
   IslandProblem problem_;
+  std::vector<Vec6d> velocityChange_;
 };
 
 }  // namespace spook::detail
