@@ -41,7 +41,7 @@ template <class A, class B, class S = typename A::Vec3::Scalar>
 Points<S> contacts(const A& a, const spook::TransformT<S>& X_WA, const B& b, const spook::TransformT<S>& X_WB) {
   Points<S> points;
   spook::ContactSinkT<S> sink(points);
-  spook::collide(a, X_WA, b, X_WB, sink);
+  spook::test::collideCompiled(a, X_WA, b, X_WB, sink);
   for (const auto& p : points) {
     CHECK(p.point.allFinite());
     CHECK(std::isfinite(p.depth));

@@ -54,6 +54,7 @@
 #include <spook/collide/shapes/line.hpp>
 #include <spook/collide/shapes/plane.hpp>
 #include <spook/collide/shapes/sphere.hpp>
+#include "compiled_collide.hpp"
 
 namespace spook::test {
 
@@ -1079,7 +1080,7 @@ Agreement checkDifferential(const std::string& name, std::uint64_t seed, auto&& 
 template <class S, class A, class B>
 Agreement checkPair(const std::string& name, std::uint64_t seed, auto&& sample, auto&& reference) {
   const auto run = [](const auto& a, const auto& X_WA, const auto& b, const auto& X_WB, auto& sink) {
-    spook::collide(a, X_WA, b, X_WB, sink);
+    spook::test::collideCompiled(a, X_WA, b, X_WB, sink);
   };
   const Agreement agreement = checkDifferential<S, A, B>(name, seed, sample, run, reference, depthTolerance<S>());
   CHECK(agreement.pointsOutside == 0);

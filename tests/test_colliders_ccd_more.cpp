@@ -33,6 +33,7 @@
 #include <spook/collide/colliders/mesh.hpp>
 
 #include "collide_reference.hpp"
+#include "compiled_collide.hpp"
 
 using namespace spook::test;
 using spook::BoxT;
@@ -223,7 +224,7 @@ TEST_CASE_TEMPLATE("convex-plane, 10,000 poses: every corner below the plane, th
   const auto run = [&](const ConvexT<S>& a, const spook::TransformT<S>& X_WA, const PlaneT<S>& b,
                        const spook::TransformT<S>& X_WB, spook::ContactSinkT<S>& sink) {
     const std::size_t before = sink.size();
-    spook::collide(a, X_WA, b, X_WB, sink);
+    spook::test::collideCompiled(a, X_WA, b, X_WB, sink);
     const std::size_t count = sink.size() - before;
     const Transformd XA = X_WA.template cast<double>(), XB = X_WB.template cast<double>();
     const Vec3d n = XB.linear() * b.getNormal().template cast<double>(), o = XB * b.getPoint().template cast<double>();

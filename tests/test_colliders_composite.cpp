@@ -23,6 +23,7 @@
 
 #include <spook/collide/all_shapes.hpp>
 #include <spook/collide/collider_matrix.hpp>
+#include "compiled_collide.hpp"
 
 using spook::BoxT;
 using spook::CompositeT;
@@ -96,9 +97,9 @@ void checkComposite(const std::string& name, std::uint64_t seed, const ref_ptr<O
     for (const auto& child : composite->getChildren()) {
       const spook::TransformT<S> X_WChild = XC * child.transform;
       if (child.shape->getType() == spook::ShapeType::BOX)
-        spook::collide(static_cast<const BoxT<S>&>(*child.shape), X_WChild, *other, XO, expectedSink);
+        spook::test::collideCompiled(static_cast<const BoxT<S>&>(*child.shape), X_WChild, *other, XO, expectedSink);
       else
-        spook::collide(static_cast<const SphereT<S>&>(*child.shape), X_WChild, *other, XO, expectedSink);
+        spook::test::collideCompiled(static_cast<const SphereT<S>&>(*child.shape), X_WChild, *other, XO, expectedSink);
     }
     CHECK(
         Matrix::collide(static_cast<const Shape&>(*composite), XC, static_cast<const Shape&>(*other), XO, erasedSink));

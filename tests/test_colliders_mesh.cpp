@@ -59,6 +59,7 @@
 #include <spook/collide/shapes/plane.hpp>
 #include <spook/collide/shapes/sphere.hpp>
 #include <spook/collide/shapes/trimesh.hpp>
+#include "compiled_collide.hpp"
 
 // No FCL here (the references are exact computations of this file), so
 // collide_reference.hpp, whose FCL headers alone take ~25 s to compile, is
@@ -879,9 +880,9 @@ TEST_CASE_TEMPLATE("mesh: a sphere's contact with a triangle lies midway between
   X_S.translation() = V(S(0.25), S(0.25), S(0.5));
   std::vector<ContactPointT<S>> withPlane, withMesh, withField;
   ContactSinkT<S> planeSink(withPlane), meshSink(withMesh), fieldSink(withField);
-  spook::collide(*sphere, X_S, *plane, X, planeSink);
-  spook::collide(*sphere, X_S, *mesh, X, meshSink);
-  spook::collide(*sphere, X_S, *field, X, fieldSink);
+  spook::test::collideCompiled(*sphere, X_S, *plane, X, planeSink);
+  spook::test::collideCompiled(*sphere, X_S, *mesh, X, meshSink);
+  spook::test::collideCompiled(*sphere, X_S, *field, X, fieldSink);
   REQUIRE(withPlane.size() == 1);
   REQUIRE(withMesh.size() == 1);
   REQUIRE(withField.size() >= 1);
@@ -907,8 +908,8 @@ TEST_CASE_TEMPLATE("mesh: a sphere sunk below a height field is pushed up, below
   X_S.translation() = V(S(0.3), S(0.7), S(-0.3));
   std::vector<ContactPointT<S>> withMesh, withField;
   ContactSinkT<S> meshSink(withMesh), fieldSink(withField);
-  spook::collide(*sphere, X_S, *mesh, X, meshSink);
-  spook::collide(*sphere, X_S, *field, X, fieldSink);
+  spook::test::collideCompiled(*sphere, X_S, *mesh, X, meshSink);
+  spook::test::collideCompiled(*sphere, X_S, *field, X, fieldSink);
   REQUIRE(withMesh.size() == 1);
   CHECK(withMesh[0].depth == doctest::Approx(0.7));
   CHECK(withMesh[0].normal.z() == doctest::Approx(1.0));
@@ -1136,8 +1137,8 @@ TEST_CASE_TEMPLATE("mesh: plane vs Trimesh gives every vertex below the plane at
     const spook::TransformT<S> XM = X_WM.cast<S>(), XP = X_WP.cast<S>();
     forward.clear(), reversed.clear();
     ContactSinkT<S> forwardSink(forward), reversedSink(reversed);
-    spook::collide(*plane, XP, mesh, XM, forwardSink);
-    spook::collide(mesh, XM, *plane, XP, reversedSink);
+    spook::test::collideCompiled(*plane, XP, mesh, XM, forwardSink);
+    spook::test::collideCompiled(mesh, XM, *plane, XP, reversedSink);
     ++cases;
     const Transformd XMd = XM.template cast<double>(), XPd = XP.template cast<double>();
     const Vec3d n = XPd.linear() * plane->getNormal().template cast<double>();
@@ -1221,7 +1222,7 @@ Tally triangleAgainstSoup(std::uint64_t seed, auto&& makeSoup) {
     const Transformd XAd = XA.template cast<double>(), XMd = XM.template cast<double>();
     points.clear();
     ContactSinkT<S> sink(points);
-    spook::collide(*aS, XA, *soup, XM, sink);
+    spook::test::collideCompiled(*aS, XA, *soup, XM, sink);
     const Tri ta = worldTriangle(*aS, 0, XAd);
     std::vector<Reference> refs;
     std::vector<Tri> triangles;
@@ -1263,7 +1264,7 @@ std::vector<ContactPointT<S>> collideChecked(const auto& a, const spook::Transfo
                                              const spook::TransformT<S>& X_WB) {
   std::vector<ContactPointT<S>> points;
   ContactSinkT<S> sink(points);
-  spook::collide(a, X_WA, b, X_WB, sink);
+  spook::test::collideCompiled(a, X_WA, b, X_WB, sink);
   for (const auto& p : points) {
     CHECK(p.point.allFinite());
     CHECK(std::isfinite(p.depth));

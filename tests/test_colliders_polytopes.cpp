@@ -22,6 +22,7 @@
 #include <spook/collide/colliders.hpp>
 
 #include "collide_reference.hpp"
+#include "compiled_collide.hpp"
 
 using namespace spook::test;
 using spook::BoxT;
@@ -34,7 +35,7 @@ namespace {
 template <class S, class A, class B>
 void checkPolytopes(const std::string& name, std::uint64_t seed, auto&& makeA, auto&& makeB, auto&& reference) {
   const auto run = [](const auto& a, const auto& X_WA, const auto& b, const auto& X_WB, auto& sink) {
-    spook::collide(a, X_WA, b, X_WB, sink);
+    spook::test::collideCompiled(a, X_WA, b, X_WB, sink);
   };
   checkDifferential<S, A, B>(
       name, seed, [&](RandomPoses& random) { return touching(random, makeA(random), makeB(random)); }, run, reference,
@@ -60,7 +61,7 @@ std::vector<spook::ContactPointT<S>> contacts(const auto& a, const spook::Transf
                                               const spook::TransformT<S>& X_WB) {
   std::vector<spook::ContactPointT<S>> points;
   spook::ContactSinkT<S> sink(points);
-  spook::collide(a, X_WA, b, X_WB, sink);
+  spook::test::collideCompiled(a, X_WA, b, X_WB, sink);
   return points;
 }
 

@@ -8171,7 +8171,7 @@ class ColliderMatrixT<S, ShapeList<Shapes...>> {
   /// True when a and b are both listed and their pair has a collider.
   [[nodiscard]] static constexpr bool supports(ShapeType a, ShapeType b) {
     const int i = kIndex[static_cast<std::size_t>(a)], j = kIndex[static_cast<std::size_t>(b)];
-    return i >= 0 && j >= 0 && kTable[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] != nullptr;
+    return i >= 0 && j >= 0 && kSupported[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
   }
 
   /// Contacts between a at X_WA and b at X_WB (shape → world), through the
@@ -8205,7 +8205,7 @@ class ColliderMatrixT<S, ShapeList<Shapes...>> {
     text += "|\n";
     for (std::size_t i = 0; i < N; ++i) {
       text += "| " + std::string(shapeTypeName(kTypes[i]));
-      for (std::size_t j = 0; j < N; ++j) text += kTable[i][j] ? " | X" : " | -";
+      for (std::size_t j = 0; j < N; ++j) text += kSupported[i][j] ? " | X" : " | -";
       text += " |\n";
     }
     return text;
@@ -8262,6 +8262,13 @@ class ColliderMatrixT<S, ShapeList<Shapes...>> {
     return {make<A, Shapes<S>>()...};
   }
   static constexpr std::array<std::array<Function, N>, N> kTable = {makeRow<Shapes<S>>()...};
+  // The same holes without the entry points, for the queries: asking which
+  // pairs are supported compiles no collider.
+  template <class A>
+  static constexpr std::array<bool, N> supportedRow() {
+    return {pairSupported<A, Shapes<S>>()...};
+  }
+  static constexpr std::array<std::array<bool, N>, N> kSupported = {supportedRow<Shapes<S>>()...};
 };
 
 }  // namespace spook
