@@ -164,3 +164,46 @@ TEST_CASE("stores and producers are added once, and a bad row index is refused b
   CHECK(store->position(0).z() < 0.0);
   CHECK(sim->contains(store.get()));
 }
+
+TEST_CASE("stores and producers outlive a destroyed simulation and join a new one; errors name them") {
+  ref_ptr<Simulation> sim = new Simulation();
+  ref_ptr<toy::ParticleStore> store = new toy::ParticleStore();
+  store->setName("beads");
+  for (int i = 0; i < 3; ++i) store->add(toy::Vec3d(0.1 * i, 0.0, 0.0), 0.01, 0.01);
+  ref_ptr<toy::BeadedString> string = new toy::BeadedString(store, 0.1, 1e-6, 0.0, toy::Vec3d::UnitX());
+  string->setName("string");
+  sim->add(store);
+  sim->add(string);
+  sim->stepForward();
+  try {
+    sim->add(string);
+    FAIL("a producer was added twice");
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()).find("RowProducer") != std::string::npos);
+    CHECK(std::string(e.what()).find("string") != std::string::npos);
+  }
+  ref_ptr<Simulation> other = new Simulation();
+  try {
+    other->remove(store.get());
+    FAIL("a store was removed from a simulation it is not in");
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()).find("BodyStore") != std::string::npos);
+    CHECK(std::string(e.what()).find("beads") != std::string::npos);
+  }
+  CHECK(sim->getBodyStores().size() == 1);
+  CHECK(sim->getRowProducers().size() == 1);
+
+  sim = nullptr;  // releases both
+  CHECK(store->getReferenceCount() == 2);  // here and in the string
+  CHECK(store->getSimulationHandle() == nullptr);
+  CHECK(string->getSimulationHandle() == nullptr);
+  other->add(store);
+  other->add(string);
+  CHECK(store->getSimulationHandle() == other.get());
+  CHECK(other->contains(store.get()));
+  CHECK(other->contains(string.get()));
+  const double z = store->position(1).z();
+  other->stepForward();
+  CHECK(store->position(1).z() < z);  // falls, held by its stretch rows only
+  CHECK((store->position(1) - store->position(0)).norm() == doctest::Approx(0.1).epsilon(1e-3));
+}

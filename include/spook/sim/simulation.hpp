@@ -24,6 +24,7 @@
 #include <spook/sim/jointed_pairs.hpp>
 #include <spook/sim/material_manager.hpp>
 #include <spook/sim/membership.hpp>
+#include <spook/sim/roster.hpp>
 #include <spook/sim/statistics.hpp>
 #include <spook/sim/step_extension.hpp>
 #include <spook/sim/step_event_listener.hpp>
@@ -171,34 +172,25 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     add(ref_ptr<L>(listener));
   }
   void add(ref_ptr<ContactListener> listener) {
-    checkAddable(listener.get(), "ContactEventListener");
-    Membership::simulationOf(*listener) = this;
-    contactListeners_.push_back(std::move(listener));
+    contactListeners_.checkAddable(listener.get(), this);
+    contactListeners_.add(std::move(listener), this);
   }
   void remove(ContactListener* listener) {
-    checkRemovable(listener, "ContactEventListener");
-    std::erase_if(contactListeners_, [&](const auto& l) { return l.get() == listener; });
-    Membership::simulationOf(*listener) = nullptr;
+    contactListeners_.checkRemovable(listener, this);
+    contactListeners_.remove(listener);
   }
   [[nodiscard]] const std::vector<ref_ptr<ContactListener>>& getContactEventListeners() const {
-    return contactListeners_;
+    return contactListeners_.get();
   }
 
   void add(ref_ptr<Body> body) override {
-    checkAddable(body.get(), "RigidBody");
+    bodies_.checkAddable(body.get(), this);
     for (const auto& g : body->getGeometries()) space_->requireSupported(*g);
-    Membership::indexOf(*body) = bodies_.size();
-    Membership::simulationOf(*body) = this;
-    bodies_.push_back(std::move(body));
+    bodies_.add(std::move(body), this);
   }
   void remove(Body* body) override {
-    checkRemovable(body, "RigidBody");
-    const std::size_t index = Membership::indexOf(*body);
-    ref_ptr<Body> keep = body;
-    std::swap(bodies_[index], bodies_.back());
-    Membership::indexOf(*bodies_[index]) = index;
-    bodies_.pop_back();
-    Membership::simulationOf(*body) = nullptr;
+    bodies_.checkRemovable(body, this);
+    bodies_.remove(body);
   }
 
   /// Adds a listener of class L, checked at compile time: a member named
@@ -213,15 +205,12 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
     add(ref_ptr<L>(listener));
   }
   void add(ref_ptr<Listener> listener) override {
-    checkAddable(listener.get(), "StepEventListener");
-    Membership::simulationOf(*listener) = this;
-    listeners_.push_back(std::move(listener));
+    listeners_.checkAddable(listener.get(), this);
+    listeners_.add(std::move(listener), this);
   }
   void remove(Listener* listener) override {
-    checkRemovable(listener, "StepEventListener");
-    listeners_.erase(
-        std::find_if(listeners_.begin(), listeners_.end(), [&](const auto& l) { return l.get() == listener; }));
-    Membership::simulationOf(*listener) = nullptr;
+    listeners_.checkRemovable(listener, this);
+    listeners_.remove(listener);
   }
 
   /// Adds a collection and everything in it, nested collections included.
@@ -245,66 +234,54 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// when a body is elsewhere or when both are static (or static and world).
   /// A constraint whose body is later removed adds no rows.
   void add(ref_ptr<Constraint> constraint) override {
-    checkAddable(constraint.get(), constraint ? constraint->getKind() : "Constraint");
+    constraints_.checkAddable(constraint.get(), this, constraint ? constraint->getKind() : nullptr);
     checkBodiesOf(*constraint, nullptr);
-    Membership::indexOf(*constraint) = constraints_.size();
-    Membership::simulationOf(*constraint) = this;
     jointedPairs_.add(*constraint);
-    constraints_.push_back(std::move(constraint));
+    constraints_.add(std::move(constraint), this);
   }
   void remove(Constraint* constraint) override {
-    checkRemovable(constraint, constraint ? constraint->getKind() : "Constraint");
-    const std::size_t index = Membership::indexOf(*constraint);
+    constraints_.checkRemovable(constraint, this, constraint ? constraint->getKind() : nullptr);
     ref_ptr<Constraint> keep = constraint;
-    std::swap(constraints_[index], constraints_.back());
-    Membership::indexOf(*constraints_[index]) = index;
-    constraints_.pop_back();
+    constraints_.remove(constraint);
     jointedPairs_.remove(*constraint);
-    Membership::simulationOf(*constraint) = nullptr;
     forgetPredictions();
   }
-  [[nodiscard]] const std::vector<ref_ptr<Constraint>>& getConstraints() const { return constraints_; }
+  [[nodiscard]] const std::vector<ref_ptr<Constraint>>& getConstraints() const { return constraints_.get(); }
   /// The first constraint with this name, or nullptr.
   [[nodiscard]] Constraint* getConstraint(const std::string& name) const {
     for (const auto& c : constraints_)
       if (c->getName() == name) return c.get();
     return nullptr;
   }
-  [[nodiscard]] bool contains(const Constraint* constraint) const override {
-    return constraint && Membership::simulationOf(*constraint) == static_cast<const void*>(this);
-  }
+  [[nodiscard]] bool contains(const Constraint* constraint) const override { return constraints_.contains(constraint, this); }
 
   /// Adds a body store (sim/step_extension.hpp): its bodies are integrated
   /// and solved with the rigid bodies from the next step on.
   void add(ref_ptr<BodyStore> store) {
-    checkAddable(store.get(), "BodyStore");
-    addExtension(stores_, std::move(store));
+    stores_.checkAddable(store.get(), this);
+    stores_.add(std::move(store), this);
   }
   void remove(BodyStore* store) {
-    checkRemovable(store, "BodyStore");
-    removeExtension(stores_, store);
+    stores_.checkRemovable(store, this);
+    stores_.remove(store);
   }
   /// Adds a row producer (sim/step_extension.hpp): its rows enter the solve
   /// from the next step on.
   void add(ref_ptr<RowProducer> producer) {
-    checkAddable(producer.get(), "RowProducer");
-    addExtension(producers_, std::move(producer));
+    producers_.checkAddable(producer.get(), this);
+    producers_.add(std::move(producer), this);
   }
   void remove(RowProducer* producer) {
-    checkRemovable(producer, "RowProducer");
-    removeExtension(producers_, producer);
+    producers_.checkRemovable(producer, this);
+    producers_.remove(producer);
   }
-  [[nodiscard]] bool contains(const BodyStore* store) const {
-    return store && Membership::simulationOf(*store) == static_cast<const void*>(this);
-  }
-  [[nodiscard]] bool contains(const RowProducer* producer) const {
-    return producer && Membership::simulationOf(*producer) == static_cast<const void*>(this);
-  }
-  [[nodiscard]] const std::vector<ref_ptr<BodyStore>>& getBodyStores() const { return stores_; }
-  [[nodiscard]] const std::vector<ref_ptr<RowProducer>>& getRowProducers() const { return producers_; }
+  [[nodiscard]] bool contains(const BodyStore* store) const { return stores_.contains(store, this); }
+  [[nodiscard]] bool contains(const RowProducer* producer) const { return producers_.contains(producer, this); }
+  [[nodiscard]] const std::vector<ref_ptr<BodyStore>>& getBodyStores() const { return stores_.get(); }
+  [[nodiscard]] const std::vector<ref_ptr<RowProducer>>& getRowProducers() const { return producers_.get(); }
 
-  [[nodiscard]] const std::vector<ref_ptr<Body>>& getRigidBodies() const { return bodies_; }
-  [[nodiscard]] const std::vector<ref_ptr<Listener>>& getEventListeners() const { return listeners_; }
+  [[nodiscard]] const std::vector<ref_ptr<Body>>& getRigidBodies() const { return bodies_.get(); }
+  [[nodiscard]] const std::vector<ref_ptr<Listener>>& getEventListeners() const { return listeners_.get(); }
   [[nodiscard]] const std::vector<ref_ptr<Collection>>& getCollections() const { return collections_; }
   /// The first body with this name, or nullptr.
   [[nodiscard]] Body* getRigidBody(const std::string& name) const {
@@ -312,15 +289,9 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       if (b->getName() == name) return b.get();
     return nullptr;
   }
-  [[nodiscard]] bool contains(const Body* body) const override {
-    return body && Membership::simulationOf(*body) == static_cast<const void*>(this);
-  }
-  [[nodiscard]] bool contains(const Listener* listener) const override {
-    return listener && listener->getSimulation() == this;
-  }
-  [[nodiscard]] bool contains(const ContactListener* listener) const {
-    return listener && listener->getSimulation() == this;
-  }
+  [[nodiscard]] bool contains(const Body* body) const override { return bodies_.contains(body, this); }
+  [[nodiscard]] bool contains(const Listener* listener) const override { return listeners_.contains(listener, this); }
+  [[nodiscard]] bool contains(const ContactListener* listener) const { return contactListeners_.contains(listener, this); }
 
   [[nodiscard]] const SimulationStatisticsT<S>& getStatistics() const { return statistics_; }
 
@@ -433,7 +404,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   // the separations.
   void notifyContacts() {
     if (contactListeners_.empty()) return;
-    const std::vector<ref_ptr<ContactListener>> snapshot = contactListeners_;
+    const std::vector<ref_ptr<ContactListener>> snapshot = contactListeners_.get();
     const S time = getTimeStamp();
     for (auto& contact : space_->getGeometryContacts()) {
       const auto stage = contact.isImpact() ? ContactListener::IMPACT : ContactListener::CONTACT;
@@ -476,17 +447,17 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
       throw error("Collection is already in a simulation", collection.getName());
     if (!seen.insert(&collection).second) throw error("Collection appears twice", collection.getName());
     for (const auto& b : collection.getRigidBodies()) {
-      checkAddable(b.get(), "RigidBody");
+      bodies_.checkAddable(b.get(), this);
       for (const auto& g : b->getGeometries()) space_->requireSupported(*g);
       if (!seen.insert(b.get()).second) throw error("RigidBody appears twice in the collection", b->getName());
     }
     for (const auto& l : collection.getEventListeners()) {
-      checkAddable(l.get(), "StepEventListener");
+      listeners_.checkAddable(l.get(), this);
       if (!seen.insert(l.get()).second)
         throw error("StepEventListener appears twice in the collection", collection.getName());
     }
     for (const auto& c : collection.getConstraints()) {
-      checkAddable(c.get(), c ? c->getKind() : "Constraint");
+      constraints_.checkAddable(c.get(), this, c ? c->getKind() : nullptr);
       if (!seen.insert(c.get()).second) throw detail::makeError(c->getKind(), c->getName(), "appears twice in the collection");
     }
     for (const auto& c : collection.getCollections()) validateTree(*c, seen);
@@ -531,39 +502,6 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   }
 
   template <class T>
-  void checkAddable(T* object, const char* kind) const {
-    if (!object) throw error(std::string("cannot add a null ") + kind, "nullptr");
-    const auto* owner = Membership::simulationOf(*object);
-    if (owner == static_cast<const void*>(this))
-      throw detail::makeError(kind, nameOf(*object), "already added to this simulation");
-    if (owner) throw detail::makeError(kind, nameOf(*object), "already belongs to another simulation");
-  }
-  template <class T>
-  void addExtension(std::vector<ref_ptr<T>>& list, ref_ptr<T> object) {
-    Membership::simulationOf(*object) = this;
-    list.push_back(std::move(object));
-  }
-  template <class T>
-  void removeExtension(std::vector<ref_ptr<T>>& list, T* object) {
-    ref_ptr<T> keep = object;
-    // Order kept: the stores' solver indices follow it.
-    list.erase(std::find_if(list.begin(), list.end(), [&](const auto& o) { return o.get() == object; }));
-    Membership::simulationOf(*object) = nullptr;
-  }
-  template <class T>
-  void checkRemovable(T* object, const char* kind) const {
-    if (!object) throw error(std::string("cannot remove a null ") + kind, "nullptr");
-    if (Membership::simulationOf(*object) != static_cast<const void*>(this))
-      throw detail::makeError(kind, nameOf(*object), "was never added to this simulation");
-  }
-  template <class T>
-  static std::string nameOf(const T& object) {
-    if constexpr (requires { object.getName(); })
-      return object.getName();
-    else
-      return "";
-  }
-  template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
     return detail::makeError("Simulation", "", what, value);
   }
@@ -574,14 +512,14 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   std::uint64_t stepsSinceBase_ = 0;
   bool stepping_ = false;
   ref_ptr<GravityFieldT<S>> gravity_ = new UniformGravityFieldT<S>();
-  std::vector<ref_ptr<Body>> bodies_;
-  std::vector<ref_ptr<Listener>> listeners_;
-  std::vector<ref_ptr<ContactListener>> contactListeners_;
+  detail::Roster<Body, true> bodies_{"RigidBody"};
+  detail::Roster<Listener> listeners_{"StepEventListener"};
+  detail::Roster<ContactListener> contactListeners_{"ContactEventListener"};
   ref_ptr<SpaceT<S>> space_;
   std::vector<ref_ptr<Collection>> collections_;
-  std::vector<ref_ptr<Constraint>> constraints_;
-  std::vector<ref_ptr<BodyStore>> stores_;
-  std::vector<ref_ptr<RowProducer>> producers_;
+  detail::Roster<Constraint, true> constraints_{"Constraint"};
+  detail::Roster<BodyStore> stores_{"BodyStore"};
+  detail::Roster<RowProducer> producers_{"RowProducer"};
   detail::JointedPairs<S> jointedPairs_;
   SimulationStatisticsT<S> statistics_;
   ref_ptr<Solver> solver_ = new HybridSolver();

@@ -59,12 +59,6 @@ SimulationT<S>::SimulationT(ref_ptr<SpaceT<S>> space)
 
 template <Scalar S>
 SimulationT<S>::~SimulationT() {
-  for (auto& b : bodies_) Membership::simulationOf(*b) = nullptr;
-  for (auto& l : listeners_) Membership::simulationOf(*l) = nullptr;
-  for (auto& l : contactListeners_) Membership::simulationOf(*l) = nullptr;
-  for (auto& c : constraints_) Membership::simulationOf(*c) = nullptr;
-  for (auto& s : stores_) Membership::simulationOf(*s) = nullptr;
-  for (auto& p : producers_) Membership::simulationOf(*p) = nullptr;
   for (auto& c : collections_) setCollectionsSink(*c, nullptr);
 }
 
@@ -75,7 +69,7 @@ void SimulationT<S>::forgetPredictions() {
 
 template <Scalar S>
 void SimulationT<S>::collide() {
-  space_->update(bodies_);
+  space_->update(bodies_.get());
   statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
   notifyContacts();
 }

@@ -88,6 +88,9 @@ class BodyStore : public Referenced {
   [[nodiscard]] const std::string& getName() const { return name_; }
   void setName(std::string name) { name_ = std::move(name); }
 
+  /// The simulation this store was added to, or nullptr.
+  [[nodiscard]] const void* getSimulationHandle() const { return simulation_; }
+
   /// Number of bodies now.
   [[nodiscard]] virtual std::size_t size() const = 0;
   /// Start of a step, before any row is written: the only place a store
@@ -123,6 +126,9 @@ class RowProducer : public Referenced {
  public:
   [[nodiscard]] const std::string& getName() const { return name_; }
   void setName(std::string name) { name_ = std::move(name); }
+
+  /// The simulation this producer was added to, or nullptr.
+  [[nodiscard]] const void* getSimulationHandle() const { return simulation_; }
 
   /// Start of a step, after the stores' beginStep.
   virtual void beginStep(const StepContext& /*step*/) {}

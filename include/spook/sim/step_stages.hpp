@@ -24,7 +24,7 @@ void SimulationT<S>::stepForward() {
   collide();  // broadphase, narrow phase, contact events
   notify(Listener::PRE_STEP);
   integrate(timeStep_);
-  detail::stopAtFirstContact(bodies_, *space_, timeStep_);  // continuous collision, opt-in per body
+  detail::stopAtFirstContact(bodies_.get(), *space_, timeStep_);  // continuous collision, opt-in per body
   notify(Listener::POST_STEP);
   notify(Listener::LAST_STEP);
 
