@@ -99,9 +99,11 @@ struct RowCollector {
                                       false};
       spook::detail::ConstraintAccess::addRows(*c, sink, kStep);
     }
+    impulses.assign(rows.size(), 0.0);
   }
   std::vector<spook::detail::SolverBody> bodies;
   std::vector<spook::detail::Row> rows;
+  std::vector<double> impulses;
 
  private:
   spook::Simulation& sim_;
@@ -117,7 +119,7 @@ spook::detail::IslandProblem chainProblem(int links) {
   spook::ref_ptr<NullSolver> none = new NullSolver();
   none->capture = true;
   spook::SolverStatistics statistics;
-  spook::detail::IslandStepper().solve(collector.rows, collector.bodies, kStep, *none, statistics);
+  spook::detail::IslandStepper().solve(collector.rows, collector.impulses, collector.bodies, kStep, *none, statistics);
   return none->captured;
 }
 
@@ -155,7 +157,7 @@ void buildProblem(benchmark::State& state) {
   spook::detail::IslandStepper stepper;
   for (auto _ : state) {
     spook::SolverStatistics statistics;
-    stepper.solve(collector.rows, collector.bodies, kStep, *none, statistics);
+    stepper.solve(collector.rows, collector.impulses, collector.bodies, kStep, *none, statistics);
     benchmark::DoNotOptimize(statistics);
   }
   setCounters(state, collector.rows.size());

@@ -8321,6 +8321,7 @@ template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, con
 #define SPOOK_SINGLE_SPOOK_CONSTRAINTS_ATTACHMENTS_HPP
 
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <vector>
 
@@ -8379,6 +8380,9 @@ using Vec6d = Eigen::Matrix<double, 6, 1>;
 /// damping τ): G v⁺ + Σ Λ = −a g + b' G v, Σ = 4ε/(h²(1+4τ/h)) (PHYSICS.md
 /// §1.2). A velocity row (motors, friction) has a target speed u and a
 /// viscosity γ: G v⁺ + (γ/h) Λ = u (§1.3). Bounds are forces (N or N·m).
+/// A row's impulse Λ (N·s) is not in the row: the step keeps the impulses
+/// in an array beside the rows, and each source of rows keeps its own
+/// history (sim/step_extension.hpp).
 struct Row {
   // Members ordered by size (no padding between them: the step copies
   // rows by the thousand).
@@ -8408,8 +8412,6 @@ struct Row {
   /// g (m/s or rad/s), kept by post-stabilization; NaN when unknown, then
   /// G v − hκ stands in for it in SPOOK's b' term.
   double lastRate = std::numeric_limits<double>::quiet_NaN();
-  /// Warm start in, solved impulse (N·s) out; owned by the constraint.
-  double* impulse = nullptr;
   /// Translational rows: lever arms (world, m) from each center of mass to
   /// the point where the row's force acts, for the geometric stiffness
   /// (geometric_stiffness.hpp). Zero for rows that apply pure torques.
@@ -8674,7 +8676,10 @@ struct Attachments {
   [[nodiscard]] double speed(const Vec6d& J1, const Vec6d& J2) const { return J1.dot(v1) + J2.dot(v2); }
 };
 
-/// Where a constraint writes its rows this step.
+/// Where a constraint writes its rows this step. Each row names the
+/// constraint's own variable that keeps its impulse (N·s) from step to step
+/// (its slot): the step reads the warm start from it and writes the solved
+/// impulse back to it after the solve.
 struct RowSink {
   std::vector<Row>* rows = nullptr;
   int body1 = -1, body2 = -1;
@@ -8682,6 +8687,8 @@ struct RowSink {
   /// True when the solver post-stabilizes these rows, which then take their
   /// second-order terms (Row::curvature); otherwise those are dropped.
   bool secondOrder = false;
+  /// Each row's slot, in step with `rows` (none kept when null).
+  std::vector<double*>* slots = nullptr;
 
   Row& add(const Vec6d& J1, const Vec6d& J2, double* impulse) {
     Row& row = rows->emplace_back();
@@ -8690,8 +8697,28 @@ struct RowSink {
     row.J1 = J1;
     row.J2 = J2;
     row.solveType = solveType;
-    row.impulse = impulse;
+    if (slots) slots->push_back(impulse);
     return row;
+  }
+  /// Rows written so far: the index the next row gets.
+  [[nodiscard]] std::size_t size() const { return rows->size(); }
+  /// The slot of row i (nullptr when slots are not kept).
+  [[nodiscard]] const double* slot(std::size_t i) const { return slots ? (*slots)[i] : nullptr; }
+  /// Keeps the rows from `first` on for which keep(row, i − first, slot)
+  /// holds (it may adjust the row), in order, with their slots.
+  template <class Keep>
+  void keepRows(std::size_t first, Keep&& keep) {
+    std::size_t out = first;
+    for (std::size_t i = first; i < rows->size(); ++i) {
+      if (!keep((*rows)[i], i - first, slot(i))) continue;
+      if (out != i) {
+        (*rows)[out] = (*rows)[i];
+        if (slots) (*slots)[out] = (*slots)[i];
+      }
+      ++out;
+    }
+    rows->resize(out);
+    if (slots) slots->resize(out);
   }
 };
 
@@ -9436,10 +9463,7 @@ class JointLoad {
   /// elementary rows of this step) and the joint axis (world, unit).
   void record(const RowSink& sink, std::size_t first, const Vec3d& axis) {
     rows_.clear();
-    for (std::size_t i = first; i < sink.rows->size(); ++i) {
-      const Row& row = (*sink.rows)[i];
-      rows_.push_back({row.J1.head<3>(), row.impulse});
-    }
+    for (std::size_t i = first; i < sink.rows->size(); ++i) rows_.push_back({(*sink.rows)[i].J1.head<3>(), sink.slot(i)});
     axis_ = axis;
     recorded_ = true;
   }
@@ -9448,7 +9472,8 @@ class JointLoad {
   [[nodiscard]] Vec3d force(double h) {
     Vec3d f = Vec3d::Zero();
     if (recorded_)
-      for (const auto& r : rows_) f += r.linear * (*r.impulse / h);
+      for (const auto& r : rows_)
+        if (r.impulse) f += r.linear * (*r.impulse / h);
     recorded_ = false;
     return f;
   }
@@ -10892,16 +10917,16 @@ struct SlackInterval {
 
   /// For post-stabilization, which projects equalities: a zero-width
   /// interval keeps its row (g = x − lower), and so does an end the step's
-  /// solve pressed the DOF against (`row.impulse` non-zero): like a rigid
+  /// solve pressed the DOF against (its `impulse` non-zero): like a rigid
   /// row, it is projected onto the violation x − end the solve predicted,
   /// which removes the step's second-order drift past the end while the DOF
   /// is held there. A DOF moving inside its slack is left to the solve.
-  bool restrictProjection(Row& row) const {
+  bool restrictProjection(Row& row, const double* impulse) const {
     if (lower == upper) {
       row.violation -= lower;
       return true;
     }
-    if (!row.impulse || *row.impulse == 0.0) return false;
+    if (!impulse || *impulse == 0.0) return false;
     const double x = row.violation;
     row.violation = x - (x - lower <= upper - x ? lower : upper);
     return true;
@@ -10992,7 +11017,7 @@ class SlackJointT : public Rigid<S, Rows...> {
     for (std::size_t i = 0; i < kNum; ++i) {
       detail::Row& row = (*sink.rows)[first + i];
       interval(i).restrict(row);
-      impulses_[i] = row.impulse;
+      impulses_[i] = sink.slot(first + i);
     }
   }
   void afterSolve(double h) override {
@@ -11002,7 +11027,9 @@ class SlackJointT : public Rigid<S, Rows...> {
   void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
     const std::size_t first = sink.rows->size();
     Base::addProjectionRows(a, sink);
-    keepRows(*sink.rows, first, [&](detail::Row& row, std::size_t i) { return interval(i).restrictProjection(row); });
+    sink.keepRows(first, [&](detail::Row& row, std::size_t i, const double* impulse) {
+      return i >= kNum || interval(i).restrictProjection(row, impulse);
+    });
   }
 
  private:
@@ -11010,18 +11037,6 @@ class SlackJointT : public Rigid<S, Rows...> {
 
   [[nodiscard]] detail::SlackInterval interval(std::size_t i) const {
     return {double(slack_[i].lower), double(slack_[i].upper)};
-  }
-  // The slack rows are the first kNum rows written since `first`; `keep`
-  // adjusts each and says whether it stays. Rows after them are kept as they are.
-  template <class Keep>
-  static void keepRows(std::vector<detail::Row>& rows, std::size_t first, Keep&& keep) {
-    std::size_t out = first;
-    for (std::size_t i = first; i < rows.size(); ++i) {
-      if (i < first + kNum && !keep(rows[i], i - first)) continue;
-      if (out != i) rows[out] = rows[i];
-      ++out;
-    }
-    rows.resize(out);
   }
   void checkDof(int dof, bool allowAll) const {
     if (!((allowAll && dof == Base::ALL_DOF) || (dof >= 0 && dof < int(kNum))))
@@ -11033,7 +11048,7 @@ class SlackJointT : public Rigid<S, Rows...> {
     zero.fill({S(0), S(0)});
     return zero;
   }();
-  std::array<double*, kNum> impulses_{};
+  std::array<const double*, kNum> impulses_{};
   std::array<S, kNum> force_{};
 };
 
@@ -16337,8 +16352,13 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   using Membership = detail::SimulationMembership;
 
   explicit SimulationT(ref_ptr<SpaceT<S>> space);
-  // Predictions are keyed by row storage that a later constraint may reuse.
+  // Post-stabilization's predictions are keyed by row storage that a later
+  // constraint may reuse (sim/constraint_rows.hpp).
   void forgetPredictions();
+  // A body's solver index in this step, −1 when it is not in the simulation.
+  [[nodiscard]] auto bodyIndex() const {
+    return [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; };
+  }
 
   // Pairs with an explicit contact material reduce their points as it says;
   // jointed bodies do not collide unless their constraint asks (jointed_pairs.hpp).
@@ -16369,13 +16389,6 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   // enabled constraints, islands solved by the policy, then the poses.
   void integrate(S h);
 
-  // What each holonomic row's linearization makes of the step: the rate
-  // G v⁺ + hκ at which it moves g and the violation g + h·rate it should end
-  // with, which post-stabilization restores (it removes only the
-  // higher-order drift of the step, not the rows' compliant or damped
-  // motion). The rate is the next step's b' term (Row::lastRate).
-  void predictViolations(double h);
-
   // Projects the direct solver's equality rows back onto their manifold
   // (Solver::getEnablePostStabilization).
   void postStabilize(const StepContext& step);
@@ -16383,8 +16396,6 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   // Keeps body i as it was before the step (pose kept, velocities zeroed)
   // and reports it, once per step.
   void freeze(std::size_t i, FreezeReason reason);
-
-  void collectRows(double h);
 
   // The stages of a step (their order: sim/step_stages.hpp).
   void collide();
@@ -16399,8 +16410,6 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   StepContext beginExtensions(double h);
   void collectStoreBodies(const StepContext& step);
   void collectProducerRows(const StepContext& step, bool projection);
-
-  void readBackForces(double h);
 
   // Calls the listeners selected by `stage`, highest priority first, over a
   // snapshot, so that callbacks may add and remove objects freely.
@@ -16598,7 +16607,6 @@ using SimulationRef = ref_ptr<Simulation>;
 #include <cstddef>
 #include <memory>
 #include <span>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -17820,6 +17828,149 @@ void stopAtFirstContact(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_CONTINUOUS_HPP
 // --- end spook/collide/continuous.hpp ---
+// --- begin spook/sim/constraint_rows.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_CONSTRAINT_ROWS_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_CONSTRAINT_ROWS_HPP
+
+#include <cstddef>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+namespace spook::detail {
+
+/// The enabled constraints' rows, written and read back as a row producer
+/// does (sim/step_extension.hpp): each row's last impulse comes from its
+/// slot (RowSink: the constraint's own variable), the solved one goes back
+/// there, and the constraints' forces follow from the rows they wrote.
+///
+/// With post-stabilization it also keeps, per holonomic row, what the
+/// step's linearization makes of it: the rate G v⁺ + hκ at which the row
+/// moves g and the violation g + h·rate it should end with. The projection
+/// restores that violation (it removes only the higher-order drift of the
+/// step, not the rows' compliant or damped motion), and the rate is the
+/// next step's b' term (Row::lastRate). They are keyed by slot, which
+/// identifies a row from step to step whatever rows come and go around it.
+template <Scalar S>
+class ConstraintRows {
+ public:
+  using Constraint = ConstraintT<S>;
+
+  /// Appends the rows of the enabled constraints whose bodies are in the
+  /// step; bodyIndex(body) is a body's solver index, −1 when it is not in
+  /// the simulation.
+  template <class BodyIndex>
+  void write(const std::vector<ref_ptr<Constraint>>& constraints, BodyIndex bodyIndex, const Solver& solver,
+             double h, std::vector<Row>& rows, std::vector<double>& impulses) {
+    owners_.clear();
+    slots_.clear();
+    first_ = rows.size();
+    for (const auto& c : constraints) {
+      RowSink sink;
+      if (!c->getEnable() || !sinkFor(*c, bodyIndex, rows, slots_, sink)) continue;
+      // The second-order terms (Row::curvature, Row::lastRate) need the
+      // projection: without it their error feeds back (the 1:1e6 chain of
+      // test_solvers.cpp diverges).
+      const bool projected = solver.projects(c->getSolveType());
+      sink.secondOrder = projected;
+      const std::size_t first = rows.size();
+      ConstraintAccess::addRows(*c, sink, h);
+      owners_.resize(rows.size() - first_, c.get());
+      for (std::size_t i = first; i < rows.size(); ++i) {
+        Row& r = rows[i];
+        r.constraint = int(first);
+        if (!projected) {
+          r.curvature = 0.0;
+        } else if (const auto it = predicted_.find(slots_[i - first_]); r.holonomic && it != predicted_.end()) {
+          r.lastRate = it->second.rate;
+        }
+      }
+    }
+    for (const double* slot : slots_) impulses.push_back(*slot);
+  }
+
+  /// After the solve: `impulses` and `rows` are the ones write() appended,
+  /// `bodies` hold v⁺ in freeVelocity. Writes the slots, the forces of the
+  /// constraints that compute them, lets each constraint read its rows'
+  /// results, and predicts the holonomic rows' violations when `predict`.
+  void readBack(const std::vector<ref_ptr<Constraint>>& constraints, std::span<const double> impulses,
+                std::span<const Row> rows, const std::vector<SolverBody>& bodies, double h, bool predict) {
+    for (std::size_t i = 0; i < slots_.size(); ++i) *slots_[i] = impulses[i];
+    for (const auto& c : constraints)
+      if (c->getEnableComputeForces()) ConstraintAccess::clearWrench(*c);
+    for (std::size_t i = 0; i < owners_.size(); ++i)
+      if (owners_[i]->getEnableComputeForces()) ConstraintAccess::addWrench(*owners_[i], rows[i], impulses[i] / h);
+    for (const auto& c : constraints) ConstraintAccess::afterSolve(*c, h);
+
+    predicted_.clear();
+    if (!predict) return;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const Row& r = rows[i];
+      if (!r.holonomic) continue;
+      const auto speed = [&](int body, const Vec6d& J) {
+        return body < 0 ? 0.0 : J.dot(bodies[static_cast<std::size_t>(body)].freeVelocity);
+      };
+      const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + speed(r.body3, r.J3) + h * r.curvature;
+      predicted_[slots_[i]] = {r.violation + h * rate, rate};
+    }
+  }
+
+  /// Post-stabilization: appends the projection rows of the constraints the
+  /// solver projects, at the moved positions, each with the violation
+  /// predicted for it in Row::speed. Rows without a prediction (a lock
+  /// enabled by a listener after the solve) are left out.
+  template <class BodyIndex>
+  void writeProjectionRows(const std::vector<ref_ptr<Constraint>>& constraints, BodyIndex bodyIndex,
+                           const Solver& solver, std::vector<Row>& rows) {
+    projectionSlots_.clear();
+    const std::size_t first = rows.size();
+    for (const auto& c : constraints) {
+      RowSink sink;
+      if (!c->getEnable() || !solver.projects(c->getSolveType()) ||
+          !sinkFor(*c, bodyIndex, rows, projectionSlots_, sink))
+        continue;
+      sink.secondOrder = true;
+      ConstraintAccess::addProjectionRows(*c, sink);
+    }
+    RowSink all{&rows, -1, -1, SolveType::DIRECT, true, &projectionSlots_};
+    all.keepRows(first, [&](Row& r, std::size_t, const double* slot) {
+      const auto it = predicted_.find(slot);
+      if (it == predicted_.end()) return false;
+      r.speed = it->second.violation;
+      return true;
+    });
+  }
+
+  /// Predictions are keyed by slots that a later constraint may reuse.
+  void forgetPredictions() { predicted_.clear(); }
+
+ private:
+  struct Prediction {
+    double violation = 0.0, rate = 0.0;
+  };
+
+  // A sink for c's rows, false when one of its bodies is not in the step.
+  template <class BodyIndex>
+  static bool sinkFor(Constraint& c, BodyIndex bodyIndex, std::vector<Row>& rows, std::vector<double*>& slots,
+                      RowSink& sink) {
+    const int body1 = bodyIndex(c.getBodyAt(0));
+    const auto* second = c.getBodyAt(1);
+    const int body2 = second ? bodyIndex(second) : -1;
+    if (body1 < 0 || (second && body2 < 0)) return false;
+    sink = RowSink{&rows, body1, body2, c.getSolveType(), false, &slots};
+    return true;
+  }
+
+  std::size_t first_ = 0;
+  std::vector<Constraint*> owners_;     ///< per row written, from first_ on
+  std::vector<double*> slots_;          ///< per row written
+  std::vector<double*> projectionSlots_;
+  std::unordered_map<const double*, Prediction> predicted_;
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SIM_CONSTRAINT_ROWS_HPP
+// --- end spook/sim/constraint_rows.hpp ---
 // --- begin spook/sim/contact_rows.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_SIM_CONTACT_ROWS_HPP
 #define SPOOK_SINGLE_SPOOK_SIM_CONTACT_ROWS_HPP
@@ -17828,6 +17979,7 @@ void stopAtFirstContact(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -18000,7 +18152,7 @@ namespace spook::detail {
 /// Partitions the rows into islands (dynamic bodies connected through rows;
 /// static and kinematic bodies do not join islands), turns each island into
 /// an IslandProblem for step h, lets `solver` solve it, and writes the
-/// impulses back to the rows' owners and the velocity changes to `bodies`
+/// impulses to the array beside the rows and the velocity changes to `bodies`
 /// (freeVelocity becomes v⁺). The bodies of an island whose impulses came
 /// out non-finite are listed in getNonFiniteBodies().
 class IslandStepper {
@@ -18037,8 +18189,6 @@ class IslandStepper {
         e.diagonal = mobility + e.sigma;
         e.lower = -std::numeric_limits<double>::infinity();
         e.upper = std::numeric_limits<double>::infinity();
-        e.impulse = 0.0;
-        e.guess = 0.0;
       }
       solver.project(problem_, statistics);
       addToBodies(bodies, &SolverBody::displacement);
@@ -18049,15 +18199,24 @@ class IslandStepper {
   /// impulses the last solve() dropped as non-finite.
   [[nodiscard]] const std::vector<int>& getNonFiniteBodies() const { return nonFiniteBodies_; }
 
-  void solve(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, Solver& solver,
-             SolverStatistics& statistics) {
+  /// `impulses` (N·s, one per row): each row's last impulse in (the warm
+  /// start and the direct solver's first guess), the solved one out; rows
+  /// that join no island (between static bodies) keep theirs.
+  void solve(const std::vector<Row>& rows, std::vector<double>& impulses, std::vector<SolverBody>& bodies, double h,
+             Solver& solver, SolverStatistics& statistics) {
     partition(rows, bodies);
     nonFiniteBodies_.clear();
     for (const std::vector<int>& island : islands_) {
-      buildProblem(rows, bodies, island, h, solver.getEnableWarmStarting());
+      buildProblem(rows, bodies, island, h);
+      const bool warmStart = solver.getEnableWarmStarting();
+      for (std::size_t k = 0; k < island.size(); ++k) {
+        IslandProblem::Entry& e = problem_.rows[k];
+        e.guess = std::clamp(impulses[static_cast<std::size_t>(island[k])], e.lower, e.upper);
+        e.impulse = warmStart ? e.guess : std::clamp(0.0, e.lower, e.upper);
+      }
       if (!solver.solve(problem_, statistics))
         nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
-      for (std::size_t k = 0; k < island.size(); ++k) *rows[static_cast<std::size_t>(island[k])].impulse = problem_.rows[k].impulse;
+      for (std::size_t k = 0; k < island.size(); ++k) impulses[static_cast<std::size_t>(island[k])] = problem_.rows[k].impulse;
       addToBodies(bodies, &SolverBody::freeVelocity);
     }
   }
@@ -18105,8 +18264,9 @@ class IslandStepper {
     }
   }
 
+  // The island's entries, impulses and guesses zero.
   void buildProblem(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, const std::vector<int>& island,
-                    double h, bool warmStart = false) {
+                    double h) {
     local_.resize(bodies.size(), -1);
     islandBodies_.clear();
     auto localIndex = [&](int body) {
@@ -18158,8 +18318,8 @@ class IslandStepper {
       e.diagonal = mobility + e.sigma;
       e.lower = r.lower * h;
       e.upper = r.upper * h;
-      e.guess = std::clamp(*r.impulse, e.lower, e.upper);
-      e.impulse = warmStart ? e.guess : std::clamp(0.0, e.lower, e.upper);
+      e.guess = 0.0;
+      e.impulse = 0.0;
       e.solveType = r.solveType;
       e.constraint = localRow(r.constraint);
       e.normal = localRow(r.frictionNormal);
@@ -18208,7 +18368,9 @@ class IslandStepper {
 namespace spook::detail {
 
 /// Turns the solvable contact points into rows (PHYSICS.md §1.4) and reads
-/// their forces back. Per point: a unilateral normal row on the gap
+/// their forces back, as a row producer does (sim/step_extension.hpp): it
+/// appends its rows with their last impulses and reads its own impulses
+/// back after the solve. Per point: a unilateral normal row on the gap
 /// g = adhesive overlap − depth with compliance 1/E and the contact
 /// material's damping (0 ≤ Λn, or down to −adhesive force), and two tangent
 /// velocity rows that drive the slip to the surface velocities' difference,
@@ -18227,12 +18389,8 @@ class ContactRows {
   template <class BodyIndex>
   void build(std::vector<GeometryContactT<S>>& contacts, const MaterialManagerT<S>& materials,
              const GravityFieldT<S>& gravity, BodyIndex bodyIndex, const std::vector<SolverBody>& bodies, double h,
-             const ContactSettings& settings, std::vector<Row>& rows) {
+             const ContactSettings& settings, std::vector<Row>& rows, std::vector<double>& impulses) {
     points_.clear();
-    std::size_t count = 0;
-    for (const auto& c : contacts)
-      if (solvable(c)) count += c.getNumEnabledPoints();
-    impulses_.assign(3 * count, 0.0);
     std::unordered_map<PairKey, double, PointerPairHash> lastForce;
     lastForce.swap(pairForce_);
     std::unordered_map<PairKey, std::vector<Remembered>, PointerPairHash> last;
@@ -18275,7 +18433,7 @@ class ContactRows {
           const Vec6d& v = free ? b.freeVelocity : b.velocity;
           return v.head<3>() + v.tail<3>().cross(r);
         };
-        const auto makeRow = [&](const Eigen::Vector3d& direction, double* impulse) {
+        const auto makeRow = [&](const Eigen::Vector3d& direction) {
           Row row;
           row.body1 = index[0];
           row.body2 = index[1];
@@ -18284,7 +18442,6 @@ class ContactRows {
           row.arm1 = r1;
           row.arm2 = r2;
           row.solveType = solveType;
-          row.impulse = impulse;
           return row;
         };
 
@@ -18292,10 +18449,8 @@ class ContactRows {
         const Eigen::Vector3d lastForceOfPoint =
             lastPoints == last.end() ? Eigen::Vector3d::Zero()
                                      : continuedForce(lastPoints->second, local, settings.persistenceDistance);
-        double* impulse = &impulses_[3 * points_.size()];
-        impulse[0] = lastForceOfPoint.dot(n) * h;
         const int normalIndex = static_cast<int>(rows.size());
-        Row normal = makeRow(n, impulse);
+        Row normal = makeRow(n);
         normal.lower = -double(p.adhesiveForce);
         const double approach = n.dot(velocityOf(1, r2, false) - velocityOf(0, r1, false));
         if (p.restitution > S(0) && approach < -settings.restitutionThreshold) {
@@ -18310,13 +18465,13 @@ class ContactRows {
           normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
         }
         rows.push_back(normal);
+        impulses.push_back(lastForceOfPoint.dot(n) * h);
 
         const Eigen::Vector3d slip = velocityOf(1, r2, true) + surface[1] - velocityOf(0, r1, true) - surface[0];
         const auto [t1, t2] = tangents(n, slip, model);
         const Eigen::Vector3d tangent[2] = {t1, t2};
         for (int k = 0; k < 2; ++k) {
-          impulse[1 + k] = lastForceOfPoint.dot(tangent[k]) * h;
-          Row row = makeRow(tangent[k], impulse + 1 + k);
+          Row row = makeRow(tangent[k]);
           row.holonomic = false;
           row.speed = (surface[0] - surface[1]).dot(tangent[k]);
           row.compliance = double(p.surfaceViscosity[k]);
@@ -18328,19 +18483,21 @@ class ContactRows {
           row.frictionCoefficient = mu;
           row.frictionBound = bound;
           rows.push_back(row);
+          impulses.push_back(lastForceOfPoint.dot(tangent[k]) * h);
         }
         points_.push_back({&point, pairKey(contact), local, n, t1, t2});
       }
     }
   }
 
-  /// Writes each point's force (on the second geometry's body) and keeps the
+  /// From the solved impulses of the rows build() wrote (in their order):
+  /// writes each point's force (on the second geometry's body) and keeps the
   /// normal force of each pair for the next step's box friction and each
   /// point's force for its continuation.
-  void readBack(double h) {
+  void readBack(std::span<const double> impulses, double h) {
     for (std::size_t i = 0; i < points_.size(); ++i) {
       const PointRows& p = points_[i];
-      const double* impulse = &impulses_[3 * i];
+      const double* impulse = &impulses[3 * i];
       const Eigen::Vector3d force = (impulse[0] * p.normal + impulse[1] * p.t1 + impulse[2] * p.t2) / h;
       p.point->force = force.template cast<S>();
       p.point->normalForce = S(impulse[0] / h);
@@ -18413,7 +18570,6 @@ class ContactRows {
     return {t1, n.cross(t1)};
   }
 
-  std::vector<double> impulses_;
   std::vector<PointRows> points_;
   std::unordered_map<PairKey, double, PointerPairHash> pairForce_;
   std::unordered_map<PairKey, std::vector<Remembered>, PointerPairHash> remembered_;
@@ -18462,9 +18618,9 @@ template <Scalar S>
 void SimulationT<S>::integrate(S h) {
   const StepContext step = beginExtensions(double(h));  // stores and producers may add or remove bodies
   gatherSolverBodies(step);  // v, v* = v + hM⁻¹f, M⁻¹: rigid bodies, then each store's
-  gatherRows(step);          // joints, contacts, then each producer's rows
+  gatherRows(step);          // joints, contacts, then each producer's rows, with their last impulses
   solveRows(step);           // islands under the solver policy; geometric stiffness
-  readBackImpulses(step);    // joint forces, contact forces and persistence, producers
+  readBackImpulses(step);    // joint forces and predictions, contact forces and persistence, producers
   moveBodies(step);          // positions from v⁺
   projectRows(step);         // post-stabilization of the joints and producers' projection rows
 }
@@ -18534,28 +18690,30 @@ class GeometricStiffness {
   static constexpr int kMaxSolves = 4;
 
   /// Augments `bodies` (inverse inertia, free angular velocity) from the
-  /// rows' impulses, for a step of length h, and keeps what it changed for
+  /// rows' impulses (one per row, N·s), for a step of length h, and keeps what it changed for
   /// refresh().
-  void apply(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
+  void apply(const std::vector<Row>& rows, const std::vector<double>& impulses, std::vector<SolverBody>& bodies, double h,
+             double threshold) {
     freeVelocity_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) freeVelocity_[i] = bodies[i].freeVelocity;
-    compute(rows, bodies, h, threshold, added_);
+    compute(rows, impulses, bodies, h, threshold, added_);
     augment(bodies);
-    keepImpulses(rows);
+    keepImpulses(impulses);
   }
 
   /// After a solve of the bodies apply() augmented: whether the stiffness
-  /// of the impulses now in the rows exceeds the one applied by more than
+  /// of the rows' impulses now exceeds the one applied by more than
   /// kRefreshTolerance for some body; if so, `bodies` are augmented afresh
   /// with it, to be solved again.
-  bool refresh(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
-    if (added_.size() != bodies.size() || used_.size() != rows.size() || !mayHaveChanged(rows, bodies, h)) return false;
+  bool refresh(const std::vector<Row>& rows, const std::vector<double>& impulses, std::vector<SolverBody>& bodies, double h,
+               double threshold) {
+    if (added_.size() != bodies.size() || used_.size() != rows.size() || !mayHaveChanged(rows, impulses, bodies, h)) return false;
     // The inverse inertia each body was solved with; the fresh stiffness is
     // computed on the bodies' own inertia.
     solvedWith_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) solvedWith_[i] = bodies[i].inverseInertia;
     swapOriginalInertia(bodies);
-    compute(rows, bodies, h, threshold, fresh_);
+    compute(rows, impulses, bodies, h, threshold, fresh_);
     bool changed = false;
     for (std::size_t i = 0; i < bodies.size() && !changed; ++i) {
       const Mat3d change = fresh_[i] - added_[i];
@@ -18576,7 +18734,7 @@ class GeometricStiffness {
     // the free velocities), augmented afresh.
     for (std::size_t i = 0; i < bodies.size(); ++i) bodies[i].freeVelocity = freeVelocity_[i];
     std::swap(added_, fresh_);
-    keepImpulses(rows);
+    keepImpulses(impulses);
     augment(bodies);
     return true;
   }
@@ -18597,10 +18755,7 @@ class GeometricStiffness {
   }
 
  private:
-  void keepImpulses(const std::vector<Row>& rows) {
-    used_.resize(rows.size());
-    for (std::size_t k = 0; k < rows.size(); ++k) used_[k] = *rows[k].impulse;
-  }
+  void keepImpulses(const std::vector<double>& impulses) { used_ = impulses; }
 
   /// A cheap gate before refresh()'s test: the stiffness of the change of
   /// each row's force, h²Σ|Δf||J||r|, against ‖(I + h²K̃)⁻¹‖ in Frobenius
@@ -18608,11 +18763,12 @@ class GeometricStiffness {
   /// part shrinks a change); with a threshold the mode weights (1 − ρ₀/ρ)
   /// can make a small change of force a larger change of K̃, so it is a
   /// heuristic there, one that errs on the side of the last solve.
-  bool mayHaveChanged(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, double h) {
+  bool mayHaveChanged(const std::vector<Row>& rows, const std::vector<double>& impulses, const std::vector<SolverBody>& bodies,
+                      double h) {
     change_.assign(bodies.size(), 0.0);
     for (std::size_t k = 0; k < rows.size(); ++k) {
       const Row& r = rows[k];
-      const double force = std::abs(*r.impulse - used_[k]) / h;
+      const double force = std::abs(impulses[k] - used_[k]) / h;
       if (force == 0.0) continue;
       if (r.body1 >= 0) change_[std::size_t(r.body1)] += force * r.J1.head<3>().norm() * r.arm1.norm();
       if (r.body2 >= 0) change_[std::size_t(r.body2)] += force * r.J2.head<3>().norm() * r.arm2.norm();
@@ -18624,14 +18780,15 @@ class GeometricStiffness {
 
   /// h²K̃ per body, mode-weighted (class comment), of the rows' impulses
   /// acting on `bodies` (not augmented).
-  void compute(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, double h, double threshold,
-               std::vector<Mat3d>& added) {
+  void compute(const std::vector<Row>& rows, const std::vector<double>& impulses, const std::vector<SolverBody>& bodies,
+               double h, double threshold, std::vector<Mat3d>& added) {
     added.assign(bodies.size(), Mat3d::Zero());
     stiffness_.assign(bodies.size(), Mat3d::Zero());
     heldAt_.assign(bodies.size(), Held{});
     any_ = false;
-    for (const Row& r : rows) {
-      const double force = *r.impulse / h;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const Row& r = rows[k];
+      const double force = impulses[k] / h;
       if (force == 0.0) continue;
       accumulate(r.body1, force * r.J1.head<3>(), r.arm1, bodies);
       accumulate(r.body2, force * r.J2.head<3>(), r.arm2, bodies);
@@ -19038,19 +19195,16 @@ template <Scalar S>
 struct SimulationWorkspace {
   std::vector<SolverBody> solverBodies;
   std::vector<char> frozen;  ///< per body: frozen in this step
+  /// The step's rows: the constraints', the contacts' from firstContactRow
+  /// on, the producers' from firstProducerRow on (producerRowsEnd: where
+  /// each producer's end); one impulse per row (N·s: the last one in, the
+  /// solved one out).
   std::vector<Row> rows;
-  std::vector<ConstraintT<S>*> rowOwners;
-  std::size_t numConstraintRows = 0;  ///< rows holds the constraints' rows, then the contacts'
-  ContactRows<S> contactRows;
-  struct Prediction {
-    double violation = 0.0, rate = 0.0;
-  };
-  std::unordered_map<const double*, Prediction> predicted;
-  /// The row producers' rows: impulses (warm start in, solved out) of the
-  /// rows from firstProducerRow on, and where each producer's rows end.
-  std::vector<double> producerImpulses;
-  std::size_t firstProducerRow = 0;
+  std::vector<double> impulses;
+  std::size_t firstContactRow = 0, firstProducerRow = 0;
   std::vector<std::size_t> producerRowsEnd;
+  ConstraintRows<S> constraintRows;
+  ContactRows<S> contactRows;
   IslandStepper islands;
   GeometricStiffness geometricStiffness;
 };
@@ -19070,7 +19224,7 @@ SimulationT<S>::~SimulationT() {
 
 template <Scalar S>
 void SimulationT<S>::forgetPredictions() {
-  work_->predicted.clear();
+  work_->constraintRows.forgetPredictions();
 }
 
 template <Scalar S>
@@ -19096,12 +19250,12 @@ template <Scalar S>
 void SimulationT<S>::gatherRows(const StepContext& step) {
   auto& w = *work_;
   const double h = step.getTimeStep();
-  collectRows(h);
-  w.numConstraintRows = w.rows.size();
-  w.contactRows.build(
-      space_->getGeometryContacts(), materials_, *gravity_,
-      [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, w.solverBodies, h,
-      contactSettings_, w.rows);
+  w.rows.clear();
+  w.impulses.clear();
+  w.constraintRows.write(constraints_.get(), bodyIndex(), *solver_, h, w.rows, w.impulses);
+  w.firstContactRow = w.rows.size();
+  w.contactRows.build(space_->getGeometryContacts(), materials_, *gravity_, bodyIndex(), w.solverBodies, h,
+                      contactSettings_, w.rows, w.impulses);
   collectProducerRows(step, false);
 }
 
@@ -19111,18 +19265,19 @@ void SimulationT<S>::solveRows(const StepContext& step) {
   const double h = step.getTimeStep();
   const bool stiffness = solver_->getEnableGeometricStiffness() && !w.rows.empty();
   if (stiffness)
-    w.geometricStiffness.apply(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
+    w.geometricStiffness.apply(w.rows, w.impulses, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
   else
     w.geometricStiffness.clear();
   if (w.rows.empty()) return;
-  w.islands.solve(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  w.islands.solve(w.rows, w.impulses, w.solverBodies, h, *solver_, statistics_.solver);
   // Again while the forces just found need more geometric stiffness than
   // the solve had (geometric_stiffness.hpp).
   for (int solves = 1; stiffness && solves < detail::GeometricStiffness::kMaxSolves &&
-                       w.geometricStiffness.refresh(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
+                       w.geometricStiffness.refresh(w.rows, w.impulses, w.solverBodies, h,
+                                                    solver_->getGeometricStiffnessThreshold());
        ++solves) {
     SolverStatistics again;
-    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again);
+    w.islands.solve(w.rows, w.impulses, w.solverBodies, h, *solver_, again);
     statistics_.solver.addResolve(again);
   }
   for (int i : w.islands.getNonFiniteBodies())
@@ -19133,19 +19288,19 @@ template <Scalar S>
 void SimulationT<S>::readBackImpulses(const StepContext& step) {
   auto& w = *work_;
   const double h = step.getTimeStep();
-  readBackForces(h);
-  w.contactRows.readBack(h);
-  for (std::size_t k = 0, begin = w.firstProducerRow; k < producers_.size(); begin = w.producerRowsEnd[k++]) {
-    const std::size_t first = begin - w.firstProducerRow;
-    producers_[k]->readBack(std::span<const double>(w.producerImpulses).subspan(first, w.producerRowsEnd[k] - begin), step);
-  }
+  const std::span<const double> impulses(w.impulses);
+  w.constraintRows.readBack(constraints_.get(), impulses.first(w.firstContactRow),
+                            std::span<const detail::Row>(w.rows).first(w.firstContactRow), w.solverBodies, h,
+                            solver_->getEnablePostStabilization());
+  w.contactRows.readBack(impulses.subspan(w.firstContactRow, w.firstProducerRow - w.firstContactRow), h);
+  for (std::size_t k = 0, begin = w.firstProducerRow; k < producers_.size(); begin = w.producerRowsEnd[k++])
+    producers_[k]->readBack(impulses.subspan(begin, w.producerRowsEnd[k] - begin), step);
 }
 
 template <Scalar S>
 void SimulationT<S>::moveBodies(const StepContext& step) {
   auto& w = *work_;
   const S h = S(step.getTimeStep());
-  predictViolations(step.getTimeStep());
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     Body& body = *bodies_[i];
     if (!w.frozen[i] && !detail::BodyIntegrator<S>::move(body, w.solverBodies[i], h))
@@ -19196,9 +19351,8 @@ template <Scalar S>
 void SimulationT<S>::collectProducerRows(const StepContext& step, bool projection) {
   auto& w = *work_;
   w.firstProducerRow = w.rows.size();
-  w.producerImpulses.clear();
   w.producerRowsEnd.clear();
-  RowWriter writer(w.rows, w.producerImpulses);
+  RowWriter writer(w.rows, w.impulses);
   const int numBodies = int(w.solverBodies.size());
   for (const auto& p : producers_) {
     const std::size_t begin = w.rows.size();
@@ -19210,30 +19364,12 @@ void SimulationT<S>::collectProducerRows(const StepContext& step, bool projectio
       for (int body : {w.rows[i].body1, w.rows[i].body2, w.rows[i].body3})
         if (body < -1 || body >= numBodies) {
           w.rows.resize(w.firstProducerRow);
+          w.impulses.resize(w.firstProducerRow);
           throw detail::makeError("RowProducer", p->getName(), "wrote a row with a body index out of range", body);
         }
     w.producerRowsEnd.push_back(w.rows.size());
   }
-  for (std::size_t i = w.firstProducerRow; i < w.rows.size(); ++i) {
-    w.rows[i].impulse = &w.producerImpulses[i - w.firstProducerRow];
-    w.rows[i].constraint = -1;
-  }
-}
-
-template <Scalar S>
-void SimulationT<S>::predictViolations(double h) {
-  auto& w = *work_;
-  w.predicted.clear();
-  if (!solver_->getEnablePostStabilization()) return;
-  for (std::size_t i = 0; i < w.numConstraintRows; ++i) {
-    const detail::Row& r = w.rows[i];
-    if (!r.holonomic) continue;
-    const auto speed = [&](int body, const detail::Vec6d& J) {
-      return body < 0 ? 0.0 : J.dot(w.solverBodies[static_cast<std::size_t>(body)].freeVelocity);
-    };
-    const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + speed(r.body3, r.J3) + h * r.curvature;
-    w.predicted[r.impulse] = {r.violation + h * rate, rate};
-  }
+  for (std::size_t i = w.firstProducerRow; i < w.rows.size(); ++i) w.rows[i].constraint = -1;
 }
 
 template <Scalar S>
@@ -19241,20 +19377,9 @@ void SimulationT<S>::postStabilize(const StepContext& step) {
   const double h = step.getTimeStep();
   auto& w = *work_;
   w.rows.clear();
-  for (const auto& c : constraints_) {
-    if (!c->getEnable() || !solver_->projects(c->getSolveType())) continue;
-    Body* body1 = c->getBodyAt(0);
-    Body* body2 = c->getBodyAt(1);
-    if (!contains(body1) || (body2 && !contains(body2))) continue;
-    detail::RowSink sink{&w.rows, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
-                         c->getSolveType(), true};
-    detail::ConstraintAccess::addProjectionRows(*c, sink);
-  }
-  // Target: the predicted violation (rows without one, e.g. a lock enabled
-  // by a listener after the solve, are left out).
-  std::erase_if(w.rows, [&](const detail::Row& r) { return !w.predicted.count(r.impulse); });
-  for (detail::Row& r : w.rows) r.speed = w.predicted[r.impulse].violation;
+  w.constraintRows.writeProjectionRows(constraints_.get(), bodyIndex(), *solver_, w.rows);
   if (w.rows.empty() && producers_.empty()) return;
+  w.impulses.assign(w.rows.size(), 0.0);
   w.solverBodies.clear();
   for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
   collectStoreBodies(step);
@@ -19279,48 +19404,6 @@ void SimulationT<S>::freeze(std::size_t i, FreezeReason reason) {
   w.solverBodies[i].freeVelocity.setZero();  // as the rows' predictions (predictViolations) should see it
   if (std::exchange(w.frozen[i], char(1))) return;
   statistics_.frozenBodies.push_back({bodies_[i].get(), reason});
-}
-
-template <Scalar S>
-void SimulationT<S>::collectRows(double h) {
-  auto& w = *work_;
-  w.rows.clear();
-  w.rowOwners.clear();
-  for (const auto& c : constraints_) {
-    if (!c->getEnable()) continue;
-    Body* body1 = c->getBodyAt(0);
-    Body* body2 = c->getBodyAt(1);
-    if (!contains(body1) || (body2 && !contains(body2))) continue;
-    // The second-order terms (Row::curvature, Row::lastRate) need the
-    // projection: without it their error feeds back (the 1:1e6 chain of
-    // test_solvers.cpp diverges).
-    const bool projected = solver_->projects(c->getSolveType());
-    detail::RowSink sink{&w.rows, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
-                         c->getSolveType(), projected};
-    const std::size_t first = w.rows.size();
-    detail::ConstraintAccess::addRows(*c, sink, h);
-    w.rowOwners.resize(w.rows.size(), c.get());
-    for (std::size_t i = first; i < w.rows.size(); ++i) {
-      detail::Row& r = w.rows[i];
-      r.constraint = int(first);
-      if (!projected) {
-        r.curvature = 0.0;
-      } else if (const auto it = w.predicted.find(r.impulse); r.holonomic && it != w.predicted.end()) {
-        r.lastRate = it->second.rate;
-      }
-    }
-  }
-}
-
-template <Scalar S>
-void SimulationT<S>::readBackForces(double h) {
-  auto& w = *work_;
-  for (const auto& c : constraints_)
-    if (c->getEnableComputeForces()) detail::ConstraintAccess::clearWrench(*c);
-  for (std::size_t i = 0; i < w.numConstraintRows; ++i)
-    if (w.rowOwners[i]->getEnableComputeForces())
-      detail::ConstraintAccess::addWrench(*w.rowOwners[i], w.rows[i], *w.rows[i].impulse / h);
-  for (const auto& c : constraints_) detail::ConstraintAccess::afterSolve(*c, h);
 }
 
 #if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)

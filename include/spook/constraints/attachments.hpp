@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <vector>
 
@@ -30,7 +31,10 @@ struct Attachments {
   [[nodiscard]] double speed(const Vec6d& J1, const Vec6d& J2) const { return J1.dot(v1) + J2.dot(v2); }
 };
 
-/// Where a constraint writes its rows this step.
+/// Where a constraint writes its rows this step. Each row names the
+/// constraint's own variable that keeps its impulse (N·s) from step to step
+/// (its slot): the step reads the warm start from it and writes the solved
+/// impulse back to it after the solve.
 struct RowSink {
   std::vector<Row>* rows = nullptr;
   int body1 = -1, body2 = -1;
@@ -38,6 +42,8 @@ struct RowSink {
   /// True when the solver post-stabilizes these rows, which then take their
   /// second-order terms (Row::curvature); otherwise those are dropped.
   bool secondOrder = false;
+  /// Each row's slot, in step with `rows` (none kept when null).
+  std::vector<double*>* slots = nullptr;
 
   Row& add(const Vec6d& J1, const Vec6d& J2, double* impulse) {
     Row& row = rows->emplace_back();
@@ -46,8 +52,28 @@ struct RowSink {
     row.J1 = J1;
     row.J2 = J2;
     row.solveType = solveType;
-    row.impulse = impulse;
+    if (slots) slots->push_back(impulse);
     return row;
+  }
+  /// Rows written so far: the index the next row gets.
+  [[nodiscard]] std::size_t size() const { return rows->size(); }
+  /// The slot of row i (nullptr when slots are not kept).
+  [[nodiscard]] const double* slot(std::size_t i) const { return slots ? (*slots)[i] : nullptr; }
+  /// Keeps the rows from `first` on for which keep(row, i − first, slot)
+  /// holds (it may adjust the row), in order, with their slots.
+  template <class Keep>
+  void keepRows(std::size_t first, Keep&& keep) {
+    std::size_t out = first;
+    for (std::size_t i = first; i < rows->size(); ++i) {
+      if (!keep((*rows)[i], i - first, slot(i))) continue;
+      if (out != i) {
+        (*rows)[out] = (*rows)[i];
+        if (slots) (*slots)[out] = (*slots)[i];
+      }
+      ++out;
+    }
+    rows->resize(out);
+    if (slots) slots->resize(out);
   }
 };
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -22,7 +23,9 @@
 namespace spook::detail {
 
 /// Turns the solvable contact points into rows (PHYSICS.md §1.4) and reads
-/// their forces back. Per point: a unilateral normal row on the gap
+/// their forces back, as a row producer does (sim/step_extension.hpp): it
+/// appends its rows with their last impulses and reads its own impulses
+/// back after the solve. Per point: a unilateral normal row on the gap
 /// g = adhesive overlap − depth with compliance 1/E and the contact
 /// material's damping (0 ≤ Λn, or down to −adhesive force), and two tangent
 /// velocity rows that drive the slip to the surface velocities' difference,
@@ -41,12 +44,8 @@ class ContactRows {
   template <class BodyIndex>
   void build(std::vector<GeometryContactT<S>>& contacts, const MaterialManagerT<S>& materials,
              const GravityFieldT<S>& gravity, BodyIndex bodyIndex, const std::vector<SolverBody>& bodies, double h,
-             const ContactSettings& settings, std::vector<Row>& rows) {
+             const ContactSettings& settings, std::vector<Row>& rows, std::vector<double>& impulses) {
     points_.clear();
-    std::size_t count = 0;
-    for (const auto& c : contacts)
-      if (solvable(c)) count += c.getNumEnabledPoints();
-    impulses_.assign(3 * count, 0.0);
     std::unordered_map<PairKey, double, PointerPairHash> lastForce;
     lastForce.swap(pairForce_);
     std::unordered_map<PairKey, std::vector<Remembered>, PointerPairHash> last;
@@ -89,7 +88,7 @@ class ContactRows {
           const Vec6d& v = free ? b.freeVelocity : b.velocity;
           return v.head<3>() + v.tail<3>().cross(r);
         };
-        const auto makeRow = [&](const Eigen::Vector3d& direction, double* impulse) {
+        const auto makeRow = [&](const Eigen::Vector3d& direction) {
           Row row;
           row.body1 = index[0];
           row.body2 = index[1];
@@ -98,7 +97,6 @@ class ContactRows {
           row.arm1 = r1;
           row.arm2 = r2;
           row.solveType = solveType;
-          row.impulse = impulse;
           return row;
         };
 
@@ -106,10 +104,8 @@ class ContactRows {
         const Eigen::Vector3d lastForceOfPoint =
             lastPoints == last.end() ? Eigen::Vector3d::Zero()
                                      : continuedForce(lastPoints->second, local, settings.persistenceDistance);
-        double* impulse = &impulses_[3 * points_.size()];
-        impulse[0] = lastForceOfPoint.dot(n) * h;
         const int normalIndex = static_cast<int>(rows.size());
-        Row normal = makeRow(n, impulse);
+        Row normal = makeRow(n);
         normal.lower = -double(p.adhesiveForce);
         const double approach = n.dot(velocityOf(1, r2, false) - velocityOf(0, r1, false));
         if (p.restitution > S(0) && approach < -settings.restitutionThreshold) {
@@ -124,13 +120,13 @@ class ContactRows {
           normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
         }
         rows.push_back(normal);
+        impulses.push_back(lastForceOfPoint.dot(n) * h);
 
         const Eigen::Vector3d slip = velocityOf(1, r2, true) + surface[1] - velocityOf(0, r1, true) - surface[0];
         const auto [t1, t2] = tangents(n, slip, model);
         const Eigen::Vector3d tangent[2] = {t1, t2};
         for (int k = 0; k < 2; ++k) {
-          impulse[1 + k] = lastForceOfPoint.dot(tangent[k]) * h;
-          Row row = makeRow(tangent[k], impulse + 1 + k);
+          Row row = makeRow(tangent[k]);
           row.holonomic = false;
           row.speed = (surface[0] - surface[1]).dot(tangent[k]);
           row.compliance = double(p.surfaceViscosity[k]);
@@ -142,19 +138,21 @@ class ContactRows {
           row.frictionCoefficient = mu;
           row.frictionBound = bound;
           rows.push_back(row);
+          impulses.push_back(lastForceOfPoint.dot(tangent[k]) * h);
         }
         points_.push_back({&point, pairKey(contact), local, n, t1, t2});
       }
     }
   }
 
-  /// Writes each point's force (on the second geometry's body) and keeps the
+  /// From the solved impulses of the rows build() wrote (in their order):
+  /// writes each point's force (on the second geometry's body) and keeps the
   /// normal force of each pair for the next step's box friction and each
   /// point's force for its continuation.
-  void readBack(double h) {
+  void readBack(std::span<const double> impulses, double h) {
     for (std::size_t i = 0; i < points_.size(); ++i) {
       const PointRows& p = points_[i];
-      const double* impulse = &impulses_[3 * i];
+      const double* impulse = &impulses[3 * i];
       const Eigen::Vector3d force = (impulse[0] * p.normal + impulse[1] * p.t1 + impulse[2] * p.t2) / h;
       p.point->force = force.template cast<S>();
       p.point->normalForce = S(impulse[0] / h);
@@ -227,7 +225,6 @@ class ContactRows {
     return {t1, n.cross(t1)};
   }
 
-  std::vector<double> impulses_;
   std::vector<PointRows> points_;
   std::unordered_map<PairKey, double, PointerPairHash> pairForce_;
   std::unordered_map<PairKey, std::vector<Remembered>, PointerPairHash> remembered_;

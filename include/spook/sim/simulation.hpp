@@ -302,8 +302,13 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   using Membership = detail::SimulationMembership;
 
   explicit SimulationT(ref_ptr<SpaceT<S>> space);
-  // Predictions are keyed by row storage that a later constraint may reuse.
+  // Post-stabilization's predictions are keyed by row storage that a later
+  // constraint may reuse (sim/constraint_rows.hpp).
   void forgetPredictions();
+  // A body's solver index in this step, −1 when it is not in the simulation.
+  [[nodiscard]] auto bodyIndex() const {
+    return [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; };
+  }
 
   // Pairs with an explicit contact material reduce their points as it says;
   // jointed bodies do not collide unless their constraint asks (jointed_pairs.hpp).
@@ -334,13 +339,6 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   // enabled constraints, islands solved by the policy, then the poses.
   void integrate(S h);
 
-  // What each holonomic row's linearization makes of the step: the rate
-  // G v⁺ + hκ at which it moves g and the violation g + h·rate it should end
-  // with, which post-stabilization restores (it removes only the
-  // higher-order drift of the step, not the rows' compliant or damped
-  // motion). The rate is the next step's b' term (Row::lastRate).
-  void predictViolations(double h);
-
   // Projects the direct solver's equality rows back onto their manifold
   // (Solver::getEnablePostStabilization).
   void postStabilize(const StepContext& step);
@@ -348,8 +346,6 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   // Keeps body i as it was before the step (pose kept, velocities zeroed)
   // and reports it, once per step.
   void freeze(std::size_t i, FreezeReason reason);
-
-  void collectRows(double h);
 
   // The stages of a step (their order: sim/step_stages.hpp).
   void collide();
@@ -364,8 +360,6 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   StepContext beginExtensions(double h);
   void collectStoreBodies(const StepContext& step);
   void collectProducerRows(const StepContext& step, bool projection);
-
-  void readBackForces(double h);
 
   // Calls the listeners selected by `stage`, highest priority first, over a
   // snapshot, so that callbacks may add and remove objects freely.

@@ -8,11 +8,11 @@
 #include <cstddef>
 #include <memory>
 #include <span>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include <spook/collide/continuous.hpp>
+#include <spook/sim/constraint_rows.hpp>
 #include <spook/sim/contact_rows.hpp>
 #include <spook/sim/simulation.hpp>
 #include <spook/sim/step_stages.hpp>
@@ -32,19 +32,16 @@ template <Scalar S>
 struct SimulationWorkspace {
   std::vector<SolverBody> solverBodies;
   std::vector<char> frozen;  ///< per body: frozen in this step
+  /// The step's rows: the constraints', the contacts' from firstContactRow
+  /// on, the producers' from firstProducerRow on (producerRowsEnd: where
+  /// each producer's end); one impulse per row (N·s: the last one in, the
+  /// solved one out).
   std::vector<Row> rows;
-  std::vector<ConstraintT<S>*> rowOwners;
-  std::size_t numConstraintRows = 0;  ///< rows holds the constraints' rows, then the contacts'
-  ContactRows<S> contactRows;
-  struct Prediction {
-    double violation = 0.0, rate = 0.0;
-  };
-  std::unordered_map<const double*, Prediction> predicted;
-  /// The row producers' rows: impulses (warm start in, solved out) of the
-  /// rows from firstProducerRow on, and where each producer's rows end.
-  std::vector<double> producerImpulses;
-  std::size_t firstProducerRow = 0;
+  std::vector<double> impulses;
+  std::size_t firstContactRow = 0, firstProducerRow = 0;
   std::vector<std::size_t> producerRowsEnd;
+  ConstraintRows<S> constraintRows;
+  ContactRows<S> contactRows;
   IslandStepper islands;
   GeometricStiffness geometricStiffness;
 };
@@ -64,7 +61,7 @@ SimulationT<S>::~SimulationT() {
 
 template <Scalar S>
 void SimulationT<S>::forgetPredictions() {
-  work_->predicted.clear();
+  work_->constraintRows.forgetPredictions();
 }
 
 template <Scalar S>
@@ -90,12 +87,12 @@ template <Scalar S>
 void SimulationT<S>::gatherRows(const StepContext& step) {
   auto& w = *work_;
   const double h = step.getTimeStep();
-  collectRows(h);
-  w.numConstraintRows = w.rows.size();
-  w.contactRows.build(
-      space_->getGeometryContacts(), materials_, *gravity_,
-      [this](const Body* body) { return contains(body) ? int(Membership::indexOf(*body)) : -1; }, w.solverBodies, h,
-      contactSettings_, w.rows);
+  w.rows.clear();
+  w.impulses.clear();
+  w.constraintRows.write(constraints_.get(), bodyIndex(), *solver_, h, w.rows, w.impulses);
+  w.firstContactRow = w.rows.size();
+  w.contactRows.build(space_->getGeometryContacts(), materials_, *gravity_, bodyIndex(), w.solverBodies, h,
+                      contactSettings_, w.rows, w.impulses);
   collectProducerRows(step, false);
 }
 
@@ -105,18 +102,19 @@ void SimulationT<S>::solveRows(const StepContext& step) {
   const double h = step.getTimeStep();
   const bool stiffness = solver_->getEnableGeometricStiffness() && !w.rows.empty();
   if (stiffness)
-    w.geometricStiffness.apply(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
+    w.geometricStiffness.apply(w.rows, w.impulses, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
   else
     w.geometricStiffness.clear();
   if (w.rows.empty()) return;
-  w.islands.solve(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  w.islands.solve(w.rows, w.impulses, w.solverBodies, h, *solver_, statistics_.solver);
   // Again while the forces just found need more geometric stiffness than
   // the solve had (geometric_stiffness.hpp).
   for (int solves = 1; stiffness && solves < detail::GeometricStiffness::kMaxSolves &&
-                       w.geometricStiffness.refresh(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
+                       w.geometricStiffness.refresh(w.rows, w.impulses, w.solverBodies, h,
+                                                    solver_->getGeometricStiffnessThreshold());
        ++solves) {
     SolverStatistics again;
-    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again);
+    w.islands.solve(w.rows, w.impulses, w.solverBodies, h, *solver_, again);
     statistics_.solver.addResolve(again);
   }
   for (int i : w.islands.getNonFiniteBodies())
@@ -127,19 +125,19 @@ template <Scalar S>
 void SimulationT<S>::readBackImpulses(const StepContext& step) {
   auto& w = *work_;
   const double h = step.getTimeStep();
-  readBackForces(h);
-  w.contactRows.readBack(h);
-  for (std::size_t k = 0, begin = w.firstProducerRow; k < producers_.size(); begin = w.producerRowsEnd[k++]) {
-    const std::size_t first = begin - w.firstProducerRow;
-    producers_[k]->readBack(std::span<const double>(w.producerImpulses).subspan(first, w.producerRowsEnd[k] - begin), step);
-  }
+  const std::span<const double> impulses(w.impulses);
+  w.constraintRows.readBack(constraints_.get(), impulses.first(w.firstContactRow),
+                            std::span<const detail::Row>(w.rows).first(w.firstContactRow), w.solverBodies, h,
+                            solver_->getEnablePostStabilization());
+  w.contactRows.readBack(impulses.subspan(w.firstContactRow, w.firstProducerRow - w.firstContactRow), h);
+  for (std::size_t k = 0, begin = w.firstProducerRow; k < producers_.size(); begin = w.producerRowsEnd[k++])
+    producers_[k]->readBack(impulses.subspan(begin, w.producerRowsEnd[k] - begin), step);
 }
 
 template <Scalar S>
 void SimulationT<S>::moveBodies(const StepContext& step) {
   auto& w = *work_;
   const S h = S(step.getTimeStep());
-  predictViolations(step.getTimeStep());
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     Body& body = *bodies_[i];
     if (!w.frozen[i] && !detail::BodyIntegrator<S>::move(body, w.solverBodies[i], h))
@@ -190,9 +188,8 @@ template <Scalar S>
 void SimulationT<S>::collectProducerRows(const StepContext& step, bool projection) {
   auto& w = *work_;
   w.firstProducerRow = w.rows.size();
-  w.producerImpulses.clear();
   w.producerRowsEnd.clear();
-  RowWriter writer(w.rows, w.producerImpulses);
+  RowWriter writer(w.rows, w.impulses);
   const int numBodies = int(w.solverBodies.size());
   for (const auto& p : producers_) {
     const std::size_t begin = w.rows.size();
@@ -204,30 +201,12 @@ void SimulationT<S>::collectProducerRows(const StepContext& step, bool projectio
       for (int body : {w.rows[i].body1, w.rows[i].body2, w.rows[i].body3})
         if (body < -1 || body >= numBodies) {
           w.rows.resize(w.firstProducerRow);
+          w.impulses.resize(w.firstProducerRow);
           throw detail::makeError("RowProducer", p->getName(), "wrote a row with a body index out of range", body);
         }
     w.producerRowsEnd.push_back(w.rows.size());
   }
-  for (std::size_t i = w.firstProducerRow; i < w.rows.size(); ++i) {
-    w.rows[i].impulse = &w.producerImpulses[i - w.firstProducerRow];
-    w.rows[i].constraint = -1;
-  }
-}
-
-template <Scalar S>
-void SimulationT<S>::predictViolations(double h) {
-  auto& w = *work_;
-  w.predicted.clear();
-  if (!solver_->getEnablePostStabilization()) return;
-  for (std::size_t i = 0; i < w.numConstraintRows; ++i) {
-    const detail::Row& r = w.rows[i];
-    if (!r.holonomic) continue;
-    const auto speed = [&](int body, const detail::Vec6d& J) {
-      return body < 0 ? 0.0 : J.dot(w.solverBodies[static_cast<std::size_t>(body)].freeVelocity);
-    };
-    const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + speed(r.body3, r.J3) + h * r.curvature;
-    w.predicted[r.impulse] = {r.violation + h * rate, rate};
-  }
+  for (std::size_t i = w.firstProducerRow; i < w.rows.size(); ++i) w.rows[i].constraint = -1;
 }
 
 template <Scalar S>
@@ -235,20 +214,9 @@ void SimulationT<S>::postStabilize(const StepContext& step) {
   const double h = step.getTimeStep();
   auto& w = *work_;
   w.rows.clear();
-  for (const auto& c : constraints_) {
-    if (!c->getEnable() || !solver_->projects(c->getSolveType())) continue;
-    Body* body1 = c->getBodyAt(0);
-    Body* body2 = c->getBodyAt(1);
-    if (!contains(body1) || (body2 && !contains(body2))) continue;
-    detail::RowSink sink{&w.rows, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
-                         c->getSolveType(), true};
-    detail::ConstraintAccess::addProjectionRows(*c, sink);
-  }
-  // Target: the predicted violation (rows without one, e.g. a lock enabled
-  // by a listener after the solve, are left out).
-  std::erase_if(w.rows, [&](const detail::Row& r) { return !w.predicted.count(r.impulse); });
-  for (detail::Row& r : w.rows) r.speed = w.predicted[r.impulse].violation;
+  w.constraintRows.writeProjectionRows(constraints_.get(), bodyIndex(), *solver_, w.rows);
   if (w.rows.empty() && producers_.empty()) return;
+  w.impulses.assign(w.rows.size(), 0.0);
   w.solverBodies.clear();
   for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
   collectStoreBodies(step);
@@ -273,48 +241,6 @@ void SimulationT<S>::freeze(std::size_t i, FreezeReason reason) {
   w.solverBodies[i].freeVelocity.setZero();  // as the rows' predictions (predictViolations) should see it
   if (std::exchange(w.frozen[i], char(1))) return;
   statistics_.frozenBodies.push_back({bodies_[i].get(), reason});
-}
-
-template <Scalar S>
-void SimulationT<S>::collectRows(double h) {
-  auto& w = *work_;
-  w.rows.clear();
-  w.rowOwners.clear();
-  for (const auto& c : constraints_) {
-    if (!c->getEnable()) continue;
-    Body* body1 = c->getBodyAt(0);
-    Body* body2 = c->getBodyAt(1);
-    if (!contains(body1) || (body2 && !contains(body2))) continue;
-    // The second-order terms (Row::curvature, Row::lastRate) need the
-    // projection: without it their error feeds back (the 1:1e6 chain of
-    // test_solvers.cpp diverges).
-    const bool projected = solver_->projects(c->getSolveType());
-    detail::RowSink sink{&w.rows, int(Membership::indexOf(*body1)), body2 ? int(Membership::indexOf(*body2)) : -1,
-                         c->getSolveType(), projected};
-    const std::size_t first = w.rows.size();
-    detail::ConstraintAccess::addRows(*c, sink, h);
-    w.rowOwners.resize(w.rows.size(), c.get());
-    for (std::size_t i = first; i < w.rows.size(); ++i) {
-      detail::Row& r = w.rows[i];
-      r.constraint = int(first);
-      if (!projected) {
-        r.curvature = 0.0;
-      } else if (const auto it = w.predicted.find(r.impulse); r.holonomic && it != w.predicted.end()) {
-        r.lastRate = it->second.rate;
-      }
-    }
-  }
-}
-
-template <Scalar S>
-void SimulationT<S>::readBackForces(double h) {
-  auto& w = *work_;
-  for (const auto& c : constraints_)
-    if (c->getEnableComputeForces()) detail::ConstraintAccess::clearWrench(*c);
-  for (std::size_t i = 0; i < w.numConstraintRows; ++i)
-    if (w.rowOwners[i]->getEnableComputeForces())
-      detail::ConstraintAccess::addWrench(*w.rowOwners[i], w.rows[i], *w.rows[i].impulse / h);
-  for (const auto& c : constraints_) detail::ConstraintAccess::afterSolve(*c, h);
 }
 
 #if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)

@@ -62,28 +62,30 @@ class GeometricStiffness {
   static constexpr int kMaxSolves = 4;
 
   /// Augments `bodies` (inverse inertia, free angular velocity) from the
-  /// rows' impulses, for a step of length h, and keeps what it changed for
+  /// rows' impulses (one per row, N·s), for a step of length h, and keeps what it changed for
   /// refresh().
-  void apply(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
+  void apply(const std::vector<Row>& rows, const std::vector<double>& impulses, std::vector<SolverBody>& bodies, double h,
+             double threshold) {
     freeVelocity_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) freeVelocity_[i] = bodies[i].freeVelocity;
-    compute(rows, bodies, h, threshold, added_);
+    compute(rows, impulses, bodies, h, threshold, added_);
     augment(bodies);
-    keepImpulses(rows);
+    keepImpulses(impulses);
   }
 
   /// After a solve of the bodies apply() augmented: whether the stiffness
-  /// of the impulses now in the rows exceeds the one applied by more than
+  /// of the rows' impulses now exceeds the one applied by more than
   /// kRefreshTolerance for some body; if so, `bodies` are augmented afresh
   /// with it, to be solved again.
-  bool refresh(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
-    if (added_.size() != bodies.size() || used_.size() != rows.size() || !mayHaveChanged(rows, bodies, h)) return false;
+  bool refresh(const std::vector<Row>& rows, const std::vector<double>& impulses, std::vector<SolverBody>& bodies, double h,
+               double threshold) {
+    if (added_.size() != bodies.size() || used_.size() != rows.size() || !mayHaveChanged(rows, impulses, bodies, h)) return false;
     // The inverse inertia each body was solved with; the fresh stiffness is
     // computed on the bodies' own inertia.
     solvedWith_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) solvedWith_[i] = bodies[i].inverseInertia;
     swapOriginalInertia(bodies);
-    compute(rows, bodies, h, threshold, fresh_);
+    compute(rows, impulses, bodies, h, threshold, fresh_);
     bool changed = false;
     for (std::size_t i = 0; i < bodies.size() && !changed; ++i) {
       const Mat3d change = fresh_[i] - added_[i];
@@ -104,7 +106,7 @@ class GeometricStiffness {
     // the free velocities), augmented afresh.
     for (std::size_t i = 0; i < bodies.size(); ++i) bodies[i].freeVelocity = freeVelocity_[i];
     std::swap(added_, fresh_);
-    keepImpulses(rows);
+    keepImpulses(impulses);
     augment(bodies);
     return true;
   }
@@ -125,10 +127,7 @@ class GeometricStiffness {
   }
 
  private:
-  void keepImpulses(const std::vector<Row>& rows) {
-    used_.resize(rows.size());
-    for (std::size_t k = 0; k < rows.size(); ++k) used_[k] = *rows[k].impulse;
-  }
+  void keepImpulses(const std::vector<double>& impulses) { used_ = impulses; }
 
   /// A cheap gate before refresh()'s test: the stiffness of the change of
   /// each row's force, h²Σ|Δf||J||r|, against ‖(I + h²K̃)⁻¹‖ in Frobenius
@@ -136,11 +135,12 @@ class GeometricStiffness {
   /// part shrinks a change); with a threshold the mode weights (1 − ρ₀/ρ)
   /// can make a small change of force a larger change of K̃, so it is a
   /// heuristic there, one that errs on the side of the last solve.
-  bool mayHaveChanged(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, double h) {
+  bool mayHaveChanged(const std::vector<Row>& rows, const std::vector<double>& impulses, const std::vector<SolverBody>& bodies,
+                      double h) {
     change_.assign(bodies.size(), 0.0);
     for (std::size_t k = 0; k < rows.size(); ++k) {
       const Row& r = rows[k];
-      const double force = std::abs(*r.impulse - used_[k]) / h;
+      const double force = std::abs(impulses[k] - used_[k]) / h;
       if (force == 0.0) continue;
       if (r.body1 >= 0) change_[std::size_t(r.body1)] += force * r.J1.head<3>().norm() * r.arm1.norm();
       if (r.body2 >= 0) change_[std::size_t(r.body2)] += force * r.J2.head<3>().norm() * r.arm2.norm();
@@ -152,14 +152,15 @@ class GeometricStiffness {
 
   /// h²K̃ per body, mode-weighted (class comment), of the rows' impulses
   /// acting on `bodies` (not augmented).
-  void compute(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, double h, double threshold,
-               std::vector<Mat3d>& added) {
+  void compute(const std::vector<Row>& rows, const std::vector<double>& impulses, const std::vector<SolverBody>& bodies,
+               double h, double threshold, std::vector<Mat3d>& added) {
     added.assign(bodies.size(), Mat3d::Zero());
     stiffness_.assign(bodies.size(), Mat3d::Zero());
     heldAt_.assign(bodies.size(), Held{});
     any_ = false;
-    for (const Row& r : rows) {
-      const double force = *r.impulse / h;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const Row& r = rows[k];
+      const double force = impulses[k] / h;
       if (force == 0.0) continue;
       accumulate(r.body1, force * r.J1.head<3>(), r.arm1, bodies);
       accumulate(r.body2, force * r.J2.head<3>(), r.arm2, bodies);

@@ -20,7 +20,7 @@ namespace spook::detail {
 /// Partitions the rows into islands (dynamic bodies connected through rows;
 /// static and kinematic bodies do not join islands), turns each island into
 /// an IslandProblem for step h, lets `solver` solve it, and writes the
-/// impulses back to the rows' owners and the velocity changes to `bodies`
+/// impulses to the array beside the rows and the velocity changes to `bodies`
 /// (freeVelocity becomes v⁺). The bodies of an island whose impulses came
 /// out non-finite are listed in getNonFiniteBodies().
 class IslandStepper {
@@ -57,8 +57,6 @@ class IslandStepper {
         e.diagonal = mobility + e.sigma;
         e.lower = -std::numeric_limits<double>::infinity();
         e.upper = std::numeric_limits<double>::infinity();
-        e.impulse = 0.0;
-        e.guess = 0.0;
       }
       solver.project(problem_, statistics);
       addToBodies(bodies, &SolverBody::displacement);
@@ -69,15 +67,24 @@ class IslandStepper {
   /// impulses the last solve() dropped as non-finite.
   [[nodiscard]] const std::vector<int>& getNonFiniteBodies() const { return nonFiniteBodies_; }
 
-  void solve(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, Solver& solver,
-             SolverStatistics& statistics) {
+  /// `impulses` (N·s, one per row): each row's last impulse in (the warm
+  /// start and the direct solver's first guess), the solved one out; rows
+  /// that join no island (between static bodies) keep theirs.
+  void solve(const std::vector<Row>& rows, std::vector<double>& impulses, std::vector<SolverBody>& bodies, double h,
+             Solver& solver, SolverStatistics& statistics) {
     partition(rows, bodies);
     nonFiniteBodies_.clear();
     for (const std::vector<int>& island : islands_) {
-      buildProblem(rows, bodies, island, h, solver.getEnableWarmStarting());
+      buildProblem(rows, bodies, island, h);
+      const bool warmStart = solver.getEnableWarmStarting();
+      for (std::size_t k = 0; k < island.size(); ++k) {
+        IslandProblem::Entry& e = problem_.rows[k];
+        e.guess = std::clamp(impulses[static_cast<std::size_t>(island[k])], e.lower, e.upper);
+        e.impulse = warmStart ? e.guess : std::clamp(0.0, e.lower, e.upper);
+      }
       if (!solver.solve(problem_, statistics))
         nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
-      for (std::size_t k = 0; k < island.size(); ++k) *rows[static_cast<std::size_t>(island[k])].impulse = problem_.rows[k].impulse;
+      for (std::size_t k = 0; k < island.size(); ++k) impulses[static_cast<std::size_t>(island[k])] = problem_.rows[k].impulse;
       addToBodies(bodies, &SolverBody::freeVelocity);
     }
   }
@@ -125,8 +132,9 @@ class IslandStepper {
     }
   }
 
+  // The island's entries, impulses and guesses zero.
   void buildProblem(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, const std::vector<int>& island,
-                    double h, bool warmStart = false) {
+                    double h) {
     local_.resize(bodies.size(), -1);
     islandBodies_.clear();
     auto localIndex = [&](int body) {
@@ -178,8 +186,8 @@ class IslandStepper {
       e.diagonal = mobility + e.sigma;
       e.lower = r.lower * h;
       e.upper = r.upper * h;
-      e.guess = std::clamp(*r.impulse, e.lower, e.upper);
-      e.impulse = warmStart ? e.guess : std::clamp(0.0, e.lower, e.upper);
+      e.guess = 0.0;
+      e.impulse = 0.0;
       e.solveType = r.solveType;
       e.constraint = localRow(r.constraint);
       e.normal = localRow(r.frictionNormal);

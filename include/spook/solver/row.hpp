@@ -37,6 +37,9 @@ using Vec6d = Eigen::Matrix<double, 6, 1>;
 /// damping τ): G v⁺ + Σ Λ = −a g + b' G v, Σ = 4ε/(h²(1+4τ/h)) (PHYSICS.md
 /// §1.2). A velocity row (motors, friction) has a target speed u and a
 /// viscosity γ: G v⁺ + (γ/h) Λ = u (§1.3). Bounds are forces (N or N·m).
+/// A row's impulse Λ (N·s) is not in the row: the step keeps the impulses
+/// in an array beside the rows, and each source of rows keeps its own
+/// history (sim/step_extension.hpp).
 struct Row {
   // Members ordered by size (no padding between them: the step copies
   // rows by the thousand).
@@ -66,8 +69,6 @@ struct Row {
   /// g (m/s or rad/s), kept by post-stabilization; NaN when unknown, then
   /// G v − hκ stands in for it in SPOOK's b' term.
   double lastRate = std::numeric_limits<double>::quiet_NaN();
-  /// Warm start in, solved impulse (N·s) out; owned by the constraint.
-  double* impulse = nullptr;
   /// Translational rows: lever arms (world, m) from each center of mass to
   /// the point where the row's force acts, for the geometric stiffness
   /// (geometric_stiffness.hpp). Zero for rows that apply pure torques.

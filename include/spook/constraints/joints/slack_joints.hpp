@@ -90,7 +90,7 @@ class SlackJointT : public Rigid<S, Rows...> {
     for (std::size_t i = 0; i < kNum; ++i) {
       detail::Row& row = (*sink.rows)[first + i];
       interval(i).restrict(row);
-      impulses_[i] = row.impulse;
+      impulses_[i] = sink.slot(first + i);
     }
   }
   void afterSolve(double h) override {
@@ -100,7 +100,9 @@ class SlackJointT : public Rigid<S, Rows...> {
   void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
     const std::size_t first = sink.rows->size();
     Base::addProjectionRows(a, sink);
-    keepRows(*sink.rows, first, [&](detail::Row& row, std::size_t i) { return interval(i).restrictProjection(row); });
+    sink.keepRows(first, [&](detail::Row& row, std::size_t i, const double* impulse) {
+      return i >= kNum || interval(i).restrictProjection(row, impulse);
+    });
   }
 
  private:
@@ -108,18 +110,6 @@ class SlackJointT : public Rigid<S, Rows...> {
 
   [[nodiscard]] detail::SlackInterval interval(std::size_t i) const {
     return {double(slack_[i].lower), double(slack_[i].upper)};
-  }
-  // The slack rows are the first kNum rows written since `first`; `keep`
-  // adjusts each and says whether it stays. Rows after them are kept as they are.
-  template <class Keep>
-  static void keepRows(std::vector<detail::Row>& rows, std::size_t first, Keep&& keep) {
-    std::size_t out = first;
-    for (std::size_t i = first; i < rows.size(); ++i) {
-      if (i < first + kNum && !keep(rows[i], i - first)) continue;
-      if (out != i) rows[out] = rows[i];
-      ++out;
-    }
-    rows.resize(out);
   }
   void checkDof(int dof, bool allowAll) const {
     if (!((allowAll && dof == Base::ALL_DOF) || (dof >= 0 && dof < int(kNum))))
@@ -131,7 +121,7 @@ class SlackJointT : public Rigid<S, Rows...> {
     zero.fill({S(0), S(0)});
     return zero;
   }();
-  std::array<double*, kNum> impulses_{};
+  std::array<const double*, kNum> impulses_{};
   std::array<S, kNum> force_{};
 };
 

@@ -160,16 +160,16 @@ struct SlackInterval {
 
   /// For post-stabilization, which projects equalities: a zero-width
   /// interval keeps its row (g = x − lower), and so does an end the step's
-  /// solve pressed the DOF against (`row.impulse` non-zero): like a rigid
+  /// solve pressed the DOF against (its `impulse` non-zero): like a rigid
   /// row, it is projected onto the violation x − end the solve predicted,
   /// which removes the step's second-order drift past the end while the DOF
   /// is held there. A DOF moving inside its slack is left to the solve.
-  bool restrictProjection(Row& row) const {
+  bool restrictProjection(Row& row, const double* impulse) const {
     if (lower == upper) {
       row.violation -= lower;
       return true;
     }
-    if (!row.impulse || *row.impulse == 0.0) return false;
+    if (!impulse || *impulse == 0.0) return false;
     const double x = row.violation;
     row.violation = x - (x - lower <= upper - x ? lower : upper);
     return true;

@@ -48,10 +48,7 @@ class JointLoad {
   /// elementary rows of this step) and the joint axis (world, unit).
   void record(const RowSink& sink, std::size_t first, const Vec3d& axis) {
     rows_.clear();
-    for (std::size_t i = first; i < sink.rows->size(); ++i) {
-      const Row& row = (*sink.rows)[i];
-      rows_.push_back({row.J1.head<3>(), row.impulse});
-    }
+    for (std::size_t i = first; i < sink.rows->size(); ++i) rows_.push_back({(*sink.rows)[i].J1.head<3>(), sink.slot(i)});
     axis_ = axis;
     recorded_ = true;
   }
@@ -60,7 +57,8 @@ class JointLoad {
   [[nodiscard]] Vec3d force(double h) {
     Vec3d f = Vec3d::Zero();
     if (recorded_)
-      for (const auto& r : rows_) f += r.linear * (*r.impulse / h);
+      for (const auto& r : rows_)
+        if (r.impulse) f += r.linear * (*r.impulse / h);
     recorded_ = false;
     return f;
   }
