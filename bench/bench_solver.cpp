@@ -95,15 +95,14 @@ struct RowCollector {
     rows.clear();
     for (const auto& c : sim_.getConstraints()) {
       spook::RigidBody* body2 = c->getBodyAt(1);
-      spook::detail::RowSink sink{&rows, index_.at(c->getBodyAt(0)), body2 ? index_.at(body2) : -1, c->getSolveType(),
-                                      false};
+      spook::detail::RowSink sink{&rows.rows, index_.at(c->getBodyAt(0)), body2 ? index_.at(body2) : -1,
+                                  c->getSolveType(), false, nullptr, &rows.arms};
       spook::detail::ConstraintAccess::addRows(*c, sink, kStep);
     }
-    impulses.assign(rows.size(), 0.0);
+    rows.impulses.assign(rows.size(), 0.0);
   }
   std::vector<spook::detail::SolverBody> bodies;
-  std::vector<spook::detail::Row> rows;
-  std::vector<double> impulses;
+  spook::detail::RowSet rows;
 
  private:
   spook::Simulation& sim_;
@@ -119,7 +118,7 @@ spook::detail::IslandProblem chainProblem(int links) {
   spook::ref_ptr<NullSolver> none = new NullSolver();
   none->capture = true;
   spook::SolverStatistics statistics;
-  spook::detail::IslandStepper().solve(collector.rows, collector.impulses, collector.bodies, kStep, *none, statistics);
+  spook::detail::IslandStepper().solve(collector.rows, collector.bodies, kStep, *none, statistics);
   return none->captured;
 }
 
@@ -143,7 +142,7 @@ void collectRows(benchmark::State& state) {
   RowCollector collector(*sim);
   for (auto _ : state) {
     collector.collect();
-    benchmark::DoNotOptimize(collector.rows.data());
+    benchmark::DoNotOptimize(collector.rows.rows.data());
   }
   setCounters(state, collector.rows.size());
 }
@@ -157,7 +156,7 @@ void buildProblem(benchmark::State& state) {
   spook::detail::IslandStepper stepper;
   for (auto _ : state) {
     spook::SolverStatistics statistics;
-    stepper.solve(collector.rows, collector.impulses, collector.bodies, kStep, *none, statistics);
+    stepper.solve(collector.rows, collector.bodies, kStep, *none, statistics);
     benchmark::DoNotOptimize(statistics);
   }
   setCounters(state, collector.rows.size());

@@ -165,6 +165,50 @@ TEST_CASE("stores and producers are added once, and a bad row index is refused b
   CHECK(sim->contains(store.get()));
 }
 
+TEST_CASE("a producer's friction links and lever arms name its own rows, or the step is refused by name") {
+  ref_ptr<Simulation> sim = new Simulation();
+  ref_ptr<toy::ParticleStore> store = new toy::ParticleStore();
+  store->add(toy::Vec3d::Zero(), 1.0, 0.1);
+  sim->add(store);
+  // One fault per kind: 1 links a friction row to a row it did not write,
+  // 2 gives a negative coefficient, 3 lever arms to a foreign row, 4 NaN arms.
+  struct Faulty : RowProducer {
+    int fault = 0;
+    void writeRows(RowWriter& rows, const StepContext& step) override {
+      const std::size_t normal = rows.size(), tangent = normal + 1;
+      for (int axis : {0, 1}) {
+        detail::Row& r = rows.add();
+        r.body1 = step.indexOf(*store, 0);
+        r.J1[axis] = 1.0;
+      }
+      if (fault == 1) rows.setFriction(tangent, normal + 2, 0.5, detail::FrictionBound::SCALED_BOX);
+      if (fault == 2) rows.setFriction(tangent, normal, -0.5, detail::FrictionBound::SCALED_BOX);
+      if (fault == 3) rows.setLeverArms(normal + 5, toy::Vec3d::Zero(), toy::Vec3d::Zero());
+      if (fault == 4) rows.setLeverArms(normal, toy::Vec3d::Constant(std::nan("")), toy::Vec3d::Zero());
+    }
+    void readBack(std::span<const double>, const StepContext&) override {}
+    ref_ptr<toy::ParticleStore> store;
+  };
+  ref_ptr<Faulty> producer = new Faulty();
+  producer->store = store;
+  producer->setName("faulty");
+  sim->add(ref_ptr<RowProducer>(producer));
+  for (int fault = 1; fault <= 4; ++fault) {
+    CAPTURE(fault);
+    producer->fault = fault;
+    try {
+      sim->stepForward();
+      FAIL("the producer's fault was accepted");
+    } catch (const Error& e) {
+      CHECK(std::string(e.what()).find("faulty") != std::string::npos);
+    }
+  }
+  // Well-formed links step (the rows hold the particle at rest in x and y).
+  producer->fault = 0;
+  sim->stepForward();
+  CHECK(store->position(0).allFinite());
+}
+
 TEST_CASE("stores and producers outlive a destroyed simulation and join a new one; errors name them") {
   ref_ptr<Simulation> sim = new Simulation();
   ref_ptr<toy::ParticleStore> store = new toy::ParticleStore();

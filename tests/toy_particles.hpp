@@ -242,12 +242,10 @@ class ParticleContacts : public spook::RowProducer {
       r.J2 = linear(t);
       r.holonomic = false;
       r.compliance = 1e-9;
-      r.frictionNormal = int(normalRow);
-      r.frictionCoefficient = friction;
       r.upper = friction * std::max(warm[0], 0.0) / step.getTimeStep();  // from last step's normal impulse
       r.lower = -r.upper;
-      r.frictionBound = spook::detail::FrictionBound::SCALED_BOX;
       r.solveType = solveType;
+      rows.setFriction(rows.size() - 1, normalRow, friction, spook::detail::FrictionBound::SCALED_BOX);
     }
     pairs_.push_back(pair);
   }

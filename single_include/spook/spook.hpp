@@ -8343,8 +8343,11 @@ template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, con
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_ROW_HPP
 #define SPOOK_SINGLE_SPOOK_SOLVER_ROW_HPP
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -8374,7 +8377,7 @@ using Vec6d = Eigen::Matrix<double, 6, 1>;
 /// scene's scalar. G v = J1·(v1, ω1) + J2·(v2, ω2) (+ J3·(v3, ω3)) with
 /// velocities of the centers of mass in world coordinates; a body index of
 /// −1 is the world. A third body is rare (a wire's bend row couples three
-/// consecutive nodes); it has no lever arm for the geometric stiffness.
+/// consecutive nodes).
 ///
 /// A holonomic row has a violation g and SPOOK parameters (compliance ε,
 /// damping τ): G v⁺ + Σ Λ = −a g + b' G v, Σ = 4ε/(h²(1+4τ/h)) (PHYSICS.md
@@ -8382,7 +8385,8 @@ using Vec6d = Eigen::Matrix<double, 6, 1>;
 /// viscosity γ: G v⁺ + (γ/h) Λ = u (§1.3). Bounds are forces (N or N·m).
 /// A row's impulse Λ (N·s) is not in the row: the step keeps the impulses
 /// in an array beside the rows, and each source of rows keeps its own
-/// history (sim/step_extension.hpp).
+/// history (sim/step_extension.hpp). What only some rows have (a friction
+/// row's link to its normal row, lever arms) is in side tables (RowSet).
 struct Row {
   // Members ordered by size (no padding between them: the step copies
   // rows by the thousand).
@@ -8412,21 +8416,48 @@ struct Row {
   /// g (m/s or rad/s), kept by post-stabilization; NaN when unknown, then
   /// G v − hκ stands in for it in SPOOK's b' term.
   double lastRate = std::numeric_limits<double>::quiet_NaN();
-  /// Translational rows: lever arms (world, m) from each center of mass to
-  /// the point where the row's force acts, for the geometric stiffness
-  /// (geometric_stiffness.hpp). Zero for rows that apply pure torques.
-  Eigen::Vector3d arm1 = Eigen::Vector3d::Zero(), arm2 = Eigen::Vector3d::Zero();
-  /// Friction rows: the index in the same row list of the normal row whose
-  /// impulse bounds this one (−1: not a friction row), the coefficient μ and
-  /// the kind of bound; cone rows name their contact's other tangent row.
-  double frictionCoefficient = 0.0;
-  int frictionNormal = -1;
-  int frictionPartner = -1;
-  FrictionBound frictionBound = FrictionBound::FIXED;
   SolveType solveType = SolveType::DIRECT;
   bool holonomic = true;
 
   [[nodiscard]] bool bounded() const { return lower > -std::numeric_limits<double>::infinity() || upper < std::numeric_limits<double>::infinity(); }
+};
+
+/// A friction row: its bounds follow the impulse of its contact's normal
+/// row (solver/friction_bounds.hpp). Indices are in the same row list.
+struct FrictionLink {
+  int row = -1;              ///< the friction row
+  int normal = -1;           ///< the normal row whose impulse bounds it
+  int partner = -1;          ///< cone rows: the contact's other tangent row
+  double coefficient = 0.0;  ///< μ
+  FrictionBound bound = FrictionBound::FIXED;
+};
+
+/// A translational row's lever arms (world, m) from each center of mass to
+/// the point where its force acts, for the geometric stiffness
+/// (geometric_stiffness.hpp); rows without them add none.
+struct LeverArms {
+  int row = -1;
+  Eigen::Vector3d arm1 = Eigen::Vector3d::Zero(), arm2 = Eigen::Vector3d::Zero();
+};
+
+/// The rows of a step: one impulse per row beside them and, in side tables,
+/// what only some rows have (entries in any order, one per row at most).
+struct RowSet {
+  std::vector<Row> rows;
+  std::vector<double> impulses;  ///< N·s: each row's last impulse in, the solved one out
+  std::vector<FrictionLink> friction;
+  std::vector<LeverArms> arms;
+
+  [[nodiscard]] std::size_t size() const { return rows.size(); }
+  [[nodiscard]] bool empty() const { return rows.empty(); }
+  void clear() { truncate(0); }
+  /// Drops the rows from n on and their side-table entries.
+  void truncate(std::size_t n) {
+    rows.resize(std::min(n, rows.size()));
+    impulses.resize(rows.size());
+    std::erase_if(friction, [&](const FrictionLink& f) { return std::size_t(f.row) >= rows.size(); });
+    std::erase_if(arms, [&](const LeverArms& a) { return std::size_t(a.row) >= rows.size(); });
+  }
 };
 
 }  // namespace detail
@@ -8689,6 +8720,8 @@ struct RowSink {
   bool secondOrder = false;
   /// Each row's slot, in step with `rows` (none kept when null).
   std::vector<double*>* slots = nullptr;
+  /// The lever arms of the rows that have them (none kept when null).
+  std::vector<LeverArms>* arms = nullptr;
 
   Row& add(const Vec6d& J1, const Vec6d& J2, double* impulse) {
     Row& row = rows->emplace_back();
@@ -8700,6 +8733,10 @@ struct RowSink {
     if (slots) slots->push_back(impulse);
     return row;
   }
+  /// The lever arms (world, m) of the row added last (LeverArms).
+  void setArms(const Vec3d& arm1, const Vec3d& arm2) {
+    if (arms) arms->push_back({static_cast<int>(rows->size()) - 1, arm1, arm2});
+  }
   /// Rows written so far: the index the next row gets.
   [[nodiscard]] std::size_t size() const { return rows->size(); }
   /// The slot of row i (nullptr when slots are not kept).
@@ -8708,6 +8745,7 @@ struct RowSink {
   /// holds (it may adjust the row), in order, with their slots.
   template <class Keep>
   void keepRows(std::size_t first, Keep&& keep) {
+    std::vector<int> moved(rows->size() - first, -1);  // new index of each row from first on
     std::size_t out = first;
     for (std::size_t i = first; i < rows->size(); ++i) {
       if (!keep((*rows)[i], i - first, slot(i))) continue;
@@ -8715,10 +8753,14 @@ struct RowSink {
         (*rows)[out] = (*rows)[i];
         if (slots) (*slots)[out] = (*slots)[i];
       }
-      ++out;
+      moved[i - first] = static_cast<int>(out++);
     }
     rows->resize(out);
     if (slots) slots->resize(out);
+    if (!arms) return;
+    for (LeverArms& a : *arms)
+      if (std::size_t(a.row) >= first) a.row = moved[std::size_t(a.row) - first];
+    std::erase_if(*arms, [](const LeverArms& a) { return a.row < 0; });
   }
 };
 
@@ -9134,8 +9176,7 @@ struct Spherical {
     for (int k = 0; k < 3; ++k) {
       const Vec3d e = Vec3d::Unit(k);
       Row& row = holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
-      row.arm1 = r1;
-      row.arm2 = r2;
+      sink.setArms(r1, r2);
       row.curvature = curvature[k];
     }
   }
@@ -9167,8 +9208,7 @@ struct Dot2 {
     const Vec3d n = a.R2.col(A);
     Row& row = holonomicRow(sink, linearAngular(n, a.r1().cross(n)), linearAngular(-n, n.cross(a.p1 - a.c2)),
                             (a.p1 - a.p2).dot(n), p[0], impulse);
-    row.arm1 = a.r1();
-    row.arm2 = a.p1 - a.c2;
+    sink.setArms(a.r1(), a.p1 - a.c2);
     if (sink.secondOrder) row.curvature = separationCurvature(a, n);
   }
 };
@@ -15979,22 +16019,37 @@ class StepContext {
 /// row's target speed and viscosity, force bounds (N or N·m).
 class RowWriter {
  public:
-  RowWriter(std::vector<detail::Row>& rows, std::vector<double>& impulses) : rows_(rows), impulses_(impulses) {}
+  using Vec3d = Eigen::Vector3d;
+
+  explicit RowWriter(detail::RowSet& rows) : rows_(rows) {}
 
   /// A new row. `impulse` (N·s, usually the row's impulse last step) is the
   /// iterative solvers' warm start when they warm start and the direct
   /// solver's first guess of the row's state (at a bound or free) always.
   detail::Row& add(double impulse = 0.0) {
-    impulses_.push_back(impulse);
-    return rows_.emplace_back();
+    rows_.impulses.push_back(impulse);
+    return rows_.rows.emplace_back();
   }
-  /// Rows written so far in the step: the index the next row gets (for
-  /// Row::frictionNormal).
+  /// Rows written so far in the step: the index the next row gets.
   [[nodiscard]] std::size_t size() const { return rows_.size(); }
 
+  /// Makes row `row` a friction row whose bounds follow the impulse of row
+  /// `normal` (both this producer's): ±μΛn per row (SCALED_BOX), or within
+  /// the disk of radius μΛn with its contact's other tangent row `partner`
+  /// (CONE); with FIXED the row keeps its own bounds.
+  void setFriction(std::size_t row, std::size_t normal, double coefficient, detail::FrictionBound bound,
+                   int partner = -1) {
+    rows_.friction.push_back({static_cast<int>(row), static_cast<int>(normal), partner, coefficient, bound});
+  }
+  /// Lever arms (world, m) from the centers of mass of row `row`'s first two
+  /// bodies to where its force acts: its share of the geometric stiffness
+  /// (solver/geometric_stiffness.hpp).
+  void setLeverArms(std::size_t row, const Vec3d& arm1, const Vec3d& arm2) {
+    rows_.arms.push_back({static_cast<int>(row), arm1, arm2});
+  }
+
  private:
-  std::vector<detail::Row>& rows_;
-  std::vector<double>& impulses_;
+  detail::RowSet& rows_;
 };
 
 /// Bodies the step integrates and solves beside the rigid bodies, held by
@@ -16604,9 +16659,12 @@ using SimulationRef = ref_ptr<Simulation>;
 // core/implementation.hpp), with the solver, contact and collision code
 // behind it.
 
+#include <cmath>
 #include <cstddef>
 #include <memory>
 #include <span>
+#include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -17861,13 +17919,15 @@ class ConstraintRows {
   /// the simulation.
   template <class BodyIndex>
   void write(const std::vector<ref_ptr<Constraint>>& constraints, BodyIndex bodyIndex, const Solver& solver,
-             double h, std::vector<Row>& rows, std::vector<double>& impulses) {
+             double h, RowSet& set) {
+    std::vector<Row>& rows = set.rows;
     owners_.clear();
     slots_.clear();
     first_ = rows.size();
     for (const auto& c : constraints) {
       RowSink sink;
       if (!c->getEnable() || !sinkFor(*c, bodyIndex, rows, slots_, sink)) continue;
+      sink.arms = &set.arms;
       // The second-order terms (Row::curvature, Row::lastRate) need the
       // projection: without it their error feeds back (the 1:1e6 chain of
       // test_solvers.cpp diverges).
@@ -17886,7 +17946,7 @@ class ConstraintRows {
         }
       }
     }
-    for (const double* slot : slots_) impulses.push_back(*slot);
+    for (const double* slot : slots_) set.impulses.push_back(*slot);
   }
 
   /// After the solve: `impulses` and `rows` are the ones write() appended,
@@ -18178,6 +18238,7 @@ class IslandStepper {
   void project(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, Solver& solver,
                SolverStatistics& statistics) {
     partition(rows, bodies);
+    frictionOf_.assign(rows.size(), -1);
     for (const std::vector<int>& island : islands_) {
       buildProblem(rows, bodies, island, h);
       for (std::size_t k = 0; k < island.size(); ++k) {
@@ -18199,15 +18260,19 @@ class IslandStepper {
   /// impulses the last solve() dropped as non-finite.
   [[nodiscard]] const std::vector<int>& getNonFiniteBodies() const { return nonFiniteBodies_; }
 
-  /// `impulses` (N·s, one per row): each row's last impulse in (the warm
-  /// start and the direct solver's first guess), the solved one out; rows
-  /// that join no island (between static bodies) keep theirs.
-  void solve(const std::vector<Row>& rows, std::vector<double>& impulses, std::vector<SolverBody>& bodies, double h,
-             Solver& solver, SolverStatistics& statistics) {
+  /// The rows' impulses: each row's last impulse in (the warm start and the
+  /// direct solver's first guess), the solved one out; rows that join no
+  /// island (between static bodies) keep theirs.
+  void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics) {
+    const std::vector<Row>& rows = set.rows;
+    std::vector<double>& impulses = set.impulses;
     partition(rows, bodies);
     nonFiniteBodies_.clear();
+    frictionOf_.assign(rows.size(), -1);
+    for (std::size_t k = 0; k < set.friction.size(); ++k)
+      frictionOf_[static_cast<std::size_t>(set.friction[k].row)] = static_cast<int>(k);
     for (const std::vector<int>& island : islands_) {
-      buildProblem(rows, bodies, island, h);
+      buildProblem(rows, bodies, island, h, set.friction);
       const bool warmStart = solver.getEnableWarmStarting();
       for (std::size_t k = 0; k < island.size(); ++k) {
         IslandProblem::Entry& e = problem_.rows[k];
@@ -18264,9 +18329,10 @@ class IslandStepper {
     }
   }
 
-  // The island's entries, impulses and guesses zero.
+  // The island's entries, impulses and guesses zero; frictionOf_ names each
+  // row's entry in `friction` (−1: none).
   void buildProblem(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, const std::vector<int>& island,
-                    double h) {
+                    double h, const std::vector<FrictionLink>& friction = {}) {
     local_.resize(bodies.size(), -1);
     islandBodies_.clear();
     auto localIndex = [&](int body) {
@@ -18285,6 +18351,8 @@ class IslandStepper {
     problem_.extraBodies.clear();
     for (std::size_t k = 0; k < island.size(); ++k) {
       const Row& r = rows[static_cast<std::size_t>(island[k])];
+      const int link = frictionOf_[static_cast<std::size_t>(island[k])];
+      const FrictionLink* f = link < 0 ? nullptr : &friction[static_cast<std::size_t>(link)];
       IslandProblem::Entry& e = problem_.rows[k];
       e.body1 = e.body2 = e.extra = -1;
       // G v and G v* over every body (kinematic ones move too), M⁻¹Gᵀ over
@@ -18314,7 +18382,7 @@ class IslandStepper {
       // A floor far below any physical compliance keeps redundant rigid rows
       // (compliance 0) positive definite; friction rows get a higher one
       // (kFrictionSofterThan).
-      e.sigma = std::max(e.sigma, (r.frictionNormal >= 0 ? kFrictionSofterThan : 1e-12) * mobility);
+      e.sigma = std::max(e.sigma, (f && f->normal >= 0 ? kFrictionSofterThan : 1e-12) * mobility);
       e.diagonal = mobility + e.sigma;
       e.lower = r.lower * h;
       e.upper = r.upper * h;
@@ -18322,10 +18390,10 @@ class IslandStepper {
       e.impulse = 0.0;
       e.solveType = r.solveType;
       e.constraint = localRow(r.constraint);
-      e.normal = localRow(r.frictionNormal);
-      e.partner = localRow(r.frictionPartner);
-      e.mu = r.frictionCoefficient;
-      e.frictionBound = r.frictionBound;
+      e.normal = f ? localRow(f->normal) : -1;
+      e.partner = f ? localRow(f->partner) : -1;
+      e.mu = f ? f->coefficient : 0.0;
+      e.frictionBound = f ? f->bound : FrictionBound::FIXED;
       e.coneShare = 1.0;
     }
     problem_.numBodies = static_cast<int>(islandBodies_.size());
@@ -18355,7 +18423,7 @@ class IslandStepper {
     return llt.solve(Mat3d::Identity());
   }
 
-  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_;
+  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_, frictionOf_;
   std::vector<std::vector<int>> islands_;
   IslandProblem problem_;
   std::vector<Vec6d> velocityChange_;
@@ -18389,7 +18457,8 @@ class ContactRows {
   template <class BodyIndex>
   void build(std::vector<GeometryContactT<S>>& contacts, const MaterialManagerT<S>& materials,
              const GravityFieldT<S>& gravity, BodyIndex bodyIndex, const std::vector<SolverBody>& bodies, double h,
-             const ContactSettings& settings, std::vector<Row>& rows, std::vector<double>& impulses) {
+             const ContactSettings& settings, RowSet& set) {
+    std::vector<Row>& rows = set.rows;
     points_.clear();
     std::unordered_map<PairKey, double, PointerPairHash> lastForce;
     lastForce.swap(pairForce_);
@@ -18439,10 +18508,13 @@ class ContactRows {
           row.body2 = index[1];
           row.J1 << -direction, -r1.cross(direction);
           row.J2 << direction, r2.cross(direction);
-          row.arm1 = r1;
-          row.arm2 = r2;
           row.solveType = solveType;
           return row;
+        };
+        const auto append = [&](const Row& row, double impulse) {
+          set.arms.push_back({static_cast<int>(rows.size()), r1, r2});
+          rows.push_back(row);
+          set.impulses.push_back(impulse);
         };
 
         const Eigen::Vector3d local = toFirstGeometry * x;
@@ -18464,8 +18536,7 @@ class ContactRows {
           const double deepest = -spook.violationForSpeed(settings.maxDepenetrationSpeed);
           normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
         }
-        rows.push_back(normal);
-        impulses.push_back(lastForceOfPoint.dot(n) * h);
+        append(normal, lastForceOfPoint.dot(n) * h);
 
         const Eigen::Vector3d slip = velocityOf(1, r2, true) + surface[1] - velocityOf(0, r1, true) - surface[0];
         const auto [t1, t2] = tangents(n, slip, model);
@@ -18478,12 +18549,9 @@ class ContactRows {
           const double mu = double(p.friction[k]);
           row.upper = mu * normalEstimate / double(std::max<std::size_t>(contact.getNumEnabledPoints(), 1));
           row.lower = -row.upper;
-          row.frictionNormal = normalIndex;
-          row.frictionPartner = bound == FrictionBound::CONE ? normalIndex + 2 - k : -1;
-          row.frictionCoefficient = mu;
-          row.frictionBound = bound;
-          rows.push_back(row);
-          impulses.push_back(lastForceOfPoint.dot(tangent[k]) * h);
+          set.friction.push_back({static_cast<int>(rows.size()), normalIndex,
+                                  bound == FrictionBound::CONE ? normalIndex + 2 - k : -1, mu, bound});
+          append(row, lastForceOfPoint.dot(tangent[k]) * h);
         }
         points_.push_back({&point, pairKey(contact), local, n, t1, t2});
       }
@@ -18690,30 +18758,28 @@ class GeometricStiffness {
   static constexpr int kMaxSolves = 4;
 
   /// Augments `bodies` (inverse inertia, free angular velocity) from the
-  /// rows' impulses (one per row, N·s), for a step of length h, and keeps what it changed for
+  /// rows' impulses, for a step of length h, and keeps what it changed for
   /// refresh().
-  void apply(const std::vector<Row>& rows, const std::vector<double>& impulses, std::vector<SolverBody>& bodies, double h,
-             double threshold) {
+  void apply(const RowSet& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
     freeVelocity_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) freeVelocity_[i] = bodies[i].freeVelocity;
-    compute(rows, impulses, bodies, h, threshold, added_);
+    compute(rows, bodies, h, threshold, added_);
     augment(bodies);
-    keepImpulses(impulses);
+    used_ = rows.impulses;
   }
 
   /// After a solve of the bodies apply() augmented: whether the stiffness
   /// of the rows' impulses now exceeds the one applied by more than
   /// kRefreshTolerance for some body; if so, `bodies` are augmented afresh
   /// with it, to be solved again.
-  bool refresh(const std::vector<Row>& rows, const std::vector<double>& impulses, std::vector<SolverBody>& bodies, double h,
-               double threshold) {
-    if (added_.size() != bodies.size() || used_.size() != rows.size() || !mayHaveChanged(rows, impulses, bodies, h)) return false;
+  bool refresh(const RowSet& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
+    if (added_.size() != bodies.size() || used_.size() != rows.size() || !mayHaveChanged(rows, bodies, h)) return false;
     // The inverse inertia each body was solved with; the fresh stiffness is
     // computed on the bodies' own inertia.
     solvedWith_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) solvedWith_[i] = bodies[i].inverseInertia;
     swapOriginalInertia(bodies);
-    compute(rows, impulses, bodies, h, threshold, fresh_);
+    compute(rows, bodies, h, threshold, fresh_);
     bool changed = false;
     for (std::size_t i = 0; i < bodies.size() && !changed; ++i) {
       const Mat3d change = fresh_[i] - added_[i];
@@ -18734,7 +18800,7 @@ class GeometricStiffness {
     // the free velocities), augmented afresh.
     for (std::size_t i = 0; i < bodies.size(); ++i) bodies[i].freeVelocity = freeVelocity_[i];
     std::swap(added_, fresh_);
-    keepImpulses(impulses);
+    used_ = rows.impulses;
     augment(bodies);
     return true;
   }
@@ -18755,23 +18821,21 @@ class GeometricStiffness {
   }
 
  private:
-  void keepImpulses(const std::vector<double>& impulses) { used_ = impulses; }
-
   /// A cheap gate before refresh()'s test: the stiffness of the change of
   /// each row's force, h²Σ|Δf||J||r|, against ‖(I + h²K̃)⁻¹‖ in Frobenius
   /// norms. At threshold 0 it bounds the test from above (the tension-only
   /// part shrinks a change); with a threshold the mode weights (1 − ρ₀/ρ)
   /// can make a small change of force a larger change of K̃, so it is a
   /// heuristic there, one that errs on the side of the last solve.
-  bool mayHaveChanged(const std::vector<Row>& rows, const std::vector<double>& impulses, const std::vector<SolverBody>& bodies,
-                      double h) {
+  bool mayHaveChanged(const RowSet& rows, const std::vector<SolverBody>& bodies, double h) {
     change_.assign(bodies.size(), 0.0);
-    for (std::size_t k = 0; k < rows.size(); ++k) {
-      const Row& r = rows[k];
-      const double force = std::abs(impulses[k] - used_[k]) / h;
+    for (const LeverArms& a : rows.arms) {
+      const auto k = static_cast<std::size_t>(a.row);
+      const Row& r = rows.rows[k];
+      const double force = std::abs(rows.impulses[k] - used_[k]) / h;
       if (force == 0.0) continue;
-      if (r.body1 >= 0) change_[std::size_t(r.body1)] += force * r.J1.head<3>().norm() * r.arm1.norm();
-      if (r.body2 >= 0) change_[std::size_t(r.body2)] += force * r.J2.head<3>().norm() * r.arm2.norm();
+      if (r.body1 >= 0) change_[std::size_t(r.body1)] += force * r.J1.head<3>().norm() * a.arm1.norm();
+      if (r.body2 >= 0) change_[std::size_t(r.body2)] += force * r.J2.head<3>().norm() * a.arm2.norm();
     }
     for (std::size_t i = 0; i < bodies.size(); ++i)
       if (bodies[i].dynamic && h * h * change_[i] * bodies[i].inverseInertia.norm() > kRefreshTolerance) return true;
@@ -18780,18 +18844,18 @@ class GeometricStiffness {
 
   /// h²K̃ per body, mode-weighted (class comment), of the rows' impulses
   /// acting on `bodies` (not augmented).
-  void compute(const std::vector<Row>& rows, const std::vector<double>& impulses, const std::vector<SolverBody>& bodies,
-               double h, double threshold, std::vector<Mat3d>& added) {
+  void compute(const RowSet& rows, const std::vector<SolverBody>& bodies, double h, double threshold,
+               std::vector<Mat3d>& added) {
     added.assign(bodies.size(), Mat3d::Zero());
     stiffness_.assign(bodies.size(), Mat3d::Zero());
     heldAt_.assign(bodies.size(), Held{});
     any_ = false;
-    for (std::size_t k = 0; k < rows.size(); ++k) {
-      const Row& r = rows[k];
-      const double force = impulses[k] / h;
+    for (const LeverArms& a : rows.arms) {
+      const Row& r = rows.rows[static_cast<std::size_t>(a.row)];
+      const double force = rows.impulses[static_cast<std::size_t>(a.row)] / h;
       if (force == 0.0) continue;
-      accumulate(r.body1, force * r.J1.head<3>(), r.arm1, bodies);
-      accumulate(r.body2, force * r.J2.head<3>(), r.arm2, bodies);
+      accumulate(r.body1, force * r.J1.head<3>(), a.arm1, bodies);
+      accumulate(r.body2, force * r.J2.head<3>(), a.arm2, bodies);
     }
     if (!any_) return;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -19197,10 +19261,8 @@ struct SimulationWorkspace {
   std::vector<char> frozen;  ///< per body: frozen in this step
   /// The step's rows: the constraints', the contacts' from firstContactRow
   /// on, the producers' from firstProducerRow on (producerRowsEnd: where
-  /// each producer's end); one impulse per row (N·s: the last one in, the
-  /// solved one out).
-  std::vector<Row> rows;
-  std::vector<double> impulses;
+  /// each producer's end).
+  RowSet rows;
   std::size_t firstContactRow = 0, firstProducerRow = 0;
   std::vector<std::size_t> producerRowsEnd;
   ConstraintRows<S> constraintRows;
@@ -19208,6 +19270,33 @@ struct SimulationWorkspace {
   IslandStepper islands;
   GeometricStiffness geometricStiffness;
 };
+
+// Checks the rows a producer wrote from `row` on and its side-table entries
+// from `friction` and `arms` on; on a fault drops every producer's rows
+// (from `firstProducerRow` on) and throws a spook::Error naming the producer.
+inline void checkProducerRows(RowSet& rows, std::size_t firstProducerRow, std::size_t row, std::size_t friction,
+                              std::size_t arms, int numBodies, const std::string& name) {
+  const auto fail = [&](std::string_view what, auto value) {
+    rows.truncate(firstProducerRow);
+    throw makeError("RowProducer", name, what, value);
+  };
+  const auto ownRow = [&](int i) { return i >= int(row) && i < int(rows.size()); };
+  for (std::size_t i = row; i < rows.size(); ++i)
+    for (int body : {rows.rows[i].body1, rows.rows[i].body2, rows.rows[i].body3})
+      if (body < -1 || body >= numBodies) fail("wrote a row with a body index out of range", body);
+  for (std::size_t k = friction; k < rows.friction.size(); ++k) {
+    const FrictionLink& f = rows.friction[k];
+    if (!ownRow(f.row) || !ownRow(f.normal) || (f.partner != -1 && !ownRow(f.partner)))
+      fail("linked a friction row to a row that is not its own, row", f.row);
+    if (!(std::isfinite(f.coefficient) && f.coefficient >= 0.0))
+      fail("gave a friction row a coefficient that is not finite and >= 0", f.coefficient);
+  }
+  for (std::size_t k = arms; k < rows.arms.size(); ++k) {
+    const LeverArms& a = rows.arms[k];
+    if (!ownRow(a.row)) fail("gave lever arms to a row that is not its own, row", a.row);
+    if (!a.arm1.allFinite() || !a.arm2.allFinite()) fail("gave a row lever arms that are not finite, row", a.row);
+  }
+}
 
 }  // namespace detail
 
@@ -19251,11 +19340,10 @@ void SimulationT<S>::gatherRows(const StepContext& step) {
   auto& w = *work_;
   const double h = step.getTimeStep();
   w.rows.clear();
-  w.impulses.clear();
-  w.constraintRows.write(constraints_.get(), bodyIndex(), *solver_, h, w.rows, w.impulses);
+  w.constraintRows.write(constraints_.get(), bodyIndex(), *solver_, h, w.rows);
   w.firstContactRow = w.rows.size();
   w.contactRows.build(space_->getGeometryContacts(), materials_, *gravity_, bodyIndex(), w.solverBodies, h,
-                      contactSettings_, w.rows, w.impulses);
+                      contactSettings_, w.rows);
   collectProducerRows(step, false);
 }
 
@@ -19265,19 +19353,18 @@ void SimulationT<S>::solveRows(const StepContext& step) {
   const double h = step.getTimeStep();
   const bool stiffness = solver_->getEnableGeometricStiffness() && !w.rows.empty();
   if (stiffness)
-    w.geometricStiffness.apply(w.rows, w.impulses, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
+    w.geometricStiffness.apply(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
   else
     w.geometricStiffness.clear();
   if (w.rows.empty()) return;
-  w.islands.solve(w.rows, w.impulses, w.solverBodies, h, *solver_, statistics_.solver);
+  w.islands.solve(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
   // Again while the forces just found need more geometric stiffness than
   // the solve had (geometric_stiffness.hpp).
   for (int solves = 1; stiffness && solves < detail::GeometricStiffness::kMaxSolves &&
-                       w.geometricStiffness.refresh(w.rows, w.impulses, w.solverBodies, h,
-                                                    solver_->getGeometricStiffnessThreshold());
+                       w.geometricStiffness.refresh(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
        ++solves) {
     SolverStatistics again;
-    w.islands.solve(w.rows, w.impulses, w.solverBodies, h, *solver_, again);
+    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again);
     statistics_.solver.addResolve(again);
   }
   for (int i : w.islands.getNonFiniteBodies())
@@ -19288,9 +19375,9 @@ template <Scalar S>
 void SimulationT<S>::readBackImpulses(const StepContext& step) {
   auto& w = *work_;
   const double h = step.getTimeStep();
-  const std::span<const double> impulses(w.impulses);
+  const std::span<const double> impulses(w.rows.impulses);
   w.constraintRows.readBack(constraints_.get(), impulses.first(w.firstContactRow),
-                            std::span<const detail::Row>(w.rows).first(w.firstContactRow), w.solverBodies, h,
+                            std::span<const detail::Row>(w.rows.rows).first(w.firstContactRow), w.solverBodies, h,
                             solver_->getEnablePostStabilization());
   w.contactRows.readBack(impulses.subspan(w.firstContactRow, w.firstProducerRow - w.firstContactRow), h);
   for (std::size_t k = 0, begin = w.firstProducerRow; k < producers_.size(); begin = w.producerRowsEnd[k++])
@@ -19352,24 +19439,18 @@ void SimulationT<S>::collectProducerRows(const StepContext& step, bool projectio
   auto& w = *work_;
   w.firstProducerRow = w.rows.size();
   w.producerRowsEnd.clear();
-  RowWriter writer(w.rows, w.impulses);
+  RowWriter writer(w.rows);
   const int numBodies = int(w.solverBodies.size());
   for (const auto& p : producers_) {
-    const std::size_t begin = w.rows.size();
+    const std::size_t begin = w.rows.size(), friction = w.rows.friction.size(), arms = w.rows.arms.size();
     if (projection)
       p->writeProjectionRows(writer, step);
     else
       p->writeRows(writer, step);
-    for (std::size_t i = begin; i < w.rows.size(); ++i)
-      for (int body : {w.rows[i].body1, w.rows[i].body2, w.rows[i].body3})
-        if (body < -1 || body >= numBodies) {
-          w.rows.resize(w.firstProducerRow);
-          w.impulses.resize(w.firstProducerRow);
-          throw detail::makeError("RowProducer", p->getName(), "wrote a row with a body index out of range", body);
-        }
+    detail::checkProducerRows(w.rows, w.firstProducerRow, begin, friction, arms, numBodies, p->getName());
     w.producerRowsEnd.push_back(w.rows.size());
   }
-  for (std::size_t i = w.firstProducerRow; i < w.rows.size(); ++i) w.rows[i].constraint = -1;
+  for (std::size_t i = w.firstProducerRow; i < w.rows.size(); ++i) w.rows.rows[i].constraint = -1;
 }
 
 template <Scalar S>
@@ -19377,9 +19458,9 @@ void SimulationT<S>::postStabilize(const StepContext& step) {
   const double h = step.getTimeStep();
   auto& w = *work_;
   w.rows.clear();
-  w.constraintRows.writeProjectionRows(constraints_.get(), bodyIndex(), *solver_, w.rows);
+  w.constraintRows.writeProjectionRows(constraints_.get(), bodyIndex(), *solver_, w.rows.rows);
   if (w.rows.empty() && producers_.empty()) return;
-  w.impulses.assign(w.rows.size(), 0.0);
+  w.rows.impulses.assign(w.rows.size(), 0.0);
   w.solverBodies.clear();
   for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
   collectStoreBodies(step);
@@ -19389,7 +19470,7 @@ void SimulationT<S>::postStabilize(const StepContext& step) {
   // Frozen bodies stand still, like static ones.
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (w.frozen[i]) w.solverBodies[i] = detail::SolverBody{};
-  w.islands.project(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  w.islands.project(w.rows.rows, w.solverBodies, h, *solver_, statistics_.solver);
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (!detail::BodyIntegrator<S>::displace(*bodies_[i], w.solverBodies[i], S(h)))
       freeze(i, FreezeReason::NON_FINITE_STATE);

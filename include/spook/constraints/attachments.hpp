@@ -44,6 +44,8 @@ struct RowSink {
   bool secondOrder = false;
   /// Each row's slot, in step with `rows` (none kept when null).
   std::vector<double*>* slots = nullptr;
+  /// The lever arms of the rows that have them (none kept when null).
+  std::vector<LeverArms>* arms = nullptr;
 
   Row& add(const Vec6d& J1, const Vec6d& J2, double* impulse) {
     Row& row = rows->emplace_back();
@@ -55,6 +57,10 @@ struct RowSink {
     if (slots) slots->push_back(impulse);
     return row;
   }
+  /// The lever arms (world, m) of the row added last (LeverArms).
+  void setArms(const Vec3d& arm1, const Vec3d& arm2) {
+    if (arms) arms->push_back({static_cast<int>(rows->size()) - 1, arm1, arm2});
+  }
   /// Rows written so far: the index the next row gets.
   [[nodiscard]] std::size_t size() const { return rows->size(); }
   /// The slot of row i (nullptr when slots are not kept).
@@ -63,6 +69,7 @@ struct RowSink {
   /// holds (it may adjust the row), in order, with their slots.
   template <class Keep>
   void keepRows(std::size_t first, Keep&& keep) {
+    std::vector<int> moved(rows->size() - first, -1);  // new index of each row from first on
     std::size_t out = first;
     for (std::size_t i = first; i < rows->size(); ++i) {
       if (!keep((*rows)[i], i - first, slot(i))) continue;
@@ -70,10 +77,14 @@ struct RowSink {
         (*rows)[out] = (*rows)[i];
         if (slots) (*slots)[out] = (*slots)[i];
       }
-      ++out;
+      moved[i - first] = static_cast<int>(out++);
     }
     rows->resize(out);
     if (slots) slots->resize(out);
+    if (!arms) return;
+    for (LeverArms& a : *arms)
+      if (std::size_t(a.row) >= first) a.row = moved[std::size_t(a.row) - first];
+    std::erase_if(*arms, [](const LeverArms& a) { return a.row < 0; });
   }
 };
 

@@ -35,13 +35,15 @@ class ConstraintRows {
   /// the simulation.
   template <class BodyIndex>
   void write(const std::vector<ref_ptr<Constraint>>& constraints, BodyIndex bodyIndex, const Solver& solver,
-             double h, std::vector<Row>& rows, std::vector<double>& impulses) {
+             double h, RowSet& set) {
+    std::vector<Row>& rows = set.rows;
     owners_.clear();
     slots_.clear();
     first_ = rows.size();
     for (const auto& c : constraints) {
       RowSink sink;
       if (!c->getEnable() || !sinkFor(*c, bodyIndex, rows, slots_, sink)) continue;
+      sink.arms = &set.arms;
       // The second-order terms (Row::curvature, Row::lastRate) need the
       // projection: without it their error feeds back (the 1:1e6 chain of
       // test_solvers.cpp diverges).
@@ -60,7 +62,7 @@ class ConstraintRows {
         }
       }
     }
-    for (const double* slot : slots_) impulses.push_back(*slot);
+    for (const double* slot : slots_) set.impulses.push_back(*slot);
   }
 
   /// After the solve: `impulses` and `rows` are the ones write() appended,

@@ -44,7 +44,8 @@ class ContactRows {
   template <class BodyIndex>
   void build(std::vector<GeometryContactT<S>>& contacts, const MaterialManagerT<S>& materials,
              const GravityFieldT<S>& gravity, BodyIndex bodyIndex, const std::vector<SolverBody>& bodies, double h,
-             const ContactSettings& settings, std::vector<Row>& rows, std::vector<double>& impulses) {
+             const ContactSettings& settings, RowSet& set) {
+    std::vector<Row>& rows = set.rows;
     points_.clear();
     std::unordered_map<PairKey, double, PointerPairHash> lastForce;
     lastForce.swap(pairForce_);
@@ -94,10 +95,13 @@ class ContactRows {
           row.body2 = index[1];
           row.J1 << -direction, -r1.cross(direction);
           row.J2 << direction, r2.cross(direction);
-          row.arm1 = r1;
-          row.arm2 = r2;
           row.solveType = solveType;
           return row;
+        };
+        const auto append = [&](const Row& row, double impulse) {
+          set.arms.push_back({static_cast<int>(rows.size()), r1, r2});
+          rows.push_back(row);
+          set.impulses.push_back(impulse);
         };
 
         const Eigen::Vector3d local = toFirstGeometry * x;
@@ -119,8 +123,7 @@ class ContactRows {
           const double deepest = -spook.violationForSpeed(settings.maxDepenetrationSpeed);
           normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
         }
-        rows.push_back(normal);
-        impulses.push_back(lastForceOfPoint.dot(n) * h);
+        append(normal, lastForceOfPoint.dot(n) * h);
 
         const Eigen::Vector3d slip = velocityOf(1, r2, true) + surface[1] - velocityOf(0, r1, true) - surface[0];
         const auto [t1, t2] = tangents(n, slip, model);
@@ -133,12 +136,9 @@ class ContactRows {
           const double mu = double(p.friction[k]);
           row.upper = mu * normalEstimate / double(std::max<std::size_t>(contact.getNumEnabledPoints(), 1));
           row.lower = -row.upper;
-          row.frictionNormal = normalIndex;
-          row.frictionPartner = bound == FrictionBound::CONE ? normalIndex + 2 - k : -1;
-          row.frictionCoefficient = mu;
-          row.frictionBound = bound;
-          rows.push_back(row);
-          impulses.push_back(lastForceOfPoint.dot(tangent[k]) * h);
+          set.friction.push_back({static_cast<int>(rows.size()), normalIndex,
+                                  bound == FrictionBound::CONE ? normalIndex + 2 - k : -1, mu, bound});
+          append(row, lastForceOfPoint.dot(tangent[k]) * h);
         }
         points_.push_back({&point, pairKey(contact), local, n, t1, t2});
       }

@@ -5,9 +5,12 @@
 // core/implementation.hpp), with the solver, contact and collision code
 // behind it.
 
+#include <cmath>
 #include <cstddef>
 #include <memory>
 #include <span>
+#include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -34,10 +37,8 @@ struct SimulationWorkspace {
   std::vector<char> frozen;  ///< per body: frozen in this step
   /// The step's rows: the constraints', the contacts' from firstContactRow
   /// on, the producers' from firstProducerRow on (producerRowsEnd: where
-  /// each producer's end); one impulse per row (N·s: the last one in, the
-  /// solved one out).
-  std::vector<Row> rows;
-  std::vector<double> impulses;
+  /// each producer's end).
+  RowSet rows;
   std::size_t firstContactRow = 0, firstProducerRow = 0;
   std::vector<std::size_t> producerRowsEnd;
   ConstraintRows<S> constraintRows;
@@ -45,6 +46,33 @@ struct SimulationWorkspace {
   IslandStepper islands;
   GeometricStiffness geometricStiffness;
 };
+
+// Checks the rows a producer wrote from `row` on and its side-table entries
+// from `friction` and `arms` on; on a fault drops every producer's rows
+// (from `firstProducerRow` on) and throws a spook::Error naming the producer.
+inline void checkProducerRows(RowSet& rows, std::size_t firstProducerRow, std::size_t row, std::size_t friction,
+                              std::size_t arms, int numBodies, const std::string& name) {
+  const auto fail = [&](std::string_view what, auto value) {
+    rows.truncate(firstProducerRow);
+    throw makeError("RowProducer", name, what, value);
+  };
+  const auto ownRow = [&](int i) { return i >= int(row) && i < int(rows.size()); };
+  for (std::size_t i = row; i < rows.size(); ++i)
+    for (int body : {rows.rows[i].body1, rows.rows[i].body2, rows.rows[i].body3})
+      if (body < -1 || body >= numBodies) fail("wrote a row with a body index out of range", body);
+  for (std::size_t k = friction; k < rows.friction.size(); ++k) {
+    const FrictionLink& f = rows.friction[k];
+    if (!ownRow(f.row) || !ownRow(f.normal) || (f.partner != -1 && !ownRow(f.partner)))
+      fail("linked a friction row to a row that is not its own, row", f.row);
+    if (!(std::isfinite(f.coefficient) && f.coefficient >= 0.0))
+      fail("gave a friction row a coefficient that is not finite and >= 0", f.coefficient);
+  }
+  for (std::size_t k = arms; k < rows.arms.size(); ++k) {
+    const LeverArms& a = rows.arms[k];
+    if (!ownRow(a.row)) fail("gave lever arms to a row that is not its own, row", a.row);
+    if (!a.arm1.allFinite() || !a.arm2.allFinite()) fail("gave a row lever arms that are not finite, row", a.row);
+  }
+}
 
 }  // namespace detail
 
@@ -88,11 +116,10 @@ void SimulationT<S>::gatherRows(const StepContext& step) {
   auto& w = *work_;
   const double h = step.getTimeStep();
   w.rows.clear();
-  w.impulses.clear();
-  w.constraintRows.write(constraints_.get(), bodyIndex(), *solver_, h, w.rows, w.impulses);
+  w.constraintRows.write(constraints_.get(), bodyIndex(), *solver_, h, w.rows);
   w.firstContactRow = w.rows.size();
   w.contactRows.build(space_->getGeometryContacts(), materials_, *gravity_, bodyIndex(), w.solverBodies, h,
-                      contactSettings_, w.rows, w.impulses);
+                      contactSettings_, w.rows);
   collectProducerRows(step, false);
 }
 
@@ -102,19 +129,18 @@ void SimulationT<S>::solveRows(const StepContext& step) {
   const double h = step.getTimeStep();
   const bool stiffness = solver_->getEnableGeometricStiffness() && !w.rows.empty();
   if (stiffness)
-    w.geometricStiffness.apply(w.rows, w.impulses, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
+    w.geometricStiffness.apply(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
   else
     w.geometricStiffness.clear();
   if (w.rows.empty()) return;
-  w.islands.solve(w.rows, w.impulses, w.solverBodies, h, *solver_, statistics_.solver);
+  w.islands.solve(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
   // Again while the forces just found need more geometric stiffness than
   // the solve had (geometric_stiffness.hpp).
   for (int solves = 1; stiffness && solves < detail::GeometricStiffness::kMaxSolves &&
-                       w.geometricStiffness.refresh(w.rows, w.impulses, w.solverBodies, h,
-                                                    solver_->getGeometricStiffnessThreshold());
+                       w.geometricStiffness.refresh(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
        ++solves) {
     SolverStatistics again;
-    w.islands.solve(w.rows, w.impulses, w.solverBodies, h, *solver_, again);
+    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again);
     statistics_.solver.addResolve(again);
   }
   for (int i : w.islands.getNonFiniteBodies())
@@ -125,9 +151,9 @@ template <Scalar S>
 void SimulationT<S>::readBackImpulses(const StepContext& step) {
   auto& w = *work_;
   const double h = step.getTimeStep();
-  const std::span<const double> impulses(w.impulses);
+  const std::span<const double> impulses(w.rows.impulses);
   w.constraintRows.readBack(constraints_.get(), impulses.first(w.firstContactRow),
-                            std::span<const detail::Row>(w.rows).first(w.firstContactRow), w.solverBodies, h,
+                            std::span<const detail::Row>(w.rows.rows).first(w.firstContactRow), w.solverBodies, h,
                             solver_->getEnablePostStabilization());
   w.contactRows.readBack(impulses.subspan(w.firstContactRow, w.firstProducerRow - w.firstContactRow), h);
   for (std::size_t k = 0, begin = w.firstProducerRow; k < producers_.size(); begin = w.producerRowsEnd[k++])
@@ -189,24 +215,18 @@ void SimulationT<S>::collectProducerRows(const StepContext& step, bool projectio
   auto& w = *work_;
   w.firstProducerRow = w.rows.size();
   w.producerRowsEnd.clear();
-  RowWriter writer(w.rows, w.impulses);
+  RowWriter writer(w.rows);
   const int numBodies = int(w.solverBodies.size());
   for (const auto& p : producers_) {
-    const std::size_t begin = w.rows.size();
+    const std::size_t begin = w.rows.size(), friction = w.rows.friction.size(), arms = w.rows.arms.size();
     if (projection)
       p->writeProjectionRows(writer, step);
     else
       p->writeRows(writer, step);
-    for (std::size_t i = begin; i < w.rows.size(); ++i)
-      for (int body : {w.rows[i].body1, w.rows[i].body2, w.rows[i].body3})
-        if (body < -1 || body >= numBodies) {
-          w.rows.resize(w.firstProducerRow);
-          w.impulses.resize(w.firstProducerRow);
-          throw detail::makeError("RowProducer", p->getName(), "wrote a row with a body index out of range", body);
-        }
+    detail::checkProducerRows(w.rows, w.firstProducerRow, begin, friction, arms, numBodies, p->getName());
     w.producerRowsEnd.push_back(w.rows.size());
   }
-  for (std::size_t i = w.firstProducerRow; i < w.rows.size(); ++i) w.rows[i].constraint = -1;
+  for (std::size_t i = w.firstProducerRow; i < w.rows.size(); ++i) w.rows.rows[i].constraint = -1;
 }
 
 template <Scalar S>
@@ -214,9 +234,9 @@ void SimulationT<S>::postStabilize(const StepContext& step) {
   const double h = step.getTimeStep();
   auto& w = *work_;
   w.rows.clear();
-  w.constraintRows.writeProjectionRows(constraints_.get(), bodyIndex(), *solver_, w.rows);
+  w.constraintRows.writeProjectionRows(constraints_.get(), bodyIndex(), *solver_, w.rows.rows);
   if (w.rows.empty() && producers_.empty()) return;
-  w.impulses.assign(w.rows.size(), 0.0);
+  w.rows.impulses.assign(w.rows.size(), 0.0);
   w.solverBodies.clear();
   for (const auto& body : bodies_) w.solverBodies.push_back(detail::BodyIntegrator<S>::massAndVelocity(*body, S(h)));
   collectStoreBodies(step);
@@ -226,7 +246,7 @@ void SimulationT<S>::postStabilize(const StepContext& step) {
   // Frozen bodies stand still, like static ones.
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (w.frozen[i]) w.solverBodies[i] = detail::SolverBody{};
-  w.islands.project(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  w.islands.project(w.rows.rows, w.solverBodies, h, *solver_, statistics_.solver);
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (!detail::BodyIntegrator<S>::displace(*bodies_[i], w.solverBodies[i], S(h)))
       freeze(i, FreezeReason::NON_FINITE_STATE);

@@ -60,22 +60,37 @@ class StepContext {
 /// row's target speed and viscosity, force bounds (N or N·m).
 class RowWriter {
  public:
-  RowWriter(std::vector<detail::Row>& rows, std::vector<double>& impulses) : rows_(rows), impulses_(impulses) {}
+  using Vec3d = Eigen::Vector3d;
+
+  explicit RowWriter(detail::RowSet& rows) : rows_(rows) {}
 
   /// A new row. `impulse` (N·s, usually the row's impulse last step) is the
   /// iterative solvers' warm start when they warm start and the direct
   /// solver's first guess of the row's state (at a bound or free) always.
   detail::Row& add(double impulse = 0.0) {
-    impulses_.push_back(impulse);
-    return rows_.emplace_back();
+    rows_.impulses.push_back(impulse);
+    return rows_.rows.emplace_back();
   }
-  /// Rows written so far in the step: the index the next row gets (for
-  /// Row::frictionNormal).
+  /// Rows written so far in the step: the index the next row gets.
   [[nodiscard]] std::size_t size() const { return rows_.size(); }
 
+  /// Makes row `row` a friction row whose bounds follow the impulse of row
+  /// `normal` (both this producer's): ±μΛn per row (SCALED_BOX), or within
+  /// the disk of radius μΛn with its contact's other tangent row `partner`
+  /// (CONE); with FIXED the row keeps its own bounds.
+  void setFriction(std::size_t row, std::size_t normal, double coefficient, detail::FrictionBound bound,
+                   int partner = -1) {
+    rows_.friction.push_back({static_cast<int>(row), static_cast<int>(normal), partner, coefficient, bound});
+  }
+  /// Lever arms (world, m) from the centers of mass of row `row`'s first two
+  /// bodies to where its force acts: its share of the geometric stiffness
+  /// (solver/geometric_stiffness.hpp).
+  void setLeverArms(std::size_t row, const Vec3d& arm1, const Vec3d& arm2) {
+    rows_.arms.push_back({static_cast<int>(row), arm1, arm2});
+  }
+
  private:
-  std::vector<detail::Row>& rows_;
-  std::vector<double>& impulses_;
+  detail::RowSet& rows_;
 };
 
 /// Bodies the step integrates and solves beside the rigid bodies, held by

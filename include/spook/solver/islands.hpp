@@ -46,6 +46,7 @@ class IslandStepper {
   void project(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, Solver& solver,
                SolverStatistics& statistics) {
     partition(rows, bodies);
+    frictionOf_.assign(rows.size(), -1);
     for (const std::vector<int>& island : islands_) {
       buildProblem(rows, bodies, island, h);
       for (std::size_t k = 0; k < island.size(); ++k) {
@@ -67,15 +68,19 @@ class IslandStepper {
   /// impulses the last solve() dropped as non-finite.
   [[nodiscard]] const std::vector<int>& getNonFiniteBodies() const { return nonFiniteBodies_; }
 
-  /// `impulses` (N·s, one per row): each row's last impulse in (the warm
-  /// start and the direct solver's first guess), the solved one out; rows
-  /// that join no island (between static bodies) keep theirs.
-  void solve(const std::vector<Row>& rows, std::vector<double>& impulses, std::vector<SolverBody>& bodies, double h,
-             Solver& solver, SolverStatistics& statistics) {
+  /// The rows' impulses: each row's last impulse in (the warm start and the
+  /// direct solver's first guess), the solved one out; rows that join no
+  /// island (between static bodies) keep theirs.
+  void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics) {
+    const std::vector<Row>& rows = set.rows;
+    std::vector<double>& impulses = set.impulses;
     partition(rows, bodies);
     nonFiniteBodies_.clear();
+    frictionOf_.assign(rows.size(), -1);
+    for (std::size_t k = 0; k < set.friction.size(); ++k)
+      frictionOf_[static_cast<std::size_t>(set.friction[k].row)] = static_cast<int>(k);
     for (const std::vector<int>& island : islands_) {
-      buildProblem(rows, bodies, island, h);
+      buildProblem(rows, bodies, island, h, set.friction);
       const bool warmStart = solver.getEnableWarmStarting();
       for (std::size_t k = 0; k < island.size(); ++k) {
         IslandProblem::Entry& e = problem_.rows[k];
@@ -132,9 +137,10 @@ class IslandStepper {
     }
   }
 
-  // The island's entries, impulses and guesses zero.
+  // The island's entries, impulses and guesses zero; frictionOf_ names each
+  // row's entry in `friction` (−1: none).
   void buildProblem(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, const std::vector<int>& island,
-                    double h) {
+                    double h, const std::vector<FrictionLink>& friction = {}) {
     local_.resize(bodies.size(), -1);
     islandBodies_.clear();
     auto localIndex = [&](int body) {
@@ -153,6 +159,8 @@ class IslandStepper {
     problem_.extraBodies.clear();
     for (std::size_t k = 0; k < island.size(); ++k) {
       const Row& r = rows[static_cast<std::size_t>(island[k])];
+      const int link = frictionOf_[static_cast<std::size_t>(island[k])];
+      const FrictionLink* f = link < 0 ? nullptr : &friction[static_cast<std::size_t>(link)];
       IslandProblem::Entry& e = problem_.rows[k];
       e.body1 = e.body2 = e.extra = -1;
       // G v and G v* over every body (kinematic ones move too), M⁻¹Gᵀ over
@@ -182,7 +190,7 @@ class IslandStepper {
       // A floor far below any physical compliance keeps redundant rigid rows
       // (compliance 0) positive definite; friction rows get a higher one
       // (kFrictionSofterThan).
-      e.sigma = std::max(e.sigma, (r.frictionNormal >= 0 ? kFrictionSofterThan : 1e-12) * mobility);
+      e.sigma = std::max(e.sigma, (f && f->normal >= 0 ? kFrictionSofterThan : 1e-12) * mobility);
       e.diagonal = mobility + e.sigma;
       e.lower = r.lower * h;
       e.upper = r.upper * h;
@@ -190,10 +198,10 @@ class IslandStepper {
       e.impulse = 0.0;
       e.solveType = r.solveType;
       e.constraint = localRow(r.constraint);
-      e.normal = localRow(r.frictionNormal);
-      e.partner = localRow(r.frictionPartner);
-      e.mu = r.frictionCoefficient;
-      e.frictionBound = r.frictionBound;
+      e.normal = f ? localRow(f->normal) : -1;
+      e.partner = f ? localRow(f->partner) : -1;
+      e.mu = f ? f->coefficient : 0.0;
+      e.frictionBound = f ? f->bound : FrictionBound::FIXED;
       e.coneShare = 1.0;
     }
     problem_.numBodies = static_cast<int>(islandBodies_.size());
@@ -223,7 +231,7 @@ class IslandStepper {
     return llt.solve(Mat3d::Identity());
   }
 
-  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_;
+  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_, frictionOf_;
   std::vector<std::vector<int>> islands_;
   IslandProblem problem_;
   std::vector<Vec6d> velocityChange_;

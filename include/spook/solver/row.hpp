@@ -1,7 +1,10 @@
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -31,7 +34,7 @@ using Vec6d = Eigen::Matrix<double, 6, 1>;
 /// scene's scalar. G v = J1·(v1, ω1) + J2·(v2, ω2) (+ J3·(v3, ω3)) with
 /// velocities of the centers of mass in world coordinates; a body index of
 /// −1 is the world. A third body is rare (a wire's bend row couples three
-/// consecutive nodes); it has no lever arm for the geometric stiffness.
+/// consecutive nodes).
 ///
 /// A holonomic row has a violation g and SPOOK parameters (compliance ε,
 /// damping τ): G v⁺ + Σ Λ = −a g + b' G v, Σ = 4ε/(h²(1+4τ/h)) (PHYSICS.md
@@ -39,7 +42,8 @@ using Vec6d = Eigen::Matrix<double, 6, 1>;
 /// viscosity γ: G v⁺ + (γ/h) Λ = u (§1.3). Bounds are forces (N or N·m).
 /// A row's impulse Λ (N·s) is not in the row: the step keeps the impulses
 /// in an array beside the rows, and each source of rows keeps its own
-/// history (sim/step_extension.hpp).
+/// history (sim/step_extension.hpp). What only some rows have (a friction
+/// row's link to its normal row, lever arms) is in side tables (RowSet).
 struct Row {
   // Members ordered by size (no padding between them: the step copies
   // rows by the thousand).
@@ -69,21 +73,48 @@ struct Row {
   /// g (m/s or rad/s), kept by post-stabilization; NaN when unknown, then
   /// G v − hκ stands in for it in SPOOK's b' term.
   double lastRate = std::numeric_limits<double>::quiet_NaN();
-  /// Translational rows: lever arms (world, m) from each center of mass to
-  /// the point where the row's force acts, for the geometric stiffness
-  /// (geometric_stiffness.hpp). Zero for rows that apply pure torques.
-  Eigen::Vector3d arm1 = Eigen::Vector3d::Zero(), arm2 = Eigen::Vector3d::Zero();
-  /// Friction rows: the index in the same row list of the normal row whose
-  /// impulse bounds this one (−1: not a friction row), the coefficient μ and
-  /// the kind of bound; cone rows name their contact's other tangent row.
-  double frictionCoefficient = 0.0;
-  int frictionNormal = -1;
-  int frictionPartner = -1;
-  FrictionBound frictionBound = FrictionBound::FIXED;
   SolveType solveType = SolveType::DIRECT;
   bool holonomic = true;
 
   [[nodiscard]] bool bounded() const { return lower > -std::numeric_limits<double>::infinity() || upper < std::numeric_limits<double>::infinity(); }
+};
+
+/// A friction row: its bounds follow the impulse of its contact's normal
+/// row (solver/friction_bounds.hpp). Indices are in the same row list.
+struct FrictionLink {
+  int row = -1;              ///< the friction row
+  int normal = -1;           ///< the normal row whose impulse bounds it
+  int partner = -1;          ///< cone rows: the contact's other tangent row
+  double coefficient = 0.0;  ///< μ
+  FrictionBound bound = FrictionBound::FIXED;
+};
+
+/// A translational row's lever arms (world, m) from each center of mass to
+/// the point where its force acts, for the geometric stiffness
+/// (geometric_stiffness.hpp); rows without them add none.
+struct LeverArms {
+  int row = -1;
+  Eigen::Vector3d arm1 = Eigen::Vector3d::Zero(), arm2 = Eigen::Vector3d::Zero();
+};
+
+/// The rows of a step: one impulse per row beside them and, in side tables,
+/// what only some rows have (entries in any order, one per row at most).
+struct RowSet {
+  std::vector<Row> rows;
+  std::vector<double> impulses;  ///< N·s: each row's last impulse in, the solved one out
+  std::vector<FrictionLink> friction;
+  std::vector<LeverArms> arms;
+
+  [[nodiscard]] std::size_t size() const { return rows.size(); }
+  [[nodiscard]] bool empty() const { return rows.empty(); }
+  void clear() { truncate(0); }
+  /// Drops the rows from n on and their side-table entries.
+  void truncate(std::size_t n) {
+    rows.resize(std::min(n, rows.size()));
+    impulses.resize(rows.size());
+    std::erase_if(friction, [&](const FrictionLink& f) { return std::size_t(f.row) >= rows.size(); });
+    std::erase_if(arms, [&](const LeverArms& a) { return std::size_t(a.row) >= rows.size(); });
+  }
 };
 
 }  // namespace detail

@@ -58,8 +58,7 @@ struct Spherical {
     for (int k = 0; k < 3; ++k) {
       const Vec3d e = Vec3d::Unit(k);
       Row& row = holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
-      row.arm1 = r1;
-      row.arm2 = r2;
+      sink.setArms(r1, r2);
       row.curvature = curvature[k];
     }
   }
@@ -91,8 +90,7 @@ struct Dot2 {
     const Vec3d n = a.R2.col(A);
     Row& row = holonomicRow(sink, linearAngular(n, a.r1().cross(n)), linearAngular(-n, n.cross(a.p1 - a.c2)),
                             (a.p1 - a.p2).dot(n), p[0], impulse);
-    row.arm1 = a.r1();
-    row.arm2 = a.p1 - a.c2;
+    sink.setArms(a.r1(), a.p1 - a.c2);
     if (sink.secondOrder) row.curvature = separationCurvature(a, n);
   }
 };
