@@ -115,10 +115,9 @@ class BeadedString : public spook::RowProducer {
         Row& r = rows.add(impulses_[3 * i + 1 + k]);
         r.body1 = index(i - 1);
         r.body2 = index(i);
-        r.body3 = index(i + 1);
+        rows.setThirdBody(rows.size() - 1, index(i + 1), linear(across_[k]));
         r.J1 = linear(across_[k]);
         r.J2 = linear(-2.0 * across_[k]);
-        r.J3 = linear(across_[k]);
         r.violation = across_[k].dot(second);
         r.compliance = bendCompliance_;
         r.damping = damping;

@@ -8322,6 +8322,7 @@ template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, con
 
 #include <cmath>
 #include <cstddef>
+#include <iterator>
 #include <numbers>
 #include <vector>
 
@@ -8377,7 +8378,7 @@ using Vec6d = Eigen::Matrix<double, 6, 1>;
 /// scene's scalar. G v = J1·(v1, ω1) + J2·(v2, ω2) (+ J3·(v3, ω3)) with
 /// velocities of the centers of mass in world coordinates; a body index of
 /// −1 is the world. A third body is rare (a wire's bend row couples three
-/// consecutive nodes).
+/// consecutive nodes): it is in a side table (ThirdBody).
 ///
 /// A holonomic row has a violation g and SPOOK parameters (compliance ε,
 /// damping τ): G v⁺ + Σ Λ = −a g + b' G v, Σ = 4ε/(h²(1+4τ/h)) (PHYSICS.md
@@ -8386,36 +8387,24 @@ using Vec6d = Eigen::Matrix<double, 6, 1>;
 /// A row's impulse Λ (N·s) is not in the row: the step keeps the impulses
 /// in an array beside the rows, and each source of rows keeps its own
 /// history (sim/step_extension.hpp). What only some rows have (a friction
-/// row's link to its normal row, lever arms) is in side tables (RowSet).
+/// row's link to its normal row, lever arms, a third body, second-order terms)
+/// is in side tables (RowSet).
 struct Row {
-  // Members ordered by size (no padding between them: the step copies
-  // rows by the thousand).
+  // Members ordered by size (the step copies rows by the thousand).
   int body1 = -1;
   int body2 = -1;
-  int body3 = -1;
   /// The index in the same row list of the first row of the constraint
   /// this row belongs to (−1: a contact's): an iterative sweep updates a
   /// constraint's unbounded rows together (iterative_solve.hpp).
   int constraint = -1;
   Vec6d J1 = Vec6d::Zero();  ///< (linear, angular) of body 1
   Vec6d J2 = Vec6d::Zero();  ///< (linear, angular) of body 2
-  Vec6d J3 = Vec6d::Zero();  ///< (linear, angular) of body 3
   double violation = 0.0;   ///< g (m or rad), holonomic rows
   double speed = 0.0;       ///< target G v (m/s or rad/s), velocity rows
   double compliance = 0.0;  ///< ε, or γ for a velocity row
   double damping = 0.0;     ///< τ (s), holonomic rows
   double lower = -std::numeric_limits<double>::infinity();
   double upper = std::numeric_limits<double>::infinity();
-  /// Holonomic rows: κ = ½ vᵀ(∂²g/∂q²)v at the start of the step (m/s² or
-  /// rad/s²), the quadratic velocity term of the index-1 DAE (Ġv/2). A step
-  /// with velocity v⁺ moves g by hGv⁺ + h²κ + O(h³), and G_k v_k exceeds the
-  /// last step's mean rate of g by hκ. Used with post-stabilization only
-  /// (zero otherwise).
-  double curvature = 0.0;
-  /// Holonomic rows: the rate G_{k−1}v_k + hκ at which the last step moved
-  /// g (m/s or rad/s), kept by post-stabilization; NaN when unknown, then
-  /// G v − hκ stands in for it in SPOOK's b' term.
-  double lastRate = std::numeric_limits<double>::quiet_NaN();
   SolveType solveType = SolveType::DIRECT;
   bool holonomic = true;
 
@@ -8440,6 +8429,27 @@ struct LeverArms {
   Eigen::Vector3d arm1 = Eigen::Vector3d::Zero(), arm2 = Eigen::Vector3d::Zero();
 };
 
+/// A holonomic row's second-order terms, used with post-stabilization only.
+struct SecondOrder {
+  int row = -1;
+  /// κ = ½ vᵀ(∂²g/∂q²)v at the start of the step (m/s² or rad/s²), the
+  /// quadratic velocity term of the index-1 DAE (Ġv/2). A step with velocity
+  /// v⁺ moves g by hGv⁺ + h²κ + O(h³), and G_k v_k exceeds the last step's
+  /// mean rate of g by hκ.
+  double curvature = 0.0;
+  /// The rate G_{k−1}v_k + hκ at which the last step moved g (m/s or rad/s),
+  /// kept by post-stabilization; NaN when unknown, then G v − hκ stands in
+  /// for it in SPOOK's b' term.
+  double lastRate = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// A row's third body and its Jacobian block (linear, angular).
+struct ThirdBody {
+  int row = -1;
+  int body = -1;
+  Vec6d J = Vec6d::Zero();
+};
+
 /// The rows of a step: one impulse per row beside them and, in side tables,
 /// what only some rows have (entries in any order, one per row at most).
 struct RowSet {
@@ -8447,6 +8457,8 @@ struct RowSet {
   std::vector<double> impulses;  ///< N·s: each row's last impulse in, the solved one out
   std::vector<FrictionLink> friction;
   std::vector<LeverArms> arms;
+  std::vector<ThirdBody> thirdBodies;
+  std::vector<SecondOrder> secondOrder;
 
   [[nodiscard]] std::size_t size() const { return rows.size(); }
   [[nodiscard]] bool empty() const { return rows.empty(); }
@@ -8457,6 +8469,8 @@ struct RowSet {
     impulses.resize(rows.size());
     std::erase_if(friction, [&](const FrictionLink& f) { return std::size_t(f.row) >= rows.size(); });
     std::erase_if(arms, [&](const LeverArms& a) { return std::size_t(a.row) >= rows.size(); });
+    std::erase_if(thirdBodies, [&](const ThirdBody& t) { return std::size_t(t.row) >= rows.size(); });
+    std::erase_if(secondOrder, [&](const SecondOrder& t) { return std::size_t(t.row) >= rows.size(); });
   }
 };
 
@@ -8716,12 +8730,15 @@ struct RowSink {
   int body1 = -1, body2 = -1;
   SolveType solveType = SolveType::DIRECT;
   /// True when the solver post-stabilizes these rows, which then take their
-  /// second-order terms (Row::curvature); otherwise those are dropped.
+  /// second-order terms (SecondOrder::curvature); otherwise those are dropped.
   bool secondOrder = false;
   /// Each row's slot, in step with `rows` (none kept when null).
   std::vector<double*>* slots = nullptr;
   /// The lever arms of the rows that have them (none kept when null).
   std::vector<LeverArms>* arms = nullptr;
+  /// The second-order terms of the rows that have them, in row order (none
+  /// kept when null).
+  std::vector<SecondOrder>* curvatures = nullptr;
 
   Row& add(const Vec6d& J1, const Vec6d& J2, double* impulse) {
     Row& row = rows->emplace_back();
@@ -8736,6 +8753,21 @@ struct RowSink {
   /// The lever arms (world, m) of the row added last (LeverArms).
   void setArms(const Vec3d& arm1, const Vec3d& arm2) {
     if (arms) arms->push_back({static_cast<int>(rows->size()) - 1, arm1, arm2});
+  }
+  /// The second-order term κ of the row added last (SecondOrder), kept only
+  /// when the rows are post-stabilized (`secondOrder`).
+  void setCurvature(double kappa) {
+    if (secondOrder && curvatures) curvatures->push_back({static_cast<int>(rows->size()) - 1, kappa});
+  }
+  /// Adds to the second-order term of an earlier row i.
+  void addCurvature(std::size_t i, double kappa) {
+    if (!secondOrder || !curvatures) return;
+    auto it = curvatures->end();
+    while (it != curvatures->begin() && std::prev(it)->row >= static_cast<int>(i)) --it;
+    if (it != curvatures->end() && it->row == static_cast<int>(i))
+      it->curvature += kappa;
+    else
+      curvatures->insert(it, {static_cast<int>(i), kappa});
   }
   /// Rows written so far: the index the next row gets.
   [[nodiscard]] std::size_t size() const { return rows->size(); }
@@ -8757,10 +8789,14 @@ struct RowSink {
     }
     rows->resize(out);
     if (slots) slots->resize(out);
-    if (!arms) return;
-    for (LeverArms& a : *arms)
-      if (std::size_t(a.row) >= first) a.row = moved[std::size_t(a.row) - first];
-    std::erase_if(*arms, [](const LeverArms& a) { return a.row < 0; });
+    const auto renumber = [&](auto* table) {
+      if (!table) return;
+      for (auto& entry : *table)
+        if (std::size_t(entry.row) >= first) entry.row = moved[std::size_t(entry.row) - first];
+      std::erase_if(*table, [](const auto& entry) { return entry.row < 0; });
+    };
+    renumber(arms);
+    renumber(curvatures);
   }
 };
 
@@ -8777,7 +8813,7 @@ struct Coordinate {
   double speed = 0.0;  ///< d(value)/dt at the start of the step
   Vec6d J1 = Vec6d::Zero(), J2 = Vec6d::Zero();
   bool rotational = false;
-  /// ½ vᵀ∇²(value) v at the start of the step (Row::curvature); zero for
+  /// ½ vᵀ∇²(value) v at the start of the step (SecondOrder::curvature); zero for
   /// the free angles, whose second-order term vanishes on the joint's
   /// manifold (the slack angles of slack.hpp, which leave it, carry theirs).
   double curvature = 0.0;
@@ -9159,7 +9195,7 @@ inline Vec3d separationRate(const Attachments& a) {
   return a.v1.head<3>() + a.v1.tail<3>().cross(a.r1()) - a.v2.head<3>() - a.v2.tail<3>().cross(a.r2());
 }
 
-/// κ = ½ vᵀ∇²g v (Row::curvature) of g = (p₁ − p₂)·n with the frame-2 axis
+/// κ = ½ vᵀ∇²g v (SecondOrder::curvature) of g = (p₁ − p₂)·n with the frame-2 axis
 /// n turning with ω₂: ½(d̈·n + d·n̈) + ḋ·ṅ, d̈ and n̈ their centripetal parts.
 inline double separationCurvature(const Attachments& a, const Vec3d& n) {
   const Vec3d w2 = a.v2.tail<3>(), dn = w2.cross(n);
@@ -9175,9 +9211,9 @@ struct Spherical {
     const Vec3d curvature = sink.secondOrder ? Vec3d(0.5 * separationCentripetal(a)) : Vec3d::Zero();
     for (int k = 0; k < 3; ++k) {
       const Vec3d e = Vec3d::Unit(k);
-      Row& row = holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
+      holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
       sink.setArms(r1, r2);
-      row.curvature = curvature[k];
+      sink.setCurvature(curvature[k]);
     }
   }
 };
@@ -9190,11 +9226,11 @@ struct Dot1 {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Vec3d u = a.R1.col(A1), w = a.R2.col(A2), n = u.cross(w);
-    Row& row = holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), u.dot(w), p[0], impulse);
+    holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), u.dot(w), p[0], impulse);
     if (!sink.secondOrder) return;
-    // κ = ½(ü·w + u·ẅ) + u̇·ẇ with u̇ = ω₁×u, ü = ω₁×u̇ (Row::curvature).
+    // κ = ½(ü·w + u·ẅ) + u̇·ẇ with u̇ = ω₁×u, ü = ω₁×u̇ (SecondOrder::curvature).
     const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
-    row.curvature = 0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw);
+    sink.setCurvature(0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw));
   }
 };
 
@@ -9206,10 +9242,10 @@ struct Dot2 {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Vec3d n = a.R2.col(A);
-    Row& row = holonomicRow(sink, linearAngular(n, a.r1().cross(n)), linearAngular(-n, n.cross(a.p1 - a.c2)),
-                            (a.p1 - a.p2).dot(n), p[0], impulse);
+    holonomicRow(sink, linearAngular(n, a.r1().cross(n)), linearAngular(-n, n.cross(a.p1 - a.c2)),
+                 (a.p1 - a.p2).dot(n), p[0], impulse);
     sink.setArms(a.r1(), a.p1 - a.c2);
-    if (sink.secondOrder) row.curvature = separationCurvature(a, n);
+    if (sink.secondOrder) sink.setCurvature(separationCurvature(a, n));
   }
 };
 
@@ -9440,7 +9476,7 @@ class SecondaryConstraintT : public Referenced {
     row.damping = double(regularization_.getDamping());
     row.lower = double(forceRange_.lower);
     row.upper = double(forceRange_.upper);
-    row.curvature = c.curvature;
+    sink.setCurvature(c.curvature);
     return row;
   }
 
@@ -10818,10 +10854,10 @@ namespace spook::detail {
 // angles in radians rather than the Dot1/QuatLock sines, so that a slack of
 // 0.05 rad means 0.05 rad: TiltAngle and RotationAngle below. Inside its
 // slack a DOF is off the rigid joint's manifold, so the angles carry their
-// second-order term κ (Row::curvature) like the elementary rows.
+// second-order term κ (SecondOrder::curvature) like the elementary rows.
 
 /// A quantity's value, rate and κ = ½ of its second derivative at constant
-/// body velocities (Row::curvature).
+/// body velocities (SecondOrder::curvature).
 struct Rates {
   double value = 0.0, rate = 0.0, curvature = 0.0;
 };
@@ -10873,8 +10909,8 @@ struct TiltAngle {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Coordinate c = coordinate(a);
-    Row& row = holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
-    if (sink.secondOrder) row.curvature = c.curvature;
+    holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
+    sink.setCurvature(c.curvature);
   }
 };
 
@@ -10912,8 +10948,8 @@ struct RotationAngle {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Coordinate c = coordinate(a);
-    Row& row = holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
-    if (sink.secondOrder) row.curvature = c.curvature;
+    holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
+    sink.setCurvature(c.curvature);
   }
 };
 
@@ -11701,12 +11737,12 @@ inline void addCurvatureCoupling(const Attachments& b, const Vec3d& curvature, s
 
 /// The centripetal term of the rows across the curve. Frame 1's origin
 /// moving along the tangent at arc rate ṡ for a step h ends ½h²Qₖ off the
-/// curve, Qₖ = −(κ·nₖ)ṡ²: the row's second-order term Row::curvature = ½Qₖ.
+/// curve, Qₖ = −(κ·nₖ)ṡ²: the row's second-order term κ = ½Qₖ (SecondOrder).
 inline double centripetalCurvature(double curvatureAcross, double rate) {
   return -0.5 * curvatureAcross * rate * rate;
 }
 
-/// Without post-stabilization (Row::curvature dropped), the same term goes
+/// Without post-stabilization (second-order terms dropped), the same term goes
 /// into the violation: following the curve takes Gv⁺ + ½hQₖ where a
 /// straight row has Gv⁺, and SPOOK's right-hand side is −a g + b'Gv
 /// (SpookParameters), so the shift is ½hQₖ/a (m). The curve is fixed, so
@@ -11739,7 +11775,7 @@ inline double centripetalShift(const Row& row, double curvatureAcross, double ra
 /// second-order drift that the step's linear prediction does not see. Left
 /// to the violation it settles at (1 + 4τ/h)/4 times that (6.7 mm for 4.4
 /// m/s on a 1 m radius at 60 Hz). So the rows across the curve carry that
-/// centripetal term: as Row::curvature when the solver post-stabilizes them,
+/// centripetal term: as SecondOrder::curvature when the solver post-stabilizes them,
 /// otherwise as a shift of their violation (detail::centripetalShift).
 ///
 /// The tracked parameter t starts at the point of the curve nearest to the
@@ -11902,7 +11938,7 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
         detail::Row& row = (*sink.rows)[first + k];
         const double across = place.curvature.dot(b.R2.col(static_cast<Eigen::Index>(k)));
         if (sink.secondOrder)
-          row.curvature += detail::centripetalCurvature(across, rate);
+          sink.addCurvature(first + k, detail::centripetalCurvature(across, rate));
         else
           row.violation += detail::centripetalShift(row, across, rate, h);
       }
@@ -14682,7 +14718,7 @@ class Solver : public Referenced {
   /// are advanced, the directly solved equality rows (and slack rows held
   /// at an end) are
   /// projected, mass-weighted, onto the violation their second-order
-  /// prediction gives, g* = g + h(G v⁺ + hκ) (Row::curvature):
+  /// prediction gives, g* = g + h(G v⁺ + hκ) (SecondOrder::curvature):
   /// Δq = M⁻¹Gᵀδ with G M⁻¹Gᵀ δ = g* − g(q⁺), and the velocities take Δq/h.
   /// This removes the drift of the velocity-level step beyond second order,
   /// which grows with angular speed and mass ratio, and leaves the rows'
@@ -16040,6 +16076,17 @@ class RowWriter {
   void setFriction(std::size_t row, std::size_t normal, double coefficient, detail::FrictionBound bound,
                    int partner = -1) {
     rows_.friction.push_back({static_cast<int>(row), static_cast<int>(normal), partner, coefficient, bound});
+  }
+  /// A third body of row `row` (StepContext::indexOf) and its Jacobian
+  /// block (linear, angular): G v = J1·v1 + J2·v2 + J·v3.
+  void setThirdBody(std::size_t row, int body, const detail::Vec6d& J) {
+    rows_.thirdBodies.push_back({static_cast<int>(row), body, J});
+  }
+  /// The second-order term κ = ½ vᵀ(∂²g/∂q²)v of holonomic row `row` at the
+  /// start of the step (m/s² or rad/s²; detail::SecondOrder), which a step
+  /// with post-stabilization takes into account.
+  void setCurvature(std::size_t row, double curvature) {
+    rows_.secondOrder.push_back({static_cast<int>(row), curvature});
   }
   /// Lever arms (world, m) from the centers of mass of row `row`'s first two
   /// bodies to where its force acts: its share of the geometric stiffness
@@ -17907,7 +17954,7 @@ namespace spook::detail {
 /// moves g and the violation g + h·rate it should end with. The projection
 /// restores that violation (it removes only the higher-order drift of the
 /// step, not the rows' compliant or damped motion), and the rate is the
-/// next step's b' term (Row::lastRate). They are keyed by slot, which
+/// next step's b' term (SecondOrder::lastRate). They are keyed by slot, which
 /// identifies a row from step to step whatever rows come and go around it.
 template <Scalar S>
 class ConstraintRows {
@@ -17928,23 +17975,15 @@ class ConstraintRows {
       RowSink sink;
       if (!c->getEnable() || !sinkFor(*c, bodyIndex, rows, slots_, sink)) continue;
       sink.arms = &set.arms;
-      // The second-order terms (Row::curvature, Row::lastRate) need the
-      // projection: without it their error feeds back (the 1:1e6 chain of
-      // test_solvers.cpp diverges).
-      const bool projected = solver.projects(c->getSolveType());
-      sink.secondOrder = projected;
-      const std::size_t first = rows.size();
+      sink.curvatures = &set.secondOrder;
+      // The second-order terms (SecondOrder) need the projection: without it
+      // their error feeds back (the 1:1e6 chain of test_solvers.cpp diverges).
+      sink.secondOrder = solver.projects(c->getSolveType());
+      const std::size_t first = rows.size(), firstTerm = set.secondOrder.size();
       ConstraintAccess::addRows(*c, sink, h);
       owners_.resize(rows.size() - first_, c.get());
-      for (std::size_t i = first; i < rows.size(); ++i) {
-        Row& r = rows[i];
-        r.constraint = int(first);
-        if (!projected) {
-          r.curvature = 0.0;
-        } else if (const auto it = predicted_.find(slots_[i - first_]); r.holonomic && it != predicted_.end()) {
-          r.lastRate = it->second.rate;
-        }
-      }
+      for (std::size_t i = first; i < rows.size(); ++i) rows[i].constraint = int(first);
+      if (sink.secondOrder) addLastRates(set, first, firstTerm);
     }
     for (const double* slot : slots_) set.impulses.push_back(*slot);
   }
@@ -17953,8 +17992,10 @@ class ConstraintRows {
   /// `bodies` hold v⁺ in freeVelocity. Writes the slots, the forces of the
   /// constraints that compute them, lets each constraint read its rows'
   /// results, and predicts the holonomic rows' violations when `predict`.
-  void readBack(const std::vector<ref_ptr<Constraint>>& constraints, std::span<const double> impulses,
-                std::span<const Row> rows, const std::vector<SolverBody>& bodies, double h, bool predict) {
+  void readBack(const std::vector<ref_ptr<Constraint>>& constraints, const RowSet& set,
+                const std::vector<SolverBody>& bodies, double h, bool predict) {
+    const auto rows = std::span<const Row>(set.rows).subspan(first_, slots_.size());
+    const auto impulses = std::span<const double>(set.impulses).subspan(first_, slots_.size());
     for (std::size_t i = 0; i < slots_.size(); ++i) *slots_[i] = impulses[i];
     for (const auto& c : constraints)
       if (c->getEnableComputeForces()) ConstraintAccess::clearWrench(*c);
@@ -17964,13 +18005,18 @@ class ConstraintRows {
 
     predicted_.clear();
     if (!predict) return;
+    // The constraints' terms come first in the table, in row order.
+    std::size_t term = 0;
     for (std::size_t i = 0; i < rows.size(); ++i) {
+      while (term < set.secondOrder.size() && set.secondOrder[term].row < int(first_ + i)) ++term;
+      const bool hasTerm = term < set.secondOrder.size() && set.secondOrder[term].row == int(first_ + i);
+      const double curvature = hasTerm ? set.secondOrder[term].curvature : 0.0;
       const Row& r = rows[i];
       if (!r.holonomic) continue;
       const auto speed = [&](int body, const Vec6d& J) {
         return body < 0 ? 0.0 : J.dot(bodies[static_cast<std::size_t>(body)].freeVelocity);
       };
-      const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + speed(r.body3, r.J3) + h * r.curvature;
+      const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + h * curvature;
       predicted_[slots_[i]] = {r.violation + h * rate, rate};
     }
   }
@@ -18009,6 +18055,28 @@ class ConstraintRows {
     double violation = 0.0, rate = 0.0;
   };
 
+  // The predicted rates of the holonomic rows from `first` on become their
+  // SecondOrder::lastRate; their terms are those from `firstTerm` on (in row
+  // order), and rows without one get one.
+  void addLastRates(RowSet& set, std::size_t first, std::size_t firstTerm) {
+    terms_.assign(set.secondOrder.begin() + std::ptrdiff_t(firstTerm), set.secondOrder.end());
+    set.secondOrder.resize(firstTerm);
+    std::size_t k = 0;
+    for (std::size_t i = first; i < set.rows.size(); ++i) {
+      SecondOrder term{int(i)};
+      bool keep = false;
+      if (k < terms_.size() && terms_[k].row == int(i)) {
+        term = terms_[k++];
+        keep = true;
+      }
+      if (const auto it = predicted_.find(slots_[i - first_]); set.rows[i].holonomic && it != predicted_.end()) {
+        term.lastRate = it->second.rate;
+        keep = true;
+      }
+      if (keep) set.secondOrder.push_back(term);
+    }
+  }
+
   // A sink for c's rows, false when one of its bodies is not in the step.
   template <class BodyIndex>
   static bool sinkFor(Constraint& c, BodyIndex bodyIndex, std::vector<Row>& rows, std::vector<double*>& slots,
@@ -18025,6 +18093,7 @@ class ConstraintRows {
   std::vector<Constraint*> owners_;     ///< per row written, from first_ on
   std::vector<double*> slots_;          ///< per row written
   std::vector<double*> projectionSlots_;
+  std::vector<SecondOrder> terms_;
   std::unordered_map<const double*, Prediction> predicted_;
 };
 
@@ -18235,12 +18304,13 @@ class IslandStepper {
   /// target violation in `speed`, bodies with their inverse masses at the new
   /// orientations. Fills each body's displacement (Δx, Δθ) that brings the
   /// rows to their targets.
-  void project(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, Solver& solver,
+  void project(const RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
                SolverStatistics& statistics) {
-    partition(rows, bodies);
-    frictionOf_.assign(rows.size(), -1);
+    const std::vector<Row>& rows = set.rows;
+    index(set, false);
+    partition(set, bodies);
     for (const std::vector<int>& island : islands_) {
-      buildProblem(rows, bodies, island, h);
+      buildProblem(set, bodies, island, h);
       for (std::size_t k = 0; k < island.size(); ++k) {
         const Row& r = rows[static_cast<std::size_t>(island[k])];
         IslandProblem::Entry& e = problem_.rows[k];
@@ -18264,15 +18334,12 @@ class IslandStepper {
   /// direct solver's first guess), the solved one out; rows that join no
   /// island (between static bodies) keep theirs.
   void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics) {
-    const std::vector<Row>& rows = set.rows;
     std::vector<double>& impulses = set.impulses;
-    partition(rows, bodies);
+    index(set, true);
+    partition(set, bodies);
     nonFiniteBodies_.clear();
-    frictionOf_.assign(rows.size(), -1);
-    for (std::size_t k = 0; k < set.friction.size(); ++k)
-      frictionOf_[static_cast<std::size_t>(set.friction[k].row)] = static_cast<int>(k);
     for (const std::vector<int>& island : islands_) {
-      buildProblem(rows, bodies, island, h, set.friction);
+      buildProblem(set, bodies, island, h);
       const bool warmStart = solver.getEnableWarmStarting();
       for (std::size_t k = 0; k < island.size(); ++k) {
         IslandProblem::Entry& e = problem_.rows[k];
@@ -18298,26 +18365,47 @@ class IslandStepper {
     return i >= 0 && bodies[static_cast<std::size_t>(i)].dynamic;
   }
 
-  void partition(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies) {
+  // Per row: its entry in the friction table (when `friction`), the third
+  // bodies' and the second-order terms' tables, −1 for none.
+  void index(const RowSet& set, bool friction) {
+    frictionOf_.assign(set.size(), -1);
+    if (friction)
+      for (std::size_t k = 0; k < set.friction.size(); ++k)
+        frictionOf_[static_cast<std::size_t>(set.friction[k].row)] = static_cast<int>(k);
+    thirdOf_.assign(set.size(), -1);
+    for (std::size_t k = 0; k < set.thirdBodies.size(); ++k)
+      thirdOf_[static_cast<std::size_t>(set.thirdBodies[k].row)] = static_cast<int>(k);
+    secondOrderOf_.assign(set.size(), -1);
+    for (std::size_t k = 0; k < set.secondOrder.size(); ++k)
+      secondOrderOf_[static_cast<std::size_t>(set.secondOrder[k].row)] = static_cast<int>(k);
+  }
+  [[nodiscard]] const ThirdBody* thirdBodyOf(const RowSet& set, std::size_t row) const {
+    const int k = thirdOf_[row];
+    return k < 0 ? nullptr : &set.thirdBodies[static_cast<std::size_t>(k)];
+  }
+
+  void partition(const RowSet& set, const std::vector<SolverBody>& bodies) {
+    const std::vector<Row>& rows = set.rows;
     parent_.resize(bodies.size());
     std::iota(parent_.begin(), parent_.end(), 0);
     const auto join = [&](int a, int b) {
       if (isDynamic(bodies, a) && isDynamic(bodies, b)) parent_[static_cast<std::size_t>(find(a))] = find(b);
     };
-    for (const Row& r : rows) {
-      join(r.body1, r.body2);
-      if (r.body3 >= 0) {
-        join(r.body1, r.body3);
-        join(r.body2, r.body3);
-      }
+    for (const Row& r : rows) join(r.body1, r.body2);
+    for (const ThirdBody& t : set.thirdBodies) {
+      const Row& r = rows[static_cast<std::size_t>(t.row)];
+      join(r.body1, t.body);
+      join(r.body2, t.body);
     }
     islandOfRoot_.assign(bodies.size(), -1);
     islands_.clear();
     for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
       const Row& r = rows[static_cast<std::size_t>(i)];
+      const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(i));
+      const int body3 = third ? third->body : -1;
       const int body = isDynamic(bodies, r.body1)   ? r.body1
                        : isDynamic(bodies, r.body2) ? r.body2
-                       : isDynamic(bodies, r.body3) ? r.body3
+                       : isDynamic(bodies, body3)   ? body3
                                                     : -1;
       if (body < 0) continue;
       int& island = islandOfRoot_[static_cast<std::size_t>(find(body))];
@@ -18329,10 +18417,9 @@ class IslandStepper {
     }
   }
 
-  // The island's entries, impulses and guesses zero; frictionOf_ names each
-  // row's entry in `friction` (−1: none).
-  void buildProblem(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, const std::vector<int>& island,
-                    double h, const std::vector<FrictionLink>& friction = {}) {
+  // The island's entries, impulses and guesses zero (index() first).
+  void buildProblem(const RowSet& set, const std::vector<SolverBody>& bodies, const std::vector<int>& island, double h) {
+    const std::vector<Row>& rows = set.rows;
     local_.resize(bodies.size(), -1);
     islandBodies_.clear();
     auto localIndex = [&](int body) {
@@ -18352,13 +18439,15 @@ class IslandStepper {
     for (std::size_t k = 0; k < island.size(); ++k) {
       const Row& r = rows[static_cast<std::size_t>(island[k])];
       const int link = frictionOf_[static_cast<std::size_t>(island[k])];
-      const FrictionLink* f = link < 0 ? nullptr : &friction[static_cast<std::size_t>(link)];
+      const FrictionLink* f = link < 0 ? nullptr : &set.friction[static_cast<std::size_t>(link)];
+      const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(island[k]));
       IslandProblem::Entry& e = problem_.rows[k];
       e.body1 = e.body2 = e.extra = -1;
       // G v and G v* over every body (kinematic ones move too), M⁻¹Gᵀ over
       // the dynamic ones.
       double speed = 0.0, freeSpeed = 0.0;
-      const std::array<std::pair<int, const Vec6d*>, 3> blocks{{{r.body1, &r.J1}, {r.body2, &r.J2}, {r.body3, &r.J3}}};
+      const std::array<std::pair<int, const Vec6d*>, 3> blocks{
+          {{r.body1, &r.J1}, {r.body2, &r.J2}, {third ? third->body : -1, third ? &third->J : nullptr}}};
       for (const auto& [body, J] : blocks) {
         if (body < 0) continue;
         const SolverBody& b = bodies[static_cast<std::size_t>(body)];
@@ -18372,8 +18461,10 @@ class IslandStepper {
         // Second order in h (row.hpp): the b' term reads the rate at which
         // the last step moved g (G v − hκ when not kept); the step aims G v⁺
         // at SPOOK's target minus the drift hκ its motion will add.
-        const double rate = std::isnan(r.lastRate) ? speed - h * r.curvature : r.lastRate;
-        e.q = -spook.a * r.violation + spook.b * rate - h * r.curvature - freeSpeed;
+        const int term = secondOrderOf_[static_cast<std::size_t>(island[k])];
+        const SecondOrder second = term < 0 ? SecondOrder{} : set.secondOrder[static_cast<std::size_t>(term)];
+        const double rate = std::isnan(second.lastRate) ? speed - h * second.curvature : second.lastRate;
+        e.q = -spook.a * r.violation + spook.b * rate - h * second.curvature - freeSpeed;
         e.sigma = spook.sigma;
       } else {
         e.q = r.speed - freeSpeed;
@@ -18423,7 +18514,8 @@ class IslandStepper {
     return llt.solve(Mat3d::Identity());
   }
 
-  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_, frictionOf_;
+  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_, frictionOf_, thirdOf_,
+      secondOrderOf_;
   std::vector<std::vector<int>> islands_;
   IslandProblem problem_;
   std::vector<Vec6d> velocityChange_;
@@ -19271,30 +19363,46 @@ struct SimulationWorkspace {
   GeometricStiffness geometricStiffness;
 };
 
-// Checks the rows a producer wrote from `row` on and its side-table entries
-// from `friction` and `arms` on; on a fault drops every producer's rows
-// (from `firstProducerRow` on) and throws a spook::Error naming the producer.
-inline void checkProducerRows(RowSet& rows, std::size_t firstProducerRow, std::size_t row, std::size_t friction,
-                              std::size_t arms, int numBodies, const std::string& name) {
+// How many rows and side-table entries a RowSet held.
+struct RowCounts {
+  std::size_t rows, friction, arms, thirdBodies, secondOrder;
+};
+
+// Checks the rows and side-table entries a producer wrote since `before`;
+// on a fault drops every producer's rows (from `firstProducerRow` on) and
+// throws a spook::Error naming it.
+inline void checkProducerRows(RowSet& rows, std::size_t firstProducerRow, const RowCounts& before, int numBodies,
+                              const std::string& name) {
+  const std::size_t row = before.rows;
   const auto fail = [&](std::string_view what, auto value) {
     rows.truncate(firstProducerRow);
     throw makeError("RowProducer", name, what, value);
   };
   const auto ownRow = [&](int i) { return i >= int(row) && i < int(rows.size()); };
   for (std::size_t i = row; i < rows.size(); ++i)
-    for (int body : {rows.rows[i].body1, rows.rows[i].body2, rows.rows[i].body3})
+    for (int body : {rows.rows[i].body1, rows.rows[i].body2})
       if (body < -1 || body >= numBodies) fail("wrote a row with a body index out of range", body);
-  for (std::size_t k = friction; k < rows.friction.size(); ++k) {
+  for (std::size_t k = before.thirdBodies; k < rows.thirdBodies.size(); ++k) {
+    const ThirdBody& t = rows.thirdBodies[k];
+    if (!ownRow(t.row)) fail("gave a third body to a row that is not its own, row", t.row);
+    if (t.body < -1 || t.body >= numBodies) fail("wrote a row with a body index out of range", t.body);
+  }
+  for (std::size_t k = before.friction; k < rows.friction.size(); ++k) {
     const FrictionLink& f = rows.friction[k];
     if (!ownRow(f.row) || !ownRow(f.normal) || (f.partner != -1 && !ownRow(f.partner)))
       fail("linked a friction row to a row that is not its own, row", f.row);
     if (!(std::isfinite(f.coefficient) && f.coefficient >= 0.0))
       fail("gave a friction row a coefficient that is not finite and >= 0", f.coefficient);
   }
-  for (std::size_t k = arms; k < rows.arms.size(); ++k) {
+  for (std::size_t k = before.arms; k < rows.arms.size(); ++k) {
     const LeverArms& a = rows.arms[k];
     if (!ownRow(a.row)) fail("gave lever arms to a row that is not its own, row", a.row);
     if (!a.arm1.allFinite() || !a.arm2.allFinite()) fail("gave a row lever arms that are not finite, row", a.row);
+  }
+  for (std::size_t k = before.secondOrder; k < rows.secondOrder.size(); ++k) {
+    const SecondOrder& t = rows.secondOrder[k];
+    if (!ownRow(t.row)) fail("gave a second-order term to a row that is not its own, row", t.row);
+    if (!std::isfinite(t.curvature)) fail("gave a row a second-order term that is not finite", t.curvature);
   }
 }
 
@@ -19376,9 +19484,7 @@ void SimulationT<S>::readBackImpulses(const StepContext& step) {
   auto& w = *work_;
   const double h = step.getTimeStep();
   const std::span<const double> impulses(w.rows.impulses);
-  w.constraintRows.readBack(constraints_.get(), impulses.first(w.firstContactRow),
-                            std::span<const detail::Row>(w.rows.rows).first(w.firstContactRow), w.solverBodies, h,
-                            solver_->getEnablePostStabilization());
+  w.constraintRows.readBack(constraints_.get(), w.rows, w.solverBodies, h, solver_->getEnablePostStabilization());
   w.contactRows.readBack(impulses.subspan(w.firstContactRow, w.firstProducerRow - w.firstContactRow), h);
   for (std::size_t k = 0, begin = w.firstProducerRow; k < producers_.size(); begin = w.producerRowsEnd[k++])
     producers_[k]->readBack(impulses.subspan(begin, w.producerRowsEnd[k] - begin), step);
@@ -19442,12 +19548,13 @@ void SimulationT<S>::collectProducerRows(const StepContext& step, bool projectio
   RowWriter writer(w.rows);
   const int numBodies = int(w.solverBodies.size());
   for (const auto& p : producers_) {
-    const std::size_t begin = w.rows.size(), friction = w.rows.friction.size(), arms = w.rows.arms.size();
+    const detail::RowCounts counts{w.rows.size(), w.rows.friction.size(), w.rows.arms.size(), w.rows.thirdBodies.size(),
+                           w.rows.secondOrder.size()};
     if (projection)
       p->writeProjectionRows(writer, step);
     else
       p->writeRows(writer, step);
-    detail::checkProducerRows(w.rows, w.firstProducerRow, begin, friction, arms, numBodies, p->getName());
+    detail::checkProducerRows(w.rows, w.firstProducerRow, counts, numBodies, p->getName());
     w.producerRowsEnd.push_back(w.rows.size());
   }
   for (std::size_t i = w.firstProducerRow; i < w.rows.size(); ++i) w.rows.rows[i].constraint = -1;
@@ -19470,7 +19577,7 @@ void SimulationT<S>::postStabilize(const StepContext& step) {
   // Frozen bodies stand still, like static ones.
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (w.frozen[i]) w.solverBodies[i] = detail::SolverBody{};
-  w.islands.project(w.rows.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  w.islands.project(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (!detail::BodyIntegrator<S>::displace(*bodies_[i], w.solverBodies[i], S(h)))
       freeze(i, FreezeReason::NON_FINITE_STATE);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <iterator>
 #include <numbers>
 #include <vector>
 
@@ -40,12 +41,15 @@ struct RowSink {
   int body1 = -1, body2 = -1;
   SolveType solveType = SolveType::DIRECT;
   /// True when the solver post-stabilizes these rows, which then take their
-  /// second-order terms (Row::curvature); otherwise those are dropped.
+  /// second-order terms (SecondOrder::curvature); otherwise those are dropped.
   bool secondOrder = false;
   /// Each row's slot, in step with `rows` (none kept when null).
   std::vector<double*>* slots = nullptr;
   /// The lever arms of the rows that have them (none kept when null).
   std::vector<LeverArms>* arms = nullptr;
+  /// The second-order terms of the rows that have them, in row order (none
+  /// kept when null).
+  std::vector<SecondOrder>* curvatures = nullptr;
 
   Row& add(const Vec6d& J1, const Vec6d& J2, double* impulse) {
     Row& row = rows->emplace_back();
@@ -60,6 +64,21 @@ struct RowSink {
   /// The lever arms (world, m) of the row added last (LeverArms).
   void setArms(const Vec3d& arm1, const Vec3d& arm2) {
     if (arms) arms->push_back({static_cast<int>(rows->size()) - 1, arm1, arm2});
+  }
+  /// The second-order term κ of the row added last (SecondOrder), kept only
+  /// when the rows are post-stabilized (`secondOrder`).
+  void setCurvature(double kappa) {
+    if (secondOrder && curvatures) curvatures->push_back({static_cast<int>(rows->size()) - 1, kappa});
+  }
+  /// Adds to the second-order term of an earlier row i.
+  void addCurvature(std::size_t i, double kappa) {
+    if (!secondOrder || !curvatures) return;
+    auto it = curvatures->end();
+    while (it != curvatures->begin() && std::prev(it)->row >= static_cast<int>(i)) --it;
+    if (it != curvatures->end() && it->row == static_cast<int>(i))
+      it->curvature += kappa;
+    else
+      curvatures->insert(it, {static_cast<int>(i), kappa});
   }
   /// Rows written so far: the index the next row gets.
   [[nodiscard]] std::size_t size() const { return rows->size(); }
@@ -81,10 +100,14 @@ struct RowSink {
     }
     rows->resize(out);
     if (slots) slots->resize(out);
-    if (!arms) return;
-    for (LeverArms& a : *arms)
-      if (std::size_t(a.row) >= first) a.row = moved[std::size_t(a.row) - first];
-    std::erase_if(*arms, [](const LeverArms& a) { return a.row < 0; });
+    const auto renumber = [&](auto* table) {
+      if (!table) return;
+      for (auto& entry : *table)
+        if (std::size_t(entry.row) >= first) entry.row = moved[std::size_t(entry.row) - first];
+      std::erase_if(*table, [](const auto& entry) { return entry.row < 0; });
+    };
+    renumber(arms);
+    renumber(curvatures);
   }
 };
 
@@ -101,7 +124,7 @@ struct Coordinate {
   double speed = 0.0;  ///< d(value)/dt at the start of the step
   Vec6d J1 = Vec6d::Zero(), J2 = Vec6d::Zero();
   bool rotational = false;
-  /// ½ vᵀ∇²(value) v at the start of the step (Row::curvature); zero for
+  /// ½ vᵀ∇²(value) v at the start of the step (SecondOrder::curvature); zero for
   /// the free angles, whose second-order term vanishes on the joint's
   /// manifold (the slack angles of slack.hpp, which leave it, carry theirs).
   double curvature = 0.0;

@@ -23,7 +23,7 @@ namespace spook::detail {
 /// moves g and the violation g + h·rate it should end with. The projection
 /// restores that violation (it removes only the higher-order drift of the
 /// step, not the rows' compliant or damped motion), and the rate is the
-/// next step's b' term (Row::lastRate). They are keyed by slot, which
+/// next step's b' term (SecondOrder::lastRate). They are keyed by slot, which
 /// identifies a row from step to step whatever rows come and go around it.
 template <Scalar S>
 class ConstraintRows {
@@ -44,23 +44,15 @@ class ConstraintRows {
       RowSink sink;
       if (!c->getEnable() || !sinkFor(*c, bodyIndex, rows, slots_, sink)) continue;
       sink.arms = &set.arms;
-      // The second-order terms (Row::curvature, Row::lastRate) need the
-      // projection: without it their error feeds back (the 1:1e6 chain of
-      // test_solvers.cpp diverges).
-      const bool projected = solver.projects(c->getSolveType());
-      sink.secondOrder = projected;
-      const std::size_t first = rows.size();
+      sink.curvatures = &set.secondOrder;
+      // The second-order terms (SecondOrder) need the projection: without it
+      // their error feeds back (the 1:1e6 chain of test_solvers.cpp diverges).
+      sink.secondOrder = solver.projects(c->getSolveType());
+      const std::size_t first = rows.size(), firstTerm = set.secondOrder.size();
       ConstraintAccess::addRows(*c, sink, h);
       owners_.resize(rows.size() - first_, c.get());
-      for (std::size_t i = first; i < rows.size(); ++i) {
-        Row& r = rows[i];
-        r.constraint = int(first);
-        if (!projected) {
-          r.curvature = 0.0;
-        } else if (const auto it = predicted_.find(slots_[i - first_]); r.holonomic && it != predicted_.end()) {
-          r.lastRate = it->second.rate;
-        }
-      }
+      for (std::size_t i = first; i < rows.size(); ++i) rows[i].constraint = int(first);
+      if (sink.secondOrder) addLastRates(set, first, firstTerm);
     }
     for (const double* slot : slots_) set.impulses.push_back(*slot);
   }
@@ -69,8 +61,10 @@ class ConstraintRows {
   /// `bodies` hold v⁺ in freeVelocity. Writes the slots, the forces of the
   /// constraints that compute them, lets each constraint read its rows'
   /// results, and predicts the holonomic rows' violations when `predict`.
-  void readBack(const std::vector<ref_ptr<Constraint>>& constraints, std::span<const double> impulses,
-                std::span<const Row> rows, const std::vector<SolverBody>& bodies, double h, bool predict) {
+  void readBack(const std::vector<ref_ptr<Constraint>>& constraints, const RowSet& set,
+                const std::vector<SolverBody>& bodies, double h, bool predict) {
+    const auto rows = std::span<const Row>(set.rows).subspan(first_, slots_.size());
+    const auto impulses = std::span<const double>(set.impulses).subspan(first_, slots_.size());
     for (std::size_t i = 0; i < slots_.size(); ++i) *slots_[i] = impulses[i];
     for (const auto& c : constraints)
       if (c->getEnableComputeForces()) ConstraintAccess::clearWrench(*c);
@@ -80,13 +74,18 @@ class ConstraintRows {
 
     predicted_.clear();
     if (!predict) return;
+    // The constraints' terms come first in the table, in row order.
+    std::size_t term = 0;
     for (std::size_t i = 0; i < rows.size(); ++i) {
+      while (term < set.secondOrder.size() && set.secondOrder[term].row < int(first_ + i)) ++term;
+      const bool hasTerm = term < set.secondOrder.size() && set.secondOrder[term].row == int(first_ + i);
+      const double curvature = hasTerm ? set.secondOrder[term].curvature : 0.0;
       const Row& r = rows[i];
       if (!r.holonomic) continue;
       const auto speed = [&](int body, const Vec6d& J) {
         return body < 0 ? 0.0 : J.dot(bodies[static_cast<std::size_t>(body)].freeVelocity);
       };
-      const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + speed(r.body3, r.J3) + h * r.curvature;
+      const double rate = speed(r.body1, r.J1) + speed(r.body2, r.J2) + h * curvature;
       predicted_[slots_[i]] = {r.violation + h * rate, rate};
     }
   }
@@ -125,6 +124,28 @@ class ConstraintRows {
     double violation = 0.0, rate = 0.0;
   };
 
+  // The predicted rates of the holonomic rows from `first` on become their
+  // SecondOrder::lastRate; their terms are those from `firstTerm` on (in row
+  // order), and rows without one get one.
+  void addLastRates(RowSet& set, std::size_t first, std::size_t firstTerm) {
+    terms_.assign(set.secondOrder.begin() + std::ptrdiff_t(firstTerm), set.secondOrder.end());
+    set.secondOrder.resize(firstTerm);
+    std::size_t k = 0;
+    for (std::size_t i = first; i < set.rows.size(); ++i) {
+      SecondOrder term{int(i)};
+      bool keep = false;
+      if (k < terms_.size() && terms_[k].row == int(i)) {
+        term = terms_[k++];
+        keep = true;
+      }
+      if (const auto it = predicted_.find(slots_[i - first_]); set.rows[i].holonomic && it != predicted_.end()) {
+        term.lastRate = it->second.rate;
+        keep = true;
+      }
+      if (keep) set.secondOrder.push_back(term);
+    }
+  }
+
   // A sink for c's rows, false when one of its bodies is not in the step.
   template <class BodyIndex>
   static bool sinkFor(Constraint& c, BodyIndex bodyIndex, std::vector<Row>& rows, std::vector<double*>& slots,
@@ -141,6 +162,7 @@ class ConstraintRows {
   std::vector<Constraint*> owners_;     ///< per row written, from first_ on
   std::vector<double*> slots_;          ///< per row written
   std::vector<double*> projectionSlots_;
+  std::vector<SecondOrder> terms_;
   std::unordered_map<const double*, Prediction> predicted_;
 };
 

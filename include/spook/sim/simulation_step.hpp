@@ -47,30 +47,46 @@ struct SimulationWorkspace {
   GeometricStiffness geometricStiffness;
 };
 
-// Checks the rows a producer wrote from `row` on and its side-table entries
-// from `friction` and `arms` on; on a fault drops every producer's rows
-// (from `firstProducerRow` on) and throws a spook::Error naming the producer.
-inline void checkProducerRows(RowSet& rows, std::size_t firstProducerRow, std::size_t row, std::size_t friction,
-                              std::size_t arms, int numBodies, const std::string& name) {
+// How many rows and side-table entries a RowSet held.
+struct RowCounts {
+  std::size_t rows, friction, arms, thirdBodies, secondOrder;
+};
+
+// Checks the rows and side-table entries a producer wrote since `before`;
+// on a fault drops every producer's rows (from `firstProducerRow` on) and
+// throws a spook::Error naming it.
+inline void checkProducerRows(RowSet& rows, std::size_t firstProducerRow, const RowCounts& before, int numBodies,
+                              const std::string& name) {
+  const std::size_t row = before.rows;
   const auto fail = [&](std::string_view what, auto value) {
     rows.truncate(firstProducerRow);
     throw makeError("RowProducer", name, what, value);
   };
   const auto ownRow = [&](int i) { return i >= int(row) && i < int(rows.size()); };
   for (std::size_t i = row; i < rows.size(); ++i)
-    for (int body : {rows.rows[i].body1, rows.rows[i].body2, rows.rows[i].body3})
+    for (int body : {rows.rows[i].body1, rows.rows[i].body2})
       if (body < -1 || body >= numBodies) fail("wrote a row with a body index out of range", body);
-  for (std::size_t k = friction; k < rows.friction.size(); ++k) {
+  for (std::size_t k = before.thirdBodies; k < rows.thirdBodies.size(); ++k) {
+    const ThirdBody& t = rows.thirdBodies[k];
+    if (!ownRow(t.row)) fail("gave a third body to a row that is not its own, row", t.row);
+    if (t.body < -1 || t.body >= numBodies) fail("wrote a row with a body index out of range", t.body);
+  }
+  for (std::size_t k = before.friction; k < rows.friction.size(); ++k) {
     const FrictionLink& f = rows.friction[k];
     if (!ownRow(f.row) || !ownRow(f.normal) || (f.partner != -1 && !ownRow(f.partner)))
       fail("linked a friction row to a row that is not its own, row", f.row);
     if (!(std::isfinite(f.coefficient) && f.coefficient >= 0.0))
       fail("gave a friction row a coefficient that is not finite and >= 0", f.coefficient);
   }
-  for (std::size_t k = arms; k < rows.arms.size(); ++k) {
+  for (std::size_t k = before.arms; k < rows.arms.size(); ++k) {
     const LeverArms& a = rows.arms[k];
     if (!ownRow(a.row)) fail("gave lever arms to a row that is not its own, row", a.row);
     if (!a.arm1.allFinite() || !a.arm2.allFinite()) fail("gave a row lever arms that are not finite, row", a.row);
+  }
+  for (std::size_t k = before.secondOrder; k < rows.secondOrder.size(); ++k) {
+    const SecondOrder& t = rows.secondOrder[k];
+    if (!ownRow(t.row)) fail("gave a second-order term to a row that is not its own, row", t.row);
+    if (!std::isfinite(t.curvature)) fail("gave a row a second-order term that is not finite", t.curvature);
   }
 }
 
@@ -152,9 +168,7 @@ void SimulationT<S>::readBackImpulses(const StepContext& step) {
   auto& w = *work_;
   const double h = step.getTimeStep();
   const std::span<const double> impulses(w.rows.impulses);
-  w.constraintRows.readBack(constraints_.get(), impulses.first(w.firstContactRow),
-                            std::span<const detail::Row>(w.rows.rows).first(w.firstContactRow), w.solverBodies, h,
-                            solver_->getEnablePostStabilization());
+  w.constraintRows.readBack(constraints_.get(), w.rows, w.solverBodies, h, solver_->getEnablePostStabilization());
   w.contactRows.readBack(impulses.subspan(w.firstContactRow, w.firstProducerRow - w.firstContactRow), h);
   for (std::size_t k = 0, begin = w.firstProducerRow; k < producers_.size(); begin = w.producerRowsEnd[k++])
     producers_[k]->readBack(impulses.subspan(begin, w.producerRowsEnd[k] - begin), step);
@@ -218,12 +232,13 @@ void SimulationT<S>::collectProducerRows(const StepContext& step, bool projectio
   RowWriter writer(w.rows);
   const int numBodies = int(w.solverBodies.size());
   for (const auto& p : producers_) {
-    const std::size_t begin = w.rows.size(), friction = w.rows.friction.size(), arms = w.rows.arms.size();
+    const detail::RowCounts counts{w.rows.size(), w.rows.friction.size(), w.rows.arms.size(), w.rows.thirdBodies.size(),
+                           w.rows.secondOrder.size()};
     if (projection)
       p->writeProjectionRows(writer, step);
     else
       p->writeRows(writer, step);
-    detail::checkProducerRows(w.rows, w.firstProducerRow, begin, friction, arms, numBodies, p->getName());
+    detail::checkProducerRows(w.rows, w.firstProducerRow, counts, numBodies, p->getName());
     w.producerRowsEnd.push_back(w.rows.size());
   }
   for (std::size_t i = w.firstProducerRow; i < w.rows.size(); ++i) w.rows.rows[i].constraint = -1;
@@ -246,7 +261,7 @@ void SimulationT<S>::postStabilize(const StepContext& step) {
   // Frozen bodies stand still, like static ones.
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (w.frozen[i]) w.solverBodies[i] = detail::SolverBody{};
-  w.islands.project(w.rows.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  w.islands.project(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (!detail::BodyIntegrator<S>::displace(*bodies_[i], w.solverBodies[i], S(h)))
       freeze(i, FreezeReason::NON_FINITE_STATE);

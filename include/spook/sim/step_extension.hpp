@@ -82,6 +82,17 @@ class RowWriter {
                    int partner = -1) {
     rows_.friction.push_back({static_cast<int>(row), static_cast<int>(normal), partner, coefficient, bound});
   }
+  /// A third body of row `row` (StepContext::indexOf) and its Jacobian
+  /// block (linear, angular): G v = J1·v1 + J2·v2 + J·v3.
+  void setThirdBody(std::size_t row, int body, const detail::Vec6d& J) {
+    rows_.thirdBodies.push_back({static_cast<int>(row), body, J});
+  }
+  /// The second-order term κ = ½ vᵀ(∂²g/∂q²)v of holonomic row `row` at the
+  /// start of the step (m/s² or rad/s²; detail::SecondOrder), which a step
+  /// with post-stabilization takes into account.
+  void setCurvature(std::size_t row, double curvature) {
+    rows_.secondOrder.push_back({static_cast<int>(row), curvature});
+  }
   /// Lever arms (world, m) from the centers of mass of row `row`'s first two
   /// bodies to where its force acts: its share of the geometric stiffness
   /// (solver/geometric_stiffness.hpp).

@@ -43,12 +43,13 @@ class IslandStepper {
   /// target violation in `speed`, bodies with their inverse masses at the new
   /// orientations. Fills each body's displacement (Δx, Δθ) that brings the
   /// rows to their targets.
-  void project(const std::vector<Row>& rows, std::vector<SolverBody>& bodies, double h, Solver& solver,
+  void project(const RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
                SolverStatistics& statistics) {
-    partition(rows, bodies);
-    frictionOf_.assign(rows.size(), -1);
+    const std::vector<Row>& rows = set.rows;
+    index(set, false);
+    partition(set, bodies);
     for (const std::vector<int>& island : islands_) {
-      buildProblem(rows, bodies, island, h);
+      buildProblem(set, bodies, island, h);
       for (std::size_t k = 0; k < island.size(); ++k) {
         const Row& r = rows[static_cast<std::size_t>(island[k])];
         IslandProblem::Entry& e = problem_.rows[k];
@@ -72,15 +73,12 @@ class IslandStepper {
   /// direct solver's first guess), the solved one out; rows that join no
   /// island (between static bodies) keep theirs.
   void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics) {
-    const std::vector<Row>& rows = set.rows;
     std::vector<double>& impulses = set.impulses;
-    partition(rows, bodies);
+    index(set, true);
+    partition(set, bodies);
     nonFiniteBodies_.clear();
-    frictionOf_.assign(rows.size(), -1);
-    for (std::size_t k = 0; k < set.friction.size(); ++k)
-      frictionOf_[static_cast<std::size_t>(set.friction[k].row)] = static_cast<int>(k);
     for (const std::vector<int>& island : islands_) {
-      buildProblem(rows, bodies, island, h, set.friction);
+      buildProblem(set, bodies, island, h);
       const bool warmStart = solver.getEnableWarmStarting();
       for (std::size_t k = 0; k < island.size(); ++k) {
         IslandProblem::Entry& e = problem_.rows[k];
@@ -106,26 +104,47 @@ class IslandStepper {
     return i >= 0 && bodies[static_cast<std::size_t>(i)].dynamic;
   }
 
-  void partition(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies) {
+  // Per row: its entry in the friction table (when `friction`), the third
+  // bodies' and the second-order terms' tables, −1 for none.
+  void index(const RowSet& set, bool friction) {
+    frictionOf_.assign(set.size(), -1);
+    if (friction)
+      for (std::size_t k = 0; k < set.friction.size(); ++k)
+        frictionOf_[static_cast<std::size_t>(set.friction[k].row)] = static_cast<int>(k);
+    thirdOf_.assign(set.size(), -1);
+    for (std::size_t k = 0; k < set.thirdBodies.size(); ++k)
+      thirdOf_[static_cast<std::size_t>(set.thirdBodies[k].row)] = static_cast<int>(k);
+    secondOrderOf_.assign(set.size(), -1);
+    for (std::size_t k = 0; k < set.secondOrder.size(); ++k)
+      secondOrderOf_[static_cast<std::size_t>(set.secondOrder[k].row)] = static_cast<int>(k);
+  }
+  [[nodiscard]] const ThirdBody* thirdBodyOf(const RowSet& set, std::size_t row) const {
+    const int k = thirdOf_[row];
+    return k < 0 ? nullptr : &set.thirdBodies[static_cast<std::size_t>(k)];
+  }
+
+  void partition(const RowSet& set, const std::vector<SolverBody>& bodies) {
+    const std::vector<Row>& rows = set.rows;
     parent_.resize(bodies.size());
     std::iota(parent_.begin(), parent_.end(), 0);
     const auto join = [&](int a, int b) {
       if (isDynamic(bodies, a) && isDynamic(bodies, b)) parent_[static_cast<std::size_t>(find(a))] = find(b);
     };
-    for (const Row& r : rows) {
-      join(r.body1, r.body2);
-      if (r.body3 >= 0) {
-        join(r.body1, r.body3);
-        join(r.body2, r.body3);
-      }
+    for (const Row& r : rows) join(r.body1, r.body2);
+    for (const ThirdBody& t : set.thirdBodies) {
+      const Row& r = rows[static_cast<std::size_t>(t.row)];
+      join(r.body1, t.body);
+      join(r.body2, t.body);
     }
     islandOfRoot_.assign(bodies.size(), -1);
     islands_.clear();
     for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
       const Row& r = rows[static_cast<std::size_t>(i)];
+      const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(i));
+      const int body3 = third ? third->body : -1;
       const int body = isDynamic(bodies, r.body1)   ? r.body1
                        : isDynamic(bodies, r.body2) ? r.body2
-                       : isDynamic(bodies, r.body3) ? r.body3
+                       : isDynamic(bodies, body3)   ? body3
                                                     : -1;
       if (body < 0) continue;
       int& island = islandOfRoot_[static_cast<std::size_t>(find(body))];
@@ -137,10 +156,9 @@ class IslandStepper {
     }
   }
 
-  // The island's entries, impulses and guesses zero; frictionOf_ names each
-  // row's entry in `friction` (−1: none).
-  void buildProblem(const std::vector<Row>& rows, const std::vector<SolverBody>& bodies, const std::vector<int>& island,
-                    double h, const std::vector<FrictionLink>& friction = {}) {
+  // The island's entries, impulses and guesses zero (index() first).
+  void buildProblem(const RowSet& set, const std::vector<SolverBody>& bodies, const std::vector<int>& island, double h) {
+    const std::vector<Row>& rows = set.rows;
     local_.resize(bodies.size(), -1);
     islandBodies_.clear();
     auto localIndex = [&](int body) {
@@ -160,13 +178,15 @@ class IslandStepper {
     for (std::size_t k = 0; k < island.size(); ++k) {
       const Row& r = rows[static_cast<std::size_t>(island[k])];
       const int link = frictionOf_[static_cast<std::size_t>(island[k])];
-      const FrictionLink* f = link < 0 ? nullptr : &friction[static_cast<std::size_t>(link)];
+      const FrictionLink* f = link < 0 ? nullptr : &set.friction[static_cast<std::size_t>(link)];
+      const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(island[k]));
       IslandProblem::Entry& e = problem_.rows[k];
       e.body1 = e.body2 = e.extra = -1;
       // G v and G v* over every body (kinematic ones move too), M⁻¹Gᵀ over
       // the dynamic ones.
       double speed = 0.0, freeSpeed = 0.0;
-      const std::array<std::pair<int, const Vec6d*>, 3> blocks{{{r.body1, &r.J1}, {r.body2, &r.J2}, {r.body3, &r.J3}}};
+      const std::array<std::pair<int, const Vec6d*>, 3> blocks{
+          {{r.body1, &r.J1}, {r.body2, &r.J2}, {third ? third->body : -1, third ? &third->J : nullptr}}};
       for (const auto& [body, J] : blocks) {
         if (body < 0) continue;
         const SolverBody& b = bodies[static_cast<std::size_t>(body)];
@@ -180,8 +200,10 @@ class IslandStepper {
         // Second order in h (row.hpp): the b' term reads the rate at which
         // the last step moved g (G v − hκ when not kept); the step aims G v⁺
         // at SPOOK's target minus the drift hκ its motion will add.
-        const double rate = std::isnan(r.lastRate) ? speed - h * r.curvature : r.lastRate;
-        e.q = -spook.a * r.violation + spook.b * rate - h * r.curvature - freeSpeed;
+        const int term = secondOrderOf_[static_cast<std::size_t>(island[k])];
+        const SecondOrder second = term < 0 ? SecondOrder{} : set.secondOrder[static_cast<std::size_t>(term)];
+        const double rate = std::isnan(second.lastRate) ? speed - h * second.curvature : second.lastRate;
+        e.q = -spook.a * r.violation + spook.b * rate - h * second.curvature - freeSpeed;
         e.sigma = spook.sigma;
       } else {
         e.q = r.speed - freeSpeed;
@@ -231,7 +253,8 @@ class IslandStepper {
     return llt.solve(Mat3d::Identity());
   }
 
-  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_, frictionOf_;
+  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_, frictionOf_, thirdOf_,
+      secondOrderOf_;
   std::vector<std::vector<int>> islands_;
   IslandProblem problem_;
   std::vector<Vec6d> velocityChange_;

@@ -34,7 +34,7 @@ using Vec6d = Eigen::Matrix<double, 6, 1>;
 /// scene's scalar. G v = J1·(v1, ω1) + J2·(v2, ω2) (+ J3·(v3, ω3)) with
 /// velocities of the centers of mass in world coordinates; a body index of
 /// −1 is the world. A third body is rare (a wire's bend row couples three
-/// consecutive nodes).
+/// consecutive nodes): it is in a side table (ThirdBody).
 ///
 /// A holonomic row has a violation g and SPOOK parameters (compliance ε,
 /// damping τ): G v⁺ + Σ Λ = −a g + b' G v, Σ = 4ε/(h²(1+4τ/h)) (PHYSICS.md
@@ -43,36 +43,24 @@ using Vec6d = Eigen::Matrix<double, 6, 1>;
 /// A row's impulse Λ (N·s) is not in the row: the step keeps the impulses
 /// in an array beside the rows, and each source of rows keeps its own
 /// history (sim/step_extension.hpp). What only some rows have (a friction
-/// row's link to its normal row, lever arms) is in side tables (RowSet).
+/// row's link to its normal row, lever arms, a third body, second-order terms)
+/// is in side tables (RowSet).
 struct Row {
-  // Members ordered by size (no padding between them: the step copies
-  // rows by the thousand).
+  // Members ordered by size (the step copies rows by the thousand).
   int body1 = -1;
   int body2 = -1;
-  int body3 = -1;
   /// The index in the same row list of the first row of the constraint
   /// this row belongs to (−1: a contact's): an iterative sweep updates a
   /// constraint's unbounded rows together (iterative_solve.hpp).
   int constraint = -1;
   Vec6d J1 = Vec6d::Zero();  ///< (linear, angular) of body 1
   Vec6d J2 = Vec6d::Zero();  ///< (linear, angular) of body 2
-  Vec6d J3 = Vec6d::Zero();  ///< (linear, angular) of body 3
   double violation = 0.0;   ///< g (m or rad), holonomic rows
   double speed = 0.0;       ///< target G v (m/s or rad/s), velocity rows
   double compliance = 0.0;  ///< ε, or γ for a velocity row
   double damping = 0.0;     ///< τ (s), holonomic rows
   double lower = -std::numeric_limits<double>::infinity();
   double upper = std::numeric_limits<double>::infinity();
-  /// Holonomic rows: κ = ½ vᵀ(∂²g/∂q²)v at the start of the step (m/s² or
-  /// rad/s²), the quadratic velocity term of the index-1 DAE (Ġv/2). A step
-  /// with velocity v⁺ moves g by hGv⁺ + h²κ + O(h³), and G_k v_k exceeds the
-  /// last step's mean rate of g by hκ. Used with post-stabilization only
-  /// (zero otherwise).
-  double curvature = 0.0;
-  /// Holonomic rows: the rate G_{k−1}v_k + hκ at which the last step moved
-  /// g (m/s or rad/s), kept by post-stabilization; NaN when unknown, then
-  /// G v − hκ stands in for it in SPOOK's b' term.
-  double lastRate = std::numeric_limits<double>::quiet_NaN();
   SolveType solveType = SolveType::DIRECT;
   bool holonomic = true;
 
@@ -97,6 +85,27 @@ struct LeverArms {
   Eigen::Vector3d arm1 = Eigen::Vector3d::Zero(), arm2 = Eigen::Vector3d::Zero();
 };
 
+/// A holonomic row's second-order terms, used with post-stabilization only.
+struct SecondOrder {
+  int row = -1;
+  /// κ = ½ vᵀ(∂²g/∂q²)v at the start of the step (m/s² or rad/s²), the
+  /// quadratic velocity term of the index-1 DAE (Ġv/2). A step with velocity
+  /// v⁺ moves g by hGv⁺ + h²κ + O(h³), and G_k v_k exceeds the last step's
+  /// mean rate of g by hκ.
+  double curvature = 0.0;
+  /// The rate G_{k−1}v_k + hκ at which the last step moved g (m/s or rad/s),
+  /// kept by post-stabilization; NaN when unknown, then G v − hκ stands in
+  /// for it in SPOOK's b' term.
+  double lastRate = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// A row's third body and its Jacobian block (linear, angular).
+struct ThirdBody {
+  int row = -1;
+  int body = -1;
+  Vec6d J = Vec6d::Zero();
+};
+
 /// The rows of a step: one impulse per row beside them and, in side tables,
 /// what only some rows have (entries in any order, one per row at most).
 struct RowSet {
@@ -104,6 +113,8 @@ struct RowSet {
   std::vector<double> impulses;  ///< N·s: each row's last impulse in, the solved one out
   std::vector<FrictionLink> friction;
   std::vector<LeverArms> arms;
+  std::vector<ThirdBody> thirdBodies;
+  std::vector<SecondOrder> secondOrder;
 
   [[nodiscard]] std::size_t size() const { return rows.size(); }
   [[nodiscard]] bool empty() const { return rows.empty(); }
@@ -114,6 +125,8 @@ struct RowSet {
     impulses.resize(rows.size());
     std::erase_if(friction, [&](const FrictionLink& f) { return std::size_t(f.row) >= rows.size(); });
     std::erase_if(arms, [&](const LeverArms& a) { return std::size_t(a.row) >= rows.size(); });
+    std::erase_if(thirdBodies, [&](const ThirdBody& t) { return std::size_t(t.row) >= rows.size(); });
+    std::erase_if(secondOrder, [&](const SecondOrder& t) { return std::size_t(t.row) >= rows.size(); });
   }
 };
 

@@ -171,7 +171,7 @@ class Solver : public Referenced {
   /// are advanced, the directly solved equality rows (and slack rows held
   /// at an end) are
   /// projected, mass-weighted, onto the violation their second-order
-  /// prediction gives, g* = g + h(G v⁺ + hκ) (Row::curvature):
+  /// prediction gives, g* = g + h(G v⁺ + hκ) (SecondOrder::curvature):
   /// Δq = M⁻¹Gᵀδ with G M⁻¹Gᵀ δ = g* − g(q⁺), and the velocities take Δq/h.
   /// This removes the drift of the velocity-level step beyond second order,
   /// which grows with angular speed and mass ratio, and leaves the rows'

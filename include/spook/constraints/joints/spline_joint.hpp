@@ -58,12 +58,12 @@ inline void addCurvatureCoupling(const Attachments& b, const Vec3d& curvature, s
 
 /// The centripetal term of the rows across the curve. Frame 1's origin
 /// moving along the tangent at arc rate ṡ for a step h ends ½h²Qₖ off the
-/// curve, Qₖ = −(κ·nₖ)ṡ²: the row's second-order term Row::curvature = ½Qₖ.
+/// curve, Qₖ = −(κ·nₖ)ṡ²: the row's second-order term κ = ½Qₖ (SecondOrder).
 inline double centripetalCurvature(double curvatureAcross, double rate) {
   return -0.5 * curvatureAcross * rate * rate;
 }
 
-/// Without post-stabilization (Row::curvature dropped), the same term goes
+/// Without post-stabilization (second-order terms dropped), the same term goes
 /// into the violation: following the curve takes Gv⁺ + ½hQₖ where a
 /// straight row has Gv⁺, and SPOOK's right-hand side is −a g + b'Gv
 /// (SpookParameters), so the shift is ½hQₖ/a (m). The curve is fixed, so
@@ -96,7 +96,7 @@ inline double centripetalShift(const Row& row, double curvatureAcross, double ra
 /// second-order drift that the step's linear prediction does not see. Left
 /// to the violation it settles at (1 + 4τ/h)/4 times that (6.7 mm for 4.4
 /// m/s on a 1 m radius at 60 Hz). So the rows across the curve carry that
-/// centripetal term: as Row::curvature when the solver post-stabilizes them,
+/// centripetal term: as SecondOrder::curvature when the solver post-stabilizes them,
 /// otherwise as a shift of their violation (detail::centripetalShift).
 ///
 /// The tracked parameter t starts at the point of the curve nearest to the
@@ -259,7 +259,7 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
         detail::Row& row = (*sink.rows)[first + k];
         const double across = place.curvature.dot(b.R2.col(static_cast<Eigen::Index>(k)));
         if (sink.secondOrder)
-          row.curvature += detail::centripetalCurvature(across, rate);
+          sink.addCurvature(first + k, detail::centripetalCurvature(across, rate));
         else
           row.violation += detail::centripetalShift(row, across, rate, h);
       }

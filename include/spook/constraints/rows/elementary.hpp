@@ -41,7 +41,7 @@ inline Vec3d separationRate(const Attachments& a) {
   return a.v1.head<3>() + a.v1.tail<3>().cross(a.r1()) - a.v2.head<3>() - a.v2.tail<3>().cross(a.r2());
 }
 
-/// κ = ½ vᵀ∇²g v (Row::curvature) of g = (p₁ − p₂)·n with the frame-2 axis
+/// κ = ½ vᵀ∇²g v (SecondOrder::curvature) of g = (p₁ − p₂)·n with the frame-2 axis
 /// n turning with ω₂: ½(d̈·n + d·n̈) + ḋ·ṅ, d̈ and n̈ their centripetal parts.
 inline double separationCurvature(const Attachments& a, const Vec3d& n) {
   const Vec3d w2 = a.v2.tail<3>(), dn = w2.cross(n);
@@ -57,9 +57,9 @@ struct Spherical {
     const Vec3d curvature = sink.secondOrder ? Vec3d(0.5 * separationCentripetal(a)) : Vec3d::Zero();
     for (int k = 0; k < 3; ++k) {
       const Vec3d e = Vec3d::Unit(k);
-      Row& row = holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
+      holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
       sink.setArms(r1, r2);
-      row.curvature = curvature[k];
+      sink.setCurvature(curvature[k]);
     }
   }
 };
@@ -72,11 +72,11 @@ struct Dot1 {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Vec3d u = a.R1.col(A1), w = a.R2.col(A2), n = u.cross(w);
-    Row& row = holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), u.dot(w), p[0], impulse);
+    holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), u.dot(w), p[0], impulse);
     if (!sink.secondOrder) return;
-    // κ = ½(ü·w + u·ẅ) + u̇·ẇ with u̇ = ω₁×u, ü = ω₁×u̇ (Row::curvature).
+    // κ = ½(ü·w + u·ẅ) + u̇·ẇ with u̇ = ω₁×u, ü = ω₁×u̇ (SecondOrder::curvature).
     const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
-    row.curvature = 0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw);
+    sink.setCurvature(0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw));
   }
 };
 
@@ -88,10 +88,10 @@ struct Dot2 {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Vec3d n = a.R2.col(A);
-    Row& row = holonomicRow(sink, linearAngular(n, a.r1().cross(n)), linearAngular(-n, n.cross(a.p1 - a.c2)),
-                            (a.p1 - a.p2).dot(n), p[0], impulse);
+    holonomicRow(sink, linearAngular(n, a.r1().cross(n)), linearAngular(-n, n.cross(a.p1 - a.c2)),
+                 (a.p1 - a.p2).dot(n), p[0], impulse);
     sink.setArms(a.r1(), a.p1 - a.c2);
-    if (sink.secondOrder) row.curvature = separationCurvature(a, n);
+    if (sink.secondOrder) sink.setCurvature(separationCurvature(a, n));
   }
 };
 

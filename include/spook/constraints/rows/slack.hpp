@@ -21,10 +21,10 @@ namespace spook::detail {
 // angles in radians rather than the Dot1/QuatLock sines, so that a slack of
 // 0.05 rad means 0.05 rad: TiltAngle and RotationAngle below. Inside its
 // slack a DOF is off the rigid joint's manifold, so the angles carry their
-// second-order term κ (Row::curvature) like the elementary rows.
+// second-order term κ (SecondOrder::curvature) like the elementary rows.
 
 /// A quantity's value, rate and κ = ½ of its second derivative at constant
-/// body velocities (Row::curvature).
+/// body velocities (SecondOrder::curvature).
 struct Rates {
   double value = 0.0, rate = 0.0, curvature = 0.0;
 };
@@ -76,8 +76,8 @@ struct TiltAngle {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Coordinate c = coordinate(a);
-    Row& row = holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
-    if (sink.secondOrder) row.curvature = c.curvature;
+    holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
+    sink.setCurvature(c.curvature);
   }
 };
 
@@ -115,8 +115,8 @@ struct RotationAngle {
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
                       const ElementaryOptions&) {
     const Coordinate c = coordinate(a);
-    Row& row = holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
-    if (sink.secondOrder) row.curvature = c.curvature;
+    holonomicRow(sink, c.J1, c.J2, c.value, p[0], impulse);
+    sink.setCurvature(c.curvature);
   }
 };
 

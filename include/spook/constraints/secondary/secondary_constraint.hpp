@@ -64,7 +64,7 @@ class SecondaryConstraintT : public Referenced {
     row.damping = double(regularization_.getDamping());
     row.lower = double(forceRange_.lower);
     row.upper = double(forceRange_.upper);
-    row.curvature = c.curvature;
+    sink.setCurvature(c.curvature);
     return row;
   }
 
