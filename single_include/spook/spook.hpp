@@ -8467,10 +8467,13 @@ struct RowSet {
   void truncate(std::size_t n) {
     rows.resize(std::min(n, rows.size()));
     impulses.resize(rows.size());
-    std::erase_if(friction, [&](const FrictionLink& f) { return std::size_t(f.row) >= rows.size(); });
-    std::erase_if(arms, [&](const LeverArms& a) { return std::size_t(a.row) >= rows.size(); });
-    std::erase_if(thirdBodies, [&](const ThirdBody& t) { return std::size_t(t.row) >= rows.size(); });
-    std::erase_if(secondOrder, [&](const SecondOrder& t) { return std::size_t(t.row) >= rows.size(); });
+    const auto dropRowsFromEnd = [&](auto& table) {
+      std::erase_if(table, [&](const auto& entry) { return std::size_t(entry.row) >= rows.size(); });
+    };
+    dropRowsFromEnd(friction);
+    dropRowsFromEnd(arms);
+    dropRowsFromEnd(thirdBodies);
+    dropRowsFromEnd(secondOrder);
   }
 };
 
@@ -17937,6 +17940,7 @@ void stopAtFirstContact(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const
 #ifndef SPOOK_SINGLE_SPOOK_SIM_CONSTRAINT_ROWS_HPP
 #define SPOOK_SINGLE_SPOOK_SIM_CONSTRAINT_ROWS_HPP
 
+#include <algorithm>
 #include <cstddef>
 #include <span>
 #include <unordered_map>
@@ -18005,12 +18009,12 @@ class ConstraintRows {
 
     predicted_.clear();
     if (!predict) return;
-    // The constraints' terms come first in the table, in row order.
-    std::size_t term = 0;
+    curvatures_.assign(rows.size(), 0.0);
+    for (const SecondOrder& term : set.secondOrder)
+      if (term.row >= int(first_) && std::size_t(term.row) < first_ + rows.size())
+        curvatures_[std::size_t(term.row) - first_] = term.curvature;
     for (std::size_t i = 0; i < rows.size(); ++i) {
-      while (term < set.secondOrder.size() && set.secondOrder[term].row < int(first_ + i)) ++term;
-      const bool hasTerm = term < set.secondOrder.size() && set.secondOrder[term].row == int(first_ + i);
-      const double curvature = hasTerm ? set.secondOrder[term].curvature : 0.0;
+      const double curvature = curvatures_[i];
       const Row& r = rows[i];
       if (!r.holonomic) continue;
       const auto speed = [&](int body, const Vec6d& J) {
@@ -18056,11 +18060,12 @@ class ConstraintRows {
   };
 
   // The predicted rates of the holonomic rows from `first` on become their
-  // SecondOrder::lastRate; their terms are those from `firstTerm` on (in row
-  // order), and rows without one get one.
+  // SecondOrder::lastRate; their terms are those from `firstTerm` on, and
+  // rows without one get one.
   void addLastRates(RowSet& set, std::size_t first, std::size_t firstTerm) {
     terms_.assign(set.secondOrder.begin() + std::ptrdiff_t(firstTerm), set.secondOrder.end());
     set.secondOrder.resize(firstTerm);
+    std::ranges::sort(terms_, {}, &SecondOrder::row);
     std::size_t k = 0;
     for (std::size_t i = first; i < set.rows.size(); ++i) {
       SecondOrder term{int(i)};
@@ -18094,6 +18099,7 @@ class ConstraintRows {
   std::vector<double*> slots_;          ///< per row written
   std::vector<double*> projectionSlots_;
   std::vector<SecondOrder> terms_;
+  std::vector<double> curvatures_;      ///< per row written, readBack's scratch
   std::unordered_map<const double*, Prediction> predicted_;
 };
 
@@ -18122,6 +18128,7 @@ class ConstraintRows {
 #include <limits>
 #include <cstddef>
 #include <numeric>
+#include <span>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -18368,16 +18375,15 @@ class IslandStepper {
   // Per row: its entry in the friction table (when `friction`), the third
   // bodies' and the second-order terms' tables, −1 for none.
   void index(const RowSet& set, bool friction) {
-    frictionOf_.assign(set.size(), -1);
-    if (friction)
-      for (std::size_t k = 0; k < set.friction.size(); ++k)
-        frictionOf_[static_cast<std::size_t>(set.friction[k].row)] = static_cast<int>(k);
-    thirdOf_.assign(set.size(), -1);
-    for (std::size_t k = 0; k < set.thirdBodies.size(); ++k)
-      thirdOf_[static_cast<std::size_t>(set.thirdBodies[k].row)] = static_cast<int>(k);
-    secondOrderOf_.assign(set.size(), -1);
-    for (std::size_t k = 0; k < set.secondOrder.size(); ++k)
-      secondOrderOf_[static_cast<std::size_t>(set.secondOrder[k].row)] = static_cast<int>(k);
+    indexTable(friction ? std::span<const FrictionLink>(set.friction) : std::span<const FrictionLink>(), set.size(),
+               frictionOf_);
+    indexTable(std::span<const ThirdBody>(set.thirdBodies), set.size(), thirdOf_);
+    indexTable(std::span<const SecondOrder>(set.secondOrder), set.size(), secondOrderOf_);
+  }
+  template <class Entry>
+  static void indexTable(std::span<const Entry> table, std::size_t rows, std::vector<int>& entryOf) {
+    entryOf.assign(rows, -1);
+    for (std::size_t k = 0; k < table.size(); ++k) entryOf[static_cast<std::size_t>(table[k].row)] = static_cast<int>(k);
   }
   [[nodiscard]] const ThirdBody* thirdBodyOf(const RowSet& set, std::size_t row) const {
     const int k = thirdOf_[row];
@@ -19365,6 +19371,9 @@ struct SimulationWorkspace {
 
 // How many rows and side-table entries a RowSet held.
 struct RowCounts {
+  explicit RowCounts(const RowSet& set)
+      : rows(set.size()), friction(set.friction.size()), arms(set.arms.size()), thirdBodies(set.thirdBodies.size()),
+        secondOrder(set.secondOrder.size()) {}
   std::size_t rows, friction, arms, thirdBodies, secondOrder;
 };
 
@@ -19548,8 +19557,7 @@ void SimulationT<S>::collectProducerRows(const StepContext& step, bool projectio
   RowWriter writer(w.rows);
   const int numBodies = int(w.solverBodies.size());
   for (const auto& p : producers_) {
-    const detail::RowCounts counts{w.rows.size(), w.rows.friction.size(), w.rows.arms.size(), w.rows.thirdBodies.size(),
-                           w.rows.secondOrder.size()};
+    const detail::RowCounts counts(w.rows);
     if (projection)
       p->writeProjectionRows(writer, step);
     else

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <span>
 #include <unordered_map>
@@ -74,12 +75,12 @@ class ConstraintRows {
 
     predicted_.clear();
     if (!predict) return;
-    // The constraints' terms come first in the table, in row order.
-    std::size_t term = 0;
+    curvatures_.assign(rows.size(), 0.0);
+    for (const SecondOrder& term : set.secondOrder)
+      if (term.row >= int(first_) && std::size_t(term.row) < first_ + rows.size())
+        curvatures_[std::size_t(term.row) - first_] = term.curvature;
     for (std::size_t i = 0; i < rows.size(); ++i) {
-      while (term < set.secondOrder.size() && set.secondOrder[term].row < int(first_ + i)) ++term;
-      const bool hasTerm = term < set.secondOrder.size() && set.secondOrder[term].row == int(first_ + i);
-      const double curvature = hasTerm ? set.secondOrder[term].curvature : 0.0;
+      const double curvature = curvatures_[i];
       const Row& r = rows[i];
       if (!r.holonomic) continue;
       const auto speed = [&](int body, const Vec6d& J) {
@@ -125,11 +126,12 @@ class ConstraintRows {
   };
 
   // The predicted rates of the holonomic rows from `first` on become their
-  // SecondOrder::lastRate; their terms are those from `firstTerm` on (in row
-  // order), and rows without one get one.
+  // SecondOrder::lastRate; their terms are those from `firstTerm` on, and
+  // rows without one get one.
   void addLastRates(RowSet& set, std::size_t first, std::size_t firstTerm) {
     terms_.assign(set.secondOrder.begin() + std::ptrdiff_t(firstTerm), set.secondOrder.end());
     set.secondOrder.resize(firstTerm);
+    std::ranges::sort(terms_, {}, &SecondOrder::row);
     std::size_t k = 0;
     for (std::size_t i = first; i < set.rows.size(); ++i) {
       SecondOrder term{int(i)};
@@ -163,6 +165,7 @@ class ConstraintRows {
   std::vector<double*> slots_;          ///< per row written
   std::vector<double*> projectionSlots_;
   std::vector<SecondOrder> terms_;
+  std::vector<double> curvatures_;      ///< per row written, readBack's scratch
   std::unordered_map<const double*, Prediction> predicted_;
 };
 

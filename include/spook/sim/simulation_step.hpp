@@ -49,6 +49,9 @@ struct SimulationWorkspace {
 
 // How many rows and side-table entries a RowSet held.
 struct RowCounts {
+  explicit RowCounts(const RowSet& set)
+      : rows(set.size()), friction(set.friction.size()), arms(set.arms.size()), thirdBodies(set.thirdBodies.size()),
+        secondOrder(set.secondOrder.size()) {}
   std::size_t rows, friction, arms, thirdBodies, secondOrder;
 };
 
@@ -232,8 +235,7 @@ void SimulationT<S>::collectProducerRows(const StepContext& step, bool projectio
   RowWriter writer(w.rows);
   const int numBodies = int(w.solverBodies.size());
   for (const auto& p : producers_) {
-    const detail::RowCounts counts{w.rows.size(), w.rows.friction.size(), w.rows.arms.size(), w.rows.thirdBodies.size(),
-                           w.rows.secondOrder.size()};
+    const detail::RowCounts counts(w.rows);
     if (projection)
       p->writeProjectionRows(writer, step);
     else

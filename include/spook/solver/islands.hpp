@@ -5,6 +5,7 @@
 #include <limits>
 #include <cstddef>
 #include <numeric>
+#include <span>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -107,16 +108,15 @@ class IslandStepper {
   // Per row: its entry in the friction table (when `friction`), the third
   // bodies' and the second-order terms' tables, −1 for none.
   void index(const RowSet& set, bool friction) {
-    frictionOf_.assign(set.size(), -1);
-    if (friction)
-      for (std::size_t k = 0; k < set.friction.size(); ++k)
-        frictionOf_[static_cast<std::size_t>(set.friction[k].row)] = static_cast<int>(k);
-    thirdOf_.assign(set.size(), -1);
-    for (std::size_t k = 0; k < set.thirdBodies.size(); ++k)
-      thirdOf_[static_cast<std::size_t>(set.thirdBodies[k].row)] = static_cast<int>(k);
-    secondOrderOf_.assign(set.size(), -1);
-    for (std::size_t k = 0; k < set.secondOrder.size(); ++k)
-      secondOrderOf_[static_cast<std::size_t>(set.secondOrder[k].row)] = static_cast<int>(k);
+    indexTable(friction ? std::span<const FrictionLink>(set.friction) : std::span<const FrictionLink>(), set.size(),
+               frictionOf_);
+    indexTable(std::span<const ThirdBody>(set.thirdBodies), set.size(), thirdOf_);
+    indexTable(std::span<const SecondOrder>(set.secondOrder), set.size(), secondOrderOf_);
+  }
+  template <class Entry>
+  static void indexTable(std::span<const Entry> table, std::size_t rows, std::vector<int>& entryOf) {
+    entryOf.assign(rows, -1);
+    for (std::size_t k = 0; k < table.size(); ++k) entryOf[static_cast<std::size_t>(table[k].row)] = static_cast<int>(k);
   }
   [[nodiscard]] const ThirdBody* thirdBodyOf(const RowSet& set, std::size_t row) const {
     const int k = thirdOf_[row];

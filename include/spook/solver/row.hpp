@@ -123,10 +123,13 @@ struct RowSet {
   void truncate(std::size_t n) {
     rows.resize(std::min(n, rows.size()));
     impulses.resize(rows.size());
-    std::erase_if(friction, [&](const FrictionLink& f) { return std::size_t(f.row) >= rows.size(); });
-    std::erase_if(arms, [&](const LeverArms& a) { return std::size_t(a.row) >= rows.size(); });
-    std::erase_if(thirdBodies, [&](const ThirdBody& t) { return std::size_t(t.row) >= rows.size(); });
-    std::erase_if(secondOrder, [&](const SecondOrder& t) { return std::size_t(t.row) >= rows.size(); });
+    const auto dropRowsFromEnd = [&](auto& table) {
+      std::erase_if(table, [&](const auto& entry) { return std::size_t(entry.row) >= rows.size(); });
+    };
+    dropRowsFromEnd(friction);
+    dropRowsFromEnd(arms);
+    dropRowsFromEnd(thirdBodies);
+    dropRowsFromEnd(secondOrder);
   }
 };
 
