@@ -96,7 +96,7 @@ TEST_CASE("the brute-force overlap minimum reproduces closed-form penetrations")
     worstAngle =
         std::max(worstAngle, std::atan2(exact.normal.cross(brute.normal).norm(), exact.normal.dot(brute.normal)));
   };
-  for (int k = 0; k < 300; ++k) {
+  for (int k = 0; k < spook::test::sweep(300, 100); ++k) {
     const Vec3d h(random.length(0.1, 1.0), random.length(0.1, 1.0), random.length(0.1, 1.0));
     const auto box = near(random, new BoxT<double>(h), new SphereT<double>(random.length(0.1, 0.8)), 1.2);
     compare(fclReference(*box.a, box.X_WA, *box.b, box.X_WB), overlapMinimum(*box.a, box.X_WA, *box.b, box.X_WB));
