@@ -8482,6 +8482,14 @@ struct RowSet {
 #endif  // SPOOK_SINGLE_SPOOK_SOLVER_ROW_HPP
 // --- end spook/solver/row.hpp ---
 
+// The iterative sweeps' innermost calls, which GCC 12 left out of line
+// (a tenth of a 210-cube pyramid's hybrid step in the calls themselves).
+#if defined(__GNUC__) || defined(__clang__)
+#define SPOOK_ALWAYS_INLINE [[gnu::always_inline]] inline
+#else
+#define SPOOK_ALWAYS_INLINE inline
+#endif
+
 namespace spook::detail {
 
 using Vec3d = Eigen::Vector3d;
@@ -8641,7 +8649,7 @@ struct IslandProblem {
     for (int i : subset) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
     return dv;
   }
-  void addImpulse(std::vector<Vec6d>& dv, int i, double impulse) const {
+  SPOOK_ALWAYS_INLINE void addImpulse(std::vector<Vec6d>& dv, int i, double impulse) const {
     // Written out (not forEachBody): the iterative sweeps' innermost loop.
     const Entry& e = rows[static_cast<std::size_t>(i)];
     if (e.body1 >= 0) dv[static_cast<std::size_t>(e.body1)] += e.W1 * impulse;
@@ -8662,7 +8670,7 @@ struct IslandProblem {
     for (std::size_t k = 0; k < indices.size(); ++k) rows[static_cast<std::size_t>(indices[k])] = kept[k];
   }
   /// G_i Δv.
-  [[nodiscard]] double rowVelocity(int i, const std::vector<Vec6d>& dv) const {
+  [[nodiscard]] SPOOK_ALWAYS_INLINE double rowVelocity(int i, const std::vector<Vec6d>& dv) const {
     const Entry& e = rows[static_cast<std::size_t>(i)];
     double v = 0.0;
     if (e.body1 >= 0) v += e.J1.dot(dv[static_cast<std::size_t>(e.body1)]);
@@ -14871,11 +14879,11 @@ using SolverRef = ref_ptr<Solver>;
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
 #define SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
@@ -14922,13 +14930,59 @@ class BodySpaceSolve {
     return true;
   }
 
-  /// Factorizes K for the rows of `subset` flagged free (freeIndex[k] ≥ 0).
+  /// Fixes K's sparsity pattern for the rows `subset`: a block per body and
+  /// per pair of bodies sharing one of the rows, whether the row is free or
+  /// clamped, so that the pattern and its symbolic analysis (the ordering
+  /// and the elimination tree) hold over every pivot step of a solve, and
+  /// over steps and solves whose rows couple the same bodies (a resting
+  /// pile's contacts). Analyzes again only when the pattern changed.
+  void analyze(const IslandProblem& problem, const std::vector<int>& subset) {
+    keys_.clear();
+    for (int i : subset) {
+      const std::array<int, 3> body = problem.bodiesOf(problem.rows[static_cast<std::size_t>(i)]);
+      for (std::size_t x = 1; x < body.size(); ++x)
+        for (std::size_t y = 0; y < x; ++y)
+          if (body[x] >= 0 && body[y] >= 0) keys_.push_back(key(std::max(body[x], body[y]), std::min(body[x], body[y])));
+    }
+    std::sort(keys_.begin(), keys_.end());
+    keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());
+    if (problem.numBodies == patternBodies_ && keys_ == pattern_) return;
+    pattern_.swap(keys_);
+    patternBodies_ = problem.numBodies;
+
+    const int n = 6 * patternBodies_;
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(21 * static_cast<std::size_t>(patternBodies_) + 36 * pattern_.size());
+    for (int body = 0; body < patternBodies_; ++body)
+      for (int c = 0; c < 6; ++c)
+        for (int r = c; r < 6; ++r) triplets.emplace_back(6 * body + r, 6 * body + c, 0.0);
+    for (const std::uint64_t k : pattern_)
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r < 6; ++r) triplets.emplace_back(6 * rowOf(k) + r, 6 * colOf(k) + c, 0.0);
+    K_.resize(n, n);
+    K_.setFromTriplets(triplets.begin(), triplets.end());
+    K_.makeCompressed();
+    // Where each off-diagonal block's column c starts in K's values (its
+    // six rows are consecutive); a diagonal block opens each of its columns.
+    blockStart_.resize(6 * pattern_.size());
+    for (std::size_t p = 0; p < pattern_.size(); ++p)
+      for (int c = 0; c < 6; ++c) {
+        const int column = 6 * colOf(pattern_[p]) + c;
+        const int* first = K_.innerIndexPtr() + K_.outerIndexPtr()[column];
+        const int* last = K_.innerIndexPtr() + K_.outerIndexPtr()[column + 1];
+        blockStart_[6 * p + static_cast<std::size_t>(c)] =
+            static_cast<int>(std::lower_bound(first, last, 6 * rowOf(pattern_[p])) - K_.innerIndexPtr());
+      }
+    ldlt_.analyzePattern(K_);
+  }
+
+  /// Factorizes K for the rows of `subset` flagged free (freeIndex[k] ≥ 0);
+  /// analyze() has seen the same rows.
   void factorize(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex) {
     const int numBodies = problem.numBodies;
-    blocks_.clear();
-    blockOf_.clear();
-    diagonal_.assign(static_cast<std::size_t>(numBodies), Mat6d::Zero());
+    diagonal_.resize(static_cast<std::size_t>(numBodies));
     for (int b = 0; b < numBodies; ++b) diagonal_[static_cast<std::size_t>(b)] = problem.mass[static_cast<std::size_t>(b)];
+    blocks_.assign(pattern_.size(), Mat6d::Zero());
     for (std::size_t k = 0; k < subset.size(); ++k) {
       const int f = freeIndex[k];
       if (f < 0) continue;
@@ -14943,7 +14997,7 @@ class BodySpaceSolve {
         J[static_cast<std::size_t>(n++)] = &j;
       });
       for (std::size_t x = 0; x < static_cast<std::size_t>(n); ++x) {
-        addRow(body[x], *J[x], inverseSigma);
+        diagonal_[static_cast<std::size_t>(body[x])] += inverseSigma * *J[x] * J[x]->transpose();
         // K's lower triangle: the block (larger body, smaller body).
         for (std::size_t y = 0; y < x; ++y) {
           const bool xLarger = body[x] > body[y];
@@ -14953,20 +15007,18 @@ class BodySpaceSolve {
       }
     }
 
-    triplets_.clear();
+    double* values = K_.valuePtr();
     for (int body = 0; body < numBodies; ++body)
-      for (int c = 0; c < 6; ++c)
-        for (int r = c; r < 6; ++r)
-          triplets_.emplace_back(6 * body + r, 6 * body + c, diagonal_[static_cast<std::size_t>(body)](r, c));
-    for (const auto& [key, index] : blockOf_) {
-      const int row = static_cast<int>(key >> 32), col = static_cast<int>(key & 0xffffffffu);
-      const Mat6d& block = blocks_[index];
-      for (int c = 0; c < 6; ++c)
-        for (int r = 0; r < 6; ++r) triplets_.emplace_back(6 * row + r, 6 * col + c, block(r, c));
-    }
-    K_.resize(6 * numBodies, 6 * numBodies);
-    K_.setFromTriplets(triplets_.begin(), triplets_.end());
-    ldlt_.compute(K_);
+      for (int c = 0; c < 6; ++c) {
+        double* column = values + K_.outerIndexPtr()[6 * body + c];
+        for (int r = c; r < 6; ++r) column[r - c] = diagonal_[static_cast<std::size_t>(body)](r, c);
+      }
+    for (std::size_t p = 0; p < pattern_.size(); ++p)
+      for (int c = 0; c < 6; ++c) {
+        double* column = values + blockStart_[6 * p + static_cast<std::size_t>(c)];
+        for (int r = 0; r < 6; ++r) column[r] = blocks_[p](r, c);
+      }
+    ldlt_.factorize(K_);
   }
 
   /// Solves the free rows of the last factorize() for the right-hand side r
@@ -14995,20 +15047,21 @@ class BodySpaceSolve {
   }
 
  private:
-  void addRow(int body, const Vec6d& J, double inverseSigma) {
-    diagonal_[static_cast<std::size_t>(body)] += inverseSigma * J * J.transpose();
+  static std::uint64_t key(int row, int col) {
+    return (static_cast<std::uint64_t>(row) << 32) | static_cast<std::uint32_t>(col);
   }
+  static int rowOf(std::uint64_t k) { return static_cast<int>(k >> 32); }
+  static int colOf(std::uint64_t k) { return static_cast<int>(k & 0xffffffffu); }
 
   Mat6d& blockAt(int row, int col) {
-    const std::uint64_t key = (static_cast<std::uint64_t>(row) << 32) | static_cast<std::uint32_t>(col);
-    const auto [it, inserted] = blockOf_.try_emplace(key, blocks_.size());
-    if (inserted) blocks_.push_back(Mat6d::Zero());
-    return blocks_[it->second];
+    const auto it = std::lower_bound(pattern_.begin(), pattern_.end(), key(row, col));
+    return blocks_[static_cast<std::size_t>(it - pattern_.begin())];
   }
 
-  std::vector<Mat6d> diagonal_, blocks_;
-  std::unordered_map<std::uint64_t, std::size_t> blockOf_;
-  std::vector<Eigen::Triplet<double>> triplets_;
+  std::vector<Mat6d> diagonal_, blocks_;  ///< K's blocks: per body, per entry of pattern_
+  std::vector<std::uint64_t> pattern_, keys_;  ///< K's off-diagonal blocks (row body, column body), sorted
+  int patternBodies_ = -1;
+  std::vector<int> blockStart_;
   Eigen::SparseMatrix<double> K_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
 };
@@ -15036,6 +15089,11 @@ class BodySpaceSolve {
 #include <vector>
 
 namespace spook::detail {
+
+/// |(a, b)|, where std::hypot's guard against overflow (not reachable by
+/// impulses and slip speeds, far below 1e154) cost the hybrid solve of a
+/// 210-cube pyramid a sixth of its time in the cone projections.
+[[nodiscard]] inline double planarLength(double a, double b) { return std::sqrt(a * a + b * b); }
 
 /// The friction limit μΛn (N·s) of friction row e from its normal's current impulse.
 [[nodiscard]] inline double frictionLimit(const IslandProblem& problem, const IslandProblem::Entry& e) {
@@ -15066,7 +15124,7 @@ inline double applyFrictionBounds(IslandProblem& problem, const std::vector<int>
 [[nodiscard]] inline std::array<double, 2> projectOntoDisk(std::array<double, 2> target, double radius, double a00,
                                                           double a01, double a11) {
   const auto clampToDisk = [radius](std::array<double, 2> x) {
-    const double r = std::hypot(x[0], x[1]);
+    const double r = planarLength(x[0], x[1]);
     if (r > radius) {
       const double f = r > 0.0 ? radius / r : 0.0;
       x = {x[0] * f, x[1] * f};
@@ -15081,7 +15139,7 @@ inline double applyFrictionBounds(IslandProblem& problem, const std::vector<int>
     const double g0 = a00 * (x[0] - target[0]) + a01 * (x[1] - target[1]);
     const double g1 = a01 * (x[0] - target[0]) + a11 * (x[1] - target[1]);
     const std::array<double, 2> next = clampToDisk({x[0] - g0 / largest, x[1] - g1 / largest});
-    const double moved = std::hypot(next[0] - x[0], next[1] - x[1]);
+    const double moved = planarLength(next[0] - x[0], next[1] - x[1]);
     x = next;
     if (moved <= 1e-12 * (radius + 1e-300)) break;
   }
@@ -15116,8 +15174,8 @@ inline double updateConeDirections(IslandProblem& problem, const std::vector<int
       return e.upper <= e.lower || std::abs(e.impulse) >= e.upper * (1.0 - 1e-9);
     };
     const double wa = held(ea) ? slip(a) : 0.0, wb = held(eb) ? slip(ea.partner) : 0.0;
-    const double slipSpeed = std::hypot(wa, wb);
-    const double force = std::hypot(ea.impulse, eb.impulse);
+    const double slipSpeed = planarLength(wa, wb);
+    const double force = planarLength(ea.impulse, eb.impulse);
     double da = ea.coneShare, db = eb.coneShare;
     if (slipSpeed > 0.0) {
       // The force turns against the slip: fully on the first update (from
@@ -15128,7 +15186,7 @@ inline double updateConeDirections(IslandProblem& problem, const std::vector<int
       const double ta = -wa / slipSpeed, tb = -wb / slipSpeed;
       const bool full = ea.coneShare == 1.0 && eb.coneShare == 1.0;
       const double sa = full ? ta : oa + ta, sb = full ? tb : ob + tb;
-      const double norm = std::hypot(sa, sb);
+      const double norm = planarLength(sa, sb);
       da = norm > 1e-12 ? std::abs(sa) / norm : std::abs(ta);
       db = norm > 1e-12 ? std::abs(sb) / norm : std::abs(tb);
     } else if (force > limit * (1.0 + 1e-9) && force > 0.0) {
@@ -15150,7 +15208,7 @@ inline void freezeConeShares(IslandProblem& problem, const std::vector<int>& sub
     IslandProblem::Entry& ea = problem.rows[static_cast<std::size_t>(a)];
     if (!keep[static_cast<std::size_t>(a)] || ea.frictionBound != FrictionBound::CONE || ea.partner < a) continue;
     IslandProblem::Entry& eb = problem.rows[static_cast<std::size_t>(ea.partner)];
-    const double force = std::hypot(ea.impulse, eb.impulse);
+    const double force = planarLength(ea.impulse, eb.impulse);
     ea.coneShare = force > 0.0 ? std::abs(ea.impulse) / force : std::sqrt(0.5);
     eb.coneShare = force > 0.0 ? std::abs(eb.impulse) / force : std::sqrt(0.5);
   }
@@ -15160,10 +15218,10 @@ inline void freezeConeShares(IslandProblem& problem, const std::vector<int>& sub
 /// force f when |f| = μΛn and vanish inside the disk.
 [[nodiscard]] inline double coneComplementarityError(const IslandProblem::Entry& a, const IslandProblem::Entry& b,
                                                      double limit, double wa, double wb) {
-  const double force = std::hypot(a.impulse, b.impulse);
+  const double force = planarLength(a.impulse, b.impulse);
   // On the cone to within the friction iterations' reach (their last solve
   // moves Λn after the bounds were set).
-  if (force < limit * (1.0 - 1e-4) || force == 0.0) return std::hypot(wa, wb);
+  if (force < limit * (1.0 - 1e-4) || force == 0.0) return planarLength(wa, wb);
   const double fa = a.impulse / force, fb = b.impulse / force;
   const double along = wa * fa + wb * fb;  // must be <= 0
   return std::max(0.0, along) + std::abs(wa * fb - wb * fa);
@@ -15402,7 +15460,7 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
         auto& e = problem.rows[static_cast<std::size_t>(i)];
         if (!conePair(i) || e.partner < i) continue;
         auto& p = problem.rows[static_cast<std::size_t>(e.partner)];
-        const double limit = frictionLimit(problem, e), force = std::hypot(e.impulse, p.impulse);
+        const double limit = frictionLimit(problem, e), force = planarLength(e.impulse, p.impulse);
         if (force <= limit) continue;
         const double f = limit / force;
         problem.addImpulse(dv, i, e.impulse * (f - 1.0));
@@ -15441,7 +15499,9 @@ struct DirectSolveResult {
 /// S + Σ is assembled in block-sparse form (a row couples only to the rows
 /// sharing one of its bodies) and factorized by a sparse LDLᵀ with an
 /// approximate-minimum-degree ordering, so a chain or a tree of n bodies costs
-/// O(n). Σ > 0 keeps the matrix positive definite. Where rows far outnumber
+/// O(n); the ordering is computed once per sparsity pattern, which the
+/// pivot steps keep (a clamped row becomes an identity row) and so do steps
+/// whose rows couple the same bodies. Σ > 0 keeps the matrix positive definite. Where rows far outnumber
 /// the bodies' degrees of freedom and all are compliant (contacts), the same
 /// system is solved through the bodies' mass matrix instead
 /// (body_space_solve.hpp).
@@ -15495,7 +15555,8 @@ class DirectSolve {
     if (n == 0) return result;
     bodySpace_ = BodySpaceSolve::pays(problem, subset);
     assembleRhs(problem, subset);
-    if (!bodySpace_) assembleMatrix(problem, subset);
+    if (bodySpace_) bodySpaceSolve_.analyze(problem, subset);
+    else assembleMatrix(problem, subset);
 
     // The state of each row: free, or clamped at its lower or upper bound.
     // Warm start: a row whose guess (the last solution) is at a bound starts there.
@@ -15663,6 +15724,22 @@ class DirectSolve {
     }
     A_.resize(n, n);
     A_.setFromTriplets(triplets_.begin(), triplets_.end());
+    // Its lower triangle, factorized at each pivot step (solveFree); the
+    // ordering and elimination tree are computed again only when the
+    // pattern differs from the last solve's (a chain's joints keep theirs
+    // from step to step).
+    lower_ = A_.triangularView<Eigen::Lower>();
+    lower_.makeCompressed();
+    lowerValues_.assign(lower_.valuePtr(), lower_.valuePtr() + lower_.nonZeros());
+    const auto same = [](const int* first, std::size_t count, const std::vector<int>& kept) {
+      return kept.size() == count && std::equal(first, first + count, kept.begin());
+    };
+    const auto columns = static_cast<std::size_t>(n) + 1, entries = static_cast<std::size_t>(lower_.nonZeros());
+    if (!same(lower_.outerIndexPtr(), columns, analyzedOuter_) || !same(lower_.innerIndexPtr(), entries, analyzedInner_)) {
+      ldlt_.analyzePattern(lower_);
+      analyzedOuter_.assign(lower_.outerIndexPtr(), lower_.outerIndexPtr() + columns);
+      analyzedInner_.assign(lower_.innerIndexPtr(), lower_.innerIndexPtr() + entries);
+    }
   }
 
   // Solves the free rows with the clamped ones at their bounds.
@@ -15693,24 +15770,36 @@ class DirectSolve {
       refineInBodySpace(problem, subset, freeIndex, rhs, x);
       return;
     }
-    subTriplets_.clear();
-    for (int col = 0; col < n; ++col)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A_, col); it; ++it) {
-        const int fr = freeIndex[static_cast<std::size_t>(it.row())];
-        if (fr < 0) continue;
-        const int fc = freeIndex[static_cast<std::size_t>(col)];
-        if (fc >= 0) {
-          if (fr >= fc) subTriplets_.emplace_back(fr, fc, it.value());
+    // The clamped rows and columns of (S + Σ)_DD become the identity's (and
+    // their right-hand side zero), which keeps the matrix's pattern, and
+    // with it the symbolic analysis of assembleMatrix, for every pivot step.
+    Eigen::VectorXd full = Eigen::VectorXd::Zero(n);
+    for (int k = 0; k < n; ++k)
+      if (const int f = freeIndex[static_cast<std::size_t>(k)]; f >= 0) full[k] = rhs[f];
+    const int* outer = lower_.outerIndexPtr();
+    const int* inner = lower_.innerIndexPtr();
+    double* value = lower_.valuePtr();
+    for (int col = 0; col < n; ++col) {
+      const bool freeCol = freeIndex[static_cast<std::size_t>(col)] >= 0;
+      for (int p = outer[col]; p < outer[col + 1]; ++p) {
+        const int row = inner[p];
+        const double a = lowerValues_[static_cast<std::size_t>(p)];
+        const bool freeRow = freeIndex[static_cast<std::size_t>(row)] >= 0;
+        if (row == col) {
+          value[p] = freeCol ? a : 1.0;
+        } else if (freeRow && freeCol) {
+          value[p] = a;
         } else {
-          rhs[fr] -= it.value() * x[col];
+          value[p] = 0.0;
+          if (freeRow) full[row] -= a * x[col];
+          else if (freeCol) full[col] -= a * x[row];
         }
       }
-    Eigen::SparseMatrix<double> sub(numFree, numFree);
-    sub.setFromTriplets(subTriplets_.begin(), subTriplets_.end());
-    ldlt_.compute(sub);
-    const Eigen::VectorXd solution = ldlt_.solve(rhs);
+    }
+    ldlt_.factorize(lower_);
+    const Eigen::VectorXd solution = ldlt_.solve(full);
     for (int k = 0; k < n; ++k)
-      if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[freeIndex[static_cast<std::size_t>(k)]];
+      if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[k];
   }
 
   // Iterative refinement of the free rows' body-space solution x of
@@ -15758,9 +15847,11 @@ class DirectSolve {
 
   bool bodySpace_ = false;
   BodySpaceSolve bodySpaceSolve_;
-  Eigen::SparseMatrix<double> A_;
+  Eigen::SparseMatrix<double> A_, lower_;
+  std::vector<double> lowerValues_;             ///< lower_'s values as assembled
+  std::vector<int> analyzedOuter_, analyzedInner_;  ///< the pattern ldlt_ analyzed
   Eigen::VectorXd q_;
-  std::vector<Eigen::Triplet<double>> triplets_, subTriplets_;
+  std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
 };
 
@@ -18142,11 +18233,11 @@ class ConstraintRows {
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
 #define SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
@@ -18193,13 +18284,59 @@ class BodySpaceSolve {
     return true;
   }
 
-  /// Factorizes K for the rows of `subset` flagged free (freeIndex[k] ≥ 0).
+  /// Fixes K's sparsity pattern for the rows `subset`: a block per body and
+  /// per pair of bodies sharing one of the rows, whether the row is free or
+  /// clamped, so that the pattern and its symbolic analysis (the ordering
+  /// and the elimination tree) hold over every pivot step of a solve, and
+  /// over steps and solves whose rows couple the same bodies (a resting
+  /// pile's contacts). Analyzes again only when the pattern changed.
+  void analyze(const IslandProblem& problem, const std::vector<int>& subset) {
+    keys_.clear();
+    for (int i : subset) {
+      const std::array<int, 3> body = problem.bodiesOf(problem.rows[static_cast<std::size_t>(i)]);
+      for (std::size_t x = 1; x < body.size(); ++x)
+        for (std::size_t y = 0; y < x; ++y)
+          if (body[x] >= 0 && body[y] >= 0) keys_.push_back(key(std::max(body[x], body[y]), std::min(body[x], body[y])));
+    }
+    std::sort(keys_.begin(), keys_.end());
+    keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());
+    if (problem.numBodies == patternBodies_ && keys_ == pattern_) return;
+    pattern_.swap(keys_);
+    patternBodies_ = problem.numBodies;
+
+    const int n = 6 * patternBodies_;
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(21 * static_cast<std::size_t>(patternBodies_) + 36 * pattern_.size());
+    for (int body = 0; body < patternBodies_; ++body)
+      for (int c = 0; c < 6; ++c)
+        for (int r = c; r < 6; ++r) triplets.emplace_back(6 * body + r, 6 * body + c, 0.0);
+    for (const std::uint64_t k : pattern_)
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r < 6; ++r) triplets.emplace_back(6 * rowOf(k) + r, 6 * colOf(k) + c, 0.0);
+    K_.resize(n, n);
+    K_.setFromTriplets(triplets.begin(), triplets.end());
+    K_.makeCompressed();
+    // Where each off-diagonal block's column c starts in K's values (its
+    // six rows are consecutive); a diagonal block opens each of its columns.
+    blockStart_.resize(6 * pattern_.size());
+    for (std::size_t p = 0; p < pattern_.size(); ++p)
+      for (int c = 0; c < 6; ++c) {
+        const int column = 6 * colOf(pattern_[p]) + c;
+        const int* first = K_.innerIndexPtr() + K_.outerIndexPtr()[column];
+        const int* last = K_.innerIndexPtr() + K_.outerIndexPtr()[column + 1];
+        blockStart_[6 * p + static_cast<std::size_t>(c)] =
+            static_cast<int>(std::lower_bound(first, last, 6 * rowOf(pattern_[p])) - K_.innerIndexPtr());
+      }
+    ldlt_.analyzePattern(K_);
+  }
+
+  /// Factorizes K for the rows of `subset` flagged free (freeIndex[k] ≥ 0);
+  /// analyze() has seen the same rows.
   void factorize(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex) {
     const int numBodies = problem.numBodies;
-    blocks_.clear();
-    blockOf_.clear();
-    diagonal_.assign(static_cast<std::size_t>(numBodies), Mat6d::Zero());
+    diagonal_.resize(static_cast<std::size_t>(numBodies));
     for (int b = 0; b < numBodies; ++b) diagonal_[static_cast<std::size_t>(b)] = problem.mass[static_cast<std::size_t>(b)];
+    blocks_.assign(pattern_.size(), Mat6d::Zero());
     for (std::size_t k = 0; k < subset.size(); ++k) {
       const int f = freeIndex[k];
       if (f < 0) continue;
@@ -18214,7 +18351,7 @@ class BodySpaceSolve {
         J[static_cast<std::size_t>(n++)] = &j;
       });
       for (std::size_t x = 0; x < static_cast<std::size_t>(n); ++x) {
-        addRow(body[x], *J[x], inverseSigma);
+        diagonal_[static_cast<std::size_t>(body[x])] += inverseSigma * *J[x] * J[x]->transpose();
         // K's lower triangle: the block (larger body, smaller body).
         for (std::size_t y = 0; y < x; ++y) {
           const bool xLarger = body[x] > body[y];
@@ -18224,20 +18361,18 @@ class BodySpaceSolve {
       }
     }
 
-    triplets_.clear();
+    double* values = K_.valuePtr();
     for (int body = 0; body < numBodies; ++body)
-      for (int c = 0; c < 6; ++c)
-        for (int r = c; r < 6; ++r)
-          triplets_.emplace_back(6 * body + r, 6 * body + c, diagonal_[static_cast<std::size_t>(body)](r, c));
-    for (const auto& [key, index] : blockOf_) {
-      const int row = static_cast<int>(key >> 32), col = static_cast<int>(key & 0xffffffffu);
-      const Mat6d& block = blocks_[index];
-      for (int c = 0; c < 6; ++c)
-        for (int r = 0; r < 6; ++r) triplets_.emplace_back(6 * row + r, 6 * col + c, block(r, c));
-    }
-    K_.resize(6 * numBodies, 6 * numBodies);
-    K_.setFromTriplets(triplets_.begin(), triplets_.end());
-    ldlt_.compute(K_);
+      for (int c = 0; c < 6; ++c) {
+        double* column = values + K_.outerIndexPtr()[6 * body + c];
+        for (int r = c; r < 6; ++r) column[r - c] = diagonal_[static_cast<std::size_t>(body)](r, c);
+      }
+    for (std::size_t p = 0; p < pattern_.size(); ++p)
+      for (int c = 0; c < 6; ++c) {
+        double* column = values + blockStart_[6 * p + static_cast<std::size_t>(c)];
+        for (int r = 0; r < 6; ++r) column[r] = blocks_[p](r, c);
+      }
+    ldlt_.factorize(K_);
   }
 
   /// Solves the free rows of the last factorize() for the right-hand side r
@@ -18266,20 +18401,21 @@ class BodySpaceSolve {
   }
 
  private:
-  void addRow(int body, const Vec6d& J, double inverseSigma) {
-    diagonal_[static_cast<std::size_t>(body)] += inverseSigma * J * J.transpose();
+  static std::uint64_t key(int row, int col) {
+    return (static_cast<std::uint64_t>(row) << 32) | static_cast<std::uint32_t>(col);
   }
+  static int rowOf(std::uint64_t k) { return static_cast<int>(k >> 32); }
+  static int colOf(std::uint64_t k) { return static_cast<int>(k & 0xffffffffu); }
 
   Mat6d& blockAt(int row, int col) {
-    const std::uint64_t key = (static_cast<std::uint64_t>(row) << 32) | static_cast<std::uint32_t>(col);
-    const auto [it, inserted] = blockOf_.try_emplace(key, blocks_.size());
-    if (inserted) blocks_.push_back(Mat6d::Zero());
-    return blocks_[it->second];
+    const auto it = std::lower_bound(pattern_.begin(), pattern_.end(), key(row, col));
+    return blocks_[static_cast<std::size_t>(it - pattern_.begin())];
   }
 
-  std::vector<Mat6d> diagonal_, blocks_;
-  std::unordered_map<std::uint64_t, std::size_t> blockOf_;
-  std::vector<Eigen::Triplet<double>> triplets_;
+  std::vector<Mat6d> diagonal_, blocks_;  ///< K's blocks: per body, per entry of pattern_
+  std::vector<std::uint64_t> pattern_, keys_;  ///< K's off-diagonal blocks (row body, column body), sorted
+  int patternBodies_ = -1;
+  std::vector<int> blockStart_;
   Eigen::SparseMatrix<double> K_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
 };

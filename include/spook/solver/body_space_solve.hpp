@@ -1,10 +1,10 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
@@ -53,13 +53,59 @@ class BodySpaceSolve {
     return true;
   }
 
-  /// Factorizes K for the rows of `subset` flagged free (freeIndex[k] ≥ 0).
+  /// Fixes K's sparsity pattern for the rows `subset`: a block per body and
+  /// per pair of bodies sharing one of the rows, whether the row is free or
+  /// clamped, so that the pattern and its symbolic analysis (the ordering
+  /// and the elimination tree) hold over every pivot step of a solve, and
+  /// over steps and solves whose rows couple the same bodies (a resting
+  /// pile's contacts). Analyzes again only when the pattern changed.
+  void analyze(const IslandProblem& problem, const std::vector<int>& subset) {
+    keys_.clear();
+    for (int i : subset) {
+      const std::array<int, 3> body = problem.bodiesOf(problem.rows[static_cast<std::size_t>(i)]);
+      for (std::size_t x = 1; x < body.size(); ++x)
+        for (std::size_t y = 0; y < x; ++y)
+          if (body[x] >= 0 && body[y] >= 0) keys_.push_back(key(std::max(body[x], body[y]), std::min(body[x], body[y])));
+    }
+    std::sort(keys_.begin(), keys_.end());
+    keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());
+    if (problem.numBodies == patternBodies_ && keys_ == pattern_) return;
+    pattern_.swap(keys_);
+    patternBodies_ = problem.numBodies;
+
+    const int n = 6 * patternBodies_;
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(21 * static_cast<std::size_t>(patternBodies_) + 36 * pattern_.size());
+    for (int body = 0; body < patternBodies_; ++body)
+      for (int c = 0; c < 6; ++c)
+        for (int r = c; r < 6; ++r) triplets.emplace_back(6 * body + r, 6 * body + c, 0.0);
+    for (const std::uint64_t k : pattern_)
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r < 6; ++r) triplets.emplace_back(6 * rowOf(k) + r, 6 * colOf(k) + c, 0.0);
+    K_.resize(n, n);
+    K_.setFromTriplets(triplets.begin(), triplets.end());
+    K_.makeCompressed();
+    // Where each off-diagonal block's column c starts in K's values (its
+    // six rows are consecutive); a diagonal block opens each of its columns.
+    blockStart_.resize(6 * pattern_.size());
+    for (std::size_t p = 0; p < pattern_.size(); ++p)
+      for (int c = 0; c < 6; ++c) {
+        const int column = 6 * colOf(pattern_[p]) + c;
+        const int* first = K_.innerIndexPtr() + K_.outerIndexPtr()[column];
+        const int* last = K_.innerIndexPtr() + K_.outerIndexPtr()[column + 1];
+        blockStart_[6 * p + static_cast<std::size_t>(c)] =
+            static_cast<int>(std::lower_bound(first, last, 6 * rowOf(pattern_[p])) - K_.innerIndexPtr());
+      }
+    ldlt_.analyzePattern(K_);
+  }
+
+  /// Factorizes K for the rows of `subset` flagged free (freeIndex[k] ≥ 0);
+  /// analyze() has seen the same rows.
   void factorize(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex) {
     const int numBodies = problem.numBodies;
-    blocks_.clear();
-    blockOf_.clear();
-    diagonal_.assign(static_cast<std::size_t>(numBodies), Mat6d::Zero());
+    diagonal_.resize(static_cast<std::size_t>(numBodies));
     for (int b = 0; b < numBodies; ++b) diagonal_[static_cast<std::size_t>(b)] = problem.mass[static_cast<std::size_t>(b)];
+    blocks_.assign(pattern_.size(), Mat6d::Zero());
     for (std::size_t k = 0; k < subset.size(); ++k) {
       const int f = freeIndex[k];
       if (f < 0) continue;
@@ -74,7 +120,7 @@ class BodySpaceSolve {
         J[static_cast<std::size_t>(n++)] = &j;
       });
       for (std::size_t x = 0; x < static_cast<std::size_t>(n); ++x) {
-        addRow(body[x], *J[x], inverseSigma);
+        diagonal_[static_cast<std::size_t>(body[x])] += inverseSigma * *J[x] * J[x]->transpose();
         // K's lower triangle: the block (larger body, smaller body).
         for (std::size_t y = 0; y < x; ++y) {
           const bool xLarger = body[x] > body[y];
@@ -84,20 +130,18 @@ class BodySpaceSolve {
       }
     }
 
-    triplets_.clear();
+    double* values = K_.valuePtr();
     for (int body = 0; body < numBodies; ++body)
-      for (int c = 0; c < 6; ++c)
-        for (int r = c; r < 6; ++r)
-          triplets_.emplace_back(6 * body + r, 6 * body + c, diagonal_[static_cast<std::size_t>(body)](r, c));
-    for (const auto& [key, index] : blockOf_) {
-      const int row = static_cast<int>(key >> 32), col = static_cast<int>(key & 0xffffffffu);
-      const Mat6d& block = blocks_[index];
-      for (int c = 0; c < 6; ++c)
-        for (int r = 0; r < 6; ++r) triplets_.emplace_back(6 * row + r, 6 * col + c, block(r, c));
-    }
-    K_.resize(6 * numBodies, 6 * numBodies);
-    K_.setFromTriplets(triplets_.begin(), triplets_.end());
-    ldlt_.compute(K_);
+      for (int c = 0; c < 6; ++c) {
+        double* column = values + K_.outerIndexPtr()[6 * body + c];
+        for (int r = c; r < 6; ++r) column[r - c] = diagonal_[static_cast<std::size_t>(body)](r, c);
+      }
+    for (std::size_t p = 0; p < pattern_.size(); ++p)
+      for (int c = 0; c < 6; ++c) {
+        double* column = values + blockStart_[6 * p + static_cast<std::size_t>(c)];
+        for (int r = 0; r < 6; ++r) column[r] = blocks_[p](r, c);
+      }
+    ldlt_.factorize(K_);
   }
 
   /// Solves the free rows of the last factorize() for the right-hand side r
@@ -126,20 +170,21 @@ class BodySpaceSolve {
   }
 
  private:
-  void addRow(int body, const Vec6d& J, double inverseSigma) {
-    diagonal_[static_cast<std::size_t>(body)] += inverseSigma * J * J.transpose();
+  static std::uint64_t key(int row, int col) {
+    return (static_cast<std::uint64_t>(row) << 32) | static_cast<std::uint32_t>(col);
   }
+  static int rowOf(std::uint64_t k) { return static_cast<int>(k >> 32); }
+  static int colOf(std::uint64_t k) { return static_cast<int>(k & 0xffffffffu); }
 
   Mat6d& blockAt(int row, int col) {
-    const std::uint64_t key = (static_cast<std::uint64_t>(row) << 32) | static_cast<std::uint32_t>(col);
-    const auto [it, inserted] = blockOf_.try_emplace(key, blocks_.size());
-    if (inserted) blocks_.push_back(Mat6d::Zero());
-    return blocks_[it->second];
+    const auto it = std::lower_bound(pattern_.begin(), pattern_.end(), key(row, col));
+    return blocks_[static_cast<std::size_t>(it - pattern_.begin())];
   }
 
-  std::vector<Mat6d> diagonal_, blocks_;
-  std::unordered_map<std::uint64_t, std::size_t> blockOf_;
-  std::vector<Eigen::Triplet<double>> triplets_;
+  std::vector<Mat6d> diagonal_, blocks_;  ///< K's blocks: per body, per entry of pattern_
+  std::vector<std::uint64_t> pattern_, keys_;  ///< K's off-diagonal blocks (row body, column body), sorted
+  int patternBodies_ = -1;
+  std::vector<int> blockStart_;
   Eigen::SparseMatrix<double> K_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
 };

@@ -29,7 +29,9 @@ struct DirectSolveResult {
 /// S + Σ is assembled in block-sparse form (a row couples only to the rows
 /// sharing one of its bodies) and factorized by a sparse LDLᵀ with an
 /// approximate-minimum-degree ordering, so a chain or a tree of n bodies costs
-/// O(n). Σ > 0 keeps the matrix positive definite. Where rows far outnumber
+/// O(n); the ordering is computed once per sparsity pattern, which the
+/// pivot steps keep (a clamped row becomes an identity row) and so do steps
+/// whose rows couple the same bodies. Σ > 0 keeps the matrix positive definite. Where rows far outnumber
 /// the bodies' degrees of freedom and all are compliant (contacts), the same
 /// system is solved through the bodies' mass matrix instead
 /// (body_space_solve.hpp).
@@ -83,7 +85,8 @@ class DirectSolve {
     if (n == 0) return result;
     bodySpace_ = BodySpaceSolve::pays(problem, subset);
     assembleRhs(problem, subset);
-    if (!bodySpace_) assembleMatrix(problem, subset);
+    if (bodySpace_) bodySpaceSolve_.analyze(problem, subset);
+    else assembleMatrix(problem, subset);
 
     // The state of each row: free, or clamped at its lower or upper bound.
     // Warm start: a row whose guess (the last solution) is at a bound starts there.
@@ -251,6 +254,22 @@ class DirectSolve {
     }
     A_.resize(n, n);
     A_.setFromTriplets(triplets_.begin(), triplets_.end());
+    // Its lower triangle, factorized at each pivot step (solveFree); the
+    // ordering and elimination tree are computed again only when the
+    // pattern differs from the last solve's (a chain's joints keep theirs
+    // from step to step).
+    lower_ = A_.triangularView<Eigen::Lower>();
+    lower_.makeCompressed();
+    lowerValues_.assign(lower_.valuePtr(), lower_.valuePtr() + lower_.nonZeros());
+    const auto same = [](const int* first, std::size_t count, const std::vector<int>& kept) {
+      return kept.size() == count && std::equal(first, first + count, kept.begin());
+    };
+    const auto columns = static_cast<std::size_t>(n) + 1, entries = static_cast<std::size_t>(lower_.nonZeros());
+    if (!same(lower_.outerIndexPtr(), columns, analyzedOuter_) || !same(lower_.innerIndexPtr(), entries, analyzedInner_)) {
+      ldlt_.analyzePattern(lower_);
+      analyzedOuter_.assign(lower_.outerIndexPtr(), lower_.outerIndexPtr() + columns);
+      analyzedInner_.assign(lower_.innerIndexPtr(), lower_.innerIndexPtr() + entries);
+    }
   }
 
   // Solves the free rows with the clamped ones at their bounds.
@@ -281,24 +300,36 @@ class DirectSolve {
       refineInBodySpace(problem, subset, freeIndex, rhs, x);
       return;
     }
-    subTriplets_.clear();
-    for (int col = 0; col < n; ++col)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A_, col); it; ++it) {
-        const int fr = freeIndex[static_cast<std::size_t>(it.row())];
-        if (fr < 0) continue;
-        const int fc = freeIndex[static_cast<std::size_t>(col)];
-        if (fc >= 0) {
-          if (fr >= fc) subTriplets_.emplace_back(fr, fc, it.value());
+    // The clamped rows and columns of (S + Σ)_DD become the identity's (and
+    // their right-hand side zero), which keeps the matrix's pattern, and
+    // with it the symbolic analysis of assembleMatrix, for every pivot step.
+    Eigen::VectorXd full = Eigen::VectorXd::Zero(n);
+    for (int k = 0; k < n; ++k)
+      if (const int f = freeIndex[static_cast<std::size_t>(k)]; f >= 0) full[k] = rhs[f];
+    const int* outer = lower_.outerIndexPtr();
+    const int* inner = lower_.innerIndexPtr();
+    double* value = lower_.valuePtr();
+    for (int col = 0; col < n; ++col) {
+      const bool freeCol = freeIndex[static_cast<std::size_t>(col)] >= 0;
+      for (int p = outer[col]; p < outer[col + 1]; ++p) {
+        const int row = inner[p];
+        const double a = lowerValues_[static_cast<std::size_t>(p)];
+        const bool freeRow = freeIndex[static_cast<std::size_t>(row)] >= 0;
+        if (row == col) {
+          value[p] = freeCol ? a : 1.0;
+        } else if (freeRow && freeCol) {
+          value[p] = a;
         } else {
-          rhs[fr] -= it.value() * x[col];
+          value[p] = 0.0;
+          if (freeRow) full[row] -= a * x[col];
+          else if (freeCol) full[col] -= a * x[row];
         }
       }
-    Eigen::SparseMatrix<double> sub(numFree, numFree);
-    sub.setFromTriplets(subTriplets_.begin(), subTriplets_.end());
-    ldlt_.compute(sub);
-    const Eigen::VectorXd solution = ldlt_.solve(rhs);
+    }
+    ldlt_.factorize(lower_);
+    const Eigen::VectorXd solution = ldlt_.solve(full);
     for (int k = 0; k < n; ++k)
-      if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[freeIndex[static_cast<std::size_t>(k)]];
+      if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[k];
   }
 
   // Iterative refinement of the free rows' body-space solution x of
@@ -346,9 +377,11 @@ class DirectSolve {
 
   bool bodySpace_ = false;
   BodySpaceSolve bodySpaceSolve_;
-  Eigen::SparseMatrix<double> A_;
+  Eigen::SparseMatrix<double> A_, lower_;
+  std::vector<double> lowerValues_;             ///< lower_'s values as assembled
+  std::vector<int> analyzedOuter_, analyzedInner_;  ///< the pattern ldlt_ analyzed
   Eigen::VectorXd q_;
-  std::vector<Eigen::Triplet<double>> triplets_, subTriplets_;
+  std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
 };
 

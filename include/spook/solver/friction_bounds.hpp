@@ -10,6 +10,11 @@
 
 namespace spook::detail {
 
+/// |(a, b)|, where std::hypot's guard against overflow (not reachable by
+/// impulses and slip speeds, far below 1e154) cost the hybrid solve of a
+/// 210-cube pyramid a sixth of its time in the cone projections.
+[[nodiscard]] inline double planarLength(double a, double b) { return std::sqrt(a * a + b * b); }
+
 /// The friction limit μΛn (N·s) of friction row e from its normal's current impulse.
 [[nodiscard]] inline double frictionLimit(const IslandProblem& problem, const IslandProblem::Entry& e) {
   return e.mu * std::max(0.0, problem.rows[static_cast<std::size_t>(e.normal)].impulse);
@@ -39,7 +44,7 @@ inline double applyFrictionBounds(IslandProblem& problem, const std::vector<int>
 [[nodiscard]] inline std::array<double, 2> projectOntoDisk(std::array<double, 2> target, double radius, double a00,
                                                           double a01, double a11) {
   const auto clampToDisk = [radius](std::array<double, 2> x) {
-    const double r = std::hypot(x[0], x[1]);
+    const double r = planarLength(x[0], x[1]);
     if (r > radius) {
       const double f = r > 0.0 ? radius / r : 0.0;
       x = {x[0] * f, x[1] * f};
@@ -54,7 +59,7 @@ inline double applyFrictionBounds(IslandProblem& problem, const std::vector<int>
     const double g0 = a00 * (x[0] - target[0]) + a01 * (x[1] - target[1]);
     const double g1 = a01 * (x[0] - target[0]) + a11 * (x[1] - target[1]);
     const std::array<double, 2> next = clampToDisk({x[0] - g0 / largest, x[1] - g1 / largest});
-    const double moved = std::hypot(next[0] - x[0], next[1] - x[1]);
+    const double moved = planarLength(next[0] - x[0], next[1] - x[1]);
     x = next;
     if (moved <= 1e-12 * (radius + 1e-300)) break;
   }
@@ -89,8 +94,8 @@ inline double updateConeDirections(IslandProblem& problem, const std::vector<int
       return e.upper <= e.lower || std::abs(e.impulse) >= e.upper * (1.0 - 1e-9);
     };
     const double wa = held(ea) ? slip(a) : 0.0, wb = held(eb) ? slip(ea.partner) : 0.0;
-    const double slipSpeed = std::hypot(wa, wb);
-    const double force = std::hypot(ea.impulse, eb.impulse);
+    const double slipSpeed = planarLength(wa, wb);
+    const double force = planarLength(ea.impulse, eb.impulse);
     double da = ea.coneShare, db = eb.coneShare;
     if (slipSpeed > 0.0) {
       // The force turns against the slip: fully on the first update (from
@@ -101,7 +106,7 @@ inline double updateConeDirections(IslandProblem& problem, const std::vector<int
       const double ta = -wa / slipSpeed, tb = -wb / slipSpeed;
       const bool full = ea.coneShare == 1.0 && eb.coneShare == 1.0;
       const double sa = full ? ta : oa + ta, sb = full ? tb : ob + tb;
-      const double norm = std::hypot(sa, sb);
+      const double norm = planarLength(sa, sb);
       da = norm > 1e-12 ? std::abs(sa) / norm : std::abs(ta);
       db = norm > 1e-12 ? std::abs(sb) / norm : std::abs(tb);
     } else if (force > limit * (1.0 + 1e-9) && force > 0.0) {
@@ -123,7 +128,7 @@ inline void freezeConeShares(IslandProblem& problem, const std::vector<int>& sub
     IslandProblem::Entry& ea = problem.rows[static_cast<std::size_t>(a)];
     if (!keep[static_cast<std::size_t>(a)] || ea.frictionBound != FrictionBound::CONE || ea.partner < a) continue;
     IslandProblem::Entry& eb = problem.rows[static_cast<std::size_t>(ea.partner)];
-    const double force = std::hypot(ea.impulse, eb.impulse);
+    const double force = planarLength(ea.impulse, eb.impulse);
     ea.coneShare = force > 0.0 ? std::abs(ea.impulse) / force : std::sqrt(0.5);
     eb.coneShare = force > 0.0 ? std::abs(eb.impulse) / force : std::sqrt(0.5);
   }
@@ -133,10 +138,10 @@ inline void freezeConeShares(IslandProblem& problem, const std::vector<int>& sub
 /// force f when |f| = μΛn and vanish inside the disk.
 [[nodiscard]] inline double coneComplementarityError(const IslandProblem::Entry& a, const IslandProblem::Entry& b,
                                                      double limit, double wa, double wb) {
-  const double force = std::hypot(a.impulse, b.impulse);
+  const double force = planarLength(a.impulse, b.impulse);
   // On the cone to within the friction iterations' reach (their last solve
   // moves Λn after the bounds were set).
-  if (force < limit * (1.0 - 1e-4) || force == 0.0) return std::hypot(wa, wb);
+  if (force < limit * (1.0 - 1e-4) || force == 0.0) return planarLength(wa, wb);
   const double fa = a.impulse / force, fb = b.impulse / force;
   const double along = wa * fa + wb * fb;  // must be <= 0
   return std::max(0.0, along) + std::abs(wa * fb - wb * fa);

@@ -238,7 +238,7 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
         auto& e = problem.rows[static_cast<std::size_t>(i)];
         if (!conePair(i) || e.partner < i) continue;
         auto& p = problem.rows[static_cast<std::size_t>(e.partner)];
-        const double limit = frictionLimit(problem, e), force = std::hypot(e.impulse, p.impulse);
+        const double limit = frictionLimit(problem, e), force = planarLength(e.impulse, p.impulse);
         if (force <= limit) continue;
         const double f = limit / force;
         problem.addImpulse(dv, i, e.impulse * (f - 1.0));
