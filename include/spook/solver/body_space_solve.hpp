@@ -7,9 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
-
+#include <spook/solver/block_cholesky.hpp>
 #include <spook/solver/island_problem.hpp>
 
 namespace spook::detail {
@@ -21,7 +19,8 @@ namespace spook::detail {
 /// rows, whatever the number of rows, whereas G M⁻¹Gᵀ couples every two rows
 /// on a body: a box touching four others at four points each fills a 48×48
 /// block. Contact scenes, where rows far outnumber the bodies' degrees of
-/// freedom, factorize in a fraction of the time.
+/// freedom, factorize in a fraction of the time, by a Cholesky
+/// factorization over the 6×6 blocks (block_cholesky.hpp).
 ///
 /// x = Σ⁻¹(r − G y) cancels digits where Σ is small against the row's
 /// mobility G M⁻¹Gᵀ (about log₁₀ of their ratio); DirectSolve wins them
@@ -73,35 +72,15 @@ class BodySpaceSolve {
     pattern_.swap(keys_);
     patternBodies_ = problem.numBodies;
 
-    const int n = 6 * patternBodies_;
-    std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(21 * static_cast<std::size_t>(patternBodies_) + 36 * pattern_.size());
-    for (int body = 0; body < patternBodies_; ++body)
-      for (int c = 0; c < 6; ++c)
-        for (int r = c; r < 6; ++r) triplets.emplace_back(6 * body + r, 6 * body + c, 0.0);
-    for (const std::uint64_t k : pattern_)
-      for (int c = 0; c < 6; ++c)
-        for (int r = 0; r < 6; ++r) triplets.emplace_back(6 * rowOf(k) + r, 6 * colOf(k) + c, 0.0);
-    K_.resize(n, n);
-    K_.setFromTriplets(triplets.begin(), triplets.end());
-    K_.makeCompressed();
-    // Where each off-diagonal block's column c starts in K's values (its
-    // six rows are consecutive); a diagonal block opens each of its columns.
-    blockStart_.resize(6 * pattern_.size());
-    for (std::size_t p = 0; p < pattern_.size(); ++p)
-      for (int c = 0; c < 6; ++c) {
-        const int column = 6 * colOf(pattern_[p]) + c;
-        const int* first = K_.innerIndexPtr() + K_.outerIndexPtr()[column];
-        const int* last = K_.innerIndexPtr() + K_.outerIndexPtr()[column + 1];
-        blockStart_[6 * p + static_cast<std::size_t>(c)] =
-            static_cast<int>(std::lower_bound(first, last, 6 * rowOf(pattern_[p])) - K_.innerIndexPtr());
-      }
-    ldlt_.analyzePattern(K_);
+    std::vector<std::pair<int, int>> lower(pattern_.size());
+    for (std::size_t p = 0; p < pattern_.size(); ++p) lower[p] = {rowOf(pattern_[p]), colOf(pattern_[p])};
+    cholesky_.analyze(patternBodies_, lower);
   }
 
   /// Factorizes K for the rows of `subset` flagged free (freeIndex[k] ≥ 0);
-  /// analyze() has seen the same rows.
-  void factorize(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex) {
+  /// analyze() has seen the same rows. False where round-off left K not
+  /// positive definite (the caller solves in row space instead).
+  [[nodiscard]] bool factorize(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex) {
     const int numBodies = problem.numBodies;
     diagonal_.resize(static_cast<std::size_t>(numBodies));
     for (int b = 0; b < numBodies; ++b) diagonal_[static_cast<std::size_t>(b)] = problem.mass[static_cast<std::size_t>(b)];
@@ -130,18 +109,7 @@ class BodySpaceSolve {
       }
     }
 
-    double* values = K_.valuePtr();
-    for (int body = 0; body < numBodies; ++body)
-      for (int c = 0; c < 6; ++c) {
-        double* column = values + K_.outerIndexPtr()[6 * body + c];
-        for (int r = c; r < 6; ++r) column[r - c] = diagonal_[static_cast<std::size_t>(body)](r, c);
-      }
-    for (std::size_t p = 0; p < pattern_.size(); ++p)
-      for (int c = 0; c < 6; ++c) {
-        double* column = values + blockStart_[6 * p + static_cast<std::size_t>(c)];
-        for (int r = 0; r < 6; ++r) column[r] = blocks_[p](r, c);
-      }
-    ldlt_.factorize(K_);
+    return cholesky_.factorize(diagonal_, blocks_);
   }
 
   /// Solves the free rows of the last factorize() for the right-hand side r
@@ -149,15 +117,15 @@ class BodySpaceSolve {
   /// positions.
   void solve(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex,
              const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const {
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(6 * problem.numBodies);
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(6 * problem.numBodies);  // GᵀΣ⁻¹r, solved in place for y
     for (std::size_t k = 0; k < subset.size(); ++k) {
       const int f = freeIndex[k];
       if (f < 0) continue;
       const auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       const double s = rhs[f] / e.sigma;
-      problem.forEachBody(e, [&](int body, const Vec6d& J, const Vec6d&) { b.segment<6>(6 * body) += s * J; });
+      problem.forEachBody(e, [&](int body, const Vec6d& J, const Vec6d&) { y.segment<6>(6 * body) += s * J; });
     }
-    const Eigen::VectorXd y = ldlt_.solve(b);
+    cholesky_.solve(y);
 
     for (std::size_t k = 0; k < subset.size(); ++k) {
       const int f = freeIndex[k];
@@ -184,9 +152,7 @@ class BodySpaceSolve {
   std::vector<Mat6d> diagonal_, blocks_;  ///< K's blocks: per body, per entry of pattern_
   std::vector<std::uint64_t> pattern_, keys_;  ///< K's off-diagonal blocks (row body, column body), sorted
   int patternBodies_ = -1;
-  std::vector<int> blockStart_;
-  Eigen::SparseMatrix<double> K_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+  BlockCholesky cholesky_;
 };
 
 }  // namespace spook::detail

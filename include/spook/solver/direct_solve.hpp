@@ -295,10 +295,16 @@ class DirectSolve {
       for (int k = 0; k < n; ++k)
         if (const int f = freeIndex[static_cast<std::size_t>(k)]; f >= 0)
           rhs[f] -= problem.rowVelocity(subset[static_cast<std::size_t>(k)], clamped);
-      bodySpaceSolve_.factorize(problem, subset, freeIndex);
-      bodySpaceSolve_.solve(problem, subset, freeIndex, rhs, x);
-      refineInBodySpace(problem, subset, freeIndex, rhs, x);
-      return;
+      if (bodySpaceSolve_.factorize(problem, subset, freeIndex)) {
+        bodySpaceSolve_.solve(problem, subset, freeIndex, rhs, x);
+        refineInBodySpace(problem, subset, freeIndex, rhs, x);
+        return;
+      }
+      // Round-off left K indefinite: this solve continues in row space.
+      bodySpace_ = false;
+      assembleMatrix(problem, subset);
+      for (int k = 0; k < n; ++k)
+        if (const int f = freeIndex[static_cast<std::size_t>(k)]; f >= 0) rhs[f] = q_[k];
     }
     // The clamped rows and columns of (S + Σ)_DD become the identity's (and
     // their right-hand side zero), which keeps the matrix's pattern, and
