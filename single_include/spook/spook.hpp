@@ -15652,10 +15652,10 @@ struct DirectSolveResult {
 /// approximate-minimum-degree ordering, so a chain or a tree of n bodies costs
 /// O(n); the ordering is computed once per sparsity pattern, which the
 /// pivot steps keep (a clamped row becomes an identity row) and so do steps
-/// whose rows couple the same bodies. Σ > 0 keeps the matrix positive definite. Where rows far outnumber
-/// the bodies' degrees of freedom and all are compliant (contacts), the same
-/// system is solved through the bodies' mass matrix instead
-/// (body_space_solve.hpp).
+/// whose rows couple the same bodies. Σ > 0 keeps the matrix positive
+/// definite. Where rows far outnumber the bodies' degrees of freedom and all
+/// are compliant (contacts), the same system is solved through the bodies'
+/// mass matrix instead (body_space_solve.hpp).
 ///
 /// Bounded rows make a box-constrained LCP, solved by block principal
 /// pivoting (Júdice & Pires 1994): every row is free, at its lower or at its
