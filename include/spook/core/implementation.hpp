@@ -37,3 +37,27 @@
 #define SPOOK_DEFINES_SOLVER
 #define SPOOK_SOLVER_INLINE inline
 #endif
+
+// The API's class templates (bodies, frames, geometries, shapes, joints)
+// follow the simulation parts: SPOOK_COMPILED_ONCE(class RigidBodyT) after a
+// class's member definitions declares RigidBodyT<double> and <float> extern
+// where spook is compiled once, instantiates them where the double or float
+// simulation part is implemented, and is nothing header-only. Their heavy
+// members are defined outside the class body: an extern template stops the
+// instantiation of those only, not of inline ones, which every translation
+// unit would otherwise compile again (with the Eigen expressions they use).
+#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+#define SPOOK_COMPILED_DOUBLE(...) template __VA_ARGS__;
+#elif defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_COMPILED_DOUBLE(...) extern template __VA_ARGS__;
+#else
+#define SPOOK_COMPILED_DOUBLE(...)
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+#define SPOOK_COMPILED_FLOAT(...) template __VA_ARGS__;
+#elif defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_COMPILED_FLOAT(...) extern template __VA_ARGS__;
+#else
+#define SPOOK_COMPILED_FLOAT(...)
+#endif
+#define SPOOK_COMPILED_ONCE(kind, name) SPOOK_COMPILED_DOUBLE(kind name<double>) SPOOK_COMPILED_FLOAT(kind name<float>)

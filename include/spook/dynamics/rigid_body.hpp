@@ -450,18 +450,7 @@ auto RigidBodyT<S>::planMassProperties(const std::vector<ref_ptr<Geometry>>& geo
   return MassUpdate{mass, SPDMat3T<S>(inertiaCm), generated->center};
 }
 
-#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
-extern template class RigidBodyT<double>;
-#endif
-#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
-extern template class RigidBodyT<float>;
-#endif
-#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
-template class RigidBodyT<double>;
-#endif
-#if defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
-template class RigidBodyT<float>;
-#endif
+SPOOK_COMPILED_ONCE(class, RigidBodyT)
 
 using RigidBody = RigidBodyT<double>;
 using RigidBodyRef = ref_ptr<RigidBody>;
