@@ -573,6 +573,73 @@ inline constexpr int kCapCorners = 8;
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SUPPORTING_FEATURE_HPP
 // --- end spook/collide/supporting_feature.hpp ---
+// --- begin spook/core/implementation.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
+
+// Compiled once instead of header-only (the stb convention). A program that
+// defines SPOOK_EXTERN_TEMPLATES everywhere declares spook's heavy templates
+// extern (the simulation step with its solvers and contact code, the
+// colliders of the full shape list) for float and double; one translation
+// unit that defines SPOOK_IMPLEMENTATION before including <spook/spook.hpp>
+// compiles them. A build may instead split that work over several
+// translation units, each defining one or more of the parts below (CMake's
+// spook::spook_compiled does, so that its parts compile in parallel).
+#if defined(SPOOK_IMPLEMENTATION) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) &&   \
+    !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT) && !defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE) && \
+    !defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
+#define SPOOK_IMPLEMENT_SIMULATION_DOUBLE
+#define SPOOK_IMPLEMENT_SIMULATION_FLOAT
+#define SPOOK_IMPLEMENT_COLLIDERS_DOUBLE
+#define SPOOK_IMPLEMENT_COLLIDERS_FLOAT
+#endif
+
+// What this translation unit sees. Header-only (no SPOOK_EXTERN_TEMPLATES):
+// every definition. Otherwise only the declarations of the step and the
+// solver, unless it implements a simulation part:
+//   SPOOK_DEFINES_STEP    the simulation step's template definitions
+//                         (sim/simulation_step.hpp), for either scalar;
+//   SPOOK_DEFINES_SOLVER  the double-only, non-template solver code
+//                         (solver/solver_impl.hpp), compiled with the double
+//                         simulation and inline (SPOOK_SOLVER_INLINE) when
+//                         header-only.
+#if !defined(SPOOK_EXTERN_TEMPLATES) || defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) || \
+    defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+#define SPOOK_DEFINES_STEP
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+#define SPOOK_DEFINES_SOLVER
+#define SPOOK_SOLVER_INLINE
+#elif !defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_DEFINES_SOLVER
+#define SPOOK_SOLVER_INLINE inline
+#endif
+
+// The API's class templates (bodies, frames, geometries, shapes, joints)
+// follow the simulation parts: SPOOK_COMPILED_ONCE(class RigidBodyT) after a
+// class's member definitions declares RigidBodyT<double> and <float> extern
+// where spook is compiled once, instantiates them where the double or float
+// simulation part is implemented, and is nothing header-only. Their heavy
+// members are defined outside the class body: an extern template stops the
+// instantiation of those only, not of inline ones, which every translation
+// unit would otherwise compile again (with the Eigen expressions they use).
+#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+#define SPOOK_COMPILED_DOUBLE(...) template __VA_ARGS__;
+#elif defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_COMPILED_DOUBLE(...) extern template __VA_ARGS__;
+#else
+#define SPOOK_COMPILED_DOUBLE(...)
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+#define SPOOK_COMPILED_FLOAT(...) template __VA_ARGS__;
+#elif defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_COMPILED_FLOAT(...) extern template __VA_ARGS__;
+#else
+#define SPOOK_COMPILED_FLOAT(...)
+#endif
+#define SPOOK_COMPILED_ONCE(kind, name) SPOOK_COMPILED_DOUBLE(kind name<double>) SPOOK_COMPILED_FLOAT(kind name<float>)
+#endif  // SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
+// --- end spook/core/implementation.hpp ---
 // --- begin spook/core/ref_ptr.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_CORE_REF_PTR_HPP
 #define SPOOK_SINGLE_SPOOK_CORE_REF_PTR_HPP
@@ -790,27 +857,41 @@ class ShapeT : public Referenced {
     }
     notifyOwners();
   }
-  void checkOwners() const {
-    for (const detail::ShapeOwner<S>* owner : owners_) owner->checkShapeChange();
-  }
-  void notifyOwners() {
-    for (detail::ShapeOwner<S>* owner : owners_) owner->shapeChanged();
-  }
+  void checkOwners() const;
+  void notifyOwners();
 
-  static void requireMass(const char* kind, S mass) {
-    if (!(std::isfinite(mass) && mass > S(0)))
-      throw detail::makeError(kind, "", "mass for the inertia must be finite and > 0 kg", mass);
-  }
-  static S requireLength(const char* kind, const char* what, S value) {
-    if (!(std::isfinite(value) && value > S(0)))
-      throw detail::makeError(kind, "", std::string(what) + " must be finite and > 0 m", value);
-    return value;
-  }
+  static void requireMass(const char* kind, S mass);
+  static S requireLength(const char* kind, const char* what, S value);
 
  private:
   friend struct detail::ShapeOwners<S>;
   std::vector<detail::ShapeOwner<S>*> owners_;
 };
+
+template <Scalar S>
+void ShapeT<S>::checkOwners() const {
+  for (const detail::ShapeOwner<S>* owner : owners_) owner->checkShapeChange();
+}
+
+template <Scalar S>
+void ShapeT<S>::notifyOwners() {
+  for (detail::ShapeOwner<S>* owner : owners_) owner->shapeChanged();
+}
+
+template <Scalar S>
+void ShapeT<S>::requireMass(const char* kind, S mass) {
+  if (!(std::isfinite(mass) && mass > S(0)))
+    throw detail::makeError(kind, "", "mass for the inertia must be finite and > 0 kg", mass);
+}
+
+template <Scalar S>
+S ShapeT<S>::requireLength(const char* kind, const char* what, S value) {
+  if (!(std::isfinite(value) && value > S(0)))
+    throw detail::makeError(kind, "", std::string(what) + " must be finite and > 0 m", value);
+  return value;
+}
+
+SPOOK_COMPILED_ONCE(class, ShapeT)
 
 namespace detail {
 
@@ -843,23 +924,14 @@ class BoxT : public ShapeT<S> {
   explicit BoxT(const Vec3& halfExtents) { setHalfExtents(halfExtents); }
 
   [[nodiscard]] const Vec3& getHalfExtents() const { return halfExtents_; }
-  void setHalfExtents(const Vec3& halfExtents) {
-    if (!(halfExtents.allFinite() && halfExtents.minCoeff() > S(0)))
-      throw detail::makeError("Box", "", "half extents must be finite and > 0 m", halfExtents);
-    const Vec3 old = halfExtents_;
-    this->change([&] { halfExtents_ = halfExtents; }, [&] { halfExtents_ = old; });
-  }
+  void setHalfExtents(const Vec3& halfExtents);
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
 
   [[nodiscard]] S getVolume() const override { return S(8) * halfExtents_.prod(); }
 
   /// I = m/3 (b² + c², a² + c², a² + b²) for half extents a, b, c.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Box", mass);
-    const Vec3 sq = halfExtents_.cwiseAbs2();
-    return SPDMat3T<S>(Vec3(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()) * (mass / S(3)));
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return {-halfExtents_, halfExtents_}; }
 
@@ -911,6 +983,23 @@ class BoxT : public ShapeT<S> {
   Vec3 halfExtents_ = Vec3::Zero();
 };
 
+template <Scalar S>
+void BoxT<S>::setHalfExtents(const Vec3& halfExtents) {
+  if (!(halfExtents.allFinite() && halfExtents.minCoeff() > S(0)))
+    throw detail::makeError("Box", "", "half extents must be finite and > 0 m", halfExtents);
+  const Vec3 old = halfExtents_;
+  this->change([&] { halfExtents_ = halfExtents; }, [&] { halfExtents_ = old; });
+}
+
+template <Scalar S>
+auto BoxT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Box", mass);
+  const Vec3 sq = halfExtents_.cwiseAbs2();
+  return SPDMat3T<S>(Vec3(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()) * (mass / S(3)));
+}
+
+SPOOK_COMPILED_ONCE(class, BoxT)
+
 using Box = BoxT<double>;
 using BoxRef = ref_ptr<Box>;
 namespace f32 {
@@ -939,42 +1028,23 @@ class CapsuleT : public ShapeT<S> {
   static constexpr ShapeType kType = ShapeType::CAPSULE;
   using Vec3 = spook::Vec3T<S>;
 
-  CapsuleT(S radius, S height) {
-    setRadius(radius);
-    setHeight(height);
-  }
+  CapsuleT(S radius, S height);
 
   [[nodiscard]] S getRadius() const { return radius_; }
-  void setRadius(S radius) {
-    const S checked = this->requireLength("Capsule", "radius", radius), old = radius_;
-    this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
-  }
+  void setRadius(S radius);
   [[nodiscard]] S getHeight() const { return height_; }
-  void setHeight(S height) {
-    const S checked = this->requireLength("Capsule", "height", height), old = height_;
-    this->change([&] { height_ = checked; }, [&] { height_ = old; });
-  }
+  void setHeight(S height);
 
   /// V = π r² h + 4/3 π r³.
   [[nodiscard]] ShapeType getType() const override { return kType; }
 
-  [[nodiscard]] S getVolume() const override {
-    return std::numbers::pi_v<S> * radius_ * radius_ * (height_ + S(4) / S(3) * radius_);
-  }
+  [[nodiscard]] S getVolume() const override;
 
   /// Cylinder part m_c and the two hemispheres m_s share the mass by volume:
   /// I_yy = m_c r²/2 + 2/5 m_s r²,
   /// I_xx = I_zz = m_c (3r² + h²)/12 + m_s (2r²/5 + h²/4 + 3hr/8), the last
   /// term from each hemisphere's centroid at 3r/8 and the parallel-axis rule.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Capsule", mass);
-    const S r = radius_, h = height_, r2 = r * r;
-    const S cylinderShare = h / (h + S(4) / S(3) * r);
-    const S mc = mass * cylinderShare, ms = mass - mc;
-    const S axial = S(0.5) * mc * r2 + S(0.4) * ms * r2;
-    const S across = mc * (S(3) * r2 + h * h) / S(12) + ms * (S(0.4) * r2 + S(0.25) * h * h + S(0.375) * h * r);
-    return SPDMat3T<S>(Vec3(across, axial, across));
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return detail::boundingBoxFromSupport<S>(*this); }
 
@@ -1006,6 +1076,42 @@ class CapsuleT : public ShapeT<S> {
   S radius_ = S(0);
   S height_ = S(0);
 };
+
+template <Scalar S>
+CapsuleT<S>::CapsuleT(S radius, S height) {
+  setRadius(radius);
+  setHeight(height);
+}
+
+template <Scalar S>
+void CapsuleT<S>::setRadius(S radius) {
+  const S checked = this->requireLength("Capsule", "radius", radius), old = radius_;
+  this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
+}
+
+template <Scalar S>
+void CapsuleT<S>::setHeight(S height) {
+  const S checked = this->requireLength("Capsule", "height", height), old = height_;
+  this->change([&] { height_ = checked; }, [&] { height_ = old; });
+}
+
+template <Scalar S>
+S CapsuleT<S>::getVolume() const {
+  return std::numbers::pi_v<S> * radius_ * radius_ * (height_ + S(4) / S(3) * radius_);
+}
+
+template <Scalar S>
+auto CapsuleT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Capsule", mass);
+  const S r = radius_, h = height_, r2 = r * r;
+  const S cylinderShare = h / (h + S(4) / S(3) * r);
+  const S mc = mass * cylinderShare, ms = mass - mc;
+  const S axial = S(0.5) * mc * r2 + S(0.4) * ms * r2;
+  const S across = mc * (S(3) * r2 + h * h) / S(12) + ms * (S(0.4) * r2 + S(0.25) * h * h + S(0.375) * h * r);
+  return SPDMat3T<S>(Vec3(across, axial, across));
+}
+
+SPOOK_COMPILED_ONCE(class, CapsuleT)
 
 using Capsule = CapsuleT<double>;
 using CapsuleRef = ref_ptr<Capsule>;
@@ -1053,22 +1159,7 @@ class CompositeT : public ShapeT<S>, private detail::ShapeOwner<S> {
   /// rigid, or a child that a body holding the composite could not take
   /// (its mass properties would not be finite and valid); else the body's
   /// generated mass properties follow.
-  void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
-    if (!shape) throw detail::makeError("Composite", "", "cannot add a null shape", "nullptr");
-    const auto* nested = dynamic_cast<const CompositeT*>(shape.get());
-    if (nested && nested->contains(this))
-      throw detail::makeError("Composite", "", "a composite cannot contain itself", "a composite of its own chain");
-    if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
-      throw detail::makeError("Composite", "", "child transform must be finite and rigid",
-                              SPDMat3T<S>::flat(transform.linear()));
-    Shape& child = *shape;
-    this->change(
-        [&] {
-          children_.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
-        },
-        [&] { children_.pop_back(); });
-    detail::ShapeOwners<S>::add(child, this);
-  }
+  void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity());
 
   [[nodiscard]] const std::vector<Child>& getChildren() const { return children_; }
 
@@ -1085,67 +1176,24 @@ class CompositeT : public ShapeT<S>, private detail::ShapeOwner<S> {
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
 
-  [[nodiscard]] S getVolume() const override {
-    S volume = S(0);
-    for (const Child& c : children_) volume += c.shape->getVolume();
-    return volume;
-  }
+  [[nodiscard]] S getVolume() const override;
 
   /// Volume-weighted mean of the children's centers, composite frame (m).
-  [[nodiscard]] Vec3 getCenterOfVolume() const override {
-    Vec3 moment = Vec3::Zero();
-    for (const Child& c : children_) moment += c.shape->getVolume() * (c.transform * c.shape->getCenterOfVolume());
-    return moment / getVolume();
-  }
+  [[nodiscard]] Vec3 getCenterOfVolume() const override;
 
   /// About the composite origin. Each child gets the mass m Vᵢ/V; its tensor
   /// about its own origin is first moved to its center of volume cᵢ, then
   /// turned into the composite frame and moved to the origin (parallel-axis
   /// theorem both ways, J(m, d) = m(|d|² 1 − d dᵀ)):
   /// I = Σ Rᵢ (Iᵢ − J(mᵢ, cᵢ)) Rᵢᵀ + J(mᵢ, Xᵢ cᵢ).
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Composite", mass);
-    const S volume = getVolume();
-    if (!(volume > S(0))) throw detail::makeError("Composite", "", "inertia needs a positive volume (m^3)", volume);
-    const auto shift = [](S m, const Vec3& d) {
-      return Mat3(m * (d.squaredNorm() * Mat3::Identity() - d * d.transpose()));
-    };
-    Mat3 inertia = Mat3::Zero();
-    for (const Child& c : children_) {
-      if (!(c.shape->getVolume() > S(0))) continue;  // a plane or a line carries no mass
-      const S childMass = mass * (c.shape->getVolume() / volume);
-      const Vec3 center = c.shape->getCenterOfVolume();
-      const Mat3 aboutCenter = c.shape->calculateInertia(childMass).matrix() - shift(childMass, center);
-      const Mat3 R = c.transform.linear();
-      inertia += R * aboutCenter * R.transpose() + shift(childMass, c.transform * center);
-    }
-    return SPDMat3T<S>(inertia);
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   /// Union of the children's boxes, each child box's corners transformed;
   /// unbounded (±infinity) when a child is.
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
-    if (children_.empty()) return {};
-    BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::max()),
-                        Vec3::Constant(std::numeric_limits<S>::lowest())};
-    for (const Child& c : children_) {
-      const BoundingBoxT<S> local = c.shape->getBoundingBox();
-      if (!(local.min.allFinite() && local.max.allFinite())) {  // a plane child: unbounded
-        return {Vec3::Constant(-std::numeric_limits<S>::infinity()), Vec3::Constant(std::numeric_limits<S>::infinity())};
-      }
-      const Mat3 R = c.transform.linear();
-      const Vec3 center = c.transform * local.center();
-      const Vec3 reach = R.cwiseAbs() * local.halfExtents();
-      box.min = box.min.cwiseMin(center - reach);
-      box.max = box.max.cwiseMax(center + reach);
-    }
-    return box;
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override;
 
  protected:
-  ~CompositeT() override {
-    for (Child& c : children_) detail::ShapeOwners<S>::remove(*c.shape, this);
-  }
+  ~CompositeT() override;
 
  private:
   // A child changed: whatever holds this composite checks it and follows.
@@ -1154,6 +1202,84 @@ class CompositeT : public ShapeT<S>, private detail::ShapeOwner<S> {
 
   std::vector<Child> children_;
 };
+
+template <Scalar S>
+void CompositeT<S>::add(ref_ptr<Shape> shape, const Transform& transform) {
+  if (!shape) throw detail::makeError("Composite", "", "cannot add a null shape", "nullptr");
+  const auto* nested = dynamic_cast<const CompositeT*>(shape.get());
+  if (nested && nested->contains(this))
+    throw detail::makeError("Composite", "", "a composite cannot contain itself", "a composite of its own chain");
+  if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
+    throw detail::makeError("Composite", "", "child transform must be finite and rigid",
+                            SPDMat3T<S>::flat(transform.linear()));
+  Shape& child = *shape;
+  this->change(
+      [&] {
+        children_.push_back(
+            {std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+      },
+      [&] { children_.pop_back(); });
+  detail::ShapeOwners<S>::add(child, this);
+}
+
+template <Scalar S>
+S CompositeT<S>::getVolume() const {
+  S volume = S(0);
+  for (const Child& c : children_) volume += c.shape->getVolume();
+  return volume;
+}
+
+template <Scalar S>
+auto CompositeT<S>::getCenterOfVolume() const -> Vec3 {
+  Vec3 moment = Vec3::Zero();
+  for (const Child& c : children_) moment += c.shape->getVolume() * (c.transform * c.shape->getCenterOfVolume());
+  return moment / getVolume();
+}
+
+template <Scalar S>
+auto CompositeT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Composite", mass);
+  const S volume = getVolume();
+  if (!(volume > S(0))) throw detail::makeError("Composite", "", "inertia needs a positive volume (m^3)", volume);
+  const auto shift = [](S m, const Vec3& d) {
+    return Mat3(m * (d.squaredNorm() * Mat3::Identity() - d * d.transpose()));
+  };
+  Mat3 inertia = Mat3::Zero();
+  for (const Child& c : children_) {
+    if (!(c.shape->getVolume() > S(0))) continue;  // a plane or a line carries no mass
+    const S childMass = mass * (c.shape->getVolume() / volume);
+    const Vec3 center = c.shape->getCenterOfVolume();
+    const Mat3 aboutCenter = c.shape->calculateInertia(childMass).matrix() - shift(childMass, center);
+    const Mat3 R = c.transform.linear();
+    inertia += R * aboutCenter * R.transpose() + shift(childMass, c.transform * center);
+  }
+  return SPDMat3T<S>(inertia);
+}
+
+template <Scalar S>
+auto CompositeT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  if (children_.empty()) return {};
+  BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::max()), Vec3::Constant(std::numeric_limits<S>::lowest())};
+  for (const Child& c : children_) {
+    const BoundingBoxT<S> local = c.shape->getBoundingBox();
+    if (!(local.min.allFinite() && local.max.allFinite())) {  // a plane child: unbounded
+      return {Vec3::Constant(-std::numeric_limits<S>::infinity()), Vec3::Constant(std::numeric_limits<S>::infinity())};
+    }
+    const Mat3 R = c.transform.linear();
+    const Vec3 center = c.transform * local.center();
+    const Vec3 reach = R.cwiseAbs() * local.halfExtents();
+    box.min = box.min.cwiseMin(center - reach);
+    box.max = box.max.cwiseMax(center + reach);
+  }
+  return box;
+}
+
+template <Scalar S>
+CompositeT<S>::~CompositeT() {
+  for (Child& c : children_) detail::ShapeOwners<S>::remove(*c.shape, this);
+}
+
+SPOOK_COMPILED_ONCE(class, CompositeT)
 
 using Composite = CompositeT<double>;
 using CompositeRef = ref_ptr<Composite>;
@@ -1785,27 +1911,7 @@ class ConvexT : public ShapeT<S> {
 
   /// Hull of `points` (shape frame, m). Throws on a non-finite point, and
   /// unless the points span a volume (not all coplanar within the tolerance).
-  explicit ConvexT(const std::vector<Vec3>& points) {
-    for (const Vec3& p : points)
-      if (!p.allFinite()) throw detail::makeError("Convex", "", "points must be finite (m)", p);
-    auto hull = detail::convexHull<S>(points);
-    if (!hull) throw detail::makeError("Convex", "", "needs at least 4 non-coplanar points", points.size());
-    vertices_ = std::move(hull->vertices);
-    triangles_ = std::move(hull->triangles);
-    faces_ = std::move(hull->faces);
-    tolerance_ = hull->tolerance;
-
-    // Mass properties in double, whatever S, from the exact corner positions.
-    std::vector<spook::Vec3T<double>> corners;
-    for (const Vec3& v : vertices_) corners.push_back(v.template cast<double>());
-    const auto mass = detail::polyhedronMass<double>(corners, triangles_);
-    volume_ = S(mass.volume);
-    center_ = mass.center.template cast<S>();
-    unitInertia_ = mass.inertia.template cast<S>();
-    buildAdjacency();
-    buildEdges();
-    buildVertexFaces();
-  }
+  explicit ConvexT(const std::vector<Vec3>& points);
 
   /// Hull corners, shape frame (m).
   [[nodiscard]] const std::vector<Vec3>& getVertices() const { return vertices_; }
@@ -1832,22 +1938,10 @@ class ConvexT : public ShapeT<S> {
 
   /// About the shape origin: I = m/V · I_c + m (|c|² 1 − c cᵀ), with I_c the
   /// unit-density tensor about the center c (kg·m²).
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Convex", mass);
-    const Vec3& c = center_;
-    return SPDMat3T<S>(
-        Mat3((mass / volume_) * unitInertia_ + mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())));
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   /// Box around the corners, shape frame (m).
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
-    BoundingBoxT<S> box{vertices_.front(), vertices_.front()};
-    for (const Vec3& v : vertices_) {
-      box.min = box.min.cwiseMin(v);
-      box.max = box.max.cwiseMax(v);
-    }
-    return box;
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override;
 
   /// The corner farthest along `direction`, shape frame (m): a scan of the
   /// corners for small hulls, a climb along the hull's edges for large ones.
@@ -1916,56 +2010,13 @@ class ConvexT : public ShapeT<S> {
   }
 
   // The polygon faces around each corner, in compressed rows.
-  void buildVertexFaces() {
-    std::vector<std::vector<int>> around(vertices_.size());
-    for (std::size_t f = 0; f < faces_.size(); ++f)
-      for (const int v : faces_[f].vertices) around[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
-    vertexFacesStart_.assign(1, 0);
-    for (const auto& list : around) {
-      vertexFaces_.insert(vertexFaces_.end(), list.begin(), list.end());
-      vertexFacesStart_.push_back(static_cast<int>(vertexFaces_.size()));
-    }
-  }
+  void buildVertexFaces();
 
   // Neighbours of each corner along the triangles' edges, in compressed rows.
-  void buildAdjacency() {
-    std::vector<std::vector<int>> neighbours(vertices_.size());
-    for (const Triangle& t : triangles_)
-      for (int i = 0; i < 3; ++i) {
-        auto& list = neighbours[static_cast<std::size_t>(t[i])];
-        const int other = t[(i + 1) % 3];
-        if (std::find(list.begin(), list.end(), other) == list.end()) list.push_back(other);
-        auto& back = neighbours[static_cast<std::size_t>(other)];
-        if (std::find(back.begin(), back.end(), t[i]) == back.end()) back.push_back(t[i]);
-      }
-    adjacencyStart_.assign(1, 0);
-    for (const auto& list : neighbours) {
-      adjacency_.insert(adjacency_.end(), list.begin(), list.end());
-      adjacencyStart_.push_back(static_cast<int>(adjacency_.size()));
-    }
-  }
+  void buildAdjacency();
 
   // Each face loop edge meets the reversed edge of exactly one other face.
-  void buildEdges() {
-    struct HalfEdge {
-      int low, high, from, to, face;
-    };
-    std::vector<HalfEdge> halves;
-    for (std::size_t f = 0; f < faces_.size(); ++f) {
-      const auto& loop = faces_[f].vertices;
-      for (std::size_t k = 0; k < loop.size(); ++k) {
-        const int a = loop[k], b = loop[(k + 1) % loop.size()];
-        halves.push_back({std::min(a, b), std::max(a, b), a, b, static_cast<int>(f)});
-      }
-    }
-    std::sort(halves.begin(), halves.end(),
-              [](const HalfEdge& x, const HalfEdge& y) { return std::tie(x.low, x.high) < std::tie(y.low, y.high); });
-    for (std::size_t k = 0; k < halves.size();) {
-      const bool paired = k + 1 < halves.size() && halves[k + 1].low == halves[k].low && halves[k + 1].high == halves[k].high;
-      edges_.push_back({halves[k].from, halves[k].to, halves[k].face, paired ? halves[k + 1].face : -1});
-      k += paired ? 2 : 1;
-    }
-  }
+  void buildEdges();
 
   std::vector<Vec3> vertices_;
   std::vector<Edge> edges_;
@@ -1980,6 +2031,102 @@ class ConvexT : public ShapeT<S> {
   std::vector<int> vertexFaces_;
   std::vector<int> vertexFacesStart_;
 };
+
+template <Scalar S>
+ConvexT<S>::ConvexT(const std::vector<Vec3>& points) {
+  for (const Vec3& p : points)
+    if (!p.allFinite()) throw detail::makeError("Convex", "", "points must be finite (m)", p);
+  auto hull = detail::convexHull<S>(points);
+  if (!hull) throw detail::makeError("Convex", "", "needs at least 4 non-coplanar points", points.size());
+  vertices_ = std::move(hull->vertices);
+  triangles_ = std::move(hull->triangles);
+  faces_ = std::move(hull->faces);
+  tolerance_ = hull->tolerance;
+
+  // Mass properties in double, whatever S, from the exact corner positions.
+  std::vector<spook::Vec3T<double>> corners;
+  for (const Vec3& v : vertices_) corners.push_back(v.template cast<double>());
+  const auto mass = detail::polyhedronMass<double>(corners, triangles_);
+  volume_ = S(mass.volume);
+  center_ = mass.center.template cast<S>();
+  unitInertia_ = mass.inertia.template cast<S>();
+  buildAdjacency();
+  buildEdges();
+  buildVertexFaces();
+}
+
+template <Scalar S>
+auto ConvexT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Convex", mass);
+  const Vec3& c = center_;
+  return SPDMat3T<S>(
+      Mat3((mass / volume_) * unitInertia_ + mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())));
+}
+
+template <Scalar S>
+auto ConvexT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  BoundingBoxT<S> box{vertices_.front(), vertices_.front()};
+  for (const Vec3& v : vertices_) {
+    box.min = box.min.cwiseMin(v);
+    box.max = box.max.cwiseMax(v);
+  }
+  return box;
+}
+
+template <Scalar S>
+void ConvexT<S>::buildVertexFaces() {
+  std::vector<std::vector<int>> around(vertices_.size());
+  for (std::size_t f = 0; f < faces_.size(); ++f)
+    for (const int v : faces_[f].vertices) around[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
+  vertexFacesStart_.assign(1, 0);
+  for (const auto& list : around) {
+    vertexFaces_.insert(vertexFaces_.end(), list.begin(), list.end());
+    vertexFacesStart_.push_back(static_cast<int>(vertexFaces_.size()));
+  }
+}
+
+template <Scalar S>
+void ConvexT<S>::buildAdjacency() {
+  std::vector<std::vector<int>> neighbours(vertices_.size());
+  for (const Triangle& t : triangles_)
+    for (int i = 0; i < 3; ++i) {
+      auto& list = neighbours[static_cast<std::size_t>(t[i])];
+      const int other = t[(i + 1) % 3];
+      if (std::find(list.begin(), list.end(), other) == list.end()) list.push_back(other);
+      auto& back = neighbours[static_cast<std::size_t>(other)];
+      if (std::find(back.begin(), back.end(), t[i]) == back.end()) back.push_back(t[i]);
+    }
+  adjacencyStart_.assign(1, 0);
+  for (const auto& list : neighbours) {
+    adjacency_.insert(adjacency_.end(), list.begin(), list.end());
+    adjacencyStart_.push_back(static_cast<int>(adjacency_.size()));
+  }
+}
+
+template <Scalar S>
+void ConvexT<S>::buildEdges() {
+  struct HalfEdge {
+    int low, high, from, to, face;
+  };
+  std::vector<HalfEdge> halves;
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    const auto& loop = faces_[f].vertices;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const int a = loop[k], b = loop[(k + 1) % loop.size()];
+      halves.push_back({std::min(a, b), std::max(a, b), a, b, static_cast<int>(f)});
+    }
+  }
+  std::sort(halves.begin(), halves.end(),
+            [](const HalfEdge& x, const HalfEdge& y) { return std::tie(x.low, x.high) < std::tie(y.low, y.high); });
+  for (std::size_t k = 0; k < halves.size();) {
+    const bool paired =
+        k + 1 < halves.size() && halves[k + 1].low == halves[k].low && halves[k + 1].high == halves[k].high;
+    edges_.push_back({halves[k].from, halves[k].to, halves[k].face, paired ? halves[k + 1].face : -1});
+    k += paired ? 2 : 1;
+  }
+}
+
+SPOOK_COMPILED_ONCE(class, ConvexT)
 
 using Convex = ConvexT<double>;
 using ConvexRef = ref_ptr<Convex>;
@@ -2008,33 +2155,20 @@ class CylinderT : public ShapeT<S> {
   static constexpr ShapeType kType = ShapeType::CYLINDER;
   using Vec3 = spook::Vec3T<S>;
 
-  CylinderT(S radius, S height) {
-    setRadius(radius);
-    setHeight(height);
-  }
+  CylinderT(S radius, S height);
 
   [[nodiscard]] S getRadius() const { return radius_; }
-  void setRadius(S radius) {
-    const S checked = this->requireLength("Cylinder", "radius", radius), old = radius_;
-    this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
-  }
+  void setRadius(S radius);
   [[nodiscard]] S getHeight() const { return height_; }
-  void setHeight(S height) {
-    const S checked = this->requireLength("Cylinder", "height", height), old = height_;
-    this->change([&] { height_ = checked; }, [&] { height_ = old; });
-  }
+  void setHeight(S height);
 
   /// V = π r² h.
   [[nodiscard]] ShapeType getType() const override { return kType; }
 
-  [[nodiscard]] S getVolume() const override { return std::numbers::pi_v<S> * radius_ * radius_ * height_; }
+  [[nodiscard]] S getVolume() const override;
 
   /// I_yy = m r²/2 about the axis; I_xx = I_zz = m (3r² + h²)/12.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Cylinder", mass);
-    const S r2 = radius_ * radius_, across = mass * (S(3) * r2 + height_ * height_) / S(12);
-    return SPDMat3T<S>(Vec3(across, S(0.5) * mass * r2, across));
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return detail::boundingBoxFromSupport<S>(*this); }
 
@@ -2081,6 +2215,38 @@ class CylinderT : public ShapeT<S> {
   S radius_ = S(0);
   S height_ = S(0);
 };
+
+template <Scalar S>
+CylinderT<S>::CylinderT(S radius, S height) {
+  setRadius(radius);
+  setHeight(height);
+}
+
+template <Scalar S>
+void CylinderT<S>::setRadius(S radius) {
+  const S checked = this->requireLength("Cylinder", "radius", radius), old = radius_;
+  this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
+}
+
+template <Scalar S>
+void CylinderT<S>::setHeight(S height) {
+  const S checked = this->requireLength("Cylinder", "height", height), old = height_;
+  this->change([&] { height_ = checked; }, [&] { height_ = old; });
+}
+
+template <Scalar S>
+S CylinderT<S>::getVolume() const {
+  return std::numbers::pi_v<S> * radius_ * radius_ * height_;
+}
+
+template <Scalar S>
+auto CylinderT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Cylinder", mass);
+  const S r2 = radius_ * radius_, across = mass * (S(3) * r2 + height_ * height_) / S(12);
+  return SPDMat3T<S>(Vec3(across, S(0.5) * mass * r2, across));
+}
+
+SPOOK_COMPILED_ONCE(class, CylinderT)
 
 using Cylinder = CylinderT<double>;
 using CylinderRef = ref_ptr<Cylinder>;
@@ -2481,34 +2647,7 @@ class HeightFieldT : public ShapeT<S> {
   /// resolutionX·resolutionY entries, a non-finite height, heights whose
   /// range (highest − lowest) overflows, a size that is not finite and
   /// > 0 m, or a cell so small that its spacing underflows.
-  HeightFieldT(std::size_t resolutionX, std::size_t resolutionY, S sizeX, S sizeY, std::vector<S> heights)
-      : resolutionX_(resolutionX), resolutionY_(resolutionY), heights_(std::move(heights)) {
-    const std::array<std::size_t, 2> resolution{resolutionX, resolutionY};
-    if (resolutionX < 2 || resolutionY < 2)
-      throw detail::makeError("HeightField", "", "needs at least 2 x 2 height samples (resolutionX, resolutionY)",
-                              resolution);
-    // Checked before any product of the resolutions is formed, so that none wraps around.
-    if ((resolutionX - 1) > kMaxTriangles / 2 / (resolutionY - 1))
-      throw detail::makeError("HeightField", "",
-                              "2 (resolutionX - 1)(resolutionY - 1) triangles must not exceed " +
-                                  std::to_string(kMaxTriangles),
-                              resolution);
-    sizeX_ = this->requireLength("HeightField", "sizeX", sizeX);
-    sizeY_ = this->requireLength("HeightField", "sizeY", sizeY);
-    if (heights_.size() != resolutionX * resolutionY)
-      throw detail::makeError(
-          "HeightField", "",
-          "needs resolutionX * resolutionY = " + std::to_string(resolutionX * resolutionY) + " heights",
-          heights_.size());
-    for (std::size_t k = 0; k < heights_.size(); ++k)
-      if (!std::isfinite(heights_[k]))
-        throw detail::makeError("HeightField", "", "height " + std::to_string(k) + " must be finite (m)", heights_[k]);
-    spacing_ = Vec2(sizeX_ / S(resolutionX - 1), sizeY_ / S(resolutionY - 1));
-    if (!(spacing_.minCoeff() >= std::numeric_limits<S>::min()))
-      throw detail::makeError("HeightField", "", "cell spacing size / (resolution - 1) must not underflow (m)", spacing_);
-    updateHeightRange();
-    requireFiniteRange(minHeight_, maxHeight_);
-  }
+  HeightFieldT(std::size_t resolutionX, std::size_t resolutionY, S sizeX, S sizeY, std::vector<S> heights);
 
   /// Number of samples along x.
   [[nodiscard]] std::size_t getResolutionX() const { return resolutionX_; }
@@ -2528,31 +2667,11 @@ class HeightFieldT : public ShapeT<S> {
   [[nodiscard]] S getMaxHeight() const { return maxHeight_; }
 
   /// Height of sample (i, j) (m); throws when out of range.
-  [[nodiscard]] S getHeight(std::size_t i, std::size_t j) const {
-    requireSample(i, j);
-    return height(i, j);
-  }
+  [[nodiscard]] S getHeight(std::size_t i, std::size_t j) const;
   /// Sets the height of sample (i, j) (m); throws, keeping the field, on an
   /// index out of range, a non-finite height or one whose distance to the
   /// others overflows.
-  void setHeight(std::size_t i, std::size_t j, S h) {
-    requireSample(i, j);
-    if (!std::isfinite(h)) throw detail::makeError("HeightField", "", "height must be finite (m)", h);
-    S& sample = heights_[i + resolutionX_ * j];
-    const S old = sample, oldMin = minHeight_, oldMax = maxHeight_;
-    const auto apply = [&] {
-      sample = h;
-      if (old == oldMin || old == oldMax) return updateHeightRange();
-      minHeight_ = std::min(oldMin, h);
-      maxHeight_ = std::max(oldMax, h);
-    };
-    const auto undo = [&] { sample = old, minHeight_ = oldMin, maxHeight_ = oldMax; };
-    apply();
-    const Vec2 range(minHeight_, maxHeight_);
-    undo();
-    requireFiniteRange(range.x(), range.y());
-    this->change(apply, undo);
-  }
+  void setHeight(std::size_t i, std::size_t j, S h);
 
   /// Sample (i, j) as a point, shape frame (m).
   [[nodiscard]] Vec3 getVertex(std::size_t i, std::size_t j) const { return Vec3(gridX(i), gridY(j), height(i, j)); }
@@ -2617,14 +2736,10 @@ class HeightFieldT : public ShapeT<S> {
   [[nodiscard]] S getVolume() const override { return S(0); }
 
   /// Always throws: a HeightField has no volume, so no inertia.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    throw detail::makeError("HeightField", "", "a HeightField has no volume, hence no inertia; mass (kg)", mass);
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   /// The grid's x and y extents, z from the lowest to the highest sample (shape frame, m).
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
-    return {Vec3(gridX(0), gridY(0), minHeight_), Vec3(gridX(resolutionX_ - 1), gridY(resolutionY_ - 1), maxHeight_)};
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override;
 
   /// Calls visit(index, a, b, c) with the corners (shape frame, m) of each
   /// triangle whose box overlaps `localBox` (shape frame, touching counts);
@@ -2654,34 +2769,15 @@ class HeightFieldT : public ShapeT<S> {
   [[nodiscard]] S gridX(std::size_t i) const { return S(-0.5) * sizeX_ + S(i) * spacing_.x(); }
   [[nodiscard]] S gridY(std::size_t j) const { return S(-0.5) * sizeY_ + S(j) * spacing_.y(); }
 
-  void requireSample(std::size_t i, std::size_t j) const {
-    if (i >= resolutionX_ || j >= resolutionY_)
-      throw detail::makeError("HeightField", "",
-                              "sample (i, j) must lie in [0, " + std::to_string(resolutionX_) + ") x [0, " +
-                                  std::to_string(resolutionY_) + ")",
-                              std::array<std::size_t, 2>{i, j});
-  }
+  void requireSample(std::size_t i, std::size_t j) const;
 
-  static void requireFiniteRange(S lowest, S highest) {
-    if (!std::isfinite(highest - lowest))
-      throw detail::makeError("HeightField", "", "heights must span a finite range, highest - lowest (m)",
-                              Vec2(lowest, highest));
-  }
-  void updateHeightRange() {
-    const auto [lo, hi] = std::minmax_element(heights_.begin(), heights_.end());
-    minHeight_ = *lo;
-    maxHeight_ = *hi;
-  }
+  static void requireFiniteRange(S lowest, S highest);
+  void updateHeightRange();
 
   // Cells [first, last] along one axis that may meet [lo, hi], given that
   // the box meets the grid's extent on that axis.
   [[nodiscard]] static std::pair<std::size_t, std::size_t> cellRange(S lo, S hi, S size, S spacing,
-                                                                     std::size_t resolution) {
-    const S cells = S(resolution - 1);
-    const S first = std::clamp(std::floor((lo + S(0.5) * size) / spacing) - S(1), S(0), cells - S(1));
-    const S last = std::clamp(std::floor((hi + S(0.5) * size) / spacing) + S(1), S(0), cells - S(1));
-    return {static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
-  }
+                                                                     std::size_t resolution);
 
   // Contact points number the triangles with 32 bits.
   static constexpr std::size_t kMaxTriangles = std::numeric_limits<std::uint32_t>::max();
@@ -2695,6 +2791,105 @@ class HeightFieldT : public ShapeT<S> {
   S minHeight_ = S(0);
   S maxHeight_ = S(0);
 };
+
+template <Scalar S>
+HeightFieldT<S>::HeightFieldT(std::size_t resolutionX, std::size_t resolutionY, S sizeX, S sizeY,
+                              std::vector<S> heights)
+    : resolutionX_(resolutionX), resolutionY_(resolutionY), heights_(std::move(heights)) {
+  const std::array<std::size_t, 2> resolution{resolutionX, resolutionY};
+  if (resolutionX < 2 || resolutionY < 2)
+    throw detail::makeError("HeightField", "", "needs at least 2 x 2 height samples (resolutionX, resolutionY)",
+                            resolution);
+  // Checked before any product of the resolutions is formed, so that none wraps around.
+  if ((resolutionX - 1) > kMaxTriangles / 2 / (resolutionY - 1))
+    throw detail::makeError(
+        "HeightField", "",
+        "2 (resolutionX - 1)(resolutionY - 1) triangles must not exceed " + std::to_string(kMaxTriangles), resolution);
+  sizeX_ = this->requireLength("HeightField", "sizeX", sizeX);
+  sizeY_ = this->requireLength("HeightField", "sizeY", sizeY);
+  if (heights_.size() != resolutionX * resolutionY)
+    throw detail::makeError(
+        "HeightField", "",
+        "needs resolutionX * resolutionY = " + std::to_string(resolutionX * resolutionY) + " heights", heights_.size());
+  for (std::size_t k = 0; k < heights_.size(); ++k)
+    if (!std::isfinite(heights_[k]))
+      throw detail::makeError("HeightField", "", "height " + std::to_string(k) + " must be finite (m)", heights_[k]);
+  spacing_ = Vec2(sizeX_ / S(resolutionX - 1), sizeY_ / S(resolutionY - 1));
+  if (!(spacing_.minCoeff() >= std::numeric_limits<S>::min()))
+    throw detail::makeError("HeightField", "", "cell spacing size / (resolution - 1) must not underflow (m)", spacing_);
+  updateHeightRange();
+  requireFiniteRange(minHeight_, maxHeight_);
+}
+
+template <Scalar S>
+S HeightFieldT<S>::getHeight(std::size_t i, std::size_t j) const {
+  requireSample(i, j);
+  return height(i, j);
+}
+
+template <Scalar S>
+void HeightFieldT<S>::setHeight(std::size_t i, std::size_t j, S h) {
+  requireSample(i, j);
+  if (!std::isfinite(h)) throw detail::makeError("HeightField", "", "height must be finite (m)", h);
+  S& sample = heights_[i + resolutionX_ * j];
+  const S old = sample, oldMin = minHeight_, oldMax = maxHeight_;
+  const auto apply = [&] {
+    sample = h;
+    if (old == oldMin || old == oldMax) return updateHeightRange();
+    minHeight_ = std::min(oldMin, h);
+    maxHeight_ = std::max(oldMax, h);
+  };
+  const auto undo = [&] { sample = old, minHeight_ = oldMin, maxHeight_ = oldMax; };
+  apply();
+  const Vec2 range(minHeight_, maxHeight_);
+  undo();
+  requireFiniteRange(range.x(), range.y());
+  this->change(apply, undo);
+}
+
+template <Scalar S>
+auto HeightFieldT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  throw detail::makeError("HeightField", "", "a HeightField has no volume, hence no inertia; mass (kg)", mass);
+}
+
+template <Scalar S>
+auto HeightFieldT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  return {Vec3(gridX(0), gridY(0), minHeight_), Vec3(gridX(resolutionX_ - 1), gridY(resolutionY_ - 1), maxHeight_)};
+}
+
+template <Scalar S>
+void HeightFieldT<S>::requireSample(std::size_t i, std::size_t j) const {
+  if (i >= resolutionX_ || j >= resolutionY_)
+    throw detail::makeError("HeightField", "",
+                            "sample (i, j) must lie in [0, " + std::to_string(resolutionX_) + ") x [0, " +
+                                std::to_string(resolutionY_) + ")",
+                            std::array<std::size_t, 2>{i, j});
+}
+
+template <Scalar S>
+void HeightFieldT<S>::requireFiniteRange(S lowest, S highest) {
+  if (!std::isfinite(highest - lowest))
+    throw detail::makeError("HeightField", "", "heights must span a finite range, highest - lowest (m)",
+                            Vec2(lowest, highest));
+}
+
+template <Scalar S>
+void HeightFieldT<S>::updateHeightRange() {
+  const auto [lo, hi] = std::minmax_element(heights_.begin(), heights_.end());
+  minHeight_ = *lo;
+  maxHeight_ = *hi;
+}
+
+template <Scalar S>
+auto HeightFieldT<S>::cellRange(S lo, S hi, S size, S spacing, std::size_t resolution)
+    -> std::pair<std::size_t, std::size_t> {
+  const S cells = S(resolution - 1);
+  const S first = std::clamp(std::floor((lo + S(0.5) * size) / spacing) - S(1), S(0), cells - S(1));
+  const S last = std::clamp(std::floor((hi + S(0.5) * size) / spacing) + S(1), S(0), cells - S(1));
+  return {static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
+}
+
+SPOOK_COMPILED_ONCE(class, HeightFieldT)
 
 using HeightField = HeightFieldT<double>;
 using HeightFieldRef = ref_ptr<HeightField>;
@@ -2733,15 +2928,7 @@ class LineT : public ShapeT<S> {
   [[nodiscard]] S getLength() const { return (second_ - first_).norm(); }
   /// Moves both endpoints (shape frame, m); throws and keeps the line unless
   /// they are finite and apart.
-  void setPoints(const Vec3& first, const Vec3& second) {
-    const Eigen::Matrix<S, 6, 1> both = (Eigen::Matrix<S, 6, 1>() << first, second).finished();
-    if (!both.allFinite()) throw detail::makeError("Line", "", "points must be finite (m)", both);
-    const Vec3 span = second - first;
-    if (!(span.allFinite() && span.squaredNorm() > S(0)))
-      throw detail::makeError("Line", "", "points must be apart (length > 0 m)", both);
-    const Vec3 oldFirst = first_, oldSecond = second_;
-    this->change([&] { first_ = first, second_ = second; }, [&] { first_ = oldFirst, second_ = oldSecond; });
-  }
+  void setPoints(const Vec3& first, const Vec3& second);
 
   /// Which kind of shape this is.
   [[nodiscard]] ShapeType getType() const override { return kType; }
@@ -2751,13 +2938,9 @@ class LineT : public ShapeT<S> {
   [[nodiscard]] Vec3 getCenterOfVolume() const override { return S(0.5) * (first_ + second_); }
   /// Always throws: a line has no volume, and a rod of zero thickness has a
   /// singular inertia (none about its own axis).
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    throw detail::makeError("Line", "", "a Line has no volume and no inertia (kg)", mass);
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
   /// Box around both endpoints, shape frame (m).
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
-    return {first_.cwiseMin(second_), first_.cwiseMax(second_)};
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override;
 
   /// The endpoint farther along `direction`, the first one on a tie (shape frame, m).
   [[nodiscard]] Vec3 support(const Vec3& direction) const {
@@ -2784,6 +2967,29 @@ class LineT : public ShapeT<S> {
   Vec3 first_ = Vec3::Zero();
   Vec3 second_ = Vec3::Zero();
 };
+
+template <Scalar S>
+void LineT<S>::setPoints(const Vec3& first, const Vec3& second) {
+  const Eigen::Matrix<S, 6, 1> both = (Eigen::Matrix<S, 6, 1>() << first, second).finished();
+  if (!both.allFinite()) throw detail::makeError("Line", "", "points must be finite (m)", both);
+  const Vec3 span = second - first;
+  if (!(span.allFinite() && span.squaredNorm() > S(0)))
+    throw detail::makeError("Line", "", "points must be apart (length > 0 m)", both);
+  const Vec3 oldFirst = first_, oldSecond = second_;
+  this->change([&] { first_ = first, second_ = second; }, [&] { first_ = oldFirst, second_ = oldSecond; });
+}
+
+template <Scalar S>
+auto LineT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  throw detail::makeError("Line", "", "a Line has no volume and no inertia (kg)", mass);
+}
+
+template <Scalar S>
+auto LineT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  return {first_.cwiseMin(second_), first_.cwiseMax(second_)};
+}
+
+SPOOK_COMPILED_ONCE(class, LineT)
 
 using Line = LineT<double>;
 using LineRef = ref_ptr<Line>;
@@ -2816,11 +3022,7 @@ class PlaneT : public ShapeT<S> {
   /// Plane through `point` (m) with normal `normal` (any non-zero length; normalized).
   explicit PlaneT(const Vec3& normal, const Vec3& point = Vec3::Zero()) { set(normal, point); }
   /// Plane normal·x = distance (m), i.e. through normal·distance for a unit normal.
-  PlaneT(const Vec3& normal, S distance) {
-    if (!std::isfinite(distance)) throw detail::makeError("Plane", "", "distance must be finite (m)", distance);
-    const Vec3 n = unitNormal(normal);
-    set(n, Vec3(n * distance));
-  }
+  PlaneT(const Vec3& normal, S distance);
   /// Plane through three points (m), its normal (p2 − p1) × (p3 − p1) by the
   /// right-hand rule (counter-clockwise points seen from above the plane);
   /// throws on coincident or collinear points.
@@ -2836,12 +3038,7 @@ class PlaneT : public ShapeT<S> {
   /// Signed distance of the plane from the shape origin along the normal, normal·point (m).
   [[nodiscard]] S getDistance() const { return normal_.dot(point_); }
   /// Moves the plane (shape frame; normal normalized, point in m); throws and keeps it on bad input.
-  void set(const Vec3& normal, const Vec3& point) {
-    const Vec3 n = unitNormal(normal);
-    if (!point.allFinite()) throw detail::makeError("Plane", "", "point must be finite (m)", point);
-    const Vec3 oldNormal = normal_, oldPoint = point_;
-    this->change([&] { normal_ = n, point_ = point; }, [&] { normal_ = oldNormal, point_ = oldPoint; });
-  }
+  void set(const Vec3& normal, const Vec3& point);
 
   /// Signed distance of `p` (shape frame, m) above the plane; negative inside the solid (m).
   [[nodiscard]] S signedDistance(const Vec3& p) const { return normal_.dot(p - point_); }
@@ -2851,14 +3048,9 @@ class PlaneT : public ShapeT<S> {
   /// A plane encloses no volume: 0 m³.
   [[nodiscard]] S getVolume() const override { return S(0); }
   /// Always throws: a plane has no volume and so no inertia.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    throw detail::makeError("Plane", "", "a Plane has no volume and no inertia (kg)", mass);
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
   /// Unbounded: every component ±infinity (the Space treats such boxes apart).
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
-    constexpr S inf = std::numeric_limits<S>::infinity();
-    return {Vec3::Constant(-inf), Vec3::Constant(inf)};
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override;
 
  protected:
   ~PlaneT() override = default;
@@ -2900,13 +3092,42 @@ class PlaneT : public ShapeT<S> {
       throw detail::makeError("Plane", "", "normal (a, b, c) must be finite and non-zero", normal);
     const S distance = (d / largest) / (normal / largest).norm();
     if (!std::isfinite(distance))
-      throw detail::makeError("Plane", "", "d / |(a, b, c)| must be finite (m)", Eigen::Matrix<S, 4, 1>(normal.x(), normal.y(), normal.z(), d));
+      throw detail::makeError("Plane", "", "d / |(a, b, c)| must be finite (m)",
+                              Eigen::Matrix<S, 4, 1>(normal.x(), normal.y(), normal.z(), d));
     return distance;
   }
 
   Vec3 normal_ = Vec3::UnitZ();
   Vec3 point_ = Vec3::Zero();
 };
+
+template <Scalar S>
+PlaneT<S>::PlaneT(const Vec3& normal, S distance) {
+  if (!std::isfinite(distance)) throw detail::makeError("Plane", "", "distance must be finite (m)", distance);
+  const Vec3 n = unitNormal(normal);
+  set(n, Vec3(n * distance));
+}
+
+template <Scalar S>
+void PlaneT<S>::set(const Vec3& normal, const Vec3& point) {
+  const Vec3 n = unitNormal(normal);
+  if (!point.allFinite()) throw detail::makeError("Plane", "", "point must be finite (m)", point);
+  const Vec3 oldNormal = normal_, oldPoint = point_;
+  this->change([&] { normal_ = n, point_ = point; }, [&] { normal_ = oldNormal, point_ = oldPoint; });
+}
+
+template <Scalar S>
+auto PlaneT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  throw detail::makeError("Plane", "", "a Plane has no volume and no inertia (kg)", mass);
+}
+
+template <Scalar S>
+auto PlaneT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  constexpr S inf = std::numeric_limits<S>::infinity();
+  return {Vec3::Constant(-inf), Vec3::Constant(inf)};
+}
+
+SPOOK_COMPILED_ONCE(class, PlaneT)
 
 using Plane = PlaneT<double>;
 using PlaneRef = ref_ptr<Plane>;
@@ -2938,27 +3159,17 @@ class SphereT : public ShapeT<S> {
   [[nodiscard]] S getRadius() const { return radius_; }
   /// Throws, keeping the radius, on a value that is not finite and > 0 m or
   /// that a body holding the sphere could not take.
-  void setRadius(S radius) {
-    const S checked = this->requireLength("Sphere", "radius", radius), old = radius_;
-    this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
-  }
+  void setRadius(S radius);
 
   /// V = 4/3 π r³.
   [[nodiscard]] ShapeType getType() const override { return kType; }
 
-  [[nodiscard]] S getVolume() const override {
-    return S(4) / S(3) * std::numbers::pi_v<S> * radius_ * radius_ * radius_;
-  }
+  [[nodiscard]] S getVolume() const override;
 
   /// I = 2/5 m r² about every axis.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Sphere", mass);
-    return SPDMat3T<S>(Vec3::Constant(S(0.4) * mass * radius_ * radius_));
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
-    return {Vec3::Constant(-radius_), Vec3::Constant(radius_)};
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override;
 
   /// The surface point farthest along `direction` (+x for a zero direction).
   [[nodiscard]] Vec3 support(const Vec3& direction) const {
@@ -2978,6 +3189,30 @@ class SphereT : public ShapeT<S> {
  private:
   S radius_ = S(0);
 };
+
+template <Scalar S>
+void SphereT<S>::setRadius(S radius) {
+  const S checked = this->requireLength("Sphere", "radius", radius), old = radius_;
+  this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
+}
+
+template <Scalar S>
+S SphereT<S>::getVolume() const {
+  return S(4) / S(3) * std::numbers::pi_v<S> * radius_ * radius_ * radius_;
+}
+
+template <Scalar S>
+auto SphereT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Sphere", mass);
+  return SPDMat3T<S>(Vec3::Constant(S(0.4) * mass * radius_ * radius_));
+}
+
+template <Scalar S>
+auto SphereT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  return {Vec3::Constant(-radius_), Vec3::Constant(radius_)};
+}
+
+SPOOK_COMPILED_ONCE(class, SphereT)
 
 using Sphere = SphereT<double>;
 using SphereRef = ref_ptr<Sphere>;
@@ -3019,21 +3254,7 @@ class TrimeshT : public ShapeT<S> {
 
   /// Throws spook::Error on no triangles, a non-finite vertex, an index out
   /// of range, a triangle repeating an index, or a closed mesh wound inward.
-  TrimeshT(std::vector<Vec3> vertices, std::vector<Triangle> triangles)
-      : vertices_(std::move(vertices)), triangles_(std::move(triangles)) {
-    validate();
-    std::vector<BoundingBoxT<S>> boxes(triangles_.size());
-    for (std::size_t i = 0; i < triangles_.size(); ++i) {
-      const auto [a, b, c] = getTriangle(i);
-      boxes[i] = {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
-    }
-    tree_ = detail::AabbTree<S>(boxes);
-    bounds_ = {vertices_.front(), vertices_.front()};
-    for (const Vec3& v : vertices_) bounds_ = {bounds_.min.cwiseMin(v), bounds_.max.cwiseMax(v)};
-    openEdges_ = countOpenEdges();
-    if (openEdges_ == 0) computeMass();
-    computeActiveEdges();
-  }
+  TrimeshT(std::vector<Vec3> vertices, std::vector<Triangle> triangles);
 
   /// Vertices, shape frame (m).
   [[nodiscard]] const std::vector<Vec3>& getVertices() const { return vertices_; }
@@ -3070,22 +3291,12 @@ class TrimeshT : public ShapeT<S> {
   [[nodiscard]] S getVolume() const override { return volume_; }
 
   /// Center of volume of a closed mesh, else the center of the vertices' box (shape frame, m).
-  [[nodiscard]] Vec3 getCenterOfVolume() const override { return volume_ > S(0) ? center_ : bounds_.center(); }
+  [[nodiscard]] Vec3 getCenterOfVolume() const override;
 
   /// About the shape origin, shape frame (kg·m²): the tensor about the center
   /// of volume c scaled to `mass`, plus m(|c|² 1 − c cᵀ). Throws for a mesh
   /// enclosing no volume.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Trimesh", mass);
-    if (openEdges_ > 0)
-      throw detail::makeError("Trimesh", "", "an open Trimesh has no volume, hence no inertia; edges without a twin",
-                              openEdges_);
-    if (!(volume_ > S(0)))
-      throw detail::makeError("Trimesh", "", "a closed Trimesh enclosing no volume has no inertia; volume (m^3)",
-                              enclosed_);
-    const Mat3 shift = mass * (center_.squaredNorm() * Mat3::Identity() - center_ * center_.transpose());
-    return SPDMat3T<S>(Mat3((mass / volume_) * inertia_ + shift));
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   /// Box around all vertices, shape frame (m).
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return bounds_; }
@@ -3105,24 +3316,7 @@ class TrimeshT : public ShapeT<S> {
   ~TrimeshT() override = default;
 
  private:
-  void validate() const {
-    if (triangles_.empty()) throw detail::makeError("Trimesh", "", "needs at least one triangle", triangles_.size());
-    for (std::size_t i = 0; i < vertices_.size(); ++i)
-      if (!vertices_[i].allFinite())
-        throw detail::makeError("Trimesh", "", "vertex " + std::to_string(i) + " must be finite (m)", vertices_[i]);
-    const std::size_t n = vertices_.size();
-    for (std::size_t i = 0; i < triangles_.size(); ++i) {
-      const Triangle& t = triangles_[i];
-      for (int k : t)
-        if (k < 0 || static_cast<std::size_t>(k) >= n)
-          throw detail::makeError(
-              "Trimesh", "",
-              "triangle " + std::to_string(i) + " has a vertex index outside [0, " + std::to_string(n) + ")", k);
-      if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
-        throw detail::makeError("Trimesh", "", "triangle " + std::to_string(i) + " must have three distinct vertices",
-                                t);
-    }
-  }
+  void validate() const;
 
   // A directed edge as one sortable number.
   static std::uint64_t edgeKey(int from, int to) {
@@ -3131,70 +3325,13 @@ class TrimeshT : public ShapeT<S> {
 
   // Directed edges sorted once: the mesh is closed when no directed edge
   // repeats and each one's reverse is present. Counts the edges that fail.
-  [[nodiscard]] std::size_t countOpenEdges() const {
-    std::vector<std::uint64_t> edges;
-    edges.reserve(3 * triangles_.size());
-    for (const Triangle& t : triangles_)
-      for (int k = 0; k < 3; ++k) edges.push_back(edgeKey(t[k], t[(k + 1) % 3]));
-    std::sort(edges.begin(), edges.end());
-    std::size_t open = 0;
-    for (std::size_t k = 0; k < edges.size(); ++k) {
-      const bool repeated = (k > 0 && edges[k] == edges[k - 1]) || (k + 1 < edges.size() && edges[k] == edges[k + 1]);
-      const std::uint64_t reverse = (edges[k] << 32) | (edges[k] >> 32);
-      if (repeated || !std::binary_search(edges.begin(), edges.end(), reverse)) ++open;
-    }
-    return open;
-  }
+  [[nodiscard]] std::size_t countOpenEdges() const;
 
   // Each directed edge's twin (the reverse edge of exactly one other
   // triangle, its own direction unrepeated) by a sorted list of edges.
-  void computeActiveEdges() {
-    struct Edge {
-      std::uint64_t key;
-      std::size_t triangle;
-      bool operator<(const Edge& other) const { return key < other.key; }
-    };
-    std::vector<Edge> edges;
-    edges.reserve(3 * triangles_.size());
-    for (std::size_t i = 0; i < triangles_.size(); ++i)
-      for (int k = 0; k < 3; ++k) edges.push_back({edgeKey(triangles_[i][k], triangles_[i][(k + 1) % 3]), i});
-    std::sort(edges.begin(), edges.end());
-    const auto count = [&](std::uint64_t k) {
-      const auto [first, last] = std::equal_range(edges.begin(), edges.end(), Edge{k, 0});
-      return std::pair{first, static_cast<std::size_t>(last - first)};
-    };
-    std::vector<Vec3> normals(triangles_.size());
-    for (std::size_t i = 0; i < triangles_.size(); ++i) {
-      const auto [a, b, c] = getTriangle(i);
-      const Vec3 n = (b - a).cross(c - a);
-      normals[i] = n.norm() > S(0) ? Vec3(n.normalized()) : Vec3::Zero();
-    }
-    activeEdges_.resize(triangles_.size());
-    for (std::size_t i = 0; i < triangles_.size(); ++i) {
-      std::array<const Vec3*, 3> neighbours{};
-      for (int k = 0; k < 3; ++k) {
-        const int from = triangles_[i][k], to = triangles_[i][(k + 1) % 3];
-        const auto [twin, twins] = count(edgeKey(to, from));
-        if (twins == 1 && count(edgeKey(from, to)).second == 1) neighbours[k] = &normals[twin->triangle];
-      }
-      activeEdges_[i] = detail::activeEdges<S>(getTriangle(i), normals[i], neighbours);
-    }
-  }
+  void computeActiveEdges();
 
-  void computeMass() {
-    const detail::PolyhedronMass<S> mass = detail::polyhedronMass<S>(vertices_, triangles_);
-    enclosed_ = mass.volume;
-    // Round-off leaves a flat, two-sided mesh a volume of a few ulps of its box.
-    const S extent = (bounds_.max - bounds_.min).maxCoeff();
-    const S noise = S(64) * std::numeric_limits<S>::epsilon() * extent * extent * extent;
-    if (enclosed_ < -noise)
-      throw detail::makeError(
-          "Trimesh", "", "a closed Trimesh must be wound counter-clockwise seen from outside; volume (m^3)", enclosed_);
-    if (enclosed_ <= noise) return;
-    volume_ = mass.volume;
-    center_ = mass.center;
-    inertia_ = mass.inertia;
-  }
+  void computeMass();
 
   std::vector<Vec3> vertices_;
   std::vector<Triangle> triangles_;
@@ -3207,6 +3344,128 @@ class TrimeshT : public ShapeT<S> {
   Vec3 center_ = Vec3::Zero();
   Mat3 inertia_ = Mat3::Zero();  ///< unit-density inertia about center_ (m⁵)
 };
+
+template <Scalar S>
+TrimeshT<S>::TrimeshT(std::vector<Vec3> vertices, std::vector<Triangle> triangles)
+    : vertices_(std::move(vertices)), triangles_(std::move(triangles)) {
+  validate();
+  std::vector<BoundingBoxT<S>> boxes(triangles_.size());
+  for (std::size_t i = 0; i < triangles_.size(); ++i) {
+    const auto [a, b, c] = getTriangle(i);
+    boxes[i] = {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
+  }
+  tree_ = detail::AabbTree<S>(boxes);
+  bounds_ = {vertices_.front(), vertices_.front()};
+  for (const Vec3& v : vertices_) bounds_ = {bounds_.min.cwiseMin(v), bounds_.max.cwiseMax(v)};
+  openEdges_ = countOpenEdges();
+  if (openEdges_ == 0) computeMass();
+  computeActiveEdges();
+}
+
+template <Scalar S>
+auto TrimeshT<S>::getCenterOfVolume() const -> Vec3 {
+  return volume_ > S(0) ? center_ : bounds_.center();
+}
+
+template <Scalar S>
+auto TrimeshT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Trimesh", mass);
+  if (openEdges_ > 0)
+    throw detail::makeError("Trimesh", "", "an open Trimesh has no volume, hence no inertia; edges without a twin",
+                            openEdges_);
+  if (!(volume_ > S(0)))
+    throw detail::makeError("Trimesh", "", "a closed Trimesh enclosing no volume has no inertia; volume (m^3)",
+                            enclosed_);
+  const Mat3 shift = mass * (center_.squaredNorm() * Mat3::Identity() - center_ * center_.transpose());
+  return SPDMat3T<S>(Mat3((mass / volume_) * inertia_ + shift));
+}
+
+template <Scalar S>
+void TrimeshT<S>::validate() const {
+  if (triangles_.empty()) throw detail::makeError("Trimesh", "", "needs at least one triangle", triangles_.size());
+  for (std::size_t i = 0; i < vertices_.size(); ++i)
+    if (!vertices_[i].allFinite())
+      throw detail::makeError("Trimesh", "", "vertex " + std::to_string(i) + " must be finite (m)", vertices_[i]);
+  const std::size_t n = vertices_.size();
+  for (std::size_t i = 0; i < triangles_.size(); ++i) {
+    const Triangle& t = triangles_[i];
+    for (int k : t)
+      if (k < 0 || static_cast<std::size_t>(k) >= n)
+        throw detail::makeError(
+            "Trimesh", "",
+            "triangle " + std::to_string(i) + " has a vertex index outside [0, " + std::to_string(n) + ")", k);
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+      throw detail::makeError("Trimesh", "", "triangle " + std::to_string(i) + " must have three distinct vertices", t);
+  }
+}
+
+template <Scalar S>
+std::size_t TrimeshT<S>::countOpenEdges() const {
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * triangles_.size());
+  for (const Triangle& t : triangles_)
+    for (int k = 0; k < 3; ++k) edges.push_back(edgeKey(t[k], t[(k + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  std::size_t open = 0;
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    const bool repeated = (k > 0 && edges[k] == edges[k - 1]) || (k + 1 < edges.size() && edges[k] == edges[k + 1]);
+    const std::uint64_t reverse = (edges[k] << 32) | (edges[k] >> 32);
+    if (repeated || !std::binary_search(edges.begin(), edges.end(), reverse)) ++open;
+  }
+  return open;
+}
+
+template <Scalar S>
+void TrimeshT<S>::computeActiveEdges() {
+  struct Edge {
+    std::uint64_t key;
+    std::size_t triangle;
+    bool operator<(const Edge& other) const { return key < other.key; }
+  };
+  std::vector<Edge> edges;
+  edges.reserve(3 * triangles_.size());
+  for (std::size_t i = 0; i < triangles_.size(); ++i)
+    for (int k = 0; k < 3; ++k) edges.push_back({edgeKey(triangles_[i][k], triangles_[i][(k + 1) % 3]), i});
+  std::sort(edges.begin(), edges.end());
+  const auto count = [&](std::uint64_t k) {
+    const auto [first, last] = std::equal_range(edges.begin(), edges.end(), Edge{k, 0});
+    return std::pair{first, static_cast<std::size_t>(last - first)};
+  };
+  std::vector<Vec3> normals(triangles_.size());
+  for (std::size_t i = 0; i < triangles_.size(); ++i) {
+    const auto [a, b, c] = getTriangle(i);
+    const Vec3 n = (b - a).cross(c - a);
+    normals[i] = n.norm() > S(0) ? Vec3(n.normalized()) : Vec3::Zero();
+  }
+  activeEdges_.resize(triangles_.size());
+  for (std::size_t i = 0; i < triangles_.size(); ++i) {
+    std::array<const Vec3*, 3> neighbours{};
+    for (int k = 0; k < 3; ++k) {
+      const int from = triangles_[i][k], to = triangles_[i][(k + 1) % 3];
+      const auto [twin, twins] = count(edgeKey(to, from));
+      if (twins == 1 && count(edgeKey(from, to)).second == 1) neighbours[k] = &normals[twin->triangle];
+    }
+    activeEdges_[i] = detail::activeEdges<S>(getTriangle(i), normals[i], neighbours);
+  }
+}
+
+template <Scalar S>
+void TrimeshT<S>::computeMass() {
+  const detail::PolyhedronMass<S> mass = detail::polyhedronMass<S>(vertices_, triangles_);
+  enclosed_ = mass.volume;
+  // Round-off leaves a flat, two-sided mesh a volume of a few ulps of its box.
+  const S extent = (bounds_.max - bounds_.min).maxCoeff();
+  const S noise = S(64) * std::numeric_limits<S>::epsilon() * extent * extent * extent;
+  if (enclosed_ < -noise)
+    throw detail::makeError(
+        "Trimesh", "", "a closed Trimesh must be wound counter-clockwise seen from outside; volume (m^3)", enclosed_);
+  if (enclosed_ <= noise) return;
+  volume_ = mass.volume;
+  center_ = mass.center;
+  inertia_ = mass.inertia;
+}
+
+SPOOK_COMPILED_ONCE(class, TrimeshT)
 
 using Trimesh = TrimeshT<double>;
 using TrimeshRef = ref_ptr<Trimesh>;
@@ -3389,28 +3648,15 @@ class FrameT : public Referenced {
   /// The parent frame, or nullptr for a root frame.
   [[nodiscard]] FrameT* getParent() const { return parent_.get(); }
   /// Re-parents the frame keeping its local transform; throws if that would make a cycle.
-  void setParent(FrameT* parent) {
-    for (const FrameT* f = parent; f; f = f->getParent())
-      if (f == this) throw detail::makeError("Frame", "", "parent would create a cycle", "a frame of its own chain");
-    parent_ = parent;
-  }
+  void setParent(FrameT* parent);
 
   /// Transform from this frame to its parent (world when root).
-  [[nodiscard]] Transform getLocalMatrix() const { return makeTransform<S>(localTranslate_, localRotate_); }
-  void setLocalMatrix(const Transform& X) {
-    checkMatrix(X);
-    setLocal(X.translation(), Quat(X.linear()));
-  }
+  [[nodiscard]] Transform getLocalMatrix() const;
+  void setLocalMatrix(const Transform& X);
 
   /// Transform from this frame to the world.
-  [[nodiscard]] Transform getMatrix() const {
-    return parent_ ? parent_->getMatrix() * getLocalMatrix() : getLocalMatrix();
-  }
-  void setMatrix(const Transform& X_W) {
-    checkMatrix(X_W);
-    const Transform X_P = parent_ ? Transform(parent_->getMatrix().inverse() * X_W) : X_W;
-    setLocal(X_P.translation(), Quat(X_P.linear()));
-  }
+  [[nodiscard]] Transform getMatrix() const;
+  void setMatrix(const Transform& X_W);
 
   /// Origin relative to the parent (m).
   [[nodiscard]] const Vec3& getLocalTranslate() const { return localTranslate_; }
@@ -3422,21 +3668,13 @@ class FrameT : public Referenced {
   void setLocalRotate(const Quat& q) { setLocal(localTranslate_, q); }
 
   /// Origin in world coordinates (m).
-  [[nodiscard]] Vec3 getTranslate() const {
-    return parent_ ? parent_->transformPointToWorld(localTranslate_) : localTranslate_;
-  }
-  void setTranslate(const Vec3& p_W) {
-    checkVector(p_W, "translate must be finite");
-    setLocalTranslate(parent_ ? parent_->transformPointToLocal(p_W) : p_W);
-  }
+  [[nodiscard]] Vec3 getTranslate() const;
+  void setTranslate(const Vec3& p_W);
   void setTranslate(S x, S y, S z) { setTranslate(Vec3(x, y, z)); }
 
   /// Orientation in world coordinates.
-  [[nodiscard]] Quat getRotate() const { return parent_ ? Quat(parent_->getRotate() * localRotate_) : localRotate_; }
-  void setRotate(const Quat& q_W) {
-    checkQuat(q_W);
-    setLocalRotate(parent_ ? Quat(parent_->getRotate().conjugate() * unitQuaternion<S>(q_W)) : q_W);
-  }
+  [[nodiscard]] Quat getRotate() const;
+  void setRotate(const Quat& q_W);
 
   /// A point given in this frame, expressed in world coordinates.
   [[nodiscard]] Vec3 transformPointToWorld(const Vec3& p) const { return getMatrix() * p; }
@@ -3451,29 +3689,95 @@ class FrameT : public Referenced {
   ~FrameT() override = default;
 
  private:
-  void setLocal(const Vec3& p, const Quat& q) {
-    checkVector(p, "translate must be finite");
-    checkQuat(q);
-    localTranslate_ = p;
-    localRotate_ = unitQuaternion<S>(q);
-  }
-  static void checkVector(const Vec3& v, const char* what) {
-    if (!v.allFinite()) throw detail::makeError("Frame", "", what, v);
-  }
-  static void checkQuat(const Quat& q) {
-    if (!isRotationQuaternion<S>(q))
-      throw detail::makeError("Frame", "", "rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
-  }
-  static void checkMatrix(const Transform& X) {
-    if (!X.matrix().allFinite() || !isRotation<S>(X.linear()))
-      throw detail::makeError("Frame", "", "transform must be finite with a rotation as linear part",
-                              SPDMat3T<S>::flat(X.linear()));
-  }
+  void setLocal(const Vec3& p, const Quat& q);
+  static void checkVector(const Vec3& v, const char* what);
+  static void checkQuat(const Quat& q);
+  static void checkMatrix(const Transform& X);
 
   ref_ptr<FrameT> parent_;
   Vec3 localTranslate_ = Vec3::Zero();
   Quat localRotate_ = Quat::Identity();
 };
+
+template <Scalar S>
+void FrameT<S>::setParent(FrameT* parent) {
+  for (const FrameT* f = parent; f; f = f->getParent())
+    if (f == this) throw detail::makeError("Frame", "", "parent would create a cycle", "a frame of its own chain");
+  parent_ = parent;
+}
+
+template <Scalar S>
+auto FrameT<S>::getLocalMatrix() const -> Transform {
+  return makeTransform<S>(localTranslate_, localRotate_);
+}
+
+template <Scalar S>
+void FrameT<S>::setLocalMatrix(const Transform& X) {
+  checkMatrix(X);
+  setLocal(X.translation(), Quat(X.linear()));
+}
+
+template <Scalar S>
+auto FrameT<S>::getMatrix() const -> Transform {
+  return parent_ ? parent_->getMatrix() * getLocalMatrix() : getLocalMatrix();
+}
+
+template <Scalar S>
+void FrameT<S>::setMatrix(const Transform& X_W) {
+  checkMatrix(X_W);
+  const Transform X_P = parent_ ? Transform(parent_->getMatrix().inverse() * X_W) : X_W;
+  setLocal(X_P.translation(), Quat(X_P.linear()));
+}
+
+template <Scalar S>
+auto FrameT<S>::getTranslate() const -> Vec3 {
+  return parent_ ? parent_->transformPointToWorld(localTranslate_) : localTranslate_;
+}
+
+template <Scalar S>
+void FrameT<S>::setTranslate(const Vec3& p_W) {
+  checkVector(p_W, "translate must be finite");
+  setLocalTranslate(parent_ ? parent_->transformPointToLocal(p_W) : p_W);
+}
+
+template <Scalar S>
+auto FrameT<S>::getRotate() const -> Quat {
+  return parent_ ? Quat(parent_->getRotate() * localRotate_) : localRotate_;
+}
+
+template <Scalar S>
+void FrameT<S>::setRotate(const Quat& q_W) {
+  checkQuat(q_W);
+  setLocalRotate(parent_ ? Quat(parent_->getRotate().conjugate() * unitQuaternion<S>(q_W)) : q_W);
+}
+
+template <Scalar S>
+void FrameT<S>::setLocal(const Vec3& p, const Quat& q) {
+  checkVector(p, "translate must be finite");
+  checkQuat(q);
+  localTranslate_ = p;
+  localRotate_ = unitQuaternion<S>(q);
+}
+
+template <Scalar S>
+void FrameT<S>::checkVector(const Vec3& v, const char* what) {
+  if (!v.allFinite()) throw detail::makeError("Frame", "", what, v);
+}
+
+template <Scalar S>
+void FrameT<S>::checkQuat(const Quat& q) {
+  if (!isRotationQuaternion<S>(q))
+    throw detail::makeError("Frame", "", "rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
+}
+
+template <Scalar S>
+void FrameT<S>::checkMatrix(const Transform& X) {
+  if (!X.matrix().allFinite() || !isRotation<S>(X.linear()))
+    throw detail::makeError("Frame", "", "transform must be finite with a rotation as linear part",
+                            SPDMat3T<S>::flat(X.linear()));
+}
+
+SPOOK_COMPILED_ONCE(class, FrameT)
 
 using Frame = FrameT<double>;
 using FrameRef = ref_ptr<Frame>;
@@ -3568,7 +3872,9 @@ class MaterialT : public Referenced {
     void setDensity(S density) { density_ = positive("density must be finite and > 0 kg/m^3", density); }
     /// Young's modulus (Pa), the contact stiffness; default 4e8.
     [[nodiscard]] S getYoungsModulus() const { return youngsModulus_; }
-    void setYoungsModulus(S modulus) { youngsModulus_ = positive("Young's modulus must be finite and > 0 Pa", modulus); }
+    void setYoungsModulus(S modulus) {
+      youngsModulus_ = positive("Young's modulus must be finite and > 0 Pa", modulus);
+    }
     /// Viscosity, 1 − restitution, in [0, 1]; default 1 (no bounce).
     [[nodiscard]] S getViscosity() const { return viscosity_; }
     void setViscosity(S viscosity) {
@@ -3647,6 +3953,8 @@ class MaterialT : public Referenced {
   SurfaceMaterial surface_{&name_};
 };
 
+SPOOK_COMPILED_ONCE(class, MaterialT)
+
 using Material = MaterialT<double>;
 using MaterialRef = ref_ptr<Material>;
 namespace f32 {
@@ -3719,31 +4027,12 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
   /// A shape changed later (resized, a child added to a composite) is
   /// checked the same way: refused, it keeps its old value; taken, the
   /// body's mass properties follow.
-  void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
-    if (!shape) throw error("cannot add a null shape", "nullptr");
-    if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
-      throw error("shape transform must be finite and rigid", SPDMat3T<S>::flat(transform.linear()));
-    if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
-      throw error("shape already added to this geometry", std::string(shapeTypeName(shape->getType())));
-    std::vector<ShapeEntry> shapes = shapes_;
-    shapes.push_back({shape, makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
-    check({this, &shapes, nullptr, nullptr});
-    shapes_ = std::move(shapes);
-    detail::ShapeOwners<S>::add(*shape, this);
-    changed();
-  }
+  void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity());
   /// Removes a shape; false when it is not here.
-  bool remove(const Shape* shape) {
-    const auto it = std::find_if(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; });
-    if (it == shapes_.end()) return false;
-    detail::ShapeOwners<S>::remove(*it->shape, this);
-    shapes_.erase(it);
-    changed();
-    return true;
-  }
+  bool remove(const Shape* shape);
   [[nodiscard]] const std::vector<ShapeEntry>& getShapes() const { return shapes_; }
   /// The first shape, or nullptr.
-  [[nodiscard]] Shape* getShape() const { return shapes_.empty() ? nullptr : shapes_.front().shape.get(); }
+  [[nodiscard]] Shape* getShape() const;
 
   // --- Placement -------------------------------------------------------------
 
@@ -3755,27 +4044,13 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
   /// Sets the world transform (a body-owned geometry moves relative to its
   /// body so that it lands there). Updates the owning body's mass; throws,
   /// and stays put, when it would not be finite and valid.
-  void setTransform(const Transform& X_W) {
-    checkWorldPlacement(X_W);
-    frame_->setMatrix(X_W);
-    changed();
-  }
+  void setTransform(const Transform& X_W);
   [[nodiscard]] Vec3 getPosition() const { return frame_->getTranslate(); }
-  void setPosition(const Vec3& p_W) {
-    Transform X_W = getTransform();
-    X_W.translation() = p_W;
-    checkWorldPlacement(X_W);
-    frame_->setTranslate(p_W);
-    changed();
-  }
+  void setPosition(const Vec3& p_W);
   void setPosition(S x, S y, S z) { setPosition(Vec3(x, y, z)); }
   /// Geometry → body model frame (or world, without a body).
   [[nodiscard]] Transform getLocalTransform() const { return frame_->getLocalMatrix(); }
-  void setLocalTransform(const Transform& X) {
-    if (X.matrix().allFinite() && isRotation<S>(X.linear())) check({this, nullptr, nullptr, &X});
-    frame_->setLocalMatrix(X);
-    changed();
-  }
+  void setLocalTransform(const Transform& X);
   /// The body this geometry belongs to, or nullptr for a static geometry.
   [[nodiscard]] RigidBodyT<S>* getRigidBody() const { return body_; }
 
@@ -3785,18 +4060,10 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
   /// (density 1000 kg/m³). Assigning updates the owning body's mass; throws,
   /// and keeps the old material, when that would not be finite and valid
   /// (e.g. a density whose mass overflows).
-  [[nodiscard]] MaterialT<S>* getMaterial() const { return material_ ? material_.get() : defaultMaterial(); }
-  void setMaterial(ref_ptr<MaterialT<S>> material) {
-    if (!material) throw error("material must not be null", "nullptr");
-    check({this, nullptr, material.get(), nullptr});
-    material_ = std::move(material);
-    changed();
-  }
+  [[nodiscard]] MaterialT<S>* getMaterial() const;
+  void setMaterial(ref_ptr<MaterialT<S>> material);
   /// The material every geometry without its own uses.
-  [[nodiscard]] static MaterialT<S>* defaultMaterial() {
-    static const ref_ptr<MaterialT<S>> material = new MaterialT<S>("default");
-    return material.get();
-  }
+  [[nodiscard]] static MaterialT<S>* defaultMaterial();
 
   // --- Collision settings ----------------------------------------------------
 
@@ -3807,33 +4074,17 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
   [[nodiscard]] bool getEnableCollisions() const { return enableCollisions_; }
   void setEnableCollisions(bool enable) { enableCollisions_ = enable; }
   /// Enables or disables collisions between this and `other` (both ways).
-  void setEnableCollisions(GeometryT* other, bool enable) {
-    if (!other) throw error("cannot pair collisions with a null geometry", "nullptr");
-    if (other == this) throw error("cannot pair collisions with itself", name_);
-    setPartner(other, enable);
-    other->setPartner(this, enable);
-  }
+  void setEnableCollisions(GeometryT* other, bool enable);
   /// False when collisions with `other` were disabled pairwise.
-  [[nodiscard]] bool getEnableCollisions(const GeometryT* other) const {
-    return std::none_of(disabledWith_.begin(), disabledWith_.end(),
-                        [&](const observer_ptr<GeometryT>& g) { return g.get() == other; });
-  }
+  [[nodiscard]] bool getEnableCollisions(const GeometryT* other) const;
 
   /// Collision group ids and names, matched by Space::setEnablePair.
-  void addGroup(std::uint32_t id) {
-    if (!hasGroup(id)) groupIds_.push_back(id);
-  }
-  void addGroup(const std::string& name) {
-    if (!hasGroup(name)) groupNames_.push_back(name);
-  }
+  void addGroup(std::uint32_t id);
+  void addGroup(const std::string& name);
   void removeGroup(std::uint32_t id) { std::erase(groupIds_, id); }
   void removeGroup(const std::string& name) { std::erase(groupNames_, name); }
-  [[nodiscard]] bool hasGroup(std::uint32_t id) const {
-    return std::find(groupIds_.begin(), groupIds_.end(), id) != groupIds_.end();
-  }
-  [[nodiscard]] bool hasGroup(const std::string& name) const {
-    return std::find(groupNames_.begin(), groupNames_.end(), name) != groupNames_.end();
-  }
+  [[nodiscard]] bool hasGroup(std::uint32_t id) const;
+  [[nodiscard]] bool hasGroup(const std::string& name) const;
   [[nodiscard]] const std::vector<std::uint32_t>& getGroupIds() const { return groupIds_; }
   [[nodiscard]] const std::vector<std::string>& getGroupNames() const { return groupNames_; }
 
@@ -3844,67 +4095,29 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
   /// Velocity of the surface relative to the geometry, in the geometry
   /// frame (m/s): a conveyor belt. Used by the contact solver.
   [[nodiscard]] const Vec3& getSurfaceVelocity() const { return surfaceVelocity_; }
-  void setSurfaceVelocity(const Vec3& v) {
-    if (!v.allFinite()) throw error("surface velocity must be finite (m/s)", v);
-    surfaceVelocity_ = v;
-  }
+  void setSurfaceVelocity(const Vec3& v);
 
   /// World bounding box of every shape (m); infinite along the axes where a
   /// plane extends.
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
-    const Transform X_WG = getTransform();
-    BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::infinity()),
-                        Vec3::Constant(-std::numeric_limits<S>::infinity())};
-    for (const ShapeEntry& e : shapes_) {
-      const Transform X_WS = X_WG * e.transform;
-      const BoundingBoxT<S> local = e.shape->getBoundingBox();
-      const Mat3T<S> R = X_WS.linear();
-      if (!(local.min.allFinite() && local.max.allFinite())) {
-        box.min = box.min.cwiseMin(Vec3::Constant(-std::numeric_limits<S>::infinity()));
-        box.max = box.max.cwiseMax(Vec3::Constant(std::numeric_limits<S>::infinity()));
-        continue;
-      }
-      const Vec3 center = X_WS * local.center();
-      const Vec3 reach = R.cwiseAbs() * local.halfExtents();
-      box.min = box.min.cwiseMin(center - reach);
-      box.max = box.max.cwiseMax(center + reach);
-    }
-    return box;
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const;
 
  protected:
-  ~GeometryT() override {
-    for (ShapeEntry& e : shapes_) detail::ShapeOwners<S>::remove(*e.shape, this);
-  }
+  ~GeometryT() override;
 
  private:
   friend struct detail::GeometryAccess<S>;
 
-  static std::uint64_t nextId() {
-    static std::atomic<std::uint64_t> counter{0};
-    return ++counter;
-  }
-  void check(const detail::GeometryEdit<S>& edit) const {
-    if (owner_) owner_->checkGeometryChange(edit);
-  }
+  static std::uint64_t nextId();
+  void check(const detail::GeometryEdit<S>& edit) const;
   // A would-be world transform of a body's geometry, checked as the local
   // transform it makes (to round-off, the one the frame then sets); a
   // transform that is not finite and rigid is left for the frame to refuse.
-  void checkWorldPlacement(const Transform& X_W) const {
-    if (!(owner_ && X_W.matrix().allFinite() && isRotation<S>(X_W.linear()))) return;
-    const Transform X_local = frame_->getParent()->getMatrix().inverse() * X_W;
-    check({this, nullptr, nullptr, &X_local});
-  }
-  void changed() {
-    if (owner_) owner_->geometryChanged();
-  }
+  void checkWorldPlacement(const Transform& X_W) const;
+  void changed();
   // One of the shapes changed (its size, children, heights).
   void checkShapeChange() const override { check({this, nullptr, nullptr, nullptr}); }
   void shapeChanged() override { changed(); }
-  void setPartner(GeometryT* other, bool enable) {
-    std::erase_if(disabledWith_, [&](const observer_ptr<GeometryT>& g) { return !g.valid() || g.get() == other; });
-    if (!enable) disabledWith_.emplace_back(other);
-  }
+  void setPartner(GeometryT* other, bool enable);
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
     return detail::makeError("Geometry", name_, what, value);
@@ -3928,6 +4141,176 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
   detail::GeometryOwner<S>* owner_ = nullptr;
   const void* space_ = nullptr;
 };
+
+template <Scalar S>
+void GeometryT<S>::add(ref_ptr<Shape> shape, const Transform& transform) {
+  if (!shape) throw error("cannot add a null shape", "nullptr");
+  if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
+    throw error("shape transform must be finite and rigid", SPDMat3T<S>::flat(transform.linear()));
+  if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
+    throw error("shape already added to this geometry", std::string(shapeTypeName(shape->getType())));
+  std::vector<ShapeEntry> shapes = shapes_;
+  shapes.push_back({shape, makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+  check({this, &shapes, nullptr, nullptr});
+  shapes_ = std::move(shapes);
+  detail::ShapeOwners<S>::add(*shape, this);
+  changed();
+}
+
+template <Scalar S>
+bool GeometryT<S>::remove(const Shape* shape) {
+  const auto it = std::find_if(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; });
+  if (it == shapes_.end()) return false;
+  detail::ShapeOwners<S>::remove(*it->shape, this);
+  shapes_.erase(it);
+  changed();
+  return true;
+}
+
+template <Scalar S>
+auto GeometryT<S>::getShape() const -> Shape* {
+  return shapes_.empty() ? nullptr : shapes_.front().shape.get();
+}
+
+template <Scalar S>
+void GeometryT<S>::setTransform(const Transform& X_W) {
+  checkWorldPlacement(X_W);
+  frame_->setMatrix(X_W);
+  changed();
+}
+
+template <Scalar S>
+void GeometryT<S>::setPosition(const Vec3& p_W) {
+  Transform X_W = getTransform();
+  X_W.translation() = p_W;
+  checkWorldPlacement(X_W);
+  frame_->setTranslate(p_W);
+  changed();
+}
+
+template <Scalar S>
+void GeometryT<S>::setLocalTransform(const Transform& X) {
+  if (X.matrix().allFinite() && isRotation<S>(X.linear())) check({this, nullptr, nullptr, &X});
+  frame_->setLocalMatrix(X);
+  changed();
+}
+
+template <Scalar S>
+auto GeometryT<S>::getMaterial() const -> MaterialT<S>* {
+  return material_ ? material_.get() : defaultMaterial();
+}
+
+template <Scalar S>
+void GeometryT<S>::setMaterial(ref_ptr<MaterialT<S>> material) {
+  if (!material) throw error("material must not be null", "nullptr");
+  check({this, nullptr, material.get(), nullptr});
+  material_ = std::move(material);
+  changed();
+}
+
+template <Scalar S>
+auto GeometryT<S>::defaultMaterial() -> MaterialT<S>* {
+  static const ref_ptr<MaterialT<S>> material = new MaterialT<S>("default");
+  return material.get();
+}
+
+template <Scalar S>
+void GeometryT<S>::setEnableCollisions(GeometryT* other, bool enable) {
+  if (!other) throw error("cannot pair collisions with a null geometry", "nullptr");
+  if (other == this) throw error("cannot pair collisions with itself", name_);
+  setPartner(other, enable);
+  other->setPartner(this, enable);
+}
+
+template <Scalar S>
+bool GeometryT<S>::getEnableCollisions(const GeometryT* other) const {
+  return std::none_of(disabledWith_.begin(), disabledWith_.end(),
+                      [&](const observer_ptr<GeometryT>& g) { return g.get() == other; });
+}
+
+template <Scalar S>
+void GeometryT<S>::addGroup(std::uint32_t id) {
+  if (!hasGroup(id)) groupIds_.push_back(id);
+}
+
+template <Scalar S>
+void GeometryT<S>::addGroup(const std::string& name) {
+  if (!hasGroup(name)) groupNames_.push_back(name);
+}
+
+template <Scalar S>
+bool GeometryT<S>::hasGroup(std::uint32_t id) const {
+  return std::find(groupIds_.begin(), groupIds_.end(), id) != groupIds_.end();
+}
+
+template <Scalar S>
+bool GeometryT<S>::hasGroup(const std::string& name) const {
+  return std::find(groupNames_.begin(), groupNames_.end(), name) != groupNames_.end();
+}
+
+template <Scalar S>
+void GeometryT<S>::setSurfaceVelocity(const Vec3& v) {
+  if (!v.allFinite()) throw error("surface velocity must be finite (m/s)", v);
+  surfaceVelocity_ = v;
+}
+
+template <Scalar S>
+auto GeometryT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  const Transform X_WG = getTransform();
+  BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::infinity()),
+                      Vec3::Constant(-std::numeric_limits<S>::infinity())};
+  for (const ShapeEntry& e : shapes_) {
+    const Transform X_WS = X_WG * e.transform;
+    const BoundingBoxT<S> local = e.shape->getBoundingBox();
+    const Mat3T<S> R = X_WS.linear();
+    if (!(local.min.allFinite() && local.max.allFinite())) {
+      box.min = box.min.cwiseMin(Vec3::Constant(-std::numeric_limits<S>::infinity()));
+      box.max = box.max.cwiseMax(Vec3::Constant(std::numeric_limits<S>::infinity()));
+      continue;
+    }
+    const Vec3 center = X_WS * local.center();
+    const Vec3 reach = R.cwiseAbs() * local.halfExtents();
+    box.min = box.min.cwiseMin(center - reach);
+    box.max = box.max.cwiseMax(center + reach);
+  }
+  return box;
+}
+
+template <Scalar S>
+GeometryT<S>::~GeometryT() {
+  for (ShapeEntry& e : shapes_) detail::ShapeOwners<S>::remove(*e.shape, this);
+}
+
+template <Scalar S>
+std::uint64_t GeometryT<S>::nextId() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
+
+template <Scalar S>
+void GeometryT<S>::check(const detail::GeometryEdit<S>& edit) const {
+  if (owner_) owner_->checkGeometryChange(edit);
+}
+
+template <Scalar S>
+void GeometryT<S>::checkWorldPlacement(const Transform& X_W) const {
+  if (!(owner_ && X_W.matrix().allFinite() && isRotation<S>(X_W.linear()))) return;
+  const Transform X_local = frame_->getParent()->getMatrix().inverse() * X_W;
+  check({this, nullptr, nullptr, &X_local});
+}
+
+template <Scalar S>
+void GeometryT<S>::changed() {
+  if (owner_) owner_->geometryChanged();
+}
+
+template <Scalar S>
+void GeometryT<S>::setPartner(GeometryT* other, bool enable) {
+  std::erase_if(disabledWith_, [&](const observer_ptr<GeometryT>& g) { return !g.valid() || g.get() == other; });
+  if (!enable) disabledWith_.emplace_back(other);
+}
+
+SPOOK_COMPILED_ONCE(class, GeometryT)
 
 namespace detail {
 /// A change to one geometry, described before it is made: its shapes,
@@ -4233,49 +4616,6 @@ class ContactSinkT {
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
 // --- end spook/collide/contact_sink.hpp ---
-// --- begin spook/core/implementation.hpp ---
-#ifndef SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
-#define SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
-
-// Compiled once instead of header-only (the stb convention). A program that
-// defines SPOOK_EXTERN_TEMPLATES everywhere declares spook's heavy templates
-// extern (the simulation step with its solvers and contact code, the
-// colliders of the full shape list) for float and double; one translation
-// unit that defines SPOOK_IMPLEMENTATION before including <spook/spook.hpp>
-// compiles them. A build may instead split that work over several
-// translation units, each defining one or more of the parts below (CMake's
-// spook::spook_compiled does, so that its parts compile in parallel).
-#if defined(SPOOK_IMPLEMENTATION) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) &&   \
-    !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT) && !defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE) && \
-    !defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
-#define SPOOK_IMPLEMENT_SIMULATION_DOUBLE
-#define SPOOK_IMPLEMENT_SIMULATION_FLOAT
-#define SPOOK_IMPLEMENT_COLLIDERS_DOUBLE
-#define SPOOK_IMPLEMENT_COLLIDERS_FLOAT
-#endif
-
-// What this translation unit sees. Header-only (no SPOOK_EXTERN_TEMPLATES):
-// every definition. Otherwise only the declarations of the step and the
-// solver, unless it implements a simulation part:
-//   SPOOK_DEFINES_STEP    the simulation step's template definitions
-//                         (sim/simulation_step.hpp), for either scalar;
-//   SPOOK_DEFINES_SOLVER  the double-only, non-template solver code
-//                         (solver/solver_impl.hpp), compiled with the double
-//                         simulation and inline (SPOOK_SOLVER_INLINE) when
-//                         header-only.
-#if !defined(SPOOK_EXTERN_TEMPLATES) || defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) || \
-    defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
-#define SPOOK_DEFINES_STEP
-#endif
-#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
-#define SPOOK_DEFINES_SOLVER
-#define SPOOK_SOLVER_INLINE
-#elif !defined(SPOOK_EXTERN_TEMPLATES)
-#define SPOOK_DEFINES_SOLVER
-#define SPOOK_SOLVER_INLINE inline
-#endif
-#endif  // SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
-// --- end spook/core/implementation.hpp ---
 // --- begin spook/dynamics/rigid_body.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_DYNAMICS_RIGID_BODY_HPP
 #define SPOOK_SINGLE_SPOOK_DYNAMICS_RIGID_BODY_HPP
@@ -4417,12 +4757,14 @@ class MassPropertiesT {
   /// Which properties the body recomputes from its geometries (shape
   /// volumes times material density) when geometries, shapes or materials
   /// change. Setting a property by hand takes it out of the mask.
-  enum AutoGenerate : unsigned { MASS = 1u << 0, CM_OFFSET = 1u << 1, INERTIA = 1u << 2, ALL = MASS | CM_OFFSET | INERTIA };
+  enum AutoGenerate : unsigned {
+    MASS = 1u << 0,
+    CM_OFFSET = 1u << 1,
+    INERTIA = 1u << 2,
+    ALL = MASS | CM_OFFSET | INERTIA
+  };
   [[nodiscard]] unsigned getAutoGenerateMask() const { return autoGenerate_; }
-  void setAutoGenerateMask(unsigned mask) {
-    if (mask & ~unsigned(ALL)) throw error("auto-generate mask has unknown bits", mask);
-    autoGenerate_ = mask;
-  }
+  void setAutoGenerateMask(unsigned mask);
 
   /// Mass in kg; must be finite and > 0 (a body of infinite mass is STATIC).
   /// Stops the mass from being generated from the geometries. An inertia
@@ -4431,17 +4773,7 @@ class MassPropertiesT {
   /// before or after adding the geometries gives the same tensor; a tensor
   /// set by hand (setInertiaTensor) stays as set.
   [[nodiscard]] S getMass() const { return mass_; }
-  void setMass(S mass) {
-    if (!(std::isfinite(mass) && mass > S(0))) throw error("mass must be finite and > 0 kg", mass);
-    if (inertiaGenerated_ && (autoGenerate_ & INERTIA)) {
-      const Mat3 scaled = inertia_.matrix() * (mass / mass_);
-      if (SPDMat3T<S>::defect(scaled))
-        throw error("mass would scale the inertia generated from the geometries out of range (kg)", mass);
-      inertia_ = SPDMat3T<S>(scaled);
-    }
-    mass_ = mass;
-    autoGenerate_ &= ~unsigned(MASS);
-  }
+  void setMass(S mass);
 
   /// Inertia tensor about the center of mass, in the CM frame (kg·m²).
   [[nodiscard]] const Mat3& getInertiaTensor() const { return inertia_.matrix(); }
@@ -4467,24 +4799,17 @@ class MassPropertiesT {
       inertiaGenerated_ = false;
     }
   }
-  void setInertiaTensor(const SPDMat3T<S>& inertia) {
-    inertia_ = inertia;
-    autoGenerate_ &= ~unsigned(INERTIA);
-    inertiaGenerated_ = false;
-  }
+  void setInertiaTensor(const SPDMat3T<S>& inertia);
 
   /// Added-mass coefficients c along the CM frame axes (dimensionless, ≥ 0):
   /// the inertial mass along axis i is m(1 + cᵢ), e.g. water carried by a
   /// hull. They resist applied and constraint forces; gravity still
   /// accelerates the body at g (the gravitational mass is m).
   [[nodiscard]] const Vec3& getMassCoefficients() const { return massCoefficients_; }
-  void setMassCoefficients(const Vec3& c) {
-    if (!(c.allFinite() && c.minCoeff() >= S(0))) throw error("mass coefficients must be finite and >= 0", c);
-    massCoefficients_ = c;
-  }
+  void setMassCoefficients(const Vec3& c);
 
   /// Inertial mass along the CM frame axes, m(1 + c) (kg).
-  [[nodiscard]] Vec3 getEffectiveMass() const { return mass_ * (Vec3::Ones() + massCoefficients_); }
+  [[nodiscard]] Vec3 getEffectiveMass() const;
 
   explicit MassPropertiesT(const std::string* ownerName = nullptr) : ownerName_(ownerName) {}
 
@@ -4492,13 +4817,7 @@ class MassPropertiesT {
   template <Scalar>
   friend class RigidBodyT;
   // Generated values, set by the body without touching the mask.
-  void generate(S mass, const SPDMat3T<S>& inertia) {
-    if (autoGenerate_ & MASS) mass_ = mass;
-    if (autoGenerate_ & INERTIA) {
-      inertia_ = inertia;
-      inertiaGenerated_ = true;
-    }
-  }
+  void generate(S mass, const SPDMat3T<S>& inertia);
 
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
@@ -4512,6 +4831,54 @@ class MassPropertiesT {
   unsigned autoGenerate_ = ALL;
   bool inertiaGenerated_ = false;  // inertia_ came from the geometries (generate)
 };
+
+template <Scalar S>
+void MassPropertiesT<S>::setAutoGenerateMask(unsigned mask) {
+  if (mask & ~unsigned(ALL)) throw error("auto-generate mask has unknown bits", mask);
+  autoGenerate_ = mask;
+}
+
+template <Scalar S>
+void MassPropertiesT<S>::setMass(S mass) {
+  if (!(std::isfinite(mass) && mass > S(0))) throw error("mass must be finite and > 0 kg", mass);
+  if (inertiaGenerated_ && (autoGenerate_ & INERTIA)) {
+    const Mat3 scaled = inertia_.matrix() * (mass / mass_);
+    if (SPDMat3T<S>::defect(scaled))
+      throw error("mass would scale the inertia generated from the geometries out of range (kg)", mass);
+    inertia_ = SPDMat3T<S>(scaled);
+  }
+  mass_ = mass;
+  autoGenerate_ &= ~unsigned(MASS);
+}
+
+template <Scalar S>
+void MassPropertiesT<S>::setInertiaTensor(const SPDMat3T<S>& inertia) {
+  inertia_ = inertia;
+  autoGenerate_ &= ~unsigned(INERTIA);
+  inertiaGenerated_ = false;
+}
+
+template <Scalar S>
+void MassPropertiesT<S>::setMassCoefficients(const Vec3& c) {
+  if (!(c.allFinite() && c.minCoeff() >= S(0))) throw error("mass coefficients must be finite and >= 0", c);
+  massCoefficients_ = c;
+}
+
+template <Scalar S>
+auto MassPropertiesT<S>::getEffectiveMass() const -> Vec3 {
+  return mass_ * (Vec3::Ones() + massCoefficients_);
+}
+
+template <Scalar S>
+void MassPropertiesT<S>::generate(S mass, const SPDMat3T<S>& inertia) {
+  if (autoGenerate_ & MASS) mass_ = mass;
+  if (autoGenerate_ & INERTIA) {
+    inertia_ = inertia;
+    inertiaGenerated_ = true;
+  }
+}
+
+SPOOK_COMPILED_ONCE(class, MassPropertiesT)
 
 using MassProperties = MassPropertiesT<double>;
 namespace f32 {
@@ -4567,25 +4934,9 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   void setEnable(bool enable) { enable_ = enable; }
 
   [[nodiscard]] MotionControl getMotionControl() const { return motionControl_; }
-  [[nodiscard]] static const char* toString(MotionControl control) {
-    switch (control) {
-      case DYNAMICS:
-        return "DYNAMICS";
-      case STATIC:
-        return "STATIC";
-      case KINEMATICS:
-        return "KINEMATICS";
-    }
-    return "unknown";
-  }
+  [[nodiscard]] static const char* toString(MotionControl control);
   /// Switching to STATIC zeroes the velocities and cancels a moveTo.
-  void setMotionControl(MotionControl control) {
-    if (control != DYNAMICS && control != STATIC && control != KINEMATICS)
-      throw error("unknown motion control", static_cast<int>(control));
-    motionControl_ = control;
-    if (control != KINEMATICS) target_.reset();
-    if (control == STATIC) velocity_ = angularVelocity_ = Vec3::Zero();
-  }
+  void setMotionControl(MotionControl control);
 
   /// Mass, inertia and added-mass coefficients. Changing them keeps the
   /// center-of-mass offset.
@@ -4601,32 +4952,20 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
 
   /// Model frame origin, world coordinates (m).
   [[nodiscard]] Vec3 getPosition() const { return frame_->getTranslate(); }
-  void setPosition(const Vec3& p_W) {
-    requireFinite(p_W, "position must be finite (m)");
-    frame_->setTranslate(p_W);
-  }
+  void setPosition(const Vec3& p_W);
   void setPosition(S x, S y, S z) { setPosition(Vec3(x, y, z)); }
 
   /// Model frame orientation in world coordinates (normalized on set).
   [[nodiscard]] Quat getRotation() const { return frame_->getRotate(); }
-  void setRotation(const Quat& q_W) {
-    requireRotation(q_W);
-    frame_->setRotate(q_W);
-  }
+  void setRotation(const Quat& q_W);
 
   /// Model frame to world transform.
   [[nodiscard]] Transform getTransform() const { return frame_->getMatrix(); }
-  void setTransform(const Transform& X_W) {
-    requireTransform(X_W, "transform");
-    frame_->setMatrix(X_W);
-  }
+  void setTransform(const Transform& X_W);
 
   /// Center of mass in world coordinates (m). Setting it moves the body.
   [[nodiscard]] Vec3 getCmPosition() const { return cmFrame_->getTranslate(); }
-  void setCmPosition(const Vec3& p_W) {
-    requireFinite(p_W, "center of mass position must be finite (m)");
-    setPosition(p_W - getRotation() * getCmLocalTranslate());
-  }
+  void setCmPosition(const Vec3& p_W);
   /// Orientation of the center-of-mass frame in world coordinates.
   [[nodiscard]] Quat getCmRotation() const { return cmFrame_->getRotate(); }
   /// Center-of-mass frame to world transform.
@@ -4635,57 +4974,32 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   /// Center-of-mass offset in the model frame (m); the model frame stays put.
   [[nodiscard]] const Vec3& getCmLocalTranslate() const { return cmFrame_->getLocalTranslate(); }
   /// Stops the offset from being generated from the geometries.
-  void setCmLocalTranslate(const Vec3& offset) {
-    requireFinite(offset, "center of mass offset must be finite (m)");
-    cmFrame_->setLocalTranslate(offset);
-    massProperties_.setAutoGenerateMask(massProperties_.getAutoGenerateMask() & ~unsigned(MassPropertiesT<S>::CM_OFFSET));
-  }
+  void setCmLocalTranslate(const Vec3& offset);
 
   // --- Velocities (world coordinates, of the center of mass) ----------------
 
   /// Linear velocity of the center of mass (m/s). Zero for a static body.
   [[nodiscard]] const Vec3& getVelocity() const { return velocity_; }
-  void setVelocity(const Vec3& v_W) {
-    requireFinite(v_W, "velocity must be finite (m/s)");
-    if (motionControl_ != STATIC) velocity_ = v_W;
-  }
+  void setVelocity(const Vec3& v_W);
   void setVelocity(S x, S y, S z) { setVelocity(Vec3(x, y, z)); }
 
   /// Angular velocity (rad/s). Zero for a static body.
   [[nodiscard]] const Vec3& getAngularVelocity() const { return angularVelocity_; }
-  void setAngularVelocity(const Vec3& w_W) {
-    requireFinite(w_W, "angular velocity must be finite (rad/s)");
-    if (motionControl_ != STATIC) angularVelocity_ = w_W;
-  }
+  void setAngularVelocity(const Vec3& w_W);
   void setAngularVelocity(S x, S y, S z) { setAngularVelocity(Vec3(x, y, z)); }
 
   /// Velocity of the body-fixed point currently at p_W (m/s).
-  [[nodiscard]] Vec3 getVelocityAtPoint(const Vec3& p_W) const {
-    return velocity_ + angularVelocity_.cross(p_W - getCmPosition());
-  }
+  [[nodiscard]] Vec3 getVelocityAtPoint(const Vec3& p_W) const;
 
   // --- Forces (world coordinates; cleared after each step) -----------------
 
   /// Adds a force through the center of mass (N).
-  void addForce(const Vec3& f_W) {
-    requireFinite(f_W, "force must be finite (N)");
-    force_ += f_W;
-  }
+  void addForce(const Vec3& f_W);
   void addForce(S x, S y, S z) { addForce(Vec3(x, y, z)); }
   /// Adds a force (N) acting at world point p_W (m): a force and a torque about the CM.
-  void addForceAtPosition(const Vec3& f_W, const Vec3& p_W) {
-    requireFinite(f_W, "force must be finite (N)");
-    requireFinite(p_W, "force position must be finite (m)");
-    const Vec3 torque = (p_W - getCmPosition()).cross(f_W);
-    requireFinite(torque, "torque of the force must be finite (N·m)");
-    force_ += f_W;
-    torque_ += torque;
-  }
+  void addForceAtPosition(const Vec3& f_W, const Vec3& p_W);
   /// Adds a torque about the center of mass (N·m).
-  void addTorque(const Vec3& t_W) {
-    requireFinite(t_W, "torque must be finite (N·m)");
-    torque_ += t_W;
-  }
+  void addTorque(const Vec3& t_W);
   void addTorque(S x, S y, S z) { addTorque(Vec3(x, y, z)); }
   /// Sum of the forces added since the last step (N).
   [[nodiscard]] const Vec3& getForce() const { return force_; }
@@ -4707,21 +5021,13 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   // --- Derived quantities ----------------------------------------------------
 
   /// Inertia tensor about the CM in world coordinates (kg·m²).
-  [[nodiscard]] Mat3 getInertiaWorld() const {
-    const Mat3 R = getCmRotation().toRotationMatrix();
-    return R * massProperties_.getInertiaTensor() * R.transpose();
-  }
+  [[nodiscard]] Mat3 getInertiaWorld() const;
   /// Linear momentum with the inertial (added) mass, world (kg·m/s).
-  [[nodiscard]] Vec3 getLinearMomentum() const {
-    const Mat3 R = getCmRotation().toRotationMatrix();
-    return R * massProperties_.getEffectiveMass().cwiseProduct(R.transpose() * velocity_);
-  }
+  [[nodiscard]] Vec3 getLinearMomentum() const;
   /// Angular momentum about the CM, world (kg·m²/s).
   [[nodiscard]] Vec3 getAngularMomentum() const { return getInertiaWorld() * angularVelocity_; }
   /// Kinetic energy ½vᵀMv + ½ωᵀIω with the inertial mass (J).
-  [[nodiscard]] S getKineticEnergy() const {
-    return S(0.5) * (velocity_.dot(getLinearMomentum()) + angularVelocity_.dot(getAngularMomentum()));
-  }
+  [[nodiscard]] S getKineticEnergy() const;
 
   // --- Continuous collision detection ---------------------------------------
 
@@ -4738,14 +5044,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   /// model frame to `target` (world) after `duration` seconds, then stops it
   /// there. The velocities are re-aimed every step; the body lands exactly on
   /// the target at the step boundary nearest to `duration` (at least one step).
-  void moveTo(const Transform& target, S duration) {
-    if (motionControl_ != KINEMATICS) throw error("moveTo needs motion control KINEMATICS", toString(motionControl_));
-    if (!(std::isfinite(duration) && duration > S(0)))
-      throw error("moveTo duration must be finite and > 0 s", duration);
-    requireTransform(target, "moveTo target");
-    target_ = KinematicTarget{target, duration};
-    aimAtTarget(duration);
-  }
+  void moveTo(const Transform& target, S duration);
   /// True while a moveTo is under way.
   [[nodiscard]] bool isMovingToTarget() const { return target_.has_value(); }
 
@@ -4756,40 +5055,13 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   /// nothing, if the geometry is null, belongs to a body, stands on its own
   /// in a space, or would make mass properties that are not finite and
   /// valid (e.g. a box whose mass or inertia overflows).
-  void add(ref_ptr<Geometry> geometry) {
-    if (!geometry) throw error("cannot add a null Geometry", "nullptr");
-    if (geometry->getRigidBody() == this) throw error("Geometry already added to this body", geometry->getName());
-    if (geometry->getRigidBody()) throw error("Geometry already belongs to another body", geometry->getName());
-    if (Access::space(*geometry)) throw error("Geometry is in a space on its own; remove it first", geometry->getName());
-    std::vector<ref_ptr<Geometry>> geometries = geometries_;
-    geometries.push_back(geometry);
-    const auto update = planMassProperties(geometries);
-    geometry->getFrame()->setParent(frame_.get());
-    Access::body(*geometry) = this;
-    Access::owner(*geometry) = this;
-    geometries_ = std::move(geometries);
-    if (update) applyMassProperties(*update);
-  }
+  void add(ref_ptr<Geometry> geometry);
   /// Removes a geometry (it keeps its local transform, now a world one);
   /// false when it is not this body's.
-  bool remove(Geometry* geometry) {
-    const auto it = std::find_if(geometries_.begin(), geometries_.end(), [&](const auto& g) { return g == geometry; });
-    if (it == geometries_.end()) return false;
-    ref_ptr<Geometry> keep = *it;
-    geometries_.erase(it);
-    Access::body(*keep) = nullptr;
-    Access::owner(*keep) = nullptr;
-    keep->getFrame()->setParent(nullptr);
-    updateMassProperties();
-    return true;
-  }
+  bool remove(Geometry* geometry);
   [[nodiscard]] const std::vector<ref_ptr<Geometry>>& getGeometries() const { return geometries_; }
   /// The first geometry with this name, or nullptr.
-  [[nodiscard]] Geometry* getGeometry(const std::string& name) const {
-    for (const auto& g : geometries_)
-      if (g->getName() == name) return g.get();
-    return nullptr;
-  }
+  [[nodiscard]] Geometry* getGeometry(const std::string& name) const;
 
   /// Recomputes mass, center of mass and inertia from the geometries'
   /// shape volumes and material densities, for the properties still in the
@@ -4799,74 +5071,39 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   /// shape has volume. Throws, changing nothing, when the result would not
   /// be finite and valid (e.g. after a material's density was raised until
   /// the mass overflows).
-  void updateMassProperties() {
-    if (const auto update = planMassProperties(geometries_)) applyMassProperties(*update);
-  }
+  void updateMassProperties();
 
   // --- Attachments -----------------------------------------------------------
 
   /// Adds a named frame fixed in the body; its local transform is relative to
   /// the model frame. Throws if the name is taken or the frame already has a
   /// parent.
-  void addAttachment(ref_ptr<Frame> frame, const std::string& name) {
-    if (!frame) throw error("attachment frame must not be null", name);
-    if (getAttachment(name)) throw error("attachment name already used", name);
-    if (frame->getParent()) throw error("attachment frame already has a parent", name);
-    frame->setParent(frame_.get());
-    attachments_.emplace_back(name, std::move(frame));
-  }
+  void addAttachment(ref_ptr<Frame> frame, const std::string& name);
   /// The attachment called `name`, or nullptr.
-  [[nodiscard]] Frame* getAttachment(const std::string& name) const {
-    for (const auto& [key, frame] : attachments_)
-      if (key == name) return frame.get();
-    return nullptr;
-  }
+  [[nodiscard]] Frame* getAttachment(const std::string& name) const;
   /// Removes an attachment; returns false when there is none by that name.
-  bool removeAttachment(const std::string& name) {
-    for (auto it = attachments_.begin(); it != attachments_.end(); ++it)
-      if (it->first == name) {
-        it->second->setParent(nullptr);
-        attachments_.erase(it);
-        return true;
-      }
-    return false;
-  }
+  bool removeAttachment(const std::string& name);
 
  protected:
-  ~RigidBodyT() override {
-    for (auto& g : geometries_) {
-      Access::body(*g) = nullptr;
-      Access::owner(*g) = nullptr;
-      g->getFrame()->setParent(nullptr);
-    }
-  }
+  ~RigidBodyT() override;
 
  private:
   using Access = detail::GeometryAccess<S>;
-  void checkGeometryChange(const detail::GeometryEdit<S>& edit) const override {
-    static_cast<void>(planMassProperties(geometries_, edit));
-  }
+  void checkGeometryChange(const detail::GeometryEdit<S>& edit) const override;
   void geometryChanged() override { updateMassProperties(); }
 
   // Generated mass properties, validated and ready to store.
   struct MassUpdate {
-    S mass;                // kg
-    SPDMat3T<S> inertia;   // CM frame (kg·m²)
-    Vec3 center;           // generated center of mass, model frame (m)
+    S mass;               // kg
+    SPDMat3T<S> inertia;  // CM frame (kg·m²)
+    Vec3 center;          // generated center of mass, model frame (m)
   };
   // What updateMassProperties would store for `geometries` (with `edit`
   // applied); throws, naming the body or geometry and the value, when it
   // would not be finite and valid. Changes nothing.
   [[nodiscard]] std::optional<MassUpdate> planMassProperties(const std::vector<ref_ptr<Geometry>>& geometries,
                                                              const detail::GeometryEdit<S>& edit = {}) const;
-  void applyMassProperties(const MassUpdate& update) {
-    massProperties_.generate(update.mass, update.inertia);
-    if (massProperties_.getAutoGenerateMask() & MassPropertiesT<S>::CM_OFFSET) {
-      const Vec3 oldCm = getCmPosition();
-      cmFrame_->setLocalTranslate(update.center);
-      velocity_ += angularVelocity_.cross(getCmPosition() - oldCm);
-    }
-  }
+  void applyMassProperties(const MassUpdate& update);
 
   friend struct detail::BodyIntegrator<S>;
   friend struct detail::SimulationMembership;
@@ -4877,34 +5114,16 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   };
 
   // Velocities that reach the target in `time`.
-  void aimAtTarget(S time) {
-    const Vec3 cmTarget = target_->pose * getCmLocalTranslate();
-    velocity_ = (cmTarget - getCmPosition()) / time;
-    const Quat qTarget(target_->pose.linear());
-    angularVelocity_ = logRotation<S>(qTarget * getRotation().conjugate()) / time;
-  }
+  void aimAtTarget(S time);
 
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
     return detail::makeError("RigidBody", name_, what, value);
   }
-  void requireFinite(const Vec3& v, const char* what) const {
-    if (!v.allFinite()) throw error(what, v);
-  }
-  void requireRotation(const Quat& q) const {
-    if (!isRotationQuaternion<S>(q))
-      throw error("rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
-  }
-  void requireTransform(const Transform& X, const std::string& what) const {
-    requireFinite(Vec3(X.translation()), (what + " translation must be finite (m)").c_str());
-    if (!isRotation<S>(X.linear()))
-      throw error(what + " rotation must be orthonormal and right-handed", SPDMat3T<S>::flat(X.linear()));
-  }
-  Vec3 checkedDamping(const Vec3& d, const char* kind) const {
-    if (!(d.allFinite() && d.minCoeff() >= S(0)))
-      throw error(std::string(kind) + " velocity damping must be finite and >= 0 (1/s)", d);
-    return d;
-  }
+  void requireFinite(const Vec3& v, const char* what) const;
+  void requireRotation(const Quat& q) const;
+  void requireTransform(const Transform& X, const std::string& what) const;
+  Vec3 checkedDamping(const Vec3& d, const char* kind) const;
 
   std::string name_;
   bool enable_ = true;
@@ -4927,6 +5146,249 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   const void* simulation_ = nullptr;
   std::size_t simulationIndex_ = 0;
 };
+
+template <Scalar S>
+RigidBodyT<S>::~RigidBodyT() {
+  for (auto& g : geometries_) {
+    Access::body(*g) = nullptr;
+    Access::owner(*g) = nullptr;
+    g->getFrame()->setParent(nullptr);
+  }
+}
+
+template <Scalar S>
+const char* RigidBodyT<S>::toString(MotionControl control) {
+  switch (control) {
+    case DYNAMICS:
+      return "DYNAMICS";
+    case STATIC:
+      return "STATIC";
+    case KINEMATICS:
+      return "KINEMATICS";
+  }
+  return "unknown";
+}
+
+template <Scalar S>
+void RigidBodyT<S>::setMotionControl(MotionControl control) {
+  if (control != DYNAMICS && control != STATIC && control != KINEMATICS)
+    throw error("unknown motion control", static_cast<int>(control));
+  motionControl_ = control;
+  if (control != KINEMATICS) target_.reset();
+  if (control == STATIC) velocity_ = angularVelocity_ = Vec3::Zero();
+}
+
+template <Scalar S>
+void RigidBodyT<S>::setPosition(const Vec3& p_W) {
+  requireFinite(p_W, "position must be finite (m)");
+  frame_->setTranslate(p_W);
+}
+
+template <Scalar S>
+void RigidBodyT<S>::setRotation(const Quat& q_W) {
+  requireRotation(q_W);
+  frame_->setRotate(q_W);
+}
+
+template <Scalar S>
+void RigidBodyT<S>::setTransform(const Transform& X_W) {
+  requireTransform(X_W, "transform");
+  frame_->setMatrix(X_W);
+}
+
+template <Scalar S>
+void RigidBodyT<S>::setCmPosition(const Vec3& p_W) {
+  requireFinite(p_W, "center of mass position must be finite (m)");
+  setPosition(p_W - getRotation() * getCmLocalTranslate());
+}
+
+template <Scalar S>
+void RigidBodyT<S>::setCmLocalTranslate(const Vec3& offset) {
+  requireFinite(offset, "center of mass offset must be finite (m)");
+  cmFrame_->setLocalTranslate(offset);
+  massProperties_.setAutoGenerateMask(massProperties_.getAutoGenerateMask() & ~unsigned(MassPropertiesT<S>::CM_OFFSET));
+}
+
+template <Scalar S>
+void RigidBodyT<S>::setVelocity(const Vec3& v_W) {
+  requireFinite(v_W, "velocity must be finite (m/s)");
+  if (motionControl_ != STATIC) velocity_ = v_W;
+}
+
+template <Scalar S>
+void RigidBodyT<S>::setAngularVelocity(const Vec3& w_W) {
+  requireFinite(w_W, "angular velocity must be finite (rad/s)");
+  if (motionControl_ != STATIC) angularVelocity_ = w_W;
+}
+
+template <Scalar S>
+auto RigidBodyT<S>::getVelocityAtPoint(const Vec3& p_W) const -> Vec3 {
+  return velocity_ + angularVelocity_.cross(p_W - getCmPosition());
+}
+
+template <Scalar S>
+void RigidBodyT<S>::addForce(const Vec3& f_W) {
+  requireFinite(f_W, "force must be finite (N)");
+  force_ += f_W;
+}
+
+template <Scalar S>
+void RigidBodyT<S>::addForceAtPosition(const Vec3& f_W, const Vec3& p_W) {
+  requireFinite(f_W, "force must be finite (N)");
+  requireFinite(p_W, "force position must be finite (m)");
+  const Vec3 torque = (p_W - getCmPosition()).cross(f_W);
+  requireFinite(torque, "torque of the force must be finite (N·m)");
+  force_ += f_W;
+  torque_ += torque;
+}
+
+template <Scalar S>
+void RigidBodyT<S>::addTorque(const Vec3& t_W) {
+  requireFinite(t_W, "torque must be finite (N·m)");
+  torque_ += t_W;
+}
+
+template <Scalar S>
+auto RigidBodyT<S>::getInertiaWorld() const -> Mat3 {
+  const Mat3 R = getCmRotation().toRotationMatrix();
+  return R * massProperties_.getInertiaTensor() * R.transpose();
+}
+
+template <Scalar S>
+auto RigidBodyT<S>::getLinearMomentum() const -> Vec3 {
+  const Mat3 R = getCmRotation().toRotationMatrix();
+  return R * massProperties_.getEffectiveMass().cwiseProduct(R.transpose() * velocity_);
+}
+
+template <Scalar S>
+S RigidBodyT<S>::getKineticEnergy() const {
+  return S(0.5) * (velocity_.dot(getLinearMomentum()) + angularVelocity_.dot(getAngularMomentum()));
+}
+
+template <Scalar S>
+void RigidBodyT<S>::moveTo(const Transform& target, S duration) {
+  if (motionControl_ != KINEMATICS) throw error("moveTo needs motion control KINEMATICS", toString(motionControl_));
+  if (!(std::isfinite(duration) && duration > S(0))) throw error("moveTo duration must be finite and > 0 s", duration);
+  requireTransform(target, "moveTo target");
+  target_ = KinematicTarget{target, duration};
+  aimAtTarget(duration);
+}
+
+template <Scalar S>
+void RigidBodyT<S>::add(ref_ptr<Geometry> geometry) {
+  if (!geometry) throw error("cannot add a null Geometry", "nullptr");
+  if (geometry->getRigidBody() == this) throw error("Geometry already added to this body", geometry->getName());
+  if (geometry->getRigidBody()) throw error("Geometry already belongs to another body", geometry->getName());
+  if (Access::space(*geometry)) throw error("Geometry is in a space on its own; remove it first", geometry->getName());
+  std::vector<ref_ptr<Geometry>> geometries = geometries_;
+  geometries.push_back(geometry);
+  const auto update = planMassProperties(geometries);
+  geometry->getFrame()->setParent(frame_.get());
+  Access::body(*geometry) = this;
+  Access::owner(*geometry) = this;
+  geometries_ = std::move(geometries);
+  if (update) applyMassProperties(*update);
+}
+
+template <Scalar S>
+bool RigidBodyT<S>::remove(Geometry* geometry) {
+  const auto it = std::find_if(geometries_.begin(), geometries_.end(), [&](const auto& g) { return g == geometry; });
+  if (it == geometries_.end()) return false;
+  ref_ptr<Geometry> keep = *it;
+  geometries_.erase(it);
+  Access::body(*keep) = nullptr;
+  Access::owner(*keep) = nullptr;
+  keep->getFrame()->setParent(nullptr);
+  updateMassProperties();
+  return true;
+}
+
+template <Scalar S>
+auto RigidBodyT<S>::getGeometry(const std::string& name) const -> Geometry* {
+  for (const auto& g : geometries_)
+    if (g->getName() == name) return g.get();
+  return nullptr;
+}
+
+template <Scalar S>
+void RigidBodyT<S>::updateMassProperties() {
+  if (const auto update = planMassProperties(geometries_)) applyMassProperties(*update);
+}
+
+template <Scalar S>
+void RigidBodyT<S>::addAttachment(ref_ptr<Frame> frame, const std::string& name) {
+  if (!frame) throw error("attachment frame must not be null", name);
+  if (getAttachment(name)) throw error("attachment name already used", name);
+  if (frame->getParent()) throw error("attachment frame already has a parent", name);
+  frame->setParent(frame_.get());
+  attachments_.emplace_back(name, std::move(frame));
+}
+
+template <Scalar S>
+auto RigidBodyT<S>::getAttachment(const std::string& name) const -> Frame* {
+  for (const auto& [key, frame] : attachments_)
+    if (key == name) return frame.get();
+  return nullptr;
+}
+
+template <Scalar S>
+bool RigidBodyT<S>::removeAttachment(const std::string& name) {
+  for (auto it = attachments_.begin(); it != attachments_.end(); ++it)
+    if (it->first == name) {
+      it->second->setParent(nullptr);
+      attachments_.erase(it);
+      return true;
+    }
+  return false;
+}
+
+template <Scalar S>
+void RigidBodyT<S>::checkGeometryChange(const detail::GeometryEdit<S>& edit) const {
+  static_cast<void>(planMassProperties(geometries_, edit));
+}
+
+template <Scalar S>
+void RigidBodyT<S>::applyMassProperties(const MassUpdate& update) {
+  massProperties_.generate(update.mass, update.inertia);
+  if (massProperties_.getAutoGenerateMask() & MassPropertiesT<S>::CM_OFFSET) {
+    const Vec3 oldCm = getCmPosition();
+    cmFrame_->setLocalTranslate(update.center);
+    velocity_ += angularVelocity_.cross(getCmPosition() - oldCm);
+  }
+}
+
+template <Scalar S>
+void RigidBodyT<S>::aimAtTarget(S time) {
+  const Vec3 cmTarget = target_->pose * getCmLocalTranslate();
+  velocity_ = (cmTarget - getCmPosition()) / time;
+  const Quat qTarget(target_->pose.linear());
+  angularVelocity_ = logRotation<S>(qTarget * getRotation().conjugate()) / time;
+}
+
+template <Scalar S>
+void RigidBodyT<S>::requireFinite(const Vec3& v, const char* what) const {
+  if (!v.allFinite()) throw error(what, v);
+}
+
+template <Scalar S>
+void RigidBodyT<S>::requireRotation(const Quat& q) const {
+  if (!isRotationQuaternion<S>(q))
+    throw error("rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
+}
+
+template <Scalar S>
+void RigidBodyT<S>::requireTransform(const Transform& X, const std::string& what) const {
+  requireFinite(Vec3(X.translation()), (what + " translation must be finite (m)").c_str());
+  if (!isRotation<S>(X.linear()))
+    throw error(what + " rotation must be orthonormal and right-handed", SPDMat3T<S>::flat(X.linear()));
+}
+
+template <Scalar S>
+auto RigidBodyT<S>::checkedDamping(const Vec3& d, const char* kind) const -> Vec3 {
+  if (!(d.allFinite() && d.minCoeff() >= S(0)))
+    throw error(std::string(kind) + " velocity damping must be finite and >= 0 (1/s)", d);
+  return d;
+}
 
 // Generating mass from geometries is defined outside the class (not inline):
 // with SPOOK_EXTERN_TEMPLATES it is compiled once, with the simulation
@@ -4953,18 +5415,7 @@ auto RigidBodyT<S>::planMassProperties(const std::vector<ref_ptr<Geometry>>& geo
   return MassUpdate{mass, SPDMat3T<S>(inertiaCm), generated->center};
 }
 
-#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
-extern template class RigidBodyT<double>;
-#endif
-#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
-extern template class RigidBodyT<float>;
-#endif
-#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
-template class RigidBodyT<double>;
-#endif
-#if defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
-template class RigidBodyT<float>;
-#endif
+SPOOK_COMPILED_ONCE(class, RigidBodyT)
 
 using RigidBody = RigidBodyT<double>;
 using RigidBodyRef = ref_ptr<RigidBody>;
@@ -5030,10 +5481,11 @@ class SpaceT : public Referenced {
   template <template <class> class... Shapes>
   explicit SpaceT(ShapeList<Shapes...>)
       : collide_(&detail::collideThrough<S, ShapeList<Shapes...>>), contains_(&ShapeList<Shapes...>::contains) {
-    static_assert(std::is_same_v<ShapeList<Shapes...>, AllShapes> ||
-                      requires { sizeof(detail::CollidersDefined<ShapeList<Shapes...>>); },
-                  "a Space or Simulation for a ShapeList of its own compiles that list's colliders: with "
-                  "SPOOK_EXTERN_TEMPLATES, include <spook/collide/collide_through.hpp>");
+    static_assert(
+        std::is_same_v<ShapeList<Shapes...>, AllShapes> ||
+            requires { sizeof(detail::CollidersDefined<ShapeList<Shapes...>>); },
+        "a Space or Simulation for a ShapeList of its own compiles that list's colliders: with "
+        "SPOOK_EXTERN_TEMPLATES, include <spook/collide/collide_through.hpp>");
   }
 
   // --- Content ---------------------------------------------------------------
@@ -5041,29 +5493,14 @@ class SpaceT : public Referenced {
   /// Adds a geometry on its own (static, or of a body not in a simulation).
   /// Throws if it is null, already here, or holds a shape type outside this
   /// space's shape list.
-  void add(ref_ptr<Geometry> geometry) {
-    if (!geometry) throw error("cannot add a null Geometry", "nullptr");
-    if (Access::space(*geometry) == this) throw detail::makeError("Geometry", geometry->getName(), "already in this space");
-    if (Access::space(*geometry)) throw detail::makeError("Geometry", geometry->getName(), "already in another space");
-    requireSupported(*geometry);
-    Access::space(*geometry) = this;
-    geometries_.push_back(std::move(geometry));
-  }
+  void add(ref_ptr<Geometry> geometry);
   /// Removes a geometry added with add(); false when it is not here.
-  bool remove(Geometry* geometry) {
-    const auto it = std::find_if(geometries_.begin(), geometries_.end(), [&](const auto& g) { return g == geometry; });
-    if (it == geometries_.end()) return false;
-    Access::space(**it) = nullptr;
-    geometries_.erase(it);
-    return true;
-  }
+  bool remove(Geometry* geometry);
   [[nodiscard]] const std::vector<ref_ptr<Geometry>>& getGeometries() const { return geometries_; }
 
   /// Throws unless every shape of `geometry` (composite children included)
   /// has a type in this space's shape list.
-  void requireSupported(const Geometry& geometry) const {
-    for (const auto& entry : geometry.getShapes()) requireSupported(geometry, *entry.shape);
-  }
+  void requireSupported(const Geometry& geometry) const;
 
   // --- Filters ---------------------------------------------------------------
 
@@ -5086,22 +5523,7 @@ class SpaceT : public Referenced {
   /// True when the pair passes every filter: both enabled and colliding,
   /// not on one body, not both static, not disabled pairwise or by groups,
   /// not vetoed by the body pair filter.
-  [[nodiscard]] bool canCollide(const Geometry& a, const Geometry& b) const {
-    if (&a == &b || !a.getEnable() || !b.getEnable() || !a.getEnableCollisions() || !b.getEnableCollisions())
-      return false;
-    const Body* bodyA = a.getRigidBody();
-    const Body* bodyB = b.getRigidBody();
-    if (bodyA && bodyA == bodyB) return false;
-    if (isFixed(bodyA) && isFixed(bodyB)) return false;
-    if (!a.getEnableCollisions(&b)) return false;
-    for (const auto id : a.getGroupIds())
-      for (const auto other : b.getGroupIds())
-        if (disabledIds_.count(std::minmax(id, other))) return false;
-    for (const auto& name : a.getGroupNames())
-      for (const auto& other : b.getGroupNames())
-        if (disabledNames_.count(std::minmax(name, other))) return false;
-    return !(bodyA && bodyB && bodyPairFilter_ && bodyPairFilter_(*bodyA, *bodyB));
-  }
+  [[nodiscard]] bool canCollide(const Geometry& a, const Geometry& b) const;
 
   // --- Contact reduction -----------------------------------------------------
 
@@ -5109,10 +5531,7 @@ class SpaceT : public Referenced {
   void setContactReductionMode(ContactReductionMode mode) { reductionMode_ = mode; }
   /// Bin resolution 1, 2 (default, fast) or 3 (higher fidelity).
   [[nodiscard]] int getContactBinResolution() const { return binResolution_; }
-  void setContactBinResolution(int resolution) {
-    if (resolution < 1 || resolution > 3) throw error("contact bin resolution must be 1, 2 or 3", resolution);
-    binResolution_ = resolution;
-  }
+  void setContactBinResolution(int resolution);
 
   /// Overrides the reduction of some geometry pairs: the rule returns the
   /// mode and bin resolution for a pair, or nothing for the space's. A
@@ -5126,19 +5545,7 @@ class SpaceT : public Referenced {
   /// Finds the contacts between this space's geometries and those of
   /// `bodies` (a simulation's), reduces them and marks impacts; pairs that
   /// touched before and no longer do are listed in getSeparations().
-  void update(const std::vector<ref_ptr<Body>>& bodies = {}) {
-    gather(bodies);
-    boxes_.clear();
-    // Grown by the touching gap, within which the colliders count shapes as
-    // touching: a box resting on another, its settling depth lost to float
-    // round-off, stays a pair.
-    for (const Geometry* g : active_) boxes_.push_back(g->getBoundingBox().grownBy(S(detail::kTouchingGap)));
-    contacts_.clear();
-    numDroppedContactPoints_ = 0;
-    broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(*active_[i], *active_[j]); });
-    reduce();
-    trackEvents();
-  }
+  void update(const std::vector<ref_ptr<Body>>& bodies = {});
 
   /// Geometry pairs in contact after the last update().
   [[nodiscard]] std::vector<Contact>& getGeometryContacts() { return contacts_; }
@@ -5151,25 +5558,16 @@ class SpaceT : public Referenced {
   [[nodiscard]] std::size_t getNumDroppedContactPoints() const { return numDroppedContactPoints_; }
 
  protected:
-  ~SpaceT() override {
-    for (auto& g : geometries_) Access::space(*g) = nullptr;
-  }
+  ~SpaceT() override;
 
  private:
   using Access = detail::GeometryAccess<S>;
   using CollideFunction = bool (*)(const ShapeT<S>&, const TransformT<S>&, const ShapeT<S>&, const TransformT<S>&,
                                    ContactSinkT<S>&);
 
-  static bool isFixed(const Body* body) { return !body || body->getMotionControl() == Body::STATIC; }
+  static bool isFixed(const Body* body);
 
-  void requireSupported(const Geometry& geometry, const ShapeT<S>& shape) const {
-    if (!contains_(shape.getType()))
-      throw detail::makeError("Geometry", geometry.getName(), "shape type not in this space's shape list",
-                              std::string(shapeTypeName(shape.getType())));
-    if (shape.getType() == ShapeType::COMPOSITE)
-      for (const auto& child : static_cast<const CompositeT<S>&>(shape).getChildren())
-        requireSupported(geometry, *child.shape);
-  }
+  void requireSupported(const Geometry& geometry, const ShapeT<S>& shape) const;
 
   template <class Key>
   static void setPair(std::set<std::pair<Key, Key>>& disabled, const Key& a, const Key& b, bool enable) {
@@ -5182,71 +5580,16 @@ class SpaceT : public Referenced {
   /// The geometries to collide. A shape may have joined a geometry (or a
   /// composite) after the geometry was checked on add: it is checked here,
   /// before anything changes, rather than silently colliding with nothing.
-  void gather(const std::vector<ref_ptr<Body>>& bodies) {
-    active_.clear();
-    for (const auto& g : geometries_) active_.push_back(g.get());
-    for (const auto& body : bodies)
-      if (body->getEnable())
-        for (const auto& g : body->getGeometries()) active_.push_back(g.get());
-    for (const Geometry* g : active_) requireSupported(*g);
-  }
+  void gather(const std::vector<ref_ptr<Body>>& bodies);
 
-  void narrowPhase(Geometry& a, Geometry& b) {
-    if (!canCollide(a, b)) return;
-    // One order per pair, so that normals and event keys are stable.
-    Geometry* first = &a;
-    Geometry* second = &b;
-    if (first->getId() > second->getId()) std::swap(first, second);
-    Contact contact(first, second);
-    ContactSinkT<S> sink(contact.points());
-    const TransformT<S> X_W1 = first->getTransform(), X_W2 = second->getTransform();
-    for (const auto& e1 : first->getShapes())
-      for (const auto& e2 : second->getShapes())
-        collide_(*e1.shape, X_W1 * e1.transform, *e2.shape, X_W2 * e2.transform, sink);
-    numDroppedContactPoints_ += sink.getNumDropped();
-    if (!contact.points().empty()) contacts_.push_back(std::move(contact));
-  }
+  void narrowPhase(Geometry& a, Geometry& b);
 
   // Each pair reduces as its rule says (the space's mode and resolution
   // unless a reduction rule overrides them); REDUCE_ALL pairs pool their
   // points per body pair, at the resolution of the pair's last contact.
-  void reduce() {
-    std::vector<ContactPointT<S>*> points;
-    std::map<std::pair<const void*, const void*>, std::pair<int, std::vector<ContactPointT<S>*>>> byBodies;
-    for (auto& contact : contacts_) {
-      ContactReductionMode mode = reductionMode_;
-      int resolution = binResolution_;
-      if (reductionRule_)
-        if (const auto rule = reductionRule_(*contact.geometry(0), *contact.geometry(1))) std::tie(mode, resolution) = *rule;
-      if (mode == ContactReductionMode::REDUCE_NONE) continue;
-      if (mode == ContactReductionMode::REDUCE_GEOMETRY) {
-        points.clear();
-        for (auto& p : contact.points()) points.push_back(&p);
-        detail::reduceContacts<S>(points, resolution);
-        continue;
-      }
-      // Per body pair: a static geometry counts as its own "body".
-      const void* k1 = contact.rigidBody(0) ? static_cast<const void*>(contact.rigidBody(0)) : contact.geometry(0);
-      const void* k2 = contact.rigidBody(1) ? static_cast<const void*>(contact.rigidBody(1)) : contact.geometry(1);
-      auto& [pairResolution, list] = byBodies[std::minmax(k1, k2)];
-      pairResolution = resolution;
-      for (auto& p : contact.points()) list.push_back(&p);
-    }
-    for (auto& [key, entry] : byBodies) detail::reduceContacts<S>(entry.second, entry.first);
-  }
+  void reduce();
 
-  void trackEvents() {
-    std::map<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>> now;
-    for (auto& contact : contacts_) {
-      const auto key = std::make_pair(contact.geometry(0)->getId(), contact.geometry(1)->getId());
-      contact.setImpact(!touching_.count(key));
-      now.emplace(key, GeometryPairT<S>{contact.geometry(0), contact.geometry(1)});
-    }
-    separations_.clear();
-    for (const auto& [key, pair] : touching_)
-      if (!now.count(key)) separations_.push_back(pair);
-    touching_ = std::move(now);
-  }
+  void trackEvents();
 
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
@@ -5271,6 +5614,160 @@ class SpaceT : public Referenced {
   std::vector<GeometryPairT<S>> separations_;
   std::size_t numDroppedContactPoints_ = 0;
 };
+
+template <Scalar S>
+void SpaceT<S>::add(ref_ptr<Geometry> geometry) {
+  if (!geometry) throw error("cannot add a null Geometry", "nullptr");
+  if (Access::space(*geometry) == this)
+    throw detail::makeError("Geometry", geometry->getName(), "already in this space");
+  if (Access::space(*geometry)) throw detail::makeError("Geometry", geometry->getName(), "already in another space");
+  requireSupported(*geometry);
+  Access::space(*geometry) = this;
+  geometries_.push_back(std::move(geometry));
+}
+
+template <Scalar S>
+bool SpaceT<S>::remove(Geometry* geometry) {
+  const auto it = std::find_if(geometries_.begin(), geometries_.end(), [&](const auto& g) { return g == geometry; });
+  if (it == geometries_.end()) return false;
+  Access::space(**it) = nullptr;
+  geometries_.erase(it);
+  return true;
+}
+
+template <Scalar S>
+void SpaceT<S>::requireSupported(const Geometry& geometry) const {
+  for (const auto& entry : geometry.getShapes()) requireSupported(geometry, *entry.shape);
+}
+
+template <Scalar S>
+bool SpaceT<S>::canCollide(const Geometry& a, const Geometry& b) const {
+  if (&a == &b || !a.getEnable() || !b.getEnable() || !a.getEnableCollisions() || !b.getEnableCollisions())
+    return false;
+  const Body* bodyA = a.getRigidBody();
+  const Body* bodyB = b.getRigidBody();
+  if (bodyA && bodyA == bodyB) return false;
+  if (isFixed(bodyA) && isFixed(bodyB)) return false;
+  if (!a.getEnableCollisions(&b)) return false;
+  for (const auto id : a.getGroupIds())
+    for (const auto other : b.getGroupIds())
+      if (disabledIds_.count(std::minmax(id, other))) return false;
+  for (const auto& name : a.getGroupNames())
+    for (const auto& other : b.getGroupNames())
+      if (disabledNames_.count(std::minmax(name, other))) return false;
+  return !(bodyA && bodyB && bodyPairFilter_ && bodyPairFilter_(*bodyA, *bodyB));
+}
+
+template <Scalar S>
+void SpaceT<S>::setContactBinResolution(int resolution) {
+  if (resolution < 1 || resolution > 3) throw error("contact bin resolution must be 1, 2 or 3", resolution);
+  binResolution_ = resolution;
+}
+
+template <Scalar S>
+void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies) {
+  gather(bodies);
+  boxes_.clear();
+  // Grown by the touching gap, within which the colliders count shapes as
+  // touching: a box resting on another, its settling depth lost to float
+  // round-off, stays a pair.
+  for (const Geometry* g : active_) boxes_.push_back(g->getBoundingBox().grownBy(S(detail::kTouchingGap)));
+  contacts_.clear();
+  numDroppedContactPoints_ = 0;
+  broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(*active_[i], *active_[j]); });
+  reduce();
+  trackEvents();
+}
+
+template <Scalar S>
+SpaceT<S>::~SpaceT() {
+  for (auto& g : geometries_) Access::space(*g) = nullptr;
+}
+
+template <Scalar S>
+bool SpaceT<S>::isFixed(const Body* body) {
+  return !body || body->getMotionControl() == Body::STATIC;
+}
+
+template <Scalar S>
+void SpaceT<S>::requireSupported(const Geometry& geometry, const ShapeT<S>& shape) const {
+  if (!contains_(shape.getType()))
+    throw detail::makeError("Geometry", geometry.getName(), "shape type not in this space's shape list",
+                            std::string(shapeTypeName(shape.getType())));
+  if (shape.getType() == ShapeType::COMPOSITE)
+    for (const auto& child : static_cast<const CompositeT<S>&>(shape).getChildren())
+      requireSupported(geometry, *child.shape);
+}
+
+template <Scalar S>
+void SpaceT<S>::gather(const std::vector<ref_ptr<Body>>& bodies) {
+  active_.clear();
+  for (const auto& g : geometries_) active_.push_back(g.get());
+  for (const auto& body : bodies)
+    if (body->getEnable())
+      for (const auto& g : body->getGeometries()) active_.push_back(g.get());
+  for (const Geometry* g : active_) requireSupported(*g);
+}
+
+template <Scalar S>
+void SpaceT<S>::narrowPhase(Geometry& a, Geometry& b) {
+  if (!canCollide(a, b)) return;
+  // One order per pair, so that normals and event keys are stable.
+  Geometry* first = &a;
+  Geometry* second = &b;
+  if (first->getId() > second->getId()) std::swap(first, second);
+  Contact contact(first, second);
+  ContactSinkT<S> sink(contact.points());
+  const TransformT<S> X_W1 = first->getTransform(), X_W2 = second->getTransform();
+  for (const auto& e1 : first->getShapes())
+    for (const auto& e2 : second->getShapes())
+      collide_(*e1.shape, X_W1 * e1.transform, *e2.shape, X_W2 * e2.transform, sink);
+  numDroppedContactPoints_ += sink.getNumDropped();
+  if (!contact.points().empty()) contacts_.push_back(std::move(contact));
+}
+
+template <Scalar S>
+void SpaceT<S>::reduce() {
+  std::vector<ContactPointT<S>*> points;
+  std::map<std::pair<const void*, const void*>, std::pair<int, std::vector<ContactPointT<S>*>>> byBodies;
+  for (auto& contact : contacts_) {
+    ContactReductionMode mode = reductionMode_;
+    int resolution = binResolution_;
+    if (reductionRule_)
+      if (const auto rule = reductionRule_(*contact.geometry(0), *contact.geometry(1)))
+        std::tie(mode, resolution) = *rule;
+    if (mode == ContactReductionMode::REDUCE_NONE) continue;
+    if (mode == ContactReductionMode::REDUCE_GEOMETRY) {
+      points.clear();
+      for (auto& p : contact.points()) points.push_back(&p);
+      detail::reduceContacts<S>(points, resolution);
+      continue;
+    }
+    // Per body pair: a static geometry counts as its own "body".
+    const void* k1 = contact.rigidBody(0) ? static_cast<const void*>(contact.rigidBody(0)) : contact.geometry(0);
+    const void* k2 = contact.rigidBody(1) ? static_cast<const void*>(contact.rigidBody(1)) : contact.geometry(1);
+    auto& [pairResolution, list] = byBodies[std::minmax(k1, k2)];
+    pairResolution = resolution;
+    for (auto& p : contact.points()) list.push_back(&p);
+  }
+  for (auto& [key, entry] : byBodies) detail::reduceContacts<S>(entry.second, entry.first);
+}
+
+template <Scalar S>
+void SpaceT<S>::trackEvents() {
+  std::map<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>> now;
+  for (auto& contact : contacts_) {
+    const auto key = std::make_pair(contact.geometry(0)->getId(), contact.geometry(1)->getId());
+    contact.setImpact(!touching_.count(key));
+    now.emplace(key, GeometryPairT<S>{contact.geometry(0), contact.geometry(1)});
+  }
+  separations_.clear();
+  for (const auto& [key, pair] : touching_)
+    if (!now.count(key)) separations_.push_back(pair);
+  touching_ = std::move(now);
+}
+
+SPOOK_COMPILED_ONCE(class, SpaceT)
 
 using Space = SpaceT<double>;
 using SpaceRef = ref_ptr<Space>;
@@ -13367,18 +13864,7 @@ class FrictionModelT : public Referenced {
   /// How the contact rows using this model are solved under the hybrid
   /// policy; default SolveType::SPLIT (normals direct, friction iterative).
   [[nodiscard]] SolveType getSolveType() const { return solveType_; }
-  void setSolveType(SolveType solveType) {
-    switch (solveType) {
-      case SolveType::DIRECT:
-      case SolveType::ITERATIVE:
-      case SolveType::DIRECT_AND_ITERATIVE:
-      case SolveType::SPLIT:
-        solveType_ = solveType;
-        return;
-    }
-    throw error("solve type must be DIRECT (1), ITERATIVE (2), DIRECT_AND_ITERATIVE (3) or SPLIT (4)",
-                static_cast<int>(solveType));
-  }
+  void setSolveType(SolveType solveType);
 
   /// Whether a primary friction direction is set; when not, the first
   /// tangent follows the sliding direction.
@@ -13387,17 +13873,8 @@ class FrictionModelT : public Referenced {
   [[nodiscard]] const Vec3T<S>& getPrimaryDirection() const { return primaryDirection_; }
   /// Sets the primary friction direction (world, any finite nonzero length;
   /// stored normalized).
-  void setPrimaryDirection(const Vec3T<S>& direction) {
-    const S length = direction.norm();
-    if (!(direction.allFinite() && std::isfinite(length) && length > S(0)))
-      throw error("primary direction must be finite and nonzero", direction);
-    primaryDirection_ = direction / length;
-    hasPrimaryDirection_ = true;
-  }
-  void clearPrimaryDirection() {
-    primaryDirection_ = Vec3T<S>::Zero();
-    hasPrimaryDirection_ = false;
-  }
+  void setPrimaryDirection(const Vec3T<S>& direction);
+  void clearPrimaryDirection();
 
   [[nodiscard]] const std::string& getName() const { return name_; }
 
@@ -13417,6 +13894,37 @@ class FrictionModelT : public Referenced {
   bool hasPrimaryDirection_ = false;
   Vec3T<S> primaryDirection_ = Vec3T<S>::Zero();
 };
+
+template <Scalar S>
+void FrictionModelT<S>::setSolveType(SolveType solveType) {
+  switch (solveType) {
+    case SolveType::DIRECT:
+    case SolveType::ITERATIVE:
+    case SolveType::DIRECT_AND_ITERATIVE:
+    case SolveType::SPLIT:
+      solveType_ = solveType;
+      return;
+  }
+  throw error("solve type must be DIRECT (1), ITERATIVE (2), DIRECT_AND_ITERATIVE (3) or SPLIT (4)",
+              static_cast<int>(solveType));
+}
+
+template <Scalar S>
+void FrictionModelT<S>::setPrimaryDirection(const Vec3T<S>& direction) {
+  const S length = direction.norm();
+  if (!(direction.allFinite() && std::isfinite(length) && length > S(0)))
+    throw error("primary direction must be finite and nonzero", direction);
+  primaryDirection_ = direction / length;
+  hasPrimaryDirection_ = true;
+}
+
+template <Scalar S>
+void FrictionModelT<S>::clearPrimaryDirection() {
+  primaryDirection_ = Vec3T<S>::Zero();
+  hasPrimaryDirection_ = false;
+}
+
+SPOOK_COMPILED_ONCE(class, FrictionModelT)
 
 /// Fixed friction bounds ±μN per tangent, decoupled from the solved normal
 /// force: linear, so the direct solver can take it whole.
@@ -13547,86 +14055,42 @@ class ContactMaterialT : public Referenced {
 
   /// Friction coefficient (dimensionless), finite and >= 0, along one or both
   /// tangent directions.
-  void setFrictionCoefficient(S coefficient, FrictionDirection direction = BOTH_PRIMARY_AND_SECONDARY) {
-    checkDirection(direction);
-    if (!(std::isfinite(coefficient) && coefficient >= S(0)))
-      throw error("friction coefficient must be finite and >= 0", coefficient);
-    setPerDirection(params_.friction, coefficient, direction);
-  }
-  [[nodiscard]] S getFrictionCoefficient(FrictionDirection direction = PRIMARY_DIRECTION) const {
-    return params_.friction[direction == SECONDARY_DIRECTION ? 1 : 0];
-  }
+  void setFrictionCoefficient(S coefficient, FrictionDirection direction = BOTH_PRIMARY_AND_SECONDARY);
+  [[nodiscard]] S getFrictionCoefficient(FrictionDirection direction = PRIMARY_DIRECTION) const;
 
   /// Surface viscosity, the compliance of the friction rows (m/(N·s)),
   /// finite and >= 0, along one or both tangent directions.
-  void setSurfaceViscosity(S viscosity, FrictionDirection direction = BOTH_PRIMARY_AND_SECONDARY) {
-    checkDirection(direction);
-    if (!(std::isfinite(viscosity) && viscosity >= S(0)))
-      throw error("surface viscosity must be finite and >= 0 m/(N*s)", viscosity);
-    setPerDirection(params_.surfaceViscosity, viscosity, direction);
-  }
-  [[nodiscard]] S getSurfaceViscosity(FrictionDirection direction = PRIMARY_DIRECTION) const {
-    return params_.surfaceViscosity[direction == SECONDARY_DIRECTION ? 1 : 0];
-  }
+  void setSurfaceViscosity(S viscosity, FrictionDirection direction = BOTH_PRIMARY_AND_SECONDARY);
+  [[nodiscard]] S getSurfaceViscosity(FrictionDirection direction = PRIMARY_DIRECTION) const;
 
   /// Restitution in [0, 1]: 1 keeps the normal speed in an impact, 0 stops it.
-  void setRestitution(S restitution) {
-    if (!(restitution >= S(0) && restitution <= S(1))) throw error("restitution must be in [0, 1]", restitution);
-    params_.restitution = restitution;
-  }
+  void setRestitution(S restitution);
   [[nodiscard]] S getRestitution() const { return params_.restitution; }
 
   /// Young's modulus (Pa), finite and > 0: the contact stiffness.
-  void setYoungsModulus(S modulus) {
-    if (!(std::isfinite(modulus) && modulus > S(0))) throw error("Young's modulus must be finite and > 0 Pa", modulus);
-    params_.youngsModulus = modulus;
-  }
+  void setYoungsModulus(S modulus);
   [[nodiscard]] S getYoungsModulus() const { return params_.youngsModulus; }
 
   /// SPOOK damping of the normal row (s), finite and >= 0.
-  void setDamping(S damping) {
-    if (!(std::isfinite(damping) && damping >= S(0))) throw error("damping must be finite and >= 0 s", damping);
-    params_.damping = damping;
-  }
+  void setDamping(S damping);
   [[nodiscard]] S getDamping() const { return params_.damping; }
 
   /// Adhesion: the normal row may pull with up to `force` (N, >= 0) and holds
   /// the contact at `overlap` (m, >= 0).
-  void setAdhesion(S force, S overlap) {
-    if (!(std::isfinite(force) && force >= S(0))) throw error("adhesive force must be finite and >= 0 N", force);
-    if (!(std::isfinite(overlap) && overlap >= S(0)))
-      throw error("adhesive overlap must be finite and >= 0 m", overlap);
-    params_.adhesiveForce = force;
-    params_.adhesiveOverlap = overlap;
-  }
+  void setAdhesion(S force, S overlap);
   [[nodiscard]] S getAdhesiveForce() const { return params_.adhesiveForce; }
   [[nodiscard]] S getAdhesiveOverlap() const { return params_.adhesiveOverlap; }
 
   /// The friction model of the pair; nullptr restores the default
   /// (iterative projected cone, solved SPLIT).
-  void setFrictionModel(ref_ptr<FrictionModelT<S>> model) {
-    frictionModel_ = std::move(model);
-    params_.frictionModel = frictionModel_.get();
-  }
+  void setFrictionModel(ref_ptr<FrictionModelT<S>> model);
   [[nodiscard]] FrictionModelT<S>* getFrictionModel() const { return frictionModel_.get(); }
 
-  void setContactReductionMode(ContactReductionMode mode) {
-    switch (mode) {
-      case ContactReductionMode::REDUCE_NONE:
-      case ContactReductionMode::REDUCE_GEOMETRY:
-      case ContactReductionMode::REDUCE_ALL:
-        params_.reductionMode = mode;
-        return;
-    }
-    throw error("contact reduction mode must be REDUCE_NONE, REDUCE_GEOMETRY or REDUCE_ALL", static_cast<int>(mode));
-  }
+  void setContactReductionMode(ContactReductionMode mode);
   [[nodiscard]] ContactReductionMode getContactReductionMode() const { return params_.reductionMode; }
 
   /// Bins per dimension of contact reduction: 1, 2 (default) or 3.
-  void setContactReductionBinResolution(int resolution) {
-    if (resolution < 1 || resolution > 3) throw error("bin resolution must be 1, 2 or 3", resolution);
-    params_.binResolution = resolution;
-  }
+  void setContactReductionBinResolution(int resolution);
   [[nodiscard]] int getContactReductionBinResolution() const { return params_.binResolution; }
 
   /// The values the solver uses for this pair (explicitMaterial = true).
@@ -13638,59 +14102,149 @@ class ContactMaterialT : public Referenced {
   /// series), damping the larger bulk damping, surface viscosity the sum of
   /// the two (compliances in series); no adhesion, the default friction
   /// model, REDUCE_GEOMETRY at resolution 2, explicitMaterial = false.
-  [[nodiscard]] static ContactParametersT<S> implicitParameters(const MaterialT<S>& a, const MaterialT<S>& b) {
-    const auto* bulkA = a.getBulkMaterial();
-    const auto* bulkB = b.getBulkMaterial();
-    const auto* surfaceA = a.getSurfaceMaterial();
-    const auto* surfaceB = b.getSurfaceMaterial();
-    const S friction = std::sqrt(surfaceA->getRoughness() * surfaceB->getRoughness());
-    const S surfaceViscosity = surfaceA->getViscosity() + surfaceB->getViscosity();
-    const S youngsA = bulkA->getYoungsModulus(), youngsB = bulkB->getYoungsModulus();
-    ContactParametersT<S> p;
-    p.friction[0] = p.friction[1] = friction;
-    p.surfaceViscosity[0] = p.surfaceViscosity[1] = surfaceViscosity;
-    p.restitution = std::sqrt((S(1) - bulkA->getViscosity()) * (S(1) - bulkB->getViscosity()));
-    p.youngsModulus = youngsA * youngsB / (youngsA + youngsB);
-    p.damping = std::max(bulkA->getDamping(), bulkB->getDamping());
-    p.adhesiveForce = S(0);
-    p.adhesiveOverlap = S(0);
-    p.frictionModel = nullptr;
-    p.reductionMode = ContactReductionMode::REDUCE_GEOMETRY;
-    p.binResolution = 2;
-    p.explicitMaterial = false;
-    return p;
-  }
+  [[nodiscard]] static ContactParametersT<S> implicitParameters(const MaterialT<S>& a, const MaterialT<S>& b);
 
  protected:
   ~ContactMaterialT() override = default;
 
  private:
-  static ref_ptr<MaterialT<S>> checked(ref_ptr<MaterialT<S>>& m1, const ref_ptr<MaterialT<S>>& m2) {
-    if (!m1 || !m2)
-      throw detail::makeError("ContactMaterial", detail::materialPairName<S>(m1.get(), m2.get()),
-                              "both materials must be non-null", "nullptr");
-    return std::move(m1);
-  }
+  static ref_ptr<MaterialT<S>> checked(ref_ptr<MaterialT<S>>& m1, const ref_ptr<MaterialT<S>>& m2);
   template <class T>
   [[nodiscard]] Error error(const char* what, const T& value) const {
     return detail::makeError("ContactMaterial", detail::materialPairName<S>(material1_.get(), material2_.get()), what,
                              value);
   }
-  void checkDirection(FrictionDirection direction) const {
-    if (direction != PRIMARY_DIRECTION && direction != SECONDARY_DIRECTION && direction != BOTH_PRIMARY_AND_SECONDARY)
-      throw error("friction direction must be PRIMARY_DIRECTION, SECONDARY_DIRECTION or BOTH_PRIMARY_AND_SECONDARY",
-                  static_cast<int>(direction));
-  }
-  static void setPerDirection(S (&values)[2], S value, FrictionDirection direction) {
-    if (direction != SECONDARY_DIRECTION) values[0] = value;
-    if (direction != PRIMARY_DIRECTION) values[1] = value;
-  }
+  void checkDirection(FrictionDirection direction) const;
+  static void setPerDirection(S (&values)[2], S value, FrictionDirection direction);
 
   ref_ptr<MaterialT<S>> material1_;
   ref_ptr<MaterialT<S>> material2_;
   ref_ptr<FrictionModelT<S>> frictionModel_;
   ContactParametersT<S> params_;
 };
+
+template <Scalar S>
+void ContactMaterialT<S>::setFrictionCoefficient(S coefficient, FrictionDirection direction) {
+  checkDirection(direction);
+  if (!(std::isfinite(coefficient) && coefficient >= S(0)))
+    throw error("friction coefficient must be finite and >= 0", coefficient);
+  setPerDirection(params_.friction, coefficient, direction);
+}
+
+template <Scalar S>
+S ContactMaterialT<S>::getFrictionCoefficient(FrictionDirection direction) const {
+  return params_.friction[direction == SECONDARY_DIRECTION ? 1 : 0];
+}
+
+template <Scalar S>
+void ContactMaterialT<S>::setSurfaceViscosity(S viscosity, FrictionDirection direction) {
+  checkDirection(direction);
+  if (!(std::isfinite(viscosity) && viscosity >= S(0)))
+    throw error("surface viscosity must be finite and >= 0 m/(N*s)", viscosity);
+  setPerDirection(params_.surfaceViscosity, viscosity, direction);
+}
+
+template <Scalar S>
+S ContactMaterialT<S>::getSurfaceViscosity(FrictionDirection direction) const {
+  return params_.surfaceViscosity[direction == SECONDARY_DIRECTION ? 1 : 0];
+}
+
+template <Scalar S>
+void ContactMaterialT<S>::setRestitution(S restitution) {
+  if (!(restitution >= S(0) && restitution <= S(1))) throw error("restitution must be in [0, 1]", restitution);
+  params_.restitution = restitution;
+}
+
+template <Scalar S>
+void ContactMaterialT<S>::setYoungsModulus(S modulus) {
+  if (!(std::isfinite(modulus) && modulus > S(0))) throw error("Young's modulus must be finite and > 0 Pa", modulus);
+  params_.youngsModulus = modulus;
+}
+
+template <Scalar S>
+void ContactMaterialT<S>::setDamping(S damping) {
+  if (!(std::isfinite(damping) && damping >= S(0))) throw error("damping must be finite and >= 0 s", damping);
+  params_.damping = damping;
+}
+
+template <Scalar S>
+void ContactMaterialT<S>::setAdhesion(S force, S overlap) {
+  if (!(std::isfinite(force) && force >= S(0))) throw error("adhesive force must be finite and >= 0 N", force);
+  if (!(std::isfinite(overlap) && overlap >= S(0))) throw error("adhesive overlap must be finite and >= 0 m", overlap);
+  params_.adhesiveForce = force;
+  params_.adhesiveOverlap = overlap;
+}
+
+template <Scalar S>
+void ContactMaterialT<S>::setFrictionModel(ref_ptr<FrictionModelT<S>> model) {
+  frictionModel_ = std::move(model);
+  params_.frictionModel = frictionModel_.get();
+}
+
+template <Scalar S>
+void ContactMaterialT<S>::setContactReductionMode(ContactReductionMode mode) {
+  switch (mode) {
+    case ContactReductionMode::REDUCE_NONE:
+    case ContactReductionMode::REDUCE_GEOMETRY:
+    case ContactReductionMode::REDUCE_ALL:
+      params_.reductionMode = mode;
+      return;
+  }
+  throw error("contact reduction mode must be REDUCE_NONE, REDUCE_GEOMETRY or REDUCE_ALL", static_cast<int>(mode));
+}
+
+template <Scalar S>
+void ContactMaterialT<S>::setContactReductionBinResolution(int resolution) {
+  if (resolution < 1 || resolution > 3) throw error("bin resolution must be 1, 2 or 3", resolution);
+  params_.binResolution = resolution;
+}
+
+template <Scalar S>
+auto ContactMaterialT<S>::implicitParameters(const MaterialT<S>& a, const MaterialT<S>& b) -> ContactParametersT<S> {
+  const auto* bulkA = a.getBulkMaterial();
+  const auto* bulkB = b.getBulkMaterial();
+  const auto* surfaceA = a.getSurfaceMaterial();
+  const auto* surfaceB = b.getSurfaceMaterial();
+  const S friction = std::sqrt(surfaceA->getRoughness() * surfaceB->getRoughness());
+  const S surfaceViscosity = surfaceA->getViscosity() + surfaceB->getViscosity();
+  const S youngsA = bulkA->getYoungsModulus(), youngsB = bulkB->getYoungsModulus();
+  ContactParametersT<S> p;
+  p.friction[0] = p.friction[1] = friction;
+  p.surfaceViscosity[0] = p.surfaceViscosity[1] = surfaceViscosity;
+  p.restitution = std::sqrt((S(1) - bulkA->getViscosity()) * (S(1) - bulkB->getViscosity()));
+  p.youngsModulus = youngsA * youngsB / (youngsA + youngsB);
+  p.damping = std::max(bulkA->getDamping(), bulkB->getDamping());
+  p.adhesiveForce = S(0);
+  p.adhesiveOverlap = S(0);
+  p.frictionModel = nullptr;
+  p.reductionMode = ContactReductionMode::REDUCE_GEOMETRY;
+  p.binResolution = 2;
+  p.explicitMaterial = false;
+  return p;
+}
+
+template <Scalar S>
+auto ContactMaterialT<S>::checked(ref_ptr<MaterialT<S>>& m1, const ref_ptr<MaterialT<S>>& m2) -> ref_ptr<MaterialT<S>> {
+  if (!m1 || !m2)
+    throw detail::makeError("ContactMaterial", detail::materialPairName<S>(m1.get(), m2.get()),
+                            "both materials must be non-null", "nullptr");
+  return std::move(m1);
+}
+
+template <Scalar S>
+void ContactMaterialT<S>::checkDirection(FrictionDirection direction) const {
+  if (direction != PRIMARY_DIRECTION && direction != SECONDARY_DIRECTION && direction != BOTH_PRIMARY_AND_SECONDARY)
+    throw error("friction direction must be PRIMARY_DIRECTION, SECONDARY_DIRECTION or BOTH_PRIMARY_AND_SECONDARY",
+                static_cast<int>(direction));
+}
+
+template <Scalar S>
+void ContactMaterialT<S>::setPerDirection(S (&values)[2], S value, FrictionDirection direction) {
+  if (direction != SECONDARY_DIRECTION) values[0] = value;
+  if (direction != PRIMARY_DIRECTION) values[1] = value;
+}
+
+SPOOK_COMPILED_ONCE(class, ContactMaterialT)
 
 using ContactParameters = ContactParametersT<double>;
 using ContactMaterial = ContactMaterialT<double>;
@@ -13888,12 +14442,7 @@ class CollectionT : public Referenced {
   [[nodiscard]] const std::string& getName() const { return name_; }
   void setName(std::string name) { name_ = std::move(name); }
 
-  void add(ref_ptr<Body> body) {
-    if (!body) throw error("cannot add a null RigidBody", "nullptr");
-    if (contains(bodies_, body.get())) throw error("RigidBody already added", body->getName());
-    if (simulation_) simulation_->add(body);
-    bodies_.push_back(std::move(body));
-  }
+  void add(ref_ptr<Body> body);
   /// Adds a listener of class L, checked at compile time as by
   /// SimulationT::add (detail::requireStepCallbacks).
   template <detail::StepEventListenerClass<S> L>
@@ -13905,53 +14454,15 @@ class CollectionT : public Referenced {
   void add(L* listener) {
     add(ref_ptr<L>(listener));
   }
-  void add(ref_ptr<Listener> listener) {
-    if (!listener) throw error("cannot add a null StepEventListener", "nullptr");
-    if (contains(listeners_, listener.get())) throw error("StepEventListener already added", "listener");
-    if (simulation_) simulation_->add(listener);
-    listeners_.push_back(std::move(listener));
-  }
+  void add(ref_ptr<Listener> listener);
   /// Adds a constraint; in a simulation, its bodies must be there already.
-  void add(ref_ptr<ConstraintT<S>> constraint) {
-    if (!constraint) throw error("cannot add a null Constraint", "nullptr");
-    if (contains(constraints_, constraint.get())) throw error("Constraint already added", constraint->getName());
-    if (simulation_) simulation_->add(constraint);
-    constraints_.push_back(std::move(constraint));
-  }
-  void add(ref_ptr<CollectionT> child) {
-    if (!child) throw error("cannot add a null Collection", "nullptr");
-    if (contains(children_, child.get())) throw error("Collection already added", child->getName());
-    if (child.get() == this || child->containsCollection(this))
-      throw error("Collection would contain itself", child->getName());
-    if (simulation_) simulation_->addNested(*child);
-    children_.push_back(std::move(child));
-  }
+  void add(ref_ptr<ConstraintT<S>> constraint);
+  void add(ref_ptr<CollectionT> child);
 
-  void remove(Body* body) {
-    auto it = find(bodies_, body);
-    if (it == bodies_.end()) throw error("RigidBody was never added", body ? body->getName() : "nullptr");
-    if (simulation_ && simulation_->contains(body)) simulation_->remove(body);
-    bodies_.erase(it);
-  }
-  void remove(Listener* listener) {
-    auto it = find(listeners_, listener);
-    if (it == listeners_.end()) throw error("StepEventListener was never added", "listener");
-    if (simulation_ && simulation_->contains(listener)) simulation_->remove(listener);
-    listeners_.erase(it);
-  }
-  void remove(ConstraintT<S>* constraint) {
-    auto it = find(constraints_, constraint);
-    if (it == constraints_.end())
-      throw error("Constraint was never added", constraint ? constraint->getName() : "nullptr");
-    if (simulation_ && simulation_->contains(constraint)) simulation_->remove(constraint);
-    constraints_.erase(it);
-  }
-  void remove(CollectionT* child) {
-    auto it = find(children_, child);
-    if (it == children_.end()) throw error("Collection was never added", child ? child->getName() : "nullptr");
-    if (simulation_) simulation_->removeNested(*child);
-    children_.erase(it);
-  }
+  void remove(Body* body);
+  void remove(Listener* listener);
+  void remove(ConstraintT<S>* constraint);
+  void remove(CollectionT* child);
 
   [[nodiscard]] const std::vector<ref_ptr<Body>>& getRigidBodies() const { return bodies_; }
   [[nodiscard]] const std::vector<ref_ptr<Listener>>& getEventListeners() const { return listeners_; }
@@ -13959,10 +14470,7 @@ class CollectionT : public Referenced {
   [[nodiscard]] const std::vector<ref_ptr<CollectionT>>& getCollections() const { return children_; }
 
   /// True when `other` is this collection or nested anywhere inside it.
-  [[nodiscard]] bool containsCollection(const CollectionT* other) const {
-    if (other == this) return true;
-    return std::any_of(children_.begin(), children_.end(), [&](const auto& c) { return c->containsCollection(other); });
-  }
+  [[nodiscard]] bool containsCollection(const CollectionT* other) const;
 
   /// Calls f on every body of this collection and its nested collections.
   template <class F>
@@ -13977,11 +14485,7 @@ class CollectionT : public Referenced {
   /// Collects, once each, the bodies and assembly frames that move with this
   /// collection (a body may be reachable through several nested collections).
   virtual void gatherMovable(std::vector<Body*>& bodies, std::vector<FrameT<S>*>& frames,
-                             std::unordered_set<const void*>& seen) const {
-    for (const auto& b : bodies_)
-      if (seen.insert(b.get()).second) bodies.push_back(b.get());
-    for (const auto& c : children_) c->gatherMovable(bodies, frames, seen);
-  }
+                             std::unordered_set<const void*>& seen) const;
 
   [[nodiscard]] virtual const char* kind() const { return "Collection"; }
 
@@ -14009,6 +14513,89 @@ class CollectionT : public Referenced {
   std::vector<ref_ptr<CollectionT>> children_;
   detail::ContentSink<S>* simulation_ = nullptr;
 };
+
+template <Scalar S>
+void CollectionT<S>::add(ref_ptr<Body> body) {
+  if (!body) throw error("cannot add a null RigidBody", "nullptr");
+  if (contains(bodies_, body.get())) throw error("RigidBody already added", body->getName());
+  if (simulation_) simulation_->add(body);
+  bodies_.push_back(std::move(body));
+}
+
+template <Scalar S>
+void CollectionT<S>::add(ref_ptr<Listener> listener) {
+  if (!listener) throw error("cannot add a null StepEventListener", "nullptr");
+  if (contains(listeners_, listener.get())) throw error("StepEventListener already added", "listener");
+  if (simulation_) simulation_->add(listener);
+  listeners_.push_back(std::move(listener));
+}
+
+template <Scalar S>
+void CollectionT<S>::add(ref_ptr<ConstraintT<S>> constraint) {
+  if (!constraint) throw error("cannot add a null Constraint", "nullptr");
+  if (contains(constraints_, constraint.get())) throw error("Constraint already added", constraint->getName());
+  if (simulation_) simulation_->add(constraint);
+  constraints_.push_back(std::move(constraint));
+}
+
+template <Scalar S>
+void CollectionT<S>::add(ref_ptr<CollectionT> child) {
+  if (!child) throw error("cannot add a null Collection", "nullptr");
+  if (contains(children_, child.get())) throw error("Collection already added", child->getName());
+  if (child.get() == this || child->containsCollection(this))
+    throw error("Collection would contain itself", child->getName());
+  if (simulation_) simulation_->addNested(*child);
+  children_.push_back(std::move(child));
+}
+
+template <Scalar S>
+void CollectionT<S>::remove(Body* body) {
+  auto it = find(bodies_, body);
+  if (it == bodies_.end()) throw error("RigidBody was never added", body ? body->getName() : "nullptr");
+  if (simulation_ && simulation_->contains(body)) simulation_->remove(body);
+  bodies_.erase(it);
+}
+
+template <Scalar S>
+void CollectionT<S>::remove(Listener* listener) {
+  auto it = find(listeners_, listener);
+  if (it == listeners_.end()) throw error("StepEventListener was never added", "listener");
+  if (simulation_ && simulation_->contains(listener)) simulation_->remove(listener);
+  listeners_.erase(it);
+}
+
+template <Scalar S>
+void CollectionT<S>::remove(ConstraintT<S>* constraint) {
+  auto it = find(constraints_, constraint);
+  if (it == constraints_.end())
+    throw error("Constraint was never added", constraint ? constraint->getName() : "nullptr");
+  if (simulation_ && simulation_->contains(constraint)) simulation_->remove(constraint);
+  constraints_.erase(it);
+}
+
+template <Scalar S>
+void CollectionT<S>::remove(CollectionT* child) {
+  auto it = find(children_, child);
+  if (it == children_.end()) throw error("Collection was never added", child ? child->getName() : "nullptr");
+  if (simulation_) simulation_->removeNested(*child);
+  children_.erase(it);
+}
+
+template <Scalar S>
+bool CollectionT<S>::containsCollection(const CollectionT* other) const {
+  if (other == this) return true;
+  return std::any_of(children_.begin(), children_.end(), [&](const auto& c) { return c->containsCollection(other); });
+}
+
+template <Scalar S>
+void CollectionT<S>::gatherMovable(std::vector<Body*>& bodies, std::vector<FrameT<S>*>& frames,
+                                   std::unordered_set<const void*>& seen) const {
+  for (const auto& b : bodies_)
+    if (seen.insert(b.get()).second) bodies.push_back(b.get());
+  for (const auto& c : children_) c->gatherMovable(bodies, frames, seen);
+}
+
+SPOOK_COMPILED_ONCE(class, CollectionT)
 
 using Collection = CollectionT<double>;
 using CollectionRef = ref_ptr<Collection>;
@@ -16472,19 +17059,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// Step length h (s), finite and > 0. Set from a listener during a step,
   /// it takes effect from the next step (a step is taken whole with one h).
   [[nodiscard]] S getTimeStep() const { return timeStep_; }
-  void setTimeStep(S h) {
-    if (!(std::isfinite(h) && h > S(0))) throw error("time step must be finite and > 0 s", h);
-    if (stepping_) {
-      pendingTimeStep_ = h;
-      return;
-    }
-    timeBase_ = getTimeStamp();
-    stepsSinceBase_ = 0;
-    timeStep_ = h;
-  }
+  void setTimeStep(S h);
   /// Simulated time (s), computed as t₀ + n·h rather than summed, so that a
   /// float simulation does not drift by a step every few thousand steps.
-  [[nodiscard]] S getTimeStamp() const { return timeBase_ + S(stepsSinceBase_) * timeStep_; }
+  [[nodiscard]] S getTimeStamp() const;
 
   /// Takes one step:
   /// preCollide listeners → collision detection → contact events → pre
@@ -16497,30 +17075,19 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// or any t less than half a step ahead, takes no step. Throws before
   /// stepping when t is not finite, is in the past, or is more than 2³¹
   /// steps away (1e9 s at 60 Hz would take 6e10 steps).
-  void stepTo(S t) {
-    if (!std::isfinite(t)) throw error("stepTo time must be finite (s)", t);
-    const S now = getTimeStamp();
-    if (t < now) throw error("stepTo time must not be in the past (now " + std::to_string(now) + " s)", t);
-    while (stepsTo(t) > 0) stepForward();
-  }
+  void stepTo(S t);
 
   // --- Solver ----------------------------------------------------------------
 
   /// The solver policy that solves each island: HybridSolver by default
   /// (rows solved as their constraints ask), DirectSolver or IterativeSolver.
   [[nodiscard]] Solver* getSolver() const { return solver_.get(); }
-  void setSolver(ref_ptr<Solver> solver) {
-    if (!solver) throw error("solver must not be null", "nullptr");
-    solver_ = std::move(solver);
-  }
+  void setSolver(ref_ptr<Solver> solver);
 
   // --- Gravity ---------------------------------------------------------------
 
   [[nodiscard]] GravityFieldT<S>* getGravityField() const { return gravity_.get(); }
-  void setGravityField(GravityFieldT<S>* field) {
-    if (!field) throw error("gravity field must not be null", "nullptr");
-    gravity_ = field;
-  }
+  void setGravityField(GravityFieldT<S>* field);
   /// Replaces the field by a uniform one (m/s²).
   void setUniformGravity(const Vec3& g) { setGravityField(new UniformGravityFieldT<S>(g)); }
 
@@ -16543,28 +17110,18 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// Approach speed (m/s, >= 0) above which restitution makes a contact
   /// bounce; slower ones come to rest. Default 0.2.
   [[nodiscard]] S getRestitutionThreshold() const { return S(contactSettings_.restitutionThreshold); }
-  void setRestitutionThreshold(S speed) {
-    if (!(std::isfinite(speed) && speed >= S(0))) throw error("restitution threshold must be finite and >= 0 m/s", speed);
-    contactSettings_.restitutionThreshold = double(speed);
-  }
+  void setRestitutionThreshold(S speed);
   /// The fastest (m/s, > 0) that contact stabilization separates overlapping
   /// shapes: a box created half inside another leaves it at about this speed
   /// instead of being shot out. Default 1.
-  [[nodiscard]] S getMaxDepenetrationSpeed() const { return S(contactSettings_.maxDepenetrationSpeed); }
-  void setMaxDepenetrationSpeed(S speed) {
-    if (!(std::isfinite(speed) && speed > S(0))) throw error("maximum depenetration speed must be finite and > 0 m/s", speed);
-    contactSettings_.maxDepenetrationSpeed = double(speed);
-  }
+  [[nodiscard]] S getMaxDepenetrationSpeed() const;
+  void setMaxDepenetrationSpeed(S speed);
 
   // --- Content ---------------------------------------------------------------
 
   /// Adds a geometry that stands static in the world (a body's geometries
   /// come with the body).
-  void add(ref_ptr<Geometry> geometry) {
-    if (geometry && geometry->getRigidBody())
-      throw detail::makeError("Geometry", geometry->getName(), "belongs to a body; add the body instead");
-    space_->add(std::move(geometry));
-  }
+  void add(ref_ptr<Geometry> geometry);
   /// Removes a static geometry; false when it is not here.
   bool remove(Geometry* geometry) { return space_->remove(geometry); }
 
@@ -16579,27 +17136,14 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void add(L* listener) {
     add(ref_ptr<L>(listener));
   }
-  void add(ref_ptr<ContactListener> listener) {
-    contactListeners_.checkAddable(listener.get(), this);
-    contactListeners_.add(std::move(listener), this);
-  }
-  void remove(ContactListener* listener) {
-    contactListeners_.checkRemovable(listener, this);
-    contactListeners_.remove(listener);
-  }
+  void add(ref_ptr<ContactListener> listener);
+  void remove(ContactListener* listener);
   [[nodiscard]] const std::vector<ref_ptr<ContactListener>>& getContactEventListeners() const {
     return contactListeners_.get();
   }
 
-  void add(ref_ptr<Body> body) override {
-    bodies_.checkAddable(body.get(), this);
-    for (const auto& g : body->getGeometries()) space_->requireSupported(*g);
-    bodies_.add(std::move(body), this);
-  }
-  void remove(Body* body) override {
-    bodies_.checkRemovable(body, this);
-    bodies_.remove(body);
-  }
+  void add(ref_ptr<Body> body) override;
+  void remove(Body* body) override;
 
   /// Adds a listener of class L, checked at compile time: a member named
   /// like a callback must override it (detail::requireStepCallbacks).
@@ -16612,77 +17156,34 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void add(L* listener) {
     add(ref_ptr<L>(listener));
   }
-  void add(ref_ptr<Listener> listener) override {
-    listeners_.checkAddable(listener.get(), this);
-    listeners_.add(std::move(listener), this);
-  }
-  void remove(Listener* listener) override {
-    listeners_.checkRemovable(listener, this);
-    listeners_.remove(listener);
-  }
+  void add(ref_ptr<Listener> listener) override;
+  void remove(Listener* listener) override;
 
   /// Adds a collection and everything in it, nested collections included.
-  void add(ref_ptr<Collection> collection) {
-    if (!collection) throw error("cannot add a null Collection", "nullptr");
-    addNested(*collection);
-    collections_.push_back(std::move(collection));
-  }
+  void add(ref_ptr<Collection> collection);
   /// Removes a collection added with add(), and its content.
-  void remove(Collection* collection) {
-    auto it =
-        std::find_if(collections_.begin(), collections_.end(), [&](const auto& c) { return c.get() == collection; });
-    if (it == collections_.end())
-      throw error("Collection was never added", collection ? collection->getName() : std::string("nullptr"));
-    ref_ptr<Collection> keep = collection;
-    collections_.erase(it);
-    removeNested(*collection);
-  }
+  void remove(Collection* collection);
 
   /// Adds a constraint whose bodies are in this simulation already; throws
   /// when a body is elsewhere or when both are static (or static and world).
   /// A constraint whose body is later removed adds no rows.
-  void add(ref_ptr<Constraint> constraint) override {
-    constraints_.checkAddable(constraint.get(), this, constraint ? constraint->getKind() : nullptr);
-    checkBodiesOf(*constraint, nullptr);
-    jointedPairs_.add(*constraint);
-    constraints_.add(std::move(constraint), this);
-  }
-  void remove(Constraint* constraint) override {
-    constraints_.checkRemovable(constraint, this, constraint ? constraint->getKind() : nullptr);
-    ref_ptr<Constraint> keep = constraint;
-    constraints_.remove(constraint);
-    jointedPairs_.remove(*constraint);
-    forgetPredictions();
-  }
+  void add(ref_ptr<Constraint> constraint) override;
+  void remove(Constraint* constraint) override;
   [[nodiscard]] const std::vector<ref_ptr<Constraint>>& getConstraints() const { return constraints_.get(); }
   /// The first constraint with this name, or nullptr.
-  [[nodiscard]] Constraint* getConstraint(const std::string& name) const {
-    for (const auto& c : constraints_)
-      if (c->getName() == name) return c.get();
-    return nullptr;
+  [[nodiscard]] Constraint* getConstraint(const std::string& name) const;
+  [[nodiscard]] bool contains(const Constraint* constraint) const override {
+    return constraints_.contains(constraint, this);
   }
-  [[nodiscard]] bool contains(const Constraint* constraint) const override { return constraints_.contains(constraint, this); }
 
   /// Adds a body store (sim/step_extension.hpp): its bodies are integrated
   /// and solved with the rigid bodies from the next step on.
-  void add(ref_ptr<BodyStore> store) {
-    stores_.checkAddable(store.get(), this);
-    stores_.add(std::move(store), this);
-  }
-  void remove(BodyStore* store) {
-    stores_.checkRemovable(store, this);
-    stores_.remove(store);
-  }
+  void add(ref_ptr<BodyStore> store);
+  void remove(BodyStore* store);
   /// Adds a row producer (sim/step_extension.hpp): its rows enter the solve
   /// from the next step on.
-  void add(ref_ptr<RowProducer> producer) {
-    producers_.checkAddable(producer.get(), this);
-    producers_.add(std::move(producer), this);
-  }
-  void remove(RowProducer* producer) {
-    producers_.checkRemovable(producer, this);
-    producers_.remove(producer);
-  }
+  void add(ref_ptr<RowProducer> producer);
+  void remove(RowProducer* producer);
   [[nodiscard]] bool contains(const BodyStore* store) const { return stores_.contains(store, this); }
   [[nodiscard]] bool contains(const RowProducer* producer) const { return producers_.contains(producer, this); }
   [[nodiscard]] const std::vector<ref_ptr<BodyStore>>& getBodyStores() const { return stores_.get(); }
@@ -16692,14 +17193,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   [[nodiscard]] const std::vector<ref_ptr<Listener>>& getEventListeners() const { return listeners_.get(); }
   [[nodiscard]] const std::vector<ref_ptr<Collection>>& getCollections() const { return collections_; }
   /// The first body with this name, or nullptr.
-  [[nodiscard]] Body* getRigidBody(const std::string& name) const {
-    for (const auto& b : bodies_)
-      if (b->getName() == name) return b.get();
-    return nullptr;
-  }
+  [[nodiscard]] Body* getRigidBody(const std::string& name) const;
   [[nodiscard]] bool contains(const Body* body) const override { return bodies_.contains(body, this); }
   [[nodiscard]] bool contains(const Listener* listener) const override { return listeners_.contains(listener, this); }
-  [[nodiscard]] bool contains(const ContactListener* listener) const { return contactListeners_.contains(listener, this); }
+  [[nodiscard]] bool contains(const ContactListener* listener) const;
 
   [[nodiscard]] const SimulationStatisticsT<S>& getStatistics() const { return statistics_; }
 
@@ -16720,28 +17217,13 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   // Pairs with an explicit contact material reduce their points as it says;
   // jointed bodies do not collide unless their constraint asks (jointed_pairs.hpp).
-  void installSpaceRules() {
-    space_->setBodyPairFilter([this](const Body& a, const Body& b) { return jointedPairs_.filters(&a, &b); });
-    space_->setReductionRule([this](const Geometry& a, const Geometry& b) {
-      std::optional<std::pair<ContactReductionMode, int>> rule;
-      if (const auto* cm = materials_.getContactMaterial(a.getMaterial(), b.getMaterial()))
-        rule.emplace(cm->getContactReductionMode(), cm->getContactReductionBinResolution());
-      return rule;
-    });
-  }
+  void installSpaceRules();
 
   // round((t − now)/h), in double so that neither the quotient nor its
   // rounding overflows; more than 2³¹ steps are refused.
-  [[nodiscard]] long long stepsTo(S t) const {
-    const double steps = std::round((double(t) - double(getTimeStamp())) / double(timeStep_));
-    if (steps > 2147483648.0)
-      throw error("stepTo time is more than 2^31 steps of " + std::to_string(timeStep_) + " s away", t);
-    return static_cast<long long>(steps);
-  }
+  [[nodiscard]] long long stepsTo(S t) const;
 
-  void applyPendingTimeStep() {
-    if (pendingTimeStep_) setTimeStep(*std::exchange(pendingTimeStep_, std::nullopt));
-  }
+  void applyPendingTimeStep();
 
   // The SPOOK step for every body: force-driven velocities, the rows of the
   // enabled constraints, islands solved by the policy, then the poses.
@@ -16771,137 +17253,29 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   // Calls the listeners selected by `stage`, highest priority first, over a
   // snapshot, so that callbacks may add and remove objects freely.
-  void notify(typename Listener::ActivationMask stage) {
-    if (listeners_.empty()) return;
-    std::vector<ref_ptr<Listener>> snapshot;
-    for (const auto& l : listeners_)
-      if (l->getMask() & stage) snapshot.push_back(l);
-    std::stable_sort(snapshot.begin(), snapshot.end(),
-                     [](const auto& a, const auto& b) { return a->getPriority() > b->getPriority(); });
-    const S time = getTimeStamp();
-    for (const auto& l : snapshot) {
-      if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage)) continue;
-      switch (stage) {
-        case Listener::PRE_COLLIDE:
-          l->preCollide(time);
-          break;
-        case Listener::PRE_STEP:
-          l->pre(time);
-          break;
-        case Listener::POST_STEP:
-          l->post(time);
-          break;
-        case Listener::LAST_STEP:
-          l->last(time);
-          break;
-        default:
-          break;
-      }
-    }
-  }
+  void notify(typename Listener::ActivationMask stage);
 
   // Impact and contact callbacks per contact, in the order the listeners
   // were added, over a snapshot; a REMOVE_CONTACT disables the contact for
   // the solver, and the listeners after it see it disabled (seed 000). Then
   // the separations.
-  void notifyContacts() {
-    if (contactListeners_.empty()) return;
-    const std::vector<ref_ptr<ContactListener>> snapshot = contactListeners_.get();
-    const S time = getTimeStamp();
-    for (auto& contact : space_->getGeometryContacts()) {
-      const auto stage = contact.isImpact() ? ContactListener::IMPACT : ContactListener::CONTACT;
-      for (const auto& l : snapshot) {
-        if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage) ||
-            !l->matches(contact.geometry(0), contact.geometry(1)))
-          continue;
-        const auto policy = contact.isImpact() ? l->impact(time, &contact) : l->contact(time, &contact);
-        if (policy == ContactListener::REMOVE_CONTACT) contact.setEnable(false);
-      }
-    }
-    for (auto pair : space_->getSeparations())
-      for (const auto& l : snapshot)
-        if (l->getSimulation() == this && l->getEnable() && (l->getMask() & ContactListener::SEPARATION) &&
-            l->matches(pair.first.get(), pair.second.get()))
-          l->separation(time, pair);
-  }
+  void notifyContacts();
 
   // Collections: validate the whole tree, then register it, so that a failed
   // add changes nothing.
-  void addNested(Collection& collection) override {
-    std::unordered_set<const void*> seen;
-    validateTree(collection, seen);
-    validateConstraints(collection, seen);
-    registerTree(collection);
-  }
-  void removeNested(Collection& collection) override {
-    ref_ptr<Collection> keep = &collection;
-    for (const auto& b : collection.getRigidBodies())
-      if (contains(b.get())) remove(b.get());
-    for (const auto& l : collection.getEventListeners())
-      if (l->getSimulation() == this) remove(l.get());
-    for (const auto& c : collection.getConstraints())
-      if (contains(c.get())) remove(c.get());
-    Membership::simulationOf(collection) = nullptr;
-    for (const auto& c : collection.getCollections()) removeNested(*c);
-  }
-  void validateTree(const Collection& collection, std::unordered_set<const void*>& seen) const {
-    if (Membership::simulationOf(collection))
-      throw error("Collection is already in a simulation", collection.getName());
-    if (!seen.insert(&collection).second) throw error("Collection appears twice", collection.getName());
-    for (const auto& b : collection.getRigidBodies()) {
-      bodies_.checkAddable(b.get(), this);
-      for (const auto& g : b->getGeometries()) space_->requireSupported(*g);
-      if (!seen.insert(b.get()).second) throw error("RigidBody appears twice in the collection", b->getName());
-    }
-    for (const auto& l : collection.getEventListeners()) {
-      listeners_.checkAddable(l.get(), this);
-      if (!seen.insert(l.get()).second)
-        throw error("StepEventListener appears twice in the collection", collection.getName());
-    }
-    for (const auto& c : collection.getConstraints()) {
-      constraints_.checkAddable(c.get(), this, c ? c->getKind() : nullptr);
-      if (!seen.insert(c.get()).second) throw detail::makeError(c->getKind(), c->getName(), "appears twice in the collection");
-    }
-    for (const auto& c : collection.getCollections()) validateTree(*c, seen);
-  }
+  void addNested(Collection& collection) override;
+  void removeNested(Collection& collection) override;
+  void validateTree(const Collection& collection, std::unordered_set<const void*>& seen) const;
   // After the whole tree is known: a constraint's bodies are in this
   // simulation or in the tree.
-  void validateConstraints(const Collection& collection, const std::unordered_set<const void*>& seen) const {
-    for (const auto& c : collection.getConstraints()) checkBodiesOf(*c, &seen);
-    for (const auto& child : collection.getCollections()) validateConstraints(*child, seen);
-  }
-  void checkBodiesOf(const Constraint& c, const std::unordered_set<const void*>* arriving) const {
-    for (int i = 0; i < 2; ++i) {
-      const Body* body = c.getBodyAt(i);
-      if (body && !contains(body) && !(arriving && arriving->count(body)))
-        throw detail::makeError(c.getKind(), c.getName(), "body not in this simulation; add the bodies first",
-                                body->getName());
-    }
-    const auto movable = [](const Body* b) { return b && b->getMotionControl() != Body::STATIC; };
-    if (!movable(c.getBodyAt(0)) && !movable(c.getBodyAt(1)))
-      throw detail::makeError(c.getKind(), c.getName(), "needs at least one body that is not static",
-                              c.getBodyAt(0)->getName());
-  }
+  void validateConstraints(const Collection& collection, const std::unordered_set<const void*>& seen) const;
+  void checkBodiesOf(const Constraint& c, const std::unordered_set<const void*>* arriving) const;
   // Bodies and listeners of the whole tree first, so that every constraint
   // finds its bodies.
-  void registerTree(Collection& collection) {
-    registerMembers(collection);
-    registerConstraints(collection);
-  }
-  void registerMembers(Collection& collection) {
-    for (const auto& b : collection.getRigidBodies()) add(b);
-    for (const auto& l : collection.getEventListeners()) add(l);
-    Membership::simulationOf(collection) = this;
-    for (const auto& c : collection.getCollections()) registerMembers(*c);
-  }
-  void registerConstraints(Collection& collection) {
-    for (const auto& c : collection.getConstraints()) add(c);
-    for (const auto& c : collection.getCollections()) registerConstraints(*c);
-  }
-  void setCollectionsSink(Collection& collection, detail::ContentSink<S>* sink) {
-    Membership::simulationOf(collection) = sink;
-    for (const auto& c : collection.getCollections()) setCollectionsSink(*c, sink);
-  }
+  void registerTree(Collection& collection);
+  void registerMembers(Collection& collection);
+  void registerConstraints(Collection& collection);
+  void setCollectionsSink(Collection& collection, detail::ContentSink<S>* sink);
 
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
@@ -16932,6 +17306,349 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// compiles spook once.
   std::unique_ptr<detail::SimulationWorkspace<S>> work_;
 };
+
+template <Scalar S>
+void SimulationT<S>::setTimeStep(S h) {
+  if (!(std::isfinite(h) && h > S(0))) throw error("time step must be finite and > 0 s", h);
+  if (stepping_) {
+    pendingTimeStep_ = h;
+    return;
+  }
+  timeBase_ = getTimeStamp();
+  stepsSinceBase_ = 0;
+  timeStep_ = h;
+}
+
+template <Scalar S>
+S SimulationT<S>::getTimeStamp() const {
+  return timeBase_ + S(stepsSinceBase_) * timeStep_;
+}
+
+template <Scalar S>
+void SimulationT<S>::stepTo(S t) {
+  if (!std::isfinite(t)) throw error("stepTo time must be finite (s)", t);
+  const S now = getTimeStamp();
+  if (t < now) throw error("stepTo time must not be in the past (now " + std::to_string(now) + " s)", t);
+  while (stepsTo(t) > 0) stepForward();
+}
+
+template <Scalar S>
+void SimulationT<S>::setSolver(ref_ptr<Solver> solver) {
+  if (!solver) throw error("solver must not be null", "nullptr");
+  solver_ = std::move(solver);
+}
+
+template <Scalar S>
+void SimulationT<S>::setGravityField(GravityFieldT<S>* field) {
+  if (!field) throw error("gravity field must not be null", "nullptr");
+  gravity_ = field;
+}
+
+template <Scalar S>
+void SimulationT<S>::setRestitutionThreshold(S speed) {
+  if (!(std::isfinite(speed) && speed >= S(0))) throw error("restitution threshold must be finite and >= 0 m/s", speed);
+  contactSettings_.restitutionThreshold = double(speed);
+}
+
+template <Scalar S>
+S SimulationT<S>::getMaxDepenetrationSpeed() const {
+  return S(contactSettings_.maxDepenetrationSpeed);
+}
+
+template <Scalar S>
+void SimulationT<S>::setMaxDepenetrationSpeed(S speed) {
+  if (!(std::isfinite(speed) && speed > S(0)))
+    throw error("maximum depenetration speed must be finite and > 0 m/s", speed);
+  contactSettings_.maxDepenetrationSpeed = double(speed);
+}
+
+template <Scalar S>
+void SimulationT<S>::add(ref_ptr<Geometry> geometry) {
+  if (geometry && geometry->getRigidBody())
+    throw detail::makeError("Geometry", geometry->getName(), "belongs to a body; add the body instead");
+  space_->add(std::move(geometry));
+}
+
+template <Scalar S>
+void SimulationT<S>::add(ref_ptr<ContactListener> listener) {
+  contactListeners_.checkAddable(listener.get(), this);
+  contactListeners_.add(std::move(listener), this);
+}
+
+template <Scalar S>
+void SimulationT<S>::remove(ContactListener* listener) {
+  contactListeners_.checkRemovable(listener, this);
+  contactListeners_.remove(listener);
+}
+
+template <Scalar S>
+void SimulationT<S>::add(ref_ptr<Body> body) {
+  bodies_.checkAddable(body.get(), this);
+  for (const auto& g : body->getGeometries()) space_->requireSupported(*g);
+  bodies_.add(std::move(body), this);
+}
+
+template <Scalar S>
+void SimulationT<S>::remove(Body* body) {
+  bodies_.checkRemovable(body, this);
+  bodies_.remove(body);
+}
+
+template <Scalar S>
+void SimulationT<S>::add(ref_ptr<Listener> listener) {
+  listeners_.checkAddable(listener.get(), this);
+  listeners_.add(std::move(listener), this);
+}
+
+template <Scalar S>
+void SimulationT<S>::remove(Listener* listener) {
+  listeners_.checkRemovable(listener, this);
+  listeners_.remove(listener);
+}
+
+template <Scalar S>
+void SimulationT<S>::add(ref_ptr<Collection> collection) {
+  if (!collection) throw error("cannot add a null Collection", "nullptr");
+  addNested(*collection);
+  collections_.push_back(std::move(collection));
+}
+
+template <Scalar S>
+void SimulationT<S>::remove(Collection* collection) {
+  auto it =
+      std::find_if(collections_.begin(), collections_.end(), [&](const auto& c) { return c.get() == collection; });
+  if (it == collections_.end())
+    throw error("Collection was never added", collection ? collection->getName() : std::string("nullptr"));
+  ref_ptr<Collection> keep = collection;
+  collections_.erase(it);
+  removeNested(*collection);
+}
+
+template <Scalar S>
+void SimulationT<S>::add(ref_ptr<Constraint> constraint) {
+  constraints_.checkAddable(constraint.get(), this, constraint ? constraint->getKind() : nullptr);
+  checkBodiesOf(*constraint, nullptr);
+  jointedPairs_.add(*constraint);
+  constraints_.add(std::move(constraint), this);
+}
+
+template <Scalar S>
+void SimulationT<S>::remove(Constraint* constraint) {
+  constraints_.checkRemovable(constraint, this, constraint ? constraint->getKind() : nullptr);
+  ref_ptr<Constraint> keep = constraint;
+  constraints_.remove(constraint);
+  jointedPairs_.remove(*constraint);
+  forgetPredictions();
+}
+
+template <Scalar S>
+auto SimulationT<S>::getConstraint(const std::string& name) const -> Constraint* {
+  for (const auto& c : constraints_)
+    if (c->getName() == name) return c.get();
+  return nullptr;
+}
+
+template <Scalar S>
+void SimulationT<S>::add(ref_ptr<BodyStore> store) {
+  stores_.checkAddable(store.get(), this);
+  stores_.add(std::move(store), this);
+}
+
+template <Scalar S>
+void SimulationT<S>::remove(BodyStore* store) {
+  stores_.checkRemovable(store, this);
+  stores_.remove(store);
+}
+
+template <Scalar S>
+void SimulationT<S>::add(ref_ptr<RowProducer> producer) {
+  producers_.checkAddable(producer.get(), this);
+  producers_.add(std::move(producer), this);
+}
+
+template <Scalar S>
+void SimulationT<S>::remove(RowProducer* producer) {
+  producers_.checkRemovable(producer, this);
+  producers_.remove(producer);
+}
+
+template <Scalar S>
+auto SimulationT<S>::getRigidBody(const std::string& name) const -> Body* {
+  for (const auto& b : bodies_)
+    if (b->getName() == name) return b.get();
+  return nullptr;
+}
+
+template <Scalar S>
+bool SimulationT<S>::contains(const ContactListener* listener) const {
+  return contactListeners_.contains(listener, this);
+}
+
+template <Scalar S>
+void SimulationT<S>::installSpaceRules() {
+  space_->setBodyPairFilter([this](const Body& a, const Body& b) { return jointedPairs_.filters(&a, &b); });
+  space_->setReductionRule([this](const Geometry& a, const Geometry& b) {
+    std::optional<std::pair<ContactReductionMode, int>> rule;
+    if (const auto* cm = materials_.getContactMaterial(a.getMaterial(), b.getMaterial()))
+      rule.emplace(cm->getContactReductionMode(), cm->getContactReductionBinResolution());
+    return rule;
+  });
+}
+
+template <Scalar S>
+auto SimulationT<S>::stepsTo(S t) const -> long long {
+  const double steps = std::round((double(t) - double(getTimeStamp())) / double(timeStep_));
+  if (steps > 2147483648.0)
+    throw error("stepTo time is more than 2^31 steps of " + std::to_string(timeStep_) + " s away", t);
+  return static_cast<long long>(steps);
+}
+
+template <Scalar S>
+void SimulationT<S>::applyPendingTimeStep() {
+  if (pendingTimeStep_) setTimeStep(*std::exchange(pendingTimeStep_, std::nullopt));
+}
+
+template <Scalar S>
+void SimulationT<S>::notify(typename Listener::ActivationMask stage) {
+  if (listeners_.empty()) return;
+  std::vector<ref_ptr<Listener>> snapshot;
+  for (const auto& l : listeners_)
+    if (l->getMask() & stage) snapshot.push_back(l);
+  std::stable_sort(snapshot.begin(), snapshot.end(),
+                   [](const auto& a, const auto& b) { return a->getPriority() > b->getPriority(); });
+  const S time = getTimeStamp();
+  for (const auto& l : snapshot) {
+    if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage)) continue;
+    switch (stage) {
+      case Listener::PRE_COLLIDE:
+        l->preCollide(time);
+        break;
+      case Listener::PRE_STEP:
+        l->pre(time);
+        break;
+      case Listener::POST_STEP:
+        l->post(time);
+        break;
+      case Listener::LAST_STEP:
+        l->last(time);
+        break;
+      default:
+        break;
+    }
+  }
+}
+
+template <Scalar S>
+void SimulationT<S>::notifyContacts() {
+  if (contactListeners_.empty()) return;
+  const std::vector<ref_ptr<ContactListener>> snapshot = contactListeners_.get();
+  const S time = getTimeStamp();
+  for (auto& contact : space_->getGeometryContacts()) {
+    const auto stage = contact.isImpact() ? ContactListener::IMPACT : ContactListener::CONTACT;
+    for (const auto& l : snapshot) {
+      if (l->getSimulation() != this || !l->getEnable() || !(l->getMask() & stage) ||
+          !l->matches(contact.geometry(0), contact.geometry(1)))
+        continue;
+      const auto policy = contact.isImpact() ? l->impact(time, &contact) : l->contact(time, &contact);
+      if (policy == ContactListener::REMOVE_CONTACT) contact.setEnable(false);
+    }
+  }
+  for (auto pair : space_->getSeparations())
+    for (const auto& l : snapshot)
+      if (l->getSimulation() == this && l->getEnable() && (l->getMask() & ContactListener::SEPARATION) &&
+          l->matches(pair.first.get(), pair.second.get()))
+        l->separation(time, pair);
+}
+
+template <Scalar S>
+void SimulationT<S>::addNested(Collection& collection) {
+  std::unordered_set<const void*> seen;
+  validateTree(collection, seen);
+  validateConstraints(collection, seen);
+  registerTree(collection);
+}
+
+template <Scalar S>
+void SimulationT<S>::removeNested(Collection& collection) {
+  ref_ptr<Collection> keep = &collection;
+  for (const auto& b : collection.getRigidBodies())
+    if (contains(b.get())) remove(b.get());
+  for (const auto& l : collection.getEventListeners())
+    if (l->getSimulation() == this) remove(l.get());
+  for (const auto& c : collection.getConstraints())
+    if (contains(c.get())) remove(c.get());
+  Membership::simulationOf(collection) = nullptr;
+  for (const auto& c : collection.getCollections()) removeNested(*c);
+}
+
+template <Scalar S>
+void SimulationT<S>::validateTree(const Collection& collection, std::unordered_set<const void*>& seen) const {
+  if (Membership::simulationOf(collection)) throw error("Collection is already in a simulation", collection.getName());
+  if (!seen.insert(&collection).second) throw error("Collection appears twice", collection.getName());
+  for (const auto& b : collection.getRigidBodies()) {
+    bodies_.checkAddable(b.get(), this);
+    for (const auto& g : b->getGeometries()) space_->requireSupported(*g);
+    if (!seen.insert(b.get()).second) throw error("RigidBody appears twice in the collection", b->getName());
+  }
+  for (const auto& l : collection.getEventListeners()) {
+    listeners_.checkAddable(l.get(), this);
+    if (!seen.insert(l.get()).second)
+      throw error("StepEventListener appears twice in the collection", collection.getName());
+  }
+  for (const auto& c : collection.getConstraints()) {
+    constraints_.checkAddable(c.get(), this, c ? c->getKind() : nullptr);
+    if (!seen.insert(c.get()).second)
+      throw detail::makeError(c->getKind(), c->getName(), "appears twice in the collection");
+  }
+  for (const auto& c : collection.getCollections()) validateTree(*c, seen);
+}
+
+template <Scalar S>
+void SimulationT<S>::validateConstraints(const Collection& collection,
+                                         const std::unordered_set<const void*>& seen) const {
+  for (const auto& c : collection.getConstraints()) checkBodiesOf(*c, &seen);
+  for (const auto& child : collection.getCollections()) validateConstraints(*child, seen);
+}
+
+template <Scalar S>
+void SimulationT<S>::checkBodiesOf(const Constraint& c, const std::unordered_set<const void*>* arriving) const {
+  for (int i = 0; i < 2; ++i) {
+    const Body* body = c.getBodyAt(i);
+    if (body && !contains(body) && !(arriving && arriving->count(body)))
+      throw detail::makeError(c.getKind(), c.getName(), "body not in this simulation; add the bodies first",
+                              body->getName());
+  }
+  const auto movable = [](const Body* b) { return b && b->getMotionControl() != Body::STATIC; };
+  if (!movable(c.getBodyAt(0)) && !movable(c.getBodyAt(1)))
+    throw detail::makeError(c.getKind(), c.getName(), "needs at least one body that is not static",
+                            c.getBodyAt(0)->getName());
+}
+
+template <Scalar S>
+void SimulationT<S>::registerTree(Collection& collection) {
+  registerMembers(collection);
+  registerConstraints(collection);
+}
+
+template <Scalar S>
+void SimulationT<S>::registerMembers(Collection& collection) {
+  for (const auto& b : collection.getRigidBodies()) add(b);
+  for (const auto& l : collection.getEventListeners()) add(l);
+  Membership::simulationOf(collection) = this;
+  for (const auto& c : collection.getCollections()) registerMembers(*c);
+}
+
+template <Scalar S>
+void SimulationT<S>::registerConstraints(Collection& collection) {
+  for (const auto& c : collection.getConstraints()) add(c);
+  for (const auto& c : collection.getCollections()) registerConstraints(*c);
+}
+
+template <Scalar S>
+void SimulationT<S>::setCollectionsSink(Collection& collection, detail::ContentSink<S>* sink) {
+  Membership::simulationOf(collection) = sink;
+  for (const auto& c : collection.getCollections()) setCollectionsSink(*c, sink);
+}
 
 #if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
 extern template class SimulationT<double>;

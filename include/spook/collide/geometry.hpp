@@ -11,6 +11,7 @@
 #include <spook/collide/shapes/shape.hpp>
 #include <spook/core/error.hpp>
 #include <spook/core/frame.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/observer_ptr.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
@@ -77,31 +78,12 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
   /// A shape changed later (resized, a child added to a composite) is
   /// checked the same way: refused, it keeps its old value; taken, the
   /// body's mass properties follow.
-  void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
-    if (!shape) throw error("cannot add a null shape", "nullptr");
-    if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
-      throw error("shape transform must be finite and rigid", SPDMat3T<S>::flat(transform.linear()));
-    if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
-      throw error("shape already added to this geometry", std::string(shapeTypeName(shape->getType())));
-    std::vector<ShapeEntry> shapes = shapes_;
-    shapes.push_back({shape, makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
-    check({this, &shapes, nullptr, nullptr});
-    shapes_ = std::move(shapes);
-    detail::ShapeOwners<S>::add(*shape, this);
-    changed();
-  }
+  void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity());
   /// Removes a shape; false when it is not here.
-  bool remove(const Shape* shape) {
-    const auto it = std::find_if(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; });
-    if (it == shapes_.end()) return false;
-    detail::ShapeOwners<S>::remove(*it->shape, this);
-    shapes_.erase(it);
-    changed();
-    return true;
-  }
+  bool remove(const Shape* shape);
   [[nodiscard]] const std::vector<ShapeEntry>& getShapes() const { return shapes_; }
   /// The first shape, or nullptr.
-  [[nodiscard]] Shape* getShape() const { return shapes_.empty() ? nullptr : shapes_.front().shape.get(); }
+  [[nodiscard]] Shape* getShape() const;
 
   // --- Placement -------------------------------------------------------------
 
@@ -113,27 +95,13 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
   /// Sets the world transform (a body-owned geometry moves relative to its
   /// body so that it lands there). Updates the owning body's mass; throws,
   /// and stays put, when it would not be finite and valid.
-  void setTransform(const Transform& X_W) {
-    checkWorldPlacement(X_W);
-    frame_->setMatrix(X_W);
-    changed();
-  }
+  void setTransform(const Transform& X_W);
   [[nodiscard]] Vec3 getPosition() const { return frame_->getTranslate(); }
-  void setPosition(const Vec3& p_W) {
-    Transform X_W = getTransform();
-    X_W.translation() = p_W;
-    checkWorldPlacement(X_W);
-    frame_->setTranslate(p_W);
-    changed();
-  }
+  void setPosition(const Vec3& p_W);
   void setPosition(S x, S y, S z) { setPosition(Vec3(x, y, z)); }
   /// Geometry → body model frame (or world, without a body).
   [[nodiscard]] Transform getLocalTransform() const { return frame_->getLocalMatrix(); }
-  void setLocalTransform(const Transform& X) {
-    if (X.matrix().allFinite() && isRotation<S>(X.linear())) check({this, nullptr, nullptr, &X});
-    frame_->setLocalMatrix(X);
-    changed();
-  }
+  void setLocalTransform(const Transform& X);
   /// The body this geometry belongs to, or nullptr for a static geometry.
   [[nodiscard]] RigidBodyT<S>* getRigidBody() const { return body_; }
 
@@ -143,18 +111,10 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
   /// (density 1000 kg/m³). Assigning updates the owning body's mass; throws,
   /// and keeps the old material, when that would not be finite and valid
   /// (e.g. a density whose mass overflows).
-  [[nodiscard]] MaterialT<S>* getMaterial() const { return material_ ? material_.get() : defaultMaterial(); }
-  void setMaterial(ref_ptr<MaterialT<S>> material) {
-    if (!material) throw error("material must not be null", "nullptr");
-    check({this, nullptr, material.get(), nullptr});
-    material_ = std::move(material);
-    changed();
-  }
+  [[nodiscard]] MaterialT<S>* getMaterial() const;
+  void setMaterial(ref_ptr<MaterialT<S>> material);
   /// The material every geometry without its own uses.
-  [[nodiscard]] static MaterialT<S>* defaultMaterial() {
-    static const ref_ptr<MaterialT<S>> material = new MaterialT<S>("default");
-    return material.get();
-  }
+  [[nodiscard]] static MaterialT<S>* defaultMaterial();
 
   // --- Collision settings ----------------------------------------------------
 
@@ -165,33 +125,17 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
   [[nodiscard]] bool getEnableCollisions() const { return enableCollisions_; }
   void setEnableCollisions(bool enable) { enableCollisions_ = enable; }
   /// Enables or disables collisions between this and `other` (both ways).
-  void setEnableCollisions(GeometryT* other, bool enable) {
-    if (!other) throw error("cannot pair collisions with a null geometry", "nullptr");
-    if (other == this) throw error("cannot pair collisions with itself", name_);
-    setPartner(other, enable);
-    other->setPartner(this, enable);
-  }
+  void setEnableCollisions(GeometryT* other, bool enable);
   /// False when collisions with `other` were disabled pairwise.
-  [[nodiscard]] bool getEnableCollisions(const GeometryT* other) const {
-    return std::none_of(disabledWith_.begin(), disabledWith_.end(),
-                        [&](const observer_ptr<GeometryT>& g) { return g.get() == other; });
-  }
+  [[nodiscard]] bool getEnableCollisions(const GeometryT* other) const;
 
   /// Collision group ids and names, matched by Space::setEnablePair.
-  void addGroup(std::uint32_t id) {
-    if (!hasGroup(id)) groupIds_.push_back(id);
-  }
-  void addGroup(const std::string& name) {
-    if (!hasGroup(name)) groupNames_.push_back(name);
-  }
+  void addGroup(std::uint32_t id);
+  void addGroup(const std::string& name);
   void removeGroup(std::uint32_t id) { std::erase(groupIds_, id); }
   void removeGroup(const std::string& name) { std::erase(groupNames_, name); }
-  [[nodiscard]] bool hasGroup(std::uint32_t id) const {
-    return std::find(groupIds_.begin(), groupIds_.end(), id) != groupIds_.end();
-  }
-  [[nodiscard]] bool hasGroup(const std::string& name) const {
-    return std::find(groupNames_.begin(), groupNames_.end(), name) != groupNames_.end();
-  }
+  [[nodiscard]] bool hasGroup(std::uint32_t id) const;
+  [[nodiscard]] bool hasGroup(const std::string& name) const;
   [[nodiscard]] const std::vector<std::uint32_t>& getGroupIds() const { return groupIds_; }
   [[nodiscard]] const std::vector<std::string>& getGroupNames() const { return groupNames_; }
 
@@ -202,67 +146,29 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
   /// Velocity of the surface relative to the geometry, in the geometry
   /// frame (m/s): a conveyor belt. Used by the contact solver.
   [[nodiscard]] const Vec3& getSurfaceVelocity() const { return surfaceVelocity_; }
-  void setSurfaceVelocity(const Vec3& v) {
-    if (!v.allFinite()) throw error("surface velocity must be finite (m/s)", v);
-    surfaceVelocity_ = v;
-  }
+  void setSurfaceVelocity(const Vec3& v);
 
   /// World bounding box of every shape (m); infinite along the axes where a
   /// plane extends.
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const {
-    const Transform X_WG = getTransform();
-    BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::infinity()),
-                        Vec3::Constant(-std::numeric_limits<S>::infinity())};
-    for (const ShapeEntry& e : shapes_) {
-      const Transform X_WS = X_WG * e.transform;
-      const BoundingBoxT<S> local = e.shape->getBoundingBox();
-      const Mat3T<S> R = X_WS.linear();
-      if (!(local.min.allFinite() && local.max.allFinite())) {
-        box.min = box.min.cwiseMin(Vec3::Constant(-std::numeric_limits<S>::infinity()));
-        box.max = box.max.cwiseMax(Vec3::Constant(std::numeric_limits<S>::infinity()));
-        continue;
-      }
-      const Vec3 center = X_WS * local.center();
-      const Vec3 reach = R.cwiseAbs() * local.halfExtents();
-      box.min = box.min.cwiseMin(center - reach);
-      box.max = box.max.cwiseMax(center + reach);
-    }
-    return box;
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const;
 
  protected:
-  ~GeometryT() override {
-    for (ShapeEntry& e : shapes_) detail::ShapeOwners<S>::remove(*e.shape, this);
-  }
+  ~GeometryT() override;
 
  private:
   friend struct detail::GeometryAccess<S>;
 
-  static std::uint64_t nextId() {
-    static std::atomic<std::uint64_t> counter{0};
-    return ++counter;
-  }
-  void check(const detail::GeometryEdit<S>& edit) const {
-    if (owner_) owner_->checkGeometryChange(edit);
-  }
+  static std::uint64_t nextId();
+  void check(const detail::GeometryEdit<S>& edit) const;
   // A would-be world transform of a body's geometry, checked as the local
   // transform it makes (to round-off, the one the frame then sets); a
   // transform that is not finite and rigid is left for the frame to refuse.
-  void checkWorldPlacement(const Transform& X_W) const {
-    if (!(owner_ && X_W.matrix().allFinite() && isRotation<S>(X_W.linear()))) return;
-    const Transform X_local = frame_->getParent()->getMatrix().inverse() * X_W;
-    check({this, nullptr, nullptr, &X_local});
-  }
-  void changed() {
-    if (owner_) owner_->geometryChanged();
-  }
+  void checkWorldPlacement(const Transform& X_W) const;
+  void changed();
   // One of the shapes changed (its size, children, heights).
   void checkShapeChange() const override { check({this, nullptr, nullptr, nullptr}); }
   void shapeChanged() override { changed(); }
-  void setPartner(GeometryT* other, bool enable) {
-    std::erase_if(disabledWith_, [&](const observer_ptr<GeometryT>& g) { return !g.valid() || g.get() == other; });
-    if (!enable) disabledWith_.emplace_back(other);
-  }
+  void setPartner(GeometryT* other, bool enable);
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
     return detail::makeError("Geometry", name_, what, value);
@@ -286,6 +192,176 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
   detail::GeometryOwner<S>* owner_ = nullptr;
   const void* space_ = nullptr;
 };
+
+template <Scalar S>
+void GeometryT<S>::add(ref_ptr<Shape> shape, const Transform& transform) {
+  if (!shape) throw error("cannot add a null shape", "nullptr");
+  if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
+    throw error("shape transform must be finite and rigid", SPDMat3T<S>::flat(transform.linear()));
+  if (std::any_of(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; }))
+    throw error("shape already added to this geometry", std::string(shapeTypeName(shape->getType())));
+  std::vector<ShapeEntry> shapes = shapes_;
+  shapes.push_back({shape, makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+  check({this, &shapes, nullptr, nullptr});
+  shapes_ = std::move(shapes);
+  detail::ShapeOwners<S>::add(*shape, this);
+  changed();
+}
+
+template <Scalar S>
+bool GeometryT<S>::remove(const Shape* shape) {
+  const auto it = std::find_if(shapes_.begin(), shapes_.end(), [&](const ShapeEntry& e) { return e.shape == shape; });
+  if (it == shapes_.end()) return false;
+  detail::ShapeOwners<S>::remove(*it->shape, this);
+  shapes_.erase(it);
+  changed();
+  return true;
+}
+
+template <Scalar S>
+auto GeometryT<S>::getShape() const -> Shape* {
+  return shapes_.empty() ? nullptr : shapes_.front().shape.get();
+}
+
+template <Scalar S>
+void GeometryT<S>::setTransform(const Transform& X_W) {
+  checkWorldPlacement(X_W);
+  frame_->setMatrix(X_W);
+  changed();
+}
+
+template <Scalar S>
+void GeometryT<S>::setPosition(const Vec3& p_W) {
+  Transform X_W = getTransform();
+  X_W.translation() = p_W;
+  checkWorldPlacement(X_W);
+  frame_->setTranslate(p_W);
+  changed();
+}
+
+template <Scalar S>
+void GeometryT<S>::setLocalTransform(const Transform& X) {
+  if (X.matrix().allFinite() && isRotation<S>(X.linear())) check({this, nullptr, nullptr, &X});
+  frame_->setLocalMatrix(X);
+  changed();
+}
+
+template <Scalar S>
+auto GeometryT<S>::getMaterial() const -> MaterialT<S>* {
+  return material_ ? material_.get() : defaultMaterial();
+}
+
+template <Scalar S>
+void GeometryT<S>::setMaterial(ref_ptr<MaterialT<S>> material) {
+  if (!material) throw error("material must not be null", "nullptr");
+  check({this, nullptr, material.get(), nullptr});
+  material_ = std::move(material);
+  changed();
+}
+
+template <Scalar S>
+auto GeometryT<S>::defaultMaterial() -> MaterialT<S>* {
+  static const ref_ptr<MaterialT<S>> material = new MaterialT<S>("default");
+  return material.get();
+}
+
+template <Scalar S>
+void GeometryT<S>::setEnableCollisions(GeometryT* other, bool enable) {
+  if (!other) throw error("cannot pair collisions with a null geometry", "nullptr");
+  if (other == this) throw error("cannot pair collisions with itself", name_);
+  setPartner(other, enable);
+  other->setPartner(this, enable);
+}
+
+template <Scalar S>
+bool GeometryT<S>::getEnableCollisions(const GeometryT* other) const {
+  return std::none_of(disabledWith_.begin(), disabledWith_.end(),
+                      [&](const observer_ptr<GeometryT>& g) { return g.get() == other; });
+}
+
+template <Scalar S>
+void GeometryT<S>::addGroup(std::uint32_t id) {
+  if (!hasGroup(id)) groupIds_.push_back(id);
+}
+
+template <Scalar S>
+void GeometryT<S>::addGroup(const std::string& name) {
+  if (!hasGroup(name)) groupNames_.push_back(name);
+}
+
+template <Scalar S>
+bool GeometryT<S>::hasGroup(std::uint32_t id) const {
+  return std::find(groupIds_.begin(), groupIds_.end(), id) != groupIds_.end();
+}
+
+template <Scalar S>
+bool GeometryT<S>::hasGroup(const std::string& name) const {
+  return std::find(groupNames_.begin(), groupNames_.end(), name) != groupNames_.end();
+}
+
+template <Scalar S>
+void GeometryT<S>::setSurfaceVelocity(const Vec3& v) {
+  if (!v.allFinite()) throw error("surface velocity must be finite (m/s)", v);
+  surfaceVelocity_ = v;
+}
+
+template <Scalar S>
+auto GeometryT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  const Transform X_WG = getTransform();
+  BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::infinity()),
+                      Vec3::Constant(-std::numeric_limits<S>::infinity())};
+  for (const ShapeEntry& e : shapes_) {
+    const Transform X_WS = X_WG * e.transform;
+    const BoundingBoxT<S> local = e.shape->getBoundingBox();
+    const Mat3T<S> R = X_WS.linear();
+    if (!(local.min.allFinite() && local.max.allFinite())) {
+      box.min = box.min.cwiseMin(Vec3::Constant(-std::numeric_limits<S>::infinity()));
+      box.max = box.max.cwiseMax(Vec3::Constant(std::numeric_limits<S>::infinity()));
+      continue;
+    }
+    const Vec3 center = X_WS * local.center();
+    const Vec3 reach = R.cwiseAbs() * local.halfExtents();
+    box.min = box.min.cwiseMin(center - reach);
+    box.max = box.max.cwiseMax(center + reach);
+  }
+  return box;
+}
+
+template <Scalar S>
+GeometryT<S>::~GeometryT() {
+  for (ShapeEntry& e : shapes_) detail::ShapeOwners<S>::remove(*e.shape, this);
+}
+
+template <Scalar S>
+std::uint64_t GeometryT<S>::nextId() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
+
+template <Scalar S>
+void GeometryT<S>::check(const detail::GeometryEdit<S>& edit) const {
+  if (owner_) owner_->checkGeometryChange(edit);
+}
+
+template <Scalar S>
+void GeometryT<S>::checkWorldPlacement(const Transform& X_W) const {
+  if (!(owner_ && X_W.matrix().allFinite() && isRotation<S>(X_W.linear()))) return;
+  const Transform X_local = frame_->getParent()->getMatrix().inverse() * X_W;
+  check({this, nullptr, nullptr, &X_local});
+}
+
+template <Scalar S>
+void GeometryT<S>::changed() {
+  if (owner_) owner_->geometryChanged();
+}
+
+template <Scalar S>
+void GeometryT<S>::setPartner(GeometryT* other, bool enable) {
+  std::erase_if(disabledWith_, [&](const observer_ptr<GeometryT>& g) { return !g.valid() || g.get() == other; });
+  if (!enable) disabledWith_.emplace_back(other);
+}
+
+SPOOK_COMPILED_ONCE(class, GeometryT)
 
 namespace detail {
 /// A change to one geometry, described before it is made: its shapes,

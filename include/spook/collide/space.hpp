@@ -15,8 +15,8 @@
 
 #include <spook/collide/all_shapes.hpp>
 #include <spook/collide/broadphase/sweep_and_prune.hpp>
-#include <spook/collide/contact_sink.hpp>
 #include <spook/collide/contact_reduction.hpp>
+#include <spook/collide/contact_sink.hpp>
 #include <spook/collide/geometry.hpp>
 #include <spook/collide/geometry_contact.hpp>
 #include <spook/core/error.hpp>
@@ -76,10 +76,11 @@ class SpaceT : public Referenced {
   template <template <class> class... Shapes>
   explicit SpaceT(ShapeList<Shapes...>)
       : collide_(&detail::collideThrough<S, ShapeList<Shapes...>>), contains_(&ShapeList<Shapes...>::contains) {
-    static_assert(std::is_same_v<ShapeList<Shapes...>, AllShapes> ||
-                      requires { sizeof(detail::CollidersDefined<ShapeList<Shapes...>>); },
-                  "a Space or Simulation for a ShapeList of its own compiles that list's colliders: with "
-                  "SPOOK_EXTERN_TEMPLATES, include <spook/collide/collide_through.hpp>");
+    static_assert(
+        std::is_same_v<ShapeList<Shapes...>, AllShapes> ||
+            requires { sizeof(detail::CollidersDefined<ShapeList<Shapes...>>); },
+        "a Space or Simulation for a ShapeList of its own compiles that list's colliders: with "
+        "SPOOK_EXTERN_TEMPLATES, include <spook/collide/collide_through.hpp>");
   }
 
   // --- Content ---------------------------------------------------------------
@@ -87,29 +88,14 @@ class SpaceT : public Referenced {
   /// Adds a geometry on its own (static, or of a body not in a simulation).
   /// Throws if it is null, already here, or holds a shape type outside this
   /// space's shape list.
-  void add(ref_ptr<Geometry> geometry) {
-    if (!geometry) throw error("cannot add a null Geometry", "nullptr");
-    if (Access::space(*geometry) == this) throw detail::makeError("Geometry", geometry->getName(), "already in this space");
-    if (Access::space(*geometry)) throw detail::makeError("Geometry", geometry->getName(), "already in another space");
-    requireSupported(*geometry);
-    Access::space(*geometry) = this;
-    geometries_.push_back(std::move(geometry));
-  }
+  void add(ref_ptr<Geometry> geometry);
   /// Removes a geometry added with add(); false when it is not here.
-  bool remove(Geometry* geometry) {
-    const auto it = std::find_if(geometries_.begin(), geometries_.end(), [&](const auto& g) { return g == geometry; });
-    if (it == geometries_.end()) return false;
-    Access::space(**it) = nullptr;
-    geometries_.erase(it);
-    return true;
-  }
+  bool remove(Geometry* geometry);
   [[nodiscard]] const std::vector<ref_ptr<Geometry>>& getGeometries() const { return geometries_; }
 
   /// Throws unless every shape of `geometry` (composite children included)
   /// has a type in this space's shape list.
-  void requireSupported(const Geometry& geometry) const {
-    for (const auto& entry : geometry.getShapes()) requireSupported(geometry, *entry.shape);
-  }
+  void requireSupported(const Geometry& geometry) const;
 
   // --- Filters ---------------------------------------------------------------
 
@@ -132,22 +118,7 @@ class SpaceT : public Referenced {
   /// True when the pair passes every filter: both enabled and colliding,
   /// not on one body, not both static, not disabled pairwise or by groups,
   /// not vetoed by the body pair filter.
-  [[nodiscard]] bool canCollide(const Geometry& a, const Geometry& b) const {
-    if (&a == &b || !a.getEnable() || !b.getEnable() || !a.getEnableCollisions() || !b.getEnableCollisions())
-      return false;
-    const Body* bodyA = a.getRigidBody();
-    const Body* bodyB = b.getRigidBody();
-    if (bodyA && bodyA == bodyB) return false;
-    if (isFixed(bodyA) && isFixed(bodyB)) return false;
-    if (!a.getEnableCollisions(&b)) return false;
-    for (const auto id : a.getGroupIds())
-      for (const auto other : b.getGroupIds())
-        if (disabledIds_.count(std::minmax(id, other))) return false;
-    for (const auto& name : a.getGroupNames())
-      for (const auto& other : b.getGroupNames())
-        if (disabledNames_.count(std::minmax(name, other))) return false;
-    return !(bodyA && bodyB && bodyPairFilter_ && bodyPairFilter_(*bodyA, *bodyB));
-  }
+  [[nodiscard]] bool canCollide(const Geometry& a, const Geometry& b) const;
 
   // --- Contact reduction -----------------------------------------------------
 
@@ -155,10 +126,7 @@ class SpaceT : public Referenced {
   void setContactReductionMode(ContactReductionMode mode) { reductionMode_ = mode; }
   /// Bin resolution 1, 2 (default, fast) or 3 (higher fidelity).
   [[nodiscard]] int getContactBinResolution() const { return binResolution_; }
-  void setContactBinResolution(int resolution) {
-    if (resolution < 1 || resolution > 3) throw error("contact bin resolution must be 1, 2 or 3", resolution);
-    binResolution_ = resolution;
-  }
+  void setContactBinResolution(int resolution);
 
   /// Overrides the reduction of some geometry pairs: the rule returns the
   /// mode and bin resolution for a pair, or nothing for the space's. A
@@ -172,19 +140,7 @@ class SpaceT : public Referenced {
   /// Finds the contacts between this space's geometries and those of
   /// `bodies` (a simulation's), reduces them and marks impacts; pairs that
   /// touched before and no longer do are listed in getSeparations().
-  void update(const std::vector<ref_ptr<Body>>& bodies = {}) {
-    gather(bodies);
-    boxes_.clear();
-    // Grown by the touching gap, within which the colliders count shapes as
-    // touching: a box resting on another, its settling depth lost to float
-    // round-off, stays a pair.
-    for (const Geometry* g : active_) boxes_.push_back(g->getBoundingBox().grownBy(S(detail::kTouchingGap)));
-    contacts_.clear();
-    numDroppedContactPoints_ = 0;
-    broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(*active_[i], *active_[j]); });
-    reduce();
-    trackEvents();
-  }
+  void update(const std::vector<ref_ptr<Body>>& bodies = {});
 
   /// Geometry pairs in contact after the last update().
   [[nodiscard]] std::vector<Contact>& getGeometryContacts() { return contacts_; }
@@ -197,25 +153,16 @@ class SpaceT : public Referenced {
   [[nodiscard]] std::size_t getNumDroppedContactPoints() const { return numDroppedContactPoints_; }
 
  protected:
-  ~SpaceT() override {
-    for (auto& g : geometries_) Access::space(*g) = nullptr;
-  }
+  ~SpaceT() override;
 
  private:
   using Access = detail::GeometryAccess<S>;
   using CollideFunction = bool (*)(const ShapeT<S>&, const TransformT<S>&, const ShapeT<S>&, const TransformT<S>&,
                                    ContactSinkT<S>&);
 
-  static bool isFixed(const Body* body) { return !body || body->getMotionControl() == Body::STATIC; }
+  static bool isFixed(const Body* body);
 
-  void requireSupported(const Geometry& geometry, const ShapeT<S>& shape) const {
-    if (!contains_(shape.getType()))
-      throw detail::makeError("Geometry", geometry.getName(), "shape type not in this space's shape list",
-                              std::string(shapeTypeName(shape.getType())));
-    if (shape.getType() == ShapeType::COMPOSITE)
-      for (const auto& child : static_cast<const CompositeT<S>&>(shape).getChildren())
-        requireSupported(geometry, *child.shape);
-  }
+  void requireSupported(const Geometry& geometry, const ShapeT<S>& shape) const;
 
   template <class Key>
   static void setPair(std::set<std::pair<Key, Key>>& disabled, const Key& a, const Key& b, bool enable) {
@@ -228,71 +175,16 @@ class SpaceT : public Referenced {
   /// The geometries to collide. A shape may have joined a geometry (or a
   /// composite) after the geometry was checked on add: it is checked here,
   /// before anything changes, rather than silently colliding with nothing.
-  void gather(const std::vector<ref_ptr<Body>>& bodies) {
-    active_.clear();
-    for (const auto& g : geometries_) active_.push_back(g.get());
-    for (const auto& body : bodies)
-      if (body->getEnable())
-        for (const auto& g : body->getGeometries()) active_.push_back(g.get());
-    for (const Geometry* g : active_) requireSupported(*g);
-  }
+  void gather(const std::vector<ref_ptr<Body>>& bodies);
 
-  void narrowPhase(Geometry& a, Geometry& b) {
-    if (!canCollide(a, b)) return;
-    // One order per pair, so that normals and event keys are stable.
-    Geometry* first = &a;
-    Geometry* second = &b;
-    if (first->getId() > second->getId()) std::swap(first, second);
-    Contact contact(first, second);
-    ContactSinkT<S> sink(contact.points());
-    const TransformT<S> X_W1 = first->getTransform(), X_W2 = second->getTransform();
-    for (const auto& e1 : first->getShapes())
-      for (const auto& e2 : second->getShapes())
-        collide_(*e1.shape, X_W1 * e1.transform, *e2.shape, X_W2 * e2.transform, sink);
-    numDroppedContactPoints_ += sink.getNumDropped();
-    if (!contact.points().empty()) contacts_.push_back(std::move(contact));
-  }
+  void narrowPhase(Geometry& a, Geometry& b);
 
   // Each pair reduces as its rule says (the space's mode and resolution
   // unless a reduction rule overrides them); REDUCE_ALL pairs pool their
   // points per body pair, at the resolution of the pair's last contact.
-  void reduce() {
-    std::vector<ContactPointT<S>*> points;
-    std::map<std::pair<const void*, const void*>, std::pair<int, std::vector<ContactPointT<S>*>>> byBodies;
-    for (auto& contact : contacts_) {
-      ContactReductionMode mode = reductionMode_;
-      int resolution = binResolution_;
-      if (reductionRule_)
-        if (const auto rule = reductionRule_(*contact.geometry(0), *contact.geometry(1))) std::tie(mode, resolution) = *rule;
-      if (mode == ContactReductionMode::REDUCE_NONE) continue;
-      if (mode == ContactReductionMode::REDUCE_GEOMETRY) {
-        points.clear();
-        for (auto& p : contact.points()) points.push_back(&p);
-        detail::reduceContacts<S>(points, resolution);
-        continue;
-      }
-      // Per body pair: a static geometry counts as its own "body".
-      const void* k1 = contact.rigidBody(0) ? static_cast<const void*>(contact.rigidBody(0)) : contact.geometry(0);
-      const void* k2 = contact.rigidBody(1) ? static_cast<const void*>(contact.rigidBody(1)) : contact.geometry(1);
-      auto& [pairResolution, list] = byBodies[std::minmax(k1, k2)];
-      pairResolution = resolution;
-      for (auto& p : contact.points()) list.push_back(&p);
-    }
-    for (auto& [key, entry] : byBodies) detail::reduceContacts<S>(entry.second, entry.first);
-  }
+  void reduce();
 
-  void trackEvents() {
-    std::map<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>> now;
-    for (auto& contact : contacts_) {
-      const auto key = std::make_pair(contact.geometry(0)->getId(), contact.geometry(1)->getId());
-      contact.setImpact(!touching_.count(key));
-      now.emplace(key, GeometryPairT<S>{contact.geometry(0), contact.geometry(1)});
-    }
-    separations_.clear();
-    for (const auto& [key, pair] : touching_)
-      if (!now.count(key)) separations_.push_back(pair);
-    touching_ = std::move(now);
-  }
+  void trackEvents();
 
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
@@ -317,6 +209,160 @@ class SpaceT : public Referenced {
   std::vector<GeometryPairT<S>> separations_;
   std::size_t numDroppedContactPoints_ = 0;
 };
+
+template <Scalar S>
+void SpaceT<S>::add(ref_ptr<Geometry> geometry) {
+  if (!geometry) throw error("cannot add a null Geometry", "nullptr");
+  if (Access::space(*geometry) == this)
+    throw detail::makeError("Geometry", geometry->getName(), "already in this space");
+  if (Access::space(*geometry)) throw detail::makeError("Geometry", geometry->getName(), "already in another space");
+  requireSupported(*geometry);
+  Access::space(*geometry) = this;
+  geometries_.push_back(std::move(geometry));
+}
+
+template <Scalar S>
+bool SpaceT<S>::remove(Geometry* geometry) {
+  const auto it = std::find_if(geometries_.begin(), geometries_.end(), [&](const auto& g) { return g == geometry; });
+  if (it == geometries_.end()) return false;
+  Access::space(**it) = nullptr;
+  geometries_.erase(it);
+  return true;
+}
+
+template <Scalar S>
+void SpaceT<S>::requireSupported(const Geometry& geometry) const {
+  for (const auto& entry : geometry.getShapes()) requireSupported(geometry, *entry.shape);
+}
+
+template <Scalar S>
+bool SpaceT<S>::canCollide(const Geometry& a, const Geometry& b) const {
+  if (&a == &b || !a.getEnable() || !b.getEnable() || !a.getEnableCollisions() || !b.getEnableCollisions())
+    return false;
+  const Body* bodyA = a.getRigidBody();
+  const Body* bodyB = b.getRigidBody();
+  if (bodyA && bodyA == bodyB) return false;
+  if (isFixed(bodyA) && isFixed(bodyB)) return false;
+  if (!a.getEnableCollisions(&b)) return false;
+  for (const auto id : a.getGroupIds())
+    for (const auto other : b.getGroupIds())
+      if (disabledIds_.count(std::minmax(id, other))) return false;
+  for (const auto& name : a.getGroupNames())
+    for (const auto& other : b.getGroupNames())
+      if (disabledNames_.count(std::minmax(name, other))) return false;
+  return !(bodyA && bodyB && bodyPairFilter_ && bodyPairFilter_(*bodyA, *bodyB));
+}
+
+template <Scalar S>
+void SpaceT<S>::setContactBinResolution(int resolution) {
+  if (resolution < 1 || resolution > 3) throw error("contact bin resolution must be 1, 2 or 3", resolution);
+  binResolution_ = resolution;
+}
+
+template <Scalar S>
+void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies) {
+  gather(bodies);
+  boxes_.clear();
+  // Grown by the touching gap, within which the colliders count shapes as
+  // touching: a box resting on another, its settling depth lost to float
+  // round-off, stays a pair.
+  for (const Geometry* g : active_) boxes_.push_back(g->getBoundingBox().grownBy(S(detail::kTouchingGap)));
+  contacts_.clear();
+  numDroppedContactPoints_ = 0;
+  broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(*active_[i], *active_[j]); });
+  reduce();
+  trackEvents();
+}
+
+template <Scalar S>
+SpaceT<S>::~SpaceT() {
+  for (auto& g : geometries_) Access::space(*g) = nullptr;
+}
+
+template <Scalar S>
+bool SpaceT<S>::isFixed(const Body* body) {
+  return !body || body->getMotionControl() == Body::STATIC;
+}
+
+template <Scalar S>
+void SpaceT<S>::requireSupported(const Geometry& geometry, const ShapeT<S>& shape) const {
+  if (!contains_(shape.getType()))
+    throw detail::makeError("Geometry", geometry.getName(), "shape type not in this space's shape list",
+                            std::string(shapeTypeName(shape.getType())));
+  if (shape.getType() == ShapeType::COMPOSITE)
+    for (const auto& child : static_cast<const CompositeT<S>&>(shape).getChildren())
+      requireSupported(geometry, *child.shape);
+}
+
+template <Scalar S>
+void SpaceT<S>::gather(const std::vector<ref_ptr<Body>>& bodies) {
+  active_.clear();
+  for (const auto& g : geometries_) active_.push_back(g.get());
+  for (const auto& body : bodies)
+    if (body->getEnable())
+      for (const auto& g : body->getGeometries()) active_.push_back(g.get());
+  for (const Geometry* g : active_) requireSupported(*g);
+}
+
+template <Scalar S>
+void SpaceT<S>::narrowPhase(Geometry& a, Geometry& b) {
+  if (!canCollide(a, b)) return;
+  // One order per pair, so that normals and event keys are stable.
+  Geometry* first = &a;
+  Geometry* second = &b;
+  if (first->getId() > second->getId()) std::swap(first, second);
+  Contact contact(first, second);
+  ContactSinkT<S> sink(contact.points());
+  const TransformT<S> X_W1 = first->getTransform(), X_W2 = second->getTransform();
+  for (const auto& e1 : first->getShapes())
+    for (const auto& e2 : second->getShapes())
+      collide_(*e1.shape, X_W1 * e1.transform, *e2.shape, X_W2 * e2.transform, sink);
+  numDroppedContactPoints_ += sink.getNumDropped();
+  if (!contact.points().empty()) contacts_.push_back(std::move(contact));
+}
+
+template <Scalar S>
+void SpaceT<S>::reduce() {
+  std::vector<ContactPointT<S>*> points;
+  std::map<std::pair<const void*, const void*>, std::pair<int, std::vector<ContactPointT<S>*>>> byBodies;
+  for (auto& contact : contacts_) {
+    ContactReductionMode mode = reductionMode_;
+    int resolution = binResolution_;
+    if (reductionRule_)
+      if (const auto rule = reductionRule_(*contact.geometry(0), *contact.geometry(1)))
+        std::tie(mode, resolution) = *rule;
+    if (mode == ContactReductionMode::REDUCE_NONE) continue;
+    if (mode == ContactReductionMode::REDUCE_GEOMETRY) {
+      points.clear();
+      for (auto& p : contact.points()) points.push_back(&p);
+      detail::reduceContacts<S>(points, resolution);
+      continue;
+    }
+    // Per body pair: a static geometry counts as its own "body".
+    const void* k1 = contact.rigidBody(0) ? static_cast<const void*>(contact.rigidBody(0)) : contact.geometry(0);
+    const void* k2 = contact.rigidBody(1) ? static_cast<const void*>(contact.rigidBody(1)) : contact.geometry(1);
+    auto& [pairResolution, list] = byBodies[std::minmax(k1, k2)];
+    pairResolution = resolution;
+    for (auto& p : contact.points()) list.push_back(&p);
+  }
+  for (auto& [key, entry] : byBodies) detail::reduceContacts<S>(entry.second, entry.first);
+}
+
+template <Scalar S>
+void SpaceT<S>::trackEvents() {
+  std::map<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>> now;
+  for (auto& contact : contacts_) {
+    const auto key = std::make_pair(contact.geometry(0)->getId(), contact.geometry(1)->getId());
+    contact.setImpact(!touching_.count(key));
+    now.emplace(key, GeometryPairT<S>{contact.geometry(0), contact.geometry(1)});
+  }
+  separations_.clear();
+  for (const auto& [key, pair] : touching_)
+    if (!now.count(key)) separations_.push_back(pair);
+  touching_ = std::move(now);
+}
+
+SPOOK_COMPILED_ONCE(class, SpaceT)
 
 using Space = SpaceT<double>;
 using SpaceRef = ref_ptr<Space>;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <spook/core/error.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/math.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
@@ -23,28 +24,15 @@ class FrameT : public Referenced {
   /// The parent frame, or nullptr for a root frame.
   [[nodiscard]] FrameT* getParent() const { return parent_.get(); }
   /// Re-parents the frame keeping its local transform; throws if that would make a cycle.
-  void setParent(FrameT* parent) {
-    for (const FrameT* f = parent; f; f = f->getParent())
-      if (f == this) throw detail::makeError("Frame", "", "parent would create a cycle", "a frame of its own chain");
-    parent_ = parent;
-  }
+  void setParent(FrameT* parent);
 
   /// Transform from this frame to its parent (world when root).
-  [[nodiscard]] Transform getLocalMatrix() const { return makeTransform<S>(localTranslate_, localRotate_); }
-  void setLocalMatrix(const Transform& X) {
-    checkMatrix(X);
-    setLocal(X.translation(), Quat(X.linear()));
-  }
+  [[nodiscard]] Transform getLocalMatrix() const;
+  void setLocalMatrix(const Transform& X);
 
   /// Transform from this frame to the world.
-  [[nodiscard]] Transform getMatrix() const {
-    return parent_ ? parent_->getMatrix() * getLocalMatrix() : getLocalMatrix();
-  }
-  void setMatrix(const Transform& X_W) {
-    checkMatrix(X_W);
-    const Transform X_P = parent_ ? Transform(parent_->getMatrix().inverse() * X_W) : X_W;
-    setLocal(X_P.translation(), Quat(X_P.linear()));
-  }
+  [[nodiscard]] Transform getMatrix() const;
+  void setMatrix(const Transform& X_W);
 
   /// Origin relative to the parent (m).
   [[nodiscard]] const Vec3& getLocalTranslate() const { return localTranslate_; }
@@ -56,21 +44,13 @@ class FrameT : public Referenced {
   void setLocalRotate(const Quat& q) { setLocal(localTranslate_, q); }
 
   /// Origin in world coordinates (m).
-  [[nodiscard]] Vec3 getTranslate() const {
-    return parent_ ? parent_->transformPointToWorld(localTranslate_) : localTranslate_;
-  }
-  void setTranslate(const Vec3& p_W) {
-    checkVector(p_W, "translate must be finite");
-    setLocalTranslate(parent_ ? parent_->transformPointToLocal(p_W) : p_W);
-  }
+  [[nodiscard]] Vec3 getTranslate() const;
+  void setTranslate(const Vec3& p_W);
   void setTranslate(S x, S y, S z) { setTranslate(Vec3(x, y, z)); }
 
   /// Orientation in world coordinates.
-  [[nodiscard]] Quat getRotate() const { return parent_ ? Quat(parent_->getRotate() * localRotate_) : localRotate_; }
-  void setRotate(const Quat& q_W) {
-    checkQuat(q_W);
-    setLocalRotate(parent_ ? Quat(parent_->getRotate().conjugate() * unitQuaternion<S>(q_W)) : q_W);
-  }
+  [[nodiscard]] Quat getRotate() const;
+  void setRotate(const Quat& q_W);
 
   /// A point given in this frame, expressed in world coordinates.
   [[nodiscard]] Vec3 transformPointToWorld(const Vec3& p) const { return getMatrix() * p; }
@@ -85,29 +65,95 @@ class FrameT : public Referenced {
   ~FrameT() override = default;
 
  private:
-  void setLocal(const Vec3& p, const Quat& q) {
-    checkVector(p, "translate must be finite");
-    checkQuat(q);
-    localTranslate_ = p;
-    localRotate_ = unitQuaternion<S>(q);
-  }
-  static void checkVector(const Vec3& v, const char* what) {
-    if (!v.allFinite()) throw detail::makeError("Frame", "", what, v);
-  }
-  static void checkQuat(const Quat& q) {
-    if (!isRotationQuaternion<S>(q))
-      throw detail::makeError("Frame", "", "rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
-  }
-  static void checkMatrix(const Transform& X) {
-    if (!X.matrix().allFinite() || !isRotation<S>(X.linear()))
-      throw detail::makeError("Frame", "", "transform must be finite with a rotation as linear part",
-                              SPDMat3T<S>::flat(X.linear()));
-  }
+  void setLocal(const Vec3& p, const Quat& q);
+  static void checkVector(const Vec3& v, const char* what);
+  static void checkQuat(const Quat& q);
+  static void checkMatrix(const Transform& X);
 
   ref_ptr<FrameT> parent_;
   Vec3 localTranslate_ = Vec3::Zero();
   Quat localRotate_ = Quat::Identity();
 };
+
+template <Scalar S>
+void FrameT<S>::setParent(FrameT* parent) {
+  for (const FrameT* f = parent; f; f = f->getParent())
+    if (f == this) throw detail::makeError("Frame", "", "parent would create a cycle", "a frame of its own chain");
+  parent_ = parent;
+}
+
+template <Scalar S>
+auto FrameT<S>::getLocalMatrix() const -> Transform {
+  return makeTransform<S>(localTranslate_, localRotate_);
+}
+
+template <Scalar S>
+void FrameT<S>::setLocalMatrix(const Transform& X) {
+  checkMatrix(X);
+  setLocal(X.translation(), Quat(X.linear()));
+}
+
+template <Scalar S>
+auto FrameT<S>::getMatrix() const -> Transform {
+  return parent_ ? parent_->getMatrix() * getLocalMatrix() : getLocalMatrix();
+}
+
+template <Scalar S>
+void FrameT<S>::setMatrix(const Transform& X_W) {
+  checkMatrix(X_W);
+  const Transform X_P = parent_ ? Transform(parent_->getMatrix().inverse() * X_W) : X_W;
+  setLocal(X_P.translation(), Quat(X_P.linear()));
+}
+
+template <Scalar S>
+auto FrameT<S>::getTranslate() const -> Vec3 {
+  return parent_ ? parent_->transformPointToWorld(localTranslate_) : localTranslate_;
+}
+
+template <Scalar S>
+void FrameT<S>::setTranslate(const Vec3& p_W) {
+  checkVector(p_W, "translate must be finite");
+  setLocalTranslate(parent_ ? parent_->transformPointToLocal(p_W) : p_W);
+}
+
+template <Scalar S>
+auto FrameT<S>::getRotate() const -> Quat {
+  return parent_ ? Quat(parent_->getRotate() * localRotate_) : localRotate_;
+}
+
+template <Scalar S>
+void FrameT<S>::setRotate(const Quat& q_W) {
+  checkQuat(q_W);
+  setLocalRotate(parent_ ? Quat(parent_->getRotate().conjugate() * unitQuaternion<S>(q_W)) : q_W);
+}
+
+template <Scalar S>
+void FrameT<S>::setLocal(const Vec3& p, const Quat& q) {
+  checkVector(p, "translate must be finite");
+  checkQuat(q);
+  localTranslate_ = p;
+  localRotate_ = unitQuaternion<S>(q);
+}
+
+template <Scalar S>
+void FrameT<S>::checkVector(const Vec3& v, const char* what) {
+  if (!v.allFinite()) throw detail::makeError("Frame", "", what, v);
+}
+
+template <Scalar S>
+void FrameT<S>::checkQuat(const Quat& q) {
+  if (!isRotationQuaternion<S>(q))
+    throw detail::makeError("Frame", "", "rotation must be a finite non-zero quaternion (x, y, z, w)", q.coeffs());
+}
+
+template <Scalar S>
+void FrameT<S>::checkMatrix(const Transform& X) {
+  if (!X.matrix().allFinite() || !isRotation<S>(X.linear()))
+    throw detail::makeError("Frame", "", "transform must be finite with a rotation as linear part",
+                            SPDMat3T<S>::flat(X.linear()));
+}
+
+SPOOK_COMPILED_ONCE(class, FrameT)
 
 using Frame = FrameT<double>;
 using FrameRef = ref_ptr<Frame>;

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include <spook/core/error.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/math.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
@@ -33,18 +34,7 @@ class FrictionModelT : public Referenced {
   /// How the contact rows using this model are solved under the hybrid
   /// policy; default SolveType::SPLIT (normals direct, friction iterative).
   [[nodiscard]] SolveType getSolveType() const { return solveType_; }
-  void setSolveType(SolveType solveType) {
-    switch (solveType) {
-      case SolveType::DIRECT:
-      case SolveType::ITERATIVE:
-      case SolveType::DIRECT_AND_ITERATIVE:
-      case SolveType::SPLIT:
-        solveType_ = solveType;
-        return;
-    }
-    throw error("solve type must be DIRECT (1), ITERATIVE (2), DIRECT_AND_ITERATIVE (3) or SPLIT (4)",
-                static_cast<int>(solveType));
-  }
+  void setSolveType(SolveType solveType);
 
   /// Whether a primary friction direction is set; when not, the first
   /// tangent follows the sliding direction.
@@ -53,17 +43,8 @@ class FrictionModelT : public Referenced {
   [[nodiscard]] const Vec3T<S>& getPrimaryDirection() const { return primaryDirection_; }
   /// Sets the primary friction direction (world, any finite nonzero length;
   /// stored normalized).
-  void setPrimaryDirection(const Vec3T<S>& direction) {
-    const S length = direction.norm();
-    if (!(direction.allFinite() && std::isfinite(length) && length > S(0)))
-      throw error("primary direction must be finite and nonzero", direction);
-    primaryDirection_ = direction / length;
-    hasPrimaryDirection_ = true;
-  }
-  void clearPrimaryDirection() {
-    primaryDirection_ = Vec3T<S>::Zero();
-    hasPrimaryDirection_ = false;
-  }
+  void setPrimaryDirection(const Vec3T<S>& direction);
+  void clearPrimaryDirection();
 
   [[nodiscard]] const std::string& getName() const { return name_; }
 
@@ -83,6 +64,37 @@ class FrictionModelT : public Referenced {
   bool hasPrimaryDirection_ = false;
   Vec3T<S> primaryDirection_ = Vec3T<S>::Zero();
 };
+
+template <Scalar S>
+void FrictionModelT<S>::setSolveType(SolveType solveType) {
+  switch (solveType) {
+    case SolveType::DIRECT:
+    case SolveType::ITERATIVE:
+    case SolveType::DIRECT_AND_ITERATIVE:
+    case SolveType::SPLIT:
+      solveType_ = solveType;
+      return;
+  }
+  throw error("solve type must be DIRECT (1), ITERATIVE (2), DIRECT_AND_ITERATIVE (3) or SPLIT (4)",
+              static_cast<int>(solveType));
+}
+
+template <Scalar S>
+void FrictionModelT<S>::setPrimaryDirection(const Vec3T<S>& direction) {
+  const S length = direction.norm();
+  if (!(direction.allFinite() && std::isfinite(length) && length > S(0)))
+    throw error("primary direction must be finite and nonzero", direction);
+  primaryDirection_ = direction / length;
+  hasPrimaryDirection_ = true;
+}
+
+template <Scalar S>
+void FrictionModelT<S>::clearPrimaryDirection() {
+  primaryDirection_ = Vec3T<S>::Zero();
+  hasPrimaryDirection_ = false;
+}
+
+SPOOK_COMPILED_ONCE(class, FrictionModelT)
 
 /// Fixed friction bounds ±μN per tangent, decoupled from the solved normal
 /// force: linear, so the direct solver can take it whole.

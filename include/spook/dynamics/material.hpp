@@ -5,6 +5,7 @@
 #include <utility>
 
 #include <spook/core/error.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
 #include <spook/core/scalar.hpp>
@@ -28,7 +29,9 @@ class MaterialT : public Referenced {
     void setDensity(S density) { density_ = positive("density must be finite and > 0 kg/m^3", density); }
     /// Young's modulus (Pa), the contact stiffness; default 4e8.
     [[nodiscard]] S getYoungsModulus() const { return youngsModulus_; }
-    void setYoungsModulus(S modulus) { youngsModulus_ = positive("Young's modulus must be finite and > 0 Pa", modulus); }
+    void setYoungsModulus(S modulus) {
+      youngsModulus_ = positive("Young's modulus must be finite and > 0 Pa", modulus);
+    }
     /// Viscosity, 1 − restitution, in [0, 1]; default 1 (no bounce).
     [[nodiscard]] S getViscosity() const { return viscosity_; }
     void setViscosity(S viscosity) {
@@ -106,6 +109,8 @@ class MaterialT : public Referenced {
   BulkMaterial bulk_{&name_};
   SurfaceMaterial surface_{&name_};
 };
+
+SPOOK_COMPILED_ONCE(class, MaterialT)
 
 using Material = MaterialT<double>;
 using MaterialRef = ref_ptr<Material>;

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include <spook/collide/shapes/shape.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -17,23 +18,14 @@ class BoxT : public ShapeT<S> {
   explicit BoxT(const Vec3& halfExtents) { setHalfExtents(halfExtents); }
 
   [[nodiscard]] const Vec3& getHalfExtents() const { return halfExtents_; }
-  void setHalfExtents(const Vec3& halfExtents) {
-    if (!(halfExtents.allFinite() && halfExtents.minCoeff() > S(0)))
-      throw detail::makeError("Box", "", "half extents must be finite and > 0 m", halfExtents);
-    const Vec3 old = halfExtents_;
-    this->change([&] { halfExtents_ = halfExtents; }, [&] { halfExtents_ = old; });
-  }
+  void setHalfExtents(const Vec3& halfExtents);
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
 
   [[nodiscard]] S getVolume() const override { return S(8) * halfExtents_.prod(); }
 
   /// I = m/3 (b² + c², a² + c², a² + b²) for half extents a, b, c.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Box", mass);
-    const Vec3 sq = halfExtents_.cwiseAbs2();
-    return SPDMat3T<S>(Vec3(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()) * (mass / S(3)));
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return {-halfExtents_, halfExtents_}; }
 
@@ -84,6 +76,23 @@ class BoxT : public ShapeT<S> {
  private:
   Vec3 halfExtents_ = Vec3::Zero();
 };
+
+template <Scalar S>
+void BoxT<S>::setHalfExtents(const Vec3& halfExtents) {
+  if (!(halfExtents.allFinite() && halfExtents.minCoeff() > S(0)))
+    throw detail::makeError("Box", "", "half extents must be finite and > 0 m", halfExtents);
+  const Vec3 old = halfExtents_;
+  this->change([&] { halfExtents_ = halfExtents; }, [&] { halfExtents_ = old; });
+}
+
+template <Scalar S>
+auto BoxT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Box", mass);
+  const Vec3 sq = halfExtents_.cwiseAbs2();
+  return SPDMat3T<S>(Vec3(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()) * (mass / S(3)));
+}
+
+SPOOK_COMPILED_ONCE(class, BoxT)
 
 using Box = BoxT<double>;
 using BoxRef = ref_ptr<Box>;

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include <spook/collide/shapes/shape.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -16,42 +17,23 @@ class CapsuleT : public ShapeT<S> {
   static constexpr ShapeType kType = ShapeType::CAPSULE;
   using Vec3 = spook::Vec3T<S>;
 
-  CapsuleT(S radius, S height) {
-    setRadius(radius);
-    setHeight(height);
-  }
+  CapsuleT(S radius, S height);
 
   [[nodiscard]] S getRadius() const { return radius_; }
-  void setRadius(S radius) {
-    const S checked = this->requireLength("Capsule", "radius", radius), old = radius_;
-    this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
-  }
+  void setRadius(S radius);
   [[nodiscard]] S getHeight() const { return height_; }
-  void setHeight(S height) {
-    const S checked = this->requireLength("Capsule", "height", height), old = height_;
-    this->change([&] { height_ = checked; }, [&] { height_ = old; });
-  }
+  void setHeight(S height);
 
   /// V = π r² h + 4/3 π r³.
   [[nodiscard]] ShapeType getType() const override { return kType; }
 
-  [[nodiscard]] S getVolume() const override {
-    return std::numbers::pi_v<S> * radius_ * radius_ * (height_ + S(4) / S(3) * radius_);
-  }
+  [[nodiscard]] S getVolume() const override;
 
   /// Cylinder part m_c and the two hemispheres m_s share the mass by volume:
   /// I_yy = m_c r²/2 + 2/5 m_s r²,
   /// I_xx = I_zz = m_c (3r² + h²)/12 + m_s (2r²/5 + h²/4 + 3hr/8), the last
   /// term from each hemisphere's centroid at 3r/8 and the parallel-axis rule.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Capsule", mass);
-    const S r = radius_, h = height_, r2 = r * r;
-    const S cylinderShare = h / (h + S(4) / S(3) * r);
-    const S mc = mass * cylinderShare, ms = mass - mc;
-    const S axial = S(0.5) * mc * r2 + S(0.4) * ms * r2;
-    const S across = mc * (S(3) * r2 + h * h) / S(12) + ms * (S(0.4) * r2 + S(0.25) * h * h + S(0.375) * h * r);
-    return SPDMat3T<S>(Vec3(across, axial, across));
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return detail::boundingBoxFromSupport<S>(*this); }
 
@@ -83,6 +65,42 @@ class CapsuleT : public ShapeT<S> {
   S radius_ = S(0);
   S height_ = S(0);
 };
+
+template <Scalar S>
+CapsuleT<S>::CapsuleT(S radius, S height) {
+  setRadius(radius);
+  setHeight(height);
+}
+
+template <Scalar S>
+void CapsuleT<S>::setRadius(S radius) {
+  const S checked = this->requireLength("Capsule", "radius", radius), old = radius_;
+  this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
+}
+
+template <Scalar S>
+void CapsuleT<S>::setHeight(S height) {
+  const S checked = this->requireLength("Capsule", "height", height), old = height_;
+  this->change([&] { height_ = checked; }, [&] { height_ = old; });
+}
+
+template <Scalar S>
+S CapsuleT<S>::getVolume() const {
+  return std::numbers::pi_v<S> * radius_ * radius_ * (height_ + S(4) / S(3) * radius_);
+}
+
+template <Scalar S>
+auto CapsuleT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Capsule", mass);
+  const S r = radius_, h = height_, r2 = r * r;
+  const S cylinderShare = h / (h + S(4) / S(3) * r);
+  const S mc = mass * cylinderShare, ms = mass - mc;
+  const S axial = S(0.5) * mc * r2 + S(0.4) * ms * r2;
+  const S across = mc * (S(3) * r2 + h * h) / S(12) + ms * (S(0.4) * r2 + S(0.25) * h * h + S(0.375) * h * r);
+  return SPDMat3T<S>(Vec3(across, axial, across));
+}
+
+SPOOK_COMPILED_ONCE(class, CapsuleT)
 
 using Capsule = CapsuleT<double>;
 using CapsuleRef = ref_ptr<Capsule>;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <spook/collide/shapes/shape.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -34,22 +35,7 @@ class CompositeT : public ShapeT<S>, private detail::ShapeOwner<S> {
   /// rigid, or a child that a body holding the composite could not take
   /// (its mass properties would not be finite and valid); else the body's
   /// generated mass properties follow.
-  void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity()) {
-    if (!shape) throw detail::makeError("Composite", "", "cannot add a null shape", "nullptr");
-    const auto* nested = dynamic_cast<const CompositeT*>(shape.get());
-    if (nested && nested->contains(this))
-      throw detail::makeError("Composite", "", "a composite cannot contain itself", "a composite of its own chain");
-    if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
-      throw detail::makeError("Composite", "", "child transform must be finite and rigid",
-                              SPDMat3T<S>::flat(transform.linear()));
-    Shape& child = *shape;
-    this->change(
-        [&] {
-          children_.push_back({std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
-        },
-        [&] { children_.pop_back(); });
-    detail::ShapeOwners<S>::add(child, this);
-  }
+  void add(ref_ptr<Shape> shape, const Transform& transform = Transform::Identity());
 
   [[nodiscard]] const std::vector<Child>& getChildren() const { return children_; }
 
@@ -66,67 +52,24 @@ class CompositeT : public ShapeT<S>, private detail::ShapeOwner<S> {
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
 
-  [[nodiscard]] S getVolume() const override {
-    S volume = S(0);
-    for (const Child& c : children_) volume += c.shape->getVolume();
-    return volume;
-  }
+  [[nodiscard]] S getVolume() const override;
 
   /// Volume-weighted mean of the children's centers, composite frame (m).
-  [[nodiscard]] Vec3 getCenterOfVolume() const override {
-    Vec3 moment = Vec3::Zero();
-    for (const Child& c : children_) moment += c.shape->getVolume() * (c.transform * c.shape->getCenterOfVolume());
-    return moment / getVolume();
-  }
+  [[nodiscard]] Vec3 getCenterOfVolume() const override;
 
   /// About the composite origin. Each child gets the mass m Vᵢ/V; its tensor
   /// about its own origin is first moved to its center of volume cᵢ, then
   /// turned into the composite frame and moved to the origin (parallel-axis
   /// theorem both ways, J(m, d) = m(|d|² 1 − d dᵀ)):
   /// I = Σ Rᵢ (Iᵢ − J(mᵢ, cᵢ)) Rᵢᵀ + J(mᵢ, Xᵢ cᵢ).
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Composite", mass);
-    const S volume = getVolume();
-    if (!(volume > S(0))) throw detail::makeError("Composite", "", "inertia needs a positive volume (m^3)", volume);
-    const auto shift = [](S m, const Vec3& d) {
-      return Mat3(m * (d.squaredNorm() * Mat3::Identity() - d * d.transpose()));
-    };
-    Mat3 inertia = Mat3::Zero();
-    for (const Child& c : children_) {
-      if (!(c.shape->getVolume() > S(0))) continue;  // a plane or a line carries no mass
-      const S childMass = mass * (c.shape->getVolume() / volume);
-      const Vec3 center = c.shape->getCenterOfVolume();
-      const Mat3 aboutCenter = c.shape->calculateInertia(childMass).matrix() - shift(childMass, center);
-      const Mat3 R = c.transform.linear();
-      inertia += R * aboutCenter * R.transpose() + shift(childMass, c.transform * center);
-    }
-    return SPDMat3T<S>(inertia);
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   /// Union of the children's boxes, each child box's corners transformed;
   /// unbounded (±infinity) when a child is.
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
-    if (children_.empty()) return {};
-    BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::max()),
-                        Vec3::Constant(std::numeric_limits<S>::lowest())};
-    for (const Child& c : children_) {
-      const BoundingBoxT<S> local = c.shape->getBoundingBox();
-      if (!(local.min.allFinite() && local.max.allFinite())) {  // a plane child: unbounded
-        return {Vec3::Constant(-std::numeric_limits<S>::infinity()), Vec3::Constant(std::numeric_limits<S>::infinity())};
-      }
-      const Mat3 R = c.transform.linear();
-      const Vec3 center = c.transform * local.center();
-      const Vec3 reach = R.cwiseAbs() * local.halfExtents();
-      box.min = box.min.cwiseMin(center - reach);
-      box.max = box.max.cwiseMax(center + reach);
-    }
-    return box;
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override;
 
  protected:
-  ~CompositeT() override {
-    for (Child& c : children_) detail::ShapeOwners<S>::remove(*c.shape, this);
-  }
+  ~CompositeT() override;
 
  private:
   // A child changed: whatever holds this composite checks it and follows.
@@ -135,6 +78,84 @@ class CompositeT : public ShapeT<S>, private detail::ShapeOwner<S> {
 
   std::vector<Child> children_;
 };
+
+template <Scalar S>
+void CompositeT<S>::add(ref_ptr<Shape> shape, const Transform& transform) {
+  if (!shape) throw detail::makeError("Composite", "", "cannot add a null shape", "nullptr");
+  const auto* nested = dynamic_cast<const CompositeT*>(shape.get());
+  if (nested && nested->contains(this))
+    throw detail::makeError("Composite", "", "a composite cannot contain itself", "a composite of its own chain");
+  if (!(transform.matrix().allFinite() && isRotation<S>(transform.linear())))
+    throw detail::makeError("Composite", "", "child transform must be finite and rigid",
+                            SPDMat3T<S>::flat(transform.linear()));
+  Shape& child = *shape;
+  this->change(
+      [&] {
+        children_.push_back(
+            {std::move(shape), makeTransform<S>(transform.translation(), QuatT<S>(transform.linear()))});
+      },
+      [&] { children_.pop_back(); });
+  detail::ShapeOwners<S>::add(child, this);
+}
+
+template <Scalar S>
+S CompositeT<S>::getVolume() const {
+  S volume = S(0);
+  for (const Child& c : children_) volume += c.shape->getVolume();
+  return volume;
+}
+
+template <Scalar S>
+auto CompositeT<S>::getCenterOfVolume() const -> Vec3 {
+  Vec3 moment = Vec3::Zero();
+  for (const Child& c : children_) moment += c.shape->getVolume() * (c.transform * c.shape->getCenterOfVolume());
+  return moment / getVolume();
+}
+
+template <Scalar S>
+auto CompositeT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Composite", mass);
+  const S volume = getVolume();
+  if (!(volume > S(0))) throw detail::makeError("Composite", "", "inertia needs a positive volume (m^3)", volume);
+  const auto shift = [](S m, const Vec3& d) {
+    return Mat3(m * (d.squaredNorm() * Mat3::Identity() - d * d.transpose()));
+  };
+  Mat3 inertia = Mat3::Zero();
+  for (const Child& c : children_) {
+    if (!(c.shape->getVolume() > S(0))) continue;  // a plane or a line carries no mass
+    const S childMass = mass * (c.shape->getVolume() / volume);
+    const Vec3 center = c.shape->getCenterOfVolume();
+    const Mat3 aboutCenter = c.shape->calculateInertia(childMass).matrix() - shift(childMass, center);
+    const Mat3 R = c.transform.linear();
+    inertia += R * aboutCenter * R.transpose() + shift(childMass, c.transform * center);
+  }
+  return SPDMat3T<S>(inertia);
+}
+
+template <Scalar S>
+auto CompositeT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  if (children_.empty()) return {};
+  BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::max()), Vec3::Constant(std::numeric_limits<S>::lowest())};
+  for (const Child& c : children_) {
+    const BoundingBoxT<S> local = c.shape->getBoundingBox();
+    if (!(local.min.allFinite() && local.max.allFinite())) {  // a plane child: unbounded
+      return {Vec3::Constant(-std::numeric_limits<S>::infinity()), Vec3::Constant(std::numeric_limits<S>::infinity())};
+    }
+    const Mat3 R = c.transform.linear();
+    const Vec3 center = c.transform * local.center();
+    const Vec3 reach = R.cwiseAbs() * local.halfExtents();
+    box.min = box.min.cwiseMin(center - reach);
+    box.max = box.max.cwiseMax(center + reach);
+  }
+  return box;
+}
+
+template <Scalar S>
+CompositeT<S>::~CompositeT() {
+  for (Child& c : children_) detail::ShapeOwners<S>::remove(*c.shape, this);
+}
+
+SPOOK_COMPILED_ONCE(class, CompositeT)
 
 using Composite = CompositeT<double>;
 using CompositeRef = ref_ptr<Composite>;

@@ -12,6 +12,7 @@
 #include <spook/collide/detail/convex_hull.hpp>
 #include <spook/collide/detail/polyhedron_mass.hpp>
 #include <spook/collide/shapes/shape.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -36,27 +37,7 @@ class ConvexT : public ShapeT<S> {
 
   /// Hull of `points` (shape frame, m). Throws on a non-finite point, and
   /// unless the points span a volume (not all coplanar within the tolerance).
-  explicit ConvexT(const std::vector<Vec3>& points) {
-    for (const Vec3& p : points)
-      if (!p.allFinite()) throw detail::makeError("Convex", "", "points must be finite (m)", p);
-    auto hull = detail::convexHull<S>(points);
-    if (!hull) throw detail::makeError("Convex", "", "needs at least 4 non-coplanar points", points.size());
-    vertices_ = std::move(hull->vertices);
-    triangles_ = std::move(hull->triangles);
-    faces_ = std::move(hull->faces);
-    tolerance_ = hull->tolerance;
-
-    // Mass properties in double, whatever S, from the exact corner positions.
-    std::vector<spook::Vec3T<double>> corners;
-    for (const Vec3& v : vertices_) corners.push_back(v.template cast<double>());
-    const auto mass = detail::polyhedronMass<double>(corners, triangles_);
-    volume_ = S(mass.volume);
-    center_ = mass.center.template cast<S>();
-    unitInertia_ = mass.inertia.template cast<S>();
-    buildAdjacency();
-    buildEdges();
-    buildVertexFaces();
-  }
+  explicit ConvexT(const std::vector<Vec3>& points);
 
   /// Hull corners, shape frame (m).
   [[nodiscard]] const std::vector<Vec3>& getVertices() const { return vertices_; }
@@ -83,22 +64,10 @@ class ConvexT : public ShapeT<S> {
 
   /// About the shape origin: I = m/V · I_c + m (|c|² 1 − c cᵀ), with I_c the
   /// unit-density tensor about the center c (kg·m²).
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Convex", mass);
-    const Vec3& c = center_;
-    return SPDMat3T<S>(
-        Mat3((mass / volume_) * unitInertia_ + mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())));
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   /// Box around the corners, shape frame (m).
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
-    BoundingBoxT<S> box{vertices_.front(), vertices_.front()};
-    for (const Vec3& v : vertices_) {
-      box.min = box.min.cwiseMin(v);
-      box.max = box.max.cwiseMax(v);
-    }
-    return box;
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override;
 
   /// The corner farthest along `direction`, shape frame (m): a scan of the
   /// corners for small hulls, a climb along the hull's edges for large ones.
@@ -167,56 +136,13 @@ class ConvexT : public ShapeT<S> {
   }
 
   // The polygon faces around each corner, in compressed rows.
-  void buildVertexFaces() {
-    std::vector<std::vector<int>> around(vertices_.size());
-    for (std::size_t f = 0; f < faces_.size(); ++f)
-      for (const int v : faces_[f].vertices) around[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
-    vertexFacesStart_.assign(1, 0);
-    for (const auto& list : around) {
-      vertexFaces_.insert(vertexFaces_.end(), list.begin(), list.end());
-      vertexFacesStart_.push_back(static_cast<int>(vertexFaces_.size()));
-    }
-  }
+  void buildVertexFaces();
 
   // Neighbours of each corner along the triangles' edges, in compressed rows.
-  void buildAdjacency() {
-    std::vector<std::vector<int>> neighbours(vertices_.size());
-    for (const Triangle& t : triangles_)
-      for (int i = 0; i < 3; ++i) {
-        auto& list = neighbours[static_cast<std::size_t>(t[i])];
-        const int other = t[(i + 1) % 3];
-        if (std::find(list.begin(), list.end(), other) == list.end()) list.push_back(other);
-        auto& back = neighbours[static_cast<std::size_t>(other)];
-        if (std::find(back.begin(), back.end(), t[i]) == back.end()) back.push_back(t[i]);
-      }
-    adjacencyStart_.assign(1, 0);
-    for (const auto& list : neighbours) {
-      adjacency_.insert(adjacency_.end(), list.begin(), list.end());
-      adjacencyStart_.push_back(static_cast<int>(adjacency_.size()));
-    }
-  }
+  void buildAdjacency();
 
   // Each face loop edge meets the reversed edge of exactly one other face.
-  void buildEdges() {
-    struct HalfEdge {
-      int low, high, from, to, face;
-    };
-    std::vector<HalfEdge> halves;
-    for (std::size_t f = 0; f < faces_.size(); ++f) {
-      const auto& loop = faces_[f].vertices;
-      for (std::size_t k = 0; k < loop.size(); ++k) {
-        const int a = loop[k], b = loop[(k + 1) % loop.size()];
-        halves.push_back({std::min(a, b), std::max(a, b), a, b, static_cast<int>(f)});
-      }
-    }
-    std::sort(halves.begin(), halves.end(),
-              [](const HalfEdge& x, const HalfEdge& y) { return std::tie(x.low, x.high) < std::tie(y.low, y.high); });
-    for (std::size_t k = 0; k < halves.size();) {
-      const bool paired = k + 1 < halves.size() && halves[k + 1].low == halves[k].low && halves[k + 1].high == halves[k].high;
-      edges_.push_back({halves[k].from, halves[k].to, halves[k].face, paired ? halves[k + 1].face : -1});
-      k += paired ? 2 : 1;
-    }
-  }
+  void buildEdges();
 
   std::vector<Vec3> vertices_;
   std::vector<Edge> edges_;
@@ -231,6 +157,102 @@ class ConvexT : public ShapeT<S> {
   std::vector<int> vertexFaces_;
   std::vector<int> vertexFacesStart_;
 };
+
+template <Scalar S>
+ConvexT<S>::ConvexT(const std::vector<Vec3>& points) {
+  for (const Vec3& p : points)
+    if (!p.allFinite()) throw detail::makeError("Convex", "", "points must be finite (m)", p);
+  auto hull = detail::convexHull<S>(points);
+  if (!hull) throw detail::makeError("Convex", "", "needs at least 4 non-coplanar points", points.size());
+  vertices_ = std::move(hull->vertices);
+  triangles_ = std::move(hull->triangles);
+  faces_ = std::move(hull->faces);
+  tolerance_ = hull->tolerance;
+
+  // Mass properties in double, whatever S, from the exact corner positions.
+  std::vector<spook::Vec3T<double>> corners;
+  for (const Vec3& v : vertices_) corners.push_back(v.template cast<double>());
+  const auto mass = detail::polyhedronMass<double>(corners, triangles_);
+  volume_ = S(mass.volume);
+  center_ = mass.center.template cast<S>();
+  unitInertia_ = mass.inertia.template cast<S>();
+  buildAdjacency();
+  buildEdges();
+  buildVertexFaces();
+}
+
+template <Scalar S>
+auto ConvexT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Convex", mass);
+  const Vec3& c = center_;
+  return SPDMat3T<S>(
+      Mat3((mass / volume_) * unitInertia_ + mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())));
+}
+
+template <Scalar S>
+auto ConvexT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  BoundingBoxT<S> box{vertices_.front(), vertices_.front()};
+  for (const Vec3& v : vertices_) {
+    box.min = box.min.cwiseMin(v);
+    box.max = box.max.cwiseMax(v);
+  }
+  return box;
+}
+
+template <Scalar S>
+void ConvexT<S>::buildVertexFaces() {
+  std::vector<std::vector<int>> around(vertices_.size());
+  for (std::size_t f = 0; f < faces_.size(); ++f)
+    for (const int v : faces_[f].vertices) around[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
+  vertexFacesStart_.assign(1, 0);
+  for (const auto& list : around) {
+    vertexFaces_.insert(vertexFaces_.end(), list.begin(), list.end());
+    vertexFacesStart_.push_back(static_cast<int>(vertexFaces_.size()));
+  }
+}
+
+template <Scalar S>
+void ConvexT<S>::buildAdjacency() {
+  std::vector<std::vector<int>> neighbours(vertices_.size());
+  for (const Triangle& t : triangles_)
+    for (int i = 0; i < 3; ++i) {
+      auto& list = neighbours[static_cast<std::size_t>(t[i])];
+      const int other = t[(i + 1) % 3];
+      if (std::find(list.begin(), list.end(), other) == list.end()) list.push_back(other);
+      auto& back = neighbours[static_cast<std::size_t>(other)];
+      if (std::find(back.begin(), back.end(), t[i]) == back.end()) back.push_back(t[i]);
+    }
+  adjacencyStart_.assign(1, 0);
+  for (const auto& list : neighbours) {
+    adjacency_.insert(adjacency_.end(), list.begin(), list.end());
+    adjacencyStart_.push_back(static_cast<int>(adjacency_.size()));
+  }
+}
+
+template <Scalar S>
+void ConvexT<S>::buildEdges() {
+  struct HalfEdge {
+    int low, high, from, to, face;
+  };
+  std::vector<HalfEdge> halves;
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    const auto& loop = faces_[f].vertices;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const int a = loop[k], b = loop[(k + 1) % loop.size()];
+      halves.push_back({std::min(a, b), std::max(a, b), a, b, static_cast<int>(f)});
+    }
+  }
+  std::sort(halves.begin(), halves.end(),
+            [](const HalfEdge& x, const HalfEdge& y) { return std::tie(x.low, x.high) < std::tie(y.low, y.high); });
+  for (std::size_t k = 0; k < halves.size();) {
+    const bool paired =
+        k + 1 < halves.size() && halves[k + 1].low == halves[k].low && halves[k + 1].high == halves[k].high;
+    edges_.push_back({halves[k].from, halves[k].to, halves[k].face, paired ? halves[k + 1].face : -1});
+    k += paired ? 2 : 1;
+  }
+}
+
+SPOOK_COMPILED_ONCE(class, ConvexT)
 
 using Convex = ConvexT<double>;
 using ConvexRef = ref_ptr<Convex>;

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include <spook/collide/shapes/shape.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -15,33 +16,20 @@ class CylinderT : public ShapeT<S> {
   static constexpr ShapeType kType = ShapeType::CYLINDER;
   using Vec3 = spook::Vec3T<S>;
 
-  CylinderT(S radius, S height) {
-    setRadius(radius);
-    setHeight(height);
-  }
+  CylinderT(S radius, S height);
 
   [[nodiscard]] S getRadius() const { return radius_; }
-  void setRadius(S radius) {
-    const S checked = this->requireLength("Cylinder", "radius", radius), old = radius_;
-    this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
-  }
+  void setRadius(S radius);
   [[nodiscard]] S getHeight() const { return height_; }
-  void setHeight(S height) {
-    const S checked = this->requireLength("Cylinder", "height", height), old = height_;
-    this->change([&] { height_ = checked; }, [&] { height_ = old; });
-  }
+  void setHeight(S height);
 
   /// V = π r² h.
   [[nodiscard]] ShapeType getType() const override { return kType; }
 
-  [[nodiscard]] S getVolume() const override { return std::numbers::pi_v<S> * radius_ * radius_ * height_; }
+  [[nodiscard]] S getVolume() const override;
 
   /// I_yy = m r²/2 about the axis; I_xx = I_zz = m (3r² + h²)/12.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Cylinder", mass);
-    const S r2 = radius_ * radius_, across = mass * (S(3) * r2 + height_ * height_) / S(12);
-    return SPDMat3T<S>(Vec3(across, S(0.5) * mass * r2, across));
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override { return detail::boundingBoxFromSupport<S>(*this); }
 
@@ -88,6 +76,38 @@ class CylinderT : public ShapeT<S> {
   S radius_ = S(0);
   S height_ = S(0);
 };
+
+template <Scalar S>
+CylinderT<S>::CylinderT(S radius, S height) {
+  setRadius(radius);
+  setHeight(height);
+}
+
+template <Scalar S>
+void CylinderT<S>::setRadius(S radius) {
+  const S checked = this->requireLength("Cylinder", "radius", radius), old = radius_;
+  this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
+}
+
+template <Scalar S>
+void CylinderT<S>::setHeight(S height) {
+  const S checked = this->requireLength("Cylinder", "height", height), old = height_;
+  this->change([&] { height_ = checked; }, [&] { height_ = old; });
+}
+
+template <Scalar S>
+S CylinderT<S>::getVolume() const {
+  return std::numbers::pi_v<S> * radius_ * radius_ * height_;
+}
+
+template <Scalar S>
+auto CylinderT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Cylinder", mass);
+  const S r2 = radius_ * radius_, across = mass * (S(3) * r2 + height_ * height_) / S(12);
+  return SPDMat3T<S>(Vec3(across, S(0.5) * mass * r2, across));
+}
+
+SPOOK_COMPILED_ONCE(class, CylinderT)
 
 using Cylinder = CylinderT<double>;
 using CylinderRef = ref_ptr<Cylinder>;

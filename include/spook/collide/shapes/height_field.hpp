@@ -14,6 +14,7 @@
 #include <spook/collide/detail/aabb_tree.hpp>
 #include <spook/collide/detail/triangle.hpp>
 #include <spook/collide/shapes/shape.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -37,34 +38,7 @@ class HeightFieldT : public ShapeT<S> {
   /// resolutionX·resolutionY entries, a non-finite height, heights whose
   /// range (highest − lowest) overflows, a size that is not finite and
   /// > 0 m, or a cell so small that its spacing underflows.
-  HeightFieldT(std::size_t resolutionX, std::size_t resolutionY, S sizeX, S sizeY, std::vector<S> heights)
-      : resolutionX_(resolutionX), resolutionY_(resolutionY), heights_(std::move(heights)) {
-    const std::array<std::size_t, 2> resolution{resolutionX, resolutionY};
-    if (resolutionX < 2 || resolutionY < 2)
-      throw detail::makeError("HeightField", "", "needs at least 2 x 2 height samples (resolutionX, resolutionY)",
-                              resolution);
-    // Checked before any product of the resolutions is formed, so that none wraps around.
-    if ((resolutionX - 1) > kMaxTriangles / 2 / (resolutionY - 1))
-      throw detail::makeError("HeightField", "",
-                              "2 (resolutionX - 1)(resolutionY - 1) triangles must not exceed " +
-                                  std::to_string(kMaxTriangles),
-                              resolution);
-    sizeX_ = this->requireLength("HeightField", "sizeX", sizeX);
-    sizeY_ = this->requireLength("HeightField", "sizeY", sizeY);
-    if (heights_.size() != resolutionX * resolutionY)
-      throw detail::makeError(
-          "HeightField", "",
-          "needs resolutionX * resolutionY = " + std::to_string(resolutionX * resolutionY) + " heights",
-          heights_.size());
-    for (std::size_t k = 0; k < heights_.size(); ++k)
-      if (!std::isfinite(heights_[k]))
-        throw detail::makeError("HeightField", "", "height " + std::to_string(k) + " must be finite (m)", heights_[k]);
-    spacing_ = Vec2(sizeX_ / S(resolutionX - 1), sizeY_ / S(resolutionY - 1));
-    if (!(spacing_.minCoeff() >= std::numeric_limits<S>::min()))
-      throw detail::makeError("HeightField", "", "cell spacing size / (resolution - 1) must not underflow (m)", spacing_);
-    updateHeightRange();
-    requireFiniteRange(minHeight_, maxHeight_);
-  }
+  HeightFieldT(std::size_t resolutionX, std::size_t resolutionY, S sizeX, S sizeY, std::vector<S> heights);
 
   /// Number of samples along x.
   [[nodiscard]] std::size_t getResolutionX() const { return resolutionX_; }
@@ -84,31 +58,11 @@ class HeightFieldT : public ShapeT<S> {
   [[nodiscard]] S getMaxHeight() const { return maxHeight_; }
 
   /// Height of sample (i, j) (m); throws when out of range.
-  [[nodiscard]] S getHeight(std::size_t i, std::size_t j) const {
-    requireSample(i, j);
-    return height(i, j);
-  }
+  [[nodiscard]] S getHeight(std::size_t i, std::size_t j) const;
   /// Sets the height of sample (i, j) (m); throws, keeping the field, on an
   /// index out of range, a non-finite height or one whose distance to the
   /// others overflows.
-  void setHeight(std::size_t i, std::size_t j, S h) {
-    requireSample(i, j);
-    if (!std::isfinite(h)) throw detail::makeError("HeightField", "", "height must be finite (m)", h);
-    S& sample = heights_[i + resolutionX_ * j];
-    const S old = sample, oldMin = minHeight_, oldMax = maxHeight_;
-    const auto apply = [&] {
-      sample = h;
-      if (old == oldMin || old == oldMax) return updateHeightRange();
-      minHeight_ = std::min(oldMin, h);
-      maxHeight_ = std::max(oldMax, h);
-    };
-    const auto undo = [&] { sample = old, minHeight_ = oldMin, maxHeight_ = oldMax; };
-    apply();
-    const Vec2 range(minHeight_, maxHeight_);
-    undo();
-    requireFiniteRange(range.x(), range.y());
-    this->change(apply, undo);
-  }
+  void setHeight(std::size_t i, std::size_t j, S h);
 
   /// Sample (i, j) as a point, shape frame (m).
   [[nodiscard]] Vec3 getVertex(std::size_t i, std::size_t j) const { return Vec3(gridX(i), gridY(j), height(i, j)); }
@@ -173,14 +127,10 @@ class HeightFieldT : public ShapeT<S> {
   [[nodiscard]] S getVolume() const override { return S(0); }
 
   /// Always throws: a HeightField has no volume, so no inertia.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    throw detail::makeError("HeightField", "", "a HeightField has no volume, hence no inertia; mass (kg)", mass);
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
   /// The grid's x and y extents, z from the lowest to the highest sample (shape frame, m).
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
-    return {Vec3(gridX(0), gridY(0), minHeight_), Vec3(gridX(resolutionX_ - 1), gridY(resolutionY_ - 1), maxHeight_)};
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override;
 
   /// Calls visit(index, a, b, c) with the corners (shape frame, m) of each
   /// triangle whose box overlaps `localBox` (shape frame, touching counts);
@@ -210,34 +160,15 @@ class HeightFieldT : public ShapeT<S> {
   [[nodiscard]] S gridX(std::size_t i) const { return S(-0.5) * sizeX_ + S(i) * spacing_.x(); }
   [[nodiscard]] S gridY(std::size_t j) const { return S(-0.5) * sizeY_ + S(j) * spacing_.y(); }
 
-  void requireSample(std::size_t i, std::size_t j) const {
-    if (i >= resolutionX_ || j >= resolutionY_)
-      throw detail::makeError("HeightField", "",
-                              "sample (i, j) must lie in [0, " + std::to_string(resolutionX_) + ") x [0, " +
-                                  std::to_string(resolutionY_) + ")",
-                              std::array<std::size_t, 2>{i, j});
-  }
+  void requireSample(std::size_t i, std::size_t j) const;
 
-  static void requireFiniteRange(S lowest, S highest) {
-    if (!std::isfinite(highest - lowest))
-      throw detail::makeError("HeightField", "", "heights must span a finite range, highest - lowest (m)",
-                              Vec2(lowest, highest));
-  }
-  void updateHeightRange() {
-    const auto [lo, hi] = std::minmax_element(heights_.begin(), heights_.end());
-    minHeight_ = *lo;
-    maxHeight_ = *hi;
-  }
+  static void requireFiniteRange(S lowest, S highest);
+  void updateHeightRange();
 
   // Cells [first, last] along one axis that may meet [lo, hi], given that
   // the box meets the grid's extent on that axis.
   [[nodiscard]] static std::pair<std::size_t, std::size_t> cellRange(S lo, S hi, S size, S spacing,
-                                                                     std::size_t resolution) {
-    const S cells = S(resolution - 1);
-    const S first = std::clamp(std::floor((lo + S(0.5) * size) / spacing) - S(1), S(0), cells - S(1));
-    const S last = std::clamp(std::floor((hi + S(0.5) * size) / spacing) + S(1), S(0), cells - S(1));
-    return {static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
-  }
+                                                                     std::size_t resolution);
 
   // Contact points number the triangles with 32 bits.
   static constexpr std::size_t kMaxTriangles = std::numeric_limits<std::uint32_t>::max();
@@ -251,6 +182,105 @@ class HeightFieldT : public ShapeT<S> {
   S minHeight_ = S(0);
   S maxHeight_ = S(0);
 };
+
+template <Scalar S>
+HeightFieldT<S>::HeightFieldT(std::size_t resolutionX, std::size_t resolutionY, S sizeX, S sizeY,
+                              std::vector<S> heights)
+    : resolutionX_(resolutionX), resolutionY_(resolutionY), heights_(std::move(heights)) {
+  const std::array<std::size_t, 2> resolution{resolutionX, resolutionY};
+  if (resolutionX < 2 || resolutionY < 2)
+    throw detail::makeError("HeightField", "", "needs at least 2 x 2 height samples (resolutionX, resolutionY)",
+                            resolution);
+  // Checked before any product of the resolutions is formed, so that none wraps around.
+  if ((resolutionX - 1) > kMaxTriangles / 2 / (resolutionY - 1))
+    throw detail::makeError(
+        "HeightField", "",
+        "2 (resolutionX - 1)(resolutionY - 1) triangles must not exceed " + std::to_string(kMaxTriangles), resolution);
+  sizeX_ = this->requireLength("HeightField", "sizeX", sizeX);
+  sizeY_ = this->requireLength("HeightField", "sizeY", sizeY);
+  if (heights_.size() != resolutionX * resolutionY)
+    throw detail::makeError(
+        "HeightField", "",
+        "needs resolutionX * resolutionY = " + std::to_string(resolutionX * resolutionY) + " heights", heights_.size());
+  for (std::size_t k = 0; k < heights_.size(); ++k)
+    if (!std::isfinite(heights_[k]))
+      throw detail::makeError("HeightField", "", "height " + std::to_string(k) + " must be finite (m)", heights_[k]);
+  spacing_ = Vec2(sizeX_ / S(resolutionX - 1), sizeY_ / S(resolutionY - 1));
+  if (!(spacing_.minCoeff() >= std::numeric_limits<S>::min()))
+    throw detail::makeError("HeightField", "", "cell spacing size / (resolution - 1) must not underflow (m)", spacing_);
+  updateHeightRange();
+  requireFiniteRange(minHeight_, maxHeight_);
+}
+
+template <Scalar S>
+S HeightFieldT<S>::getHeight(std::size_t i, std::size_t j) const {
+  requireSample(i, j);
+  return height(i, j);
+}
+
+template <Scalar S>
+void HeightFieldT<S>::setHeight(std::size_t i, std::size_t j, S h) {
+  requireSample(i, j);
+  if (!std::isfinite(h)) throw detail::makeError("HeightField", "", "height must be finite (m)", h);
+  S& sample = heights_[i + resolutionX_ * j];
+  const S old = sample, oldMin = minHeight_, oldMax = maxHeight_;
+  const auto apply = [&] {
+    sample = h;
+    if (old == oldMin || old == oldMax) return updateHeightRange();
+    minHeight_ = std::min(oldMin, h);
+    maxHeight_ = std::max(oldMax, h);
+  };
+  const auto undo = [&] { sample = old, minHeight_ = oldMin, maxHeight_ = oldMax; };
+  apply();
+  const Vec2 range(minHeight_, maxHeight_);
+  undo();
+  requireFiniteRange(range.x(), range.y());
+  this->change(apply, undo);
+}
+
+template <Scalar S>
+auto HeightFieldT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  throw detail::makeError("HeightField", "", "a HeightField has no volume, hence no inertia; mass (kg)", mass);
+}
+
+template <Scalar S>
+auto HeightFieldT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  return {Vec3(gridX(0), gridY(0), minHeight_), Vec3(gridX(resolutionX_ - 1), gridY(resolutionY_ - 1), maxHeight_)};
+}
+
+template <Scalar S>
+void HeightFieldT<S>::requireSample(std::size_t i, std::size_t j) const {
+  if (i >= resolutionX_ || j >= resolutionY_)
+    throw detail::makeError("HeightField", "",
+                            "sample (i, j) must lie in [0, " + std::to_string(resolutionX_) + ") x [0, " +
+                                std::to_string(resolutionY_) + ")",
+                            std::array<std::size_t, 2>{i, j});
+}
+
+template <Scalar S>
+void HeightFieldT<S>::requireFiniteRange(S lowest, S highest) {
+  if (!std::isfinite(highest - lowest))
+    throw detail::makeError("HeightField", "", "heights must span a finite range, highest - lowest (m)",
+                            Vec2(lowest, highest));
+}
+
+template <Scalar S>
+void HeightFieldT<S>::updateHeightRange() {
+  const auto [lo, hi] = std::minmax_element(heights_.begin(), heights_.end());
+  minHeight_ = *lo;
+  maxHeight_ = *hi;
+}
+
+template <Scalar S>
+auto HeightFieldT<S>::cellRange(S lo, S hi, S size, S spacing, std::size_t resolution)
+    -> std::pair<std::size_t, std::size_t> {
+  const S cells = S(resolution - 1);
+  const S first = std::clamp(std::floor((lo + S(0.5) * size) / spacing) - S(1), S(0), cells - S(1));
+  const S last = std::clamp(std::floor((hi + S(0.5) * size) / spacing) + S(1), S(0), cells - S(1));
+  return {static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
+}
+
+SPOOK_COMPILED_ONCE(class, HeightFieldT)
 
 using HeightField = HeightFieldT<double>;
 using HeightFieldRef = ref_ptr<HeightField>;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <spook/collide/shapes/shape.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -25,15 +26,7 @@ class LineT : public ShapeT<S> {
   [[nodiscard]] S getLength() const { return (second_ - first_).norm(); }
   /// Moves both endpoints (shape frame, m); throws and keeps the line unless
   /// they are finite and apart.
-  void setPoints(const Vec3& first, const Vec3& second) {
-    const Eigen::Matrix<S, 6, 1> both = (Eigen::Matrix<S, 6, 1>() << first, second).finished();
-    if (!both.allFinite()) throw detail::makeError("Line", "", "points must be finite (m)", both);
-    const Vec3 span = second - first;
-    if (!(span.allFinite() && span.squaredNorm() > S(0)))
-      throw detail::makeError("Line", "", "points must be apart (length > 0 m)", both);
-    const Vec3 oldFirst = first_, oldSecond = second_;
-    this->change([&] { first_ = first, second_ = second; }, [&] { first_ = oldFirst, second_ = oldSecond; });
-  }
+  void setPoints(const Vec3& first, const Vec3& second);
 
   /// Which kind of shape this is.
   [[nodiscard]] ShapeType getType() const override { return kType; }
@@ -43,13 +36,9 @@ class LineT : public ShapeT<S> {
   [[nodiscard]] Vec3 getCenterOfVolume() const override { return S(0.5) * (first_ + second_); }
   /// Always throws: a line has no volume, and a rod of zero thickness has a
   /// singular inertia (none about its own axis).
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    throw detail::makeError("Line", "", "a Line has no volume and no inertia (kg)", mass);
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
   /// Box around both endpoints, shape frame (m).
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
-    return {first_.cwiseMin(second_), first_.cwiseMax(second_)};
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override;
 
   /// The endpoint farther along `direction`, the first one on a tie (shape frame, m).
   [[nodiscard]] Vec3 support(const Vec3& direction) const {
@@ -76,6 +65,29 @@ class LineT : public ShapeT<S> {
   Vec3 first_ = Vec3::Zero();
   Vec3 second_ = Vec3::Zero();
 };
+
+template <Scalar S>
+void LineT<S>::setPoints(const Vec3& first, const Vec3& second) {
+  const Eigen::Matrix<S, 6, 1> both = (Eigen::Matrix<S, 6, 1>() << first, second).finished();
+  if (!both.allFinite()) throw detail::makeError("Line", "", "points must be finite (m)", both);
+  const Vec3 span = second - first;
+  if (!(span.allFinite() && span.squaredNorm() > S(0)))
+    throw detail::makeError("Line", "", "points must be apart (length > 0 m)", both);
+  const Vec3 oldFirst = first_, oldSecond = second_;
+  this->change([&] { first_ = first, second_ = second; }, [&] { first_ = oldFirst, second_ = oldSecond; });
+}
+
+template <Scalar S>
+auto LineT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  throw detail::makeError("Line", "", "a Line has no volume and no inertia (kg)", mass);
+}
+
+template <Scalar S>
+auto LineT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  return {first_.cwiseMin(second_), first_.cwiseMax(second_)};
+}
+
+SPOOK_COMPILED_ONCE(class, LineT)
 
 using Line = LineT<double>;
 using LineRef = ref_ptr<Line>;

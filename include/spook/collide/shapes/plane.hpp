@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <spook/collide/shapes/shape.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -19,11 +20,7 @@ class PlaneT : public ShapeT<S> {
   /// Plane through `point` (m) with normal `normal` (any non-zero length; normalized).
   explicit PlaneT(const Vec3& normal, const Vec3& point = Vec3::Zero()) { set(normal, point); }
   /// Plane normal·x = distance (m), i.e. through normal·distance for a unit normal.
-  PlaneT(const Vec3& normal, S distance) {
-    if (!std::isfinite(distance)) throw detail::makeError("Plane", "", "distance must be finite (m)", distance);
-    const Vec3 n = unitNormal(normal);
-    set(n, Vec3(n * distance));
-  }
+  PlaneT(const Vec3& normal, S distance);
   /// Plane through three points (m), its normal (p2 − p1) × (p3 − p1) by the
   /// right-hand rule (counter-clockwise points seen from above the plane);
   /// throws on coincident or collinear points.
@@ -39,12 +36,7 @@ class PlaneT : public ShapeT<S> {
   /// Signed distance of the plane from the shape origin along the normal, normal·point (m).
   [[nodiscard]] S getDistance() const { return normal_.dot(point_); }
   /// Moves the plane (shape frame; normal normalized, point in m); throws and keeps it on bad input.
-  void set(const Vec3& normal, const Vec3& point) {
-    const Vec3 n = unitNormal(normal);
-    if (!point.allFinite()) throw detail::makeError("Plane", "", "point must be finite (m)", point);
-    const Vec3 oldNormal = normal_, oldPoint = point_;
-    this->change([&] { normal_ = n, point_ = point; }, [&] { normal_ = oldNormal, point_ = oldPoint; });
-  }
+  void set(const Vec3& normal, const Vec3& point);
 
   /// Signed distance of `p` (shape frame, m) above the plane; negative inside the solid (m).
   [[nodiscard]] S signedDistance(const Vec3& p) const { return normal_.dot(p - point_); }
@@ -54,14 +46,9 @@ class PlaneT : public ShapeT<S> {
   /// A plane encloses no volume: 0 m³.
   [[nodiscard]] S getVolume() const override { return S(0); }
   /// Always throws: a plane has no volume and so no inertia.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    throw detail::makeError("Plane", "", "a Plane has no volume and no inertia (kg)", mass);
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
   /// Unbounded: every component ±infinity (the Space treats such boxes apart).
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
-    constexpr S inf = std::numeric_limits<S>::infinity();
-    return {Vec3::Constant(-inf), Vec3::Constant(inf)};
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override;
 
  protected:
   ~PlaneT() override = default;
@@ -103,13 +90,42 @@ class PlaneT : public ShapeT<S> {
       throw detail::makeError("Plane", "", "normal (a, b, c) must be finite and non-zero", normal);
     const S distance = (d / largest) / (normal / largest).norm();
     if (!std::isfinite(distance))
-      throw detail::makeError("Plane", "", "d / |(a, b, c)| must be finite (m)", Eigen::Matrix<S, 4, 1>(normal.x(), normal.y(), normal.z(), d));
+      throw detail::makeError("Plane", "", "d / |(a, b, c)| must be finite (m)",
+                              Eigen::Matrix<S, 4, 1>(normal.x(), normal.y(), normal.z(), d));
     return distance;
   }
 
   Vec3 normal_ = Vec3::UnitZ();
   Vec3 point_ = Vec3::Zero();
 };
+
+template <Scalar S>
+PlaneT<S>::PlaneT(const Vec3& normal, S distance) {
+  if (!std::isfinite(distance)) throw detail::makeError("Plane", "", "distance must be finite (m)", distance);
+  const Vec3 n = unitNormal(normal);
+  set(n, Vec3(n * distance));
+}
+
+template <Scalar S>
+void PlaneT<S>::set(const Vec3& normal, const Vec3& point) {
+  const Vec3 n = unitNormal(normal);
+  if (!point.allFinite()) throw detail::makeError("Plane", "", "point must be finite (m)", point);
+  const Vec3 oldNormal = normal_, oldPoint = point_;
+  this->change([&] { normal_ = n, point_ = point; }, [&] { normal_ = oldNormal, point_ = oldPoint; });
+}
+
+template <Scalar S>
+auto PlaneT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  throw detail::makeError("Plane", "", "a Plane has no volume and no inertia (kg)", mass);
+}
+
+template <Scalar S>
+auto PlaneT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  constexpr S inf = std::numeric_limits<S>::infinity();
+  return {Vec3::Constant(-inf), Vec3::Constant(inf)};
+}
+
+SPOOK_COMPILED_ONCE(class, PlaneT)
 
 using Plane = PlaneT<double>;
 using PlaneRef = ref_ptr<Plane>;

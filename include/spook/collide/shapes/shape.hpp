@@ -9,6 +9,7 @@
 #include <spook/collide/shapes/shape_type.hpp>
 #include <spook/collide/supporting_feature.hpp>
 #include <spook/core/error.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/math.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
@@ -86,27 +87,41 @@ class ShapeT : public Referenced {
     }
     notifyOwners();
   }
-  void checkOwners() const {
-    for (const detail::ShapeOwner<S>* owner : owners_) owner->checkShapeChange();
-  }
-  void notifyOwners() {
-    for (detail::ShapeOwner<S>* owner : owners_) owner->shapeChanged();
-  }
+  void checkOwners() const;
+  void notifyOwners();
 
-  static void requireMass(const char* kind, S mass) {
-    if (!(std::isfinite(mass) && mass > S(0)))
-      throw detail::makeError(kind, "", "mass for the inertia must be finite and > 0 kg", mass);
-  }
-  static S requireLength(const char* kind, const char* what, S value) {
-    if (!(std::isfinite(value) && value > S(0)))
-      throw detail::makeError(kind, "", std::string(what) + " must be finite and > 0 m", value);
-    return value;
-  }
+  static void requireMass(const char* kind, S mass);
+  static S requireLength(const char* kind, const char* what, S value);
 
  private:
   friend struct detail::ShapeOwners<S>;
   std::vector<detail::ShapeOwner<S>*> owners_;
 };
+
+template <Scalar S>
+void ShapeT<S>::checkOwners() const {
+  for (const detail::ShapeOwner<S>* owner : owners_) owner->checkShapeChange();
+}
+
+template <Scalar S>
+void ShapeT<S>::notifyOwners() {
+  for (detail::ShapeOwner<S>* owner : owners_) owner->shapeChanged();
+}
+
+template <Scalar S>
+void ShapeT<S>::requireMass(const char* kind, S mass) {
+  if (!(std::isfinite(mass) && mass > S(0)))
+    throw detail::makeError(kind, "", "mass for the inertia must be finite and > 0 kg", mass);
+}
+
+template <Scalar S>
+S ShapeT<S>::requireLength(const char* kind, const char* what, S value) {
+  if (!(std::isfinite(value) && value > S(0)))
+    throw detail::makeError(kind, "", std::string(what) + " must be finite and > 0 m", value);
+  return value;
+}
+
+SPOOK_COMPILED_ONCE(class, ShapeT)
 
 namespace detail {
 

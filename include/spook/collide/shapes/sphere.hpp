@@ -3,6 +3,7 @@
 #include <numbers>
 
 #include <spook/collide/shapes/shape.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -18,27 +19,17 @@ class SphereT : public ShapeT<S> {
   [[nodiscard]] S getRadius() const { return radius_; }
   /// Throws, keeping the radius, on a value that is not finite and > 0 m or
   /// that a body holding the sphere could not take.
-  void setRadius(S radius) {
-    const S checked = this->requireLength("Sphere", "radius", radius), old = radius_;
-    this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
-  }
+  void setRadius(S radius);
 
   /// V = 4/3 π r³.
   [[nodiscard]] ShapeType getType() const override { return kType; }
 
-  [[nodiscard]] S getVolume() const override {
-    return S(4) / S(3) * std::numbers::pi_v<S> * radius_ * radius_ * radius_;
-  }
+  [[nodiscard]] S getVolume() const override;
 
   /// I = 2/5 m r² about every axis.
-  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override {
-    this->requireMass("Sphere", mass);
-    return SPDMat3T<S>(Vec3::Constant(S(0.4) * mass * radius_ * radius_));
-  }
+  [[nodiscard]] SPDMat3T<S> calculateInertia(S mass) const override;
 
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override {
-    return {Vec3::Constant(-radius_), Vec3::Constant(radius_)};
-  }
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const override;
 
   /// The surface point farthest along `direction` (+x for a zero direction).
   [[nodiscard]] Vec3 support(const Vec3& direction) const {
@@ -58,6 +49,30 @@ class SphereT : public ShapeT<S> {
  private:
   S radius_ = S(0);
 };
+
+template <Scalar S>
+void SphereT<S>::setRadius(S radius) {
+  const S checked = this->requireLength("Sphere", "radius", radius), old = radius_;
+  this->change([&] { radius_ = checked; }, [&] { radius_ = old; });
+}
+
+template <Scalar S>
+S SphereT<S>::getVolume() const {
+  return S(4) / S(3) * std::numbers::pi_v<S> * radius_ * radius_ * radius_;
+}
+
+template <Scalar S>
+auto SphereT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
+  this->requireMass("Sphere", mass);
+  return SPDMat3T<S>(Vec3::Constant(S(0.4) * mass * radius_ * radius_));
+}
+
+template <Scalar S>
+auto SphereT<S>::getBoundingBox() const -> BoundingBoxT<S> {
+  return {Vec3::Constant(-radius_), Vec3::Constant(radius_)};
+}
+
+SPOOK_COMPILED_ONCE(class, SphereT)
 
 using Sphere = SphereT<double>;
 using SphereRef = ref_ptr<Sphere>;
