@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include <spook/core/error.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/scalar.hpp>
 
 namespace spook {
@@ -63,35 +64,43 @@ class SPDMat3T {
   }
 
   /// Why `m` is not symmetric positive definite, or nullptr when it is.
-  [[nodiscard]] static const char* defect(const Mat3T<S>& m) {
-    if (!m.allFinite()) return "matrix must be finite";
-    const S scale = m.cwiseAbs().maxCoeff();
-    if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= ScalarTraits<S>::symmetryTolerance() * scale))
-      return "matrix must be symmetric";
-    const Mat3T<S> sym = S(0.5) * (m + m.transpose());
-    // Relative to the largest eigenvalue, so that round-off cannot pass a
-    // singular matrix off as positive definite.
-    const Vec3T<S> eigenvalues = Eigen::SelfAdjointEigenSolver<Mat3T<S>>(sym, Eigen::EigenvaluesOnly).eigenvalues();
-    if (!(eigenvalues.minCoeff() > S(16) * ScalarTraits<S>::epsilon() * eigenvalues.maxCoeff()))
-      return "matrix must be positive definite";
-    return nullptr;
-  }
+  [[nodiscard]] static const char* defect(const Mat3T<S>& m);
 
   [[nodiscard]] const Mat3T<S>& matrix() const { return m_; }
   [[nodiscard]] Mat3T<S> inverse() const { return m_.inverse(); }
   [[nodiscard]] Vec3T<S> diagonal() const { return m_.diagonal(); }
 
   /// Row-major entries, for error messages.
-  static Eigen::Matrix<S, 9, 1> flat(const Mat3T<S>& m) {
-    Eigen::Matrix<S, 9, 1> v;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) v[3 * r + c] = m(r, c);
-    return v;
-  }
+  static Eigen::Matrix<S, 9, 1> flat(const Mat3T<S>& m);
 
  private:
   Mat3T<S> m_;
 };
+
+template <class S>
+const char* SPDMat3T<S>::defect(const Mat3T<S>& m) {
+  if (!m.allFinite()) return "matrix must be finite";
+  const S scale = m.cwiseAbs().maxCoeff();
+  if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= ScalarTraits<S>::symmetryTolerance() * scale))
+    return "matrix must be symmetric";
+  const Mat3T<S> sym = S(0.5) * (m + m.transpose());
+  // Relative to the largest eigenvalue, so that round-off cannot pass a
+  // singular matrix off as positive definite.
+  const Vec3T<S> eigenvalues = Eigen::SelfAdjointEigenSolver<Mat3T<S>>(sym, Eigen::EigenvaluesOnly).eigenvalues();
+  if (!(eigenvalues.minCoeff() > S(16) * ScalarTraits<S>::epsilon() * eigenvalues.maxCoeff()))
+    return "matrix must be positive definite";
+  return nullptr;
+}
+
+template <class S>
+auto SPDMat3T<S>::flat(const Mat3T<S>& m) -> Eigen::Matrix<S, 9, 1> {
+  Eigen::Matrix<S, 9, 1> v;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) v[3 * r + c] = m(r, c);
+  return v;
+}
+
+SPOOK_COMPILED_ONCE(class, SPDMat3T)
 
 /// True when R is finite, orthonormal (to ScalarTraits::rotationTolerance)
 /// and right-handed: the linear part of a rigid transform.
@@ -162,7 +171,8 @@ template <class S>
 /// perpendicular to both.
 template <class S>
 [[nodiscard]] QuatT<S> rotate(const Vec3T<S>& from, const Vec3T<S>& to) {
-  if (!from.allFinite() || !to.allFinite() || !(from.cwiseAbs().maxCoeff() > S(0)) || !(to.cwiseAbs().maxCoeff() > S(0)))
+  if (!from.allFinite() || !to.allFinite() || !(from.cwiseAbs().maxCoeff() > S(0)) ||
+      !(to.cwiseAbs().maxCoeff() > S(0)))
     throw detail::makeError("rotate", "", "vectors must be finite and non-zero",
                             Eigen::Matrix<S, 6, 1>(from.x(), from.y(), from.z(), to.x(), to.y(), to.z()));
   return detail::shortestArc<S>(from, to);
@@ -180,7 +190,7 @@ template <class S>
 template <class S>
 [[nodiscard]] QuatT<S> toQuat(const EulerAnglesT<S>& e) {
   return QuatT<S>(Eigen::AngleAxis<S>(e.z, Vec3T<S>::UnitZ()) * Eigen::AngleAxis<S>(e.y, Vec3T<S>::UnitY()) *
-                 Eigen::AngleAxis<S>(e.x, Vec3T<S>::UnitX()));
+                  Eigen::AngleAxis<S>(e.x, Vec3T<S>::UnitX()));
 }
 
 /// Euler angles of a rotation matrix, with y in [−π/2, π/2]. At y = ±π/2
