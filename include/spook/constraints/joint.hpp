@@ -28,23 +28,12 @@ class ElementaryJointT : public ConstraintT<S> {
   [[nodiscard]] int getNumDOF() const override { return kNumRows; }
 
   /// Compliance (m/N or rad/(N·m)) of one DOF, or of all with ALL_DOF.
-  void setCompliance(S compliance, int dof = ALL_DOF) {
-    checkDof(dof);
-    RegularizationParametersT<S>{}.setCompliance(compliance);
-    forDof(dof, [&](RegularizationParametersT<S>& p) { p.setCompliance(compliance); });
-  }
+  void setCompliance(S compliance, int dof = ALL_DOF);
   /// SPOOK damping (s) of one DOF, or of all with ALL_DOF.
-  void setDamping(S damping, int dof = ALL_DOF) {
-    checkDof(dof);
-    RegularizationParametersT<S>{}.setDamping(damping);
-    forDof(dof, [&](RegularizationParametersT<S>& p) { p.setDamping(damping); });
-  }
+  void setDamping(S damping, int dof = ALL_DOF);
   [[nodiscard]] S getCompliance(int dof) const { return parameters(dof).getCompliance(); }
   [[nodiscard]] S getDamping(int dof) const { return parameters(dof).getDamping(); }
-  [[nodiscard]] RegularizationParametersT<S>* getRegularizationParameters(int dof) {
-    checkDof(dof, false);
-    return &mutableDofParameters(dof);
-  }
+  [[nodiscard]] RegularizationParametersT<S>* getRegularizationParameters(int dof);
 
   /// Quaternion-based rows (QuatLock) follow Hooke's law in radians when on
   /// (seed 001 §12.1.3); default off.
@@ -66,41 +55,73 @@ class ElementaryJointT : public ConstraintT<S> {
   void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
     addElementaryRows(a, sink);
   }
-  void addElementaryRows(const detail::Attachments& a, detail::RowSink& sink) {
-    std::array<detail::RowParameters, kNumRows> p{};
-    for (std::size_t i = 0; i < p.size(); ++i)
-      p[i] = {double(parameters_[i].getCompliance()), double(parameters_[i].getDamping())};
-    [[maybe_unused]] int offset = 0;
-    ((Elementary::addRows(a, sink, p.data() + offset, impulses_.data() + offset, options_),
-      offset += Elementary::kRows),
-     ...);
-  }
+  void addElementaryRows(const detail::Attachments& a, detail::RowSink& sink);
 
  private:
-  void checkDof(int dof, bool allowAll = true) const {
-    const int count = this->getNumDOF();
-    if (!((allowAll && dof == ALL_DOF) || (dof >= 0 && dof < count)))
-      throw this->error("DOF index out of range 0.." + std::to_string(count - 1), dof);
-  }
+  void checkDof(int dof, bool allowAll = true) const;
   template <class F>
-  void forDof(int dof, F&& f) {
-    if (dof == ALL_DOF)
-      for (int i = 0; i < this->getNumDOF(); ++i) f(mutableDofParameters(i));
-    else
-      f(mutableDofParameters(dof));
-  }
+  void forDof(int dof, F&& f);
   [[nodiscard]] RegularizationParametersT<S>& mutableDofParameters(int dof) {
     return const_cast<RegularizationParametersT<S>&>(std::as_const(*this).dofParameters(dof));
   }
-  [[nodiscard]] const RegularizationParametersT<S>& parameters(int dof) const {
-    checkDof(dof, false);
-    return dofParameters(dof);
-  }
+  [[nodiscard]] const RegularizationParametersT<S>& parameters(int dof) const;
 
   std::array<RegularizationParametersT<S>, kNumRows> parameters_{};
   std::array<double, kNumRows> impulses_{};
   detail::ElementaryOptions options_;
 };
+
+template <Scalar S, class... Elementary>
+void ElementaryJointT<S, Elementary...>::setCompliance(S compliance, int dof) {
+  checkDof(dof);
+  RegularizationParametersT<S>{}.setCompliance(compliance);
+  forDof(dof, [&](RegularizationParametersT<S>& p) { p.setCompliance(compliance); });
+}
+
+template <Scalar S, class... Elementary>
+void ElementaryJointT<S, Elementary...>::setDamping(S damping, int dof) {
+  checkDof(dof);
+  RegularizationParametersT<S>{}.setDamping(damping);
+  forDof(dof, [&](RegularizationParametersT<S>& p) { p.setDamping(damping); });
+}
+
+template <Scalar S, class... Elementary>
+RegularizationParametersT<S>* ElementaryJointT<S, Elementary...>::getRegularizationParameters(int dof) {
+  checkDof(dof, false);
+  return &mutableDofParameters(dof);
+}
+
+template <Scalar S, class... Elementary>
+void ElementaryJointT<S, Elementary...>::addElementaryRows(const detail::Attachments& a, detail::RowSink& sink) {
+  std::array<detail::RowParameters, kNumRows> p{};
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p[i] = {double(parameters_[i].getCompliance()), double(parameters_[i].getDamping())};
+  [[maybe_unused]] int offset = 0;
+  ((Elementary::addRows(a, sink, p.data() + offset, impulses_.data() + offset, options_), offset += Elementary::kRows),
+   ...);
+}
+
+template <Scalar S, class... Elementary>
+void ElementaryJointT<S, Elementary...>::checkDof(int dof, bool allowAll) const {
+  const int count = this->getNumDOF();
+  if (!((allowAll && dof == ALL_DOF) || (dof >= 0 && dof < count)))
+    throw this->error("DOF index out of range 0.." + std::to_string(count - 1), dof);
+}
+
+template <Scalar S, class... Elementary>
+template <class F>
+void ElementaryJointT<S, Elementary...>::forDof(int dof, F&& f) {
+  if (dof == ALL_DOF)
+    for (int i = 0; i < this->getNumDOF(); ++i) f(mutableDofParameters(i));
+  else
+    f(mutableDofParameters(dof));
+}
+
+template <Scalar S, class... Elementary>
+const RegularizationParametersT<S>& ElementaryJointT<S, Elementary...>::parameters(int dof) const {
+  checkDof(dof, false);
+  return dofParameters(dof);
+}
 
 /// One free DOF of a joint, measured by `Free::measure` (an angle with
 /// winding or a position), with the Motor1D, Lock1D, Range1D and
@@ -167,40 +188,68 @@ class Constraint1DOFT : public ElementaryJointT<S, Elementary...> {
   [[nodiscard]] FrictionControllerT<S>* getFrictionController() const { return dof_.friction(); }
 
   /// The free DOF's current value: rad (with winding) or m.
-  [[nodiscard]] S getAngle() const { return S(dof_.measure(this->attachments()).value); }
+  [[nodiscard]] S getAngle() const;
   /// Its rate (rad/s or m/s).
-  [[nodiscard]] S getCurrentSpeed() const { return S(dof_.measure(this->attachments()).speed); }
+  [[nodiscard]] S getCurrentSpeed() const;
 
  protected:
   using typename ConstraintT<S>::Body;
   using typename ConstraintT<S>::Frame;
-  Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
-      : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
-    dof_.restart(this->attachments());
-    dof_.friction()->setJoint(this);
-  }
+  Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2);
   ~Constraint1DOFT() override = default;
 
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    const std::size_t first = sink.rows->size();
-    this->addElementaryRows(a, sink);
-    load_.record(sink, first, a.R2.col(2));
-    dof_.addRows(a, sink, h);
-  }
-  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
-    this->addElementaryRows(a, sink);
-    dof_.addProjectionRows(a, sink);
-  }
-  void afterSolve(double h) override {
-    dof_.afterSolve(h);
-    dof_.friction()->setStepNormalForce(load_.normal(load_.force(h)));
-  }
-  void onRebind() override { dof_.restart(this->attachments()); }
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override;
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override;
+  void afterSolve(double h) override;
+  void onRebind() override;
 
  private:
   FreeDofT<S, Free> dof_;
   detail::JointLoad load_;  // the normal force for the friction controller
 };
+
+template <Scalar S, class Free, class... Elementary>
+S Constraint1DOFT<S, Free, Elementary...>::getAngle() const {
+  return S(dof_.measure(this->attachments()).value);
+}
+
+template <Scalar S, class Free, class... Elementary>
+S Constraint1DOFT<S, Free, Elementary...>::getCurrentSpeed() const {
+  return S(dof_.measure(this->attachments()).speed);
+}
+
+template <Scalar S, class Free, class... Elementary>
+Constraint1DOFT<S, Free, Elementary...>::Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2,
+                                                         Frame* frame2)
+    : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
+  dof_.restart(this->attachments());
+  dof_.friction()->setJoint(this);
+}
+
+template <Scalar S, class Free, class... Elementary>
+void Constraint1DOFT<S, Free, Elementary...>::addRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+  const std::size_t first = sink.rows->size();
+  this->addElementaryRows(a, sink);
+  load_.record(sink, first, a.R2.col(2));
+  dof_.addRows(a, sink, h);
+}
+
+template <Scalar S, class Free, class... Elementary>
+void Constraint1DOFT<S, Free, Elementary...>::addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) {
+  this->addElementaryRows(a, sink);
+  dof_.addProjectionRows(a, sink);
+}
+
+template <Scalar S, class Free, class... Elementary>
+void Constraint1DOFT<S, Free, Elementary...>::afterSolve(double h) {
+  dof_.afterSolve(h);
+  dof_.friction()->setStepNormalForce(load_.normal(load_.force(h)));
+}
+
+template <Scalar S, class Free, class... Elementary>
+void Constraint1DOFT<S, Free, Elementary...>::onRebind() {
+  dof_.restart(this->attachments());
+}
 
 /// A joint with two free DOFs (FIRST, SECOND), each with its Motor1D, Lock1D
 /// and Range1D (seed 001 §12.10).
@@ -217,67 +266,94 @@ class Constraint2DOFT : public ElementaryJointT<S, Elementary...> {
     return index == FIRST ? first_.friction() : second(index).friction();
   }
   /// The free DOF's current value: rad (with winding) or m.
-  [[nodiscard]] S getAngle(int index) const {
-    const auto a = this->attachments();
-    return S(index == FIRST ? first_.measure(a).value : second(index).measure(a).value);
-  }
-  [[nodiscard]] S getCurrentSpeed(int index) const {
-    const auto a = this->attachments();
-    return S(index == FIRST ? first_.measure(a).speed : second(index).measure(a).speed);
-  }
+  [[nodiscard]] S getAngle(int index) const;
+  [[nodiscard]] S getCurrentSpeed(int index) const;
 
  protected:
   using typename ConstraintT<S>::Body;
   using typename ConstraintT<S>::Frame;
-  Constraint2DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
-      : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
-    restart();
-    first_.friction()->setJoint(this);
-    second_.friction()->setJoint(this);
-  }
+  Constraint2DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2);
   ~Constraint2DOFT() override = default;
 
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    const std::size_t first = sink.rows->size();
-    this->addElementaryRows(a, sink);
-    load_.record(sink, first, a.R2.col(2));
-    const detail::Coordinate c1 = first_.addRows(a, sink, h);
-    const detail::Coordinate c2 = second_.addRows(a, sink, h);
-    addCouplingRows(c1, c2, sink);
-  }
-  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
-    this->addElementaryRows(a, sink);
-    first_.addProjectionRows(a, sink);
-    second_.addProjectionRows(a, sink);
-  }
-  void afterSolve(double h) override {
-    first_.afterSolve(h);
-    second_.afterSolve(h);
-    afterCoupling(h);
-    const double normal = load_.normal(load_.force(h));
-    first_.friction()->setStepNormalForce(normal);
-    second_.friction()->setStepNormalForce(normal);
-  }
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override;
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override;
+  void afterSolve(double h) override;
   void onRebind() override { restart(); }
   /// Rows tying the two DOFs together (Screw1D); none by default.
   virtual void addCouplingRows(const detail::Coordinate&, const detail::Coordinate&, detail::RowSink&) {}
   virtual void afterCoupling(double) {}
 
  private:
-  const FreeDofT<S, Free2>& second(int index) const {
-    if (index != SECOND) throw this->error("DOF index must be FIRST (0) or SECOND (1)", index);
-    return second_;
-  }
-  void restart() {
-    const auto a = this->attachments();
-    first_.restart(a);
-    second_.restart(a);
-  }
+  const FreeDofT<S, Free2>& second(int index) const;
+  void restart();
 
   FreeDofT<S, Free1> first_;
   FreeDofT<S, Free2> second_;
   detail::JointLoad load_;  // the normal force for the friction controllers
 };
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+S Constraint2DOFT<S, Free1, Free2, Elementary...>::getAngle(int index) const {
+  const auto a = this->attachments();
+  return S(index == FIRST ? first_.measure(a).value : second(index).measure(a).value);
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+S Constraint2DOFT<S, Free1, Free2, Elementary...>::getCurrentSpeed(int index) const {
+  const auto a = this->attachments();
+  return S(index == FIRST ? first_.measure(a).speed : second(index).measure(a).speed);
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+Constraint2DOFT<S, Free1, Free2, Elementary...>::Constraint2DOFT(const char* kind, Body* body1, Frame* frame1,
+                                                                 Body* body2, Frame* frame2)
+    : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
+  restart();
+  first_.friction()->setJoint(this);
+  second_.friction()->setJoint(this);
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+void Constraint2DOFT<S, Free1, Free2, Elementary...>::addRows(const detail::Attachments& a, detail::RowSink& sink,
+                                                              double h) {
+  const std::size_t first = sink.rows->size();
+  this->addElementaryRows(a, sink);
+  load_.record(sink, first, a.R2.col(2));
+  const detail::Coordinate c1 = first_.addRows(a, sink, h);
+  const detail::Coordinate c2 = second_.addRows(a, sink, h);
+  addCouplingRows(c1, c2, sink);
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+void Constraint2DOFT<S, Free1, Free2, Elementary...>::addProjectionRows(const detail::Attachments& a,
+                                                                        detail::RowSink& sink) {
+  this->addElementaryRows(a, sink);
+  first_.addProjectionRows(a, sink);
+  second_.addProjectionRows(a, sink);
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+void Constraint2DOFT<S, Free1, Free2, Elementary...>::afterSolve(double h) {
+  first_.afterSolve(h);
+  second_.afterSolve(h);
+  afterCoupling(h);
+  const double normal = load_.normal(load_.force(h));
+  first_.friction()->setStepNormalForce(normal);
+  second_.friction()->setStepNormalForce(normal);
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+auto Constraint2DOFT<S, Free1, Free2, Elementary...>::second(int index) const -> const FreeDofT<S, Free2>& {
+  if (index != SECOND) throw this->error("DOF index must be FIRST (0) or SECOND (1)", index);
+  return second_;
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+void Constraint2DOFT<S, Free1, Free2, Elementary...>::restart() {
+  const auto a = this->attachments();
+  first_.restart(a);
+  second_.restart(a);
+}
 
 namespace detail {
 struct RotationalZ {
@@ -290,5 +366,10 @@ struct DistanceBetween {
   static Coordinate measure(const Attachments& a) { return distanceCoordinate(a); }
 };
 }  // namespace detail
+
+// SPOOK_COMPILED_ONCE for a joint's base: the class template `Base` with the
+// arguments that follow the scalar.
+#define SPOOK_COMPILED_JOINT_BASE(Base, ...) \
+  SPOOK_COMPILED_DOUBLE(class Base<double, __VA_ARGS__>) SPOOK_COMPILED_FLOAT(class Base<float, __VA_ARGS__>)
 
 }  // namespace spook

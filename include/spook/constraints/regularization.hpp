@@ -4,6 +4,7 @@
 #include <string>
 
 #include <spook/core/error.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/scalar.hpp>
 
 namespace spook {
@@ -22,28 +23,39 @@ class RegularizationParametersT {
   static constexpr S kDefaultDamping = S(2) / S(60);
 
   RegularizationParametersT() = default;
-  RegularizationParametersT(S compliance, S damping) {
-    setCompliance(compliance);
-    setDamping(damping);
-  }
+  RegularizationParametersT(S compliance, S damping);
 
   [[nodiscard]] S getCompliance() const { return compliance_; }
-  void setCompliance(S compliance) {
-    if (!(std::isfinite(compliance) && compliance >= S(0)))
-      throw detail::makeError("RegularizationParameters", "", "compliance must be finite and >= 0", compliance);
-    compliance_ = compliance;
-  }
+  void setCompliance(S compliance);
   [[nodiscard]] S getDamping() const { return damping_; }
-  void setDamping(S damping) {
-    if (!(std::isfinite(damping) && damping >= S(0)))
-      throw detail::makeError("RegularizationParameters", "", "damping must be finite and >= 0 s", damping);
-    damping_ = damping;
-  }
+  void setDamping(S damping);
 
  private:
   S compliance_ = kDefaultCompliance;
   S damping_ = kDefaultDamping;
 };
+
+template <Scalar S>
+RegularizationParametersT<S>::RegularizationParametersT(S compliance, S damping) {
+  setCompliance(compliance);
+  setDamping(damping);
+}
+
+template <Scalar S>
+void RegularizationParametersT<S>::setCompliance(S compliance) {
+  if (!(std::isfinite(compliance) && compliance >= S(0)))
+    throw detail::makeError("RegularizationParameters", "", "compliance must be finite and >= 0", compliance);
+  compliance_ = compliance;
+}
+
+template <Scalar S>
+void RegularizationParametersT<S>::setDamping(S damping) {
+  if (!(std::isfinite(damping) && damping >= S(0)))
+    throw detail::makeError("RegularizationParameters", "", "damping must be finite and >= 0 s", damping);
+  damping_ = damping;
+}
+
+SPOOK_COMPILED_ONCE(class, RegularizationParametersT)
 
 /// compliance = 1/k (k in N/m or N·m/rad).
 template <Scalar S>

@@ -29,15 +29,24 @@ class CylindricalJointT : public Constraint2DOFT<S, detail::TranslationalZ, deta
  protected:
   ~CylindricalJointT() override = default;
   void addCouplingRows(const detail::Coordinate& translation, const detail::Coordinate& angle,
-                       detail::RowSink& sink) override {
-    screw_->beginStep();
-    screw_->addRows(sink, translation, angle);
-  }
+                       detail::RowSink& sink) override;
   void afterCoupling(double h) override { screw_->endStep(h); }
 
  private:
   ref_ptr<Screw1DT<S>> screw_ = new Screw1DT<S>();
 };
+
+template <Scalar S>
+void CylindricalJointT<S>::addCouplingRows(const detail::Coordinate& translation, const detail::Coordinate& angle,
+                                           detail::RowSink& sink) {
+  screw_->beginStep();
+  screw_->addRows(sink, translation, angle);
+}
+
+SPOOK_COMPILED_ONCE(class, CylindricalJointT)
+SPOOK_COMPILED_JOINT_BASE(Constraint2DOFT, detail::TranslationalZ, detail::RotationalZ, detail::Dot2<0>,
+                          detail::Dot2<1>, detail::Dot1<0, 2>, detail::Dot1<1, 2>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot1<0, 2>, detail::Dot1<1, 2>)
 
 /// Translation within the xy plane of frame 2, rotation free: one Dot2 row.
 template <Scalar S>
@@ -54,6 +63,9 @@ class PlaneJointT : public ElementaryJointT<S, detail::Dot2<2>> {
   ~PlaneJointT() override = default;
   void addRows(const detail::Attachments& a, detail::RowSink& sink, double) override { this->addElementaryRows(a, sink); }
 };
+
+SPOOK_COMPILED_ONCE(class, PlaneJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<2>)
 
 using CylindricalJoint = CylindricalJointT<double>;
 using CylindricalJointRef = ref_ptr<CylindricalJoint>;

@@ -24,6 +24,9 @@ class Dot1JointT : public ElementaryJointT<S, detail::Dot1<0, 1>> {
   void addRows(const detail::Attachments& a, detail::RowSink& sink, double) override { this->addElementaryRows(a, sink); }
 };
 
+SPOOK_COMPILED_ONCE(class, Dot1JointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot1<0, 1>)
+
 using Dot1Joint = Dot1JointT<double>;
 using Dot1JointRef = ref_ptr<Dot1Joint>;
 namespace f32 {

@@ -23,6 +23,11 @@ class HingeT : public Constraint1DOFT<S, detail::RotationalZ, detail::Spherical,
   ~HingeT() override = default;
 };
 
+SPOOK_COMPILED_ONCE(class, HingeT)
+SPOOK_COMPILED_JOINT_BASE(Constraint1DOFT, detail::RotationalZ, detail::Spherical, detail::Dot1<0, 2>,
+                          detail::Dot1<1, 2>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Spherical, detail::Dot1<0, 2>, detail::Dot1<1, 2>)
+
 using Hinge = HingeT<double>;
 using HingeRef = ref_ptr<Hinge>;
 namespace f32 {

@@ -22,6 +22,9 @@ class LockJointT : public ElementaryJointT<S, detail::Spherical, detail::QuatLoc
   void addRows(const detail::Attachments& a, detail::RowSink& sink, double) override { this->addElementaryRows(a, sink); }
 };
 
+SPOOK_COMPILED_ONCE(class, LockJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Spherical, detail::QuatLock)
+
 /// The three rotational DOF removed, translation free: a QuatLock.
 template <Scalar S>
 class AngularLockJointT : public ElementaryJointT<S, detail::QuatLock> {
@@ -38,6 +41,9 @@ class AngularLockJointT : public ElementaryJointT<S, detail::QuatLock> {
   ~AngularLockJointT() override = default;
   void addRows(const detail::Attachments& a, detail::RowSink& sink, double) override { this->addElementaryRows(a, sink); }
 };
+
+SPOOK_COMPILED_ONCE(class, AngularLockJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::QuatLock)
 
 using LockJoint = LockJointT<double>;
 using LockJointRef = ref_ptr<LockJoint>;

@@ -22,6 +22,10 @@ class PrismaticT
   ~PrismaticT() override = default;
 };
 
+SPOOK_COMPILED_ONCE(class, PrismaticT)
+SPOOK_COMPILED_JOINT_BASE(Constraint1DOFT, detail::TranslationalZ, detail::Dot2<0>, detail::Dot2<1>, detail::QuatLock)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::QuatLock)
+
 using Prismatic = PrismaticT<double>;
 using PrismaticRef = ref_ptr<Prismatic>;
 namespace f32 {

@@ -156,6 +156,14 @@ class SlackHingeJointT : public SlackJointT<S, detail::RotationalDofOver, detail
   ~SlackHingeJointT() override = default;
 };
 
+SPOOK_COMPILED_ONCE(class, SlackHingeJointT)
+SPOOK_COMPILED_JOINT_BASE(SlackJointT, detail::RotationalDofOver, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>,
+                          detail::TiltAngle<0>, detail::TiltAngle<1>)
+SPOOK_COMPILED_JOINT_BASE(Constraint1DOFT, detail::RotationalZ, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>,
+                          detail::TiltAngle<0>, detail::TiltAngle<1>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>, detail::TiltAngle<0>,
+                          detail::TiltAngle<1>)
+
 /// A Prismatic with slack: translation along z free, with its Motor1D, Lock1D
 /// and Range1D; the two translations across z (along x₂, y₂, m) and the three
 /// rotations about x₂, y₂, z₂ (rad) constrained within their slack.
@@ -177,6 +185,14 @@ class SlackPrismaticJointT
   ~SlackPrismaticJointT() override = default;
 };
 
+SPOOK_COMPILED_ONCE(class, SlackPrismaticJointT)
+SPOOK_COMPILED_JOINT_BASE(SlackJointT, detail::TranslationalDofOver, detail::Dot2<0>, detail::Dot2<1>,
+                          detail::RotationAngle<0>, detail::RotationAngle<1>, detail::RotationAngle<2>)
+SPOOK_COMPILED_JOINT_BASE(Constraint1DOFT, detail::TranslationalZ, detail::Dot2<0>, detail::Dot2<1>,
+                          detail::RotationAngle<0>, detail::RotationAngle<1>, detail::RotationAngle<2>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::RotationAngle<0>,
+                          detail::RotationAngle<1>, detail::RotationAngle<2>)
+
 /// A LockJoint with slack: all six DOFs (translations along and rotations
 /// about the axes of frame 2) move freely within their slack.
 template <Scalar S>
@@ -196,6 +212,12 @@ class SlackLockJointT
  protected:
   ~SlackLockJointT() override = default;
 };
+
+SPOOK_COMPILED_ONCE(class, SlackLockJointT)
+SPOOK_COMPILED_JOINT_BASE(SlackJointT, ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>,
+                          detail::RotationAngle<0>, detail::RotationAngle<1>, detail::RotationAngle<2>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>, detail::RotationAngle<0>,
+                          detail::RotationAngle<1>, detail::RotationAngle<2>)
 
 /// A CylindricalJoint with slack: translation along and rotation about z free
 /// (FIRST, SECOND) with their controllers and the Screw1D coupling; the two
@@ -221,15 +243,27 @@ class SlackCylindricalJointT : public SlackJointT<S, detail::CylindricalDofsOver
  protected:
   ~SlackCylindricalJointT() override = default;
   void addCouplingRows(const detail::Coordinate& translation, const detail::Coordinate& angle,
-                       detail::RowSink& sink) override {
-    screw_->beginStep();
-    screw_->addRows(sink, translation, angle);
-  }
+                       detail::RowSink& sink) override;
   void afterCoupling(double h) override { screw_->endStep(h); }
 
  private:
   ref_ptr<Screw1DT<S>> screw_ = new Screw1DT<S>();
 };
+
+template <Scalar S>
+void SlackCylindricalJointT<S>::addCouplingRows(const detail::Coordinate& translation, const detail::Coordinate& angle,
+                                                detail::RowSink& sink) {
+  screw_->beginStep();
+  screw_->addRows(sink, translation, angle);
+}
+
+SPOOK_COMPILED_ONCE(class, SlackCylindricalJointT)
+SPOOK_COMPILED_JOINT_BASE(SlackJointT, detail::CylindricalDofsOver, detail::Dot2<0>, detail::Dot2<1>,
+                          detail::TiltAngle<0>, detail::TiltAngle<1>)
+SPOOK_COMPILED_JOINT_BASE(Constraint2DOFT, detail::TranslationalZ, detail::RotationalZ, detail::Dot2<0>,
+                          detail::Dot2<1>, detail::TiltAngle<0>, detail::TiltAngle<1>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::TiltAngle<0>,
+                          detail::TiltAngle<1>)
 
 using SlackHingeJoint = SlackHingeJointT<double>;
 using SlackHingeJointRef = ref_ptr<SlackHingeJoint>;

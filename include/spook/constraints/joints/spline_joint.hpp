@@ -119,15 +119,7 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
 
   /// `frame` is the attachment frame on `body` (nullptr: its model frame);
   /// `spline` (at least two points) is in the world, or in `body2`'s model frame.
-  SplineJointT(Body* body, Frame* frame, Spline* spline, Body* body2 = nullptr)
-      : Base("SplineJoint", checked(body, frame, spline, body2), frame, body2, nullptr), spline_(spline) {
-    this->getAttachmentFrame(1)->setLocalMatrix(TransformT<S>::Identity());
-    const detail::Attachments a = this->attachments();
-    parameter_ = spline_->findNearestParameter(splinePoint(a));
-    restart(a);
-    slide_.friction()->setJoint(this);
-    twist_.friction()->setJoint(this);
-  }
+  SplineJointT(Body* body, Frame* frame, Spline* spline, Body* body2 = nullptr);
 
   [[nodiscard]] Spline* getSpline() const { return spline_.get(); }
   /// The tracked curve parameter t in [0, n − 1] (CubicSplineT), as of the last step.
@@ -148,66 +140,22 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
     return visit(index, [](const auto& dof) { return dof.friction(); });
   }
   /// FIRST: arc length from the spline's first point (m); SECOND: angle about the tangent (rad, with winding).
-  [[nodiscard]] S getAngle(int index) const {
-    const detail::Attachments b = alongSplineNow();
-    return visit(index, [&](const auto& dof) { return S(dof.measure(b).value); });
-  }
+  [[nodiscard]] S getAngle(int index) const;
   /// Rate of getAngle (m/s or rad/s).
-  [[nodiscard]] S getCurrentSpeed(int index) const {
-    const detail::Attachments b = alongSplineNow();
-    return visit(index, [&](const auto& dof) { return S(dof.measure(b).speed); });
-  }
+  [[nodiscard]] S getCurrentSpeed(int index) const;
 
  protected:
   ~SplineJointT() override = default;
 
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    const std::size_t first = sink.rows->size();
-    const detail::Attachments b = writeCurveRows(a, sink, h);
-    load_.record(sink, first, b.R2.col(2));
-    slide_.addRows(b, sink, h);
-    twist_.addRows(b, sink, h);
-  }
-  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
-    const detail::Attachments b = writeCurveRows(a, sink, 0.0);
-    slide_.addProjectionRows(b, sink);
-    twist_.addProjectionRows(b, sink);
-  }
-  void afterSolve(double h) override {
-    slide_.afterSolve(h);
-    twist_.afterSolve(h);
-    const double normal = load_.normal(load_.force(h));
-    slide_.friction()->setStepNormalForce(normal);
-    twist_.friction()->setStepNormalForce(normal);
-  }
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override;
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override;
+  void afterSolve(double h) override;
   /// The current pose becomes angle zero; the spline is not moved.
-  void onRebind() override {
-    const detail::Attachments a = this->attachments();
-    parameter_ = spline_->findNearestParameter(splinePoint(a), parameter_);
-    restart(a);
-  }
+  void onRebind() override;
   [[nodiscard]] bool rebindsFrames() const override { return false; }
 
  private:
-  static Body* checked(Body* body, const Frame* frame, const Spline* spline, const Body* body2) {
-    if (!spline) throw detail::makeError("SplineJoint", "", "needs a spline", "nullptr");
-    if (spline->getNumPoints() < 2)
-      throw detail::makeError("SplineJoint", "", "spline needs at least two points", spline->getNumPoints());
-    if (!body) return body;  // reported by ConstraintT
-    const TransformT<S> X1 = !frame ? body->getTransform()
-                            : frame->getParent() ? frame->getMatrix()
-                                                 : TransformT<S>(body->getTransform() * frame->getLocalMatrix());
-    if (!X1.matrix().allFinite())
-      throw detail::makeError("SplineJoint", "", "attachment frame must be finite (m)", X1.translation());
-    const TransformT<S> X2 = body2 ? body2->getTransform() : TransformT<S>::Identity();
-    const S t = spline->findNearestParameter(X2.inverse() * X1.translation());
-    const S alignment = X1.linear().col(2).dot(X2.linear() * spline->getUnitTangent(t));
-    if (!(alignment > S(0)))
-      throw detail::makeError("SplineJoint", "",
-                              "frame z axis must point along the spline tangent at the nearest point (cosine > 0)",
-                              alignment);
-    return body;
-  }
+  static Body* checked(Body* body, const Frame* frame, const Spline* spline, const Body* body2);
 
   template <class F>
   auto visit(int index, F&& f) const {
@@ -219,68 +167,22 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
   }
 
   /// Frame 1's origin in the spline's frame (m).
-  [[nodiscard]] static Vec3T<S> splinePoint(const detail::Attachments& a) {
-    return (a.R2.transpose() * (a.p1 - a.p2)).template cast<S>();
-  }
+  [[nodiscard]] static Vec3T<S> splinePoint(const detail::Attachments& a);
 
   /// The spline at parameter t in world coordinates, for frame 1 at a.p1.
-  [[nodiscard]] detail::SplinePlace placeAt(const detail::Attachments& a, S t) const {
-    using detail::Vec3d;
-    detail::SplinePlace place;
-    const Vec3d d1 = a.R2 * spline_->getFirstDerivative(t).template cast<double>();
-    const Vec3d d2 = a.R2 * spline_->getSecondDerivative(t).template cast<double>();
-    place.point = a.p2 + a.R2 * spline_->getPosition(t).template cast<double>();
-    place.tangent = (a.R2 * spline_->getUnitTangent(t).template cast<double>()).normalized();
-    place.arcLength = double(spline_->getLength(t));
-    const double along = (a.p1 - place.point).dot(place.tangent);
-    const bool beyondEnd = (t <= S(0) && along < 0.0) || (t >= spline_->getMaxParameter() && along > 0.0);
-    if (!beyondEnd && d1.squaredNorm() > 0.0)
-      place.curvature = (d2 - d2.dot(place.tangent) * place.tangent) / d1.squaredNorm();
-    const Vec3d reference = a.R2 * spline_->getNormal(t).template cast<double>();
-    const Vec3d across = (reference - reference.dot(place.tangent) * place.tangent).normalized();
-    place.normal = std::cos(zeroAngle_) * across + std::sin(zeroAngle_) * place.tangent.cross(across);
-    return place;
-  }
+  [[nodiscard]] detail::SplinePlace placeAt(const detail::Attachments& a, S t) const;
 
   /// Updates the tracked parameter from frame 1's pose, writes the four
   /// curve rows and returns the attachments along the spline. With a step
   /// h > 0 the rows across the curve get their centripetal term; with h = 0
   /// (post-stabilization) they are the plain rows.
-  detail::Attachments writeCurveRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
-    parameter_ = spline_->findNearestParameter(splinePoint(a), parameter_);
-    const detail::SplinePlace place = placeAt(a, parameter_);
-    const detail::Attachments b = detail::alongSpline(a, place);
-    const std::size_t first = sink.rows->size();
-    this->addElementaryRows(b, sink);
-    detail::addCurvatureCoupling(b, place.curvature, *sink.rows, first + 2);
-    if (h > 0.0) {
-      const double rate = detail::translationalCoordinate(b).speed;
-      for (std::size_t k = 0; k < 2; ++k) {
-        detail::Row& row = (*sink.rows)[first + k];
-        const double across = place.curvature.dot(b.R2.col(static_cast<Eigen::Index>(k)));
-        if (sink.secondOrder)
-          sink.addCurvature(first + k, detail::centripetalCurvature(across, rate));
-        else
-          row.violation += detail::centripetalShift(row, across, rate, h);
-      }
-    }
-    return b;
-  }
+  detail::Attachments writeCurveRows(const detail::Attachments& a, detail::RowSink& sink, double h);
 
-  [[nodiscard]] detail::Attachments alongSplineNow() const {
-    const detail::Attachments a = this->attachments();
-    return detail::alongSpline(a, placeAt(a, spline_->findNearestParameter(splinePoint(a), parameter_)));
-  }
+  [[nodiscard]] detail::Attachments alongSplineNow() const;
 
   /// Angle zero at the current pose: the reference normal is turned about
   /// the tangent by the angle frame 1 has about it now.
-  void restart(const detail::Attachments& a) {
-    zeroAngle_ = 0.0;
-    zeroAngle_ = detail::rotationalCoordinate(detail::alongSpline(a, placeAt(a, parameter_))).value;
-    const detail::Attachments b = detail::alongSpline(a, placeAt(a, parameter_));
-    slide_.restart(b);
-    twist_.restart(b);
-  }
+  void restart(const detail::Attachments& a);
 
   ref_ptr<Spline> spline_;
   S parameter_ = S(0);
@@ -289,6 +191,146 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
   FreeDofT<S, detail::RotationalZ> twist_;
   detail::JointLoad load_;  // the normal force for the friction controllers
 };
+
+template <Scalar S>
+SplineJointT<S>::SplineJointT(Body* body, Frame* frame, Spline* spline, Body* body2)
+    : Base("SplineJoint", checked(body, frame, spline, body2), frame, body2, nullptr), spline_(spline) {
+  this->getAttachmentFrame(1)->setLocalMatrix(TransformT<S>::Identity());
+  const detail::Attachments a = this->attachments();
+  parameter_ = spline_->findNearestParameter(splinePoint(a));
+  restart(a);
+  slide_.friction()->setJoint(this);
+  twist_.friction()->setJoint(this);
+}
+
+template <Scalar S>
+S SplineJointT<S>::getAngle(int index) const {
+  const detail::Attachments b = alongSplineNow();
+  return visit(index, [&](const auto& dof) { return S(dof.measure(b).value); });
+}
+
+template <Scalar S>
+S SplineJointT<S>::getCurrentSpeed(int index) const {
+  const detail::Attachments b = alongSplineNow();
+  return visit(index, [&](const auto& dof) { return S(dof.measure(b).speed); });
+}
+
+template <Scalar S>
+void SplineJointT<S>::addRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+  const std::size_t first = sink.rows->size();
+  const detail::Attachments b = writeCurveRows(a, sink, h);
+  load_.record(sink, first, b.R2.col(2));
+  slide_.addRows(b, sink, h);
+  twist_.addRows(b, sink, h);
+}
+
+template <Scalar S>
+void SplineJointT<S>::addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) {
+  const detail::Attachments b = writeCurveRows(a, sink, 0.0);
+  slide_.addProjectionRows(b, sink);
+  twist_.addProjectionRows(b, sink);
+}
+
+template <Scalar S>
+void SplineJointT<S>::afterSolve(double h) {
+  slide_.afterSolve(h);
+  twist_.afterSolve(h);
+  const double normal = load_.normal(load_.force(h));
+  slide_.friction()->setStepNormalForce(normal);
+  twist_.friction()->setStepNormalForce(normal);
+}
+
+template <Scalar S>
+void SplineJointT<S>::onRebind() {
+  const detail::Attachments a = this->attachments();
+  parameter_ = spline_->findNearestParameter(splinePoint(a), parameter_);
+  restart(a);
+}
+
+template <Scalar S>
+auto SplineJointT<S>::checked(Body* body, const Frame* frame, const Spline* spline, const Body* body2) -> Body* {
+  if (!spline) throw detail::makeError("SplineJoint", "", "needs a spline", "nullptr");
+  if (spline->getNumPoints() < 2)
+    throw detail::makeError("SplineJoint", "", "spline needs at least two points", spline->getNumPoints());
+  if (!body) return body;  // reported by ConstraintT
+  const TransformT<S> X1 = !frame ? body->getTransform()
+                          : frame->getParent() ? frame->getMatrix()
+                                               : TransformT<S>(body->getTransform() * frame->getLocalMatrix());
+  if (!X1.matrix().allFinite())
+    throw detail::makeError("SplineJoint", "", "attachment frame must be finite (m)", X1.translation());
+  const TransformT<S> X2 = body2 ? body2->getTransform() : TransformT<S>::Identity();
+  const S t = spline->findNearestParameter(X2.inverse() * X1.translation());
+  const S alignment = X1.linear().col(2).dot(X2.linear() * spline->getUnitTangent(t));
+  if (!(alignment > S(0)))
+    throw detail::makeError("SplineJoint", "",
+                            "frame z axis must point along the spline tangent at the nearest point (cosine > 0)",
+                            alignment);
+  return body;
+}
+
+template <Scalar S>
+Vec3T<S> SplineJointT<S>::splinePoint(const detail::Attachments& a) {
+  return (a.R2.transpose() * (a.p1 - a.p2)).template cast<S>();
+}
+
+template <Scalar S>
+detail::SplinePlace SplineJointT<S>::placeAt(const detail::Attachments& a, S t) const {
+  using detail::Vec3d;
+  detail::SplinePlace place;
+  const Vec3d d1 = a.R2 * spline_->getFirstDerivative(t).template cast<double>();
+  const Vec3d d2 = a.R2 * spline_->getSecondDerivative(t).template cast<double>();
+  place.point = a.p2 + a.R2 * spline_->getPosition(t).template cast<double>();
+  place.tangent = (a.R2 * spline_->getUnitTangent(t).template cast<double>()).normalized();
+  place.arcLength = double(spline_->getLength(t));
+  const double along = (a.p1 - place.point).dot(place.tangent);
+  const bool beyondEnd = (t <= S(0) && along < 0.0) || (t >= spline_->getMaxParameter() && along > 0.0);
+  if (!beyondEnd && d1.squaredNorm() > 0.0)
+    place.curvature = (d2 - d2.dot(place.tangent) * place.tangent) / d1.squaredNorm();
+  const Vec3d reference = a.R2 * spline_->getNormal(t).template cast<double>();
+  const Vec3d across = (reference - reference.dot(place.tangent) * place.tangent).normalized();
+  place.normal = std::cos(zeroAngle_) * across + std::sin(zeroAngle_) * place.tangent.cross(across);
+  return place;
+}
+
+template <Scalar S>
+detail::Attachments SplineJointT<S>::writeCurveRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+  parameter_ = spline_->findNearestParameter(splinePoint(a), parameter_);
+  const detail::SplinePlace place = placeAt(a, parameter_);
+  const detail::Attachments b = detail::alongSpline(a, place);
+  const std::size_t first = sink.rows->size();
+  this->addElementaryRows(b, sink);
+  detail::addCurvatureCoupling(b, place.curvature, *sink.rows, first + 2);
+  if (h > 0.0) {
+    const double rate = detail::translationalCoordinate(b).speed;
+    for (std::size_t k = 0; k < 2; ++k) {
+      detail::Row& row = (*sink.rows)[first + k];
+      const double across = place.curvature.dot(b.R2.col(static_cast<Eigen::Index>(k)));
+      if (sink.secondOrder)
+        sink.addCurvature(first + k, detail::centripetalCurvature(across, rate));
+      else
+        row.violation += detail::centripetalShift(row, across, rate, h);
+    }
+  }
+  return b;
+}
+
+template <Scalar S>
+detail::Attachments SplineJointT<S>::alongSplineNow() const {
+  const detail::Attachments a = this->attachments();
+  return detail::alongSpline(a, placeAt(a, spline_->findNearestParameter(splinePoint(a), parameter_)));
+}
+
+template <Scalar S>
+void SplineJointT<S>::restart(const detail::Attachments& a) {
+  zeroAngle_ = 0.0;
+  zeroAngle_ = detail::rotationalCoordinate(detail::alongSpline(a, placeAt(a, parameter_))).value;
+  const detail::Attachments b = detail::alongSpline(a, placeAt(a, parameter_));
+  slide_.restart(b);
+  twist_.restart(b);
+}
+
+SPOOK_COMPILED_ONCE(class, SplineJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot1<2, 0>, detail::Dot1<2, 1>)
 
 using SplineJoint = SplineJointT<double>;
 using SplineJointRef = ref_ptr<SplineJoint>;

@@ -77,6 +77,11 @@ class UniversalJointT : public Constraint2DOFT<S, detail::UniversalArm1, detail:
   ~UniversalJointT() override = default;
 };
 
+SPOOK_COMPILED_ONCE(class, UniversalJointT)
+SPOOK_COMPILED_JOINT_BASE(Constraint2DOFT, detail::UniversalArm1, detail::UniversalArm2, detail::Spherical,
+                          detail::Dot1<0, 1>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Spherical, detail::Dot1<0, 1>)
+
 /// A universal joint whose center slides along the z axis of frame 2 (seed
 /// 001 §12.6): two Dot2 rows keep frame 1's origin on that axis and a Dot1
 /// keeps the cross arms x₁ ⊥ y₂ — a telescopic drive shaft. Three free DOFs,
@@ -92,10 +97,7 @@ class PrismaticUniversalJointT : public ElementaryJointT<S, detail::Dot2<0>, det
   enum CONTROLLER { ROTATIONAL_CONTROLLER_1 = 0, ROTATIONAL_CONTROLLER_2 = 1, TRANSLATIONAL_CONTROLLER_1 = 2 };
 
   PrismaticUniversalJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr,
-                           FrameT<S>* frame2 = nullptr)
-      : Base("PrismaticUniversalJoint", body1, frame1, body2, frame2) {
-    restart();
-  }
+                           FrameT<S>* frame2 = nullptr);
 
   [[nodiscard]] Motor1DT<S>* getMotor1D(int index) const {
     return visit(index, [](const auto& dof) { return dof.motor(); });
@@ -107,36 +109,16 @@ class PrismaticUniversalJointT : public ElementaryJointT<S, detail::Dot2<0>, det
     return visit(index, [](const auto& dof) { return dof.range(); });
   }
   /// The free DOF's current value: rad (with winding) or m.
-  [[nodiscard]] S getAngle(int index) const {
-    const auto a = this->attachments();
-    return visit(index, [&](const auto& dof) { return S(dof.measure(a).value); });
-  }
+  [[nodiscard]] S getAngle(int index) const;
   /// Its rate (rad/s or m/s).
-  [[nodiscard]] S getCurrentSpeed(int index) const {
-    const auto a = this->attachments();
-    return visit(index, [&](const auto& dof) { return S(dof.measure(a).speed); });
-  }
+  [[nodiscard]] S getCurrentSpeed(int index) const;
 
  protected:
   ~PrismaticUniversalJointT() override = default;
 
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    this->addElementaryRows(a, sink);
-    arm1_.addRows(a, sink, h);
-    arm2_.addRows(a, sink, h);
-    slide_.addRows(a, sink, h);
-  }
-  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
-    this->addElementaryRows(a, sink);
-    arm1_.addProjectionRows(a, sink);
-    arm2_.addProjectionRows(a, sink);
-    slide_.addProjectionRows(a, sink);
-  }
-  void afterSolve(double h) override {
-    arm1_.afterSolve(h);
-    arm2_.afterSolve(h);
-    slide_.afterSolve(h);
-  }
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override;
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override;
+  void afterSolve(double h) override;
   void onRebind() override { restart(); }
 
  private:
@@ -152,17 +134,65 @@ class PrismaticUniversalJointT : public ElementaryJointT<S, detail::Dot2<0>, det
                           index);
     }
   }
-  void restart() {
-    const auto a = this->attachments();
-    arm1_.restart(a);
-    arm2_.restart(a);
-    slide_.restart(a);
-  }
+  void restart();
 
   FreeDofT<S, detail::UniversalArm1> arm1_;
   FreeDofT<S, detail::UniversalArm2> arm2_;
   FreeDofT<S, detail::TranslationalZ> slide_;
 };
+
+template <Scalar S>
+PrismaticUniversalJointT<S>::PrismaticUniversalJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2,
+                                                      FrameT<S>* frame2)
+    : Base("PrismaticUniversalJoint", body1, frame1, body2, frame2) {
+  restart();
+}
+
+template <Scalar S>
+S PrismaticUniversalJointT<S>::getAngle(int index) const {
+  const auto a = this->attachments();
+  return visit(index, [&](const auto& dof) { return S(dof.measure(a).value); });
+}
+
+template <Scalar S>
+S PrismaticUniversalJointT<S>::getCurrentSpeed(int index) const {
+  const auto a = this->attachments();
+  return visit(index, [&](const auto& dof) { return S(dof.measure(a).speed); });
+}
+
+template <Scalar S>
+void PrismaticUniversalJointT<S>::addRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+  this->addElementaryRows(a, sink);
+  arm1_.addRows(a, sink, h);
+  arm2_.addRows(a, sink, h);
+  slide_.addRows(a, sink, h);
+}
+
+template <Scalar S>
+void PrismaticUniversalJointT<S>::addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) {
+  this->addElementaryRows(a, sink);
+  arm1_.addProjectionRows(a, sink);
+  arm2_.addProjectionRows(a, sink);
+  slide_.addProjectionRows(a, sink);
+}
+
+template <Scalar S>
+void PrismaticUniversalJointT<S>::afterSolve(double h) {
+  arm1_.afterSolve(h);
+  arm2_.afterSolve(h);
+  slide_.afterSolve(h);
+}
+
+template <Scalar S>
+void PrismaticUniversalJointT<S>::restart() {
+  const auto a = this->attachments();
+  arm1_.restart(a);
+  arm2_.restart(a);
+  slide_.restart(a);
+}
+
+SPOOK_COMPILED_ONCE(class, PrismaticUniversalJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot1<0, 1>)
 
 using UniversalJoint = UniversalJointT<double>;
 using UniversalJointRef = ref_ptr<UniversalJoint>;

@@ -65,20 +65,7 @@ class WheelJointFrameT {
 
   /// `worldAttach` (m, world), `worldWheelAxle` and `worldSteeringAxle`
   /// (world directions, any non-zero length, perpendicular).
-  WheelJointFrameT(const Vec3& worldAttach, const Vec3& worldWheelAxle, const Vec3& worldSteeringAxle) {
-    if (!worldAttach.allFinite()) throw error("attachment point must be finite (m)", worldAttach);
-    checkAxis("wheel axle must be finite and non-zero", worldWheelAxle);
-    checkAxis("steering axle must be finite and non-zero", worldSteeringAxle);
-    const Vec3 wheel = worldWheelAxle.normalized(), steering = worldSteeringAxle.normalized();
-    const S cosine = wheel.dot(steering);
-    if (!(std::abs(cosine) <= perpendicularTolerance()))
-      throw error(std::is_same_v<S, float> ? "wheel axle and steering axle must be perpendicular (|cos| <= 1e-4)"
-                                           : "wheel axle and steering axle must be perpendicular (|cos| <= 1e-6)",
-                  cosine);
-    attach_ = worldAttach;
-    wheel_ = wheel;
-    steering_ = steering;
-  }
+  WheelJointFrameT(const Vec3& worldAttach, const Vec3& worldWheelAxle, const Vec3& worldSteeringAxle);
 
   /// Intersection of the two axes (m, world).
   [[nodiscard]] const Vec3& getWorldAttach() const { return attach_; }
@@ -89,30 +76,55 @@ class WheelJointFrameT {
 
   /// The joint frame in world: origin at the attachment point, y along the
   /// axle made exactly perpendicular to z, z along the steering axis.
-  [[nodiscard]] TransformT<S> getWorldTransform() const {
-    const Vec3 z = steering_;
-    const Vec3 y = (wheel_ - wheel_.dot(z) * z).normalized();
-    Mat3T<S> R;
-    R.col(0) = y.cross(z);
-    R.col(1) = y;
-    R.col(2) = z;
-    TransformT<S> X = TransformT<S>::Identity();
-    X.linear() = R;
-    X.translation() = attach_;
-    return X;
-  }
+  [[nodiscard]] TransformT<S> getWorldTransform() const;
 
  private:
   template <class T>
   static Error error(const std::string& what, const T& value) {
     return detail::makeError("WheelJointFrame", "", what, value);
   }
-  static void checkAxis(const char* what, const Vec3& axis) {
-    if (!axis.allFinite() || !(axis.norm() > S(0))) throw error(what, axis);
-  }
+  static void checkAxis(const char* what, const Vec3& axis);
 
   Vec3 attach_, wheel_, steering_;
 };
+
+template <Scalar S>
+WheelJointFrameT<S>::WheelJointFrameT(const Vec3& worldAttach, const Vec3& worldWheelAxle,
+                                      const Vec3& worldSteeringAxle) {
+  if (!worldAttach.allFinite()) throw error("attachment point must be finite (m)", worldAttach);
+  checkAxis("wheel axle must be finite and non-zero", worldWheelAxle);
+  checkAxis("steering axle must be finite and non-zero", worldSteeringAxle);
+  const Vec3 wheel = worldWheelAxle.normalized(), steering = worldSteeringAxle.normalized();
+  const S cosine = wheel.dot(steering);
+  if (!(std::abs(cosine) <= perpendicularTolerance()))
+    throw error(std::is_same_v<S, float> ? "wheel axle and steering axle must be perpendicular (|cos| <= 1e-4)"
+                                         : "wheel axle and steering axle must be perpendicular (|cos| <= 1e-6)",
+                cosine);
+  attach_ = worldAttach;
+  wheel_ = wheel;
+  steering_ = steering;
+}
+
+template <Scalar S>
+TransformT<S> WheelJointFrameT<S>::getWorldTransform() const {
+  const Vec3 z = steering_;
+  const Vec3 y = (wheel_ - wheel_.dot(z) * z).normalized();
+  Mat3T<S> R;
+  R.col(0) = y.cross(z);
+  R.col(1) = y;
+  R.col(2) = z;
+  TransformT<S> X = TransformT<S>::Identity();
+  X.linear() = R;
+  X.translation() = attach_;
+  return X;
+}
+
+template <Scalar S>
+void WheelJointFrameT<S>::checkAxis(const char* what, const Vec3& axis) {
+  if (!axis.allFinite() || !(axis.norm() > S(0))) throw error(what, axis);
+}
+
+SPOOK_COMPILED_ONCE(class, WheelJointFrameT)
 
 /// A wheel on a chassis or on the world (seed 001 §12.12). The wheel is body
 /// 1; the chassis is body 2 (nullptr: the world). The y axis of frame 1 is
@@ -140,15 +152,9 @@ class WheelJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>,
   /// Frames in the bodies' model frames (frame 2 in world for chassis ==
   /// nullptr); frame 2 defaults to frame 1's current pose.
   WheelJointT(RigidBodyT<S>* wheel, FrameT<S>* wheelFrame, RigidBodyT<S>* chassis = nullptr,
-              FrameT<S>* chassisFrame = nullptr)
-      : Base("WheelJoint", wheel, wheelFrame, chassis, chassisFrame) {
-    initialize();
-  }
+              FrameT<S>* chassisFrame = nullptr);
   /// Frames from a world description, relaxed in the current configuration.
-  WheelJointT(const WheelJointFrameT<S>& frame, RigidBodyT<S>* wheel, RigidBodyT<S>* chassis = nullptr)
-      : Base("WheelJoint", wheel, localFrame(frame, wheel).get(), chassis, localFrame(frame, chassis).get()) {
-    initialize();
-  }
+  WheelJointT(const WheelJointFrameT<S>& frame, RigidBodyT<S>* wheel, RigidBodyT<S>* chassis = nullptr);
 
   [[nodiscard]] Motor1DT<S>* getMotor1D(int index) const {
     return visit(index, [](const auto& dof) { return dof.motor(); });
@@ -165,56 +171,25 @@ class WheelJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>,
   }
   /// The free DOF's current value: rad (with winding) for WHEEL and STEERING,
   /// m for SUSPENSION.
-  [[nodiscard]] S getAngle(int index) const {
-    const auto a = this->attachments();
-    return visit(index, [&](const auto& dof) { return S(dof.measure(a).value); });
-  }
+  [[nodiscard]] S getAngle(int index) const;
   /// Its rate (rad/s or m/s).
-  [[nodiscard]] S getCurrentSpeed(int index) const {
-    const auto a = this->attachments();
-    return visit(index, [&](const auto& dof) { return S(dof.measure(a).speed); });
-  }
+  [[nodiscard]] S getCurrentSpeed(int index) const;
 
   /// The steering axis z₂ (unit, world).
-  [[nodiscard]] Vec3T<S> getWorldSteeringAxis() const {
-    return Vec3T<S>(this->attachments().R2.col(2).template cast<S>());
-  }
+  [[nodiscard]] Vec3T<S> getWorldSteeringAxis() const;
   /// Frame 2's origin, the steering pivot on the chassis (m, world).
-  [[nodiscard]] Vec3T<S> getWorldSteeringPivot() const { return Vec3T<S>(this->attachments().p2.template cast<S>()); }
+  [[nodiscard]] Vec3T<S> getWorldSteeringPivot() const;
 
  protected:
   ~WheelJointT() override = default;
 
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    const std::size_t first = sink.rows->size();
-    this->addElementaryRows(a, sink);
-    load_.record(sink, first, a.R2.col(2));
-    wheel_.addRows(a, sink, h);
-    steering_.addRows(a, sink, h);
-    suspension_.addRows(a, sink, h);
-  }
-  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
-    this->addElementaryRows(a, sink);
-    wheel_.addProjectionRows(a, sink);
-    steering_.addProjectionRows(a, sink);
-    suspension_.addProjectionRows(a, sink);
-  }
-  void afterSolve(double h) override {
-    wheel_.afterSolve(h);
-    steering_.afterSolve(h);
-    suspension_.afterSolve(h);
-    const double normal = load_.normal(load_.force(h));
-    wheel_.friction()->setStepNormalForce(normal);
-    steering_.friction()->setStepNormalForce(normal);
-    suspension_.friction()->setStepNormalForce(normal);
-  }
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override;
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override;
+  void afterSolve(double h) override;
   void onRebind() override { restart(); }
 
  private:
-  static ref_ptr<FrameT<S>> localFrame(const WheelJointFrameT<S>& frame, const RigidBodyT<S>* body) {
-    const TransformT<S> world = frame.getWorldTransform();
-    return new FrameT<S>(body ? TransformT<S>(body->getTransform().inverse() * world) : world);
-  }
+  static ref_ptr<FrameT<S>> localFrame(const WheelJointFrameT<S>& frame, const RigidBodyT<S>* body);
 
   template <class F>
   auto visit(int index, F&& f) const {
@@ -229,26 +204,105 @@ class WheelJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>,
         throw this->error("free DOF index must be WHEEL (0), STEERING (1) or SUSPENSION (2)", index);
     }
   }
-  void restart() {
-    const auto a = this->attachments();
-    wheel_.restart(a);
-    steering_.restart(a);
-    suspension_.restart(a);
-  }
-  void initialize() {
-    restart();
-    wheel_.friction()->setJoint(this);
-    steering_.friction()->setJoint(this);
-    suspension_.friction()->setJoint(this);
-    suspension_.lock()->setPosition(S(suspension_.measure(this->attachments()).value));
-    suspension_.lock()->setEnable(true);
-  }
+  void restart();
+  void initialize();
 
   FreeDofT<S, detail::WheelRollAngle> wheel_;
   FreeDofT<S, detail::WheelSteeringAngle> steering_;
   FreeDofT<S, detail::TranslationalZ> suspension_;
   detail::JointLoad load_;  // the normal force for the friction controllers
 };
+
+template <Scalar S>
+WheelJointT<S>::WheelJointT(RigidBodyT<S>* wheel, FrameT<S>* wheelFrame, RigidBodyT<S>* chassis,
+                            FrameT<S>* chassisFrame)
+    : Base("WheelJoint", wheel, wheelFrame, chassis, chassisFrame) {
+  initialize();
+}
+
+template <Scalar S>
+WheelJointT<S>::WheelJointT(const WheelJointFrameT<S>& frame, RigidBodyT<S>* wheel, RigidBodyT<S>* chassis)
+    : Base("WheelJoint", wheel, localFrame(frame, wheel).get(), chassis, localFrame(frame, chassis).get()) {
+  initialize();
+}
+
+template <Scalar S>
+S WheelJointT<S>::getAngle(int index) const {
+  const auto a = this->attachments();
+  return visit(index, [&](const auto& dof) { return S(dof.measure(a).value); });
+}
+
+template <Scalar S>
+S WheelJointT<S>::getCurrentSpeed(int index) const {
+  const auto a = this->attachments();
+  return visit(index, [&](const auto& dof) { return S(dof.measure(a).speed); });
+}
+
+template <Scalar S>
+Vec3T<S> WheelJointT<S>::getWorldSteeringAxis() const {
+  return Vec3T<S>(this->attachments().R2.col(2).template cast<S>());
+}
+
+template <Scalar S>
+Vec3T<S> WheelJointT<S>::getWorldSteeringPivot() const {
+  return Vec3T<S>(this->attachments().p2.template cast<S>());
+}
+
+template <Scalar S>
+void WheelJointT<S>::addRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+  const std::size_t first = sink.rows->size();
+  this->addElementaryRows(a, sink);
+  load_.record(sink, first, a.R2.col(2));
+  wheel_.addRows(a, sink, h);
+  steering_.addRows(a, sink, h);
+  suspension_.addRows(a, sink, h);
+}
+
+template <Scalar S>
+void WheelJointT<S>::addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) {
+  this->addElementaryRows(a, sink);
+  wheel_.addProjectionRows(a, sink);
+  steering_.addProjectionRows(a, sink);
+  suspension_.addProjectionRows(a, sink);
+}
+
+template <Scalar S>
+void WheelJointT<S>::afterSolve(double h) {
+  wheel_.afterSolve(h);
+  steering_.afterSolve(h);
+  suspension_.afterSolve(h);
+  const double normal = load_.normal(load_.force(h));
+  wheel_.friction()->setStepNormalForce(normal);
+  steering_.friction()->setStepNormalForce(normal);
+  suspension_.friction()->setStepNormalForce(normal);
+}
+
+template <Scalar S>
+ref_ptr<FrameT<S>> WheelJointT<S>::localFrame(const WheelJointFrameT<S>& frame, const RigidBodyT<S>* body) {
+  const TransformT<S> world = frame.getWorldTransform();
+  return new FrameT<S>(body ? TransformT<S>(body->getTransform().inverse() * world) : world);
+}
+
+template <Scalar S>
+void WheelJointT<S>::restart() {
+  const auto a = this->attachments();
+  wheel_.restart(a);
+  steering_.restart(a);
+  suspension_.restart(a);
+}
+
+template <Scalar S>
+void WheelJointT<S>::initialize() {
+  restart();
+  wheel_.friction()->setJoint(this);
+  steering_.friction()->setJoint(this);
+  suspension_.friction()->setJoint(this);
+  suspension_.lock()->setPosition(S(suspension_.measure(this->attachments()).value));
+  suspension_.lock()->setEnable(true);
+}
+
+SPOOK_COMPILED_ONCE(class, WheelJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot1<1, 2>)
 
 using WheelJointFrame = WheelJointFrameT<double>;
 using WheelJoint = WheelJointT<double>;

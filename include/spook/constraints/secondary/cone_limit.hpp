@@ -63,35 +63,14 @@ class ConeLimitT : public SecondaryConstraintT<S> {
   /// Half-angle (rad) in frame 2's x–z plane (index 0) or y–z plane (1).
   [[nodiscard]] S getLimitAngle(int index) const { return index == 0 ? a1_ : a2_; }
   /// Both half-angles (rad), each in (0, π/2).
-  void setLimitAngles(S a1, S a2) {
-    const auto valid = [](S angle) { return std::isfinite(angle) && angle > S(0) && angle < std::numbers::pi_v<S> / S(2); };
-    if (!valid(a1) || !valid(a2))
-      throw label_.error(this->kind_, "limit angles must both be in (0, pi/2) rad", Eigen::Matrix<S, 2, 1>(a1, a2));
-    a1_ = a1;
-    a2_ = a2;
-  }
+  void setLimitAngles(S a1, S a2);
 
   /// The tilt of frame 1's z axis from frame 2's (rad) in the last step it
   /// was enabled.
   [[nodiscard]] S getAngle() const { return S(tilt_); }
 
   // Called by the joint each step.
-  void addRows(detail::RowSink& sink, const detail::Attachments& a, double h) {
-    if (!this->enable_) return;
-    const detail::ConeState s = detail::coneState(a, double(a1_), double(a2_));
-    tilt_ = s.tilt;
-    detail::Coordinate c;
-    c.J1 = detail::linearAngular(detail::Vec3d::Zero(), s.axis);
-    c.J2 = -c.J1;
-    c.speed = a.speed(c.J1, c.J2);
-    c.value = s.tilt - s.limit;
-    c.rotational = true;
-    if (c.value < -2.0 * h * std::abs(c.speed)) return;
-    detail::Row& row = this->addRow(sink, c);
-    row.violation = c.value;
-    row.lower = std::min(row.lower, 0.0);
-    row.upper = std::min(row.upper, 0.0);
-  }
+  void addRows(detail::RowSink& sink, const detail::Attachments& a, double h);
   /// The joint this limit belongs to (for error messages).
   void setJoint(const ConstraintT<S>* joint) { label_.set(joint); }
 
@@ -104,6 +83,35 @@ class ConeLimitT : public SecondaryConstraintT<S> {
   double tilt_ = 0.0;
   detail::JointLabel<S> label_;
 };
+
+template <Scalar S>
+void ConeLimitT<S>::setLimitAngles(S a1, S a2) {
+  const auto valid = [](S angle) { return std::isfinite(angle) && angle > S(0) && angle < std::numbers::pi_v<S> / S(2); };
+  if (!valid(a1) || !valid(a2))
+    throw label_.error(this->kind_, "limit angles must both be in (0, pi/2) rad", Eigen::Matrix<S, 2, 1>(a1, a2));
+  a1_ = a1;
+  a2_ = a2;
+}
+
+template <Scalar S>
+void ConeLimitT<S>::addRows(detail::RowSink& sink, const detail::Attachments& a, double h) {
+  if (!this->enable_) return;
+  const detail::ConeState s = detail::coneState(a, double(a1_), double(a2_));
+  tilt_ = s.tilt;
+  detail::Coordinate c;
+  c.J1 = detail::linearAngular(detail::Vec3d::Zero(), s.axis);
+  c.J2 = -c.J1;
+  c.speed = a.speed(c.J1, c.J2);
+  c.value = s.tilt - s.limit;
+  c.rotational = true;
+  if (c.value < -2.0 * h * std::abs(c.speed)) return;
+  detail::Row& row = this->addRow(sink, c);
+  row.violation = c.value;
+  row.lower = std::min(row.lower, 0.0);
+  row.upper = std::min(row.upper, 0.0);
+}
+
+SPOOK_COMPILED_ONCE(class, ConeLimitT)
 
 using ConeLimit = ConeLimitT<double>;
 using ConeLimitRef = ref_ptr<ConeLimit>;

@@ -108,21 +108,12 @@ class FrictionControllerT : public SecondaryConstraintT<S> {
 
   /// μ (dimensionless; m for a rotational DOF, the axle radius included), ≥ 0.
   [[nodiscard]] S getFrictionCoefficient() const { return mu_; }
-  void setFrictionCoefficient(S mu) {
-    if (!(std::isfinite(mu) && mu >= S(0)))
-      throw label_.error(this->kind_, "friction coefficient must be finite and >= 0", mu);
-    mu_ = mu;
-  }
+  void setFrictionCoefficient(S mu);
 
   /// Friction force (N or N·m) available even without a normal force:
   /// [lower, upper] with lower ≤ 0 ≤ upper. Default [0, 0].
   [[nodiscard]] RangeT<S> getMinimumStaticFrictionForceRange() const { return minimum_; }
-  void setMinimumStaticFrictionForceRange(S lower, S upper) {
-    if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= S(0) && upper >= S(0)))
-      throw label_.error(this->kind_, "minimum static friction range must be finite with lower <= 0 <= upper (N or N·m)",
-                         Eigen::Matrix<S, 2, 1>(lower, upper));
-    minimum_ = {lower, upper};
-  }
+  void setMinimumStaticFrictionForceRange(S lower, S upper);
   void setMinimumStaticFrictionForceRange(RangeT<S> range) { setMinimumStaticFrictionForceRange(range.lower, range.upper); }
 
   /// Current-step normal force (approximated, see the class comment); default off.
@@ -135,30 +126,9 @@ class FrictionControllerT : public SecondaryConstraintT<S> {
   [[nodiscard]] S getCurrentFrictionBound() const { return S(bound_); }
 
   // Called by the joint: this step's row on the DOF `c`.
-  void addRows(detail::RowSink& sink, const detail::Coordinate& c) {
-    if (!this->enable_) {
-      bound_ = 0.0;
-      return;
-    }
-    double n = normal_;
-    if (nonLinear_ && samples_ >= 2) n = std::max(0.0, 2.0 * normal_ - previousNormal_);
-    const double slide = double(mu_) * n;
-    const double lower = std::min(-slide, double(minimum_.lower));
-    const double upper = std::max(slide, double(minimum_.upper));
-    bound_ = std::max(-lower, upper);
-    if (lower == 0.0 && upper == 0.0) return;  // nothing to hold
-    detail::Row& row = this->addRow(sink, c);
-    row.holonomic = false;
-    row.speed = 0.0;
-    row.lower = lower;
-    row.upper = upper;
-  }
+  void addRows(detail::RowSink& sink, const detail::Coordinate& c);
   /// The joint's normal force of the step just solved (N).
-  void setStepNormalForce(double normal) {
-    previousNormal_ = normal_;
-    normal_ = std::isfinite(normal) ? normal : 0.0;
-    samples_ = std::min(samples_ + 1, 2);
-  }
+  void setStepNormalForce(double normal);
   /// The joint this controller belongs to (for error messages).
   void setJoint(const ConstraintT<S>* joint) { label_.set(joint); }
 
@@ -174,6 +144,50 @@ class FrictionControllerT : public SecondaryConstraintT<S> {
   double bound_ = 0.0;
   detail::JointLabel<S> label_;
 };
+
+template <Scalar S>
+void FrictionControllerT<S>::setFrictionCoefficient(S mu) {
+  if (!(std::isfinite(mu) && mu >= S(0)))
+    throw label_.error(this->kind_, "friction coefficient must be finite and >= 0", mu);
+  mu_ = mu;
+}
+
+template <Scalar S>
+void FrictionControllerT<S>::setMinimumStaticFrictionForceRange(S lower, S upper) {
+  if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= S(0) && upper >= S(0)))
+    throw label_.error(this->kind_, "minimum static friction range must be finite with lower <= 0 <= upper (N or N·m)",
+                       Eigen::Matrix<S, 2, 1>(lower, upper));
+  minimum_ = {lower, upper};
+}
+
+template <Scalar S>
+void FrictionControllerT<S>::addRows(detail::RowSink& sink, const detail::Coordinate& c) {
+  if (!this->enable_) {
+    bound_ = 0.0;
+    return;
+  }
+  double n = normal_;
+  if (nonLinear_ && samples_ >= 2) n = std::max(0.0, 2.0 * normal_ - previousNormal_);
+  const double slide = double(mu_) * n;
+  const double lower = std::min(-slide, double(minimum_.lower));
+  const double upper = std::max(slide, double(minimum_.upper));
+  bound_ = std::max(-lower, upper);
+  if (lower == 0.0 && upper == 0.0) return;  // nothing to hold
+  detail::Row& row = this->addRow(sink, c);
+  row.holonomic = false;
+  row.speed = 0.0;
+  row.lower = lower;
+  row.upper = upper;
+}
+
+template <Scalar S>
+void FrictionControllerT<S>::setStepNormalForce(double normal) {
+  previousNormal_ = normal_;
+  normal_ = std::isfinite(normal) ? normal : 0.0;
+  samples_ = std::min(samples_ + 1, 2);
+}
+
+SPOOK_COMPILED_ONCE(class, FrictionControllerT)
 
 using FrictionController = FrictionControllerT<double>;
 using FrictionControllerRef = ref_ptr<FrictionController>;

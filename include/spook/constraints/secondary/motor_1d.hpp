@@ -18,29 +18,11 @@ class Motor1DT : public SecondaryConstraintT<S> {
   Motor1DT() : SecondaryConstraintT<S>("Motor1D") {}
 
   [[nodiscard]] S getSpeed() const { return speed_; }
-  void setSpeed(S speed) {
-    if (!std::isfinite(speed)) throw detail::makeError("Motor1D", "", "speed must be finite (m/s or rad/s)", speed);
-    speed_ = speed;
-  }
+  void setSpeed(S speed);
   [[nodiscard]] bool getLockedAtZeroSpeed() const { return lockedAtZeroSpeed_; }
   void setLockedAtZeroSpeed(bool locked) { lockedAtZeroSpeed_ = locked; }
 
-  void addRows(detail::RowSink& sink, const detail::Coordinate& c) {
-    if (!this->enable_) {
-      lockPosition_.reset();
-      return;
-    }
-    if (lockedAtZeroSpeed_ && speed_ == S(0)) {
-      if (!lockPosition_) lockPosition_ = c.value;
-      detail::Row& row = this->addRow(sink, c);
-      row.violation = c.value - *lockPosition_;
-      return;
-    }
-    lockPosition_.reset();
-    detail::Row& row = this->addRow(sink, c);
-    row.holonomic = false;
-    row.speed = double(speed_);
-  }
+  void addRows(detail::RowSink& sink, const detail::Coordinate& c);
 
  protected:
   ~Motor1DT() override = default;
@@ -50,6 +32,32 @@ class Motor1DT : public SecondaryConstraintT<S> {
   bool lockedAtZeroSpeed_ = false;
   std::optional<double> lockPosition_;
 };
+
+template <Scalar S>
+void Motor1DT<S>::setSpeed(S speed) {
+  if (!std::isfinite(speed)) throw detail::makeError("Motor1D", "", "speed must be finite (m/s or rad/s)", speed);
+  speed_ = speed;
+}
+
+template <Scalar S>
+void Motor1DT<S>::addRows(detail::RowSink& sink, const detail::Coordinate& c) {
+  if (!this->enable_) {
+    lockPosition_.reset();
+    return;
+  }
+  if (lockedAtZeroSpeed_ && speed_ == S(0)) {
+    if (!lockPosition_) lockPosition_ = c.value;
+    detail::Row& row = this->addRow(sink, c);
+    row.violation = c.value - *lockPosition_;
+    return;
+  }
+  lockPosition_.reset();
+  detail::Row& row = this->addRow(sink, c);
+  row.holonomic = false;
+  row.speed = double(speed_);
+}
+
+SPOOK_COMPILED_ONCE(class, Motor1DT)
 
 /// The seeds' spelling (AGX's agx::Motor1D): `spook::Motor1D* m = hinge->getMotor1D();`.
 using Motor1D = Motor1DT<double>;

@@ -18,24 +18,9 @@ class Screw1DT : public SecondaryConstraintT<S> {
 
   /// Meters of translation per revolution (may be negative: a left-hand thread).
   [[nodiscard]] S getLead() const { return lead_; }
-  void setLead(S lead) {
-    if (!std::isfinite(lead)) throw detail::makeError("Screw1D", "", "lead must be finite (m per revolution)", lead);
-    lead_ = lead;
-  }
+  void setLead(S lead);
 
-  void addRows(detail::RowSink& sink, const detail::Coordinate& translation, const detail::Coordinate& angle) {
-    if (!this->enable_) {
-      reference_.reset();
-      return;
-    }
-    if (!reference_) reference_ = Reference{translation.value, angle.value};
-    const double ratio = double(lead_) / (2.0 * std::numbers::pi);
-    detail::Coordinate c;
-    c.J1 = translation.J1 - ratio * angle.J1;
-    c.J2 = translation.J2 - ratio * angle.J2;
-    detail::Row& row = this->addRow(sink, c);
-    row.violation = (translation.value - reference_->translation) - ratio * (angle.value - reference_->angle);
-  }
+  void addRows(detail::RowSink& sink, const detail::Coordinate& translation, const detail::Coordinate& angle);
 
  protected:
   ~Screw1DT() override = default;
@@ -47,6 +32,30 @@ class Screw1DT : public SecondaryConstraintT<S> {
   S lead_ = S(0);
   std::optional<Reference> reference_;
 };
+
+template <Scalar S>
+void Screw1DT<S>::setLead(S lead) {
+  if (!std::isfinite(lead)) throw detail::makeError("Screw1D", "", "lead must be finite (m per revolution)", lead);
+  lead_ = lead;
+}
+
+template <Scalar S>
+void Screw1DT<S>::addRows(detail::RowSink& sink, const detail::Coordinate& translation,
+                          const detail::Coordinate& angle) {
+  if (!this->enable_) {
+    reference_.reset();
+    return;
+  }
+  if (!reference_) reference_ = Reference{translation.value, angle.value};
+  const double ratio = double(lead_) / (2.0 * std::numbers::pi);
+  detail::Coordinate c;
+  c.J1 = translation.J1 - ratio * angle.J1;
+  c.J2 = translation.J2 - ratio * angle.J2;
+  detail::Row& row = this->addRow(sink, c);
+  row.violation = (translation.value - reference_->translation) - ratio * (angle.value - reference_->angle);
+}
+
+SPOOK_COMPILED_ONCE(class, Screw1DT)
 
 /// The seeds' spelling (AGX's agx::Screw1D): `spook::Screw1D* s = cylindrical->getScrew1D();`.
 using Screw1D = Screw1DT<double>;

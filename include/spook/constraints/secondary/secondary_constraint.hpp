@@ -8,6 +8,7 @@
 #include <spook/constraints/rows/elementary.hpp>
 #include <spook/constraints/regularization.hpp>
 #include <spook/core/error.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/referenced.hpp>
 
 namespace spook {
@@ -38,12 +39,7 @@ class SecondaryConstraintT : public Referenced {
   /// The largest force (N, or N·m for a rotational DOF) it may apply in each
   /// direction; default unbounded.
   [[nodiscard]] RangeT<S> getForceRange() const { return forceRange_; }
-  void setForceRange(S lower, S upper) {
-    if (std::isnan(lower) || std::isnan(upper) || lower > upper)
-      throw detail::makeError(kind_, "", "force range must have lower <= upper (N or N·m)",
-                              Eigen::Matrix<S, 2, 1>(lower, upper));
-    forceRange_ = {lower, upper};
-  }
+  void setForceRange(S lower, S upper);
   void setForceRange(RangeT<S> range) { setForceRange(range.lower, range.upper); }
 
   /// The force (N) or torque (N·m) applied along the DOF in the last step;
@@ -57,24 +53,12 @@ class SecondaryConstraintT : public Referenced {
   [[nodiscard]] detail::RowParameters rowParameters() const {
     return {double(regularization_.getCompliance()), double(regularization_.getDamping())};
   }
-  detail::Row& addRow(detail::RowSink& sink, const detail::Coordinate& c) {
-    active_ = true;
-    detail::Row& row = sink.add(c.J1, c.J2, &impulse_);
-    row.compliance = double(regularization_.getCompliance());
-    row.damping = double(regularization_.getDamping());
-    row.lower = double(forceRange_.lower);
-    row.upper = double(forceRange_.upper);
-    sink.setCurvature(c.curvature);
-    return row;
-  }
+  detail::Row& addRow(detail::RowSink& sink, const detail::Coordinate& c);
 
  public:
   // Called by the joint once per step around the solve.
   void beginStep() { active_ = false; }
-  void endStep(double h) {
-    force_ = active_ ? S(impulse_ / h) : S(0);
-    if (!active_) impulse_ = 0.0;
-  }
+  void endStep(double h);
 
  protected:
   const char* kind_;
@@ -85,5 +69,33 @@ class SecondaryConstraintT : public Referenced {
   bool active_ = false;
   S force_ = S(0);
 };
+
+template <Scalar S>
+void SecondaryConstraintT<S>::setForceRange(S lower, S upper) {
+  if (std::isnan(lower) || std::isnan(upper) || lower > upper)
+    throw detail::makeError(kind_, "", "force range must have lower <= upper (N or N·m)",
+                            Eigen::Matrix<S, 2, 1>(lower, upper));
+  forceRange_ = {lower, upper};
+}
+
+template <Scalar S>
+detail::Row& SecondaryConstraintT<S>::addRow(detail::RowSink& sink, const detail::Coordinate& c) {
+  active_ = true;
+  detail::Row& row = sink.add(c.J1, c.J2, &impulse_);
+  row.compliance = double(regularization_.getCompliance());
+  row.damping = double(regularization_.getDamping());
+  row.lower = double(forceRange_.lower);
+  row.upper = double(forceRange_.upper);
+  sink.setCurvature(c.curvature);
+  return row;
+}
+
+template <Scalar S>
+void SecondaryConstraintT<S>::endStep(double h) {
+  force_ = active_ ? S(impulse_ / h) : S(0);
+  if (!active_) impulse_ = 0.0;
+}
+
+SPOOK_COMPILED_ONCE(class, SecondaryConstraintT)
 
 }  // namespace spook

@@ -51,40 +51,14 @@ class TwistRangeControllerT : public SecondaryConstraintT<S> {
 
   [[nodiscard]] RangeT<S> getRange() const { return range_; }
   /// Twist limits (rad), −π ≤ lower ≤ upper ≤ π.
-  void setRange(S lower, S upper) {
-    const S pi = std::numbers::pi_v<S>;
-    if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= upper && lower >= -pi && upper <= pi))
-      throw label_.error(this->kind_, "range must have -pi <= lower <= upper <= pi (rad)",
-                         Eigen::Matrix<S, 2, 1>(lower, upper));
-    range_ = {lower, upper};
-  }
+  void setRange(S lower, S upper);
   void setRange(RangeT<S> range) { setRange(range.lower, range.upper); }
 
   /// The twist (rad) in the last step it was enabled.
   [[nodiscard]] S getAngle() const { return S(twist_); }
 
   // Called by the joint each step.
-  void addRows(detail::RowSink& sink, const detail::Attachments& a, double h) {
-    if (!this->enable_) return;
-    const detail::Coordinate c = detail::twistCoordinate(a);
-    twist_ = c.value;
-    const double lower = double(range_.lower), upper = double(range_.upper);
-    const double reach = 2.0 * h * std::abs(c.speed);
-    const bool atLower = c.value - lower <= reach;
-    const bool atUpper = upper - c.value <= reach;
-    if (!atLower && !atUpper) return;
-    detail::Row& row = this->addRow(sink, c);
-    const bool lowerSide = atLower && (!atUpper || c.value - lower <= upper - c.value);
-    row.violation = c.value - (lowerSide ? lower : upper);
-    if (lower == upper) return;  // a lock
-    if (lowerSide) {
-      row.lower = std::max(row.lower, 0.0);
-      row.upper = std::max(row.upper, 0.0);
-    } else {
-      row.lower = std::min(row.lower, 0.0);
-      row.upper = std::min(row.upper, 0.0);
-    }
-  }
+  void addRows(detail::RowSink& sink, const detail::Attachments& a, double h);
   /// The joint this controller belongs to (for error messages).
   void setJoint(const ConstraintT<S>* joint) { label_.set(joint); }
 
@@ -96,6 +70,40 @@ class TwistRangeControllerT : public SecondaryConstraintT<S> {
   double twist_ = 0.0;
   detail::JointLabel<S> label_;
 };
+
+template <Scalar S>
+void TwistRangeControllerT<S>::setRange(S lower, S upper) {
+  const S pi = std::numbers::pi_v<S>;
+  if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= upper && lower >= -pi && upper <= pi))
+    throw label_.error(this->kind_, "range must have -pi <= lower <= upper <= pi (rad)",
+                       Eigen::Matrix<S, 2, 1>(lower, upper));
+  range_ = {lower, upper};
+}
+
+template <Scalar S>
+void TwistRangeControllerT<S>::addRows(detail::RowSink& sink, const detail::Attachments& a, double h) {
+  if (!this->enable_) return;
+  const detail::Coordinate c = detail::twistCoordinate(a);
+  twist_ = c.value;
+  const double lower = double(range_.lower), upper = double(range_.upper);
+  const double reach = 2.0 * h * std::abs(c.speed);
+  const bool atLower = c.value - lower <= reach;
+  const bool atUpper = upper - c.value <= reach;
+  if (!atLower && !atUpper) return;
+  detail::Row& row = this->addRow(sink, c);
+  const bool lowerSide = atLower && (!atUpper || c.value - lower <= upper - c.value);
+  row.violation = c.value - (lowerSide ? lower : upper);
+  if (lower == upper) return;  // a lock
+  if (lowerSide) {
+    row.lower = std::max(row.lower, 0.0);
+    row.upper = std::max(row.upper, 0.0);
+  } else {
+    row.lower = std::min(row.lower, 0.0);
+    row.upper = std::min(row.upper, 0.0);
+  }
+}
+
+SPOOK_COMPILED_ONCE(class, TwistRangeControllerT)
 
 using TwistRangeController = TwistRangeControllerT<double>;
 using TwistRangeControllerRef = ref_ptr<TwistRangeController>;

@@ -70,39 +70,19 @@ class SteeringT : public StepEventListenerT<S> {
 
   /// Steers to `angle` (rad) clamped to ±getMaximumSteeringAngle(); only a
   /// non-finite angle throws (and changes nothing).
-  void setSteeringAngle(S angle) {
-    if (!std::isfinite(angle)) throw error("steering angle must be finite (rad)", angle);
-    const double held = std::clamp(double(angle), -maximum_, maximum_);
-    const auto angles = solve(held);
-    if (!angles) throw error("linkage does not close at this steering angle (rad)", held);
-    requested_ = double(angle);
-    input_ = held;
-    angles_ = *angles;
-    apply();
-  }
+  void setSteeringAngle(S angle);
 
   void pre(const TimeStampT<S>&) override { apply(); }
 
  protected:
-  SteeringT(const char* kind, WheelJoint* left, WheelJoint* right, const SteeringParameters& parameters)
-      : StepEventListenerT<S>(StepEventListenerT<S>::PRE_STEP), kind_(kind), parameters_(parameters) {
-    checkWheelJoints(left, right);
-    left_ = left;
-    right_ = right;
-    straightLeft_ = double(left->getAngle(WheelJoint::STEERING));
-    straightRight_ = double(right->getAngle(WheelJoint::STEERING));
-  }
+  SteeringT(const char* kind, WheelJoint* left, WheelJoint* right, const SteeringParameters& parameters);
   ~SteeringT() override = default;
 
   /// Wheel angles for an input (rad); none where the linkage does not close.
   [[nodiscard]] virtual std::optional<detail::LinkageAngles> solve(double input) const = 0;
 
   /// Called by the mechanism's constructor once its linkage is built.
-  void start(double maximum) {
-    if (!(maximum > 0.0)) throw error("linkage cannot turn from straight ahead: maximum steering angle (rad)", maximum);
-    maximum_ = maximum;
-    apply();
-  }
+  void start(double maximum);
 
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
@@ -110,28 +90,10 @@ class SteeringT : public StepEventListenerT<S> {
   }
 
  private:
-  void checkWheelJoints(const WheelJoint* left, const WheelJoint* right) const {
-    if (!left || !right)
-      throw error("needs a left and a right WheelJoint", !left && !right ? "nullptr and nullptr" : "nullptr");
-    if (left == right) throw error("left and right must be different wheel joints", left->getName());
-    if (left->getBodyAt(1) != right->getBodyAt(1))
-      throw error("wheel joints must share one chassis (body 2)", left->getName() + " and " + right->getName());
-    const double track = double((right->getWorldSteeringPivot() - left->getWorldSteeringPivot()).norm());
-    if (!(std::isfinite(track) && track > 0.0))
-      throw error("wheel joints' steering pivots must be apart (wheel track, m)", track);
-    const double sameWay = double(left->getWorldSteeringAxis().dot(right->getWorldSteeringAxis()));
-    if (!(sameWay > 0.0)) throw error("wheel joints' steering axes must point the same way (cosine)", sameWay);
-  }
+  void checkWheelJoints(const WheelJoint* left, const WheelJoint* right) const;
 
-  void apply() {
-    steer(*left_, straightLeft_ + angles_.left);
-    steer(*right_, straightRight_ + angles_.right);
-  }
-  static void steer(WheelJoint& joint, double angle) {
-    Lock1DT<S>* lock = joint.getLock1D(WheelJoint::STEERING);
-    lock->setPosition(S(angle));
-    lock->setEnable(true);
-  }
+  void apply();
+  static void steer(WheelJoint& joint, double angle);
 
   const char* kind_;
   std::string name_;
@@ -144,6 +106,64 @@ class SteeringT : public StepEventListenerT<S> {
   detail::LinkageAngles angles_;
 };
 
+template <Scalar S>
+void SteeringT<S>::setSteeringAngle(S angle) {
+  if (!std::isfinite(angle)) throw error("steering angle must be finite (rad)", angle);
+  const double held = std::clamp(double(angle), -maximum_, maximum_);
+  const auto angles = solve(held);
+  if (!angles) throw error("linkage does not close at this steering angle (rad)", held);
+  requested_ = double(angle);
+  input_ = held;
+  angles_ = *angles;
+  apply();
+}
+
+template <Scalar S>
+SteeringT<S>::SteeringT(const char* kind, WheelJoint* left, WheelJoint* right, const SteeringParameters& parameters)
+    : StepEventListenerT<S>(StepEventListenerT<S>::PRE_STEP), kind_(kind), parameters_(parameters) {
+  checkWheelJoints(left, right);
+  left_ = left;
+  right_ = right;
+  straightLeft_ = double(left->getAngle(WheelJoint::STEERING));
+  straightRight_ = double(right->getAngle(WheelJoint::STEERING));
+}
+
+template <Scalar S>
+void SteeringT<S>::start(double maximum) {
+  if (!(maximum > 0.0)) throw error("linkage cannot turn from straight ahead: maximum steering angle (rad)", maximum);
+  maximum_ = maximum;
+  apply();
+}
+
+template <Scalar S>
+void SteeringT<S>::checkWheelJoints(const WheelJoint* left, const WheelJoint* right) const {
+  if (!left || !right)
+    throw error("needs a left and a right WheelJoint", !left && !right ? "nullptr and nullptr" : "nullptr");
+  if (left == right) throw error("left and right must be different wheel joints", left->getName());
+  if (left->getBodyAt(1) != right->getBodyAt(1))
+    throw error("wheel joints must share one chassis (body 2)", left->getName() + " and " + right->getName());
+  const double track = double((right->getWorldSteeringPivot() - left->getWorldSteeringPivot()).norm());
+  if (!(std::isfinite(track) && track > 0.0))
+    throw error("wheel joints' steering pivots must be apart (wheel track, m)", track);
+  const double sameWay = double(left->getWorldSteeringAxis().dot(right->getWorldSteeringAxis()));
+  if (!(sameWay > 0.0)) throw error("wheel joints' steering axes must point the same way (cosine)", sameWay);
+}
+
+template <Scalar S>
+void SteeringT<S>::apply() {
+  steer(*left_, straightLeft_ + angles_.left);
+  steer(*right_, straightRight_ + angles_.right);
+}
+
+template <Scalar S>
+void SteeringT<S>::steer(WheelJoint& joint, double angle) {
+  Lock1DT<S>* lock = joint.getLock1D(WheelJoint::STEERING);
+  lock->setPosition(S(angle));
+  lock->setEnable(true);
+}
+
+SPOOK_COMPILED_ONCE(class, SteeringT)
+
 /// A steering mechanism with the kinematics of `Linkage` (linkages.hpp).
 template <Scalar S, class Linkage>
 class SteeringMechanismT : public SteeringT<S> {
@@ -151,10 +171,7 @@ class SteeringMechanismT : public SteeringT<S> {
   /// Between two wheel joints on one chassis, with Table 12.6 defaults
   /// unless parameters are given; holds the wheels straight ahead.
   SteeringMechanismT(WheelJointT<S>* leftWheel, WheelJointT<S>* rightWheel,
-                     const SteeringParameters& parameters = Linkage::defaults())
-      : SteeringT<S>(Linkage::kName, leftWheel, rightWheel, parameters), linkage_(parameters) {
-    this->start(detail::maximumLinkageInput(linkage_));
-  }
+                     const SteeringParameters& parameters = Linkage::defaults());
 
   /// The linkage's closed-form kinematics.
   [[nodiscard]] const Linkage& getLinkage() const { return linkage_; }
@@ -168,6 +185,22 @@ class SteeringMechanismT : public SteeringT<S> {
  private:
   Linkage linkage_;
 };
+
+template <Scalar S, class Linkage>
+SteeringMechanismT<S, Linkage>::SteeringMechanismT(WheelJointT<S>* leftWheel, WheelJointT<S>* rightWheel,
+                                                   const SteeringParameters& parameters)
+    : SteeringT<S>(Linkage::kName, leftWheel, rightWheel, parameters), linkage_(parameters) {
+  this->start(detail::maximumLinkageInput(linkage_));
+}
+
+SPOOK_COMPILED_DOUBLE(class SteeringMechanismT<double, detail::AckermannLinkage>)
+SPOOK_COMPILED_FLOAT(class SteeringMechanismT<float, detail::AckermannLinkage>)
+SPOOK_COMPILED_DOUBLE(class SteeringMechanismT<double, detail::BellCrankLinkage>)
+SPOOK_COMPILED_FLOAT(class SteeringMechanismT<float, detail::BellCrankLinkage>)
+SPOOK_COMPILED_DOUBLE(class SteeringMechanismT<double, detail::RackPinionLinkage>)
+SPOOK_COMPILED_FLOAT(class SteeringMechanismT<float, detail::RackPinionLinkage>)
+SPOOK_COMPILED_DOUBLE(class SteeringMechanismT<double, detail::DavisLinkage>)
+SPOOK_COMPILED_FLOAT(class SteeringMechanismT<float, detail::DavisLinkage>)
 
 /// Ackermann trapezoid four-bar (seed 001 §12.13).
 template <Scalar S>
