@@ -215,6 +215,73 @@ template <class T>
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_CORE_ERROR_HPP
 // --- end spook/core/error.hpp ---
+// --- begin spook/core/implementation.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
+
+// Compiled once instead of header-only (the stb convention). A program that
+// defines SPOOK_EXTERN_TEMPLATES everywhere declares spook's heavy templates
+// extern (the simulation step with its solvers and contact code, the
+// colliders of the full shape list) for float and double; one translation
+// unit that defines SPOOK_IMPLEMENTATION before including <spook/spook.hpp>
+// compiles them. A build may instead split that work over several
+// translation units, each defining one or more of the parts below (CMake's
+// spook::spook_compiled does, so that its parts compile in parallel).
+#if defined(SPOOK_IMPLEMENTATION) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) &&   \
+    !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT) && !defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE) && \
+    !defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
+#define SPOOK_IMPLEMENT_SIMULATION_DOUBLE
+#define SPOOK_IMPLEMENT_SIMULATION_FLOAT
+#define SPOOK_IMPLEMENT_COLLIDERS_DOUBLE
+#define SPOOK_IMPLEMENT_COLLIDERS_FLOAT
+#endif
+
+// What this translation unit sees. Header-only (no SPOOK_EXTERN_TEMPLATES):
+// every definition. Otherwise only the declarations of the step and the
+// solver, unless it implements a simulation part:
+//   SPOOK_DEFINES_STEP    the simulation step's template definitions
+//                         (sim/simulation_step.hpp), for either scalar;
+//   SPOOK_DEFINES_SOLVER  the double-only, non-template solver code
+//                         (solver/solver_impl.hpp), compiled with the double
+//                         simulation and inline (SPOOK_SOLVER_INLINE) when
+//                         header-only.
+#if !defined(SPOOK_EXTERN_TEMPLATES) || defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) || \
+    defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+#define SPOOK_DEFINES_STEP
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+#define SPOOK_DEFINES_SOLVER
+#define SPOOK_SOLVER_INLINE
+#elif !defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_DEFINES_SOLVER
+#define SPOOK_SOLVER_INLINE inline
+#endif
+
+// The API's class templates (bodies, frames, geometries, shapes, joints)
+// follow the simulation parts: SPOOK_COMPILED_ONCE(class RigidBodyT) after a
+// class's member definitions declares RigidBodyT<double> and <float> extern
+// where spook is compiled once, instantiates them where the double or float
+// simulation part is implemented, and is nothing header-only. Their heavy
+// members are defined outside the class body: an extern template stops the
+// instantiation of those only, not of inline ones, which every translation
+// unit would otherwise compile again (with the Eigen expressions they use).
+#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
+#define SPOOK_COMPILED_DOUBLE(...) template __VA_ARGS__;
+#elif defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_COMPILED_DOUBLE(...) extern template __VA_ARGS__;
+#else
+#define SPOOK_COMPILED_DOUBLE(...)
+#endif
+#if defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
+#define SPOOK_COMPILED_FLOAT(...) template __VA_ARGS__;
+#elif defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_COMPILED_FLOAT(...) extern template __VA_ARGS__;
+#else
+#define SPOOK_COMPILED_FLOAT(...)
+#endif
+#define SPOOK_COMPILED_ONCE(kind, name) SPOOK_COMPILED_DOUBLE(kind name<double>) SPOOK_COMPILED_FLOAT(kind name<float>)
+#endif  // SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
+// --- end spook/core/implementation.hpp ---
 
 namespace spook {
 
@@ -270,35 +337,43 @@ class SPDMat3T {
   }
 
   /// Why `m` is not symmetric positive definite, or nullptr when it is.
-  [[nodiscard]] static const char* defect(const Mat3T<S>& m) {
-    if (!m.allFinite()) return "matrix must be finite";
-    const S scale = m.cwiseAbs().maxCoeff();
-    if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= ScalarTraits<S>::symmetryTolerance() * scale))
-      return "matrix must be symmetric";
-    const Mat3T<S> sym = S(0.5) * (m + m.transpose());
-    // Relative to the largest eigenvalue, so that round-off cannot pass a
-    // singular matrix off as positive definite.
-    const Vec3T<S> eigenvalues = Eigen::SelfAdjointEigenSolver<Mat3T<S>>(sym, Eigen::EigenvaluesOnly).eigenvalues();
-    if (!(eigenvalues.minCoeff() > S(16) * ScalarTraits<S>::epsilon() * eigenvalues.maxCoeff()))
-      return "matrix must be positive definite";
-    return nullptr;
-  }
+  [[nodiscard]] static const char* defect(const Mat3T<S>& m);
 
   [[nodiscard]] const Mat3T<S>& matrix() const { return m_; }
   [[nodiscard]] Mat3T<S> inverse() const { return m_.inverse(); }
   [[nodiscard]] Vec3T<S> diagonal() const { return m_.diagonal(); }
 
   /// Row-major entries, for error messages.
-  static Eigen::Matrix<S, 9, 1> flat(const Mat3T<S>& m) {
-    Eigen::Matrix<S, 9, 1> v;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) v[3 * r + c] = m(r, c);
-    return v;
-  }
+  static Eigen::Matrix<S, 9, 1> flat(const Mat3T<S>& m);
 
  private:
   Mat3T<S> m_;
 };
+
+template <class S>
+const char* SPDMat3T<S>::defect(const Mat3T<S>& m) {
+  if (!m.allFinite()) return "matrix must be finite";
+  const S scale = m.cwiseAbs().maxCoeff();
+  if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= ScalarTraits<S>::symmetryTolerance() * scale))
+    return "matrix must be symmetric";
+  const Mat3T<S> sym = S(0.5) * (m + m.transpose());
+  // Relative to the largest eigenvalue, so that round-off cannot pass a
+  // singular matrix off as positive definite.
+  const Vec3T<S> eigenvalues = Eigen::SelfAdjointEigenSolver<Mat3T<S>>(sym, Eigen::EigenvaluesOnly).eigenvalues();
+  if (!(eigenvalues.minCoeff() > S(16) * ScalarTraits<S>::epsilon() * eigenvalues.maxCoeff()))
+    return "matrix must be positive definite";
+  return nullptr;
+}
+
+template <class S>
+auto SPDMat3T<S>::flat(const Mat3T<S>& m) -> Eigen::Matrix<S, 9, 1> {
+  Eigen::Matrix<S, 9, 1> v;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) v[3 * r + c] = m(r, c);
+  return v;
+}
+
+SPOOK_COMPILED_ONCE(class, SPDMat3T)
 
 /// True when R is finite, orthonormal (to ScalarTraits::rotationTolerance)
 /// and right-handed: the linear part of a rigid transform.
@@ -369,7 +444,8 @@ template <class S>
 /// perpendicular to both.
 template <class S>
 [[nodiscard]] QuatT<S> rotate(const Vec3T<S>& from, const Vec3T<S>& to) {
-  if (!from.allFinite() || !to.allFinite() || !(from.cwiseAbs().maxCoeff() > S(0)) || !(to.cwiseAbs().maxCoeff() > S(0)))
+  if (!from.allFinite() || !to.allFinite() || !(from.cwiseAbs().maxCoeff() > S(0)) ||
+      !(to.cwiseAbs().maxCoeff() > S(0)))
     throw detail::makeError("rotate", "", "vectors must be finite and non-zero",
                             Eigen::Matrix<S, 6, 1>(from.x(), from.y(), from.z(), to.x(), to.y(), to.z()));
   return detail::shortestArc<S>(from, to);
@@ -387,7 +463,7 @@ template <class S>
 template <class S>
 [[nodiscard]] QuatT<S> toQuat(const EulerAnglesT<S>& e) {
   return QuatT<S>(Eigen::AngleAxis<S>(e.z, Vec3T<S>::UnitZ()) * Eigen::AngleAxis<S>(e.y, Vec3T<S>::UnitY()) *
-                 Eigen::AngleAxis<S>(e.x, Vec3T<S>::UnitX()));
+                  Eigen::AngleAxis<S>(e.x, Vec3T<S>::UnitX()));
 }
 
 /// Euler angles of a rotation matrix, with y in [−π/2, π/2]. At y = ±π/2
@@ -573,73 +649,6 @@ inline constexpr int kCapCorners = 8;
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SUPPORTING_FEATURE_HPP
 // --- end spook/collide/supporting_feature.hpp ---
-// --- begin spook/core/implementation.hpp ---
-#ifndef SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
-#define SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
-
-// Compiled once instead of header-only (the stb convention). A program that
-// defines SPOOK_EXTERN_TEMPLATES everywhere declares spook's heavy templates
-// extern (the simulation step with its solvers and contact code, the
-// colliders of the full shape list) for float and double; one translation
-// unit that defines SPOOK_IMPLEMENTATION before including <spook/spook.hpp>
-// compiles them. A build may instead split that work over several
-// translation units, each defining one or more of the parts below (CMake's
-// spook::spook_compiled does, so that its parts compile in parallel).
-#if defined(SPOOK_IMPLEMENTATION) && !defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) &&   \
-    !defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT) && !defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE) && \
-    !defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
-#define SPOOK_IMPLEMENT_SIMULATION_DOUBLE
-#define SPOOK_IMPLEMENT_SIMULATION_FLOAT
-#define SPOOK_IMPLEMENT_COLLIDERS_DOUBLE
-#define SPOOK_IMPLEMENT_COLLIDERS_FLOAT
-#endif
-
-// What this translation unit sees. Header-only (no SPOOK_EXTERN_TEMPLATES):
-// every definition. Otherwise only the declarations of the step and the
-// solver, unless it implements a simulation part:
-//   SPOOK_DEFINES_STEP    the simulation step's template definitions
-//                         (sim/simulation_step.hpp), for either scalar;
-//   SPOOK_DEFINES_SOLVER  the double-only, non-template solver code
-//                         (solver/solver_impl.hpp), compiled with the double
-//                         simulation and inline (SPOOK_SOLVER_INLINE) when
-//                         header-only.
-#if !defined(SPOOK_EXTERN_TEMPLATES) || defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) || \
-    defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
-#define SPOOK_DEFINES_STEP
-#endif
-#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
-#define SPOOK_DEFINES_SOLVER
-#define SPOOK_SOLVER_INLINE
-#elif !defined(SPOOK_EXTERN_TEMPLATES)
-#define SPOOK_DEFINES_SOLVER
-#define SPOOK_SOLVER_INLINE inline
-#endif
-
-// The API's class templates (bodies, frames, geometries, shapes, joints)
-// follow the simulation parts: SPOOK_COMPILED_ONCE(class RigidBodyT) after a
-// class's member definitions declares RigidBodyT<double> and <float> extern
-// where spook is compiled once, instantiates them where the double or float
-// simulation part is implemented, and is nothing header-only. Their heavy
-// members are defined outside the class body: an extern template stops the
-// instantiation of those only, not of inline ones, which every translation
-// unit would otherwise compile again (with the Eigen expressions they use).
-#if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
-#define SPOOK_COMPILED_DOUBLE(...) template __VA_ARGS__;
-#elif defined(SPOOK_EXTERN_TEMPLATES)
-#define SPOOK_COMPILED_DOUBLE(...) extern template __VA_ARGS__;
-#else
-#define SPOOK_COMPILED_DOUBLE(...)
-#endif
-#if defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
-#define SPOOK_COMPILED_FLOAT(...) template __VA_ARGS__;
-#elif defined(SPOOK_EXTERN_TEMPLATES)
-#define SPOOK_COMPILED_FLOAT(...) extern template __VA_ARGS__;
-#else
-#define SPOOK_COMPILED_FLOAT(...)
-#endif
-#define SPOOK_COMPILED_ONCE(kind, name) SPOOK_COMPILED_DOUBLE(kind name<double>) SPOOK_COMPILED_FLOAT(kind name<float>)
-#endif  // SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
-// --- end spook/core/implementation.hpp ---
 // --- begin spook/core/ref_ptr.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_CORE_REF_PTR_HPP
 #define SPOOK_SINGLE_SPOOK_CORE_REF_PTR_HPP
@@ -9414,51 +9423,25 @@ class ConstraintT : public Referenced {
   /// Which solver handles the rows under the hybrid policy (default
   /// DIRECT_AND_ITERATIVE, as AGX's joints).
   [[nodiscard]] SolveType getSolveType() const { return solveType_; }
-  void setSolveType(SolveType type) {
-    if (type != DIRECT && type != ITERATIVE && type != DIRECT_AND_ITERATIVE)
-      throw error("unknown solve type", static_cast<int>(type));
-    solveType_ = type;
-  }
+  void setSolveType(SolveType type);
 
   /// When on, the force and torque the constraint applied in the last step
   /// are kept for getLastForce (default off: costs a little per row).
   [[nodiscard]] bool getEnableComputeForces() const { return computeForces_; }
-  void setEnableComputeForces(bool enable) {
-    computeForces_ = enable;
-    if (!enable) wrench_[0] = wrench_[1] = detail::Vec6d::Zero();
-  }
+  void setEnableComputeForces(bool enable);
   /// The force (N) and torque (N·m) the constraint applied on body `index`
   /// (0 or 1) in the last step, in world coordinates. As AGX's getLastForce
   /// (seed 000), the torque is about the body's attachment point (its
   /// attachment frame origin) by default, and about its center of mass with
   /// giveForceAtCm true; the two differ by (c − p) × force. False (and zeros)
   /// when force computation is off or the index names no body.
-  bool getLastForce(int index, Vec3& force, Vec3& torque, bool giveForceAtCm = false) const {
-    force = torque = Vec3::Zero();
-    Body* body = getBodyAt(index);
-    if (!computeForces_ || !body) return false;
-    const detail::Vec6d& w = wrench_[static_cast<std::size_t>(index)];
-    force = w.head<3>().template cast<S>();
-    torque = w.tail<3>().template cast<S>();
-    if (!giveForceAtCm) torque += (body->getCmPosition() - getAttachmentFrame(index)->getTranslate()).cross(force);
-    return true;
-  }
+  bool getLastForce(int index, Vec3& force, Vec3& torque, bool giveForceAtCm = false) const;
   /// As getLastForce(index, ...) for the constraint's body `body`; false for another body.
-  bool getLastForce(const Body* body, Vec3& force, Vec3& torque, bool giveForceAtCm = false) const {
-    const int index = body && body == body1_.get() ? 0 : body && body == body2_.get() ? 1 : -1;
-    if (index < 0) {
-      force = torque = Vec3::Zero();
-      return false;
-    }
-    return getLastForce(index, force, torque, giveForceAtCm);
-  }
+  bool getLastForce(const Body* body, Vec3& force, Vec3& torque, bool giveForceAtCm = false) const;
 
   /// Takes the current configuration as the relaxed one: frame 2 is moved
   /// onto frame 1 (seed 001 §12.16), and rest lengths and angles restart.
-  void rebind() {
-    if (rebindsFrames()) frame2_->setMatrix(frame1_->getMatrix());
-    onRebind();
-  }
+  void rebind();
 
   /// The simulation this constraint was added to, or nullptr.
   [[nodiscard]] const void* getSimulationHandle() const { return simulation_; }
@@ -9467,64 +9450,23 @@ class ConstraintT : public Referenced {
   /// expressed in each body's model frame (the world for body2 == nullptr):
   /// a relaxed configuration for any joint whose free axis is z.
   static void calculateFramesFromWorld(const Vec3& point, const Vec3& axis, const Body* body1, ref_ptr<Frame>& frame1,
-                                       const Body* body2, ref_ptr<Frame>& frame2) {
-    if (!point.allFinite()) throw detail::makeError("Constraint", "", "frame point must be finite (m)", point);
-    if (!axis.allFinite() || !(axis.norm() > S(0)))
-      throw detail::makeError("Constraint", "", "frame axis must be finite and non-zero", axis);
-    if (!body1) throw detail::makeError("Constraint", "", "calculateFrames needs a first body", "nullptr");
-    const TransformT<S> world = makeTransform<S>(point, detail::shortestArc<S>(Vec3::UnitZ(), axis));
-    frame1 = new Frame(TransformT<S>(body1->getTransform().inverse() * world));
-    frame2 = new Frame(body2 ? TransformT<S>(body2->getTransform().inverse() * world) : world);
-  }
+                                       const Body* body2, ref_ptr<Frame>& frame2);
   /// A joint of type `Joint` at a world point with its z axis along a world
   /// axis (seed 001 §12.18), relaxed in the current configuration.
   template <class Joint>
   [[nodiscard]] static ref_ptr<Joint> createFromWorld(const Vec3& point, const Vec3& axis, Body* body1,
-                                                      Body* body2 = nullptr) {
-    ref_ptr<Frame> frame1, frame2;
-    calculateFramesFromWorld(point, axis, body1, frame1, body2, frame2);
-    return new Joint(body1, frame1.get(), body2, frame2.get());
-  }
+                                                      Body* body2 = nullptr);
   /// As createFromWorld with the point and axis in body1's model frame.
   template <class Joint>
   [[nodiscard]] static ref_ptr<Joint> createFromBody(const Vec3& point, const Vec3& axis, Body* body1,
-                                                     Body* body2 = nullptr) {
-    ref_ptr<Frame> frame1, frame2;
-    calculateFramesFromBody(point, axis, body1, frame1, body2, frame2);
-    return new Joint(body1, frame1.get(), body2, frame2.get());
-  }
+                                                     Body* body2 = nullptr);
 
   /// As calculateFramesFromWorld with the point and axis given in body1's model frame.
   static void calculateFramesFromBody(const Vec3& point, const Vec3& axis, const Body* body1, ref_ptr<Frame>& frame1,
-                                      const Body* body2, ref_ptr<Frame>& frame2) {
-    if (!body1) throw detail::makeError("Constraint", "", "calculateFrames needs a first body", "nullptr");
-    if (!point.allFinite()) throw detail::makeError("Constraint", "", "frame point must be finite (m)", point);
-    if (!axis.allFinite()) throw detail::makeError("Constraint", "", "frame axis must be finite and non-zero", axis);
-    const TransformT<S> X = body1->getTransform();
-    calculateFramesFromWorld(X * point, X.linear() * axis, body1, frame1, body2, frame2);
-  }
+                                      const Body* body2, ref_ptr<Frame>& frame2);
 
  protected:
-  ConstraintT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2) : kind_(kind) {
-    if (!body1) throw error("needs a first body (the second may be null: the world)", "nullptr");
-    if (body1 == body2) throw error("cannot join a body to itself", body1->getName());
-    if (!isMovable(body1) && !isMovable(body2))
-      throw error("needs at least one body that is not static",
-                  body1->getName() + (body2 ? " and " + body2->getName() : std::string(" and the world")));
-    checkParent(frame1, body1, 1);
-    checkParent(frame2, body2, 2);
-    body1_ = body1;
-    body2_ = body2;
-    frame1_ = attach(frame1, body1);
-    if (frame2) {
-      frame2_ = attach(frame2, body2);
-    } else {
-      // Relaxed at creation: frame 2 where frame 1 is now.
-      frame2_ = new Frame();
-      if (body2) frame2_->setParent(body2->getFrame());
-      frame2_->setMatrix(frame1_->getMatrix());
-    }
-  }
+  ConstraintT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2);
   ~ConstraintT() override = default;
 
   /// Writes this step's rows; called once per step while enabled.
@@ -9548,27 +9490,7 @@ class ConstraintT : public Referenced {
   }
 
   /// The attachment frames and the bodies' state, in world coordinates.
-  [[nodiscard]] detail::Attachments attachments() const {
-    detail::Attachments a;
-    const TransformT<S> X1 = frame1_->getMatrix(), X2 = frame2_->getMatrix();
-    a.p1 = X1.translation().template cast<double>();
-    a.p2 = X2.translation().template cast<double>();
-    a.q1 = detail::Quatd(Quat(X1.linear()).template cast<double>()).normalized();
-    a.q2 = detail::Quatd(Quat(X2.linear()).template cast<double>()).normalized();
-    a.R1 = a.q1.toRotationMatrix();
-    a.R2 = a.q2.toRotationMatrix();
-    a.c1 = body1_->getCmPosition().template cast<double>();
-    a.v1 = detail::linearAngular(body1_->getVelocity().template cast<double>(),
-                                 body1_->getAngularVelocity().template cast<double>());
-    if (body2_) {
-      a.c2 = body2_->getCmPosition().template cast<double>();
-      a.v2 = detail::linearAngular(body2_->getVelocity().template cast<double>(),
-                                   body2_->getAngularVelocity().template cast<double>());
-    } else {
-      a.c2 = a.p2;
-    }
-    return a;
-  }
+  [[nodiscard]] detail::Attachments attachments() const;
 
  private:
   friend struct detail::SimulationMembership;
@@ -9576,21 +9498,9 @@ class ConstraintT : public Referenced {
 
   static bool isMovable(const Body* body) { return body && body->getMotionControl() != Body::STATIC; }
 
-  void checkParent(const Frame* frame, const Body* body, int index) const {
-    if (frame && frame->getParent() && frame->getParent() != (body ? body->getFrame() : nullptr))
-      throw error("attachment frame " + std::to_string(index) + " has a parent other than its body's model frame",
-                  body ? body->getName() : std::string("the world"));
-  }
-  static ref_ptr<Frame> attach(Frame* frame, Body* body) {
-    if (!frame) return attachNew(body);
-    if (!frame->getParent() && body) frame->setParent(body->getFrame());
-    return frame;
-  }
-  static ref_ptr<Frame> attachNew(Body* body) {
-    ref_ptr<Frame> frame = new Frame();
-    if (body) frame->setParent(body->getFrame());
-    return frame;
-  }
+  void checkParent(const Frame* frame, const Body* body, int index) const;
+  static ref_ptr<Frame> attach(Frame* frame, Body* body);
+  static ref_ptr<Frame> attachNew(Body* body);
 
   const char* kind_;
   std::string name_;
@@ -9606,6 +9516,153 @@ class ConstraintT : public Referenced {
   const void* simulation_ = nullptr;
   std::size_t simulationIndex_ = 0;
 };
+
+template <Scalar S>
+void ConstraintT<S>::setSolveType(SolveType type) {
+  if (type != DIRECT && type != ITERATIVE && type != DIRECT_AND_ITERATIVE)
+    throw error("unknown solve type", static_cast<int>(type));
+  solveType_ = type;
+}
+
+template <Scalar S>
+void ConstraintT<S>::setEnableComputeForces(bool enable) {
+  computeForces_ = enable;
+  if (!enable) wrench_[0] = wrench_[1] = detail::Vec6d::Zero();
+}
+
+template <Scalar S>
+bool ConstraintT<S>::getLastForce(int index, Vec3& force, Vec3& torque, bool giveForceAtCm) const {
+  force = torque = Vec3::Zero();
+  Body* body = getBodyAt(index);
+  if (!computeForces_ || !body) return false;
+  const detail::Vec6d& w = wrench_[static_cast<std::size_t>(index)];
+  force = w.head<3>().template cast<S>();
+  torque = w.tail<3>().template cast<S>();
+  if (!giveForceAtCm) torque += (body->getCmPosition() - getAttachmentFrame(index)->getTranslate()).cross(force);
+  return true;
+}
+
+template <Scalar S>
+bool ConstraintT<S>::getLastForce(const Body* body, Vec3& force, Vec3& torque, bool giveForceAtCm) const {
+  const int index = body && body == body1_.get() ? 0 : body && body == body2_.get() ? 1 : -1;
+  if (index < 0) {
+    force = torque = Vec3::Zero();
+    return false;
+  }
+  return getLastForce(index, force, torque, giveForceAtCm);
+}
+
+template <Scalar S>
+void ConstraintT<S>::rebind() {
+  if (rebindsFrames()) frame2_->setMatrix(frame1_->getMatrix());
+  onRebind();
+}
+
+template <Scalar S>
+void ConstraintT<S>::calculateFramesFromWorld(const Vec3& point, const Vec3& axis, const Body* body1,
+                                              ref_ptr<Frame>& frame1, const Body* body2, ref_ptr<Frame>& frame2) {
+  if (!point.allFinite()) throw detail::makeError("Constraint", "", "frame point must be finite (m)", point);
+  if (!axis.allFinite() || !(axis.norm() > S(0)))
+    throw detail::makeError("Constraint", "", "frame axis must be finite and non-zero", axis);
+  if (!body1) throw detail::makeError("Constraint", "", "calculateFrames needs a first body", "nullptr");
+  const TransformT<S> world = makeTransform<S>(point, detail::shortestArc<S>(Vec3::UnitZ(), axis));
+  frame1 = new Frame(TransformT<S>(body1->getTransform().inverse() * world));
+  frame2 = new Frame(body2 ? TransformT<S>(body2->getTransform().inverse() * world) : world);
+}
+
+template <Scalar S>
+template <class Joint>
+ref_ptr<Joint> ConstraintT<S>::createFromWorld(const Vec3& point, const Vec3& axis, Body* body1, Body* body2) {
+  ref_ptr<Frame> frame1, frame2;
+  calculateFramesFromWorld(point, axis, body1, frame1, body2, frame2);
+  return new Joint(body1, frame1.get(), body2, frame2.get());
+}
+
+template <Scalar S>
+template <class Joint>
+ref_ptr<Joint> ConstraintT<S>::createFromBody(const Vec3& point, const Vec3& axis, Body* body1, Body* body2) {
+  ref_ptr<Frame> frame1, frame2;
+  calculateFramesFromBody(point, axis, body1, frame1, body2, frame2);
+  return new Joint(body1, frame1.get(), body2, frame2.get());
+}
+
+template <Scalar S>
+void ConstraintT<S>::calculateFramesFromBody(const Vec3& point, const Vec3& axis, const Body* body1,
+                                             ref_ptr<Frame>& frame1, const Body* body2, ref_ptr<Frame>& frame2) {
+  if (!body1) throw detail::makeError("Constraint", "", "calculateFrames needs a first body", "nullptr");
+  if (!point.allFinite()) throw detail::makeError("Constraint", "", "frame point must be finite (m)", point);
+  if (!axis.allFinite()) throw detail::makeError("Constraint", "", "frame axis must be finite and non-zero", axis);
+  const TransformT<S> X = body1->getTransform();
+  calculateFramesFromWorld(X * point, X.linear() * axis, body1, frame1, body2, frame2);
+}
+
+template <Scalar S>
+ConstraintT<S>::ConstraintT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2) : kind_(kind) {
+  if (!body1) throw error("needs a first body (the second may be null: the world)", "nullptr");
+  if (body1 == body2) throw error("cannot join a body to itself", body1->getName());
+  if (!isMovable(body1) && !isMovable(body2))
+    throw error("needs at least one body that is not static",
+                body1->getName() + (body2 ? " and " + body2->getName() : std::string(" and the world")));
+  checkParent(frame1, body1, 1);
+  checkParent(frame2, body2, 2);
+  body1_ = body1;
+  body2_ = body2;
+  frame1_ = attach(frame1, body1);
+  if (frame2) {
+    frame2_ = attach(frame2, body2);
+  } else {
+    // Relaxed at creation: frame 2 where frame 1 is now.
+    frame2_ = new Frame();
+    if (body2) frame2_->setParent(body2->getFrame());
+    frame2_->setMatrix(frame1_->getMatrix());
+  }
+}
+
+template <Scalar S>
+detail::Attachments ConstraintT<S>::attachments() const {
+  detail::Attachments a;
+  const TransformT<S> X1 = frame1_->getMatrix(), X2 = frame2_->getMatrix();
+  a.p1 = X1.translation().template cast<double>();
+  a.p2 = X2.translation().template cast<double>();
+  a.q1 = detail::Quatd(Quat(X1.linear()).template cast<double>()).normalized();
+  a.q2 = detail::Quatd(Quat(X2.linear()).template cast<double>()).normalized();
+  a.R1 = a.q1.toRotationMatrix();
+  a.R2 = a.q2.toRotationMatrix();
+  a.c1 = body1_->getCmPosition().template cast<double>();
+  a.v1 = detail::linearAngular(body1_->getVelocity().template cast<double>(),
+                               body1_->getAngularVelocity().template cast<double>());
+  if (body2_) {
+    a.c2 = body2_->getCmPosition().template cast<double>();
+    a.v2 = detail::linearAngular(body2_->getVelocity().template cast<double>(),
+                                 body2_->getAngularVelocity().template cast<double>());
+  } else {
+    a.c2 = a.p2;
+  }
+  return a;
+}
+
+template <Scalar S>
+void ConstraintT<S>::checkParent(const Frame* frame, const Body* body, int index) const {
+  if (frame && frame->getParent() && frame->getParent() != (body ? body->getFrame() : nullptr))
+    throw error("attachment frame " + std::to_string(index) + " has a parent other than its body's model frame",
+                body ? body->getName() : std::string("the world"));
+}
+
+template <Scalar S>
+ref_ptr<FrameT<S>> ConstraintT<S>::attach(Frame* frame, Body* body) {
+  if (!frame) return attachNew(body);
+  if (!frame->getParent() && body) frame->setParent(body->getFrame());
+  return frame;
+}
+
+template <Scalar S>
+ref_ptr<FrameT<S>> ConstraintT<S>::attachNew(Body* body) {
+  ref_ptr<Frame> frame = new Frame();
+  if (body) frame->setParent(body->getFrame());
+  return frame;
+}
+
+SPOOK_COMPILED_ONCE(class, ConstraintT)
 
 namespace detail {
 /// The simulation's access to a constraint's step hooks.
@@ -9863,28 +9920,39 @@ class RegularizationParametersT {
   static constexpr S kDefaultDamping = S(2) / S(60);
 
   RegularizationParametersT() = default;
-  RegularizationParametersT(S compliance, S damping) {
-    setCompliance(compliance);
-    setDamping(damping);
-  }
+  RegularizationParametersT(S compliance, S damping);
 
   [[nodiscard]] S getCompliance() const { return compliance_; }
-  void setCompliance(S compliance) {
-    if (!(std::isfinite(compliance) && compliance >= S(0)))
-      throw detail::makeError("RegularizationParameters", "", "compliance must be finite and >= 0", compliance);
-    compliance_ = compliance;
-  }
+  void setCompliance(S compliance);
   [[nodiscard]] S getDamping() const { return damping_; }
-  void setDamping(S damping) {
-    if (!(std::isfinite(damping) && damping >= S(0)))
-      throw detail::makeError("RegularizationParameters", "", "damping must be finite and >= 0 s", damping);
-    damping_ = damping;
-  }
+  void setDamping(S damping);
 
  private:
   S compliance_ = kDefaultCompliance;
   S damping_ = kDefaultDamping;
 };
+
+template <Scalar S>
+RegularizationParametersT<S>::RegularizationParametersT(S compliance, S damping) {
+  setCompliance(compliance);
+  setDamping(damping);
+}
+
+template <Scalar S>
+void RegularizationParametersT<S>::setCompliance(S compliance) {
+  if (!(std::isfinite(compliance) && compliance >= S(0)))
+    throw detail::makeError("RegularizationParameters", "", "compliance must be finite and >= 0", compliance);
+  compliance_ = compliance;
+}
+
+template <Scalar S>
+void RegularizationParametersT<S>::setDamping(S damping) {
+  if (!(std::isfinite(damping) && damping >= S(0)))
+    throw detail::makeError("RegularizationParameters", "", "damping must be finite and >= 0 s", damping);
+  damping_ = damping;
+}
+
+SPOOK_COMPILED_ONCE(class, RegularizationParametersT)
 
 /// compliance = 1/k (k in N/m or N·m/rad).
 template <Scalar S>
@@ -9958,12 +10026,7 @@ class SecondaryConstraintT : public Referenced {
   /// The largest force (N, or N·m for a rotational DOF) it may apply in each
   /// direction; default unbounded.
   [[nodiscard]] RangeT<S> getForceRange() const { return forceRange_; }
-  void setForceRange(S lower, S upper) {
-    if (std::isnan(lower) || std::isnan(upper) || lower > upper)
-      throw detail::makeError(kind_, "", "force range must have lower <= upper (N or N·m)",
-                              Eigen::Matrix<S, 2, 1>(lower, upper));
-    forceRange_ = {lower, upper};
-  }
+  void setForceRange(S lower, S upper);
   void setForceRange(RangeT<S> range) { setForceRange(range.lower, range.upper); }
 
   /// The force (N) or torque (N·m) applied along the DOF in the last step;
@@ -9977,24 +10040,12 @@ class SecondaryConstraintT : public Referenced {
   [[nodiscard]] detail::RowParameters rowParameters() const {
     return {double(regularization_.getCompliance()), double(regularization_.getDamping())};
   }
-  detail::Row& addRow(detail::RowSink& sink, const detail::Coordinate& c) {
-    active_ = true;
-    detail::Row& row = sink.add(c.J1, c.J2, &impulse_);
-    row.compliance = double(regularization_.getCompliance());
-    row.damping = double(regularization_.getDamping());
-    row.lower = double(forceRange_.lower);
-    row.upper = double(forceRange_.upper);
-    sink.setCurvature(c.curvature);
-    return row;
-  }
+  detail::Row& addRow(detail::RowSink& sink, const detail::Coordinate& c);
 
  public:
   // Called by the joint once per step around the solve.
   void beginStep() { active_ = false; }
-  void endStep(double h) {
-    force_ = active_ ? S(impulse_ / h) : S(0);
-    if (!active_) impulse_ = 0.0;
-  }
+  void endStep(double h);
 
  protected:
   const char* kind_;
@@ -10005,6 +10056,34 @@ class SecondaryConstraintT : public Referenced {
   bool active_ = false;
   S force_ = S(0);
 };
+
+template <Scalar S>
+void SecondaryConstraintT<S>::setForceRange(S lower, S upper) {
+  if (std::isnan(lower) || std::isnan(upper) || lower > upper)
+    throw detail::makeError(kind_, "", "force range must have lower <= upper (N or N·m)",
+                            Eigen::Matrix<S, 2, 1>(lower, upper));
+  forceRange_ = {lower, upper};
+}
+
+template <Scalar S>
+detail::Row& SecondaryConstraintT<S>::addRow(detail::RowSink& sink, const detail::Coordinate& c) {
+  active_ = true;
+  detail::Row& row = sink.add(c.J1, c.J2, &impulse_);
+  row.compliance = double(regularization_.getCompliance());
+  row.damping = double(regularization_.getDamping());
+  row.lower = double(forceRange_.lower);
+  row.upper = double(forceRange_.upper);
+  sink.setCurvature(c.curvature);
+  return row;
+}
+
+template <Scalar S>
+void SecondaryConstraintT<S>::endStep(double h) {
+  force_ = active_ ? S(impulse_ / h) : S(0);
+  if (!active_) impulse_ = 0.0;
+}
+
+SPOOK_COMPILED_ONCE(class, SecondaryConstraintT)
 
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_SECONDARY_SECONDARY_CONSTRAINT_HPP
@@ -10107,21 +10186,12 @@ class FrictionControllerT : public SecondaryConstraintT<S> {
 
   /// μ (dimensionless; m for a rotational DOF, the axle radius included), ≥ 0.
   [[nodiscard]] S getFrictionCoefficient() const { return mu_; }
-  void setFrictionCoefficient(S mu) {
-    if (!(std::isfinite(mu) && mu >= S(0)))
-      throw label_.error(this->kind_, "friction coefficient must be finite and >= 0", mu);
-    mu_ = mu;
-  }
+  void setFrictionCoefficient(S mu);
 
   /// Friction force (N or N·m) available even without a normal force:
   /// [lower, upper] with lower ≤ 0 ≤ upper. Default [0, 0].
   [[nodiscard]] RangeT<S> getMinimumStaticFrictionForceRange() const { return minimum_; }
-  void setMinimumStaticFrictionForceRange(S lower, S upper) {
-    if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= S(0) && upper >= S(0)))
-      throw label_.error(this->kind_, "minimum static friction range must be finite with lower <= 0 <= upper (N or N·m)",
-                         Eigen::Matrix<S, 2, 1>(lower, upper));
-    minimum_ = {lower, upper};
-  }
+  void setMinimumStaticFrictionForceRange(S lower, S upper);
   void setMinimumStaticFrictionForceRange(RangeT<S> range) { setMinimumStaticFrictionForceRange(range.lower, range.upper); }
 
   /// Current-step normal force (approximated, see the class comment); default off.
@@ -10134,30 +10204,9 @@ class FrictionControllerT : public SecondaryConstraintT<S> {
   [[nodiscard]] S getCurrentFrictionBound() const { return S(bound_); }
 
   // Called by the joint: this step's row on the DOF `c`.
-  void addRows(detail::RowSink& sink, const detail::Coordinate& c) {
-    if (!this->enable_) {
-      bound_ = 0.0;
-      return;
-    }
-    double n = normal_;
-    if (nonLinear_ && samples_ >= 2) n = std::max(0.0, 2.0 * normal_ - previousNormal_);
-    const double slide = double(mu_) * n;
-    const double lower = std::min(-slide, double(minimum_.lower));
-    const double upper = std::max(slide, double(minimum_.upper));
-    bound_ = std::max(-lower, upper);
-    if (lower == 0.0 && upper == 0.0) return;  // nothing to hold
-    detail::Row& row = this->addRow(sink, c);
-    row.holonomic = false;
-    row.speed = 0.0;
-    row.lower = lower;
-    row.upper = upper;
-  }
+  void addRows(detail::RowSink& sink, const detail::Coordinate& c);
   /// The joint's normal force of the step just solved (N).
-  void setStepNormalForce(double normal) {
-    previousNormal_ = normal_;
-    normal_ = std::isfinite(normal) ? normal : 0.0;
-    samples_ = std::min(samples_ + 1, 2);
-  }
+  void setStepNormalForce(double normal);
   /// The joint this controller belongs to (for error messages).
   void setJoint(const ConstraintT<S>* joint) { label_.set(joint); }
 
@@ -10173,6 +10222,50 @@ class FrictionControllerT : public SecondaryConstraintT<S> {
   double bound_ = 0.0;
   detail::JointLabel<S> label_;
 };
+
+template <Scalar S>
+void FrictionControllerT<S>::setFrictionCoefficient(S mu) {
+  if (!(std::isfinite(mu) && mu >= S(0)))
+    throw label_.error(this->kind_, "friction coefficient must be finite and >= 0", mu);
+  mu_ = mu;
+}
+
+template <Scalar S>
+void FrictionControllerT<S>::setMinimumStaticFrictionForceRange(S lower, S upper) {
+  if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= S(0) && upper >= S(0)))
+    throw label_.error(this->kind_, "minimum static friction range must be finite with lower <= 0 <= upper (N or N·m)",
+                       Eigen::Matrix<S, 2, 1>(lower, upper));
+  minimum_ = {lower, upper};
+}
+
+template <Scalar S>
+void FrictionControllerT<S>::addRows(detail::RowSink& sink, const detail::Coordinate& c) {
+  if (!this->enable_) {
+    bound_ = 0.0;
+    return;
+  }
+  double n = normal_;
+  if (nonLinear_ && samples_ >= 2) n = std::max(0.0, 2.0 * normal_ - previousNormal_);
+  const double slide = double(mu_) * n;
+  const double lower = std::min(-slide, double(minimum_.lower));
+  const double upper = std::max(slide, double(minimum_.upper));
+  bound_ = std::max(-lower, upper);
+  if (lower == 0.0 && upper == 0.0) return;  // nothing to hold
+  detail::Row& row = this->addRow(sink, c);
+  row.holonomic = false;
+  row.speed = 0.0;
+  row.lower = lower;
+  row.upper = upper;
+}
+
+template <Scalar S>
+void FrictionControllerT<S>::setStepNormalForce(double normal) {
+  previousNormal_ = normal_;
+  normal_ = std::isfinite(normal) ? normal : 0.0;
+  samples_ = std::min(samples_ + 1, 2);
+}
+
+SPOOK_COMPILED_ONCE(class, FrictionControllerT)
 
 using FrictionController = FrictionControllerT<double>;
 using FrictionControllerRef = ref_ptr<FrictionController>;
@@ -10200,24 +10293,11 @@ class Lock1DT : public SecondaryConstraintT<S> {
   Lock1DT() : SecondaryConstraintT<S>("Lock1D") {}
 
   [[nodiscard]] S getPosition() const { return position_; }
-  void setPosition(S position) {
-    if (!std::isfinite(position)) throw detail::makeError("Lock1D", "", "position must be finite (m or rad)", position);
-    position_ = position;
-  }
+  void setPosition(S position);
 
-  void addRows(detail::RowSink& sink, const detail::Coordinate& c) {
-    if (!this->enable_) return;
-    detail::Row& row = this->addRow(sink, c);
-    row.violation = c.value - double(position_);
-  }
+  void addRows(detail::RowSink& sink, const detail::Coordinate& c);
   /// The same row for post-stabilization, when the lock's force is unbounded.
-  void addProjectionRow(detail::RowSink& sink, const detail::Coordinate& c) {
-    if (!this->enable_ || std::isfinite(this->forceRange_.lower) || std::isfinite(this->forceRange_.upper)) return;
-    detail::Row& row = sink.add(c.J1, c.J2, &this->impulse_);
-    row.violation = c.value - double(position_);
-    row.compliance = double(this->regularization_.getCompliance());
-    row.damping = double(this->regularization_.getDamping());
-  }
+  void addProjectionRow(detail::RowSink& sink, const detail::Coordinate& c);
 
  protected:
   ~Lock1DT() override = default;
@@ -10225,6 +10305,30 @@ class Lock1DT : public SecondaryConstraintT<S> {
  private:
   S position_ = S(0);
 };
+
+template <Scalar S>
+void Lock1DT<S>::setPosition(S position) {
+  if (!std::isfinite(position)) throw detail::makeError("Lock1D", "", "position must be finite (m or rad)", position);
+  position_ = position;
+}
+
+template <Scalar S>
+void Lock1DT<S>::addRows(detail::RowSink& sink, const detail::Coordinate& c) {
+  if (!this->enable_) return;
+  detail::Row& row = this->addRow(sink, c);
+  row.violation = c.value - double(position_);
+}
+
+template <Scalar S>
+void Lock1DT<S>::addProjectionRow(detail::RowSink& sink, const detail::Coordinate& c) {
+  if (!this->enable_ || std::isfinite(this->forceRange_.lower) || std::isfinite(this->forceRange_.upper)) return;
+  detail::Row& row = sink.add(c.J1, c.J2, &this->impulse_);
+  row.violation = c.value - double(position_);
+  row.compliance = double(this->regularization_.getCompliance());
+  row.damping = double(this->regularization_.getDamping());
+}
+
+SPOOK_COMPILED_ONCE(class, Lock1DT)
 
 /// The seeds' spelling (AGX's agx::Lock1D): `spook::Lock1D* m = hinge->getLock1D();`.
 using Lock1D = Lock1DT<double>;
@@ -10255,29 +10359,11 @@ class Motor1DT : public SecondaryConstraintT<S> {
   Motor1DT() : SecondaryConstraintT<S>("Motor1D") {}
 
   [[nodiscard]] S getSpeed() const { return speed_; }
-  void setSpeed(S speed) {
-    if (!std::isfinite(speed)) throw detail::makeError("Motor1D", "", "speed must be finite (m/s or rad/s)", speed);
-    speed_ = speed;
-  }
+  void setSpeed(S speed);
   [[nodiscard]] bool getLockedAtZeroSpeed() const { return lockedAtZeroSpeed_; }
   void setLockedAtZeroSpeed(bool locked) { lockedAtZeroSpeed_ = locked; }
 
-  void addRows(detail::RowSink& sink, const detail::Coordinate& c) {
-    if (!this->enable_) {
-      lockPosition_.reset();
-      return;
-    }
-    if (lockedAtZeroSpeed_ && speed_ == S(0)) {
-      if (!lockPosition_) lockPosition_ = c.value;
-      detail::Row& row = this->addRow(sink, c);
-      row.violation = c.value - *lockPosition_;
-      return;
-    }
-    lockPosition_.reset();
-    detail::Row& row = this->addRow(sink, c);
-    row.holonomic = false;
-    row.speed = double(speed_);
-  }
+  void addRows(detail::RowSink& sink, const detail::Coordinate& c);
 
  protected:
   ~Motor1DT() override = default;
@@ -10287,6 +10373,32 @@ class Motor1DT : public SecondaryConstraintT<S> {
   bool lockedAtZeroSpeed_ = false;
   std::optional<double> lockPosition_;
 };
+
+template <Scalar S>
+void Motor1DT<S>::setSpeed(S speed) {
+  if (!std::isfinite(speed)) throw detail::makeError("Motor1D", "", "speed must be finite (m/s or rad/s)", speed);
+  speed_ = speed;
+}
+
+template <Scalar S>
+void Motor1DT<S>::addRows(detail::RowSink& sink, const detail::Coordinate& c) {
+  if (!this->enable_) {
+    lockPosition_.reset();
+    return;
+  }
+  if (lockedAtZeroSpeed_ && speed_ == S(0)) {
+    if (!lockPosition_) lockPosition_ = c.value;
+    detail::Row& row = this->addRow(sink, c);
+    row.violation = c.value - *lockPosition_;
+    return;
+  }
+  lockPosition_.reset();
+  detail::Row& row = this->addRow(sink, c);
+  row.holonomic = false;
+  row.speed = double(speed_);
+}
+
+SPOOK_COMPILED_ONCE(class, Motor1DT)
 
 /// The seeds' spelling (AGX's agx::Motor1D): `spook::Motor1D* m = hinge->getMotor1D();`.
 using Motor1D = Motor1DT<double>;
@@ -10316,34 +10428,10 @@ class Range1DT : public SecondaryConstraintT<S> {
   Range1DT() : SecondaryConstraintT<S>("Range1D") {}
 
   [[nodiscard]] RangeT<S> getRange() const { return range_; }
-  void setRange(S lower, S upper) {
-    if (std::isnan(lower) || std::isnan(upper) || lower > upper)
-      throw detail::makeError("Range1D", "", "range must have lower <= upper (m or rad)",
-                              Eigen::Matrix<S, 2, 1>(lower, upper));
-    range_ = {lower, upper};
-  }
+  void setRange(S lower, S upper);
   void setRange(RangeT<S> range) { setRange(range.lower, range.upper); }
 
-  void addRows(detail::RowSink& sink, const detail::Coordinate& c, double h) {
-    if (!this->enable_) return;
-    const double lower = double(range_.lower), upper = double(range_.upper);
-    const double reach = 2.0 * h * std::abs(c.speed);
-    const bool atLower = c.value - lower <= reach;
-    const bool atUpper = upper - c.value <= reach;
-    if (!atLower && !atUpper) return;
-    detail::Row& row = this->addRow(sink, c);
-    const bool lowerSide = atLower && (!atUpper || c.value - lower <= upper - c.value);
-    row.violation = c.value - (lowerSide ? lower : upper);
-    if (lower == upper) return;
-    // One-sided: the force range keeps only its inward part.
-    if (lowerSide) {
-      row.lower = std::max(row.lower, 0.0);
-      row.upper = std::max(row.upper, 0.0);
-    } else {
-      row.lower = std::min(row.lower, 0.0);
-      row.upper = std::min(row.upper, 0.0);
-    }
-  }
+  void addRows(detail::RowSink& sink, const detail::Coordinate& c, double h);
 
  protected:
   ~Range1DT() override = default;
@@ -10351,6 +10439,38 @@ class Range1DT : public SecondaryConstraintT<S> {
  private:
   RangeT<S> range_;
 };
+
+template <Scalar S>
+void Range1DT<S>::setRange(S lower, S upper) {
+  if (std::isnan(lower) || std::isnan(upper) || lower > upper)
+    throw detail::makeError("Range1D", "", "range must have lower <= upper (m or rad)",
+                            Eigen::Matrix<S, 2, 1>(lower, upper));
+  range_ = {lower, upper};
+}
+
+template <Scalar S>
+void Range1DT<S>::addRows(detail::RowSink& sink, const detail::Coordinate& c, double h) {
+  if (!this->enable_) return;
+  const double lower = double(range_.lower), upper = double(range_.upper);
+  const double reach = 2.0 * h * std::abs(c.speed);
+  const bool atLower = c.value - lower <= reach;
+  const bool atUpper = upper - c.value <= reach;
+  if (!atLower && !atUpper) return;
+  detail::Row& row = this->addRow(sink, c);
+  const bool lowerSide = atLower && (!atUpper || c.value - lower <= upper - c.value);
+  row.violation = c.value - (lowerSide ? lower : upper);
+  if (lower == upper) return;
+  // One-sided: the force range keeps only its inward part.
+  if (lowerSide) {
+    row.lower = std::max(row.lower, 0.0);
+    row.upper = std::max(row.upper, 0.0);
+  } else {
+    row.lower = std::min(row.lower, 0.0);
+    row.upper = std::min(row.upper, 0.0);
+  }
+}
+
+SPOOK_COMPILED_ONCE(class, Range1DT)
 
 /// The seeds' spelling (AGX's agx::Range1D): `spook::Range1D* m = hinge->getRange1D();`.
 using Range1D = Range1DT<double>;
@@ -10378,23 +10498,12 @@ class ElementaryJointT : public ConstraintT<S> {
   [[nodiscard]] int getNumDOF() const override { return kNumRows; }
 
   /// Compliance (m/N or rad/(N·m)) of one DOF, or of all with ALL_DOF.
-  void setCompliance(S compliance, int dof = ALL_DOF) {
-    checkDof(dof);
-    RegularizationParametersT<S>{}.setCompliance(compliance);
-    forDof(dof, [&](RegularizationParametersT<S>& p) { p.setCompliance(compliance); });
-  }
+  void setCompliance(S compliance, int dof = ALL_DOF);
   /// SPOOK damping (s) of one DOF, or of all with ALL_DOF.
-  void setDamping(S damping, int dof = ALL_DOF) {
-    checkDof(dof);
-    RegularizationParametersT<S>{}.setDamping(damping);
-    forDof(dof, [&](RegularizationParametersT<S>& p) { p.setDamping(damping); });
-  }
+  void setDamping(S damping, int dof = ALL_DOF);
   [[nodiscard]] S getCompliance(int dof) const { return parameters(dof).getCompliance(); }
   [[nodiscard]] S getDamping(int dof) const { return parameters(dof).getDamping(); }
-  [[nodiscard]] RegularizationParametersT<S>* getRegularizationParameters(int dof) {
-    checkDof(dof, false);
-    return &mutableDofParameters(dof);
-  }
+  [[nodiscard]] RegularizationParametersT<S>* getRegularizationParameters(int dof);
 
   /// Quaternion-based rows (QuatLock) follow Hooke's law in radians when on
   /// (seed 001 §12.1.3); default off.
@@ -10416,41 +10525,73 @@ class ElementaryJointT : public ConstraintT<S> {
   void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
     addElementaryRows(a, sink);
   }
-  void addElementaryRows(const detail::Attachments& a, detail::RowSink& sink) {
-    std::array<detail::RowParameters, kNumRows> p{};
-    for (std::size_t i = 0; i < p.size(); ++i)
-      p[i] = {double(parameters_[i].getCompliance()), double(parameters_[i].getDamping())};
-    [[maybe_unused]] int offset = 0;
-    ((Elementary::addRows(a, sink, p.data() + offset, impulses_.data() + offset, options_),
-      offset += Elementary::kRows),
-     ...);
-  }
+  void addElementaryRows(const detail::Attachments& a, detail::RowSink& sink);
 
  private:
-  void checkDof(int dof, bool allowAll = true) const {
-    const int count = this->getNumDOF();
-    if (!((allowAll && dof == ALL_DOF) || (dof >= 0 && dof < count)))
-      throw this->error("DOF index out of range 0.." + std::to_string(count - 1), dof);
-  }
+  void checkDof(int dof, bool allowAll = true) const;
   template <class F>
-  void forDof(int dof, F&& f) {
-    if (dof == ALL_DOF)
-      for (int i = 0; i < this->getNumDOF(); ++i) f(mutableDofParameters(i));
-    else
-      f(mutableDofParameters(dof));
-  }
+  void forDof(int dof, F&& f);
   [[nodiscard]] RegularizationParametersT<S>& mutableDofParameters(int dof) {
     return const_cast<RegularizationParametersT<S>&>(std::as_const(*this).dofParameters(dof));
   }
-  [[nodiscard]] const RegularizationParametersT<S>& parameters(int dof) const {
-    checkDof(dof, false);
-    return dofParameters(dof);
-  }
+  [[nodiscard]] const RegularizationParametersT<S>& parameters(int dof) const;
 
   std::array<RegularizationParametersT<S>, kNumRows> parameters_{};
   std::array<double, kNumRows> impulses_{};
   detail::ElementaryOptions options_;
 };
+
+template <Scalar S, class... Elementary>
+void ElementaryJointT<S, Elementary...>::setCompliance(S compliance, int dof) {
+  checkDof(dof);
+  RegularizationParametersT<S>{}.setCompliance(compliance);
+  forDof(dof, [&](RegularizationParametersT<S>& p) { p.setCompliance(compliance); });
+}
+
+template <Scalar S, class... Elementary>
+void ElementaryJointT<S, Elementary...>::setDamping(S damping, int dof) {
+  checkDof(dof);
+  RegularizationParametersT<S>{}.setDamping(damping);
+  forDof(dof, [&](RegularizationParametersT<S>& p) { p.setDamping(damping); });
+}
+
+template <Scalar S, class... Elementary>
+RegularizationParametersT<S>* ElementaryJointT<S, Elementary...>::getRegularizationParameters(int dof) {
+  checkDof(dof, false);
+  return &mutableDofParameters(dof);
+}
+
+template <Scalar S, class... Elementary>
+void ElementaryJointT<S, Elementary...>::addElementaryRows(const detail::Attachments& a, detail::RowSink& sink) {
+  std::array<detail::RowParameters, kNumRows> p{};
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p[i] = {double(parameters_[i].getCompliance()), double(parameters_[i].getDamping())};
+  [[maybe_unused]] int offset = 0;
+  ((Elementary::addRows(a, sink, p.data() + offset, impulses_.data() + offset, options_), offset += Elementary::kRows),
+   ...);
+}
+
+template <Scalar S, class... Elementary>
+void ElementaryJointT<S, Elementary...>::checkDof(int dof, bool allowAll) const {
+  const int count = this->getNumDOF();
+  if (!((allowAll && dof == ALL_DOF) || (dof >= 0 && dof < count)))
+    throw this->error("DOF index out of range 0.." + std::to_string(count - 1), dof);
+}
+
+template <Scalar S, class... Elementary>
+template <class F>
+void ElementaryJointT<S, Elementary...>::forDof(int dof, F&& f) {
+  if (dof == ALL_DOF)
+    for (int i = 0; i < this->getNumDOF(); ++i) f(mutableDofParameters(i));
+  else
+    f(mutableDofParameters(dof));
+}
+
+template <Scalar S, class... Elementary>
+const RegularizationParametersT<S>& ElementaryJointT<S, Elementary...>::parameters(int dof) const {
+  checkDof(dof, false);
+  return dofParameters(dof);
+}
 
 /// One free DOF of a joint, measured by `Free::measure` (an angle with
 /// winding or a position), with the Motor1D, Lock1D, Range1D and
@@ -10517,40 +10658,68 @@ class Constraint1DOFT : public ElementaryJointT<S, Elementary...> {
   [[nodiscard]] FrictionControllerT<S>* getFrictionController() const { return dof_.friction(); }
 
   /// The free DOF's current value: rad (with winding) or m.
-  [[nodiscard]] S getAngle() const { return S(dof_.measure(this->attachments()).value); }
+  [[nodiscard]] S getAngle() const;
   /// Its rate (rad/s or m/s).
-  [[nodiscard]] S getCurrentSpeed() const { return S(dof_.measure(this->attachments()).speed); }
+  [[nodiscard]] S getCurrentSpeed() const;
 
  protected:
   using typename ConstraintT<S>::Body;
   using typename ConstraintT<S>::Frame;
-  Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
-      : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
-    dof_.restart(this->attachments());
-    dof_.friction()->setJoint(this);
-  }
+  Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2);
   ~Constraint1DOFT() override = default;
 
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    const std::size_t first = sink.rows->size();
-    this->addElementaryRows(a, sink);
-    load_.record(sink, first, a.R2.col(2));
-    dof_.addRows(a, sink, h);
-  }
-  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
-    this->addElementaryRows(a, sink);
-    dof_.addProjectionRows(a, sink);
-  }
-  void afterSolve(double h) override {
-    dof_.afterSolve(h);
-    dof_.friction()->setStepNormalForce(load_.normal(load_.force(h)));
-  }
-  void onRebind() override { dof_.restart(this->attachments()); }
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override;
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override;
+  void afterSolve(double h) override;
+  void onRebind() override;
 
  private:
   FreeDofT<S, Free> dof_;
   detail::JointLoad load_;  // the normal force for the friction controller
 };
+
+template <Scalar S, class Free, class... Elementary>
+S Constraint1DOFT<S, Free, Elementary...>::getAngle() const {
+  return S(dof_.measure(this->attachments()).value);
+}
+
+template <Scalar S, class Free, class... Elementary>
+S Constraint1DOFT<S, Free, Elementary...>::getCurrentSpeed() const {
+  return S(dof_.measure(this->attachments()).speed);
+}
+
+template <Scalar S, class Free, class... Elementary>
+Constraint1DOFT<S, Free, Elementary...>::Constraint1DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2,
+                                                         Frame* frame2)
+    : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
+  dof_.restart(this->attachments());
+  dof_.friction()->setJoint(this);
+}
+
+template <Scalar S, class Free, class... Elementary>
+void Constraint1DOFT<S, Free, Elementary...>::addRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+  const std::size_t first = sink.rows->size();
+  this->addElementaryRows(a, sink);
+  load_.record(sink, first, a.R2.col(2));
+  dof_.addRows(a, sink, h);
+}
+
+template <Scalar S, class Free, class... Elementary>
+void Constraint1DOFT<S, Free, Elementary...>::addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) {
+  this->addElementaryRows(a, sink);
+  dof_.addProjectionRows(a, sink);
+}
+
+template <Scalar S, class Free, class... Elementary>
+void Constraint1DOFT<S, Free, Elementary...>::afterSolve(double h) {
+  dof_.afterSolve(h);
+  dof_.friction()->setStepNormalForce(load_.normal(load_.force(h)));
+}
+
+template <Scalar S, class Free, class... Elementary>
+void Constraint1DOFT<S, Free, Elementary...>::onRebind() {
+  dof_.restart(this->attachments());
+}
 
 /// A joint with two free DOFs (FIRST, SECOND), each with its Motor1D, Lock1D
 /// and Range1D (seed 001 §12.10).
@@ -10567,67 +10736,94 @@ class Constraint2DOFT : public ElementaryJointT<S, Elementary...> {
     return index == FIRST ? first_.friction() : second(index).friction();
   }
   /// The free DOF's current value: rad (with winding) or m.
-  [[nodiscard]] S getAngle(int index) const {
-    const auto a = this->attachments();
-    return S(index == FIRST ? first_.measure(a).value : second(index).measure(a).value);
-  }
-  [[nodiscard]] S getCurrentSpeed(int index) const {
-    const auto a = this->attachments();
-    return S(index == FIRST ? first_.measure(a).speed : second(index).measure(a).speed);
-  }
+  [[nodiscard]] S getAngle(int index) const;
+  [[nodiscard]] S getCurrentSpeed(int index) const;
 
  protected:
   using typename ConstraintT<S>::Body;
   using typename ConstraintT<S>::Frame;
-  Constraint2DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2)
-      : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
-    restart();
-    first_.friction()->setJoint(this);
-    second_.friction()->setJoint(this);
-  }
+  Constraint2DOFT(const char* kind, Body* body1, Frame* frame1, Body* body2, Frame* frame2);
   ~Constraint2DOFT() override = default;
 
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    const std::size_t first = sink.rows->size();
-    this->addElementaryRows(a, sink);
-    load_.record(sink, first, a.R2.col(2));
-    const detail::Coordinate c1 = first_.addRows(a, sink, h);
-    const detail::Coordinate c2 = second_.addRows(a, sink, h);
-    addCouplingRows(c1, c2, sink);
-  }
-  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
-    this->addElementaryRows(a, sink);
-    first_.addProjectionRows(a, sink);
-    second_.addProjectionRows(a, sink);
-  }
-  void afterSolve(double h) override {
-    first_.afterSolve(h);
-    second_.afterSolve(h);
-    afterCoupling(h);
-    const double normal = load_.normal(load_.force(h));
-    first_.friction()->setStepNormalForce(normal);
-    second_.friction()->setStepNormalForce(normal);
-  }
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override;
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override;
+  void afterSolve(double h) override;
   void onRebind() override { restart(); }
   /// Rows tying the two DOFs together (Screw1D); none by default.
   virtual void addCouplingRows(const detail::Coordinate&, const detail::Coordinate&, detail::RowSink&) {}
   virtual void afterCoupling(double) {}
 
  private:
-  const FreeDofT<S, Free2>& second(int index) const {
-    if (index != SECOND) throw this->error("DOF index must be FIRST (0) or SECOND (1)", index);
-    return second_;
-  }
-  void restart() {
-    const auto a = this->attachments();
-    first_.restart(a);
-    second_.restart(a);
-  }
+  const FreeDofT<S, Free2>& second(int index) const;
+  void restart();
 
   FreeDofT<S, Free1> first_;
   FreeDofT<S, Free2> second_;
   detail::JointLoad load_;  // the normal force for the friction controllers
 };
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+S Constraint2DOFT<S, Free1, Free2, Elementary...>::getAngle(int index) const {
+  const auto a = this->attachments();
+  return S(index == FIRST ? first_.measure(a).value : second(index).measure(a).value);
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+S Constraint2DOFT<S, Free1, Free2, Elementary...>::getCurrentSpeed(int index) const {
+  const auto a = this->attachments();
+  return S(index == FIRST ? first_.measure(a).speed : second(index).measure(a).speed);
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+Constraint2DOFT<S, Free1, Free2, Elementary...>::Constraint2DOFT(const char* kind, Body* body1, Frame* frame1,
+                                                                 Body* body2, Frame* frame2)
+    : ElementaryJointT<S, Elementary...>(kind, body1, frame1, body2, frame2) {
+  restart();
+  first_.friction()->setJoint(this);
+  second_.friction()->setJoint(this);
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+void Constraint2DOFT<S, Free1, Free2, Elementary...>::addRows(const detail::Attachments& a, detail::RowSink& sink,
+                                                              double h) {
+  const std::size_t first = sink.rows->size();
+  this->addElementaryRows(a, sink);
+  load_.record(sink, first, a.R2.col(2));
+  const detail::Coordinate c1 = first_.addRows(a, sink, h);
+  const detail::Coordinate c2 = second_.addRows(a, sink, h);
+  addCouplingRows(c1, c2, sink);
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+void Constraint2DOFT<S, Free1, Free2, Elementary...>::addProjectionRows(const detail::Attachments& a,
+                                                                        detail::RowSink& sink) {
+  this->addElementaryRows(a, sink);
+  first_.addProjectionRows(a, sink);
+  second_.addProjectionRows(a, sink);
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+void Constraint2DOFT<S, Free1, Free2, Elementary...>::afterSolve(double h) {
+  first_.afterSolve(h);
+  second_.afterSolve(h);
+  afterCoupling(h);
+  const double normal = load_.normal(load_.force(h));
+  first_.friction()->setStepNormalForce(normal);
+  second_.friction()->setStepNormalForce(normal);
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+auto Constraint2DOFT<S, Free1, Free2, Elementary...>::second(int index) const -> const FreeDofT<S, Free2>& {
+  if (index != SECOND) throw this->error("DOF index must be FIRST (0) or SECOND (1)", index);
+  return second_;
+}
+
+template <Scalar S, class Free1, class Free2, class... Elementary>
+void Constraint2DOFT<S, Free1, Free2, Elementary...>::restart() {
+  const auto a = this->attachments();
+  first_.restart(a);
+  second_.restart(a);
+}
 
 namespace detail {
 struct RotationalZ {
@@ -10640,6 +10836,11 @@ struct DistanceBetween {
   static Coordinate measure(const Attachments& a) { return distanceCoordinate(a); }
 };
 }  // namespace detail
+
+// SPOOK_COMPILED_ONCE for a joint's base: the class template `Base` with the
+// arguments that follow the scalar.
+#define SPOOK_COMPILED_JOINT_BASE(Base, ...) \
+  SPOOK_COMPILED_DOUBLE(class Base<double, __VA_ARGS__>) SPOOK_COMPILED_FLOAT(class Base<float, __VA_ARGS__>)
 
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_JOINT_HPP
@@ -10708,35 +10909,14 @@ class ConeLimitT : public SecondaryConstraintT<S> {
   /// Half-angle (rad) in frame 2's x–z plane (index 0) or y–z plane (1).
   [[nodiscard]] S getLimitAngle(int index) const { return index == 0 ? a1_ : a2_; }
   /// Both half-angles (rad), each in (0, π/2).
-  void setLimitAngles(S a1, S a2) {
-    const auto valid = [](S angle) { return std::isfinite(angle) && angle > S(0) && angle < std::numbers::pi_v<S> / S(2); };
-    if (!valid(a1) || !valid(a2))
-      throw label_.error(this->kind_, "limit angles must both be in (0, pi/2) rad", Eigen::Matrix<S, 2, 1>(a1, a2));
-    a1_ = a1;
-    a2_ = a2;
-  }
+  void setLimitAngles(S a1, S a2);
 
   /// The tilt of frame 1's z axis from frame 2's (rad) in the last step it
   /// was enabled.
   [[nodiscard]] S getAngle() const { return S(tilt_); }
 
   // Called by the joint each step.
-  void addRows(detail::RowSink& sink, const detail::Attachments& a, double h) {
-    if (!this->enable_) return;
-    const detail::ConeState s = detail::coneState(a, double(a1_), double(a2_));
-    tilt_ = s.tilt;
-    detail::Coordinate c;
-    c.J1 = detail::linearAngular(detail::Vec3d::Zero(), s.axis);
-    c.J2 = -c.J1;
-    c.speed = a.speed(c.J1, c.J2);
-    c.value = s.tilt - s.limit;
-    c.rotational = true;
-    if (c.value < -2.0 * h * std::abs(c.speed)) return;
-    detail::Row& row = this->addRow(sink, c);
-    row.violation = c.value;
-    row.lower = std::min(row.lower, 0.0);
-    row.upper = std::min(row.upper, 0.0);
-  }
+  void addRows(detail::RowSink& sink, const detail::Attachments& a, double h);
   /// The joint this limit belongs to (for error messages).
   void setJoint(const ConstraintT<S>* joint) { label_.set(joint); }
 
@@ -10749,6 +10929,35 @@ class ConeLimitT : public SecondaryConstraintT<S> {
   double tilt_ = 0.0;
   detail::JointLabel<S> label_;
 };
+
+template <Scalar S>
+void ConeLimitT<S>::setLimitAngles(S a1, S a2) {
+  const auto valid = [](S angle) { return std::isfinite(angle) && angle > S(0) && angle < std::numbers::pi_v<S> / S(2); };
+  if (!valid(a1) || !valid(a2))
+    throw label_.error(this->kind_, "limit angles must both be in (0, pi/2) rad", Eigen::Matrix<S, 2, 1>(a1, a2));
+  a1_ = a1;
+  a2_ = a2;
+}
+
+template <Scalar S>
+void ConeLimitT<S>::addRows(detail::RowSink& sink, const detail::Attachments& a, double h) {
+  if (!this->enable_) return;
+  const detail::ConeState s = detail::coneState(a, double(a1_), double(a2_));
+  tilt_ = s.tilt;
+  detail::Coordinate c;
+  c.J1 = detail::linearAngular(detail::Vec3d::Zero(), s.axis);
+  c.J2 = -c.J1;
+  c.speed = a.speed(c.J1, c.J2);
+  c.value = s.tilt - s.limit;
+  c.rotational = true;
+  if (c.value < -2.0 * h * std::abs(c.speed)) return;
+  detail::Row& row = this->addRow(sink, c);
+  row.violation = c.value;
+  row.lower = std::min(row.lower, 0.0);
+  row.upper = std::min(row.upper, 0.0);
+}
+
+SPOOK_COMPILED_ONCE(class, ConeLimitT)
 
 using ConeLimit = ConeLimitT<double>;
 using ConeLimitRef = ref_ptr<ConeLimit>;
@@ -10812,40 +11021,14 @@ class TwistRangeControllerT : public SecondaryConstraintT<S> {
 
   [[nodiscard]] RangeT<S> getRange() const { return range_; }
   /// Twist limits (rad), −π ≤ lower ≤ upper ≤ π.
-  void setRange(S lower, S upper) {
-    const S pi = std::numbers::pi_v<S>;
-    if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= upper && lower >= -pi && upper <= pi))
-      throw label_.error(this->kind_, "range must have -pi <= lower <= upper <= pi (rad)",
-                         Eigen::Matrix<S, 2, 1>(lower, upper));
-    range_ = {lower, upper};
-  }
+  void setRange(S lower, S upper);
   void setRange(RangeT<S> range) { setRange(range.lower, range.upper); }
 
   /// The twist (rad) in the last step it was enabled.
   [[nodiscard]] S getAngle() const { return S(twist_); }
 
   // Called by the joint each step.
-  void addRows(detail::RowSink& sink, const detail::Attachments& a, double h) {
-    if (!this->enable_) return;
-    const detail::Coordinate c = detail::twistCoordinate(a);
-    twist_ = c.value;
-    const double lower = double(range_.lower), upper = double(range_.upper);
-    const double reach = 2.0 * h * std::abs(c.speed);
-    const bool atLower = c.value - lower <= reach;
-    const bool atUpper = upper - c.value <= reach;
-    if (!atLower && !atUpper) return;
-    detail::Row& row = this->addRow(sink, c);
-    const bool lowerSide = atLower && (!atUpper || c.value - lower <= upper - c.value);
-    row.violation = c.value - (lowerSide ? lower : upper);
-    if (lower == upper) return;  // a lock
-    if (lowerSide) {
-      row.lower = std::max(row.lower, 0.0);
-      row.upper = std::max(row.upper, 0.0);
-    } else {
-      row.lower = std::min(row.lower, 0.0);
-      row.upper = std::min(row.upper, 0.0);
-    }
-  }
+  void addRows(detail::RowSink& sink, const detail::Attachments& a, double h);
   /// The joint this controller belongs to (for error messages).
   void setJoint(const ConstraintT<S>* joint) { label_.set(joint); }
 
@@ -10857,6 +11040,40 @@ class TwistRangeControllerT : public SecondaryConstraintT<S> {
   double twist_ = 0.0;
   detail::JointLabel<S> label_;
 };
+
+template <Scalar S>
+void TwistRangeControllerT<S>::setRange(S lower, S upper) {
+  const S pi = std::numbers::pi_v<S>;
+  if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= upper && lower >= -pi && upper <= pi))
+    throw label_.error(this->kind_, "range must have -pi <= lower <= upper <= pi (rad)",
+                       Eigen::Matrix<S, 2, 1>(lower, upper));
+  range_ = {lower, upper};
+}
+
+template <Scalar S>
+void TwistRangeControllerT<S>::addRows(detail::RowSink& sink, const detail::Attachments& a, double h) {
+  if (!this->enable_) return;
+  const detail::Coordinate c = detail::twistCoordinate(a);
+  twist_ = c.value;
+  const double lower = double(range_.lower), upper = double(range_.upper);
+  const double reach = 2.0 * h * std::abs(c.speed);
+  const bool atLower = c.value - lower <= reach;
+  const bool atUpper = upper - c.value <= reach;
+  if (!atLower && !atUpper) return;
+  detail::Row& row = this->addRow(sink, c);
+  const bool lowerSide = atLower && (!atUpper || c.value - lower <= upper - c.value);
+  row.violation = c.value - (lowerSide ? lower : upper);
+  if (lower == upper) return;  // a lock
+  if (lowerSide) {
+    row.lower = std::max(row.lower, 0.0);
+    row.upper = std::max(row.upper, 0.0);
+  } else {
+    row.lower = std::min(row.lower, 0.0);
+    row.upper = std::min(row.upper, 0.0);
+  }
+}
+
+SPOOK_COMPILED_ONCE(class, TwistRangeControllerT)
 
 using TwistRangeController = TwistRangeControllerT<double>;
 using TwistRangeControllerRef = ref_ptr<TwistRangeController>;
@@ -10883,12 +11100,7 @@ class BallJointT : public ElementaryJointT<S, detail::Spherical> {
  public:
   enum DOF { ALL_DOF = -1, TRANSLATIONAL_1 = 0, TRANSLATIONAL_2, TRANSLATIONAL_3, NUM_DOF };
 
-  BallJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr, FrameT<S>* frame2 = nullptr)
-      : Base("BallJoint", body1, frame1, body2, frame2) {
-    cone_->setJoint(this);
-    twist_->setJoint(this);
-    for (auto& f : friction_) f->setJoint(this);
-  }
+  BallJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr, FrameT<S>* frame2 = nullptr);
 
   /// Keeps frame 1's z axis in a cone about frame 2's (seed 001 §12.4.1).
   [[nodiscard]] ConeLimitT<S>* getConeLimit() const { return cone_.get(); }
@@ -10904,55 +11116,22 @@ class BallJointT : public ElementaryJointT<S, detail::Spherical> {
   [[nodiscard]] FrictionControllerT<S>* getRotationalFrictionControllerV() const { return friction_[1].get(); }
   [[nodiscard]] FrictionControllerT<S>* getRotationalFrictionControllerN() const { return friction_[2].get(); }
   /// U, V and N in that order.
-  [[nodiscard]] std::vector<ref_ptr<FrictionControllerT<S>>> getRotationalFrictionControllers() const {
-    return {friction_.begin(), friction_.end()};
-  }
+  [[nodiscard]] std::vector<ref_ptr<FrictionControllerT<S>>> getRotationalFrictionControllers() const;
   /// Enables or disables the three rotational friction controllers.
-  void setEnableRotationalFriction(bool enable) {
-    for (auto& f : friction_) f->setEnable(enable);
-  }
+  void setEnableRotationalFriction(bool enable);
   /// μ (m, radius included, ≥ 0) of the three; on bad input none changes.
-  void setRotationalFrictionCoefficient(S mu) {
-    friction_[0]->setFrictionCoefficient(mu);  // throws before anything changed
-    for (auto& f : friction_) f->setFrictionCoefficient(mu);
-  }
+  void setRotationalFrictionCoefficient(S mu);
 
   /// Angle between frame 1's z axis and frame 2's (rad, 0..π).
-  [[nodiscard]] S getSwingAngle() const { return S(detail::coneState(this->attachments(), 1.0, 1.0).tilt); }
+  [[nodiscard]] S getSwingAngle() const;
   /// Twist of frame 1 about its z axis relative to frame 2's (rad, −π..π).
-  [[nodiscard]] S getTwistAngle() const { return S(detail::twistCoordinate(this->attachments()).value); }
+  [[nodiscard]] S getTwistAngle() const;
 
  protected:
   ~BallJointT() override = default;
 
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    const std::size_t first = sink.rows->size();
-    this->addElementaryRows(a, sink);
-    load_.record(sink, first, a.R2.col(2));
-    cone_->beginStep();
-    cone_->addRows(sink, a, h);
-    twist_->beginStep();
-    twist_->addRows(sink, a, h);
-    for (int k = 0; k < 3; ++k) {
-      detail::Coordinate c;
-      c.rotational = true;
-      c.J1 = detail::linearAngular(detail::Vec3d::Zero(), a.R2.col(k));
-      c.J2 = -c.J1;
-      c.speed = a.speed(c.J1, c.J2);
-      FrictionControllerT<S>& f = *friction_[static_cast<std::size_t>(k)];
-      f.beginStep();
-      f.addRows(sink, c);
-    }
-  }
-  void afterSolve(double h) override {
-    cone_->endStep(h);
-    twist_->endStep(h);
-    const double normal = load_.normal(load_.force(h), false);
-    for (auto& f : friction_) {
-      f->endStep(h);
-      f->setStepNormalForce(normal);
-    }
-  }
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override;
+  void afterSolve(double h) override;
 
  private:
   ref_ptr<ConeLimitT<S>> cone_ = new ConeLimitT<S>();
@@ -10961,6 +11140,75 @@ class BallJointT : public ElementaryJointT<S, detail::Spherical> {
                                                            new FrictionControllerT<S>()};
   detail::JointLoad load_;  // the normal force for the friction controllers
 };
+
+template <Scalar S>
+BallJointT<S>::BallJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2, FrameT<S>* frame2)
+    : Base("BallJoint", body1, frame1, body2, frame2) {
+  cone_->setJoint(this);
+  twist_->setJoint(this);
+  for (auto& f : friction_) f->setJoint(this);
+}
+
+template <Scalar S>
+std::vector<ref_ptr<FrictionControllerT<S>>> BallJointT<S>::getRotationalFrictionControllers() const {
+  return {friction_.begin(), friction_.end()};
+}
+
+template <Scalar S>
+void BallJointT<S>::setEnableRotationalFriction(bool enable) {
+  for (auto& f : friction_) f->setEnable(enable);
+}
+
+template <Scalar S>
+void BallJointT<S>::setRotationalFrictionCoefficient(S mu) {
+  friction_[0]->setFrictionCoefficient(mu);  // throws before anything changed
+  for (auto& f : friction_) f->setFrictionCoefficient(mu);
+}
+
+template <Scalar S>
+S BallJointT<S>::getSwingAngle() const {
+  return S(detail::coneState(this->attachments(), 1.0, 1.0).tilt);
+}
+
+template <Scalar S>
+S BallJointT<S>::getTwistAngle() const {
+  return S(detail::twistCoordinate(this->attachments()).value);
+}
+
+template <Scalar S>
+void BallJointT<S>::addRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+  const std::size_t first = sink.rows->size();
+  this->addElementaryRows(a, sink);
+  load_.record(sink, first, a.R2.col(2));
+  cone_->beginStep();
+  cone_->addRows(sink, a, h);
+  twist_->beginStep();
+  twist_->addRows(sink, a, h);
+  for (int k = 0; k < 3; ++k) {
+    detail::Coordinate c;
+    c.rotational = true;
+    c.J1 = detail::linearAngular(detail::Vec3d::Zero(), a.R2.col(k));
+    c.J2 = -c.J1;
+    c.speed = a.speed(c.J1, c.J2);
+    FrictionControllerT<S>& f = *friction_[static_cast<std::size_t>(k)];
+    f.beginStep();
+    f.addRows(sink, c);
+  }
+}
+
+template <Scalar S>
+void BallJointT<S>::afterSolve(double h) {
+  cone_->endStep(h);
+  twist_->endStep(h);
+  const double normal = load_.normal(load_.force(h), false);
+  for (auto& f : friction_) {
+    f->endStep(h);
+    f->setStepNormalForce(normal);
+  }
+}
+
+SPOOK_COMPILED_ONCE(class, BallJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Spherical)
 
 using BallJoint = BallJointT<double>;
 using BallJointRef = ref_ptr<BallJoint>;
@@ -10996,24 +11244,9 @@ class Screw1DT : public SecondaryConstraintT<S> {
 
   /// Meters of translation per revolution (may be negative: a left-hand thread).
   [[nodiscard]] S getLead() const { return lead_; }
-  void setLead(S lead) {
-    if (!std::isfinite(lead)) throw detail::makeError("Screw1D", "", "lead must be finite (m per revolution)", lead);
-    lead_ = lead;
-  }
+  void setLead(S lead);
 
-  void addRows(detail::RowSink& sink, const detail::Coordinate& translation, const detail::Coordinate& angle) {
-    if (!this->enable_) {
-      reference_.reset();
-      return;
-    }
-    if (!reference_) reference_ = Reference{translation.value, angle.value};
-    const double ratio = double(lead_) / (2.0 * std::numbers::pi);
-    detail::Coordinate c;
-    c.J1 = translation.J1 - ratio * angle.J1;
-    c.J2 = translation.J2 - ratio * angle.J2;
-    detail::Row& row = this->addRow(sink, c);
-    row.violation = (translation.value - reference_->translation) - ratio * (angle.value - reference_->angle);
-  }
+  void addRows(detail::RowSink& sink, const detail::Coordinate& translation, const detail::Coordinate& angle);
 
  protected:
   ~Screw1DT() override = default;
@@ -11025,6 +11258,30 @@ class Screw1DT : public SecondaryConstraintT<S> {
   S lead_ = S(0);
   std::optional<Reference> reference_;
 };
+
+template <Scalar S>
+void Screw1DT<S>::setLead(S lead) {
+  if (!std::isfinite(lead)) throw detail::makeError("Screw1D", "", "lead must be finite (m per revolution)", lead);
+  lead_ = lead;
+}
+
+template <Scalar S>
+void Screw1DT<S>::addRows(detail::RowSink& sink, const detail::Coordinate& translation,
+                          const detail::Coordinate& angle) {
+  if (!this->enable_) {
+    reference_.reset();
+    return;
+  }
+  if (!reference_) reference_ = Reference{translation.value, angle.value};
+  const double ratio = double(lead_) / (2.0 * std::numbers::pi);
+  detail::Coordinate c;
+  c.J1 = translation.J1 - ratio * angle.J1;
+  c.J2 = translation.J2 - ratio * angle.J2;
+  detail::Row& row = this->addRow(sink, c);
+  row.violation = (translation.value - reference_->translation) - ratio * (angle.value - reference_->angle);
+}
+
+SPOOK_COMPILED_ONCE(class, Screw1DT)
 
 /// The seeds' spelling (AGX's agx::Screw1D): `spook::Screw1D* s = cylindrical->getScrew1D();`.
 using Screw1D = Screw1DT<double>;
@@ -11062,15 +11319,24 @@ class CylindricalJointT : public Constraint2DOFT<S, detail::TranslationalZ, deta
  protected:
   ~CylindricalJointT() override = default;
   void addCouplingRows(const detail::Coordinate& translation, const detail::Coordinate& angle,
-                       detail::RowSink& sink) override {
-    screw_->beginStep();
-    screw_->addRows(sink, translation, angle);
-  }
+                       detail::RowSink& sink) override;
   void afterCoupling(double h) override { screw_->endStep(h); }
 
  private:
   ref_ptr<Screw1DT<S>> screw_ = new Screw1DT<S>();
 };
+
+template <Scalar S>
+void CylindricalJointT<S>::addCouplingRows(const detail::Coordinate& translation, const detail::Coordinate& angle,
+                                           detail::RowSink& sink) {
+  screw_->beginStep();
+  screw_->addRows(sink, translation, angle);
+}
+
+SPOOK_COMPILED_ONCE(class, CylindricalJointT)
+SPOOK_COMPILED_JOINT_BASE(Constraint2DOFT, detail::TranslationalZ, detail::RotationalZ, detail::Dot2<0>,
+                          detail::Dot2<1>, detail::Dot1<0, 2>, detail::Dot1<1, 2>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot1<0, 2>, detail::Dot1<1, 2>)
 
 /// Translation within the xy plane of frame 2, rotation free: one Dot2 row.
 template <Scalar S>
@@ -11087,6 +11353,9 @@ class PlaneJointT : public ElementaryJointT<S, detail::Dot2<2>> {
   ~PlaneJointT() override = default;
   void addRows(const detail::Attachments& a, detail::RowSink& sink, double) override { this->addElementaryRows(a, sink); }
 };
+
+SPOOK_COMPILED_ONCE(class, PlaneJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<2>)
 
 using CylindricalJoint = CylindricalJointT<double>;
 using CylindricalJointRef = ref_ptr<CylindricalJoint>;
@@ -11125,15 +11394,9 @@ class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
 
   [[nodiscard]] int getNumDOF() const override { return NUM_DOF; }
 
-  DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr, FrameT<S>* frame2 = nullptr)
-      : Base("DistanceJoint", body1, frame1, body2, frame2) {
-    holdCurrentDistance();
-  }
+  DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr, FrameT<S>* frame2 = nullptr);
   /// From body1's frame to a fixed world point (m).
-  DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, const Vec3T<S>& worldPoint)
-      : Base("DistanceJoint", body1, frame1, nullptr, worldFrame(worldPoint).get()) {
-    holdCurrentDistance();
-  }
+  DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, const Vec3T<S>& worldPoint);
 
  protected:
   ~DistanceJointT() override = default;
@@ -11141,23 +11404,50 @@ class DistanceJointT : public Constraint1DOFT<S, detail::DistanceBetween> {
     return *this->getLock1D()->getRegularizationParameters();
   }
   [[nodiscard]] bool rebindsFrames() const override { return false; }
-  void onRebind() override {
-    Base::onRebind();
-    holdCurrentDistance();
-  }
+  void onRebind() override;
 
  private:
-  static ref_ptr<FrameT<S>> worldFrame(const Vec3T<S>& p) {
-    if (!p.allFinite()) throw detail::makeError("DistanceJoint", "", "world point must be finite (m)", p);
-    ref_ptr<FrameT<S>> frame = new FrameT<S>();
-    frame->setTranslate(p);
-    return frame;
-  }
-  void holdCurrentDistance() {
-    this->getLock1D()->setPosition(this->getAngle());
-    this->getLock1D()->setEnable(true);
-  }
+  static ref_ptr<FrameT<S>> worldFrame(const Vec3T<S>& p);
+  void holdCurrentDistance();
 };
+
+template <Scalar S>
+DistanceJointT<S>::DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2, FrameT<S>* frame2)
+    : Base("DistanceJoint", body1, frame1, body2, frame2) {
+  holdCurrentDistance();
+}
+
+template <Scalar S>
+DistanceJointT<S>::DistanceJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, const Vec3T<S>& worldPoint)
+    : Base("DistanceJoint", body1, frame1, nullptr, worldFrame(worldPoint).get()) {
+  holdCurrentDistance();
+}
+
+template <Scalar S>
+void DistanceJointT<S>::onRebind() {
+  Base::onRebind();
+  holdCurrentDistance();
+}
+
+template <Scalar S>
+ref_ptr<FrameT<S>> DistanceJointT<S>::worldFrame(const Vec3T<S>& p) {
+  if (!p.allFinite()) throw detail::makeError("DistanceJoint", "", "world point must be finite (m)", p);
+  ref_ptr<FrameT<S>> frame = new FrameT<S>();
+  frame->setTranslate(p);
+  return frame;
+}
+
+template <Scalar S>
+void DistanceJointT<S>::holdCurrentDistance() {
+  this->getLock1D()->setPosition(this->getAngle());
+  this->getLock1D()->setEnable(true);
+}
+
+SPOOK_COMPILED_ONCE(class, DistanceJointT)
+SPOOK_COMPILED_DOUBLE(class Constraint1DOFT<double, detail::DistanceBetween>)
+SPOOK_COMPILED_FLOAT(class Constraint1DOFT<float, detail::DistanceBetween>)
+SPOOK_COMPILED_DOUBLE(class ElementaryJointT<double>)
+SPOOK_COMPILED_FLOAT(class ElementaryJointT<float>)
 
 using DistanceJoint = DistanceJointT<double>;
 using DistanceJointRef = ref_ptr<DistanceJoint>;
@@ -11195,6 +11485,9 @@ class Dot1JointT : public ElementaryJointT<S, detail::Dot1<0, 1>> {
   void addRows(const detail::Attachments& a, detail::RowSink& sink, double) override { this->addElementaryRows(a, sink); }
 };
 
+SPOOK_COMPILED_ONCE(class, Dot1JointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot1<0, 1>)
+
 using Dot1Joint = Dot1JointT<double>;
 using Dot1JointRef = ref_ptr<Dot1Joint>;
 namespace f32 {
@@ -11230,6 +11523,11 @@ class HingeT : public Constraint1DOFT<S, detail::RotationalZ, detail::Spherical,
   ~HingeT() override = default;
 };
 
+SPOOK_COMPILED_ONCE(class, HingeT)
+SPOOK_COMPILED_JOINT_BASE(Constraint1DOFT, detail::RotationalZ, detail::Spherical, detail::Dot1<0, 2>,
+                          detail::Dot1<1, 2>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Spherical, detail::Dot1<0, 2>, detail::Dot1<1, 2>)
+
 using Hinge = HingeT<double>;
 using HingeRef = ref_ptr<Hinge>;
 namespace f32 {
@@ -11264,6 +11562,9 @@ class LockJointT : public ElementaryJointT<S, detail::Spherical, detail::QuatLoc
   void addRows(const detail::Attachments& a, detail::RowSink& sink, double) override { this->addElementaryRows(a, sink); }
 };
 
+SPOOK_COMPILED_ONCE(class, LockJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Spherical, detail::QuatLock)
+
 /// The three rotational DOF removed, translation free: a QuatLock.
 template <Scalar S>
 class AngularLockJointT : public ElementaryJointT<S, detail::QuatLock> {
@@ -11280,6 +11581,9 @@ class AngularLockJointT : public ElementaryJointT<S, detail::QuatLock> {
   ~AngularLockJointT() override = default;
   void addRows(const detail::Attachments& a, detail::RowSink& sink, double) override { this->addElementaryRows(a, sink); }
 };
+
+SPOOK_COMPILED_ONCE(class, AngularLockJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::QuatLock)
 
 using LockJoint = LockJointT<double>;
 using LockJointRef = ref_ptr<LockJoint>;
@@ -11318,6 +11622,10 @@ class PrismaticT
  protected:
   ~PrismaticT() override = default;
 };
+
+SPOOK_COMPILED_ONCE(class, PrismaticT)
+SPOOK_COMPILED_JOINT_BASE(Constraint1DOFT, detail::TranslationalZ, detail::Dot2<0>, detail::Dot2<1>, detail::QuatLock)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::QuatLock)
 
 using Prismatic = PrismaticT<double>;
 using PrismaticRef = ref_ptr<Prismatic>;
@@ -11667,6 +11975,14 @@ class SlackHingeJointT : public SlackJointT<S, detail::RotationalDofOver, detail
   ~SlackHingeJointT() override = default;
 };
 
+SPOOK_COMPILED_ONCE(class, SlackHingeJointT)
+SPOOK_COMPILED_JOINT_BASE(SlackJointT, detail::RotationalDofOver, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>,
+                          detail::TiltAngle<0>, detail::TiltAngle<1>)
+SPOOK_COMPILED_JOINT_BASE(Constraint1DOFT, detail::RotationalZ, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>,
+                          detail::TiltAngle<0>, detail::TiltAngle<1>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>, detail::TiltAngle<0>,
+                          detail::TiltAngle<1>)
+
 /// A Prismatic with slack: translation along z free, with its Motor1D, Lock1D
 /// and Range1D; the two translations across z (along x₂, y₂, m) and the three
 /// rotations about x₂, y₂, z₂ (rad) constrained within their slack.
@@ -11688,6 +12004,14 @@ class SlackPrismaticJointT
   ~SlackPrismaticJointT() override = default;
 };
 
+SPOOK_COMPILED_ONCE(class, SlackPrismaticJointT)
+SPOOK_COMPILED_JOINT_BASE(SlackJointT, detail::TranslationalDofOver, detail::Dot2<0>, detail::Dot2<1>,
+                          detail::RotationAngle<0>, detail::RotationAngle<1>, detail::RotationAngle<2>)
+SPOOK_COMPILED_JOINT_BASE(Constraint1DOFT, detail::TranslationalZ, detail::Dot2<0>, detail::Dot2<1>,
+                          detail::RotationAngle<0>, detail::RotationAngle<1>, detail::RotationAngle<2>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::RotationAngle<0>,
+                          detail::RotationAngle<1>, detail::RotationAngle<2>)
+
 /// A LockJoint with slack: all six DOFs (translations along and rotations
 /// about the axes of frame 2) move freely within their slack.
 template <Scalar S>
@@ -11707,6 +12031,12 @@ class SlackLockJointT
  protected:
   ~SlackLockJointT() override = default;
 };
+
+SPOOK_COMPILED_ONCE(class, SlackLockJointT)
+SPOOK_COMPILED_JOINT_BASE(SlackJointT, ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>,
+                          detail::RotationAngle<0>, detail::RotationAngle<1>, detail::RotationAngle<2>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot2<2>, detail::RotationAngle<0>,
+                          detail::RotationAngle<1>, detail::RotationAngle<2>)
 
 /// A CylindricalJoint with slack: translation along and rotation about z free
 /// (FIRST, SECOND) with their controllers and the Screw1D coupling; the two
@@ -11732,15 +12062,27 @@ class SlackCylindricalJointT : public SlackJointT<S, detail::CylindricalDofsOver
  protected:
   ~SlackCylindricalJointT() override = default;
   void addCouplingRows(const detail::Coordinate& translation, const detail::Coordinate& angle,
-                       detail::RowSink& sink) override {
-    screw_->beginStep();
-    screw_->addRows(sink, translation, angle);
-  }
+                       detail::RowSink& sink) override;
   void afterCoupling(double h) override { screw_->endStep(h); }
 
  private:
   ref_ptr<Screw1DT<S>> screw_ = new Screw1DT<S>();
 };
+
+template <Scalar S>
+void SlackCylindricalJointT<S>::addCouplingRows(const detail::Coordinate& translation, const detail::Coordinate& angle,
+                                                detail::RowSink& sink) {
+  screw_->beginStep();
+  screw_->addRows(sink, translation, angle);
+}
+
+SPOOK_COMPILED_ONCE(class, SlackCylindricalJointT)
+SPOOK_COMPILED_JOINT_BASE(SlackJointT, detail::CylindricalDofsOver, detail::Dot2<0>, detail::Dot2<1>,
+                          detail::TiltAngle<0>, detail::TiltAngle<1>)
+SPOOK_COMPILED_JOINT_BASE(Constraint2DOFT, detail::TranslationalZ, detail::RotationalZ, detail::Dot2<0>,
+                          detail::Dot2<1>, detail::TiltAngle<0>, detail::TiltAngle<1>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::TiltAngle<0>,
+                          detail::TiltAngle<1>)
 
 using SlackHingeJoint = SlackHingeJointT<double>;
 using SlackHingeJointRef = ref_ptr<SlackHingeJoint>;
@@ -12306,15 +12648,7 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
 
   /// `frame` is the attachment frame on `body` (nullptr: its model frame);
   /// `spline` (at least two points) is in the world, or in `body2`'s model frame.
-  SplineJointT(Body* body, Frame* frame, Spline* spline, Body* body2 = nullptr)
-      : Base("SplineJoint", checked(body, frame, spline, body2), frame, body2, nullptr), spline_(spline) {
-    this->getAttachmentFrame(1)->setLocalMatrix(TransformT<S>::Identity());
-    const detail::Attachments a = this->attachments();
-    parameter_ = spline_->findNearestParameter(splinePoint(a));
-    restart(a);
-    slide_.friction()->setJoint(this);
-    twist_.friction()->setJoint(this);
-  }
+  SplineJointT(Body* body, Frame* frame, Spline* spline, Body* body2 = nullptr);
 
   [[nodiscard]] Spline* getSpline() const { return spline_.get(); }
   /// The tracked curve parameter t in [0, n − 1] (CubicSplineT), as of the last step.
@@ -12335,66 +12669,22 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
     return visit(index, [](const auto& dof) { return dof.friction(); });
   }
   /// FIRST: arc length from the spline's first point (m); SECOND: angle about the tangent (rad, with winding).
-  [[nodiscard]] S getAngle(int index) const {
-    const detail::Attachments b = alongSplineNow();
-    return visit(index, [&](const auto& dof) { return S(dof.measure(b).value); });
-  }
+  [[nodiscard]] S getAngle(int index) const;
   /// Rate of getAngle (m/s or rad/s).
-  [[nodiscard]] S getCurrentSpeed(int index) const {
-    const detail::Attachments b = alongSplineNow();
-    return visit(index, [&](const auto& dof) { return S(dof.measure(b).speed); });
-  }
+  [[nodiscard]] S getCurrentSpeed(int index) const;
 
  protected:
   ~SplineJointT() override = default;
 
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    const std::size_t first = sink.rows->size();
-    const detail::Attachments b = writeCurveRows(a, sink, h);
-    load_.record(sink, first, b.R2.col(2));
-    slide_.addRows(b, sink, h);
-    twist_.addRows(b, sink, h);
-  }
-  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
-    const detail::Attachments b = writeCurveRows(a, sink, 0.0);
-    slide_.addProjectionRows(b, sink);
-    twist_.addProjectionRows(b, sink);
-  }
-  void afterSolve(double h) override {
-    slide_.afterSolve(h);
-    twist_.afterSolve(h);
-    const double normal = load_.normal(load_.force(h));
-    slide_.friction()->setStepNormalForce(normal);
-    twist_.friction()->setStepNormalForce(normal);
-  }
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override;
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override;
+  void afterSolve(double h) override;
   /// The current pose becomes angle zero; the spline is not moved.
-  void onRebind() override {
-    const detail::Attachments a = this->attachments();
-    parameter_ = spline_->findNearestParameter(splinePoint(a), parameter_);
-    restart(a);
-  }
+  void onRebind() override;
   [[nodiscard]] bool rebindsFrames() const override { return false; }
 
  private:
-  static Body* checked(Body* body, const Frame* frame, const Spline* spline, const Body* body2) {
-    if (!spline) throw detail::makeError("SplineJoint", "", "needs a spline", "nullptr");
-    if (spline->getNumPoints() < 2)
-      throw detail::makeError("SplineJoint", "", "spline needs at least two points", spline->getNumPoints());
-    if (!body) return body;  // reported by ConstraintT
-    const TransformT<S> X1 = !frame ? body->getTransform()
-                            : frame->getParent() ? frame->getMatrix()
-                                                 : TransformT<S>(body->getTransform() * frame->getLocalMatrix());
-    if (!X1.matrix().allFinite())
-      throw detail::makeError("SplineJoint", "", "attachment frame must be finite (m)", X1.translation());
-    const TransformT<S> X2 = body2 ? body2->getTransform() : TransformT<S>::Identity();
-    const S t = spline->findNearestParameter(X2.inverse() * X1.translation());
-    const S alignment = X1.linear().col(2).dot(X2.linear() * spline->getUnitTangent(t));
-    if (!(alignment > S(0)))
-      throw detail::makeError("SplineJoint", "",
-                              "frame z axis must point along the spline tangent at the nearest point (cosine > 0)",
-                              alignment);
-    return body;
-  }
+  static Body* checked(Body* body, const Frame* frame, const Spline* spline, const Body* body2);
 
   template <class F>
   auto visit(int index, F&& f) const {
@@ -12406,68 +12696,22 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
   }
 
   /// Frame 1's origin in the spline's frame (m).
-  [[nodiscard]] static Vec3T<S> splinePoint(const detail::Attachments& a) {
-    return (a.R2.transpose() * (a.p1 - a.p2)).template cast<S>();
-  }
+  [[nodiscard]] static Vec3T<S> splinePoint(const detail::Attachments& a);
 
   /// The spline at parameter t in world coordinates, for frame 1 at a.p1.
-  [[nodiscard]] detail::SplinePlace placeAt(const detail::Attachments& a, S t) const {
-    using detail::Vec3d;
-    detail::SplinePlace place;
-    const Vec3d d1 = a.R2 * spline_->getFirstDerivative(t).template cast<double>();
-    const Vec3d d2 = a.R2 * spline_->getSecondDerivative(t).template cast<double>();
-    place.point = a.p2 + a.R2 * spline_->getPosition(t).template cast<double>();
-    place.tangent = (a.R2 * spline_->getUnitTangent(t).template cast<double>()).normalized();
-    place.arcLength = double(spline_->getLength(t));
-    const double along = (a.p1 - place.point).dot(place.tangent);
-    const bool beyondEnd = (t <= S(0) && along < 0.0) || (t >= spline_->getMaxParameter() && along > 0.0);
-    if (!beyondEnd && d1.squaredNorm() > 0.0)
-      place.curvature = (d2 - d2.dot(place.tangent) * place.tangent) / d1.squaredNorm();
-    const Vec3d reference = a.R2 * spline_->getNormal(t).template cast<double>();
-    const Vec3d across = (reference - reference.dot(place.tangent) * place.tangent).normalized();
-    place.normal = std::cos(zeroAngle_) * across + std::sin(zeroAngle_) * place.tangent.cross(across);
-    return place;
-  }
+  [[nodiscard]] detail::SplinePlace placeAt(const detail::Attachments& a, S t) const;
 
   /// Updates the tracked parameter from frame 1's pose, writes the four
   /// curve rows and returns the attachments along the spline. With a step
   /// h > 0 the rows across the curve get their centripetal term; with h = 0
   /// (post-stabilization) they are the plain rows.
-  detail::Attachments writeCurveRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
-    parameter_ = spline_->findNearestParameter(splinePoint(a), parameter_);
-    const detail::SplinePlace place = placeAt(a, parameter_);
-    const detail::Attachments b = detail::alongSpline(a, place);
-    const std::size_t first = sink.rows->size();
-    this->addElementaryRows(b, sink);
-    detail::addCurvatureCoupling(b, place.curvature, *sink.rows, first + 2);
-    if (h > 0.0) {
-      const double rate = detail::translationalCoordinate(b).speed;
-      for (std::size_t k = 0; k < 2; ++k) {
-        detail::Row& row = (*sink.rows)[first + k];
-        const double across = place.curvature.dot(b.R2.col(static_cast<Eigen::Index>(k)));
-        if (sink.secondOrder)
-          sink.addCurvature(first + k, detail::centripetalCurvature(across, rate));
-        else
-          row.violation += detail::centripetalShift(row, across, rate, h);
-      }
-    }
-    return b;
-  }
+  detail::Attachments writeCurveRows(const detail::Attachments& a, detail::RowSink& sink, double h);
 
-  [[nodiscard]] detail::Attachments alongSplineNow() const {
-    const detail::Attachments a = this->attachments();
-    return detail::alongSpline(a, placeAt(a, spline_->findNearestParameter(splinePoint(a), parameter_)));
-  }
+  [[nodiscard]] detail::Attachments alongSplineNow() const;
 
   /// Angle zero at the current pose: the reference normal is turned about
   /// the tangent by the angle frame 1 has about it now.
-  void restart(const detail::Attachments& a) {
-    zeroAngle_ = 0.0;
-    zeroAngle_ = detail::rotationalCoordinate(detail::alongSpline(a, placeAt(a, parameter_))).value;
-    const detail::Attachments b = detail::alongSpline(a, placeAt(a, parameter_));
-    slide_.restart(b);
-    twist_.restart(b);
-  }
+  void restart(const detail::Attachments& a);
 
   ref_ptr<Spline> spline_;
   S parameter_ = S(0);
@@ -12476,6 +12720,146 @@ class SplineJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>
   FreeDofT<S, detail::RotationalZ> twist_;
   detail::JointLoad load_;  // the normal force for the friction controllers
 };
+
+template <Scalar S>
+SplineJointT<S>::SplineJointT(Body* body, Frame* frame, Spline* spline, Body* body2)
+    : Base("SplineJoint", checked(body, frame, spline, body2), frame, body2, nullptr), spline_(spline) {
+  this->getAttachmentFrame(1)->setLocalMatrix(TransformT<S>::Identity());
+  const detail::Attachments a = this->attachments();
+  parameter_ = spline_->findNearestParameter(splinePoint(a));
+  restart(a);
+  slide_.friction()->setJoint(this);
+  twist_.friction()->setJoint(this);
+}
+
+template <Scalar S>
+S SplineJointT<S>::getAngle(int index) const {
+  const detail::Attachments b = alongSplineNow();
+  return visit(index, [&](const auto& dof) { return S(dof.measure(b).value); });
+}
+
+template <Scalar S>
+S SplineJointT<S>::getCurrentSpeed(int index) const {
+  const detail::Attachments b = alongSplineNow();
+  return visit(index, [&](const auto& dof) { return S(dof.measure(b).speed); });
+}
+
+template <Scalar S>
+void SplineJointT<S>::addRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+  const std::size_t first = sink.rows->size();
+  const detail::Attachments b = writeCurveRows(a, sink, h);
+  load_.record(sink, first, b.R2.col(2));
+  slide_.addRows(b, sink, h);
+  twist_.addRows(b, sink, h);
+}
+
+template <Scalar S>
+void SplineJointT<S>::addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) {
+  const detail::Attachments b = writeCurveRows(a, sink, 0.0);
+  slide_.addProjectionRows(b, sink);
+  twist_.addProjectionRows(b, sink);
+}
+
+template <Scalar S>
+void SplineJointT<S>::afterSolve(double h) {
+  slide_.afterSolve(h);
+  twist_.afterSolve(h);
+  const double normal = load_.normal(load_.force(h));
+  slide_.friction()->setStepNormalForce(normal);
+  twist_.friction()->setStepNormalForce(normal);
+}
+
+template <Scalar S>
+void SplineJointT<S>::onRebind() {
+  const detail::Attachments a = this->attachments();
+  parameter_ = spline_->findNearestParameter(splinePoint(a), parameter_);
+  restart(a);
+}
+
+template <Scalar S>
+auto SplineJointT<S>::checked(Body* body, const Frame* frame, const Spline* spline, const Body* body2) -> Body* {
+  if (!spline) throw detail::makeError("SplineJoint", "", "needs a spline", "nullptr");
+  if (spline->getNumPoints() < 2)
+    throw detail::makeError("SplineJoint", "", "spline needs at least two points", spline->getNumPoints());
+  if (!body) return body;  // reported by ConstraintT
+  const TransformT<S> X1 = !frame ? body->getTransform()
+                          : frame->getParent() ? frame->getMatrix()
+                                               : TransformT<S>(body->getTransform() * frame->getLocalMatrix());
+  if (!X1.matrix().allFinite())
+    throw detail::makeError("SplineJoint", "", "attachment frame must be finite (m)", X1.translation());
+  const TransformT<S> X2 = body2 ? body2->getTransform() : TransformT<S>::Identity();
+  const S t = spline->findNearestParameter(X2.inverse() * X1.translation());
+  const S alignment = X1.linear().col(2).dot(X2.linear() * spline->getUnitTangent(t));
+  if (!(alignment > S(0)))
+    throw detail::makeError("SplineJoint", "",
+                            "frame z axis must point along the spline tangent at the nearest point (cosine > 0)",
+                            alignment);
+  return body;
+}
+
+template <Scalar S>
+Vec3T<S> SplineJointT<S>::splinePoint(const detail::Attachments& a) {
+  return (a.R2.transpose() * (a.p1 - a.p2)).template cast<S>();
+}
+
+template <Scalar S>
+detail::SplinePlace SplineJointT<S>::placeAt(const detail::Attachments& a, S t) const {
+  using detail::Vec3d;
+  detail::SplinePlace place;
+  const Vec3d d1 = a.R2 * spline_->getFirstDerivative(t).template cast<double>();
+  const Vec3d d2 = a.R2 * spline_->getSecondDerivative(t).template cast<double>();
+  place.point = a.p2 + a.R2 * spline_->getPosition(t).template cast<double>();
+  place.tangent = (a.R2 * spline_->getUnitTangent(t).template cast<double>()).normalized();
+  place.arcLength = double(spline_->getLength(t));
+  const double along = (a.p1 - place.point).dot(place.tangent);
+  const bool beyondEnd = (t <= S(0) && along < 0.0) || (t >= spline_->getMaxParameter() && along > 0.0);
+  if (!beyondEnd && d1.squaredNorm() > 0.0)
+    place.curvature = (d2 - d2.dot(place.tangent) * place.tangent) / d1.squaredNorm();
+  const Vec3d reference = a.R2 * spline_->getNormal(t).template cast<double>();
+  const Vec3d across = (reference - reference.dot(place.tangent) * place.tangent).normalized();
+  place.normal = std::cos(zeroAngle_) * across + std::sin(zeroAngle_) * place.tangent.cross(across);
+  return place;
+}
+
+template <Scalar S>
+detail::Attachments SplineJointT<S>::writeCurveRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+  parameter_ = spline_->findNearestParameter(splinePoint(a), parameter_);
+  const detail::SplinePlace place = placeAt(a, parameter_);
+  const detail::Attachments b = detail::alongSpline(a, place);
+  const std::size_t first = sink.rows->size();
+  this->addElementaryRows(b, sink);
+  detail::addCurvatureCoupling(b, place.curvature, *sink.rows, first + 2);
+  if (h > 0.0) {
+    const double rate = detail::translationalCoordinate(b).speed;
+    for (std::size_t k = 0; k < 2; ++k) {
+      detail::Row& row = (*sink.rows)[first + k];
+      const double across = place.curvature.dot(b.R2.col(static_cast<Eigen::Index>(k)));
+      if (sink.secondOrder)
+        sink.addCurvature(first + k, detail::centripetalCurvature(across, rate));
+      else
+        row.violation += detail::centripetalShift(row, across, rate, h);
+    }
+  }
+  return b;
+}
+
+template <Scalar S>
+detail::Attachments SplineJointT<S>::alongSplineNow() const {
+  const detail::Attachments a = this->attachments();
+  return detail::alongSpline(a, placeAt(a, spline_->findNearestParameter(splinePoint(a), parameter_)));
+}
+
+template <Scalar S>
+void SplineJointT<S>::restart(const detail::Attachments& a) {
+  zeroAngle_ = 0.0;
+  zeroAngle_ = detail::rotationalCoordinate(detail::alongSpline(a, placeAt(a, parameter_))).value;
+  const detail::Attachments b = detail::alongSpline(a, placeAt(a, parameter_));
+  slide_.restart(b);
+  twist_.restart(b);
+}
+
+SPOOK_COMPILED_ONCE(class, SplineJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot1<2, 0>, detail::Dot1<2, 1>)
 
 using SplineJoint = SplineJointT<double>;
 using SplineJointRef = ref_ptr<SplineJoint>;
@@ -12566,6 +12950,11 @@ class UniversalJointT : public Constraint2DOFT<S, detail::UniversalArm1, detail:
   ~UniversalJointT() override = default;
 };
 
+SPOOK_COMPILED_ONCE(class, UniversalJointT)
+SPOOK_COMPILED_JOINT_BASE(Constraint2DOFT, detail::UniversalArm1, detail::UniversalArm2, detail::Spherical,
+                          detail::Dot1<0, 1>)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Spherical, detail::Dot1<0, 1>)
+
 /// A universal joint whose center slides along the z axis of frame 2 (seed
 /// 001 §12.6): two Dot2 rows keep frame 1's origin on that axis and a Dot1
 /// keeps the cross arms x₁ ⊥ y₂ — a telescopic drive shaft. Three free DOFs,
@@ -12581,10 +12970,7 @@ class PrismaticUniversalJointT : public ElementaryJointT<S, detail::Dot2<0>, det
   enum CONTROLLER { ROTATIONAL_CONTROLLER_1 = 0, ROTATIONAL_CONTROLLER_2 = 1, TRANSLATIONAL_CONTROLLER_1 = 2 };
 
   PrismaticUniversalJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2 = nullptr,
-                           FrameT<S>* frame2 = nullptr)
-      : Base("PrismaticUniversalJoint", body1, frame1, body2, frame2) {
-    restart();
-  }
+                           FrameT<S>* frame2 = nullptr);
 
   [[nodiscard]] Motor1DT<S>* getMotor1D(int index) const {
     return visit(index, [](const auto& dof) { return dof.motor(); });
@@ -12596,36 +12982,16 @@ class PrismaticUniversalJointT : public ElementaryJointT<S, detail::Dot2<0>, det
     return visit(index, [](const auto& dof) { return dof.range(); });
   }
   /// The free DOF's current value: rad (with winding) or m.
-  [[nodiscard]] S getAngle(int index) const {
-    const auto a = this->attachments();
-    return visit(index, [&](const auto& dof) { return S(dof.measure(a).value); });
-  }
+  [[nodiscard]] S getAngle(int index) const;
   /// Its rate (rad/s or m/s).
-  [[nodiscard]] S getCurrentSpeed(int index) const {
-    const auto a = this->attachments();
-    return visit(index, [&](const auto& dof) { return S(dof.measure(a).speed); });
-  }
+  [[nodiscard]] S getCurrentSpeed(int index) const;
 
  protected:
   ~PrismaticUniversalJointT() override = default;
 
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    this->addElementaryRows(a, sink);
-    arm1_.addRows(a, sink, h);
-    arm2_.addRows(a, sink, h);
-    slide_.addRows(a, sink, h);
-  }
-  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
-    this->addElementaryRows(a, sink);
-    arm1_.addProjectionRows(a, sink);
-    arm2_.addProjectionRows(a, sink);
-    slide_.addProjectionRows(a, sink);
-  }
-  void afterSolve(double h) override {
-    arm1_.afterSolve(h);
-    arm2_.afterSolve(h);
-    slide_.afterSolve(h);
-  }
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override;
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override;
+  void afterSolve(double h) override;
   void onRebind() override { restart(); }
 
  private:
@@ -12641,17 +13007,65 @@ class PrismaticUniversalJointT : public ElementaryJointT<S, detail::Dot2<0>, det
                           index);
     }
   }
-  void restart() {
-    const auto a = this->attachments();
-    arm1_.restart(a);
-    arm2_.restart(a);
-    slide_.restart(a);
-  }
+  void restart();
 
   FreeDofT<S, detail::UniversalArm1> arm1_;
   FreeDofT<S, detail::UniversalArm2> arm2_;
   FreeDofT<S, detail::TranslationalZ> slide_;
 };
+
+template <Scalar S>
+PrismaticUniversalJointT<S>::PrismaticUniversalJointT(RigidBodyT<S>* body1, FrameT<S>* frame1, RigidBodyT<S>* body2,
+                                                      FrameT<S>* frame2)
+    : Base("PrismaticUniversalJoint", body1, frame1, body2, frame2) {
+  restart();
+}
+
+template <Scalar S>
+S PrismaticUniversalJointT<S>::getAngle(int index) const {
+  const auto a = this->attachments();
+  return visit(index, [&](const auto& dof) { return S(dof.measure(a).value); });
+}
+
+template <Scalar S>
+S PrismaticUniversalJointT<S>::getCurrentSpeed(int index) const {
+  const auto a = this->attachments();
+  return visit(index, [&](const auto& dof) { return S(dof.measure(a).speed); });
+}
+
+template <Scalar S>
+void PrismaticUniversalJointT<S>::addRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+  this->addElementaryRows(a, sink);
+  arm1_.addRows(a, sink, h);
+  arm2_.addRows(a, sink, h);
+  slide_.addRows(a, sink, h);
+}
+
+template <Scalar S>
+void PrismaticUniversalJointT<S>::addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) {
+  this->addElementaryRows(a, sink);
+  arm1_.addProjectionRows(a, sink);
+  arm2_.addProjectionRows(a, sink);
+  slide_.addProjectionRows(a, sink);
+}
+
+template <Scalar S>
+void PrismaticUniversalJointT<S>::afterSolve(double h) {
+  arm1_.afterSolve(h);
+  arm2_.afterSolve(h);
+  slide_.afterSolve(h);
+}
+
+template <Scalar S>
+void PrismaticUniversalJointT<S>::restart() {
+  const auto a = this->attachments();
+  arm1_.restart(a);
+  arm2_.restart(a);
+  slide_.restart(a);
+}
+
+SPOOK_COMPILED_ONCE(class, PrismaticUniversalJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot1<0, 1>)
 
 using UniversalJoint = UniversalJointT<double>;
 using UniversalJointRef = ref_ptr<UniversalJoint>;
@@ -12734,20 +13148,7 @@ class WheelJointFrameT {
 
   /// `worldAttach` (m, world), `worldWheelAxle` and `worldSteeringAxle`
   /// (world directions, any non-zero length, perpendicular).
-  WheelJointFrameT(const Vec3& worldAttach, const Vec3& worldWheelAxle, const Vec3& worldSteeringAxle) {
-    if (!worldAttach.allFinite()) throw error("attachment point must be finite (m)", worldAttach);
-    checkAxis("wheel axle must be finite and non-zero", worldWheelAxle);
-    checkAxis("steering axle must be finite and non-zero", worldSteeringAxle);
-    const Vec3 wheel = worldWheelAxle.normalized(), steering = worldSteeringAxle.normalized();
-    const S cosine = wheel.dot(steering);
-    if (!(std::abs(cosine) <= perpendicularTolerance()))
-      throw error(std::is_same_v<S, float> ? "wheel axle and steering axle must be perpendicular (|cos| <= 1e-4)"
-                                           : "wheel axle and steering axle must be perpendicular (|cos| <= 1e-6)",
-                  cosine);
-    attach_ = worldAttach;
-    wheel_ = wheel;
-    steering_ = steering;
-  }
+  WheelJointFrameT(const Vec3& worldAttach, const Vec3& worldWheelAxle, const Vec3& worldSteeringAxle);
 
   /// Intersection of the two axes (m, world).
   [[nodiscard]] const Vec3& getWorldAttach() const { return attach_; }
@@ -12758,30 +13159,55 @@ class WheelJointFrameT {
 
   /// The joint frame in world: origin at the attachment point, y along the
   /// axle made exactly perpendicular to z, z along the steering axis.
-  [[nodiscard]] TransformT<S> getWorldTransform() const {
-    const Vec3 z = steering_;
-    const Vec3 y = (wheel_ - wheel_.dot(z) * z).normalized();
-    Mat3T<S> R;
-    R.col(0) = y.cross(z);
-    R.col(1) = y;
-    R.col(2) = z;
-    TransformT<S> X = TransformT<S>::Identity();
-    X.linear() = R;
-    X.translation() = attach_;
-    return X;
-  }
+  [[nodiscard]] TransformT<S> getWorldTransform() const;
 
  private:
   template <class T>
   static Error error(const std::string& what, const T& value) {
     return detail::makeError("WheelJointFrame", "", what, value);
   }
-  static void checkAxis(const char* what, const Vec3& axis) {
-    if (!axis.allFinite() || !(axis.norm() > S(0))) throw error(what, axis);
-  }
+  static void checkAxis(const char* what, const Vec3& axis);
 
   Vec3 attach_, wheel_, steering_;
 };
+
+template <Scalar S>
+WheelJointFrameT<S>::WheelJointFrameT(const Vec3& worldAttach, const Vec3& worldWheelAxle,
+                                      const Vec3& worldSteeringAxle) {
+  if (!worldAttach.allFinite()) throw error("attachment point must be finite (m)", worldAttach);
+  checkAxis("wheel axle must be finite and non-zero", worldWheelAxle);
+  checkAxis("steering axle must be finite and non-zero", worldSteeringAxle);
+  const Vec3 wheel = worldWheelAxle.normalized(), steering = worldSteeringAxle.normalized();
+  const S cosine = wheel.dot(steering);
+  if (!(std::abs(cosine) <= perpendicularTolerance()))
+    throw error(std::is_same_v<S, float> ? "wheel axle and steering axle must be perpendicular (|cos| <= 1e-4)"
+                                         : "wheel axle and steering axle must be perpendicular (|cos| <= 1e-6)",
+                cosine);
+  attach_ = worldAttach;
+  wheel_ = wheel;
+  steering_ = steering;
+}
+
+template <Scalar S>
+TransformT<S> WheelJointFrameT<S>::getWorldTransform() const {
+  const Vec3 z = steering_;
+  const Vec3 y = (wheel_ - wheel_.dot(z) * z).normalized();
+  Mat3T<S> R;
+  R.col(0) = y.cross(z);
+  R.col(1) = y;
+  R.col(2) = z;
+  TransformT<S> X = TransformT<S>::Identity();
+  X.linear() = R;
+  X.translation() = attach_;
+  return X;
+}
+
+template <Scalar S>
+void WheelJointFrameT<S>::checkAxis(const char* what, const Vec3& axis) {
+  if (!axis.allFinite() || !(axis.norm() > S(0))) throw error(what, axis);
+}
+
+SPOOK_COMPILED_ONCE(class, WheelJointFrameT)
 
 /// A wheel on a chassis or on the world (seed 001 §12.12). The wheel is body
 /// 1; the chassis is body 2 (nullptr: the world). The y axis of frame 1 is
@@ -12809,15 +13235,9 @@ class WheelJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>,
   /// Frames in the bodies' model frames (frame 2 in world for chassis ==
   /// nullptr); frame 2 defaults to frame 1's current pose.
   WheelJointT(RigidBodyT<S>* wheel, FrameT<S>* wheelFrame, RigidBodyT<S>* chassis = nullptr,
-              FrameT<S>* chassisFrame = nullptr)
-      : Base("WheelJoint", wheel, wheelFrame, chassis, chassisFrame) {
-    initialize();
-  }
+              FrameT<S>* chassisFrame = nullptr);
   /// Frames from a world description, relaxed in the current configuration.
-  WheelJointT(const WheelJointFrameT<S>& frame, RigidBodyT<S>* wheel, RigidBodyT<S>* chassis = nullptr)
-      : Base("WheelJoint", wheel, localFrame(frame, wheel).get(), chassis, localFrame(frame, chassis).get()) {
-    initialize();
-  }
+  WheelJointT(const WheelJointFrameT<S>& frame, RigidBodyT<S>* wheel, RigidBodyT<S>* chassis = nullptr);
 
   [[nodiscard]] Motor1DT<S>* getMotor1D(int index) const {
     return visit(index, [](const auto& dof) { return dof.motor(); });
@@ -12834,56 +13254,25 @@ class WheelJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>,
   }
   /// The free DOF's current value: rad (with winding) for WHEEL and STEERING,
   /// m for SUSPENSION.
-  [[nodiscard]] S getAngle(int index) const {
-    const auto a = this->attachments();
-    return visit(index, [&](const auto& dof) { return S(dof.measure(a).value); });
-  }
+  [[nodiscard]] S getAngle(int index) const;
   /// Its rate (rad/s or m/s).
-  [[nodiscard]] S getCurrentSpeed(int index) const {
-    const auto a = this->attachments();
-    return visit(index, [&](const auto& dof) { return S(dof.measure(a).speed); });
-  }
+  [[nodiscard]] S getCurrentSpeed(int index) const;
 
   /// The steering axis z₂ (unit, world).
-  [[nodiscard]] Vec3T<S> getWorldSteeringAxis() const {
-    return Vec3T<S>(this->attachments().R2.col(2).template cast<S>());
-  }
+  [[nodiscard]] Vec3T<S> getWorldSteeringAxis() const;
   /// Frame 2's origin, the steering pivot on the chassis (m, world).
-  [[nodiscard]] Vec3T<S> getWorldSteeringPivot() const { return Vec3T<S>(this->attachments().p2.template cast<S>()); }
+  [[nodiscard]] Vec3T<S> getWorldSteeringPivot() const;
 
  protected:
   ~WheelJointT() override = default;
 
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    const std::size_t first = sink.rows->size();
-    this->addElementaryRows(a, sink);
-    load_.record(sink, first, a.R2.col(2));
-    wheel_.addRows(a, sink, h);
-    steering_.addRows(a, sink, h);
-    suspension_.addRows(a, sink, h);
-  }
-  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override {
-    this->addElementaryRows(a, sink);
-    wheel_.addProjectionRows(a, sink);
-    steering_.addProjectionRows(a, sink);
-    suspension_.addProjectionRows(a, sink);
-  }
-  void afterSolve(double h) override {
-    wheel_.afterSolve(h);
-    steering_.afterSolve(h);
-    suspension_.afterSolve(h);
-    const double normal = load_.normal(load_.force(h));
-    wheel_.friction()->setStepNormalForce(normal);
-    steering_.friction()->setStepNormalForce(normal);
-    suspension_.friction()->setStepNormalForce(normal);
-  }
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override;
+  void addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) override;
+  void afterSolve(double h) override;
   void onRebind() override { restart(); }
 
  private:
-  static ref_ptr<FrameT<S>> localFrame(const WheelJointFrameT<S>& frame, const RigidBodyT<S>* body) {
-    const TransformT<S> world = frame.getWorldTransform();
-    return new FrameT<S>(body ? TransformT<S>(body->getTransform().inverse() * world) : world);
-  }
+  static ref_ptr<FrameT<S>> localFrame(const WheelJointFrameT<S>& frame, const RigidBodyT<S>* body);
 
   template <class F>
   auto visit(int index, F&& f) const {
@@ -12898,26 +13287,105 @@ class WheelJointT : public ElementaryJointT<S, detail::Dot2<0>, detail::Dot2<1>,
         throw this->error("free DOF index must be WHEEL (0), STEERING (1) or SUSPENSION (2)", index);
     }
   }
-  void restart() {
-    const auto a = this->attachments();
-    wheel_.restart(a);
-    steering_.restart(a);
-    suspension_.restart(a);
-  }
-  void initialize() {
-    restart();
-    wheel_.friction()->setJoint(this);
-    steering_.friction()->setJoint(this);
-    suspension_.friction()->setJoint(this);
-    suspension_.lock()->setPosition(S(suspension_.measure(this->attachments()).value));
-    suspension_.lock()->setEnable(true);
-  }
+  void restart();
+  void initialize();
 
   FreeDofT<S, detail::WheelRollAngle> wheel_;
   FreeDofT<S, detail::WheelSteeringAngle> steering_;
   FreeDofT<S, detail::TranslationalZ> suspension_;
   detail::JointLoad load_;  // the normal force for the friction controllers
 };
+
+template <Scalar S>
+WheelJointT<S>::WheelJointT(RigidBodyT<S>* wheel, FrameT<S>* wheelFrame, RigidBodyT<S>* chassis,
+                            FrameT<S>* chassisFrame)
+    : Base("WheelJoint", wheel, wheelFrame, chassis, chassisFrame) {
+  initialize();
+}
+
+template <Scalar S>
+WheelJointT<S>::WheelJointT(const WheelJointFrameT<S>& frame, RigidBodyT<S>* wheel, RigidBodyT<S>* chassis)
+    : Base("WheelJoint", wheel, localFrame(frame, wheel).get(), chassis, localFrame(frame, chassis).get()) {
+  initialize();
+}
+
+template <Scalar S>
+S WheelJointT<S>::getAngle(int index) const {
+  const auto a = this->attachments();
+  return visit(index, [&](const auto& dof) { return S(dof.measure(a).value); });
+}
+
+template <Scalar S>
+S WheelJointT<S>::getCurrentSpeed(int index) const {
+  const auto a = this->attachments();
+  return visit(index, [&](const auto& dof) { return S(dof.measure(a).speed); });
+}
+
+template <Scalar S>
+Vec3T<S> WheelJointT<S>::getWorldSteeringAxis() const {
+  return Vec3T<S>(this->attachments().R2.col(2).template cast<S>());
+}
+
+template <Scalar S>
+Vec3T<S> WheelJointT<S>::getWorldSteeringPivot() const {
+  return Vec3T<S>(this->attachments().p2.template cast<S>());
+}
+
+template <Scalar S>
+void WheelJointT<S>::addRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+  const std::size_t first = sink.rows->size();
+  this->addElementaryRows(a, sink);
+  load_.record(sink, first, a.R2.col(2));
+  wheel_.addRows(a, sink, h);
+  steering_.addRows(a, sink, h);
+  suspension_.addRows(a, sink, h);
+}
+
+template <Scalar S>
+void WheelJointT<S>::addProjectionRows(const detail::Attachments& a, detail::RowSink& sink) {
+  this->addElementaryRows(a, sink);
+  wheel_.addProjectionRows(a, sink);
+  steering_.addProjectionRows(a, sink);
+  suspension_.addProjectionRows(a, sink);
+}
+
+template <Scalar S>
+void WheelJointT<S>::afterSolve(double h) {
+  wheel_.afterSolve(h);
+  steering_.afterSolve(h);
+  suspension_.afterSolve(h);
+  const double normal = load_.normal(load_.force(h));
+  wheel_.friction()->setStepNormalForce(normal);
+  steering_.friction()->setStepNormalForce(normal);
+  suspension_.friction()->setStepNormalForce(normal);
+}
+
+template <Scalar S>
+ref_ptr<FrameT<S>> WheelJointT<S>::localFrame(const WheelJointFrameT<S>& frame, const RigidBodyT<S>* body) {
+  const TransformT<S> world = frame.getWorldTransform();
+  return new FrameT<S>(body ? TransformT<S>(body->getTransform().inverse() * world) : world);
+}
+
+template <Scalar S>
+void WheelJointT<S>::restart() {
+  const auto a = this->attachments();
+  wheel_.restart(a);
+  steering_.restart(a);
+  suspension_.restart(a);
+}
+
+template <Scalar S>
+void WheelJointT<S>::initialize() {
+  restart();
+  wheel_.friction()->setJoint(this);
+  steering_.friction()->setJoint(this);
+  suspension_.friction()->setJoint(this);
+  suspension_.lock()->setPosition(S(suspension_.measure(this->attachments()).value));
+  suspension_.lock()->setEnable(true);
+}
+
+SPOOK_COMPILED_ONCE(class, WheelJointT)
+SPOOK_COMPILED_JOINT_BASE(ElementaryJointT, detail::Dot2<0>, detail::Dot2<1>, detail::Dot1<1, 2>)
 
 using WheelJointFrame = WheelJointFrameT<double>;
 using WheelJoint = WheelJointT<double>;
@@ -13566,39 +14034,19 @@ class SteeringT : public StepEventListenerT<S> {
 
   /// Steers to `angle` (rad) clamped to ±getMaximumSteeringAngle(); only a
   /// non-finite angle throws (and changes nothing).
-  void setSteeringAngle(S angle) {
-    if (!std::isfinite(angle)) throw error("steering angle must be finite (rad)", angle);
-    const double held = std::clamp(double(angle), -maximum_, maximum_);
-    const auto angles = solve(held);
-    if (!angles) throw error("linkage does not close at this steering angle (rad)", held);
-    requested_ = double(angle);
-    input_ = held;
-    angles_ = *angles;
-    apply();
-  }
+  void setSteeringAngle(S angle);
 
   void pre(const TimeStampT<S>&) override { apply(); }
 
  protected:
-  SteeringT(const char* kind, WheelJoint* left, WheelJoint* right, const SteeringParameters& parameters)
-      : StepEventListenerT<S>(StepEventListenerT<S>::PRE_STEP), kind_(kind), parameters_(parameters) {
-    checkWheelJoints(left, right);
-    left_ = left;
-    right_ = right;
-    straightLeft_ = double(left->getAngle(WheelJoint::STEERING));
-    straightRight_ = double(right->getAngle(WheelJoint::STEERING));
-  }
+  SteeringT(const char* kind, WheelJoint* left, WheelJoint* right, const SteeringParameters& parameters);
   ~SteeringT() override = default;
 
   /// Wheel angles for an input (rad); none where the linkage does not close.
   [[nodiscard]] virtual std::optional<detail::LinkageAngles> solve(double input) const = 0;
 
   /// Called by the mechanism's constructor once its linkage is built.
-  void start(double maximum) {
-    if (!(maximum > 0.0)) throw error("linkage cannot turn from straight ahead: maximum steering angle (rad)", maximum);
-    maximum_ = maximum;
-    apply();
-  }
+  void start(double maximum);
 
   template <class T>
   [[nodiscard]] Error error(const std::string& what, const T& value) const {
@@ -13606,28 +14054,10 @@ class SteeringT : public StepEventListenerT<S> {
   }
 
  private:
-  void checkWheelJoints(const WheelJoint* left, const WheelJoint* right) const {
-    if (!left || !right)
-      throw error("needs a left and a right WheelJoint", !left && !right ? "nullptr and nullptr" : "nullptr");
-    if (left == right) throw error("left and right must be different wheel joints", left->getName());
-    if (left->getBodyAt(1) != right->getBodyAt(1))
-      throw error("wheel joints must share one chassis (body 2)", left->getName() + " and " + right->getName());
-    const double track = double((right->getWorldSteeringPivot() - left->getWorldSteeringPivot()).norm());
-    if (!(std::isfinite(track) && track > 0.0))
-      throw error("wheel joints' steering pivots must be apart (wheel track, m)", track);
-    const double sameWay = double(left->getWorldSteeringAxis().dot(right->getWorldSteeringAxis()));
-    if (!(sameWay > 0.0)) throw error("wheel joints' steering axes must point the same way (cosine)", sameWay);
-  }
+  void checkWheelJoints(const WheelJoint* left, const WheelJoint* right) const;
 
-  void apply() {
-    steer(*left_, straightLeft_ + angles_.left);
-    steer(*right_, straightRight_ + angles_.right);
-  }
-  static void steer(WheelJoint& joint, double angle) {
-    Lock1DT<S>* lock = joint.getLock1D(WheelJoint::STEERING);
-    lock->setPosition(S(angle));
-    lock->setEnable(true);
-  }
+  void apply();
+  static void steer(WheelJoint& joint, double angle);
 
   const char* kind_;
   std::string name_;
@@ -13640,6 +14070,64 @@ class SteeringT : public StepEventListenerT<S> {
   detail::LinkageAngles angles_;
 };
 
+template <Scalar S>
+void SteeringT<S>::setSteeringAngle(S angle) {
+  if (!std::isfinite(angle)) throw error("steering angle must be finite (rad)", angle);
+  const double held = std::clamp(double(angle), -maximum_, maximum_);
+  const auto angles = solve(held);
+  if (!angles) throw error("linkage does not close at this steering angle (rad)", held);
+  requested_ = double(angle);
+  input_ = held;
+  angles_ = *angles;
+  apply();
+}
+
+template <Scalar S>
+SteeringT<S>::SteeringT(const char* kind, WheelJoint* left, WheelJoint* right, const SteeringParameters& parameters)
+    : StepEventListenerT<S>(StepEventListenerT<S>::PRE_STEP), kind_(kind), parameters_(parameters) {
+  checkWheelJoints(left, right);
+  left_ = left;
+  right_ = right;
+  straightLeft_ = double(left->getAngle(WheelJoint::STEERING));
+  straightRight_ = double(right->getAngle(WheelJoint::STEERING));
+}
+
+template <Scalar S>
+void SteeringT<S>::start(double maximum) {
+  if (!(maximum > 0.0)) throw error("linkage cannot turn from straight ahead: maximum steering angle (rad)", maximum);
+  maximum_ = maximum;
+  apply();
+}
+
+template <Scalar S>
+void SteeringT<S>::checkWheelJoints(const WheelJoint* left, const WheelJoint* right) const {
+  if (!left || !right)
+    throw error("needs a left and a right WheelJoint", !left && !right ? "nullptr and nullptr" : "nullptr");
+  if (left == right) throw error("left and right must be different wheel joints", left->getName());
+  if (left->getBodyAt(1) != right->getBodyAt(1))
+    throw error("wheel joints must share one chassis (body 2)", left->getName() + " and " + right->getName());
+  const double track = double((right->getWorldSteeringPivot() - left->getWorldSteeringPivot()).norm());
+  if (!(std::isfinite(track) && track > 0.0))
+    throw error("wheel joints' steering pivots must be apart (wheel track, m)", track);
+  const double sameWay = double(left->getWorldSteeringAxis().dot(right->getWorldSteeringAxis()));
+  if (!(sameWay > 0.0)) throw error("wheel joints' steering axes must point the same way (cosine)", sameWay);
+}
+
+template <Scalar S>
+void SteeringT<S>::apply() {
+  steer(*left_, straightLeft_ + angles_.left);
+  steer(*right_, straightRight_ + angles_.right);
+}
+
+template <Scalar S>
+void SteeringT<S>::steer(WheelJoint& joint, double angle) {
+  Lock1DT<S>* lock = joint.getLock1D(WheelJoint::STEERING);
+  lock->setPosition(S(angle));
+  lock->setEnable(true);
+}
+
+SPOOK_COMPILED_ONCE(class, SteeringT)
+
 /// A steering mechanism with the kinematics of `Linkage` (linkages.hpp).
 template <Scalar S, class Linkage>
 class SteeringMechanismT : public SteeringT<S> {
@@ -13647,10 +14135,7 @@ class SteeringMechanismT : public SteeringT<S> {
   /// Between two wheel joints on one chassis, with Table 12.6 defaults
   /// unless parameters are given; holds the wheels straight ahead.
   SteeringMechanismT(WheelJointT<S>* leftWheel, WheelJointT<S>* rightWheel,
-                     const SteeringParameters& parameters = Linkage::defaults())
-      : SteeringT<S>(Linkage::kName, leftWheel, rightWheel, parameters), linkage_(parameters) {
-    this->start(detail::maximumLinkageInput(linkage_));
-  }
+                     const SteeringParameters& parameters = Linkage::defaults());
 
   /// The linkage's closed-form kinematics.
   [[nodiscard]] const Linkage& getLinkage() const { return linkage_; }
@@ -13664,6 +14149,22 @@ class SteeringMechanismT : public SteeringT<S> {
  private:
   Linkage linkage_;
 };
+
+template <Scalar S, class Linkage>
+SteeringMechanismT<S, Linkage>::SteeringMechanismT(WheelJointT<S>* leftWheel, WheelJointT<S>* rightWheel,
+                                                   const SteeringParameters& parameters)
+    : SteeringT<S>(Linkage::kName, leftWheel, rightWheel, parameters), linkage_(parameters) {
+  this->start(detail::maximumLinkageInput(linkage_));
+}
+
+SPOOK_COMPILED_DOUBLE(class SteeringMechanismT<double, detail::AckermannLinkage>)
+SPOOK_COMPILED_FLOAT(class SteeringMechanismT<float, detail::AckermannLinkage>)
+SPOOK_COMPILED_DOUBLE(class SteeringMechanismT<double, detail::BellCrankLinkage>)
+SPOOK_COMPILED_FLOAT(class SteeringMechanismT<float, detail::BellCrankLinkage>)
+SPOOK_COMPILED_DOUBLE(class SteeringMechanismT<double, detail::RackPinionLinkage>)
+SPOOK_COMPILED_FLOAT(class SteeringMechanismT<float, detail::RackPinionLinkage>)
+SPOOK_COMPILED_DOUBLE(class SteeringMechanismT<double, detail::DavisLinkage>)
+SPOOK_COMPILED_FLOAT(class SteeringMechanismT<float, detail::DavisLinkage>)
 
 /// Ackermann trapezoid four-bar (seed 001 §12.13).
 template <Scalar S>
@@ -13739,80 +14240,104 @@ class VirtualConstraintInertiaT : public ConstraintT<S> {
   /// `constraint`; zero for none. A body the constraint does not have (the
   /// world) takes no inertia.
   VirtualConstraintInertiaT(Constraint* constraint, S body1Translational, S body1Rotational, S body2Translational,
-                            S body2Rotational)
-      : Constraint("VirtualConstraintInertia", checked(constraint)->getBodyAt(0),
-                   checked(constraint)->getAttachmentFrame(0), checked(constraint)->getBodyAt(1),
-                   checked(constraint)->getAttachmentFrame(1)),
-        constraint_(constraint) {
-    setInertia(0, body1Translational, body1Rotational);
-    setInertia(1, body2Translational, body2Rotational);
-  }
+                            S body2Rotational);
 
   [[nodiscard]] Constraint* getConstraint() const { return constraint_.get(); }
 
   /// Sets the virtual mass (kg) and moment of inertia (kg·m²) of body `index` (0 or 1).
-  void setInertia(int index, S translational, S rotational) {
-    if (index != 0 && index != 1) throw this->error("body index must be 0 or 1", index);
-    checkInertia(index, "translational inertia (kg)", translational);
-    checkInertia(index, "rotational inertia (kg m^2)", rotational);
-    inertia_[slot(index, false)] = translational;
-    inertia_[slot(index, true)] = rotational;
-  }
+  void setInertia(int index, S translational, S rotational);
   [[nodiscard]] S getTranslationalInertia(int index) const { return inertia_[slot(checkedIndex(index), false)]; }
   [[nodiscard]] S getRotationalInertia(int index) const { return inertia_[slot(checkedIndex(index), true)]; }
 
   /// Rows this step: one per non-zero inertia.
-  [[nodiscard]] int getNumDOF() const override {
-    int n = 0;
-    for (S m : inertia_) n += m > S(0) ? 1 : 0;
-    return n;
-  }
+  [[nodiscard]] int getNumDOF() const override;
 
  protected:
   ~VirtualConstraintInertiaT() override = default;
 
-  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override {
-    for (std::size_t k = 0; k < NUM_DOF; ++k) {
-      const double mass = double(inertia_[k]);
-      if (!(mass > 0.0)) continue;
-      const bool second = k >= BODY2_TRANSLATIONAL;
-      const bool rotational = k % 2 == 1;
-      const detail::Vec3d axis = (second ? a.R2 : a.R1).col(2);
-      const detail::Vec6d J = rotational ? detail::linearAngular(detail::Vec3d::Zero(), axis)
-                                         : detail::linearAngular(axis, detail::Vec3d::Zero());
-      const detail::Vec6d none = detail::Vec6d::Zero();
-      detail::Row& row = second ? sink.add(none, J, &impulse_[k]) : sink.add(J, none, &impulse_[k]);
-      row.holonomic = false;
-      row.speed = second ? J.dot(a.v2) : J.dot(a.v1);
-      row.compliance = h / mass;
-    }
-  }
+  void addRows(const detail::Attachments& a, detail::RowSink& sink, double h) override;
   /// The frames are the constraint's: rebind leaves them to it.
   [[nodiscard]] bool rebindsFrames() const override { return false; }
 
  private:
-  static Constraint* checked(Constraint* constraint) {
-    if (!constraint) throw detail::makeError("VirtualConstraintInertia", "", "needs a constraint", "nullptr");
-    return constraint;
-  }
+  static Constraint* checked(Constraint* constraint);
   static std::size_t slot(int index, bool rotational) {
     return static_cast<std::size_t>(2 * index + (rotational ? 1 : 0));
   }
-  int checkedIndex(int index) const {
-    if (index != 0 && index != 1) throw this->error("body index must be 0 or 1", index);
-    return index;
-  }
-  void checkInertia(int index, const char* what, S value) const {
-    if (!std::isfinite(double(value)) || value < S(0))
-      throw this->error(std::string(what) + " of body " + std::to_string(index) + " must be finite and >= 0", value);
-    if (value > S(0) && !this->getBodyAt(index))
-      throw this->error(std::string(what) + " given for body " + std::to_string(index) + ", which is the world", value);
-  }
+  int checkedIndex(int index) const;
+  void checkInertia(int index, const char* what, S value) const;
 
   ref_ptr<Constraint> constraint_;
   std::array<S, NUM_DOF> inertia_{};
   std::array<double, NUM_DOF> impulse_{};
 };
+
+template <Scalar S>
+VirtualConstraintInertiaT<S>::VirtualConstraintInertiaT(Constraint* constraint, S body1Translational, S body1Rotational,
+                                                        S body2Translational, S body2Rotational)
+    : Constraint("VirtualConstraintInertia", checked(constraint)->getBodyAt(0),
+                 checked(constraint)->getAttachmentFrame(0), checked(constraint)->getBodyAt(1),
+                 checked(constraint)->getAttachmentFrame(1)),
+      constraint_(constraint) {
+  setInertia(0, body1Translational, body1Rotational);
+  setInertia(1, body2Translational, body2Rotational);
+}
+
+template <Scalar S>
+void VirtualConstraintInertiaT<S>::setInertia(int index, S translational, S rotational) {
+  if (index != 0 && index != 1) throw this->error("body index must be 0 or 1", index);
+  checkInertia(index, "translational inertia (kg)", translational);
+  checkInertia(index, "rotational inertia (kg m^2)", rotational);
+  inertia_[slot(index, false)] = translational;
+  inertia_[slot(index, true)] = rotational;
+}
+
+template <Scalar S>
+int VirtualConstraintInertiaT<S>::getNumDOF() const {
+  int n = 0;
+  for (S m : inertia_) n += m > S(0) ? 1 : 0;
+  return n;
+}
+
+template <Scalar S>
+void VirtualConstraintInertiaT<S>::addRows(const detail::Attachments& a, detail::RowSink& sink, double h) {
+  for (std::size_t k = 0; k < NUM_DOF; ++k) {
+    const double mass = double(inertia_[k]);
+    if (!(mass > 0.0)) continue;
+    const bool second = k >= BODY2_TRANSLATIONAL;
+    const bool rotational = k % 2 == 1;
+    const detail::Vec3d axis = (second ? a.R2 : a.R1).col(2);
+    const detail::Vec6d J = rotational ? detail::linearAngular(detail::Vec3d::Zero(), axis)
+                                       : detail::linearAngular(axis, detail::Vec3d::Zero());
+    const detail::Vec6d none = detail::Vec6d::Zero();
+    detail::Row& row = second ? sink.add(none, J, &impulse_[k]) : sink.add(J, none, &impulse_[k]);
+    row.holonomic = false;
+    row.speed = second ? J.dot(a.v2) : J.dot(a.v1);
+    row.compliance = h / mass;
+  }
+}
+
+template <Scalar S>
+auto VirtualConstraintInertiaT<S>::checked(Constraint* constraint) -> Constraint* {
+  if (!constraint) throw detail::makeError("VirtualConstraintInertia", "", "needs a constraint", "nullptr");
+  return constraint;
+}
+
+template <Scalar S>
+int VirtualConstraintInertiaT<S>::checkedIndex(int index) const {
+  if (index != 0 && index != 1) throw this->error("body index must be 0 or 1", index);
+  return index;
+}
+
+template <Scalar S>
+void VirtualConstraintInertiaT<S>::checkInertia(int index, const char* what, S value) const {
+  if (!std::isfinite(double(value)) || value < S(0))
+    throw this->error(std::string(what) + " of body " + std::to_string(index) + " must be finite and >= 0", value);
+  if (value > S(0) && !this->getBodyAt(index))
+    throw this->error(std::string(what) + " given for body " + std::to_string(index) + ", which is the world", value);
+}
+
+SPOOK_COMPILED_ONCE(class, VirtualConstraintInertiaT)
 
 using VirtualConstraintInertia = VirtualConstraintInertiaT<double>;
 using VirtualConstraintInertiaRef = ref_ptr<VirtualConstraintInertia>;
@@ -14627,48 +15152,63 @@ class AssemblyT : public CollectionT<S> {
 
   /// Assembly origin, world (m).
   [[nodiscard]] Vec3 getPosition() const { return frame_->getTranslate(); }
-  void setPosition(const Vec3& p_W) {
-    if (!p_W.allFinite()) throw this->error("position must be finite (m)", p_W);
-    setTransform(makeTransform<S>(p_W, getRotation()));
-  }
+  void setPosition(const Vec3& p_W);
   /// Assembly orientation, world.
   [[nodiscard]] Quat getRotation() const { return frame_->getRotate(); }
-  void setRotation(const Quat& q_W) {
-    if (!isRotationQuaternion<S>(q_W))
-      throw this->error("rotation must be a finite non-zero quaternion (x, y, z, w)", q_W.coeffs());
-    setTransform(makeTransform<S>(getPosition(), q_W));
-  }
+  void setRotation(const Quat& q_W);
   [[nodiscard]] Transform getTransform() const { return frame_->getMatrix(); }
-  void setTransform(const Transform& X_W) {
-    if (!X_W.matrix().allFinite() || !isRotation<S>(X_W.linear()))
-      throw this->error("transform must be finite with a rotation as linear part", X_W.translation());
-    const Transform delta = makeTransform<S>(X_W.translation(), Quat(X_W.linear())) * frame_->getMatrix().inverse();
-    const Quat turn(delta.linear());
-    std::vector<RigidBodyT<S>*> bodies;
-    std::vector<FrameT<S>*> frames;
-    std::unordered_set<const void*> seen;
-    this->gatherMovable(bodies, frames, seen);
-    for (FrameT<S>* frame : frames) frame->setMatrix(delta * frame->getMatrix());
-    for (RigidBodyT<S>* body : bodies) {
-      body->setTransform(delta * body->getTransform());
-      body->setVelocity(turn * body->getVelocity());
-      body->setAngularVelocity(turn * body->getAngularVelocity());
-    }
-  }
+  void setTransform(const Transform& X_W);
 
  protected:
   ~AssemblyT() override = default;
 
   void gatherMovable(std::vector<RigidBodyT<S>*>& bodies, std::vector<FrameT<S>*>& frames,
-                     std::unordered_set<const void*>& seen) const override {
-    if (seen.insert(frame_.get()).second) frames.push_back(frame_.get());
-    CollectionT<S>::gatherMovable(bodies, frames, seen);
-  }
+                     std::unordered_set<const void*>& seen) const override;
   [[nodiscard]] const char* kind() const override { return "Assembly"; }
 
  private:
   ref_ptr<FrameT<S>> frame_ = new FrameT<S>();
 };
+
+template <Scalar S>
+void AssemblyT<S>::setPosition(const Vec3& p_W) {
+  if (!p_W.allFinite()) throw this->error("position must be finite (m)", p_W);
+  setTransform(makeTransform<S>(p_W, getRotation()));
+}
+
+template <Scalar S>
+void AssemblyT<S>::setRotation(const Quat& q_W) {
+  if (!isRotationQuaternion<S>(q_W))
+    throw this->error("rotation must be a finite non-zero quaternion (x, y, z, w)", q_W.coeffs());
+  setTransform(makeTransform<S>(getPosition(), q_W));
+}
+
+template <Scalar S>
+void AssemblyT<S>::setTransform(const Transform& X_W) {
+  if (!X_W.matrix().allFinite() || !isRotation<S>(X_W.linear()))
+    throw this->error("transform must be finite with a rotation as linear part", X_W.translation());
+  const Transform delta = makeTransform<S>(X_W.translation(), Quat(X_W.linear())) * frame_->getMatrix().inverse();
+  const Quat turn(delta.linear());
+  std::vector<RigidBodyT<S>*> bodies;
+  std::vector<FrameT<S>*> frames;
+  std::unordered_set<const void*> seen;
+  this->gatherMovable(bodies, frames, seen);
+  for (FrameT<S>* frame : frames) frame->setMatrix(delta * frame->getMatrix());
+  for (RigidBodyT<S>* body : bodies) {
+    body->setTransform(delta * body->getTransform());
+    body->setVelocity(turn * body->getVelocity());
+    body->setAngularVelocity(turn * body->getAngularVelocity());
+  }
+}
+
+template <Scalar S>
+void AssemblyT<S>::gatherMovable(std::vector<RigidBodyT<S>*>& bodies, std::vector<FrameT<S>*>& frames,
+                                 std::unordered_set<const void*>& seen) const {
+  if (seen.insert(frame_.get()).second) frames.push_back(frame_.get());
+  CollectionT<S>::gatherMovable(bodies, frames, seen);
+}
+
+SPOOK_COMPILED_ONCE(class, AssemblyT)
 
 using Assembly = AssemblyT<double>;
 using AssemblyRef = ref_ptr<Assembly>;
@@ -14876,60 +15416,79 @@ class MaterialManagerT {
  public:
   /// The explicit contact material of the pair (order does not matter),
   /// created from the implicit values when missing.
-  ContactMaterialT<S>* getOrCreateContactMaterial(MaterialT<S>* m1, MaterialT<S>* m2) {
-    if (!m1 || !m2)
-      throw detail::makeError("MaterialManager", detail::materialPairName<S>(m1, m2), "both materials must be non-null",
-                              "nullptr");
-    const Key key = keyOf(m1, m2);
-    if (auto it = table_.find(key); it != table_.end()) return it->second.get();
-    ref_ptr<ContactMaterialT<S>> created = new ContactMaterialT<S>(m1, m2);
-    return table_.emplace(key, std::move(created)).first->second.get();
-  }
+  ContactMaterialT<S>* getOrCreateContactMaterial(MaterialT<S>* m1, MaterialT<S>* m2);
 
   /// The explicit contact material of the pair (order does not matter);
   /// nullptr when there is none.
-  [[nodiscard]] ContactMaterialT<S>* getContactMaterial(const MaterialT<S>* m1, const MaterialT<S>* m2) const {
-    if (table_.empty()) return nullptr;
-    auto it = table_.find(keyOf(m1, m2));
-    return it == table_.end() ? nullptr : it->second.get();
-  }
+  [[nodiscard]] ContactMaterialT<S>* getContactMaterial(const MaterialT<S>* m1, const MaterialT<S>* m2) const;
 
   /// Adds an explicit contact material, replacing an earlier one of the
   /// same pair.
-  void add(ref_ptr<ContactMaterialT<S>> contactMaterial) {
-    if (!contactMaterial)
-      throw detail::makeError("MaterialManager", "", "contact material must be non-null", "nullptr");
-    const Key key = keyOf(contactMaterial->getMaterial1(), contactMaterial->getMaterial2());
-    table_.insert_or_assign(key, std::move(contactMaterial));
-  }
+  void add(ref_ptr<ContactMaterialT<S>> contactMaterial);
 
   /// Removes a contact material; false when it is not in the table.
-  bool remove(ContactMaterialT<S>* contactMaterial) {
-    if (!contactMaterial) return false;
-    auto it = table_.find(keyOf(contactMaterial->getMaterial1(), contactMaterial->getMaterial2()));
-    if (it == table_.end() || it->second.get() != contactMaterial) return false;
-    table_.erase(it);
-    return true;
-  }
+  bool remove(ContactMaterialT<S>* contactMaterial);
 
   [[nodiscard]] std::size_t getNumContactMaterials() const { return table_.size(); }
 
   /// What the solver uses for a contact between the two materials: the
   /// explicit contact material's parameters, else the implicit combination.
-  [[nodiscard]] ContactParametersT<S> resolve(const MaterialT<S>& m1, const MaterialT<S>& m2) const {
-    if (const ContactMaterialT<S>* explicitMaterial = getContactMaterial(&m1, &m2))
-      return explicitMaterial->parameters();
-    return ContactMaterialT<S>::implicitParameters(m1, m2);
-  }
+  [[nodiscard]] ContactParametersT<S> resolve(const MaterialT<S>& m1, const MaterialT<S>& m2) const;
 
  private:
   using Key = std::pair<const MaterialT<S>*, const MaterialT<S>*>;
-  static Key keyOf(const MaterialT<S>* m1, const MaterialT<S>* m2) {
-    return std::less<const MaterialT<S>*>()(m2, m1) ? Key(m2, m1) : Key(m1, m2);
-  }
+  static Key keyOf(const MaterialT<S>* m1, const MaterialT<S>* m2);
 
   std::unordered_map<Key, ref_ptr<ContactMaterialT<S>>, detail::PointerPairHash> table_;
 };
+
+template <Scalar S>
+auto MaterialManagerT<S>::getOrCreateContactMaterial(MaterialT<S>* m1, MaterialT<S>* m2) -> ContactMaterialT<S>* {
+  if (!m1 || !m2)
+    throw detail::makeError("MaterialManager", detail::materialPairName<S>(m1, m2), "both materials must be non-null",
+                            "nullptr");
+  const Key key = keyOf(m1, m2);
+  if (auto it = table_.find(key); it != table_.end()) return it->second.get();
+  ref_ptr<ContactMaterialT<S>> created = new ContactMaterialT<S>(m1, m2);
+  return table_.emplace(key, std::move(created)).first->second.get();
+}
+
+template <Scalar S>
+auto MaterialManagerT<S>::getContactMaterial(const MaterialT<S>* m1, const MaterialT<S>* m2) const
+    -> ContactMaterialT<S>* {
+  if (table_.empty()) return nullptr;
+  auto it = table_.find(keyOf(m1, m2));
+  return it == table_.end() ? nullptr : it->second.get();
+}
+
+template <Scalar S>
+void MaterialManagerT<S>::add(ref_ptr<ContactMaterialT<S>> contactMaterial) {
+  if (!contactMaterial) throw detail::makeError("MaterialManager", "", "contact material must be non-null", "nullptr");
+  const Key key = keyOf(contactMaterial->getMaterial1(), contactMaterial->getMaterial2());
+  table_.insert_or_assign(key, std::move(contactMaterial));
+}
+
+template <Scalar S>
+bool MaterialManagerT<S>::remove(ContactMaterialT<S>* contactMaterial) {
+  if (!contactMaterial) return false;
+  auto it = table_.find(keyOf(contactMaterial->getMaterial1(), contactMaterial->getMaterial2()));
+  if (it == table_.end() || it->second.get() != contactMaterial) return false;
+  table_.erase(it);
+  return true;
+}
+
+template <Scalar S>
+auto MaterialManagerT<S>::resolve(const MaterialT<S>& m1, const MaterialT<S>& m2) const -> ContactParametersT<S> {
+  if (const ContactMaterialT<S>* explicitMaterial = getContactMaterial(&m1, &m2)) return explicitMaterial->parameters();
+  return ContactMaterialT<S>::implicitParameters(m1, m2);
+}
+
+template <Scalar S>
+auto MaterialManagerT<S>::keyOf(const MaterialT<S>* m1, const MaterialT<S>* m2) -> Key {
+  return std::less<const MaterialT<S>*>()(m2, m1) ? Key(m2, m1) : Key(m1, m2);
+}
+
+SPOOK_COMPILED_ONCE(class, MaterialManagerT)
 
 using MaterialManager = MaterialManagerT<double>;
 namespace f32 {
