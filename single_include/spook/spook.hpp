@@ -4319,8 +4319,6 @@ void GeometryT<S>::setPartner(GeometryT* other, bool enable) {
   if (!enable) disabledWith_.emplace_back(other);
 }
 
-SPOOK_COMPILED_ONCE(class, GeometryT)
-
 namespace detail {
 /// A change to one geometry, described before it is made: its shapes,
 /// material or local transform as they would be (nullptr: unchanged).
@@ -4341,6 +4339,9 @@ struct GeometryAccess {
   static const void* space(const GeometryT<S>& g) { return g.space_; }
 };
 }  // namespace detail
+
+// After GeometryEdit, which its members use.
+SPOOK_COMPILED_ONCE(class, GeometryT)
 
 using Geometry = GeometryT<double>;
 using GeometryRef = ref_ptr<Geometry>;
