@@ -39,7 +39,7 @@
 #endif
 
 // The API's class templates (bodies, frames, geometries, shapes, joints)
-// follow the simulation parts: SPOOK_COMPILED_ONCE(class RigidBodyT) after a
+// follow the simulation parts: SPOOK_COMPILED_ONCE(class, RigidBodyT) after a
 // class's member definitions declares RigidBodyT<double> and <float> extern
 // where spook is compiled once, instantiates them where the double or float
 // simulation part is implemented, and is nothing header-only. Their heavy
