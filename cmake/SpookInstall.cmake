@@ -4,12 +4,14 @@
 #   include/spook/...                    the headers, as in the source tree
 #   include/spook/single/spook.hpp       the generated single header
 #                                        (#include <spook/single/spook.hpp>)
-#   share/cmake/spook/spookConfig.cmake  find_package(spook CONFIG) → spook::spook
+#   lib/libspook_compiled.a              spook compiled once (top-level builds)
+#   share/cmake/spook/spookConfig.cmake  find_package(spook CONFIG) → spook::spook,
+#                                        spook::spook_compiled
 #   share/cmake/spook/spookConfigVersion.cmake
 #   share/cmake/spook/spookTargets.cmake
 #
 # Included from the top-level CMakeLists.txt after GNUInstallDirs and after
-# the `spook` INTERFACE target exists. Also active when spook is added with
+# the `spook` and `spook_compiled` targets exist. Also active when spook is added with
 # add_subdirectory(), so that a parent project that installs and exports its
 # own targets linking spook::spook finds spook in an export set; set
 # SPOOK_INSTALL=OFF to drop spook's install rules there.
@@ -21,8 +23,7 @@ endif()
 
 include(CMakePackageConfigHelpers)
 
-# Header-only: the package is architecture independent, so it goes under
-# share/ (find_package searches <prefix>/share/cmake/<name>/).
+# find_package searches <prefix>/share/cmake/<name>/ as well as lib/cmake.
 set(SPOOK_INSTALL_CMAKEDIR "${CMAKE_INSTALL_DATADIR}/cmake/spook"
     CACHE STRING "Where spookConfig.cmake is installed, relative to the prefix")
 
@@ -40,6 +41,12 @@ endif()
 unset(_spook_single_header)
 
 install(TARGETS spook EXPORT spookTargets)
+# The compiled-once library is installed where spook is the top-level project
+# (it is then built by default); a parent project that add_subdirectory()s
+# spook builds it only if it links it, so it is not in the export set there.
+if(PROJECT_IS_TOP_LEVEL)
+  install(TARGETS spook_compiled EXPORT spookTargets ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
+endif()
 install(EXPORT spookTargets
         NAMESPACE spook::
         DESTINATION "${SPOOK_INSTALL_CMAKEDIR}")
@@ -51,8 +58,7 @@ configure_package_config_file(
 write_basic_package_version_file(
   "${PROJECT_BINARY_DIR}/spookConfigVersion.cmake"
   VERSION "${PROJECT_VERSION}"
-  COMPATIBILITY SameMajorVersion
-  ARCH_INDEPENDENT)
+  COMPATIBILITY SameMajorVersion)
 install(FILES "${PROJECT_BINARY_DIR}/spookConfig.cmake"
               "${PROJECT_BINARY_DIR}/spookConfigVersion.cmake"
         DESTINATION "${SPOOK_INSTALL_CMAKEDIR}")

@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "tolerance.hpp"
 #include "toy_particles.hpp"
 
 using namespace spook;
@@ -121,7 +122,9 @@ TEST_CASE_TEMPLATE("1,000 particles without rigid bodies settle in a box", Sim, 
     return w;
   };
   double deepest = 0.0;
-  const int steps = 240;  // 4 s
+  // 4 s; 1 s in the sanitized build, which looks for memory and undefined
+  // behaviour faults (the pile has not settled then: only its walls are checked).
+  const int steps = spook::test::sweep(240, 60);
   for (int s = 0; s < steps; ++s) {
     sim->stepForward();
     deepest = std::max(deepest, worst().outside);
@@ -130,7 +133,7 @@ TEST_CASE_TEMPLATE("1,000 particles without rigid bodies settle in a box", Sim, 
   MESSAGE("deepest past a wall " << deepest << " m, fastest particle at 4 s " << end.speed << " m/s, "
                                  << contacts->numContacts() << " contacts");
   CHECK(deepest < 0.01);          // no particle through the floor or a wall
-  CHECK(end.speed < 0.05);        // settled
+  if (steps == 240) CHECK(end.speed < 0.05);  // settled
   for (std::size_t i = 0; i < particles->size(); ++i) REQUIRE(particles->position(i).z() < 1.0);  // a pile, none thrown out
 }
 

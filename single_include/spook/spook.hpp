@@ -239,22 +239,31 @@ template <class T>
 // What this translation unit sees. Header-only (no SPOOK_EXTERN_TEMPLATES):
 // every definition. Otherwise only the declarations of the step and the
 // solver, unless it implements a simulation part:
-//   SPOOK_DEFINES_STEP    the simulation step's template definitions
-//                         (sim/simulation_step.hpp), for either scalar;
-//   SPOOK_DEFINES_SOLVER  the double-only, non-template solver code
-//                         (solver/solver_impl.hpp), compiled with the double
-//                         simulation and inline (SPOOK_SOLVER_INLINE) when
-//                         header-only.
+//   SPOOK_DEFINES_STEP           the simulation step's template definitions
+//                                (sim/simulation_step.hpp), for either scalar;
+//   SPOOK_DEFINES_NON_TEMPLATES  spook's non-template functions that do work
+//                                (the double-only solver in
+//                                solver/solver_impl.hpp, the island problem,
+//                                the joints' row helpers, the convex hull),
+//                                compiled with the double simulation and
+//                                inline (SPOOK_INLINE) when header-only.
+// A header declares such a function (SPOOK_INLINE where it is a free
+// function) and defines it, with SPOOK_INLINE, in an
+// `#if defined(SPOOK_DEFINES_NON_TEMPLATES)` block: every other file that
+// includes spook then parses the declaration only and does not instantiate
+// the Eigen expressions of its body (they cost ~3 s per file).
 #if !defined(SPOOK_EXTERN_TEMPLATES) || defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) || \
     defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
 #define SPOOK_DEFINES_STEP
 #endif
 #if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
-#define SPOOK_DEFINES_SOLVER
-#define SPOOK_SOLVER_INLINE
+#define SPOOK_DEFINES_NON_TEMPLATES
+#define SPOOK_INLINE
 #elif !defined(SPOOK_EXTERN_TEMPLATES)
-#define SPOOK_DEFINES_SOLVER
-#define SPOOK_SOLVER_INLINE inline
+#define SPOOK_DEFINES_NON_TEMPLATES
+#define SPOOK_INLINE inline
+#else
+#define SPOOK_INLINE
 #endif
 
 // The API's class templates (bodies, frames, geometries, shapes, joints)
@@ -1335,15 +1344,15 @@ namespace spook::detail {
 /// One polygon face of a convex polyhedron: the plane normal·x = offset.
 template <Scalar S>
 struct ConvexFace {
-  std::vector<int> vertices;         ///< corner indices, counter-clockwise seen from outside
+  std::vector<int> vertices;           ///< corner indices, counter-clockwise seen from outside
   Vec3T<S> normal = Vec3T<S>::Zero();  ///< unit outward normal (shape frame)
-  S offset = S(0);                   ///< largest normal·x of its corners and merged points (m)
+  S offset = S(0);                     ///< largest normal·x of its corners and merged points (m)
 };
 
 /// A convex hull: its corners, its outward triangles and its polygon faces.
 template <Scalar S>
 struct ConvexHull {
-  std::vector<Vec3T<S>> vertices;              ///< the hull's corners, in input order (m)
+  std::vector<Vec3T<S>> vertices;             ///< the hull's corners, in input order (m)
   std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
   std::vector<ConvexFace<S>> faces;           ///< coplanar triangles merged into polygons
   S tolerance = S(0);                         ///< distance below which points counted as on a face (m)
@@ -1370,43 +1379,16 @@ class QuickHull {
   };
 
   /// `points` in any frame; `tolerance` (m); `attempt` picks the joggle.
-  QuickHull(std::vector<V> points, double tolerance, int attempt)
-      : p_(std::move(points)), tol_(tolerance), next_(p_.size(), -1) {
-    q_.reserve(p_.size());
-    std::uint64_t state = 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(attempt + 1);
-    for (const V& p : p_) q_.push_back(p + 0.25 * tol_ * V(jiggle(state), jiggle(state), jiggle(state)));
-  }
+  QuickHull(std::vector<V> points, double tolerance, int attempt);
 
   /// Builds the triangle hull; false when the true points span no volume.
-  bool build() {
-    if (p_.size() < 4 || !initialSimplex()) return false;
-    std::vector<int> work;
-    for (int f = 0; f < 4; ++f) work.push_back(f);
-    while (!work.empty()) {
-      const int f = work.back();
-      work.pop_back();
-      if (faces_[f].alive && !faces_[f].outside.empty()) addPoint(f, work);
-    }
-    return true;
-  }
+  bool build();
 
   /// True when round-off left some point out (then try another joggle).
   [[nodiscard]] bool leftPointsOut() const { return leftOut_; }
 
   /// The polygon faces: coplanar triangles merged, corners on straight edges dropped.
-  [[nodiscard]] std::vector<Polygon> polygons() {
-    std::vector<Polygon> polygons = mergeCoplanar();
-    dropStraightCorners(polygons);
-    for (Polygon& polygon : polygons) {
-      // Twice the loop's area vector (a fan of cross products).
-      V area = V::Zero();
-      const V& origin = p_[polygon.loop[0]];
-      for (std::size_t k = 1; k + 1 < polygon.loop.size(); ++k)
-        area += (p_[polygon.loop[k]] - origin).cross(p_[polygon.loop[k + 1]] - origin);
-      if (area.norm() > 0) polygon.normal = area.normalized();
-    }
-    return polygons;
-  }
+  [[nodiscard]] std::vector<Polygon> polygons();
 
  private:
   struct Face {
@@ -1426,294 +1408,49 @@ class QuickHull {
   };
 
   // Uniform in [-1, 1) from a splitmix64 stream: the same on every platform.
-  static double jiggle(std::uint64_t& state) {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;
-  }
+  static double jiggle(std::uint64_t& state);
 
   // Unit normal and area of the triangle a, b, c of `x`; the cross product of
   // its two shortest edges loses the fewest digits.
-  static std::pair<V, double> plane(const std::vector<V>& x, int a, int b, int c) {
-    const std::array<V, 3> e = {x[b] - x[a], x[c] - x[b], x[a] - x[c]};
-    int longest = 0;
-    for (int i = 1; i < 3; ++i)
-      if (e[i].squaredNorm() > e[longest].squaredNorm()) longest = i;
-    const V n = e[(longest + 2) % 3].cross(-e[(longest + 1) % 3]);
-    const double twiceArea = n.norm();
-    return {twiceArea > 0 ? V(n / twiceArea) : n, 0.5 * twiceArea};
-  }
+  static std::pair<V, double> plane(const std::vector<V>& x, int a, int b, int c);
 
   [[nodiscard]] double distance(const Face& f, int i) const { return f.normal.dot(q_[i]) - f.offset; }
 
-  int addFace(int a, int b, int c) {
-    Face f;
-    f.v = {a, b, c};
-    f.normal = plane(q_, a, b, c).first;
-    f.offset = f.normal.dot(q_[a] + q_[b] + q_[c]) / 3;
-    faces_.push_back(std::move(f));
-    return static_cast<int>(faces_.size()) - 1;
-  }
+  int addFace(int a, int b, int c);
 
   // Distance from joggled point i to the triangle of face f (Ericson,
   // "Real-Time Collision Detection", 2005, 5.1.5): to its plane when the
   // point projects inside it, else to the nearest edge.
-  [[nodiscard]] double triangleDistance(const Face& f, int i) const {
-    const V& x = q_[i];
-    bool inside = true;
-    double nearest = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 3; ++k) {
-      const V& a = q_[f.v[k]];
-      const V edge = q_[f.v[(k + 1) % 3]] - a;
-      inside = inside && edge.cross(x - a).dot(f.normal) >= 0;
-      const double t = std::clamp((x - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
-      nearest = std::min(nearest, (x - a - t * edge).norm());
-    }
-    return inside ? std::abs(distance(f, i)) : nearest;
-  }
+  [[nodiscard]] double triangleDistance(const Face& f, int i) const;
 
   // Files the point under the new face it is farthest above. A point on or
   // below them all is inside the hull; one within the tolerance of the
   // triangles it is above lies (and stays) within the tolerance of the hull.
   // Both are dropped. A point above the planes by less than the tolerance
   // but farther from their triangles (beyond a sharp edge) is kept.
-  void assign(int point, int first, int last) {
-    int best = -1;
-    double bestDistance = 0;
-    for (int f = first; f < last; ++f) {
-      const double d = distance(faces_[f], point);
-      if (d > bestDistance) best = f, bestDistance = d;
-    }
-    if (best < 0) return;
-    if (bestDistance <= tol_)
-      for (int f = first; f < last; ++f)
-        if (distance(faces_[f], point) > 0 && triangleDistance(faces_[f], point) <= tol_) return;
-    Face& f = faces_[best];
-    f.outside.push_back(point);
-    if (bestDistance > f.furthestDistance) f.furthest = point, f.furthestDistance = bestDistance;
-  }
+  void assign(int point, int first, int last);
 
   // A tetrahedron of extreme true points: the widest pair along an axis, the
   // point farthest from their line, the point farthest from their plane.
-  bool initialSimplex() {
-    const int n = static_cast<int>(p_.size());
-    int lo = 0, hi = 0;
-    double extent = -1;
-    for (int axis = 0; axis < 3; ++axis) {
-      int mn = 0, mx = 0;
-      for (int i = 1; i < n; ++i) {
-        if (p_[i][axis] < p_[mn][axis]) mn = i;
-        if (p_[i][axis] > p_[mx][axis]) mx = i;
-      }
-      if (p_[mx][axis] - p_[mn][axis] > extent) extent = p_[mx][axis] - p_[mn][axis], lo = mn, hi = mx;
-    }
-    if (!((p_[hi] - p_[lo]).norm() > tol_)) return false;
-    const V u = (p_[hi] - p_[lo]).normalized();
-    int third = -1, fourth = -1;
-    double far = tol_;
-    for (int i = 0; i < n; ++i)
-      if (const double d = (p_[i] - p_[lo]).cross(u).norm(); d > far) far = d, third = i;
-    if (third < 0) return false;
-    const V normal = (p_[hi] - p_[lo]).cross(p_[third] - p_[lo]).normalized();
-    far = tol_;
-    for (int i = 0; i < n; ++i)
-      if (const double d = std::abs(normal.dot(p_[i] - p_[lo])); d > far) far = d, fourth = i;
-    if (fourth < 0) return false;
-
-    int a = lo, b = hi, c = third;
-    const int d = fourth;
-    if (plane(q_, a, b, c).first.dot(q_[d] - q_[a]) > 0) std::swap(b, c);  // d below the base a, b, c
-    addFace(a, b, c);
-    addFace(a, d, b);
-    addFace(b, d, c);
-    addFace(c, d, a);
-    for (int f = 0; f < 4; ++f)
-      for (int i = 0; i < 3; ++i)
-        for (int g = 0; g < 4; ++g)
-          for (int j = 0; j < 3; ++j)
-            if (faces_[g].v[j] == faces_[f].v[(i + 1) % 3] && faces_[g].v[(j + 1) % 3] == faces_[f].v[i])
-              faces_[f].neighbor[i] = g;
-    for (int i = 0; i < n; ++i)
-      if (i != a && i != b && i != c && i != d) assign(i, 0, 4);
-    return true;
-  }
+  bool initialSimplex();
 
   // Replaces the faces the furthest point of face `start` is above by a cone
   // from that point to their horizon.
-  void addPoint(int start, std::vector<int>& work) {
-    const int eye = faces_[start].furthest;
-    ++stamp_;
-    std::vector<int> visible{start};
-    faces_[start].visited = stamp_;
-    faces_[start].visible = true;
-    for (std::size_t k = 0; k < visible.size(); ++k) {
-      for (const int nb : faces_[visible[k]].neighbor) {
-        Face& g = faces_[nb];
-        if (g.visited == stamp_) continue;
-        g.visited = stamp_;
-        g.visible = distance(g, eye) > 0;
-        if (g.visible) visible.push_back(nb);
-      }
-    }
-    // The hull's nearest point to the eye lies on a face the eye sees.
-    double gap = std::numeric_limits<double>::infinity();
-    for (const int f : visible) gap = std::min(gap, triangleDistance(faces_[f], eye));
-    if (!(gap > tol_)) {
-      discard(start, eye);
-      if (!faces_[start].outside.empty()) work.push_back(start);
-      return;
-    }
-    std::vector<Edge> horizon;
-    for (const int f : visible)
-      for (int i = 0; i < 3; ++i)
-        if (const int nb = faces_[f].neighbor[i]; !faces_[nb].visible)
-          horizon.push_back({faces_[f].v[i], faces_[f].v[(i + 1) % 3], nb});
-    const std::vector<int> order = chain(horizon);
-    if (order.empty()) {
-      // Round-off made the visible region other than a disk: leave the point out.
-      leftOut_ = true;
-      discard(start, eye);
-      if (!faces_[start].outside.empty()) work.push_back(start);
-      return;
-    }
-
-    const int first = static_cast<int>(faces_.size());
-    const int m = static_cast<int>(order.size());
-    for (int j = 0; j < m; ++j) addFace(horizon[order[j]].a, horizon[order[j]].b, eye);
-    for (int j = 0; j < m; ++j) {
-      const Edge& e = horizon[order[j]];
-      faces_[first + j].neighbor = {e.outer, first + (j + 1) % m, first + (j + m - 1) % m};
-      Face& outer = faces_[e.outer];
-      for (int i = 0; i < 3; ++i)
-        if (outer.v[i] == e.b && outer.v[(i + 1) % 3] == e.a) outer.neighbor[i] = first + j;
-    }
-    for (const int f : visible) {
-      Face& old = faces_[f];
-      old.alive = false;
-      for (const int q : old.outside)
-        if (q != eye) assign(q, first, first + m);
-      old.outside = {};
-    }
-    for (int j = first; j < first + m; ++j)
-      if (!faces_[j].outside.empty()) work.push_back(j);
-  }
+  void addPoint(int start, std::vector<int>& work);
 
   // The edges in loop order, or nothing when they do not form one loop.
-  std::vector<int> chain(const std::vector<Edge>& edges) {
-    std::vector<int> order;
-    bool simple = true;
-    for (std::size_t k = 0; k < edges.size(); ++k) {
-      if (next_[edges[k].a] != -1) simple = false;
-      next_[edges[k].a] = static_cast<int>(k);
-    }
-    if (simple && !edges.empty()) {
-      int k = 0;
-      do {
-        order.push_back(k);
-        k = next_[edges[k].b];
-      } while (k > 0 && order.size() < edges.size());
-      if (k != 0 || order.size() != edges.size()) order.clear();
-    }
-    for (const Edge& e : edges) next_[e.a] = -1;
-    return order;
-  }
+  std::vector<int> chain(const std::vector<Edge>& edges);
 
-  void discard(int face, int point) {
-    Face& f = faces_[face];
-    std::erase(f.outside, point);
-    f.furthest = -1;
-    f.furthestDistance = 0;
-    for (const int q : f.outside)
-      if (const double d = distance(f, q); d > f.furthestDistance) f.furthest = q, f.furthestDistance = d;
-  }
+  void discard(int face, int point);
 
   // Grows each polygon from the largest remaining triangle over neighbours
   // whose true corners all lie within the tolerance of its true plane.
-  std::vector<Polygon> mergeCoplanar() {
-    std::vector<int> alive;
-    std::vector<V> normal(faces_.size(), V::Zero());
-    std::vector<double> offset(faces_.size(), 0), area(faces_.size(), 0);
-    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
-      const Face& face = faces_[f];
-      if (!face.alive) continue;
-      alive.push_back(f);
-      std::tie(normal[f], area[f]) = plane(p_, face.v[0], face.v[1], face.v[2]);
-      if (!(area[f] > 0)) normal[f] = face.normal;  // a sliver flattened by the true points
-      offset[f] = normal[f].dot(p_[face.v[0]] + p_[face.v[1]] + p_[face.v[2]]) / 3;
-    }
-    std::stable_sort(alive.begin(), alive.end(), [&](int a, int b) { return area[a] > area[b]; });
-    std::vector<int> group(faces_.size(), -1);
-    std::vector<Polygon> polygons;
-    int id = 0;
-    for (const int seed : alive) {
-      if (group[seed] != -1) continue;
-      std::vector<int> members{seed};
-      group[seed] = id;
-      for (std::size_t k = 0; k < members.size(); ++k) {
-        for (const int nb : faces_[members[k]].neighbor) {
-          if (group[nb] != -1 || !(faces_[nb].normal.dot(faces_[seed].normal) > 0)) continue;
-          bool flat = true;
-          for (const int v : faces_[nb].v) flat = flat && std::abs(normal[seed].dot(p_[v]) - offset[seed]) <= tol_;
-          if (flat) group[nb] = id, members.push_back(nb);
-        }
-      }
-      std::vector<Edge> boundary;
-      for (const int f : members)
-        for (int i = 0; i < 3; ++i)
-          if (group[faces_[f].neighbor[i]] != id) boundary.push_back({faces_[f].v[i], faces_[f].v[(i + 1) % 3], -1});
-      const std::vector<int> order = chain(boundary);
-      if (!order.empty()) {
-        Polygon polygon{{}, {}, normal[seed]};
-        for (const int k : order) polygon.loop.push_back(boundary[k].a);
-        for (const int f : members) polygon.points.insert(polygon.points.end(), faces_[f].v.begin(), faces_[f].v.end());
-        polygons.push_back(std::move(polygon));
-      } else {
-        for (const int f : members) {
-          const std::vector<int> corners(faces_[f].v.begin(), faces_[f].v.end());
-          polygons.push_back({corners, corners, normal[f]});
-        }
-      }
-      ++id;
-    }
-    return polygons;
-  }
+  std::vector<Polygon> mergeCoplanar();
 
   // Drops each corner that only two polygons share and that lies within the
   // tolerance of the line through its remaining neighbours: it sits on the
   // edge between them (at a true corner three faces or more meet).
-  void dropStraightCorners(std::vector<Polygon>& polygons) const {
-    std::vector<std::array<int, 2>> owner(p_.size(), {-1, -1});
-    std::vector<int> count(p_.size(), 0);
-    for (int k = 0; k < static_cast<int>(polygons.size()); ++k)
-      for (const int v : polygons[k].loop)
-        if (++count[v] <= 2) owner[v][count[v] - 1] = k;
-    std::vector<char> dropped(p_.size(), 0);
-    std::vector<std::size_t> left(polygons.size());
-    for (std::size_t k = 0; k < polygons.size(); ++k) left[k] = polygons[k].loop.size();
-    for (const Polygon& polygon : polygons) {
-      const std::vector<int>& loop = polygon.loop;
-      const std::size_t n = loop.size();
-      for (std::size_t i = 0; i < n; ++i) {
-        const int v = loop[i];
-        if (count[v] != 2 || dropped[v] || left[owner[v][0]] <= 3 || left[owner[v][1]] <= 3) continue;
-        std::size_t before = i, after = i;
-        do before = (before + n - 1) % n;
-        while (dropped[loop[before]]);
-        do after = (after + 1) % n;
-        while (dropped[loop[after]]);
-        const V& a = p_[loop[before]];
-        const V line = p_[loop[after]] - a;
-        if ((p_[v] - a).cross(line).norm() <= tol_ * line.norm()) {
-          dropped[v] = 1;
-          --left[owner[v][0]];
-          --left[owner[v][1]];
-        }
-      }
-    }
-    for (Polygon& polygon : polygons) std::erase_if(polygon.loop, [&](int v) { return dropped[v] != 0; });
-  }
+  void dropStraightCorners(std::vector<Polygon>& polygons) const;
 
   std::vector<V> p_;  // the true points
   std::vector<V> q_;  // the joggled points the hull is built on
@@ -1723,6 +1460,308 @@ class QuickHull {
   int stamp_ = 0;
   bool leftOut_ = false;
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE QuickHull::QuickHull(std::vector<V> points, double tolerance, int attempt)
+    : p_(std::move(points)), tol_(tolerance), next_(p_.size(), -1) {
+  q_.reserve(p_.size());
+  std::uint64_t state = 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(attempt + 1);
+  for (const V& p : p_) q_.push_back(p + 0.25 * tol_ * V(jiggle(state), jiggle(state), jiggle(state)));
+}
+
+SPOOK_INLINE bool QuickHull::build() {
+  if (p_.size() < 4 || !initialSimplex()) return false;
+  std::vector<int> work;
+  for (int f = 0; f < 4; ++f) work.push_back(f);
+  while (!work.empty()) {
+    const int f = work.back();
+    work.pop_back();
+    if (faces_[f].alive && !faces_[f].outside.empty()) addPoint(f, work);
+  }
+  return true;
+}
+
+SPOOK_INLINE auto QuickHull::polygons() -> std::vector<Polygon> {
+  std::vector<Polygon> polygons = mergeCoplanar();
+  dropStraightCorners(polygons);
+  for (Polygon& polygon : polygons) {
+    // Twice the loop's area vector (a fan of cross products).
+    V area = V::Zero();
+    const V& origin = p_[polygon.loop[0]];
+    for (std::size_t k = 1; k + 1 < polygon.loop.size(); ++k)
+      area += (p_[polygon.loop[k]] - origin).cross(p_[polygon.loop[k + 1]] - origin);
+    if (area.norm() > 0) polygon.normal = area.normalized();
+  }
+  return polygons;
+}
+
+SPOOK_INLINE double QuickHull::jiggle(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;
+}
+
+SPOOK_INLINE auto QuickHull::plane(const std::vector<V>& x, int a, int b, int c) -> std::pair<V, double> {
+  const std::array<V, 3> e = {x[b] - x[a], x[c] - x[b], x[a] - x[c]};
+  int longest = 0;
+  for (int i = 1; i < 3; ++i)
+    if (e[i].squaredNorm() > e[longest].squaredNorm()) longest = i;
+  const V n = e[(longest + 2) % 3].cross(-e[(longest + 1) % 3]);
+  const double twiceArea = n.norm();
+  return {twiceArea > 0 ? V(n / twiceArea) : n, 0.5 * twiceArea};
+}
+
+SPOOK_INLINE int QuickHull::addFace(int a, int b, int c) {
+  Face f;
+  f.v = {a, b, c};
+  f.normal = plane(q_, a, b, c).first;
+  f.offset = f.normal.dot(q_[a] + q_[b] + q_[c]) / 3;
+  faces_.push_back(std::move(f));
+  return static_cast<int>(faces_.size()) - 1;
+}
+
+SPOOK_INLINE double QuickHull::triangleDistance(const Face& f, int i) const {
+  const V& x = q_[i];
+  bool inside = true;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const V& a = q_[f.v[k]];
+    const V edge = q_[f.v[(k + 1) % 3]] - a;
+    inside = inside && edge.cross(x - a).dot(f.normal) >= 0;
+    const double t = std::clamp((x - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+    nearest = std::min(nearest, (x - a - t * edge).norm());
+  }
+  return inside ? std::abs(distance(f, i)) : nearest;
+}
+
+SPOOK_INLINE void QuickHull::assign(int point, int first, int last) {
+  int best = -1;
+  double bestDistance = 0;
+  for (int f = first; f < last; ++f) {
+    const double d = distance(faces_[f], point);
+    if (d > bestDistance) best = f, bestDistance = d;
+  }
+  if (best < 0) return;
+  if (bestDistance <= tol_)
+    for (int f = first; f < last; ++f)
+      if (distance(faces_[f], point) > 0 && triangleDistance(faces_[f], point) <= tol_) return;
+  Face& f = faces_[best];
+  f.outside.push_back(point);
+  if (bestDistance > f.furthestDistance) f.furthest = point, f.furthestDistance = bestDistance;
+}
+
+SPOOK_INLINE bool QuickHull::initialSimplex() {
+  const int n = static_cast<int>(p_.size());
+  int lo = 0, hi = 0;
+  double extent = -1;
+  for (int axis = 0; axis < 3; ++axis) {
+    int mn = 0, mx = 0;
+    for (int i = 1; i < n; ++i) {
+      if (p_[i][axis] < p_[mn][axis]) mn = i;
+      if (p_[i][axis] > p_[mx][axis]) mx = i;
+    }
+    if (p_[mx][axis] - p_[mn][axis] > extent) extent = p_[mx][axis] - p_[mn][axis], lo = mn, hi = mx;
+  }
+  if (!((p_[hi] - p_[lo]).norm() > tol_)) return false;
+  const V u = (p_[hi] - p_[lo]).normalized();
+  int third = -1, fourth = -1;
+  double far = tol_;
+  for (int i = 0; i < n; ++i)
+    if (const double d = (p_[i] - p_[lo]).cross(u).norm(); d > far) far = d, third = i;
+  if (third < 0) return false;
+  const V normal = (p_[hi] - p_[lo]).cross(p_[third] - p_[lo]).normalized();
+  far = tol_;
+  for (int i = 0; i < n; ++i)
+    if (const double d = std::abs(normal.dot(p_[i] - p_[lo])); d > far) far = d, fourth = i;
+  if (fourth < 0) return false;
+
+  int a = lo, b = hi, c = third;
+  const int d = fourth;
+  if (plane(q_, a, b, c).first.dot(q_[d] - q_[a]) > 0) std::swap(b, c);  // d below the base a, b, c
+  addFace(a, b, c);
+  addFace(a, d, b);
+  addFace(b, d, c);
+  addFace(c, d, a);
+  for (int f = 0; f < 4; ++f)
+    for (int i = 0; i < 3; ++i)
+      for (int g = 0; g < 4; ++g)
+        for (int j = 0; j < 3; ++j)
+          if (faces_[g].v[j] == faces_[f].v[(i + 1) % 3] && faces_[g].v[(j + 1) % 3] == faces_[f].v[i])
+            faces_[f].neighbor[i] = g;
+  for (int i = 0; i < n; ++i)
+    if (i != a && i != b && i != c && i != d) assign(i, 0, 4);
+  return true;
+}
+
+SPOOK_INLINE void QuickHull::addPoint(int start, std::vector<int>& work) {
+  const int eye = faces_[start].furthest;
+  ++stamp_;
+  std::vector<int> visible{start};
+  faces_[start].visited = stamp_;
+  faces_[start].visible = true;
+  for (std::size_t k = 0; k < visible.size(); ++k) {
+    for (const int nb : faces_[visible[k]].neighbor) {
+      Face& g = faces_[nb];
+      if (g.visited == stamp_) continue;
+      g.visited = stamp_;
+      g.visible = distance(g, eye) > 0;
+      if (g.visible) visible.push_back(nb);
+    }
+  }
+  // The hull's nearest point to the eye lies on a face the eye sees.
+  double gap = std::numeric_limits<double>::infinity();
+  for (const int f : visible) gap = std::min(gap, triangleDistance(faces_[f], eye));
+  if (!(gap > tol_)) {
+    discard(start, eye);
+    if (!faces_[start].outside.empty()) work.push_back(start);
+    return;
+  }
+  std::vector<Edge> horizon;
+  for (const int f : visible)
+    for (int i = 0; i < 3; ++i)
+      if (const int nb = faces_[f].neighbor[i]; !faces_[nb].visible)
+        horizon.push_back({faces_[f].v[i], faces_[f].v[(i + 1) % 3], nb});
+  const std::vector<int> order = chain(horizon);
+  if (order.empty()) {
+    // Round-off made the visible region other than a disk: leave the point out.
+    leftOut_ = true;
+    discard(start, eye);
+    if (!faces_[start].outside.empty()) work.push_back(start);
+    return;
+  }
+
+  const int first = static_cast<int>(faces_.size());
+  const int m = static_cast<int>(order.size());
+  for (int j = 0; j < m; ++j) addFace(horizon[order[j]].a, horizon[order[j]].b, eye);
+  for (int j = 0; j < m; ++j) {
+    const Edge& e = horizon[order[j]];
+    faces_[first + j].neighbor = {e.outer, first + (j + 1) % m, first + (j + m - 1) % m};
+    Face& outer = faces_[e.outer];
+    for (int i = 0; i < 3; ++i)
+      if (outer.v[i] == e.b && outer.v[(i + 1) % 3] == e.a) outer.neighbor[i] = first + j;
+  }
+  for (const int f : visible) {
+    Face& old = faces_[f];
+    old.alive = false;
+    for (const int q : old.outside)
+      if (q != eye) assign(q, first, first + m);
+    old.outside = {};
+  }
+  for (int j = first; j < first + m; ++j)
+    if (!faces_[j].outside.empty()) work.push_back(j);
+}
+
+SPOOK_INLINE std::vector<int> QuickHull::chain(const std::vector<Edge>& edges) {
+  std::vector<int> order;
+  bool simple = true;
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    if (next_[edges[k].a] != -1) simple = false;
+    next_[edges[k].a] = static_cast<int>(k);
+  }
+  if (simple && !edges.empty()) {
+    int k = 0;
+    do {
+      order.push_back(k);
+      k = next_[edges[k].b];
+    } while (k > 0 && order.size() < edges.size());
+    if (k != 0 || order.size() != edges.size()) order.clear();
+  }
+  for (const Edge& e : edges) next_[e.a] = -1;
+  return order;
+}
+
+SPOOK_INLINE void QuickHull::discard(int face, int point) {
+  Face& f = faces_[face];
+  std::erase(f.outside, point);
+  f.furthest = -1;
+  f.furthestDistance = 0;
+  for (const int q : f.outside)
+    if (const double d = distance(f, q); d > f.furthestDistance) f.furthest = q, f.furthestDistance = d;
+}
+
+SPOOK_INLINE auto QuickHull::mergeCoplanar() -> std::vector<Polygon> {
+  std::vector<int> alive;
+  std::vector<V> normal(faces_.size(), V::Zero());
+  std::vector<double> offset(faces_.size(), 0), area(faces_.size(), 0);
+  for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+    const Face& face = faces_[f];
+    if (!face.alive) continue;
+    alive.push_back(f);
+    std::tie(normal[f], area[f]) = plane(p_, face.v[0], face.v[1], face.v[2]);
+    if (!(area[f] > 0)) normal[f] = face.normal;  // a sliver flattened by the true points
+    offset[f] = normal[f].dot(p_[face.v[0]] + p_[face.v[1]] + p_[face.v[2]]) / 3;
+  }
+  std::stable_sort(alive.begin(), alive.end(), [&](int a, int b) { return area[a] > area[b]; });
+  std::vector<int> group(faces_.size(), -1);
+  std::vector<Polygon> polygons;
+  int id = 0;
+  for (const int seed : alive) {
+    if (group[seed] != -1) continue;
+    std::vector<int> members{seed};
+    group[seed] = id;
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      for (const int nb : faces_[members[k]].neighbor) {
+        if (group[nb] != -1 || !(faces_[nb].normal.dot(faces_[seed].normal) > 0)) continue;
+        bool flat = true;
+        for (const int v : faces_[nb].v) flat = flat && std::abs(normal[seed].dot(p_[v]) - offset[seed]) <= tol_;
+        if (flat) group[nb] = id, members.push_back(nb);
+      }
+    }
+    std::vector<Edge> boundary;
+    for (const int f : members)
+      for (int i = 0; i < 3; ++i)
+        if (group[faces_[f].neighbor[i]] != id) boundary.push_back({faces_[f].v[i], faces_[f].v[(i + 1) % 3], -1});
+    const std::vector<int> order = chain(boundary);
+    if (!order.empty()) {
+      Polygon polygon{{}, {}, normal[seed]};
+      for (const int k : order) polygon.loop.push_back(boundary[k].a);
+      for (const int f : members) polygon.points.insert(polygon.points.end(), faces_[f].v.begin(), faces_[f].v.end());
+      polygons.push_back(std::move(polygon));
+    } else {
+      for (const int f : members) {
+        const std::vector<int> corners(faces_[f].v.begin(), faces_[f].v.end());
+        polygons.push_back({corners, corners, normal[f]});
+      }
+    }
+    ++id;
+  }
+  return polygons;
+}
+
+SPOOK_INLINE void QuickHull::dropStraightCorners(std::vector<Polygon>& polygons) const {
+  std::vector<std::array<int, 2>> owner(p_.size(), {-1, -1});
+  std::vector<int> count(p_.size(), 0);
+  for (int k = 0; k < static_cast<int>(polygons.size()); ++k)
+    for (const int v : polygons[k].loop)
+      if (++count[v] <= 2) owner[v][count[v] - 1] = k;
+  std::vector<char> dropped(p_.size(), 0);
+  std::vector<std::size_t> left(polygons.size());
+  for (std::size_t k = 0; k < polygons.size(); ++k) left[k] = polygons[k].loop.size();
+  for (const Polygon& polygon : polygons) {
+    const std::vector<int>& loop = polygon.loop;
+    const std::size_t n = loop.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const int v = loop[i];
+      if (count[v] != 2 || dropped[v] || left[owner[v][0]] <= 3 || left[owner[v][1]] <= 3) continue;
+      std::size_t before = i, after = i;
+      do before = (before + n - 1) % n;
+      while (dropped[loop[before]]);
+      do after = (after + 1) % n;
+      while (dropped[loop[after]]);
+      const V& a = p_[loop[before]];
+      const V line = p_[loop[after]] - a;
+      if ((p_[v] - a).cross(line).norm() <= tol_ * line.norm()) {
+        dropped[v] = 1;
+        --left[owner[v][0]];
+        --left[owner[v][1]];
+      }
+    }
+  }
+  for (Polygon& polygon : polygons) std::erase_if(polygon.loop, [&](int v) { return dropped[v] != 0; });
+}
+#endif
 
 /// Tolerance of the hull, relative to the cloud's half bounding-box diagonal.
 /// The hull is built in double on points moved to their box center, where a
@@ -9035,10 +9074,10 @@ struct IslandProblem {
     /// the last step's, then each direct solve's own result.
     double guess = 0.0;
     SolveType solveType = SolveType::DIRECT;
-    int constraint = -1;                           ///< local index of its constraint's first row (Row::constraint)
-    int normal = -1;                               ///< friction rows: local index of their normal row
-    int partner = -1;                              ///< cone rows: the other tangent row of the point
-    double mu = 0.0;                               ///< friction coefficient
+    int constraint = -1;  ///< local index of its constraint's first row (Row::constraint)
+    int normal = -1;      ///< friction rows: local index of their normal row
+    int partner = -1;     ///< cone rows: the other tangent row of the point
+    double mu = 0.0;      ///< friction coefficient
     FrictionBound frictionBound = FrictionBound::FIXED;
     /// Cone rows in a direct solve: the share |d_i| of the bound μΛn this
     /// tangent gets, d the friction direction of the point (friction_bounds.hpp).
@@ -9078,84 +9117,21 @@ struct IslandProblem {
     }
   }
   /// The entry's three body slots (−1: none).
-  [[nodiscard]] std::array<int, 3> bodiesOf(const Entry& e) const {
-    return {e.body1, e.body2, e.extra >= 0 ? extraBodies[static_cast<std::size_t>(e.extra)].body : -1};
-  }
+  [[nodiscard]] std::array<int, 3> bodiesOf(const Entry& e) const;
   /// Adds body b's block (J, W = M⁻¹Jᵀ) to the entry, or adds to the
   /// block it has for b.
-  void addBody(Entry& e, int b, const Vec6d& J, const Vec6d& W) {
-    if (e.body1 < 0) {
-      e.body1 = b;
-      e.J1 = J;
-      e.W1 = W;
-    } else if (e.body1 == b) {
-      e.J1 += J;
-      e.W1 += W;
-    } else if (e.body2 < 0) {
-      e.body2 = b;
-      e.J2 = J;
-      e.W2 = W;
-    } else if (e.body2 == b) {
-      e.J2 += J;
-      e.W2 += W;
-    } else if (e.extra < 0) {
-      e.extra = static_cast<int>(extraBodies.size());
-      extraBodies.push_back({b, J, W});
-    } else {
-      ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
-      x.J += J;
-      x.W += W;
-    }
-  }
+  void addBody(Entry& e, int b, const Vec6d& J, const Vec6d& W);
   /// The same with W = M⁻¹Jᵀ of a body of inverse mass and inertia
   /// (world), formed in the entry's own storage where the body is new to it.
-  void addBody(Entry& e, int b, const Vec6d& J, const Mat3d& inverseMass, const Mat3d& inverseInertia) {
-    Vec6d* slotJ = nullptr;
-    Vec6d* slotW = nullptr;
-    if (e.body1 < 0) {
-      e.body1 = b;
-      slotJ = &e.J1;
-      slotW = &e.W1;
-    } else if (e.body2 < 0 && e.body1 != b) {
-      e.body2 = b;
-      slotJ = &e.J2;
-      slotW = &e.W2;
-    }
-    if (slotJ) {
-      *slotJ = J;
-      slotW->head<3>().noalias() = inverseMass * J.head<3>();
-      slotW->tail<3>().noalias() = inverseInertia * J.tail<3>();
-      return;
-    }
-    Vec6d W;
-    W << inverseMass * J.head<3>(), inverseInertia * J.tail<3>();
-    addBody(e, b, J, W);
-  }
+  void addBody(Entry& e, int b, const Vec6d& J, const Mat3d& inverseMass, const Mat3d& inverseInertia);
   /// J·W over the entry's bodies: its diagonal of S = G M⁻¹ Gᵀ.
-  [[nodiscard]] double mobility(const Entry& e) const {
-    double s = 0.0;
-    if (e.body1 >= 0) s += e.J1.dot(e.W1);
-    if (e.body2 >= 0) s += e.J2.dot(e.W2);
-    if (e.extra >= 0) s += extraBodies[static_cast<std::size_t>(e.extra)].J.dot(extraBodies[static_cast<std::size_t>(e.extra)].W);
-    return s;
-  }
+  [[nodiscard]] double mobility(const Entry& e) const;
 
   /// Δv of every body from the impulses of all rows.
-  [[nodiscard]] std::vector<Vec6d> velocityChange() const {
-    std::vector<Vec6d> dv;
-    velocityChange(dv);
-    return dv;
-  }
-  void velocityChange(std::vector<Vec6d>& dv) const {
-    dv.assign(static_cast<std::size_t>(numBodies), Vec6d::Zero());
-    for (int i = 0; i < static_cast<int>(rows.size()); ++i) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
-  }
+  [[nodiscard]] std::vector<Vec6d> velocityChange() const;
+  void velocityChange(std::vector<Vec6d>& dv) const;
   /// Δv of every body from the impulses of `subset` (rows not in it count zero).
-  [[nodiscard]] std::vector<Vec6d> velocityChange(const std::vector<int>& subset) const {
-    std::vector<Vec6d> dv(static_cast<std::size_t>(numBodies), Vec6d::Zero());
-    for (int i : subset) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
-    return dv;
-  }
+  [[nodiscard]] std::vector<Vec6d> velocityChange(const std::vector<int>& subset) const;
   SPOOK_ALWAYS_INLINE void addImpulse(std::vector<Vec6d>& dv, int i, double impulse) const {
     // Written out (not forEachBody): the iterative sweeps' innermost loop.
     const Entry& e = rows[static_cast<std::size_t>(i)];
@@ -9167,15 +9143,8 @@ struct IslandProblem {
     }
   }
   /// The entries of `indices`, for restore() after an attempt is dropped.
-  [[nodiscard]] std::vector<Entry> entries(const std::vector<int>& indices) const {
-    std::vector<Entry> kept;
-    kept.reserve(indices.size());
-    for (int i : indices) kept.push_back(rows[static_cast<std::size_t>(i)]);
-    return kept;
-  }
-  void restore(const std::vector<int>& indices, const std::vector<Entry>& kept) {
-    for (std::size_t k = 0; k < indices.size(); ++k) rows[static_cast<std::size_t>(indices[k])] = kept[k];
-  }
+  [[nodiscard]] std::vector<Entry> entries(const std::vector<int>& indices) const;
+  void restore(const std::vector<int>& indices, const std::vector<Entry>& kept);
   /// G_i Δv.
   [[nodiscard]] SPOOK_ALWAYS_INLINE double rowVelocity(int i, const std::vector<Vec6d>& dv) const {
     const Entry& e = rows[static_cast<std::size_t>(i)];
@@ -9189,22 +9158,119 @@ struct IslandProblem {
     return v;
   }
   /// (S + Σ)_ij for rows i ≠ j: the coupling through their shared bodies.
-  [[nodiscard]] double coupling(int i, int j) const {
-    const Entry& a = rows[static_cast<std::size_t>(i)];
-    const Entry& b = rows[static_cast<std::size_t>(j)];
-    double s = 0.0;
-    forEachBody(a, [&](int bodyA, const Vec6d& J, const Vec6d&) {
-      forEachBody(b, [&](int bodyB, const Vec6d&, const Vec6d& W) {
-        if (bodyA == bodyB) s += J.dot(W);
-      });
-    });
-    return s;
-  }
+  [[nodiscard]] double coupling(int i, int j) const;
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE std::array<int, 3> IslandProblem::bodiesOf(const Entry& e) const {
+  return {e.body1, e.body2, e.extra >= 0 ? extraBodies[static_cast<std::size_t>(e.extra)].body : -1};
+}
+
+SPOOK_INLINE void IslandProblem::addBody(Entry& e, int b, const Vec6d& J, const Vec6d& W) {
+  if (e.body1 < 0) {
+    e.body1 = b;
+    e.J1 = J;
+    e.W1 = W;
+  } else if (e.body1 == b) {
+    e.J1 += J;
+    e.W1 += W;
+  } else if (e.body2 < 0) {
+    e.body2 = b;
+    e.J2 = J;
+    e.W2 = W;
+  } else if (e.body2 == b) {
+    e.J2 += J;
+    e.W2 += W;
+  } else if (e.extra < 0) {
+    e.extra = static_cast<int>(extraBodies.size());
+    extraBodies.push_back({b, J, W});
+  } else {
+    ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
+    x.J += J;
+    x.W += W;
+  }
+}
+
+SPOOK_INLINE void IslandProblem::addBody(Entry& e, int b, const Vec6d& J, const Mat3d& inverseMass,
+                                         const Mat3d& inverseInertia) {
+  Vec6d* slotJ = nullptr;
+  Vec6d* slotW = nullptr;
+  if (e.body1 < 0) {
+    e.body1 = b;
+    slotJ = &e.J1;
+    slotW = &e.W1;
+  } else if (e.body2 < 0 && e.body1 != b) {
+    e.body2 = b;
+    slotJ = &e.J2;
+    slotW = &e.W2;
+  }
+  if (slotJ) {
+    *slotJ = J;
+    slotW->head<3>().noalias() = inverseMass * J.head<3>();
+    slotW->tail<3>().noalias() = inverseInertia * J.tail<3>();
+    return;
+  }
+  Vec6d W;
+  W << inverseMass * J.head<3>(), inverseInertia * J.tail<3>();
+  addBody(e, b, J, W);
+}
+
+SPOOK_INLINE double IslandProblem::mobility(const Entry& e) const {
+  double s = 0.0;
+  if (e.body1 >= 0) s += e.J1.dot(e.W1);
+  if (e.body2 >= 0) s += e.J2.dot(e.W2);
+  if (e.extra >= 0)
+    s += extraBodies[static_cast<std::size_t>(e.extra)].J.dot(extraBodies[static_cast<std::size_t>(e.extra)].W);
+  return s;
+}
+
+SPOOK_INLINE std::vector<Vec6d> IslandProblem::velocityChange() const {
+  std::vector<Vec6d> dv;
+  velocityChange(dv);
+  return dv;
+}
+
+SPOOK_INLINE void IslandProblem::velocityChange(std::vector<Vec6d>& dv) const {
+  dv.assign(static_cast<std::size_t>(numBodies), Vec6d::Zero());
+  for (int i = 0; i < static_cast<int>(rows.size()); ++i) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
+}
+
+SPOOK_INLINE std::vector<Vec6d> IslandProblem::velocityChange(const std::vector<int>& subset) const {
+  std::vector<Vec6d> dv(static_cast<std::size_t>(numBodies), Vec6d::Zero());
+  for (int i : subset) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
+  return dv;
+}
+
+SPOOK_INLINE auto IslandProblem::entries(const std::vector<int>& indices) const -> std::vector<Entry> {
+  std::vector<Entry> kept;
+  kept.reserve(indices.size());
+  for (int i : indices) kept.push_back(rows[static_cast<std::size_t>(i)]);
+  return kept;
+}
+
+SPOOK_INLINE void IslandProblem::restore(const std::vector<int>& indices, const std::vector<Entry>& kept) {
+  for (std::size_t k = 0; k < indices.size(); ++k) rows[static_cast<std::size_t>(indices[k])] = kept[k];
+}
+
+SPOOK_INLINE double IslandProblem::coupling(int i, int j) const {
+  const Entry& a = rows[static_cast<std::size_t>(i)];
+  const Entry& b = rows[static_cast<std::size_t>(j)];
+  double s = 0.0;
+  forEachBody(a, [&](int bodyA, const Vec6d& J, const Vec6d&) {
+    forEachBody(b, [&](int bodyB, const Vec6d&, const Vec6d& W) {
+      if (bodyA == bodyB) s += J.dot(W);
+    });
+  });
+  return s;
+}
+#endif
 
 /// Complementarity error of row i at residual w = (S+Σ)Λ − q (m/s): |w| for
 /// a row strictly inside its bounds, the wrong-signed part of w at a bound.
-[[nodiscard]] inline double complementarityError(const IslandProblem::Entry& e, double w) {
+[[nodiscard]] SPOOK_INLINE double complementarityError(const IslandProblem::Entry& e, double w);
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE double complementarityError(const IslandProblem::Entry& e, double w) {
   const double tolerance = 1e-12 * (1.0 + std::abs(e.impulse));
   const bool atLower = e.impulse <= e.lower + tolerance;
   const bool atUpper = e.impulse >= e.upper - tolerance;
@@ -9213,6 +9279,7 @@ struct IslandProblem {
   if (atUpper) return std::max(0.0, w);
   return std::abs(w);
 }
+#endif
 
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_SOLVER_ISLAND_PROBLEM_HPP
@@ -9258,35 +9325,14 @@ struct RowSink {
   /// kept when null).
   std::vector<SecondOrder>* curvatures = nullptr;
 
-  Row& add(const Vec6d& J1, const Vec6d& J2, double* impulse) {
-    Row& row = rows->emplace_back();
-    row.body1 = body1;
-    row.body2 = body2;
-    row.J1 = J1;
-    row.J2 = J2;
-    row.solveType = solveType;
-    if (slots) slots->push_back(impulse);
-    return row;
-  }
+  Row& add(const Vec6d& J1, const Vec6d& J2, double* impulse);
   /// The lever arms (world, m) of the row added last (LeverArms).
-  void setArms(const Vec3d& arm1, const Vec3d& arm2) {
-    if (arms) arms->push_back({static_cast<int>(rows->size()) - 1, arm1, arm2});
-  }
+  void setArms(const Vec3d& arm1, const Vec3d& arm2);
   /// The second-order term κ of the row added last (SecondOrder), kept only
   /// when the rows are post-stabilized (`secondOrder`).
-  void setCurvature(double kappa) {
-    if (secondOrder && curvatures) curvatures->push_back({static_cast<int>(rows->size()) - 1, kappa});
-  }
+  void setCurvature(double kappa);
   /// Adds to the second-order term of an earlier row i.
-  void addCurvature(std::size_t i, double kappa) {
-    if (!secondOrder || !curvatures) return;
-    auto it = curvatures->end();
-    while (it != curvatures->begin() && std::prev(it)->row >= static_cast<int>(i)) --it;
-    if (it != curvatures->end() && it->row == static_cast<int>(i))
-      it->curvature += kappa;
-    else
-      curvatures->insert(it, {static_cast<int>(i), kappa});
-  }
+  void addCurvature(std::size_t i, double kappa);
   /// Rows written so far: the index the next row gets.
   [[nodiscard]] std::size_t size() const { return rows->size(); }
   /// The slot of row i (nullptr when slots are not kept).
@@ -9318,11 +9364,38 @@ struct RowSink {
   }
 };
 
-inline Vec6d linearAngular(const Vec3d& linear, const Vec3d& angular) {
-  Vec6d J;
-  J << linear, angular;
-  return J;
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Row& RowSink::add(const Vec6d& J1, const Vec6d& J2, double* impulse) {
+  Row& row = rows->emplace_back();
+  row.body1 = body1;
+  row.body2 = body2;
+  row.J1 = J1;
+  row.J2 = J2;
+  row.solveType = solveType;
+  if (slots) slots->push_back(impulse);
+  return row;
 }
+
+SPOOK_INLINE void RowSink::setArms(const Vec3d& arm1, const Vec3d& arm2) {
+  if (arms) arms->push_back({static_cast<int>(rows->size()) - 1, arm1, arm2});
+}
+
+SPOOK_INLINE void RowSink::setCurvature(double kappa) {
+  if (secondOrder && curvatures) curvatures->push_back({static_cast<int>(rows->size()) - 1, kappa});
+}
+
+SPOOK_INLINE void RowSink::addCurvature(std::size_t i, double kappa) {
+  if (!secondOrder || !curvatures) return;
+  auto it = curvatures->end();
+  while (it != curvatures->begin() && std::prev(it)->row >= static_cast<int>(i)) --it;
+  if (it != curvatures->end() && it->row == static_cast<int>(i))
+    it->curvature += kappa;
+  else
+    curvatures->insert(it, {static_cast<int>(i), kappa});
+}
+#endif
+
+SPOOK_INLINE Vec6d linearAngular(const Vec3d& linear, const Vec3d& angular);
 
 /// A scalar coordinate of a joint's free motion (an angle or a position)
 /// with its Jacobian: what Motor1D, Lock1D and Range1D act on.
@@ -9338,11 +9411,7 @@ struct Coordinate {
 };
 
 /// The relative rotation of frame 1 in frame 2, q₂* q₁, with w ≥ 0.
-[[nodiscard]] inline Quatd relativeRotation(const Attachments& a) {
-  Quatd q = a.q2.conjugate() * a.q1;
-  if (q.w() < 0.0) q.coeffs() = -q.coeffs();
-  return q;
-}
+[[nodiscard]] SPOOK_INLINE Quatd relativeRotation(const Attachments& a);
 
 /// Keeps an angle continuous across ±π: the raw angle in (−π, π] is turned
 /// into the value nearest the last one.
@@ -9363,6 +9432,19 @@ class Winding {
   bool started_ = false;
 };
 
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Vec6d linearAngular(const Vec3d& linear, const Vec3d& angular) {
+  Vec6d J;
+  J << linear, angular;
+  return J;
+}
+
+SPOOK_INLINE Quatd relativeRotation(const Attachments& a) {
+  Quatd q = a.q2.conjugate() * a.q1;
+  if (q.w() < 0.0) q.coeffs() = -q.coeffs();
+  return q;
+}
+#endif
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_ATTACHMENTS_HPP
 // --- end spook/constraints/attachments.hpp ---
@@ -9742,47 +9824,37 @@ struct ElementaryOptions {
 // g(q) = 0 with Jacobians G = ∂ġ/∂(v₁, ω₁, v₂, ω₂), centers of mass as the
 // reference points, frame 2 (body 2 or the world) as the reference frame.
 
-inline Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, double g, const RowParameters& p,
-                         double* impulse) {
-  Row& row = sink.add(J1, J2, impulse);
-  row.violation = g;
-  row.compliance = p.compliance;
-  row.damping = p.damping;
-  return row;
-}
+SPOOK_INLINE Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, double g, const RowParameters& p,
+                         double* impulse);
 
 /// Centripetal part of the separation's second derivative,
 /// ω₁×(ω₁×r₁) − ω₂×(ω₂×r₂), and its rate ḋ = v₁ + ω₁×r₁ − v₂ − ω₂×r₂.
-inline Vec3d separationCentripetal(const Attachments& a) {
-  const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>();
-  return w1.cross(w1.cross(a.r1())) - w2.cross(w2.cross(a.r2()));
-}
-inline Vec3d separationRate(const Attachments& a) {
-  return a.v1.head<3>() + a.v1.tail<3>().cross(a.r1()) - a.v2.head<3>() - a.v2.tail<3>().cross(a.r2());
-}
+SPOOK_INLINE Vec3d separationCentripetal(const Attachments& a);
+SPOOK_INLINE Vec3d separationRate(const Attachments& a);
 
 /// κ = ½ vᵀ∇²g v (SecondOrder::curvature) of g = (p₁ − p₂)·n with the frame-2 axis
 /// n turning with ω₂: ½(d̈·n + d·n̈) + ḋ·ṅ, d̈ and n̈ their centripetal parts.
-inline double separationCurvature(const Attachments& a, const Vec3d& n) {
-  const Vec3d w2 = a.v2.tail<3>(), dn = w2.cross(n);
-  return 0.5 * (separationCentripetal(a).dot(n) + (a.p1 - a.p2).dot(w2.cross(dn))) + separationRate(a).dot(dn);
-}
+SPOOK_INLINE double separationCurvature(const Attachments& a, const Vec3d& n);
 
 /// Frame origins coincide: g = p₁ − p₂ (3 rows, world axes).
 struct Spherical {
   static constexpr int kRows = 3;
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
-                      const ElementaryOptions&) {
-    const Vec3d d = a.p1 - a.p2, r1 = a.r1(), r2 = a.r2();
-    const Vec3d curvature = sink.secondOrder ? Vec3d(0.5 * separationCentripetal(a)) : Vec3d::Zero();
-    for (int k = 0; k < 3; ++k) {
-      const Vec3d e = Vec3d::Unit(k);
-      holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
-      sink.setArms(r1, r2);
-      sink.setCurvature(curvature[k]);
-    }
-  }
+                      const ElementaryOptions&);
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void Spherical::addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse, const ElementaryOptions&) {
+  const Vec3d d = a.p1 - a.p2, r1 = a.r1(), r2 = a.r2();
+  const Vec3d curvature = sink.secondOrder ? Vec3d(0.5 * separationCentripetal(a)) : Vec3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const Vec3d e = Vec3d::Unit(k);
+    holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
+    sink.setArms(r1, r2);
+    sink.setCurvature(curvature[k]);
+  }
+}
+#endif
 
 /// Axis A1 of frame 1 stays perpendicular to axis A2 of frame 2: g = a·b,
 /// ġ = (ω₁ − ω₂)·(a × b).
@@ -9823,37 +9895,72 @@ struct Dot2 {
 struct QuatLock {
   static constexpr int kRows = 3;
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
-                      const ElementaryOptions& options) {
-    const Quatd q = relativeRotation(a);
-    const Vec3d v = q.vec();
-    Mat3d B = q.w() * Mat3d::Identity();
-    B(0, 1) = v.z();
-    B(0, 2) = -v.y();
-    B(1, 0) = -v.z();
-    B(1, 2) = v.x();
-    B(2, 0) = v.y();
-    B(2, 1) = -v.x();
-    const Mat3d A = B * a.R2.transpose();
-    double scale = 1.0;
-    if (options.linearize) {
-      const double theta = 2.0 * std::atan2(v.norm(), q.w());
-      if (theta > 1e-6) scale = std::sin(theta) / theta;
-    }
-    for (int k = 0; k < 3; ++k) {
-      const Vec3d n = A.row(k).transpose();
-      RowParameters pk = p[k];
-      pk.compliance *= scale;
-      holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), 2.0 * v[k], pk,
-                   impulse + k);
-    }
-  }
+                      const ElementaryOptions& options);
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void QuatLock::addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse, const ElementaryOptions& options) {
+  const Quatd q = relativeRotation(a);
+  const Vec3d v = q.vec();
+  Mat3d B = q.w() * Mat3d::Identity();
+  B(0, 1) = v.z();
+  B(0, 2) = -v.y();
+  B(1, 0) = -v.z();
+  B(1, 2) = v.x();
+  B(2, 0) = v.y();
+  B(2, 1) = -v.x();
+  const Mat3d A = B * a.R2.transpose();
+  double scale = 1.0;
+  if (options.linearize) {
+    const double theta = 2.0 * std::atan2(v.norm(), q.w());
+    if (theta > 1e-6) scale = std::sin(theta) / theta;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const Vec3d n = A.row(k).transpose();
+    RowParameters pk = p[k];
+    pk.compliance *= scale;
+    holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), 2.0 * v[k], pk,
+                 impulse + k);
+  }
+}
+#endif
 
 // Coordinates of the free motion.
 
 /// Angle of frame 1 about axis z of frame 2 (rad, −π..π before winding): the
 /// twist of the relative rotation about z.
-inline Coordinate rotationalCoordinate(const Attachments& a) {
+SPOOK_INLINE Coordinate rotationalCoordinate(const Attachments& a);
+
+/// Position of frame 1 along axis z of frame 2 (m).
+SPOOK_INLINE Coordinate translationalCoordinate(const Attachments& a);
+
+/// Distance between the frame origins (m); along z of frame 2 when they meet.
+SPOOK_INLINE Coordinate distanceCoordinate(const Attachments& a);
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, double g, const RowParameters& p, double* impulse) {
+  Row& row = sink.add(J1, J2, impulse);
+  row.violation = g;
+  row.compliance = p.compliance;
+  row.damping = p.damping;
+  return row;
+}
+
+SPOOK_INLINE Vec3d separationCentripetal(const Attachments& a) {
+  const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>();
+  return w1.cross(w1.cross(a.r1())) - w2.cross(w2.cross(a.r2()));
+}
+
+SPOOK_INLINE Vec3d separationRate(const Attachments& a) {
+  return a.v1.head<3>() + a.v1.tail<3>().cross(a.r1()) - a.v2.head<3>() - a.v2.tail<3>().cross(a.r2());
+}
+
+SPOOK_INLINE double separationCurvature(const Attachments& a, const Vec3d& n) {
+  const Vec3d w2 = a.v2.tail<3>(), dn = w2.cross(n);
+  return 0.5 * (separationCentripetal(a).dot(n) + (a.p1 - a.p2).dot(w2.cross(dn))) + separationRate(a).dot(dn);
+}
+
+SPOOK_INLINE Coordinate rotationalCoordinate(const Attachments& a) {
   const Quatd q = relativeRotation(a);
   Coordinate c;
   c.rotational = true;
@@ -9865,8 +9972,7 @@ inline Coordinate rotationalCoordinate(const Attachments& a) {
   return c;
 }
 
-/// Position of frame 1 along axis z of frame 2 (m).
-inline Coordinate translationalCoordinate(const Attachments& a) {
+SPOOK_INLINE Coordinate translationalCoordinate(const Attachments& a) {
   const Vec3d n = a.R2.col(2);
   Coordinate c;
   c.value = (a.p1 - a.p2).dot(n);
@@ -9877,8 +9983,7 @@ inline Coordinate translationalCoordinate(const Attachments& a) {
   return c;
 }
 
-/// Distance between the frame origins (m); along z of frame 2 when they meet.
-inline Coordinate distanceCoordinate(const Attachments& a) {
+SPOOK_INLINE Coordinate distanceCoordinate(const Attachments& a) {
   const Vec3d d = a.p1 - a.p2;
   const double length = d.norm();
   const Vec3d n = length > 1e-12 ? Vec3d(d / length) : Vec3d(a.R2.col(2));
@@ -9894,7 +9999,7 @@ inline Coordinate distanceCoordinate(const Attachments& a) {
   }
   return c;
 }
-
+#endif
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_ROWS_ELEMENTARY_HPP
 // --- end spook/constraints/rows/elementary.hpp ---
@@ -10125,27 +10230,13 @@ class JointLoad {
  public:
   /// Records the rows written to `sink` from index `first` on (the joint's
   /// elementary rows of this step) and the joint axis (world, unit).
-  void record(const RowSink& sink, std::size_t first, const Vec3d& axis) {
-    rows_.clear();
-    for (std::size_t i = first; i < sink.rows->size(); ++i) rows_.push_back({(*sink.rows)[i].J1.head<3>(), sink.slot(i)});
-    axis_ = axis;
-    recorded_ = true;
-  }
+  void record(const RowSink& sink, std::size_t first, const Vec3d& axis);
   /// Force on body 1 from the recorded rows (N, world); zero when the joint
   /// wrote no rows this step. Call once per step, after the solve.
-  [[nodiscard]] Vec3d force(double h) {
-    Vec3d f = Vec3d::Zero();
-    if (recorded_)
-      for (const auto& r : rows_)
-        if (r.impulse) f += r.linear * (*r.impulse / h);
-    recorded_ = false;
-    return f;
-  }
+  [[nodiscard]] Vec3d force(double h);
   /// The part of `force` across the axis (N); with `across` false its whole
   /// magnitude (a ball joint has no axis).
-  [[nodiscard]] double normal(const Vec3d& force, bool across = true) const {
-    return across ? (force - force.dot(axis_) * axis_).norm() : force.norm();
-  }
+  [[nodiscard]] double normal(const Vec3d& force, bool across = true) const;
 
  private:
   struct Entry {
@@ -10156,6 +10247,28 @@ class JointLoad {
   Vec3d axis_ = Vec3d::UnitZ();
   bool recorded_ = false;
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void JointLoad::record(const RowSink& sink, std::size_t first, const Vec3d& axis) {
+  rows_.clear();
+  for (std::size_t i = first; i < sink.rows->size(); ++i) rows_.push_back({(*sink.rows)[i].J1.head<3>(), sink.slot(i)});
+  axis_ = axis;
+  recorded_ = true;
+}
+
+SPOOK_INLINE Vec3d JointLoad::force(double h) {
+  Vec3d f = Vec3d::Zero();
+  if (recorded_)
+    for (const auto& r : rows_)
+      if (r.impulse) f += r.linear * (*r.impulse / h);
+  recorded_ = false;
+  return f;
+}
+
+SPOOK_INLINE double JointLoad::normal(const Vec3d& force, bool across) const {
+  return across ? (force - force.dot(axis_) * axis_).norm() : force.norm();
+}
+#endif
 
 }  // namespace detail
 
@@ -10873,7 +10986,10 @@ struct ConeState {
   Vec3d axis = Vec3d::Zero();  ///< n = R₂ n₂ (world): ġ = n·(ω₁ − ω₂)
 };
 
-[[nodiscard]] inline ConeState coneState(const Attachments& a, double a1, double a2) {
+[[nodiscard]] SPOOK_INLINE ConeState coneState(const Attachments& a, double a1, double a2);
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE ConeState coneState(const Attachments& a, double a1, double a2) {
   const Vec3d d = a.R2.transpose() * a.R1.col(2);
   const double rho = std::hypot(d.x(), d.y());
   ConeState s;
@@ -10893,7 +11009,7 @@ struct ConeState {
   s.axis = a.R2 * n2;
   return s;
 }
-
+#endif
 }  // namespace detail
 
 /// Keeps frame 1's z axis inside a cone about frame 2's z axis, the base
@@ -10990,7 +11106,10 @@ namespace detail {
 /// q̇ = ½ Ω ⊗ q, Ω = R₂ᵀ(ω₁ − ω₂):
 ///   ψ̇ = Ω·(q_w q_y + q_x q_z, q_y q_z − q_w q_x, q_w² + q_z²)/(q_w² + q_z²).
 /// Undefined when z₁ = −z₂ (q_w = q_z = 0), as the seed warns.
-[[nodiscard]] inline Coordinate twistCoordinate(const Attachments& a) {
+[[nodiscard]] SPOOK_INLINE Coordinate twistCoordinate(const Attachments& a);
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Coordinate twistCoordinate(const Attachments& a) {
   const Quatd q = relativeRotation(a);
   Coordinate c;
   c.rotational = true;
@@ -11005,7 +11124,7 @@ namespace detail {
   c.speed = a.speed(c.J1, c.J2);
   return c;
 }
-
+#endif
 }  // namespace detail
 
 /// Keeps the twist of a ball joint (detail::twistCoordinate, rad) within
@@ -11681,19 +11800,11 @@ struct Rates {
 
 /// u·w of an axis u of frame 1 and an axis w of frame 2, turning with ω₁ and
 /// ω₂ (as Dot1).
-inline Rates axisDot(const Attachments& a, const Vec3d& u, const Vec3d& w) {
-  const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
-  return {u.dot(w), du.dot(w) + u.dot(dw), 0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw)};
-}
+SPOOK_INLINE Rates axisDot(const Attachments& a, const Vec3d& u, const Vec3d& w);
 
 /// atan2(s, c) of two such quantities: θ̇ = (c ṡ − s ċ)/r² and
 /// ½θ̈ = (c κ_s − s κ_c)/r² − θ̇ (s ṡ + c ċ)/r², r² = s² + c².
-inline Rates angleRates(const Rates& s, const Rates& c) {
-  const double r2 = std::max(s.value * s.value + c.value * c.value, 1e-300);
-  const double rate = (c.value * s.rate - s.value * c.rate) / r2;
-  return {std::atan2(s.value, c.value), rate,
-          (c.value * s.curvature - s.value * c.curvature) / r2 - rate * (s.value * s.rate + c.value * c.rate) / r2};
-}
+SPOOK_INLINE Rates angleRates(const Rates& s, const Rates& c);
 
 /// Tilt of frame 1's z axis about axis K (0: x, 1: y) of frame 2 (rad): the
 /// angle of z₁ projected on the plane normal to that axis, measured from z₂.
@@ -11794,19 +11905,7 @@ struct SlackInterval {
   /// in the system throughout: a look-ahead on the DOF's own speed misses
   /// the kicks that other rows' impacts give it within one step (measured:
   /// 3–6 mm past a 1 cm slack in a swinging chain).
-  void restrict(Row& row) const {
-    const double x = row.violation;
-    if (lower == upper) {
-      row.violation = x - lower;
-      return;
-    }
-    const bool lowerSide = x - lower <= upper - x;
-    row.violation = x - (lowerSide ? lower : upper);
-    if (lowerSide)
-      row.lower = 0.0;  // may only push x up
-    else
-      row.upper = 0.0;  // may only push x down
-  }
+  void restrict(Row& row) const;
 
   /// For post-stabilization, which projects equalities: a zero-width
   /// interval keeps its row (g = x − lower), and so does an end the step's
@@ -11814,18 +11913,49 @@ struct SlackInterval {
   /// row, it is projected onto the violation x − end the solve predicted,
   /// which removes the step's second-order drift past the end while the DOF
   /// is held there. A DOF moving inside its slack is left to the solve.
-  bool restrictProjection(Row& row, const double* impulse) const {
-    if (lower == upper) {
-      row.violation -= lower;
-      return true;
-    }
-    if (!impulse || *impulse == 0.0) return false;
-    const double x = row.violation;
-    row.violation = x - (x - lower <= upper - x ? lower : upper);
-    return true;
-  }
+  bool restrictProjection(Row& row, const double* impulse) const;
 };
 
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void SlackInterval::restrict(Row& row) const {
+  const double x = row.violation;
+  if (lower == upper) {
+    row.violation = x - lower;
+    return;
+  }
+  const bool lowerSide = x - lower <= upper - x;
+  row.violation = x - (lowerSide ? lower : upper);
+  if (lowerSide)
+    row.lower = 0.0;  // may only push x up
+  else
+    row.upper = 0.0;  // may only push x down
+}
+
+SPOOK_INLINE bool SlackInterval::restrictProjection(Row& row, const double* impulse) const {
+  if (lower == upper) {
+    row.violation -= lower;
+    return true;
+  }
+  if (!impulse || *impulse == 0.0) return false;
+  const double x = row.violation;
+  row.violation = x - (x - lower <= upper - x ? lower : upper);
+  return true;
+}
+#endif
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Rates axisDot(const Attachments& a, const Vec3d& u, const Vec3d& w) {
+  const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
+  return {u.dot(w), du.dot(w) + u.dot(dw), 0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw)};
+}
+
+SPOOK_INLINE Rates angleRates(const Rates& s, const Rates& c) {
+  const double r2 = std::max(s.value * s.value + c.value * c.value, 1e-300);
+  const double rate = (c.value * s.rate - s.value * c.rate) / r2;
+  return {std::atan2(s.value, c.value), rate,
+          (c.value * s.curvature - s.value * c.curvature) / r2 - rate * (s.value * s.rate + c.value * c.rate) / r2};
+}
+#endif
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_CONSTRAINTS_ROWS_SLACK_HPP
 // --- end spook/constraints/rows/slack.hpp ---
@@ -12559,7 +12689,31 @@ struct SplinePlace {
 /// of z₁ off the tangent, translationalCoordinate the arc length
 /// s + (p₁ − P)·τ and rotationalCoordinate the angle about τ. The centers
 /// and velocities stay those of the bodies.
-inline Attachments alongSpline(const Attachments& a, const SplinePlace& place) {
+SPOOK_INLINE Attachments alongSpline(const Attachments& a, const SplinePlace& place);
+
+/// The tilt rows g = z₁·nₖ written by Dot1 treat nₖ as fixed in frame 2,
+/// but nₖ follows the curve: carried without twist, dnₖ/ds = −(κ·nₖ)τ, so
+/// ġ gains −(κ·nₖ)(z₁·τ) ṡ with ṡ = J_s v the rate of the arc length. This
+/// adds that term to the two rows from `first` on, so that a body moving
+/// along a curved spline is turned with the tangent to first order.
+SPOOK_INLINE void addCurvatureCoupling(const Attachments& b, const Vec3d& curvature, std::vector<Row>& rows,
+                                 std::size_t first);
+
+/// The centripetal term of the rows across the curve. Frame 1's origin
+/// moving along the tangent at arc rate ṡ for a step h ends ½h²Qₖ off the
+/// curve, Qₖ = −(κ·nₖ)ṡ²: the row's second-order term κ = ½Qₖ (SecondOrder).
+SPOOK_INLINE double centripetalCurvature(double curvatureAcross, double rate);
+
+/// Without post-stabilization (second-order terms dropped), the same term goes
+/// into the violation: following the curve takes Gv⁺ + ½hQₖ where a
+/// straight row has Gv⁺, and SPOOK's right-hand side is −a g + b'Gv
+/// (SpookParameters), so the shift is ½hQₖ/a (m). The curve is fixed, so
+/// unlike the body-rotation terms of the other rows this feedforward does
+/// not feed back.
+SPOOK_INLINE double centripetalShift(const Row& row, double curvatureAcross, double rate, double h);
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Attachments alongSpline(const Attachments& a, const SplinePlace& place) {
   Attachments b = a;
   b.R2.col(0) = place.normal;
   b.R2.col(1) = place.tangent.cross(place.normal);
@@ -12569,13 +12723,7 @@ inline Attachments alongSpline(const Attachments& a, const SplinePlace& place) {
   return b;
 }
 
-/// The tilt rows g = z₁·nₖ written by Dot1 treat nₖ as fixed in frame 2,
-/// but nₖ follows the curve: carried without twist, dnₖ/ds = −(κ·nₖ)τ, so
-/// ġ gains −(κ·nₖ)(z₁·τ) ṡ with ṡ = J_s v the rate of the arc length. This
-/// adds that term to the two rows from `first` on, so that a body moving
-/// along a curved spline is turned with the tangent to first order.
-inline void addCurvatureCoupling(const Attachments& b, const Vec3d& curvature, std::vector<Row>& rows,
-                                 std::size_t first) {
+SPOOK_INLINE void addCurvatureCoupling(const Attachments& b, const Vec3d& curvature, std::vector<Row>& rows, std::size_t first) {
   const Coordinate along = translationalCoordinate(b);
   const double alignment = b.R1.col(2).dot(b.R2.col(2));
   for (std::size_t k = 0; k < 2; ++k) {
@@ -12586,24 +12734,15 @@ inline void addCurvatureCoupling(const Attachments& b, const Vec3d& curvature, s
   }
 }
 
-/// The centripetal term of the rows across the curve. Frame 1's origin
-/// moving along the tangent at arc rate ṡ for a step h ends ½h²Qₖ off the
-/// curve, Qₖ = −(κ·nₖ)ṡ²: the row's second-order term κ = ½Qₖ (SecondOrder).
-inline double centripetalCurvature(double curvatureAcross, double rate) {
+SPOOK_INLINE double centripetalCurvature(double curvatureAcross, double rate) {
   return -0.5 * curvatureAcross * rate * rate;
 }
 
-/// Without post-stabilization (second-order terms dropped), the same term goes
-/// into the violation: following the curve takes Gv⁺ + ½hQₖ where a
-/// straight row has Gv⁺, and SPOOK's right-hand side is −a g + b'Gv
-/// (SpookParameters), so the shift is ½hQₖ/a (m). The curve is fixed, so
-/// unlike the body-rotation terms of the other rows this feedforward does
-/// not feed back.
-inline double centripetalShift(const Row& row, double curvatureAcross, double rate, double h) {
+SPOOK_INLINE double centripetalShift(const Row& row, double curvatureAcross, double rate, double h) {
   const SpookParameters spook = SpookParameters::holonomic(row.compliance, row.damping, h);
   return spook.violationForSpeed(h * centripetalCurvature(curvatureAcross, rate));
 }
-
+#endif
 }  // namespace detail
 
 /// A body whose attachment frame slides along a cubic spline (seed 001
@@ -12894,33 +13033,41 @@ namespace detail {
 
 /// a: frame 1 about the arm x₁ (rad).
 struct UniversalArm1 {
-  static Coordinate measure(const Attachments& a) {
-    const Mat3d Q = a.R2.transpose() * a.R1;
-    const Vec3d x1 = a.R1.col(0);
-    Coordinate c;
-    c.rotational = true;
-    c.value = std::atan2(-Q(1, 2), Q(1, 1));
-    c.J1 = linearAngular(Vec3d::Zero(), x1);
-    c.J2 = linearAngular(Vec3d::Zero(), -x1);
-    c.speed = a.speed(c.J1, c.J2);
-    return c;
-  }
+  static Coordinate measure(const Attachments& a);
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Coordinate UniversalArm1::measure(const Attachments& a) {
+  const Mat3d Q = a.R2.transpose() * a.R1;
+  const Vec3d x1 = a.R1.col(0);
+  Coordinate c;
+  c.rotational = true;
+  c.value = std::atan2(-Q(1, 2), Q(1, 1));
+  c.J1 = linearAngular(Vec3d::Zero(), x1);
+  c.J2 = linearAngular(Vec3d::Zero(), -x1);
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
+}
+#endif
 
 /// b: the spider about the arm y₂ (rad).
 struct UniversalArm2 {
-  static Coordinate measure(const Attachments& a) {
-    const Mat3d Q = a.R2.transpose() * a.R1;
-    const Vec3d y2 = a.R2.col(1);
-    Coordinate c;
-    c.rotational = true;
-    c.value = std::atan2(-Q(2, 0), Q(0, 0));
-    c.J1 = linearAngular(Vec3d::Zero(), y2);
-    c.J2 = linearAngular(Vec3d::Zero(), -y2);
-    c.speed = a.speed(c.J1, c.J2);
-    return c;
-  }
+  static Coordinate measure(const Attachments& a);
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Coordinate UniversalArm2::measure(const Attachments& a) {
+  const Mat3d Q = a.R2.transpose() * a.R1;
+  const Vec3d y2 = a.R2.col(1);
+  Coordinate c;
+  c.rotational = true;
+  c.value = std::atan2(-Q(2, 0), Q(0, 0));
+  c.J1 = linearAngular(Vec3d::Zero(), y2);
+  c.J2 = linearAngular(Vec3d::Zero(), -y2);
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
+}
+#endif
 
 }  // namespace detail
 
@@ -13105,33 +13252,41 @@ namespace detail {
 
 /// s: the steering angle, frame 1 about z₂ (rad).
 struct WheelSteeringAngle {
-  static Coordinate measure(const Attachments& a) {
-    const Mat3d Q = a.R2.transpose() * a.R1;
-    const Vec3d z2 = a.R2.col(2);
-    Coordinate c;
-    c.rotational = true;
-    c.value = std::atan2(-Q(0, 1), Q(1, 1));
-    c.J1 = linearAngular(Vec3d::Zero(), z2);
-    c.J2 = linearAngular(Vec3d::Zero(), -z2);
-    c.speed = a.speed(c.J1, c.J2);
-    return c;
-  }
+  static Coordinate measure(const Attachments& a);
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Coordinate WheelSteeringAngle::measure(const Attachments& a) {
+  const Mat3d Q = a.R2.transpose() * a.R1;
+  const Vec3d z2 = a.R2.col(2);
+  Coordinate c;
+  c.rotational = true;
+  c.value = std::atan2(-Q(0, 1), Q(1, 1));
+  c.J1 = linearAngular(Vec3d::Zero(), z2);
+  c.J2 = linearAngular(Vec3d::Zero(), -z2);
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
+}
+#endif
 
 /// w: the wheel's roll about its axle y₁ (rad).
 struct WheelRollAngle {
-  static Coordinate measure(const Attachments& a) {
-    const Mat3d Q = a.R2.transpose() * a.R1;
-    const Vec3d y1 = a.R1.col(1);
-    Coordinate c;
-    c.rotational = true;
-    c.value = std::atan2(-Q(2, 0), Q(2, 2));
-    c.J1 = linearAngular(Vec3d::Zero(), y1);
-    c.J2 = linearAngular(Vec3d::Zero(), -y1);
-    c.speed = a.speed(c.J1, c.J2);
-    return c;
-  }
+  static Coordinate measure(const Attachments& a);
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Coordinate WheelRollAngle::measure(const Attachments& a) {
+  const Mat3d Q = a.R2.transpose() * a.R1;
+  const Vec3d y1 = a.R1.col(1);
+  Coordinate c;
+  c.rotational = true;
+  c.value = std::atan2(-Q(2, 0), Q(2, 2));
+  c.J1 = linearAngular(Vec3d::Zero(), y1);
+  c.J2 = linearAngular(Vec3d::Zero(), -y1);
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
+}
+#endif
 
 }  // namespace detail
 
@@ -15993,14 +16148,14 @@ using SolverRef = ref_ptr<Solver>;
 // The solves themselves are compiled once (solver_impl.hpp): inline in a
 // header-only program, in the translation unit that implements the double
 // simulation otherwise (core/implementation.hpp).
-#if defined(SPOOK_DEFINES_SOLVER)
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
 // --- begin spook/solver/solver_impl.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_SOLVER_IMPL_HPP
 #define SPOOK_SINGLE_SPOOK_SOLVER_SOLVER_IMPL_HPP
 
 // The solves of the solver policies (solver.hpp): non-template code, inline
 // in a header-only program and compiled once otherwise
-// (SPOOK_SOLVER_INLINE, core/implementation.hpp).
+// (SPOOK_INLINE, core/implementation.hpp).
 
 #include <algorithm>
 #include <chrono>
@@ -17165,11 +17320,11 @@ class DirectSolve {
 
 namespace spook {
 
-SPOOK_SOLVER_INLINE Solver::Solver() : direct_(std::make_unique<detail::DirectSolve>()) {}
+SPOOK_INLINE Solver::Solver() : direct_(std::make_unique<detail::DirectSolve>()) {}
 
-SPOOK_SOLVER_INLINE Solver::~Solver() = default;
+SPOOK_INLINE Solver::~Solver() = default;
 
-SPOOK_SOLVER_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatistics& statistics) {
+SPOOK_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
   direct(problem, allRows(problem), statistics);
@@ -17178,7 +17333,7 @@ SPOOK_SOLVER_INLINE void Solver::project(detail::IslandProblem& problem, SolverS
   statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-SPOOK_SOLVER_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
+SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
   ++statistics.numIslands;
@@ -17196,7 +17351,7 @@ SPOOK_SOLVER_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverSta
   return finite;
 }
 
-SPOOK_SOLVER_INLINE void Solver::direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
+SPOOK_INLINE void Solver::direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
   const detail::DirectSolveResult r = direct_->solve(problem, subset, std::clamp(pivotBudget_ - 1, 0, maxPivotSteps_));
   pivotBudget_ -= r.factorizations;
   statistics.factorizations += r.factorizations;
@@ -17204,7 +17359,7 @@ SPOOK_SOLVER_INLINE void Solver::direct(detail::IslandProblem& problem, const st
   statistics.directFallbacks += r.fellBack ? 1 : 0;
 }
 
-SPOOK_SOLVER_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, const std::vector<int>& subset,
+SPOOK_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, const std::vector<int>& subset,
                                                SolverStatistics& statistics) {
   if (pivotBudget_ <= 0) return false;
   const std::vector<detail::IslandProblem::Entry> saved = problem.entries(subset);
@@ -17218,7 +17373,7 @@ SPOOK_SOLVER_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, c
   return false;
 }
 
-SPOOK_SOLVER_INLINE bool Solver::directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
+SPOOK_INLINE bool Solver::directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
                                                     SolverStatistics& statistics, const std::vector<char>* keep,
                                                     bool first) {
   std::vector<int> following;
@@ -17255,20 +17410,20 @@ SPOOK_SOLVER_INLINE bool Solver::directWithFriction(detail::IslandProblem& probl
   return true;
 }
 
-SPOOK_SOLVER_INLINE void Solver::iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
+SPOOK_INLINE void Solver::iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
   const detail::IterativeSolveResult r =
       detail::iterativeSolve(problem, subset, iterations_, tolerance_, method_ == JACOBI);
   statistics.iterations = std::max(statistics.iterations, r.iterations);
   statistics.converged = statistics.converged && r.converged;
 }
 
-SPOOK_SOLVER_INLINE std::vector<int> Solver::allRows(const detail::IslandProblem& problem) {
+SPOOK_INLINE std::vector<int> Solver::allRows(const detail::IslandProblem& problem) {
   std::vector<int> rows(problem.rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<int>(i);
   return rows;
 }
 
-SPOOK_SOLVER_INLINE double Solver::complementarityError(const detail::IslandProblem& problem) {
+SPOOK_INLINE double Solver::complementarityError(const detail::IslandProblem& problem) {
   const std::vector<detail::Vec6d> dv = problem.velocityChange();
   const auto residual = [&](int i) {
     const auto& e = problem.rows[static_cast<std::size_t>(i)];
@@ -17289,19 +17444,19 @@ SPOOK_SOLVER_INLINE double Solver::complementarityError(const detail::IslandProb
   return worst;
 }
 
-SPOOK_SOLVER_INLINE void DirectSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
+SPOOK_INLINE void DirectSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const std::vector<int> rows = allRows(problem);
   statistics.numDirectRows += static_cast<int>(rows.size());
   directWithFriction(problem, rows, statistics);
 }
 
-SPOOK_SOLVER_INLINE void IterativeSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
+SPOOK_INLINE void IterativeSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const std::vector<int> rows = allRows(problem);
   statistics.numIterativeRows += static_cast<int>(rows.size());
   iterative(problem, rows, statistics);
 }
 
-SPOOK_SOLVER_INLINE void HybridSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
+SPOOK_INLINE void HybridSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
   std::vector<int> directRows, iterativeRows;
   std::vector<char> keep(problem.rows.size(), 0);
   bool anyIterativeOnly = false;

@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include <spook/core/implementation.hpp>
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/row.hpp>
 
@@ -51,35 +52,14 @@ struct RowSink {
   /// kept when null).
   std::vector<SecondOrder>* curvatures = nullptr;
 
-  Row& add(const Vec6d& J1, const Vec6d& J2, double* impulse) {
-    Row& row = rows->emplace_back();
-    row.body1 = body1;
-    row.body2 = body2;
-    row.J1 = J1;
-    row.J2 = J2;
-    row.solveType = solveType;
-    if (slots) slots->push_back(impulse);
-    return row;
-  }
+  Row& add(const Vec6d& J1, const Vec6d& J2, double* impulse);
   /// The lever arms (world, m) of the row added last (LeverArms).
-  void setArms(const Vec3d& arm1, const Vec3d& arm2) {
-    if (arms) arms->push_back({static_cast<int>(rows->size()) - 1, arm1, arm2});
-  }
+  void setArms(const Vec3d& arm1, const Vec3d& arm2);
   /// The second-order term κ of the row added last (SecondOrder), kept only
   /// when the rows are post-stabilized (`secondOrder`).
-  void setCurvature(double kappa) {
-    if (secondOrder && curvatures) curvatures->push_back({static_cast<int>(rows->size()) - 1, kappa});
-  }
+  void setCurvature(double kappa);
   /// Adds to the second-order term of an earlier row i.
-  void addCurvature(std::size_t i, double kappa) {
-    if (!secondOrder || !curvatures) return;
-    auto it = curvatures->end();
-    while (it != curvatures->begin() && std::prev(it)->row >= static_cast<int>(i)) --it;
-    if (it != curvatures->end() && it->row == static_cast<int>(i))
-      it->curvature += kappa;
-    else
-      curvatures->insert(it, {static_cast<int>(i), kappa});
-  }
+  void addCurvature(std::size_t i, double kappa);
   /// Rows written so far: the index the next row gets.
   [[nodiscard]] std::size_t size() const { return rows->size(); }
   /// The slot of row i (nullptr when slots are not kept).
@@ -111,11 +91,38 @@ struct RowSink {
   }
 };
 
-inline Vec6d linearAngular(const Vec3d& linear, const Vec3d& angular) {
-  Vec6d J;
-  J << linear, angular;
-  return J;
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Row& RowSink::add(const Vec6d& J1, const Vec6d& J2, double* impulse) {
+  Row& row = rows->emplace_back();
+  row.body1 = body1;
+  row.body2 = body2;
+  row.J1 = J1;
+  row.J2 = J2;
+  row.solveType = solveType;
+  if (slots) slots->push_back(impulse);
+  return row;
 }
+
+SPOOK_INLINE void RowSink::setArms(const Vec3d& arm1, const Vec3d& arm2) {
+  if (arms) arms->push_back({static_cast<int>(rows->size()) - 1, arm1, arm2});
+}
+
+SPOOK_INLINE void RowSink::setCurvature(double kappa) {
+  if (secondOrder && curvatures) curvatures->push_back({static_cast<int>(rows->size()) - 1, kappa});
+}
+
+SPOOK_INLINE void RowSink::addCurvature(std::size_t i, double kappa) {
+  if (!secondOrder || !curvatures) return;
+  auto it = curvatures->end();
+  while (it != curvatures->begin() && std::prev(it)->row >= static_cast<int>(i)) --it;
+  if (it != curvatures->end() && it->row == static_cast<int>(i))
+    it->curvature += kappa;
+  else
+    curvatures->insert(it, {static_cast<int>(i), kappa});
+}
+#endif
+
+SPOOK_INLINE Vec6d linearAngular(const Vec3d& linear, const Vec3d& angular);
 
 /// A scalar coordinate of a joint's free motion (an angle or a position)
 /// with its Jacobian: what Motor1D, Lock1D and Range1D act on.
@@ -131,11 +138,7 @@ struct Coordinate {
 };
 
 /// The relative rotation of frame 1 in frame 2, q₂* q₁, with w ≥ 0.
-[[nodiscard]] inline Quatd relativeRotation(const Attachments& a) {
-  Quatd q = a.q2.conjugate() * a.q1;
-  if (q.w() < 0.0) q.coeffs() = -q.coeffs();
-  return q;
-}
+[[nodiscard]] SPOOK_INLINE Quatd relativeRotation(const Attachments& a);
 
 /// Keeps an angle continuous across ±π: the raw angle in (−π, π] is turned
 /// into the value nearest the last one.
@@ -156,4 +159,17 @@ class Winding {
   bool started_ = false;
 };
 
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Vec6d linearAngular(const Vec3d& linear, const Vec3d& angular) {
+  Vec6d J;
+  J << linear, angular;
+  return J;
+}
+
+SPOOK_INLINE Quatd relativeRotation(const Attachments& a) {
+  Quatd q = a.q2.conjugate() * a.q1;
+  if (q.w() < 0.0) q.coeffs() = -q.coeffs();
+  return q;
+}
+#endif
 }  // namespace spook::detail

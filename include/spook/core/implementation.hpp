@@ -20,22 +20,31 @@
 // What this translation unit sees. Header-only (no SPOOK_EXTERN_TEMPLATES):
 // every definition. Otherwise only the declarations of the step and the
 // solver, unless it implements a simulation part:
-//   SPOOK_DEFINES_STEP    the simulation step's template definitions
-//                         (sim/simulation_step.hpp), for either scalar;
-//   SPOOK_DEFINES_SOLVER  the double-only, non-template solver code
-//                         (solver/solver_impl.hpp), compiled with the double
-//                         simulation and inline (SPOOK_SOLVER_INLINE) when
-//                         header-only.
+//   SPOOK_DEFINES_STEP           the simulation step's template definitions
+//                                (sim/simulation_step.hpp), for either scalar;
+//   SPOOK_DEFINES_NON_TEMPLATES  spook's non-template functions that do work
+//                                (the double-only solver in
+//                                solver/solver_impl.hpp, the island problem,
+//                                the joints' row helpers, the convex hull),
+//                                compiled with the double simulation and
+//                                inline (SPOOK_INLINE) when header-only.
+// A header declares such a function (SPOOK_INLINE where it is a free
+// function) and defines it, with SPOOK_INLINE, in an
+// `#if defined(SPOOK_DEFINES_NON_TEMPLATES)` block: every other file that
+// includes spook then parses the declaration only and does not instantiate
+// the Eigen expressions of its body (they cost ~3 s per file).
 #if !defined(SPOOK_EXTERN_TEMPLATES) || defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE) || \
     defined(SPOOK_IMPLEMENT_SIMULATION_FLOAT)
 #define SPOOK_DEFINES_STEP
 #endif
 #if defined(SPOOK_IMPLEMENT_SIMULATION_DOUBLE)
-#define SPOOK_DEFINES_SOLVER
-#define SPOOK_SOLVER_INLINE
+#define SPOOK_DEFINES_NON_TEMPLATES
+#define SPOOK_INLINE
 #elif !defined(SPOOK_EXTERN_TEMPLATES)
-#define SPOOK_DEFINES_SOLVER
-#define SPOOK_SOLVER_INLINE inline
+#define SPOOK_DEFINES_NON_TEMPLATES
+#define SPOOK_INLINE inline
+#else
+#define SPOOK_INLINE
 #endif
 
 // The API's class templates (bodies, frames, geometries, shapes, joints)

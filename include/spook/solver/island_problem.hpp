@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <spook/core/implementation.hpp>
 #include <spook/solver/row.hpp>
 
 // The iterative sweeps' innermost calls, which GCC 12 left out of line
@@ -56,10 +57,10 @@ struct IslandProblem {
     /// the last step's, then each direct solve's own result.
     double guess = 0.0;
     SolveType solveType = SolveType::DIRECT;
-    int constraint = -1;                           ///< local index of its constraint's first row (Row::constraint)
-    int normal = -1;                               ///< friction rows: local index of their normal row
-    int partner = -1;                              ///< cone rows: the other tangent row of the point
-    double mu = 0.0;                               ///< friction coefficient
+    int constraint = -1;  ///< local index of its constraint's first row (Row::constraint)
+    int normal = -1;      ///< friction rows: local index of their normal row
+    int partner = -1;     ///< cone rows: the other tangent row of the point
+    double mu = 0.0;      ///< friction coefficient
     FrictionBound frictionBound = FrictionBound::FIXED;
     /// Cone rows in a direct solve: the share |d_i| of the bound μΛn this
     /// tangent gets, d the friction direction of the point (friction_bounds.hpp).
@@ -99,84 +100,21 @@ struct IslandProblem {
     }
   }
   /// The entry's three body slots (−1: none).
-  [[nodiscard]] std::array<int, 3> bodiesOf(const Entry& e) const {
-    return {e.body1, e.body2, e.extra >= 0 ? extraBodies[static_cast<std::size_t>(e.extra)].body : -1};
-  }
+  [[nodiscard]] std::array<int, 3> bodiesOf(const Entry& e) const;
   /// Adds body b's block (J, W = M⁻¹Jᵀ) to the entry, or adds to the
   /// block it has for b.
-  void addBody(Entry& e, int b, const Vec6d& J, const Vec6d& W) {
-    if (e.body1 < 0) {
-      e.body1 = b;
-      e.J1 = J;
-      e.W1 = W;
-    } else if (e.body1 == b) {
-      e.J1 += J;
-      e.W1 += W;
-    } else if (e.body2 < 0) {
-      e.body2 = b;
-      e.J2 = J;
-      e.W2 = W;
-    } else if (e.body2 == b) {
-      e.J2 += J;
-      e.W2 += W;
-    } else if (e.extra < 0) {
-      e.extra = static_cast<int>(extraBodies.size());
-      extraBodies.push_back({b, J, W});
-    } else {
-      ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
-      x.J += J;
-      x.W += W;
-    }
-  }
+  void addBody(Entry& e, int b, const Vec6d& J, const Vec6d& W);
   /// The same with W = M⁻¹Jᵀ of a body of inverse mass and inertia
   /// (world), formed in the entry's own storage where the body is new to it.
-  void addBody(Entry& e, int b, const Vec6d& J, const Mat3d& inverseMass, const Mat3d& inverseInertia) {
-    Vec6d* slotJ = nullptr;
-    Vec6d* slotW = nullptr;
-    if (e.body1 < 0) {
-      e.body1 = b;
-      slotJ = &e.J1;
-      slotW = &e.W1;
-    } else if (e.body2 < 0 && e.body1 != b) {
-      e.body2 = b;
-      slotJ = &e.J2;
-      slotW = &e.W2;
-    }
-    if (slotJ) {
-      *slotJ = J;
-      slotW->head<3>().noalias() = inverseMass * J.head<3>();
-      slotW->tail<3>().noalias() = inverseInertia * J.tail<3>();
-      return;
-    }
-    Vec6d W;
-    W << inverseMass * J.head<3>(), inverseInertia * J.tail<3>();
-    addBody(e, b, J, W);
-  }
+  void addBody(Entry& e, int b, const Vec6d& J, const Mat3d& inverseMass, const Mat3d& inverseInertia);
   /// J·W over the entry's bodies: its diagonal of S = G M⁻¹ Gᵀ.
-  [[nodiscard]] double mobility(const Entry& e) const {
-    double s = 0.0;
-    if (e.body1 >= 0) s += e.J1.dot(e.W1);
-    if (e.body2 >= 0) s += e.J2.dot(e.W2);
-    if (e.extra >= 0) s += extraBodies[static_cast<std::size_t>(e.extra)].J.dot(extraBodies[static_cast<std::size_t>(e.extra)].W);
-    return s;
-  }
+  [[nodiscard]] double mobility(const Entry& e) const;
 
   /// Δv of every body from the impulses of all rows.
-  [[nodiscard]] std::vector<Vec6d> velocityChange() const {
-    std::vector<Vec6d> dv;
-    velocityChange(dv);
-    return dv;
-  }
-  void velocityChange(std::vector<Vec6d>& dv) const {
-    dv.assign(static_cast<std::size_t>(numBodies), Vec6d::Zero());
-    for (int i = 0; i < static_cast<int>(rows.size()); ++i) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
-  }
+  [[nodiscard]] std::vector<Vec6d> velocityChange() const;
+  void velocityChange(std::vector<Vec6d>& dv) const;
   /// Δv of every body from the impulses of `subset` (rows not in it count zero).
-  [[nodiscard]] std::vector<Vec6d> velocityChange(const std::vector<int>& subset) const {
-    std::vector<Vec6d> dv(static_cast<std::size_t>(numBodies), Vec6d::Zero());
-    for (int i : subset) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
-    return dv;
-  }
+  [[nodiscard]] std::vector<Vec6d> velocityChange(const std::vector<int>& subset) const;
   SPOOK_ALWAYS_INLINE void addImpulse(std::vector<Vec6d>& dv, int i, double impulse) const {
     // Written out (not forEachBody): the iterative sweeps' innermost loop.
     const Entry& e = rows[static_cast<std::size_t>(i)];
@@ -188,15 +126,8 @@ struct IslandProblem {
     }
   }
   /// The entries of `indices`, for restore() after an attempt is dropped.
-  [[nodiscard]] std::vector<Entry> entries(const std::vector<int>& indices) const {
-    std::vector<Entry> kept;
-    kept.reserve(indices.size());
-    for (int i : indices) kept.push_back(rows[static_cast<std::size_t>(i)]);
-    return kept;
-  }
-  void restore(const std::vector<int>& indices, const std::vector<Entry>& kept) {
-    for (std::size_t k = 0; k < indices.size(); ++k) rows[static_cast<std::size_t>(indices[k])] = kept[k];
-  }
+  [[nodiscard]] std::vector<Entry> entries(const std::vector<int>& indices) const;
+  void restore(const std::vector<int>& indices, const std::vector<Entry>& kept);
   /// G_i Δv.
   [[nodiscard]] SPOOK_ALWAYS_INLINE double rowVelocity(int i, const std::vector<Vec6d>& dv) const {
     const Entry& e = rows[static_cast<std::size_t>(i)];
@@ -210,22 +141,119 @@ struct IslandProblem {
     return v;
   }
   /// (S + Σ)_ij for rows i ≠ j: the coupling through their shared bodies.
-  [[nodiscard]] double coupling(int i, int j) const {
-    const Entry& a = rows[static_cast<std::size_t>(i)];
-    const Entry& b = rows[static_cast<std::size_t>(j)];
-    double s = 0.0;
-    forEachBody(a, [&](int bodyA, const Vec6d& J, const Vec6d&) {
-      forEachBody(b, [&](int bodyB, const Vec6d&, const Vec6d& W) {
-        if (bodyA == bodyB) s += J.dot(W);
-      });
-    });
-    return s;
-  }
+  [[nodiscard]] double coupling(int i, int j) const;
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE std::array<int, 3> IslandProblem::bodiesOf(const Entry& e) const {
+  return {e.body1, e.body2, e.extra >= 0 ? extraBodies[static_cast<std::size_t>(e.extra)].body : -1};
+}
+
+SPOOK_INLINE void IslandProblem::addBody(Entry& e, int b, const Vec6d& J, const Vec6d& W) {
+  if (e.body1 < 0) {
+    e.body1 = b;
+    e.J1 = J;
+    e.W1 = W;
+  } else if (e.body1 == b) {
+    e.J1 += J;
+    e.W1 += W;
+  } else if (e.body2 < 0) {
+    e.body2 = b;
+    e.J2 = J;
+    e.W2 = W;
+  } else if (e.body2 == b) {
+    e.J2 += J;
+    e.W2 += W;
+  } else if (e.extra < 0) {
+    e.extra = static_cast<int>(extraBodies.size());
+    extraBodies.push_back({b, J, W});
+  } else {
+    ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
+    x.J += J;
+    x.W += W;
+  }
+}
+
+SPOOK_INLINE void IslandProblem::addBody(Entry& e, int b, const Vec6d& J, const Mat3d& inverseMass,
+                                         const Mat3d& inverseInertia) {
+  Vec6d* slotJ = nullptr;
+  Vec6d* slotW = nullptr;
+  if (e.body1 < 0) {
+    e.body1 = b;
+    slotJ = &e.J1;
+    slotW = &e.W1;
+  } else if (e.body2 < 0 && e.body1 != b) {
+    e.body2 = b;
+    slotJ = &e.J2;
+    slotW = &e.W2;
+  }
+  if (slotJ) {
+    *slotJ = J;
+    slotW->head<3>().noalias() = inverseMass * J.head<3>();
+    slotW->tail<3>().noalias() = inverseInertia * J.tail<3>();
+    return;
+  }
+  Vec6d W;
+  W << inverseMass * J.head<3>(), inverseInertia * J.tail<3>();
+  addBody(e, b, J, W);
+}
+
+SPOOK_INLINE double IslandProblem::mobility(const Entry& e) const {
+  double s = 0.0;
+  if (e.body1 >= 0) s += e.J1.dot(e.W1);
+  if (e.body2 >= 0) s += e.J2.dot(e.W2);
+  if (e.extra >= 0)
+    s += extraBodies[static_cast<std::size_t>(e.extra)].J.dot(extraBodies[static_cast<std::size_t>(e.extra)].W);
+  return s;
+}
+
+SPOOK_INLINE std::vector<Vec6d> IslandProblem::velocityChange() const {
+  std::vector<Vec6d> dv;
+  velocityChange(dv);
+  return dv;
+}
+
+SPOOK_INLINE void IslandProblem::velocityChange(std::vector<Vec6d>& dv) const {
+  dv.assign(static_cast<std::size_t>(numBodies), Vec6d::Zero());
+  for (int i = 0; i < static_cast<int>(rows.size()); ++i) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
+}
+
+SPOOK_INLINE std::vector<Vec6d> IslandProblem::velocityChange(const std::vector<int>& subset) const {
+  std::vector<Vec6d> dv(static_cast<std::size_t>(numBodies), Vec6d::Zero());
+  for (int i : subset) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
+  return dv;
+}
+
+SPOOK_INLINE auto IslandProblem::entries(const std::vector<int>& indices) const -> std::vector<Entry> {
+  std::vector<Entry> kept;
+  kept.reserve(indices.size());
+  for (int i : indices) kept.push_back(rows[static_cast<std::size_t>(i)]);
+  return kept;
+}
+
+SPOOK_INLINE void IslandProblem::restore(const std::vector<int>& indices, const std::vector<Entry>& kept) {
+  for (std::size_t k = 0; k < indices.size(); ++k) rows[static_cast<std::size_t>(indices[k])] = kept[k];
+}
+
+SPOOK_INLINE double IslandProblem::coupling(int i, int j) const {
+  const Entry& a = rows[static_cast<std::size_t>(i)];
+  const Entry& b = rows[static_cast<std::size_t>(j)];
+  double s = 0.0;
+  forEachBody(a, [&](int bodyA, const Vec6d& J, const Vec6d&) {
+    forEachBody(b, [&](int bodyB, const Vec6d&, const Vec6d& W) {
+      if (bodyA == bodyB) s += J.dot(W);
+    });
+  });
+  return s;
+}
+#endif
 
 /// Complementarity error of row i at residual w = (S+Σ)Λ − q (m/s): |w| for
 /// a row strictly inside its bounds, the wrong-signed part of w at a bound.
-[[nodiscard]] inline double complementarityError(const IslandProblem::Entry& e, double w) {
+[[nodiscard]] SPOOK_INLINE double complementarityError(const IslandProblem::Entry& e, double w);
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE double complementarityError(const IslandProblem::Entry& e, double w) {
   const double tolerance = 1e-12 * (1.0 + std::abs(e.impulse));
   const bool atLower = e.impulse <= e.lower + tolerance;
   const bool atUpper = e.impulse >= e.upper - tolerance;
@@ -234,5 +262,6 @@ struct IslandProblem {
   if (atUpper) return std::max(0.0, w);
   return std::abs(w);
 }
+#endif
 
 }  // namespace spook::detail

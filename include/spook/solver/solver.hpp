@@ -288,6 +288,6 @@ using SolverRef = ref_ptr<Solver>;
 // The solves themselves are compiled once (solver_impl.hpp): inline in a
 // header-only program, in the translation unit that implements the double
 // simulation otherwise (core/implementation.hpp).
-#if defined(SPOOK_DEFINES_SOLVER)
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
 #include <spook/solver/solver_impl.hpp>
 #endif

@@ -2,7 +2,7 @@
 
 // The solves of the solver policies (solver.hpp): non-template code, inline
 // in a header-only program and compiled once otherwise
-// (SPOOK_SOLVER_INLINE, core/implementation.hpp).
+// (SPOOK_INLINE, core/implementation.hpp).
 
 #include <algorithm>
 #include <chrono>
@@ -18,11 +18,11 @@
 
 namespace spook {
 
-SPOOK_SOLVER_INLINE Solver::Solver() : direct_(std::make_unique<detail::DirectSolve>()) {}
+SPOOK_INLINE Solver::Solver() : direct_(std::make_unique<detail::DirectSolve>()) {}
 
-SPOOK_SOLVER_INLINE Solver::~Solver() = default;
+SPOOK_INLINE Solver::~Solver() = default;
 
-SPOOK_SOLVER_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatistics& statistics) {
+SPOOK_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
   direct(problem, allRows(problem), statistics);
@@ -31,7 +31,7 @@ SPOOK_SOLVER_INLINE void Solver::project(detail::IslandProblem& problem, SolverS
   statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-SPOOK_SOLVER_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
+SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
   ++statistics.numIslands;
@@ -49,7 +49,7 @@ SPOOK_SOLVER_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverSta
   return finite;
 }
 
-SPOOK_SOLVER_INLINE void Solver::direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
+SPOOK_INLINE void Solver::direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
   const detail::DirectSolveResult r = direct_->solve(problem, subset, std::clamp(pivotBudget_ - 1, 0, maxPivotSteps_));
   pivotBudget_ -= r.factorizations;
   statistics.factorizations += r.factorizations;
@@ -57,7 +57,7 @@ SPOOK_SOLVER_INLINE void Solver::direct(detail::IslandProblem& problem, const st
   statistics.directFallbacks += r.fellBack ? 1 : 0;
 }
 
-SPOOK_SOLVER_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, const std::vector<int>& subset,
+SPOOK_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, const std::vector<int>& subset,
                                                SolverStatistics& statistics) {
   if (pivotBudget_ <= 0) return false;
   const std::vector<detail::IslandProblem::Entry> saved = problem.entries(subset);
@@ -71,7 +71,7 @@ SPOOK_SOLVER_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, c
   return false;
 }
 
-SPOOK_SOLVER_INLINE bool Solver::directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
+SPOOK_INLINE bool Solver::directWithFriction(detail::IslandProblem& problem, const std::vector<int>& subset,
                                                     SolverStatistics& statistics, const std::vector<char>* keep,
                                                     bool first) {
   std::vector<int> following;
@@ -108,20 +108,20 @@ SPOOK_SOLVER_INLINE bool Solver::directWithFriction(detail::IslandProblem& probl
   return true;
 }
 
-SPOOK_SOLVER_INLINE void Solver::iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
+SPOOK_INLINE void Solver::iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
   const detail::IterativeSolveResult r =
       detail::iterativeSolve(problem, subset, iterations_, tolerance_, method_ == JACOBI);
   statistics.iterations = std::max(statistics.iterations, r.iterations);
   statistics.converged = statistics.converged && r.converged;
 }
 
-SPOOK_SOLVER_INLINE std::vector<int> Solver::allRows(const detail::IslandProblem& problem) {
+SPOOK_INLINE std::vector<int> Solver::allRows(const detail::IslandProblem& problem) {
   std::vector<int> rows(problem.rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<int>(i);
   return rows;
 }
 
-SPOOK_SOLVER_INLINE double Solver::complementarityError(const detail::IslandProblem& problem) {
+SPOOK_INLINE double Solver::complementarityError(const detail::IslandProblem& problem) {
   const std::vector<detail::Vec6d> dv = problem.velocityChange();
   const auto residual = [&](int i) {
     const auto& e = problem.rows[static_cast<std::size_t>(i)];
@@ -142,19 +142,19 @@ SPOOK_SOLVER_INLINE double Solver::complementarityError(const detail::IslandProb
   return worst;
 }
 
-SPOOK_SOLVER_INLINE void DirectSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
+SPOOK_INLINE void DirectSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const std::vector<int> rows = allRows(problem);
   statistics.numDirectRows += static_cast<int>(rows.size());
   directWithFriction(problem, rows, statistics);
 }
 
-SPOOK_SOLVER_INLINE void IterativeSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
+SPOOK_INLINE void IterativeSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const std::vector<int> rows = allRows(problem);
   statistics.numIterativeRows += static_cast<int>(rows.size());
   iterative(problem, rows, statistics);
 }
 
-SPOOK_SOLVER_INLINE void HybridSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
+SPOOK_INLINE void HybridSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
   std::vector<int> directRows, iterativeRows;
   std::vector<char> keep(problem.rows.size(), 0);
   bool anyIterativeOnly = false;

@@ -1,4 +1,5 @@
-// Installed spook, found with find_package: a ball thrown upward in default
+// Installed spook, found with find_package and linked compiled once
+// (spook::spook_compiled): a ball thrown upward in default
 // gravity, stepped to t = 1 s with stepTo, against the exact discrete
 // solution of symplectic Euler:
 //   v_n = v0 + n h g,   x_n = x0 + n h v0 + h² g n(n+1)/2.

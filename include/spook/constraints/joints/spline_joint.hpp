@@ -7,6 +7,7 @@
 
 #include <spook/constraints/joint.hpp>
 #include <spook/core/cubic_spline.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/solver/spook_parameters.hpp>
 
 namespace spook {
@@ -29,7 +30,31 @@ struct SplinePlace {
 /// of z₁ off the tangent, translationalCoordinate the arc length
 /// s + (p₁ − P)·τ and rotationalCoordinate the angle about τ. The centers
 /// and velocities stay those of the bodies.
-inline Attachments alongSpline(const Attachments& a, const SplinePlace& place) {
+SPOOK_INLINE Attachments alongSpline(const Attachments& a, const SplinePlace& place);
+
+/// The tilt rows g = z₁·nₖ written by Dot1 treat nₖ as fixed in frame 2,
+/// but nₖ follows the curve: carried without twist, dnₖ/ds = −(κ·nₖ)τ, so
+/// ġ gains −(κ·nₖ)(z₁·τ) ṡ with ṡ = J_s v the rate of the arc length. This
+/// adds that term to the two rows from `first` on, so that a body moving
+/// along a curved spline is turned with the tangent to first order.
+SPOOK_INLINE void addCurvatureCoupling(const Attachments& b, const Vec3d& curvature, std::vector<Row>& rows,
+                                 std::size_t first);
+
+/// The centripetal term of the rows across the curve. Frame 1's origin
+/// moving along the tangent at arc rate ṡ for a step h ends ½h²Qₖ off the
+/// curve, Qₖ = −(κ·nₖ)ṡ²: the row's second-order term κ = ½Qₖ (SecondOrder).
+SPOOK_INLINE double centripetalCurvature(double curvatureAcross, double rate);
+
+/// Without post-stabilization (second-order terms dropped), the same term goes
+/// into the violation: following the curve takes Gv⁺ + ½hQₖ where a
+/// straight row has Gv⁺, and SPOOK's right-hand side is −a g + b'Gv
+/// (SpookParameters), so the shift is ½hQₖ/a (m). The curve is fixed, so
+/// unlike the body-rotation terms of the other rows this feedforward does
+/// not feed back.
+SPOOK_INLINE double centripetalShift(const Row& row, double curvatureAcross, double rate, double h);
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Attachments alongSpline(const Attachments& a, const SplinePlace& place) {
   Attachments b = a;
   b.R2.col(0) = place.normal;
   b.R2.col(1) = place.tangent.cross(place.normal);
@@ -39,13 +64,7 @@ inline Attachments alongSpline(const Attachments& a, const SplinePlace& place) {
   return b;
 }
 
-/// The tilt rows g = z₁·nₖ written by Dot1 treat nₖ as fixed in frame 2,
-/// but nₖ follows the curve: carried without twist, dnₖ/ds = −(κ·nₖ)τ, so
-/// ġ gains −(κ·nₖ)(z₁·τ) ṡ with ṡ = J_s v the rate of the arc length. This
-/// adds that term to the two rows from `first` on, so that a body moving
-/// along a curved spline is turned with the tangent to first order.
-inline void addCurvatureCoupling(const Attachments& b, const Vec3d& curvature, std::vector<Row>& rows,
-                                 std::size_t first) {
+SPOOK_INLINE void addCurvatureCoupling(const Attachments& b, const Vec3d& curvature, std::vector<Row>& rows, std::size_t first) {
   const Coordinate along = translationalCoordinate(b);
   const double alignment = b.R1.col(2).dot(b.R2.col(2));
   for (std::size_t k = 0; k < 2; ++k) {
@@ -56,24 +75,15 @@ inline void addCurvatureCoupling(const Attachments& b, const Vec3d& curvature, s
   }
 }
 
-/// The centripetal term of the rows across the curve. Frame 1's origin
-/// moving along the tangent at arc rate ṡ for a step h ends ½h²Qₖ off the
-/// curve, Qₖ = −(κ·nₖ)ṡ²: the row's second-order term κ = ½Qₖ (SecondOrder).
-inline double centripetalCurvature(double curvatureAcross, double rate) {
+SPOOK_INLINE double centripetalCurvature(double curvatureAcross, double rate) {
   return -0.5 * curvatureAcross * rate * rate;
 }
 
-/// Without post-stabilization (second-order terms dropped), the same term goes
-/// into the violation: following the curve takes Gv⁺ + ½hQₖ where a
-/// straight row has Gv⁺, and SPOOK's right-hand side is −a g + b'Gv
-/// (SpookParameters), so the shift is ½hQₖ/a (m). The curve is fixed, so
-/// unlike the body-rotation terms of the other rows this feedforward does
-/// not feed back.
-inline double centripetalShift(const Row& row, double curvatureAcross, double rate, double h) {
+SPOOK_INLINE double centripetalShift(const Row& row, double curvatureAcross, double rate, double h) {
   const SpookParameters spook = SpookParameters::holonomic(row.compliance, row.damping, h);
   return spook.violationForSpeed(h * centripetalCurvature(curvatureAcross, rate));
 }
-
+#endif
 }  // namespace detail
 
 /// A body whose attachment frame slides along a cubic spline (seed 001

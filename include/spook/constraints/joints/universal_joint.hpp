@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <spook/constraints/joint.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -20,33 +21,41 @@ namespace detail {
 
 /// a: frame 1 about the arm x₁ (rad).
 struct UniversalArm1 {
-  static Coordinate measure(const Attachments& a) {
-    const Mat3d Q = a.R2.transpose() * a.R1;
-    const Vec3d x1 = a.R1.col(0);
-    Coordinate c;
-    c.rotational = true;
-    c.value = std::atan2(-Q(1, 2), Q(1, 1));
-    c.J1 = linearAngular(Vec3d::Zero(), x1);
-    c.J2 = linearAngular(Vec3d::Zero(), -x1);
-    c.speed = a.speed(c.J1, c.J2);
-    return c;
-  }
+  static Coordinate measure(const Attachments& a);
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Coordinate UniversalArm1::measure(const Attachments& a) {
+  const Mat3d Q = a.R2.transpose() * a.R1;
+  const Vec3d x1 = a.R1.col(0);
+  Coordinate c;
+  c.rotational = true;
+  c.value = std::atan2(-Q(1, 2), Q(1, 1));
+  c.J1 = linearAngular(Vec3d::Zero(), x1);
+  c.J2 = linearAngular(Vec3d::Zero(), -x1);
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
+}
+#endif
 
 /// b: the spider about the arm y₂ (rad).
 struct UniversalArm2 {
-  static Coordinate measure(const Attachments& a) {
-    const Mat3d Q = a.R2.transpose() * a.R1;
-    const Vec3d y2 = a.R2.col(1);
-    Coordinate c;
-    c.rotational = true;
-    c.value = std::atan2(-Q(2, 0), Q(0, 0));
-    c.J1 = linearAngular(Vec3d::Zero(), y2);
-    c.J2 = linearAngular(Vec3d::Zero(), -y2);
-    c.speed = a.speed(c.J1, c.J2);
-    return c;
-  }
+  static Coordinate measure(const Attachments& a);
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Coordinate UniversalArm2::measure(const Attachments& a) {
+  const Mat3d Q = a.R2.transpose() * a.R1;
+  const Vec3d y2 = a.R2.col(1);
+  Coordinate c;
+  c.rotational = true;
+  c.value = std::atan2(-Q(2, 0), Q(0, 0));
+  c.J1 = linearAngular(Vec3d::Zero(), y2);
+  c.J2 = linearAngular(Vec3d::Zero(), -y2);
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
+}
+#endif
 
 }  // namespace detail
 

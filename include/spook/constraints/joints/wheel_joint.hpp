@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include <spook/constraints/joint.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -21,33 +22,41 @@ namespace detail {
 
 /// s: the steering angle, frame 1 about z₂ (rad).
 struct WheelSteeringAngle {
-  static Coordinate measure(const Attachments& a) {
-    const Mat3d Q = a.R2.transpose() * a.R1;
-    const Vec3d z2 = a.R2.col(2);
-    Coordinate c;
-    c.rotational = true;
-    c.value = std::atan2(-Q(0, 1), Q(1, 1));
-    c.J1 = linearAngular(Vec3d::Zero(), z2);
-    c.J2 = linearAngular(Vec3d::Zero(), -z2);
-    c.speed = a.speed(c.J1, c.J2);
-    return c;
-  }
+  static Coordinate measure(const Attachments& a);
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Coordinate WheelSteeringAngle::measure(const Attachments& a) {
+  const Mat3d Q = a.R2.transpose() * a.R1;
+  const Vec3d z2 = a.R2.col(2);
+  Coordinate c;
+  c.rotational = true;
+  c.value = std::atan2(-Q(0, 1), Q(1, 1));
+  c.J1 = linearAngular(Vec3d::Zero(), z2);
+  c.J2 = linearAngular(Vec3d::Zero(), -z2);
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
+}
+#endif
 
 /// w: the wheel's roll about its axle y₁ (rad).
 struct WheelRollAngle {
-  static Coordinate measure(const Attachments& a) {
-    const Mat3d Q = a.R2.transpose() * a.R1;
-    const Vec3d y1 = a.R1.col(1);
-    Coordinate c;
-    c.rotational = true;
-    c.value = std::atan2(-Q(2, 0), Q(2, 2));
-    c.J1 = linearAngular(Vec3d::Zero(), y1);
-    c.J2 = linearAngular(Vec3d::Zero(), -y1);
-    c.speed = a.speed(c.J1, c.J2);
-    return c;
-  }
+  static Coordinate measure(const Attachments& a);
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Coordinate WheelRollAngle::measure(const Attachments& a) {
+  const Mat3d Q = a.R2.transpose() * a.R1;
+  const Vec3d y1 = a.R1.col(1);
+  Coordinate c;
+  c.rotational = true;
+  c.value = std::atan2(-Q(2, 0), Q(2, 2));
+  c.J1 = linearAngular(Vec3d::Zero(), y1);
+  c.J2 = linearAngular(Vec3d::Zero(), -y1);
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
+}
+#endif
 
 }  // namespace detail
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <spook/constraints/attachments.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook::detail {
 
@@ -22,47 +23,37 @@ struct ElementaryOptions {
 // g(q) = 0 with Jacobians G = ∂ġ/∂(v₁, ω₁, v₂, ω₂), centers of mass as the
 // reference points, frame 2 (body 2 or the world) as the reference frame.
 
-inline Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, double g, const RowParameters& p,
-                         double* impulse) {
-  Row& row = sink.add(J1, J2, impulse);
-  row.violation = g;
-  row.compliance = p.compliance;
-  row.damping = p.damping;
-  return row;
-}
+SPOOK_INLINE Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, double g, const RowParameters& p,
+                         double* impulse);
 
 /// Centripetal part of the separation's second derivative,
 /// ω₁×(ω₁×r₁) − ω₂×(ω₂×r₂), and its rate ḋ = v₁ + ω₁×r₁ − v₂ − ω₂×r₂.
-inline Vec3d separationCentripetal(const Attachments& a) {
-  const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>();
-  return w1.cross(w1.cross(a.r1())) - w2.cross(w2.cross(a.r2()));
-}
-inline Vec3d separationRate(const Attachments& a) {
-  return a.v1.head<3>() + a.v1.tail<3>().cross(a.r1()) - a.v2.head<3>() - a.v2.tail<3>().cross(a.r2());
-}
+SPOOK_INLINE Vec3d separationCentripetal(const Attachments& a);
+SPOOK_INLINE Vec3d separationRate(const Attachments& a);
 
 /// κ = ½ vᵀ∇²g v (SecondOrder::curvature) of g = (p₁ − p₂)·n with the frame-2 axis
 /// n turning with ω₂: ½(d̈·n + d·n̈) + ḋ·ṅ, d̈ and n̈ their centripetal parts.
-inline double separationCurvature(const Attachments& a, const Vec3d& n) {
-  const Vec3d w2 = a.v2.tail<3>(), dn = w2.cross(n);
-  return 0.5 * (separationCentripetal(a).dot(n) + (a.p1 - a.p2).dot(w2.cross(dn))) + separationRate(a).dot(dn);
-}
+SPOOK_INLINE double separationCurvature(const Attachments& a, const Vec3d& n);
 
 /// Frame origins coincide: g = p₁ − p₂ (3 rows, world axes).
 struct Spherical {
   static constexpr int kRows = 3;
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
-                      const ElementaryOptions&) {
-    const Vec3d d = a.p1 - a.p2, r1 = a.r1(), r2 = a.r2();
-    const Vec3d curvature = sink.secondOrder ? Vec3d(0.5 * separationCentripetal(a)) : Vec3d::Zero();
-    for (int k = 0; k < 3; ++k) {
-      const Vec3d e = Vec3d::Unit(k);
-      holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
-      sink.setArms(r1, r2);
-      sink.setCurvature(curvature[k]);
-    }
-  }
+                      const ElementaryOptions&);
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void Spherical::addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse, const ElementaryOptions&) {
+  const Vec3d d = a.p1 - a.p2, r1 = a.r1(), r2 = a.r2();
+  const Vec3d curvature = sink.secondOrder ? Vec3d(0.5 * separationCentripetal(a)) : Vec3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const Vec3d e = Vec3d::Unit(k);
+    holonomicRow(sink, linearAngular(e, r1.cross(e)), linearAngular(-e, -r2.cross(e)), d[k], p[k], impulse + k);
+    sink.setArms(r1, r2);
+    sink.setCurvature(curvature[k]);
+  }
+}
+#endif
 
 /// Axis A1 of frame 1 stays perpendicular to axis A2 of frame 2: g = a·b,
 /// ġ = (ω₁ − ω₂)·(a × b).
@@ -103,37 +94,73 @@ struct Dot2 {
 struct QuatLock {
   static constexpr int kRows = 3;
   static void addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse,
-                      const ElementaryOptions& options) {
-    const Quatd q = relativeRotation(a);
-    const Vec3d v = q.vec();
-    Mat3d B = q.w() * Mat3d::Identity();
-    B(0, 1) = v.z();
-    B(0, 2) = -v.y();
-    B(1, 0) = -v.z();
-    B(1, 2) = v.x();
-    B(2, 0) = v.y();
-    B(2, 1) = -v.x();
-    const Mat3d A = B * a.R2.transpose();
-    double scale = 1.0;
-    if (options.linearize) {
-      const double theta = 2.0 * std::atan2(v.norm(), q.w());
-      if (theta > 1e-6) scale = std::sin(theta) / theta;
-    }
-    for (int k = 0; k < 3; ++k) {
-      const Vec3d n = A.row(k).transpose();
-      RowParameters pk = p[k];
-      pk.compliance *= scale;
-      holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), 2.0 * v[k], pk,
-                   impulse + k);
-    }
-  }
+                      const ElementaryOptions& options);
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void QuatLock::addRows(const Attachments& a, RowSink& sink, const RowParameters* p, double* impulse, const ElementaryOptions& options) {
+  const Quatd q = relativeRotation(a);
+  const Vec3d v = q.vec();
+  Mat3d B = q.w() * Mat3d::Identity();
+  B(0, 1) = v.z();
+  B(0, 2) = -v.y();
+  B(1, 0) = -v.z();
+  B(1, 2) = v.x();
+  B(2, 0) = v.y();
+  B(2, 1) = -v.x();
+  const Mat3d A = B * a.R2.transpose();
+  double scale = 1.0;
+  if (options.linearize) {
+    const double theta = 2.0 * std::atan2(v.norm(), q.w());
+    if (theta > 1e-6) scale = std::sin(theta) / theta;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const Vec3d n = A.row(k).transpose();
+    RowParameters pk = p[k];
+    pk.compliance *= scale;
+    holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), 2.0 * v[k], pk,
+                 impulse + k);
+  }
+}
+#endif
 
 // Coordinates of the free motion.
 
 /// Angle of frame 1 about axis z of frame 2 (rad, −π..π before winding): the
 /// twist of the relative rotation about z.
-inline Coordinate rotationalCoordinate(const Attachments& a) {
+SPOOK_INLINE Coordinate rotationalCoordinate(const Attachments& a);
+
+/// Position of frame 1 along axis z of frame 2 (m).
+SPOOK_INLINE Coordinate translationalCoordinate(const Attachments& a);
+
+/// Distance between the frame origins (m); along z of frame 2 when they meet.
+SPOOK_INLINE Coordinate distanceCoordinate(const Attachments& a);
+
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, double g, const RowParameters& p, double* impulse) {
+  Row& row = sink.add(J1, J2, impulse);
+  row.violation = g;
+  row.compliance = p.compliance;
+  row.damping = p.damping;
+  return row;
+}
+
+SPOOK_INLINE Vec3d separationCentripetal(const Attachments& a) {
+  const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>();
+  return w1.cross(w1.cross(a.r1())) - w2.cross(w2.cross(a.r2()));
+}
+
+SPOOK_INLINE Vec3d separationRate(const Attachments& a) {
+  return a.v1.head<3>() + a.v1.tail<3>().cross(a.r1()) - a.v2.head<3>() - a.v2.tail<3>().cross(a.r2());
+}
+
+SPOOK_INLINE double separationCurvature(const Attachments& a, const Vec3d& n) {
+  const Vec3d w2 = a.v2.tail<3>(), dn = w2.cross(n);
+  return 0.5 * (separationCentripetal(a).dot(n) + (a.p1 - a.p2).dot(w2.cross(dn))) + separationRate(a).dot(dn);
+}
+
+SPOOK_INLINE Coordinate rotationalCoordinate(const Attachments& a) {
   const Quatd q = relativeRotation(a);
   Coordinate c;
   c.rotational = true;
@@ -145,8 +172,7 @@ inline Coordinate rotationalCoordinate(const Attachments& a) {
   return c;
 }
 
-/// Position of frame 1 along axis z of frame 2 (m).
-inline Coordinate translationalCoordinate(const Attachments& a) {
+SPOOK_INLINE Coordinate translationalCoordinate(const Attachments& a) {
   const Vec3d n = a.R2.col(2);
   Coordinate c;
   c.value = (a.p1 - a.p2).dot(n);
@@ -157,8 +183,7 @@ inline Coordinate translationalCoordinate(const Attachments& a) {
   return c;
 }
 
-/// Distance between the frame origins (m); along z of frame 2 when they meet.
-inline Coordinate distanceCoordinate(const Attachments& a) {
+SPOOK_INLINE Coordinate distanceCoordinate(const Attachments& a) {
   const Vec3d d = a.p1 - a.p2;
   const double length = d.norm();
   const Vec3d n = length > 1e-12 ? Vec3d(d / length) : Vec3d(a.R2.col(2));
@@ -174,5 +199,5 @@ inline Coordinate distanceCoordinate(const Attachments& a) {
   }
   return c;
 }
-
+#endif
 }  // namespace spook::detail

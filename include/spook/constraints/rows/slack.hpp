@@ -5,6 +5,7 @@
 #include <limits>
 
 #include <spook/constraints/rows/elementary.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook::detail {
 
@@ -31,19 +32,11 @@ struct Rates {
 
 /// u·w of an axis u of frame 1 and an axis w of frame 2, turning with ω₁ and
 /// ω₂ (as Dot1).
-inline Rates axisDot(const Attachments& a, const Vec3d& u, const Vec3d& w) {
-  const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
-  return {u.dot(w), du.dot(w) + u.dot(dw), 0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw)};
-}
+SPOOK_INLINE Rates axisDot(const Attachments& a, const Vec3d& u, const Vec3d& w);
 
 /// atan2(s, c) of two such quantities: θ̇ = (c ṡ − s ċ)/r² and
 /// ½θ̈ = (c κ_s − s κ_c)/r² − θ̇ (s ṡ + c ċ)/r², r² = s² + c².
-inline Rates angleRates(const Rates& s, const Rates& c) {
-  const double r2 = std::max(s.value * s.value + c.value * c.value, 1e-300);
-  const double rate = (c.value * s.rate - s.value * c.rate) / r2;
-  return {std::atan2(s.value, c.value), rate,
-          (c.value * s.curvature - s.value * c.curvature) / r2 - rate * (s.value * s.rate + c.value * c.rate) / r2};
-}
+SPOOK_INLINE Rates angleRates(const Rates& s, const Rates& c);
 
 /// Tilt of frame 1's z axis about axis K (0: x, 1: y) of frame 2 (rad): the
 /// angle of z₁ projected on the plane normal to that axis, measured from z₂.
@@ -144,19 +137,7 @@ struct SlackInterval {
   /// in the system throughout: a look-ahead on the DOF's own speed misses
   /// the kicks that other rows' impacts give it within one step (measured:
   /// 3–6 mm past a 1 cm slack in a swinging chain).
-  void restrict(Row& row) const {
-    const double x = row.violation;
-    if (lower == upper) {
-      row.violation = x - lower;
-      return;
-    }
-    const bool lowerSide = x - lower <= upper - x;
-    row.violation = x - (lowerSide ? lower : upper);
-    if (lowerSide)
-      row.lower = 0.0;  // may only push x up
-    else
-      row.upper = 0.0;  // may only push x down
-  }
+  void restrict(Row& row) const;
 
   /// For post-stabilization, which projects equalities: a zero-width
   /// interval keeps its row (g = x − lower), and so does an end the step's
@@ -164,16 +145,47 @@ struct SlackInterval {
   /// row, it is projected onto the violation x − end the solve predicted,
   /// which removes the step's second-order drift past the end while the DOF
   /// is held there. A DOF moving inside its slack is left to the solve.
-  bool restrictProjection(Row& row, const double* impulse) const {
-    if (lower == upper) {
-      row.violation -= lower;
-      return true;
-    }
-    if (!impulse || *impulse == 0.0) return false;
-    const double x = row.violation;
-    row.violation = x - (x - lower <= upper - x ? lower : upper);
-    return true;
-  }
+  bool restrictProjection(Row& row, const double* impulse) const;
 };
 
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void SlackInterval::restrict(Row& row) const {
+  const double x = row.violation;
+  if (lower == upper) {
+    row.violation = x - lower;
+    return;
+  }
+  const bool lowerSide = x - lower <= upper - x;
+  row.violation = x - (lowerSide ? lower : upper);
+  if (lowerSide)
+    row.lower = 0.0;  // may only push x up
+  else
+    row.upper = 0.0;  // may only push x down
+}
+
+SPOOK_INLINE bool SlackInterval::restrictProjection(Row& row, const double* impulse) const {
+  if (lower == upper) {
+    row.violation -= lower;
+    return true;
+  }
+  if (!impulse || *impulse == 0.0) return false;
+  const double x = row.violation;
+  row.violation = x - (x - lower <= upper - x ? lower : upper);
+  return true;
+}
+#endif
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Rates axisDot(const Attachments& a, const Vec3d& u, const Vec3d& w) {
+  const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
+  return {u.dot(w), du.dot(w) + u.dot(dw), 0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw)};
+}
+
+SPOOK_INLINE Rates angleRates(const Rates& s, const Rates& c) {
+  const double r2 = std::max(s.value * s.value + c.value * c.value, 1e-300);
+  const double rate = (c.value * s.rate - s.value * c.rate) / r2;
+  return {std::atan2(s.value, c.value), rate,
+          (c.value * s.curvature - s.value * c.curvature) / r2 - rate * (s.value * s.rate + c.value * c.rate) / r2};
+}
+#endif
 }  // namespace spook::detail

@@ -6,6 +6,7 @@
 
 #include <spook/constraints/secondary/friction_controller.hpp>
 #include <spook/constraints/secondary/secondary_constraint.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -26,7 +27,10 @@ struct ConeState {
   Vec3d axis = Vec3d::Zero();  ///< n = R₂ n₂ (world): ġ = n·(ω₁ − ω₂)
 };
 
-[[nodiscard]] inline ConeState coneState(const Attachments& a, double a1, double a2) {
+[[nodiscard]] SPOOK_INLINE ConeState coneState(const Attachments& a, double a1, double a2);
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE ConeState coneState(const Attachments& a, double a1, double a2) {
   const Vec3d d = a.R2.transpose() * a.R1.col(2);
   const double rho = std::hypot(d.x(), d.y());
   ConeState s;
@@ -46,7 +50,7 @@ struct ConeState {
   s.axis = a.R2 * n2;
   return s;
 }
-
+#endif
 }  // namespace detail
 
 /// Keeps frame 1's z axis inside a cone about frame 2's z axis, the base

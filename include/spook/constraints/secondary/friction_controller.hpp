@@ -9,6 +9,7 @@
 
 #include <spook/constraints/constraint.hpp>
 #include <spook/constraints/secondary/secondary_constraint.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/observer_ptr.hpp>
 
 namespace spook {
@@ -46,27 +47,13 @@ class JointLoad {
  public:
   /// Records the rows written to `sink` from index `first` on (the joint's
   /// elementary rows of this step) and the joint axis (world, unit).
-  void record(const RowSink& sink, std::size_t first, const Vec3d& axis) {
-    rows_.clear();
-    for (std::size_t i = first; i < sink.rows->size(); ++i) rows_.push_back({(*sink.rows)[i].J1.head<3>(), sink.slot(i)});
-    axis_ = axis;
-    recorded_ = true;
-  }
+  void record(const RowSink& sink, std::size_t first, const Vec3d& axis);
   /// Force on body 1 from the recorded rows (N, world); zero when the joint
   /// wrote no rows this step. Call once per step, after the solve.
-  [[nodiscard]] Vec3d force(double h) {
-    Vec3d f = Vec3d::Zero();
-    if (recorded_)
-      for (const auto& r : rows_)
-        if (r.impulse) f += r.linear * (*r.impulse / h);
-    recorded_ = false;
-    return f;
-  }
+  [[nodiscard]] Vec3d force(double h);
   /// The part of `force` across the axis (N); with `across` false its whole
   /// magnitude (a ball joint has no axis).
-  [[nodiscard]] double normal(const Vec3d& force, bool across = true) const {
-    return across ? (force - force.dot(axis_) * axis_).norm() : force.norm();
-  }
+  [[nodiscard]] double normal(const Vec3d& force, bool across = true) const;
 
  private:
   struct Entry {
@@ -77,6 +64,28 @@ class JointLoad {
   Vec3d axis_ = Vec3d::UnitZ();
   bool recorded_ = false;
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void JointLoad::record(const RowSink& sink, std::size_t first, const Vec3d& axis) {
+  rows_.clear();
+  for (std::size_t i = first; i < sink.rows->size(); ++i) rows_.push_back({(*sink.rows)[i].J1.head<3>(), sink.slot(i)});
+  axis_ = axis;
+  recorded_ = true;
+}
+
+SPOOK_INLINE Vec3d JointLoad::force(double h) {
+  Vec3d f = Vec3d::Zero();
+  if (recorded_)
+    for (const auto& r : rows_)
+      if (r.impulse) f += r.linear * (*r.impulse / h);
+  recorded_ = false;
+  return f;
+}
+
+SPOOK_INLINE double JointLoad::normal(const Vec3d& force, bool across) const {
+  return across ? (force - force.dot(axis_) * axis_).norm() : force.norm();
+}
+#endif
 
 }  // namespace detail
 

@@ -7,6 +7,7 @@
 
 #include <spook/constraints/secondary/friction_controller.hpp>
 #include <spook/constraints/secondary/secondary_constraint.hpp>
+#include <spook/core/implementation.hpp>
 
 namespace spook {
 
@@ -19,7 +20,10 @@ namespace detail {
 /// q̇ = ½ Ω ⊗ q, Ω = R₂ᵀ(ω₁ − ω₂):
 ///   ψ̇ = Ω·(q_w q_y + q_x q_z, q_y q_z − q_w q_x, q_w² + q_z²)/(q_w² + q_z²).
 /// Undefined when z₁ = −z₂ (q_w = q_z = 0), as the seed warns.
-[[nodiscard]] inline Coordinate twistCoordinate(const Attachments& a) {
+[[nodiscard]] SPOOK_INLINE Coordinate twistCoordinate(const Attachments& a);
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE Coordinate twistCoordinate(const Attachments& a) {
   const Quatd q = relativeRotation(a);
   Coordinate c;
   c.rotational = true;
@@ -34,7 +38,7 @@ namespace detail {
   c.speed = a.speed(c.J1, c.J2);
   return c;
 }
-
+#endif
 }  // namespace detail
 
 /// Keeps the twist of a ball joint (detail::twistCoordinate, rad) within
