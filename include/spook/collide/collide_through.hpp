@@ -25,11 +25,13 @@ struct CollidersDefined {};
 }  // namespace detail
 
 #if defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
+template class ColliderMatrixT<double, AllShapes>;
 template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
                                                         const ShapeT<double>&, const TransformT<double>&,
                                                         ContactSinkT<double>&);
 #endif
 #if defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
+template class ColliderMatrixT<float, AllShapes>;
 template bool detail::collideThrough<float, AllShapes>(const ShapeT<float>&, const TransformT<float>&,
                                                        const ShapeT<float>&, const TransformT<float>&,
                                                        ContactSinkT<float>&);

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include <spook/collide/all_shapes.hpp>
 #include <spook/collide/collider.hpp>
 #include <spook/collide/colliders.hpp>
 #include <spook/collide/shape_list.hpp>
@@ -39,14 +40,7 @@ class ColliderMatrixT<S, ShapeList<Shapes...>> {
 
   /// Contacts between a at X_WA and b at X_WB (shape → world), through the
   /// table. Returns false, writing nothing, for a pair the table lacks.
-  static bool collide(const Shape& a, const Transform& X_WA, const Shape& b, const Transform& X_WB, Sink& sink) {
-    const int i = kIndex[static_cast<std::size_t>(a.getType())], j = kIndex[static_cast<std::size_t>(b.getType())];
-    if (i < 0 || j < 0) return false;
-    const Function entry = kTable[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
-    if (!entry) return false;
-    entry(a, X_WA, b, X_WB, sink);
-    return true;
-  }
+  static bool collide(const Shape& a, const Transform& X_WA, const Shape& b, const Transform& X_WB, Sink& sink);
 
   /// The same with both types known at compile time: no table, and a
   /// compile-time error for a shape outside the list.
@@ -60,19 +54,7 @@ class ColliderMatrixT<S, ShapeList<Shapes...>> {
 
   /// The matrix as a markdown table, rows and columns in list order: X
   /// where a collider exists, - where the pair is a hole.
-  [[nodiscard]] static std::string describe() {
-    std::string text = "|";
-    for (std::size_t j = 0; j < N; ++j) text += std::string(" | ") + std::string(shapeTypeName(kTypes[j]));
-    text += " |\n|---";
-    for (std::size_t j = 0; j < N; ++j) text += "|---";
-    text += "|\n";
-    for (std::size_t i = 0; i < N; ++i) {
-      text += "| " + std::string(shapeTypeName(kTypes[i]));
-      for (std::size_t j = 0; j < N; ++j) text += kSupported[i][j] ? " | X" : " | -";
-      text += " |\n";
-    }
-    return text;
-  }
+  [[nodiscard]] static std::string describe();
 
  private:
   static constexpr std::array<ShapeType, N> kTypes = {Shapes<S>::kType...};
@@ -133,5 +115,42 @@ class ColliderMatrixT<S, ShapeList<Shapes...>> {
   }
   static constexpr std::array<std::array<bool, N>, N> kSupported = {supportedRow<Shapes<S>>()...};
 };
+
+template <Scalar S, template <Scalar> class... Shapes>
+bool ColliderMatrixT<S, ShapeList<Shapes...>>::collide(const Shape& a, const Transform& X_WA, const Shape& b,
+                                                       const Transform& X_WB, Sink& sink) {
+  const int i = kIndex[static_cast<std::size_t>(a.getType())], j = kIndex[static_cast<std::size_t>(b.getType())];
+  if (i < 0 || j < 0) return false;
+  const Function entry = kTable[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+  if (!entry) return false;
+  entry(a, X_WA, b, X_WB, sink);
+  return true;
+}
+
+template <Scalar S, template <Scalar> class... Shapes>
+std::string ColliderMatrixT<S, ShapeList<Shapes...>>::describe() {
+  std::string text = "|";
+  for (std::size_t j = 0; j < N; ++j) text += std::string(" | ") + std::string(shapeTypeName(kTypes[j]));
+  text += " |\n|---";
+  for (std::size_t j = 0; j < N; ++j) text += "|---";
+  text += "|\n";
+  for (std::size_t i = 0; i < N; ++i) {
+    text += "| " + std::string(shapeTypeName(kTypes[i]));
+    for (std::size_t j = 0; j < N; ++j) text += kSupported[i][j] ? " | X" : " | -";
+    text += " |\n";
+  }
+  return text;
+}
+
+// The full shape list's matrix (its table and every collider behind it) is
+// compiled once with the collider parts (collide/collide_through.hpp) where
+// spook is compiled once: a file that calls a typed entry, or a composite's,
+// compiles only the colliders of its own pairs.
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
+extern template class ColliderMatrixT<double, AllShapes>;
+#endif
+#if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
+extern template class ColliderMatrixT<float, AllShapes>;
+#endif
 
 }  // namespace spook
