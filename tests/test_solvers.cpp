@@ -1,12 +1,14 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
 
 #include <spook/solver/block_cholesky.hpp>
 #include <spook/solver/direct_solve.hpp>
+#include <spook/solver/friction_bounds.hpp>
 #include <spook/solver/iterative_solve.hpp>
 
 #include "joint_scenes.hpp"
@@ -373,6 +375,49 @@ TEST_CASE("the block Cholesky factorization solves random block-sparse systems a
 }
 
 // Gauss–Seidel converges to the direct solution on a well-conditioned island.
+// The cone step of Gauss-Seidel: the point of the disk |x| <= R nearest a
+// target in the metric of a 2x2 SPD block. Reference: the minimum of the
+// quadratic over a fine sweep of the circle, polished by golden sections
+// (the minimizer lies on the circle when the target is outside the disk).
+TEST_CASE("the cone step finds the disk point nearest a target in the block's metric") {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int outside = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    // Eigenvalues over up to 8 decades, any orientation.
+    const double l1 = std::pow(10.0, 4.0 * unit(random)), l2 = l1 * std::pow(10.0, 4.0 * unit(random));
+    const double angle = 3.2 * unit(random), c = std::cos(angle), s = std::sin(angle);
+    const double a00 = c * c * l1 + s * s * l2, a01 = c * s * (l1 - l2), a11 = s * s * l1 + c * c * l2;
+    const double radius = std::pow(10.0, 3.0 * unit(random));
+    const std::array<double, 2> target = {3.0 * radius * unit(random), 3.0 * radius * unit(random)};
+    const auto cost = [&](double x0, double x1) {
+      const double d0 = x0 - target[0], d1 = x1 - target[1];
+      return a00 * d0 * d0 + 2.0 * a01 * d0 * d1 + a11 * d1 * d1;
+    };
+    const auto x = detail::projectOntoDisk(target, radius, a00, a01, a11);
+    const double length = std::hypot(x[0], x[1]);
+    REQUIRE(length <= radius * (1.0 + 1e-12));
+    if (std::hypot(target[0], target[1]) <= radius) {
+      CHECK(x == target);
+      continue;
+    }
+    ++outside;
+    CHECK(length == doctest::Approx(radius).epsilon(1e-12));
+    const auto onCircle = [&](double t) { return cost(radius * std::cos(t), radius * std::sin(t)); };
+    double best = 0.0;
+    for (int k = 1; k < 3600; ++k)
+      if (onCircle(2.0 * M_PI * k / 3600) < onCircle(2.0 * M_PI * best / 3600)) best = k;
+    double lo = 2.0 * M_PI * (best - 1) / 3600, hi = 2.0 * M_PI * (best + 1) / 3600;
+    for (int k = 0; k < 100; ++k) {
+      const double m1 = lo + 0.382 * (hi - lo), m2 = lo + 0.618 * (hi - lo);
+      (onCircle(m1) < onCircle(m2) ? hi : lo) = onCircle(m1) < onCircle(m2) ? m2 : m1;
+    }
+    const double reference = onCircle(0.5 * (lo + hi));
+    CHECK(cost(x[0], x[1]) <= reference * (1.0 + 1e-9) + 1e-300);
+  }
+  CHECK(outside > 500);
+}
+
 TEST_CASE("projected Gauss-Seidel and Jacobi converge to the direct solution of a short chain") {
   for (bool jacobi : {false, true}) {
     SimulationRef directSim = new Simulation(), iterativeSim = new Simulation();

@@ -122,6 +122,99 @@ class RowBlocks {
   std::vector<Mat6d> inverses_;
 };
 
+/// A single row (not in a block) as the Gauss–Seidel sweeps read it: a copy
+/// packed in sweep order, so that a sweep streams through memory, reads no
+/// field it does not use and finds its normal's impulse and its cone
+/// partner by position. The impulses (and followed bounds) go back to the
+/// problem when the sweeps end.
+struct SweepRow {
+  enum class Kind : unsigned char { ROW, CONE_FIRST, CONE_SECOND };
+  Vec6d J1 = Vec6d::Zero(), W1 = Vec6d::Zero(), J2 = Vec6d::Zero(), W2 = Vec6d::Zero();
+  double q = 0.0, sigma = 0.0, diagonal = 0.0, lower = 0.0, upper = 0.0, impulse = 0.0;
+  double mu = 0.0;           ///< rows following their normal: bounds ±μ max(0, Λn)
+  double fixedNormal = 0.0;  ///< Λn of a normal that is not swept
+  double a01 = 0.0;          ///< first row of a cone pair: (S+Σ) coupling with its partner
+  int body1 = -1, body2 = -1, extra = -1;
+  int row = -1;      ///< index in the problem
+  int normal = -1;   ///< sweep position of its normal row; −1: not swept (or none)
+  int partner = -1;  ///< first row of a cone pair: sweep position of the second
+  bool follows = false;
+  Kind kind = Kind::ROW;
+};
+
+SPOOK_ALWAYS_INLINE double sweptRowVelocity(const IslandProblem& problem, const SweepRow& s, const Vec6d* dv) {
+  double v = 0.0;
+  if (s.body1 >= 0) v += s.J1.dot(dv[s.body1]);
+  if (s.body2 >= 0) v += s.J2.dot(dv[s.body2]);
+  if (s.extra >= 0) {
+    const IslandProblem::ExtraBody& x = problem.extraBodies[static_cast<std::size_t>(s.extra)];
+    v += x.J.dot(dv[x.body]);
+  }
+  return v;
+}
+
+// Written out: GCC 12 leaves Eigen's `v += w * s` out of line here.
+SPOOK_ALWAYS_INLINE void addScaled(Vec6d& v, const Vec6d& w, double s) {
+  for (int k = 0; k < 6; ++k) v[k] += w[k] * s;
+}
+
+SPOOK_ALWAYS_INLINE void addSweptImpulse(const IslandProblem& problem, const SweepRow& s, Vec6d* dv, double d) {
+  if (s.body1 >= 0) addScaled(dv[s.body1], s.W1, d);
+  if (s.body2 >= 0) addScaled(dv[s.body2], s.W2, d);
+  if (s.extra >= 0) {
+    const IslandProblem::ExtraBody& x = problem.extraBodies[static_cast<std::size_t>(s.extra)];
+    addScaled(dv[x.body], x.W, d);
+  }
+}
+
+/// The single rows of `units` packed in unit order (SweepRow) into
+/// `packed`; `swept` marks the problem's rows in the subset, `position`
+/// is scratch.
+inline void packSweepRows(const IslandProblem& problem, const std::vector<int>& subset,
+                          const std::vector<RowBlocks::Unit>& units, const std::vector<char>& swept,
+                          std::vector<SweepRow>& packed, std::vector<int>& position) {
+  packed.clear();
+  packed.reserve(units.size());
+  position.assign(problem.rows.size(), -1);
+  for (const RowBlocks::Unit& unit : units) {
+    if (unit.count > 1) continue;
+    const int i = subset[static_cast<std::size_t>(unit.first)];
+    const IslandProblem::Entry& e = problem.rows[static_cast<std::size_t>(i)];
+    SweepRow s;
+    s.J1 = e.J1;
+    s.W1 = e.W1;
+    s.J2 = e.J2;
+    s.W2 = e.W2;
+    s.q = e.q;
+    s.sigma = e.sigma;
+    s.diagonal = e.diagonal;
+    s.lower = e.lower;
+    s.upper = e.upper;
+    s.impulse = e.impulse;
+    s.mu = e.mu;
+    s.body1 = e.body1;
+    s.body2 = e.body2;
+    s.extra = e.extra;
+    s.row = i;
+    s.follows = e.followsNormal();
+    if (e.frictionBound == FrictionBound::CONE && e.normal >= 0 && e.partner >= 0 &&
+        swept[static_cast<std::size_t>(e.partner)]) {
+      s.kind = e.partner < i ? SweepRow::Kind::CONE_SECOND : SweepRow::Kind::CONE_FIRST;
+      if (s.kind == SweepRow::Kind::CONE_FIRST) s.a01 = problem.coupling(i, e.partner);
+    }
+    position[static_cast<std::size_t>(i)] = static_cast<int>(packed.size());
+    packed.push_back(s);
+  }
+  for (SweepRow& s : packed) {
+    const IslandProblem::Entry& e = problem.rows[static_cast<std::size_t>(s.row)];
+    if (s.follows) {
+      s.normal = position[static_cast<std::size_t>(e.normal)];
+      s.fixedNormal = problem.rows[static_cast<std::size_t>(e.normal)].impulse;
+    }
+    if (s.kind == SweepRow::Kind::CONE_FIRST) s.partner = position[static_cast<std::size_t>(e.partner)];
+  }
+}
+
 /// Projected Gauss–Seidel on the rows `subset` (PHYSICS.md §2.2), the other
 /// rows' impulses held fixed, starting from the impulses in the problem
 /// (the last step's when warm starting): Λᵢ ← clamp(Λᵢ + rᵢ/(S+Σ)ᵢᵢ, loᵢ, hiᵢ) with rᵢ = qᵢ − GᵢΔv − ΣᵢΛᵢ,
@@ -133,30 +226,117 @@ class RowBlocks {
 /// μΛn (projectOntoDisk), the projected cone of PHYSICS.md §2.2.
 ///
 /// A constraint's unbounded rows are updated as one block (RowBlocks).
-///
-/// The Jacobi variant computes every update of a sweep from the same Δv and
-/// applies it scaled by 1/k, k the largest number of swept rows on either of
-/// the row's bodies, which keeps it from overshooting where rows share a body.
-inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::vector<int>& subset, int maxIterations,
-                                           double tolerance, bool jacobi) {
+inline IterativeSolveResult gaussSeidelSolve(IslandProblem& problem, const std::vector<int>& subset, int maxIterations,
+                                             double tolerance) {
+  IterativeSolveResult result;
+  if (subset.empty()) return result;
+  std::vector<Vec6d> velocityChange = problem.velocityChange();
+  Vec6d* dv = velocityChange.data();
+  std::vector<char> swept(problem.rows.size(), 0);
+  for (int i : subset) swept[static_cast<std::size_t>(i)] = 1;
+  const RowBlocks blocks(problem, subset, true);
+  // Kept between solves: a scene's rows are packed again at every solve,
+  // and fresh pages for them cost more than the packing.
+  thread_local std::vector<SweepRow> packed;
+  thread_local std::vector<int> position;
+  packSweepRows(problem, subset, blocks.units(), swept, packed, position);
+
+  const auto followNormal = [&](SweepRow& s) {
+    const double normal = s.normal >= 0 ? packed[static_cast<std::size_t>(s.normal)].impulse : s.fixedNormal;
+    const double limit = s.mu * std::max(0.0, normal);
+    s.lower = -limit;
+    s.upper = limit;
+  };
+  for (int sweep = 0; sweep < maxIterations; ++sweep) {
+    double change = 0.0;
+    std::size_t next = 0;
+    for (const RowBlocks::Unit& unit : blocks.units()) {
+      if (unit.count > 1) {
+        Vec6d r_B = Vec6d::Zero();
+        for (int a = 0; a < unit.count; ++a) {
+          const int i = subset[static_cast<std::size_t>(unit.first + a)];
+          const auto& e = problem.rows[static_cast<std::size_t>(i)];
+          r_B(a) = e.q - problem.rowVelocity(i, velocityChange) - e.sigma * e.impulse;
+        }
+        const Vec6d d_B = blocks.inverse(unit) * r_B;
+        for (int a = 0; a < unit.count; ++a) {
+          const int i = subset[static_cast<std::size_t>(unit.first + a)];
+          auto& e = problem.rows[static_cast<std::size_t>(i)];
+          e.impulse += d_B(a);
+          problem.addImpulse(velocityChange, i, d_B(a));
+          change = std::max(change, std::abs(d_B(a)) * e.diagonal);
+        }
+        continue;
+      }
+      SweepRow& s = packed[next++];
+      if (s.follows) followNormal(s);
+      if (s.kind == SweepRow::Kind::CONE_SECOND) continue;  // updated with the first of its pair
+      const double r = s.q - sweptRowVelocity(problem, s, dv) - s.sigma * s.impulse;
+      if (s.kind == SweepRow::Kind::CONE_FIRST) {
+        SweepRow& p = packed[static_cast<std::size_t>(s.partner)];
+        p.lower = s.lower;
+        p.upper = s.upper;
+        const double rp = p.q - sweptRowVelocity(problem, p, dv) - p.sigma * p.impulse;
+        const double a01 = s.a01;
+        const double det = s.diagonal * p.diagonal - a01 * a01;
+        const double d0 = (p.diagonal * r - a01 * rp) / det, d1 = (s.diagonal * rp - a01 * r) / det;
+        const auto moved = projectOntoDisk({s.impulse + d0, p.impulse + d1}, s.upper, s.diagonal, a01, p.diagonal);
+        const double ds = moved[0] - s.impulse, dp = moved[1] - p.impulse;
+        s.impulse = moved[0];
+        p.impulse = moved[1];
+        addSweptImpulse(problem, s, dv, ds);
+        addSweptImpulse(problem, p, dv, dp);
+        change = std::max({change, std::abs(ds) * s.diagonal, std::abs(dp) * p.diagonal});
+        continue;
+      }
+      const double clamped = std::clamp(s.impulse + r / s.diagonal, s.lower, s.upper);
+      const double d = clamped - s.impulse;
+      s.impulse = clamped;
+      addSweptImpulse(problem, s, dv, d);
+      change = std::max(change, std::abs(d) * s.diagonal);
+    }
+    result.iterations = sweep + 1;
+    result.change = change;
+    if (!std::isfinite(change)) break;
+    if (change <= tolerance) {
+      result.converged = true;
+      break;
+    }
+  }
+  for (const SweepRow& s : packed) {
+    IslandProblem::Entry& e = problem.rows[static_cast<std::size_t>(s.row)];
+    e.impulse = s.impulse;
+    if (s.follows) {
+      e.lower = s.lower;
+      e.upper = s.upper;
+    }
+  }
+  return result;
+}
+
+/// Projected Jacobi on the rows `subset`: every update of a sweep is
+/// computed from the same Δv and applied scaled by 1/k, k the largest
+/// number of swept rows on either of the row's bodies, which keeps it from
+/// overshooting where rows share a body. Friction bounds follow the normal
+/// as in Gauss–Seidel; a cone pair's box step is scaled back into its disk.
+inline IterativeSolveResult jacobiSolve(IslandProblem& problem, const std::vector<int>& subset, int maxIterations,
+                                        double tolerance) {
   IterativeSolveResult result;
   if (subset.empty()) return result;
   std::vector<Vec6d> dv = problem.velocityChange();
 
   std::vector<double> relaxation;
-  if (jacobi) {
-    std::vector<int> count(static_cast<std::size_t>(problem.numBodies), 0);
-    for (int i : subset) {
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      for (int body : problem.bodiesOf(e))
-        if (body >= 0) ++count[static_cast<std::size_t>(body)];
-    }
-    for (int i : subset) {
-      int k = 1;
-      for (int body : problem.bodiesOf(problem.rows[static_cast<std::size_t>(i)]))
-        if (body >= 0) k = std::max(k, count[static_cast<std::size_t>(body)]);
-      relaxation.push_back(1.0 / k);
-    }
+  std::vector<int> count(static_cast<std::size_t>(problem.numBodies), 0);
+  for (int i : subset) {
+    const auto& e = problem.rows[static_cast<std::size_t>(i)];
+    for (int body : problem.bodiesOf(e))
+      if (body >= 0) ++count[static_cast<std::size_t>(body)];
+  }
+  for (int i : subset) {
+    int k = 1;
+    for (int body : problem.bodiesOf(problem.rows[static_cast<std::size_t>(i)]))
+      if (body >= 0) k = std::max(k, count[static_cast<std::size_t>(body)]);
+    relaxation.push_back(1.0 / k);
   }
   std::vector<double> delta(subset.size(), 0.0);
   std::vector<char> inSubset(problem.rows.size(), 0);
@@ -167,85 +347,37 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
            inSubset[static_cast<std::size_t>(e.partner)];
   };
 
-  const RowBlocks blocks(problem, subset, !jacobi);
   for (int sweep = 0; sweep < maxIterations; ++sweep) {
     double change = 0.0;
-    for (const RowBlocks::Unit& unit : blocks.units()) {
-      if (unit.count > 1) {
-        Vec6d r_B = Vec6d::Zero();
-        for (int a = 0; a < unit.count; ++a) {
-          const int i = subset[static_cast<std::size_t>(unit.first + a)];
-          const auto& e = problem.rows[static_cast<std::size_t>(i)];
-          r_B(a) = e.q - problem.rowVelocity(i, dv) - e.sigma * e.impulse;
-        }
-        const Vec6d d_B = blocks.inverse(unit) * r_B;
-        for (int a = 0; a < unit.count; ++a) {
-          const int i = subset[static_cast<std::size_t>(unit.first + a)];
-          auto& e = problem.rows[static_cast<std::size_t>(i)];
-          e.impulse += d_B(a);
-          problem.addImpulse(dv, i, d_B(a));
-          change = std::max(change, std::abs(d_B(a)) * e.diagonal);
-        }
-        continue;
-      }
-      const std::size_t k = static_cast<std::size_t>(unit.first);
-      const int i = subset[k];
-      auto& e = problem.rows[static_cast<std::size_t>(i)];
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      auto& e = problem.rows[static_cast<std::size_t>(subset[k])];
       if (e.followsNormal()) {
         const double limit = frictionLimit(problem, e);
         e.lower = -limit;
         e.upper = limit;
       }
-      const double r = e.q - problem.rowVelocity(i, dv) - e.sigma * e.impulse;
-      if (!jacobi && conePair(i)) {
-        if (e.partner < i) continue;  // updated with its partner
-        auto& p = problem.rows[static_cast<std::size_t>(e.partner)];
-        p.lower = e.lower;
-        p.upper = e.upper;
-        const double rp = p.q - problem.rowVelocity(e.partner, dv) - p.sigma * p.impulse;
-        const double a01 = problem.coupling(i, e.partner);
-        const double det = e.diagonal * p.diagonal - a01 * a01;
-        const double d0 = (p.diagonal * r - a01 * rp) / det, d1 = (e.diagonal * rp - a01 * r) / det;
-        const auto next = projectOntoDisk({e.impulse + d0, p.impulse + d1}, e.upper, e.diagonal, a01, p.diagonal);
-        const double de = next[0] - e.impulse, dp = next[1] - p.impulse;
-        e.impulse = next[0];
-        p.impulse = next[1];
-        problem.addImpulse(dv, i, de);
-        problem.addImpulse(dv, e.partner, dp);
-        change = std::max({change, std::abs(de) * e.diagonal, std::abs(dp) * p.diagonal});
-        continue;
-      }
-      const double next = std::clamp(e.impulse + r / e.diagonal, e.lower, e.upper);
-      if (jacobi) {
-        delta[k] = relaxation[k] * (next - e.impulse);
-        continue;
-      }
-      const double d = next - e.impulse;
-      e.impulse = next;
-      problem.addImpulse(dv, i, d);
-      change = std::max(change, std::abs(d) * e.diagonal);
+      const double r = e.q - problem.rowVelocity(subset[k], dv) - e.sigma * e.impulse;
+      delta[k] = relaxation[k] * (std::clamp(e.impulse + r / e.diagonal, e.lower, e.upper) - e.impulse);
     }
-    if (jacobi) {
-      for (std::size_t k = 0; k < subset.size(); ++k) {
-        const int i = subset[k];
-        auto& e = problem.rows[static_cast<std::size_t>(i)];
-        e.impulse += delta[k];
-        problem.addImpulse(dv, i, delta[k]);
-        change = std::max(change, std::abs(delta[k]) * e.diagonal);
-      }
-      // The box step leaves a cone pair in its square: scale it into the disk.
-      for (int i : subset) {
-        auto& e = problem.rows[static_cast<std::size_t>(i)];
-        if (!conePair(i) || e.partner < i) continue;
-        auto& p = problem.rows[static_cast<std::size_t>(e.partner)];
-        const double limit = frictionLimit(problem, e), force = planarLength(e.impulse, p.impulse);
-        if (force <= limit) continue;
-        const double f = limit / force;
-        problem.addImpulse(dv, i, e.impulse * (f - 1.0));
-        problem.addImpulse(dv, e.partner, p.impulse * (f - 1.0));
-        e.impulse *= f;
-        p.impulse *= f;
-      }
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      const int i = subset[k];
+      auto& e = problem.rows[static_cast<std::size_t>(i)];
+      e.impulse += delta[k];
+      problem.addImpulse(dv, i, delta[k]);
+      change = std::max(change, std::abs(delta[k]) * e.diagonal);
+    }
+    // The box step leaves a cone pair in its square: scale it into the disk.
+    for (int i : subset) {
+      auto& e = problem.rows[static_cast<std::size_t>(i)];
+      if (!conePair(i) || e.partner < i) continue;
+      auto& p = problem.rows[static_cast<std::size_t>(e.partner)];
+      const double limit = frictionLimit(problem, e), force = planarLength(e.impulse, p.impulse);
+      if (force <= limit) continue;
+      const double f = limit / force;
+      problem.addImpulse(dv, i, e.impulse * (f - 1.0));
+      problem.addImpulse(dv, e.partner, p.impulse * (f - 1.0));
+      e.impulse *= f;
+      p.impulse *= f;
     }
     result.iterations = sweep + 1;
     result.change = change;
@@ -256,6 +388,14 @@ inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::ve
     }
   }
   return result;
+}
+
+/// Projected Gauss–Seidel (gaussSeidelSolve) or, with `jacobi`, projected
+/// Jacobi (jacobiSolve) on the rows `subset`.
+inline IterativeSolveResult iterativeSolve(IslandProblem& problem, const std::vector<int>& subset, int maxIterations,
+                                           double tolerance, bool jacobi) {
+  return jacobi ? jacobiSolve(problem, subset, maxIterations, tolerance)
+                : gaussSeidelSolve(problem, subset, maxIterations, tolerance);
 }
 
 }  // namespace spook::detail
