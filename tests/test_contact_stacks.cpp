@@ -104,6 +104,72 @@ TEST_CASE_TEMPLATE("a pyramid of 210 unit cubes with a base of 20 stands for 5 s
   CHECK(worst < S(0.01));
 }
 
+// Contact warm starting (Solver::setEnableContactWarmStarting, on by
+// default, 0.85 of the last impulses): a resting pile's persisting points
+// start from the forces they carried. A 55-cube pyramid (base 10, 1 cm gaps)
+// for 2 s: the hybrid solver's coupling between its direct normals and its
+// Gauss-Seidel friction settles in fewer direct solves per step (measured
+// 2.0 warm against 3.0 cold in double, 2.15 against 3.6 in float; 2 against
+// 6 on the 210-cube pyramid) at the same drift (0.34 mm), and Gauss-Seidel
+// with 64 sweeps holds it three times closer (1.5 mm against 4.2 mm).
+TEST_CASE_TEMPLATE("contact warm starting saves the hybrid's direct solves and holds a pyramid under Gauss-Seidel", S,
+                   float, double) {
+  struct Outcome {
+    double factorizationsPerStep = 0.0;
+    double drift = 0.0;
+  };
+  const auto run = [](Policy policy, bool warm) {
+    spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
+    spook::ref_ptr<spook::Solver> solver = spook::test::makeSolver(policy);
+    solver->setEnableContactWarmStarting(warm);
+    if (policy == Policy::ITERATIVE) solver->setNumIterations(64);
+    sim->setSolver(solver);
+    spook::ref_ptr<spook::MaterialT<S>> material = new spook::MaterialT<S>("wood");
+    spook::test::addGround(*sim, material);
+    std::vector<spook::ref_ptr<spook::RigidBodyT<S>>> boxes;
+    for (int level = 0; level < 10; ++level)
+      for (int i = 0; i < 10 - level; ++i)
+        boxes.push_back(spook::test::addBody(*sim, "box", new spook::BoxT<S>(spook::Vec3T<S>::Constant(S(0.5))),
+                                             material,
+                                             spook::Vec3T<S>(S(1.01) * (S(i) - S(9 - level) / S(2)), S(0),
+                                                             S(0.5) + S(level))));
+    std::vector<spook::Vec3T<S>> start;
+    for (const auto& b : boxes) start.push_back(b->getPosition());
+    const int steps = spook::test::sweep(120, 30);
+    Outcome outcome;
+    long factorizations = 0;
+    for (int step = 0; step < steps; ++step) {
+      sim->stepForward();
+      if (step >= steps / 2) factorizations += sim->getStatistics().solver.factorizations;
+    }
+    outcome.factorizationsPerStep = double(factorizations) / double(steps - steps / 2);
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      outcome.drift = std::max(outcome.drift, double((boxes[i]->getPosition() - start[i]).norm()));
+    return outcome;
+  };
+  const Outcome hybridCold = run(Policy::HYBRID, false), hybridWarm = run(Policy::HYBRID, true);
+  MESSAGE("hybrid: ", hybridCold.factorizationsPerStep, " direct solves per step cold, ",
+          hybridWarm.factorizationsPerStep, " warm; drift ", hybridCold.drift, " m cold, ", hybridWarm.drift,
+          " m warm");
+  CHECK(hybridWarm.factorizationsPerStep <= 0.8 * hybridCold.factorizationsPerStep);
+  CHECK(hybridWarm.drift < 2e-3);
+  CHECK(hybridCold.drift < 2e-3);
+  const Outcome iterativeCold = run(Policy::ITERATIVE, false), iterativeWarm = run(Policy::ITERATIVE, true);
+  MESSAGE("Gauss-Seidel, 64 sweeps: drift ", iterativeCold.drift, " m cold, ", iterativeWarm.drift, " m warm");
+  CHECK(iterativeWarm.drift < 0.5 * iterativeCold.drift);
+}
+
+TEST_CASE("a contact warm starting factor outside [0, 1] is refused and changes nothing") {
+  spook::ref_ptr<spook::HybridSolver> solver = new spook::HybridSolver();
+  CHECK(solver->getEnableContactWarmStarting());
+  CHECK(solver->getContactWarmStartingFactor() == 0.85);
+  solver->setContactWarmStartingFactor(0.5);
+  CHECK_THROWS_AS(solver->setContactWarmStartingFactor(-0.1), spook::Error);
+  CHECK_THROWS_AS(solver->setContactWarmStartingFactor(1.5), spook::Error);
+  CHECK_THROWS_AS(solver->setContactWarmStartingFactor(std::nan("")), spook::Error);
+  CHECK(solver->getContactWarmStartingFactor() == 0.5);
+}
+
 // Issue 19's brick pattern: each cube rests on two below, 5 cm apart within
 // a level, so that the top cubes carry almost nothing and settle ~1e-9 m
 // deep. In float that depth is below the coordinates' resolution: corners

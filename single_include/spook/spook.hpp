@@ -15975,6 +15975,29 @@ class Solver : public Referenced {
   /// AGX leaves warm starting off by default too (PHYSICS.md §2.2).
   [[nodiscard]] bool getEnableWarmStarting() const { return warmStarting_; }
   void setEnableWarmStarting(bool enable) { warmStarting_ = enable; }
+  /// Start the contacts' rows (a contact point's normal and friction rows:
+  /// the bounded rows outside any constraint) from the impulses their
+  /// persisting points carried in the last step, scaled by
+  /// getContactWarmStartingFactor (default on). A resting contact's force
+  /// changes little from step to step, and the friction of a pile settles
+  /// in a few sweeps from there instead of being built up again from zero
+  /// every step: the hybrid solver's direct solves on a 210-cube pyramid
+  /// drop from 6 to 2-3 per step, and Gauss–Seidel at 64 sweeps holds it to
+  /// 4 cm where it slid 16 cm cold (README). Joint rows are not affected
+  /// (setEnableWarmStarting).
+  [[nodiscard]] bool getEnableContactWarmStarting() const { return contactWarmStarting_; }
+  void setEnableContactWarmStarting(bool enable) { contactWarmStarting_ = enable; }
+  /// The share of the last step's contact impulses a solve starts from, in
+  /// [0, 1] (default 0.85). Below 1 the start forgets the friction a jammed
+  /// or statically indeterminate contact set locked in, by a factor per step
+  /// (0.85: to a tenth in 14 steps); a full start let a motor-driven crank
+  /// jammed against its coupler tear its joints open (tests).
+  [[nodiscard]] double getContactWarmStartingFactor() const { return contactWarmStartingFactor_; }
+  void setContactWarmStartingFactor(double factor) {
+    if (!(factor >= 0.0 && factor <= 1.0))
+      throw detail::makeError("Solver", getName(), "contact warm starting factor must be in [0, 1]", factor);
+    contactWarmStartingFactor_ = factor;
+  }
   /// Geometric stiffness (default on): the turning of the joint forces with
   /// the bodies is taken implicitly, from the last step's forces, for every
   /// body whose explicit step would be unstable. It keeps light bodies pulled
@@ -16108,6 +16131,8 @@ class Solver : public Referenced {
   int pivotBudget_ = 0;  ///< pivot steps left to the island being solved
   bool postStabilization_ = false;
   bool warmStarting_ = false;
+  bool contactWarmStarting_ = true;
+  double contactWarmStartingFactor_ = 0.85;
   bool geometricStiffness_ = true;
   double geometricStiffnessThreshold_ = 1.0;
   int projectionIterations_ = 1;
@@ -20399,10 +20424,17 @@ class IslandStepper {
     for (const std::vector<int>& island : islands_) {
       buildProblem(set, bodies, island, h);
       const bool warmStart = solver.getEnableWarmStarting();
+      const bool contactWarmStart = solver.getEnableContactWarmStarting();
+      const double contactFactor = solver.getContactWarmStartingFactor();
       for (std::size_t k = 0; k < island.size(); ++k) {
         IslandProblem::Entry& e = problem_.rows[k];
         e.guess = std::clamp(impulses[static_cast<std::size_t>(island[k])], e.lower, e.upper);
-        e.impulse = warmStart ? e.guess : std::clamp(0.0, e.lower, e.upper);
+        if (warmStart)
+          e.impulse = e.guess;
+        else if (contactWarmStart && e.constraint < 0 && e.bounded())
+          e.impulse = std::clamp(contactFactor * e.guess, e.lower, e.upper);
+        else
+          e.impulse = std::clamp(0.0, e.lower, e.upper);
       }
       if (!solver.solve(problem_, statistics))
         nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());

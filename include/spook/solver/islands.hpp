@@ -81,10 +81,17 @@ class IslandStepper {
     for (const std::vector<int>& island : islands_) {
       buildProblem(set, bodies, island, h);
       const bool warmStart = solver.getEnableWarmStarting();
+      const bool contactWarmStart = solver.getEnableContactWarmStarting();
+      const double contactFactor = solver.getContactWarmStartingFactor();
       for (std::size_t k = 0; k < island.size(); ++k) {
         IslandProblem::Entry& e = problem_.rows[k];
         e.guess = std::clamp(impulses[static_cast<std::size_t>(island[k])], e.lower, e.upper);
-        e.impulse = warmStart ? e.guess : std::clamp(0.0, e.lower, e.upper);
+        if (warmStart)
+          e.impulse = e.guess;
+        else if (contactWarmStart && e.constraint < 0 && e.bounded())
+          e.impulse = std::clamp(contactFactor * e.guess, e.lower, e.upper);
+        else
+          e.impulse = std::clamp(0.0, e.lower, e.upper);
       }
       if (!solver.solve(problem_, statistics))
         nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
