@@ -7,7 +7,8 @@
 // aligned table and writes a CSV (argv[1], default contact_study.csv) that
 // bench/plot_contact_study.py turns into a cost-vs-drift plot; argv[2], when
 // given, runs only the scenes whose name contains it, and argv[3] only the
-// policies whose name contains it ("direct", "hybrid", "Bullet").
+// policies whose name and friction solve type contain it ("direct", "hybrid
+// SPLIT", "bullet").
 //
 // Scenes (gravity (0, 0, −9.80665) m/s², density 1000 kg/m³, one material
 // for every geometry whose contact material has friction coefficient 0.5 and
@@ -445,7 +446,7 @@ std::string format(double value, const char* spec) {
 int main(int argc, char** argv) {
   const std::string csvPath = argc > 1 ? argv[1] : "contact_study.csv";
   const std::string only = argc > 2 ? argv[2] : "";          // run only the scenes whose name contains this
-  const std::string onlyPolicy = argc > 3 ? argv[3] : "";    // and only the policies whose name contains this
+  const std::string onlyPolicy = argc > 3 ? argv[3] : "";    // and only the policies whose "name friction" contains this
   std::vector<SceneSpec> scenes = {
       {"spheres", Kind::SPHERES, 1.0 / 60, 3.0, spheres},
       {"pyramid", Kind::PYRAMID, 1.0 / 60, 5.0, pyramid},
@@ -458,7 +459,7 @@ int main(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   for (const SceneSpec& scene : scenes)
     for (const Policy& policy : policies()) {
-      if (policy.name.find(onlyPolicy) == std::string::npos) continue;
+      if ((policy.name + " " + policy.friction).find(onlyPolicy) == std::string::npos) continue;
       results.push_back(run(scene, policy));
       const Result& r = results.back();
       std::fprintf(stderr, "%s, %s %s: %.1f s wall, %s\n", r.scene.c_str(), r.policy.c_str(), r.friction.c_str(),
