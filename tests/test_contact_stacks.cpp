@@ -107,22 +107,14 @@ TEST_CASE_TEMPLATE("a pyramid of 210 unit cubes with a base of 20 stands for 5 s
 // Contact warm starting (Solver::setEnableContactWarmStarting, on by
 // default, 0.85 of the last impulses): a resting pile's persisting points
 // start from the forces they carried. A 55-cube pyramid (base 10, 1 cm gaps)
-// for 2 s: the hybrid solver's coupling between its direct normals and its
-// Gauss-Seidel friction settles in fewer direct solves per step (measured
-// 2.0 warm against 3.0 cold in double, 2.15 against 3.6 in float; 2 against
-// 6 on the 210-cube pyramid) at the same drift (0.34 mm), and Gauss-Seidel
-// with 64 sweeps holds it three times closer (1.5 mm against 4.2 mm).
-TEST_CASE_TEMPLATE("contact warm starting saves the hybrid's direct solves and holds a pyramid under Gauss-Seidel", S,
-                   float, double) {
-  struct Outcome {
-    double factorizationsPerStep = 0.0;
-    double drift = 0.0;
-  };
-  const auto run = [](Policy policy, bool warm) {
+// for 2 s under Gauss-Seidel with 64 sweeps: warm started it stays three
+// times closer (measured 1.5 mm against 4.2-4.4 mm cold, float and double).
+TEST_CASE_TEMPLATE("contact warm starting holds a pyramid closer under Gauss-Seidel", S, float, double) {
+  const auto drift = [](bool warm) {
     spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
-    spook::ref_ptr<spook::Solver> solver = spook::test::makeSolver(policy);
+    spook::ref_ptr<spook::Solver> solver = spook::test::makeSolver(Policy::ITERATIVE);
     solver->setEnableContactWarmStarting(warm);
-    if (policy == Policy::ITERATIVE) solver->setNumIterations(64);
+    solver->setNumIterations(64);
     sim->setSolver(solver);
     spook::ref_ptr<spook::MaterialT<S>> material = new spook::MaterialT<S>("wood");
     spook::test::addGround(*sim, material);
@@ -135,28 +127,17 @@ TEST_CASE_TEMPLATE("contact warm starting saves the hybrid's direct solves and h
                                                              S(0.5) + S(level))));
     std::vector<spook::Vec3T<S>> start;
     for (const auto& b : boxes) start.push_back(b->getPosition());
-    const int steps = spook::test::sweep(120, 30);
-    Outcome outcome;
-    long factorizations = 0;
-    for (int step = 0; step < steps; ++step) {
-      sim->stepForward();
-      if (step >= steps / 2) factorizations += sim->getStatistics().solver.factorizations;
-    }
-    outcome.factorizationsPerStep = double(factorizations) / double(steps - steps / 2);
+    // 2 s in every build (the sanitized one too): the comparison is the test.
+    for (int step = 0; step < 120; ++step) sim->stepForward();
+    double worst = 0.0;
     for (std::size_t i = 0; i < boxes.size(); ++i)
-      outcome.drift = std::max(outcome.drift, double((boxes[i]->getPosition() - start[i]).norm()));
-    return outcome;
+      worst = std::max(worst, double((boxes[i]->getPosition() - start[i]).norm()));
+    return worst;
   };
-  const Outcome hybridCold = run(Policy::HYBRID, false), hybridWarm = run(Policy::HYBRID, true);
-  MESSAGE("hybrid: ", hybridCold.factorizationsPerStep, " direct solves per step cold, ",
-          hybridWarm.factorizationsPerStep, " warm; drift ", hybridCold.drift, " m cold, ", hybridWarm.drift,
-          " m warm");
-  CHECK(hybridWarm.factorizationsPerStep <= 0.8 * hybridCold.factorizationsPerStep);
-  CHECK(hybridWarm.drift < 2e-3);
-  CHECK(hybridCold.drift < 2e-3);
-  const Outcome iterativeCold = run(Policy::ITERATIVE, false), iterativeWarm = run(Policy::ITERATIVE, true);
-  MESSAGE("Gauss-Seidel, 64 sweeps: drift ", iterativeCold.drift, " m cold, ", iterativeWarm.drift, " m warm");
-  CHECK(iterativeWarm.drift < 0.5 * iterativeCold.drift);
+  const double cold = drift(false), warm = drift(true);
+  MESSAGE("Gauss-Seidel, 64 sweeps: drift ", cold, " m cold, ", warm, " m warm");
+  CHECK(warm < 0.5 * cold);
+  CHECK(warm < 5e-3);
 }
 
 TEST_CASE("a contact warm starting factor outside [0, 1] is refused and changes nothing") {

@@ -99,11 +99,11 @@ class Solver : public Referenced {
   /// the bounded rows outside any constraint) from the impulses their
   /// persisting points carried in the last step, scaled by
   /// getContactWarmStartingFactor (default on). A resting contact's force
-  /// changes little from step to step, and the friction of a pile settles
-  /// in a few sweeps from there instead of being built up again from zero
-  /// every step: the hybrid solver's direct solves on a 210-cube pyramid
-  /// drop from 6 to 2-3 per step, and Gauss–Seidel at 64 sweeps holds it to
-  /// 4 cm where it slid 16 cm cold (README). Joint rows are not affected
+  /// changes little from step to step, and Gauss–Seidel settles a pile's
+  /// contacts from there instead of building them up again from zero every
+  /// step: at 64 sweeps it holds a 210-cube pyramid to 2.9 cm where it slid
+  /// 16 cm cold (README). The hybrid solver starts the friction of SPLIT
+  /// contacts cold (solver_impl.hpp). Joint rows are not affected
   /// (setEnableWarmStarting).
   [[nodiscard]] bool getEnableContactWarmStarting() const { return contactWarmStarting_; }
   void setEnableContactWarmStarting(bool enable) { contactWarmStarting_ = enable; }
