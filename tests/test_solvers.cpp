@@ -257,43 +257,77 @@ TEST_CASE("block principal pivoting solves random box LCPs exactly") {
   MESSAGE(solved << " of 300 random box LCPs solved to complementarity 1e-10");
 }
 
+namespace {
+
+// A contact-like island: more compliant rows (Σ from 1e-5 to 1e-2) than its
+// 1-4 bodies' degrees of freedom, some against the world, every third
+// coupling a third body (as a wire's bend row does); bounds free, one-sided
+// (normals) or boxes (friction). Row-space form (no mass matrices);
+// `inverseMass` receives the bodies' inverse masses.
+detail::IslandProblem contactLikeProblem(std::mt19937& rng, int trial, std::vector<double>& inverseMass) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int numBodies = 1 + trial % 4, n = 6 * numBodies + 1 + trial % 7;
+  detail::IslandProblem problem;
+  problem.numBodies = numBodies;
+  inverseMass.assign(static_cast<std::size_t>(numBodies), 0.0);
+  for (auto& m : inverseMass) m = 0.01 + std::abs(u(rng));
+  for (int i = 0; i < n; ++i) {
+    auto& e = problem.rows.emplace_back();
+    e.body1 = i % numBodies;
+    e.body2 = numBodies > 1 && u(rng) > 0.0 ? (i + 1) % numBodies : -1;  // −1: against the world
+    for (int k = 0; k < 6; ++k) {
+      e.J1[k] = u(rng);
+      e.J2[k] = e.body2 >= 0 ? u(rng) : 0.0;
+    }
+    e.W1 = e.J1 * inverseMass[static_cast<std::size_t>(e.body1)];
+    if (e.body2 >= 0) e.W2 = e.J2 * inverseMass[static_cast<std::size_t>(e.body2)];
+    // Every third row couples a third body, as a wire's bend row does.
+    if (numBodies > 2 && e.body2 >= 0 && i % 3 == 0) {
+      const int third = (i + 2) % numBodies;
+      detail::Vec6d J;
+      for (int k = 0; k < 6; ++k) J[k] = u(rng);
+      problem.addBody(e, third, J, J * inverseMass[static_cast<std::size_t>(third)]);
+    }
+    e.sigma = std::pow(10.0, -5.0 + 3.0 * std::abs(u(rng)));
+    e.diagonal = problem.mobility(e) + e.sigma;
+    e.q = u(rng);
+    const double kind = u(rng);
+    e.lower = kind < -0.3 ? -std::numeric_limits<double>::infinity() : kind < 0.3 ? 0.0 : -std::abs(u(rng));
+    e.upper = kind < 0.3 ? std::numeric_limits<double>::infinity() : std::abs(u(rng));
+  }
+  return problem;
+}
+
+// f(Λ) = ½ΛᵀAΛ − qᵀΛ over all rows, A = S + Σ: the merit the direct solve's
+// box LCP minimizes.
+double lcpMerit(const detail::IslandProblem& problem) {
+  const auto dv = problem.velocityChange();
+  double f = 0.0;
+  for (int i = 0; i < static_cast<int>(problem.rows.size()); ++i) {
+    const auto& e = problem.rows[static_cast<std::size_t>(i)];
+    f += e.impulse * (0.5 * (problem.rowVelocity(i, dv) + e.sigma * e.impulse) - e.q);
+  }
+  return f;
+}
+
+std::vector<int> allRowsOf(const detail::IslandProblem& problem) {
+  std::vector<int> all(problem.rows.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  return all;
+}
+
+}  // namespace
+
 // The body-space (Woodbury) form against the row-space one: contact-like
 // LCPs with more compliant rows than the bodies' degrees of freedom, some of
 // them coupling three bodies, have the same unique solution either way.
 TEST_CASE("the body-space direct solve matches the row-space one on compliant row sets") {
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
   double worstDifference = 0.0, worstComplementarity = 0.0;
   for (int trial = 0; trial < 50; ++trial) {
-    const int numBodies = 1 + trial % 4, n = 6 * numBodies + 1 + trial % 7;
-    detail::IslandProblem problem;
-    problem.numBodies = numBodies;
-    std::vector<double> inverseMass(static_cast<std::size_t>(numBodies));
-    for (auto& m : inverseMass) m = 0.01 + std::abs(u(rng));
-    for (int i = 0; i < n; ++i) {
-      auto& e = problem.rows.emplace_back();
-      e.body1 = i % numBodies;
-      e.body2 = numBodies > 1 && u(rng) > 0.0 ? (i + 1) % numBodies : -1;  // −1: against the world
-      for (int k = 0; k < 6; ++k) {
-        e.J1[k] = u(rng);
-        e.J2[k] = e.body2 >= 0 ? u(rng) : 0.0;
-      }
-      e.W1 = e.J1 * inverseMass[static_cast<std::size_t>(e.body1)];
-      if (e.body2 >= 0) e.W2 = e.J2 * inverseMass[static_cast<std::size_t>(e.body2)];
-      // Every third row couples a third body, as a wire's bend row does.
-      if (numBodies > 2 && e.body2 >= 0 && i % 3 == 0) {
-        const int third = (i + 2) % numBodies;
-        detail::Vec6d J;
-        for (int k = 0; k < 6; ++k) J[k] = u(rng);
-        problem.addBody(e, third, J, J * inverseMass[static_cast<std::size_t>(third)]);
-      }
-      e.sigma = std::pow(10.0, -5.0 + 3.0 * std::abs(u(rng)));
-      e.diagonal = problem.mobility(e) + e.sigma;
-      e.q = u(rng);
-      const double kind = u(rng);
-      e.lower = kind < -0.3 ? -std::numeric_limits<double>::infinity() : kind < 0.3 ? 0.0 : -std::abs(u(rng));
-      e.upper = kind < 0.3 ? std::numeric_limits<double>::infinity() : std::abs(u(rng));
-    }
+    std::vector<double> inverseMass;
+    detail::IslandProblem problem = contactLikeProblem(rng, trial, inverseMass);
+    const int n = static_cast<int>(problem.rows.size()), numBodies = problem.numBodies;
     std::vector<int> all(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) all[static_cast<std::size_t>(i)] = i;
     detail::IslandProblem rowSpace = problem;  // no mass matrices: the row-space form
@@ -318,6 +352,77 @@ TEST_CASE("the body-space direct solve matches the row-space one on compliant ro
   // Σ down to 1e-5 against mobilities of order 1: x = Σ⁻¹(r − Gy) cancels up to five digits.
   CHECK(worstDifference < 1e-9);
   CHECK(worstComplementarity < 1e-9);
+}
+
+// The direct solve's monotone descent (projected Gauss–Seidel and exact
+// solves on the faces it finds), where the pivoting stalls, on its own from
+// the first step: the same unique solution on contact-like LCPs.
+TEST_CASE("the direct solve's descent alone solves contact-like box LCPs as the pivoting does") {
+  std::mt19937 rng(23);
+  double worstDifference = 0.0, worstComplementarity = 0.0;
+  int mostFactorizations = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    std::vector<double> inverseMass;
+    detail::IslandProblem pivoted = contactLikeProblem(rng, trial, inverseMass);
+    if (trial % 2 == 0)  // half of them in body space, as contacts are solved
+      for (double m : inverseMass) pivoted.mass.push_back(detail::Mat6d::Identity() / m);
+    detail::IslandProblem descended = pivoted;
+    const std::vector<int> all = allRowsOf(pivoted);
+    detail::DirectSolve pivoting, descent(/*blockPivotingStrikes=*/0);
+    REQUIRE(pivoting.solve(pivoted, all, 200).converged);
+    const auto result = descent.solve(descended, all, 200);
+    REQUIRE(result.converged);
+    mostFactorizations = std::max(mostFactorizations, result.factorizations);
+    const auto dv = descended.velocityChange();
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const auto& e = descended.rows[i];
+      const double reference = pivoted.rows[i].impulse;
+      worstDifference = std::max(worstDifference, std::abs(e.impulse - reference) / (1.0 + std::abs(reference)));
+      worstComplementarity = std::max(worstComplementarity,
+                                      detail::complementarityError(e, descended.rowVelocity(static_cast<int>(i), dv) +
+                                                                          e.sigma * e.impulse - e.q));
+    }
+  }
+  MESSAGE("descent vs pivoting: impulses within ", worstDifference, " (relative), complementarity ",
+          worstComplementarity, " m/s, at most ", mostFactorizations, " factorizations");
+  CHECK(worstDifference < 1e-9);
+  CHECK(worstComplementarity < 1e-9);
+}
+
+// A solve stopped at its pivot cap answers the best of its best iterate,
+// the impulses it started from and none, refined by Gauss-Seidel: started
+// from the exact solution (last step's, at rest) with every row's pivoting
+// state guessed wrong, the answer's merit f is the solution's (the answer
+// before it, best iterate or none, was up to 88% of |f| above it here).
+TEST_CASE("a direct solve stopped at its pivot cap answers no worse than the impulses it started from") {
+  std::mt19937 rng(29);
+  int stopped = 0;
+  double worstExcess = 0.0;
+  for (int trial = 0; trial < 50; ++trial) {
+    std::vector<double> inverseMass;
+    detail::IslandProblem problem = contactLikeProblem(rng, trial, inverseMass);
+    for (double m : inverseMass) problem.mass.push_back(detail::Mat6d::Identity() / m);
+    const std::vector<int> all = allRowsOf(problem);
+    detail::DirectSolve solve;
+    REQUIRE(solve.solve(problem, all, 200).converged);
+    const double solved = lcpMerit(problem);
+    for (auto& e : problem.rows) {
+      const bool low = std::isfinite(e.lower), high = std::isfinite(e.upper);
+      e.guess = low && high ? 0.5 * (e.lower + e.upper) : low ? e.lower + 1.0 : high ? e.upper - 1.0 : 0.0;
+    }
+    const auto result = solve.solve(problem, all, /*maxPivotSteps=*/0);
+    if (!result.fellBack) continue;
+    ++stopped;
+    for (const auto& e : problem.rows) {
+      CHECK(e.impulse >= e.lower);
+      CHECK(e.impulse <= e.upper);
+    }
+    worstExcess = std::max(worstExcess, (lcpMerit(problem) - solved) / std::abs(solved));
+  }
+  MESSAGE(stopped, " of 50 solves stopped at the cap; merit above the solution's by at most ", worstExcess,
+          " (relative)");
+  CHECK(stopped >= 25);
+  CHECK(worstExcess < 1e-12);
 }
 
 // The block Cholesky factorization of body space against a dense one: random

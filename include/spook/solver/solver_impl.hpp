@@ -175,15 +175,6 @@ SPOOK_INLINE void HybridSolver::solveIsland(detail::IslandProblem& problem, Solv
     return;
   }
   statistics.numIterativeRows += static_cast<int>(iterativeRows.size());
-  // The friction of SPLIT contacts starts cold (unless every row is warm
-  // started): held fixed at its warm start through the first direct solve of
-  // the normals, it made that solve's pivoting fail on every step of a
-  // 210-cube brick pyramid of 1 kg cubes in float (bench/brick_pyramids).
-  if (!getEnableWarmStarting())
-    for (int i : iterativeRows) {
-      auto& e = problem.rows[static_cast<std::size_t>(i)];
-      if (e.splitFriction()) e.impulse = std::clamp(0.0, e.lower, e.upper);
-    }
   if (directRows.empty()) {
     iterative(problem, iterativeRows, statistics);
     return;
