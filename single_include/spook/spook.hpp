@@ -9430,6 +9430,10 @@ struct Coordinate {
   double curvature = 0.0;
 };
 
+/// An angle (rad) whose rate is the relative angular velocity about `axis`
+/// (world, unit): J₁ = (0, axis), J₂ = −J₁.
+[[nodiscard]] SPOOK_INLINE Coordinate angleAbout(const Attachments& a, double value, const Vec3d& axis);
+
 /// The relative rotation of frame 1 in frame 2, q₂* q₁, with w ≥ 0.
 [[nodiscard]] SPOOK_INLINE Quatd relativeRotation(const Attachments& a);
 
@@ -9457,6 +9461,16 @@ SPOOK_INLINE Vec6d linearAngular(const Vec3d& linear, const Vec3d& angular) {
   Vec6d J;
   J << linear, angular;
   return J;
+}
+
+SPOOK_INLINE Coordinate angleAbout(const Attachments& a, double value, const Vec3d& axis) {
+  Coordinate c;
+  c.rotational = true;
+  c.value = value;
+  c.J1 = linearAngular(Vec3d::Zero(), axis);
+  c.J2 = linearAngular(Vec3d::Zero(), -axis);
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
 }
 
 SPOOK_INLINE Quatd relativeRotation(const Attachments& a) {
@@ -9982,14 +9996,7 @@ SPOOK_INLINE double separationCurvature(const Attachments& a, const Vec3d& n) {
 
 SPOOK_INLINE Coordinate rotationalCoordinate(const Attachments& a) {
   const Quatd q = relativeRotation(a);
-  Coordinate c;
-  c.rotational = true;
-  c.value = 2.0 * std::atan2(q.z(), q.w());
-  const Vec3d z = a.R2.col(2);
-  c.J1 = linearAngular(Vec3d::Zero(), z);
-  c.J2 = linearAngular(Vec3d::Zero(), -z);
-  c.speed = a.speed(c.J1, c.J2);
-  return c;
+  return angleAbout(a, 2.0 * std::atan2(q.z(), q.w()), a.R2.col(2));
 }
 
 SPOOK_INLINE Coordinate translationalCoordinate(const Attachments& a) {
@@ -11081,12 +11088,7 @@ void ConeLimitT<S>::addRows(detail::RowSink& sink, const detail::Attachments& a,
   if (!this->enable_) return;
   const detail::ConeState s = detail::coneState(a, double(a1_), double(a2_));
   tilt_ = s.tilt;
-  detail::Coordinate c;
-  c.J1 = detail::linearAngular(detail::Vec3d::Zero(), s.axis);
-  c.J2 = -c.J1;
-  c.speed = a.speed(c.J1, c.J2);
-  c.value = s.tilt - s.limit;
-  c.rotational = true;
+  const detail::Coordinate c = detail::angleAbout(a, s.tilt - s.limit, s.axis);
   if (c.value < -2.0 * h * std::abs(c.speed)) return;
   detail::Row& row = this->addRow(sink, c);
   row.violation = c.value;
@@ -11131,18 +11133,11 @@ namespace detail {
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
 SPOOK_INLINE Coordinate twistCoordinate(const Attachments& a) {
   const Quatd q = relativeRotation(a);
-  Coordinate c;
-  c.rotational = true;
-  c.value = 2.0 * std::atan2(q.z(), q.w());
   const double den = q.w() * q.w() + q.z() * q.z();
   Vec3d n2 = Vec3d::UnitZ();
   if (den > 1e-12)
     n2 = Vec3d(q.w() * q.y() + q.x() * q.z(), q.y() * q.z() - q.w() * q.x(), den) / den;
-  const Vec3d n = a.R2 * n2;
-  c.J1 = linearAngular(Vec3d::Zero(), n);
-  c.J2 = linearAngular(Vec3d::Zero(), -n);
-  c.speed = a.speed(c.J1, c.J2);
-  return c;
+  return angleAbout(a, 2.0 * std::atan2(q.z(), q.w()), a.R2 * n2);
 }
 #endif
 }  // namespace detail
@@ -11325,14 +11320,9 @@ void BallJointT<S>::addRows(const detail::Attachments& a, detail::RowSink& sink,
   twist_->beginStep();
   twist_->addRows(sink, a, h);
   for (int k = 0; k < 3; ++k) {
-    detail::Coordinate c;
-    c.rotational = true;
-    c.J1 = detail::linearAngular(detail::Vec3d::Zero(), a.R2.col(k));
-    c.J2 = -c.J1;
-    c.speed = a.speed(c.J1, c.J2);
     FrictionControllerT<S>& f = *friction_[static_cast<std::size_t>(k)];
     f.beginStep();
-    f.addRows(sink, c);
+    f.addRows(sink, detail::angleAbout(a, 0.0, a.R2.col(k)));
   }
 }
 
@@ -13059,14 +13049,7 @@ struct UniversalArm1 {
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
 SPOOK_INLINE Coordinate UniversalArm1::measure(const Attachments& a) {
   const Mat3d Q = a.R2.transpose() * a.R1;
-  const Vec3d x1 = a.R1.col(0);
-  Coordinate c;
-  c.rotational = true;
-  c.value = std::atan2(-Q(1, 2), Q(1, 1));
-  c.J1 = linearAngular(Vec3d::Zero(), x1);
-  c.J2 = linearAngular(Vec3d::Zero(), -x1);
-  c.speed = a.speed(c.J1, c.J2);
-  return c;
+  return angleAbout(a, std::atan2(-Q(1, 2), Q(1, 1)), a.R1.col(0));
 }
 #endif
 
@@ -13078,14 +13061,7 @@ struct UniversalArm2 {
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
 SPOOK_INLINE Coordinate UniversalArm2::measure(const Attachments& a) {
   const Mat3d Q = a.R2.transpose() * a.R1;
-  const Vec3d y2 = a.R2.col(1);
-  Coordinate c;
-  c.rotational = true;
-  c.value = std::atan2(-Q(2, 0), Q(0, 0));
-  c.J1 = linearAngular(Vec3d::Zero(), y2);
-  c.J2 = linearAngular(Vec3d::Zero(), -y2);
-  c.speed = a.speed(c.J1, c.J2);
-  return c;
+  return angleAbout(a, std::atan2(-Q(2, 0), Q(0, 0)), a.R2.col(1));
 }
 #endif
 
@@ -13278,14 +13254,7 @@ struct WheelSteeringAngle {
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
 SPOOK_INLINE Coordinate WheelSteeringAngle::measure(const Attachments& a) {
   const Mat3d Q = a.R2.transpose() * a.R1;
-  const Vec3d z2 = a.R2.col(2);
-  Coordinate c;
-  c.rotational = true;
-  c.value = std::atan2(-Q(0, 1), Q(1, 1));
-  c.J1 = linearAngular(Vec3d::Zero(), z2);
-  c.J2 = linearAngular(Vec3d::Zero(), -z2);
-  c.speed = a.speed(c.J1, c.J2);
-  return c;
+  return angleAbout(a, std::atan2(-Q(0, 1), Q(1, 1)), a.R2.col(2));
 }
 #endif
 
@@ -13297,14 +13266,7 @@ struct WheelRollAngle {
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
 SPOOK_INLINE Coordinate WheelRollAngle::measure(const Attachments& a) {
   const Mat3d Q = a.R2.transpose() * a.R1;
-  const Vec3d y1 = a.R1.col(1);
-  Coordinate c;
-  c.rotational = true;
-  c.value = std::atan2(-Q(2, 0), Q(2, 2));
-  c.J1 = linearAngular(Vec3d::Zero(), y1);
-  c.J2 = linearAngular(Vec3d::Zero(), -y1);
-  c.speed = a.speed(c.J1, c.J2);
-  return c;
+  return angleAbout(a, std::atan2(-Q(2, 0), Q(2, 2)), a.R1.col(1));
 }
 #endif
 

@@ -137,6 +137,10 @@ struct Coordinate {
   double curvature = 0.0;
 };
 
+/// An angle (rad) whose rate is the relative angular velocity about `axis`
+/// (world, unit): J₁ = (0, axis), J₂ = −J₁.
+[[nodiscard]] SPOOK_INLINE Coordinate angleAbout(const Attachments& a, double value, const Vec3d& axis);
+
 /// The relative rotation of frame 1 in frame 2, q₂* q₁, with w ≥ 0.
 [[nodiscard]] SPOOK_INLINE Quatd relativeRotation(const Attachments& a);
 
@@ -164,6 +168,16 @@ SPOOK_INLINE Vec6d linearAngular(const Vec3d& linear, const Vec3d& angular) {
   Vec6d J;
   J << linear, angular;
   return J;
+}
+
+SPOOK_INLINE Coordinate angleAbout(const Attachments& a, double value, const Vec3d& axis) {
+  Coordinate c;
+  c.rotational = true;
+  c.value = value;
+  c.J1 = linearAngular(Vec3d::Zero(), axis);
+  c.J2 = linearAngular(Vec3d::Zero(), -axis);
+  c.speed = a.speed(c.J1, c.J2);
+  return c;
 }
 
 SPOOK_INLINE Quatd relativeRotation(const Attachments& a) {

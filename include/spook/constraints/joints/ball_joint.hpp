@@ -108,14 +108,9 @@ void BallJointT<S>::addRows(const detail::Attachments& a, detail::RowSink& sink,
   twist_->beginStep();
   twist_->addRows(sink, a, h);
   for (int k = 0; k < 3; ++k) {
-    detail::Coordinate c;
-    c.rotational = true;
-    c.J1 = detail::linearAngular(detail::Vec3d::Zero(), a.R2.col(k));
-    c.J2 = -c.J1;
-    c.speed = a.speed(c.J1, c.J2);
     FrictionControllerT<S>& f = *friction_[static_cast<std::size_t>(k)];
     f.beginStep();
-    f.addRows(sink, c);
+    f.addRows(sink, detail::angleAbout(a, 0.0, a.R2.col(k)));
   }
 }
 

@@ -27,14 +27,7 @@ struct UniversalArm1 {
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
 SPOOK_INLINE Coordinate UniversalArm1::measure(const Attachments& a) {
   const Mat3d Q = a.R2.transpose() * a.R1;
-  const Vec3d x1 = a.R1.col(0);
-  Coordinate c;
-  c.rotational = true;
-  c.value = std::atan2(-Q(1, 2), Q(1, 1));
-  c.J1 = linearAngular(Vec3d::Zero(), x1);
-  c.J2 = linearAngular(Vec3d::Zero(), -x1);
-  c.speed = a.speed(c.J1, c.J2);
-  return c;
+  return angleAbout(a, std::atan2(-Q(1, 2), Q(1, 1)), a.R1.col(0));
 }
 #endif
 
@@ -46,14 +39,7 @@ struct UniversalArm2 {
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
 SPOOK_INLINE Coordinate UniversalArm2::measure(const Attachments& a) {
   const Mat3d Q = a.R2.transpose() * a.R1;
-  const Vec3d y2 = a.R2.col(1);
-  Coordinate c;
-  c.rotational = true;
-  c.value = std::atan2(-Q(2, 0), Q(0, 0));
-  c.J1 = linearAngular(Vec3d::Zero(), y2);
-  c.J2 = linearAngular(Vec3d::Zero(), -y2);
-  c.speed = a.speed(c.J1, c.J2);
-  return c;
+  return angleAbout(a, std::atan2(-Q(2, 0), Q(0, 0)), a.R2.col(1));
 }
 #endif
 

@@ -28,14 +28,7 @@ struct WheelSteeringAngle {
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
 SPOOK_INLINE Coordinate WheelSteeringAngle::measure(const Attachments& a) {
   const Mat3d Q = a.R2.transpose() * a.R1;
-  const Vec3d z2 = a.R2.col(2);
-  Coordinate c;
-  c.rotational = true;
-  c.value = std::atan2(-Q(0, 1), Q(1, 1));
-  c.J1 = linearAngular(Vec3d::Zero(), z2);
-  c.J2 = linearAngular(Vec3d::Zero(), -z2);
-  c.speed = a.speed(c.J1, c.J2);
-  return c;
+  return angleAbout(a, std::atan2(-Q(0, 1), Q(1, 1)), a.R2.col(2));
 }
 #endif
 
@@ -47,14 +40,7 @@ struct WheelRollAngle {
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
 SPOOK_INLINE Coordinate WheelRollAngle::measure(const Attachments& a) {
   const Mat3d Q = a.R2.transpose() * a.R1;
-  const Vec3d y1 = a.R1.col(1);
-  Coordinate c;
-  c.rotational = true;
-  c.value = std::atan2(-Q(2, 0), Q(2, 2));
-  c.J1 = linearAngular(Vec3d::Zero(), y1);
-  c.J2 = linearAngular(Vec3d::Zero(), -y1);
-  c.speed = a.speed(c.J1, c.J2);
-  return c;
+  return angleAbout(a, std::atan2(-Q(2, 0), Q(2, 2)), a.R1.col(1));
 }
 #endif
 

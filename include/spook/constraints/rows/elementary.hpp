@@ -162,14 +162,7 @@ SPOOK_INLINE double separationCurvature(const Attachments& a, const Vec3d& n) {
 
 SPOOK_INLINE Coordinate rotationalCoordinate(const Attachments& a) {
   const Quatd q = relativeRotation(a);
-  Coordinate c;
-  c.rotational = true;
-  c.value = 2.0 * std::atan2(q.z(), q.w());
-  const Vec3d z = a.R2.col(2);
-  c.J1 = linearAngular(Vec3d::Zero(), z);
-  c.J2 = linearAngular(Vec3d::Zero(), -z);
-  c.speed = a.speed(c.J1, c.J2);
-  return c;
+  return angleAbout(a, 2.0 * std::atan2(q.z(), q.w()), a.R2.col(2));
 }
 
 SPOOK_INLINE Coordinate translationalCoordinate(const Attachments& a) {

@@ -102,12 +102,7 @@ void ConeLimitT<S>::addRows(detail::RowSink& sink, const detail::Attachments& a,
   if (!this->enable_) return;
   const detail::ConeState s = detail::coneState(a, double(a1_), double(a2_));
   tilt_ = s.tilt;
-  detail::Coordinate c;
-  c.J1 = detail::linearAngular(detail::Vec3d::Zero(), s.axis);
-  c.J2 = -c.J1;
-  c.speed = a.speed(c.J1, c.J2);
-  c.value = s.tilt - s.limit;
-  c.rotational = true;
+  const detail::Coordinate c = detail::angleAbout(a, s.tilt - s.limit, s.axis);
   if (c.value < -2.0 * h * std::abs(c.speed)) return;
   detail::Row& row = this->addRow(sink, c);
   row.violation = c.value;

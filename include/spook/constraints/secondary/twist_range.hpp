@@ -25,18 +25,11 @@ namespace detail {
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
 SPOOK_INLINE Coordinate twistCoordinate(const Attachments& a) {
   const Quatd q = relativeRotation(a);
-  Coordinate c;
-  c.rotational = true;
-  c.value = 2.0 * std::atan2(q.z(), q.w());
   const double den = q.w() * q.w() + q.z() * q.z();
   Vec3d n2 = Vec3d::UnitZ();
   if (den > 1e-12)
     n2 = Vec3d(q.w() * q.y() + q.x() * q.z(), q.y() * q.z() - q.w() * q.x(), den) / den;
-  const Vec3d n = a.R2 * n2;
-  c.J1 = linearAngular(Vec3d::Zero(), n);
-  c.J2 = linearAngular(Vec3d::Zero(), -n);
-  c.speed = a.speed(c.J1, c.J2);
-  return c;
+  return angleAbout(a, 2.0 * std::atan2(q.z(), q.w()), a.R2 * n2);
 }
 #endif
 }  // namespace detail
