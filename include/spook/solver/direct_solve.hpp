@@ -80,7 +80,10 @@ class DirectSolve {
   static constexpr double kRoundOff = 1e-10;
 
   /// Block pivoting steps allowed without a new fewest-infeasible count
-  /// before the descent.
+  /// before the descent. The pivoting's random halves still find answers
+  /// late that the descent, paced by its sweeps, reaches slowly: at 10, the
+  /// 210 x 1 kg float brick pyramid under the direct policy fell back on
+  /// 145 of 300 steps (none at 30).
   static constexpr int kBlockPivotingStrikes = 30;
 
   /// Projected Gauss–Seidel sweeps before each subspace step of the descent.
