@@ -15944,9 +15944,9 @@ class Solver : public Referenced {
   /// changes little from step to step, and Gauss–Seidel settles a pile's
   /// contacts from there instead of building them up again from zero every
   /// step: at 64 sweeps it holds a 210-cube pyramid to 2.9 cm where it slid
-  /// 16 cm cold (README). The hybrid solver starts the friction of SPLIT
-  /// contacts cold (solver_impl.hpp). Joint rows are not affected
-  /// (setEnableWarmStarting).
+  /// 16 cm cold (README); the hybrid solver's Gauss–Seidel friction (SPLIT)
+  /// starts warm too, which halves its direct solves on that pyramid. Joint
+  /// rows are not affected (setEnableWarmStarting).
   [[nodiscard]] bool getEnableContactWarmStarting() const { return contactWarmStarting_; }
   void setEnableContactWarmStarting(bool enable) { contactWarmStarting_ = enable; }
   /// The share of the last step's contact impulses a solve starts from, in
