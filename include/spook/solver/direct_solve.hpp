@@ -182,8 +182,10 @@ class DirectSolve {
  private:
   // f(Λ) = ½ΛᵀAΛ − qᵀΛ = ½Λᵀ(w − q), w = AΛ − q.
   double merit(const IslandProblem& problem, const std::vector<int>& subset, const Eigen::VectorXd& x) const {
-    return 0.5 * x.dot(residual(problem, subset, x) - q_);
+    return merit(x, residual(problem, subset, x));
   }
+  // f from x and its residual w, where the caller has w already.
+  double merit(const Eigen::VectorXd& x, const Eigen::VectorXd& w) const { return 0.5 * x.dot(w - q_); }
 
   // Of x (clamped), the rows' impulses as the solve found them and no
   // impulse, the one of lowest f.
@@ -233,7 +235,7 @@ class DirectSolve {
       sweep(problem, subset, x, kDescentSweeps);
       w = residual(problem, subset, x);
       if (solved(x, w)) return true;
-      const double f = 0.5 * x.dot(w - q_);
+      const double f = merit(x, w);
       for (int k = 0; k < n; ++k) {
         const auto& e = entry(k);
         state[static_cast<std::size_t>(k)] = x[k] <= e.lower ? LOWER : x[k] >= e.upper ? UPPER : FREE;
@@ -248,7 +250,7 @@ class DirectSolve {
       for (int halving = 0; halving < kLineSearchHalvings; ++halving, alpha *= 0.5) {
         for (int k = 0; k < n; ++k) trial[k] = std::clamp(x[k] + alpha * (target[k] - x[k]), entry(k).lower, entry(k).upper);
         w = residual(problem, subset, trial);
-        if (0.5 * trial.dot(w - q_) < f) {
+        if (merit(trial, w) < f) {
           x = trial;
           if (solved(x, w)) return true;
           break;
@@ -260,6 +262,8 @@ class DirectSolve {
 
   // Projected Gauss–Seidel sweeps on the rows' box LCP (their bounds held
   // fixed), in place: each row's update minimizes f along it, so f never rises.
+  // Not gaussSeidelSolve (iterative_solve.hpp), which moves friction bounds
+  // with the normals' impulses: the descent's monotonicity needs fixed ones.
   void sweep(const IslandProblem& problem, const std::vector<int>& subset, Eigen::VectorXd& x, int sweeps) const {
     std::vector<Vec6d> dv(static_cast<std::size_t>(problem.numBodies), Vec6d::Zero());
     for (std::size_t k = 0; k < subset.size(); ++k) problem.addImpulse(dv, subset[k], x[static_cast<Eigen::Index>(k)]);

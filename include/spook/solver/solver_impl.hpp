@@ -202,6 +202,8 @@ SPOOK_INLINE void HybridSolver::solveIsland(detail::IslandProblem& problem, Solv
       change = std::max(change, std::abs(problem.rows[static_cast<std::size_t>(directRows[k])].impulse - previous[k]));
     if (change <= 1e-6 * largest) break;
   }
+  // The direct pass moved the normals after the Gauss–Seidel friction.
+  if (directHeld) detail::clampFrictionToNormals(problem, iterativeRows);
 }
 
 }  // namespace spook
