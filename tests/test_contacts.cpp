@@ -243,8 +243,9 @@ TEST_CASE_TEMPLATE("a push at 45 degrees to the friction axes tells the cone fro
 // The friction force must never exceed μ times the normal force. The hybrid
 // once left up to 4 μFn: its last direct pass moved the normals after the
 // friction was solved against the earlier ones. The direct policy is not
-// held to it yet: its cone iterations, cut short by the pivot budget, keep
-// the bounds of an earlier pass (up to 56 μFn on this pile; open).
+// held to it yet: its cone iterations, stopped before their bounds settle
+// (8 iterations or the pivot budget), keep the bounds of an earlier pass
+// (up to 56 μFn on this pile; open).
 TEST_CASE_TEMPLATE("friction at every point of a settling pile stays within the Coulomb cone (hybrid, iterative)", S,
                    float, double) {
   const S mu = S(0.5), radius = S(0.1), pitch = S(0.22);
