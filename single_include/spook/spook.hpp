@@ -16138,7 +16138,9 @@ class IterativeSolver final : public Solver {
 /// (iterative rows at their warm start), then up to getNumCouplingIterations
 /// passes of Gauss–Seidel (direct-only rows fixed) followed by a direct solve
 /// with the iterative impulses, in which DIRECT_AND_ITERATIVE friction keeps
-/// the bounds the iterative pass found (PHYSICS.md §2.5).
+/// the bounds the iterative pass found (PHYSICS.md §2.5). Where a direct
+/// solve ends the passes, the iterative friction is then scaled back within
+/// μ times the normal impulses it found (detail::clampFrictionToNormals).
 class HybridSolver final : public Solver {
  public:
   HybridSolver() { setEnablePostStabilization(true); }
