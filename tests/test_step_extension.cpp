@@ -9,31 +9,13 @@
 #include <random>
 #include <vector>
 
+#include "crossing_clock.hpp"
 #include "tolerance.hpp"
 #include "toy_particles.hpp"
 
 using namespace spook;
 
 namespace {
-
-/// Period-mean angular frequency (rad/s) of the zero crossings of q(t).
-struct CrossingClock {
-  double lastValue = 0.0, lastTime = 0.0, firstCrossing = -1.0, lastCrossing = -1.0;
-  int crossings = 0, samples = 0;
-  void add(double t, double q) {
-    if (samples++ > 0 && (q > 0.0) != (lastValue > 0.0)) {
-      const double at = lastTime + (t - lastTime) * lastValue / (lastValue - q);
-      if (firstCrossing < 0.0) firstCrossing = at;
-      lastCrossing = at;
-      ++crossings;
-    }
-    lastValue = q;
-    lastTime = t;
-  }
-  [[nodiscard]] double omega() const {
-    return crossings < 3 ? 0.0 : std::numbers::pi * (crossings - 1) / (lastCrossing - firstCrossing);
-  }
-};
 
 /// A string of n inner beads of mass m, spacing l and tension T between two
 /// fixed ends, released in its k-th mode: its measured angular frequency.
@@ -52,7 +34,7 @@ double beadedStringOmega(int n, int mode, double bendCompliance, double h, doubl
       new toy::BeadedString(beads, l - T * stretchCompliance, stretchCompliance, bendCompliance, toy::Vec3d::UnitX());
   sim->add(beads);
   sim->add(string);
-  CrossingClock clock;
+  spook::test::CrossingClock clock;
   const double period = 2.0 * std::numbers::pi * std::sqrt(m * l / T);  // of the fastest mode's scale
   const int steps = int(std::ceil(12.0 * (n + 1) * period / (mode * h)));
   for (int s = 1; s <= steps; ++s) {

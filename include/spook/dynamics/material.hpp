@@ -91,6 +91,53 @@ class MaterialT : public Referenced {
     S viscosity_ = S(5e-9);
   };
 
+  /// Wire properties (wire/wire.hpp; PHYSICS.md §3.2): the stretch rows
+  /// between consecutive nodes have compliance l/(E_stretch·A) and the bend
+  /// rows over three nodes l/(E_bend·I), A = πr², I = πr⁴/4. Defaults as
+  /// AGX's (6e10 Pa both, damping 0.05 s and 0.1 s). A bend modulus near 1
+  /// behaves like a chain, 1e12 like a stiff pipe; 0 is a limp rope (no bend
+  /// rows). The wire's mass per length is the bulk density times A.
+  class WireMaterial {
+   public:
+    /// Young's modulus of the stretch rows (Pa), finite and > 0.
+    [[nodiscard]] S getYoungsModulusStretch() const { return stretch_; }
+    void setYoungsModulusStretch(S modulus) {
+      if (!(std::isfinite(modulus) && modulus > S(0)))
+        throw error("wire Young's modulus stretch must be finite and > 0 Pa", modulus);
+      stretch_ = modulus;
+    }
+    /// Young's modulus of the bend rows (Pa), finite and >= 0.
+    [[nodiscard]] S getYoungsModulusBend() const { return bend_; }
+    void setYoungsModulusBend(S modulus) {
+      if (!(std::isfinite(modulus) && modulus >= S(0)))
+        throw error("wire Young's modulus bend must be finite and >= 0 Pa", modulus);
+      bend_ = modulus;
+    }
+    /// SPOOK damping of the stretch rows (s), finite and >= 0.
+    [[nodiscard]] S getDampingStretch() const { return dampingStretch_; }
+    void setDampingStretch(S damping) { dampingStretch_ = nonNegative("wire stretch damping", damping); }
+    /// SPOOK damping of the bend rows (s), finite and >= 0.
+    [[nodiscard]] S getDampingBend() const { return dampingBend_; }
+    void setDampingBend(S damping) { dampingBend_ = nonNegative("wire bend damping", damping); }
+
+   private:
+    friend class MaterialT;
+    explicit WireMaterial(const std::string* owner) : owner_(owner) {}
+    template <class T>
+    [[nodiscard]] Error error(const char* what, const T& value) const {
+      return detail::makeError("Material", *owner_, what, value);
+    }
+    S nonNegative(const char* what, S value) const {
+      if (!(std::isfinite(value) && value >= S(0))) throw error((std::string(what) + " must be finite and >= 0 s").c_str(), value);
+      return value;
+    }
+    const std::string* owner_;
+    S stretch_ = S(6e10);
+    S bend_ = S(6e10);
+    S dampingStretch_ = S(0.05);
+    S dampingBend_ = S(0.1);
+  };
+
   explicit MaterialT(std::string name = "") : name_(std::move(name)) {}
   MaterialT(const MaterialT&) = delete;
   MaterialT& operator=(const MaterialT&) = delete;
@@ -100,6 +147,8 @@ class MaterialT : public Referenced {
   [[nodiscard]] const BulkMaterial* getBulkMaterial() const { return &bulk_; }
   [[nodiscard]] SurfaceMaterial* getSurfaceMaterial() { return &surface_; }
   [[nodiscard]] const SurfaceMaterial* getSurfaceMaterial() const { return &surface_; }
+  [[nodiscard]] WireMaterial* getWireMaterial() { return &wire_; }
+  [[nodiscard]] const WireMaterial* getWireMaterial() const { return &wire_; }
 
  protected:
   ~MaterialT() override = default;
@@ -108,6 +157,7 @@ class MaterialT : public Referenced {
   std::string name_;
   BulkMaterial bulk_{&name_};
   SurfaceMaterial surface_{&name_};
+  WireMaterial wire_{&name_};
 };
 
 SPOOK_COMPILED_ONCE(class, MaterialT)

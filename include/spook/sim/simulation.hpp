@@ -253,6 +253,9 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
 
   // The stores' and producers' part of a step (sim/step_extension.hpp).
   StepContext beginExtensions(double h);
+  // What stores and producers see of this simulation: h, gravity, the
+  // solver indices of its rigid bodies.
+  [[nodiscard]] StepContext makeStepContext(double h) const;
   void collectStoreBodies(const StepContext& step);
   void collectProducerRows(const StepContext& step, bool projection);
 
@@ -468,12 +471,28 @@ void SimulationT<S>::remove(BodyStore* store) {
 template <Scalar S>
 void SimulationT<S>::add(ref_ptr<RowProducer> producer) {
   producers_.checkAddable(producer.get(), this);
+  producer->prepare(makeStepContext(double(timeStep_)));
+  if (BodyStore* owned = producer->getOwnedStore()) {
+    stores_.checkAddable(owned, this);
+    stores_.add(ref_ptr<BodyStore>(owned), this);
+  }
   producers_.add(std::move(producer), this);
+}
+
+template <Scalar S>
+StepContext SimulationT<S>::makeStepContext(double h) const {
+  StepContext step(h, [gravity = gravity_](const Eigen::Vector3d& p) {
+    return Eigen::Vector3d(gravity->calculateGravity(p.cast<S>()).template cast<double>());
+  });
+  step.bodyIndex_ = [index = bodyIndex()](const void* body) { return index(static_cast<const Body*>(body)); };
+  step.bodyScalarSize_ = sizeof(S);
+  return step;
 }
 
 template <Scalar S>
 void SimulationT<S>::remove(RowProducer* producer) {
   producers_.checkRemovable(producer, this);
+  if (BodyStore* owned = producer->getOwnedStore(); stores_.contains(owned, this)) stores_.remove(owned);
   producers_.remove(producer);
 }
 

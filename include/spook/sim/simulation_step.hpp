@@ -200,9 +200,7 @@ void SimulationT<S>::projectRows(const StepContext& step) {
 template <Scalar S>
 StepContext SimulationT<S>::beginExtensions(double h) {
   if (stores_.empty() && producers_.empty()) return StepContext(h, nullptr);
-  StepContext step(h, [gravity = gravity_](const Eigen::Vector3d& p) {
-    return Eigen::Vector3d(gravity->calculateGravity(p.cast<S>()).template cast<double>());
-  });
+  StepContext step = makeStepContext(h);
   for (const auto& s : stores_) s->beginStep(step);
   for (const auto& p : producers_) p->beginStep(step);
   std::size_t first = bodies_.size();

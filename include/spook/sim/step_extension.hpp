@@ -27,6 +27,8 @@ namespace spook {
 class BodyStore;
 template <Scalar S>
 class SimulationT;
+template <Scalar S>
+class RigidBodyT;
 
 /// What stores and producers see of the step they take part in.
 class StepContext {
@@ -43,12 +45,20 @@ class StepContext {
   /// The solver index of body i of `store` in this step (for Row::body1..3),
   /// −1 when the store is not in the step or i is out of its range.
   [[nodiscard]] int indexOf(const BodyStore& store, std::size_t i) const;
+  /// The solver index of a rigid body of the simulation (for Row::body1..3),
+  /// −1 when it is not in the simulation or not of its scalar type.
+  template <Scalar S>
+  [[nodiscard]] int indexOf(const RigidBodyT<S>& body) const {
+    return bodyIndex_ && bodyScalarSize_ == sizeof(S) ? bodyIndex_(&body) : -1;
+  }
 
  private:
   template <Scalar>
   friend class SimulationT;
   double timeStep_;
   std::function<Vec3d(const Vec3d&)> gravity_;
+  std::function<int(const void*)> bodyIndex_;  ///< of a RigidBodyT of bodyScalarSize_
+  std::size_t bodyScalarSize_ = 0;
   std::vector<std::pair<const BodyStore*, std::size_t>> firstIndex_;  ///< per store in the step
   std::vector<std::size_t> sizes_;
 };
@@ -156,6 +166,15 @@ class RowProducer : public Referenced {
   /// The simulation this producer was added to, or nullptr.
   [[nodiscard]] const void* getSimulationHandle() const { return simulation_; }
 
+  /// Simulation::add calls this before it adds anything: a producer that
+  /// cannot join (content it cannot simulate, a body that is not in the
+  /// simulation: `simulation` answers indexOf for its rigid bodies, its time
+  /// step and gravity) throws a spook::Error naming itself, and the
+  /// simulation stays unchanged. It may build the bodies it owns here.
+  virtual void prepare(const StepContext& /*simulation*/) {}
+  /// The store of bodies this producer owns (a wire's lumped nodes), added
+  /// to and removed from the simulation with it; none by default.
+  [[nodiscard]] virtual BodyStore* getOwnedStore() { return nullptr; }
   /// Start of a step, after the stores' beginStep.
   virtual void beginStep(const StepContext& /*step*/) {}
   /// Appends this step's rows. A row naming a body index outside the step

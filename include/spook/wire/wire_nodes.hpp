@@ -1,0 +1,55 @@
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include <spook/sim/step_extension.hpp>
+
+namespace spook::detail {
+
+/// A wire's lumped mass nodes (wire/wire.hpp), held in arrays: point masses
+/// that feel gravity and do not turn.
+class WireNodes : public BodyStore {
+ public:
+  using Vec3d = Eigen::Vector3d;
+
+  [[nodiscard]] std::size_t size() const override { return position_.size(); }
+  std::size_t add(const Vec3d& position, double mass) {
+    position_.push_back(position);
+    velocity_.push_back(Vec3d::Zero());
+    mass_.push_back(mass);
+    return position_.size() - 1;
+  }
+  [[nodiscard]] const Vec3d& position(std::size_t i) const { return position_[i]; }
+  [[nodiscard]] const Vec3d& velocity(std::size_t i) const { return velocity_[i]; }
+  [[nodiscard]] double mass(std::size_t i) const { return mass_[i]; }
+  void setMass(std::size_t i, double mass) { mass_[i] = mass; }
+  void writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const override {
+    const double h = step.getTimeStep();
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      SolverBody& b = bodies[i];
+      b.dynamic = true;
+      b.velocity.head<3>() = velocity_[i];
+      b.freeVelocity.head<3>() = velocity_[i] + h * step.gravity(position_[i]);
+      b.inverseMass = Eigen::Matrix3d::Identity() / mass_[i];
+    }
+  }
+  void move(std::span<const SolverBody> bodies, const StepContext& step) override {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      velocity_[i] = bodies[i].freeVelocity.head<3>();
+      position_[i] += step.getTimeStep() * velocity_[i];
+    }
+  }
+  void displace(std::span<const SolverBody> bodies) override {
+    for (std::size_t i = 0; i < bodies.size(); ++i) position_[i] += bodies[i].displacement.head<3>();
+  }
+
+ private:
+  std::vector<Vec3d> position_, velocity_;
+  std::vector<double> mass_;
+};
+
+}  // namespace spook::detail

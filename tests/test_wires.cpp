@@ -1,0 +1,344 @@
+// Wires (wire/wire.hpp) against analytic references: the elastic catenary,
+// the beaded string's lumped frequencies, a load at high tension; and their
+// refusal of bad input.
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <spook/spook.hpp>
+
+#include "crossing_clock.hpp"
+#include "tolerance.hpp"
+
+using namespace spook;
+
+namespace {
+
+constexpr double g0 = 9.80665;
+
+/// The elastic catenary (PHYSICS.md §7.3) of rest length L, weight w per
+/// meter of rest length and axial stiffness EA between supports at the same
+/// height a span D apart: x(s), y(s) and the tension at rest arc s.
+struct ElasticCatenary {
+  double L, w, EA, H = 0.0;
+  ElasticCatenary(double span, double length, double weight, double stiffness) : L(length), w(weight), EA(stiffness) {
+    const auto spanOf = [&](double h) { return h * L / EA + 2.0 * h / w * std::asinh(w * L / (2.0 * h)); };
+    double lo = 1e-9 * w * L, hi = 1e3 * w * L;  // the span grows with H
+    for (int i = 0; i < 200; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (spanOf(mid) < span ? lo : hi) = mid;
+    }
+    H = 0.5 * (lo + hi);
+  }
+  [[nodiscard]] double V(double s) const { return -0.5 * w * L + w * s; }
+  [[nodiscard]] double x(double s) const { return H * s / EA + H / w * (std::asinh(V(s) / H) - std::asinh(V(0) / H)); }
+  [[nodiscard]] double y(double s) const {
+    return (V(0) * s + 0.5 * w * s * s) / EA + H / w * (std::hypot(1.0, V(s) / H) - std::hypot(1.0, V(0) / H));
+  }
+  [[nodiscard]] double tension(double s) const { return std::hypot(H, V(s)); }
+};
+
+/// The inextensible catenary's parameter a for length L over span D
+/// (2a sinh(D/2a) = L), for routing.
+double catenaryParameter(double span, double length) {
+  double lo = 1e-3 * span, hi = 1e3 * span;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (2.0 * mid * std::sinh(span / (2.0 * mid)) > length ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a wire hangs in the elastic catenary between two fixed points", S, double, float) {
+  using Sim = SimulationT<S>;
+  using Vec3 = Vec3T<S>;
+  const double span = 10.0, length = 12.0, radius = 0.01, density = 7800.0;
+  const int segments = 60;
+  ref_ptr<Sim> sim = new Sim();
+  ref_ptr<WireT<S>> wire = new WireT<S>(S(radius), S(segments / length * 0.999));
+  wire->setName("catenary");
+  wire->getMaterial()->getBulkMaterial()->setDensity(S(density));
+  wire->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(0));  // limp: the catenary has no bending
+  // Routed along the inextensible catenary, one route segment per lumped segment.
+  const double a = catenaryParameter(span, length);
+  const auto routed = [&](double s) {  // arc s from the left end, s in [0, L]
+    const double x = a * std::asinh(s / a - std::sinh(span / (2.0 * a)));
+    return Vec3(S(x + 0.5 * span), S(0), S(a * (std::cosh(x / a) - std::cosh(span / (2.0 * a)))));
+  };
+  wire->add(new BodyFixedNodeT<S>(nullptr, routed(0.0)));
+  for (int i = 1; i < segments; ++i) wire->add(new FreeNodeT<S>(routed(length * i / segments)));
+  wire->add(new BodyFixedNodeT<S>(nullptr, routed(length)));
+  sim->add(wire);
+  REQUIRE(wire->getNumMassNodes() == std::size_t(segments - 1));
+
+  const int steps = spook::test::sweep(300, 120);
+  for (int s = 0; s < steps; ++s) sim->stepForward();
+
+  const double L = double(wire->getRestLength()), w = density * std::numbers::pi * radius * radius * g0;
+  const double EA = 6e10 * std::numbers::pi * radius * radius;
+  const ElasticCatenary reference(span, L, w, EA);
+  const double sag = -reference.y(0.5 * L);
+  const std::vector<Vec3> points = wire->getPoints();
+  REQUIRE(points.size() == std::size_t(segments + 1));
+  double worst = 0.0, arc = 0.0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const double dx = double(points[k].x()) - reference.x(arc), dz = double(points[k].z()) - reference.y(arc);
+    worst = std::max(worst, std::hypot(dx, dz));
+    if (k + 1 < points.size()) arc += (routed(length * double(k + 1) / segments) - routed(length * double(k) / segments)).norm();
+  }
+  // The first segment's tension is the catenary's at its middle.
+  const double segment = L / segments;
+  const double tension = double(wire->getTension(S(0.5 * segment)));
+  MESSAGE("sag " << sag << " m, worst node " << worst << " m (" << 100 * worst / sag << " % of the sag), tension "
+                 << tension << " N against " << reference.tension(0.5 * segment) << " N");
+  CHECK(worst < 0.01 * sag);
+  CHECK(tension == doctest::Approx(reference.tension(0.5 * segment)).epsilon(0.01));
+  CHECK(double(wire->getTension(S(0.5 * L))) == doctest::Approx(reference.tension(0.5 * L)).epsilon(0.01));
+}
+
+TEST_CASE_TEMPLATE("small transverse oscillations of a tensioned wire are at the beaded string's frequencies", S,
+                   double, float) {
+  using Sim = SimulationT<S>;
+  using Vec3 = Vec3T<S>;
+  const int n = 9;  // inner nodes
+  const double l = 0.1, m = 0.01, T = 10.0, radius = 0.01, EA = 1000.0, h = 1e-3;
+  const double area = std::numbers::pi * radius * radius;
+  for (int k = 1; k <= 3; ++k) {
+    ref_ptr<Sim> sim = new Sim();
+    sim->setTimeStep(S(h));
+    sim->setUniformGravity(Vec3::Zero());
+    ref_ptr<RigidBodyT<S>> end = new RigidBodyT<S>();
+    end->setMotionControl(RigidBodyT<S>::MotionControl::STATIC);
+    end->setPosition(S((n + 1) * l), S(0), S(0));
+    sim->add(end);
+    ref_ptr<WireT<S>> wire = new WireT<S>(S(radius), S(0.9 / l));
+    wire->getMaterial()->getBulkMaterial()->setDensity(S(m / (l * area)));
+    wire->getMaterial()->getWireMaterial()->setYoungsModulusStretch(S(EA / area));
+    wire->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(0));
+    const double amplitude = 1e-3;
+    const auto mode = [&](int i) { return std::sin(k * std::numbers::pi * i / (n + 1)); };
+    wire->add(new BodyFixedNodeT<S>(nullptr, Vec3::Zero()));
+    for (int i = 1; i <= n; ++i) wire->add(new FreeNodeT<S>(S(i * l), S(amplitude * mode(i)), S(0)));
+    wire->add(new BodyFixedNodeT<S>(end.get(), Vec3::Zero()));
+    sim->add(wire);
+    REQUIRE(wire->getNumMassNodes() == std::size_t(n));
+    // Tension T: the end moves by the stretch T L / EA.
+    end->setPosition(S((n + 1) * l + T * double(wire->getRestLength()) / EA), S(0), S(0));
+
+    spook::test::CrossingClock clock;
+    // The formula's spacing a is the stretched one.
+    const double a = l + T * double(wire->getRestLength()) / EA / (n + 1);
+    const double exact = 2.0 * std::sqrt(T / (m * a)) * std::sin(k * std::numbers::pi / (2.0 * (n + 1)));
+    const int steps = int(std::ceil(12.0 * 2.0 * std::numbers::pi / (exact * h)));
+    for (int s = 1; s <= steps; ++s) {
+      sim->stepForward();
+      const std::vector<Vec3> points = wire->getPoints();
+      double q = 0.0;
+      for (int i = 1; i <= n; ++i) q += double(points[std::size_t(i)].y()) * mode(i);
+      clock.add(s * h, q);
+    }
+    const double tension = double(wire->getTension(S(0.5)));
+    MESSAGE("mode " << k << ": " << clock.omega() << " rad/s against " << exact << ", tension " << tension << " N");
+    CHECK(clock.omega() == doctest::Approx(exact).epsilon(0.01));
+    CHECK(tension == doctest::Approx(T).epsilon(0.01));
+  }
+}
+
+TEST_CASE_TEMPLATE("a wire holds a load at high tension and a 1:1e6 mass ratio without vibrating", S, double, float) {
+  using Sim = SimulationT<S>;
+  using Vec3 = Vec3T<S>;
+  const double radius = 0.01, length = 10.0, density = 7800.0;
+  const double area = std::numbers::pi * radius * radius, wireMass = density * area * length;
+  // 1e5 kg on steel (E = 6e10 Pa); then a load of 1e6 wire masses, on a
+  // wire stiff enough to stretch by 2 %.
+  struct Case {
+    double load, modulus;
+  };
+  for (const Case c : {Case{1e5, 6e10}, Case{1e6 * wireMass, 1e6 * wireMass * g0 / (0.02 * area)}}) {
+    CAPTURE(c.load);
+    ref_ptr<Sim> sim = new Sim();
+    ref_ptr<RigidBodyT<S>> load = new RigidBodyT<S>();
+    load->getMassProperties()->setMass(S(c.load));
+    sim->add(load);
+    ref_ptr<WireT<S>> wire = new WireT<S>(S(radius), S(2));
+    wire->getMaterial()->getBulkMaterial()->setDensity(S(density));
+    wire->getMaterial()->getWireMaterial()->setYoungsModulusStretch(S(c.modulus));
+    wire->add(new BodyFixedNodeT<S>(nullptr, Vec3(S(0), S(0), S(length))));
+    wire->add(new BodyFixedNodeT<S>(load.get(), Vec3::Zero()));
+    sim->add(wire);
+    const std::size_t nodes = wire->getNumMassNodes();
+    // The load starts where it hangs: the wire stretched by its weight.
+    const double EA = c.modulus * area, stretch = c.load * g0 * length / EA;
+    load->setPosition(S(0), S(0), S(-stretch));
+    const int steps = spook::test::sweep(180, 150);
+    double low = 1e30, high = -1e30;
+    for (int s = 1; s <= steps; ++s) {
+      sim->stepForward();
+      if (s > 120) {
+        low = std::min(low, double(load->getPosition().z()));
+        high = std::max(high, double(load->getPosition().z()));
+      }
+    }
+    const double tension = double(wire->getTension(S(length)));
+    const double measuredStretch = double(wire->getCurrentLength() - wire->getRestLength());
+    // The wire's own weight adds w L²/(2EA) to the stretch.
+    const double expectedStretch = stretch + density * area * g0 * length * length / (2.0 * EA);
+    MESSAGE("load " << c.load << " kg: tension " << tension << " N against " << c.load * g0 << ", stretch "
+                    << measuredStretch << " m against " << expectedStretch << ", load moves " << high - low
+                    << " m over the last second, " << nodes << " nodes");
+    CHECK(tension == doctest::Approx(c.load * g0).epsilon(0.01));
+    CHECK(measuredStretch == doctest::Approx(expectedStretch).epsilon(0.02));
+    CHECK(high - low < 1e-4);
+    CHECK(wire->getNumMassNodes() == nodes);
+    for (const Vec3& p : wire->getPoints()) CHECK(p.allFinite());
+  }
+}
+
+TEST_CASE("a wire refuses bad input by name and leaves the simulation unchanged") {
+  ref_ptr<Simulation> sim = new Simulation();
+  ref_ptr<RigidBody> elsewhere = new RigidBody();
+  elsewhere->setName("elsewhere");
+  const auto message = [](auto&& make) {
+    try {
+      make();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(message([] { ref_ptr<Wire> w = new Wire(0.0, 2.0); }).find("radius") != std::string::npos);
+  CHECK(message([] { ref_ptr<Wire> w = new Wire(-0.01, 2.0); }).find("-0.01") != std::string::npos);
+  CHECK(message([] { ref_ptr<Wire> w = new Wire(std::nan(""), 2.0); }).find("nan") != std::string::npos);
+  CHECK(message([] { ref_ptr<Wire> w = new Wire(0.01, 0.0); }).find("resolution") != std::string::npos);
+  CHECK(message([] { ref_ptr<Wire> w = new Wire(0.01, INFINITY); }).find("inf") != std::string::npos);
+  CHECK(message([] { ref_ptr<FreeNode> n = new FreeNode(0.0, std::nan(""), 0.0); }).find("FreeNode") !=
+        std::string::npos);
+
+  const auto refused = [&](Wire* wire, const char* expected) {
+    const std::size_t producers = sim->getRowProducers().size(), stores = sim->getBodyStores().size();
+    const std::string what = message([&] { sim->add(ref_ptr<Wire>(wire)); });
+    CAPTURE(what);
+    CHECK(what.find("'w'") != std::string::npos);
+    CHECK(what.find(expected) != std::string::npos);
+    CHECK(sim->getRowProducers().size() == producers);
+    CHECK(sim->getBodyStores().size() == stores);
+    CHECK_FALSE(sim->contains(static_cast<RowProducer*>(wire)));
+  };
+  const auto named = [](double resolution = 2.0) {
+    ref_ptr<Wire> w = new Wire(0.01, resolution);
+    w->setName("w");
+    return w;
+  };
+  ref_ptr<Wire> one = named();
+  one->add(new FreeNode(0, 0, 0));
+  refused(one.get(), "at least two route nodes, got 1");
+
+  ref_ptr<Wire> middle = named();
+  middle->add(new FreeNode(0, 0, 0));
+  middle->add(new BodyFixedNode(nullptr, Vec3(1, 0, 0)));
+  middle->add(new FreeNode(2, 0, 0));
+  refused(middle.get(), "only be the first or last route node; it is node, got 1");
+
+  ref_ptr<Wire> foreign = named();
+  foreign->add(new BodyFixedNode(elsewhere.get(), Vec3::Zero()));
+  foreign->add(new FreeNode(2, 0, 0));
+  refused(foreign.get(), "elsewhere");
+
+  ref_ptr<Wire> coincident = named();
+  coincident->add(new FreeNode(1, 0, 0));
+  coincident->add(new FreeNode(1, 0, 0));
+  refused(coincident.get(), "coincide");
+
+  ref_ptr<Wire> huge = named(1e9);
+  huge->add(new FreeNode(0, 0, 0));
+  huge->add(new FreeNode(10, 0, 0));
+  refused(huge.get(), "1e6 lumped nodes");
+
+  CHECK_THROWS_AS(one->add(ref_ptr<FreeNode>()), Error);
+  CHECK_THROWS_AS(one->setRadius(-1.0), Error);
+  CHECK_THROWS_AS(one->setMaterial(nullptr), Error);
+  CHECK(message([&] { one->getMaterial()->getWireMaterial()->setYoungsModulusStretch(0.0); })
+            .find("Young's modulus stretch") != std::string::npos);
+  CHECK_THROWS_AS(one->getMaterial()->getWireMaterial()->setYoungsModulusBend(-1.0), Error);
+  CHECK_THROWS_AS(one->getMaterial()->getWireMaterial()->setDampingBend(std::nan("")), Error);
+
+  // A wire in a simulation keeps its route; removed, its nodes leave with it.
+  ref_ptr<Wire> good = named();
+  good->add(new FreeNode(0, 0, 0));
+  good->add(new FreeNode(1, 0, 0));
+  sim->add(good);
+  CHECK(sim->getBodyStores().size() == 1);
+  CHECK(message([&] { good->add(new FreeNode(2, 0, 0)); }).find("route is fixed") != std::string::npos);
+  sim->stepForward();
+  sim->remove(good.get());
+  CHECK(sim->getBodyStores().empty());
+  CHECK(sim->getRowProducers().empty());
+}
+
+TEST_CASE_TEMPLATE("a free wire falls freely and keeps its length; one end on a body carries the body", S, double, float) {
+  using Sim = SimulationT<S>;
+  using Vec3 = Vec3T<S>;
+  ref_ptr<Sim> sim = new Sim();
+  ref_ptr<WireT<S>> wire = new WireT<S>(S(0.01), S(4));
+  wire->add(new FreeNodeT<S>(S(0), S(0), S(0)));
+  wire->add(new FreeNodeT<S>(S(2), S(0), S(0)));
+  sim->add(wire);
+  const int steps = 60;
+  for (int s = 0; s < steps; ++s) sim->stepForward();
+  // Symplectic Euler: z_n = −g h² n(n+1)/2.
+  const double h = double(sim->getTimeStep()), expected = -g0 * h * h * steps * (steps + 1) / 2.0;
+  for (const Vec3& p : wire->getPoints()) CHECK(double(p.z()) == doctest::Approx(expected).epsilon(1e-4));
+  CHECK(double(wire->getCurrentLength()) == doctest::Approx(2.0).epsilon(1e-6));
+  CHECK(double(wire->getTension(S(1))) == doctest::Approx(0.0).epsilon(1e-6));
+
+  // Pendulums: a body hung from the world by a limp 1 m wire (0.314 kg/m),
+  // released at 0.1 m. Their frequency against the compound pendulum of a
+  // straight wire, ω² = g(m + μL/2)/(L(m + μL/3)).
+  struct Case {
+    double bob, resolution;
+    bool resolved;  // h²T/(L m_node) < 1: no geometric-stiffness rows
+  };
+  for (const Case c : {Case{1.0, 5.0, true}, Case{10.0, 5.0, false}, Case{1.0, 20.0, false}}) {
+    CAPTURE(c.bob);
+    CAPTURE(c.resolution);
+    ref_ptr<Sim> pendulum = new Sim();
+    ref_ptr<RigidBodyT<S>> bob = new RigidBodyT<S>();
+    bob->getMassProperties()->setMass(S(c.bob));
+    bob->setPosition(S(0.1), S(0), S(-std::sqrt(1.0 - 0.01)));
+    pendulum->add(bob);
+    ref_ptr<WireT<S>> hanger = new WireT<S>(S(0.01), S(c.resolution));
+    hanger->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(0));
+    hanger->add(new BodyFixedNodeT<S>(nullptr, Vec3::Zero()));
+    hanger->add(new BodyFixedNodeT<S>(bob.get(), Vec3::Zero()));
+    pendulum->add(hanger);
+    spook::test::CrossingClock clock;
+    const double dt = double(pendulum->getTimeStep());
+    double firstPeak = 0.0, lastPeak = 0.0, longest = 0.0;
+    for (int s = 1; s <= 600; ++s) {
+      pendulum->stepForward();
+      const double x = std::abs(double(bob->getPosition().x()));
+      clock.add(s * dt, double(bob->getPosition().x()));
+      (s <= 120 ? firstPeak : lastPeak) = std::max(s <= 120 ? firstPeak : lastPeak, s > 480 || s <= 120 ? x : 0.0);
+      longest = std::max(longest, double(hanger->getCurrentLength()));
+    }
+    const double mu = 1000.0 * std::numbers::pi * 1e-4;
+    const double omega = std::sqrt(g0 * (c.bob + mu / 2.0) / (c.bob + mu / 3.0));
+    MESSAGE("pendulum of " << c.bob << " kg on a wire of " << c.resolution << " nodes/m: " << clock.omega()
+                           << " rad/s against " << omega << ", amplitude " << firstPeak << " m in the first 2 s, "
+                           << lastPeak << " m in the last");
+    CHECK(clock.omega() == doctest::Approx(omega).epsilon(0.01));
+    CHECK(longest < 1.0 + 1e-4);
+    CHECK(lastPeak <= firstPeak * 1.01);
+    // A resolved wire keeps the swing (symplectic Euler); an over-resolved
+    // one is integrated by backward Euler across its segments, whose damping
+    // of the swing (~h²ω²/2 a step) is the price of its stability (wire.hpp).
+    if (c.resolved) CHECK(lastPeak == doctest::Approx(firstPeak).epsilon(0.01));
+  }
+}
