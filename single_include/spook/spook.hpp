@@ -22000,6 +22000,7 @@ using BodyFixedNode = BodyFixedNodeT<float>;
 #define SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODES_HPP
 
 #include <cstddef>
+#include <iterator>
 #include <span>
 #include <vector>
 
@@ -22024,6 +22025,19 @@ class WireNodes : public BodyStore {
   [[nodiscard]] const Vec3d& velocity(std::size_t i) const { return velocity_[i]; }
   [[nodiscard]] double mass(std::size_t i) const { return mass_[i]; }
   void setMass(std::size_t i, double mass) { mass_[i] = mass; }
+  void setVelocity(std::size_t i, const Vec3d& velocity) { velocity_[i] = velocity; }
+  /// Removes node i (the wire's adaptive resolution, in beginStep).
+  void erase(std::size_t i) {
+    position_.erase(position_.begin() + std::ptrdiff_t(i));
+    velocity_.erase(velocity_.begin() + std::ptrdiff_t(i));
+    mass_.erase(mass_.begin() + std::ptrdiff_t(i));
+  }
+  /// Inserts a node before node i (i = size(): at the end).
+  void insert(std::size_t i, const Vec3d& position, const Vec3d& velocity, double mass) {
+    position_.insert(position_.begin() + std::ptrdiff_t(i), position);
+    velocity_.insert(velocity_.begin() + std::ptrdiff_t(i), velocity);
+    mass_.insert(mass_.begin() + std::ptrdiff_t(i), mass);
+  }
   void writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const override {
     const double h = step.getTimeStep();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -22102,6 +22116,7 @@ class WireT : public RowProducer {
   // RowProducer.
   void prepare(const StepContext& simulation) override;
   [[nodiscard]] BodyStore* getOwnedStore() override { return nodes_.get(); }
+  void beginStep(const StepContext& step) override;
   void writeRows(RowWriter& rows, const StepContext& step) override;
   void readBack(std::span<const double> impulses, const StepContext& step) override;
 
@@ -22127,6 +22142,11 @@ class WireT : public RowProducer {
   void checkRoute(const StepContext& simulation) const;
   void build();
   void updateMasses();
+  /// Adaptive resolution (beginStep): nodes the step cannot resolve leave,
+  /// and return where the tension allows.
+  void removeNode(std::size_t point);
+  void splitSegment(std::size_t segment);
+  void renumberNodes();
   [[nodiscard]] double linearDensity() const;
   [[nodiscard]] Vec3d worldPosition(const Point& p) const;
   [[nodiscard]] Vec3d worldVelocity(const Point& p) const;
@@ -22313,6 +22333,102 @@ void WireT<S>::updateMasses() {
   }
 }
 
+// Adaptive resolution (agxWire's dynamic resolution; PHYSICS.md §3.3). A
+// node of mass m between segments of length L under tension T is a
+// transverse spring the velocity-level step integrates explicitly (the
+// stretch rows turn with the geometry of the step's start); the wire's
+// fastest mode, the zig-zag, has ω² = 4T/(L m), unstable once h²ω² > 4.
+// A node with ρ = h²(T₁/L₁ + T₂/L₂)/m > 2 (that zig-zag bound) leaves: its
+// two segments merge (rest lengths add), its mass and momentum go to its
+// neighbours. A segment longer than the wire's resolution asks for splits
+// again where the node it would gain has ρ < 1 (hysteresis). The
+// geometric-stiffness rows of writeRows hold what is left over (a node that
+// cannot leave: next to both ends, or a tension that jumps within a step).
+template <Scalar S>
+void WireT<S>::beginStep(const StepContext& step) {
+  if (points_.size() < 2) return;
+  const double h2 = step.getTimeStep() * step.getTimeStep();
+  const auto span = [&](std::size_t segment) {
+    return (worldPosition(points_[segment + 1]) - worldPosition(points_[segment])).norm();
+  };
+  const auto pull = [&](std::size_t segment) {
+    const double length = span(segment);
+    return length > 0.0 ? std::max(tension_[segment], 0.0) / length : 0.0;
+  };
+  bool changed = false;
+  for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
+    const Point& p = points_[k];
+    if (p.node < 0) continue;
+    const double rho = h2 * (pull(k - 1) + pull(k)) / nodes_->mass(std::size_t(p.node));
+    if (rho > 2.0) {
+      removeNode(k);
+      changed = true;
+    }
+  }
+  const double target = 1.0 / resolution_, density = linearDensity();
+  for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
+    if (restLengths_[k] < 1.999 * target) continue;
+    // The node a split would add: mass ρ_l r/2, between halves of L/2.
+    const double rho = h2 * 4.0 * pull(k) / (density * restLengths_[k] / 2.0);
+    if (rho < 1.0) {
+      splitSegment(k);
+      changed = true;
+      ++k;
+    }
+  }
+  if (changed) updateMasses();
+}
+
+template <Scalar S>
+void WireT<S>::removeNode(std::size_t k) {
+  const std::size_t node = std::size_t(points_[k].node);
+  const double mass = nodes_->mass(node);
+  const Vec3d momentum = 0.5 * mass * nodes_->velocity(node);
+  for (const std::size_t other : {k - 1, k + 1}) {
+    if (points_[other].node < 0) continue;  // a body's or the world's end: that half is lost
+    const std::size_t n = std::size_t(points_[other].node);
+    nodes_->setVelocity(n, (nodes_->mass(n) * nodes_->velocity(n) + momentum) / (nodes_->mass(n) + 0.5 * mass));
+    nodes_->setMass(n, nodes_->mass(n) + 0.5 * mass);
+  }
+  restLengths_[k - 1] += restLengths_[k];
+  stretchImpulse_[k - 1] = 0.5 * (stretchImpulse_[k - 1] + stretchImpulse_[k]);
+  tension_[k - 1] = 0.5 * (tension_[k - 1] + tension_[k]);
+  restLengths_.erase(restLengths_.begin() + std::ptrdiff_t(k));
+  stretchImpulse_.erase(stretchImpulse_.begin() + std::ptrdiff_t(k));
+  tension_.erase(tension_.begin() + std::ptrdiff_t(k));
+  bendImpulse_.erase(bendImpulse_.begin() + std::ptrdiff_t(2 * k), bendImpulse_.begin() + std::ptrdiff_t(2 * k + 2));
+  bent_.erase(bent_.begin() + std::ptrdiff_t(k));
+  nodes_->erase(node);
+  points_.erase(points_.begin() + std::ptrdiff_t(k));
+  renumberNodes();
+}
+
+template <Scalar S>
+void WireT<S>::splitSegment(std::size_t k) {
+  std::size_t node = 0;  // the new node's index: the mass nodes before it
+  for (std::size_t i = 0; i <= k; ++i) node += points_[i].node >= 0 ? 1 : 0;
+  const Vec3d position = 0.5 * (worldPosition(points_[k]) + worldPosition(points_[k + 1]));
+  const Vec3d velocity = 0.5 * (worldVelocity(points_[k]) + worldVelocity(points_[k + 1]));
+  nodes_->insert(node, position, velocity, 0.0);
+  Point p;
+  p.node = int(node);
+  points_.insert(points_.begin() + std::ptrdiff_t(k + 1), p);
+  restLengths_[k] *= 0.5;
+  restLengths_.insert(restLengths_.begin() + std::ptrdiff_t(k + 1), restLengths_[k]);
+  stretchImpulse_.insert(stretchImpulse_.begin() + std::ptrdiff_t(k + 1), stretchImpulse_[k]);
+  tension_.insert(tension_.begin() + std::ptrdiff_t(k + 1), tension_[k]);
+  bendImpulse_.insert(bendImpulse_.begin() + std::ptrdiff_t(2 * (k + 1)), 2, 0.0);
+  bent_.insert(bent_.begin() + std::ptrdiff_t(k + 1), 0);
+  renumberNodes();
+}
+
+template <Scalar S>
+void WireT<S>::renumberNodes() {
+  int next = 0;
+  for (Point& p : points_)
+    if (p.node >= 0) p.node = next++;
+}
+
 namespace detail {
 /// Up to three (body, Jacobian block) terms of one row, merged per body: a
 /// point on a body contributes (a, r × a) for a world direction a at lever
@@ -22383,7 +22499,8 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     if (length > 0.0) {
       const Vec3d rate = v[k + 1] - v[k];
       const Vec3d across = rate - u * u.dot(rate);
-      rows.setCurvature(rows.size() - 1, 0.5 * (across.squaredNorm() / length + u.dot(centripetal[k + 1] - centripetal[k])));
+      const double relative = u.dot(centripetal[k + 1] - centripetal[k]);
+      rows.setCurvature(rows.size() - 1, 0.5 * (across.squaredNorm() / length + relative));
     }
   }
   // Bend: g = e·(t₂ − t₁) for the two directions e across the mean tangent;
@@ -22421,10 +22538,9 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   // 2017): a segment under tension T resists its ends' motion across it
   // with stiffness K = (T/L)(I − uuᵀ). The stretch row turns with the step's
   // start geometry, which integrates that stiffness explicitly: unstable
-  // once h²K/m passes ~1 (a 0.06 kg node under 100 N at 0.2 m, 60 Hz: 4.4),
-  // the vibration agxWire removes nodes against. Its implicit part −h²K v⁺
-  // is two velocity rows across the segment, target 0, viscosity L/(hT)
-  // (row.hpp: force −G v⁺/γ), from last step's tension: backward Euler in
+  // once h²K/m passes ~1, for nodes that beginStep could not remove. Its
+  // implicit part −h²K v⁺ is two velocity rows across the segment, target
+  // 0, viscosity L/(hT) (row.hpp: force −G v⁺/γ), from last step's tension: backward Euler in
   // the geometry, which damps only the ends' relative motion across the
   // segment. Weighted by max(0, 1 − 1/ρ), ρ = h²(T/L)(1/m_a + 1/m_b), as
   // solver/geometric_stiffness.hpp does for rigid bodies: a segment the

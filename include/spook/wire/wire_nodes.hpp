@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <iterator>
 #include <span>
 #include <vector>
 
@@ -27,6 +28,19 @@ class WireNodes : public BodyStore {
   [[nodiscard]] const Vec3d& velocity(std::size_t i) const { return velocity_[i]; }
   [[nodiscard]] double mass(std::size_t i) const { return mass_[i]; }
   void setMass(std::size_t i, double mass) { mass_[i] = mass; }
+  void setVelocity(std::size_t i, const Vec3d& velocity) { velocity_[i] = velocity; }
+  /// Removes node i (the wire's adaptive resolution, in beginStep).
+  void erase(std::size_t i) {
+    position_.erase(position_.begin() + std::ptrdiff_t(i));
+    velocity_.erase(velocity_.begin() + std::ptrdiff_t(i));
+    mass_.erase(mass_.begin() + std::ptrdiff_t(i));
+  }
+  /// Inserts a node before node i (i = size(): at the end).
+  void insert(std::size_t i, const Vec3d& position, const Vec3d& velocity, double mass) {
+    position_.insert(position_.begin() + std::ptrdiff_t(i), position);
+    velocity_.insert(velocity_.begin() + std::ptrdiff_t(i), velocity);
+    mass_.insert(mass_.begin() + std::ptrdiff_t(i), mass);
+  }
   void writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const override {
     const double h = step.getTimeStep();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
