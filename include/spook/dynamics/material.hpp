@@ -12,6 +12,17 @@
 
 namespace spook {
 
+namespace detail {
+/// A material property checked on its way in: finite and > 0, or >= 0 when
+/// `zeroAllowed`; else a spook::Error naming the material and the value.
+template <class S>
+S checkedMaterialValue(const std::string& material, const char* what, S value, bool zeroAllowed) {
+  if (!(std::isfinite(value) && (value > S(0) || (zeroAllowed && value == S(0)))))
+    throw makeError("Material", material, what, value);
+  return value;
+}
+}  // namespace detail
+
 /// What a geometry is made of. The bulk part gives the density that turns
 /// shape volumes into body mass; the stiffness and surface parameters are
 /// used by contacts (the contact-dynamics layer combines two materials into
@@ -41,8 +52,7 @@ class MaterialT : public Referenced {
     /// SPOOK damping of contacts (s), finite and >= 0; default 0.075.
     [[nodiscard]] S getDamping() const { return damping_; }
     void setDamping(S damping) {
-      if (!(std::isfinite(damping) && damping >= S(0))) throw error("damping must be finite and >= 0 s", damping);
-      damping_ = damping;
+      damping_ = detail::checkedMaterialValue(*owner_, "damping must be finite and >= 0 s", damping, true);
     }
 
    private:
@@ -52,10 +62,7 @@ class MaterialT : public Referenced {
     [[nodiscard]] Error error(const char* what, const T& value) const {
       return detail::makeError("Material", *owner_, what, value);
     }
-    S positive(const char* what, S value) const {
-      if (!(std::isfinite(value) && value > S(0))) throw error(what, value);
-      return value;
-    }
+    S positive(const char* what, S value) const { return detail::checkedMaterialValue(*owner_, what, value, false); }
     const std::string* owner_;
     S density_ = S(1000);
     S youngsModulus_ = S(4e8);
@@ -70,17 +77,14 @@ class MaterialT : public Referenced {
     /// default 0.41667.
     [[nodiscard]] S getRoughness() const { return roughness_; }
     void setRoughness(S roughness) {
-      if (!(std::isfinite(roughness) && roughness >= S(0)))
-        throw detail::makeError("Material", *owner_, "roughness must be finite and >= 0", roughness);
-      roughness_ = roughness;
+      roughness_ = detail::checkedMaterialValue(*owner_, "roughness must be finite and >= 0", roughness, true);
     }
     /// Surface viscosity, the compliance of the friction rows (m/(N·s));
     /// default 5e-9.
     [[nodiscard]] S getViscosity() const { return viscosity_; }
     void setViscosity(S viscosity) {
-      if (!(std::isfinite(viscosity) && viscosity >= S(0)))
-        throw detail::makeError("Material", *owner_, "surface viscosity must be finite and >= 0", viscosity);
-      viscosity_ = viscosity;
+      viscosity_ =
+          detail::checkedMaterialValue(*owner_, "surface viscosity must be finite and >= 0", viscosity, true);
     }
 
    private:
@@ -102,34 +106,29 @@ class MaterialT : public Referenced {
     /// Young's modulus of the stretch rows (Pa), finite and > 0.
     [[nodiscard]] S getYoungsModulusStretch() const { return stretch_; }
     void setYoungsModulusStretch(S modulus) {
-      if (!(std::isfinite(modulus) && modulus > S(0)))
-        throw error("wire Young's modulus stretch must be finite and > 0 Pa", modulus);
-      stretch_ = modulus;
+      stretch_ = checked("wire Young's modulus stretch must be finite and > 0 Pa", modulus, false);
     }
     /// Young's modulus of the bend rows (Pa), finite and >= 0.
     [[nodiscard]] S getYoungsModulusBend() const { return bend_; }
     void setYoungsModulusBend(S modulus) {
-      if (!(std::isfinite(modulus) && modulus >= S(0)))
-        throw error("wire Young's modulus bend must be finite and >= 0 Pa", modulus);
-      bend_ = modulus;
+      bend_ = checked("wire Young's modulus bend must be finite and >= 0 Pa", modulus, true);
     }
     /// SPOOK damping of the stretch rows (s), finite and >= 0.
     [[nodiscard]] S getDampingStretch() const { return dampingStretch_; }
-    void setDampingStretch(S damping) { dampingStretch_ = nonNegative("wire stretch damping", damping); }
+    void setDampingStretch(S damping) {
+      dampingStretch_ = checked("wire stretch damping must be finite and >= 0 s", damping, true);
+    }
     /// SPOOK damping of the bend rows (s), finite and >= 0.
     [[nodiscard]] S getDampingBend() const { return dampingBend_; }
-    void setDampingBend(S damping) { dampingBend_ = nonNegative("wire bend damping", damping); }
+    void setDampingBend(S damping) {
+      dampingBend_ = checked("wire bend damping must be finite and >= 0 s", damping, true);
+    }
 
    private:
     friend class MaterialT;
     explicit WireMaterial(const std::string* owner) : owner_(owner) {}
-    template <class T>
-    [[nodiscard]] Error error(const char* what, const T& value) const {
-      return detail::makeError("Material", *owner_, what, value);
-    }
-    S nonNegative(const char* what, S value) const {
-      if (!(std::isfinite(value) && value >= S(0))) throw error((std::string(what) + " must be finite and >= 0 s").c_str(), value);
-      return value;
+    S checked(const char* what, S value, bool zeroAllowed) const {
+      return detail::checkedMaterialValue(*owner_, what, value, zeroAllowed);
     }
     const std::string* owner_;
     S stretch_ = S(6e10);

@@ -10,8 +10,13 @@
 //   wire->add(new FreeNode(0, 0, 5));                       // a free end
 //   simulation->add(wire);
 //
-// Its length is that of the route. A row producer (sim/step_extension.hpp)
-// that owns its node store: the simulation adds and removes both together.
+// Its length is that of the route. Either end may start at a winch
+// (wire/wire_winch_controller.hpp) holding more of the wire pulled in:
+//
+//   wire->add(winch, 50.0);  // first: 50 m on the drum
+//
+// A row producer (sim/step_extension.hpp) that owns its node store: the
+// simulation adds and removes both together.
 
 #include <algorithm>
 #include <cmath>
@@ -33,6 +38,7 @@
 #include <spook/sim/step_extension.hpp>
 #include <spook/wire/wire_node.hpp>
 #include <spook/wire/wire_nodes.hpp>
+#include <spook/wire/wire_winch_controller.hpp>
 
 namespace spook {
 
@@ -43,6 +49,7 @@ class WireT : public RowProducer {
   using Node = WireNodeT<S>;
   using Material = MaterialT<S>;
   using Body = RigidBodyT<S>;
+  using Winch = WireWinchControllerT<S>;
 
   /// A wire of `radius` (m) and `resolution` lumped nodes per meter, both
   /// finite and > 0, made of `material` (a material of its own, named
@@ -51,8 +58,15 @@ class WireT : public RowProducer {
 
   /// Appends a node to the route, before the wire is added to a simulation.
   void add(ref_ptr<Node> node);
-  /// The route as given.
+  /// Starts (first) or ends (last) the route at a winch holding
+  /// `pulledInLength` m (finite, >= 0) of wire on its drum, before the wire
+  /// is added to a simulation. Nothing may be routed after an end winch.
+  void add(ref_ptr<Winch> winch, S pulledInLength);
+  /// The route as given; a winch is there as a body-fixed node at its
+  /// position.
   [[nodiscard]] const std::vector<ref_ptr<Node>>& getRoute() const { return route_; }
+  /// The winch at the start (`begin`) or end of the wire, or nullptr.
+  [[nodiscard]] Winch* getWinch(bool begin) const { return winches_[begin ? 0 : 1].get(); }
 
   /// Radius (m); setting it changes the wire's mass and stiffness.
   [[nodiscard]] S getRadius() const { return S(radius_); }
@@ -64,7 +78,8 @@ class WireT : public RowProducer {
   /// routed into a simulation.
   void setMaterial(ref_ptr<Material> material);
 
-  /// Total unstretched length (m): the length of the route.
+  /// Unstretched length of the wire off the winches' drums (m): at first
+  /// the length of the route.
   [[nodiscard]] S getRestLength() const;
   /// Length along the current points (m).
   [[nodiscard]] S getCurrentLength() const;
@@ -78,7 +93,7 @@ class WireT : public RowProducer {
   /// joins a simulation.
   [[nodiscard]] std::vector<Vec3> getPoints() const;
   /// Number of lumped mass nodes (0 until the wire joins a simulation).
-  [[nodiscard]] std::size_t getNumMassNodes() const { return nodes_->size(); }
+  [[nodiscard]] std::size_t getNumMassNodes() const { return nodes_->numNodes(); }
 
   // RowProducer.
   void prepare(const StepContext& simulation) override;
@@ -117,6 +132,14 @@ class WireT : public RowProducer {
   [[nodiscard]] double linearDensity() const;
   [[nodiscard]] Vec3d worldPosition(const Point& p) const;
   [[nodiscard]] Vec3d worldVelocity(const Point& p) const;
+  /// The segment at the winch of end 0 (begin) or 1, when there is one.
+  [[nodiscard]] std::size_t winchSegment(int end) const { return end == 0 ? 0 : restLengths_.size() - 1; }
+  /// Rest length of segment k now: a winch's segment follows its drum.
+  [[nodiscard]] double restLength(std::size_t k) const;
+  void addDrums();
+  /// Whether an inner node may leave: two winches keep a segment each.
+  [[nodiscard]] bool removable() const { return !(winches_[0] && winches_[1] && restLengths_.size() <= 2); }
+  void writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow);
 
   double radius_;
   double resolution_;
@@ -129,6 +152,22 @@ class WireT : public RowProducer {
   std::vector<double> bendImpulse_;     ///< two per inner point, last step (N·s)
   std::vector<char> bent_;              ///< per point: its bend rows were written this step
   std::vector<double> tension_;         ///< per segment (N)
+  ref_ptr<Winch> winches_[2];           ///< at the begin and end, or none
+  /// A winch's rows of the last step: offsets in this wire's rows (−1:
+  /// none) and impulses (N·s). `allIn` keeps some wire off the drum,
+  /// `allOut` some on it.
+  struct WinchRows {
+    int motor = -1, allIn = -1, allOut = -1;
+    double motorImpulse = 0.0, brakeImpulse = 0.0, allInImpulse = 0.0, allOutImpulse = 0.0;
+  };
+  WinchRows winchRows_[2];
+  /// writeRows' per-point scratch: position, velocity, lever arm from the
+  /// body's center of mass, its centripetal acceleration, solver index.
+  struct PointState {
+    Vec3d x, v, arm, centripetal;
+    int index = -1;
+  };
+  std::vector<PointState> state_;
 };
 
 template <Scalar S>
@@ -144,7 +183,22 @@ template <Scalar S>
 void WireT<S>::add(ref_ptr<Node> node) {
   if (!node) throw error("cannot route a null node", "nullptr");
   if (built()) throw error("is in a simulation: its route is fixed", route_.size());
+  if (winches_[1]) throw error("ends at a winch: nothing may be routed after it", route_.size());
   route_.push_back(std::move(node));
+}
+
+template <Scalar S>
+void WireT<S>::add(ref_ptr<Winch> winch, S pulledInLength) {
+  if (!winch) throw error("cannot route a null winch", "nullptr");
+  if (built()) throw error("is in a simulation: its route is fixed", route_.size());
+  if (winches_[1]) throw error("ends at a winch: nothing may be routed after it", route_.size());
+  if (winch->wire_) throw error("cannot route a winch that is already routed in a wire", winch->getName());
+  if (!(std::isfinite(pulledInLength) && pulledInLength >= S(0)))
+    throw error("pulled-in length must be finite and >= 0 m", pulledInLength);
+  winches_[route_.empty() ? 0 : 1] = winch;
+  route_.push_back(new BodyFixedNodeT<S>(winch->getRigidBody(), winch->getPosition()));
+  winch->wire_ = this;
+  winch->pulledIn_ = double(pulledInLength);
 }
 
 template <Scalar S>
@@ -170,7 +224,7 @@ template <Scalar S>
 S WireT<S>::getRestLength() const {
   double length = 0.0;
   if (built()) {
-    for (double l : restLengths_) length += l;
+    for (std::size_t k = 0; k < restLengths_.size(); ++k) length += restLength(k);
   } else {
     for (std::size_t k = 0; k + 1 < route_.size(); ++k)
       length += (route_[k + 1]->getWorldPosition() - route_[k]->getWorldPosition()).template cast<double>().norm();
@@ -196,8 +250,15 @@ S WireT<S>::getTension(S distanceFromStart) const {
   if (tension_.empty()) return S(0);
   double along = double(distanceFromStart);
   std::size_t k = 0;
-  while (k + 1 < tension_.size() && along > restLengths_[k]) along -= restLengths_[k++];
+  while (k + 1 < tension_.size() && along > restLength(k)) along -= restLength(k++);
   return S(tension_[k]);
+}
+
+template <Scalar S>
+double WireT<S>::restLength(std::size_t k) const {
+  for (int end = 0; end < 2; ++end)
+    if (winches_[end] && k == winchSegment(end)) return nodes_->drum(winches_[end]->drum_).freeLength;
+  return restLengths_[k];
 }
 
 template <Scalar S>
@@ -235,6 +296,9 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
     if (k > 0 && !((node.getWorldPosition() - route_[k - 1]->getWorldPosition()).norm() > S(0)))
       throw error("consecutive route nodes coincide at", node.getWorldPosition());
   }
+  if (winches_[0] && winches_[1] && route_.size() == 2 && double(getRestLength()) * resolution_ <= 1.0 + 1e-9)
+    throw error("needs at least two segments between its two winches (length x resolution)",
+                double(getRestLength()) * resolution_);
   // Hostile resolutions would allocate without bound.
   const double nodes = double(getRestLength()) * resolution_ + double(route_.size());
   if (!(nodes <= 1e6)) throw error("would have more than 1e6 lumped nodes (length x resolution)", nodes);
@@ -283,6 +347,23 @@ void WireT<S>::build() {
   bent_.assign(points_.size(), 0);
   tension_.assign(restLengths_.size(), 0.0);
   updateMasses();
+  addDrums();
+}
+
+// A drum's inertia is that of one node's length of wire, which moves with
+// it through the winch; its free length is the winch segment's.
+template <Scalar S>
+void WireT<S>::addDrums() {
+  for (int end = 0; end < 2; ++end) {
+    Winch* winch = winches_[end].get();
+    if (!winch) continue;
+    detail::WireNodes::Drum drum;
+    drum.freeLength = restLengths_[winchSegment(end)];
+    drum.pulledIn = winch->pulledIn_;
+    drum.mass = linearDensity() / resolution_;
+    winch->drum_ = nodes_->addDrum(drum);
+    winch->store_ = nodes_;
+  }
 }
 
 // A lumped node carries half of each segment beside it (ends fixed to a body
@@ -311,9 +392,13 @@ void WireT<S>::updateMasses() {
 // again where the node it would gain has ρ < 1 (hysteresis). The
 // geometric-stiffness rows of writeRows hold what is left over (a node that
 // cannot leave: next to both ends, or a tension that jumps within a step).
+// At a winch, the node next to the drum leaves as wire is hauled in and a
+// node returns as it pays out.
 template <Scalar S>
 void WireT<S>::beginStep(const StepContext& step) {
   if (points_.size() < 2) return;
+  for (int end = 0; end < 2; ++end)
+    if (winches_[end]) restLengths_[winchSegment(end)] = restLength(winchSegment(end));
   const double h2 = step.getTimeStep() * step.getTimeStep();
   const auto span = [&](std::size_t segment) {
     return (worldPosition(points_[segment + 1]) - worldPosition(points_[segment])).norm();
@@ -327,7 +412,7 @@ void WireT<S>::beginStep(const StepContext& step) {
     const Point& p = points_[k];
     if (p.node < 0) continue;
     const double rho = h2 * (pull(k - 1) + pull(k)) / nodes_->mass(std::size_t(p.node));
-    if (rho > 2.0) {
+    if (rho > 2.0 && removable()) {
       removeNode(k);
       changed = true;
     }
@@ -343,16 +428,32 @@ void WireT<S>::beginStep(const StepContext& step) {
       ++k;
     }
   }
+  for (int end = 0; end < 2; ++end) {
+    if (!winches_[end]) continue;
+    const std::size_t segment = winchSegment(end);
+    const std::size_t inner = end == 0 ? 1 : points_.size() - 2;  // the point the segment reaches
+    if (restLengths_[segment] < 0.25 * target && inner > 0 && inner + 1 < points_.size() &&
+        points_[inner].node >= 0 && removable()) {
+      removeNode(inner);
+      changed = true;
+    }
+  }
   if (changed) updateMasses();
+  for (int end = 0; end < 2; ++end)
+    if (winches_[end]) nodes_->drum(winches_[end]->drum_).freeLength = restLengths_[winchSegment(end)];
 }
 
 template <Scalar S>
 void WireT<S>::removeNode(std::size_t k) {
+  // Half of the node's mass and momentum goes to each neighbouring node (the
+  // half towards a body's or the world's end is lost): the rest of this
+  // pass judges the neighbours with those masses, and updateMasses then
+  // gives each its exact share of the merged segment.
   const std::size_t node = std::size_t(points_[k].node);
   const double mass = nodes_->mass(node);
   const Vec3d momentum = 0.5 * mass * nodes_->velocity(node);
   for (const std::size_t other : {k - 1, k + 1}) {
-    if (points_[other].node < 0) continue;  // a body's or the world's end: that half is lost
+    if (points_[other].node < 0) continue;
     const std::size_t n = std::size_t(points_[other].node);
     nodes_->setVelocity(n, (nodes_->mass(n) * nodes_->velocity(n) + momentum) / (nodes_->mass(n) + 0.5 * mass));
     nodes_->setMass(n, nodes_->mass(n) + 0.5 * mass);
@@ -424,37 +525,46 @@ struct WireRowBodies {
 
 template <Scalar S>
 void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
-  const std::size_t n = points_.size();
-  std::vector<Vec3d> x(n), arm(n), v(n), centripetal(n);
-  std::vector<int> index(n);
+  const std::size_t n = points_.size(), firstRow = rows.size();
+  state_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const Point& p = points_[k];
-    x[k] = worldPosition(p);
-    v[k] = worldVelocity(p);
-    arm[k].setZero();
-    centripetal[k].setZero();
+    PointState& s = state_[k];
+    s.x = worldPosition(p);
+    s.v = worldVelocity(p);
+    s.arm.setZero();
+    s.centripetal.setZero();
     if (p.node >= 0) {
-      index[k] = step.indexOf(*nodes_, std::size_t(p.node));
+      s.index = step.indexOf(*nodes_, std::size_t(p.node));
     } else if (p.body) {
-      index[k] = step.indexOf(*p.body);
-      if (index[k] < 0) throw error("is fixed to a body that left the simulation", p.body->getName());
-      arm[k] = x[k] - p.body->getCmPosition().template cast<double>();
+      s.index = step.indexOf(*p.body);
+      if (s.index < 0) throw error("is fixed to a body that left the simulation", p.body->getName());
+      s.arm = s.x - p.body->getCmPosition().template cast<double>();
       const Vec3d w = p.body->getAngularVelocity().template cast<double>();
-      centripetal[k] = w.cross(w.cross(arm[k]));
+      s.centripetal = w.cross(w.cross(s.arm));
     } else {
-      index[k] = -1;
+      s.index = -1;
     }
   }
+  const auto drumIndex = [&](std::size_t segment) {
+    for (int end = 0; end < 2; ++end)
+      if (winches_[end] && segment == winchSegment(end))
+        return step.indexOf(*nodes_, nodes_->numNodes() + winches_[end]->drum_);
+    return -1;
+  };
   const typename Material::WireMaterial& wire = *material_->getWireMaterial();
   const double area = std::numbers::pi * radius_ * radius_;
   const double stretchStiffness = double(wire.getYoungsModulusStretch()) * area;
+  // Stretch: g = |x_{k+1} − x_k| − l_k; at a winch, l_k is the drum's degree
+  // of freedom (∂g/∂l = −1).
   for (std::size_t k = 0; k + 1 < n; ++k) {
-    const Vec3d d = x[k + 1] - x[k];
+    const Vec3d d = state_[k + 1].x - state_[k].x;
     const double length = d.norm();
     const Vec3d u = length > 0.0 ? Vec3d(d / length) : Vec3d::UnitX();
     detail::WireRowBodies bodies;
-    bodies.add(index[k], -u, arm[k]);
-    bodies.add(index[k + 1], u, arm[k + 1]);
+    bodies.add(state_[k].index, -u, state_[k].arm);
+    bodies.add(state_[k + 1].index, u, state_[k + 1].arm);
+    bodies.add(drumIndex(k), -Vec3d::UnitX(), Vec3d::Zero());
     detail::Row& r = rows.add(stretchImpulse_[k]);
     bodies.write(rows, r);
     r.violation = length - restLengths_[k];
@@ -464,9 +574,9 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     // centripetal accelerations ω×(ω×r) (SecondOrder::curvature): a segment
     // turning at speed lengthens at second order, which the step then holds.
     if (length > 0.0) {
-      const Vec3d rate = v[k + 1] - v[k];
+      const Vec3d rate = state_[k + 1].v - state_[k].v;
       const Vec3d across = rate - u * u.dot(rate);
-      const double relative = u.dot(centripetal[k + 1] - centripetal[k]);
+      const double relative = u.dot(state_[k + 1].centripetal - state_[k].centripetal);
       rows.setCurvature(rows.size() - 1, 0.5 * (across.squaredNorm() / length + relative));
     }
   }
@@ -475,7 +585,7 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   // over the length l̄), so the compliance is l̄/(E I).
   const double bendStiffness = double(wire.getYoungsModulusBend()) * std::numbers::pi * std::pow(radius_, 4) / 4.0;
   for (std::size_t k = 1; k + 1 < n; ++k) {
-    const Vec3d d1 = x[k] - x[k - 1], d2 = x[k + 1] - x[k];
+    const Vec3d d1 = state_[k].x - state_[k - 1].x, d2 = state_[k + 1].x - state_[k].x;
     const double l1 = d1.norm(), l2 = d2.norm();
     bent_[k] = bendStiffness > 0.0 && l1 > 0.0 && l2 > 0.0;
     if (!bent_[k]) continue;
@@ -483,18 +593,17 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     const Vec3d mean = t1 + t2;
     const Vec3d axis = mean.norm() > 1e-6 ? Vec3d(mean.normalized()) : t1;
     const Vec3d turn = (t2 - t1) - axis * axis.dot(t2 - t1);
-    const Vec3d across[2] = {turn.norm() > 1e-9 ? Vec3d(turn.normalized()) : Vec3d(axis.unitOrthogonal()),
-                             Vec3d::Zero()};
-    const Vec3d across2 = axis.cross(across[0]);
+    const Vec3d inPlane = turn.norm() > 1e-9 ? Vec3d(turn.normalized()) : Vec3d(axis.unitOrthogonal());
+    const Vec3d outOfPlane = axis.cross(inPlane);
     const double compliance = 0.5 * (restLengths_[k - 1] + restLengths_[k]) / bendStiffness;
-    for (int i = 0; i < 2; ++i) {
-      const Vec3d e = i == 0 ? across[0] : across2;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const Vec3d& e = i == 0 ? inPlane : outOfPlane;
       const Vec3d a0 = (e - t1 * t1.dot(e)) / l1, a2 = (e - t2 * t2.dot(e)) / l2;
       detail::WireRowBodies bodies;
-      bodies.add(index[k], -(a0 + a2), arm[k]);
-      bodies.add(index[k - 1], a0, arm[k - 1]);
-      bodies.add(index[k + 1], a2, arm[k + 1]);
-      detail::Row& r = rows.add(bendImpulse_[2 * k + std::size_t(i)]);
+      bodies.add(state_[k].index, -(a0 + a2), state_[k].arm);
+      bodies.add(state_[k - 1].index, a0, state_[k - 1].arm);
+      bodies.add(state_[k + 1].index, a2, state_[k + 1].arm);
+      detail::Row& r = rows.add(bendImpulse_[2 * k + i]);
       bodies.write(rows, r);
       r.violation = e.dot(t2 - t1);
       r.compliance = compliance;
@@ -507,11 +616,12 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   // start geometry, which integrates that stiffness explicitly: unstable
   // once h²K/m passes ~1, for nodes that beginStep could not remove. Its
   // implicit part −h²K v⁺ is two velocity rows across the segment, target
-  // 0, viscosity L/(hT) (row.hpp: force −G v⁺/γ), from last step's tension: backward Euler in
-  // the geometry, which damps only the ends' relative motion across the
-  // segment. Weighted by max(0, 1 − 1/ρ), ρ = h²(T/L)(1/m_a + 1/m_b), as
-  // solver/geometric_stiffness.hpp does for rigid bodies: a segment the
-  // explicit step resolves keeps its undamped dynamics.
+  // 0, viscosity L/(hT) (row.hpp: force −G v⁺/γ), from last step's tension:
+  // backward Euler in the geometry, which damps only the ends' relative
+  // motion across the segment. Weighted by max(0, 1 − 1/ρ),
+  // ρ = h²(T/L)(1/m_a + 1/m_b), as solver/geometric_stiffness.hpp does for
+  // rigid bodies: a segment the explicit step resolves keeps its undamped
+  // dynamics.
   const double h = step.getTimeStep();
   const auto inverseMass = [&](const Point& p) {
     if (p.node >= 0) return 1.0 / nodes_->mass(std::size_t(p.node));
@@ -520,7 +630,7 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     return 0.0;
   };
   for (std::size_t k = 0; k + 1 < n; ++k) {
-    const Vec3d d = x[k + 1] - x[k];
+    const Vec3d d = state_[k + 1].x - state_[k].x;
     const double length = d.norm(), tension = tension_[k];
     if (!(length > 0.0 && tension > 0.0)) continue;
     const double rho = h * h * tension / length * (inverseMass(points_[k]) + inverseMass(points_[k + 1]));
@@ -529,8 +639,8 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     const Vec3d u = d / length, e1 = u.unitOrthogonal(), e2 = u.cross(e1);
     for (const Vec3d& e : {e1, e2}) {
       detail::WireRowBodies bodies;
-      bodies.add(index[k], -e, arm[k]);
-      bodies.add(index[k + 1], e, arm[k + 1]);
+      bodies.add(state_[k].index, -e, state_[k].arm);
+      bodies.add(state_[k + 1].index, e, state_[k + 1].arm);
       if (bodies.count == 0) continue;
       detail::Row& r = rows.add();
       bodies.write(rows, r);
@@ -539,20 +649,88 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
       r.compliance = length / (weight * h * tension);
     }
   }
+  writeWinchRows(rows, step, firstRow);
+}
+
+// A winch's rows on its drum (the free length l of its segment, l̇ the rate
+// wire leaves it): the motor drives l̇ to the winch's speed within its force
+// range; at speed 0 the brake adds its range to the motor's; l stays above
+// a hundredth of the node spacing (the wire is all hauled in) and the
+// pulled-in length above 0 (the drum is empty).
+template <Scalar S>
+void WireT<S>::writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow) {
+  const auto offset = [&] { return int(rows.size() - firstRow); };
+  for (int end = 0; end < 2; ++end) {
+    WinchRows& written = winchRows_[end];
+    written.motor = written.allIn = written.allOut = -1;
+    const Winch* winch = winches_[end].get();
+    if (!winch) continue;
+    const detail::WireNodes::Drum& drum = nodes_->drum(winch->drum_);
+    const int index = step.indexOf(*nodes_, nodes_->numNodes() + winch->drum_);
+    const double compliance = restLengths_[winchSegment(end)] /
+                              (double(material_->getWireMaterial()->getYoungsModulusStretch()) * std::numbers::pi *
+                               radius_ * radius_);
+    const bool braking = winch->getSpeed() == S(0);
+    const double lower = double(winch->getForceRangeLower()) + (braking ? double(winch->getBrakeForceRangeLower()) : 0.0);
+    const double upper = double(winch->getForceRangeUpper()) + (braking ? double(winch->getBrakeForceRangeUpper()) : 0.0);
+    if (lower < 0.0 || upper > 0.0) {
+      written.motor = offset();
+      detail::Row& r = rows.add(written.motorImpulse + written.brakeImpulse);
+      r.body1 = index;
+      r.J1 = detail::Vec6d::Unit(0);
+      r.holonomic = false;
+      r.speed = double(winch->getSpeed());
+      r.lower = lower;
+      r.upper = upper;
+    }
+    const double shortest = 0.01 / resolution_;
+    written.allIn = offset();
+    detail::Row& allIn = rows.add(written.allInImpulse);
+    allIn.body1 = index;
+    allIn.J1 = detail::Vec6d::Unit(0);
+    allIn.violation = drum.freeLength - shortest;
+    allIn.compliance = compliance;
+    allIn.lower = 0.0;
+    written.allOut = offset();
+    detail::Row& allOut = rows.add(written.allOutImpulse);
+    allOut.body1 = index;
+    allOut.J1 = -detail::Vec6d::Unit(0);
+    allOut.violation = drum.pulledIn;
+    allOut.compliance = compliance;
+    allOut.lower = 0.0;
+  }
 }
 
 template <Scalar S>
 void WireT<S>::readBack(std::span<const double> impulses, const StepContext& step) {
+  const double h = step.getTimeStep();
   const std::size_t segments = restLengths_.size();
   for (std::size_t k = 0; k < segments; ++k) {
     stretchImpulse_[k] = impulses[k];
-    tension_[k] = -impulses[k] / step.getTimeStep();
+    tension_[k] = -impulses[k] / h;
   }
   std::size_t next = segments;
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     if (!bent_[k]) continue;
     bendImpulse_[2 * k] = impulses[next++];
     bendImpulse_[2 * k + 1] = impulses[next++];
+  }
+  for (int end = 0; end < 2; ++end) {
+    Winch* winch = winches_[end].get();
+    if (!winch) continue;
+    WinchRows& written = winchRows_[end];
+    const double total = written.motor >= 0 ? impulses[std::size_t(written.motor)] : 0.0;
+    // At speed 0 one row holds both: the motor's share is what its range allows.
+    const double motor = winch->getSpeed() == S(0)
+                             ? std::clamp(total, double(winch->getForceRangeLower()) * h,
+                                          double(winch->getForceRangeUpper()) * h)
+                             : total;
+    written.motorImpulse = motor;
+    written.brakeImpulse = total - motor;
+    written.allInImpulse = impulses[std::size_t(written.allIn)];
+    written.allOutImpulse = impulses[std::size_t(written.allOut)];
+    winch->motorForce_ = motor / h;
+    winch->brakeForce_ = (total - motor) / h;
   }
 }
 

@@ -12,12 +12,22 @@
 namespace spook::detail {
 
 /// A wire's lumped mass nodes (wire/wire.hpp), held in arrays: point masses
-/// that feel gravity and do not turn.
+/// that feel gravity and do not turn; after them, its winches' drums
+/// (wire/wire_winch_controller.hpp): one degree of freedom each, the free
+/// length of the wire segment at the winch, moving along the solver body's
+/// x axis only.
 class WireNodes : public BodyStore {
  public:
   using Vec3d = Eigen::Vector3d;
+  struct Drum {
+    double freeLength = 0.0;  ///< rest length of the segment at the winch (m)
+    double pulledIn = 0.0;    ///< wire on the drum (m)
+    double speed = 0.0;       ///< rate at which wire leaves the drum (m/s)
+    double mass = 0.0;        ///< inertia of the wire moving through it (kg)
+  };
 
-  [[nodiscard]] std::size_t size() const override { return position_.size(); }
+  [[nodiscard]] std::size_t size() const override { return position_.size() + drums_.size(); }
+  [[nodiscard]] std::size_t numNodes() const { return position_.size(); }
   std::size_t add(const Vec3d& position, double mass) {
     position_.push_back(position);
     velocity_.push_back(Vec3d::Zero());
@@ -41,9 +51,21 @@ class WireNodes : public BodyStore {
     velocity_.insert(velocity_.begin() + std::ptrdiff_t(i), velocity);
     mass_.insert(mass_.begin() + std::ptrdiff_t(i), mass);
   }
+  std::size_t addDrum(const Drum& drum) {
+    drums_.push_back(drum);
+    return drums_.size() - 1;
+  }
+  [[nodiscard]] Drum& drum(std::size_t d) { return drums_[d]; }
+  [[nodiscard]] const Drum& drum(std::size_t d) const { return drums_[d]; }
   void writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const override {
     const double h = step.getTimeStep();
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
+    for (std::size_t d = 0; d < drums_.size(); ++d) {
+      SolverBody& b = bodies[position_.size() + d];
+      b.dynamic = true;
+      b.velocity.x() = b.freeVelocity.x() = drums_[d].speed;
+      b.inverseMass(0, 0) = 1.0 / drums_[d].mass;
+    }
+    for (std::size_t i = 0; i < position_.size(); ++i) {
       SolverBody& b = bodies[i];
       b.dynamic = true;
       b.velocity.head<3>() = velocity_[i];
@@ -52,18 +74,26 @@ class WireNodes : public BodyStore {
     }
   }
   void move(std::span<const SolverBody> bodies, const StepContext& step) override {
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const double h = step.getTimeStep();
+    for (std::size_t i = 0; i < position_.size(); ++i) {
       velocity_[i] = bodies[i].freeVelocity.head<3>();
-      position_[i] += step.getTimeStep() * velocity_[i];
+      position_[i] += h * velocity_[i];
+    }
+    for (std::size_t d = 0; d < drums_.size(); ++d) {
+      Drum& drum = drums_[d];
+      drum.speed = bodies[position_.size() + d].freeVelocity.x();
+      drum.freeLength += h * drum.speed;
+      drum.pulledIn -= h * drum.speed;
     }
   }
   void displace(std::span<const SolverBody> bodies) override {
-    for (std::size_t i = 0; i < bodies.size(); ++i) position_[i] += bodies[i].displacement.head<3>();
+    for (std::size_t i = 0; i < position_.size(); ++i) position_[i] += bodies[i].displacement.head<3>();
   }
 
  private:
   std::vector<Vec3d> position_, velocity_;
   std::vector<double> mass_;
+  std::vector<Drum> drums_;
 };
 
 }  // namespace spook::detail
