@@ -4014,6 +4014,13 @@ class MaterialT : public Referenced {
     void setDampingBend(S damping) {
       dampingBend_ = checked("wire bend damping must be finite and >= 0 s", damping, true);
     }
+    /// Friction coefficient along the wire where it slides over a geometry
+    /// (wire/wire_node.hpp's ContactNode), finite and >= 0; default 0.41667
+    /// (AGX's default friction).
+    [[nodiscard]] S getFrictionCoefficient() const { return friction_; }
+    void setFrictionCoefficient(S coefficient) {
+      friction_ = checked("wire friction coefficient must be finite and >= 0", coefficient, true);
+    }
 
    private:
     friend class MaterialT;
@@ -4026,6 +4033,7 @@ class MaterialT : public Referenced {
     S bend_ = S(6e10);
     S dampingStretch_ = S(0.05);
     S dampingBend_ = S(0.1);
+    S friction_ = S(0.41667);
   };
 
   explicit MaterialT(std::string name = "") : name_(std::move(name)) {}
@@ -21915,6 +21923,7 @@ template class SimulationT<float>;
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <numbers>
 #include <span>
 #include <string>
@@ -21928,34 +21937,43 @@ template class SimulationT<float>;
 
 // The nodes a wire is routed with (wire/wire.hpp), after agxWire's: a
 // FreeNode is a routing point (a free end when first or last), a
-// BodyFixedNode fixes an end of the wire to a body or to the world.
+// BodyFixedNode fixes an end of the wire to a body or to the world, a
+// ContactNode routes it over a geometry (a sheave).
 
 #include <cmath>
+#include <limits>
 
 namespace spook {
+
+template <Scalar S>
+class WireT;
 
 template <Scalar S>
 class WireNodeT : public Referenced {
  public:
   using Vec3 = Vec3T<S>;
-  enum class Type { FREE, BODY_FIXED };
+  enum class Type { FREE, BODY_FIXED, CONTACT };
 
   [[nodiscard]] Type getType() const { return type_; }
-  /// A body-fixed node's body; nullptr for the world and for a free node.
+  /// The body a body-fixed or contact node moves with; nullptr for the
+  /// world and for a free node.
   [[nodiscard]] RigidBodyT<S>* getRigidBody() const { return body_.get(); }
   /// Where the node is routed: in the body's model frame for a node fixed
-  /// to a body, else in world coordinates (m).
+  /// to a body, in the geometry's frame for a contact node, else in world
+  /// coordinates (m).
   [[nodiscard]] const Vec3& getPosition() const { return position_; }
   /// The node's routed position in world coordinates now (m).
-  [[nodiscard]] Vec3 getWorldPosition() const {
+  [[nodiscard]] virtual Vec3 getWorldPosition() const {
     return body_ ? Vec3(body_->getFrame()->transformPointToWorld(position_)) : position_;
   }
 
  protected:
   WireNodeT(Type type, RigidBodyT<S>* body, const Vec3& position) : type_(type), body_(body), position_(position) {
     if (!position.allFinite())
-      throw detail::makeError(type == Type::FREE ? "FreeNode" : "BodyFixedNode", "",
-                              "position must be finite m", position);
+      throw detail::makeError(type == Type::FREE         ? "FreeNode"
+                              : type == Type::BODY_FIXED ? "BodyFixedNode"
+                                                         : "ContactNode",
+                              "", "position must be finite m", position);
   }
   ~WireNodeT() override = default;
 
@@ -21987,18 +22005,173 @@ class BodyFixedNodeT : public WireNodeT<S> {
   BodyFixedNodeT(RigidBodyT<S>* body, S x, S y, S z) : BodyFixedNodeT(body, Vec3(x, y, z)) {}
 };
 
+/// The wire routed over a geometry (agxWire's ContactNode): a sheave. The
+/// geometry's shape must be a cylinder; the wire wraps it in the plane across
+/// its axis through its center, touching it at `position` (geometry frame),
+/// arriving and leaving along tangents, and slides over it against friction
+/// along the wire (the capstan law: it slips once the tensions' ratio on
+/// both sides exceeds e^{μθ}). Neither first nor last in a route.
+template <Scalar S>
+class ContactNodeT : public WireNodeT<S> {
+ public:
+  using Vec3 = Vec3T<S>;
+  ContactNodeT(GeometryT<S>* geometry, const Vec3& position)
+      : WireNodeT<S>(WireNodeT<S>::Type::CONTACT, geometry ? geometry->getRigidBody() : nullptr, position),
+        geometry_(geometry) {
+    if (!geometry) throw detail::makeError("ContactNode", "", "needs a geometry", "nullptr");
+  }
+  ContactNodeT(GeometryT<S>* geometry, S x, S y, S z) : ContactNodeT(geometry, Vec3(x, y, z)) {}
+
+  [[nodiscard]] GeometryT<S>* getGeometry() const { return geometry_.get(); }
+  [[nodiscard]] Vec3 getWorldPosition() const override {
+    return Vec3(geometry_->getFrame()->transformPointToWorld(this->getPosition()));
+  }
+  /// Friction coefficient along the wire, >= 0; until set, the wire
+  /// material's.
+  [[nodiscard]] bool hasFrictionCoefficient() const { return friction_ >= S(0); }
+  [[nodiscard]] S getFrictionCoefficient() const { return friction_; }
+  void setFrictionCoefficient(S coefficient) {
+    if (!(std::isfinite(coefficient) && coefficient >= S(0)))
+      throw detail::makeError("ContactNode", "", "friction coefficient must be finite and >= 0", coefficient);
+    friction_ = coefficient;
+  }
+  /// The angle the wire wraps the geometry (rad), as routed and then after
+  /// each step.
+  [[nodiscard]] S getWrapAngle() const { return S(wrap_); }
+  /// Friction force of the geometry on the wire along it in the last step
+  /// (N): the tension before the node minus the tension after it.
+  [[nodiscard]] S getFrictionForce() const { return S(frictionForce_); }
+
+ protected:
+  ~ContactNodeT() override = default;
+
+ private:
+  template <Scalar>
+  friend class WireT;
+  ref_ptr<GeometryT<S>> geometry_;
+  S friction_ = S(-1);
+  double wrap_ = 0.0;
+  double frictionForce_ = 0.0;
+};
+
 using WireNode = WireNodeT<double>;
 using FreeNode = FreeNodeT<double>;
 using BodyFixedNode = BodyFixedNodeT<double>;
+using ContactNode = ContactNodeT<double>;
 namespace f32 {
 using WireNode = WireNodeT<float>;
 using FreeNode = FreeNodeT<float>;
 using BodyFixedNode = BodyFixedNodeT<float>;
+using ContactNode = ContactNodeT<float>;
 }  // namespace f32
 
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODE_HPP
 // --- end spook/wire/wire_node.hpp ---
+// --- begin spook/wire/sheave_wrap.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_WIRE_SHEAVE_WRAP_HPP
+#define SPOOK_SINGLE_SPOOK_WIRE_SHEAVE_WRAP_HPP
+
+// How a wire wraps a cylinder (a sheave) where it is routed over one
+// (wire/wire_node.hpp's ContactNode): in the plane across the cylinder's
+// axis through its center (the groove), the wire arrives along the tangent
+// from the point before, follows the circle through the wrap angle θ in one
+// sense and leaves along the tangent to the point after. Angles are in the
+// geometry's frame (about its y axis, from its x axis), so that a point at a
+// fixed angle turns with the geometry's body.
+
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Core>
+
+namespace spook::detail {
+
+struct SheaveWrap {
+  using Vec3d = Eigen::Vector3d;
+
+  double radius = 0.0;
+  /// +1: the wire turns counterclockwise about the axis, −1 clockwise.
+  int sense = 1;
+  /// θ (rad), tracked continuously from step to step (more than 2π when the
+  /// wire turns around the cylinder).
+  double wrap = 0.0;
+  /// The angle of the wire's material point C that splits the wrap between
+  /// the segments before and after (rad): the bisector of the wrap when
+  /// anchored, then fixed to the geometry.
+  double anchor = 0.0;
+  /// Tangent angles where the wire arrives and leaves (rad).
+  double in = 0.0, out = 0.0;
+  /// The plane now (world): center, axis and the frame's x and −z axes
+  /// (e1 × e2 = axis).
+  Vec3d center = Vec3d::Zero(), axis = Vec3d::UnitY(), e1 = Vec3d::UnitX(), e2 = -Vec3d::UnitZ();
+
+  [[nodiscard]] Vec3d point(double angle) const {
+    return center + radius * (std::cos(angle) * e1 + std::sin(angle) * e2);
+  }
+  [[nodiscard]] double angleOf(const Vec3d& p) const {
+    const Vec3d a = p - center;
+    return std::atan2(a.dot(e2), a.dot(e1));
+  }
+  /// The tangent angle from p: where a wire from p arrives (`arriving`) or
+  /// towards p leaves, turning in `turn` (±1). From inside the circle (in
+  /// projection), the angle of p itself.
+  [[nodiscard]] double tangentAngle(const Vec3d& p, int turn, bool arriving) const {
+    const Vec3d a = p - center;
+    const double x = a.dot(e1), y = a.dot(e2), d = std::hypot(x, y);
+    const double beta = d > radius ? std::acos(radius / d) : 0.0;
+    return std::atan2(y, x) + (arriving ? turn : -turn) * beta;
+  }
+  /// θ in [0, 2π) from `in` to `out` in sense `turn`.
+  static double forward(double from, double to, int turn) {
+    const double a = std::fmod(turn * (to - from), 2.0 * std::numbers::pi);
+    return a < 0.0 ? a + 2.0 * std::numbers::pi : a;
+  }
+
+  /// Picks the sense and wrap at routing: the wire arrives from `from`,
+  /// passes the routed point `through` and leaves towards `to`; of the two
+  /// senses, the one with the shorter wrap. Anchors C at the bisector.
+  void route(const Vec3d& from, const Vec3d& through, const Vec3d& to) {
+    const double at = angleOf(through);
+    double best = 1e30;
+    for (const int turn : {1, -1}) {
+      const double a = tangentAngle(from, turn, true), b = tangentAngle(to, turn, false);
+      const double theta = forward(a, at, turn) + forward(at, b, turn);
+      if (theta < best) {
+        best = theta;
+        sense = turn;
+        in = a;
+        out = b;
+      }
+    }
+    wrap = best;
+    anchor = in + sense * wrap / 2.0;
+  }
+  /// New tangents for the points before and after; the wrap changes
+  /// continuously (by less than π a step).
+  void place(const Vec3d& from, const Vec3d& to) {
+    in = tangentAngle(from, sense, true);
+    out = tangentAngle(to, sense, false);
+    wrap += std::remainder(forward(in, out, sense) - wrap, 2.0 * std::numbers::pi);
+  }
+  /// C's offset from the bisector along the wire (rad, in the sense of the wrap).
+  [[nodiscard]] double offset() const {
+    return sense * std::remainder(anchor - (in + sense * wrap / 2.0), 2.0 * std::numbers::pi);
+  }
+  /// Arc lengths (m) from where the wire arrives to C and from C to where it leaves.
+  [[nodiscard]] double arcIn() const { return radius * (wrap / 2.0 + offset()); }
+  [[nodiscard]] double arcOut() const { return radius * (wrap / 2.0 - offset()); }
+  /// Moves C to the bisector; returns how much the arc before it shrank (m).
+  double reanchor() {
+    const double moved = radius * offset();
+    anchor = in + sense * wrap / 2.0;
+    return moved;
+  }
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_WIRE_SHEAVE_WRAP_HPP
+// --- end spook/wire/sheave_wrap.hpp ---
 // --- begin spook/wire/wire_nodes.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODES_HPP
 #define SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODES_HPP
@@ -22013,10 +22186,11 @@ using BodyFixedNode = BodyFixedNodeT<float>;
 namespace spook::detail {
 
 /// A wire's lumped mass nodes (wire/wire.hpp), held in arrays: point masses
-/// that feel gravity and do not turn; after them, its winches' drums
-/// (wire/wire_winch_controller.hpp): one degree of freedom each, the free
-/// length of the wire segment at the winch, moving along the solver body's
-/// x axis only.
+/// that feel gravity and do not turn; after them, one-dimensional bodies
+/// (moving along the solver body's x axis only): its winches' drums
+/// (wire/wire_winch_controller.hpp), whose position is the free length of
+/// the wire segment at the winch, and its contacts' slip, whose position
+/// gathers the length of wire slid over the geometry.
 class WireNodes : public BodyStore {
  public:
   using Vec3d = Eigen::Vector3d;
@@ -22040,6 +22214,7 @@ class WireNodes : public BodyStore {
   [[nodiscard]] double mass(std::size_t i) const { return mass_[i]; }
   void setMass(std::size_t i, double mass) { mass_[i] = mass; }
   void setVelocity(std::size_t i, const Vec3d& velocity) { velocity_[i] = velocity; }
+  void setPosition(std::size_t i, const Vec3d& position) { position_[i] = position; }
   /// Removes node i (the wire's adaptive resolution, in beginStep).
   void erase(std::size_t i) {
     position_.erase(position_.begin() + std::ptrdiff_t(i));
@@ -22250,6 +22425,7 @@ class WireT : public RowProducer {
   using Material = MaterialT<S>;
   using Body = RigidBodyT<S>;
   using Winch = WireWinchControllerT<S>;
+  using ContactNode = ContactNodeT<S>;
 
   /// A wire of `radius` (m) and `resolution` lumped nodes per meter, both
   /// finite and > 0, made of `material` (a material of its own, named
@@ -22288,9 +22464,10 @@ class WireT : public RowProducer {
   /// Tension (N, > 0 pulling) at `distance` (m of rest length) from the
   /// start, that of the segment there in the last step; 0 before any step.
   [[nodiscard]] S getTension(S distanceFromStart) const;
-  /// The wire's points from its start to its end (world, m): attached ends
-  /// and lumped nodes, for rendering and inspection. Empty until the wire
-  /// joins a simulation.
+  /// The wire's points from its start to its end (world, m): attached ends,
+  /// lumped nodes and, for each contact node, where the wire meets and
+  /// leaves the geometry; for rendering and inspection. Empty until the
+  /// wire joins a simulation.
   [[nodiscard]] std::vector<Vec3> getPoints() const;
   /// Number of lumped mass nodes (0 until the wire joins a simulation).
   [[nodiscard]] std::size_t getNumMassNodes() const { return nodes_->numNodes(); }
@@ -22307,12 +22484,24 @@ class WireT : public RowProducer {
 
  private:
   using Vec3d = Eigen::Vector3d;
-  /// A point of the built wire: a lumped node, or an end fixed to a body or
-  /// the world at `local` (the body's model frame, or world).
+  /// A point of the built wire: a lumped node, an end fixed to a body or
+  /// the world at `local` (the body's model frame, or world), or a contact
+  /// (contacts_[contact], on its geometry's body or the world).
   struct Point {
     int node = -1;
     Body* body = nullptr;
     Vec3d local = Vec3d::Zero();
+    int contact = -1;
+  };
+  /// A contact node as built: its wrap, and its slip (wire sliding over the
+  /// geometry) as a degree of freedom of the store (a Drum whose free length
+  /// gathers the length slid from the segment after to the one before).
+  struct Contact {
+    ContactNode* node = nullptr;
+    detail::SheaveWrap wrap;
+    std::size_t slip = 0;
+    double frictionImpulse = 0.0;
+    int row = -1;  ///< its friction row's offset in this wire's rows, −1: none
   };
 
   template <class T>
@@ -22330,8 +22519,30 @@ class WireT : public RowProducer {
   void splitSegment(std::size_t segment);
   void renumberNodes();
   [[nodiscard]] double linearDensity() const;
+  /// Where the wire is at point p (a contact: the material point C of its
+  /// wrap), where it arrives at p and leaves it (a contact: the tangent
+  /// points), and the velocity of p's body there.
   [[nodiscard]] Vec3d worldPosition(const Point& p) const;
+  [[nodiscard]] Vec3d arrival(const Point& p) const;
+  [[nodiscard]] Vec3d departure(const Point& p) const;
   [[nodiscard]] Vec3d worldVelocity(const Point& p) const;
+  /// Length of segment k along the wire now (m): its straight part and the
+  /// arcs of the wraps at its ends.
+  [[nodiscard]] double segmentLength(std::size_t k) const;
+  /// The arcs of segment k (m): its length along the wraps at its ends.
+  [[nodiscard]] double wrapped(std::size_t k) const;
+  [[nodiscard]] bool nextToContact(std::size_t point) const {
+    return (point > 0 && points_[point - 1].contact >= 0) ||
+           (point + 1 < points_.size() && points_[point + 1].contact >= 0);
+  }
+  /// The sheave's plane now from its geometry's frame.
+  void placePlane(Contact& contact) const;
+  /// Contacts at the start of a step: their slip moves rest length across
+  /// them, their tangents follow the points beside them, C returns to the
+  /// bisector.
+  void updateContacts();
+  void recenterNode(std::size_t point);
+  void shareRestLength(std::size_t point);
   /// The segment at the winch of end 0 (begin) or 1, when there is one.
   [[nodiscard]] std::size_t winchSegment(int end) const { return end == 0 ? 0 : restLengths_.size() - 1; }
   /// Rest length of segment k now: a winch's segment follows its drum.
@@ -22340,6 +22551,7 @@ class WireT : public RowProducer {
   /// Whether an inner node may leave: two winches keep a segment each.
   [[nodiscard]] bool removable() const { return !(winches_[0] && winches_[1] && restLengths_.size() <= 2); }
   void writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow);
+  void writeFrictionRows(RowWriter& rows, std::size_t firstRow);
 
   double radius_;
   double resolution_;
@@ -22353,6 +22565,8 @@ class WireT : public RowProducer {
   std::vector<char> bent_;              ///< per point: its bend rows were written this step
   std::vector<double> tension_;         ///< per segment (N)
   ref_ptr<Winch> winches_[2];           ///< at the begin and end, or none
+  std::vector<Contact> contacts_;
+  bool stepped_ = false;  ///< readBack has run: tension_ holds a step's tensions
   /// A winch's rows of the last step: offsets in this wire's rows (−1:
   /// none) and impulses (N·s). `allIn` keeps some wire off the drum,
   /// `allOut` some on it.
@@ -22361,11 +22575,13 @@ class WireT : public RowProducer {
     double motorImpulse = 0.0, brakeImpulse = 0.0, allInImpulse = 0.0, allOutImpulse = 0.0;
   };
   WinchRows winchRows_[2];
-  /// writeRows' per-point scratch: position, velocity, lever arm from the
-  /// body's center of mass, its centripetal acceleration, solver index.
+  /// writeRows' per-point scratch: where the wire arrives and leaves (the
+  /// same but at a contact), velocity, lever arms of those from the body's
+  /// center of mass, centripetal acceleration, solver index, and the
+  /// solver index of a contact's slip (−1: none).
   struct PointState {
-    Vec3d x, v, arm, centripetal;
-    int index = -1;
+    Vec3d in, out, v, armIn, armOut, centripetal;
+    int index = -1, slip = -1;
   };
   std::vector<PointState> state_;
 };
@@ -22435,8 +22651,7 @@ S WireT<S>::getRestLength() const {
 template <Scalar S>
 S WireT<S>::getCurrentLength() const {
   double length = 0.0;
-  for (std::size_t k = 0; k + 1 < points_.size(); ++k)
-    length += (worldPosition(points_[k + 1]) - worldPosition(points_[k])).norm();
+  for (std::size_t k = 0; k + 1 < points_.size(); ++k) length += segmentLength(k);
   return built() ? S(length) : getRestLength();
 }
 
@@ -22464,16 +22679,37 @@ double WireT<S>::restLength(std::size_t k) const {
 template <Scalar S>
 auto WireT<S>::getPoints() const -> std::vector<Vec3> {
   std::vector<Vec3> points;
-  points.reserve(points_.size());
-  for (const Point& p : points_) points.push_back(worldPosition(p).template cast<S>());
+  points.reserve(points_.size() + contacts_.size());
+  for (const Point& p : points_) {
+    points.push_back(arrival(p).template cast<S>());
+    if (p.contact >= 0) points.push_back(departure(p).template cast<S>());
+  }
   return points;
 }
 
 template <Scalar S>
 auto WireT<S>::worldPosition(const Point& p) const -> Vec3d {
   if (p.node >= 0) return nodes_->position(std::size_t(p.node));
+  if (p.contact >= 0) {
+    const detail::SheaveWrap& wrap = contacts_[std::size_t(p.contact)].wrap;
+    return wrap.point(wrap.anchor);
+  }
   if (p.body) return p.body->getFrame()->transformPointToWorld(p.local.template cast<S>()).template cast<double>();
   return p.local;
+}
+
+template <Scalar S>
+auto WireT<S>::arrival(const Point& p) const -> Vec3d {
+  if (p.contact < 0) return worldPosition(p);
+  const detail::SheaveWrap& wrap = contacts_[std::size_t(p.contact)].wrap;
+  return wrap.point(wrap.in);
+}
+
+template <Scalar S>
+auto WireT<S>::departure(const Point& p) const -> Vec3d {
+  if (p.contact < 0) return worldPosition(p);
+  const detail::SheaveWrap& wrap = contacts_[std::size_t(p.contact)].wrap;
+  return wrap.point(wrap.out);
 }
 
 template <Scalar S>
@@ -22484,12 +22720,48 @@ auto WireT<S>::worldVelocity(const Point& p) const -> Vec3d {
 }
 
 template <Scalar S>
+double WireT<S>::segmentLength(std::size_t k) const {
+  return (arrival(points_[k + 1]) - departure(points_[k])).norm() + wrapped(k);
+}
+
+template <Scalar S>
+double WireT<S>::wrapped(std::size_t k) const {
+  double arcs = 0.0;
+  if (points_[k].contact >= 0) arcs += contacts_[std::size_t(points_[k].contact)].wrap.arcOut();
+  if (points_[k + 1].contact >= 0) arcs += contacts_[std::size_t(points_[k + 1].contact)].wrap.arcIn();
+  return arcs;
+}
+
+template <Scalar S>
+void WireT<S>::placePlane(Contact& contact) const {
+  const GeometryT<S>& geometry = *contact.node->getGeometry();
+  const auto& cylinder = geometry.getShapes().front();
+  const auto X = geometry.getTransform() * cylinder.transform;  // cylinder → world
+  detail::SheaveWrap& wrap = contact.wrap;
+  wrap.radius = double(static_cast<const CylinderT<S>&>(*cylinder.shape).getRadius());
+  wrap.center = X.translation().template cast<double>();
+  wrap.axis = (X.linear() * Vec3::UnitY()).template cast<double>();
+  wrap.e1 = (X.linear() * Vec3::UnitX()).template cast<double>();
+  wrap.e2 = (X.linear() * -Vec3::UnitZ()).template cast<double>();
+}
+
+template <Scalar S>
 void WireT<S>::checkRoute(const StepContext& simulation) const {
   if (route_.size() < 2) throw error("needs at least two route nodes", route_.size());
   for (std::size_t k = 0; k < route_.size(); ++k) {
     const Node& node = *route_[k];
     if (node.getType() == Node::Type::BODY_FIXED && k != 0 && k + 1 != route_.size())
       throw error("a BodyFixedNode may only be the first or last route node; it is node", k);
+    if (node.getType() == Node::Type::CONTACT) {
+      if (k == 0 || k + 1 == route_.size()) throw error("a ContactNode may not be the first or last route node; it is node", k);
+      const auto* contact = static_cast<const ContactNode*>(&node);
+      const auto* shape = contact->getGeometry()->getShape();
+      if (!shape || shape->getType() != ShapeType::CYLINDER || contact->getGeometry()->getShapes().size() != 1)
+        throw error("a ContactNode's geometry must hold one cylinder (the only shape wires wrap for now); node", k);
+      if (k + 1 < route_.size() && route_[k + 1]->getType() == Node::Type::CONTACT &&
+          static_cast<const ContactNode*>(route_[k + 1].get())->getGeometry() == contact->getGeometry())
+        throw error("consecutive ContactNodes on one geometry (route it once); node", k);
+    }
     if (node.getRigidBody() && simulation.indexOf(*node.getRigidBody()) < 0)
       throw error(("route node " + std::to_string(k) + " is fixed to a body not in the simulation").c_str(),
                   node.getRigidBody()->getName());
@@ -22512,36 +22784,57 @@ void WireT<S>::prepare(const StepContext& simulation) {
 
 template <Scalar S>
 void WireT<S>::build() {
-  const auto endPoint = [&](const Node& node) {
+  const auto world = [&](std::size_t k) -> Vec3d { return route_[k]->getWorldPosition().template cast<double>(); };
+  // Contacts first: their wraps from the route, so that the wire between
+  // route nodes runs along their tangents.
+  std::vector<int> contactOf(route_.size(), -1);
+  for (std::size_t k = 1; k + 1 < route_.size(); ++k) {
+    if (route_[k]->getType() != Node::Type::CONTACT) continue;
+    Contact contact;
+    contact.node = static_cast<ContactNode*>(route_[k].get());
+    placePlane(contact);
+    contact.wrap.route(world(k - 1), world(k), world(k + 1));
+    contactOf[k] = int(contacts_.size());
+    contacts_.push_back(contact);
+  }
+  const auto routePoint = [&](std::size_t k) {
     Point p;
+    const Node& node = *route_[k];
     if (node.getType() == Node::Type::BODY_FIXED) {
       p.body = node.getRigidBody();
       p.local = node.getPosition().template cast<double>();
+    } else if (contactOf[k] >= 0) {
+      p.contact = contactOf[k];
+      p.body = node.getRigidBody();
     } else {
-      p.node = int(nodes_->add(node.getWorldPosition().template cast<double>(), 0.0));
+      p.node = int(nodes_->add(world(k), 0.0));
     }
     return p;
   };
-  points_.push_back(endPoint(*route_.front()));
+  points_.push_back(routePoint(0));
   for (std::size_t k = 0; k + 1 < route_.size(); ++k) {
-    const Vec3d a = route_[k]->getWorldPosition().template cast<double>();
-    const Vec3d b = route_[k + 1]->getWorldPosition().template cast<double>();
-    const double length = (b - a).norm();
-    const int segments = std::max(1, int(std::ceil(length * resolution_ - 1e-9)));
+    const Vec3d a = departure(points_.back());
+    const int contact = contactOf[k + 1];
+    const Vec3d b = contact >= 0 ? contacts_[std::size_t(contact)].wrap.point(contacts_[std::size_t(contact)].wrap.in)
+                                 : world(k + 1);
+    // A mass node beside each contact keeps every row within three bodies.
+    const int fewest = contactOf[k] >= 0 || contactOf[k + 1] >= 0 ? 2 : 1;
+    const int segments = std::max(fewest, int(std::ceil((b - a).norm() * resolution_ - 1e-9)));
     for (int i = 1; i < segments; ++i) {
       Point p;
       p.node = int(nodes_->add(a + (b - a) * (double(i) / segments), 0.0));
       points_.push_back(p);
     }
-    for (int i = 0; i < segments; ++i) restLengths_.push_back(length / segments);
-    if (k + 2 < route_.size()) {
-      Point p;
-      p.node = int(nodes_->add(b, 0.0));
-      points_.push_back(p);
-    } else {
-      points_.push_back(endPoint(*route_.back()));
-    }
+    points_.push_back(routePoint(k + 1));
   }
+  for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
+    if (points_[k].contact < 0) continue;
+    detail::SheaveWrap& wrap = contacts_[std::size_t(points_[k].contact)].wrap;
+    wrap.place(departure(points_[k - 1]), arrival(points_[k + 1]));
+    wrap.reanchor();
+    contacts_[std::size_t(points_[k].contact)].node->wrap_ = wrap.wrap;
+  }
+  for (std::size_t k = 0; k + 1 < points_.size(); ++k) restLengths_.push_back(segmentLength(k));
   stretchImpulse_.assign(restLengths_.size(), 0.0);
   bendImpulse_.assign(2 * points_.size(), 0.0);
   bent_.assign(points_.size(), 0);
@@ -22551,9 +22844,15 @@ void WireT<S>::build() {
 }
 
 // A drum's inertia is that of one node's length of wire, which moves with
-// it through the winch; its free length is the winch segment's.
+// it through the winch; its free length is the winch segment's. A contact's
+// slip has the same inertia: the wire sliding over the geometry.
 template <Scalar S>
 void WireT<S>::addDrums() {
+  for (Contact& contact : contacts_) {
+    detail::WireNodes::Drum slip;
+    slip.mass = linearDensity() / resolution_;
+    contact.slip = nodes_->addDrum(slip);
+  }
   for (int end = 0; end < 2; ++end) {
     Winch* winch = winches_[end].get();
     if (!winch) continue;
@@ -22592,25 +22891,30 @@ void WireT<S>::updateMasses() {
 // again where the node it would gain has ρ < 1 (hysteresis). The
 // geometric-stiffness rows of writeRows hold what is left over (a node that
 // cannot leave: next to both ends, or a tension that jumps within a step).
-// At a winch, the node next to the drum leaves as wire is hauled in and a
-// node returns as it pays out.
+// A segment shorter than a quarter of the node spacing (wire hauled in at a
+// winch, slid over a contact) loses a node; the node beside a contact stays
+// and moves to the middle of its neighbours instead.
 template <Scalar S>
 void WireT<S>::beginStep(const StepContext& step) {
   if (points_.size() < 2) return;
   for (int end = 0; end < 2; ++end)
     if (winches_[end]) restLengths_[winchSegment(end)] = restLength(winchSegment(end));
+  for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
+    if (points_[k].contact < 0) continue;
+    detail::WireNodes::Drum& slip = nodes_->drum(contacts_[std::size_t(points_[k].contact)].slip);
+    restLengths_[k - 1] += slip.freeLength;
+    restLengths_[k] -= slip.freeLength;
+    slip.freeLength = 0.0;
+  }
   const double h2 = step.getTimeStep() * step.getTimeStep();
-  const auto span = [&](std::size_t segment) {
-    return (worldPosition(points_[segment + 1]) - worldPosition(points_[segment])).norm();
-  };
   const auto pull = [&](std::size_t segment) {
-    const double length = span(segment);
+    const double length = segmentLength(segment);
     return length > 0.0 ? std::max(tension_[segment], 0.0) / length : 0.0;
   };
   bool changed = false;
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     const Point& p = points_[k];
-    if (p.node < 0) continue;
+    if (p.node < 0 || nextToContact(k)) continue;
     const double rho = h2 * (pull(k - 1) + pull(k)) / nodes_->mass(std::size_t(p.node));
     if (rho > 2.0 && removable()) {
       removeNode(k);
@@ -22628,19 +22932,56 @@ void WireT<S>::beginStep(const StepContext& step) {
       ++k;
     }
   }
-  for (int end = 0; end < 2; ++end) {
-    if (!winches_[end]) continue;
-    const std::size_t segment = winchSegment(end);
-    const std::size_t inner = end == 0 ? 1 : points_.size() - 2;  // the point the segment reaches
-    if (restLengths_[segment] < 0.25 * target && inner > 0 && inner + 1 < points_.size() &&
-        points_[inner].node >= 0 && removable()) {
-      removeNode(inner);
+  for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
+    if (restLengths_[k] - wrapped(k) >= 0.25 * target) continue;
+    for (const std::size_t end : {k + 1, k}) {
+      if (end == 0 || end + 1 == points_.size() || points_[end].node < 0) continue;
+      if (nextToContact(end)) {
+        recenterNode(end);
+      } else if (removable()) {
+        removeNode(end);
+      } else {
+        continue;
+      }
       changed = true;
+      break;
     }
   }
   if (changed) updateMasses();
+  updateContacts();
   for (int end = 0; end < 2; ++end)
     if (winches_[end]) nodes_->drum(winches_[end]->drum_).freeLength = restLengths_[winchSegment(end)];
+}
+
+template <Scalar S>
+void WireT<S>::updateContacts() {
+  for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
+    if (points_[k].contact < 0) continue;
+    Contact& contact = contacts_[std::size_t(points_[k].contact)];
+    placePlane(contact);
+    contact.wrap.place(departure(points_[k - 1]), arrival(points_[k + 1]));
+    const double moved = contact.wrap.reanchor();
+    restLengths_[k - 1] -= moved;
+    restLengths_[k] += moved;
+    contact.node->wrap_ = contact.wrap.wrap;
+  }
+}
+
+// Splits the rest length of the segments beside point k in proportion to
+// their lengths now, so that both are stretched alike.
+template <Scalar S>
+void WireT<S>::shareRestLength(std::size_t k) {
+  const double total = restLengths_[k - 1] + restLengths_[k];
+  const double before = segmentLength(k - 1), after = segmentLength(k);
+  restLengths_[k - 1] = before + after > 0.0 ? total * before / (before + after) : 0.5 * total;
+  restLengths_[k] = total - restLengths_[k - 1];
+}
+
+template <Scalar S>
+void WireT<S>::recenterNode(std::size_t k) {
+  const std::size_t node = std::size_t(points_[k].node);
+  nodes_->setPosition(node, 0.5 * (departure(points_[k - 1]) + arrival(points_[k + 1])));
+  shareRestLength(k);
 }
 
 template <Scalar S>
@@ -22675,19 +23016,19 @@ template <Scalar S>
 void WireT<S>::splitSegment(std::size_t k) {
   std::size_t node = 0;  // the new node's index: the mass nodes before it
   for (std::size_t i = 0; i <= k; ++i) node += points_[i].node >= 0 ? 1 : 0;
-  const Vec3d position = 0.5 * (worldPosition(points_[k]) + worldPosition(points_[k + 1]));
+  const Vec3d position = 0.5 * (departure(points_[k]) + arrival(points_[k + 1]));
   const Vec3d velocity = 0.5 * (worldVelocity(points_[k]) + worldVelocity(points_[k + 1]));
   nodes_->insert(node, position, velocity, 0.0);
   Point p;
   p.node = int(node);
   points_.insert(points_.begin() + std::ptrdiff_t(k + 1), p);
-  restLengths_[k] *= 0.5;
-  restLengths_.insert(restLengths_.begin() + std::ptrdiff_t(k + 1), restLengths_[k]);
+  restLengths_.insert(restLengths_.begin() + std::ptrdiff_t(k + 1), 0.0);
   stretchImpulse_.insert(stretchImpulse_.begin() + std::ptrdiff_t(k + 1), stretchImpulse_[k]);
   tension_.insert(tension_.begin() + std::ptrdiff_t(k + 1), tension_[k]);
   bendImpulse_.insert(bendImpulse_.begin() + std::ptrdiff_t(2 * (k + 1)), 2, 0.0);
   bent_.insert(bent_.begin() + std::ptrdiff_t(k + 1), 0);
   renumberNodes();
+  shareRestLength(k + 1);
 }
 
 template <Scalar S>
@@ -22705,10 +23046,15 @@ struct WireRowBodies {
   int index[3] = {-1, -1, -1};
   Vec6d J[3] = {Vec6d::Zero(), Vec6d::Zero(), Vec6d::Zero()};
   int count = 0;
+  bool overflow = false;
   void add(int body, const Eigen::Vector3d& a, const Eigen::Vector3d& arm) {
     if (body < 0) return;
     int k = 0;
     while (k < count && index[k] != body) ++k;
+    if (k == 3) {
+      overflow = true;
+      return;
+    }
     if (k == count) index[count++] = body;
     J[k].head<3>() += a;
     J[k].tail<3>() += arm.cross(a);
@@ -22730,20 +23076,24 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   for (std::size_t k = 0; k < n; ++k) {
     const Point& p = points_[k];
     PointState& s = state_[k];
-    s.x = worldPosition(p);
+    s.in = arrival(p);
+    s.out = departure(p);
     s.v = worldVelocity(p);
-    s.arm.setZero();
+    s.armIn.setZero();
+    s.armOut.setZero();
     s.centripetal.setZero();
+    s.index = -1;
+    s.slip = p.contact >= 0 ? step.indexOf(*nodes_, nodes_->numNodes() + contacts_[std::size_t(p.contact)].slip) : -1;
     if (p.node >= 0) {
       s.index = step.indexOf(*nodes_, std::size_t(p.node));
     } else if (p.body) {
       s.index = step.indexOf(*p.body);
       if (s.index < 0) throw error("is fixed to a body that left the simulation", p.body->getName());
-      s.arm = s.x - p.body->getCmPosition().template cast<double>();
+      const Vec3d center = p.body->getCmPosition().template cast<double>();
+      s.armIn = s.in - center;
+      s.armOut = s.out - center;
       const Vec3d w = p.body->getAngularVelocity().template cast<double>();
-      s.centripetal = w.cross(w.cross(s.arm));
-    } else {
-      s.index = -1;
+      s.centripetal = w.cross(w.cross(s.armOut));
     }
   }
   const auto drumIndex = [&](std::size_t segment) {
@@ -22755,29 +23105,38 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   const typename Material::WireMaterial& wire = *material_->getWireMaterial();
   const double area = std::numbers::pi * radius_ * radius_;
   const double stretchStiffness = double(wire.getYoungsModulusStretch()) * area;
-  // Stretch: g = |x_{k+1} − x_k| − l_k; at a winch, l_k is the drum's degree
-  // of freedom (∂g/∂l = −1).
+  // Stretch: g = l_k − L_k, L_k the length along the wire (with the arcs of
+  // wraps at its ends): written so that a tension is a positive impulse,
+  // which a contact's friction row follows (RowWriter::setFriction). At a
+  // winch, l_k is the drum's degree of freedom (∂g/∂l = 1); a contact's slip
+  // moves rest length from the segment after it to the one before
+  // (∂g/∂s = 1 before, −1 after). Across a wrap, the length's derivative is
+  // the tangent's direction at the tangent point (which the geometry's body
+  // carries with C).
   for (std::size_t k = 0; k + 1 < n; ++k) {
-    const Vec3d d = state_[k + 1].x - state_[k].x;
-    const double length = d.norm();
-    const Vec3d u = length > 0.0 ? Vec3d(d / length) : Vec3d::UnitX();
+    const Vec3d d = state_[k + 1].in - state_[k].out;
+    const double straight = d.norm();
+    const Vec3d u = straight > 0.0 ? Vec3d(d / straight) : Vec3d::UnitX();
     detail::WireRowBodies bodies;
-    bodies.add(state_[k].index, -u, state_[k].arm);
-    bodies.add(state_[k + 1].index, u, state_[k + 1].arm);
-    bodies.add(drumIndex(k), -Vec3d::UnitX(), Vec3d::Zero());
+    bodies.add(state_[k].index, u, state_[k].armOut);
+    bodies.add(state_[k + 1].index, -u, state_[k + 1].armIn);
+    bodies.add(drumIndex(k), Vec3d::UnitX(), Vec3d::Zero());
+    bodies.add(state_[k].slip, -Vec3d::UnitX(), Vec3d::Zero());
+    bodies.add(state_[k + 1].slip, Vec3d::UnitX(), Vec3d::Zero());
+    if (bodies.overflow) throw error("has a segment whose row would couple more than three bodies; segment", k);
     detail::Row& r = rows.add(stretchImpulse_[k]);
     bodies.write(rows, r);
-    r.violation = length - restLengths_[k];
+    r.violation = restLengths_[k] - segmentLength(k);
     r.compliance = restLengths_[k] / stretchStiffness;
     r.damping = double(wire.getDampingStretch());
     // κ = ½vᵀ∇²g v = ½(|ḋ⊥|²/|d| + u·(p̈_b − p̈_a)) with the body points'
     // centripetal accelerations ω×(ω×r) (SecondOrder::curvature): a segment
     // turning at speed lengthens at second order, which the step then holds.
-    if (length > 0.0) {
+    if (straight > 0.0 && points_[k].contact < 0 && points_[k + 1].contact < 0) {
       const Vec3d rate = state_[k + 1].v - state_[k].v;
       const Vec3d across = rate - u * u.dot(rate);
       const double relative = u.dot(state_[k + 1].centripetal - state_[k].centripetal);
-      rows.setCurvature(rows.size() - 1, 0.5 * (across.squaredNorm() / length + relative));
+      rows.setCurvature(rows.size() - 1, -0.5 * (across.squaredNorm() / straight + relative));
     }
   }
   // Bend: g = e·(t₂ − t₁) for the two directions e across the mean tangent;
@@ -22785,9 +23144,10 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   // over the length l̄), so the compliance is l̄/(E I).
   const double bendStiffness = double(wire.getYoungsModulusBend()) * std::numbers::pi * std::pow(radius_, 4) / 4.0;
   for (std::size_t k = 1; k + 1 < n; ++k) {
-    const Vec3d d1 = state_[k].x - state_[k - 1].x, d2 = state_[k + 1].x - state_[k].x;
+    const Vec3d d1 = state_[k].in - state_[k - 1].out, d2 = state_[k + 1].in - state_[k].out;
     const double l1 = d1.norm(), l2 = d2.norm();
-    bent_[k] = bendStiffness > 0.0 && l1 > 0.0 && l2 > 0.0;
+    // A contact shapes the wire around its geometry: no bend rows there.
+    bent_[k] = bendStiffness > 0.0 && l1 > 0.0 && l2 > 0.0 && points_[k].contact < 0;
     if (!bent_[k]) continue;
     const Vec3d t1 = d1 / l1, t2 = d2 / l2;
     const Vec3d mean = t1 + t2;
@@ -22800,9 +23160,9 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
       const Vec3d& e = i == 0 ? inPlane : outOfPlane;
       const Vec3d a0 = (e - t1 * t1.dot(e)) / l1, a2 = (e - t2 * t2.dot(e)) / l2;
       detail::WireRowBodies bodies;
-      bodies.add(state_[k].index, -(a0 + a2), state_[k].arm);
-      bodies.add(state_[k - 1].index, a0, state_[k - 1].arm);
-      bodies.add(state_[k + 1].index, a2, state_[k + 1].arm);
+      bodies.add(state_[k].index, -(a0 + a2), state_[k].armIn);
+      bodies.add(state_[k - 1].index, a0, state_[k - 1].armOut);
+      bodies.add(state_[k + 1].index, a2, state_[k + 1].armIn);
       detail::Row& r = rows.add(bendImpulse_[2 * k + i]);
       bodies.write(rows, r);
       r.violation = e.dot(t2 - t1);
@@ -22830,7 +23190,7 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     return 0.0;
   };
   for (std::size_t k = 0; k + 1 < n; ++k) {
-    const Vec3d d = state_[k + 1].x - state_[k].x;
+    const Vec3d d = state_[k + 1].in - state_[k].out;
     const double length = d.norm(), tension = tension_[k];
     if (!(length > 0.0 && tension > 0.0)) continue;
     const double rho = h * h * tension / length * (inverseMass(points_[k]) + inverseMass(points_[k + 1]));
@@ -22839,8 +23199,8 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     const Vec3d u = d / length, e1 = u.unitOrthogonal(), e2 = u.cross(e1);
     for (const Vec3d& e : {e1, e2}) {
       detail::WireRowBodies bodies;
-      bodies.add(state_[k].index, -e, state_[k].arm);
-      bodies.add(state_[k + 1].index, e, state_[k + 1].arm);
+      bodies.add(state_[k].index, -e, state_[k].armOut);
+      bodies.add(state_[k + 1].index, e, state_[k + 1].armIn);
       if (bodies.count == 0) continue;
       detail::Row& r = rows.add();
       bodies.write(rows, r);
@@ -22850,6 +23210,39 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     }
   }
   writeWinchRows(rows, step, firstRow);
+  writeFrictionRows(rows, firstRow);
+}
+
+// A contact's friction along the wire (the capstan law, PHYSICS.md §7): the
+// slip's force is the difference of the tensions before and after it; the
+// wire holds while the higher tension is within e^{μθ} of the lower, so the
+// slip row's bounds are ±(e^{μθ} − 1)·T_low with the last step's tensions
+// (in the first step, which has none, it holds). Not a friction row that
+// follows its normal's impulse (RowWriter::setFriction): the solver softens
+// those (islands.hpp), and the slip's small inertia (one node's length of
+// wire) turned that into a creep of 1.6 cm/s under a 2.5:1 load.
+template <Scalar S>
+void WireT<S>::writeFrictionRows(RowWriter& rows, std::size_t firstRow) {
+  for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
+    if (points_[k].contact < 0) continue;
+    Contact& contact = contacts_[std::size_t(points_[k].contact)];
+    contact.row = -1;
+    const double mu = contact.node->hasFrictionCoefficient()
+                          ? double(contact.node->getFrictionCoefficient())
+                          : double(material_->getWireMaterial()->getFrictionCoefficient());
+    const double coefficient = std::expm1(mu * std::max(contact.wrap.wrap, 0.0));
+    if (!(coefficient > 0.0)) continue;
+    const double low = std::max(0.0, std::min(tension_[k - 1], tension_[k]));
+    const double bound = stepped_ ? coefficient * low : std::numeric_limits<double>::infinity();
+    contact.row = int(rows.size() - firstRow);
+    detail::Row& r = rows.add(contact.frictionImpulse);
+    r.body1 = state_[k].slip;
+    r.J1 = detail::Vec6d::Unit(0);
+    r.holonomic = false;
+    r.speed = 0.0;
+    r.lower = -bound;
+    r.upper = bound;
+  }
 }
 
 // A winch's rows on its drum (the free length l of its segment, l̇ the rate
@@ -22907,7 +23300,7 @@ void WireT<S>::readBack(std::span<const double> impulses, const StepContext& ste
   const std::size_t segments = restLengths_.size();
   for (std::size_t k = 0; k < segments; ++k) {
     stretchImpulse_[k] = impulses[k];
-    tension_[k] = -impulses[k] / h;
+    tension_[k] = impulses[k] / h;
   }
   std::size_t next = segments;
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
@@ -22932,6 +23325,11 @@ void WireT<S>::readBack(std::span<const double> impulses, const StepContext& ste
     winch->motorForce_ = motor / h;
     winch->brakeForce_ = (total - motor) / h;
   }
+  for (Contact& contact : contacts_) {
+    contact.frictionImpulse = contact.row >= 0 ? impulses[std::size_t(contact.row)] : 0.0;
+    contact.node->frictionForce_ = contact.frictionImpulse / h;
+  }
+  stepped_ = true;
 }
 
 SPOOK_COMPILED_ONCE(class, WireT)

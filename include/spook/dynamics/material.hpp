@@ -123,6 +123,13 @@ class MaterialT : public Referenced {
     void setDampingBend(S damping) {
       dampingBend_ = checked("wire bend damping must be finite and >= 0 s", damping, true);
     }
+    /// Friction coefficient along the wire where it slides over a geometry
+    /// (wire/wire_node.hpp's ContactNode), finite and >= 0; default 0.41667
+    /// (AGX's default friction).
+    [[nodiscard]] S getFrictionCoefficient() const { return friction_; }
+    void setFrictionCoefficient(S coefficient) {
+      friction_ = checked("wire friction coefficient must be finite and >= 0", coefficient, true);
+    }
 
    private:
     friend class MaterialT;
@@ -135,6 +142,7 @@ class MaterialT : public Referenced {
     S bend_ = S(6e10);
     S dampingStretch_ = S(0.05);
     S dampingBend_ = S(0.1);
+    S friction_ = S(0.41667);
   };
 
   explicit MaterialT(std::string name = "") : name_(std::move(name)) {}

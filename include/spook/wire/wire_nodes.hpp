@@ -12,10 +12,11 @@
 namespace spook::detail {
 
 /// A wire's lumped mass nodes (wire/wire.hpp), held in arrays: point masses
-/// that feel gravity and do not turn; after them, its winches' drums
-/// (wire/wire_winch_controller.hpp): one degree of freedom each, the free
-/// length of the wire segment at the winch, moving along the solver body's
-/// x axis only.
+/// that feel gravity and do not turn; after them, one-dimensional bodies
+/// (moving along the solver body's x axis only): its winches' drums
+/// (wire/wire_winch_controller.hpp), whose position is the free length of
+/// the wire segment at the winch, and its contacts' slip, whose position
+/// gathers the length of wire slid over the geometry.
 class WireNodes : public BodyStore {
  public:
   using Vec3d = Eigen::Vector3d;
@@ -39,6 +40,7 @@ class WireNodes : public BodyStore {
   [[nodiscard]] double mass(std::size_t i) const { return mass_[i]; }
   void setMass(std::size_t i, double mass) { mass_[i] = mass; }
   void setVelocity(std::size_t i, const Vec3d& velocity) { velocity_[i] = velocity; }
+  void setPosition(std::size_t i, const Vec3d& position) { position_[i] = position; }
   /// Removes node i (the wire's adaptive resolution, in beginStep).
   void erase(std::size_t i) {
     position_.erase(position_.begin() + std::ptrdiff_t(i));

@@ -1,0 +1,269 @@
+// Wires routed over cylinders (ContactNode, wire/sheave_wrap.hpp) against
+// the capstan law: a wire over a fixed cylinder holds a load against a
+// counterweight while their ratio is within e^{μθ} and slips beyond; an
+// Atwood machine over a frictional (and a frictionless) cylinder
+// accelerates at (m₁ − m₂e^{μθ})g/(m₁ + m₂e^{μθ}); a wheel on a hinge that
+// the wire cannot slip on turns with it.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <spook/spook.hpp>
+
+#include "error_message.hpp"
+#include "tolerance.hpp"
+
+using namespace spook;
+
+namespace {
+
+constexpr double kGravity = 9.80665;  // m/s², the simulation's default
+
+/// Two loads (kg) hung by a light limp wire (radius 5 mm, 100 kg/m³: 8 g/m,
+/// 5 nodes/m) over a cylinder of radius 0.5 m on a static body at the
+/// origin, its axis along y: the wire wraps it by π over the top, the
+/// first load at x = +0.5, the second at x = −0.5, both 5 m below.
+template <Scalar S>
+struct OverCylinder {
+  using Vec3 = Vec3T<S>;
+  ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+  ref_ptr<RigidBodyT<S>> left = new RigidBodyT<S>(), right = new RigidBodyT<S>();
+  ref_ptr<RigidBodyT<S>> holder = new RigidBodyT<S>();
+  ref_ptr<GeometryT<S>> cylinder = new GeometryT<S>(new CylinderT<S>(S(0.5), S(0.2)));
+  ref_ptr<ContactNodeT<S>> contact;
+  ref_ptr<WireT<S>> wire = new WireT<S>(S(0.005), S(5));
+
+  OverCylinder(double rightMass, double leftMass, double mu) {
+    holder->add(cylinder);
+    holder->setMotionControl(RigidBodyT<S>::MotionControl::STATIC);
+    sim->add(holder);
+    right->getMassProperties()->setMass(S(rightMass));
+    right->setPosition(S(0.5), S(0), S(-5));
+    left->getMassProperties()->setMass(S(leftMass));
+    left->setPosition(S(-0.5), S(0), S(-5));
+    sim->add(right);
+    sim->add(left);
+    wire->setName("rope");
+    wire->getMaterial()->getBulkMaterial()->setDensity(S(100));
+    wire->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(0));
+    wire->getMaterial()->getWireMaterial()->setFrictionCoefficient(S(mu));
+    contact = new ContactNodeT<S>(cylinder.get(), Vec3(S(0), S(0), S(0.5)));
+    wire->add(new BodyFixedNodeT<S>(right.get(), Vec3::Zero()));
+    wire->add(contact);
+    wire->add(new BodyFixedNodeT<S>(left.get(), Vec3::Zero()));
+    sim->add(wire);
+  }
+};
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a wire over a cylinder holds within the capstan ratio and slips beyond it", S, double, float) {
+  const double mu = 0.3, counterweight = 10.0;
+  const double ratio = std::exp(mu * std::numbers::pi);
+  for (const double share : {0.98, 1.02}) {
+    CAPTURE(share);
+    OverCylinder<S> rig(share * ratio * counterweight, counterweight, mu);
+    CHECK(double(rig.contact->getWrapAngle()) == doctest::Approx(std::numbers::pi).epsilon(1e-6));
+    const double length = double(rig.wire->getRestLength());
+    const int steps = 60;
+    for (int s = 0; s < steps; ++s) rig.sim->stepForward();
+    const double time = steps * double(rig.sim->getTimeStep());
+    const double drop = -5.0 - double(rig.right->getPosition().z());
+    const double tensionRight = double(rig.wire->getTension(S(0.1)));
+    const double tensionLeft = double(rig.wire->getTension(S(length - 0.1)));
+    MESSAGE("load " << share << " e^(mu pi) x the counterweight: drop " << drop << " m in " << time
+                    << " s, tensions " << tensionRight << " N and " << tensionLeft << " N (ratio "
+                    << tensionRight / tensionLeft << " against " << ratio << "), friction "
+                    << rig.contact->getFrictionForce() << " N");
+    if (share < 1.0) {
+      // Held: only the wire's stretch lets the load move.
+      CHECK(std::abs(drop) < 1e-3);
+      CHECK(tensionRight == doctest::Approx(share * ratio * counterweight * kGravity).epsilon(0.01));
+      CHECK(tensionLeft == doctest::Approx(counterweight * kGravity).epsilon(0.01));
+    } else {
+      const double m1 = share * ratio * counterweight, m2 = counterweight;
+      const double a = (m1 - m2 * ratio) * kGravity / (m1 + m2 * ratio);
+      CHECK(drop > 0.25 * a * time * time);
+      CHECK(tensionRight / tensionLeft == doctest::Approx(ratio).epsilon(0.01));
+    }
+  }
+}
+
+TEST_CASE_TEMPLATE("a quarter wrap holds within e^(mu pi/2), the wire turned down by a frictionless guide", S, double,
+                   float) {
+  using Vec3 = Vec3T<S>;
+  const double mu = 0.3, counterweight = 10.0, ratio = std::exp(mu * std::numbers::pi / 2.0);
+  for (const double share : {0.98, 1.02}) {
+    CAPTURE(share);
+    // The load hangs from the right of a sheave at the origin; the wire
+    // leaves its top to the left, 3 m over to a frictionless guide, and
+    // down its left side to the counterweight.
+    ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+    const auto fixedCylinder = [&](double x) {
+      ref_ptr<RigidBodyT<S>> holder = new RigidBodyT<S>();
+      ref_ptr<GeometryT<S>> cylinder = new GeometryT<S>(new CylinderT<S>(S(0.5), S(0.2)));
+      holder->add(cylinder);
+      holder->setMotionControl(RigidBodyT<S>::MotionControl::STATIC);
+      holder->setPosition(S(x), S(0), S(0));
+      sim->add(holder);
+      return cylinder;
+    };
+    ref_ptr<GeometryT<S>> sheave = fixedCylinder(0.0), guide = fixedCylinder(-3.0);
+    ref_ptr<RigidBodyT<S>> load = new RigidBodyT<S>(), weight = new RigidBodyT<S>();
+    load->getMassProperties()->setMass(S(share * ratio * counterweight));
+    load->setPosition(S(0.5), S(0), S(-4));
+    weight->getMassProperties()->setMass(S(counterweight));
+    weight->setPosition(S(-3.5), S(0), S(-4));
+    sim->add(load);
+    sim->add(weight);
+    ref_ptr<WireT<S>> wire = new WireT<S>(S(0.005), S(5));
+    wire->getMaterial()->getBulkMaterial()->setDensity(S(100));
+    wire->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(0));
+    ref_ptr<ContactNodeT<S>> onSheave = new ContactNodeT<S>(sheave.get(), Vec3(S(0.35), S(0), S(0.35)));
+    ref_ptr<ContactNodeT<S>> onGuide = new ContactNodeT<S>(guide.get(), Vec3(S(-0.35), S(0), S(0.35)));
+    onSheave->setFrictionCoefficient(S(mu));
+    onGuide->setFrictionCoefficient(S(0));
+    wire->add(new BodyFixedNodeT<S>(load.get(), Vec3::Zero()));
+    wire->add(onSheave);
+    wire->add(onGuide);
+    wire->add(new BodyFixedNodeT<S>(weight.get(), Vec3::Zero()));
+    sim->add(wire);
+    for (int s = 0; s < 60; ++s) sim->stepForward();
+    // The span between the sheaves sags a little: the wraps grow by its slope.
+    CHECK(double(onSheave->getWrapAngle()) == doctest::Approx(std::numbers::pi / 2.0).epsilon(0.005));
+    CHECK(double(onGuide->getWrapAngle()) == doctest::Approx(std::numbers::pi / 2.0).epsilon(0.005));
+    const double drop = -4.0 - double(load->getPosition().z()), speed = -double(load->getVelocity().z());
+    const double high = double(wire->getTension(S(0.1)));
+    const double low = double(wire->getTension(wire->getRestLength() - S(0.1)));
+    MESSAGE("load " << share << " e^(mu pi/2) x the counterweight: drop " << drop << " m in 1 s, at " << speed
+                    << " m/s, tensions " << high << " N and " << low << " N (ratio " << high / low << " against "
+                    << ratio << "), wraps " << onSheave->getWrapAngle() << " and " << onGuide->getWrapAngle());
+    if (share < 1.0) {
+      CHECK(std::abs(drop) < 5e-3);
+      CHECK(std::abs(speed) < 1e-3);
+      CHECK(low == doctest::Approx(counterweight * kGravity).epsilon(0.01));
+    } else {
+      CHECK(drop > 0.01);
+      CHECK(speed > 0.05);
+      CHECK(high / low == doctest::Approx(ratio).epsilon(0.01));
+    }
+  }
+}
+
+TEST_CASE_TEMPLATE("an Atwood machine over a cylinder accelerates as the capstan law says", S, double, float) {
+  const double heavy = 20.0, light = 5.0;
+  for (const double mu : {0.0, 0.2}) {
+    CAPTURE(mu);
+    OverCylinder<S> rig(heavy, light, mu);
+    const double e = std::exp(mu * std::numbers::pi);
+    const double a = (heavy - light * e) * kGravity / (heavy + light * e);
+    const double length = double(rig.wire->getRestLength());
+    // The accelerations over the second half of a second (the first step
+    // holds: the friction has no tensions to go by yet).
+    for (int s = 0; s < 30; ++s) rig.sim->stepForward();
+    const double heavyFrom = double(rig.right->getVelocity().z()), lightFrom = double(rig.left->getVelocity().z());
+    for (int s = 0; s < 30; ++s) rig.sim->stepForward();
+    const double time = 30 * double(rig.sim->getTimeStep());
+    const double heavyAcceleration = (heavyFrom - double(rig.right->getVelocity().z())) / time;
+    const double lightAcceleration = (double(rig.left->getVelocity().z()) - lightFrom) / time;
+    MESSAGE("mu " << mu << ": the heavy load falls at " << heavyAcceleration << " m/s^2, the light rises at "
+                  << lightAcceleration << " m/s^2, against " << a << "; " << rig.wire->getNumMassNodes()
+                  << " nodes, rest length " << rig.wire->getRestLength() << " m (was " << length << ")");
+    CHECK(heavyAcceleration == doctest::Approx(a).epsilon(0.02));
+    CHECK(lightAcceleration == doctest::Approx(a).epsilon(0.02));
+    CHECK(double(rig.wire->getRestLength()) == doctest::Approx(length).epsilon(1e-9));
+  }
+}
+
+TEST_CASE_TEMPLATE("a wheel on a hinge turns with a wire that cannot slip on it", S, double, float) {
+  using Vec3 = Vec3T<S>;
+  // An Atwood machine whose pulley is a wheel of 10 kg (I = M R²/2 about
+  // its axle): a = (m₁ − m₂) g/(m₁ + m₂ + I/R²).
+  const double heavy = 20.0, light = 5.0, wheelMass = 10.0, radius = 0.5;
+  const double inertia = 0.5 * wheelMass * radius * radius;
+  ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+  ref_ptr<RigidBodyT<S>> wheel = new RigidBodyT<S>();
+  ref_ptr<GeometryT<S>> rim = new GeometryT<S>(new CylinderT<S>(S(radius), S(0.1)));
+  wheel->add(rim);
+  wheel->getMassProperties()->setMass(S(wheelMass));
+  wheel->getMassProperties()->setInertiaTensor(SPDMat3T<S>(Vec3(S(1), S(inertia), S(1))));
+  sim->add(wheel);
+  ref_ptr<FrameT<S>> axle = new FrameT<S>();
+  axle->setLocalRotate(spook::rotate<S>(Vec3::UnitZ(), Vec3::UnitY()));
+  sim->add(new HingeT<S>(wheel.get(), axle.get()));
+  ref_ptr<RigidBodyT<S>> left = new RigidBodyT<S>(), right = new RigidBodyT<S>();
+  right->getMassProperties()->setMass(S(heavy));
+  right->setPosition(S(radius), S(0), S(-5));
+  left->getMassProperties()->setMass(S(light));
+  left->setPosition(S(-radius), S(0), S(-5));
+  sim->add(right);
+  sim->add(left);
+  ref_ptr<WireT<S>> wire = new WireT<S>(S(0.005), S(5));
+  wire->getMaterial()->getBulkMaterial()->setDensity(S(100));
+  wire->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(0));
+  wire->getMaterial()->getWireMaterial()->setFrictionCoefficient(S(10));
+  wire->add(new BodyFixedNodeT<S>(right.get(), Vec3::Zero()));
+  wire->add(new ContactNodeT<S>(rim.get(), Vec3(S(0), S(0), S(radius))));
+  wire->add(new BodyFixedNodeT<S>(left.get(), Vec3::Zero()));
+  sim->add(wire);
+  for (int s = 0; s < 30; ++s) sim->stepForward();
+  const double from = double(right->getVelocity().z());
+  for (int s = 0; s < 30; ++s) sim->stepForward();
+  const double acceleration = (from - double(right->getVelocity().z())) / (30 * double(sim->getTimeStep()));
+  const double expected = (heavy - light) * kGravity / (heavy + light + inertia / (radius * radius));
+  const double spin = double(wheel->getAngularVelocity().y()), speed = -double(right->getVelocity().z());
+  MESSAGE("the heavy load falls at " << acceleration << " m/s^2 against " << expected << "; the wheel turns at "
+                                     << spin << " rad/s, the rope moves at " << speed << " m/s");
+  CHECK(acceleration == doctest::Approx(expected).epsilon(0.02));
+  // The heavy side, at +x, goes down: the wheel turns about +y, its rim
+  // with the rope.
+  CHECK(spin * radius == doctest::Approx(speed).epsilon(0.02));
+  CHECK(wheel->getPosition().norm() < S(1e-3));
+}
+
+TEST_CASE("a contact node refuses bad input by name and leaves the simulation unchanged") {
+  const auto message = [](auto&& make) { return spook::test::errorMessage(make); };
+  CHECK(message([] { ref_ptr<ContactNode> c = new ContactNode(nullptr, Vec3::Zero()); }).find("geometry") !=
+        std::string::npos);
+  ref_ptr<Geometry> box = new Geometry(new Box(Vec3(0.5, 0.5, 0.5)));
+  ref_ptr<ContactNode> onBox = new ContactNode(box.get(), Vec3(0, 0, 0.5));
+  CHECK(message([&] { onBox->setFrictionCoefficient(-0.1); }).find("friction") != std::string::npos);
+  CHECK(message([&] { onBox->setFrictionCoefficient(std::nan("")); }).find("nan") != std::string::npos);
+
+  ref_ptr<Simulation> sim = new Simulation();
+  const auto refused = [&](Wire* wire, const char* expected) {
+    const std::string what = message([&] { sim->add(ref_ptr<Wire>(wire)); });
+    CAPTURE(what);
+    CHECK(what.find("'w'") != std::string::npos);
+    CHECK(what.find(expected) != std::string::npos);
+    CHECK(sim->getRowProducers().empty());
+    CHECK(sim->getBodyStores().empty());
+  };
+  ref_ptr<Wire> overBox = new Wire(0.01, 2.0);
+  overBox->setName("w");
+  overBox->add(new FreeNode(2, 0, -2));
+  overBox->add(onBox);
+  overBox->add(new FreeNode(-2, 0, -2));
+  refused(overBox.get(), "one cylinder");
+
+  ref_ptr<Geometry> drum = new Geometry(new Cylinder(0.5, 0.2));
+  ref_ptr<Wire> atEnd = new Wire(0.01, 2.0);
+  atEnd->setName("w");
+  atEnd->add(new FreeNode(2, 0, -2));
+  atEnd->add(new ContactNode(drum.get(), Vec3(0, 0, 0.5)));
+  refused(atEnd.get(), "may not be the first or last");
+
+  ref_ptr<RigidBody> away = new RigidBody();
+  away->setName("away");
+  ref_ptr<Geometry> carried = new Geometry(new Cylinder(0.5, 0.2));
+  away->add(carried);
+  ref_ptr<Wire> notThere = new Wire(0.01, 2.0);
+  notThere->setName("w");
+  notThere->add(new FreeNode(2, 0, -2));
+  notThere->add(new ContactNode(carried.get(), Vec3(0, 0, 0.5)));
+  notThere->add(new FreeNode(-2, 0, -2));
+  refused(notThere.get(), "away");
+}
