@@ -21931,143 +21931,6 @@ template class SimulationT<float>;
 
 #include <Eigen/Core>
 
-// --- begin spook/wire/wire_node.hpp ---
-#ifndef SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODE_HPP
-#define SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODE_HPP
-
-// The nodes a wire is routed with (wire/wire.hpp), after agxWire's: a
-// FreeNode is a routing point (a free end when first or last), a
-// BodyFixedNode fixes an end of the wire to a body or to the world, a
-// ContactNode routes it over a geometry (a sheave).
-
-#include <cmath>
-#include <limits>
-
-namespace spook {
-
-template <Scalar S>
-class WireT;
-
-template <Scalar S>
-class WireNodeT : public Referenced {
- public:
-  using Vec3 = Vec3T<S>;
-  enum class Type { FREE, BODY_FIXED, CONTACT };
-
-  [[nodiscard]] Type getType() const { return type_; }
-  /// The body a body-fixed or contact node moves with; nullptr for the
-  /// world and for a free node.
-  [[nodiscard]] RigidBodyT<S>* getRigidBody() const { return body_.get(); }
-  /// Where the node is routed: in the body's model frame for a node fixed
-  /// to a body, in the geometry's frame for a contact node, else in world
-  /// coordinates (m).
-  [[nodiscard]] const Vec3& getPosition() const { return position_; }
-  /// The node's routed position in world coordinates now (m).
-  [[nodiscard]] virtual Vec3 getWorldPosition() const {
-    return body_ ? Vec3(body_->getFrame()->transformPointToWorld(position_)) : position_;
-  }
-
- protected:
-  WireNodeT(Type type, RigidBodyT<S>* body, const Vec3& position) : type_(type), body_(body), position_(position) {
-    if (!position.allFinite())
-      throw detail::makeError(type == Type::FREE         ? "FreeNode"
-                              : type == Type::BODY_FIXED ? "BodyFixedNode"
-                                                         : "ContactNode",
-                              "", "position must be finite m", position);
-  }
-  ~WireNodeT() override = default;
-
- private:
-  Type type_;
-  ref_ptr<RigidBodyT<S>> body_;
-  Vec3 position_;
-};
-
-/// A routing point at a world position (m); a free end of the wire when it
-/// is the first or last node of the route.
-template <Scalar S>
-class FreeNodeT : public WireNodeT<S> {
- public:
-  using Vec3 = Vec3T<S>;
-  explicit FreeNodeT(const Vec3& position) : WireNodeT<S>(WireNodeT<S>::Type::FREE, nullptr, position) {}
-  FreeNodeT(S x, S y, S z) : FreeNodeT(Vec3(x, y, z)) {}
-};
-
-/// An end of the wire fixed to `body` at `position` in its model frame, or
-/// to the world at `position` (world coordinates) when `body` is nullptr.
-/// Only the first or last node of a route may be body-fixed.
-template <Scalar S>
-class BodyFixedNodeT : public WireNodeT<S> {
- public:
-  using Vec3 = Vec3T<S>;
-  BodyFixedNodeT(RigidBodyT<S>* body, const Vec3& position)
-      : WireNodeT<S>(WireNodeT<S>::Type::BODY_FIXED, body, position) {}
-  BodyFixedNodeT(RigidBodyT<S>* body, S x, S y, S z) : BodyFixedNodeT(body, Vec3(x, y, z)) {}
-};
-
-/// The wire routed over a geometry (agxWire's ContactNode): a sheave. The
-/// geometry's shape must be a cylinder; the wire wraps it in the plane across
-/// its axis through its center, touching it at `position` (geometry frame),
-/// arriving and leaving along tangents, and slides over it against friction
-/// along the wire (the capstan law: it slips once the tensions' ratio on
-/// both sides exceeds e^{μθ}). Neither first nor last in a route.
-template <Scalar S>
-class ContactNodeT : public WireNodeT<S> {
- public:
-  using Vec3 = Vec3T<S>;
-  ContactNodeT(GeometryT<S>* geometry, const Vec3& position)
-      : WireNodeT<S>(WireNodeT<S>::Type::CONTACT, geometry ? geometry->getRigidBody() : nullptr, position),
-        geometry_(geometry) {
-    if (!geometry) throw detail::makeError("ContactNode", "", "needs a geometry", "nullptr");
-  }
-  ContactNodeT(GeometryT<S>* geometry, S x, S y, S z) : ContactNodeT(geometry, Vec3(x, y, z)) {}
-
-  [[nodiscard]] GeometryT<S>* getGeometry() const { return geometry_.get(); }
-  [[nodiscard]] Vec3 getWorldPosition() const override {
-    return Vec3(geometry_->getFrame()->transformPointToWorld(this->getPosition()));
-  }
-  /// Friction coefficient along the wire, >= 0; until set, the wire
-  /// material's.
-  [[nodiscard]] bool hasFrictionCoefficient() const { return friction_ >= S(0); }
-  [[nodiscard]] S getFrictionCoefficient() const { return friction_; }
-  void setFrictionCoefficient(S coefficient) {
-    if (!(std::isfinite(coefficient) && coefficient >= S(0)))
-      throw detail::makeError("ContactNode", "", "friction coefficient must be finite and >= 0", coefficient);
-    friction_ = coefficient;
-  }
-  /// The angle the wire wraps the geometry (rad), as routed and then after
-  /// each step.
-  [[nodiscard]] S getWrapAngle() const { return S(wrap_); }
-  /// Friction force of the geometry on the wire along it in the last step
-  /// (N): the tension before the node minus the tension after it.
-  [[nodiscard]] S getFrictionForce() const { return S(frictionForce_); }
-
- protected:
-  ~ContactNodeT() override = default;
-
- private:
-  template <Scalar>
-  friend class WireT;
-  ref_ptr<GeometryT<S>> geometry_;
-  S friction_ = S(-1);
-  double wrap_ = 0.0;
-  double frictionForce_ = 0.0;
-};
-
-using WireNode = WireNodeT<double>;
-using FreeNode = FreeNodeT<double>;
-using BodyFixedNode = BodyFixedNodeT<double>;
-using ContactNode = ContactNodeT<double>;
-namespace f32 {
-using WireNode = WireNodeT<float>;
-using FreeNode = FreeNodeT<float>;
-using BodyFixedNode = BodyFixedNodeT<float>;
-using ContactNode = ContactNodeT<float>;
-}  // namespace f32
-
-}  // namespace spook
-#endif  // SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODE_HPP
-// --- end spook/wire/wire_node.hpp ---
 // --- begin spook/wire/sheave_wrap.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_WIRE_SHEAVE_WRAP_HPP
 #define SPOOK_SINGLE_SPOOK_WIRE_SHEAVE_WRAP_HPP
@@ -22172,10 +22035,150 @@ struct SheaveWrap {
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_WIRE_SHEAVE_WRAP_HPP
 // --- end spook/wire/sheave_wrap.hpp ---
+// --- begin spook/wire/wire_node.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODE_HPP
+#define SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODE_HPP
+
+// The nodes a wire is routed with (wire/wire.hpp), after agxWire's: a
+// FreeNode is a routing point (a free end when first or last), a
+// BodyFixedNode fixes an end of the wire to a body or to the world, a
+// ContactNode routes it over a geometry (a sheave).
+
+#include <cmath>
+#include <limits>
+
+namespace spook {
+
+template <Scalar S>
+class WireT;
+
+template <Scalar S>
+class WireNodeT : public Referenced {
+ public:
+  using Vec3 = Vec3T<S>;
+  enum class Type { FREE, BODY_FIXED, CONTACT };
+
+  [[nodiscard]] Type getType() const { return type_; }
+  /// The body a body-fixed or contact node moves with; nullptr for the
+  /// world and for a free node.
+  [[nodiscard]] virtual RigidBodyT<S>* getRigidBody() const { return body_.get(); }
+  /// Where the node is routed: in the body's model frame for a node fixed
+  /// to a body, in the geometry's frame for a contact node, else in world
+  /// coordinates (m).
+  [[nodiscard]] const Vec3& getPosition() const { return position_; }
+  /// The node's routed position in world coordinates now (m).
+  [[nodiscard]] virtual Vec3 getWorldPosition() const {
+    return body_ ? Vec3(body_->getFrame()->transformPointToWorld(position_)) : position_;
+  }
+
+ protected:
+  WireNodeT(Type type, RigidBodyT<S>* body, const Vec3& position) : type_(type), body_(body), position_(position) {
+    if (!position.allFinite())
+      throw detail::makeError(type == Type::FREE         ? "FreeNode"
+                              : type == Type::BODY_FIXED ? "BodyFixedNode"
+                                                         : "ContactNode",
+                              "", "position must be finite m", position);
+  }
+  ~WireNodeT() override = default;
+
+ private:
+  Type type_;
+  ref_ptr<RigidBodyT<S>> body_;
+  Vec3 position_;
+};
+
+/// A routing point at a world position (m); a free end of the wire when it
+/// is the first or last node of the route.
+template <Scalar S>
+class FreeNodeT : public WireNodeT<S> {
+ public:
+  using Vec3 = Vec3T<S>;
+  explicit FreeNodeT(const Vec3& position) : WireNodeT<S>(WireNodeT<S>::Type::FREE, nullptr, position) {}
+  FreeNodeT(S x, S y, S z) : FreeNodeT(Vec3(x, y, z)) {}
+};
+
+/// An end of the wire fixed to `body` at `position` in its model frame, or
+/// to the world at `position` (world coordinates) when `body` is nullptr.
+/// Only the first or last node of a route may be body-fixed.
+template <Scalar S>
+class BodyFixedNodeT : public WireNodeT<S> {
+ public:
+  using Vec3 = Vec3T<S>;
+  BodyFixedNodeT(RigidBodyT<S>* body, const Vec3& position)
+      : WireNodeT<S>(WireNodeT<S>::Type::BODY_FIXED, body, position) {}
+  BodyFixedNodeT(RigidBodyT<S>* body, S x, S y, S z) : BodyFixedNodeT(body, Vec3(x, y, z)) {}
+};
+
+/// The wire routed over a geometry (agxWire's ContactNode): a sheave. The
+/// geometry's shape must be a cylinder; the wire wraps it in the plane across
+/// its axis through its center, touching it at `position` (geometry frame),
+/// arriving and leaving along tangents, and slides over it against friction
+/// along the wire (the capstan law: it slips once the tensions' ratio on
+/// both sides exceeds e^{μθ}). Neither first nor last in a route.
+template <Scalar S>
+class ContactNodeT : public WireNodeT<S> {
+ public:
+  using Vec3 = Vec3T<S>;
+  ContactNodeT(GeometryT<S>* geometry, const Vec3& position)
+      : WireNodeT<S>(WireNodeT<S>::Type::CONTACT, nullptr, position), geometry_(geometry) {
+    if (!geometry) throw detail::makeError("ContactNode", "", "needs a geometry", "nullptr");
+  }
+  ContactNodeT(GeometryT<S>* geometry, S x, S y, S z) : ContactNodeT(geometry, Vec3(x, y, z)) {}
+
+  [[nodiscard]] GeometryT<S>* getGeometry() const { return geometry_.get(); }
+  /// The geometry's body (as it is now), nullptr when it has none.
+  [[nodiscard]] RigidBodyT<S>* getRigidBody() const override { return geometry_->getRigidBody(); }
+  [[nodiscard]] Vec3 getWorldPosition() const override {
+    return Vec3(geometry_->getFrame()->transformPointToWorld(this->getPosition()));
+  }
+  /// Friction coefficient along the wire, >= 0; until set, the wire
+  /// material's.
+  [[nodiscard]] bool hasFrictionCoefficient() const { return friction_ >= S(0); }
+  [[nodiscard]] S getFrictionCoefficient() const { return friction_; }
+  void setFrictionCoefficient(S coefficient) {
+    if (!(std::isfinite(coefficient) && coefficient >= S(0)))
+      throw detail::makeError("ContactNode", "", "friction coefficient must be finite and >= 0", coefficient);
+    friction_ = coefficient;
+  }
+  /// The angle the wire wraps the geometry (rad), as routed and then after
+  /// each step.
+  [[nodiscard]] S getWrapAngle() const { return S(wrap_); }
+  /// Friction force of the geometry on the wire along it in the last step
+  /// (N): the tension before the node minus the tension after it.
+  [[nodiscard]] S getFrictionForce() const { return S(frictionForce_); }
+
+ protected:
+  ~ContactNodeT() override = default;
+
+ private:
+  template <Scalar>
+  friend class WireT;
+  ref_ptr<GeometryT<S>> geometry_;
+  S friction_ = S(-1);
+  double wrap_ = 0.0;
+  double frictionForce_ = 0.0;
+};
+
+using WireNode = WireNodeT<double>;
+using FreeNode = FreeNodeT<double>;
+using BodyFixedNode = BodyFixedNodeT<double>;
+using ContactNode = ContactNodeT<double>;
+namespace f32 {
+using WireNode = WireNodeT<float>;
+using FreeNode = FreeNodeT<float>;
+using BodyFixedNode = BodyFixedNodeT<float>;
+using ContactNode = ContactNodeT<float>;
+}  // namespace f32
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODE_HPP
+// --- end spook/wire/wire_node.hpp ---
 // --- begin spook/wire/wire_nodes.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODES_HPP
 #define SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODES_HPP
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <iterator>
 #include <span>
@@ -22199,6 +22202,7 @@ class WireNodes : public BodyStore {
     double pulledIn = 0.0;    ///< wire on the drum (m)
     double speed = 0.0;       ///< rate at which wire leaves the drum (m/s)
     double mass = 0.0;        ///< inertia of the wire moving through it (kg)
+    bool winch = true;        ///< a drum (its lengths stay >= 0); false: a contact's slip
   };
 
   [[nodiscard]] std::size_t size() const override { return position_.size() + drums_.size(); }
@@ -22220,6 +22224,12 @@ class WireNodes : public BodyStore {
     position_.erase(position_.begin() + std::ptrdiff_t(i));
     velocity_.erase(velocity_.begin() + std::ptrdiff_t(i));
     mass_.erase(mass_.begin() + std::ptrdiff_t(i));
+  }
+  /// Reverses the nodes' order (the wire's reverse()); drums stay.
+  void reverseNodes() {
+    std::reverse(position_.begin(), position_.end());
+    std::reverse(velocity_.begin(), velocity_.end());
+    std::reverse(mass_.begin(), mass_.end());
   }
   /// Inserts a node before node i (i = size(): at the end).
   void insert(std::size_t i, const Vec3d& position, const Vec3d& velocity, double mass) {
@@ -22249,17 +22259,27 @@ class WireNodes : public BodyStore {
       b.inverseMass = Eigen::Matrix3d::Identity() / mass_[i];
     }
   }
+  // A solve that failed (non-finite, or beyond a drum's ends: the rows that
+  // keep it there are the solver's to meet) must not carry the wire away:
+  // such a node stops where it is, such a drum at its end.
   void move(std::span<const SolverBody> bodies, const StepContext& step) override {
     const double h = step.getTimeStep();
     for (std::size_t i = 0; i < position_.size(); ++i) {
-      velocity_[i] = bodies[i].freeVelocity.head<3>();
+      const Vec3d v = bodies[i].freeVelocity.head<3>();
+      velocity_[i] = v.allFinite() ? v : Vec3d::Zero();
       position_[i] += h * velocity_[i];
     }
     for (std::size_t d = 0; d < drums_.size(); ++d) {
       Drum& drum = drums_[d];
-      drum.speed = bodies[position_.size() + d].freeVelocity.x();
-      drum.freeLength += h * drum.speed;
-      drum.pulledIn -= h * drum.speed;
+      const double speed = bodies[position_.size() + d].freeVelocity.x();
+      drum.speed = std::isfinite(speed) ? speed : 0.0;
+      double travel = h * drum.speed;
+      if (drum.winch && (travel > drum.pulledIn || -travel > drum.freeLength)) {
+        travel = std::clamp(travel, -drum.freeLength, drum.pulledIn);
+        drum.speed = 0.0;
+      }
+      drum.freeLength += travel;
+      drum.pulledIn -= travel;
     }
   }
   void displace(std::span<const SolverBody> bodies) override {
@@ -22449,6 +22469,14 @@ class WireT : public RowProducer {
   void setRadius(S radius);
   /// Lumped nodes per meter of the route.
   [[nodiscard]] S getResolutionPerUnitLength() const { return S(resolution_); }
+  /// Changes the resolution (finite and > 0, at most 1e6 nodes along the
+  /// wire), also in a simulation: from the next step, segments split up to
+  /// it where the tension lets them (adaptive resolution) and shorter
+  /// segments than a quarter of its spacing merge.
+  void setResolutionPerUnitLength(S resolutionPerUnitLength);
+  /// Reverses the wire: its start becomes its end (route, points, winches,
+  /// the sense of its wraps), also in a simulation; its state is kept.
+  void reverse();
   [[nodiscard]] Material* getMaterial() const { return material_.get(); }
   /// Changes the material; its density sets the mass of a wire already
   /// routed into a simulation.
@@ -22457,13 +22485,22 @@ class WireT : public RowProducer {
   /// Unstretched length of the wire off the winches' drums (m): at first
   /// the length of the route.
   [[nodiscard]] S getRestLength() const;
-  /// Length along the current points (m).
+  /// Length along the wire now (m): between its points and around the
+  /// geometries it wraps.
   [[nodiscard]] S getCurrentLength() const;
   /// Mass (kg): density × πr² × rest length.
   [[nodiscard]] S getMass() const;
   /// Tension (N, > 0 pulling) at `distance` (m of rest length) from the
   /// start, that of the segment there in the last step; 0 before any step.
   [[nodiscard]] S getTension(S distanceFromStart) const;
+  /// The point of the wire (world, m) at `distance` (m of rest length,
+  /// clamped to the wire) from its start, on the straight part of the
+  /// segment there (its wraps' arcs count as their tangent points); the
+  /// wire must be in a simulation.
+  [[nodiscard]] Vec3 findPoint(S distanceFromStart) const;
+  /// The distance (m of rest length) from the start to the point of the
+  /// wire closest to `point` (world, m); the wire must be in a simulation.
+  [[nodiscard]] S findDistance(const Vec3& point) const;
   /// The wire's points from its start to its end (world, m): attached ends,
   /// lumped nodes and, for each contact node, where the wire meets and
   /// leaves the geometry; for rendering and inspection. Empty until the
@@ -22486,7 +22523,7 @@ class WireT : public RowProducer {
   using Vec3d = Eigen::Vector3d;
   /// A point of the built wire: a lumped node, an end fixed to a body or
   /// the world at `local` (the body's model frame, or world), or a contact
-  /// (contacts_[contact], on its geometry's body or the world).
+  /// (contacts_[contact], on its geometry's body or the world: bodyOf).
   struct Point {
     int node = -1;
     Body* body = nullptr;
@@ -22526,6 +22563,11 @@ class WireT : public RowProducer {
   [[nodiscard]] Vec3d arrival(const Point& p) const;
   [[nodiscard]] Vec3d departure(const Point& p) const;
   [[nodiscard]] Vec3d worldVelocity(const Point& p) const;
+  /// The body p moves with: a fixed end's, a contact's geometry's (as it is
+  /// now), nullptr for the world and for lumped nodes.
+  [[nodiscard]] const Body* bodyOf(const Point& p) const {
+    return p.contact >= 0 ? contacts_[std::size_t(p.contact)].node->getRigidBody() : p.body;
+  }
   /// Length of segment k along the wire now (m): its straight part and the
   /// arcs of the wraps at its ends.
   [[nodiscard]] double segmentLength(std::size_t k) const;
@@ -22542,6 +22584,7 @@ class WireT : public RowProducer {
   /// bisector.
   void updateContacts();
   void recenterNode(std::size_t point);
+  void leave(std::size_t point);
   void shareRestLength(std::size_t point);
   /// The segment at the winch of end 0 (begin) or 1, when there is one.
   [[nodiscard]] std::size_t winchSegment(int end) const { return end == 0 ? 0 : restLengths_.size() - 1; }
@@ -22582,6 +22625,7 @@ class WireT : public RowProducer {
   struct PointState {
     Vec3d in, out, v, armIn, armOut, centripetal;
     int index = -1, slip = -1;
+    bool broken = false;
   };
   std::vector<PointState> state_;
 };
@@ -22670,6 +22714,80 @@ S WireT<S>::getTension(S distanceFromStart) const {
 }
 
 template <Scalar S>
+auto WireT<S>::findPoint(S distanceFromStart) const -> Vec3 {
+  if (!built()) throw error("is not in a simulation: it has no points yet");
+  double along = std::clamp(double(distanceFromStart), 0.0, double(getRestLength()));
+  std::size_t k = 0;
+  while (k + 1 < restLengths_.size() && along > restLength(k)) along -= restLength(k++);
+  // Along the segment's length now: arc, straight part, arc.
+  const double rest = restLength(k), length = segmentLength(k);
+  const double before = points_[k].contact >= 0 ? contacts_[std::size_t(points_[k].contact)].wrap.arcOut() : 0.0;
+  const double straight = length - wrapped(k);
+  const double t = straight > 0.0 ? std::clamp((along * (rest > 0.0 ? length / rest : 1.0) - before) / straight, 0.0, 1.0)
+                                  : 0.0;
+  const Vec3d a = departure(points_[k]), b = arrival(points_[k + 1]);
+  return (a + t * (b - a)).template cast<S>();
+}
+
+template <Scalar S>
+S WireT<S>::findDistance(const Vec3& point) const {
+  if (!built()) throw error("is not in a simulation: it has no points yet");
+  const Vec3d p = point.template cast<double>();
+  double best = std::numeric_limits<double>::infinity(), distance = 0.0, start = 0.0;
+  for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
+    const Vec3d a = departure(points_[k]), b = arrival(points_[k + 1]);
+    const double span = (b - a).squaredNorm();
+    const double t = span > 0.0 ? std::clamp((p - a).dot(b - a) / span, 0.0, 1.0) : 0.0;
+    const double gap = (a + t * (b - a) - p).norm();
+    if (gap < best) {
+      best = gap;
+      // Rest length in proportion to the length now, arcs included.
+      const double length = segmentLength(k), rest = restLength(k);
+      const double before = points_[k].contact >= 0 ? contacts_[std::size_t(points_[k].contact)].wrap.arcOut() : 0.0;
+      const double at = before + t * (length - wrapped(k));
+      distance = start + (length > 0.0 ? rest * at / length : 0.0);
+    }
+    start += restLength(k);
+  }
+  return S(distance);
+}
+
+template <Scalar S>
+void WireT<S>::setResolutionPerUnitLength(S resolutionPerUnitLength) {
+  if (!(std::isfinite(resolutionPerUnitLength) && resolutionPerUnitLength > S(0)))
+    throw error("resolution must be finite and > 0 nodes per m", resolutionPerUnitLength);
+  const double nodes = double(getRestLength()) * double(resolutionPerUnitLength);
+  if (!(nodes <= 1e6)) throw error("would have more than 1e6 lumped nodes (length x resolution)", nodes);
+  resolution_ = double(resolutionPerUnitLength);
+}
+
+template <Scalar S>
+void WireT<S>::reverse() {
+  std::reverse(route_.begin(), route_.end());
+  std::swap(winches_[0], winches_[1]);
+  if (!built()) return;
+  std::swap(winchRows_[0], winchRows_[1]);
+  std::reverse(points_.begin(), points_.end());
+  std::reverse(restLengths_.begin(), restLengths_.end());
+  std::reverse(stretchImpulse_.begin(), stretchImpulse_.end());
+  std::reverse(tension_.begin(), tension_.end());
+  std::reverse(bent_.begin(), bent_.end());
+  bendImpulse_.assign(bendImpulse_.size(), 0.0);  // their directions follow the geometry anew
+  nodes_->reverseNodes();
+  renumberNodes();
+  // A wrap turns the other way; its slip, pending and moving, the other way along the wire.
+  for (Contact& contact : contacts_) {
+    detail::SheaveWrap& wrap = contact.wrap;
+    wrap.sense = -wrap.sense;
+    std::swap(wrap.in, wrap.out);
+    detail::WireNodes::Drum& slip = nodes_->drum(contact.slip);
+    slip.freeLength = -slip.freeLength;
+    slip.speed = -slip.speed;
+    contact.frictionImpulse = -contact.frictionImpulse;
+  }
+}
+
+template <Scalar S>
 double WireT<S>::restLength(std::size_t k) const {
   for (int end = 0; end < 2; ++end)
     if (winches_[end] && k == winchSegment(end)) return nodes_->drum(winches_[end]->drum_).freeLength;
@@ -22715,7 +22833,8 @@ auto WireT<S>::departure(const Point& p) const -> Vec3d {
 template <Scalar S>
 auto WireT<S>::worldVelocity(const Point& p) const -> Vec3d {
   if (p.node >= 0) return nodes_->velocity(std::size_t(p.node));
-  if (p.body) return p.body->getVelocityAtPoint(worldPosition(p).template cast<S>()).template cast<double>();
+  if (const Body* body = bodyOf(p))
+    return body->getVelocityAtPoint(worldPosition(p).template cast<S>()).template cast<double>();
   return Vec3d::Zero();
 }
 
@@ -22805,7 +22924,6 @@ void WireT<S>::build() {
       p.local = node.getPosition().template cast<double>();
     } else if (contactOf[k] >= 0) {
       p.contact = contactOf[k];
-      p.body = node.getRigidBody();
     } else {
       p.node = int(nodes_->add(world(k), 0.0));
     }
@@ -22851,6 +22969,7 @@ void WireT<S>::addDrums() {
   for (Contact& contact : contacts_) {
     detail::WireNodes::Drum slip;
     slip.mass = linearDensity() / resolution_;
+    slip.winch = false;
     contact.slip = nodes_->addDrum(slip);
   }
   for (int end = 0; end < 2; ++end) {
@@ -22902,8 +23021,10 @@ void WireT<S>::beginStep(const StepContext& step) {
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     if (points_[k].contact < 0) continue;
     detail::WireNodes::Drum& slip = nodes_->drum(contacts_[std::size_t(points_[k].contact)].slip);
-    restLengths_[k - 1] += slip.freeLength;
-    restLengths_[k] -= slip.freeLength;
+    // No more than the segment it slides from holds (a failed solve's slip).
+    const double travel = std::clamp(slip.freeLength, -restLengths_[k - 1], restLengths_[k]);
+    restLengths_[k - 1] += travel;
+    restLengths_[k] -= travel;
     slip.freeLength = 0.0;
   }
   const double h2 = step.getTimeStep() * step.getTimeStep();
@@ -22923,7 +23044,7 @@ void WireT<S>::beginStep(const StepContext& step) {
   }
   const double target = 1.0 / resolution_, density = linearDensity();
   for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
-    if (restLengths_[k] < 1.999 * target) continue;
+    if (restLengths_[k] < 1.999 * target || !std::isfinite(segmentLength(k))) continue;
     // The node a split would add: mass ρ_l r/2, between halves of L/2.
     const double rho = h2 * 4.0 * pull(k) / (density * restLengths_[k] / 2.0);
     if (rho < 1.0) {
@@ -22958,13 +23079,43 @@ void WireT<S>::updateContacts() {
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     if (points_[k].contact < 0) continue;
     Contact& contact = contacts_[std::size_t(points_[k].contact)];
+    // Beside a body whose state is not finite (frozen), the wrap stays as it was.
+    const Contact before = contact;
     placePlane(contact);
     contact.wrap.place(departure(points_[k - 1]), arrival(points_[k + 1]));
+    if (!(std::isfinite(contact.wrap.in) && std::isfinite(contact.wrap.out) && contact.wrap.center.allFinite() &&
+          contact.wrap.e1.allFinite() && contact.wrap.e2.allFinite())) {
+      contact = before;
+      continue;
+    }
+    if (contact.wrap.wrap < 0.0) {
+      leave(k--);
+      continue;
+    }
     const double moved = contact.wrap.reanchor();
     restLengths_[k - 1] -= moved;
     restLengths_[k] += moved;
     contact.node->wrap_ = contact.wrap.wrap;
   }
+}
+
+// The wire has unwrapped past the tangent line: it no longer touches the
+// geometry. The contact's segments merge (their rest lengths add) and it
+// leaves the wire for good (a wire is not yet put back on a geometry it
+// meets again); its slip stops.
+template <Scalar S>
+void WireT<S>::leave(std::size_t k) {
+  Contact& contact = contacts_[std::size_t(points_[k].contact)];
+  contact.node->wrap_ = 0.0;
+  contact.row = -1;
+  nodes_->drum(contact.slip).speed = 0.0;
+  restLengths_[k - 1] += restLengths_[k];
+  restLengths_.erase(restLengths_.begin() + std::ptrdiff_t(k));
+  stretchImpulse_.erase(stretchImpulse_.begin() + std::ptrdiff_t(k));
+  tension_.erase(tension_.begin() + std::ptrdiff_t(k));
+  bendImpulse_.erase(bendImpulse_.begin() + std::ptrdiff_t(2 * k), bendImpulse_.begin() + std::ptrdiff_t(2 * k + 2));
+  bent_.erase(bent_.begin() + std::ptrdiff_t(k));
+  points_.erase(points_.begin() + std::ptrdiff_t(k));
 }
 
 // Splits the rest length of the segments beside point k in proportion to
@@ -22973,14 +23124,16 @@ template <Scalar S>
 void WireT<S>::shareRestLength(std::size_t k) {
   const double total = restLengths_[k - 1] + restLengths_[k];
   const double before = segmentLength(k - 1), after = segmentLength(k);
-  restLengths_[k - 1] = before + after > 0.0 ? total * before / (before + after) : 0.5 * total;
+  const bool measured = std::isfinite(before + after) && before + after > 0.0;
+  restLengths_[k - 1] = measured ? total * before / (before + after) : 0.5 * total;
   restLengths_[k] = total - restLengths_[k - 1];
 }
 
 template <Scalar S>
 void WireT<S>::recenterNode(std::size_t k) {
   const std::size_t node = std::size_t(points_[k].node);
-  nodes_->setPosition(node, 0.5 * (departure(points_[k - 1]) + arrival(points_[k + 1])));
+  const Vec3d middle = 0.5 * (departure(points_[k - 1]) + arrival(points_[k + 1]));
+  if (middle.allFinite()) nodes_->setPosition(node, middle);
   shareRestLength(k);
 }
 
@@ -23086,15 +23239,20 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     s.slip = p.contact >= 0 ? step.indexOf(*nodes_, nodes_->numNodes() + contacts_[std::size_t(p.contact)].slip) : -1;
     if (p.node >= 0) {
       s.index = step.indexOf(*nodes_, std::size_t(p.node));
-    } else if (p.body) {
-      s.index = step.indexOf(*p.body);
-      if (s.index < 0) throw error("is fixed to a body that left the simulation", p.body->getName());
-      const Vec3d center = p.body->getCmPosition().template cast<double>();
+    } else if (const Body* body = bodyOf(p)) {
+      s.index = step.indexOf(*body);
+      if (s.index < 0) throw error("is fixed to or wraps a body that left the simulation", body->getName());
+      const Vec3d center = body->getCmPosition().template cast<double>();
       s.armIn = s.in - center;
       s.armOut = s.out - center;
-      const Vec3d w = p.body->getAngularVelocity().template cast<double>();
+      const Vec3d w = body->getAngularVelocity().template cast<double>();
       s.centripetal = w.cross(w.cross(s.armOut));
     }
+    // A body whose state is not finite (the simulation freezes it) holds
+    // nothing: rows at it are written empty, so that they keep their places.
+    s.broken = !(s.in.allFinite() && s.out.allFinite() && s.v.allFinite() && s.centripetal.allFinite() &&
+                 s.armIn.allFinite() && s.armOut.allFinite());
+    if (s.broken) s.index = -1;
   }
   const auto drumIndex = [&](std::size_t segment) {
     for (int end = 0; end < 2; ++end)
@@ -23116,6 +23274,12 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   for (std::size_t k = 0; k + 1 < n; ++k) {
     const Vec3d d = state_[k + 1].in - state_[k].out;
     const double straight = d.norm();
+    const double violation = restLengths_[k] - segmentLength(k);
+    if (state_[k].broken || state_[k + 1].broken || !std::isfinite(straight) || !std::isfinite(violation)) {
+      detail::Row& r = rows.add(stretchImpulse_[k]);
+      r.compliance = restLengths_[k] / stretchStiffness;
+      continue;
+    }
     const Vec3d u = straight > 0.0 ? Vec3d(d / straight) : Vec3d::UnitX();
     detail::WireRowBodies bodies;
     bodies.add(state_[k].index, u, state_[k].armOut);
@@ -23126,7 +23290,7 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     if (bodies.overflow) throw error("has a segment whose row would couple more than three bodies; segment", k);
     detail::Row& r = rows.add(stretchImpulse_[k]);
     bodies.write(rows, r);
-    r.violation = restLengths_[k] - segmentLength(k);
+    r.violation = violation;
     r.compliance = restLengths_[k] / stretchStiffness;
     r.damping = double(wire.getDampingStretch());
     // κ = ½vᵀ∇²g v = ½(|ḋ⊥|²/|d| + u·(p̈_b − p̈_a)) with the body points'
@@ -23136,7 +23300,8 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
       const Vec3d rate = state_[k + 1].v - state_[k].v;
       const Vec3d across = rate - u * u.dot(rate);
       const double relative = u.dot(state_[k + 1].centripetal - state_[k].centripetal);
-      rows.setCurvature(rows.size() - 1, -0.5 * (across.squaredNorm() / straight + relative));
+      const double curvature = -0.5 * (across.squaredNorm() / straight + relative);
+      if (std::isfinite(curvature)) rows.setCurvature(rows.size() - 1, curvature);
     }
   }
   // Bend: g = e·(t₂ − t₁) for the two directions e across the mean tangent;
@@ -23147,7 +23312,8 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     const Vec3d d1 = state_[k].in - state_[k - 1].out, d2 = state_[k + 1].in - state_[k].out;
     const double l1 = d1.norm(), l2 = d2.norm();
     // A contact shapes the wire around its geometry: no bend rows there.
-    bent_[k] = bendStiffness > 0.0 && l1 > 0.0 && l2 > 0.0 && points_[k].contact < 0;
+    bent_[k] = bendStiffness > 0.0 && l1 > 0.0 && l2 > 0.0 && points_[k].contact < 0 && !state_[k - 1].broken &&
+               !state_[k].broken && !state_[k + 1].broken;
     if (!bent_[k]) continue;
     const Vec3d t1 = d1 / l1, t2 = d2 / l2;
     const Vec3d mean = t1 + t2;
@@ -23185,14 +23351,15 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   const double h = step.getTimeStep();
   const auto inverseMass = [&](const Point& p) {
     if (p.node >= 0) return 1.0 / nodes_->mass(std::size_t(p.node));
-    if (p.body && p.body->getMotionControl() == Body::MotionControl::DYNAMICS)
-      return 1.0 / double(p.body->getMassProperties()->getMass());
+    const Body* body = bodyOf(p);
+    if (body && body->getMotionControl() == Body::MotionControl::DYNAMICS)
+      return 1.0 / double(body->getMassProperties()->getMass());
     return 0.0;
   };
   for (std::size_t k = 0; k + 1 < n; ++k) {
     const Vec3d d = state_[k + 1].in - state_[k].out;
     const double length = d.norm(), tension = tension_[k];
-    if (!(length > 0.0 && tension > 0.0)) continue;
+    if (!(length > 0.0 && tension > 0.0) || state_[k].broken || state_[k + 1].broken) continue;
     const double rho = h * h * tension / length * (inverseMass(points_[k]) + inverseMass(points_[k + 1]));
     if (!(rho > 1.0)) continue;
     const double weight = 1.0 - 1.0 / rho;

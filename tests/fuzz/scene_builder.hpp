@@ -349,6 +349,54 @@ struct Builder {
     }
   }
 
+  // A wire between random ends (free, fixed to a body or the world, a
+  // winch with random speed, force and brake), routed through free nodes
+  // and over cylinders on bodies or the world.
+  void wire(spook::SimulationT<S>& sim, const std::vector<spook::ref_ptr<Body>>& bodies) {
+    spook::ref_ptr<spook::WireT<S>> w = new spook::WireT<S>(real(1e-4, 0.1), real(0.1, 20));
+    auto& material = *w->getMaterial()->getWireMaterial();
+    w->getMaterial()->getBulkMaterial()->setDensity(real(1, 1e4));
+    material.setYoungsModulusStretch(real(1e3, 1e12));
+    material.setYoungsModulusBend(in.flag() ? S(0) : real(1, 1e12));
+    material.setFrictionCoefficient(real(0, 2));
+    const auto anyBody = [&]() -> Body* {
+      return in.choice(3) == 0 ? nullptr : bodies[static_cast<std::size_t>(in.choice(static_cast<int>(bodies.size())))].get();
+    };
+    const auto end = [&] {
+      switch (in.choice(3)) {
+        case 0: w->add(new spook::FreeNodeT<S>(vec(-3, 3))); break;
+        case 1: w->add(new spook::BodyFixedNodeT<S>(anyBody(), vec(-1, 1))); break;
+        default: {
+          spook::ref_ptr<spook::WireWinchControllerT<S>> winch =
+              new spook::WireWinchControllerT<S>(anyBody(), vec(-1, 1), vec(-1, 1));
+          winch->setSpeed(real(-5, 5));
+          winch->setForceRange(-real(0, 1e5), real(0, 1e5));
+          if (in.flag()) winch->setBrakeForceRange(-real(0, 1e5), real(0, 1e5));
+          w->add(winch, real(0, 50));
+        }
+      }
+    };
+    end();
+    const int middle = in.choice(4);
+    for (int i = 0; i < middle; ++i) {
+      if (in.flag()) {
+        spook::ref_ptr<spook::GeometryT<S>> sheave =
+            new spook::GeometryT<S>(new spook::CylinderT<S>(real(0.05, 1), real(0.05, 1)), transform());
+        if (Body* carrier = anyBody()) carrier->add(sheave);
+        else sim.add(sheave);
+        spook::ref_ptr<spook::ContactNodeT<S>> contact = new spook::ContactNodeT<S>(sheave.get(), vec(-1, 1));
+        if (in.flag()) contact->setFrictionCoefficient(real(0, 2));
+        w->add(contact);
+      } else {
+        w->add(new spook::FreeNodeT<S>(vec(-3, 3)));
+      }
+    }
+    end();
+    sim.add(w);
+    wires.push_back(w);
+  }
+  std::vector<spook::ref_ptr<spook::WireT<S>>> wires;
+
   void scene(spook::SimulationT<S>& sim) {
     const int policy = in.choice(3);
     spook::ref_ptr<spook::Solver> solver;
@@ -392,6 +440,8 @@ struct Builder {
     for (int i = 0; i < numBodies; ++i) bodies.push_back(body(sim, i));
     const int numJoints = in.choice(9);
     for (int i = 0; i < numJoints; ++i) joint(sim, bodies);
+    const int numWires = in.choice(3);
+    for (int i = 0; i < numWires; ++i) wire(sim, bodies);
   }
 
   static bool finite(const Body& b) {
@@ -428,6 +478,11 @@ struct Builder {
         for (const auto& f : frozen) reported = reported || f.body.get() == b.get();
         if (!reported && !skipping("unreported-nonfinite")) finding("non-finite body state not reported frozen", step, b->getName().c_str());
       }
+      // A wire's end on a frozen body is where that body is.
+      if (frozen.empty())
+        for (const auto& w : wires)
+          for (const Vec3& p : w->getPoints())
+            if (!p.allFinite()) finding("non-finite wire point", step, w->getName().c_str());
     }
   }
 };

@@ -30,7 +30,7 @@ class WireNodeT : public Referenced {
   [[nodiscard]] Type getType() const { return type_; }
   /// The body a body-fixed or contact node moves with; nullptr for the
   /// world and for a free node.
-  [[nodiscard]] RigidBodyT<S>* getRigidBody() const { return body_.get(); }
+  [[nodiscard]] virtual RigidBodyT<S>* getRigidBody() const { return body_.get(); }
   /// Where the node is routed: in the body's model frame for a node fixed
   /// to a body, in the geometry's frame for a contact node, else in world
   /// coordinates (m).
@@ -89,13 +89,14 @@ class ContactNodeT : public WireNodeT<S> {
  public:
   using Vec3 = Vec3T<S>;
   ContactNodeT(GeometryT<S>* geometry, const Vec3& position)
-      : WireNodeT<S>(WireNodeT<S>::Type::CONTACT, geometry ? geometry->getRigidBody() : nullptr, position),
-        geometry_(geometry) {
+      : WireNodeT<S>(WireNodeT<S>::Type::CONTACT, nullptr, position), geometry_(geometry) {
     if (!geometry) throw detail::makeError("ContactNode", "", "needs a geometry", "nullptr");
   }
   ContactNodeT(GeometryT<S>* geometry, S x, S y, S z) : ContactNodeT(geometry, Vec3(x, y, z)) {}
 
   [[nodiscard]] GeometryT<S>* getGeometry() const { return geometry_.get(); }
+  /// The geometry's body (as it is now), nullptr when it has none.
+  [[nodiscard]] RigidBodyT<S>* getRigidBody() const override { return geometry_->getRigidBody(); }
   [[nodiscard]] Vec3 getWorldPosition() const override {
     return Vec3(geometry_->getFrame()->transformPointToWorld(this->getPosition()));
   }

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <iterator>
 #include <span>
@@ -25,6 +27,7 @@ class WireNodes : public BodyStore {
     double pulledIn = 0.0;    ///< wire on the drum (m)
     double speed = 0.0;       ///< rate at which wire leaves the drum (m/s)
     double mass = 0.0;        ///< inertia of the wire moving through it (kg)
+    bool winch = true;        ///< a drum (its lengths stay >= 0); false: a contact's slip
   };
 
   [[nodiscard]] std::size_t size() const override { return position_.size() + drums_.size(); }
@@ -46,6 +49,12 @@ class WireNodes : public BodyStore {
     position_.erase(position_.begin() + std::ptrdiff_t(i));
     velocity_.erase(velocity_.begin() + std::ptrdiff_t(i));
     mass_.erase(mass_.begin() + std::ptrdiff_t(i));
+  }
+  /// Reverses the nodes' order (the wire's reverse()); drums stay.
+  void reverseNodes() {
+    std::reverse(position_.begin(), position_.end());
+    std::reverse(velocity_.begin(), velocity_.end());
+    std::reverse(mass_.begin(), mass_.end());
   }
   /// Inserts a node before node i (i = size(): at the end).
   void insert(std::size_t i, const Vec3d& position, const Vec3d& velocity, double mass) {
@@ -75,17 +84,27 @@ class WireNodes : public BodyStore {
       b.inverseMass = Eigen::Matrix3d::Identity() / mass_[i];
     }
   }
+  // A solve that failed (non-finite, or beyond a drum's ends: the rows that
+  // keep it there are the solver's to meet) must not carry the wire away:
+  // such a node stops where it is, such a drum at its end.
   void move(std::span<const SolverBody> bodies, const StepContext& step) override {
     const double h = step.getTimeStep();
     for (std::size_t i = 0; i < position_.size(); ++i) {
-      velocity_[i] = bodies[i].freeVelocity.head<3>();
+      const Vec3d v = bodies[i].freeVelocity.head<3>();
+      velocity_[i] = v.allFinite() ? v : Vec3d::Zero();
       position_[i] += h * velocity_[i];
     }
     for (std::size_t d = 0; d < drums_.size(); ++d) {
       Drum& drum = drums_[d];
-      drum.speed = bodies[position_.size() + d].freeVelocity.x();
-      drum.freeLength += h * drum.speed;
-      drum.pulledIn -= h * drum.speed;
+      const double speed = bodies[position_.size() + d].freeVelocity.x();
+      drum.speed = std::isfinite(speed) ? speed : 0.0;
+      double travel = h * drum.speed;
+      if (drum.winch && (travel > drum.pulledIn || -travel > drum.freeLength)) {
+        travel = std::clamp(travel, -drum.freeLength, drum.pulledIn);
+        drum.speed = 0.0;
+      }
+      drum.freeLength += travel;
+      drum.pulledIn -= travel;
     }
   }
   void displace(std::span<const SolverBody> bodies) override {
