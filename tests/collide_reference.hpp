@@ -1103,7 +1103,7 @@ inline constexpr double kCcdDepth = 1e-4;
 /// Cases per libccd pair and scalar: 10,000 contacts as a simulation makes
 /// them (and a twentieth as many deep overlaps, logged) in optimized
 /// builds. Without NDEBUG (the Debug + AddressSanitizer build of CI, some
-/// 20 times slower) 200 (and 100: at least a fifth of the deep cases must
+/// 20 times slower) 100 (and 60 deep: at least a fifth of them must
 /// intersect, which 20 draws missed by chance): the bridge's polishing
 /// (0.08–0.65 ms a call in Release) and the brute-force references
 /// would take most of an hour there. -DSPOOK_CCD_CASES=n sets the count
@@ -1113,9 +1113,9 @@ inline constexpr int kCcdCases = SPOOK_CCD_CASES;
 #elif defined(NDEBUG)
 inline constexpr int kCcdCases = 10000;
 #else
-inline constexpr int kCcdCases = 200;
+inline constexpr int kCcdCases = 100;
 #endif
-inline constexpr int kCcdDeepCases = kCcdCases / 20 > 100 ? kCcdCases / 20 : 100;
+inline constexpr int kCcdDeepCases = kCcdCases / 20 > 60 ? kCcdCases / 20 : 60;
 
 /// Contacts as a simulation makes them: the second shape turned at random
 /// and moved so that its deepest point along −u, for a random direction u,

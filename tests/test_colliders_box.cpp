@@ -395,7 +395,7 @@ template <class S>
 void checkBoxBoxAgainstFcl(PoseSampler& sampler) {
   int intersecting = 0, decided = 0, agreed = 0, quirks = 0;
   double worstDepth = 0, worstAngle = 0, worstOverlap = 0;
-  const int trials = spook::test::sweep(10000, 2000);
+  const int trials = spook::test::sweep(10000, 800);
   for (int trial = 0; trial < trials; ++trial) {
     const V3 halfA = sampler.halfExtents(), halfB = sampler.halfExtents();
     spook::ref_ptr<spook::BoxT<S>> a = new spook::BoxT<S>(halfA.cast<S>()), b = new spook::BoxT<S>(halfB.cast<S>());
@@ -464,7 +464,7 @@ template <class S>
 void checkBoxCapsuleAgainstExact(PoseSampler& sampler) {
   int intersecting = 0, decided = 0, agreedFcl = 0, agreedExact = 0, normalsCompared = 0, fclOff = 0;
   double worstDepth = 0, worstAngle = 0, worstOverlap = 0, worstFclDepth = 0;
-  const int trials = spook::test::sweep(10000, 2000);
+  const int trials = spook::test::sweep(10000, 800);
   for (int trial = 0; trial < trials; ++trial) {
     const V3 half = sampler.halfExtents();
     const double radius = sampler.length(0.05, 0.5);

@@ -2,7 +2,7 @@
 // or a segment, and the hull–plane collider, float and double; see
 // test_colliders_ccd.cpp for the pairs with a box, a cylinder or a sphere
 // and for what is judged (checkCcd: 10,000 contacts as a simulation makes
-// them per pair and scalar, 200 without NDEBUG, plus deep overlaps;
+// them per pair and scalar, 100 without NDEBUG, plus deep overlaps;
 // intersecting or not agrees in >= 99.9 % of the cases farther than 1e-6 m
 // from touching, depth within 1e-4 m, normal within 1e-3 rad or
 // equivalent). The hulls are randomHull's: half of them 20–40 points on an
@@ -256,7 +256,7 @@ TEST_CASE("the separating-axis references agree with all edge pairs and with the
   double worstPruning = 0.0, worstCapsule = 0.0, worstLine = 0.0, worstHulls = 0.0;
   int cases = 0;
   const auto gap = [](const Reference& x, const Reference& y) { return std::abs(x.depth - y.depth); };
-  for (int k = 0; k < spook::test::sweep(200, 60); ++k)
+  for (int k = 0; k < spook::test::sweep(200, 30); ++k)
     for (const bool deep : {false, true}) {
       const auto pick = [&](auto* a, auto* b) { return deep ? near(random, a, b, 1.6) : touching(random, a, b); };
       const auto hulls = pick(randomHull(random), randomHull(random));

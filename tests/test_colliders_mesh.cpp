@@ -200,9 +200,9 @@ Reference axesMinimum(const A& a, const Transformd& X_WA, const B& b, const Tran
 #ifdef NDEBUG
 constexpr int kPoses = 10000;
 #else
-// Debug builds (CI's sanitizer stage): a fortieth; under ASan a brute-force
+// Debug builds (CI's sanitizer stage): an eightieth; under ASan a brute-force
 // reference over 1,000 poses took 30-47 s per case, half of that stage.
-constexpr int kPoses = 250;
+constexpr int kPoses = 120;
 #endif
 // The libccd pairs cost ~0.5 ms per contact (the bridge polishes each from
 // seven starts), 10,000 poses 5..20 s per pair and scalar;

@@ -3,7 +3,7 @@
 // mesh triangles in colliders/mesh.hpp), float and double.
 //
 // Differential: 10,000 contacts as a simulation makes them per pair and
-// scalar (200 without NDEBUG, kCcdCases), against the test's own
+// scalar (100 without NDEBUG, kCcdCases), against the test's own
 // separating-axis references (polytopeReference, convexLineReference, each
 // checked against the brute-force overlap minimum in
 // test_colliders_ccd_more.cpp): intersecting or not agrees in >= 99.9 % of

@@ -122,9 +122,9 @@ TEST_CASE_TEMPLATE("a pyramid of 210 unit cubes with a base of 20 stands for 5 s
   REQUIRE(boxes.size() == 210);
   std::vector<spook::Vec3T<S>> start;
   for (const auto& b : boxes) start.push_back(b->getPosition());
-  // A third of a second in Debug and sanitizer builds, which look for memory
+  // A sixth of a second in Debug and sanitizer builds, which look for memory
   // errors and undefined behavior in every stage of the step, not for drift.
-  const int steps = spook::test::sweep(300, 20);
+  const int steps = spook::test::sweep(300, 10);
   for (int step = 0; step < steps; ++step) sim->stepForward();
   S worst = S(0);
   for (std::size_t i = 0; i < boxes.size(); ++i) worst = std::max(worst, (boxes[i]->getPosition() - start[i]).norm());
@@ -249,7 +249,7 @@ TEST_CASE_TEMPLATE("a brick-pattern pyramid of 55 unit cubes stands for 5 s, 1 k
       REQUIRE(boxes.size() == 55);
       std::vector<spook::Vec3T<S>> start;
       for (const auto& b : boxes) start.push_back(b->getPosition());
-      const int steps = spook::test::sweep(300, 60);
+      const int steps = spook::test::sweep(300, 40);
       int fallbackSteps = 0, cuts = 0, mostFactorizations = 0;
       bool withinBudget = true;
       for (int step = 0; step < steps; ++step) {

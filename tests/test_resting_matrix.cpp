@@ -168,8 +168,8 @@ struct Rest {
   double sink = 0, drift = 0, speed = 0;  // m, m, m/s
 };
 
-/// Steps of 1/60 s a body rests (3 s; 1 s in the sanitized build).
-const int kRestSteps = spook::test::sweep(180, 60);
+/// Steps of 1/60 s a body rests (3 s; 2/3 s in the sanitized build).
+const int kRestSteps = spook::test::sweep(180, 40);
 
 /// A body placed touching the ground (off the mesh vertices), left for 3 s:
 /// how far it sank below its touching height, how far it ended from where
@@ -266,7 +266,7 @@ std::pair<double, double> roll(Ground ground, Roller kind, double degrees) {
   const double I = double(body->getMassProperties()->getInertiaTensor()(1, 1));  // about the rolling axis y
   const double k = 1.0 / (1.0 + I / (m * double(r) * double(r)));
   const double h = 1.0 / 60.0;
-  const int steps = spook::test::sweep(120, 60);
+  const int steps = spook::test::sweep(120, 40);
   double angle = 0;
   for (int step = 0; step < steps; ++step) {
     sim->stepForward();
@@ -353,7 +353,7 @@ Slide slide(Ground ground, Body kind, S cell, double speed, double heading) {
   body->getGeometries().front()->setMaterial(ice);
   body->setVelocity(S(speed) * direction);
   Slide s;
-  const int steps = spook::test::sweep(int(14.0 / speed * 60.0), 60);
+  const int steps = spook::test::sweep(int(14.0 / speed * 60.0), 40);
   for (int step = 0; step < steps; ++step) {
     sim->stepForward();
     s.bounce = std::max(s.bounce, double(std::abs(body->getVelocity().z())));
