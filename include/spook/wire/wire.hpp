@@ -84,6 +84,35 @@ class WireT : public RowProducer {
   /// Reverses the wire: its start becomes its end (route, points, winches,
   /// the sense of its wraps), also in a simulation; its state is kept.
   void reverse();
+  /// Cuts the wire in a simulation `distanceFromStart` (m of rest length,
+  /// at least a quarter of the node spacing from either end) from its
+  /// start: it keeps the part before, with a free end there; the part
+  /// after is returned as a new wire (named after this one, " cut"), with
+  /// the free end, the contacts and the end attachment or winch beyond the
+  /// cut; add it to the simulation to go on simulating it. Rest length,
+  /// mass and the nodes' motion are kept.
+  [[nodiscard]] ref_ptr<WireT> cut(S distanceFromStart);
+  /// Joins `other` to this wire's end: this end and other's start must be
+  /// free (no attachment, no winch), both wires of the same radius and
+  /// material, both in the same simulation or both not yet in one. A
+  /// straight piece of wire as long as the gap joins the two ends (none
+  /// when they are closer than a quarter of the node spacing: the end
+  /// nodes become one). `other` is left empty: remove it from the
+  /// simulation; it cannot be added again.
+  void merge(WireT* other);
+  /// Frees the begin (`begin`) or the end of the wire from the body, the
+  /// world or the winch it is attached to: a lumped node takes its place,
+  /// moving with the point it was attached at. A winch keeps the wire that
+  /// was on its drum (getPulledInLength) and can be attached again.
+  void detach(bool begin);
+  /// Attaches the free begin or end of the wire to `node` (a BodyFixedNode
+  /// on a body of the wire's simulation, or on the world) through a
+  /// straight piece of wire as long as the gap (merged away when shorter
+  /// than a quarter of the node spacing).
+  void attach(ref_ptr<Node> node, bool begin);
+  /// Attaches the free begin or end to `winch` holding `pulledInLength` m
+  /// (finite, >= 0) on its drum, as attach(node) does.
+  void attach(ref_ptr<Winch> winch, S pulledInLength, bool begin);
   [[nodiscard]] Material* getMaterial() const { return material_.get(); }
   /// Changes the material; its density sets the mass of a wire already
   /// routed into a simulation.
@@ -185,13 +214,37 @@ class WireT : public RowProducer {
            (point + 1 < points_.size() && points_[point + 1].contact >= 0);
   }
   /// The sheave's plane now from its geometry's frame.
-  void placePlane(Contact& contact) const;
+  void placePlane(const ContactNode& node, detail::SheaveWrap& wrap) const;
   /// Contacts at the start of a step: their slip moves rest length across
   /// them, their tangents follow the points beside them, C returns to the
   /// bisector.
   void updateContacts();
   void recenterNode(std::size_t point);
   void leave(std::size_t point);
+  /// Point k goes: its two segments become one (their rest lengths add).
+  void erasePoint(std::size_t point);
+  /// The segment `distance` (m of rest length, clamped) from the start and
+  /// how far into it.
+  void locate(double distance, std::size_t& segment, double& along) const;
+  /// The point `along` (m of rest length) into segment k, on its straight part.
+  [[nodiscard]] Vec3d pointOn(std::size_t segment, double along) const;
+  /// Winch segments' rest lengths from their drums (restLengths_ holds the
+  /// drums' free lengths between beginStep and the solve only).
+  void syncWinchSegments();
+  /// Gives each contact's slip and winch's drum a place in the store anew:
+  /// their indices are into `drums` (winch `end`'s into `winchDrums[end]`).
+  void placeDrums(const std::vector<detail::WireNodes::Drum>& drums,
+                  const std::vector<detail::WireNodes::Drum>* winchDrums[2]);
+  /// The contacts the points refer to, renumbered from 0 (contacts left
+  /// behind by a wire that unwrapped are dropped).
+  void keepContactsOf(const std::vector<Contact>& contacts);
+  /// Where the wire's `end` is attached: a body-fixed point of the wire's
+  /// simulation; throws unless that end is free.
+  void checkFreeEnd(int end) const;
+  /// Attaches the free `end` to `node` (body-fixed, on a body of the
+  /// wire's simulation).
+  void attachEnd(int end, ref_ptr<Node> node);
+  void clearState();
   void shareRestLength(std::size_t point);
   /// The segment at the winch of end 0 (begin) or 1, when there is one.
   [[nodiscard]] std::size_t winchSegment(int end) const { return end == 0 ? 0 : restLengths_.size() - 1; }
@@ -200,7 +253,8 @@ class WireT : public RowProducer {
   void addDrums();
   /// Whether an inner node may leave: two winches keep a segment each.
   [[nodiscard]] bool removable() const { return !(winches_[0] && winches_[1] && restLengths_.size() <= 2); }
-  void writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow);
+  /// `stretchStiffness`: E·A of the wire (N).
+  void writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow, double stretchStiffness);
   void writeFrictionRows(RowWriter& rows, std::size_t firstRow);
 
   double radius_;
@@ -323,17 +377,10 @@ S WireT<S>::getTension(S distanceFromStart) const {
 template <Scalar S>
 auto WireT<S>::findPoint(S distanceFromStart) const -> Vec3 {
   if (!built()) throw error("is not in a simulation: it has no points yet");
-  double along = std::clamp(double(distanceFromStart), 0.0, double(getRestLength()));
   std::size_t k = 0;
-  while (k + 1 < restLengths_.size() && along > restLength(k)) along -= restLength(k++);
-  // Along the segment's length now: arc, straight part, arc.
-  const double rest = restLength(k), length = segmentLength(k);
-  const double before = points_[k].contact >= 0 ? contacts_[std::size_t(points_[k].contact)].wrap.arcOut() : 0.0;
-  const double straight = length - wrapped(k);
-  const double t = straight > 0.0 ? std::clamp((along * (rest > 0.0 ? length / rest : 1.0) - before) / straight, 0.0, 1.0)
-                                  : 0.0;
-  const Vec3d a = departure(points_[k]), b = arrival(points_[k + 1]);
-  return (a + t * (b - a)).template cast<S>();
+  double along = 0.0;
+  locate(double(distanceFromStart), k, along);
+  return pointOn(k, along).template cast<S>();
 }
 
 template <Scalar S>
@@ -459,11 +506,10 @@ double WireT<S>::wrapped(std::size_t k) const {
 }
 
 template <Scalar S>
-void WireT<S>::placePlane(Contact& contact) const {
-  const GeometryT<S>& geometry = *contact.node->getGeometry();
+void WireT<S>::placePlane(const ContactNode& node, detail::SheaveWrap& wrap) const {
+  const GeometryT<S>& geometry = *node.getGeometry();
   const auto& cylinder = geometry.getShapes().front();
   const auto X = geometry.getTransform() * cylinder.transform;  // cylinder → world
-  detail::SheaveWrap& wrap = contact.wrap;
   wrap.radius = double(static_cast<const CylinderT<S>&>(*cylinder.shape).getRadius());
   wrap.center = X.translation().template cast<double>();
   wrap.axis = (X.linear() * Vec3::UnitY()).template cast<double>();
@@ -518,7 +564,7 @@ void WireT<S>::build() {
     if (route_[k]->getType() != Node::Type::CONTACT) continue;
     Contact contact;
     contact.node = static_cast<ContactNode*>(route_[k].get());
-    placePlane(contact);
+    placePlane(*contact.node, contact.wrap);
     contact.wrap.route(world(k - 1), world(k), world(k + 1));
     contactOf[k] = int(contacts_.size());
     contacts_.push_back(contact);
@@ -660,20 +706,24 @@ void WireT<S>::beginStep(const StepContext& step) {
       ++k;
     }
   }
+  const auto innerNode = [&](std::size_t k) { return k > 0 && k + 1 < points_.size() && points_[k].node >= 0; };
   for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
     if (restLengths_[k] - wrapped(k) >= 0.25 * target) continue;
+    // A node not beside a contact goes (the segments beside it merge);
+    // else the one beside a contact moves to the middle of its neighbours
+    // (it would stay bunched up with a node before it).
+    bool mended = false;
     for (const std::size_t end : {k + 1, k}) {
-      if (end == 0 || end + 1 == points_.size() || points_[end].node < 0) continue;
-      if (nextToContact(end)) {
-        recenterNode(end);
-      } else if (removable()) {
-        removeNode(end);
-      } else {
-        continue;
-      }
-      changed = true;
-      break;
+      if (mended || !innerNode(end) || nextToContact(end) || !removable()) continue;
+      removeNode(end);
+      mended = true;
     }
+    for (const std::size_t end : {k + 1, k}) {
+      if (mended || !innerNode(end) || !nextToContact(end)) continue;
+      recenterNode(end);
+      mended = true;
+    }
+    changed = changed || mended;
   }
   if (changed) updateMasses();
   updateContacts();
@@ -686,15 +736,14 @@ void WireT<S>::updateContacts() {
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     if (points_[k].contact < 0) continue;
     Contact& contact = contacts_[std::size_t(points_[k].contact)];
+    detail::SheaveWrap wrap = contact.wrap;
+    placePlane(*contact.node, wrap);
+    wrap.place(departure(points_[k - 1]), arrival(points_[k + 1]));
     // Beside a body whose state is not finite (frozen), the wrap stays as it was.
-    const Contact before = contact;
-    placePlane(contact);
-    contact.wrap.place(departure(points_[k - 1]), arrival(points_[k + 1]));
-    if (!(std::isfinite(contact.wrap.in) && std::isfinite(contact.wrap.out) && contact.wrap.center.allFinite() &&
-          contact.wrap.e1.allFinite() && contact.wrap.e2.allFinite())) {
-      contact = before;
+    if (!(std::isfinite(wrap.in) && std::isfinite(wrap.out) && wrap.center.allFinite() && wrap.e1.allFinite() &&
+          wrap.e2.allFinite()))
       continue;
-    }
+    contact.wrap = wrap;
     if (contact.wrap.wrap < 0.0) {
       leave(k--);
       continue;
@@ -716,6 +765,11 @@ void WireT<S>::leave(std::size_t k) {
   contact.node->wrap_ = 0.0;
   contact.row = -1;
   nodes_->drum(contact.slip).speed = 0.0;
+  erasePoint(k);
+}
+
+template <Scalar S>
+void WireT<S>::erasePoint(std::size_t k) {
   restLengths_[k - 1] += restLengths_[k];
   restLengths_.erase(restLengths_.begin() + std::ptrdiff_t(k));
   stretchImpulse_.erase(stretchImpulse_.begin() + std::ptrdiff_t(k));
@@ -759,16 +813,10 @@ void WireT<S>::removeNode(std::size_t k) {
     nodes_->setVelocity(n, (nodes_->mass(n) * nodes_->velocity(n) + momentum) / (nodes_->mass(n) + 0.5 * mass));
     nodes_->setMass(n, nodes_->mass(n) + 0.5 * mass);
   }
-  restLengths_[k - 1] += restLengths_[k];
   stretchImpulse_[k - 1] = 0.5 * (stretchImpulse_[k - 1] + stretchImpulse_[k]);
   tension_[k - 1] = 0.5 * (tension_[k - 1] + tension_[k]);
-  restLengths_.erase(restLengths_.begin() + std::ptrdiff_t(k));
-  stretchImpulse_.erase(stretchImpulse_.begin() + std::ptrdiff_t(k));
-  tension_.erase(tension_.begin() + std::ptrdiff_t(k));
-  bendImpulse_.erase(bendImpulse_.begin() + std::ptrdiff_t(2 * k), bendImpulse_.begin() + std::ptrdiff_t(2 * k + 2));
-  bent_.erase(bent_.begin() + std::ptrdiff_t(k));
   nodes_->erase(node);
-  points_.erase(points_.begin() + std::ptrdiff_t(k));
+  erasePoint(k);
   renumberNodes();
 }
 
@@ -831,6 +879,7 @@ struct WireRowBodies {
 
 template <Scalar S>
 void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
+  if (!built()) return;  // merged into another wire
   const std::size_t n = points_.size(), firstRow = rows.size();
   state_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -983,7 +1032,7 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
       r.compliance = length / (weight * h * tension);
     }
   }
-  writeWinchRows(rows, step, firstRow);
+  writeWinchRows(rows, step, firstRow, stretchStiffness);
   writeFrictionRows(rows, firstRow);
 }
 
@@ -1025,7 +1074,8 @@ void WireT<S>::writeFrictionRows(RowWriter& rows, std::size_t firstRow) {
 // a hundredth of the node spacing (the wire is all hauled in) and the
 // pulled-in length above 0 (the drum is empty).
 template <Scalar S>
-void WireT<S>::writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow) {
+void WireT<S>::writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow,
+                              double stretchStiffness) {
   const auto offset = [&] { return int(rows.size() - firstRow); };
   for (int end = 0; end < 2; ++end) {
     WinchRows& written = winchRows_[end];
@@ -1034,9 +1084,7 @@ void WireT<S>::writeWinchRows(RowWriter& rows, const StepContext& step, std::siz
     if (!winch) continue;
     const detail::WireNodes::Drum& drum = nodes_->drum(winch->drum_);
     const int index = step.indexOf(*nodes_, nodes_->numNodes() + winch->drum_);
-    const double compliance = restLengths_[winchSegment(end)] /
-                              (double(material_->getWireMaterial()->getYoungsModulusStretch()) * std::numbers::pi *
-                               radius_ * radius_);
+    const double compliance = restLengths_[winchSegment(end)] / stretchStiffness;
     const bool braking = winch->getSpeed() == S(0);
     const double lower = double(winch->getForceRangeLower()) + (braking ? double(winch->getBrakeForceRangeLower()) : 0.0);
     const double upper = double(winch->getForceRangeUpper()) + (braking ? double(winch->getBrakeForceRangeUpper()) : 0.0);
@@ -1105,6 +1153,12 @@ void WireT<S>::readBack(std::span<const double> impulses, const StepContext& ste
   }
   stepped_ = true;
 }
+
+}  // namespace spook
+
+#include <spook/wire/wire_operations.hpp>
+
+namespace spook {
 
 SPOOK_COMPILED_ONCE(class, WireT)
 

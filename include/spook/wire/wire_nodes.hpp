@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <iterator>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -62,6 +63,19 @@ class WireNodes : public BodyStore {
     velocity_.insert(velocity_.begin() + std::ptrdiff_t(i), velocity);
     mass_.insert(mass_.begin() + std::ptrdiff_t(i), mass);
   }
+  /// Moves nodes [first, numNodes()) to the end of `to` (a wire's cut and
+  /// merge); drums stay.
+  void moveNodesTo(std::size_t first, WireNodes& to) {
+    const auto from = std::ptrdiff_t(first);
+    to.position_.insert(to.position_.end(), position_.begin() + from, position_.end());
+    to.velocity_.insert(to.velocity_.end(), velocity_.begin() + from, velocity_.end());
+    to.mass_.insert(to.mass_.end(), mass_.begin() + from, mass_.end());
+    position_.erase(position_.begin() + from, position_.end());
+    velocity_.erase(velocity_.begin() + from, velocity_.end());
+    mass_.erase(mass_.begin() + from, mass_.end());
+  }
+  /// Takes all drums out (their indices start again from 0).
+  std::vector<Drum> takeDrums() { return std::exchange(drums_, {}); }
   std::size_t addDrum(const Drum& drum) {
     drums_.push_back(drum);
     return drums_.size() - 1;
