@@ -23104,9 +23104,11 @@ void WireT<S>::beginStep(const StepContext& step) {
   }
   const double target = 1.0 / resolution_, density = linearDensity();
   for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
-    if (restLengths_[k] < 1.999 * target || !std::isfinite(segmentLength(k))) continue;
-    // The node a split would add: mass ρ_l r/2, between halves of L/2.
-    const double rho = h2 * 4.0 * pull(k) / (density * restLengths_[k] / 2.0);
+    // A wrap's arc holds no node: the straight part is split.
+    const double straight = restLengths_[k] - wrapped(k);
+    if (straight < 1.999 * target || !std::isfinite(segmentLength(k))) continue;
+    // The node a split would add: mass ρ_l L/2, between halves of L/2.
+    const double rho = h2 * 4.0 * std::max(tension_[k], 0.0) / straight / (density * straight / 2.0);
     if (rho < 1.0) {
       splitSegment(k);
       changed = true;
