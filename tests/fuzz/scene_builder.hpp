@@ -17,7 +17,9 @@
 // range [lo, hi], 224..254 pick an extreme value (kExtremes), and 255 takes
 // the next 8 bytes as a raw IEEE double.
 //   scene:  scalar (double/float), solver policy and knobs, time step,
-//           gravity, ground, then up to 8 bodies and up to 8 joints
+//           gravity, ground, then up to 8 bodies, up to 8 joints, up to 2
+//           wires, and the step before which one wire operation runs (cut,
+//           merge, detach, attach; none in half of the runs)
 //   body:   shape, its parameters, motion control, mass, pose, velocities
 //   joint:  type, the two bodies (or the world), world point and axis,
 //           compliance, damping, controllers of the free DOFs
@@ -97,8 +99,13 @@ inline void skipIf(const char* name, bool reaches) {
   if (reaches && skipping(name)) throw Skipped{};
 }
 
+/// A finding aborts (libFuzzer keeps the input); the sweep of random scenes
+/// (sweep_scenes.cpp) sets findingThrows to count them and go on.
+struct Finding {};
+inline bool findingThrows = false;
 [[noreturn]] inline void finding(const char* what, int step, const char* detail) {
   std::fprintf(stderr, "spook fuzz finding: %s (step %d): %s\n", what, step, detail);
+  if (findingThrows) throw Finding{};
   std::abort();
 }
 
@@ -397,6 +404,47 @@ struct Builder {
   }
   std::vector<spook::ref_ptr<spook::WireT<S>>> wires;
 
+  // A wire operation between two steps: cut (the new part added to the
+  // simulation), merge two wires (the emptied one removed), detach an end,
+  // attach a free end to a body, the world or a winch. A refused one
+  // (spook::Error) changes nothing and the run goes on.
+  void operate(spook::SimulationT<S>& sim) {
+    if (wires.empty()) return;
+    const auto pickWire = [&] { return wires[static_cast<std::size_t>(in.choice(static_cast<int>(wires.size())))]; };
+    spook::ref_ptr<spook::WireT<S>> w = pickWire();
+    Body* body = bodies.empty() || in.flag() ? nullptr
+                                             : bodies[static_cast<std::size_t>(in.choice(static_cast<int>(bodies.size())))].get();
+    try {
+      switch (in.choice(5)) {
+        case 0: {
+          spook::ref_ptr<spook::WireT<S>> part = w->cut(real(-1, 30));
+          sim.add(part);
+          wires.push_back(part);
+          break;
+        }
+        case 1: {
+          spook::ref_ptr<spook::WireT<S>> other = pickWire();
+          w->merge(other.get());
+          sim.remove(other.get());
+          wires.erase(std::find(wires.begin(), wires.end(), other));
+          break;
+        }
+        case 2: w->detach(in.flag()); break;
+        case 3: w->attach(new spook::BodyFixedNodeT<S>(body, vec(-1, 1)), in.flag()); break;
+        default: {
+          spook::ref_ptr<spook::WireWinchControllerT<S>> winch =
+              new spook::WireWinchControllerT<S>(body, vec(-1, 1), vec(-1, 1));
+          winch->setSpeed(real(-5, 5));
+          winch->setForceRange(-real(0, 1e5), real(0, 1e5));
+          w->attach(winch, real(0, 20), in.flag());
+        }
+      }
+    } catch (const spook::Error&) {
+    }
+  }
+  std::vector<spook::ref_ptr<Body>> bodies;
+  int operationStep = -1;
+
   void scene(spook::SimulationT<S>& sim) {
     const int policy = in.choice(3);
     spook::ref_ptr<spook::Solver> solver;
@@ -435,13 +483,13 @@ struct Builder {
         break;
     }
 
-    std::vector<spook::ref_ptr<Body>> bodies;
     const int numBodies = 1 + in.choice(8);
     for (int i = 0; i < numBodies; ++i) bodies.push_back(body(sim, i));
     const int numJoints = in.choice(9);
     for (int i = 0; i < numJoints; ++i) joint(sim, bodies);
     const int numWires = in.choice(3);
     for (int i = 0; i < numWires; ++i) wire(sim, bodies);
+    operationStep = in.choice(2 * kSteps);  // none in half of the runs
   }
 
   static bool finite(const Body& b) {
@@ -459,6 +507,7 @@ struct Builder {
       return;  // a known finding (SPOOK_FUZZ_SKIP)
     }
     for (int step = 0; step < kSteps; ++step) {
+      if (step == operationStep) operate(*sim);
       const auto start = std::chrono::steady_clock::now();
       try {
         sim->stepForward();
