@@ -162,8 +162,8 @@ TEST_CASE_TEMPLATE("an Atwood machine over a cylinder accelerates as the capstan
     const double e = std::exp(mu * std::numbers::pi);
     const double a = (heavy - light * e) * kGravity / (heavy + light * e);
     const double length = double(rig.wire->getRestLength());
-    // The accelerations over the second half of a second (the first step
-    // holds: the friction has no tensions to go by yet).
+    // The accelerations over the second half of a second (the loads start
+    // at rest: the first steps' wave along the wire settles).
     for (int s = 0; s < 30; ++s) rig.sim->stepForward();
     const double heavyFrom = double(rig.right->getVelocity().z()), lightFrom = double(rig.left->getVelocity().z());
     for (int s = 0; s < 30; ++s) rig.sim->stepForward();
@@ -361,4 +361,62 @@ TEST_CASE_TEMPLATE("a winch hauls a light load over a guide at its speed, nodes 
   CHECK(highest == doctest::Approx(weight).epsilon(0.01));
   CHECK(most <= nodes + 2);
   CHECK(double(contact->getWrapAngle()) == doctest::Approx(std::numbers::pi).epsilon(1e-3));
+}
+
+// A winch hauls 20 kg up over a fixed cylinder with friction (θ = π): the
+// wire slips over it steadily, the winch pulling e^{μθ} times the load (the
+// capstan law). With the friction bound from the last step's tensions the
+// winch alternated between stalled and yanking the load at 2 m/s.
+TEST_CASE_TEMPLATE("a winch hauls a load over a fixed sheave against the capstan friction, steadily", S, double,
+                   float) {
+  using Vec3 = Vec3T<S>;
+  for (const double mu : {0.2, 0.41667}) {
+    CAPTURE(mu);
+    ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+    ref_ptr<RigidBodyT<S>> holder = new RigidBodyT<S>();
+    ref_ptr<GeometryT<S>> sheave = new GeometryT<S>(new CylinderT<S>(S(0.5), S(0.2)));
+    holder->add(sheave);
+    holder->setMotionControl(RigidBodyT<S>::MotionControl::STATIC);
+    sim->add(holder);
+    ref_ptr<RigidBodyT<S>> load = new RigidBodyT<S>();
+    load->getMassProperties()->setMass(S(20));
+    load->setPosition(S(0.5), S(0), S(-5));
+    sim->add(load);
+    ref_ptr<WireWinchControllerT<S>> winch =
+        new WireWinchControllerT<S>(nullptr, Vec3(S(-0.5), S(0), S(-5)), Vec3(S(0), S(0), S(1)));
+    winch->setForceRange(S(-5e3), S(5e3));
+    ref_ptr<ContactNodeT<S>> contact = new ContactNodeT<S>(sheave.get(), Vec3(S(0), S(0), S(0.5)));
+    contact->setFrictionCoefficient(S(mu));
+    ref_ptr<WireT<S>> wire = new WireT<S>(S(0.005), S(5));
+    wire->getMaterial()->getBulkMaterial()->setDensity(S(100));  // 8 g/m: the load's tension throughout
+    wire->add(new BodyFixedNodeT<S>(load.get(), Vec3::Zero()));
+    wire->add(contact);
+    wire->add(winch, S(3));
+    sim->add(wire);
+    for (int s = 0; s < 30; ++s) sim->stepForward();
+    winch->setSpeed(S(-0.5));
+    double slowest = 1e9, fastest = 0, lowestPull = 1e9, highestPull = 0, lowestFriction = 1e9, highestFriction = 0;
+    for (int s = 0; s < 120; ++s) {
+      sim->stepForward();
+      if (s < 10) continue;  // the winch's start
+      const double v = double(load->getVelocity().z()), pull = -double(winch->getCurrentForce());
+      const double friction = double(contact->getFrictionForce());
+      slowest = std::min(slowest, v);
+      fastest = std::max(fastest, v);
+      lowestPull = std::min(lowestPull, pull);
+      highestPull = std::max(highestPull, pull);
+      lowestFriction = std::min(lowestFriction, std::abs(friction));
+      highestFriction = std::max(highestFriction, std::abs(friction));
+    }
+    const double weight = 20.0 * kGravity, ratio = std::exp(mu * std::numbers::pi);
+    MESSAGE("mu " << mu << ": load at " << slowest << ".." << fastest << " m/s; the winch pulls " << lowestPull << ".."
+                  << highestPull << " N (e^(mu pi) m g = " << ratio * weight << "), friction " << lowestFriction
+                  << ".." << highestFriction << " N (" << (ratio - 1.0) * weight << ")");
+    CHECK(slowest == doctest::Approx(0.5).epsilon(0.01));
+    CHECK(fastest == doctest::Approx(0.5).epsilon(0.01));
+    CHECK(lowestPull == doctest::Approx(ratio * weight).epsilon(0.02));
+    CHECK(highestPull == doctest::Approx(ratio * weight).epsilon(0.02));
+    CHECK(lowestFriction == doctest::Approx((ratio - 1.0) * weight).epsilon(0.02));
+    CHECK(highestFriction == doctest::Approx((ratio - 1.0) * weight).epsilon(0.02));
+  }
 }

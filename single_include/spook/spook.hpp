@@ -9042,6 +9042,10 @@ struct FrictionLink {
   int partner = -1;          ///< cone rows: the contact's other tangent row
   double coefficient = 0.0;  ///< μ
   FrictionBound bound = FrictionBound::FIXED;
+  /// Without the least compliance of contact friction (islands.hpp,
+  /// kFrictionSofterThan): a lone friction row on a degree of freedom of
+  /// its own (a wire's slip over a sheave), which that floor would let creep.
+  bool exact = false;
 };
 
 /// A translational row's lever arms (world, m) from each center of mass to
@@ -17999,10 +18003,11 @@ class RowWriter {
   /// Makes row `row` a friction row whose bounds follow the impulse of row
   /// `normal` (both this producer's): ±μΛn per row (SCALED_BOX), or within
   /// the disk of radius μΛn with its contact's other tangent row `partner`
-  /// (CONE); with FIXED the row keeps its own bounds.
+  /// (CONE); with FIXED the row keeps its own bounds. `exact`: without the
+  /// least compliance contact friction rows get (detail::FrictionLink).
   void setFriction(std::size_t row, std::size_t normal, double coefficient, detail::FrictionBound bound,
-                   int partner = -1) {
-    rows_.friction.push_back({static_cast<int>(row), static_cast<int>(normal), partner, coefficient, bound});
+                   int partner = -1, bool exact = false) {
+    rows_.friction.push_back({static_cast<int>(row), static_cast<int>(normal), partner, coefficient, bound, exact});
   }
   /// A third body of row `row` (StepContext::indexOf) and its Jacobian
   /// block (linear, angular): G v = J1·v1 + J2·v2 + J·v3.
@@ -20762,9 +20767,9 @@ class IslandStepper {
         e.sigma = SpookParameters::velocitySigma(r.compliance, h);
       }
       // A floor far below any physical compliance keeps redundant rigid rows
-      // (compliance 0) positive definite; friction rows get a higher one
-      // (kFrictionSofterThan).
-      e.sigma = std::max(e.sigma, (f && f->normal >= 0 ? kFrictionSofterThan : 1e-12) * mobility);
+      // (compliance 0) positive definite; contact friction rows get a
+      // higher one (kFrictionSofterThan).
+      e.sigma = std::max(e.sigma, (f && f->normal >= 0 && !f->exact ? kFrictionSofterThan : 1e-12) * mobility);
       e.diagonal = mobility + e.sigma;
       e.lower = r.lower * h;
       e.upper = r.upper * h;
@@ -20933,7 +20938,7 @@ class ContactRows {
           row.upper = mu * normalEstimate / double(std::max<std::size_t>(contact.getNumEnabledPoints(), 1));
           row.lower = -row.upper;
           set.friction.push_back({static_cast<int>(rows.size()), normalIndex,
-                                  bound == FrictionBound::CONE ? normalIndex + 2 - k : -1, mu, bound});
+                                  bound == FrictionBound::CONE ? normalIndex + 2 - k : -1, mu, bound, false});
           append(row, lastForceOfPoint.dot(tangent[k]) * h);
         }
         points_.push_back({&point, pairKey(contact), local, n, t1, t2});
@@ -22677,7 +22682,6 @@ class WireT : public RowProducer {
   std::vector<double> tension_;         ///< per segment (N)
   ref_ptr<Winch> winches_[2];           ///< at the begin and end, or none
   std::vector<Contact> contacts_;
-  bool stepped_ = false;  ///< readBack has run: tension_ holds a step's tensions
   /// A winch's rows of the last step: offsets in this wire's rows (−1:
   /// none) and impulses (N·s). `allIn` keeps some wire off the drum,
   /// `allOut` some on it.
@@ -23448,11 +23452,16 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
 // A contact's friction along the wire (the capstan law, PHYSICS.md §7): the
 // slip's force is the difference of the tensions before and after it; the
 // wire holds while the higher tension is within e^{μθ} of the lower, so the
-// slip row's bounds are ±(e^{μθ} − 1)·T_low with the last step's tensions
-// (in the first step, which has none, it holds). Not a friction row that
-// follows its normal's impulse (RowWriter::setFriction): the solver softens
-// those (islands.hpp), and the slip's small inertia (one node's length of
-// wire) turned that into a creep of 1.6 cm/s under a 2.5:1 load.
+// slip row is a friction row bounded by (e^{μθ} − 1)·T_low, T_low the
+// tension of the stretch row on the low side (RowWriter::setFriction) in the
+// same solve: a bound from the last step's tensions lagged a step, and a
+// winch hauling over a fixed sheave alternated between stalled (the bound
+// of a tight step held the wire while the other side went slack) and
+// yanked (a slack step's bound let it run). The low side is the one with
+// the lower tension in the last step (before the first, the one before).
+// The row is exact (no least compliance): the slip's small inertia (one
+// node's length of wire) turned contact friction's floor into a creep of
+// 1.6 cm/s under a 2.5:1 load.
 template <Scalar S>
 void WireT<S>::writeFrictionRows(RowWriter& rows, std::size_t firstRow) {
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
@@ -23463,17 +23472,22 @@ void WireT<S>::writeFrictionRows(RowWriter& rows, std::size_t firstRow) {
                           ? double(contact.node->getFrictionCoefficient())
                           : double(material_->getWireMaterial()->getFrictionCoefficient());
     const double coefficient = std::expm1(mu * std::max(contact.wrap.wrap, 0.0));
-    if (!(coefficient > 0.0)) continue;
-    const double low = std::max(0.0, std::min(tension_[k - 1], tension_[k]));
-    const double bound = stepped_ ? coefficient * low : std::numeric_limits<double>::infinity();
+    if (!(coefficient > 0.0) || !std::isfinite(coefficient)) continue;
+    const std::size_t low = tension_[k] < tension_[k - 1] ? k : k - 1;
     contact.row = int(rows.size() - firstRow);
     detail::Row& r = rows.add(contact.frictionImpulse);
     r.body1 = state_[k].slip;
     r.J1 = detail::Vec6d::Unit(0);
     r.holonomic = false;
     r.speed = 0.0;
-    r.lower = -bound;
-    r.upper = bound;
+    // The first of the direct solver's friction passes starts from the last
+    // step's bound: a slip that accelerates converges in a few passes
+    // (from an unbounded start, 8 passes left a slipping capstan at μ 0.5
+    // 10 % short of e^{μθ}).
+    const double start = coefficient * std::max(0.0, tension_[low]);
+    r.lower = -start;
+    r.upper = start;
+    rows.setFriction(rows.size() - 1, firstRow + low, coefficient, detail::FrictionBound::SCALED_BOX, -1, true);
   }
 }
 
@@ -23560,7 +23574,6 @@ void WireT<S>::readBack(std::span<const double> impulses, const StepContext& ste
     contact.frictionImpulse = contact.row >= 0 ? impulses[std::size_t(contact.row)] : 0.0;
     contact.node->frictionForce_ = contact.frictionImpulse / h;
   }
-  stepped_ = true;
 }
 
 }  // namespace spook
@@ -23666,7 +23679,6 @@ auto WireT<S>::cut(S distanceFromStart) -> ref_ptr<WireT> {
 
   ref_ptr<WireT> other = new WireT(S(radius_), S(resolution_), material_);
   other->setName(getName() + " cut");
-  other->stepped_ = stepped_;
   std::size_t kept = 0;  // mass nodes before the cut
   for (std::size_t i = 0; i <= k; ++i) kept += points_[i].node >= 0 ? 1 : 0;
   other->nodes_->add(position, 0.0);

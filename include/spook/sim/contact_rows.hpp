@@ -137,7 +137,7 @@ class ContactRows {
           row.upper = mu * normalEstimate / double(std::max<std::size_t>(contact.getNumEnabledPoints(), 1));
           row.lower = -row.upper;
           set.friction.push_back({static_cast<int>(rows.size()), normalIndex,
-                                  bound == FrictionBound::CONE ? normalIndex + 2 - k : -1, mu, bound});
+                                  bound == FrictionBound::CONE ? normalIndex + 2 - k : -1, mu, bound, false});
           append(row, lastForceOfPoint.dot(tangent[k]) * h);
         }
         points_.push_back({&point, pairKey(contact), local, n, t1, t2});

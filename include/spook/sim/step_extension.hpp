@@ -87,10 +87,11 @@ class RowWriter {
   /// Makes row `row` a friction row whose bounds follow the impulse of row
   /// `normal` (both this producer's): ±μΛn per row (SCALED_BOX), or within
   /// the disk of radius μΛn with its contact's other tangent row `partner`
-  /// (CONE); with FIXED the row keeps its own bounds.
+  /// (CONE); with FIXED the row keeps its own bounds. `exact`: without the
+  /// least compliance contact friction rows get (detail::FrictionLink).
   void setFriction(std::size_t row, std::size_t normal, double coefficient, detail::FrictionBound bound,
-                   int partner = -1) {
-    rows_.friction.push_back({static_cast<int>(row), static_cast<int>(normal), partner, coefficient, bound});
+                   int partner = -1, bool exact = false) {
+    rows_.friction.push_back({static_cast<int>(row), static_cast<int>(normal), partner, coefficient, bound, exact});
   }
   /// A third body of row `row` (StepContext::indexOf) and its Jacobian
   /// block (linear, angular): G v = J1·v1 + J2·v2 + J·v3.

@@ -217,9 +217,9 @@ class IslandStepper {
         e.sigma = SpookParameters::velocitySigma(r.compliance, h);
       }
       // A floor far below any physical compliance keeps redundant rigid rows
-      // (compliance 0) positive definite; friction rows get a higher one
-      // (kFrictionSofterThan).
-      e.sigma = std::max(e.sigma, (f && f->normal >= 0 ? kFrictionSofterThan : 1e-12) * mobility);
+      // (compliance 0) positive definite; contact friction rows get a
+      // higher one (kFrictionSofterThan).
+      e.sigma = std::max(e.sigma, (f && f->normal >= 0 && !f->exact ? kFrictionSofterThan : 1e-12) * mobility);
       e.diagonal = mobility + e.sigma;
       e.lower = r.lower * h;
       e.upper = r.upper * h;

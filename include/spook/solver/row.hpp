@@ -75,6 +75,10 @@ struct FrictionLink {
   int partner = -1;          ///< cone rows: the contact's other tangent row
   double coefficient = 0.0;  ///< μ
   FrictionBound bound = FrictionBound::FIXED;
+  /// Without the least compliance of contact friction (islands.hpp,
+  /// kFrictionSofterThan): a lone friction row on a degree of freedom of
+  /// its own (a wire's slip over a sheave), which that floor would let creep.
+  bool exact = false;
 };
 
 /// A translational row's lever arms (world, m) from each center of mass to

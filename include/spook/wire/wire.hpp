@@ -270,7 +270,6 @@ class WireT : public RowProducer {
   std::vector<double> tension_;         ///< per segment (N)
   ref_ptr<Winch> winches_[2];           ///< at the begin and end, or none
   std::vector<Contact> contacts_;
-  bool stepped_ = false;  ///< readBack has run: tension_ holds a step's tensions
   /// A winch's rows of the last step: offsets in this wire's rows (−1:
   /// none) and impulses (N·s). `allIn` keeps some wire off the drum,
   /// `allOut` some on it.
@@ -1041,11 +1040,16 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
 // A contact's friction along the wire (the capstan law, PHYSICS.md §7): the
 // slip's force is the difference of the tensions before and after it; the
 // wire holds while the higher tension is within e^{μθ} of the lower, so the
-// slip row's bounds are ±(e^{μθ} − 1)·T_low with the last step's tensions
-// (in the first step, which has none, it holds). Not a friction row that
-// follows its normal's impulse (RowWriter::setFriction): the solver softens
-// those (islands.hpp), and the slip's small inertia (one node's length of
-// wire) turned that into a creep of 1.6 cm/s under a 2.5:1 load.
+// slip row is a friction row bounded by (e^{μθ} − 1)·T_low, T_low the
+// tension of the stretch row on the low side (RowWriter::setFriction) in the
+// same solve: a bound from the last step's tensions lagged a step, and a
+// winch hauling over a fixed sheave alternated between stalled (the bound
+// of a tight step held the wire while the other side went slack) and
+// yanked (a slack step's bound let it run). The low side is the one with
+// the lower tension in the last step (before the first, the one before).
+// The row is exact (no least compliance): the slip's small inertia (one
+// node's length of wire) turned contact friction's floor into a creep of
+// 1.6 cm/s under a 2.5:1 load.
 template <Scalar S>
 void WireT<S>::writeFrictionRows(RowWriter& rows, std::size_t firstRow) {
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
@@ -1056,17 +1060,22 @@ void WireT<S>::writeFrictionRows(RowWriter& rows, std::size_t firstRow) {
                           ? double(contact.node->getFrictionCoefficient())
                           : double(material_->getWireMaterial()->getFrictionCoefficient());
     const double coefficient = std::expm1(mu * std::max(contact.wrap.wrap, 0.0));
-    if (!(coefficient > 0.0)) continue;
-    const double low = std::max(0.0, std::min(tension_[k - 1], tension_[k]));
-    const double bound = stepped_ ? coefficient * low : std::numeric_limits<double>::infinity();
+    if (!(coefficient > 0.0) || !std::isfinite(coefficient)) continue;
+    const std::size_t low = tension_[k] < tension_[k - 1] ? k : k - 1;
     contact.row = int(rows.size() - firstRow);
     detail::Row& r = rows.add(contact.frictionImpulse);
     r.body1 = state_[k].slip;
     r.J1 = detail::Vec6d::Unit(0);
     r.holonomic = false;
     r.speed = 0.0;
-    r.lower = -bound;
-    r.upper = bound;
+    // The first of the direct solver's friction passes starts from the last
+    // step's bound: a slip that accelerates converges in a few passes
+    // (from an unbounded start, 8 passes left a slipping capstan at μ 0.5
+    // 10 % short of e^{μθ}).
+    const double start = coefficient * std::max(0.0, tension_[low]);
+    r.lower = -start;
+    r.upper = start;
+    rows.setFriction(rows.size() - 1, firstRow + low, coefficient, detail::FrictionBound::SCALED_BOX, -1, true);
   }
 }
 
@@ -1153,7 +1162,6 @@ void WireT<S>::readBack(std::span<const double> impulses, const StepContext& ste
     contact.frictionImpulse = contact.row >= 0 ? impulses[std::size_t(contact.row)] : 0.0;
     contact.node->frictionForce_ = contact.frictionImpulse / h;
   }
-  stepped_ = true;
 }
 
 }  // namespace spook
