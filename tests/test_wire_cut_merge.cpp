@@ -89,6 +89,20 @@ TEST_CASE_TEMPLATE("a cut wire's lower half falls freely with its load and the u
 // load's weight at the bottom, and the wire's weight more at the top).
 TEST_CASE_TEMPLATE("two merged wires carry their load through the joint", S, double, float) {
   using Vec3 = Vec3T<S>;
+  {
+    // Before a simulation: the routes join (at the point both ends share).
+    ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+    ref_ptr<WireT<S>> upper = new WireT<S>(S(0.01), S(2)), lower = new WireT<S>(S(0.01), S(2), upper->getMaterial());
+    upper->add(new BodyFixedNodeT<S>(nullptr, Vec3(S(0), S(0), S(10))));
+    upper->add(new FreeNodeT<S>(Vec3(S(0), S(0), S(5))));
+    lower->add(new FreeNodeT<S>(Vec3(S(0), S(0), S(5))));
+    lower->add(new FreeNodeT<S>(Vec3(S(1), S(0), S(5))));
+    upper->merge(lower.get());
+    CHECK(upper->getRoute().size() == 3);
+    CHECK(lower->getRoute().empty());
+    sim->add(upper);
+    CHECK(double(upper->getRestLength()) == doctest::Approx(6.0).epsilon(1e-6));
+  }
   for (const double offset : {0.0, 0.5}) {
     CAPTURE(offset);
     ref_ptr<SimulationT<S>> sim = new SimulationT<S>();

@@ -22962,7 +22962,15 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
 template <Scalar S>
 void WireT<S>::prepare(const StepContext& simulation) {
   checkRoute(simulation);
-  if (!built()) build();
+  if (built()) return;
+  try {
+    build();
+  } catch (...) {
+    // Refused: the wire stays as routed (its store is not in the simulation yet).
+    clearState();
+    nodes_ = new detail::WireNodes();
+    throw;
+  }
 }
 
 template <Scalar S>
@@ -23001,7 +23009,10 @@ void WireT<S>::build() {
                                  : world(k + 1);
     // A mass node beside each contact keeps every row within three bodies.
     const int fewest = contactOf[k] >= 0 || contactOf[k + 1] >= 0 ? 2 : 1;
-    const int segments = std::max(fewest, int(std::ceil((b - a).norm() * resolution_ - 1e-9)));
+    // The tangent points of a wrap can lie far from the routed points (a huge sheave).
+    const double span = (b - a).norm() * resolution_;
+    if (!(span <= 1e6)) throw error("would have more than 1e6 lumped nodes on a span of its route; nodes", span);
+    const int segments = std::max(fewest, int(std::ceil(span - 1e-9)));
     for (int i = 1; i < segments; ++i) {
       Point p;
       p.node = int(nodes_->add(a + (b - a) * (double(i) / segments), 0.0));
@@ -23657,9 +23668,9 @@ void WireT<S>::clearState() {
   winchRows_[0] = winchRows_[1] = WinchRows{};
 }
 
-// The cut segment's two parts share its rest length as they share its
-// length now; the new free ends move as the wire did there. The tension of
-// both parts starts from 0: the cut released it.
+// The cut segment's two parts share its rest length as the cut point shares
+// it (both stretched alike); the new free ends move as the wire did there.
+// The tension of both parts starts from 0: the cut released it.
 template <Scalar S>
 auto WireT<S>::cut(S distanceFromStart) -> ref_ptr<WireT> {
   if (!built()) throw error("is not in a simulation: there is nothing to cut yet");
@@ -23686,33 +23697,31 @@ auto WireT<S>::cut(S distanceFromStart) -> ref_ptr<WireT> {
   nodes_->moveNodesTo(kept, *other->nodes_);
   nodes_->insert(kept, position, velocity, 0.0);
 
-  const auto at = [](auto& v, std::size_t i) { return v.begin() + std::ptrdiff_t(i); };
-  Point end;
-  end.node = int(kept);
-  Point start;
+  // Per point and per segment: entries from `from` on go to the end of `to`.
+  const auto moveTail = [](auto& mine, std::size_t from, auto& to) {
+    to.insert(to.end(), mine.begin() + std::ptrdiff_t(from), mine.end());
+    mine.erase(mine.begin() + std::ptrdiff_t(from), mine.end());
+  };
+  Point start, end;
   start.node = 0;
-  other->points_.push_back(start);
-  other->points_.insert(other->points_.end(), at(points_, k + 1), points_.end());
-  points_.erase(at(points_, k + 1), points_.end());
+  end.node = int(kept);
+  other->points_ = {start};
+  moveTail(points_, k + 1, other->points_);
   points_.push_back(end);
-  other->restLengths_.push_back((1.0 - t) * restLengths_[k]);
-  other->restLengths_.insert(other->restLengths_.end(), at(restLengths_, k + 1), restLengths_.end());
-  restLengths_.erase(at(restLengths_, k + 1), restLengths_.end());
+  other->restLengths_ = {(1.0 - t) * restLengths_[k]};
+  moveTail(restLengths_, k + 1, other->restLengths_);
   restLengths_[k] *= t;
-  for (auto* perSegment : {&stretchImpulse_, &tension_}) {
-    std::vector<double>& theirs = perSegment == &tension_ ? other->tension_ : other->stretchImpulse_;
-    theirs.push_back(0.0);
-    theirs.insert(theirs.end(), at(*perSegment, k + 1), perSegment->end());
-    perSegment->erase(at(*perSegment, k + 1), perSegment->end());
-    (*perSegment)[k] = 0.0;
-  }
-  other->bendImpulse_.assign(2, 0.0);
-  other->bendImpulse_.insert(other->bendImpulse_.end(), at(bendImpulse_, 2 * (k + 1)), bendImpulse_.end());
-  bendImpulse_.erase(at(bendImpulse_, 2 * (k + 1)), bendImpulse_.end());
+  other->stretchImpulse_ = {0.0};
+  moveTail(stretchImpulse_, k + 1, other->stretchImpulse_);
+  stretchImpulse_[k] = 0.0;
+  other->tension_ = {0.0};
+  moveTail(tension_, k + 1, other->tension_);
+  tension_[k] = 0.0;
+  other->bendImpulse_ = {0.0, 0.0};
+  moveTail(bendImpulse_, 2 * (k + 1), other->bendImpulse_);
   bendImpulse_.insert(bendImpulse_.end(), 2, 0.0);
-  other->bent_.push_back(0);
-  other->bent_.insert(other->bent_.end(), at(bent_, k + 1), bent_.end());
-  bent_.erase(at(bent_, k + 1), bent_.end());
+  other->bent_ = {0};
+  moveTail(bent_, k + 1, other->bent_);
   bent_.push_back(0);
   renumberNodes();
   other->renumberNodes();
@@ -23766,7 +23775,9 @@ void WireT<S>::merge(WireT* other) {
   checkFreeEnd(1);
   other->checkFreeEnd(0);
   if (!built()) {
-    route_.insert(route_.end(), other->route_.begin(), other->route_.end());
+    // Ends routed at one point meet there; else the route runs straight between them.
+    const bool meet = (other->route_.front()->getWorldPosition() - route_.back()->getWorldPosition()).norm() == S(0);
+    route_.insert(route_.end(), other->route_.begin() + (meet ? 1 : 0), other->route_.end());
     other->route_.clear();
     winches_[1] = std::move(other->winches_[1]);
     if (winches_[1]) winches_[1]->wire_ = this;

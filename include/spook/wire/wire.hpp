@@ -550,7 +550,15 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
 template <Scalar S>
 void WireT<S>::prepare(const StepContext& simulation) {
   checkRoute(simulation);
-  if (!built()) build();
+  if (built()) return;
+  try {
+    build();
+  } catch (...) {
+    // Refused: the wire stays as routed (its store is not in the simulation yet).
+    clearState();
+    nodes_ = new detail::WireNodes();
+    throw;
+  }
 }
 
 template <Scalar S>
@@ -589,7 +597,10 @@ void WireT<S>::build() {
                                  : world(k + 1);
     // A mass node beside each contact keeps every row within three bodies.
     const int fewest = contactOf[k] >= 0 || contactOf[k + 1] >= 0 ? 2 : 1;
-    const int segments = std::max(fewest, int(std::ceil((b - a).norm() * resolution_ - 1e-9)));
+    // The tangent points of a wrap can lie far from the routed points (a huge sheave).
+    const double span = (b - a).norm() * resolution_;
+    if (!(span <= 1e6)) throw error("would have more than 1e6 lumped nodes on a span of its route; nodes", span);
+    const int segments = std::max(fewest, int(std::ceil(span - 1e-9)));
     for (int i = 1; i < segments; ++i) {
       Point p;
       p.node = int(nodes_->add(a + (b - a) * (double(i) / segments), 0.0));
