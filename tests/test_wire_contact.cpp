@@ -1,9 +1,10 @@
 // Wires routed over cylinders (ContactNode, wire/sheave_wrap.hpp) against
 // the capstan law: a wire over a fixed cylinder holds a load against a
-// counterweight while their ratio is within e^{μθ} and slips beyond; an
-// Atwood machine over a frictional (and a frictionless) cylinder
-// accelerates at (m₁ − m₂e^{μθ})g/(m₁ + m₂e^{μθ}); a wheel on a hinge that
-// the wire cannot slip on turns with it.
+// counterweight while their ratio is within e^{μθ} and slips beyond (θ = π/2,
+// π, and 2π: one whole turn around a capstan); an Atwood machine over a
+// frictional (and a frictionless) cylinder accelerates at
+// (m₁ − m₂e^{μθ})g/(m₁ + m₂e^{μθ}); a wheel on a hinge that the wire cannot
+// slip on turns with it.
 
 #include <doctest/doctest.h>
 
@@ -79,6 +80,8 @@ TEST_CASE_TEMPLATE("a wire over a cylinder holds within the capstan ratio and sl
                     << " s, tensions " << tensionRight << " N and " << tensionLeft << " N (ratio "
                     << tensionRight / tensionLeft << " against " << ratio << "), friction "
                     << rig.contact->getFrictionForce() << " N");
+    // On the wire along it: the tension before the sheave less the one after.
+    CHECK(double(rig.contact->getFrictionForce()) == doctest::Approx(tensionRight - tensionLeft).epsilon(0.02));
     if (share < 1.0) {
       // Held: only the wire's stretch lets the load move.
       CHECK(std::abs(drop) < 1e-3);
@@ -150,6 +153,71 @@ TEST_CASE_TEMPLATE("a quarter wrap holds within e^(mu pi/2), the wire turned dow
       CHECK(drop > 0.01);
       CHECK(speed > 0.05);
       CHECK(high / low == doctest::Approx(ratio).epsilon(0.01));
+    }
+  }
+}
+
+TEST_CASE_TEMPLATE("a wire turned once around a capstan holds within e^(2 mu pi) and slips beyond", S, double, float) {
+  using Vec3 = Vec3T<S>;
+  const double mu = 0.2, counterweight = 10.0, ratio = std::exp(2.0 * mu * std::numbers::pi);
+  for (const double share : {0.98, 1.02}) {
+    CAPTURE(share);
+    // The load hangs from the right of a capstan at the origin, the wire
+    // rises along its right side, turned once around it, to the left of a
+    // frictionless guide 3 m above, over its top and down its right side to
+    // the counterweight: the capstan's wrap is one whole turn.
+    ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+    const auto fixedCylinder = [&](double x, double z) {
+      ref_ptr<RigidBodyT<S>> holder = new RigidBodyT<S>();
+      ref_ptr<GeometryT<S>> cylinder = new GeometryT<S>(new CylinderT<S>(S(0.5), S(0.2)));
+      holder->add(cylinder);
+      holder->setMotionControl(RigidBodyT<S>::MotionControl::STATIC);
+      holder->setPosition(S(x), S(0), S(z));
+      sim->add(holder);
+      return cylinder;
+    };
+    ref_ptr<GeometryT<S>> capstan = fixedCylinder(0.0, 0.0), guide = fixedCylinder(1.0, 3.0);
+    ref_ptr<RigidBodyT<S>> load = new RigidBodyT<S>(), weight = new RigidBodyT<S>();
+    load->getMassProperties()->setMass(S(share * ratio * counterweight));
+    load->setPosition(S(0.5), S(0), S(-4));
+    weight->getMassProperties()->setMass(S(counterweight));
+    weight->setPosition(S(1.5), S(0), S(-4));
+    sim->add(load);
+    sim->add(weight);
+    ref_ptr<WireT<S>> wire = new WireT<S>(S(0.005), S(5));
+    wire->getMaterial()->getBulkMaterial()->setDensity(S(100));
+    wire->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(0));
+    ref_ptr<ContactNodeT<S>> onCapstan = new ContactNodeT<S>(capstan.get(), Vec3(S(0.5), S(0), S(0)));
+    ref_ptr<ContactNodeT<S>> onGuide = new ContactNodeT<S>(guide.get(), Vec3(S(-0.5), S(0), S(0)));
+    onCapstan->setTurns(1);
+    onCapstan->setFrictionCoefficient(S(mu));
+    onGuide->setFrictionCoefficient(S(0));
+    wire->add(new BodyFixedNodeT<S>(load.get(), Vec3::Zero()));
+    wire->add(onCapstan);
+    wire->add(onGuide);
+    wire->add(new BodyFixedNodeT<S>(weight.get(), Vec3::Zero()));
+    const double free = 4.0 + 3.0 + 0.5 * std::numbers::pi + 7.0;
+    sim->add(wire);
+    CHECK(double(onCapstan->getWrapAngle()) == doctest::Approx(2.0 * std::numbers::pi).epsilon(1e-6));
+    // The turn's wire is on the capstan: 2πr more than the route's spans.
+    CHECK(double(wire->getRestLength()) == doctest::Approx(free + std::numbers::pi).epsilon(1e-4));
+    for (int s = 0; s < 60; ++s) sim->stepForward();
+    CHECK(double(onCapstan->getWrapAngle()) == doctest::Approx(2.0 * std::numbers::pi).epsilon(0.005));
+    const double drop = -4.0 - double(load->getPosition().z()), speed = -double(load->getVelocity().z());
+    const double high = double(wire->getTension(S(0.1)));
+    const double low = double(wire->getTension(wire->getRestLength() - S(0.1)));
+    MESSAGE("load " << share << " e^(2 mu pi) x the counterweight: drop " << drop << " m in 1 s, at " << speed
+                    << " m/s, tensions " << high << " N and " << low << " N (ratio " << high / low << " against "
+                    << ratio << "), wrap " << onCapstan->getWrapAngle());
+    if (share < 1.0) {
+      CHECK(std::abs(drop) < 5e-3);
+      CHECK(std::abs(speed) < 1e-3);
+      CHECK(high == doctest::Approx(share * ratio * counterweight * kGravity).epsilon(0.01));
+      CHECK(low == doctest::Approx(counterweight * kGravity).epsilon(0.01));
+    } else {
+      CHECK(drop > 0.01);
+      CHECK(speed > 0.05);
+      CHECK(high / low == doctest::Approx(ratio).epsilon(0.02));
     }
   }
 }

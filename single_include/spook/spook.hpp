@@ -21946,7 +21946,8 @@ template class SimulationT<float>;
 // from the point before, follows the circle through the wrap angle θ in one
 // sense and leaves along the tangent to the point after. Angles are in the
 // geometry's frame (about its y axis, from its x axis), so that a point at a
-// fixed angle turns with the geometry's body.
+// fixed angle turns with the geometry's body. An eye (wire_node.hpp's
+// EyeNode) is a wrap of radius 0.
 
 #include <cmath>
 #include <numbers>
@@ -21998,13 +21999,20 @@ struct SheaveWrap {
 
   /// Picks the sense and wrap at routing: the wire arrives from `from`,
   /// passes the routed point `through` and leaves towards `to`; of the two
-  /// senses, the one with the shorter wrap. Anchors C at the bisector.
-  void route(const Vec3d& from, const Vec3d& through, const Vec3d& to) {
+  /// senses, the one with the shorter wrap, plus `turns` whole turns.
+  /// Anchors C at the bisector.
+  void route(const Vec3d& from, const Vec3d& through, const Vec3d& to, int turns = 0) {
     const double at = angleOf(through);
+    // A routed point on the tangent itself is reached without turning (not
+    // after a turn less round-off).
+    const auto reach = [](double from, double to, int turn) {
+      const double a = forward(from, to, turn);
+      return 2.0 * std::numbers::pi - a < 1e-9 ? 0.0 : a;
+    };
     double best = 1e30;
     for (const int turn : {1, -1}) {
       const double a = tangentAngle(from, turn, true), b = tangentAngle(to, turn, false);
-      const double theta = forward(a, at, turn) + forward(at, b, turn);
+      const double theta = reach(a, at, turn) + reach(at, b, turn);
       if (theta < best) {
         best = theta;
         sense = turn;
@@ -22012,7 +22020,7 @@ struct SheaveWrap {
         out = b;
       }
     }
-    wrap = best;
+    wrap = best + 2.0 * std::numbers::pi * turns;
     anchor = in + sense * wrap / 2.0;
   }
   /// New tangents for the points before and after; the wrap changes
@@ -22021,6 +22029,17 @@ struct SheaveWrap {
     in = tangentAngle(from, sense, true);
     out = tangentAngle(to, sense, false);
     wrap += std::remainder(forward(in, out, sense) - wrap, 2.0 * std::numbers::pi);
+  }
+  /// An eye at `at` (a sheave of radius 0): the wire turns there by the
+  /// angle between its directions from `from` and towards `to` (kept when
+  /// either is not defined).
+  void eye(const Vec3d& at, const Vec3d& from, const Vec3d& to) {
+    radius = 0.0;
+    center = at;
+    in = out = anchor = 0.0;
+    const Vec3d a = at - from, b = to - at;
+    const double turn = std::atan2(a.cross(b).norm(), a.dot(b));
+    if (a.squaredNorm() > 0.0 && b.squaredNorm() > 0.0 && std::isfinite(turn)) wrap = turn;
   }
   /// C's offset from the bisector along the wire (rad, in the sense of the wrap).
   [[nodiscard]] double offset() const {
@@ -22047,7 +22066,8 @@ struct SheaveWrap {
 // The nodes a wire is routed with (wire/wire.hpp), after agxWire's: a
 // FreeNode is a routing point (a free end when first or last), a
 // BodyFixedNode fixes an end of the wire to a body or to the world, a
-// ContactNode routes it over a geometry (a sheave).
+// ContactNode routes it over a geometry (a sheave), an EyeNode through an
+// eye on a body or the world.
 
 #include <cmath>
 #include <limits>
@@ -22061,15 +22081,15 @@ template <Scalar S>
 class WireNodeT : public Referenced {
  public:
   using Vec3 = Vec3T<S>;
-  enum class Type { FREE, BODY_FIXED, CONTACT };
+  enum class Type { FREE, BODY_FIXED, CONTACT, EYE };
 
   [[nodiscard]] Type getType() const { return type_; }
-  /// The body a body-fixed or contact node moves with; nullptr for the
-  /// world and for a free node.
+  /// The body a body-fixed, eye or contact node moves with; nullptr for
+  /// the world and for a free node.
   [[nodiscard]] virtual RigidBodyT<S>* getRigidBody() const { return body_.get(); }
   /// Where the node is routed: in the body's model frame for a node fixed
-  /// to a body, in the geometry's frame for a contact node, else in world
-  /// coordinates (m).
+  /// to a body (an end or an eye), in the geometry's frame for a contact
+  /// node, else in world coordinates (m).
   [[nodiscard]] const Vec3& getPosition() const { return position_; }
   /// The node's routed position in world coordinates now (m).
   [[nodiscard]] virtual Vec3 getWorldPosition() const {
@@ -22081,6 +22101,7 @@ class WireNodeT : public Referenced {
     if (!position.allFinite())
       throw detail::makeError(type == Type::FREE         ? "FreeNode"
                               : type == Type::BODY_FIXED ? "BodyFixedNode"
+                              : type == Type::EYE        ? "EyeNode"
                                                          : "ContactNode",
                               "", "position must be finite m", position);
   }
@@ -22114,18 +22135,68 @@ class BodyFixedNodeT : public WireNodeT<S> {
   BodyFixedNodeT(RigidBodyT<S>* body, S x, S y, S z) : BodyFixedNodeT(body, Vec3(x, y, z)) {}
 };
 
+/// A node the wire slides over or through against friction along it (a
+/// ContactNode, an EyeNode): the capstan law over the angle θ the wire turns
+/// there, so that it slips once the tensions' ratio on both sides exceeds
+/// e^{μθ}. The coefficient may differ by the direction the wire slides in.
+template <Scalar S>
+class SlidingNodeT : public WireNodeT<S> {
+ public:
+  using Vec3 = Vec3T<S>;
+  /// FORWARD: the wire slides towards its end (its start side is pulled
+  /// in); BACKWARD: towards its start. Relative to the wire: reversing the
+  /// wire swaps them.
+  enum class Direction { FORWARD, BACKWARD };
+
+  /// Friction coefficient along the wire, >= 0; until set, the wire
+  /// material's. Without a direction: both directions (getting: FORWARD).
+  [[nodiscard]] bool hasFrictionCoefficient(Direction direction = Direction::FORWARD) const {
+    return friction_[int(direction)] >= S(0);
+  }
+  [[nodiscard]] S getFrictionCoefficient(Direction direction = Direction::FORWARD) const {
+    return friction_[int(direction)];
+  }
+  void setFrictionCoefficient(S coefficient) {
+    setFrictionCoefficient(coefficient, Direction::FORWARD);
+    friction_[1] = friction_[0];
+  }
+  void setFrictionCoefficient(S coefficient, Direction direction) {
+    if (!(std::isfinite(coefficient) && coefficient >= S(0)))
+      throw detail::makeError(this->getType() == WireNodeT<S>::Type::EYE ? "EyeNode" : "ContactNode", "",
+                              "friction coefficient must be finite and >= 0", coefficient);
+    friction_[int(direction)] = coefficient;
+  }
+  /// The angle the wire turns at the node (rad): the arc it wraps a
+  /// geometry by, or its deflection through an eye; as routed and then
+  /// after each step.
+  [[nodiscard]] S getWrapAngle() const { return S(wrap_); }
+  /// Friction force of the node on the wire along it in the last step (N):
+  /// the tension before the node minus the tension after it.
+  [[nodiscard]] S getFrictionForce() const { return S(frictionForce_); }
+
+ protected:
+  using WireNodeT<S>::WireNodeT;
+  ~SlidingNodeT() override = default;
+
+ private:
+  template <Scalar>
+  friend class WireT;
+  S friction_[2] = {S(-1), S(-1)};
+  double wrap_ = 0.0;
+  double frictionForce_ = 0.0;
+};
+
 /// The wire routed over a geometry (agxWire's ContactNode): a sheave. The
 /// geometry's shape must be a cylinder; the wire wraps it in the plane across
 /// its axis through its center, touching it at `position` (geometry frame),
 /// arriving and leaving along tangents, and slides over it against friction
-/// along the wire (the capstan law: it slips once the tensions' ratio on
-/// both sides exceeds e^{μθ}). Neither first nor last in a route.
+/// (SlidingNodeT). Neither first nor last in a route.
 template <Scalar S>
-class ContactNodeT : public WireNodeT<S> {
+class ContactNodeT : public SlidingNodeT<S> {
  public:
   using Vec3 = Vec3T<S>;
   ContactNodeT(GeometryT<S>* geometry, const Vec3& position)
-      : WireNodeT<S>(WireNodeT<S>::Type::CONTACT, nullptr, position), geometry_(geometry) {
+      : SlidingNodeT<S>(WireNodeT<S>::Type::CONTACT, nullptr, position), geometry_(geometry) {
     if (!geometry) throw detail::makeError("ContactNode", "", "needs a geometry", "nullptr");
   }
   ContactNodeT(GeometryT<S>* geometry, S x, S y, S z) : ContactNodeT(geometry, Vec3(x, y, z)) {}
@@ -22136,43 +22207,55 @@ class ContactNodeT : public WireNodeT<S> {
   [[nodiscard]] Vec3 getWorldPosition() const override {
     return Vec3(geometry_->getFrame()->transformPointToWorld(this->getPosition()));
   }
-  /// Friction coefficient along the wire, >= 0; until set, the wire
-  /// material's.
-  [[nodiscard]] bool hasFrictionCoefficient() const { return friction_ >= S(0); }
-  [[nodiscard]] S getFrictionCoefficient() const { return friction_; }
-  void setFrictionCoefficient(S coefficient) {
-    if (!(std::isfinite(coefficient) && coefficient >= S(0)))
-      throw detail::makeError("ContactNode", "", "friction coefficient must be finite and >= 0", coefficient);
-    friction_ = coefficient;
+  /// Whole turns (0 to 1000) the wire makes around the geometry besides the
+  /// routed wrap, as on a capstan or a bollard: each adds 2π to the wrap
+  /// angle and 2πr of wire on the geometry (the turns lie side by side along
+  /// its axis, which is not modeled). Read when the wire joins a simulation.
+  [[nodiscard]] int getTurns() const { return turns_; }
+  void setTurns(int turns) {
+    if (!(turns >= 0 && turns <= 1000))
+      throw detail::makeError("ContactNode", "", "turns must be within 0 and 1000", turns);
+    turns_ = turns;
   }
-  /// The angle the wire wraps the geometry (rad), as routed and then after
-  /// each step.
-  [[nodiscard]] S getWrapAngle() const { return S(wrap_); }
-  /// Friction force of the geometry on the wire along it in the last step
-  /// (N): the tension before the node minus the tension after it.
-  [[nodiscard]] S getFrictionForce() const { return S(frictionForce_); }
 
  protected:
   ~ContactNodeT() override = default;
 
  private:
-  template <Scalar>
-  friend class WireT;
   ref_ptr<GeometryT<S>> geometry_;
-  S friction_ = S(-1);
-  double wrap_ = 0.0;
-  double frictionForce_ = 0.0;
+  int turns_ = 0;
+};
+
+/// An eye the wire runs through (agxWire's EyeNode), fixed to `body` at
+/// `position` in its model frame, or to the world (world coordinates) when
+/// `body` is nullptr: the wire slides through it against friction
+/// (SlidingNodeT) over the angle it is deflected by, in either direction,
+/// and the eye's body carries the wire's pull. Neither first nor last in a
+/// route.
+template <Scalar S>
+class EyeNodeT : public SlidingNodeT<S> {
+ public:
+  using Vec3 = Vec3T<S>;
+  EyeNodeT(RigidBodyT<S>* body, const Vec3& position) : SlidingNodeT<S>(WireNodeT<S>::Type::EYE, body, position) {}
+  EyeNodeT(RigidBodyT<S>* body, S x, S y, S z) : EyeNodeT(body, Vec3(x, y, z)) {}
+
+ protected:
+  ~EyeNodeT() override = default;
 };
 
 using WireNode = WireNodeT<double>;
 using FreeNode = FreeNodeT<double>;
 using BodyFixedNode = BodyFixedNodeT<double>;
+using SlidingNode = SlidingNodeT<double>;
 using ContactNode = ContactNodeT<double>;
+using EyeNode = EyeNodeT<double>;
 namespace f32 {
 using WireNode = WireNodeT<float>;
 using FreeNode = FreeNodeT<float>;
 using BodyFixedNode = BodyFixedNodeT<float>;
+using SlidingNode = SlidingNodeT<float>;
 using ContactNode = ContactNodeT<float>;
+using EyeNode = EyeNodeT<float>;
 }  // namespace f32
 
 }  // namespace spook
@@ -22465,6 +22548,7 @@ class WireT : public RowProducer {
   using Body = RigidBodyT<S>;
   using Winch = WireWinchControllerT<S>;
   using ContactNode = ContactNodeT<S>;
+  using SlidingNode = SlidingNodeT<S>;
 
   /// A wire of `radius` (m) and `resolution` lumped nodes per meter, both
   /// finite and > 0, made of `material` (a material of its own, named
@@ -22578,11 +22662,12 @@ class WireT : public RowProducer {
     Vec3d local = Vec3d::Zero();
     int contact = -1;
   };
-  /// A contact node as built: its wrap, and its slip (wire sliding over the
-  /// geometry) as a degree of freedom of the store (a Drum whose free length
-  /// gathers the length slid from the segment after to the one before).
+  /// A contact or eye node as built: its wrap (an eye's of radius 0), and
+  /// its slip (wire sliding over the geometry or through the eye) as a
+  /// degree of freedom of the store (a Drum whose free length gathers the
+  /// length slid from the segment after to the one before).
   struct Contact {
-    ContactNode* node = nullptr;
+    SlidingNode* node = nullptr;
     detail::SheaveWrap wrap;
     std::size_t slip = 0;
     double frictionImpulse = 0.0;
@@ -22627,6 +22712,9 @@ class WireT : public RowProducer {
   }
   /// The sheave's plane now from its geometry's frame.
   void placePlane(const ContactNode& node, detail::SheaveWrap& wrap) const;
+  /// A contact's wrap now, the wire arriving from `from` and leaving towards
+  /// `to`: a sheave's tangents in its plane, an eye's point and deflection.
+  [[nodiscard]] detail::SheaveWrap wrapNow(const Contact& contact, const Vec3d& from, const Vec3d& to) const;
   /// Contacts at the start of a step: their slip moves rest length across
   /// them, their tangents follow the points beside them, C returns to the
   /// bisector.
@@ -22865,7 +22953,8 @@ auto WireT<S>::getPoints() const -> std::vector<Vec3> {
   points.reserve(points_.size() + contacts_.size());
   for (const Point& p : points_) {
     points.push_back(arrival(p).template cast<S>());
-    if (p.contact >= 0) points.push_back(departure(p).template cast<S>());
+    if (p.contact >= 0 && contacts_[std::size_t(p.contact)].wrap.radius > 0.0)
+      points.push_back(departure(p).template cast<S>());
   }
   return points;
 }
@@ -22929,12 +23018,26 @@ void WireT<S>::placePlane(const ContactNode& node, detail::SheaveWrap& wrap) con
 }
 
 template <Scalar S>
+detail::SheaveWrap WireT<S>::wrapNow(const Contact& contact, const Vec3d& from, const Vec3d& to) const {
+  detail::SheaveWrap wrap = contact.wrap;
+  if (contact.node->getType() == Node::Type::EYE) {
+    wrap.eye(contact.node->getWorldPosition().template cast<double>(), from, to);
+  } else {
+    placePlane(static_cast<const ContactNode&>(*contact.node), wrap);
+    wrap.place(from, to);
+  }
+  return wrap;
+}
+
+template <Scalar S>
 void WireT<S>::checkRoute(const StepContext& simulation) const {
   if (route_.size() < 2) throw error("needs at least two route nodes", route_.size());
   for (std::size_t k = 0; k < route_.size(); ++k) {
     const Node& node = *route_[k];
     if (node.getType() == Node::Type::BODY_FIXED && k != 0 && k + 1 != route_.size())
       throw error("a BodyFixedNode may only be the first or last route node; it is node", k);
+    if (node.getType() == Node::Type::EYE && (k == 0 || k + 1 == route_.size()))
+      throw error("an EyeNode may not be the first or last route node; it is node", k);
     if (node.getType() == Node::Type::CONTACT) {
       if (k == 0 || k + 1 == route_.size()) throw error("a ContactNode may not be the first or last route node; it is node", k);
       const auto* contact = static_cast<const ContactNode*>(&node);
@@ -22980,11 +23083,17 @@ void WireT<S>::build() {
   // route nodes runs along their tangents.
   std::vector<int> contactOf(route_.size(), -1);
   for (std::size_t k = 1; k + 1 < route_.size(); ++k) {
-    if (route_[k]->getType() != Node::Type::CONTACT) continue;
+    const auto type = route_[k]->getType();
+    if (type != Node::Type::CONTACT && type != Node::Type::EYE) continue;
     Contact contact;
-    contact.node = static_cast<ContactNode*>(route_[k].get());
-    placePlane(*contact.node, contact.wrap);
-    contact.wrap.route(world(k - 1), world(k), world(k + 1));
+    contact.node = static_cast<SlidingNode*>(route_[k].get());
+    if (type == Node::Type::EYE) {
+      contact.wrap.eye(world(k), world(k - 1), world(k + 1));
+    } else {
+      const auto& sheave = static_cast<const ContactNode&>(*contact.node);
+      placePlane(sheave, contact.wrap);
+      contact.wrap.route(world(k - 1), world(k), world(k + 1), sheave.getTurns());
+    }
     contactOf[k] = int(contacts_.size());
     contacts_.push_back(contact);
   }
@@ -23022,10 +23131,10 @@ void WireT<S>::build() {
   }
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     if (points_[k].contact < 0) continue;
-    detail::SheaveWrap& wrap = contacts_[std::size_t(points_[k].contact)].wrap;
-    wrap.place(departure(points_[k - 1]), arrival(points_[k + 1]));
-    wrap.reanchor();
-    contacts_[std::size_t(points_[k].contact)].node->wrap_ = wrap.wrap;
+    Contact& contact = contacts_[std::size_t(points_[k].contact)];
+    contact.wrap = wrapNow(contact, departure(points_[k - 1]), arrival(points_[k + 1]));
+    contact.wrap.reanchor();
+    contact.node->wrap_ = contact.wrap.wrap;
   }
   for (std::size_t k = 0; k + 1 < points_.size(); ++k) restLengths_.push_back(segmentLength(k));
   stretchImpulse_.assign(restLengths_.size(), 0.0);
@@ -23160,9 +23269,7 @@ void WireT<S>::updateContacts() {
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     if (points_[k].contact < 0) continue;
     Contact& contact = contacts_[std::size_t(points_[k].contact)];
-    detail::SheaveWrap wrap = contact.wrap;
-    placePlane(*contact.node, wrap);
-    wrap.place(departure(points_[k - 1]), arrival(points_[k + 1]));
+    const detail::SheaveWrap wrap = wrapNow(contact, departure(points_[k - 1]), arrival(points_[k + 1]));
     // Beside a body whose state is not finite (frozen), the wrap stays as it was.
     if (!(std::isfinite(wrap.in) && std::isfinite(wrap.out) && wrap.center.allFinite() && wrap.e1.allFinite() &&
           wrap.e2.allFinite()))
@@ -23479,12 +23586,14 @@ void WireT<S>::writeFrictionRows(RowWriter& rows, std::size_t firstRow) {
     if (points_[k].contact < 0) continue;
     Contact& contact = contacts_[std::size_t(points_[k].contact)];
     contact.row = -1;
-    const double mu = contact.node->hasFrictionCoefficient()
-                          ? double(contact.node->getFrictionCoefficient())
+    // The wire slides towards the high side: forward when it is after the node.
+    const std::size_t low = tension_[k] < tension_[k - 1] ? k : k - 1;
+    const auto direction = low == k - 1 ? SlidingNode::Direction::FORWARD : SlidingNode::Direction::BACKWARD;
+    const double mu = contact.node->hasFrictionCoefficient(direction)
+                          ? double(contact.node->getFrictionCoefficient(direction))
                           : double(material_->getWireMaterial()->getFrictionCoefficient());
     const double coefficient = std::expm1(mu * std::max(contact.wrap.wrap, 0.0));
     if (!(coefficient > 0.0) || !std::isfinite(coefficient)) continue;
-    const std::size_t low = tension_[k] < tension_[k - 1] ? k : k - 1;
     contact.row = int(rows.size() - firstRow);
     detail::Row& r = rows.add(contact.frictionImpulse);
     r.body1 = state_[k].slip;
@@ -23583,7 +23692,8 @@ void WireT<S>::readBack(std::span<const double> impulses, const StepContext& ste
   }
   for (Contact& contact : contacts_) {
     contact.frictionImpulse = contact.row >= 0 ? impulses[std::size_t(contact.row)] : 0.0;
-    contact.node->frictionForce_ = contact.frictionImpulse / h;
+    // The slip row's impulse is T_after − T_before (times h); on the wire along it, the other way.
+    contact.node->frictionForce_ = -contact.frictionImpulse / h;
   }
 }
 

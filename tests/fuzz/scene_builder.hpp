@@ -357,8 +357,8 @@ struct Builder {
   }
 
   // A wire between random ends (free, fixed to a body or the world, a
-  // winch with random speed, force and brake), routed through free nodes
-  // and over cylinders on bodies or the world.
+  // winch with random speed, force and brake), routed through free nodes,
+  // eyes and over cylinders on bodies or the world.
   void wire(spook::SimulationT<S>& sim, const std::vector<spook::ref_ptr<Body>>& bodies) {
     spook::ref_ptr<spook::WireT<S>> w = new spook::WireT<S>(real(1e-4, 0.1), real(0.1, 20));
     auto& material = *w->getMaterial()->getWireMaterial();
@@ -395,7 +395,17 @@ struct Builder {
         if (in.flag()) contact->setFrictionCoefficient(real(0, 2));
         w->add(contact);
       } else {
-        w->add(new spook::FreeNodeT<S>(vec(-3, 3)));
+        // A sixth of the routing points are eyes, on the world or a body,
+        // without reading more input (older inputs replay their scenes).
+        const auto at = vec(-3, 3);
+        if (at.x() > S(2)) {
+          Body* carrier = at.z() > S(0) && !bodies.empty()
+                              ? bodies[static_cast<std::size_t>(at.y() + S(3)) % bodies.size()].get()
+                              : nullptr;
+          w->add(new spook::EyeNodeT<S>(carrier, at));
+        } else {
+          w->add(new spook::FreeNodeT<S>(at));
+        }
       }
     }
     end();

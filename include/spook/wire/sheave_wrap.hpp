@@ -6,7 +6,8 @@
 // from the point before, follows the circle through the wrap angle θ in one
 // sense and leaves along the tangent to the point after. Angles are in the
 // geometry's frame (about its y axis, from its x axis), so that a point at a
-// fixed angle turns with the geometry's body.
+// fixed angle turns with the geometry's body. An eye (wire_node.hpp's
+// EyeNode) is a wrap of radius 0.
 
 #include <cmath>
 #include <numbers>
@@ -58,13 +59,20 @@ struct SheaveWrap {
 
   /// Picks the sense and wrap at routing: the wire arrives from `from`,
   /// passes the routed point `through` and leaves towards `to`; of the two
-  /// senses, the one with the shorter wrap. Anchors C at the bisector.
-  void route(const Vec3d& from, const Vec3d& through, const Vec3d& to) {
+  /// senses, the one with the shorter wrap, plus `turns` whole turns.
+  /// Anchors C at the bisector.
+  void route(const Vec3d& from, const Vec3d& through, const Vec3d& to, int turns = 0) {
     const double at = angleOf(through);
+    // A routed point on the tangent itself is reached without turning (not
+    // after a turn less round-off).
+    const auto reach = [](double from, double to, int turn) {
+      const double a = forward(from, to, turn);
+      return 2.0 * std::numbers::pi - a < 1e-9 ? 0.0 : a;
+    };
     double best = 1e30;
     for (const int turn : {1, -1}) {
       const double a = tangentAngle(from, turn, true), b = tangentAngle(to, turn, false);
-      const double theta = forward(a, at, turn) + forward(at, b, turn);
+      const double theta = reach(a, at, turn) + reach(at, b, turn);
       if (theta < best) {
         best = theta;
         sense = turn;
@@ -72,7 +80,7 @@ struct SheaveWrap {
         out = b;
       }
     }
-    wrap = best;
+    wrap = best + 2.0 * std::numbers::pi * turns;
     anchor = in + sense * wrap / 2.0;
   }
   /// New tangents for the points before and after; the wrap changes
@@ -81,6 +89,17 @@ struct SheaveWrap {
     in = tangentAngle(from, sense, true);
     out = tangentAngle(to, sense, false);
     wrap += std::remainder(forward(in, out, sense) - wrap, 2.0 * std::numbers::pi);
+  }
+  /// An eye at `at` (a sheave of radius 0): the wire turns there by the
+  /// angle between its directions from `from` and towards `to` (kept when
+  /// either is not defined).
+  void eye(const Vec3d& at, const Vec3d& from, const Vec3d& to) {
+    radius = 0.0;
+    center = at;
+    in = out = anchor = 0.0;
+    const Vec3d a = at - from, b = to - at;
+    const double turn = std::atan2(a.cross(b).norm(), a.dot(b));
+    if (a.squaredNorm() > 0.0 && b.squaredNorm() > 0.0 && std::isfinite(turn)) wrap = turn;
   }
   /// C's offset from the bisector along the wire (rad, in the sense of the wrap).
   [[nodiscard]] double offset() const {

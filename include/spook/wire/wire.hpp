@@ -53,6 +53,7 @@ class WireT : public RowProducer {
   using Body = RigidBodyT<S>;
   using Winch = WireWinchControllerT<S>;
   using ContactNode = ContactNodeT<S>;
+  using SlidingNode = SlidingNodeT<S>;
 
   /// A wire of `radius` (m) and `resolution` lumped nodes per meter, both
   /// finite and > 0, made of `material` (a material of its own, named
@@ -166,11 +167,12 @@ class WireT : public RowProducer {
     Vec3d local = Vec3d::Zero();
     int contact = -1;
   };
-  /// A contact node as built: its wrap, and its slip (wire sliding over the
-  /// geometry) as a degree of freedom of the store (a Drum whose free length
-  /// gathers the length slid from the segment after to the one before).
+  /// A contact or eye node as built: its wrap (an eye's of radius 0), and
+  /// its slip (wire sliding over the geometry or through the eye) as a
+  /// degree of freedom of the store (a Drum whose free length gathers the
+  /// length slid from the segment after to the one before).
   struct Contact {
-    ContactNode* node = nullptr;
+    SlidingNode* node = nullptr;
     detail::SheaveWrap wrap;
     std::size_t slip = 0;
     double frictionImpulse = 0.0;
@@ -215,6 +217,9 @@ class WireT : public RowProducer {
   }
   /// The sheave's plane now from its geometry's frame.
   void placePlane(const ContactNode& node, detail::SheaveWrap& wrap) const;
+  /// A contact's wrap now, the wire arriving from `from` and leaving towards
+  /// `to`: a sheave's tangents in its plane, an eye's point and deflection.
+  [[nodiscard]] detail::SheaveWrap wrapNow(const Contact& contact, const Vec3d& from, const Vec3d& to) const;
   /// Contacts at the start of a step: their slip moves rest length across
   /// them, their tangents follow the points beside them, C returns to the
   /// bisector.
@@ -453,7 +458,8 @@ auto WireT<S>::getPoints() const -> std::vector<Vec3> {
   points.reserve(points_.size() + contacts_.size());
   for (const Point& p : points_) {
     points.push_back(arrival(p).template cast<S>());
-    if (p.contact >= 0) points.push_back(departure(p).template cast<S>());
+    if (p.contact >= 0 && contacts_[std::size_t(p.contact)].wrap.radius > 0.0)
+      points.push_back(departure(p).template cast<S>());
   }
   return points;
 }
@@ -517,12 +523,26 @@ void WireT<S>::placePlane(const ContactNode& node, detail::SheaveWrap& wrap) con
 }
 
 template <Scalar S>
+detail::SheaveWrap WireT<S>::wrapNow(const Contact& contact, const Vec3d& from, const Vec3d& to) const {
+  detail::SheaveWrap wrap = contact.wrap;
+  if (contact.node->getType() == Node::Type::EYE) {
+    wrap.eye(contact.node->getWorldPosition().template cast<double>(), from, to);
+  } else {
+    placePlane(static_cast<const ContactNode&>(*contact.node), wrap);
+    wrap.place(from, to);
+  }
+  return wrap;
+}
+
+template <Scalar S>
 void WireT<S>::checkRoute(const StepContext& simulation) const {
   if (route_.size() < 2) throw error("needs at least two route nodes", route_.size());
   for (std::size_t k = 0; k < route_.size(); ++k) {
     const Node& node = *route_[k];
     if (node.getType() == Node::Type::BODY_FIXED && k != 0 && k + 1 != route_.size())
       throw error("a BodyFixedNode may only be the first or last route node; it is node", k);
+    if (node.getType() == Node::Type::EYE && (k == 0 || k + 1 == route_.size()))
+      throw error("an EyeNode may not be the first or last route node; it is node", k);
     if (node.getType() == Node::Type::CONTACT) {
       if (k == 0 || k + 1 == route_.size()) throw error("a ContactNode may not be the first or last route node; it is node", k);
       const auto* contact = static_cast<const ContactNode*>(&node);
@@ -568,11 +588,17 @@ void WireT<S>::build() {
   // route nodes runs along their tangents.
   std::vector<int> contactOf(route_.size(), -1);
   for (std::size_t k = 1; k + 1 < route_.size(); ++k) {
-    if (route_[k]->getType() != Node::Type::CONTACT) continue;
+    const auto type = route_[k]->getType();
+    if (type != Node::Type::CONTACT && type != Node::Type::EYE) continue;
     Contact contact;
-    contact.node = static_cast<ContactNode*>(route_[k].get());
-    placePlane(*contact.node, contact.wrap);
-    contact.wrap.route(world(k - 1), world(k), world(k + 1));
+    contact.node = static_cast<SlidingNode*>(route_[k].get());
+    if (type == Node::Type::EYE) {
+      contact.wrap.eye(world(k), world(k - 1), world(k + 1));
+    } else {
+      const auto& sheave = static_cast<const ContactNode&>(*contact.node);
+      placePlane(sheave, contact.wrap);
+      contact.wrap.route(world(k - 1), world(k), world(k + 1), sheave.getTurns());
+    }
     contactOf[k] = int(contacts_.size());
     contacts_.push_back(contact);
   }
@@ -610,10 +636,10 @@ void WireT<S>::build() {
   }
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     if (points_[k].contact < 0) continue;
-    detail::SheaveWrap& wrap = contacts_[std::size_t(points_[k].contact)].wrap;
-    wrap.place(departure(points_[k - 1]), arrival(points_[k + 1]));
-    wrap.reanchor();
-    contacts_[std::size_t(points_[k].contact)].node->wrap_ = wrap.wrap;
+    Contact& contact = contacts_[std::size_t(points_[k].contact)];
+    contact.wrap = wrapNow(contact, departure(points_[k - 1]), arrival(points_[k + 1]));
+    contact.wrap.reanchor();
+    contact.node->wrap_ = contact.wrap.wrap;
   }
   for (std::size_t k = 0; k + 1 < points_.size(); ++k) restLengths_.push_back(segmentLength(k));
   stretchImpulse_.assign(restLengths_.size(), 0.0);
@@ -748,9 +774,7 @@ void WireT<S>::updateContacts() {
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     if (points_[k].contact < 0) continue;
     Contact& contact = contacts_[std::size_t(points_[k].contact)];
-    detail::SheaveWrap wrap = contact.wrap;
-    placePlane(*contact.node, wrap);
-    wrap.place(departure(points_[k - 1]), arrival(points_[k + 1]));
+    const detail::SheaveWrap wrap = wrapNow(contact, departure(points_[k - 1]), arrival(points_[k + 1]));
     // Beside a body whose state is not finite (frozen), the wrap stays as it was.
     if (!(std::isfinite(wrap.in) && std::isfinite(wrap.out) && wrap.center.allFinite() && wrap.e1.allFinite() &&
           wrap.e2.allFinite()))
@@ -1067,12 +1091,14 @@ void WireT<S>::writeFrictionRows(RowWriter& rows, std::size_t firstRow) {
     if (points_[k].contact < 0) continue;
     Contact& contact = contacts_[std::size_t(points_[k].contact)];
     contact.row = -1;
-    const double mu = contact.node->hasFrictionCoefficient()
-                          ? double(contact.node->getFrictionCoefficient())
+    // The wire slides towards the high side: forward when it is after the node.
+    const std::size_t low = tension_[k] < tension_[k - 1] ? k : k - 1;
+    const auto direction = low == k - 1 ? SlidingNode::Direction::FORWARD : SlidingNode::Direction::BACKWARD;
+    const double mu = contact.node->hasFrictionCoefficient(direction)
+                          ? double(contact.node->getFrictionCoefficient(direction))
                           : double(material_->getWireMaterial()->getFrictionCoefficient());
     const double coefficient = std::expm1(mu * std::max(contact.wrap.wrap, 0.0));
     if (!(coefficient > 0.0) || !std::isfinite(coefficient)) continue;
-    const std::size_t low = tension_[k] < tension_[k - 1] ? k : k - 1;
     contact.row = int(rows.size() - firstRow);
     detail::Row& r = rows.add(contact.frictionImpulse);
     r.body1 = state_[k].slip;
@@ -1171,7 +1197,8 @@ void WireT<S>::readBack(std::span<const double> impulses, const StepContext& ste
   }
   for (Contact& contact : contacts_) {
     contact.frictionImpulse = contact.row >= 0 ? impulses[std::size_t(contact.row)] : 0.0;
-    contact.node->frictionForce_ = contact.frictionImpulse / h;
+    // The slip row's impulse is T_after − T_before (times h); on the wire along it, the other way.
+    contact.node->frictionForce_ = -contact.frictionImpulse / h;
   }
 }
 

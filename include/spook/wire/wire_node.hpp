@@ -3,7 +3,8 @@
 // The nodes a wire is routed with (wire/wire.hpp), after agxWire's: a
 // FreeNode is a routing point (a free end when first or last), a
 // BodyFixedNode fixes an end of the wire to a body or to the world, a
-// ContactNode routes it over a geometry (a sheave).
+// ContactNode routes it over a geometry (a sheave), an EyeNode through an
+// eye on a body or the world.
 
 #include <cmath>
 #include <limits>
@@ -25,15 +26,15 @@ template <Scalar S>
 class WireNodeT : public Referenced {
  public:
   using Vec3 = Vec3T<S>;
-  enum class Type { FREE, BODY_FIXED, CONTACT };
+  enum class Type { FREE, BODY_FIXED, CONTACT, EYE };
 
   [[nodiscard]] Type getType() const { return type_; }
-  /// The body a body-fixed or contact node moves with; nullptr for the
-  /// world and for a free node.
+  /// The body a body-fixed, eye or contact node moves with; nullptr for
+  /// the world and for a free node.
   [[nodiscard]] virtual RigidBodyT<S>* getRigidBody() const { return body_.get(); }
   /// Where the node is routed: in the body's model frame for a node fixed
-  /// to a body, in the geometry's frame for a contact node, else in world
-  /// coordinates (m).
+  /// to a body (an end or an eye), in the geometry's frame for a contact
+  /// node, else in world coordinates (m).
   [[nodiscard]] const Vec3& getPosition() const { return position_; }
   /// The node's routed position in world coordinates now (m).
   [[nodiscard]] virtual Vec3 getWorldPosition() const {
@@ -45,6 +46,7 @@ class WireNodeT : public Referenced {
     if (!position.allFinite())
       throw detail::makeError(type == Type::FREE         ? "FreeNode"
                               : type == Type::BODY_FIXED ? "BodyFixedNode"
+                              : type == Type::EYE        ? "EyeNode"
                                                          : "ContactNode",
                               "", "position must be finite m", position);
   }
@@ -78,18 +80,68 @@ class BodyFixedNodeT : public WireNodeT<S> {
   BodyFixedNodeT(RigidBodyT<S>* body, S x, S y, S z) : BodyFixedNodeT(body, Vec3(x, y, z)) {}
 };
 
+/// A node the wire slides over or through against friction along it (a
+/// ContactNode, an EyeNode): the capstan law over the angle θ the wire turns
+/// there, so that it slips once the tensions' ratio on both sides exceeds
+/// e^{μθ}. The coefficient may differ by the direction the wire slides in.
+template <Scalar S>
+class SlidingNodeT : public WireNodeT<S> {
+ public:
+  using Vec3 = Vec3T<S>;
+  /// FORWARD: the wire slides towards its end (its start side is pulled
+  /// in); BACKWARD: towards its start. Relative to the wire: reversing the
+  /// wire swaps them.
+  enum class Direction { FORWARD, BACKWARD };
+
+  /// Friction coefficient along the wire, >= 0; until set, the wire
+  /// material's. Without a direction: both directions (getting: FORWARD).
+  [[nodiscard]] bool hasFrictionCoefficient(Direction direction = Direction::FORWARD) const {
+    return friction_[int(direction)] >= S(0);
+  }
+  [[nodiscard]] S getFrictionCoefficient(Direction direction = Direction::FORWARD) const {
+    return friction_[int(direction)];
+  }
+  void setFrictionCoefficient(S coefficient) {
+    setFrictionCoefficient(coefficient, Direction::FORWARD);
+    friction_[1] = friction_[0];
+  }
+  void setFrictionCoefficient(S coefficient, Direction direction) {
+    if (!(std::isfinite(coefficient) && coefficient >= S(0)))
+      throw detail::makeError(this->getType() == WireNodeT<S>::Type::EYE ? "EyeNode" : "ContactNode", "",
+                              "friction coefficient must be finite and >= 0", coefficient);
+    friction_[int(direction)] = coefficient;
+  }
+  /// The angle the wire turns at the node (rad): the arc it wraps a
+  /// geometry by, or its deflection through an eye; as routed and then
+  /// after each step.
+  [[nodiscard]] S getWrapAngle() const { return S(wrap_); }
+  /// Friction force of the node on the wire along it in the last step (N):
+  /// the tension before the node minus the tension after it.
+  [[nodiscard]] S getFrictionForce() const { return S(frictionForce_); }
+
+ protected:
+  using WireNodeT<S>::WireNodeT;
+  ~SlidingNodeT() override = default;
+
+ private:
+  template <Scalar>
+  friend class WireT;
+  S friction_[2] = {S(-1), S(-1)};
+  double wrap_ = 0.0;
+  double frictionForce_ = 0.0;
+};
+
 /// The wire routed over a geometry (agxWire's ContactNode): a sheave. The
 /// geometry's shape must be a cylinder; the wire wraps it in the plane across
 /// its axis through its center, touching it at `position` (geometry frame),
 /// arriving and leaving along tangents, and slides over it against friction
-/// along the wire (the capstan law: it slips once the tensions' ratio on
-/// both sides exceeds e^{μθ}). Neither first nor last in a route.
+/// (SlidingNodeT). Neither first nor last in a route.
 template <Scalar S>
-class ContactNodeT : public WireNodeT<S> {
+class ContactNodeT : public SlidingNodeT<S> {
  public:
   using Vec3 = Vec3T<S>;
   ContactNodeT(GeometryT<S>* geometry, const Vec3& position)
-      : WireNodeT<S>(WireNodeT<S>::Type::CONTACT, nullptr, position), geometry_(geometry) {
+      : SlidingNodeT<S>(WireNodeT<S>::Type::CONTACT, nullptr, position), geometry_(geometry) {
     if (!geometry) throw detail::makeError("ContactNode", "", "needs a geometry", "nullptr");
   }
   ContactNodeT(GeometryT<S>* geometry, S x, S y, S z) : ContactNodeT(geometry, Vec3(x, y, z)) {}
@@ -100,43 +152,55 @@ class ContactNodeT : public WireNodeT<S> {
   [[nodiscard]] Vec3 getWorldPosition() const override {
     return Vec3(geometry_->getFrame()->transformPointToWorld(this->getPosition()));
   }
-  /// Friction coefficient along the wire, >= 0; until set, the wire
-  /// material's.
-  [[nodiscard]] bool hasFrictionCoefficient() const { return friction_ >= S(0); }
-  [[nodiscard]] S getFrictionCoefficient() const { return friction_; }
-  void setFrictionCoefficient(S coefficient) {
-    if (!(std::isfinite(coefficient) && coefficient >= S(0)))
-      throw detail::makeError("ContactNode", "", "friction coefficient must be finite and >= 0", coefficient);
-    friction_ = coefficient;
+  /// Whole turns (0 to 1000) the wire makes around the geometry besides the
+  /// routed wrap, as on a capstan or a bollard: each adds 2π to the wrap
+  /// angle and 2πr of wire on the geometry (the turns lie side by side along
+  /// its axis, which is not modeled). Read when the wire joins a simulation.
+  [[nodiscard]] int getTurns() const { return turns_; }
+  void setTurns(int turns) {
+    if (!(turns >= 0 && turns <= 1000))
+      throw detail::makeError("ContactNode", "", "turns must be within 0 and 1000", turns);
+    turns_ = turns;
   }
-  /// The angle the wire wraps the geometry (rad), as routed and then after
-  /// each step.
-  [[nodiscard]] S getWrapAngle() const { return S(wrap_); }
-  /// Friction force of the geometry on the wire along it in the last step
-  /// (N): the tension before the node minus the tension after it.
-  [[nodiscard]] S getFrictionForce() const { return S(frictionForce_); }
 
  protected:
   ~ContactNodeT() override = default;
 
  private:
-  template <Scalar>
-  friend class WireT;
   ref_ptr<GeometryT<S>> geometry_;
-  S friction_ = S(-1);
-  double wrap_ = 0.0;
-  double frictionForce_ = 0.0;
+  int turns_ = 0;
+};
+
+/// An eye the wire runs through (agxWire's EyeNode), fixed to `body` at
+/// `position` in its model frame, or to the world (world coordinates) when
+/// `body` is nullptr: the wire slides through it against friction
+/// (SlidingNodeT) over the angle it is deflected by, in either direction,
+/// and the eye's body carries the wire's pull. Neither first nor last in a
+/// route.
+template <Scalar S>
+class EyeNodeT : public SlidingNodeT<S> {
+ public:
+  using Vec3 = Vec3T<S>;
+  EyeNodeT(RigidBodyT<S>* body, const Vec3& position) : SlidingNodeT<S>(WireNodeT<S>::Type::EYE, body, position) {}
+  EyeNodeT(RigidBodyT<S>* body, S x, S y, S z) : EyeNodeT(body, Vec3(x, y, z)) {}
+
+ protected:
+  ~EyeNodeT() override = default;
 };
 
 using WireNode = WireNodeT<double>;
 using FreeNode = FreeNodeT<double>;
 using BodyFixedNode = BodyFixedNodeT<double>;
+using SlidingNode = SlidingNodeT<double>;
 using ContactNode = ContactNodeT<double>;
+using EyeNode = EyeNodeT<double>;
 namespace f32 {
 using WireNode = WireNodeT<float>;
 using FreeNode = FreeNodeT<float>;
 using BodyFixedNode = BodyFixedNodeT<float>;
+using SlidingNode = SlidingNodeT<float>;
 using ContactNode = ContactNodeT<float>;
+using EyeNode = EyeNodeT<float>;
 }  // namespace f32
 
 }  // namespace spook
