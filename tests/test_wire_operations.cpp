@@ -63,6 +63,8 @@ TEST_CASE_TEMPLATE("findPoint and findDistance walk a taut wire", S, double, flo
     CAPTURE(d);
     CHECK((wire->findPoint(S(d)) - Vec3(S(d), S(0), S(0))).norm() < S(1e-5));
     CHECK(double(wire->findDistance(Vec3(S(d), S(1), S(-2)))) == doctest::Approx(d).epsilon(1e-5).scale(1));
+    // The seeds' findPoint(any 3D point): the closest point on the wire.
+    CHECK((wire->findPoint(Vec3(S(d), S(1), S(-2))) - Vec3(S(d), S(0), S(0))).norm() < S(1e-5));
   }
   CHECK((wire->findPoint(S(-3)) - Vec3::Zero()).norm() < S(1e-6));
   CHECK(double(wire->findDistance(Vec3(S(20), S(0), S(0)))) == doctest::Approx(10.0).epsilon(1e-5));

@@ -22633,6 +22633,12 @@ class WireT : public RowProducer {
   /// The distance (m of rest length) from the start to the point of the
   /// wire closest to `point` (world, m); the wire must be in a simulation.
   [[nodiscard]] S findDistance(const Vec3& point) const;
+  /// The point of the wire closest to `point` (world, m), as findPoint
+  /// places it; the wire must be in a simulation.
+  [[nodiscard]] Vec3 findPoint(const Vec3& point) const { return findPoint(findDistance(point)); }
+  /// Tension (N) where the wire is closest to `point` (world, m); the wire
+  /// must be in a simulation.
+  [[nodiscard]] S getTension(const Vec3& point) const { return getTension(findDistance(point)); }
   /// The wire's points from its start to its end (world, m): attached ends,
   /// lumped nodes and, for each contact node, where the wire meets and
   /// leaves the geometry; for rendering and inspection. Empty until the
