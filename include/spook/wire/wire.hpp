@@ -158,6 +158,7 @@ class WireT : public RowProducer {
   void beginStep(const StepContext& step) override;
   void writeRows(RowWriter& rows, const StepContext& step) override;
   void readBack(std::span<const double> impulses, const StepContext& step) override;
+  void writeProjectionRows(RowWriter& rows, const StepContext& step) override;
 
  protected:
   ~WireT() override = default;
@@ -192,7 +193,15 @@ class WireT : public RowProducer {
   [[nodiscard]] Error error(const char* what) const { return detail::makeError("Wire", getName(), what); }
   [[nodiscard]] bool built() const { return !points_.empty(); }
   void checkRoute(const StepContext& simulation) const;
-  void build();
+  void build(const StepContext& simulation);
+  /// The node spacing the step can resolve (m): the wire's (1/resolution)
+  /// and no less than the distance a node falls in a step, |g|h². Shorter
+  /// segments turn by more than a radian in a step where one end is held
+  /// and the other falls, far past the first order in that angle to which
+  /// the velocity-level step keeps their length (a 6 m steel wire of 7 cm
+  /// segments, fixed at one end and released level at h = 0.2 s, swung
+  /// above its pivot; of 38 cm, its length held within 0.02%).
+  [[nodiscard]] double spacing(const StepContext& step) const;
   void updateMasses();
   /// Adaptive resolution (beginStep): nodes the step cannot resolve leave,
   /// and return where the tension allows.
@@ -264,9 +273,15 @@ class WireT : public RowProducer {
   void addDrums();
   /// Whether an inner node may leave: two winches keep a segment each.
   [[nodiscard]] bool removable() const { return !(winches_[0] && winches_[1] && restLengths_.size() <= 2); }
+  /// state_ for the points as they are now.
+  void measurePoints(const StepContext& step);
   /// `stretchStiffness`: E·A of the wire (N).
   void writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow, double stretchStiffness);
   void writeFrictionRows(RowWriter& rows, std::size_t firstRow);
+
+  /// Post-stabilization's threshold: a segment's length error as a share of
+  /// its rest length (writeProjectionRows).
+  static constexpr double kProjectionTolerance = 1e-3;
 
   double radius_;
   double resolution_;
@@ -578,7 +593,7 @@ void WireT<S>::prepare(const StepContext& simulation) {
   checkRoute(simulation);
   if (built()) return;
   try {
-    build();
+    build(simulation);
   } catch (...) {
     // Refused: the wire stays as routed (its store is not in the simulation yet).
     clearState();
@@ -588,7 +603,16 @@ void WireT<S>::prepare(const StepContext& simulation) {
 }
 
 template <Scalar S>
-void WireT<S>::build() {
+double WireT<S>::spacing(const StepContext& step) const {
+  const Vec3d start = points_.empty() ? route_.front()->getWorldPosition().template cast<double>()
+                                      : worldPosition(points_.front());
+  const double h = step.getTimeStep(), fall = step.gravity(start).norm() * h * h;
+  return std::isfinite(fall) ? std::max(1.0 / resolution_, fall) : 1.0 / resolution_;
+}
+
+template <Scalar S>
+void WireT<S>::build(const StepContext& simulation) {
+  const double spacing = this->spacing(simulation);
   const auto world = [&](std::size_t k) -> Vec3d { return route_[k]->getWorldPosition().template cast<double>(); };
   // Contacts first: their wraps from the route, so that the wire between
   // route nodes runs along their tangents.
@@ -627,10 +651,12 @@ void WireT<S>::build() {
     const int contact = contactOf[k + 1];
     const Vec3d b = contact >= 0 ? contacts_[std::size_t(contact)].wrap.point(contacts_[std::size_t(contact)].wrap.in)
                                  : world(k + 1);
-    // A mass node beside each contact keeps every row within three bodies.
-    const int fewest = contactOf[k] >= 0 || contactOf[k + 1] >= 0 ? 2 : 1;
+    // A mass node beside each contact keeps every row within three bodies;
+    // two winches keep a segment each.
+    const bool winchToWinch = winches_[0] && winches_[1] && route_.size() == 2;
+    const int fewest = contactOf[k] >= 0 || contactOf[k + 1] >= 0 || winchToWinch ? 2 : 1;
     // The tangent points of a wrap can lie far from the routed points (a huge sheave).
-    const double span = (b - a).norm() * resolution_;
+    const double span = (b - a).norm() / spacing;
     if (!(span <= 1e6)) throw error("would have more than 1e6 lumped nodes on a span of its route; nodes", span);
     const int segments = std::max(fewest, int(std::ceil(span - 1e-9)));
     for (int i = 1; i < segments; ++i) {
@@ -737,7 +763,7 @@ void WireT<S>::beginStep(const StepContext& step) {
       changed = true;
     }
   }
-  const double target = 1.0 / resolution_, density = linearDensity();
+  const double target = spacing(step), density = linearDensity();
   for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
     // A wrap's arc holds no node: the straight part is split.
     const double straight = restLengths_[k] - wrapped(k);
@@ -920,9 +946,8 @@ struct WireRowBodies {
 }  // namespace detail
 
 template <Scalar S>
-void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
-  if (!built()) return;  // merged into another wire
-  const std::size_t n = points_.size(), firstRow = rows.size();
+void WireT<S>::measurePoints(const StepContext& step) {
+  const std::size_t n = points_.size();
   state_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const Point& p = points_[k];
@@ -952,6 +977,13 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
                  s.armIn.allFinite() && s.armOut.allFinite());
     if (s.broken) s.index = -1;
   }
+}
+
+template <Scalar S>
+void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
+  if (!built()) return;  // merged into another wire
+  const std::size_t n = points_.size(), firstRow = rows.size();
+  measurePoints(step);
   const auto drumIndex = [&](std::size_t segment) {
     for (int end = 0; end < 2; ++end)
       if (winches_[end] && segment == winchSegment(end))
@@ -1076,6 +1108,46 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   }
   writeWinchRows(rows, step, firstRow, stretchStiffness);
   writeFrictionRows(rows, firstRow);
+}
+
+// Post-stabilization (the direct and hybrid solvers' default): the
+// velocity-level step keeps a segment's length to first order in the angle
+// φ it turns by within the step only (it comes out longer by about l·φ²/2),
+// and the next step's stabilization, restoring that length, pushes the
+// nodes apart: energy in. A segment that turned far in a step (a large
+// time step, a free end falling past a fixed one) and is off the length its
+// tension stretches it to, c·T with c = L/(E·A), by more than
+// kProjectionTolerance of its rest length, is projected back to it;
+// positions only (the store's displace keeps the nodes' velocities), nodes
+// and bodies moving (drums and slips stay). The segments beside it are not
+// held in that projection: holding all of a wire's segments let its
+// linearization overshoot (a level wire released at h = 0.2 s then rose
+// 13 cm above its start). Segments at a contact, whose tangents are those
+// of the step's start, are left to the next step.
+template <Scalar S>
+void WireT<S>::writeProjectionRows(RowWriter& rows, const StepContext& step) {
+  if (!built()) return;
+  measurePoints(step);
+  const double stretchStiffness = double(material_->getWireMaterial()->getYoungsModulusStretch()) * std::numbers::pi *
+                                  radius_ * radius_;
+  for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
+    if (points_[k].contact >= 0 || points_[k + 1].contact >= 0 || state_[k].broken || state_[k + 1].broken) continue;
+    const Vec3d d = state_[k + 1].in - state_[k].out;
+    const double length = d.norm(), rest = restLength(k);
+    const double target = -rest * tension_[k] / stretchStiffness, violation = rest - length;
+    if (!(length > 0.0 && std::isfinite(violation) && std::isfinite(target)) ||
+        !(std::abs(violation - target) > kProjectionTolerance * rest))
+      continue;
+    const Vec3d u = d / length;
+    detail::WireRowBodies bodies;
+    bodies.add(state_[k].index, u, state_[k].armOut);
+    bodies.add(state_[k + 1].index, -u, state_[k + 1].armIn);
+    if (bodies.count == 0) continue;
+    detail::Row& r = rows.add();
+    bodies.write(rows, r);
+    r.violation = violation;
+    r.speed = target;
+  }
 }
 
 // A contact's friction along the wire (the capstan law, PHYSICS.md §7): the
