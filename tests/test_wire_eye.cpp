@@ -1,13 +1,15 @@
 // Wires through eyes (EyeNode): the capstan law over the angle the wire is
 // deflected by, with a coefficient for each direction it slides in, and a
 // ring on a taut wire that slides to where both sides make one angle with
-// the vertical (the clothesline problem).
+// the vertical (the clothesline problem); bad input to eye and connecting
+// nodes and a capstan's turns.
 
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <spook/spook.hpp>
 
@@ -71,10 +73,10 @@ TEST_CASE_TEMPLATE("an eye holds the wire within e^(mu theta) in each direction 
       const double before = double(rig.wire->getTension(S(0.1)));
       const double after = double(rig.wire->getTension(S(length - 0.1)));
       const double high = heavyAtEnd ? after : before, low = heavyAtEnd ? before : after;
-      MESSAGE((heavyAtEnd ? "forward" : "backward")
-              << ", load " << share << " e^(mu theta) x the light one: drop " << drop << " m in 1 s at " << speed
-              << " m/s, tensions " << high << " N and " << low << " N (ratio " << high / low << " against " << ratio
-              << "), friction " << rig.eye->getFrictionForce() << " N");
+      MESSAGE("sliding " << std::string(heavyAtEnd ? "forward" : "backward") << ", load " << share
+                         << " e^(mu theta) x the light one: drop " << drop << " m in 1 s at " << speed
+                         << " m/s, tensions " << high << " N and " << low << " N (ratio " << high / low
+                         << " against " << ratio << "), friction " << rig.eye->getFrictionForce() << " N");
       if (share < 1.0) {
         CHECK(std::abs(drop) < 5e-3);
         CHECK(std::abs(speed) < 1e-3);
@@ -140,7 +142,7 @@ TEST_CASE_TEMPLATE("a ring slides along a taut wire to where both sides make one
   CHECK(wire->getNumMassNodes() < 40);
 }
 
-TEST_CASE("an eye node and a capstan's turns refuse bad input by name, leaving the simulation unchanged") {
+TEST_CASE("eye and connecting nodes and a capstan's turns refuse bad input by name, leaving the simulation unchanged") {
   const auto message = [](auto&& make) { return spook::test::errorMessage(make); };
   ref_ptr<EyeNode> eye = new EyeNode(nullptr, Vec3(0, 0, 0));
   CHECK(message([&] { eye->setFrictionCoefficient(-0.1); }).find("EyeNode") != std::string::npos);
@@ -169,4 +171,25 @@ TEST_CASE("an eye node and a capstan's turns refuse bad input by name, leaving t
     CHECK(sim->getRowProducers().empty());
     CHECK(wire->getNumMassNodes() == 0);
   }
+  // A ConnectingNode needs a body, an end of the route, and a socket away
+  // from the body's center of mass.
+  CHECK(message([] { ref_ptr<ConnectingNode> c = new ConnectingNode(nullptr, Vec3(1, 0, 0)); })
+            .find("ConnectingNode") != std::string::npos);
+  ref_ptr<Simulation> sim = new Simulation();
+  ref_ptr<RigidBody> block = new RigidBody();
+  sim->add(block);
+  const auto refused = [&](const std::vector<ref_ptr<WireNode>>& route, const char* expected) {
+    ref_ptr<Wire> wire = new Wire(0.01, 2.0);
+    wire->setName("pipe");
+    for (const auto& node : route) wire->add(node);
+    const std::string what = message([&] { sim->add(wire); });
+    CAPTURE(what);
+    CHECK(what.find("'pipe'") != std::string::npos);
+    CHECK(what.find(expected) != std::string::npos);
+    CHECK(sim->getRowProducers().empty());
+  };
+  refused({new FreeNode(-1, 0, 0), new ConnectingNode(block, Vec3(1, 0, 0)), new FreeNode(2, 0, 0)},
+          "a ConnectingNode may only be the first or last route node; it is node, got 1");
+  refused({new ConnectingNode(block, Vec3(0, 0, 0)), new FreeNode(2, 0, 0)},
+          "a ConnectingNode must be away from its body's center of mass");
 }

@@ -157,13 +157,17 @@ TEST_CASE_TEMPLATE("a wire holds a load at high tension and a 1:1e6 mass ratio w
   using Vec3 = Vec3T<S>;
   const double radius = 0.01, length = 10.0, density = 7800.0;
   const double area = std::numbers::pi * radius * radius, wireMass = density * area * length;
-  // 1e5 kg on steel (E = 6e10 Pa); then a load of 1e6 wire masses, on a
-  // wire stiff enough to stretch by 2 %.
+  // 1e5 kg on steel (E = 6e10 Pa), fixed to its center of mass and
+  // clamped 0.5 m above it (a ConnectingNode, bend modulus 6e10 Pa); then a
+  // load of 1e6 wire masses, on a wire stiff enough to stretch by 2 %.
   struct Case {
     double load, modulus;
+    bool connecting = false;
   };
-  for (const Case c : {Case{1e5, 6e10}, Case{1e6 * wireMass, 1e6 * wireMass * g0 / (0.02 * area)}}) {
+  for (const Case c :
+       {Case{1e5, 6e10}, Case{1e5, 6e10, true}, Case{1e6 * wireMass, 1e6 * wireMass * g0 / (0.02 * area)}}) {
     CAPTURE(c.load);
+    CAPTURE(c.connecting);
     ref_ptr<Sim> sim = new Sim();
     ref_ptr<RigidBodyT<S>> load = new RigidBodyT<S>();
     load->getMassProperties()->setMass(S(c.load));
@@ -172,12 +176,19 @@ TEST_CASE_TEMPLATE("a wire holds a load at high tension and a 1:1e6 mass ratio w
     wire->getMaterial()->getBulkMaterial()->setDensity(S(density));
     wire->getMaterial()->getWireMaterial()->setYoungsModulusStretch(S(c.modulus));
     wire->add(new BodyFixedNodeT<S>(nullptr, Vec3(S(0), S(0), S(length))));
-    wire->add(new BodyFixedNodeT<S>(load.get(), Vec3::Zero()));
+    const double socket = c.connecting ? 0.5 : 0.0;
+    load->setPosition(S(0), S(0), S(-socket));
+    if (c.connecting) {
+      wire->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(c.modulus));
+      wire->add(new ConnectingNodeT<S>(load.get(), Vec3(S(0), S(0), S(socket))));
+    } else {
+      wire->add(new BodyFixedNodeT<S>(load.get(), Vec3::Zero()));
+    }
     sim->add(wire);
     const std::size_t nodes = wire->getNumMassNodes();
     // The load starts where it hangs: the wire stretched by its weight.
     const double EA = c.modulus * area, stretch = c.load * g0 * length / EA;
-    load->setPosition(S(0), S(0), S(-stretch));
+    load->setPosition(S(0), S(0), S(-socket - stretch));
     const int steps = spook::test::sweep(180, 150);
     double low = 1e30, high = -1e30;
     for (int s = 1; s <= steps; ++s) {
@@ -191,7 +202,8 @@ TEST_CASE_TEMPLATE("a wire holds a load at high tension and a 1:1e6 mass ratio w
     const double measuredStretch = double(wire->getCurrentLength() - wire->getRestLength());
     // The wire's own weight adds w L²/(2EA) to the stretch.
     const double expectedStretch = stretch + density * area * g0 * length * length / (2.0 * EA);
-    MESSAGE("load " << c.load << " kg: tension " << tension << " N against " << c.load * g0 << ", stretch "
+    MESSAGE("load " << c.load << " kg" << std::string(c.connecting ? " (clamped)" : "") << ": tension " << tension
+                    << " N against " << c.load * g0 << ", stretch "
                     << measuredStretch << " m against " << expectedStretch << ", load moves " << high - low
                     << " m over the last second, " << nodes << " nodes");
     CHECK(tension == doctest::Approx(c.load * g0).epsilon(0.01));
@@ -250,6 +262,59 @@ TEST_CASE_TEMPLATE("a stiff wire released level swings below its pivot at large 
     CHECK(highest < 0.01);
     CHECK(first < 0.2);
     CHECK(after < 0.01);
+  }
+}
+
+TEST_CASE_TEMPLATE("a pipe clamped by a ConnectingNode deflects as a cantilever under its weight", S, double, float) {
+  using Vec3 = Vec3T<S>;
+  // 5 m of solid steel rod (radius 5 cm, E = 2e11 Pa for stretch and bend,
+  // 4 nodes per meter) clamped level in a static block, its socket along
+  // +x from the block's center: the tip sinks by the Euler–Bernoulli
+  // cantilever's δ = w L⁴/(8 E I), w = ρ A g. It starts straight and
+  // vibrates about that; its mean over the last of 4 s is compared. Pinned
+  // (a BodyFixedNode) it hangs down instead.
+  const double radius = 0.05, length = 5.0, density = 7800.0, modulus = 2e11;
+  const double w = density * std::numbers::pi * radius * radius * g0;
+  const double EI = modulus * std::numbers::pi * std::pow(radius, 4) / 4.0;
+  const double deflection = w * std::pow(length, 4) / (8.0 * EI);
+  for (const bool clamped : {true, false}) {
+    CAPTURE(clamped);
+    ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+    ref_ptr<RigidBodyT<S>> block = new RigidBodyT<S>();
+    block->setMotionControl(RigidBodyT<S>::MotionControl::STATIC);
+    sim->add(block);
+    ref_ptr<WireT<S>> pipe = new WireT<S>(S(radius), S(4));
+    pipe->getMaterial()->getBulkMaterial()->setDensity(S(density));
+    pipe->getMaterial()->getWireMaterial()->setYoungsModulusStretch(S(modulus));
+    pipe->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(modulus));
+    const Vec3 socket(S(0.5), S(0), S(0));
+    if (clamped)
+      pipe->add(new ConnectingNodeT<S>(block.get(), socket));
+    else
+      pipe->add(new BodyFixedNodeT<S>(block.get(), socket));
+    pipe->add(new FreeNodeT<S>(Vec3(S(0.5 + length), S(0), S(0))));
+    sim->add(pipe);
+    double sum = 0.0, lowest = 0.0;
+    int samples = 0;
+    for (int s = 0; s < 240; ++s) {
+      sim->stepForward();
+      const double tip = double(pipe->getPoints().back().z());
+      lowest = std::min(lowest, tip);
+      if (s >= 180) {
+        sum += tip;
+        ++samples;
+      }
+    }
+    const double mean = -sum / samples;
+    MESSAGE("the pipe " << std::string(clamped ? "clamped" : "pinned") << ": the tip sinks " << mean
+                        << " m on average over the last second (" << -lowest << " at most) against "
+                        << deflection << " m; " << pipe->getNumMassNodes() << " nodes");
+    if (clamped) {
+      CHECK(mean == doctest::Approx(deflection).epsilon(0.03));
+      CHECK(-lowest < 2.5 * deflection);
+    } else {
+      CHECK(-lowest > 1.0);
+    }
   }
 }
 

@@ -356,9 +356,9 @@ struct Builder {
     }
   }
 
-  // A wire between random ends (free, fixed to a body or the world, a
-  // winch with random speed, force and brake), routed through free nodes,
-  // eyes and over cylinders on bodies or the world.
+  // A wire between random ends (free, fixed to a body or the world,
+  // clamped to a body, a winch with random speed, force and brake), routed
+  // through free nodes, eyes and over cylinders on bodies or the world.
   void wire(spook::SimulationT<S>& sim, const std::vector<spook::ref_ptr<Body>>& bodies) {
     spook::ref_ptr<spook::WireT<S>> w = new spook::WireT<S>(real(1e-4, 0.1), real(0.1, 20));
     auto& material = *w->getMaterial()->getWireMaterial();
@@ -372,7 +372,16 @@ struct Builder {
     const auto end = [&] {
       switch (in.choice(3)) {
         case 0: w->add(new spook::FreeNodeT<S>(vec(-3, 3))); break;
-        case 1: w->add(new spook::BodyFixedNodeT<S>(anyBody(), vec(-1, 1))); break;
+        case 1: {
+          // A clamped end (ConnectingNode) on a body for some, without reading more input.
+          Body* body = anyBody();
+          const Vec3 at = vec(-1, 1);
+          if (body && at.x() > S(0.5))
+            w->add(new spook::ConnectingNodeT<S>(body, at));
+          else
+            w->add(new spook::BodyFixedNodeT<S>(body, at));
+          break;
+        }
         default: {
           spook::ref_ptr<spook::WireWinchControllerT<S>> winch =
               new spook::WireWinchControllerT<S>(anyBody(), vec(-1, 1), vec(-1, 1));

@@ -107,7 +107,8 @@ class WireT : public RowProducer {
   /// was on its drum (getPulledInLength) and can be attached again.
   void detach(bool begin);
   /// Attaches the free begin or end of the wire to `node` (a BodyFixedNode
-  /// on a body of the wire's simulation, or on the world) through a
+  /// on a body of the wire's simulation or on the world, or a
+  /// ConnectingNode on a body of its simulation) through a
   /// straight piece of wire as long as the gap (merged away when shorter
   /// than a quarter of the node spacing).
   void attach(ref_ptr<Node> node, bool begin);
@@ -173,6 +174,7 @@ class WireT : public RowProducer {
     Body* body = nullptr;
     Vec3d local = Vec3d::Zero();
     int contact = -1;
+    bool clamped = false;  ///< a ConnectingNode's end: bend rows across it
   };
   /// A contact or eye node as built: its wrap (an eye's of radius 0), and
   /// its slip (wire sliding over the geometry or through the eye) as a
@@ -562,6 +564,13 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
     const Node& node = *route_[k];
     if (node.getType() == Node::Type::BODY_FIXED && k != 0 && k + 1 != route_.size())
       throw error("a BodyFixedNode may only be the first or last route node; it is node", k);
+    if (node.getType() == Node::Type::CONNECTING) {
+      if (k != 0 && k + 1 != route_.size())
+        throw error("a ConnectingNode may only be the first or last route node; it is node", k);
+      const Body& body = *node.getRigidBody();
+      if (!((node.getWorldPosition() - body.getCmPosition()).norm() > S(1e-6) * (S(1) + node.getPosition().norm())))
+        throw error("a ConnectingNode must be away from its body's center of mass; it is at", node.getPosition());
+    }
     if (node.getType() == Node::Type::EYE && (k == 0 || k + 1 == route_.size()))
       throw error("an EyeNode may not be the first or last route node; it is node", k);
     if (node.getType() == Node::Type::CONTACT) {
@@ -635,9 +644,10 @@ void WireT<S>::build(const StepContext& simulation) {
   const auto routePoint = [&](std::size_t k) {
     Point p;
     const Node& node = *route_[k];
-    if (node.getType() == Node::Type::BODY_FIXED) {
+    if (node.getType() == Node::Type::BODY_FIXED || node.getType() == Node::Type::CONNECTING) {
       p.body = node.getRigidBody();
       p.local = node.getPosition().template cast<double>();
+      p.clamped = node.getType() == Node::Type::CONNECTING;
     } else if (contactOf[k] >= 0) {
       p.contact = contactOf[k];
     } else {
@@ -1036,35 +1046,66 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   }
   // Bend: g = e·(t₂ − t₁) for the two directions e across the mean tangent;
   // ½(EI/l̄)|t₂ − t₁|² is the bending energy of the turn (curvature |t₂ − t₁|/l̄
-  // over the length l̄), so the compliance is l̄/(E I).
+  // over the length l̄), so the compliance is l̄/(E I). A clamped end
+  // (ConnectingNode) bends between the line from its body's center of mass
+  // and the wire, over l̄ = half its segment (none of the wire inside the body).
   const double bendStiffness = double(wire.getYoungsModulusBend()) * std::numbers::pi * std::pow(radius_, 4) / 4.0;
-  for (std::size_t k = 1; k + 1 < n; ++k) {
-    const Vec3d d1 = state_[k].in - state_[k - 1].out, d2 = state_[k + 1].in - state_[k].out;
+  struct BendPoint {
+    int index;
+    Vec3d arm;
+  };
+  const auto writeBend = [&](std::size_t k, const Vec3d& d1, const Vec3d& d2, const BendPoint& before,
+                             const BendPoint& at, const BendPoint& after, double compliance) {
     const double l1 = d1.norm(), l2 = d2.norm();
-    // A contact shapes the wire around its geometry: no bend rows there.
-    bent_[k] = bendStiffness > 0.0 && l1 > 0.0 && l2 > 0.0 && points_[k].contact < 0 && !state_[k - 1].broken &&
-               !state_[k].broken && !state_[k + 1].broken;
-    if (!bent_[k]) continue;
     const Vec3d t1 = d1 / l1, t2 = d2 / l2;
     const Vec3d mean = t1 + t2;
     const Vec3d axis = mean.norm() > 1e-6 ? Vec3d(mean.normalized()) : t1;
     const Vec3d turn = (t2 - t1) - axis * axis.dot(t2 - t1);
     const Vec3d inPlane = turn.norm() > 1e-9 ? Vec3d(turn.normalized()) : Vec3d(axis.unitOrthogonal());
     const Vec3d outOfPlane = axis.cross(inPlane);
-    const double compliance = 0.5 * (restLengths_[k - 1] + restLengths_[k]) / bendStiffness;
     for (std::size_t i = 0; i < 2; ++i) {
       const Vec3d& e = i == 0 ? inPlane : outOfPlane;
       const Vec3d a0 = (e - t1 * t1.dot(e)) / l1, a2 = (e - t2 * t2.dot(e)) / l2;
       detail::WireRowBodies bodies;
-      bodies.add(state_[k].index, -(a0 + a2), state_[k].armIn);
-      bodies.add(state_[k - 1].index, a0, state_[k - 1].armOut);
-      bodies.add(state_[k + 1].index, a2, state_[k + 1].armIn);
+      bodies.add(at.index, -(a0 + a2), at.arm);
+      bodies.add(before.index, a0, before.arm);
+      bodies.add(after.index, a2, after.arm);
       detail::Row& r = rows.add(bendImpulse_[2 * k + i]);
       bodies.write(rows, r);
       r.violation = e.dot(t2 - t1);
       r.compliance = compliance;
       r.damping = double(wire.getDampingBend());
     }
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    bent_[k] = 0;
+    if (!(bendStiffness > 0.0) || n < 2) continue;
+    const bool inner = k > 0 && k + 1 < n;
+    if (inner) {
+      const Vec3d d1 = state_[k].in - state_[k - 1].out, d2 = state_[k + 1].in - state_[k].out;
+      // A contact shapes the wire around its geometry: no bend rows there.
+      if (!(d1.norm() > 0.0 && d2.norm() > 0.0) || points_[k].contact >= 0 || state_[k - 1].broken ||
+          state_[k].broken || state_[k + 1].broken)
+        continue;
+      bent_[k] = 1;
+      writeBend(k, d1, d2, {state_[k - 1].index, state_[k - 1].armOut}, {state_[k].index, state_[k].armIn},
+                {state_[k + 1].index, state_[k + 1].armIn}, 0.5 * (restLengths_[k - 1] + restLengths_[k]) / bendStiffness);
+      continue;
+    }
+    const std::size_t other = k == 0 ? 1 : k - 1;
+    if (!points_[k].clamped || state_[k].broken || state_[other].broken || state_[k].index < 0) continue;
+    const Vec3d center = state_[k].out - state_[k].armOut;  // the body's center of mass
+    const Vec3d socket = k == 0 ? Vec3d(state_[k].out - center) : Vec3d(center - state_[k].in);
+    const Vec3d wireSide = k == 0 ? Vec3d(state_[1].in - state_[0].out) : Vec3d(state_[k].in - state_[other].out);
+    if (!(socket.norm() > 1e-9 && wireSide.norm() > 0.0)) continue;
+    bent_[k] = 1;
+    const double compliance = 0.5 * restLengths_[k == 0 ? 0 : k - 1] / bendStiffness;
+    const BendPoint body{state_[k].index, Vec3d::Zero()}, end{state_[k].index, state_[k].armOut};
+    const BendPoint beside{state_[other].index, k == 0 ? state_[other].armIn : state_[other].armOut};
+    if (k == 0)
+      writeBend(k, socket, wireSide, body, end, beside, compliance);
+    else
+      writeBend(k, wireSide, socket, beside, end, body, compliance);
   }
   // Geometric stiffness (Tournier et al., SIGGRAPH 2015; Andrews et al.
   // 2017): a segment under tension T resists its ends' motion across it
@@ -1251,7 +1292,7 @@ void WireT<S>::readBack(std::span<const double> impulses, const StepContext& ste
     tension_[k] = impulses[k] / h;
   }
   std::size_t next = segments;
-  for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
+  for (std::size_t k = 0; k < points_.size(); ++k) {
     if (!bent_[k]) continue;
     bendImpulse_[2 * k] = impulses[next++];
     bendImpulse_[2 * k + 1] = impulses[next++];

@@ -2,7 +2,8 @@
 
 // The nodes a wire is routed with (wire/wire.hpp), after agxWire's: a
 // FreeNode is a routing point (a free end when first or last), a
-// BodyFixedNode fixes an end of the wire to a body or to the world, a
+// BodyFixedNode fixes an end of the wire to a body or to the world (a
+// ConnectingNode clamps it to a body), a
 // ContactNode routes it over a geometry (a sheave), an EyeNode through an
 // eye on a body or the world.
 
@@ -26,7 +27,7 @@ template <Scalar S>
 class WireNodeT : public Referenced {
  public:
   using Vec3 = Vec3T<S>;
-  enum class Type { FREE, BODY_FIXED, CONTACT, EYE };
+  enum class Type { FREE, BODY_FIXED, CONTACT, EYE, CONNECTING };
 
   [[nodiscard]] Type getType() const { return type_; }
   /// The body a body-fixed, eye or contact node moves with; nullptr for
@@ -47,6 +48,7 @@ class WireNodeT : public Referenced {
       throw detail::makeError(type == Type::FREE         ? "FreeNode"
                               : type == Type::BODY_FIXED ? "BodyFixedNode"
                               : type == Type::EYE        ? "EyeNode"
+                              : type == Type::CONNECTING ? "ConnectingNode"
                                                          : "ContactNode",
                               "", "position must be finite m", position);
   }
@@ -78,6 +80,28 @@ class BodyFixedNodeT : public WireNodeT<S> {
   BodyFixedNodeT(RigidBodyT<S>* body, const Vec3& position)
       : WireNodeT<S>(WireNodeT<S>::Type::BODY_FIXED, body, position) {}
   BodyFixedNodeT(RigidBodyT<S>* body, S x, S y, S z) : BodyFixedNodeT(body, Vec3(x, y, z)) {}
+};
+
+/// An end of the wire clamped to `body` at `position` in its model frame
+/// (agxWire's ConnectingNode): as a BodyFixedNode, and the wire leaves the
+/// body along the line from its center of mass through `position` (an
+/// extra point at the center of mass, moving with the body), its bend
+/// across the connection held by the wire's bending stiffness as at its
+/// other points: a socket, a clamped pipe. `body` may not be nullptr, and
+/// `position` not at its center of mass. Only the first or last node of a
+/// route.
+template <Scalar S>
+class ConnectingNodeT : public WireNodeT<S> {
+ public:
+  using Vec3 = Vec3T<S>;
+  ConnectingNodeT(RigidBodyT<S>* body, const Vec3& position)
+      : WireNodeT<S>(WireNodeT<S>::Type::CONNECTING, body, position) {
+    if (!body) throw detail::makeError("ConnectingNode", "", "needs a body", "nullptr");
+  }
+  ConnectingNodeT(RigidBodyT<S>* body, S x, S y, S z) : ConnectingNodeT(body, Vec3(x, y, z)) {}
+
+ protected:
+  ~ConnectingNodeT() override = default;
 };
 
 /// A node the wire slides over or through against friction along it (a
@@ -194,6 +218,7 @@ using BodyFixedNode = BodyFixedNodeT<double>;
 using SlidingNode = SlidingNodeT<double>;
 using ContactNode = ContactNodeT<double>;
 using EyeNode = EyeNodeT<double>;
+using ConnectingNode = ConnectingNodeT<double>;
 namespace f32 {
 using WireNode = WireNodeT<float>;
 using FreeNode = FreeNodeT<float>;
@@ -201,6 +226,7 @@ using BodyFixedNode = BodyFixedNodeT<float>;
 using SlidingNode = SlidingNodeT<float>;
 using ContactNode = ContactNodeT<float>;
 using EyeNode = EyeNodeT<float>;
+using ConnectingNode = ConnectingNodeT<float>;
 }  // namespace f32
 
 }  // namespace spook

@@ -255,7 +255,8 @@ void WireT<S>::detach(bool begin) {
   if (!built()) {
     if (route_.empty()) throw error(which, "no route");
     ref_ptr<Node>& node = begin ? route_.front() : route_.back();
-    if (node->getType() != Node::Type::BODY_FIXED) throw error(which, "a free node");
+    if (node->getType() != Node::Type::BODY_FIXED && node->getType() != Node::Type::CONNECTING)
+      throw error(which, "a free node");
     node = new FreeNodeT<S>(node->getWorldPosition());
     if (winches_[end]) winches_[end]->wire_ = nullptr;
     winches_[end] = nullptr;
@@ -302,6 +303,7 @@ void WireT<S>::attachEnd(int end, ref_ptr<Node> node) {
   Point attached;
   attached.body = body;
   attached.local = node->getPosition().template cast<double>();
+  attached.clamped = node->getType() == Node::Type::CONNECTING;
   syncWinchSegments();
   const std::size_t k = end == 0 ? 0 : points_.size() - 1;
   const double gap = (worldPosition(attached) - worldPosition(points_[k])).norm();
@@ -320,7 +322,8 @@ void WireT<S>::attachEnd(int end, ref_ptr<Node> node) {
 template <Scalar S>
 void WireT<S>::attach(ref_ptr<Node> node, bool begin) {
   if (!node) throw error("cannot attach to a null node", "nullptr");
-  if (node->getType() != Node::Type::BODY_FIXED) throw error("attaches only to a BodyFixedNode or a winch", "another node");
+  if (node->getType() != Node::Type::BODY_FIXED && node->getType() != Node::Type::CONNECTING)
+    throw error("attaches only to a BodyFixedNode, a ConnectingNode or a winch", "another node");
   attachEnd(begin ? 0 : 1, std::move(node));
 }
 
