@@ -60,6 +60,48 @@ struct OverCylinder {
   }
 };
 
+/// A static body holding a cylinder of radius 0.5 m (axis along y) at
+/// (x, 0, z) in `sim`; the cylinder.
+template <Scalar S>
+ref_ptr<GeometryT<S>> fixedCylinder(SimulationT<S>& sim, double x, double z) {
+  ref_ptr<RigidBodyT<S>> holder = new RigidBodyT<S>();
+  ref_ptr<GeometryT<S>> cylinder = new GeometryT<S>(new CylinderT<S>(S(0.5), S(0.2)));
+  holder->add(cylinder);
+  holder->setMotionControl(RigidBodyT<S>::MotionControl::STATIC);
+  holder->setPosition(S(x), S(0), S(z));
+  sim.add(holder);
+  return cylinder;
+}
+
+/// A load (kg) hung 5 m below the right of a fixed cylinder at the origin,
+/// its 5 mm wire (5 nodes/m, `density` kg/m³) over the top to a winch on the
+/// world 5 m below the left (pointing up, 3 m on its drum, force range
+/// ±`force` N); the sheave's friction coefficient `mu`. The brake holds.
+template <Scalar S>
+struct HaulOverCylinder {
+  using Vec3 = Vec3T<S>;
+  ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+  ref_ptr<RigidBodyT<S>> load = new RigidBodyT<S>();
+  ref_ptr<WireWinchControllerT<S>> winch =
+      new WireWinchControllerT<S>(nullptr, Vec3(S(-0.5), S(0), S(-5)), Vec3(S(0), S(0), S(1)));
+  ref_ptr<ContactNodeT<S>> contact;
+  ref_ptr<WireT<S>> wire = new WireT<S>(S(0.005), S(5));
+
+  HaulOverCylinder(double mass, double density, double force, double mu) {
+    contact = new ContactNodeT<S>(fixedCylinder(*sim, 0.0, 0.0).get(), Vec3(S(0), S(0), S(0.5)));
+    contact->setFrictionCoefficient(S(mu));
+    load->getMassProperties()->setMass(S(mass));
+    load->setPosition(S(0.5), S(0), S(-5));
+    sim->add(load);
+    winch->setForceRange(S(-force), S(force));
+    wire->getMaterial()->getBulkMaterial()->setDensity(S(density));
+    wire->add(new BodyFixedNodeT<S>(load.get(), Vec3::Zero()));
+    wire->add(contact);
+    wire->add(winch, S(3));
+    sim->add(wire);
+  }
+};
+
 }  // namespace
 
 TEST_CASE_TEMPLATE("a wire over a cylinder holds within the capstan ratio and slips beyond it", S, double, float) {
@@ -106,16 +148,7 @@ TEST_CASE_TEMPLATE("a quarter wrap holds within e^(mu pi/2), the wire turned dow
     // leaves its top to the left, 3 m over to a frictionless guide, and
     // down its left side to the counterweight.
     ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
-    const auto fixedCylinder = [&](double x) {
-      ref_ptr<RigidBodyT<S>> holder = new RigidBodyT<S>();
-      ref_ptr<GeometryT<S>> cylinder = new GeometryT<S>(new CylinderT<S>(S(0.5), S(0.2)));
-      holder->add(cylinder);
-      holder->setMotionControl(RigidBodyT<S>::MotionControl::STATIC);
-      holder->setPosition(S(x), S(0), S(0));
-      sim->add(holder);
-      return cylinder;
-    };
-    ref_ptr<GeometryT<S>> sheave = fixedCylinder(0.0), guide = fixedCylinder(-3.0);
+    ref_ptr<GeometryT<S>> sheave = fixedCylinder(*sim, 0.0, 0.0), guide = fixedCylinder(*sim, -3.0, 0.0);
     ref_ptr<RigidBodyT<S>> load = new RigidBodyT<S>(), weight = new RigidBodyT<S>();
     load->getMassProperties()->setMass(S(share * ratio * counterweight));
     load->setPosition(S(0.5), S(0), S(-4));
@@ -167,16 +200,7 @@ TEST_CASE_TEMPLATE("a wire turned once around a capstan holds within e^(2 mu pi)
     // frictionless guide 3 m above, over its top and down its right side to
     // the counterweight: the capstan's wrap is one whole turn.
     ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
-    const auto fixedCylinder = [&](double x, double z) {
-      ref_ptr<RigidBodyT<S>> holder = new RigidBodyT<S>();
-      ref_ptr<GeometryT<S>> cylinder = new GeometryT<S>(new CylinderT<S>(S(0.5), S(0.2)));
-      holder->add(cylinder);
-      holder->setMotionControl(RigidBodyT<S>::MotionControl::STATIC);
-      holder->setPosition(S(x), S(0), S(z));
-      sim->add(holder);
-      return cylinder;
-    };
-    ref_ptr<GeometryT<S>> capstan = fixedCylinder(0.0, 0.0), guide = fixedCylinder(1.0, 3.0);
+    ref_ptr<GeometryT<S>> capstan = fixedCylinder(*sim, 0.0, 0.0), guide = fixedCylinder(*sim, 1.0, 3.0);
     ref_ptr<RigidBodyT<S>> load = new RigidBodyT<S>(), weight = new RigidBodyT<S>();
     load->getMassProperties()->setMass(S(share * ratio * counterweight));
     load->setPosition(S(0.5), S(0), S(-4));
@@ -382,28 +406,10 @@ TEST_CASE("a contact node refuses bad input by name and leaves the simulation un
 // pushed (-330 N) and the load jumped between 0.1 and 3 m/s.
 TEST_CASE_TEMPLATE("a winch hauls a light load over a guide at its speed, nodes leaving at the guide", S, double,
                    float) {
-  using Vec3 = Vec3T<S>;
-  ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
-  ref_ptr<RigidBodyT<S>> holder = new RigidBodyT<S>();
-  ref_ptr<GeometryT<S>> guide = new GeometryT<S>(new CylinderT<S>(S(0.5), S(0.2)));
-  holder->add(guide);
-  holder->setMotionControl(RigidBodyT<S>::MotionControl::STATIC);
-  sim->add(holder);
-  ref_ptr<RigidBodyT<S>> load = new RigidBodyT<S>();
-  load->getMassProperties()->setMass(S(10));
-  load->setPosition(S(0.5), S(0), S(-5));
-  sim->add(load);
-  ref_ptr<WireWinchControllerT<S>> winch =
-      new WireWinchControllerT<S>(nullptr, Vec3(S(-0.5), S(0), S(-5)), Vec3(S(0), S(0), S(1)));
-  winch->setForceRange(S(-1e3), S(1e3));
-  ref_ptr<ContactNodeT<S>> contact = new ContactNodeT<S>(guide.get(), Vec3(S(0), S(0), S(0.5)));
-  contact->setFrictionCoefficient(S(0));
-  ref_ptr<WireT<S>> wire = new WireT<S>(S(0.005), S(5));
-  wire->getMaterial()->getBulkMaterial()->setDensity(S(7800));
-  wire->add(new BodyFixedNodeT<S>(load.get(), Vec3::Zero()));
-  wire->add(contact);
-  wire->add(winch, S(3));
-  sim->add(wire);
+  HaulOverCylinder<S> rig(10.0, 7800.0, 1e3, 0.0);
+  auto &sim = rig.sim, &load = rig.load;
+  auto &winch = rig.winch, &contact = rig.contact;
+  auto& wire = rig.wire;
   for (int s = 0; s < 30; ++s) sim->stepForward();
   winch->setSpeed(S(-0.5));
   const std::size_t nodes = wire->getNumMassNodes();
@@ -437,30 +443,12 @@ TEST_CASE_TEMPLATE("a winch hauls a light load over a guide at its speed, nodes 
 // winch alternated between stalled and yanking the load at 2 m/s.
 TEST_CASE_TEMPLATE("a winch hauls a load over a fixed sheave against the capstan friction, steadily", S, double,
                    float) {
-  using Vec3 = Vec3T<S>;
   for (const double mu : {0.2, 0.41667}) {
     CAPTURE(mu);
-    ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
-    ref_ptr<RigidBodyT<S>> holder = new RigidBodyT<S>();
-    ref_ptr<GeometryT<S>> sheave = new GeometryT<S>(new CylinderT<S>(S(0.5), S(0.2)));
-    holder->add(sheave);
-    holder->setMotionControl(RigidBodyT<S>::MotionControl::STATIC);
-    sim->add(holder);
-    ref_ptr<RigidBodyT<S>> load = new RigidBodyT<S>();
-    load->getMassProperties()->setMass(S(20));
-    load->setPosition(S(0.5), S(0), S(-5));
-    sim->add(load);
-    ref_ptr<WireWinchControllerT<S>> winch =
-        new WireWinchControllerT<S>(nullptr, Vec3(S(-0.5), S(0), S(-5)), Vec3(S(0), S(0), S(1)));
-    winch->setForceRange(S(-5e3), S(5e3));
-    ref_ptr<ContactNodeT<S>> contact = new ContactNodeT<S>(sheave.get(), Vec3(S(0), S(0), S(0.5)));
-    contact->setFrictionCoefficient(S(mu));
-    ref_ptr<WireT<S>> wire = new WireT<S>(S(0.005), S(5));
-    wire->getMaterial()->getBulkMaterial()->setDensity(S(100));  // 8 g/m: the load's tension throughout
-    wire->add(new BodyFixedNodeT<S>(load.get(), Vec3::Zero()));
-    wire->add(contact);
-    wire->add(winch, S(3));
-    sim->add(wire);
+    // The wire at 100 kg/m³ (8 g/m): the load's tension throughout.
+    HaulOverCylinder<S> rig(20.0, 100.0, 5e3, mu);
+    auto &sim = rig.sim, &load = rig.load;
+    auto &winch = rig.winch, &contact = rig.contact;
     for (int s = 0; s < 30; ++s) sim->stepForward();
     winch->setSpeed(S(-0.5));
     double slowest = 1e9, fastest = 0, lowestPull = 1e9, highestPull = 0, lowestFriction = 1e9, highestFriction = 0;
