@@ -407,8 +407,10 @@ TEST_CASE("a contact node refuses bad input by name and leaves the simulation un
 TEST_CASE_TEMPLATE("a winch hauls a light load over a guide at its speed, nodes leaving at the guide", S, double,
                    float) {
   HaulOverCylinder<S> rig(10.0, 7800.0, 1e3, 0.0);
-  auto &sim = rig.sim, &load = rig.load;
-  auto &winch = rig.winch, &contact = rig.contact;
+  auto& sim = rig.sim;
+  auto& load = rig.load;
+  auto& winch = rig.winch;
+  auto& contact = rig.contact;
   auto& wire = rig.wire;
   for (int s = 0; s < 30; ++s) sim->stepForward();
   winch->setSpeed(S(-0.5));
@@ -447,8 +449,10 @@ TEST_CASE_TEMPLATE("a winch hauls a load over a fixed sheave against the capstan
     CAPTURE(mu);
     // The wire at 100 kg/m³ (8 g/m): the load's tension throughout.
     HaulOverCylinder<S> rig(20.0, 100.0, 5e3, mu);
-    auto &sim = rig.sim, &load = rig.load;
-    auto &winch = rig.winch, &contact = rig.contact;
+    auto& sim = rig.sim;
+    auto& load = rig.load;
+    auto& winch = rig.winch;
+    auto& contact = rig.contact;
     for (int s = 0; s < 30; ++s) sim->stepForward();
     winch->setSpeed(S(-0.5));
     double slowest = 1e9, fastest = 0, lowestPull = 1e9, highestPull = 0, lowestFriction = 1e9, highestFriction = 0;
