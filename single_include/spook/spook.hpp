@@ -5653,6 +5653,14 @@ class SpaceT : public Referenced {
   /// touched before and no longer do are listed in getSeparations().
   void update(const std::vector<ref_ptr<Body>>& bodies = {});
 
+  /// The narrow phase of one pair of placed shapes (shape frame → world)
+  /// through this space's colliders: their contact points into `sink`,
+  /// normals from a toward b; false when the pair has no collider.
+  bool collideShapes(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<S>& b, const TransformT<S>& X_WB,
+                     ContactSinkT<S>& sink) const {
+    return collide_(a, X_WA, b, X_WB, sink);
+  }
+
   /// Geometry pairs in contact after the last update().
   [[nodiscard]] std::vector<Contact>& getGeometryContacts() { return contacts_; }
   [[nodiscard]] const std::vector<Contact>& getGeometryContacts() const { return contacts_; }
@@ -17967,6 +17975,12 @@ class StepContext {
   [[nodiscard]] int indexOf(const RigidBodyT<S>& body) const {
     return bodyIndex_ && bodyScalarSize_ == sizeof(S) ? bodyIndex_(&body) : -1;
   }
+  /// The simulation taking the step (its geometries, materials), nullptr
+  /// when it is not of scalar type S.
+  template <Scalar S>
+  [[nodiscard]] const SimulationT<S>* getSimulation() const {
+    return bodyScalarSize_ == sizeof(S) ? static_cast<const SimulationT<S>*>(simulation_) : nullptr;
+  }
 
  private:
   template <Scalar>
@@ -17975,6 +17989,7 @@ class StepContext {
   std::function<Vec3d(const Vec3d&)> gravity_;
   std::function<int(const void*)> bodyIndex_;  ///< of a RigidBodyT of bodyScalarSize_
   std::size_t bodyScalarSize_ = 0;
+  const void* simulation_ = nullptr;  ///< a SimulationT of bodyScalarSize_
   std::vector<std::pair<const BodyStore*, std::size_t>> firstIndex_;  ///< per store in the step
   std::vector<std::size_t> sizes_;
 };
@@ -18579,6 +18594,7 @@ StepContext SimulationT<S>::makeStepContext(double h) const {
   });
   step.bodyIndex_ = [index = bodyIndex()](const void* body) { return index(static_cast<const Body*>(body)); };
   step.bodyScalarSize_ = sizeof(S);
+  step.simulation_ = this;
   return step;
 }
 
@@ -22059,6 +22075,304 @@ struct SheaveWrap {
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_WIRE_SHEAVE_WRAP_HPP
 // --- end spook/wire/sheave_wrap.hpp ---
+// --- begin spook/wire/wire_geometry_contacts.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_WIRE_WIRE_GEOMETRY_CONTACTS_HPP
+#define SPOOK_SINGLE_SPOOK_WIRE_WIRE_GEOMETRY_CONTACTS_HPP
+
+// A wire's contacts with the geometries it touches (agxWire's dynamic
+// contact model, PHYSICS.md §3.4): each straight segment is a capsule of the
+// wire's radius between its two points, collided with every geometry of the
+// simulation through the space's colliders, so that a segment cannot pass
+// through an edge while both its points are outside. A contact point at
+// t ∈ [0, 1] along the segment acts on its two points with weights 1 − t
+// and t (the lumped model's interpolation): one unilateral normal row on
+// the gap g = −depth with the contact material's compliance and damping,
+// and two friction rows, along the wire and across it, within the cone of
+// the wire material's friction coefficient (an explicit contact material
+// between the wire's and the geometry's materials overrides it). Each row
+// couples at most three bodies: the segment's two points and the geometry's
+// body.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+// --- begin spook/wire/wire_row_bodies.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_WIRE_WIRE_ROW_BODIES_HPP
+#define SPOOK_SINGLE_SPOOK_WIRE_WIRE_ROW_BODIES_HPP
+
+#include <Eigen/Core>
+
+namespace spook::detail {
+
+/// Up to three (body, Jacobian block) terms of one of a wire's rows, merged
+/// per body: a point on a body contributes (a, r × a) for a world direction
+/// a at lever arm r; the world contributes nothing.
+struct WireRowBodies {
+  int index[3] = {-1, -1, -1};
+  Vec6d J[3] = {Vec6d::Zero(), Vec6d::Zero(), Vec6d::Zero()};
+  int count = 0;
+  bool overflow = false;
+  void add(int body, const Eigen::Vector3d& a, const Eigen::Vector3d& arm) {
+    if (body < 0) return;
+    int k = 0;
+    while (k < count && index[k] != body) ++k;
+    if (k == 3) {
+      overflow = true;
+      return;
+    }
+    if (k == count) index[count++] = body;
+    J[k].head<3>() += a;
+    J[k].tail<3>() += arm.cross(a);
+  }
+  void write(RowWriter& rows, Row& row) const {
+    row.body1 = index[0];
+    row.J1 = J[0];
+    row.body2 = index[1];
+    row.J2 = J[1];
+    if (count == 3) rows.setThirdBody(rows.size() - 1, index[2], J[2]);
+  }
+};
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_WIRE_WIRE_ROW_BODIES_HPP
+// --- end spook/wire/wire_row_bodies.hpp ---
+
+namespace spook::detail {
+
+template <Scalar S>
+class WireGeometryContacts {
+ public:
+  using Vec3d = Eigen::Vector3d;
+  using Geometry = GeometryT<S>;
+  using Body = RigidBodyT<S>;
+
+  /// A straight segment of the wire as the step starts: its ends (world, m),
+  /// their solver indices (−1: the world) and lever arms from their bodies'
+  /// centers of mass, and where it starts along the wire (m of rest length)
+  /// and its rest length, which identify a contact from step to step.
+  struct Segment {
+    Vec3d a, b;
+    int indexA = -1, indexB = -1;
+    Vec3d armA = Vec3d::Zero(), armB = Vec3d::Zero();
+    double start = 0.0, rest = 0.0;
+    /// Whether the cap at a is also the end cap of the segment before (its
+    /// points there are that segment's).
+    bool sharedStart = false;
+  };
+
+  /// A contact after the step's solve (world, N and m).
+  struct Point {
+    const Geometry* geometry = nullptr;
+    Vec3d point = Vec3d::Zero();
+    Vec3d normal = Vec3d::Zero();  ///< from the wire toward the geometry
+    double depth = 0.0;
+    double distance = 0.0;          ///< along the wire from its start (m of rest length)
+    Vec3d force = Vec3d::Zero();    ///< on the geometry
+  };
+
+  /// Finds the contacts of `segments` with the simulation's geometries
+  /// (those `touches` accepts) and appends their rows; `friction` is the
+  /// wire material's coefficient, `wireMaterial` the wire's material.
+  /// Shapes closer than `margin` (m) count as in contact, with a gap that
+  /// the normal row lets close within the step (a speculative contact):
+  /// else a wire lifted off a geometry by a hair in one step has no row in
+  /// the next, and its tension pulls its nodes into the geometry.
+  template <class Accept>
+  void writeRows(RowWriter& rows, const StepContext& step, std::span<const Segment> segments, double radius,
+                 double margin, const MaterialT<S>& wireMaterial, double friction, double persistence,
+                 Accept touches) {
+    points_.clear();
+    found_.clear();
+    tangents_.clear();
+    rowsWritten_ = 0;
+    last_.swap(remembered_);
+    remembered_.clear();
+    const SimulationT<S>* simulation = step.getSimulation<S>();
+    if (!simulation || segments.empty()) return;
+    Vec3d low = Vec3d::Constant(std::numeric_limits<double>::infinity()), high = -low;
+    for (const Segment& s : segments) {
+      low = low.cwiseMin(s.a).cwiseMin(s.b);
+      high = high.cwiseMax(s.a).cwiseMax(s.b);
+    }
+    if (!(low.allFinite() && high.allFinite())) return;
+    low.array() -= radius + margin;
+    high.array() += radius + margin;
+    const SpaceT<S>& space = *simulation->getSpace();
+    const auto visit = [&](const Geometry& geometry) {
+      if (!geometry.getEnable() || !geometry.getEnableCollisions() || geometry.isSensor() || !touches(geometry)) return;
+      const BoundingBoxT<S> box = geometry.getBoundingBox();
+      const Vec3d boxLow = box.min.template cast<double>(), boxHigh = box.max.template cast<double>();
+      if ((boxLow.array() > high.array()).any() || (boxHigh.array() < low.array()).any()) return;
+      collideWith(geometry, boxLow, boxHigh, segments, radius, margin, *simulation);
+    };
+    for (const auto& geometry : space.getGeometries()) visit(*geometry);
+    for (const auto& body : simulation->getRigidBodies())
+      if (body->getEnable())
+        for (const auto& geometry : body->getGeometries()) visit(*geometry);
+    if (found_.empty()) return;
+
+    const double h = step.getTimeStep();
+    for (const Found& f : found_) {
+      const Segment& s = segments[f.segment];
+      const Geometry& geometry = *f.geometry;
+      const Body* body = geometry.getRigidBody();
+      const int bodyIndex = body ? step.indexOf(*body) : -1;
+      const Vec3d arm = body ? Vec3d(f.point - body->getCmPosition().template cast<double>()) : Vec3d::Zero();
+      const ContactParametersT<S> p = simulation->getMaterialManager()->resolve(wireMaterial, *geometry.getMaterial());
+      const bool explicitMaterial =
+          simulation->getMaterialManager()->getContactMaterial(&wireMaterial, geometry.getMaterial()) != nullptr;
+      const double mu = explicitMaterial ? double(p.friction[0]) : friction;
+      const Vec3d& n = f.normal;
+      // Along the wire (its slide over the geometry) and across it.
+      const Vec3d along = s.b - s.a;
+      Vec3d t1 = along - n * n.dot(along);
+      t1 = t1.norm() > 1e-12 * (1.0 + along.norm()) ? Vec3d(t1.normalized()) : Vec3d(n.unitOrthogonal());
+      const Vec3d t2 = n.cross(t1);
+      const double distance = s.start + f.t * s.rest;
+      const Remembered* was = continued(geometry, distance, persistence);
+      const auto write = [&](const Vec3d& direction, double impulse) -> Row& {
+        WireRowBodies bodies;
+        bodies.add(s.indexA, -(1.0 - f.t) * direction, s.armA);
+        bodies.add(s.indexB, -f.t * direction, s.armB);
+        bodies.add(bodyIndex, direction, arm);
+        Row& row = rows.add(impulse);
+        bodies.write(rows, row);
+        return row;
+      };
+      const std::size_t normal = rows.size();
+      Row& n0 = write(n, was ? was->impulse[0] : 0.0);
+      n0.lower = 0.0;
+      n0.compliance = 1.0 / double(p.youngsModulus);
+      n0.damping = double(p.damping);
+      const SpookParameters spook = SpookParameters::holonomic(n0.compliance, n0.damping, h);
+      n0.violation = std::max(-f.depth, -spook.violationForSpeed(1.0));  // a gap when > 0
+      for (int k = 0; k < 2; ++k) {
+        Row& row = write(k == 0 ? t1 : t2, was ? was->impulse[1 + k] : 0.0);
+        row.holonomic = false;
+        row.speed = 0.0;
+        row.compliance = double(p.surfaceViscosity[std::size_t(k)]);
+        rows.setFriction(rows.size() - 1, normal, mu, FrictionBound::CONE, int(normal) + (k == 0 ? 2 : 1));
+      }
+      rowsWritten_ += 3;
+      Point point;
+      point.geometry = &geometry;
+      point.point = f.point;
+      point.normal = n;
+      point.depth = f.depth;
+      point.distance = distance;
+      points_.push_back(point);
+      tangents_.push_back({t1, t2});
+    }
+  }
+
+  /// The impulses of the rows writeRows appended (in order).
+  void readBack(std::span<const double> impulses, double h) {
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const double* impulse = &impulses[3 * i];
+      Point& p = points_[i];
+      p.force = (impulse[0] * p.normal + impulse[1] * tangents_[i][0] + impulse[2] * tangents_[i][1]) / h;
+      remembered_.push_back({p.geometry, p.distance, {impulse[0], impulse[1], impulse[2]}});
+    }
+  }
+
+  /// Whether the wire touched a geometry in the last step strictly between
+  /// `from` and `to` (m of rest length from its start).
+  [[nodiscard]] bool touchedBetween(double from, double to) const {
+    return std::any_of(points_.begin(), points_.end(),
+                       [&](const Point& p) { return touching(p) && p.distance > from && p.distance < to; });
+  }
+  /// A point that touched (within the collider's touching gap) or pushed.
+  [[nodiscard]] static bool touching(const Point& p) { return p.depth >= 0.0 || p.force.squaredNorm() > 0.0; }
+  [[nodiscard]] std::size_t rowsWritten() const { return rowsWritten_; }
+  [[nodiscard]] const std::vector<Point>& points() const { return points_; }
+  void clear() {
+    points_.clear();
+    remembered_.clear();
+    rowsWritten_ = 0;
+  }
+
+ private:
+  struct Found {
+    const Geometry* geometry;
+    std::size_t segment;
+    double t;
+    Vec3d point, normal;
+    double depth;
+  };
+  struct Remembered {
+    const Geometry* geometry;
+    double distance;
+    double impulse[3];
+  };
+
+  // The last step's contact on `geometry` nearest along the wire, within
+  // `persistence` (m).
+  const Remembered* continued(const Geometry& geometry, double distance, double persistence) const {
+    const Remembered* nearest = nullptr;
+    double best = persistence;
+    for (const Remembered& r : last_)
+      if (r.geometry == &geometry && std::abs(r.distance - distance) <= best) {
+        best = std::abs(r.distance - distance);
+        nearest = &r;
+      }
+    return nearest;
+  }
+
+  void collideWith(const Geometry& geometry, const Vec3d& boxLow, const Vec3d& boxHigh,
+                   std::span<const Segment> segments, double wireRadius, double margin,
+                   const SimulationT<S>& simulation) {
+    const double radius = wireRadius + margin;
+    const SpaceT<S>& space = *simulation.getSpace();
+    const TransformT<S> X_WG = geometry.getTransform();
+    for (std::size_t k = 0; k < segments.size(); ++k) {
+      const Segment& s = segments[k];
+      const Vec3d low = s.a.cwiseMin(s.b).array() - radius, high = s.a.cwiseMax(s.b).array() + radius;
+      if ((boxLow.array() > high.array()).any() || (boxHigh.array() < low.array()).any()) continue;
+      const Vec3d d = s.b - s.a;
+      const double length = d.norm();
+      // The capsule's axis is its y axis.
+      if (!capsule_) capsule_ = new CapsuleT<S>(S(radius), S(1));
+      if (capsule_->getRadius() != S(radius)) capsule_->setRadius(S(radius));
+      const S height = std::max(S(length), S(1e-6) * S(radius));
+      if (capsule_->getHeight() != height) capsule_->setHeight(height);
+      const Vec3d y = length > 0.0 ? Vec3d(d / length) : Vec3d::UnitY();
+      const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(Vec3d::UnitY(), y);
+      TransformT<S> X_WC = TransformT<S>::Identity();
+      X_WC.linear() = q.toRotationMatrix().template cast<S>();
+      X_WC.translation() = (0.5 * (s.a + s.b)).template cast<S>();
+      scratch_.clear();
+      ContactSinkT<S> sink(scratch_);
+      for (const auto& entry : geometry.getShapes())
+        space.collideShapes(*capsule_, X_WC, *entry.shape, X_WG * entry.transform, sink);
+      for (const ContactPointT<S>& c : scratch_) {
+        const Vec3d x = c.point.template cast<double>(), n = c.normal.template cast<double>();
+        const double t = length > 0.0 ? std::clamp((x - s.a).dot(d) / (length * length), 0.0, 1.0) : 0.0;
+        // The shared cap belongs to the segment before.
+        if (s.sharedStart && t <= 0.0) continue;
+        if (!(x.allFinite() && n.allFinite() && std::abs(n.norm() - 1.0) < 1e-3)) continue;
+        found_.push_back({&geometry, k, t, x, n, double(c.depth) - margin});
+      }
+    }
+  }
+
+  std::vector<Found> found_;
+  std::vector<Point> points_;
+  std::vector<std::array<Vec3d, 2>> tangents_;
+  std::vector<Remembered> remembered_, last_;
+  std::vector<ContactPointT<S>> scratch_;
+  ref_ptr<CapsuleT<S>> capsule_;
+  std::size_t rowsWritten_ = 0;
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_WIRE_WIRE_GEOMETRY_CONTACTS_HPP
+// --- end spook/wire/wire_geometry_contacts.hpp ---
 // --- begin spook/wire/wire_node.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODE_HPP
 #define SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODE_HPP
@@ -22575,6 +22889,17 @@ class WireT : public RowProducer {
   using Winch = WireWinchControllerT<S>;
   using ContactNode = ContactNodeT<S>;
   using SlidingNode = SlidingNodeT<S>;
+  using Geometry = GeometryT<S>;
+
+  /// A contact of the wire with a geometry in the last step.
+  struct GeometryContact {
+    const Geometry* geometry = nullptr;
+    Vec3 point = Vec3::Zero();   ///< world (m)
+    Vec3 normal = Vec3::Zero();  ///< unit, from the wire toward the geometry
+    S depth = S(0);              ///< penetration (m)
+    S distance = S(0);           ///< from the wire's start (m of rest length)
+    Vec3 force = Vec3::Zero();   ///< on the geometry (N)
+  };
 
   /// A wire of `radius` (m) and `resolution` lumped nodes per meter, both
   /// finite and > 0, made of `material` (a material of its own, named
@@ -22674,6 +22999,20 @@ class WireT : public RowProducer {
   /// Number of lumped mass nodes (0 until the wire joins a simulation).
   [[nodiscard]] std::size_t getNumMassNodes() const { return nodes_->numNodes(); }
 
+  /// Whether the wire collides with the geometries of its simulation (on
+  /// by default): each straight segment is a capsule of the wire's radius
+  /// between its points (wire/wire_geometry_contacts.hpp), with friction
+  /// from the wire material's coefficient. Never with the geometries of
+  /// the bodies its ends are attached to (fixed, clamped or at a winch), of
+  /// its eye nodes' bodies, of its contact nodes, nor with sensors.
+  void setEnableCollisions(bool enable) { collisions_ = enable; }
+  [[nodiscard]] bool getEnableCollisions() const { return collisions_; }
+  /// Disables (or enables again) the wire's collisions with one geometry.
+  void setEnableCollisions(Geometry* geometry, bool enable);
+  [[nodiscard]] bool getEnableCollisions(const Geometry* geometry) const;
+  /// The wire's contacts with geometries in the last step.
+  [[nodiscard]] std::vector<GeometryContact> getGeometryContacts() const;
+
   // RowProducer.
   void prepare(const StepContext& simulation) override;
   [[nodiscard]] BodyStore* getOwnedStore() override { return nodes_.get(); }
@@ -22729,7 +23068,10 @@ class WireT : public RowProducer {
   /// Adaptive resolution (beginStep): nodes the step cannot resolve leave,
   /// and return where the tension allows.
   void removeNode(std::size_t point);
-  void splitSegment(std::size_t segment);
+  /// Splits segment k with a new node `fraction` (0, 1) along its straight part.
+  void splitSegment(std::size_t segment, double fraction = 0.5);
+  /// A segment that touched a geometry away from its ends gains a node there.
+  bool splitAtGeometryContacts(double spacing);
   void renumberNodes();
   [[nodiscard]] double linearDensity() const;
   /// Where the wire is at point p (a contact: the material point C of its
@@ -22802,6 +23144,10 @@ class WireT : public RowProducer {
   void writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow, double stretchStiffness);
   void writeFrictionRows(RowWriter& rows, std::size_t firstRow);
 
+  /// Whether the wire may touch `geometry` now (setEnableCollisions).
+  [[nodiscard]] bool touches(const Geometry& geometry) const;
+  void writeGeometryContactRows(RowWriter& rows, const StepContext& step, std::size_t firstRow);
+
   /// Post-stabilization's threshold: a segment's length error as a share of
   /// its rest length (writeProjectionRows).
   static constexpr double kProjectionTolerance = 1e-3;
@@ -22837,6 +23183,11 @@ class WireT : public RowProducer {
     bool broken = false;
   };
   std::vector<PointState> state_;
+  bool collisions_ = true;
+  std::vector<observer_ptr<Geometry>> noCollisions_;
+  detail::WireGeometryContacts<S> geometryContacts_;
+  std::vector<typename detail::WireGeometryContacts<S>::Segment> segments_;
+  int geometryContactRow_ = -1;  ///< the first row of geometryContacts_ in this wire's rows
 };
 
 template <Scalar S>
@@ -23285,13 +23636,20 @@ void WireT<S>::beginStep(const StepContext& step) {
     return length > 0.0 ? std::max(tension_[segment], 0.0) / length : 0.0;
   };
   bool changed = false;
+  // A node on a segment that touched a geometry stays: without it the
+  // straight segment across its neighbours would cut into the geometry.
+  double before = 0.0;  // of point k − 1, from the start (m of rest length)
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     const Point& p = points_[k];
-    if (p.node < 0 || nextToContact(k)) continue;
+    const double at = before + restLengths_[k - 1], after = at + restLengths_[k];
+    const bool touched = geometryContacts_.touchedBetween(before, after);
+    before = at;
+    if (p.node < 0 || nextToContact(k) || touched) continue;
     const double rho = h2 * (pull(k - 1) + pull(k)) / nodes_->mass(std::size_t(p.node));
     if (rho > 2.0 && removable()) {
       removeNode(k);
       changed = true;
+      before = after;
     }
   }
   const double target = spacing(step), density = linearDensity();
@@ -23307,6 +23665,7 @@ void WireT<S>::beginStep(const StepContext& step) {
       ++k;
     }
   }
+  changed = splitAtGeometryContacts(target) || changed;
   const auto innerNode = [&](std::size_t k) { return k > 0 && k + 1 < points_.size() && points_[k].node >= 0; };
   for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
     if (restLengths_[k] - wrapped(k) >= 0.25 * target) continue;
@@ -23330,6 +23689,30 @@ void WireT<S>::beginStep(const StepContext& step) {
   updateContacts();
   for (int end = 0; end < 2; ++end)
     if (winches_[end]) nodes_->drum(winches_[end]->drum_).freeLength = restLengths_[winchSegment(end)];
+}
+
+// Contact-driven resolution: a straight segment cannot bend around the
+// geometry it touches (under tension its nodes leave, and the segment
+// between the ones left cuts into the geometry). Where a segment touched a
+// geometry in the last step away from its ends, it gains a node at that
+// point, unless a piece would be shorter than a third of the node spacing
+// (the short-segment pass merges pieces under a quarter).
+template <Scalar S>
+bool WireT<S>::splitAtGeometryContacts(double spacing) {
+  bool changed = false;
+  const double shortest = spacing / 3.0;
+  for (const auto& touch : geometryContacts_.points()) {
+    if (!geometryContacts_.touching(touch)) continue;
+    std::size_t k = 0;
+    double along = 0.0;
+    locate(touch.distance, k, along);
+    if (points_[k].contact >= 0 || points_[k + 1].contact >= 0) continue;
+    const double rest = restLength(k);
+    if (!(along > shortest && rest - along > shortest)) continue;
+    splitSegment(k, along / rest);
+    changed = true;
+  }
+  return changed;
 }
 
 template <Scalar S>
@@ -23420,11 +23803,11 @@ void WireT<S>::removeNode(std::size_t k) {
 }
 
 template <Scalar S>
-void WireT<S>::splitSegment(std::size_t k) {
+void WireT<S>::splitSegment(std::size_t k, double fraction) {
   std::size_t node = 0;  // the new node's index: the mass nodes before it
   for (std::size_t i = 0; i <= k; ++i) node += points_[i].node >= 0 ? 1 : 0;
-  const Vec3d position = 0.5 * (departure(points_[k]) + arrival(points_[k + 1]));
-  const Vec3d velocity = 0.5 * (worldVelocity(points_[k]) + worldVelocity(points_[k + 1]));
+  const Vec3d position = (1.0 - fraction) * departure(points_[k]) + fraction * arrival(points_[k + 1]);
+  const Vec3d velocity = (1.0 - fraction) * worldVelocity(points_[k]) + fraction * worldVelocity(points_[k + 1]);
   nodes_->insert(node, position, velocity, 0.0);
   Point p;
   p.node = int(node);
@@ -23444,37 +23827,6 @@ void WireT<S>::renumberNodes() {
   for (Point& p : points_)
     if (p.node >= 0) p.node = next++;
 }
-
-namespace detail {
-/// Up to three (body, Jacobian block) terms of one row, merged per body: a
-/// point on a body contributes (a, r × a) for a world direction a at lever
-/// arm r; the world contributes nothing.
-struct WireRowBodies {
-  int index[3] = {-1, -1, -1};
-  Vec6d J[3] = {Vec6d::Zero(), Vec6d::Zero(), Vec6d::Zero()};
-  int count = 0;
-  bool overflow = false;
-  void add(int body, const Eigen::Vector3d& a, const Eigen::Vector3d& arm) {
-    if (body < 0) return;
-    int k = 0;
-    while (k < count && index[k] != body) ++k;
-    if (k == 3) {
-      overflow = true;
-      return;
-    }
-    if (k == count) index[count++] = body;
-    J[k].head<3>() += a;
-    J[k].tail<3>() += arm.cross(a);
-  }
-  void write(RowWriter& rows, Row& row) const {
-    row.body1 = index[0];
-    row.J1 = J[0];
-    row.body2 = index[1];
-    row.J2 = J[1];
-    if (count == 3) rows.setThirdBody(rows.size() - 1, index[2], J[2]);
-  }
-};
-}  // namespace detail
 
 template <Scalar S>
 void WireT<S>::measurePoints(const StepContext& step) {
@@ -23670,6 +24022,94 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   }
   writeWinchRows(rows, step, firstRow, stretchStiffness);
   writeFrictionRows(rows, firstRow);
+  writeGeometryContactRows(rows, step, firstRow);
+}
+
+template <Scalar S>
+void WireT<S>::setEnableCollisions(Geometry* geometry, bool enable) {
+  if (!geometry) throw error("cannot enable or disable collisions with a null geometry", "nullptr");
+  std::erase_if(noCollisions_, [&](const observer_ptr<Geometry>& g) { return !g || g.get() == geometry; });
+  if (!enable) noCollisions_.emplace_back(geometry);
+}
+
+template <Scalar S>
+bool WireT<S>::getEnableCollisions(const Geometry* geometry) const {
+  return std::none_of(noCollisions_.begin(), noCollisions_.end(),
+                      [&](const observer_ptr<Geometry>& g) { return g && g.get() == geometry; });
+}
+
+template <Scalar S>
+auto WireT<S>::getGeometryContacts() const -> std::vector<GeometryContact> {
+  std::vector<GeometryContact> contacts;
+  for (const auto& p : geometryContacts_.points()) {
+    if (!geometryContacts_.touching(p)) continue;
+    GeometryContact c;
+    c.geometry = p.geometry;
+    c.point = p.point.template cast<S>();
+    c.normal = p.normal.template cast<S>();
+    c.depth = S(p.depth);
+    c.distance = S(p.distance);
+    c.force = p.force.template cast<S>();
+    contacts.push_back(c);
+  }
+  return contacts;
+}
+
+template <Scalar S>
+bool WireT<S>::touches(const Geometry& geometry) const {
+  if (!getEnableCollisions(&geometry)) return false;
+  if (const Body* body = geometry.getRigidBody()) {
+    for (const Point* end : {&points_.front(), &points_.back()})
+      if (end->body == body) return false;
+    for (const Contact& contact : contacts_)
+      if (contact.node->getType() == Node::Type::EYE && contact.node->getRigidBody() == body) return false;
+  }
+  for (const Contact& contact : contacts_)
+    if (contact.node->getType() == Node::Type::CONTACT &&
+        static_cast<const ContactNode&>(*contact.node).getGeometry() == &geometry)
+      return false;
+  return true;
+}
+
+template <Scalar S>
+void WireT<S>::writeGeometryContactRows(RowWriter& rows, const StepContext& step, std::size_t firstRow) {
+  geometryContactRow_ = -1;
+  segments_.clear();
+  if (!collisions_ || points_.size() < 2) {
+    geometryContacts_.clear();
+    return;
+  }
+  double start = 0.0;
+  bool previous = false;
+  for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
+    const double rest = restLength(k);
+    if (!state_[k].broken && !state_[k + 1].broken) {
+      typename detail::WireGeometryContacts<S>::Segment segment;
+      segment.a = state_[k].out;
+      segment.b = state_[k + 1].in;
+      segment.indexA = state_[k].index;
+      segment.indexB = state_[k + 1].index;
+      segment.armA = state_[k].armOut;
+      segment.armB = state_[k + 1].armIn;
+      segment.start = start;
+      segment.rest = rest;
+      segment.sharedStart = previous && points_[k].contact < 0;
+      segments_.push_back(segment);
+      previous = true;
+    } else {
+      previous = false;
+    }
+    start += rest;
+  }
+  // The margin: as far as a node moves in a step, and at least the radius.
+  double fastest = 0.0;
+  for (const PointState& s : state_)
+    if (!s.broken) fastest = std::max(fastest, s.v.norm());
+  const double margin = radius_ + fastest * step.getTimeStep();
+  geometryContactRow_ = int(rows.size() - firstRow);
+  geometryContacts_.writeRows(rows, step, segments_, radius_, std::isfinite(margin) ? margin : radius_, *material_,
+                              double(material_->getWireMaterial()->getFrictionCoefficient()), 0.5 / resolution_,
+                              [this](const Geometry& geometry) { return touches(geometry); });
 }
 
 // Post-stabilization (the direct and hybrid solvers' default): the
@@ -23840,6 +24280,8 @@ void WireT<S>::readBack(std::span<const double> impulses, const StepContext& ste
     // The slip row's impulse is T_after − T_before (times h); on the wire along it, the other way.
     contact.node->frictionForce_ = -contact.frictionImpulse / h;
   }
+  if (geometryContactRow_ >= 0 && geometryContacts_.rowsWritten() > 0)
+    geometryContacts_.readBack(impulses.subspan(std::size_t(geometryContactRow_)), h);
 }
 
 }  // namespace spook
@@ -23921,6 +24363,9 @@ void WireT<S>::clearState() {
   contacts_.clear();
   state_.clear();
   winchRows_[0] = winchRows_[1] = WinchRows{};
+  geometryContacts_.clear();
+  segments_.clear();
+  geometryContactRow_ = -1;
 }
 
 // The cut segment's two parts share its rest length as the cut point shares

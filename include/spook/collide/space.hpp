@@ -142,6 +142,14 @@ class SpaceT : public Referenced {
   /// touched before and no longer do are listed in getSeparations().
   void update(const std::vector<ref_ptr<Body>>& bodies = {});
 
+  /// The narrow phase of one pair of placed shapes (shape frame → world)
+  /// through this space's colliders: their contact points into `sink`,
+  /// normals from a toward b; false when the pair has no collider.
+  bool collideShapes(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<S>& b, const TransformT<S>& X_WB,
+                     ContactSinkT<S>& sink) const {
+    return collide_(a, X_WA, b, X_WB, sink);
+  }
+
   /// Geometry pairs in contact after the last update().
   [[nodiscard]] std::vector<Contact>& getGeometryContacts() { return contacts_; }
   [[nodiscard]] const std::vector<Contact>& getGeometryContacts() const { return contacts_; }

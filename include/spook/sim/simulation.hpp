@@ -486,6 +486,7 @@ StepContext SimulationT<S>::makeStepContext(double h) const {
   });
   step.bodyIndex_ = [index = bodyIndex()](const void* body) { return index(static_cast<const Body*>(body)); };
   step.bodyScalarSize_ = sizeof(S);
+  step.simulation_ = this;
   return step;
 }
 

@@ -51,6 +51,12 @@ class StepContext {
   [[nodiscard]] int indexOf(const RigidBodyT<S>& body) const {
     return bodyIndex_ && bodyScalarSize_ == sizeof(S) ? bodyIndex_(&body) : -1;
   }
+  /// The simulation taking the step (its geometries, materials), nullptr
+  /// when it is not of scalar type S.
+  template <Scalar S>
+  [[nodiscard]] const SimulationT<S>* getSimulation() const {
+    return bodyScalarSize_ == sizeof(S) ? static_cast<const SimulationT<S>*>(simulation_) : nullptr;
+  }
 
  private:
   template <Scalar>
@@ -59,6 +65,7 @@ class StepContext {
   std::function<Vec3d(const Vec3d&)> gravity_;
   std::function<int(const void*)> bodyIndex_;  ///< of a RigidBodyT of bodyScalarSize_
   std::size_t bodyScalarSize_ = 0;
+  const void* simulation_ = nullptr;  ///< a SimulationT of bodyScalarSize_
   std::vector<std::pair<const BodyStore*, std::size_t>> firstIndex_;  ///< per store in the step
   std::vector<std::size_t> sizes_;
 };

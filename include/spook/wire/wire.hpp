@@ -32,14 +32,17 @@
 #include <spook/core/error.hpp>
 #include <spook/core/implementation.hpp>
 #include <spook/core/math.hpp>
+#include <spook/core/observer_ptr.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/scalar.hpp>
 #include <spook/dynamics/material.hpp>
 #include <spook/dynamics/rigid_body.hpp>
 #include <spook/sim/step_extension.hpp>
 #include <spook/wire/sheave_wrap.hpp>
+#include <spook/wire/wire_geometry_contacts.hpp>
 #include <spook/wire/wire_node.hpp>
 #include <spook/wire/wire_nodes.hpp>
+#include <spook/wire/wire_row_bodies.hpp>
 #include <spook/wire/wire_winch_controller.hpp>
 
 namespace spook {
@@ -54,6 +57,17 @@ class WireT : public RowProducer {
   using Winch = WireWinchControllerT<S>;
   using ContactNode = ContactNodeT<S>;
   using SlidingNode = SlidingNodeT<S>;
+  using Geometry = GeometryT<S>;
+
+  /// A contact of the wire with a geometry in the last step.
+  struct GeometryContact {
+    const Geometry* geometry = nullptr;
+    Vec3 point = Vec3::Zero();   ///< world (m)
+    Vec3 normal = Vec3::Zero();  ///< unit, from the wire toward the geometry
+    S depth = S(0);              ///< penetration (m)
+    S distance = S(0);           ///< from the wire's start (m of rest length)
+    Vec3 force = Vec3::Zero();   ///< on the geometry (N)
+  };
 
   /// A wire of `radius` (m) and `resolution` lumped nodes per meter, both
   /// finite and > 0, made of `material` (a material of its own, named
@@ -153,6 +167,20 @@ class WireT : public RowProducer {
   /// Number of lumped mass nodes (0 until the wire joins a simulation).
   [[nodiscard]] std::size_t getNumMassNodes() const { return nodes_->numNodes(); }
 
+  /// Whether the wire collides with the geometries of its simulation (on
+  /// by default): each straight segment is a capsule of the wire's radius
+  /// between its points (wire/wire_geometry_contacts.hpp), with friction
+  /// from the wire material's coefficient. Never with the geometries of
+  /// the bodies its ends are attached to (fixed, clamped or at a winch), of
+  /// its eye nodes' bodies, of its contact nodes, nor with sensors.
+  void setEnableCollisions(bool enable) { collisions_ = enable; }
+  [[nodiscard]] bool getEnableCollisions() const { return collisions_; }
+  /// Disables (or enables again) the wire's collisions with one geometry.
+  void setEnableCollisions(Geometry* geometry, bool enable);
+  [[nodiscard]] bool getEnableCollisions(const Geometry* geometry) const;
+  /// The wire's contacts with geometries in the last step.
+  [[nodiscard]] std::vector<GeometryContact> getGeometryContacts() const;
+
   // RowProducer.
   void prepare(const StepContext& simulation) override;
   [[nodiscard]] BodyStore* getOwnedStore() override { return nodes_.get(); }
@@ -208,7 +236,10 @@ class WireT : public RowProducer {
   /// Adaptive resolution (beginStep): nodes the step cannot resolve leave,
   /// and return where the tension allows.
   void removeNode(std::size_t point);
-  void splitSegment(std::size_t segment);
+  /// Splits segment k with a new node `fraction` (0, 1) along its straight part.
+  void splitSegment(std::size_t segment, double fraction = 0.5);
+  /// A segment that touched a geometry away from its ends gains a node there.
+  bool splitAtGeometryContacts(double spacing);
   void renumberNodes();
   [[nodiscard]] double linearDensity() const;
   /// Where the wire is at point p (a contact: the material point C of its
@@ -281,6 +312,10 @@ class WireT : public RowProducer {
   void writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow, double stretchStiffness);
   void writeFrictionRows(RowWriter& rows, std::size_t firstRow);
 
+  /// Whether the wire may touch `geometry` now (setEnableCollisions).
+  [[nodiscard]] bool touches(const Geometry& geometry) const;
+  void writeGeometryContactRows(RowWriter& rows, const StepContext& step, std::size_t firstRow);
+
   /// Post-stabilization's threshold: a segment's length error as a share of
   /// its rest length (writeProjectionRows).
   static constexpr double kProjectionTolerance = 1e-3;
@@ -316,6 +351,11 @@ class WireT : public RowProducer {
     bool broken = false;
   };
   std::vector<PointState> state_;
+  bool collisions_ = true;
+  std::vector<observer_ptr<Geometry>> noCollisions_;
+  detail::WireGeometryContacts<S> geometryContacts_;
+  std::vector<typename detail::WireGeometryContacts<S>::Segment> segments_;
+  int geometryContactRow_ = -1;  ///< the first row of geometryContacts_ in this wire's rows
 };
 
 template <Scalar S>
@@ -764,13 +804,20 @@ void WireT<S>::beginStep(const StepContext& step) {
     return length > 0.0 ? std::max(tension_[segment], 0.0) / length : 0.0;
   };
   bool changed = false;
+  // A node on a segment that touched a geometry stays: without it the
+  // straight segment across its neighbours would cut into the geometry.
+  double before = 0.0;  // of point k − 1, from the start (m of rest length)
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     const Point& p = points_[k];
-    if (p.node < 0 || nextToContact(k)) continue;
+    const double at = before + restLengths_[k - 1], after = at + restLengths_[k];
+    const bool touched = geometryContacts_.touchedBetween(before, after);
+    before = at;
+    if (p.node < 0 || nextToContact(k) || touched) continue;
     const double rho = h2 * (pull(k - 1) + pull(k)) / nodes_->mass(std::size_t(p.node));
     if (rho > 2.0 && removable()) {
       removeNode(k);
       changed = true;
+      before = after;
     }
   }
   const double target = spacing(step), density = linearDensity();
@@ -786,6 +833,7 @@ void WireT<S>::beginStep(const StepContext& step) {
       ++k;
     }
   }
+  changed = splitAtGeometryContacts(target) || changed;
   const auto innerNode = [&](std::size_t k) { return k > 0 && k + 1 < points_.size() && points_[k].node >= 0; };
   for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
     if (restLengths_[k] - wrapped(k) >= 0.25 * target) continue;
@@ -809,6 +857,30 @@ void WireT<S>::beginStep(const StepContext& step) {
   updateContacts();
   for (int end = 0; end < 2; ++end)
     if (winches_[end]) nodes_->drum(winches_[end]->drum_).freeLength = restLengths_[winchSegment(end)];
+}
+
+// Contact-driven resolution: a straight segment cannot bend around the
+// geometry it touches (under tension its nodes leave, and the segment
+// between the ones left cuts into the geometry). Where a segment touched a
+// geometry in the last step away from its ends, it gains a node at that
+// point, unless a piece would be shorter than a third of the node spacing
+// (the short-segment pass merges pieces under a quarter).
+template <Scalar S>
+bool WireT<S>::splitAtGeometryContacts(double spacing) {
+  bool changed = false;
+  const double shortest = spacing / 3.0;
+  for (const auto& touch : geometryContacts_.points()) {
+    if (!geometryContacts_.touching(touch)) continue;
+    std::size_t k = 0;
+    double along = 0.0;
+    locate(touch.distance, k, along);
+    if (points_[k].contact >= 0 || points_[k + 1].contact >= 0) continue;
+    const double rest = restLength(k);
+    if (!(along > shortest && rest - along > shortest)) continue;
+    splitSegment(k, along / rest);
+    changed = true;
+  }
+  return changed;
 }
 
 template <Scalar S>
@@ -899,11 +971,11 @@ void WireT<S>::removeNode(std::size_t k) {
 }
 
 template <Scalar S>
-void WireT<S>::splitSegment(std::size_t k) {
+void WireT<S>::splitSegment(std::size_t k, double fraction) {
   std::size_t node = 0;  // the new node's index: the mass nodes before it
   for (std::size_t i = 0; i <= k; ++i) node += points_[i].node >= 0 ? 1 : 0;
-  const Vec3d position = 0.5 * (departure(points_[k]) + arrival(points_[k + 1]));
-  const Vec3d velocity = 0.5 * (worldVelocity(points_[k]) + worldVelocity(points_[k + 1]));
+  const Vec3d position = (1.0 - fraction) * departure(points_[k]) + fraction * arrival(points_[k + 1]);
+  const Vec3d velocity = (1.0 - fraction) * worldVelocity(points_[k]) + fraction * worldVelocity(points_[k + 1]);
   nodes_->insert(node, position, velocity, 0.0);
   Point p;
   p.node = int(node);
@@ -923,37 +995,6 @@ void WireT<S>::renumberNodes() {
   for (Point& p : points_)
     if (p.node >= 0) p.node = next++;
 }
-
-namespace detail {
-/// Up to three (body, Jacobian block) terms of one row, merged per body: a
-/// point on a body contributes (a, r × a) for a world direction a at lever
-/// arm r; the world contributes nothing.
-struct WireRowBodies {
-  int index[3] = {-1, -1, -1};
-  Vec6d J[3] = {Vec6d::Zero(), Vec6d::Zero(), Vec6d::Zero()};
-  int count = 0;
-  bool overflow = false;
-  void add(int body, const Eigen::Vector3d& a, const Eigen::Vector3d& arm) {
-    if (body < 0) return;
-    int k = 0;
-    while (k < count && index[k] != body) ++k;
-    if (k == 3) {
-      overflow = true;
-      return;
-    }
-    if (k == count) index[count++] = body;
-    J[k].head<3>() += a;
-    J[k].tail<3>() += arm.cross(a);
-  }
-  void write(RowWriter& rows, Row& row) const {
-    row.body1 = index[0];
-    row.J1 = J[0];
-    row.body2 = index[1];
-    row.J2 = J[1];
-    if (count == 3) rows.setThirdBody(rows.size() - 1, index[2], J[2]);
-  }
-};
-}  // namespace detail
 
 template <Scalar S>
 void WireT<S>::measurePoints(const StepContext& step) {
@@ -1149,6 +1190,94 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   }
   writeWinchRows(rows, step, firstRow, stretchStiffness);
   writeFrictionRows(rows, firstRow);
+  writeGeometryContactRows(rows, step, firstRow);
+}
+
+template <Scalar S>
+void WireT<S>::setEnableCollisions(Geometry* geometry, bool enable) {
+  if (!geometry) throw error("cannot enable or disable collisions with a null geometry", "nullptr");
+  std::erase_if(noCollisions_, [&](const observer_ptr<Geometry>& g) { return !g || g.get() == geometry; });
+  if (!enable) noCollisions_.emplace_back(geometry);
+}
+
+template <Scalar S>
+bool WireT<S>::getEnableCollisions(const Geometry* geometry) const {
+  return std::none_of(noCollisions_.begin(), noCollisions_.end(),
+                      [&](const observer_ptr<Geometry>& g) { return g && g.get() == geometry; });
+}
+
+template <Scalar S>
+auto WireT<S>::getGeometryContacts() const -> std::vector<GeometryContact> {
+  std::vector<GeometryContact> contacts;
+  for (const auto& p : geometryContacts_.points()) {
+    if (!geometryContacts_.touching(p)) continue;
+    GeometryContact c;
+    c.geometry = p.geometry;
+    c.point = p.point.template cast<S>();
+    c.normal = p.normal.template cast<S>();
+    c.depth = S(p.depth);
+    c.distance = S(p.distance);
+    c.force = p.force.template cast<S>();
+    contacts.push_back(c);
+  }
+  return contacts;
+}
+
+template <Scalar S>
+bool WireT<S>::touches(const Geometry& geometry) const {
+  if (!getEnableCollisions(&geometry)) return false;
+  if (const Body* body = geometry.getRigidBody()) {
+    for (const Point* end : {&points_.front(), &points_.back()})
+      if (end->body == body) return false;
+    for (const Contact& contact : contacts_)
+      if (contact.node->getType() == Node::Type::EYE && contact.node->getRigidBody() == body) return false;
+  }
+  for (const Contact& contact : contacts_)
+    if (contact.node->getType() == Node::Type::CONTACT &&
+        static_cast<const ContactNode&>(*contact.node).getGeometry() == &geometry)
+      return false;
+  return true;
+}
+
+template <Scalar S>
+void WireT<S>::writeGeometryContactRows(RowWriter& rows, const StepContext& step, std::size_t firstRow) {
+  geometryContactRow_ = -1;
+  segments_.clear();
+  if (!collisions_ || points_.size() < 2) {
+    geometryContacts_.clear();
+    return;
+  }
+  double start = 0.0;
+  bool previous = false;
+  for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
+    const double rest = restLength(k);
+    if (!state_[k].broken && !state_[k + 1].broken) {
+      typename detail::WireGeometryContacts<S>::Segment segment;
+      segment.a = state_[k].out;
+      segment.b = state_[k + 1].in;
+      segment.indexA = state_[k].index;
+      segment.indexB = state_[k + 1].index;
+      segment.armA = state_[k].armOut;
+      segment.armB = state_[k + 1].armIn;
+      segment.start = start;
+      segment.rest = rest;
+      segment.sharedStart = previous && points_[k].contact < 0;
+      segments_.push_back(segment);
+      previous = true;
+    } else {
+      previous = false;
+    }
+    start += rest;
+  }
+  // The margin: as far as a node moves in a step, and at least the radius.
+  double fastest = 0.0;
+  for (const PointState& s : state_)
+    if (!s.broken) fastest = std::max(fastest, s.v.norm());
+  const double margin = radius_ + fastest * step.getTimeStep();
+  geometryContactRow_ = int(rows.size() - firstRow);
+  geometryContacts_.writeRows(rows, step, segments_, radius_, std::isfinite(margin) ? margin : radius_, *material_,
+                              double(material_->getWireMaterial()->getFrictionCoefficient()), 0.5 / resolution_,
+                              [this](const Geometry& geometry) { return touches(geometry); });
 }
 
 // Post-stabilization (the direct and hybrid solvers' default): the
@@ -1319,6 +1448,8 @@ void WireT<S>::readBack(std::span<const double> impulses, const StepContext& ste
     // The slip row's impulse is T_after − T_before (times h); on the wire along it, the other way.
     contact.node->frictionForce_ = -contact.frictionImpulse / h;
   }
+  if (geometryContactRow_ >= 0 && geometryContacts_.rowsWritten() > 0)
+    geometryContacts_.readBack(impulses.subspan(std::size_t(geometryContactRow_)), h);
 }
 
 }  // namespace spook

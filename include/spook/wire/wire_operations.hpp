@@ -76,6 +76,9 @@ void WireT<S>::clearState() {
   contacts_.clear();
   state_.clear();
   winchRows_[0] = winchRows_[1] = WinchRows{};
+  geometryContacts_.clear();
+  segments_.clear();
+  geometryContactRow_ = -1;
 }
 
 // The cut segment's two parts share its rest length as the cut point shares
