@@ -4,7 +4,7 @@
 // passing through them, the box carrying its weight; a wire over a
 // cylinder holds a load against a counterweight below the capstan ratio
 // e^{μθ} and slips above it; collisions can be switched off per wire and
-// per geometry.
+// per geometry (they are off by default).
 
 #include <doctest/doctest.h>
 
@@ -44,6 +44,7 @@ struct DropOnBox {
     holder->setMotionControl(RigidBodyT<S>::MotionControl::STATIC);
     sim->add(holder);
     wire->setName("drape");
+    wire->setEnableCollisions(true);
     wire->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(0));
     wire->add(new FreeNodeT<S>(S(-2), S(0.1), S(0.8)));
     wire->add(new FreeNodeT<S>(S(2), S(0.1), S(0.8)));
@@ -74,6 +75,7 @@ struct OverCylinderByContact {
     sim->add(right);
     sim->add(left);
     wire->setName("rope");
+    wire->setEnableCollisions(true);
     wire->getMaterial()->getBulkMaterial()->setDensity(S(100));
     wire->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(0));
     wire->getMaterial()->getWireMaterial()->setFrictionCoefficient(S(mu));
@@ -154,6 +156,7 @@ TEST_CASE_TEMPLATE("a wire over a cylinder by its own contacts holds below the c
 }
 
 TEST_CASE("a wire's collisions switch off for the wire and for one geometry") {
+  CHECK_FALSE(ref_ptr<Wire>(new Wire(0.01, 10.0))->getEnableCollisions());  // off by default
   DropOnBox<double> rig;
   CHECK(rig.wire->getEnableCollisions());
   CHECK(rig.wire->getEnableCollisions(rig.box.get()));

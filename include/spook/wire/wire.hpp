@@ -167,8 +167,8 @@ class WireT : public RowProducer {
   /// Number of lumped mass nodes (0 until the wire joins a simulation).
   [[nodiscard]] std::size_t getNumMassNodes() const { return nodes_->numNodes(); }
 
-  /// Whether the wire collides with the geometries of its simulation (on
-  /// by default): each straight segment is a capsule of the wire's radius
+  /// Whether the wire collides with the geometries of its simulation (off
+  /// by default for now): each straight segment is a capsule of the wire's radius
   /// between its points (wire/wire_geometry_contacts.hpp), with friction
   /// from the wire material's coefficient. Never with the geometries of
   /// the bodies its ends are attached to (fixed, clamped or at a winch), of
@@ -351,7 +351,7 @@ class WireT : public RowProducer {
     bool broken = false;
   };
   std::vector<PointState> state_;
-  bool collisions_ = true;
+  bool collisions_ = false;
   std::vector<observer_ptr<Geometry>> noCollisions_;
   detail::WireGeometryContacts<S> geometryContacts_;
   std::vector<typename detail::WireGeometryContacts<S>::Segment> segments_;
@@ -1269,11 +1269,13 @@ void WireT<S>::writeGeometryContactRows(RowWriter& rows, const StepContext& step
     }
     start += rest;
   }
-  // The margin: as far as a node moves in a step, and at least the radius.
+  // The margin: the radius and as far as a node moves in a step, up to the
+  // node spacing (a node faster than that is beyond the wire's resolution;
+  // a larger margin would only add rows).
   double fastest = 0.0;
   for (const PointState& s : state_)
     if (!s.broken) fastest = std::max(fastest, s.v.norm());
-  const double margin = radius_ + fastest * step.getTimeStep();
+  const double margin = radius_ + std::min(fastest * step.getTimeStep(), 1.0 / resolution_);
   geometryContactRow_ = int(rows.size() - firstRow);
   geometryContacts_.writeRows(rows, step, segments_, radius_, std::isfinite(margin) ? margin : radius_, *material_,
                               double(material_->getWireMaterial()->getFrictionCoefficient()), 0.5 / resolution_,

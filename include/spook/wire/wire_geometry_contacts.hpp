@@ -227,6 +227,8 @@ class WireGeometryContacts {
       if ((boxLow.array() > high.array()).any() || (boxHigh.array() < low.array()).any()) continue;
       const Vec3d d = s.b - s.a;
       const double length = d.norm();
+      // Beyond the scalar's range (float), the capsule has no placement.
+      if (!(std::isfinite(S(length)) && (S(0.5) * (s.a + s.b).template cast<S>()).allFinite())) continue;
       // The capsule's axis is its y axis.
       if (!capsule_) capsule_ = new CapsuleT<S>(S(radius), S(1));
       if (capsule_->getRadius() != S(radius)) capsule_->setRadius(S(radius));
