@@ -172,6 +172,14 @@ TEST_CASE("a wire's collisions switch off for the wire and for one geometry") {
   CHECK(off.wire->getGeometryContacts().empty());
   for (const auto& p : off.wire->getPoints()) CHECK(p.z() < 0.0);
 
+  // A cut's second half keeps the settings.
+  DropOnBox<double> halves;
+  halves.wire->setEnableCollisions(halves.box.get(), false);
+  halves.sim->stepForward();
+  const ref_ptr<Wire> second = halves.wire->cut(2.0);
+  CHECK(second->getEnableCollisions());
+  CHECK_FALSE(second->getEnableCollisions(halves.box.get()));
+
   const std::string message = test::errorMessage([&] { rig.wire->setEnableCollisions(nullptr, false); });
   CHECK(message.find("drape") != std::string::npos);
   CHECK(message.find("null geometry") != std::string::npos);

@@ -22939,7 +22939,7 @@ class WireT : public RowProducer {
   /// after is returned as a new wire (named after this one, " cut"), with
   /// the free end, the contacts and the end attachment or winch beyond the
   /// cut; add it to the simulation to go on simulating it. Rest length,
-  /// mass and the nodes' motion are kept.
+  /// mass, the nodes' motion and the collision settings are kept.
   [[nodiscard]] ref_ptr<WireT> cut(S distanceFromStart);
   /// Joins `other` to this wire's end: this end and other's start must be
   /// free (no attachment, no winch), both wires of the same radius and
@@ -23328,6 +23328,7 @@ void WireT<S>::reverse() {
   std::reverse(tension_.begin(), tension_.end());
   std::reverse(bent_.begin(), bent_.end());
   bendImpulse_.assign(bendImpulse_.size(), 0.0);  // their directions follow the geometry anew
+  geometryContacts_.clear();                        // their places along the wire were from the other end
   nodes_->reverseNodes();
   renumberNodes();
   // A wrap turns the other way; its slip, pending and moving, the other way along the wire.
@@ -24394,6 +24395,10 @@ auto WireT<S>::cut(S distanceFromStart) -> ref_ptr<WireT> {
 
   ref_ptr<WireT> other = new WireT(S(radius_), S(resolution_), material_);
   other->setName(getName() + " cut");
+  other->collisions_ = collisions_;
+  other->noCollisions_ = noCollisions_;
+  // The contacts' places along the wire were those before the cut.
+  geometryContacts_.clear();
   std::size_t kept = 0;  // mass nodes before the cut
   for (std::size_t i = 0; i <= k; ++i) kept += points_[i].node >= 0 ? 1 : 0;
   other->nodes_->add(position, 0.0);

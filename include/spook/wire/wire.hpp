@@ -105,7 +105,7 @@ class WireT : public RowProducer {
   /// after is returned as a new wire (named after this one, " cut"), with
   /// the free end, the contacts and the end attachment or winch beyond the
   /// cut; add it to the simulation to go on simulating it. Rest length,
-  /// mass and the nodes' motion are kept.
+  /// mass, the nodes' motion and the collision settings are kept.
   [[nodiscard]] ref_ptr<WireT> cut(S distanceFromStart);
   /// Joins `other` to this wire's end: this end and other's start must be
   /// free (no attachment, no winch), both wires of the same radius and
@@ -494,6 +494,7 @@ void WireT<S>::reverse() {
   std::reverse(tension_.begin(), tension_.end());
   std::reverse(bent_.begin(), bent_.end());
   bendImpulse_.assign(bendImpulse_.size(), 0.0);  // their directions follow the geometry anew
+  geometryContacts_.clear();                        // their places along the wire were from the other end
   nodes_->reverseNodes();
   renumberNodes();
   // A wrap turns the other way; its slip, pending and moving, the other way along the wire.

@@ -103,6 +103,10 @@ auto WireT<S>::cut(S distanceFromStart) -> ref_ptr<WireT> {
 
   ref_ptr<WireT> other = new WireT(S(radius_), S(resolution_), material_);
   other->setName(getName() + " cut");
+  other->collisions_ = collisions_;
+  other->noCollisions_ = noCollisions_;
+  // The contacts' places along the wire were those before the cut.
+  geometryContacts_.clear();
   std::size_t kept = 0;  // mass nodes before the cut
   for (std::size_t i = 0; i <= k; ++i) kept += points_[i].node >= 0 ? 1 : 0;
   other->nodes_->add(position, 0.0);
