@@ -242,6 +242,10 @@ class WireT : public RowProducer {
   bool splitAtGeometryContacts(double spacing);
   void renumberNodes();
   [[nodiscard]] double linearDensity() const;
+  /// E·A of the stretch rows (N).
+  [[nodiscard]] double stretchStiffness() const {
+    return double(material_->getWireMaterial()->getYoungsModulusStretch()) * std::numbers::pi * radius_ * radius_;
+  }
   /// Where the wire is at point p (a contact: the material point C of its
   /// wrap), where it arrives at p and leaves it (a contact: the tangent
   /// points), and the velocity of p's body there.
@@ -1043,8 +1047,7 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     return -1;
   };
   const typename Material::WireMaterial& wire = *material_->getWireMaterial();
-  const double area = std::numbers::pi * radius_ * radius_;
-  const double stretchStiffness = double(wire.getYoungsModulusStretch()) * area;
+  const double stretchStiffness = this->stretchStiffness();
   // Stretch: g = l_k − L_k, L_k the length along the wire (with the arcs of
   // wraps at its ends): written so that a tension is a positive impulse,
   // which a contact's friction row follows (RowWriter::setFriction). At a
@@ -1278,8 +1281,7 @@ void WireT<S>::writeGeometryContactRows(RowWriter& rows, const StepContext& step
     if (!s.broken) fastest = std::max(fastest, s.v.norm());
   const double margin = radius_ + std::min(fastest * step.getTimeStep(), 1.0 / resolution_);
   geometryContactRow_ = int(rows.size() - firstRow);
-  geometryContacts_.writeRows(rows, step, segments_, radius_, std::isfinite(margin) ? margin : radius_, *material_,
-                              double(material_->getWireMaterial()->getFrictionCoefficient()), 0.5 / resolution_,
+  geometryContacts_.writeRows(rows, step, segments_, radius_, margin, *material_, 0.5 / resolution_,
                               [this](const Geometry& geometry) { return touches(geometry); });
 }
 
@@ -1301,8 +1303,7 @@ template <Scalar S>
 void WireT<S>::writeProjectionRows(RowWriter& rows, const StepContext& step) {
   if (!built()) return;
   measurePoints(step);
-  const double stretchStiffness = double(material_->getWireMaterial()->getYoungsModulusStretch()) * std::numbers::pi *
-                                  radius_ * radius_;
+  const double stretchStiffness = this->stretchStiffness();
   for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
     if (points_[k].contact >= 0 || points_[k + 1].contact >= 0 || state_[k].broken || state_[k + 1].broken) continue;
     const Vec3d d = state_[k + 1].in - state_[k].out;

@@ -68,15 +68,15 @@ class WireGeometryContacts {
   };
 
   /// Finds the contacts of `segments` with the simulation's geometries
-  /// (those `touches` accepts) and appends their rows; `friction` is the
-  /// wire material's coefficient, `wireMaterial` the wire's material.
+  /// (those `touches` accepts) and appends their rows; `wireMaterial` is
+  /// the wire's material.
   /// Shapes closer than `margin` (m) count as in contact, with a gap that
   /// the normal row lets close within the step (a speculative contact):
   /// else a wire lifted off a geometry by a hair in one step has no row in
   /// the next, and its tension pulls its nodes into the geometry.
   template <class Accept>
   void writeRows(RowWriter& rows, const StepContext& step, std::span<const Segment> segments, double radius,
-                 double margin, const MaterialT<S>& wireMaterial, double friction, double persistence,
+                 double margin, const MaterialT<S>& wireMaterial, double persistence,
                  Accept touches) {
     points_.clear();
     found_.clear();
@@ -109,16 +109,24 @@ class WireGeometryContacts {
     if (found_.empty()) return;
 
     const double h = step.getTimeStep();
+    const MaterialManagerT<S>& materials = *simulation->getMaterialManager();
+    // found_ holds each geometry's points together: its parameters once.
+    const Geometry* resolved = nullptr;
+    ContactParametersT<S> p{};
+    double mu = 0.0;
     for (const Found& f : found_) {
       const Segment& s = segments[f.segment];
       const Geometry& geometry = *f.geometry;
+      if (resolved != &geometry) {
+        resolved = &geometry;
+        p = materials.resolve(wireMaterial, *geometry.getMaterial());
+        mu = materials.getContactMaterial(&wireMaterial, geometry.getMaterial())
+                 ? double(p.friction[0])
+                 : double(wireMaterial.getWireMaterial()->getFrictionCoefficient());
+      }
       const Body* body = geometry.getRigidBody();
       const int bodyIndex = body ? step.indexOf(*body) : -1;
       const Vec3d arm = body ? Vec3d(f.point - body->getCmPosition().template cast<double>()) : Vec3d::Zero();
-      const ContactParametersT<S> p = simulation->getMaterialManager()->resolve(wireMaterial, *geometry.getMaterial());
-      const bool explicitMaterial =
-          simulation->getMaterialManager()->getContactMaterial(&wireMaterial, geometry.getMaterial()) != nullptr;
-      const double mu = explicitMaterial ? double(p.friction[0]) : friction;
       const Vec3d& n = f.normal;
       // Along the wire (its slide over the geometry) and across it.
       const Vec3d along = s.b - s.a;
@@ -164,19 +172,22 @@ class WireGeometryContacts {
 
   /// The impulses of the rows writeRows appended (in order).
   void readBack(std::span<const double> impulses, double h) {
+    touched_.clear();
     for (std::size_t i = 0; i < points_.size(); ++i) {
       const double* impulse = &impulses[3 * i];
       Point& p = points_[i];
       p.force = (impulse[0] * p.normal + impulse[1] * tangents_[i][0] + impulse[2] * tangents_[i][1]) / h;
       remembered_.push_back({p.geometry, p.distance, {impulse[0], impulse[1], impulse[2]}});
+      if (touching(p)) touched_.push_back(p.distance);
     }
+    std::sort(touched_.begin(), touched_.end());
   }
 
   /// Whether the wire touched a geometry in the last step strictly between
   /// `from` and `to` (m of rest length from its start).
   [[nodiscard]] bool touchedBetween(double from, double to) const {
-    return std::any_of(points_.begin(), points_.end(),
-                       [&](const Point& p) { return touching(p) && p.distance > from && p.distance < to; });
+    const auto first = std::upper_bound(touched_.begin(), touched_.end(), from);
+    return first != touched_.end() && *first < to;
   }
   /// A point that touched (within the collider's touching gap) or pushed.
   [[nodiscard]] static bool touching(const Point& p) { return p.depth >= 0.0 || p.force.squaredNorm() > 0.0; }
@@ -184,6 +195,7 @@ class WireGeometryContacts {
   [[nodiscard]] const std::vector<Point>& points() const { return points_; }
   void clear() {
     points_.clear();
+    touched_.clear();
     remembered_.clear();
     rowsWritten_ = 0;
   }
@@ -256,6 +268,7 @@ class WireGeometryContacts {
 
   std::vector<Found> found_;
   std::vector<Point> points_;
+  std::vector<double> touched_;  ///< distances of the points that touched, ascending
   std::vector<std::array<Vec3d, 2>> tangents_;
   std::vector<Remembered> remembered_, last_;
   std::vector<ContactPointT<S>> scratch_;
