@@ -191,5 +191,5 @@ TEST_CASE("eye and connecting nodes and a capstan's turns refuse bad input by na
   refused({new FreeNode(-1, 0, 0), new ConnectingNode(block, Vec3(1, 0, 0)), new FreeNode(2, 0, 0)},
           "a ConnectingNode may only be the first or last route node; it is node, got 1");
   refused({new ConnectingNode(block, Vec3(0, 0, 0)), new FreeNode(2, 0, 0)},
-          "a ConnectingNode must be away from its body's center of mass");
+          "a ConnectingNode that holds the bend must be away from its body's center of mass");
 }

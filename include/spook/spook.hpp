@@ -54,4 +54,5 @@
 #include <spook/sim/step_event_listener.hpp>
 #include <spook/solver/solver.hpp>
 #include <spook/wire/wire.hpp>
+#include <spook/wire/wire_link.hpp>
 #include <spook/wire/wire_node.hpp>

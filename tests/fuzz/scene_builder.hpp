@@ -357,7 +357,7 @@ struct Builder {
   }
 
   // A wire between random ends (free, fixed to a body or the world,
-  // clamped to a body, a winch with random speed, force and brake), routed
+  // clamped to a body or a link on it, a winch with random speed, force and brake), routed
   // through free nodes, eyes and over cylinders on bodies or the world.
   void wire(spook::SimulationT<S>& sim, const std::vector<spook::ref_ptr<Body>>& bodies) {
     spook::ref_ptr<spook::WireT<S>> w = new spook::WireT<S>(real(1e-4, 0.1), real(0.1, 20));
@@ -376,9 +376,16 @@ struct Builder {
           // A clamped end (ConnectingNode) on a body for some, without reading more input.
           Body* body = anyBody();
           const Vec3 at = vec(-1, 1);
-          if (body && at.x() > S(0.5))
+          if (body && at.x() > S(0.5) && at.y() > S(0)) {
+            // Half of them through a link holding the twist (and the bend for some).
+            spook::ref_ptr<spook::WireLinkT<S>> link = new spook::WireLinkT<S>(body);
+            w->add(link, at);
+            spook::ConnectingNodeT<S>* connection = link->getConnectionProperties(*w);
+            connection->setTwistStiffness(material.getYoungsModulusStretch() / S(2.6));
+            if (at.z() > S(0)) connection->setBendStiffness(material.getYoungsModulusBend());
+          } else if (body && at.x() > S(0.5)) {
             w->add(new spook::ConnectingNodeT<S>(body, at));
-          else
+          } else
             w->add(new spook::BodyFixedNodeT<S>(body, at));
           break;
         }

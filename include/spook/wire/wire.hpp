@@ -40,6 +40,7 @@
 #include <spook/sim/step_extension.hpp>
 #include <spook/wire/sheave_wrap.hpp>
 #include <spook/wire/wire_geometry_contacts.hpp>
+#include <spook/wire/wire_link.hpp>
 #include <spook/wire/wire_node.hpp>
 #include <spook/wire/wire_nodes.hpp>
 #include <spook/wire/wire_row_bodies.hpp>
@@ -58,6 +59,8 @@ class WireT : public RowProducer {
   using ContactNode = ContactNodeT<S>;
   using SlidingNode = SlidingNodeT<S>;
   using Geometry = GeometryT<S>;
+  using Link = WireLinkT<S>;
+  using ConnectingNode = ConnectingNodeT<S>;
 
   /// A contact of the wire with a geometry in the last step.
   struct GeometryContact {
@@ -80,6 +83,10 @@ class WireT : public RowProducer {
   /// `pulledInLength` m (finite, >= 0) of wire on its drum, before the wire
   /// is added to a simulation. Nothing may be routed after an end winch.
   void add(ref_ptr<Winch> winch, S pulledInLength);
+  /// Starts (first) or ends (last) the route at `link`, clamped to its body
+  /// at `position` (its model frame, m) through a ConnectingNode with the
+  /// link's connection properties (WireLinkT::getConnectionProperties).
+  void add(ref_ptr<Link> link, const Vec3& position);
   /// The route as given; a winch is there as a body-fixed node at its
   /// position.
   [[nodiscard]] const std::vector<ref_ptr<Node>>& getRoute() const { return route_; }
@@ -129,6 +136,9 @@ class WireT : public RowProducer {
   /// Attaches the free begin or end to `winch` holding `pulledInLength` m
   /// (finite, >= 0) on its drum, as attach(node) does.
   void attach(ref_ptr<Winch> winch, S pulledInLength, bool begin);
+  /// Attaches the free begin or end to `link` at `position` (its body's
+  /// model frame, m), as attach(node) does.
+  void attach(ref_ptr<Link> link, const Vec3& position, bool begin);
   [[nodiscard]] Material* getMaterial() const { return material_.get(); }
   /// Changes the material; its density sets the mass of a wire already
   /// routed into a simulation.
@@ -202,7 +212,7 @@ class WireT : public RowProducer {
     Body* body = nullptr;
     Vec3d local = Vec3d::Zero();
     int contact = -1;
-    bool clamped = false;  ///< a ConnectingNode's end: bend rows across it
+    ConnectingNode* connecting = nullptr;  ///< a ConnectingNode's end (route_ holds it)
   };
   /// A contact or eye node as built: its wrap (an eye's of radius 0), and
   /// its slip (wire sliding over the geometry or through the eye) as a
@@ -315,6 +325,12 @@ class WireT : public RowProducer {
   /// `stretchStiffness`: E·A of the wire (N).
   void writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow, double stretchStiffness);
   void writeFrictionRows(RowWriter& rows, std::size_t firstRow);
+  /// Young's modulus of the bend across the connection at end point k (Pa).
+  [[nodiscard]] double connectionBendModulus(const ConnectingNode& node) const;
+  /// Accumulates the twist of the connections' bodies over the last step.
+  void measureTwist();
+  /// The unit direction from end point k into the wire (its first segment).
+  [[nodiscard]] Vec3d intoWire(std::size_t endPoint) const;
 
   /// Whether the wire may touch `geometry` now (setEnableCollisions).
   [[nodiscard]] bool touches(const Geometry& geometry) const;
@@ -345,6 +361,7 @@ class WireT : public RowProducer {
     double motorImpulse = 0.0, brakeImpulse = 0.0, allInImpulse = 0.0, allOutImpulse = 0.0;
   };
   WinchRows winchRows_[2];
+  int twistRow_[2] = {-1, -1};  ///< a connection's twist row: offset in this wire's rows, −1: none
   /// writeRows' per-point scratch: where the wire arrives and leaves (the
   /// same but at a contact), velocity, lever arms of those from the body's
   /// center of mass, centripetal acceleration, solver index, and the
@@ -391,6 +408,12 @@ void WireT<S>::add(ref_ptr<Winch> winch, S pulledInLength) {
   route_.push_back(new BodyFixedNodeT<S>(winch->getRigidBody(), winch->getPosition()));
   winch->wire_ = this;
   winch->pulledIn_ = double(pulledInLength);
+}
+
+template <Scalar S>
+void WireT<S>::add(ref_ptr<Link> link, const Vec3& position) {
+  if (!link) throw error("cannot route a null link", "nullptr");
+  add(link->makeConnection(position));
 }
 
 template <Scalar S>
@@ -613,8 +636,11 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
       if (k != 0 && k + 1 != route_.size())
         throw error("a ConnectingNode may only be the first or last route node; it is node", k);
       const Body& body = *node.getRigidBody();
-      if (!((node.getWorldPosition() - body.getCmPosition()).norm() > S(1e-6) * (S(1) + node.getPosition().norm())))
-        throw error("a ConnectingNode must be away from its body's center of mass; it is at", node.getPosition());
+      const bool bends = connectionBendModulus(static_cast<const ConnectingNode&>(node)) > 0.0;
+      if (bends &&
+          !((node.getWorldPosition() - body.getCmPosition()).norm() > S(1e-6) * (S(1) + node.getPosition().norm())))
+        throw error("a ConnectingNode that holds the bend must be away from its body's center of mass; it is at",
+                    node.getPosition());
     }
     if (node.getType() == Node::Type::EYE && (k == 0 || k + 1 == route_.size()))
       throw error("an EyeNode may not be the first or last route node; it is node", k);
@@ -692,7 +718,10 @@ void WireT<S>::build(const StepContext& simulation) {
     if (node.getType() == Node::Type::BODY_FIXED || node.getType() == Node::Type::CONNECTING) {
       p.body = node.getRigidBody();
       p.local = node.getPosition().template cast<double>();
-      p.clamped = node.getType() == Node::Type::CONNECTING;
+      if (node.getType() == Node::Type::CONNECTING) {
+        p.connecting = static_cast<ConnectingNode*>(route_[k].get());
+        p.connecting->twist_ = p.connecting->twistImpulse_ = p.connecting->twistStep_ = 0.0;
+      }
     } else if (contactOf[k] >= 0) {
       p.contact = contactOf[k];
     } else {
@@ -792,6 +821,7 @@ void WireT<S>::updateMasses() {
 template <Scalar S>
 void WireT<S>::beginStep(const StepContext& step) {
   if (points_.size() < 2) return;
+  measureTwist();
   for (int end = 0; end < 2; ++end)
     if (winches_[end]) restLengths_[winchSegment(end)] = restLength(winchSegment(end));
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
@@ -1094,7 +1124,8 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   // over the length l̄), so the compliance is l̄/(E I). A clamped end
   // (ConnectingNode) bends between the line from its body's center of mass
   // and the wire, over l̄ = half its segment (none of the wire inside the body).
-  const double bendStiffness = double(wire.getYoungsModulusBend()) * std::numbers::pi * std::pow(radius_, 4) / 4.0;
+  const double areaMoment = std::numbers::pi * std::pow(radius_, 4) / 4.0;
+  const double bendStiffness = double(wire.getYoungsModulusBend()) * areaMoment;
   struct BendPoint {
     int index;
     Vec3d arm;
@@ -1138,13 +1169,16 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
       continue;
     }
     const std::size_t other = k == 0 ? 1 : k - 1;
-    if (!points_[k].clamped || state_[k].broken || state_[other].broken || state_[k].index < 0) continue;
+    const ConnectingNode* connecting = points_[k].connecting;
+    if (!connecting || state_[k].broken || state_[other].broken || state_[k].index < 0) continue;
+    const double connectionStiffness = connectionBendModulus(*connecting) * areaMoment;
+    if (!(connectionStiffness > 0.0)) continue;
     const Vec3d center = state_[k].out - state_[k].armOut;  // the body's center of mass
     const Vec3d socket = k == 0 ? Vec3d(state_[k].out - center) : Vec3d(center - state_[k].in);
     const Vec3d wireSide = k == 0 ? Vec3d(state_[1].in - state_[0].out) : Vec3d(state_[k].in - state_[other].out);
     if (!(socket.norm() > 1e-9 && wireSide.norm() > 0.0)) continue;
     bent_[k] = 1;
-    const double compliance = 0.5 * restLengths_[k == 0 ? 0 : k - 1] / bendStiffness;
+    const double compliance = 0.5 * restLengths_[k == 0 ? 0 : k - 1] / connectionStiffness;
     const BendPoint body{state_[k].index, Vec3d::Zero()}, end{state_[k].index, state_[k].armOut};
     const BendPoint beside{state_[other].index, k == 0 ? state_[other].armIn : state_[other].armOut};
     if (k == 0)
@@ -1192,9 +1226,58 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
       r.compliance = length / (weight * h * tension);
     }
   }
+  // Twist at a connection: g = φ, the body's rotation about the wire since
+  // it was connected (measureTwist), against the torsional stiffness G J/L of
+  // the whole wire (J = πr⁴/2), its far end held.
+  const double twistRigidity = std::numbers::pi * std::pow(radius_, 4) / 2.0 / double(getRestLength());
+  for (int end = 0; end < 2; ++end) {
+    twistRow_[end] = -1;
+    const std::size_t k = end == 0 ? 0 : n - 1;
+    ConnectingNode* connecting = points_[k].connecting;
+    if (!connecting) continue;
+    connecting->twistStep_ = h;
+    const double stiffness = double(connecting->getTwistStiffness()) * twistRigidity;
+    const Vec3d axis = intoWire(k);
+    if (!(stiffness > 0.0) || state_[k].index < 0 || !axis.allFinite()) continue;
+    twistRow_[end] = int(rows.size() - firstRow);
+    detail::Row& r = rows.add(connecting->twistImpulse_);
+    r.body1 = state_[k].index;
+    r.J1 << 0.0, 0.0, 0.0, axis.x(), axis.y(), axis.z();
+    r.violation = connecting->twist_;
+    r.compliance = 1.0 / stiffness;
+    r.damping = double(wire.getDampingBend());
+  }
   writeWinchRows(rows, step, firstRow, stretchStiffness);
   writeFrictionRows(rows, firstRow);
   writeGeometryContactRows(rows, step, firstRow);
+}
+
+template <Scalar S>
+double WireT<S>::connectionBendModulus(const ConnectingNode& node) const {
+  const double wire = double(material_->getWireMaterial()->getYoungsModulusBend());
+  return node.hasBendStiffness() ? std::min(double(node.getBendStiffness()), wire) : wire;
+}
+
+template <Scalar S>
+auto WireT<S>::intoWire(std::size_t k) const -> Vec3d {
+  const Vec3d d = k == 0 ? Vec3d(arrival(points_[1]) - departure(points_[0]))
+                         : Vec3d(departure(points_[k - 1]) - arrival(points_[k]));
+  const double length = d.norm();
+  return length > 0.0 ? Vec3d(d / length) : Vec3d::Constant(std::numeric_limits<double>::quiet_NaN());
+}
+
+// The body's angular velocity of the last step turned it by hω about the
+// wire; summed, that is its twist (the wire's direction changes slowly
+// against the body's spin about it).
+template <Scalar S>
+void WireT<S>::measureTwist() {
+  for (const std::size_t k : {std::size_t(0), points_.size() - 1}) {
+    ConnectingNode* connecting = points_[k].connecting;
+    if (!connecting || !(connecting->twistStep_ > 0.0)) continue;
+    const Vec3d axis = intoWire(k);
+    const double turn = connecting->twistStep_ * points_[k].body->getAngularVelocity().template cast<double>().dot(axis);
+    if (std::isfinite(turn)) connecting->twist_ += turn;
+  }
 }
 
 template <Scalar S>
@@ -1447,6 +1530,8 @@ void WireT<S>::readBack(std::span<const double> impulses, const StepContext& ste
     winch->motorForce_ = motor / h;
     winch->brakeForce_ = (total - motor) / h;
   }
+  for (int end = 0; end < 2; ++end)
+    if (twistRow_[end] >= 0) points_[end == 0 ? 0 : points_.size() - 1].connecting->twistImpulse_ = impulses[std::size_t(twistRow_[end])];
   for (Contact& contact : contacts_) {
     contact.frictionImpulse = contact.row >= 0 ? impulses[std::size_t(contact.row)] : 0.0;
     // The slip row's impulse is T_after − T_before (times h); on the wire along it, the other way.

@@ -22,6 +22,8 @@ namespace spook {
 
 template <Scalar S>
 class WireT;
+template <Scalar S>
+class WireLinkT;
 
 template <Scalar S>
 class WireNodeT : public Referenced {
@@ -86,10 +88,12 @@ class BodyFixedNodeT : public WireNodeT<S> {
 /// (agxWire's ConnectingNode): as a BodyFixedNode, and the wire leaves the
 /// body along the line from its center of mass through `position` (an
 /// extra point at the center of mass, moving with the body), its bend
-/// across the connection held by the wire's bending stiffness as at its
-/// other points: a socket, a clamped pipe. `body` may not be nullptr, and
-/// `position` not at its center of mass. Only the first or last node of a
-/// route.
+/// across the connection held by a bending modulus (setBendStiffness; until
+/// set, the wire's): a socket, a clamped pipe. Optionally the body's twist
+/// about the wire is held too (setTwistStiffness). `body` may not be
+/// nullptr, and `position` not at its center of mass while the bend is
+/// held. Only the first or last node of a route. A WireLink
+/// (wire/wire_link.hpp) connects wires through such nodes.
 template <Scalar S>
 class ConnectingNodeT : public WireNodeT<S> {
  public:
@@ -100,8 +104,53 @@ class ConnectingNodeT : public WireNodeT<S> {
   }
   ConnectingNodeT(RigidBodyT<S>* body, S x, S y, S z) : ConnectingNodeT(body, Vec3(x, y, z)) {}
 
+  /// Young's modulus (Pa, finite, >= 0) of the bend across the connection,
+  /// between the line from the body's center of mass through the node and
+  /// the wire's first segment: 0 lets the wire turn freely there (a pin); at
+  /// most the wire's own modulus of bending takes effect. Until set, the
+  /// wire's (a link's connections: 0).
+  [[nodiscard]] bool hasBendStiffness() const { return bendStiffness_ >= S(0); }
+  [[nodiscard]] S getBendStiffness() const { return bendStiffness_; }
+  void setBendStiffness(S youngsModulus) {
+    if (!(std::isfinite(youngsModulus) && youngsModulus >= S(0)))
+      throw detail::makeError("ConnectingNode", "", "bend stiffness must be finite and >= 0 Pa", youngsModulus);
+    bendStiffness_ = youngsModulus;
+  }
+  /// Shear modulus G (Pa, finite, >= 0) of the wire's twist: the body's
+  /// rotation about the wire at the connection meets the torsional
+  /// stiffness G·J/L of the whole wire (J = πr⁴/2, L its rest length), its
+  /// other end taken as held against twist (it feels no torque back).
+  /// 0 (the default): the body turns freely about the wire.
+  [[nodiscard]] S getTwistStiffness() const { return twistStiffness_; }
+  void setTwistStiffness(S shearModulus) {
+    if (!(std::isfinite(shearModulus) && shearModulus >= S(0)))
+      throw detail::makeError("ConnectingNode", "", "twist stiffness must be finite and >= 0 Pa", shearModulus);
+    twistStiffness_ = shearModulus;
+  }
+  /// The body's rotation about the wire at the connection since the node
+  /// was connected (rad, right-handed about the direction into the wire).
+  [[nodiscard]] S getTwistAngle() const { return S(twist_); }
+  /// The link this node connects the wire to, nullptr for a plain
+  /// ConnectingNode.
+  [[nodiscard]] WireLinkT<S>* getLink() const { return link_; }
+
  protected:
   ~ConnectingNodeT() override = default;
+
+ private:
+  template <Scalar>
+  friend class WireT;
+  template <Scalar>
+  friend class WireLinkT;
+  S bendStiffness_ = S(-1);
+  S twistStiffness_ = S(0);
+  WireLinkT<S>* link_ = nullptr;
+  ref_ptr<Referenced> linkHeld_;  ///< keeps link_ alive
+  /// Twist state, kept by the wire: angle (rad), the last step's row
+  /// impulse (N·m·s) and time step (s; 0 before the first).
+  double twist_ = 0.0;
+  double twistImpulse_ = 0.0;
+  double twistStep_ = 0.0;
 };
 
 /// A node the wire slides over or through against friction along it (a

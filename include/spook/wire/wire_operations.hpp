@@ -310,7 +310,10 @@ void WireT<S>::attachEnd(int end, ref_ptr<Node> node) {
   Point attached;
   attached.body = body;
   attached.local = node->getPosition().template cast<double>();
-  attached.clamped = node->getType() == Node::Type::CONNECTING;
+  if (node->getType() == Node::Type::CONNECTING) {
+    attached.connecting = static_cast<ConnectingNode*>(node.get());
+    attached.connecting->twist_ = attached.connecting->twistImpulse_ = attached.connecting->twistStep_ = 0.0;
+  }
   syncWinchSegments();
   const std::size_t k = end == 0 ? 0 : points_.size() - 1;
   const double gap = (worldPosition(attached) - worldPosition(points_[k])).norm();
@@ -330,8 +333,14 @@ template <Scalar S>
 void WireT<S>::attach(ref_ptr<Node> node, bool begin) {
   if (!node) throw error("cannot attach to a null node", "nullptr");
   if (node->getType() != Node::Type::BODY_FIXED && node->getType() != Node::Type::CONNECTING)
-    throw error("attaches only to a BodyFixedNode, a ConnectingNode or a winch", "another node");
+    throw error("attaches only to a BodyFixedNode, a ConnectingNode, a link or a winch", "another node");
   attachEnd(begin ? 0 : 1, std::move(node));
+}
+
+template <Scalar S>
+void WireT<S>::attach(ref_ptr<Link> link, const Vec3& position, bool begin) {
+  if (!link) throw error("cannot attach to a null link", "nullptr");
+  attach(link->makeConnection(position), begin);
 }
 
 template <Scalar S>
