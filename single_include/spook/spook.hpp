@@ -21946,6 +21946,7 @@ template class SimulationT<float>;
 #include <cstddef>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <span>
 #include <string>
 #include <vector>
@@ -23063,6 +23064,22 @@ class WireT : public RowProducer {
   /// it where the tension lets them (adaptive resolution) and shorter
   /// segments than a quarter of its spacing merge.
   void setResolutionPerUnitLength(S resolutionPerUnitLength);
+  /// A stretch of the wire kept at a finer resolution (agxWire's
+  /// HighResolutionRange): from `start` to `end` m of rest length from its
+  /// begin (`begin`) or its end, `resolutionPerUnitLength` nodes per meter
+  /// where that is finer than the wire's; elsewhere the wire's. From a winch
+  /// at that end the stretch stays at the winch as the wire pays out and
+  /// hauls in. One per end, kept through reverse, cut and merge with its
+  /// end; the tension still removes nodes the step cannot resolve.
+  /// 0 ≤ start < end finite, resolution finite and > 0; clearHighResolutionRange
+  /// removes it.
+  void setHighResolutionRange(bool begin, S start, S end, S resolutionPerUnitLength);
+  void clearHighResolutionRange(bool begin) { ranges_[begin ? 0 : 1] = HighResolutionRange{}; }
+  struct HighResolutionRange {
+    S start = S(0), end = S(0);
+    S resolution = S(0);  ///< nodes per meter, 0: no range
+  };
+  [[nodiscard]] const HighResolutionRange& getHighResolutionRange(bool begin) const { return ranges_[begin ? 0 : 1]; }
   /// Reverses the wire: its start becomes its end (route, points, winches,
   /// the sense of its wraps), also in a simulation; its state is kept.
   void reverse();
@@ -23202,6 +23219,10 @@ class WireT : public RowProducer {
   /// segments, fixed at one end and released level at h = 0.2 s, swung
   /// above its pivot; of 38 cm, its length held within 0.02%).
   [[nodiscard]] double spacing(const StepContext& step) const;
+  /// The node spacing wanted over [from, to] (m of rest length from the
+  /// start): `spacing`, or finer where a high resolution range overlaps it,
+  /// never under `floor` (|g|h²).
+  [[nodiscard]] double spacingOver(double from, double to, double spacing, double floor) const;
   void updateMasses();
   /// Adaptive resolution (beginStep): nodes the step cannot resolve leave,
   /// and return where the tension allows.
@@ -23312,6 +23333,7 @@ class WireT : public RowProducer {
   std::vector<char> bent_;              ///< per point: its bend rows were written this step
   std::vector<double> tension_;         ///< per segment (N)
   ref_ptr<Winch> winches_[2];           ///< at the begin and end, or none
+  HighResolutionRange ranges_[2];       ///< from the begin and from the end
   std::vector<Contact> contacts_;
   /// A winch's rows of the last step: offsets in this wire's rows (−1:
   /// none) and impulses (N·s). `allIn` keeps some wire off the drum,
@@ -23470,9 +23492,34 @@ void WireT<S>::setResolutionPerUnitLength(S resolutionPerUnitLength) {
 }
 
 template <Scalar S>
+void WireT<S>::setHighResolutionRange(bool begin, S start, S end, S resolutionPerUnitLength) {
+  if (!(std::isfinite(start) && std::isfinite(end) && start >= S(0) && start < end))
+    throw error("high resolution range needs 0 <= start < end, finite m; got start", start);
+  if (!(std::isfinite(resolutionPerUnitLength) && resolutionPerUnitLength > S(0)))
+    throw error("high resolution range's resolution must be finite and > 0 nodes per m", resolutionPerUnitLength);
+  const double nodes = (double(end) - double(start)) * double(resolutionPerUnitLength);
+  if (!(nodes <= 1e6)) throw error("high resolution range would hold more than 1e6 lumped nodes", nodes);
+  ranges_[begin ? 0 : 1] = HighResolutionRange{start, end, resolutionPerUnitLength};
+}
+
+template <Scalar S>
+double WireT<S>::spacingOver(double from, double to, double spacing, double floor) const {
+  const double length = double(getRestLength());
+  for (int end = 0; end < 2; ++end) {
+    const HighResolutionRange& range = ranges_[end];
+    if (!(range.resolution > S(0))) continue;
+    const double a = end == 0 ? double(range.start) : length - double(range.end);
+    const double b = end == 0 ? double(range.end) : length - double(range.start);
+    if (from < b && to > a) spacing = std::min(spacing, std::max(1.0 / double(range.resolution), floor));
+  }
+  return spacing;
+}
+
+template <Scalar S>
 void WireT<S>::reverse() {
   std::reverse(route_.begin(), route_.end());
   std::swap(winches_[0], winches_[1]);
+  std::swap(ranges_[0], ranges_[1]);
   if (!built()) return;
   std::swap(winchRows_[0], winchRows_[1]);
   std::reverse(points_.begin(), points_.end());
@@ -23816,22 +23863,31 @@ void WireT<S>::beginStep(const StepContext& step) {
     }
   }
   const double target = spacing(step), density = linearDensity();
-  for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
+  const double floor = std::min(target, step.gravity(worldPosition(points_.front())).norm() * h2);
+  const bool ranged = ranges_[0].resolution > S(0) || ranges_[1].resolution > S(0);
+  // Segment k's wanted spacing, `from` its start (m of rest length).
+  const auto wanted = [&](std::size_t k, double from) {
+    return ranged ? spacingOver(from, from + restLengths_[k], target, floor) : target;
+  };
+  double from = 0.0;
+  for (std::size_t k = 0; k + 1 < points_.size(); from += restLengths_[k], ++k) {
     // A wrap's arc holds no node: the straight part is split.
     const double straight = restLengths_[k] - wrapped(k);
-    if (straight < 1.999 * target || !std::isfinite(segmentLength(k))) continue;
+    if (straight < 1.999 * wanted(k, from) || !std::isfinite(segmentLength(k))) continue;
     // The node a split would add: mass ρ_l L/2, between halves of L/2.
     const double rho = h2 * 4.0 * std::max(tension_[k], 0.0) / straight / (density * straight / 2.0);
     if (rho < 1.0) {
       splitSegment(k);
       changed = true;
+      from += restLengths_[k];
       ++k;
     }
   }
   changed = splitAtGeometryContacts(target) || changed;
   const auto innerNode = [&](std::size_t k) { return k > 0 && k + 1 < points_.size() && points_[k].node >= 0; };
-  for (std::size_t k = 0; k + 1 < points_.size(); ++k) {
-    if (restLengths_[k] - wrapped(k) >= 0.25 * target) continue;
+  from = 0.0;
+  for (std::size_t k = 0; k + 1 < points_.size(); from += restLengths_[k], ++k) {
+    if (restLengths_[k] - wrapped(k) >= 0.25 * wanted(k, from)) continue;
     // A node not beside a contact goes (the segments beside it merge);
     // else the one beside a contact moves to the middle of its neighbours
     // (it would stay bunched up with a node before it).
@@ -23847,6 +23903,8 @@ void WireT<S>::beginStep(const StepContext& step) {
       mended = true;
     }
     changed = changed || mended;
+    // Segments merged or moved: segment k + 1 starts where the ones before it end.
+    if (mended && ranged) from = std::accumulate(restLengths_.begin(), restLengths_.begin() + std::ptrdiff_t(k), 0.0);
   }
   if (changed) updateMasses();
   updateContacts();
@@ -24609,6 +24667,8 @@ auto WireT<S>::cut(S distanceFromStart) -> ref_ptr<WireT> {
   other->setName(getName() + " cut");
   other->collisions_ = collisions_;
   other->noCollisions_ = noCollisions_;
+  other->ranges_[1] = ranges_[1];
+  ranges_[1] = HighResolutionRange{};
   // The contacts' places along the wire were those before the cut.
   geometryContacts_.clear();
   std::size_t kept = 0;  // mass nodes before the cut
@@ -24696,6 +24756,8 @@ void WireT<S>::merge(WireT* other) {
   checkFreeEnd(1);
   other->checkFreeEnd(0);
   if (!built()) {
+    ranges_[1] = other->ranges_[1];
+    other->ranges_[0] = other->ranges_[1] = HighResolutionRange{};
     // Ends routed at one point meet there; else the route runs straight between them.
     const bool meet = (other->route_.front()->getWorldPosition() - route_.back()->getWorldPosition()).norm() == S(0);
     route_.insert(route_.end(), other->route_.begin() + (meet ? 1 : 0), other->route_.end());
@@ -24756,6 +24818,8 @@ void WireT<S>::merge(WireT* other) {
   other->route_.clear();
   other->winches_[0] = nullptr;
   other->clearState();
+  ranges_[1] = other->ranges_[1];
+  other->ranges_[0] = other->ranges_[1] = HighResolutionRange{};
   updateMasses();
 }
 

@@ -105,6 +105,8 @@ auto WireT<S>::cut(S distanceFromStart) -> ref_ptr<WireT> {
   other->setName(getName() + " cut");
   other->collisions_ = collisions_;
   other->noCollisions_ = noCollisions_;
+  other->ranges_[1] = ranges_[1];
+  ranges_[1] = HighResolutionRange{};
   // The contacts' places along the wire were those before the cut.
   geometryContacts_.clear();
   std::size_t kept = 0;  // mass nodes before the cut
@@ -192,6 +194,8 @@ void WireT<S>::merge(WireT* other) {
   checkFreeEnd(1);
   other->checkFreeEnd(0);
   if (!built()) {
+    ranges_[1] = other->ranges_[1];
+    other->ranges_[0] = other->ranges_[1] = HighResolutionRange{};
     // Ends routed at one point meet there; else the route runs straight between them.
     const bool meet = (other->route_.front()->getWorldPosition() - route_.back()->getWorldPosition()).norm() == S(0);
     route_.insert(route_.end(), other->route_.begin() + (meet ? 1 : 0), other->route_.end());
@@ -252,6 +256,8 @@ void WireT<S>::merge(WireT* other) {
   other->route_.clear();
   other->winches_[0] = nullptr;
   other->clearState();
+  ranges_[1] = other->ranges_[1];
+  other->ranges_[0] = other->ranges_[1] = HighResolutionRange{};
   updateMasses();
 }
 
