@@ -372,12 +372,20 @@ TEST_CASE("a contact node refuses bad input by name and leaves the simulation un
     CHECK(sim->getRowProducers().empty());
     CHECK(sim->getBodyStores().empty());
   };
-  ref_ptr<Wire> overBox = new Wire(0.01, 2.0);
-  overBox->setName("w");
-  overBox->add(new FreeNode(2, 0, -2));
-  overBox->add(onBox);
-  overBox->add(new FreeNode(-2, 0, -2));
-  refused(overBox.get(), "one cylinder");
+  ref_ptr<Geometry> ball = new Geometry(new Sphere(0.5));
+  ref_ptr<Wire> overBall = new Wire(0.01, 2.0);
+  overBall->setName("w");
+  overBall->add(new FreeNode(2, 0, -2));
+  overBall->add(new ContactNode(ball.get(), Vec3(0, 0, 0.5)));
+  overBall->add(new FreeNode(-2, 0, -2));
+  refused(overBall.get(), "one cylinder or one box");
+  onBox->setTurns(1);
+  ref_ptr<Wire> turnsOnBox = new Wire(0.01, 2.0);
+  turnsOnBox->setName("w");
+  turnsOnBox->add(new FreeNode(2, 0, -2));
+  turnsOnBox->add(onBox);
+  turnsOnBox->add(new FreeNode(-2, 0, -2));
+  refused(turnsOnBox.get(), "a ContactNode on a box's edge cannot take turns");
 
   ref_ptr<Geometry> drum = new Geometry(new Cylinder(0.5, 0.2));
   ref_ptr<Wire> atEnd = new Wire(0.01, 2.0);

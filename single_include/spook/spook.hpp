@@ -21953,6 +21953,71 @@ template class SimulationT<float>;
 
 #include <Eigen/Core>
 
+// --- begin spook/wire/edge_wrap.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_WIRE_EDGE_WRAP_HPP
+#define SPOOK_SINGLE_SPOOK_WIRE_EDGE_WRAP_HPP
+
+// How a wire runs over an edge of a box where it is routed over one
+// (wire/wire_node.hpp's ContactNode on a box): it turns there as through an
+// eye (a wrap of radius 0, sheave_wrap.hpp), at the point of the edge where
+// its path from the point before to the point after is shortest, so that the
+// point slides along the edge as they move.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Core>
+
+namespace spook::detail {
+
+struct BoxEdge {
+  Eigen::Vector3d from = Eigen::Vector3d::Zero(), to = Eigen::Vector3d::Zero();
+};
+
+/// The edge of a box of half extents `half` (its frame) nearest `point`.
+inline BoxEdge nearestBoxEdge(const Eigen::Vector3d& half, const Eigen::Vector3d& point) {
+  BoxEdge best;
+  double closest = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+    for (const double si : {-1.0, 1.0})
+      for (const double sj : {-1.0, 1.0}) {
+        BoxEdge edge;
+        edge.from[axis] = -half[axis];
+        edge.to[axis] = half[axis];
+        edge.from[i] = edge.to[i] = si * half[i];
+        edge.from[j] = edge.to[j] = sj * half[j];
+        const double along = std::clamp(point[axis], -half[axis], half[axis]);
+        const double distance = std::hypot(point[axis] - along, point[i] - edge.from[i], point[j] - edge.from[j]);
+        if (distance < closest) {
+          closest = distance;
+          best = edge;
+        }
+      }
+  }
+  return best;
+}
+
+/// The point of the edge a → b (world) where the path from `from` over it to
+/// `to` is shortest: unrolled about the edge's line, the path is straight,
+/// at s = (t₁ r₂ + t₂ r₁)/(r₁ + r₂) along it (t the points' positions along
+/// the line, r their distances from it); within the edge.
+inline Eigen::Vector3d shortestOverEdge(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                        const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+  const Eigen::Vector3d edge = b - a;
+  const double length = edge.norm();
+  if (!(length > 0.0)) return a;
+  const Eigen::Vector3d u = edge / length;
+  const double t1 = (from - a).dot(u), t2 = (to - a).dot(u);
+  const double r1 = (from - a - t1 * u).norm(), r2 = (to - a - t2 * u).norm();
+  const double s = r1 + r2 > 0.0 ? (t1 * r2 + t2 * r1) / (r1 + r2) : 0.5 * (t1 + t2);
+  return a + std::clamp(std::isfinite(s) ? s : 0.5 * length, 0.0, length) * u;
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_WIRE_EDGE_WRAP_HPP
+// --- end spook/wire/edge_wrap.hpp ---
 // --- begin spook/wire/sheave_wrap.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_WIRE_SHEAVE_WRAP_HPP
 #define SPOOK_SINGLE_SPOOK_WIRE_SHEAVE_WRAP_HPP
@@ -22603,11 +22668,15 @@ class SlidingNodeT : public WireNodeT<S> {
   double frictionForce_ = 0.0;
 };
 
-/// The wire routed over a geometry (agxWire's ContactNode): a sheave. The
-/// geometry's shape must be a cylinder; the wire wraps it in the plane across
-/// its axis through its center, touching it at `position` (geometry frame),
-/// arriving and leaving along tangents, and slides over it against friction
-/// (SlidingNodeT). Neither first nor last in a route.
+/// The wire routed over a geometry (agxWire's ContactNode), holding one
+/// cylinder or one box. Over a cylinder (a sheave) the wire wraps it in the
+/// plane across its axis through its center, touching it at `position`
+/// (geometry frame), arriving and leaving along tangents. Over a box it runs
+/// across the edge nearest `position`, turning there as through an eye at
+/// the edge's point where its path is shortest (sliding along the edge as
+/// the wire moves; the wire's radius is not offset from the edge). It slides
+/// over either against friction (SlidingNodeT). Neither first nor last in a
+/// route.
 template <Scalar S>
 class ContactNodeT : public SlidingNodeT<S> {
  public:
@@ -23201,6 +23270,8 @@ class WireT : public RowProducer {
     std::size_t slip = 0;
     double frictionImpulse = 0.0;
     int row = -1;  ///< its friction row's offset in this wire's rows, −1: none
+    bool onEdge = false;    ///< over an edge of a box (edge_wrap.hpp): an eye sliding along it
+    detail::BoxEdge edge;   ///< that edge in the box's frame
   };
 
   template <class T>
@@ -23260,6 +23331,10 @@ class WireT : public RowProducer {
   }
   /// The sheave's plane now from its geometry's frame.
   void placePlane(const ContactNode& node, detail::SheaveWrap& wrap) const;
+  /// The edge of a contact node's box nearest its routed position (the box's frame).
+  [[nodiscard]] detail::BoxEdge boxEdgeOf(const ContactNode& node) const;
+  /// Where the wire from `from` to `to` runs over the edge of an edge contact now (world).
+  [[nodiscard]] Vec3d edgePoint(const Contact& contact, const Vec3d& from, const Vec3d& to) const;
   /// A contact's wrap now, the wire arriving from `from` and leaving towards
   /// `to`: a sheave's tangents in its plane, an eye's point and deflection.
   [[nodiscard]] detail::SheaveWrap wrapNow(const Contact& contact, const Vec3d& from, const Vec3d& to) const;
@@ -23621,10 +23696,28 @@ void WireT<S>::placePlane(const ContactNode& node, detail::SheaveWrap& wrap) con
 }
 
 template <Scalar S>
+detail::BoxEdge WireT<S>::boxEdgeOf(const ContactNode& node) const {
+  const auto& box = node.getGeometry()->getShapes().front();
+  const Vec3d local = (box.transform.inverse() * node.getPosition()).template cast<double>();
+  return detail::nearestBoxEdge(static_cast<const BoxT<S>&>(*box.shape).getHalfExtents().template cast<double>(), local);
+}
+
+template <Scalar S>
+auto WireT<S>::edgePoint(const Contact& contact, const Vec3d& from, const Vec3d& to) const -> Vec3d {
+  const GeometryT<S>& geometry = *static_cast<const ContactNode&>(*contact.node).getGeometry();
+  const auto X = geometry.getTransform() * geometry.getShapes().front().transform;  // box → world
+  const Vec3d a = (X * contact.edge.from.template cast<S>()).template cast<double>();
+  const Vec3d b = (X * contact.edge.to.template cast<S>()).template cast<double>();
+  return detail::shortestOverEdge(a, b, from, to);
+}
+
+template <Scalar S>
 detail::SheaveWrap WireT<S>::wrapNow(const Contact& contact, const Vec3d& from, const Vec3d& to) const {
   detail::SheaveWrap wrap = contact.wrap;
   if (contact.node->getType() == Node::Type::EYE) {
     wrap.eye(contact.node->getWorldPosition().template cast<double>(), from, to);
+  } else if (contact.onEdge) {
+    wrap.eye(edgePoint(contact, from, to), from, to);
   } else {
     placePlane(static_cast<const ContactNode&>(*contact.node), wrap);
     wrap.place(from, to);
@@ -23655,11 +23748,17 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
       if (k == 0 || k + 1 == route_.size()) throw error("a ContactNode may not be the first or last route node; it is node", k);
       const auto* contact = static_cast<const ContactNode*>(&node);
       const auto* shape = contact->getGeometry()->getShape();
-      if (!shape || shape->getType() != ShapeType::CYLINDER || contact->getGeometry()->getShapes().size() != 1)
-        throw error("a ContactNode's geometry must hold one cylinder (the only shape wires wrap for now); node", k);
+      if (!shape || (shape->getType() != ShapeType::CYLINDER && shape->getType() != ShapeType::BOX) ||
+          contact->getGeometry()->getShapes().size() != 1)
+        throw error("a ContactNode's geometry must hold one cylinder or one box (the shapes wires run over for now); node",
+                    k);
+      if (shape->getType() == ShapeType::BOX && contact->getTurns() != 0)
+        throw error("a ContactNode on a box's edge cannot take turns; node", k);
       if (k + 1 < route_.size() && route_[k + 1]->getType() == Node::Type::CONTACT &&
-          static_cast<const ContactNode*>(route_[k + 1].get())->getGeometry() == contact->getGeometry())
-        throw error("consecutive ContactNodes on one geometry (route it once); node", k);
+          static_cast<const ContactNode*>(route_[k + 1].get())->getGeometry() == contact->getGeometry() &&
+          (shape->getType() == ShapeType::CYLINDER ||
+           boxEdgeOf(*contact).from == boxEdgeOf(*static_cast<const ContactNode*>(route_[k + 1].get())).from))
+        throw error("consecutive ContactNodes on one cylinder or one box edge (route it once); node", k);
     }
     if (node.getRigidBody() && simulation.indexOf(*node.getRigidBody()) < 0)
       throw error(("route node " + std::to_string(k) + " is fixed to a body not in the simulation").c_str(),
@@ -23709,8 +23808,13 @@ void WireT<S>::build(const StepContext& simulation) {
     if (type != Node::Type::CONTACT && type != Node::Type::EYE) continue;
     Contact contact;
     contact.node = static_cast<SlidingNode*>(route_[k].get());
+    const auto* over = static_cast<const ContactNode*>(route_[k].get());
     if (type == Node::Type::EYE) {
       contact.wrap.eye(world(k), world(k - 1), world(k + 1));
+    } else if (over->getGeometry()->getShape()->getType() == ShapeType::BOX) {
+      contact.onEdge = true;
+      contact.edge = boxEdgeOf(*over);
+      contact.wrap.eye(edgePoint(contact, world(k - 1), world(k + 1)), world(k - 1), world(k + 1));
     } else {
       const auto& sheave = static_cast<const ContactNode&>(*contact.node);
       placePlane(sheave, contact.wrap);

@@ -425,10 +425,17 @@ struct Builder {
       }
     }
     end();
+    // Collisions with the scene's geometries for half of the wires, without
+    // reading more input (SPOOK_SWEEP_WIRE_COLLISIONS=0 turns them off).
+    if (material.getFrictionCoefficient() > S(1) && wireCollisions()) w->setEnableCollisions(true);
     sim.add(w);
     wires.push_back(w);
   }
   std::vector<spook::ref_ptr<spook::WireT<S>>> wires;
+  static bool wireCollisions() {
+    const char* setting = std::getenv("SPOOK_SWEEP_WIRE_COLLISIONS");
+    return !(setting && std::string(setting) == "0");
+  }
 
   // A wire operation between two steps: cut (the new part added to the
   // simulation), merge two wires (the emptied one removed), detach an end,

@@ -39,6 +39,7 @@
 #include <spook/dynamics/material.hpp>
 #include <spook/dynamics/rigid_body.hpp>
 #include <spook/sim/step_extension.hpp>
+#include <spook/wire/edge_wrap.hpp>
 #include <spook/wire/sheave_wrap.hpp>
 #include <spook/wire/wire_geometry_contacts.hpp>
 #include <spook/wire/wire_link.hpp>
@@ -241,6 +242,8 @@ class WireT : public RowProducer {
     std::size_t slip = 0;
     double frictionImpulse = 0.0;
     int row = -1;  ///< its friction row's offset in this wire's rows, −1: none
+    bool onEdge = false;    ///< over an edge of a box (edge_wrap.hpp): an eye sliding along it
+    detail::BoxEdge edge;   ///< that edge in the box's frame
   };
 
   template <class T>
@@ -300,6 +303,10 @@ class WireT : public RowProducer {
   }
   /// The sheave's plane now from its geometry's frame.
   void placePlane(const ContactNode& node, detail::SheaveWrap& wrap) const;
+  /// The edge of a contact node's box nearest its routed position (the box's frame).
+  [[nodiscard]] detail::BoxEdge boxEdgeOf(const ContactNode& node) const;
+  /// Where the wire from `from` to `to` runs over the edge of an edge contact now (world).
+  [[nodiscard]] Vec3d edgePoint(const Contact& contact, const Vec3d& from, const Vec3d& to) const;
   /// A contact's wrap now, the wire arriving from `from` and leaving towards
   /// `to`: a sheave's tangents in its plane, an eye's point and deflection.
   [[nodiscard]] detail::SheaveWrap wrapNow(const Contact& contact, const Vec3d& from, const Vec3d& to) const;
@@ -661,10 +668,28 @@ void WireT<S>::placePlane(const ContactNode& node, detail::SheaveWrap& wrap) con
 }
 
 template <Scalar S>
+detail::BoxEdge WireT<S>::boxEdgeOf(const ContactNode& node) const {
+  const auto& box = node.getGeometry()->getShapes().front();
+  const Vec3d local = (box.transform.inverse() * node.getPosition()).template cast<double>();
+  return detail::nearestBoxEdge(static_cast<const BoxT<S>&>(*box.shape).getHalfExtents().template cast<double>(), local);
+}
+
+template <Scalar S>
+auto WireT<S>::edgePoint(const Contact& contact, const Vec3d& from, const Vec3d& to) const -> Vec3d {
+  const GeometryT<S>& geometry = *static_cast<const ContactNode&>(*contact.node).getGeometry();
+  const auto X = geometry.getTransform() * geometry.getShapes().front().transform;  // box → world
+  const Vec3d a = (X * contact.edge.from.template cast<S>()).template cast<double>();
+  const Vec3d b = (X * contact.edge.to.template cast<S>()).template cast<double>();
+  return detail::shortestOverEdge(a, b, from, to);
+}
+
+template <Scalar S>
 detail::SheaveWrap WireT<S>::wrapNow(const Contact& contact, const Vec3d& from, const Vec3d& to) const {
   detail::SheaveWrap wrap = contact.wrap;
   if (contact.node->getType() == Node::Type::EYE) {
     wrap.eye(contact.node->getWorldPosition().template cast<double>(), from, to);
+  } else if (contact.onEdge) {
+    wrap.eye(edgePoint(contact, from, to), from, to);
   } else {
     placePlane(static_cast<const ContactNode&>(*contact.node), wrap);
     wrap.place(from, to);
@@ -695,11 +720,17 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
       if (k == 0 || k + 1 == route_.size()) throw error("a ContactNode may not be the first or last route node; it is node", k);
       const auto* contact = static_cast<const ContactNode*>(&node);
       const auto* shape = contact->getGeometry()->getShape();
-      if (!shape || shape->getType() != ShapeType::CYLINDER || contact->getGeometry()->getShapes().size() != 1)
-        throw error("a ContactNode's geometry must hold one cylinder (the only shape wires wrap for now); node", k);
+      if (!shape || (shape->getType() != ShapeType::CYLINDER && shape->getType() != ShapeType::BOX) ||
+          contact->getGeometry()->getShapes().size() != 1)
+        throw error("a ContactNode's geometry must hold one cylinder or one box (the shapes wires run over for now); node",
+                    k);
+      if (shape->getType() == ShapeType::BOX && contact->getTurns() != 0)
+        throw error("a ContactNode on a box's edge cannot take turns; node", k);
       if (k + 1 < route_.size() && route_[k + 1]->getType() == Node::Type::CONTACT &&
-          static_cast<const ContactNode*>(route_[k + 1].get())->getGeometry() == contact->getGeometry())
-        throw error("consecutive ContactNodes on one geometry (route it once); node", k);
+          static_cast<const ContactNode*>(route_[k + 1].get())->getGeometry() == contact->getGeometry() &&
+          (shape->getType() == ShapeType::CYLINDER ||
+           boxEdgeOf(*contact).from == boxEdgeOf(*static_cast<const ContactNode*>(route_[k + 1].get())).from))
+        throw error("consecutive ContactNodes on one cylinder or one box edge (route it once); node", k);
     }
     if (node.getRigidBody() && simulation.indexOf(*node.getRigidBody()) < 0)
       throw error(("route node " + std::to_string(k) + " is fixed to a body not in the simulation").c_str(),
@@ -749,8 +780,13 @@ void WireT<S>::build(const StepContext& simulation) {
     if (type != Node::Type::CONTACT && type != Node::Type::EYE) continue;
     Contact contact;
     contact.node = static_cast<SlidingNode*>(route_[k].get());
+    const auto* over = static_cast<const ContactNode*>(route_[k].get());
     if (type == Node::Type::EYE) {
       contact.wrap.eye(world(k), world(k - 1), world(k + 1));
+    } else if (over->getGeometry()->getShape()->getType() == ShapeType::BOX) {
+      contact.onEdge = true;
+      contact.edge = boxEdgeOf(*over);
+      contact.wrap.eye(edgePoint(contact, world(k - 1), world(k + 1)), world(k - 1), world(k + 1));
     } else {
       const auto& sheave = static_cast<const ContactNode&>(*contact.node);
       placePlane(sheave, contact.wrap);

@@ -15,6 +15,7 @@
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
 #include <spook/core/scalar.hpp>
+#include <spook/collide/shapes/box.hpp>
 #include <spook/collide/shapes/cylinder.hpp>
 #include <spook/dynamics/rigid_body.hpp>
 
@@ -204,11 +205,15 @@ class SlidingNodeT : public WireNodeT<S> {
   double frictionForce_ = 0.0;
 };
 
-/// The wire routed over a geometry (agxWire's ContactNode): a sheave. The
-/// geometry's shape must be a cylinder; the wire wraps it in the plane across
-/// its axis through its center, touching it at `position` (geometry frame),
-/// arriving and leaving along tangents, and slides over it against friction
-/// (SlidingNodeT). Neither first nor last in a route.
+/// The wire routed over a geometry (agxWire's ContactNode), holding one
+/// cylinder or one box. Over a cylinder (a sheave) the wire wraps it in the
+/// plane across its axis through its center, touching it at `position`
+/// (geometry frame), arriving and leaving along tangents. Over a box it runs
+/// across the edge nearest `position`, turning there as through an eye at
+/// the edge's point where its path is shortest (sliding along the edge as
+/// the wire moves; the wire's radius is not offset from the edge). It slides
+/// over either against friction (SlidingNodeT). Neither first nor last in a
+/// route.
 template <Scalar S>
 class ContactNodeT : public SlidingNodeT<S> {
  public:

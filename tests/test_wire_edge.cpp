@@ -1,0 +1,120 @@
+// Wires routed over the edges of boxes (ContactNode on a box,
+// wire/edge_wrap.hpp): the wire turns at each edge as through an eye that
+// slides along the edge to where the wire's path is shortest, and holds a
+// load against a counterweight within the capstan ratio e^{μ Σθ} of the
+// angles it turns by, slipping beyond.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <spook/spook.hpp>
+
+using namespace spook;
+
+namespace {
+
+constexpr double kEdgeGravity = 9.80665;  // m/s², the simulation's default
+
+/// A light limp wire (radius 5 mm, 100 kg/m³, 5 nodes/m) from a first load
+/// 1 cm left of a static 1 m cube, up over its two top edges along y and
+/// down to a second load 1 cm right of it, both 3 m below its top; the
+/// edge nodes are routed `along` the edges (y), the loads at y = 0.
+template <Scalar S>
+struct OverBoxEdges {
+  using Vec3 = Vec3T<S>;
+  ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+  ref_ptr<RigidBodyT<S>> first = new RigidBodyT<S>(), second = new RigidBodyT<S>();
+  ref_ptr<GeometryT<S>> cube = new GeometryT<S>(new BoxT<S>(Vec3(S(0.5), S(0.5), S(0.5))));
+  ref_ptr<ContactNodeT<S>> left, right;
+  ref_ptr<WireT<S>> wire = new WireT<S>(S(0.005), S(5));
+
+  OverBoxEdges(double firstMass, double secondMass, double mu, double along = 0.0)
+      : left(new ContactNodeT<S>(cube.get(), Vec3(S(-0.5), S(along), S(0.5)))),
+        right(new ContactNodeT<S>(cube.get(), Vec3(S(0.5), S(along), S(0.5)))) {
+    sim->add(cube);
+    first->getMassProperties()->setMass(S(firstMass));
+    first->setPosition(S(-0.51), S(0), S(-2.5));
+    second->getMassProperties()->setMass(S(secondMass));
+    second->setPosition(S(0.51), S(0), S(-2.5));
+    sim->add(first);
+    sim->add(second);
+    wire->getMaterial()->getBulkMaterial()->setDensity(S(100));
+    wire->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(0));
+    left->setFrictionCoefficient(S(mu));
+    right->setFrictionCoefficient(S(mu));
+    wire->add(new BodyFixedNodeT<S>(first.get(), Vec3::Zero()));
+    wire->add(left);
+    wire->add(right);
+    wire->add(new BodyFixedNodeT<S>(second.get(), Vec3::Zero()));
+  }
+};
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a wire over a box's two edges holds within e^(mu theta) and slips beyond", S, double, float) {
+  // The loads swing in under the edges: the wire turns by a quarter turn at
+  // each (more by the sag of the wire between them, 0.06% here).
+  const double mu = 0.25, light = 10.0, theta = std::numbers::pi;
+  const double ratio = std::exp(mu * theta);
+  for (const double share : {0.98, 1.02}) {
+    CAPTURE(share);
+    const double heavy = share * ratio * light;
+    OverBoxEdges<S> rig(light, heavy, mu);
+    rig.sim->add(rig.wire);
+    for (int s = 0; s < 60; ++s) rig.sim->stepForward();
+    const double wrapped = double(rig.left->getWrapAngle() + rig.right->getWrapAngle());
+    const double drop = -2.5 - double(rig.second->getPosition().z()), speed = -double(rig.second->getVelocity().z());
+    const double length = double(rig.wire->getRestLength());
+    const double low = double(rig.wire->getTension(S(0.1))), high = double(rig.wire->getTension(S(length - 0.1)));
+    const auto points = rig.wire->getPoints();
+    double farthest = 0.0;  // from the plane y = 0, where the path over the edges is shortest
+    for (const auto& p : points) farthest = std::max(farthest, std::abs(double(p.y())));
+    MESSAGE("load " << share << " e^(mu theta) x the light one: drop " << drop << " m in 1 s at " << speed
+                    << " m/s, tensions " << high << " N and " << low << " N (ratio " << high / low << " against "
+                    << ratio << "), wrap " << wrapped << " rad against " << theta << ", points within "
+                    << farthest << " m of y = 0");
+    CHECK(wrapped == doctest::Approx(theta).epsilon(2e-3));
+    CHECK(farthest < 1e-3);
+    if (share < 1.0) {
+      CHECK(std::abs(drop) < 5e-3);
+      CHECK(std::abs(speed) < 1e-3);
+      CHECK(high == doctest::Approx(heavy * kEdgeGravity).epsilon(0.01));
+      CHECK(low == doctest::Approx(light * kEdgeGravity).epsilon(0.01));
+    } else {
+      CHECK(drop > 0.01);
+      CHECK(speed > 0.05);
+      CHECK(high / low == doctest::Approx(std::exp(mu * wrapped)).epsilon(0.01));
+    }
+  }
+}
+
+TEST_CASE_TEMPLATE("a frictionless box edge is an Atwood machine's pulley, the wire sliding along it", S, double,
+                   float) {
+  // 20 kg against 5 kg over the two frictionless edges: a = (m₁ − m₂) g/(m₁ + m₂).
+  // Routed 0.4 m along the edges from the loads' plane, the wire slides
+  // back along them towards the shortest path over them.
+  for (const double along : {0.0, 0.4}) {
+    CAPTURE(along);
+    OverBoxEdges<S> rig(5.0, 20.0, 0.0, along);
+    rig.sim->add(rig.wire);
+    const int steps = 30;
+    for (int s = 0; s < steps; ++s) rig.sim->stepForward();
+    const double t = steps * double(rig.sim->getTimeStep());
+    const double expected = (20.0 - 5.0) * kEdgeGravity / 25.0 * t;
+    const double speed = -double(rig.second->getVelocity().z());
+    // Where the wire crosses the edges now (y: along them).
+    double across = 0.0;
+    for (const auto& p : rig.wire->getPoints())
+      if (std::abs(std::abs(double(p.x())) - 0.5) < 1e-6 && std::abs(double(p.z()) - 0.5) < 1e-6)
+        across = std::max(across, std::abs(double(p.y())));
+    MESSAGE("routed " << along << " m along: after " << t << " s the heavy load falls at " << speed
+                      << " m/s against " << expected << "; the wire crosses the edges within " << across
+                      << " m of the loads' plane");
+    CHECK(speed == doctest::Approx(expected).epsilon(0.01));
+    // Built 0.3 m along (the shortest path from the loads to the routed points), it slid back.
+    CHECK(across < 0.1);
+  }
+}
