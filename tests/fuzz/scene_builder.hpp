@@ -425,8 +425,9 @@ struct Builder {
       }
     }
     end();
-    // Collisions with the scene's geometries for half of the wires, without
-    // reading more input (SPOOK_SWEEP_WIRE_COLLISIONS=0 turns them off).
+    // Collisions with the scene's geometries for half of the wires when
+    // SPOOK_SWEEP_WIRE_COLLISIONS=1, without reading more input (off, as
+    // in the library, until hostile scenes step in bounded time with them).
     if (material.getFrictionCoefficient() > S(1) && wireCollisions()) w->setEnableCollisions(true);
     sim.add(w);
     wires.push_back(w);
@@ -434,7 +435,7 @@ struct Builder {
   std::vector<spook::ref_ptr<spook::WireT<S>>> wires;
   static bool wireCollisions() {
     const char* setting = std::getenv("SPOOK_SWEEP_WIRE_COLLISIONS");
-    return !(setting && std::string(setting) == "0");
+    return setting && std::string(setting) == "1";
   }
 
   // A wire operation between two steps: cut (the new part added to the
