@@ -23808,12 +23808,11 @@ void WireT<S>::build(const StepContext& simulation) {
     if (type != Node::Type::CONTACT && type != Node::Type::EYE) continue;
     Contact contact;
     contact.node = static_cast<SlidingNode*>(route_[k].get());
-    const auto* over = static_cast<const ContactNode*>(route_[k].get());
     if (type == Node::Type::EYE) {
       contact.wrap.eye(world(k), world(k - 1), world(k + 1));
-    } else if (over->getGeometry()->getShape()->getType() == ShapeType::BOX) {
+    } else if (static_cast<const ContactNode&>(*contact.node).getGeometry()->getShape()->getType() == ShapeType::BOX) {
       contact.onEdge = true;
-      contact.edge = boxEdgeOf(*over);
+      contact.edge = boxEdgeOf(static_cast<const ContactNode&>(*contact.node));
       contact.wrap.eye(edgePoint(contact, world(k - 1), world(k + 1)), world(k - 1), world(k + 1));
     } else {
       const auto& sheave = static_cast<const ContactNode&>(*contact.node);
