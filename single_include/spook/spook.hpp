@@ -20228,8 +20228,8 @@ class ConstraintRows {
 
 #include <algorithm>
 #include <array>
-#include <limits>
 #include <cstddef>
+#include <limits>
 #include <numeric>
 #include <span>
 #include <vector>
@@ -20611,26 +20611,7 @@ class IslandStepper {
   /// orientations. Fills each body's displacement (Δx, Δθ) that brings the
   /// rows to their targets.
   void project(const RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
-               SolverStatistics& statistics) {
-    const std::vector<Row>& rows = set.rows;
-    index(set, false);
-    partition(set, bodies);
-    for (const std::vector<int>& island : islands_) {
-      buildProblem(set, bodies, island, h);
-      for (std::size_t k = 0; k < island.size(); ++k) {
-        const Row& r = rows[static_cast<std::size_t>(island[k])];
-        IslandProblem::Entry& e = problem_.rows[k];
-        const double mobility = e.diagonal - e.sigma;
-        e.q = r.speed - r.violation;  // speed carries the target violation here
-        e.sigma = 1e-9 * mobility;
-        e.diagonal = mobility + e.sigma;
-        e.lower = -std::numeric_limits<double>::infinity();
-        e.upper = std::numeric_limits<double>::infinity();
-      }
-      solver.project(problem_, statistics);
-      addToBodies(bodies, &SolverBody::displacement);
-    }
-  }
+               SolverStatistics& statistics);
 
   /// The dynamic bodies (indices into `bodies`) of the islands whose
   /// impulses the last solve() dropped as non-finite.
@@ -20639,32 +20620,7 @@ class IslandStepper {
   /// The rows' impulses: each row's last impulse in (the warm start and the
   /// direct solver's first guess), the solved one out; rows that join no
   /// island (between static bodies) keep theirs.
-  void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics) {
-    std::vector<double>& impulses = set.impulses;
-    index(set, true);
-    partition(set, bodies);
-    nonFiniteBodies_.clear();
-    for (const std::vector<int>& island : islands_) {
-      buildProblem(set, bodies, island, h);
-      const bool warmStart = solver.getEnableWarmStarting();
-      const bool contactWarmStart = solver.getEnableContactWarmStarting();
-      const double contactFactor = solver.getContactWarmStartingFactor();
-      for (std::size_t k = 0; k < island.size(); ++k) {
-        IslandProblem::Entry& e = problem_.rows[k];
-        e.guess = std::clamp(impulses[static_cast<std::size_t>(island[k])], e.lower, e.upper);
-        if (warmStart)
-          e.impulse = e.guess;
-        else if (contactWarmStart && e.constraint < 0 && e.bounded())
-          e.impulse = std::clamp(contactFactor * e.guess, e.lower, e.upper);
-        else
-          e.impulse = std::clamp(0.0, e.lower, e.upper);
-      }
-      if (!solver.solve(problem_, statistics))
-        nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
-      for (std::size_t k = 0; k < island.size(); ++k) impulses[static_cast<std::size_t>(island[k])] = problem_.rows[k].impulse;
-      addToBodies(bodies, &SolverBody::freeVelocity);
-    }
-  }
+  void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics);
 
  private:
   int find(int i) {
@@ -20689,128 +20645,18 @@ class IslandStepper {
   template <class Entry>
   static void indexTable(std::span<const Entry> table, std::size_t rows, std::vector<int>& entryOf) {
     entryOf.assign(rows, -1);
-    for (std::size_t k = 0; k < table.size(); ++k) entryOf[static_cast<std::size_t>(table[k].row)] = static_cast<int>(k);
+    for (std::size_t k = 0; k < table.size(); ++k)
+      entryOf[static_cast<std::size_t>(table[k].row)] = static_cast<int>(k);
   }
   [[nodiscard]] const ThirdBody* thirdBodyOf(const RowSet& set, std::size_t row) const {
     const int k = thirdOf_[row];
     return k < 0 ? nullptr : &set.thirdBodies[static_cast<std::size_t>(k)];
   }
 
-  void partition(const RowSet& set, const std::vector<SolverBody>& bodies) {
-    const std::vector<Row>& rows = set.rows;
-    parent_.resize(bodies.size());
-    std::iota(parent_.begin(), parent_.end(), 0);
-    const auto join = [&](int a, int b) {
-      if (isDynamic(bodies, a) && isDynamic(bodies, b)) parent_[static_cast<std::size_t>(find(a))] = find(b);
-    };
-    for (const Row& r : rows) join(r.body1, r.body2);
-    for (const ThirdBody& t : set.thirdBodies) {
-      const Row& r = rows[static_cast<std::size_t>(t.row)];
-      join(r.body1, t.body);
-      join(r.body2, t.body);
-    }
-    islandOfRoot_.assign(bodies.size(), -1);
-    islands_.clear();
-    for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
-      const Row& r = rows[static_cast<std::size_t>(i)];
-      const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(i));
-      const int body3 = third ? third->body : -1;
-      const int body = isDynamic(bodies, r.body1)   ? r.body1
-                       : isDynamic(bodies, r.body2) ? r.body2
-                       : isDynamic(bodies, body3)   ? body3
-                                                    : -1;
-      if (body < 0) continue;
-      int& island = islandOfRoot_[static_cast<std::size_t>(find(body))];
-      if (island < 0) {
-        island = static_cast<int>(islands_.size());
-        islands_.emplace_back();
-      }
-      islands_[static_cast<std::size_t>(island)].push_back(i);
-    }
-  }
+  void partition(const RowSet& set, const std::vector<SolverBody>& bodies);
 
   // The island's entries, impulses and guesses zero (index() first).
-  void buildProblem(const RowSet& set, const std::vector<SolverBody>& bodies, const std::vector<int>& island, double h) {
-    const std::vector<Row>& rows = set.rows;
-    local_.resize(bodies.size(), -1);
-    islandBodies_.clear();
-    auto localIndex = [&](int body) {
-      if (!isDynamic(bodies, body)) return -1;
-      int& l = local_[static_cast<std::size_t>(body)];
-      if (l < 0) {
-        l = static_cast<int>(islandBodies_.size());
-        islandBodies_.push_back(body);
-      }
-      return l;
-    };
-    rowLocal_.resize(rows.size(), -1);
-    for (std::size_t k = 0; k < island.size(); ++k) rowLocal_[static_cast<std::size_t>(island[k])] = static_cast<int>(k);
-    const auto localRow = [&](int i) { return i < 0 ? -1 : rowLocal_[static_cast<std::size_t>(i)]; };
-    problem_.rows.resize(island.size());
-    problem_.extraBodies.clear();
-    for (std::size_t k = 0; k < island.size(); ++k) {
-      const Row& r = rows[static_cast<std::size_t>(island[k])];
-      const int link = frictionOf_[static_cast<std::size_t>(island[k])];
-      const FrictionLink* f = link < 0 ? nullptr : &set.friction[static_cast<std::size_t>(link)];
-      const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(island[k]));
-      IslandProblem::Entry& e = problem_.rows[k];
-      e.body1 = e.body2 = e.extra = -1;
-      // G v and G v* over every body (kinematic ones move too), M⁻¹Gᵀ over
-      // the dynamic ones.
-      double speed = 0.0, freeSpeed = 0.0;
-      const std::array<std::pair<int, const Vec6d*>, 3> blocks{
-          {{r.body1, &r.J1}, {r.body2, &r.J2}, {third ? third->body : -1, third ? &third->J : nullptr}}};
-      for (const auto& [body, J] : blocks) {
-        if (body < 0) continue;
-        const SolverBody& b = bodies[static_cast<std::size_t>(body)];
-        speed += J->dot(b.velocity);
-        freeSpeed += J->dot(b.freeVelocity);
-        if (b.dynamic) problem_.addBody(e, localIndex(body), *J, b.inverseMass, b.inverseInertia);
-      }
-      const double mobility = problem_.mobility(e);
-      if (r.holonomic) {
-        const SpookParameters spook = SpookParameters::holonomic(r.compliance, r.damping, h);
-        // Second order in h (row.hpp): the b' term reads the rate at which
-        // the last step moved g (G v − hκ when not kept); the step aims G v⁺
-        // at SPOOK's target minus the drift hκ its motion will add.
-        const int term = secondOrderOf_[static_cast<std::size_t>(island[k])];
-        const SecondOrder second = term < 0 ? SecondOrder{} : set.secondOrder[static_cast<std::size_t>(term)];
-        const double rate = std::isnan(second.lastRate) ? speed - h * second.curvature : second.lastRate;
-        e.q = -spook.a * r.violation + spook.b * rate - h * second.curvature - freeSpeed;
-        e.sigma = spook.sigma;
-      } else {
-        e.q = r.speed - freeSpeed;
-        e.sigma = SpookParameters::velocitySigma(r.compliance, h);
-      }
-      // A floor far below any physical compliance keeps redundant rigid rows
-      // (compliance 0) positive definite; contact friction rows get a
-      // higher one (kFrictionSofterThan).
-      e.sigma = std::max(e.sigma, (f && f->normal >= 0 && !f->exact ? kFrictionSofterThan : 1e-12) * mobility);
-      e.diagonal = mobility + e.sigma;
-      e.lower = r.lower * h;
-      e.upper = r.upper * h;
-      e.guess = 0.0;
-      e.impulse = 0.0;
-      e.solveType = r.solveType;
-      e.constraint = localRow(r.constraint);
-      e.normal = f ? localRow(f->normal) : -1;
-      e.partner = f ? localRow(f->partner) : -1;
-      e.mu = f ? f->coefficient : 0.0;
-      e.frictionBound = f ? f->bound : FrictionBound::FIXED;
-      e.coneShare = 1.0;
-    }
-    problem_.numBodies = static_cast<int>(islandBodies_.size());
-    // Mass matrices only where a direct solve may go through body space.
-    problem_.mass.resize(BodySpaceSolve::outnumbers(island.size(), islandBodies_.size()) ? islandBodies_.size() : 0);
-    for (std::size_t k = 0; k < problem_.mass.size(); ++k) {
-      const SolverBody& b = bodies[static_cast<std::size_t>(islandBodies_[k])];
-      Mat6d& M = problem_.mass[k];
-      M.setZero();
-      M.topLeftCorner<3, 3>() = inverseOf(b.inverseMass);
-      M.bottomRightCorner<3, 3>() = inverseOf(b.inverseInertia);
-    }
-    for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
-  }
+  void buildProblem(const RowSet& set, const std::vector<SolverBody>& bodies, const std::vector<int>& island, double h);
 
   // Adds M⁻¹Gᵀ Λ of problem_'s impulses to a field of the island's bodies.
   void addToBodies(std::vector<SolverBody>& bodies, Vec6d SolverBody::*field) {
@@ -20820,11 +20666,7 @@ class IslandStepper {
   }
 
   // The inverse of a symmetric 3×3 matrix, NaN when it is not positive definite.
-  static Mat3d inverseOf(const Mat3d& m) {
-    const Eigen::LLT<Mat3d> llt(m);
-    if (llt.info() != Eigen::Success) return Mat3d::Constant(std::numeric_limits<double>::quiet_NaN());
-    return llt.solve(Mat3d::Identity());
-  }
+  static Mat3d inverseOf(const Mat3d& m);
 
   std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_, frictionOf_, thirdOf_,
       secondOrderOf_;
@@ -20832,6 +20674,181 @@ class IslandStepper {
   IslandProblem problem_;
   std::vector<Vec6d> velocityChange_;
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void IslandStepper::project(const RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
+                                         SolverStatistics& statistics) {
+  const std::vector<Row>& rows = set.rows;
+  index(set, false);
+  partition(set, bodies);
+  for (const std::vector<int>& island : islands_) {
+    buildProblem(set, bodies, island, h);
+    for (std::size_t k = 0; k < island.size(); ++k) {
+      const Row& r = rows[static_cast<std::size_t>(island[k])];
+      IslandProblem::Entry& e = problem_.rows[k];
+      const double mobility = e.diagonal - e.sigma;
+      e.q = r.speed - r.violation;  // speed carries the target violation here
+      e.sigma = 1e-9 * mobility;
+      e.diagonal = mobility + e.sigma;
+      e.lower = -std::numeric_limits<double>::infinity();
+      e.upper = std::numeric_limits<double>::infinity();
+    }
+    solver.project(problem_, statistics);
+    addToBodies(bodies, &SolverBody::displacement);
+  }
+}
+
+SPOOK_INLINE void IslandStepper::solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
+                                       SolverStatistics& statistics) {
+  std::vector<double>& impulses = set.impulses;
+  index(set, true);
+  partition(set, bodies);
+  nonFiniteBodies_.clear();
+  for (const std::vector<int>& island : islands_) {
+    buildProblem(set, bodies, island, h);
+    const bool warmStart = solver.getEnableWarmStarting();
+    const bool contactWarmStart = solver.getEnableContactWarmStarting();
+    const double contactFactor = solver.getContactWarmStartingFactor();
+    for (std::size_t k = 0; k < island.size(); ++k) {
+      IslandProblem::Entry& e = problem_.rows[k];
+      e.guess = std::clamp(impulses[static_cast<std::size_t>(island[k])], e.lower, e.upper);
+      if (warmStart)
+        e.impulse = e.guess;
+      else if (contactWarmStart && e.constraint < 0 && e.bounded())
+        e.impulse = std::clamp(contactFactor * e.guess, e.lower, e.upper);
+      else
+        e.impulse = std::clamp(0.0, e.lower, e.upper);
+    }
+    if (!solver.solve(problem_, statistics))
+      nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
+    for (std::size_t k = 0; k < island.size(); ++k)
+      impulses[static_cast<std::size_t>(island[k])] = problem_.rows[k].impulse;
+    addToBodies(bodies, &SolverBody::freeVelocity);
+  }
+}
+
+SPOOK_INLINE void IslandStepper::partition(const RowSet& set, const std::vector<SolverBody>& bodies) {
+  const std::vector<Row>& rows = set.rows;
+  parent_.resize(bodies.size());
+  std::iota(parent_.begin(), parent_.end(), 0);
+  const auto join = [&](int a, int b) {
+    if (isDynamic(bodies, a) && isDynamic(bodies, b)) parent_[static_cast<std::size_t>(find(a))] = find(b);
+  };
+  for (const Row& r : rows) join(r.body1, r.body2);
+  for (const ThirdBody& t : set.thirdBodies) {
+    const Row& r = rows[static_cast<std::size_t>(t.row)];
+    join(r.body1, t.body);
+    join(r.body2, t.body);
+  }
+  islandOfRoot_.assign(bodies.size(), -1);
+  islands_.clear();
+  for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
+    const Row& r = rows[static_cast<std::size_t>(i)];
+    const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(i));
+    const int body3 = third ? third->body : -1;
+    const int body = isDynamic(bodies, r.body1)   ? r.body1
+                     : isDynamic(bodies, r.body2) ? r.body2
+                     : isDynamic(bodies, body3)   ? body3
+                                                  : -1;
+    if (body < 0) continue;
+    int& island = islandOfRoot_[static_cast<std::size_t>(find(body))];
+    if (island < 0) {
+      island = static_cast<int>(islands_.size());
+      islands_.emplace_back();
+    }
+    islands_[static_cast<std::size_t>(island)].push_back(i);
+  }
+}
+
+SPOOK_INLINE void IslandStepper::buildProblem(const RowSet& set, const std::vector<SolverBody>& bodies,
+                                              const std::vector<int>& island, double h) {
+  const std::vector<Row>& rows = set.rows;
+  local_.resize(bodies.size(), -1);
+  islandBodies_.clear();
+  auto localIndex = [&](int body) {
+    if (!isDynamic(bodies, body)) return -1;
+    int& l = local_[static_cast<std::size_t>(body)];
+    if (l < 0) {
+      l = static_cast<int>(islandBodies_.size());
+      islandBodies_.push_back(body);
+    }
+    return l;
+  };
+  rowLocal_.resize(rows.size(), -1);
+  for (std::size_t k = 0; k < island.size(); ++k) rowLocal_[static_cast<std::size_t>(island[k])] = static_cast<int>(k);
+  const auto localRow = [&](int i) { return i < 0 ? -1 : rowLocal_[static_cast<std::size_t>(i)]; };
+  problem_.rows.resize(island.size());
+  problem_.extraBodies.clear();
+  for (std::size_t k = 0; k < island.size(); ++k) {
+    const Row& r = rows[static_cast<std::size_t>(island[k])];
+    const int link = frictionOf_[static_cast<std::size_t>(island[k])];
+    const FrictionLink* f = link < 0 ? nullptr : &set.friction[static_cast<std::size_t>(link)];
+    const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(island[k]));
+    IslandProblem::Entry& e = problem_.rows[k];
+    e.body1 = e.body2 = e.extra = -1;
+    // G v and G v* over every body (kinematic ones move too), M⁻¹Gᵀ over
+    // the dynamic ones.
+    double speed = 0.0, freeSpeed = 0.0;
+    const std::array<std::pair<int, const Vec6d*>, 3> blocks{
+        {{r.body1, &r.J1}, {r.body2, &r.J2}, {third ? third->body : -1, third ? &third->J : nullptr}}};
+    for (const auto& [body, J] : blocks) {
+      if (body < 0) continue;
+      const SolverBody& b = bodies[static_cast<std::size_t>(body)];
+      speed += J->dot(b.velocity);
+      freeSpeed += J->dot(b.freeVelocity);
+      if (b.dynamic) problem_.addBody(e, localIndex(body), *J, b.inverseMass, b.inverseInertia);
+    }
+    const double mobility = problem_.mobility(e);
+    if (r.holonomic) {
+      const SpookParameters spook = SpookParameters::holonomic(r.compliance, r.damping, h);
+      // Second order in h (row.hpp): the b' term reads the rate at which
+      // the last step moved g (G v − hκ when not kept); the step aims G v⁺
+      // at SPOOK's target minus the drift hκ its motion will add.
+      const int term = secondOrderOf_[static_cast<std::size_t>(island[k])];
+      const SecondOrder second = term < 0 ? SecondOrder{} : set.secondOrder[static_cast<std::size_t>(term)];
+      const double rate = std::isnan(second.lastRate) ? speed - h * second.curvature : second.lastRate;
+      e.q = -spook.a * r.violation + spook.b * rate - h * second.curvature - freeSpeed;
+      e.sigma = spook.sigma;
+    } else {
+      e.q = r.speed - freeSpeed;
+      e.sigma = SpookParameters::velocitySigma(r.compliance, h);
+    }
+    // A floor far below any physical compliance keeps redundant rigid rows
+    // (compliance 0) positive definite; contact friction rows get a
+    // higher one (kFrictionSofterThan).
+    e.sigma = std::max(e.sigma, (f && f->normal >= 0 && !f->exact ? kFrictionSofterThan : 1e-12) * mobility);
+    e.diagonal = mobility + e.sigma;
+    e.lower = r.lower * h;
+    e.upper = r.upper * h;
+    e.guess = 0.0;
+    e.impulse = 0.0;
+    e.solveType = r.solveType;
+    e.constraint = localRow(r.constraint);
+    e.normal = f ? localRow(f->normal) : -1;
+    e.partner = f ? localRow(f->partner) : -1;
+    e.mu = f ? f->coefficient : 0.0;
+    e.frictionBound = f ? f->bound : FrictionBound::FIXED;
+    e.coneShare = 1.0;
+  }
+  problem_.numBodies = static_cast<int>(islandBodies_.size());
+  // Mass matrices only where a direct solve may go through body space.
+  problem_.mass.resize(BodySpaceSolve::outnumbers(island.size(), islandBodies_.size()) ? islandBodies_.size() : 0);
+  for (std::size_t k = 0; k < problem_.mass.size(); ++k) {
+    const SolverBody& b = bodies[static_cast<std::size_t>(islandBodies_[k])];
+    Mat6d& M = problem_.mass[k];
+    M.setZero();
+    M.topLeftCorner<3, 3>() = inverseOf(b.inverseMass);
+    M.bottomRightCorner<3, 3>() = inverseOf(b.inverseInertia);
+  }
+  for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
+}
+
+SPOOK_INLINE Mat3d IslandStepper::inverseOf(const Mat3d& m) {
+  const Eigen::LLT<Mat3d> llt(m);
+  if (llt.info() != Eigen::Success) return Mat3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  return llt.solve(Mat3d::Identity());
+}
+#endif
 
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_SOLVER_ISLANDS_HPP
@@ -21164,58 +21181,16 @@ class GeometricStiffness {
   /// Augments `bodies` (inverse inertia, free angular velocity) from the
   /// rows' impulses, for a step of length h, and keeps what it changed for
   /// refresh().
-  void apply(const RowSet& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
-    freeVelocity_.resize(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i) freeVelocity_[i] = bodies[i].freeVelocity;
-    compute(rows, bodies, h, threshold, added_);
-    augment(bodies);
-    used_ = rows.impulses;
-  }
+  void apply(const RowSet& rows, std::vector<SolverBody>& bodies, double h, double threshold);
 
   /// After a solve of the bodies apply() augmented: whether the stiffness
   /// of the rows' impulses now exceeds the one applied by more than
   /// kRefreshTolerance for some body; if so, `bodies` are augmented afresh
   /// with it, to be solved again.
-  bool refresh(const RowSet& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
-    if (added_.size() != bodies.size() || used_.size() != rows.size() || !mayHaveChanged(rows, bodies, h)) return false;
-    // The inverse inertia each body was solved with; the fresh stiffness is
-    // computed on the bodies' own inertia.
-    solvedWith_.resize(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i) solvedWith_[i] = bodies[i].inverseInertia;
-    swapOriginalInertia(bodies);
-    compute(rows, bodies, h, threshold, fresh_);
-    bool changed = false;
-    for (std::size_t i = 0; i < bodies.size() && !changed; ++i) {
-      const Mat3d change = fresh_[i] - added_[i];
-      if (!bodies[i].dynamic || change.isZero(0.0)) continue;
-      // The largest eigenvalue of LᵀΔA L, L Lᵀ = (I + h²K̃)⁻¹: the stiffness
-      // the solve left out, in units of the inertia it used, on the worst
-      // axis. Stiffness it took in excess only damps more.
-      const Mat3d L = Eigen::LLT<Mat3d>(solvedWith_[i]).matrixL();
-      changed = Eigen::SelfAdjointEigenSolver<Mat3d>(L.transpose() * change * L, Eigen::EigenvaluesOnly)
-                    .eigenvalues()
-                    .maxCoeff() > kRefreshTolerance;
-    }
-    if (!changed) {
-      swapOriginalInertia(bodies);
-      return false;
-    }
-    // The bodies as apply() found them (the solve added its impulses to
-    // the free velocities), augmented afresh.
-    for (std::size_t i = 0; i < bodies.size(); ++i) bodies[i].freeVelocity = freeVelocity_[i];
-    std::swap(added_, fresh_);
-    used_ = rows.impulses;
-    augment(bodies);
-    return true;
-  }
+  bool refresh(const RowSet& rows, std::vector<SolverBody>& bodies, double h, double threshold);
 
   /// The same inertia for the post-stabilization projection of this step.
-  void addInertia(std::vector<SolverBody>& bodies) const {
-    if (added_.size() != bodies.size()) return;
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-      if (bodies[i].dynamic && !added_[i].isZero(0.0))
-        bodies[i].inverseInertia = (bodies[i].inverseInertia.inverse() + added_[i]).inverse();
-  }
+  void addInertia(std::vector<SolverBody>& bodies) const;
 
   void clear() {
     added_.clear();
@@ -21231,84 +21206,17 @@ class GeometricStiffness {
   /// part shrinks a change); with a threshold the mode weights (1 − ρ₀/ρ)
   /// can make a small change of force a larger change of K̃, so it is a
   /// heuristic there, one that errs on the side of the last solve.
-  bool mayHaveChanged(const RowSet& rows, const std::vector<SolverBody>& bodies, double h) {
-    change_.assign(bodies.size(), 0.0);
-    for (const LeverArms& a : rows.arms) {
-      const auto k = static_cast<std::size_t>(a.row);
-      const Row& r = rows.rows[k];
-      const double force = std::abs(rows.impulses[k] - used_[k]) / h;
-      if (force == 0.0) continue;
-      if (r.body1 >= 0) change_[std::size_t(r.body1)] += force * r.J1.head<3>().norm() * a.arm1.norm();
-      if (r.body2 >= 0) change_[std::size_t(r.body2)] += force * r.J2.head<3>().norm() * a.arm2.norm();
-    }
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-      if (bodies[i].dynamic && h * h * change_[i] * bodies[i].inverseInertia.norm() > kRefreshTolerance) return true;
-    return false;
-  }
+  bool mayHaveChanged(const RowSet& rows, const std::vector<SolverBody>& bodies, double h);
 
   /// h²K̃ per body, mode-weighted (class comment), of the rows' impulses
   /// acting on `bodies` (not augmented).
   void compute(const RowSet& rows, const std::vector<SolverBody>& bodies, double h, double threshold,
-               std::vector<Mat3d>& added) {
-    added.assign(bodies.size(), Mat3d::Zero());
-    stiffness_.assign(bodies.size(), Mat3d::Zero());
-    heldAt_.assign(bodies.size(), Held{});
-    any_ = false;
-    for (const LeverArms& a : rows.arms) {
-      const Row& r = rows.rows[static_cast<std::size_t>(a.row)];
-      const double force = rows.impulses[static_cast<std::size_t>(a.row)] / h;
-      if (force == 0.0) continue;
-      accumulate(r.body1, force * r.J1.head<3>(), a.arm1, bodies);
-      accumulate(r.body2, force * r.J2.head<3>(), a.arm2, bodies);
-    }
-    if (!any_) return;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      const SolverBody& b = bodies[i];
-      if (!b.dynamic || stiffness_[i].isZero(0.0)) continue;
-      const Mat3d symmetric = 0.5 * (stiffness_[i] + stiffness_[i].transpose());
-      // ρ ≤ h²‖K̃‖‖I⁻¹‖: most bodies of an ordinary scene stop here.
-      if (h * h * symmetric.norm() * b.inverseInertia.norm() <= threshold) continue;
-      const Eigen::SelfAdjointEigenSolver<Mat3d> eigen(symmetric);
-      const Vec3d tension = (-eigen.eigenvalues()).cwiseMax(0.0);
-      if (tension.maxCoeff() <= 0.0) continue;
-      const Mat3d stiffness = eigen.eigenvectors() * tension.asDiagonal() * eigen.eigenvectors().transpose();
-      const Held& held = heldAt_[i];
-      const Mat3d arm = skew<double>(held.arm);
-      const Mat3d modeInverseInertia =
-          held.single ? Mat3d((b.inverseInertia.inverse() + arm.transpose() * b.inverseMass.inverse() * arm).inverse())
-                      : b.inverseInertia;
-      // Modes of the body's turn: I⁻¹K̃ has eigenvalues ω_k²; with
-      // I⁻¹ = L Lᵀ they are those of LᵀK̃L = U diag(ω²) Uᵀ, and mode k adds
-      // L⁻ᵀu_k ω_k² u_kᵀL⁻¹ to K̃. Each mode is taken with its own weight,
-      // so that a stiff turn (a point-like bob twisting about its rod) does
-      // not damp the body's other, soft ones (its swing).
-      const Eigen::LLT<Mat3d> inverseInertia(modeInverseInertia);
-      const Mat3d L = inverseInertia.matrixL();
-      const Eigen::SelfAdjointEigenSolver<Mat3d> modes(L.transpose() * stiffness * L);
-      const Mat3d toStiffness = L.transpose().inverse() * modes.eigenvectors();
-      Vec3d weighted = Vec3d::Zero();
-      for (int k = 0; k < 3; ++k) {
-        const double rho = h * h * modes.eigenvalues()(k);
-        if (rho > threshold) weighted(k) = (1.0 - threshold / rho) * modes.eigenvalues()(k);
-      }
-      if (!weighted.isZero(0.0)) added[i] = h * h * toStiffness * weighted.asDiagonal() * toStiffness.transpose();
-    }
-  }
+               std::vector<Mat3d>& added);
 
   /// The bodies with added_: I → I + h²K̃, and the free angular velocity
   /// with the same angular momentum; the inverse inertias it changes are
   /// kept in original_.
-  void augment(std::vector<SolverBody>& bodies) {
-    original_.clear();
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      if (added_[i].isZero(0.0)) continue;
-      SolverBody& b = bodies[i];
-      original_.push_back({i, b.inverseInertia});
-      const Mat3d inertia = b.inverseInertia.inverse();
-      b.inverseInertia = (inertia + added_[i]).inverse();
-      b.freeVelocity.tail<3>() = b.inverseInertia * (inertia * b.freeVelocity.tail<3>());
-    }
-  }
+  void augment(std::vector<SolverBody>& bodies);
 
   /// Exchanges the augmented bodies' inverse inertia with the one they had
   /// before augment().
@@ -21316,17 +21224,7 @@ class GeometricStiffness {
     for (Original& o : original_) std::swap(bodies[o.body].inverseInertia, o.inverseInertia);
   }
 
-  void accumulate(int body, const Vec3d& force, const Vec3d& arm, const std::vector<SolverBody>& bodies) {
-    if (body < 0 || !bodies[static_cast<std::size_t>(body)].dynamic || arm.isZero(0.0)) return;
-    const auto i = static_cast<std::size_t>(body);
-    stiffness_[i] += skew<double>(force) * skew<double>(arm);
-    Held& held = heldAt_[i];
-    if (held.rows == 0) held.arm = arm;
-    // Arms of one joint's rows differ by its violation (Dot2 rows act at p₁).
-    held.single = (held.rows == 0 || held.single) && (arm - held.arm).norm() <= 1e-3 * (1.0 + arm.norm());
-    ++held.rows;
-    any_ = true;
-  }
+  void accumulate(int body, const Vec3d& force, const Vec3d& arm, const std::vector<SolverBody>& bodies);
 
   /// Where a body's row forces act: one point (arm from its center) or several.
   struct Held {
@@ -21339,7 +21237,7 @@ class GeometricStiffness {
     std::size_t body;
     Mat3d inverseInertia;
   };
-  std::vector<Original> original_;  ///< the augmented bodies' inverse inertia before augment()
+  std::vector<Original> original_;   ///< the augmented bodies' inverse inertia before augment()
   std::vector<Vec6d> freeVelocity_;  ///< every body's free velocity before apply()
   std::vector<Mat3d> added_, fresh_, stiffness_, solvedWith_;
   std::vector<double> used_;    ///< the impulses added_ was computed from
@@ -21347,6 +21245,146 @@ class GeometricStiffness {
   std::vector<Held> heldAt_;
   bool any_ = false;
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void GeometricStiffness::apply(const RowSet& rows, std::vector<SolverBody>& bodies, double h,
+                                            double threshold) {
+  freeVelocity_.resize(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) freeVelocity_[i] = bodies[i].freeVelocity;
+  compute(rows, bodies, h, threshold, added_);
+  augment(bodies);
+  used_ = rows.impulses;
+}
+
+SPOOK_INLINE bool GeometricStiffness::refresh(const RowSet& rows, std::vector<SolverBody>& bodies, double h,
+                                              double threshold) {
+  if (added_.size() != bodies.size() || used_.size() != rows.size() || !mayHaveChanged(rows, bodies, h)) return false;
+  // The inverse inertia each body was solved with; the fresh stiffness is
+  // computed on the bodies' own inertia.
+  solvedWith_.resize(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) solvedWith_[i] = bodies[i].inverseInertia;
+  swapOriginalInertia(bodies);
+  compute(rows, bodies, h, threshold, fresh_);
+  bool changed = false;
+  for (std::size_t i = 0; i < bodies.size() && !changed; ++i) {
+    const Mat3d change = fresh_[i] - added_[i];
+    if (!bodies[i].dynamic || change.isZero(0.0)) continue;
+    // The largest eigenvalue of LᵀΔA L, L Lᵀ = (I + h²K̃)⁻¹: the stiffness
+    // the solve left out, in units of the inertia it used, on the worst
+    // axis. Stiffness it took in excess only damps more.
+    const Mat3d L = Eigen::LLT<Mat3d>(solvedWith_[i]).matrixL();
+    changed = Eigen::SelfAdjointEigenSolver<Mat3d>(L.transpose() * change * L, Eigen::EigenvaluesOnly)
+                  .eigenvalues()
+                  .maxCoeff() > kRefreshTolerance;
+  }
+  if (!changed) {
+    swapOriginalInertia(bodies);
+    return false;
+  }
+  // The bodies as apply() found them (the solve added its impulses to
+  // the free velocities), augmented afresh.
+  for (std::size_t i = 0; i < bodies.size(); ++i) bodies[i].freeVelocity = freeVelocity_[i];
+  std::swap(added_, fresh_);
+  used_ = rows.impulses;
+  augment(bodies);
+  return true;
+}
+
+SPOOK_INLINE void GeometricStiffness::addInertia(std::vector<SolverBody>& bodies) const {
+  if (added_.size() != bodies.size()) return;
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].dynamic && !added_[i].isZero(0.0))
+      bodies[i].inverseInertia = (bodies[i].inverseInertia.inverse() + added_[i]).inverse();
+}
+
+SPOOK_INLINE bool GeometricStiffness::mayHaveChanged(const RowSet& rows, const std::vector<SolverBody>& bodies,
+                                                     double h) {
+  change_.assign(bodies.size(), 0.0);
+  for (const LeverArms& a : rows.arms) {
+    const auto k = static_cast<std::size_t>(a.row);
+    const Row& r = rows.rows[k];
+    const double force = std::abs(rows.impulses[k] - used_[k]) / h;
+    if (force == 0.0) continue;
+    if (r.body1 >= 0) change_[std::size_t(r.body1)] += force * r.J1.head<3>().norm() * a.arm1.norm();
+    if (r.body2 >= 0) change_[std::size_t(r.body2)] += force * r.J2.head<3>().norm() * a.arm2.norm();
+  }
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].dynamic && h * h * change_[i] * bodies[i].inverseInertia.norm() > kRefreshTolerance) return true;
+  return false;
+}
+
+SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vector<SolverBody>& bodies, double h,
+                                              double threshold, std::vector<Mat3d>& added) {
+  added.assign(bodies.size(), Mat3d::Zero());
+  stiffness_.assign(bodies.size(), Mat3d::Zero());
+  heldAt_.assign(bodies.size(), Held{});
+  any_ = false;
+  for (const LeverArms& a : rows.arms) {
+    const Row& r = rows.rows[static_cast<std::size_t>(a.row)];
+    const double force = rows.impulses[static_cast<std::size_t>(a.row)] / h;
+    if (force == 0.0) continue;
+    accumulate(r.body1, force * r.J1.head<3>(), a.arm1, bodies);
+    accumulate(r.body2, force * r.J2.head<3>(), a.arm2, bodies);
+  }
+  if (!any_) return;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const SolverBody& b = bodies[i];
+    if (!b.dynamic || stiffness_[i].isZero(0.0)) continue;
+    const Mat3d symmetric = 0.5 * (stiffness_[i] + stiffness_[i].transpose());
+    // ρ ≤ h²‖K̃‖‖I⁻¹‖: most bodies of an ordinary scene stop here.
+    if (h * h * symmetric.norm() * b.inverseInertia.norm() <= threshold) continue;
+    const Eigen::SelfAdjointEigenSolver<Mat3d> eigen(symmetric);
+    const Vec3d tension = (-eigen.eigenvalues()).cwiseMax(0.0);
+    if (tension.maxCoeff() <= 0.0) continue;
+    const Mat3d stiffness = eigen.eigenvectors() * tension.asDiagonal() * eigen.eigenvectors().transpose();
+    const Held& held = heldAt_[i];
+    const Mat3d arm = skew<double>(held.arm);
+    const Mat3d modeInverseInertia =
+        held.single ? Mat3d((b.inverseInertia.inverse() + arm.transpose() * b.inverseMass.inverse() * arm).inverse())
+                    : b.inverseInertia;
+    // Modes of the body's turn: I⁻¹K̃ has eigenvalues ω_k²; with
+    // I⁻¹ = L Lᵀ they are those of LᵀK̃L = U diag(ω²) Uᵀ, and mode k adds
+    // L⁻ᵀu_k ω_k² u_kᵀL⁻¹ to K̃. Each mode is taken with its own weight,
+    // so that a stiff turn (a point-like bob twisting about its rod) does
+    // not damp the body's other, soft ones (its swing).
+    const Eigen::LLT<Mat3d> inverseInertia(modeInverseInertia);
+    const Mat3d L = inverseInertia.matrixL();
+    const Eigen::SelfAdjointEigenSolver<Mat3d> modes(L.transpose() * stiffness * L);
+    const Mat3d toStiffness = L.transpose().inverse() * modes.eigenvectors();
+    Vec3d weighted = Vec3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const double rho = h * h * modes.eigenvalues()(k);
+      if (rho > threshold) weighted(k) = (1.0 - threshold / rho) * modes.eigenvalues()(k);
+    }
+    if (!weighted.isZero(0.0)) added[i] = h * h * toStiffness * weighted.asDiagonal() * toStiffness.transpose();
+  }
+}
+
+SPOOK_INLINE void GeometricStiffness::augment(std::vector<SolverBody>& bodies) {
+  original_.clear();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (added_[i].isZero(0.0)) continue;
+    SolverBody& b = bodies[i];
+    original_.push_back({i, b.inverseInertia});
+    const Mat3d inertia = b.inverseInertia.inverse();
+    b.inverseInertia = (inertia + added_[i]).inverse();
+    b.freeVelocity.tail<3>() = b.inverseInertia * (inertia * b.freeVelocity.tail<3>());
+  }
+}
+
+SPOOK_INLINE void GeometricStiffness::accumulate(int body, const Vec3d& force, const Vec3d& arm,
+                                                 const std::vector<SolverBody>& bodies) {
+  if (body < 0 || !bodies[static_cast<std::size_t>(body)].dynamic || arm.isZero(0.0)) return;
+  const auto i = static_cast<std::size_t>(body);
+  stiffness_[i] += skew<double>(force) * skew<double>(arm);
+  Held& held = heldAt_[i];
+  if (held.rows == 0) held.arm = arm;
+  // Arms of one joint's rows differ by its violation (Dot2 rows act at p₁).
+  held.single = (held.rows == 0 || held.single) && (arm - held.arm).norm() <= 1e-3 * (1.0 + arm.norm());
+  ++held.rows;
+  any_ = true;
+}
+#endif
 
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_SOLVER_GEOMETRIC_STIFFNESS_HPP
@@ -21389,7 +21427,9 @@ FreeRotation<S> freeRotationStep(const Mat3T<S>& inertiaInverse, const Vec3T<S>&
   if (!(scale > S(0))) return {QuatT<S>::Identity(), momentum, true};
   const S tolerance = ScalarTraits<S>::solveTolerance() * scale;
   const Mat3T<S> jacobian = Mat3T<S>::Identity() - S(0.5) * h * skew<S>(momentum) * inertiaInverse;
-  const auto jacobianLu = jacobian.partialPivLu();
+  // Closed-form 3×3 inverse: J = I − (h/2)[Π]ₓI⁻¹ is similar to I minus a
+  // skew matrix (eigenvalues 1 ± iλ), never singular, |det J| ≥ 1.
+  const Mat3T<S> jacobianInverse = jacobian.inverse();
 
   Vec3 next = momentum;
   Vec3 meanVelocity = inertiaInverse * momentum;
@@ -21398,7 +21438,7 @@ FreeRotation<S> freeRotationStep(const Mat3T<S>& inertiaInverse, const Vec3T<S>&
   for (int i = 0; i < kMaxIterations && !converged; ++i) {
     meanVelocity = S(0.5) * inertiaInverse * (momentum + next);
     const Vec3 residual = next - expRotation<S>(-h * meanVelocity) * momentum;
-    const Vec3 correction = jacobianLu.solve(residual);
+    const Vec3 correction = jacobianInverse * residual;
     next -= correction;
     converged = correction.norm() <= tolerance;
   }
@@ -22422,7 +22462,7 @@ class WireGeometryContacts {
       const S height = std::max(S(length), S(1e-6) * S(radius));
       if (capsule_->getHeight() != height) capsule_->setHeight(height);
       const Vec3d y = length > 0.0 ? Vec3d(d / length) : Vec3d::UnitY();
-      const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(Vec3d::UnitY(), y);
+      const QuatT<double> q = detail::shortestArc<double>(Vec3d::UnitY(), y);
       TransformT<S> X_WC = TransformT<S>::Identity();
       X_WC.linear() = q.toRotationMatrix().template cast<S>();
       X_WC.translation() = (0.5 * (s.a + s.b)).template cast<S>();
@@ -22860,22 +22900,10 @@ class WireNodes : public BodyStore {
     std::reverse(mass_.begin(), mass_.end());
   }
   /// Inserts a node before node i (i = size(): at the end).
-  void insert(std::size_t i, const Vec3d& position, const Vec3d& velocity, double mass) {
-    position_.insert(position_.begin() + std::ptrdiff_t(i), position);
-    velocity_.insert(velocity_.begin() + std::ptrdiff_t(i), velocity);
-    mass_.insert(mass_.begin() + std::ptrdiff_t(i), mass);
-  }
+  void insert(std::size_t i, const Vec3d& position, const Vec3d& velocity, double mass);
   /// Moves nodes [first, numNodes()) to the end of `to` (a wire's cut and
   /// merge); drums stay.
-  void moveNodesTo(std::size_t first, WireNodes& to) {
-    const auto from = std::ptrdiff_t(first);
-    to.position_.insert(to.position_.end(), position_.begin() + from, position_.end());
-    to.velocity_.insert(to.velocity_.end(), velocity_.begin() + from, velocity_.end());
-    to.mass_.insert(to.mass_.end(), mass_.begin() + from, mass_.end());
-    position_.erase(position_.begin() + from, position_.end());
-    velocity_.erase(velocity_.begin() + from, velocity_.end());
-    mass_.erase(mass_.begin() + from, mass_.end());
-  }
+  void moveNodesTo(std::size_t first, WireNodes& to);
   /// Takes all drums out (their indices start again from 0).
   std::vector<Drum> takeDrums() { return std::exchange(drums_, {}); }
   std::size_t addDrum(const Drum& drum) {
@@ -22884,54 +22912,78 @@ class WireNodes : public BodyStore {
   }
   [[nodiscard]] Drum& drum(std::size_t d) { return drums_[d]; }
   [[nodiscard]] const Drum& drum(std::size_t d) const { return drums_[d]; }
-  void writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const override {
-    const double h = step.getTimeStep();
-    for (std::size_t d = 0; d < drums_.size(); ++d) {
-      SolverBody& b = bodies[position_.size() + d];
-      b.dynamic = true;
-      b.velocity.x() = b.freeVelocity.x() = drums_[d].speed;
-      b.inverseMass(0, 0) = 1.0 / drums_[d].mass;
-    }
-    for (std::size_t i = 0; i < position_.size(); ++i) {
-      SolverBody& b = bodies[i];
-      b.dynamic = true;
-      b.velocity.head<3>() = velocity_[i];
-      b.freeVelocity.head<3>() = velocity_[i] + h * step.gravity(position_[i]);
-      b.inverseMass = Eigen::Matrix3d::Identity() / mass_[i];
-    }
-  }
+  void writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const override;
   // A solve that failed (non-finite, or beyond a drum's ends: the rows that
   // keep it there are the solver's to meet) must not carry the wire away:
   // such a node stops where it is, such a drum at its end.
-  void move(std::span<const SolverBody> bodies, const StepContext& step) override {
-    const double h = step.getTimeStep();
-    for (std::size_t i = 0; i < position_.size(); ++i) {
-      const Vec3d v = bodies[i].freeVelocity.head<3>();
-      velocity_[i] = v.allFinite() ? v : Vec3d::Zero();
-      position_[i] += h * velocity_[i];
-    }
-    for (std::size_t d = 0; d < drums_.size(); ++d) {
-      Drum& drum = drums_[d];
-      const double speed = bodies[position_.size() + d].freeVelocity.x();
-      drum.speed = std::isfinite(speed) ? speed : 0.0;
-      double travel = h * drum.speed;
-      if (drum.winch && (travel > drum.pulledIn || -travel > drum.freeLength)) {
-        travel = std::clamp(travel, -drum.freeLength, drum.pulledIn);
-        drum.speed = 0.0;
-      }
-      drum.freeLength += travel;
-      drum.pulledIn -= travel;
-    }
-  }
-  void displace(std::span<const SolverBody> bodies) override {
-    for (std::size_t i = 0; i < position_.size(); ++i) position_[i] += bodies[i].displacement.head<3>();
-  }
+  void move(std::span<const SolverBody> bodies, const StepContext& step) override;
+  void displace(std::span<const SolverBody> bodies) override;
 
  private:
   std::vector<Vec3d> position_, velocity_;
   std::vector<double> mass_;
   std::vector<Drum> drums_;
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void WireNodes::insert(std::size_t i, const Vec3d& position, const Vec3d& velocity, double mass) {
+  position_.insert(position_.begin() + std::ptrdiff_t(i), position);
+  velocity_.insert(velocity_.begin() + std::ptrdiff_t(i), velocity);
+  mass_.insert(mass_.begin() + std::ptrdiff_t(i), mass);
+}
+
+SPOOK_INLINE void WireNodes::moveNodesTo(std::size_t first, WireNodes& to) {
+  const auto from = std::ptrdiff_t(first);
+  to.position_.insert(to.position_.end(), position_.begin() + from, position_.end());
+  to.velocity_.insert(to.velocity_.end(), velocity_.begin() + from, velocity_.end());
+  to.mass_.insert(to.mass_.end(), mass_.begin() + from, mass_.end());
+  position_.erase(position_.begin() + from, position_.end());
+  velocity_.erase(velocity_.begin() + from, velocity_.end());
+  mass_.erase(mass_.begin() + from, mass_.end());
+}
+
+SPOOK_INLINE void WireNodes::writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const {
+  const double h = step.getTimeStep();
+  for (std::size_t d = 0; d < drums_.size(); ++d) {
+    SolverBody& b = bodies[position_.size() + d];
+    b.dynamic = true;
+    b.velocity.x() = b.freeVelocity.x() = drums_[d].speed;
+    b.inverseMass(0, 0) = 1.0 / drums_[d].mass;
+  }
+  for (std::size_t i = 0; i < position_.size(); ++i) {
+    SolverBody& b = bodies[i];
+    b.dynamic = true;
+    b.velocity.head<3>() = velocity_[i];
+    b.freeVelocity.head<3>() = velocity_[i] + h * step.gravity(position_[i]);
+    b.inverseMass = Eigen::Matrix3d::Identity() / mass_[i];
+  }
+}
+
+SPOOK_INLINE void WireNodes::move(std::span<const SolverBody> bodies, const StepContext& step) {
+  const double h = step.getTimeStep();
+  for (std::size_t i = 0; i < position_.size(); ++i) {
+    const Vec3d v = bodies[i].freeVelocity.head<3>();
+    velocity_[i] = v.allFinite() ? v : Vec3d::Zero();
+    position_[i] += h * velocity_[i];
+  }
+  for (std::size_t d = 0; d < drums_.size(); ++d) {
+    Drum& drum = drums_[d];
+    const double speed = bodies[position_.size() + d].freeVelocity.x();
+    drum.speed = std::isfinite(speed) ? speed : 0.0;
+    double travel = h * drum.speed;
+    if (drum.winch && (travel > drum.pulledIn || -travel > drum.freeLength)) {
+      travel = std::clamp(travel, -drum.freeLength, drum.pulledIn);
+      drum.speed = 0.0;
+    }
+    drum.freeLength += travel;
+    drum.pulledIn -= travel;
+  }
+}
+
+SPOOK_INLINE void WireNodes::displace(std::span<const SolverBody> bodies) {
+  for (std::size_t i = 0; i < position_.size(); ++i) position_[i] += bodies[i].displacement.head<3>();
+}
+#endif
 
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_WIRE_WIRE_NODES_HPP

@@ -30,7 +30,9 @@ FreeRotation<S> freeRotationStep(const Mat3T<S>& inertiaInverse, const Vec3T<S>&
   if (!(scale > S(0))) return {QuatT<S>::Identity(), momentum, true};
   const S tolerance = ScalarTraits<S>::solveTolerance() * scale;
   const Mat3T<S> jacobian = Mat3T<S>::Identity() - S(0.5) * h * skew<S>(momentum) * inertiaInverse;
-  const auto jacobianLu = jacobian.partialPivLu();
+  // Closed-form 3×3 inverse: J = I − (h/2)[Π]ₓI⁻¹ is similar to I minus a
+  // skew matrix (eigenvalues 1 ± iλ), never singular, |det J| ≥ 1.
+  const Mat3T<S> jacobianInverse = jacobian.inverse();
 
   Vec3 next = momentum;
   Vec3 meanVelocity = inertiaInverse * momentum;
@@ -39,7 +41,7 @@ FreeRotation<S> freeRotationStep(const Mat3T<S>& inertiaInverse, const Vec3T<S>&
   for (int i = 0; i < kMaxIterations && !converged; ++i) {
     meanVelocity = S(0.5) * inertiaInverse * (momentum + next);
     const Vec3 residual = next - expRotation<S>(-h * meanVelocity) * momentum;
-    const Vec3 correction = jacobianLu.solve(residual);
+    const Vec3 correction = jacobianInverse * residual;
     next -= correction;
     converged = correction.norm() <= tolerance;
   }

@@ -8,6 +8,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include <spook/core/implementation.hpp>
 #include <spook/core/math.hpp>
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/row.hpp>
@@ -64,58 +65,16 @@ class GeometricStiffness {
   /// Augments `bodies` (inverse inertia, free angular velocity) from the
   /// rows' impulses, for a step of length h, and keeps what it changed for
   /// refresh().
-  void apply(const RowSet& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
-    freeVelocity_.resize(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i) freeVelocity_[i] = bodies[i].freeVelocity;
-    compute(rows, bodies, h, threshold, added_);
-    augment(bodies);
-    used_ = rows.impulses;
-  }
+  void apply(const RowSet& rows, std::vector<SolverBody>& bodies, double h, double threshold);
 
   /// After a solve of the bodies apply() augmented: whether the stiffness
   /// of the rows' impulses now exceeds the one applied by more than
   /// kRefreshTolerance for some body; if so, `bodies` are augmented afresh
   /// with it, to be solved again.
-  bool refresh(const RowSet& rows, std::vector<SolverBody>& bodies, double h, double threshold) {
-    if (added_.size() != bodies.size() || used_.size() != rows.size() || !mayHaveChanged(rows, bodies, h)) return false;
-    // The inverse inertia each body was solved with; the fresh stiffness is
-    // computed on the bodies' own inertia.
-    solvedWith_.resize(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i) solvedWith_[i] = bodies[i].inverseInertia;
-    swapOriginalInertia(bodies);
-    compute(rows, bodies, h, threshold, fresh_);
-    bool changed = false;
-    for (std::size_t i = 0; i < bodies.size() && !changed; ++i) {
-      const Mat3d change = fresh_[i] - added_[i];
-      if (!bodies[i].dynamic || change.isZero(0.0)) continue;
-      // The largest eigenvalue of LᵀΔA L, L Lᵀ = (I + h²K̃)⁻¹: the stiffness
-      // the solve left out, in units of the inertia it used, on the worst
-      // axis. Stiffness it took in excess only damps more.
-      const Mat3d L = Eigen::LLT<Mat3d>(solvedWith_[i]).matrixL();
-      changed = Eigen::SelfAdjointEigenSolver<Mat3d>(L.transpose() * change * L, Eigen::EigenvaluesOnly)
-                    .eigenvalues()
-                    .maxCoeff() > kRefreshTolerance;
-    }
-    if (!changed) {
-      swapOriginalInertia(bodies);
-      return false;
-    }
-    // The bodies as apply() found them (the solve added its impulses to
-    // the free velocities), augmented afresh.
-    for (std::size_t i = 0; i < bodies.size(); ++i) bodies[i].freeVelocity = freeVelocity_[i];
-    std::swap(added_, fresh_);
-    used_ = rows.impulses;
-    augment(bodies);
-    return true;
-  }
+  bool refresh(const RowSet& rows, std::vector<SolverBody>& bodies, double h, double threshold);
 
   /// The same inertia for the post-stabilization projection of this step.
-  void addInertia(std::vector<SolverBody>& bodies) const {
-    if (added_.size() != bodies.size()) return;
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-      if (bodies[i].dynamic && !added_[i].isZero(0.0))
-        bodies[i].inverseInertia = (bodies[i].inverseInertia.inverse() + added_[i]).inverse();
-  }
+  void addInertia(std::vector<SolverBody>& bodies) const;
 
   void clear() {
     added_.clear();
@@ -131,84 +90,17 @@ class GeometricStiffness {
   /// part shrinks a change); with a threshold the mode weights (1 − ρ₀/ρ)
   /// can make a small change of force a larger change of K̃, so it is a
   /// heuristic there, one that errs on the side of the last solve.
-  bool mayHaveChanged(const RowSet& rows, const std::vector<SolverBody>& bodies, double h) {
-    change_.assign(bodies.size(), 0.0);
-    for (const LeverArms& a : rows.arms) {
-      const auto k = static_cast<std::size_t>(a.row);
-      const Row& r = rows.rows[k];
-      const double force = std::abs(rows.impulses[k] - used_[k]) / h;
-      if (force == 0.0) continue;
-      if (r.body1 >= 0) change_[std::size_t(r.body1)] += force * r.J1.head<3>().norm() * a.arm1.norm();
-      if (r.body2 >= 0) change_[std::size_t(r.body2)] += force * r.J2.head<3>().norm() * a.arm2.norm();
-    }
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-      if (bodies[i].dynamic && h * h * change_[i] * bodies[i].inverseInertia.norm() > kRefreshTolerance) return true;
-    return false;
-  }
+  bool mayHaveChanged(const RowSet& rows, const std::vector<SolverBody>& bodies, double h);
 
   /// h²K̃ per body, mode-weighted (class comment), of the rows' impulses
   /// acting on `bodies` (not augmented).
   void compute(const RowSet& rows, const std::vector<SolverBody>& bodies, double h, double threshold,
-               std::vector<Mat3d>& added) {
-    added.assign(bodies.size(), Mat3d::Zero());
-    stiffness_.assign(bodies.size(), Mat3d::Zero());
-    heldAt_.assign(bodies.size(), Held{});
-    any_ = false;
-    for (const LeverArms& a : rows.arms) {
-      const Row& r = rows.rows[static_cast<std::size_t>(a.row)];
-      const double force = rows.impulses[static_cast<std::size_t>(a.row)] / h;
-      if (force == 0.0) continue;
-      accumulate(r.body1, force * r.J1.head<3>(), a.arm1, bodies);
-      accumulate(r.body2, force * r.J2.head<3>(), a.arm2, bodies);
-    }
-    if (!any_) return;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      const SolverBody& b = bodies[i];
-      if (!b.dynamic || stiffness_[i].isZero(0.0)) continue;
-      const Mat3d symmetric = 0.5 * (stiffness_[i] + stiffness_[i].transpose());
-      // ρ ≤ h²‖K̃‖‖I⁻¹‖: most bodies of an ordinary scene stop here.
-      if (h * h * symmetric.norm() * b.inverseInertia.norm() <= threshold) continue;
-      const Eigen::SelfAdjointEigenSolver<Mat3d> eigen(symmetric);
-      const Vec3d tension = (-eigen.eigenvalues()).cwiseMax(0.0);
-      if (tension.maxCoeff() <= 0.0) continue;
-      const Mat3d stiffness = eigen.eigenvectors() * tension.asDiagonal() * eigen.eigenvectors().transpose();
-      const Held& held = heldAt_[i];
-      const Mat3d arm = skew<double>(held.arm);
-      const Mat3d modeInverseInertia =
-          held.single ? Mat3d((b.inverseInertia.inverse() + arm.transpose() * b.inverseMass.inverse() * arm).inverse())
-                      : b.inverseInertia;
-      // Modes of the body's turn: I⁻¹K̃ has eigenvalues ω_k²; with
-      // I⁻¹ = L Lᵀ they are those of LᵀK̃L = U diag(ω²) Uᵀ, and mode k adds
-      // L⁻ᵀu_k ω_k² u_kᵀL⁻¹ to K̃. Each mode is taken with its own weight,
-      // so that a stiff turn (a point-like bob twisting about its rod) does
-      // not damp the body's other, soft ones (its swing).
-      const Eigen::LLT<Mat3d> inverseInertia(modeInverseInertia);
-      const Mat3d L = inverseInertia.matrixL();
-      const Eigen::SelfAdjointEigenSolver<Mat3d> modes(L.transpose() * stiffness * L);
-      const Mat3d toStiffness = L.transpose().inverse() * modes.eigenvectors();
-      Vec3d weighted = Vec3d::Zero();
-      for (int k = 0; k < 3; ++k) {
-        const double rho = h * h * modes.eigenvalues()(k);
-        if (rho > threshold) weighted(k) = (1.0 - threshold / rho) * modes.eigenvalues()(k);
-      }
-      if (!weighted.isZero(0.0)) added[i] = h * h * toStiffness * weighted.asDiagonal() * toStiffness.transpose();
-    }
-  }
+               std::vector<Mat3d>& added);
 
   /// The bodies with added_: I → I + h²K̃, and the free angular velocity
   /// with the same angular momentum; the inverse inertias it changes are
   /// kept in original_.
-  void augment(std::vector<SolverBody>& bodies) {
-    original_.clear();
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      if (added_[i].isZero(0.0)) continue;
-      SolverBody& b = bodies[i];
-      original_.push_back({i, b.inverseInertia});
-      const Mat3d inertia = b.inverseInertia.inverse();
-      b.inverseInertia = (inertia + added_[i]).inverse();
-      b.freeVelocity.tail<3>() = b.inverseInertia * (inertia * b.freeVelocity.tail<3>());
-    }
-  }
+  void augment(std::vector<SolverBody>& bodies);
 
   /// Exchanges the augmented bodies' inverse inertia with the one they had
   /// before augment().
@@ -216,17 +108,7 @@ class GeometricStiffness {
     for (Original& o : original_) std::swap(bodies[o.body].inverseInertia, o.inverseInertia);
   }
 
-  void accumulate(int body, const Vec3d& force, const Vec3d& arm, const std::vector<SolverBody>& bodies) {
-    if (body < 0 || !bodies[static_cast<std::size_t>(body)].dynamic || arm.isZero(0.0)) return;
-    const auto i = static_cast<std::size_t>(body);
-    stiffness_[i] += skew<double>(force) * skew<double>(arm);
-    Held& held = heldAt_[i];
-    if (held.rows == 0) held.arm = arm;
-    // Arms of one joint's rows differ by its violation (Dot2 rows act at p₁).
-    held.single = (held.rows == 0 || held.single) && (arm - held.arm).norm() <= 1e-3 * (1.0 + arm.norm());
-    ++held.rows;
-    any_ = true;
-  }
+  void accumulate(int body, const Vec3d& force, const Vec3d& arm, const std::vector<SolverBody>& bodies);
 
   /// Where a body's row forces act: one point (arm from its center) or several.
   struct Held {
@@ -239,7 +121,7 @@ class GeometricStiffness {
     std::size_t body;
     Mat3d inverseInertia;
   };
-  std::vector<Original> original_;  ///< the augmented bodies' inverse inertia before augment()
+  std::vector<Original> original_;   ///< the augmented bodies' inverse inertia before augment()
   std::vector<Vec6d> freeVelocity_;  ///< every body's free velocity before apply()
   std::vector<Mat3d> added_, fresh_, stiffness_, solvedWith_;
   std::vector<double> used_;    ///< the impulses added_ was computed from
@@ -247,5 +129,145 @@ class GeometricStiffness {
   std::vector<Held> heldAt_;
   bool any_ = false;
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void GeometricStiffness::apply(const RowSet& rows, std::vector<SolverBody>& bodies, double h,
+                                            double threshold) {
+  freeVelocity_.resize(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) freeVelocity_[i] = bodies[i].freeVelocity;
+  compute(rows, bodies, h, threshold, added_);
+  augment(bodies);
+  used_ = rows.impulses;
+}
+
+SPOOK_INLINE bool GeometricStiffness::refresh(const RowSet& rows, std::vector<SolverBody>& bodies, double h,
+                                              double threshold) {
+  if (added_.size() != bodies.size() || used_.size() != rows.size() || !mayHaveChanged(rows, bodies, h)) return false;
+  // The inverse inertia each body was solved with; the fresh stiffness is
+  // computed on the bodies' own inertia.
+  solvedWith_.resize(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) solvedWith_[i] = bodies[i].inverseInertia;
+  swapOriginalInertia(bodies);
+  compute(rows, bodies, h, threshold, fresh_);
+  bool changed = false;
+  for (std::size_t i = 0; i < bodies.size() && !changed; ++i) {
+    const Mat3d change = fresh_[i] - added_[i];
+    if (!bodies[i].dynamic || change.isZero(0.0)) continue;
+    // The largest eigenvalue of LᵀΔA L, L Lᵀ = (I + h²K̃)⁻¹: the stiffness
+    // the solve left out, in units of the inertia it used, on the worst
+    // axis. Stiffness it took in excess only damps more.
+    const Mat3d L = Eigen::LLT<Mat3d>(solvedWith_[i]).matrixL();
+    changed = Eigen::SelfAdjointEigenSolver<Mat3d>(L.transpose() * change * L, Eigen::EigenvaluesOnly)
+                  .eigenvalues()
+                  .maxCoeff() > kRefreshTolerance;
+  }
+  if (!changed) {
+    swapOriginalInertia(bodies);
+    return false;
+  }
+  // The bodies as apply() found them (the solve added its impulses to
+  // the free velocities), augmented afresh.
+  for (std::size_t i = 0; i < bodies.size(); ++i) bodies[i].freeVelocity = freeVelocity_[i];
+  std::swap(added_, fresh_);
+  used_ = rows.impulses;
+  augment(bodies);
+  return true;
+}
+
+SPOOK_INLINE void GeometricStiffness::addInertia(std::vector<SolverBody>& bodies) const {
+  if (added_.size() != bodies.size()) return;
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].dynamic && !added_[i].isZero(0.0))
+      bodies[i].inverseInertia = (bodies[i].inverseInertia.inverse() + added_[i]).inverse();
+}
+
+SPOOK_INLINE bool GeometricStiffness::mayHaveChanged(const RowSet& rows, const std::vector<SolverBody>& bodies,
+                                                     double h) {
+  change_.assign(bodies.size(), 0.0);
+  for (const LeverArms& a : rows.arms) {
+    const auto k = static_cast<std::size_t>(a.row);
+    const Row& r = rows.rows[k];
+    const double force = std::abs(rows.impulses[k] - used_[k]) / h;
+    if (force == 0.0) continue;
+    if (r.body1 >= 0) change_[std::size_t(r.body1)] += force * r.J1.head<3>().norm() * a.arm1.norm();
+    if (r.body2 >= 0) change_[std::size_t(r.body2)] += force * r.J2.head<3>().norm() * a.arm2.norm();
+  }
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].dynamic && h * h * change_[i] * bodies[i].inverseInertia.norm() > kRefreshTolerance) return true;
+  return false;
+}
+
+SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vector<SolverBody>& bodies, double h,
+                                              double threshold, std::vector<Mat3d>& added) {
+  added.assign(bodies.size(), Mat3d::Zero());
+  stiffness_.assign(bodies.size(), Mat3d::Zero());
+  heldAt_.assign(bodies.size(), Held{});
+  any_ = false;
+  for (const LeverArms& a : rows.arms) {
+    const Row& r = rows.rows[static_cast<std::size_t>(a.row)];
+    const double force = rows.impulses[static_cast<std::size_t>(a.row)] / h;
+    if (force == 0.0) continue;
+    accumulate(r.body1, force * r.J1.head<3>(), a.arm1, bodies);
+    accumulate(r.body2, force * r.J2.head<3>(), a.arm2, bodies);
+  }
+  if (!any_) return;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const SolverBody& b = bodies[i];
+    if (!b.dynamic || stiffness_[i].isZero(0.0)) continue;
+    const Mat3d symmetric = 0.5 * (stiffness_[i] + stiffness_[i].transpose());
+    // ρ ≤ h²‖K̃‖‖I⁻¹‖: most bodies of an ordinary scene stop here.
+    if (h * h * symmetric.norm() * b.inverseInertia.norm() <= threshold) continue;
+    const Eigen::SelfAdjointEigenSolver<Mat3d> eigen(symmetric);
+    const Vec3d tension = (-eigen.eigenvalues()).cwiseMax(0.0);
+    if (tension.maxCoeff() <= 0.0) continue;
+    const Mat3d stiffness = eigen.eigenvectors() * tension.asDiagonal() * eigen.eigenvectors().transpose();
+    const Held& held = heldAt_[i];
+    const Mat3d arm = skew<double>(held.arm);
+    const Mat3d modeInverseInertia =
+        held.single ? Mat3d((b.inverseInertia.inverse() + arm.transpose() * b.inverseMass.inverse() * arm).inverse())
+                    : b.inverseInertia;
+    // Modes of the body's turn: I⁻¹K̃ has eigenvalues ω_k²; with
+    // I⁻¹ = L Lᵀ they are those of LᵀK̃L = U diag(ω²) Uᵀ, and mode k adds
+    // L⁻ᵀu_k ω_k² u_kᵀL⁻¹ to K̃. Each mode is taken with its own weight,
+    // so that a stiff turn (a point-like bob twisting about its rod) does
+    // not damp the body's other, soft ones (its swing).
+    const Eigen::LLT<Mat3d> inverseInertia(modeInverseInertia);
+    const Mat3d L = inverseInertia.matrixL();
+    const Eigen::SelfAdjointEigenSolver<Mat3d> modes(L.transpose() * stiffness * L);
+    const Mat3d toStiffness = L.transpose().inverse() * modes.eigenvectors();
+    Vec3d weighted = Vec3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const double rho = h * h * modes.eigenvalues()(k);
+      if (rho > threshold) weighted(k) = (1.0 - threshold / rho) * modes.eigenvalues()(k);
+    }
+    if (!weighted.isZero(0.0)) added[i] = h * h * toStiffness * weighted.asDiagonal() * toStiffness.transpose();
+  }
+}
+
+SPOOK_INLINE void GeometricStiffness::augment(std::vector<SolverBody>& bodies) {
+  original_.clear();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (added_[i].isZero(0.0)) continue;
+    SolverBody& b = bodies[i];
+    original_.push_back({i, b.inverseInertia});
+    const Mat3d inertia = b.inverseInertia.inverse();
+    b.inverseInertia = (inertia + added_[i]).inverse();
+    b.freeVelocity.tail<3>() = b.inverseInertia * (inertia * b.freeVelocity.tail<3>());
+  }
+}
+
+SPOOK_INLINE void GeometricStiffness::accumulate(int body, const Vec3d& force, const Vec3d& arm,
+                                                 const std::vector<SolverBody>& bodies) {
+  if (body < 0 || !bodies[static_cast<std::size_t>(body)].dynamic || arm.isZero(0.0)) return;
+  const auto i = static_cast<std::size_t>(body);
+  stiffness_[i] += skew<double>(force) * skew<double>(arm);
+  Held& held = heldAt_[i];
+  if (held.rows == 0) held.arm = arm;
+  // Arms of one joint's rows differ by its violation (Dot2 rows act at p₁).
+  held.single = (held.rows == 0 || held.single) && (arm - held.arm).norm() <= 1e-3 * (1.0 + arm.norm());
+  ++held.rows;
+  any_ = true;
+}
+#endif
 
 }  // namespace spook::detail

@@ -2,14 +2,15 @@
 
 #include <algorithm>
 #include <array>
-#include <limits>
 #include <cstddef>
+#include <limits>
 #include <numeric>
 #include <span>
 #include <vector>
 
 #include <Eigen/Cholesky>
 
+#include <spook/core/implementation.hpp>
 #include <spook/solver/body_space_solve.hpp>
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/row.hpp>
@@ -45,26 +46,7 @@ class IslandStepper {
   /// orientations. Fills each body's displacement (Δx, Δθ) that brings the
   /// rows to their targets.
   void project(const RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
-               SolverStatistics& statistics) {
-    const std::vector<Row>& rows = set.rows;
-    index(set, false);
-    partition(set, bodies);
-    for (const std::vector<int>& island : islands_) {
-      buildProblem(set, bodies, island, h);
-      for (std::size_t k = 0; k < island.size(); ++k) {
-        const Row& r = rows[static_cast<std::size_t>(island[k])];
-        IslandProblem::Entry& e = problem_.rows[k];
-        const double mobility = e.diagonal - e.sigma;
-        e.q = r.speed - r.violation;  // speed carries the target violation here
-        e.sigma = 1e-9 * mobility;
-        e.diagonal = mobility + e.sigma;
-        e.lower = -std::numeric_limits<double>::infinity();
-        e.upper = std::numeric_limits<double>::infinity();
-      }
-      solver.project(problem_, statistics);
-      addToBodies(bodies, &SolverBody::displacement);
-    }
-  }
+               SolverStatistics& statistics);
 
   /// The dynamic bodies (indices into `bodies`) of the islands whose
   /// impulses the last solve() dropped as non-finite.
@@ -73,32 +55,7 @@ class IslandStepper {
   /// The rows' impulses: each row's last impulse in (the warm start and the
   /// direct solver's first guess), the solved one out; rows that join no
   /// island (between static bodies) keep theirs.
-  void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics) {
-    std::vector<double>& impulses = set.impulses;
-    index(set, true);
-    partition(set, bodies);
-    nonFiniteBodies_.clear();
-    for (const std::vector<int>& island : islands_) {
-      buildProblem(set, bodies, island, h);
-      const bool warmStart = solver.getEnableWarmStarting();
-      const bool contactWarmStart = solver.getEnableContactWarmStarting();
-      const double contactFactor = solver.getContactWarmStartingFactor();
-      for (std::size_t k = 0; k < island.size(); ++k) {
-        IslandProblem::Entry& e = problem_.rows[k];
-        e.guess = std::clamp(impulses[static_cast<std::size_t>(island[k])], e.lower, e.upper);
-        if (warmStart)
-          e.impulse = e.guess;
-        else if (contactWarmStart && e.constraint < 0 && e.bounded())
-          e.impulse = std::clamp(contactFactor * e.guess, e.lower, e.upper);
-        else
-          e.impulse = std::clamp(0.0, e.lower, e.upper);
-      }
-      if (!solver.solve(problem_, statistics))
-        nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
-      for (std::size_t k = 0; k < island.size(); ++k) impulses[static_cast<std::size_t>(island[k])] = problem_.rows[k].impulse;
-      addToBodies(bodies, &SolverBody::freeVelocity);
-    }
-  }
+  void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics);
 
  private:
   int find(int i) {
@@ -123,128 +80,18 @@ class IslandStepper {
   template <class Entry>
   static void indexTable(std::span<const Entry> table, std::size_t rows, std::vector<int>& entryOf) {
     entryOf.assign(rows, -1);
-    for (std::size_t k = 0; k < table.size(); ++k) entryOf[static_cast<std::size_t>(table[k].row)] = static_cast<int>(k);
+    for (std::size_t k = 0; k < table.size(); ++k)
+      entryOf[static_cast<std::size_t>(table[k].row)] = static_cast<int>(k);
   }
   [[nodiscard]] const ThirdBody* thirdBodyOf(const RowSet& set, std::size_t row) const {
     const int k = thirdOf_[row];
     return k < 0 ? nullptr : &set.thirdBodies[static_cast<std::size_t>(k)];
   }
 
-  void partition(const RowSet& set, const std::vector<SolverBody>& bodies) {
-    const std::vector<Row>& rows = set.rows;
-    parent_.resize(bodies.size());
-    std::iota(parent_.begin(), parent_.end(), 0);
-    const auto join = [&](int a, int b) {
-      if (isDynamic(bodies, a) && isDynamic(bodies, b)) parent_[static_cast<std::size_t>(find(a))] = find(b);
-    };
-    for (const Row& r : rows) join(r.body1, r.body2);
-    for (const ThirdBody& t : set.thirdBodies) {
-      const Row& r = rows[static_cast<std::size_t>(t.row)];
-      join(r.body1, t.body);
-      join(r.body2, t.body);
-    }
-    islandOfRoot_.assign(bodies.size(), -1);
-    islands_.clear();
-    for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
-      const Row& r = rows[static_cast<std::size_t>(i)];
-      const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(i));
-      const int body3 = third ? third->body : -1;
-      const int body = isDynamic(bodies, r.body1)   ? r.body1
-                       : isDynamic(bodies, r.body2) ? r.body2
-                       : isDynamic(bodies, body3)   ? body3
-                                                    : -1;
-      if (body < 0) continue;
-      int& island = islandOfRoot_[static_cast<std::size_t>(find(body))];
-      if (island < 0) {
-        island = static_cast<int>(islands_.size());
-        islands_.emplace_back();
-      }
-      islands_[static_cast<std::size_t>(island)].push_back(i);
-    }
-  }
+  void partition(const RowSet& set, const std::vector<SolverBody>& bodies);
 
   // The island's entries, impulses and guesses zero (index() first).
-  void buildProblem(const RowSet& set, const std::vector<SolverBody>& bodies, const std::vector<int>& island, double h) {
-    const std::vector<Row>& rows = set.rows;
-    local_.resize(bodies.size(), -1);
-    islandBodies_.clear();
-    auto localIndex = [&](int body) {
-      if (!isDynamic(bodies, body)) return -1;
-      int& l = local_[static_cast<std::size_t>(body)];
-      if (l < 0) {
-        l = static_cast<int>(islandBodies_.size());
-        islandBodies_.push_back(body);
-      }
-      return l;
-    };
-    rowLocal_.resize(rows.size(), -1);
-    for (std::size_t k = 0; k < island.size(); ++k) rowLocal_[static_cast<std::size_t>(island[k])] = static_cast<int>(k);
-    const auto localRow = [&](int i) { return i < 0 ? -1 : rowLocal_[static_cast<std::size_t>(i)]; };
-    problem_.rows.resize(island.size());
-    problem_.extraBodies.clear();
-    for (std::size_t k = 0; k < island.size(); ++k) {
-      const Row& r = rows[static_cast<std::size_t>(island[k])];
-      const int link = frictionOf_[static_cast<std::size_t>(island[k])];
-      const FrictionLink* f = link < 0 ? nullptr : &set.friction[static_cast<std::size_t>(link)];
-      const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(island[k]));
-      IslandProblem::Entry& e = problem_.rows[k];
-      e.body1 = e.body2 = e.extra = -1;
-      // G v and G v* over every body (kinematic ones move too), M⁻¹Gᵀ over
-      // the dynamic ones.
-      double speed = 0.0, freeSpeed = 0.0;
-      const std::array<std::pair<int, const Vec6d*>, 3> blocks{
-          {{r.body1, &r.J1}, {r.body2, &r.J2}, {third ? third->body : -1, third ? &third->J : nullptr}}};
-      for (const auto& [body, J] : blocks) {
-        if (body < 0) continue;
-        const SolverBody& b = bodies[static_cast<std::size_t>(body)];
-        speed += J->dot(b.velocity);
-        freeSpeed += J->dot(b.freeVelocity);
-        if (b.dynamic) problem_.addBody(e, localIndex(body), *J, b.inverseMass, b.inverseInertia);
-      }
-      const double mobility = problem_.mobility(e);
-      if (r.holonomic) {
-        const SpookParameters spook = SpookParameters::holonomic(r.compliance, r.damping, h);
-        // Second order in h (row.hpp): the b' term reads the rate at which
-        // the last step moved g (G v − hκ when not kept); the step aims G v⁺
-        // at SPOOK's target minus the drift hκ its motion will add.
-        const int term = secondOrderOf_[static_cast<std::size_t>(island[k])];
-        const SecondOrder second = term < 0 ? SecondOrder{} : set.secondOrder[static_cast<std::size_t>(term)];
-        const double rate = std::isnan(second.lastRate) ? speed - h * second.curvature : second.lastRate;
-        e.q = -spook.a * r.violation + spook.b * rate - h * second.curvature - freeSpeed;
-        e.sigma = spook.sigma;
-      } else {
-        e.q = r.speed - freeSpeed;
-        e.sigma = SpookParameters::velocitySigma(r.compliance, h);
-      }
-      // A floor far below any physical compliance keeps redundant rigid rows
-      // (compliance 0) positive definite; contact friction rows get a
-      // higher one (kFrictionSofterThan).
-      e.sigma = std::max(e.sigma, (f && f->normal >= 0 && !f->exact ? kFrictionSofterThan : 1e-12) * mobility);
-      e.diagonal = mobility + e.sigma;
-      e.lower = r.lower * h;
-      e.upper = r.upper * h;
-      e.guess = 0.0;
-      e.impulse = 0.0;
-      e.solveType = r.solveType;
-      e.constraint = localRow(r.constraint);
-      e.normal = f ? localRow(f->normal) : -1;
-      e.partner = f ? localRow(f->partner) : -1;
-      e.mu = f ? f->coefficient : 0.0;
-      e.frictionBound = f ? f->bound : FrictionBound::FIXED;
-      e.coneShare = 1.0;
-    }
-    problem_.numBodies = static_cast<int>(islandBodies_.size());
-    // Mass matrices only where a direct solve may go through body space.
-    problem_.mass.resize(BodySpaceSolve::outnumbers(island.size(), islandBodies_.size()) ? islandBodies_.size() : 0);
-    for (std::size_t k = 0; k < problem_.mass.size(); ++k) {
-      const SolverBody& b = bodies[static_cast<std::size_t>(islandBodies_[k])];
-      Mat6d& M = problem_.mass[k];
-      M.setZero();
-      M.topLeftCorner<3, 3>() = inverseOf(b.inverseMass);
-      M.bottomRightCorner<3, 3>() = inverseOf(b.inverseInertia);
-    }
-    for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
-  }
+  void buildProblem(const RowSet& set, const std::vector<SolverBody>& bodies, const std::vector<int>& island, double h);
 
   // Adds M⁻¹Gᵀ Λ of problem_'s impulses to a field of the island's bodies.
   void addToBodies(std::vector<SolverBody>& bodies, Vec6d SolverBody::*field) {
@@ -254,11 +101,7 @@ class IslandStepper {
   }
 
   // The inverse of a symmetric 3×3 matrix, NaN when it is not positive definite.
-  static Mat3d inverseOf(const Mat3d& m) {
-    const Eigen::LLT<Mat3d> llt(m);
-    if (llt.info() != Eigen::Success) return Mat3d::Constant(std::numeric_limits<double>::quiet_NaN());
-    return llt.solve(Mat3d::Identity());
-  }
+  static Mat3d inverseOf(const Mat3d& m);
 
   std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_, frictionOf_, thirdOf_,
       secondOrderOf_;
@@ -266,5 +109,180 @@ class IslandStepper {
   IslandProblem problem_;
   std::vector<Vec6d> velocityChange_;
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void IslandStepper::project(const RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
+                                         SolverStatistics& statistics) {
+  const std::vector<Row>& rows = set.rows;
+  index(set, false);
+  partition(set, bodies);
+  for (const std::vector<int>& island : islands_) {
+    buildProblem(set, bodies, island, h);
+    for (std::size_t k = 0; k < island.size(); ++k) {
+      const Row& r = rows[static_cast<std::size_t>(island[k])];
+      IslandProblem::Entry& e = problem_.rows[k];
+      const double mobility = e.diagonal - e.sigma;
+      e.q = r.speed - r.violation;  // speed carries the target violation here
+      e.sigma = 1e-9 * mobility;
+      e.diagonal = mobility + e.sigma;
+      e.lower = -std::numeric_limits<double>::infinity();
+      e.upper = std::numeric_limits<double>::infinity();
+    }
+    solver.project(problem_, statistics);
+    addToBodies(bodies, &SolverBody::displacement);
+  }
+}
+
+SPOOK_INLINE void IslandStepper::solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
+                                       SolverStatistics& statistics) {
+  std::vector<double>& impulses = set.impulses;
+  index(set, true);
+  partition(set, bodies);
+  nonFiniteBodies_.clear();
+  for (const std::vector<int>& island : islands_) {
+    buildProblem(set, bodies, island, h);
+    const bool warmStart = solver.getEnableWarmStarting();
+    const bool contactWarmStart = solver.getEnableContactWarmStarting();
+    const double contactFactor = solver.getContactWarmStartingFactor();
+    for (std::size_t k = 0; k < island.size(); ++k) {
+      IslandProblem::Entry& e = problem_.rows[k];
+      e.guess = std::clamp(impulses[static_cast<std::size_t>(island[k])], e.lower, e.upper);
+      if (warmStart)
+        e.impulse = e.guess;
+      else if (contactWarmStart && e.constraint < 0 && e.bounded())
+        e.impulse = std::clamp(contactFactor * e.guess, e.lower, e.upper);
+      else
+        e.impulse = std::clamp(0.0, e.lower, e.upper);
+    }
+    if (!solver.solve(problem_, statistics))
+      nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
+    for (std::size_t k = 0; k < island.size(); ++k)
+      impulses[static_cast<std::size_t>(island[k])] = problem_.rows[k].impulse;
+    addToBodies(bodies, &SolverBody::freeVelocity);
+  }
+}
+
+SPOOK_INLINE void IslandStepper::partition(const RowSet& set, const std::vector<SolverBody>& bodies) {
+  const std::vector<Row>& rows = set.rows;
+  parent_.resize(bodies.size());
+  std::iota(parent_.begin(), parent_.end(), 0);
+  const auto join = [&](int a, int b) {
+    if (isDynamic(bodies, a) && isDynamic(bodies, b)) parent_[static_cast<std::size_t>(find(a))] = find(b);
+  };
+  for (const Row& r : rows) join(r.body1, r.body2);
+  for (const ThirdBody& t : set.thirdBodies) {
+    const Row& r = rows[static_cast<std::size_t>(t.row)];
+    join(r.body1, t.body);
+    join(r.body2, t.body);
+  }
+  islandOfRoot_.assign(bodies.size(), -1);
+  islands_.clear();
+  for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
+    const Row& r = rows[static_cast<std::size_t>(i)];
+    const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(i));
+    const int body3 = third ? third->body : -1;
+    const int body = isDynamic(bodies, r.body1)   ? r.body1
+                     : isDynamic(bodies, r.body2) ? r.body2
+                     : isDynamic(bodies, body3)   ? body3
+                                                  : -1;
+    if (body < 0) continue;
+    int& island = islandOfRoot_[static_cast<std::size_t>(find(body))];
+    if (island < 0) {
+      island = static_cast<int>(islands_.size());
+      islands_.emplace_back();
+    }
+    islands_[static_cast<std::size_t>(island)].push_back(i);
+  }
+}
+
+SPOOK_INLINE void IslandStepper::buildProblem(const RowSet& set, const std::vector<SolverBody>& bodies,
+                                              const std::vector<int>& island, double h) {
+  const std::vector<Row>& rows = set.rows;
+  local_.resize(bodies.size(), -1);
+  islandBodies_.clear();
+  auto localIndex = [&](int body) {
+    if (!isDynamic(bodies, body)) return -1;
+    int& l = local_[static_cast<std::size_t>(body)];
+    if (l < 0) {
+      l = static_cast<int>(islandBodies_.size());
+      islandBodies_.push_back(body);
+    }
+    return l;
+  };
+  rowLocal_.resize(rows.size(), -1);
+  for (std::size_t k = 0; k < island.size(); ++k) rowLocal_[static_cast<std::size_t>(island[k])] = static_cast<int>(k);
+  const auto localRow = [&](int i) { return i < 0 ? -1 : rowLocal_[static_cast<std::size_t>(i)]; };
+  problem_.rows.resize(island.size());
+  problem_.extraBodies.clear();
+  for (std::size_t k = 0; k < island.size(); ++k) {
+    const Row& r = rows[static_cast<std::size_t>(island[k])];
+    const int link = frictionOf_[static_cast<std::size_t>(island[k])];
+    const FrictionLink* f = link < 0 ? nullptr : &set.friction[static_cast<std::size_t>(link)];
+    const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(island[k]));
+    IslandProblem::Entry& e = problem_.rows[k];
+    e.body1 = e.body2 = e.extra = -1;
+    // G v and G v* over every body (kinematic ones move too), M⁻¹Gᵀ over
+    // the dynamic ones.
+    double speed = 0.0, freeSpeed = 0.0;
+    const std::array<std::pair<int, const Vec6d*>, 3> blocks{
+        {{r.body1, &r.J1}, {r.body2, &r.J2}, {third ? third->body : -1, third ? &third->J : nullptr}}};
+    for (const auto& [body, J] : blocks) {
+      if (body < 0) continue;
+      const SolverBody& b = bodies[static_cast<std::size_t>(body)];
+      speed += J->dot(b.velocity);
+      freeSpeed += J->dot(b.freeVelocity);
+      if (b.dynamic) problem_.addBody(e, localIndex(body), *J, b.inverseMass, b.inverseInertia);
+    }
+    const double mobility = problem_.mobility(e);
+    if (r.holonomic) {
+      const SpookParameters spook = SpookParameters::holonomic(r.compliance, r.damping, h);
+      // Second order in h (row.hpp): the b' term reads the rate at which
+      // the last step moved g (G v − hκ when not kept); the step aims G v⁺
+      // at SPOOK's target minus the drift hκ its motion will add.
+      const int term = secondOrderOf_[static_cast<std::size_t>(island[k])];
+      const SecondOrder second = term < 0 ? SecondOrder{} : set.secondOrder[static_cast<std::size_t>(term)];
+      const double rate = std::isnan(second.lastRate) ? speed - h * second.curvature : second.lastRate;
+      e.q = -spook.a * r.violation + spook.b * rate - h * second.curvature - freeSpeed;
+      e.sigma = spook.sigma;
+    } else {
+      e.q = r.speed - freeSpeed;
+      e.sigma = SpookParameters::velocitySigma(r.compliance, h);
+    }
+    // A floor far below any physical compliance keeps redundant rigid rows
+    // (compliance 0) positive definite; contact friction rows get a
+    // higher one (kFrictionSofterThan).
+    e.sigma = std::max(e.sigma, (f && f->normal >= 0 && !f->exact ? kFrictionSofterThan : 1e-12) * mobility);
+    e.diagonal = mobility + e.sigma;
+    e.lower = r.lower * h;
+    e.upper = r.upper * h;
+    e.guess = 0.0;
+    e.impulse = 0.0;
+    e.solveType = r.solveType;
+    e.constraint = localRow(r.constraint);
+    e.normal = f ? localRow(f->normal) : -1;
+    e.partner = f ? localRow(f->partner) : -1;
+    e.mu = f ? f->coefficient : 0.0;
+    e.frictionBound = f ? f->bound : FrictionBound::FIXED;
+    e.coneShare = 1.0;
+  }
+  problem_.numBodies = static_cast<int>(islandBodies_.size());
+  // Mass matrices only where a direct solve may go through body space.
+  problem_.mass.resize(BodySpaceSolve::outnumbers(island.size(), islandBodies_.size()) ? islandBodies_.size() : 0);
+  for (std::size_t k = 0; k < problem_.mass.size(); ++k) {
+    const SolverBody& b = bodies[static_cast<std::size_t>(islandBodies_[k])];
+    Mat6d& M = problem_.mass[k];
+    M.setZero();
+    M.topLeftCorner<3, 3>() = inverseOf(b.inverseMass);
+    M.bottomRightCorner<3, 3>() = inverseOf(b.inverseInertia);
+  }
+  for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
+}
+
+SPOOK_INLINE Mat3d IslandStepper::inverseOf(const Mat3d& m) {
+  const Eigen::LLT<Mat3d> llt(m);
+  if (llt.info() != Eigen::Success) return Mat3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  return llt.solve(Mat3d::Identity());
+}
+#endif
 
 }  // namespace spook::detail

@@ -26,6 +26,7 @@
 
 #include <spook/collide/shapes/capsule.hpp>
 #include <spook/collide/space.hpp>
+#include <spook/core/math.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/scalar.hpp>
 #include <spook/sim/material_manager.hpp>
@@ -247,7 +248,7 @@ class WireGeometryContacts {
       const S height = std::max(S(length), S(1e-6) * S(radius));
       if (capsule_->getHeight() != height) capsule_->setHeight(height);
       const Vec3d y = length > 0.0 ? Vec3d(d / length) : Vec3d::UnitY();
-      const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(Vec3d::UnitY(), y);
+      const QuatT<double> q = detail::shortestArc<double>(Vec3d::UnitY(), y);
       TransformT<S> X_WC = TransformT<S>::Identity();
       X_WC.linear() = q.toRotationMatrix().template cast<S>();
       X_WC.translation() = (0.5 * (s.a + s.b)).template cast<S>();

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <spook/core/implementation.hpp>
 #include <spook/sim/step_extension.hpp>
 
 namespace spook::detail {
@@ -58,22 +59,10 @@ class WireNodes : public BodyStore {
     std::reverse(mass_.begin(), mass_.end());
   }
   /// Inserts a node before node i (i = size(): at the end).
-  void insert(std::size_t i, const Vec3d& position, const Vec3d& velocity, double mass) {
-    position_.insert(position_.begin() + std::ptrdiff_t(i), position);
-    velocity_.insert(velocity_.begin() + std::ptrdiff_t(i), velocity);
-    mass_.insert(mass_.begin() + std::ptrdiff_t(i), mass);
-  }
+  void insert(std::size_t i, const Vec3d& position, const Vec3d& velocity, double mass);
   /// Moves nodes [first, numNodes()) to the end of `to` (a wire's cut and
   /// merge); drums stay.
-  void moveNodesTo(std::size_t first, WireNodes& to) {
-    const auto from = std::ptrdiff_t(first);
-    to.position_.insert(to.position_.end(), position_.begin() + from, position_.end());
-    to.velocity_.insert(to.velocity_.end(), velocity_.begin() + from, velocity_.end());
-    to.mass_.insert(to.mass_.end(), mass_.begin() + from, mass_.end());
-    position_.erase(position_.begin() + from, position_.end());
-    velocity_.erase(velocity_.begin() + from, velocity_.end());
-    mass_.erase(mass_.begin() + from, mass_.end());
-  }
+  void moveNodesTo(std::size_t first, WireNodes& to);
   /// Takes all drums out (their indices start again from 0).
   std::vector<Drum> takeDrums() { return std::exchange(drums_, {}); }
   std::size_t addDrum(const Drum& drum) {
@@ -82,53 +71,77 @@ class WireNodes : public BodyStore {
   }
   [[nodiscard]] Drum& drum(std::size_t d) { return drums_[d]; }
   [[nodiscard]] const Drum& drum(std::size_t d) const { return drums_[d]; }
-  void writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const override {
-    const double h = step.getTimeStep();
-    for (std::size_t d = 0; d < drums_.size(); ++d) {
-      SolverBody& b = bodies[position_.size() + d];
-      b.dynamic = true;
-      b.velocity.x() = b.freeVelocity.x() = drums_[d].speed;
-      b.inverseMass(0, 0) = 1.0 / drums_[d].mass;
-    }
-    for (std::size_t i = 0; i < position_.size(); ++i) {
-      SolverBody& b = bodies[i];
-      b.dynamic = true;
-      b.velocity.head<3>() = velocity_[i];
-      b.freeVelocity.head<3>() = velocity_[i] + h * step.gravity(position_[i]);
-      b.inverseMass = Eigen::Matrix3d::Identity() / mass_[i];
-    }
-  }
+  void writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const override;
   // A solve that failed (non-finite, or beyond a drum's ends: the rows that
   // keep it there are the solver's to meet) must not carry the wire away:
   // such a node stops where it is, such a drum at its end.
-  void move(std::span<const SolverBody> bodies, const StepContext& step) override {
-    const double h = step.getTimeStep();
-    for (std::size_t i = 0; i < position_.size(); ++i) {
-      const Vec3d v = bodies[i].freeVelocity.head<3>();
-      velocity_[i] = v.allFinite() ? v : Vec3d::Zero();
-      position_[i] += h * velocity_[i];
-    }
-    for (std::size_t d = 0; d < drums_.size(); ++d) {
-      Drum& drum = drums_[d];
-      const double speed = bodies[position_.size() + d].freeVelocity.x();
-      drum.speed = std::isfinite(speed) ? speed : 0.0;
-      double travel = h * drum.speed;
-      if (drum.winch && (travel > drum.pulledIn || -travel > drum.freeLength)) {
-        travel = std::clamp(travel, -drum.freeLength, drum.pulledIn);
-        drum.speed = 0.0;
-      }
-      drum.freeLength += travel;
-      drum.pulledIn -= travel;
-    }
-  }
-  void displace(std::span<const SolverBody> bodies) override {
-    for (std::size_t i = 0; i < position_.size(); ++i) position_[i] += bodies[i].displacement.head<3>();
-  }
+  void move(std::span<const SolverBody> bodies, const StepContext& step) override;
+  void displace(std::span<const SolverBody> bodies) override;
 
  private:
   std::vector<Vec3d> position_, velocity_;
   std::vector<double> mass_;
   std::vector<Drum> drums_;
 };
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE void WireNodes::insert(std::size_t i, const Vec3d& position, const Vec3d& velocity, double mass) {
+  position_.insert(position_.begin() + std::ptrdiff_t(i), position);
+  velocity_.insert(velocity_.begin() + std::ptrdiff_t(i), velocity);
+  mass_.insert(mass_.begin() + std::ptrdiff_t(i), mass);
+}
+
+SPOOK_INLINE void WireNodes::moveNodesTo(std::size_t first, WireNodes& to) {
+  const auto from = std::ptrdiff_t(first);
+  to.position_.insert(to.position_.end(), position_.begin() + from, position_.end());
+  to.velocity_.insert(to.velocity_.end(), velocity_.begin() + from, velocity_.end());
+  to.mass_.insert(to.mass_.end(), mass_.begin() + from, mass_.end());
+  position_.erase(position_.begin() + from, position_.end());
+  velocity_.erase(velocity_.begin() + from, velocity_.end());
+  mass_.erase(mass_.begin() + from, mass_.end());
+}
+
+SPOOK_INLINE void WireNodes::writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const {
+  const double h = step.getTimeStep();
+  for (std::size_t d = 0; d < drums_.size(); ++d) {
+    SolverBody& b = bodies[position_.size() + d];
+    b.dynamic = true;
+    b.velocity.x() = b.freeVelocity.x() = drums_[d].speed;
+    b.inverseMass(0, 0) = 1.0 / drums_[d].mass;
+  }
+  for (std::size_t i = 0; i < position_.size(); ++i) {
+    SolverBody& b = bodies[i];
+    b.dynamic = true;
+    b.velocity.head<3>() = velocity_[i];
+    b.freeVelocity.head<3>() = velocity_[i] + h * step.gravity(position_[i]);
+    b.inverseMass = Eigen::Matrix3d::Identity() / mass_[i];
+  }
+}
+
+SPOOK_INLINE void WireNodes::move(std::span<const SolverBody> bodies, const StepContext& step) {
+  const double h = step.getTimeStep();
+  for (std::size_t i = 0; i < position_.size(); ++i) {
+    const Vec3d v = bodies[i].freeVelocity.head<3>();
+    velocity_[i] = v.allFinite() ? v : Vec3d::Zero();
+    position_[i] += h * velocity_[i];
+  }
+  for (std::size_t d = 0; d < drums_.size(); ++d) {
+    Drum& drum = drums_[d];
+    const double speed = bodies[position_.size() + d].freeVelocity.x();
+    drum.speed = std::isfinite(speed) ? speed : 0.0;
+    double travel = h * drum.speed;
+    if (drum.winch && (travel > drum.pulledIn || -travel > drum.freeLength)) {
+      travel = std::clamp(travel, -drum.freeLength, drum.pulledIn);
+      drum.speed = 0.0;
+    }
+    drum.freeLength += travel;
+    drum.pulledIn -= travel;
+  }
+}
+
+SPOOK_INLINE void WireNodes::displace(std::span<const SolverBody> bodies) {
+  for (std::size_t i = 0; i < position_.size(); ++i) position_[i] += bodies[i].displacement.head<3>();
+}
+#endif
 
 }  // namespace spook::detail
