@@ -21400,6 +21400,9 @@ SPOOK_INLINE void GeometricStiffness::accumulate(int body, const Vec3d& force, c
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_FREE_ROTATION_HPP
 #define SPOOK_SINGLE_SPOOK_SOLVER_FREE_ROTATION_HPP
 
+#include <cmath>
+#include <utility>
+
 namespace spook::detail {
 
 /// Result of advancing a torque-free rotation over one step.
@@ -21408,6 +21411,45 @@ struct FreeRotation {
   QuatT<S> increment;  ///< body-frame rotation over the step: R⁺ = R · increment
   Vec3T<S> momentum;   ///< body-frame angular momentum at the end, Π⁺ (kg·m²/s)
   bool converged;
+};
+
+/// A 3×3 matrix factorized by Gaussian elimination with partial pivoting
+/// (what Eigen's PartialPivLU does, without instantiating its blocked
+/// kernels in every simulation part): stable where the closed-form inverse
+/// overflows, e.g. float entries beyond ~1e12 whose determinant exceeds
+/// the type's range.
+template <Scalar S>
+class PivotedLu3 {
+ public:
+  explicit PivotedLu3(const Mat3T<S>& m) : lu_(m) {
+    for (int k = 0; k < 3; ++k) {
+      int pivot = k;
+      for (int i = k + 1; i < 3; ++i)
+        if (std::abs(lu_(i, k)) > std::abs(lu_(pivot, k))) pivot = i;
+      if (pivot != k) {
+        lu_.row(pivot).swap(lu_.row(k));
+        std::swap(order_[pivot], order_[k]);
+      }
+      for (int i = k + 1; i < 3; ++i) {
+        lu_(i, k) /= lu_(k, k);
+        for (int j = k + 1; j < 3; ++j) lu_(i, j) -= lu_(i, k) * lu_(k, j);
+      }
+    }
+  }
+  [[nodiscard]] Vec3T<S> solve(const Vec3T<S>& b) const {
+    Vec3T<S> x(b(order_[0]), b(order_[1]), b(order_[2]));
+    for (int i = 1; i < 3; ++i)
+      for (int j = 0; j < i; ++j) x(i) -= lu_(i, j) * x(j);
+    for (int i = 2; i >= 0; --i) {
+      for (int j = i + 1; j < 3; ++j) x(i) -= lu_(i, j) * x(j);
+      x(i) /= lu_(i, i);
+    }
+    return x;
+  }
+
+ private:
+  Mat3T<S> lu_;
+  int order_[3] = {0, 1, 2};
 };
 
 /// One torque-free step of Euler's equations, Π̇ = Π × I⁻¹Π, in the body
@@ -21427,9 +21469,9 @@ FreeRotation<S> freeRotationStep(const Mat3T<S>& inertiaInverse, const Vec3T<S>&
   if (!(scale > S(0))) return {QuatT<S>::Identity(), momentum, true};
   const S tolerance = ScalarTraits<S>::solveTolerance() * scale;
   const Mat3T<S> jacobian = Mat3T<S>::Identity() - S(0.5) * h * skew<S>(momentum) * inertiaInverse;
-  // Closed-form 3×3 inverse: J = I − (h/2)[Π]ₓI⁻¹ is similar to I minus a
-  // skew matrix (eigenvalues 1 ± iλ), never singular, |det J| ≥ 1.
-  const Mat3T<S> jacobianInverse = jacobian.inverse();
+  // J = I − (h/2)[Π]ₓI⁻¹ is similar to I minus a skew matrix (eigenvalues
+  // 1 ± iλ): never singular, |det J| ≥ 1.
+  const PivotedLu3<S> jacobianLu(jacobian);
 
   Vec3 next = momentum;
   Vec3 meanVelocity = inertiaInverse * momentum;
@@ -21438,7 +21480,7 @@ FreeRotation<S> freeRotationStep(const Mat3T<S>& inertiaInverse, const Vec3T<S>&
   for (int i = 0; i < kMaxIterations && !converged; ++i) {
     meanVelocity = S(0.5) * inertiaInverse * (momentum + next);
     const Vec3 residual = next - expRotation<S>(-h * meanVelocity) * momentum;
-    const Vec3 correction = jacobianInverse * residual;
+    const Vec3 correction = jacobianLu.solve(residual);
     next -= correction;
     converged = correction.norm() <= tolerance;
   }
