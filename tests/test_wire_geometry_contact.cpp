@@ -149,10 +149,11 @@ TEST_CASE_TEMPLATE("a wire over a cylinder by its own contacts holds below the c
       // (m₁ − m₂e^{μθ})g/(m₁ + m₂e^{μθ}) over 2 s would drop it
       // 2·a m (0.93 m); the wire's polygon over the cylinder slips more
       // slowly, by stick-slip over its nodes' corners, and how far depends
-      // on round-off: 0.72 m (float) and 0.47 m (double; 0.72 before
-      // rounding-level changes of the segments' capsule frames and of the
-      // bodies' free rotation solve). A quarter of the capstan's drop still
-      // tells slip from hold (< 2 mm) by 100x.
+      // on round-off: 0.72 m (float); 0.72 m (double) with the segments'
+      // capsules placed by Eigen's FromTwoVectors, 0.47 m with
+      // detail::shortestArc, whose rotations differ from it by at most
+      // 4e-10. A quarter of the capstan's drop still tells slip from hold
+      // (< 2 mm) by 100x.
       const double m1 = share * ratio * counterweight, m2 = counterweight;
       const double a = (m1 - m2 * ratio) * kDrapeGravity / (m1 + m2 * ratio);
       CHECK(drop > 0.25 * 0.5 * a * 4.0);
