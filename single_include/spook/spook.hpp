@@ -4204,7 +4204,9 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
 
   /// World bounding box of every shape (m); infinite along the axes where a
   /// plane extends.
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const;
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const { return getBoundingBox(getTransform()); }
+  /// The same with the geometry placed at X_WG instead of its frame's pose.
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox(const Transform& X_WG) const;
 
  protected:
   ~GeometryT() override;
@@ -4360,8 +4362,7 @@ void GeometryT<S>::setSurfaceVelocity(const Vec3& v) {
 }
 
 template <Scalar S>
-auto GeometryT<S>::getBoundingBox() const -> BoundingBoxT<S> {
-  const Transform X_WG = getTransform();
+auto GeometryT<S>::getBoundingBox(const Transform& X_WG) const -> BoundingBoxT<S> {
   BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::infinity()),
                       Vec3::Constant(-std::numeric_limits<S>::infinity())};
   for (const ShapeEntry& e : shapes_) {
@@ -5696,7 +5697,8 @@ class SpaceT : public Referenced {
   /// before anything changes, rather than silently colliding with nothing.
   void gather(const std::vector<ref_ptr<Body>>& bodies);
 
-  void narrowPhase(Geometry& a, Geometry& b);
+  /// Collides active_[i] with active_[j] at the poses update() took.
+  void narrowPhase(std::size_t i, std::size_t j);
 
   // Each pair reduces as its rule says (the space's mode and resolution
   // unless a reduction rule overrides them); REDUCE_ALL pairs pool their
@@ -5721,10 +5723,17 @@ class SpaceT : public Referenced {
   int binResolution_ = 2;
 
   std::vector<Geometry*> active_;
+  /// Per active geometry: its world pose this update, and where its shapes'
+  /// world poses begin in shapePoses_ (one frame chain walk per geometry
+  /// and step, not one per pair).
+  std::vector<TransformT<S>> poses_;
+  std::vector<std::size_t> firstShapePose_;
+  std::vector<TransformT<S>> shapePoses_;
   std::vector<BoundingBoxT<S>> boxes_;
   detail::SweepAndPrune<S> broadphase_;
   std::vector<Contact> contacts_;
-  std::map<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>> touching_;
+  /// The pairs in contact after the last update(), sorted by their ids.
+  std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>>> touching_, nowTouching_;
   std::vector<GeometryPairT<S>> separations_;
   std::size_t numDroppedContactPoints_ = 0;
 };
@@ -5782,13 +5791,21 @@ template <Scalar S>
 void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies) {
   gather(bodies);
   boxes_.clear();
-  // Grown by the touching gap, within which the colliders count shapes as
-  // touching: a box resting on another, its settling depth lost to float
-  // round-off, stays a pair.
-  for (const Geometry* g : active_) boxes_.push_back(g->getBoundingBox().grownBy(S(detail::kTouchingGap)));
+  poses_.clear();
+  firstShapePose_.clear();
+  shapePoses_.clear();
+  for (const Geometry* g : active_) {
+    poses_.push_back(g->getTransform());
+    firstShapePose_.push_back(shapePoses_.size());
+    for (const auto& e : g->getShapes()) shapePoses_.push_back(poses_.back() * e.transform);
+    // Grown by the touching gap, within which the colliders count shapes as
+    // touching: a box resting on another, its settling depth lost to float
+    // round-off, stays a pair.
+    boxes_.push_back(g->getBoundingBox(poses_.back()).grownBy(S(detail::kTouchingGap)));
+  }
   contacts_.clear();
   numDroppedContactPoints_ = 0;
-  broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(*active_[i], *active_[j]); });
+  broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(i, j); });
   reduce();
   trackEvents();
 }
@@ -5824,18 +5841,20 @@ void SpaceT<S>::gather(const std::vector<ref_ptr<Body>>& bodies) {
 }
 
 template <Scalar S>
-void SpaceT<S>::narrowPhase(Geometry& a, Geometry& b) {
-  if (!canCollide(a, b)) return;
+void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j) {
+  if (!canCollide(*active_[i], *active_[j])) return;
   // One order per pair, so that normals and event keys are stable.
-  Geometry* first = &a;
-  Geometry* second = &b;
-  if (first->getId() > second->getId()) std::swap(first, second);
+  if (active_[i]->getId() > active_[j]->getId()) std::swap(i, j);
+  Geometry* first = active_[i];
+  Geometry* second = active_[j];
   Contact contact(first, second);
   ContactSinkT<S> sink(contact.points());
-  const TransformT<S> X_W1 = first->getTransform(), X_W2 = second->getTransform();
-  for (const auto& e1 : first->getShapes())
-    for (const auto& e2 : second->getShapes())
-      collide_(*e1.shape, X_W1 * e1.transform, *e2.shape, X_W2 * e2.transform, sink);
+  const auto& shapes1 = first->getShapes();
+  const auto& shapes2 = second->getShapes();
+  for (std::size_t k1 = 0; k1 < shapes1.size(); ++k1)
+    for (std::size_t k2 = 0; k2 < shapes2.size(); ++k2)
+      collide_(*shapes1[k1].shape, shapePoses_[firstShapePose_[i] + k1], *shapes2[k2].shape,
+               shapePoses_[firstShapePose_[j] + k2], sink);
   numDroppedContactPoints_ += sink.getNumDropped();
   if (!contact.points().empty()) contacts_.push_back(std::move(contact));
 }
@@ -5869,16 +5888,26 @@ void SpaceT<S>::reduce() {
 
 template <Scalar S>
 void SpaceT<S>::trackEvents() {
-  std::map<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>> now;
+  const auto keyBelow = [](const auto& entry, const auto& key) { return entry.first < key; };
+  const auto contains = [&](const auto& sorted, const auto& key) {
+    const auto it = std::lower_bound(sorted.begin(), sorted.end(), key, keyBelow);
+    return it != sorted.end() && it->first == key;
+  };
+  nowTouching_.clear();
   for (auto& contact : contacts_) {
     const auto key = std::make_pair(contact.geometry(0)->getId(), contact.geometry(1)->getId());
-    contact.setImpact(!touching_.count(key));
-    now.emplace(key, GeometryPairT<S>{contact.geometry(0), contact.geometry(1)});
+    contact.setImpact(!contains(touching_, key));
+    nowTouching_.emplace_back(key, GeometryPairT<S>{contact.geometry(0), contact.geometry(1)});
   }
+  const auto byKey = [](const auto& a, const auto& b) { return a.first < b.first; };
+  std::sort(nowTouching_.begin(), nowTouching_.end(), byKey);
+  nowTouching_.erase(std::unique(nowTouching_.begin(), nowTouching_.end(),
+                                 [](const auto& a, const auto& b) { return a.first == b.first; }),
+                     nowTouching_.end());
   separations_.clear();
   for (const auto& [key, pair] : touching_)
-    if (!now.count(key)) separations_.push_back(pair);
-  touching_ = std::move(now);
+    if (!contains(nowTouching_, key)) separations_.push_back(pair);
+  std::swap(touching_, nowTouching_);
 }
 
 SPOOK_COMPILED_ONCE(class, SpaceT)
@@ -21226,6 +21255,12 @@ class GeometricStiffness {
 
   void accumulate(int body, const Vec3d& force, const Vec3d& arm, const std::vector<SolverBody>& bodies);
 
+  static bool isPositiveSemidefinite(const Mat3d& A) {
+    const double minors = A(0, 0) * A(1, 1) - A(0, 1) * A(1, 0) + A(0, 0) * A(2, 2) - A(0, 2) * A(2, 0) +
+                          A(1, 1) * A(2, 2) - A(1, 2) * A(2, 1);
+    return A.trace() >= 0.0 && minors >= 0.0 && A.determinant() >= 0.0;
+  }
+
   /// Where a body's row forces act: one point (arm from its center) or several.
   struct Held {
     Vec3d arm = Vec3d::Zero();
@@ -21333,6 +21368,11 @@ SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vec
     const Mat3d symmetric = 0.5 * (stiffness_[i] + stiffness_[i].transpose());
     // ρ ≤ h²‖K̃‖‖I⁻¹‖: most bodies of an ordinary scene stop here.
     if (h * h * symmetric.norm() * b.inverseInertia.norm() <= threshold) continue;
+    // No tension where every eigenvalue is ≥ 0, that is where the trace,
+    // the sum of the principal 2×2 minors and the determinant all are (the
+    // coefficients of a real-rooted characteristic polynomial): a body
+    // pressed by contacts, spared the eigensolver.
+    if (isPositiveSemidefinite(symmetric)) continue;
     const Eigen::SelfAdjointEigenSolver<Mat3d> eigen(symmetric);
     const Vec3d tension = (-eigen.eigenvalues()).cwiseMax(0.0);
     if (tension.maxCoeff() <= 0.0) continue;
@@ -21376,7 +21416,9 @@ SPOOK_INLINE void GeometricStiffness::accumulate(int body, const Vec3d& force, c
                                                  const std::vector<SolverBody>& bodies) {
   if (body < 0 || !bodies[static_cast<std::size_t>(body)].dynamic || arm.isZero(0.0)) return;
   const auto i = static_cast<std::size_t>(body);
-  stiffness_[i] += skew<double>(force) * skew<double>(arm);
+  // [f]ₓ[r]ₓ = r fᵀ − (f·r) 1
+  stiffness_[i].noalias() += arm * force.transpose();
+  stiffness_[i].diagonal().array() -= force.dot(arm);
   Held& held = heldAt_[i];
   if (held.rows == 0) held.arm = arm;
   // Arms of one joint's rows differ by its violation (Dot2 rows act at p₁).

@@ -150,7 +150,9 @@ class GeometryT : public Referenced, private detail::ShapeOwner<S> {
 
   /// World bounding box of every shape (m); infinite along the axes where a
   /// plane extends.
-  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const;
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox() const { return getBoundingBox(getTransform()); }
+  /// The same with the geometry placed at X_WG instead of its frame's pose.
+  [[nodiscard]] BoundingBoxT<S> getBoundingBox(const Transform& X_WG) const;
 
  protected:
   ~GeometryT() override;
@@ -306,8 +308,7 @@ void GeometryT<S>::setSurfaceVelocity(const Vec3& v) {
 }
 
 template <Scalar S>
-auto GeometryT<S>::getBoundingBox() const -> BoundingBoxT<S> {
-  const Transform X_WG = getTransform();
+auto GeometryT<S>::getBoundingBox(const Transform& X_WG) const -> BoundingBoxT<S> {
   BoundingBoxT<S> box{Vec3::Constant(std::numeric_limits<S>::infinity()),
                       Vec3::Constant(-std::numeric_limits<S>::infinity())};
   for (const ShapeEntry& e : shapes_) {

@@ -110,6 +110,12 @@ class GeometricStiffness {
 
   void accumulate(int body, const Vec3d& force, const Vec3d& arm, const std::vector<SolverBody>& bodies);
 
+  static bool isPositiveSemidefinite(const Mat3d& A) {
+    const double minors = A(0, 0) * A(1, 1) - A(0, 1) * A(1, 0) + A(0, 0) * A(2, 2) - A(0, 2) * A(2, 0) +
+                          A(1, 1) * A(2, 2) - A(1, 2) * A(2, 1);
+    return A.trace() >= 0.0 && minors >= 0.0 && A.determinant() >= 0.0;
+  }
+
   /// Where a body's row forces act: one point (arm from its center) or several.
   struct Held {
     Vec3d arm = Vec3d::Zero();
@@ -217,6 +223,11 @@ SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vec
     const Mat3d symmetric = 0.5 * (stiffness_[i] + stiffness_[i].transpose());
     // ρ ≤ h²‖K̃‖‖I⁻¹‖: most bodies of an ordinary scene stop here.
     if (h * h * symmetric.norm() * b.inverseInertia.norm() <= threshold) continue;
+    // No tension where every eigenvalue is ≥ 0, that is where the trace,
+    // the sum of the principal 2×2 minors and the determinant all are (the
+    // coefficients of a real-rooted characteristic polynomial): a body
+    // pressed by contacts, spared the eigensolver.
+    if (isPositiveSemidefinite(symmetric)) continue;
     const Eigen::SelfAdjointEigenSolver<Mat3d> eigen(symmetric);
     const Vec3d tension = (-eigen.eigenvalues()).cwiseMax(0.0);
     if (tension.maxCoeff() <= 0.0) continue;
@@ -260,7 +271,9 @@ SPOOK_INLINE void GeometricStiffness::accumulate(int body, const Vec3d& force, c
                                                  const std::vector<SolverBody>& bodies) {
   if (body < 0 || !bodies[static_cast<std::size_t>(body)].dynamic || arm.isZero(0.0)) return;
   const auto i = static_cast<std::size_t>(body);
-  stiffness_[i] += skew<double>(force) * skew<double>(arm);
+  // [f]ₓ[r]ₓ = r fᵀ − (f·r) 1
+  stiffness_[i].noalias() += arm * force.transpose();
+  stiffness_[i].diagonal().array() -= force.dot(arm);
   Held& held = heldAt_[i];
   if (held.rows == 0) held.arm = arm;
   // Arms of one joint's rows differ by its violation (Dot2 rows act at p₁).
