@@ -16542,6 +16542,7 @@ class BodySpaceSolve {
     if (problem.numBodies == patternBodies_ && keys_ == pattern_) return;
     pattern_.swap(keys_);
     patternBodies_ = problem.numBodies;
+    factored_ = false;
 
     std::vector<std::pair<int, int>> lower(pattern_.size());
     for (std::size_t p = 0; p < pattern_.size(); ++p) lower[p] = {rowOf(pattern_[p]), colOf(pattern_[p])};
@@ -16580,7 +16581,15 @@ class BodySpaceSolve {
       }
     }
 
-    return cholesky_.factorize(diagonal_, blocks_);
+    // The hybrid's coupling passes and a pivoting that ends where it began
+    // ask again for the K they had factorized: the factor stands.
+    if (factored_ && diagonal_ == factoredDiagonal_ && blocks_ == factoredBlocks_) return true;
+    factored_ = cholesky_.factorize(diagonal_, blocks_);
+    if (factored_) {
+      factoredDiagonal_ = diagonal_;
+      factoredBlocks_ = blocks_;
+    }
+    return factored_;
   }
 
   /// Solves the free rows of the last factorize() for the right-hand side r
@@ -16624,6 +16633,9 @@ class BodySpaceSolve {
   std::vector<std::uint64_t> pattern_, keys_;  ///< K's off-diagonal blocks (row body, column body), sorted
   int patternBodies_ = -1;
   BlockCholesky cholesky_;
+  /// K's blocks as cholesky_ holds them factorized (factored_).
+  std::vector<Mat6d> factoredDiagonal_, factoredBlocks_;
+  bool factored_ = false;
 };
 
 }  // namespace spook::detail
@@ -20247,7 +20259,6 @@ class ConstraintRows {
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -20523,6 +20534,7 @@ class BodySpaceSolve {
     if (problem.numBodies == patternBodies_ && keys_ == pattern_) return;
     pattern_.swap(keys_);
     patternBodies_ = problem.numBodies;
+    factored_ = false;
 
     std::vector<std::pair<int, int>> lower(pattern_.size());
     for (std::size_t p = 0; p < pattern_.size(); ++p) lower[p] = {rowOf(pattern_[p]), colOf(pattern_[p])};
@@ -20561,7 +20573,15 @@ class BodySpaceSolve {
       }
     }
 
-    return cholesky_.factorize(diagonal_, blocks_);
+    // The hybrid's coupling passes and a pivoting that ends where it began
+    // ask again for the K they had factorized: the factor stands.
+    if (factored_ && diagonal_ == factoredDiagonal_ && blocks_ == factoredBlocks_) return true;
+    factored_ = cholesky_.factorize(diagonal_, blocks_);
+    if (factored_) {
+      factoredDiagonal_ = diagonal_;
+      factoredBlocks_ = blocks_;
+    }
+    return factored_;
   }
 
   /// Solves the free rows of the last factorize() for the right-hand side r
@@ -20605,6 +20625,9 @@ class BodySpaceSolve {
   std::vector<std::uint64_t> pattern_, keys_;  ///< K's off-diagonal blocks (row body, column body), sorted
   int patternBodies_ = -1;
   BlockCholesky cholesky_;
+  /// K's blocks as cholesky_ holds them factorized (factored_).
+  std::vector<Mat6d> factoredDiagonal_, factoredBlocks_;
+  bool factored_ = false;
 };
 
 }  // namespace spook::detail
@@ -20910,10 +20933,10 @@ class ContactRows {
              const ContactSettings& settings, RowSet& set) {
     std::vector<Row>& rows = set.rows;
     points_.clear();
-    std::unordered_map<PairKey, double, PointerPairHash> lastForce;
-    lastForce.swap(pairForce_);
-    std::unordered_map<PairKey, std::vector<Remembered>, PointerPairHash> last;
-    last.swap(remembered_);
+    std::swap(pairs_, lastPairs_);
+    std::swap(remembered_, lastRemembered_);
+    pairs_.clear();
+    remembered_.clear();
 
     for (auto& contact : contacts) {
       if (!solvable(contact)) continue;
@@ -20932,14 +20955,18 @@ class ContactRows {
       const int index[2] = {body[0] ? bodyIndex(body[0]) : -1, body[1] ? bodyIndex(body[1]) : -1};
       Eigen::Vector3d cm[2], surface[2];
       for (int k = 0; k < 2; ++k) {
+        const auto& geometry = *contact.geometry(static_cast<std::size_t>(k));
         cm[k] = body[k] ? Eigen::Vector3d(body[k]->getCmPosition().template cast<double>()) : Eigen::Vector3d::Zero();
-        surface[k] = (contact.geometry(static_cast<std::size_t>(k))->getTransform().linear() *
-                      contact.geometry(static_cast<std::size_t>(k))->getSurfaceVelocity())
-                         .template cast<double>();
+        surface[k] =
+            geometry.getSurfaceVelocity().isZero(S(0))
+                ? Eigen::Vector3d::Zero()
+                : Eigen::Vector3d(
+                      (geometry.getTransform().linear() * geometry.getSurfaceVelocity()).template cast<double>());
       }
-      const double normalEstimate = estimateNormalForce(contact, model, lastForce, gravity);
-      const auto lastPoints = last.find(pairKey(contact));
-      const auto toFirstGeometry = contact.geometry(0)->getTransform().template cast<double>().inverse();
+      const PairMemory* lastPair = findLastPair(pairKey(contact));
+      const double normalEstimate = estimateNormalForce(contact, model, lastPair, gravity);
+      const Eigen::Isometry3d toFirstGeometry =
+          Eigen::Isometry3d(contact.geometry(0)->getTransform().template cast<double>().matrix()).inverse();
 
       for (auto& point : contact.points()) {
         if (!point.enabled) continue;
@@ -20969,8 +20996,10 @@ class ContactRows {
 
         const Eigen::Vector3d local = toFirstGeometry * x;
         const Eigen::Vector3d lastForceOfPoint =
-            lastPoints == last.end() ? Eigen::Vector3d::Zero()
-                                     : continuedForce(lastPoints->second, local, settings.persistenceDistance);
+            lastPair
+                ? continuedForce(std::span<const Remembered>(lastRemembered_).subspan(lastPair->first, lastPair->count),
+                                 local, settings.persistenceDistance)
+                : Eigen::Vector3d::Zero();
         const int normalIndex = static_cast<int>(rows.size());
         Row normal = makeRow(n);
         normal.lower = -double(p.adhesiveForce);
@@ -21019,9 +21048,12 @@ class ContactRows {
       const Eigen::Vector3d force = (impulse[0] * p.normal + impulse[1] * p.t1 + impulse[2] * p.t2) / h;
       p.point->force = force.template cast<S>();
       p.point->normalForce = S(impulse[0] / h);
-      pairForce_[p.pair] += impulse[0] / h;
-      remembered_[p.pair].push_back({p.local, force});
+      if (pairs_.empty() || pairs_.back().pair != p.pair) pairs_.push_back({p.pair, 0.0, remembered_.size(), 0});
+      pairs_.back().normalForce += impulse[0] / h;
+      ++pairs_.back().count;
+      remembered_.push_back({p.local, force});
     }
+    std::sort(pairs_.begin(), pairs_.end(), [](const PairMemory& a, const PairMemory& b) { return a.pair < b.pair; });
   }
 
  private:
@@ -21036,9 +21068,21 @@ class ContactRows {
     Eigen::Vector3d local;  ///< in the first geometry's frame (m)
     Eigen::Vector3d force;  ///< on the second geometry's body (N, world)
   };
+  /// A pair's points of the last step: remembered_[first, first + count).
+  struct PairMemory {
+    PairKey pair;
+    double normalForce;  ///< the sum of its points' (N)
+    std::size_t first, count;
+  };
+
+  [[nodiscard]] const PairMemory* findLastPair(const PairKey& pair) const {
+    const auto it = std::lower_bound(lastPairs_.begin(), lastPairs_.end(), pair,
+                                     [](const PairMemory& m, const PairKey& key) { return m.pair < key; });
+    return it != lastPairs_.end() && it->pair == pair ? &*it : nullptr;
+  }
 
   // The force of the last step's point nearest `local` within `distance`, else zero.
-  static Eigen::Vector3d continuedForce(const std::vector<Remembered>& points, const Eigen::Vector3d& local,
+  static Eigen::Vector3d continuedForce(std::span<const Remembered> points, const Eigen::Vector3d& local,
                                         double distance) {
     const Remembered* nearest = nullptr;
     double best = distance * distance;
@@ -21056,18 +21100,18 @@ class ContactRows {
   // N for box friction: the user's, else the pair's normal force of the last
   // step, else the weight of the lighter dynamic body.
   double estimateNormalForce(const GeometryContactT<S>& contact, const FrictionModelT<S>* model,
-                             const std::unordered_map<PairKey, double, PointerPairHash>& lastForce,
-                             const GravityFieldT<S>& gravity) const {
+                             const PairMemory* lastPair, const GravityFieldT<S>& gravity) const {
     if (model && model->getType() == FrictionModelT<S>::BOX) {
       const auto* box = static_cast<const BoxFrictionT<S>*>(model);
       if (box->hasNormalForceMagnitude()) return double(box->getNormalForceMagnitude());
     }
-    if (const auto it = lastForce.find(pairKey(contact)); it != lastForce.end() && it->second > 0.0) return it->second;
+    if (lastPair && lastPair->normalForce > 0.0) return lastPair->normalForce;
     double weight = 0.0;
     for (std::size_t k = 0; k < 2; ++k) {
       const RigidBodyT<S>* body = contact.rigidBody(k);
       if (!body || body->getMotionControl() != RigidBodyT<S>::DYNAMICS) continue;
-      const double w = double(body->getMassProperties()->getMass() * gravity.calculateGravity(body->getCmPosition()).norm());
+      const double w =
+          double(body->getMassProperties()->getMass() * gravity.calculateGravity(body->getCmPosition()).norm());
       weight = weight > 0.0 ? std::min(weight, w) : w;
     }
     return weight;
@@ -21089,8 +21133,10 @@ class ContactRows {
   }
 
   std::vector<PointRows> points_;
-  std::unordered_map<PairKey, double, PointerPairHash> pairForce_;
-  std::unordered_map<PairKey, std::vector<Remembered>, PointerPairHash> remembered_;
+  // The pairs of the step read back last, sorted, and their points; the
+  // step's own (last*) while build() runs.
+  std::vector<PairMemory> pairs_, lastPairs_;
+  std::vector<Remembered> remembered_, lastRemembered_;
 };
 
 }  // namespace spook::detail

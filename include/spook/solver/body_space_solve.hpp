@@ -71,6 +71,7 @@ class BodySpaceSolve {
     if (problem.numBodies == patternBodies_ && keys_ == pattern_) return;
     pattern_.swap(keys_);
     patternBodies_ = problem.numBodies;
+    factored_ = false;
 
     std::vector<std::pair<int, int>> lower(pattern_.size());
     for (std::size_t p = 0; p < pattern_.size(); ++p) lower[p] = {rowOf(pattern_[p]), colOf(pattern_[p])};
@@ -109,7 +110,15 @@ class BodySpaceSolve {
       }
     }
 
-    return cholesky_.factorize(diagonal_, blocks_);
+    // The hybrid's coupling passes and a pivoting that ends where it began
+    // ask again for the K they had factorized: the factor stands.
+    if (factored_ && diagonal_ == factoredDiagonal_ && blocks_ == factoredBlocks_) return true;
+    factored_ = cholesky_.factorize(diagonal_, blocks_);
+    if (factored_) {
+      factoredDiagonal_ = diagonal_;
+      factoredBlocks_ = blocks_;
+    }
+    return factored_;
   }
 
   /// Solves the free rows of the last factorize() for the right-hand side r
@@ -153,6 +162,9 @@ class BodySpaceSolve {
   std::vector<std::uint64_t> pattern_, keys_;  ///< K's off-diagonal blocks (row body, column body), sorted
   int patternBodies_ = -1;
   BlockCholesky cholesky_;
+  /// K's blocks as cholesky_ holds them factorized (factored_).
+  std::vector<Mat6d> factoredDiagonal_, factoredBlocks_;
+  bool factored_ = false;
 };
 
 }  // namespace spook::detail
