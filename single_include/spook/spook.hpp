@@ -17598,6 +17598,7 @@ class DirectSolve {
     const auto columns = static_cast<std::size_t>(n) + 1, entries = static_cast<std::size_t>(lower_.nonZeros());
     if (!same(lower_.outerIndexPtr(), columns, analyzedOuter_) || !same(lower_.innerIndexPtr(), entries, analyzedInner_)) {
       ldlt_.analyzePattern(lower_);
+      factoredValues_.clear();
       analyzedOuter_.assign(lower_.outerIndexPtr(), lower_.outerIndexPtr() + columns);
       analyzedInner_.assign(lower_.innerIndexPtr(), lower_.innerIndexPtr() + entries);
     }
@@ -17664,7 +17665,15 @@ class DirectSolve {
         }
       }
     }
-    ldlt_.factorize(lower_);
+    // The hybrid's coupling passes start where the last pass ended: the
+    // same matrix, whose factor ldlt_ still holds.
+    const double* values = lower_.valuePtr();
+    const auto count = static_cast<std::size_t>(lower_.nonZeros());
+    if (factoredValues_.empty() || factoredValues_.size() != count ||
+        !std::equal(values, values + count, factoredValues_.begin())) {
+      ldlt_.factorize(lower_);
+      factoredValues_.assign(values, values + count);
+    }
     const Eigen::VectorXd solution = ldlt_.solve(full);
     for (int k = 0; k < n; ++k)
       if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[k];
@@ -17719,6 +17728,7 @@ class DirectSolve {
   Eigen::SparseMatrix<double> A_, lower_;
   std::vector<double> lowerValues_;             ///< lower_'s values as assembled
   std::vector<int> analyzedOuter_, analyzedInner_;  ///< the pattern ldlt_ analyzed
+  std::vector<double> factoredValues_;              ///< lower_'s values ldlt_ holds factorized (none: empty)
   Eigen::VectorXd q_;
   std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
