@@ -5723,10 +5723,9 @@ class SpaceT : public Referenced {
   int binResolution_ = 2;
 
   std::vector<Geometry*> active_;
-  /// Per active geometry: its world pose this update, and where its shapes'
-  /// world poses begin in shapePoses_ (one frame chain walk per geometry
-  /// and step, not one per pair).
-  std::vector<TransformT<S>> poses_;
+  /// Per active geometry: where its shapes' world poses of this update
+  /// begin in shapePoses_ (one frame chain walk per geometry and step, not
+  /// one per pair).
   std::vector<std::size_t> firstShapePose_;
   std::vector<TransformT<S>> shapePoses_;
   std::vector<BoundingBoxT<S>> boxes_;
@@ -5791,17 +5790,16 @@ template <Scalar S>
 void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies) {
   gather(bodies);
   boxes_.clear();
-  poses_.clear();
   firstShapePose_.clear();
   shapePoses_.clear();
   for (const Geometry* g : active_) {
-    poses_.push_back(g->getTransform());
+    const TransformT<S> X_WG = g->getTransform();
     firstShapePose_.push_back(shapePoses_.size());
-    for (const auto& e : g->getShapes()) shapePoses_.push_back(poses_.back() * e.transform);
+    for (const auto& e : g->getShapes()) shapePoses_.push_back(X_WG * e.transform);
     // Grown by the touching gap, within which the colliders count shapes as
     // touching: a box resting on another, its settling depth lost to float
     // round-off, stays a pair.
-    boxes_.push_back(g->getBoundingBox(poses_.back()).grownBy(S(detail::kTouchingGap)));
+    boxes_.push_back(g->getBoundingBox(X_WG).grownBy(S(detail::kTouchingGap)));
   }
   contacts_.clear();
   numDroppedContactPoints_ = 0;
@@ -16293,6 +16291,7 @@ using SolverRef = ref_ptr<Solver>;
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 // --- begin spook/solver/block_cholesky.hpp ---
@@ -16586,8 +16585,9 @@ class BodySpaceSolve {
     if (factored_ && diagonal_ == factoredDiagonal_ && blocks_ == factoredBlocks_) return true;
     factored_ = cholesky_.factorize(diagonal_, blocks_);
     if (factored_) {
-      factoredDiagonal_ = diagonal_;
-      factoredBlocks_ = blocks_;
+      // diagonal_ and blocks_ are assembled afresh at each call: swapped, not copied.
+      std::swap(diagonal_, factoredDiagonal_);
+      std::swap(blocks_, factoredBlocks_);
     }
     return factored_;
   }
@@ -20295,6 +20295,7 @@ class ConstraintRows {
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 // --- begin spook/solver/block_cholesky.hpp ---
@@ -20588,8 +20589,9 @@ class BodySpaceSolve {
     if (factored_ && diagonal_ == factoredDiagonal_ && blocks_ == factoredBlocks_) return true;
     factored_ = cholesky_.factorize(diagonal_, blocks_);
     if (factored_) {
-      factoredDiagonal_ = diagonal_;
-      factoredBlocks_ = blocks_;
+      // diagonal_ and blocks_ are assembled afresh at each call: swapped, not copied.
+      std::swap(diagonal_, factoredDiagonal_);
+      std::swap(blocks_, factoredBlocks_);
     }
     return factored_;
   }

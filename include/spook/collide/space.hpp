@@ -211,10 +211,9 @@ class SpaceT : public Referenced {
   int binResolution_ = 2;
 
   std::vector<Geometry*> active_;
-  /// Per active geometry: its world pose this update, and where its shapes'
-  /// world poses begin in shapePoses_ (one frame chain walk per geometry
-  /// and step, not one per pair).
-  std::vector<TransformT<S>> poses_;
+  /// Per active geometry: where its shapes' world poses of this update
+  /// begin in shapePoses_ (one frame chain walk per geometry and step, not
+  /// one per pair).
   std::vector<std::size_t> firstShapePose_;
   std::vector<TransformT<S>> shapePoses_;
   std::vector<BoundingBoxT<S>> boxes_;
@@ -279,17 +278,16 @@ template <Scalar S>
 void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies) {
   gather(bodies);
   boxes_.clear();
-  poses_.clear();
   firstShapePose_.clear();
   shapePoses_.clear();
   for (const Geometry* g : active_) {
-    poses_.push_back(g->getTransform());
+    const TransformT<S> X_WG = g->getTransform();
     firstShapePose_.push_back(shapePoses_.size());
-    for (const auto& e : g->getShapes()) shapePoses_.push_back(poses_.back() * e.transform);
+    for (const auto& e : g->getShapes()) shapePoses_.push_back(X_WG * e.transform);
     // Grown by the touching gap, within which the colliders count shapes as
     // touching: a box resting on another, its settling depth lost to float
     // round-off, stays a pair.
-    boxes_.push_back(g->getBoundingBox(poses_.back()).grownBy(S(detail::kTouchingGap)));
+    boxes_.push_back(g->getBoundingBox(X_WG).grownBy(S(detail::kTouchingGap)));
   }
   contacts_.clear();
   numDroppedContactPoints_ = 0;

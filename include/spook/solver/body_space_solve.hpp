@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <spook/solver/block_cholesky.hpp>
@@ -115,8 +116,9 @@ class BodySpaceSolve {
     if (factored_ && diagonal_ == factoredDiagonal_ && blocks_ == factoredBlocks_) return true;
     factored_ = cholesky_.factorize(diagonal_, blocks_);
     if (factored_) {
-      factoredDiagonal_ = diagonal_;
-      factoredBlocks_ = blocks_;
+      // diagonal_ and blocks_ are assembled afresh at each call: swapped, not copied.
+      std::swap(diagonal_, factoredDiagonal_);
+      std::swap(blocks_, factoredBlocks_);
     }
     return factored_;
   }
