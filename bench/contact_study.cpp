@@ -8,7 +8,8 @@
 // bench/plot_contact_study.py turns into a cost-vs-drift plot; argv[2], when
 // given, runs only the scenes whose name contains it, and argv[3] only the
 // policies whose name and friction solve type contain it ("direct", "hybrid
-// SPLIT", "bullet").
+// SPLIT", "bullet"), and argv[4] gives spook's threads per simulation
+// (SimulationT::setNumThreads, default 1).
 //
 // Scenes (gravity (0, 0, −9.80665) m/s², density 1000 kg/m³, one material
 // for every geometry whose contact material has friction coefficient 0.5 and
@@ -71,6 +72,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -195,6 +197,20 @@ StudyScene stack() {
   return scene;
 }
 
+// 20 stacks of 10 unit cubes, 3 m apart on a 4 × 5 grid: 20 islands, which
+// a simulation's threads solve side by side.
+StudyScene stacks() {
+  constexpr int kStacks = 20, kCount = 10;
+  StudyScene scene;
+  scene.description.bodies.push_back(ground());
+  for (int s = 0; s < kStacks; ++s)
+    for (int i = 0; i < kCount; ++i) {
+      scene.description.bodies.push_back(box({0.5, 0.5, 0.5}, {3.0 * (s % 4), 3.0 * (s / 4), 0.5 + i}, true));
+      if (i == kCount - 1) scene.tracked.push_back(scene.description.bodies.size() - 2);  // a top cube
+    }
+  return scene;
+}
+
 struct SceneSpec {
   std::string name;
   Kind kind;
@@ -210,7 +226,8 @@ struct SceneSpec {
 /// `frictionSolveType` (the hybrid policy's choice; the others ignore it).
 class SpookEngine final : public study::Engine {
  public:
-  SpookEngine(const study::SceneDescription& scene, spook::SolverRef solver, spook::SolveType frictionSolveType) {
+  SpookEngine(const study::SceneDescription& scene, spook::SolverRef solver, spook::SolveType frictionSolveType,
+              int threads) {
     sim_->setUniformGravity(Vec3(0, 0, scene.gravity));
     material_->getBulkMaterial()->setDensity(scene.density);
     auto* cm = sim_->getMaterialManager()->getOrCreateContactMaterial(material_.get(), material_.get());
@@ -221,6 +238,7 @@ class SpookEngine final : public study::Engine {
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) add(scene.bodies[i], "body " + std::to_string(i));
     sim_->setTimeStep(scene.timeStep);
     sim_->setSolver(solver);
+    sim_->setNumThreads(threads);
   }
 
   void step() override { sim_->stepForward(); }
@@ -311,19 +329,21 @@ const char* solveTypeName(spook::SolveType type) {
   return "?";
 }
 
-Policy spookPolicy(std::string name, std::function<spook::SolverRef()> solver, std::optional<spook::SolveType> type) {
+Policy spookPolicy(std::string name, std::function<spook::SolverRef()> solver, std::optional<spook::SolveType> type,
+                   int threads) {
   return {std::move(name), type ? solveTypeName(*type) : "-",
-          [solver, type](const study::SceneDescription& scene) -> std::unique_ptr<study::Engine> {
-            return std::make_unique<SpookEngine>(scene, solver(), type.value_or(spook::SolveType::SPLIT));
+          [solver, type, threads](const study::SceneDescription& scene) -> std::unique_ptr<study::Engine> {
+            return std::make_unique<SpookEngine>(scene, solver(), type.value_or(spook::SolveType::SPLIT), threads);
           }};
 }
 
-std::vector<Policy> policies() {
+std::vector<Policy> policies(int threads) {
   std::vector<Policy> list;
-  list.push_back(spookPolicy("direct", [] { return spook::SolverRef(new spook::DirectSolver()); }, std::nullopt));
+  list.push_back(
+      spookPolicy("direct", [] { return spook::SolverRef(new spook::DirectSolver()); }, std::nullopt, threads));
   for (spook::SolveType type :
        {spook::SolveType::SPLIT, spook::SolveType::DIRECT_AND_ITERATIVE, spook::SolveType::DIRECT})
-    list.push_back(spookPolicy("hybrid", [] { return spook::SolverRef(new spook::HybridSolver()); }, type));
+    list.push_back(spookPolicy("hybrid", [] { return spook::SolverRef(new spook::HybridSolver()); }, type, threads));
   for (int n : {16, 64})
     list.push_back(spookPolicy(
         "iterative" + std::to_string(n),
@@ -332,7 +352,7 @@ std::vector<Policy> policies() {
           s->setNumIterations(n);
           return s;
         },
-        std::nullopt));
+        std::nullopt, threads));
   for (const auto& engines : {study::bulletEngines(), study::odeEngines()})
     for (const study::ReferenceEngine& engine : engines) list.push_back({engine.name, "-", engine.make});
   return list;
@@ -447,18 +467,20 @@ int main(int argc, char** argv) {
   const std::string csvPath = argc > 1 ? argv[1] : "contact_study.csv";
   const std::string only = argc > 2 ? argv[2] : "";          // run only the scenes whose name contains this
   const std::string onlyPolicy = argc > 3 ? argv[3] : "";    // and only the policies whose "name friction" contains this
+  const int threads = argc > 4 ? std::atoi(argv[4]) : 1;     // spook's SimulationT::setNumThreads
   std::vector<SceneSpec> scenes = {
       {"spheres", Kind::SPHERES, 1.0 / 60, 3.0, spheres},
       {"pyramid", Kind::PYRAMID, 1.0 / 60, 5.0, pyramid},
       {"stack 1/60", Kind::STACK, 1.0 / 60, 10.0, stack},
       {"stack 1/30", Kind::STACK, 1.0 / 30, 10.0, stack},
+      {"20 stacks", Kind::STACK, 1.0 / 60, 5.0, stacks},
   };
   std::erase_if(scenes, [&](const SceneSpec& scene) { return scene.name.find(only) == std::string::npos; });
 
   std::vector<Result> results;
   const auto start = std::chrono::steady_clock::now();
   for (const SceneSpec& scene : scenes)
-    for (const Policy& policy : policies()) {
+    for (const Policy& policy : policies(threads)) {
       if ((policy.name + " " + policy.friction).find(onlyPolicy) == std::string::npos) continue;
       results.push_back(run(scene, policy));
       const Result& r = results.back();

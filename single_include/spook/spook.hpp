@@ -4527,6 +4527,7 @@ using GeometryPair = GeometryPairT<float>;
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
@@ -4723,6 +4724,135 @@ class ContactSinkT {
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
 // --- end spook/collide/contact_sink.hpp ---
+// --- begin spook/core/worker_pool.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_WORKER_POOL_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_WORKER_POOL_HPP
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace spook::detail {
+
+/// The threads of a simulation (SimulationT::setNumThreads), for the parts
+/// of a step that split into independent pieces: the narrow phase's pairs,
+/// the islands' solves. Each piece writes only its own output and the step
+/// merges the outputs in the pieces' order, so its results are the same bit
+/// for bit whatever the number of threads.
+class WorkerPool {
+ public:
+  WorkerPool() = default;
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+  ~WorkerPool();
+
+  /// Threads that take part in a run, the calling one included (>= 1).
+  [[nodiscard]] int size() const { return static_cast<int>(threads_.size()) + 1; }
+  /// Starts or stops threads so that size() is n (>= 1); not during a run.
+  void resize(int n);
+
+  /// Calls f(index, worker) once for every index in [0, count), spread over
+  /// the threads; `worker` in [0, size()) names the calling thread's slot
+  /// (0: the thread that called forEach), for per-thread scratch. Returns
+  /// when all calls have returned; then rethrows the first exception one of
+  /// them threw (the others still ran).
+  void forEach(std::size_t count, const std::function<void(std::size_t, int)>& f);
+
+ private:
+  void serve(int worker, std::uint64_t seen);
+  void runTask(int worker);
+  void stopThreads();
+
+  std::vector<std::thread> threads_;
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  std::uint64_t generation_ = 0;
+  bool stop_ = false;
+  std::size_t busy_ = 0;
+  std::function<void(int)> task_;
+  std::exception_ptr error_;
+};
+
+#if defined(SPOOK_DEFINES_NON_TEMPLATES)
+SPOOK_INLINE WorkerPool::~WorkerPool() { stopThreads(); }
+
+SPOOK_INLINE void WorkerPool::resize(int n) {
+  if (n == size()) return;
+  stopThreads();
+  for (int worker = 1; worker < n; ++worker) threads_.emplace_back(&WorkerPool::serve, this, worker, generation_);
+}
+
+SPOOK_INLINE void WorkerPool::stopThreads() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& t : threads_) t.join();
+  threads_.clear();
+  stop_ = false;
+}
+
+SPOOK_INLINE void WorkerPool::forEach(std::size_t count, const std::function<void(std::size_t, int)>& f) {
+  if (threads_.empty() || count < 2) {
+    for (std::size_t i = 0; i < count; ++i) f(i, 0);
+    return;
+  }
+  std::atomic<std::size_t> next{0};
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    task_ = [&](int worker) {
+      for (std::size_t i = next.fetch_add(1); i < count; i = next.fetch_add(1)) f(i, worker);
+    };
+    error_ = nullptr;
+    busy_ = threads_.size();
+    ++generation_;
+  }
+  wake_.notify_all();
+  runTask(0);
+  std::exception_ptr error;
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    done_.wait(lock, [&] { return busy_ == 0; });
+    task_ = nullptr;
+    std::swap(error, error_);
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+SPOOK_INLINE void WorkerPool::runTask(int worker) {
+  try {
+    task_(worker);
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!error_) error_ = std::current_exception();
+  }
+}
+
+SPOOK_INLINE void WorkerPool::serve(int worker, std::uint64_t seen) {
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      if (stop_) return;
+      seen = generation_;
+    }
+    runTask(worker);
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (--busy_ == 0) done_.notify_one();
+  }
+}
+#endif
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_CORE_WORKER_POOL_HPP
+// --- end spook/core/worker_pool.hpp ---
 // --- begin spook/dynamics/rigid_body.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_DYNAMICS_RIGID_BODY_HPP
 #define SPOOK_SINGLE_SPOOK_DYNAMICS_RIGID_BODY_HPP
@@ -5652,7 +5782,12 @@ class SpaceT : public Referenced {
   /// Finds the contacts between this space's geometries and those of
   /// `bodies` (a simulation's), reduces them and marks impacts; pairs that
   /// touched before and no longer do are listed in getSeparations().
-  void update(const std::vector<ref_ptr<Body>>& bodies = {});
+  /// With `workers`, the pairs are collided on its threads, with the same
+  /// contacts in the same order.
+  void update(const std::vector<ref_ptr<Body>>& bodies = {}, detail::WorkerPool* workers = nullptr);
+
+  /// Fewest candidate pairs worth spreading over threads.
+  static constexpr std::size_t kPairsWorthThreads = 64;
 
   /// The narrow phase of one pair of placed shapes (shape frame → world)
   /// through this space's colliders: their contact points into `sink`,
@@ -5697,8 +5832,11 @@ class SpaceT : public Referenced {
   /// before anything changes, rather than silently colliding with nothing.
   void gather(const std::vector<ref_ptr<Body>>& bodies);
 
-  /// Collides active_[i] with active_[j] at the poses update() took.
-  void narrowPhase(std::size_t i, std::size_t j);
+  /// Collides active_[i] with active_[j] at the poses update() took; a
+  /// contact goes to `found`, points dropped as non-finite are counted.
+  void narrowPhase(std::size_t i, std::size_t j, std::vector<Contact>& found, std::size_t& dropped) const;
+  /// Every candidate pair of pairs_, in order, into contacts_.
+  void narrowPhase(detail::WorkerPool* workers);
 
   // Each pair reduces as its rule says (the space's mode and resolution
   // unless a reduction rule overrides them); REDUCE_ALL pairs pool their
@@ -5730,6 +5868,11 @@ class SpaceT : public Referenced {
   std::vector<TransformT<S>> shapePoses_;
   std::vector<BoundingBoxT<S>> boxes_;
   detail::SweepAndPrune<S> broadphase_;
+  /// The broad phase's pairs that may collide (canCollide), in its order.
+  std::vector<std::pair<std::size_t, std::size_t>> pairs_;
+  /// Per piece of pairs_ on the threads: its contacts and dropped points.
+  std::vector<std::vector<Contact>> piecesFound_;
+  std::vector<std::size_t> piecesDropped_;
   std::vector<Contact> contacts_;
   /// The pairs in contact after the last update(), sorted by their ids.
   std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>>> touching_, nowTouching_;
@@ -5787,7 +5930,7 @@ void SpaceT<S>::setContactBinResolution(int resolution) {
 }
 
 template <Scalar S>
-void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies) {
+void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerPool* workers) {
   gather(bodies);
   boxes_.clear();
   firstShapePose_.clear();
@@ -5801,9 +5944,11 @@ void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies) {
     // round-off, stays a pair.
     boxes_.push_back(g->getBoundingBox(X_WG).grownBy(S(detail::kTouchingGap)));
   }
-  contacts_.clear();
-  numDroppedContactPoints_ = 0;
-  broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(i, j); });
+  pairs_.clear();
+  broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) {
+    if (canCollide(*active_[i], *active_[j])) pairs_.emplace_back(i, j);
+  });
+  narrowPhase(workers);
   reduce();
   trackEvents();
 }
@@ -5839,8 +5984,33 @@ void SpaceT<S>::gather(const std::vector<ref_ptr<Body>>& bodies) {
 }
 
 template <Scalar S>
-void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j) {
-  if (!canCollide(*active_[i], *active_[j])) return;
+void SpaceT<S>::narrowPhase(detail::WorkerPool* workers) {
+  contacts_.clear();
+  numDroppedContactPoints_ = 0;
+  const int threads = workers ? workers->size() : 1;
+  if (threads < 2 || pairs_.size() < kPairsWorthThreads) {
+    for (const auto& [i, j] : pairs_) narrowPhase(i, j, contacts_, numDroppedContactPoints_);
+    return;
+  }
+  // Contiguous pieces, a few per thread so that one slow piece (a trimesh
+  // pair) does not hold the others up; joined in order.
+  const std::size_t pieces = std::min<std::size_t>(4 * std::size_t(threads), pairs_.size() / 16);
+  piecesFound_.resize(pieces);
+  piecesDropped_.assign(pieces, 0);
+  workers->forEach(pieces, [&](std::size_t piece, int) {
+    piecesFound_[piece].clear();
+    for (std::size_t k = pairs_.size() * piece / pieces, end = pairs_.size() * (piece + 1) / pieces; k < end; ++k)
+      narrowPhase(pairs_[k].first, pairs_[k].second, piecesFound_[piece], piecesDropped_[piece]);
+  });
+  for (std::size_t piece = 0; piece < pieces; ++piece) {
+    std::move(piecesFound_[piece].begin(), piecesFound_[piece].end(), std::back_inserter(contacts_));
+    piecesFound_[piece].clear();
+    numDroppedContactPoints_ += piecesDropped_[piece];
+  }
+}
+
+template <Scalar S>
+void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j, std::vector<Contact>& found, std::size_t& dropped) const {
   // One order per pair, so that normals and event keys are stable.
   if (active_[i]->getId() > active_[j]->getId()) std::swap(i, j);
   Geometry* first = active_[i];
@@ -5853,8 +6023,8 @@ void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j) {
     for (std::size_t k2 = 0; k2 < shapes2.size(); ++k2)
       collide_(*shapes1[k1].shape, shapePoses_[firstShapePose_[i] + k1], *shapes2[k2].shape,
                shapePoses_[firstShapePose_[j] + k2], sink);
-  numDroppedContactPoints_ += sink.getNumDropped();
-  if (!contact.points().empty()) contacts_.push_back(std::move(contact));
+  dropped += sink.getNumDropped();
+  if (!contact.points().empty()) found.push_back(std::move(contact));
 }
 
 template <Scalar S>
@@ -16002,6 +16172,25 @@ struct SolverStatistics {
     nonFiniteIslands = again.nonFiniteIslands;
     ++geometricStiffnessResolves;
   }
+
+  /// Takes in another island's solve of the same step: counts add up,
+  /// maxima stay maxima.
+  void addIsland(const SolverStatistics& island) {
+    numIslands += island.numIslands;
+    numRows += island.numRows;
+    numDirectRows += island.numDirectRows;
+    numIterativeRows += island.numIterativeRows;
+    iterations = std::max(iterations, island.iterations);
+    factorizations += island.factorizations;
+    frictionIterations = std::max(frictionIterations, island.frictionIterations);
+    complementarityError = std::max(complementarityError, island.complementarityError);
+    converged = converged && island.converged;
+    directFallbacks += island.directFallbacks;
+    solveTime += island.solveTime;
+    nonFiniteIslands += island.nonFiniteIslands;
+    pivotBudgetCuts += island.pivotBudgetCuts;
+    geometricStiffnessResolves += island.geometricStiffnessResolves;
+  }
 };
 
 /// Solves the rows of an island: the simulation's solver policy. Subclasses
@@ -16157,6 +16346,16 @@ class Solver : public Referenced {
   /// come out non-finite are dropped (set to zero) and counted; false then.
   bool solve(detail::IslandProblem& problem, SolverStatistics& statistics);
 
+  /// A solver of the same policy and settings with a workspace of its own,
+  /// for another thread's islands (SimulationT::setNumThreads); null where
+  /// the policy has none (a subclass of a user's: its islands are then
+  /// solved one after another). The workspace caches only what it would
+  /// compute again from the same island, so either solver gives the same
+  /// answer bit for bit.
+  [[nodiscard]] virtual ref_ptr<Solver> makeWorker() const { return nullptr; }
+  /// Takes every setting of `other` (not its workspace).
+  void copySettings(const Solver& other);
+
  protected:
   Solver();
   ~Solver() override;
@@ -16209,6 +16408,8 @@ class DirectSolver final : public Solver {
   [[nodiscard]] const char* getName() const override { return "direct"; }
   [[nodiscard]] bool projects(SolveType) const override { return getEnablePostStabilization(); }
 
+  [[nodiscard]] ref_ptr<Solver> makeWorker() const override;
+
  protected:
   void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
 };
@@ -16220,6 +16421,8 @@ class IterativeSolver final : public Solver {
  public:
   [[nodiscard]] const char* getName() const override { return "iterative"; }
   [[nodiscard]] bool projects(SolveType) const override { return false; }
+
+  [[nodiscard]] ref_ptr<Solver> makeWorker() const override;
 
  protected:
   void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
@@ -16241,6 +16444,8 @@ class HybridSolver final : public Solver {
  public:
   HybridSolver() { setEnablePostStabilization(true); }
   [[nodiscard]] const char* getName() const override { return "hybrid"; }
+
+  [[nodiscard]] ref_ptr<Solver> makeWorker() const override;
 
  protected:
   void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
@@ -17864,6 +18069,36 @@ SPOOK_INLINE double Solver::complementarityError(const detail::IslandProblem& pr
   return worst;
 }
 
+SPOOK_INLINE void Solver::copySettings(const Solver& other) {
+  iterations_ = other.iterations_;
+  tolerance_ = other.tolerance_;
+  method_ = other.method_;
+  maxPivotSteps_ = other.maxPivotSteps_;
+  postStabilization_ = other.postStabilization_;
+  warmStarting_ = other.warmStarting_;
+  contactWarmStarting_ = other.contactWarmStarting_;
+  contactWarmStartingFactor_ = other.contactWarmStartingFactor_;
+  geometricStiffness_ = other.geometricStiffness_;
+  geometricStiffnessThreshold_ = other.geometricStiffnessThreshold_;
+  projectionIterations_ = other.projectionIterations_;
+  frictionIterations_ = other.frictionIterations_;
+  frictionTolerance_ = other.frictionTolerance_;
+  couplingIterations_ = other.couplingIterations_;
+}
+
+namespace detail {
+template <class Policy>
+ref_ptr<Solver> workerLike(const Policy& policy) {
+  ref_ptr<Solver> worker = new Policy();
+  worker->copySettings(policy);
+  return worker;
+}
+}  // namespace detail
+
+SPOOK_INLINE ref_ptr<Solver> DirectSolver::makeWorker() const { return detail::workerLike(*this); }
+SPOOK_INLINE ref_ptr<Solver> IterativeSolver::makeWorker() const { return detail::workerLike(*this); }
+SPOOK_INLINE ref_ptr<Solver> HybridSolver::makeWorker() const { return detail::workerLike(*this); }
+
 SPOOK_INLINE void DirectSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const std::vector<int> rows = allRows(problem);
   statistics.numDirectRows += static_cast<int>(rows.size());
@@ -18248,6 +18483,15 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   [[nodiscard]] Solver* getSolver() const { return solver_.get(); }
   void setSolver(ref_ptr<Solver> solver);
 
+  /// Threads a step may use, the calling one included (default 1; at most
+  /// kMaxThreads): the narrow phase's geometry pairs and the islands'
+  /// solves are spread over them (a pile of bodies in contact is one
+  /// island). The results are the same bit for bit for any number of
+  /// threads. The threads wait between steps and end with the simulation.
+  [[nodiscard]] int getNumThreads() const { return numThreads_; }
+  void setNumThreads(int n);
+  static constexpr int kMaxThreads = 256;
+
   // --- Gravity ---------------------------------------------------------------
 
   [[nodiscard]] GravityFieldT<S>* getGravityField() const { return gravity_.get(); }
@@ -18454,6 +18698,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   S timeBase_ = S(0);
   std::uint64_t stepsSinceBase_ = 0;
   bool stepping_ = false;
+  int numThreads_ = 1;
   ref_ptr<GravityFieldT<S>> gravity_ = new UniformGravityFieldT<S>();
   detail::Roster<Body, true> bodies_{"RigidBody"};
   detail::Roster<Listener> listeners_{"StepEventListener"};
@@ -18503,6 +18748,12 @@ template <Scalar S>
 void SimulationT<S>::setSolver(ref_ptr<Solver> solver) {
   if (!solver) throw error("solver must not be null", "nullptr");
   solver_ = std::move(solver);
+}
+
+template <Scalar S>
+void SimulationT<S>::setNumThreads(int n) {
+  if (n < 1 || n > kMaxThreads) throw error("number of threads must be in [1, " + std::to_string(kMaxThreads) + "]", n);
+  numThreads_ = n;
 }
 
 template <Scalar S>
@@ -20282,6 +20533,7 @@ class ConstraintRows {
 #include <limits>
 #include <numeric>
 #include <span>
+#include <typeinfo>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -20675,7 +20927,7 @@ class IslandStepper {
   /// orientations. Fills each body's displacement (Δx, Δθ) that brings the
   /// rows to their targets.
   void project(const RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
-               SolverStatistics& statistics);
+               SolverStatistics& statistics, WorkerPool* workers = nullptr);
 
   /// The dynamic bodies (indices into `bodies`) of the islands whose
   /// impulses the last solve() dropped as non-finite.
@@ -20683,8 +20935,15 @@ class IslandStepper {
 
   /// The rows' impulses: each row's last impulse in (the warm start and the
   /// direct solver's first guess), the solved one out; rows that join no
-  /// island (between static bodies) keep theirs.
-  void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics);
+  /// island (between static bodies) keep theirs. With `workers`, islands
+  /// are solved on its threads (each by a worker copy of `solver`, see
+  /// Solver::makeWorker), with the same results.
+  void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics,
+             WorkerPool* workers = nullptr);
+
+  /// Fewest rows in a step worth spreading its islands over threads (a
+  /// thread's wake-up costs about what ~100 rows' solve does).
+  static constexpr std::size_t kRowsWorthThreads = 256;
 
  private:
   int find(int i) {
@@ -20719,37 +20978,67 @@ class IslandStepper {
 
   void partition(const RowSet& set, const std::vector<SolverBody>& bodies);
 
-  // The island's entries, impulses and guesses zero (index() first).
-  void buildProblem(const RowSet& set, const std::vector<SolverBody>& bodies, const std::vector<int>& island, double h);
+  // What one thread needs to solve an island: its problem, its bodies'
+  // local indices and a solver (worker 0: the simulation's own).
+  struct Worker {
+    std::vector<int> local, islandBodies, rowLocal;
+    IslandProblem problem;
+    std::vector<Vec6d> velocityChange;
+    Solver* solver = nullptr;
+    ref_ptr<Solver> copy;  ///< workers after the first: their copy of the simulation's solver
+  };
 
-  // Adds M⁻¹Gᵀ Λ of problem_'s impulses to a field of the island's bodies.
-  void addToBodies(std::vector<SolverBody>& bodies, Vec6d SolverBody::*field) {
-    problem_.velocityChange(velocityChange_);
-    for (std::size_t k = 0; k < islandBodies_.size(); ++k)
-      bodies[static_cast<std::size_t>(islandBodies_[k])].*field += velocityChange_[k];
+  // Workers for `workers`' threads with solvers like `solver`; how many of
+  // them to use (1 when the islands are to be solved one after another).
+  int prepareWorkers(const RowSet& set, Solver& solver, WorkerPool* workers);
+
+  // Runs island(k, worker) for every island, on `count` workers.
+  template <class F>
+  void forEachIsland(WorkerPool* workers, int count, const F& island) {
+    if (count > 1)
+      workers->forEach(islands_.size(), island);
+    else
+      for (std::size_t k = 0; k < islands_.size(); ++k) island(k, 0);
+  }
+
+  // The island's entries, impulses and guesses zero (index() first).
+  void buildProblem(Worker& worker, const RowSet& set, const std::vector<SolverBody>& bodies,
+                    const std::vector<int>& island, double h) const;
+
+  // Adds M⁻¹Gᵀ Λ of the worker's impulses to a field of its island's bodies.
+  static void addToBodies(Worker& worker, std::vector<SolverBody>& bodies, Vec6d SolverBody::*field) {
+    worker.problem.velocityChange(worker.velocityChange);
+    for (std::size_t k = 0; k < worker.islandBodies.size(); ++k)
+      bodies[static_cast<std::size_t>(worker.islandBodies[k])].*field += worker.velocityChange[k];
   }
 
   // The inverse of a symmetric 3×3 matrix, NaN when it is not positive definite.
   static Mat3d inverseOf(const Mat3d& m);
 
-  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_, frictionOf_, thirdOf_,
-      secondOrderOf_;
+  std::vector<int> parent_, islandOfRoot_, nonFiniteBodies_, frictionOf_, thirdOf_, secondOrderOf_;
   std::vector<std::vector<int>> islands_;
-  IslandProblem problem_;
-  std::vector<Vec6d> velocityChange_;
+  std::vector<Worker> workers_;
+  /// Per island of the running solve: its statistics, and its bodies when
+  /// its impulses came out non-finite.
+  std::vector<SolverStatistics> islandStatistics_;
+  std::vector<std::vector<int>> nonFiniteOf_;
 };
 
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
 SPOOK_INLINE void IslandStepper::project(const RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
-                                         SolverStatistics& statistics) {
+                                         SolverStatistics& statistics, WorkerPool* workers) {
   const std::vector<Row>& rows = set.rows;
   index(set, false);
   partition(set, bodies);
-  for (const std::vector<int>& island : islands_) {
-    buildProblem(set, bodies, island, h);
-    for (std::size_t k = 0; k < island.size(); ++k) {
-      const Row& r = rows[static_cast<std::size_t>(island[k])];
-      IslandProblem::Entry& e = problem_.rows[k];
+  const int count = prepareWorkers(set, solver, workers);
+  islandStatistics_.assign(islands_.size(), SolverStatistics{});
+  forEachIsland(workers, count, [&](std::size_t k, int w) {
+    Worker& worker = workers_[static_cast<std::size_t>(w)];
+    const std::vector<int>& island = islands_[k];
+    buildProblem(worker, set, bodies, island, h);
+    for (std::size_t i = 0; i < island.size(); ++i) {
+      const Row& r = rows[static_cast<std::size_t>(island[i])];
+      IslandProblem::Entry& e = worker.problem.rows[i];
       const double mobility = e.diagonal - e.sigma;
       e.q = r.speed - r.violation;  // speed carries the target violation here
       e.sigma = 1e-9 * mobility;
@@ -20757,25 +21046,30 @@ SPOOK_INLINE void IslandStepper::project(const RowSet& set, std::vector<SolverBo
       e.lower = -std::numeric_limits<double>::infinity();
       e.upper = std::numeric_limits<double>::infinity();
     }
-    solver.project(problem_, statistics);
-    addToBodies(bodies, &SolverBody::displacement);
-  }
+    worker.solver->project(worker.problem, islandStatistics_[k]);
+    addToBodies(worker, bodies, &SolverBody::displacement);
+  });
+  for (const SolverStatistics& island : islandStatistics_) statistics.addIsland(island);
 }
 
 SPOOK_INLINE void IslandStepper::solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
-                                       SolverStatistics& statistics) {
+                                       SolverStatistics& statistics, WorkerPool* workers) {
   std::vector<double>& impulses = set.impulses;
   index(set, true);
   partition(set, bodies);
-  nonFiniteBodies_.clear();
-  for (const std::vector<int>& island : islands_) {
-    buildProblem(set, bodies, island, h);
-    const bool warmStart = solver.getEnableWarmStarting();
-    const bool contactWarmStart = solver.getEnableContactWarmStarting();
-    const double contactFactor = solver.getContactWarmStartingFactor();
-    for (std::size_t k = 0; k < island.size(); ++k) {
-      IslandProblem::Entry& e = problem_.rows[k];
-      e.guess = std::clamp(impulses[static_cast<std::size_t>(island[k])], e.lower, e.upper);
+  const int count = prepareWorkers(set, solver, workers);
+  islandStatistics_.assign(islands_.size(), SolverStatistics{});
+  nonFiniteOf_.resize(islands_.size());
+  const bool warmStart = solver.getEnableWarmStarting();
+  const bool contactWarmStart = solver.getEnableContactWarmStarting();
+  const double contactFactor = solver.getContactWarmStartingFactor();
+  forEachIsland(workers, count, [&](std::size_t k, int w) {
+    Worker& worker = workers_[static_cast<std::size_t>(w)];
+    const std::vector<int>& island = islands_[k];
+    buildProblem(worker, set, bodies, island, h);
+    for (std::size_t i = 0; i < island.size(); ++i) {
+      IslandProblem::Entry& e = worker.problem.rows[i];
+      e.guess = std::clamp(impulses[static_cast<std::size_t>(island[i])], e.lower, e.upper);
       if (warmStart)
         e.impulse = e.guess;
       else if (contactWarmStart && e.constraint < 0 && e.bounded())
@@ -20783,12 +21077,32 @@ SPOOK_INLINE void IslandStepper::solve(RowSet& set, std::vector<SolverBody>& bod
       else
         e.impulse = std::clamp(0.0, e.lower, e.upper);
     }
-    if (!solver.solve(problem_, statistics))
-      nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
-    for (std::size_t k = 0; k < island.size(); ++k)
-      impulses[static_cast<std::size_t>(island[k])] = problem_.rows[k].impulse;
-    addToBodies(bodies, &SolverBody::freeVelocity);
+    nonFiniteOf_[k].clear();
+    if (!worker.solver->solve(worker.problem, islandStatistics_[k])) nonFiniteOf_[k] = worker.islandBodies;
+    for (std::size_t i = 0; i < island.size(); ++i)
+      impulses[static_cast<std::size_t>(island[i])] = worker.problem.rows[i].impulse;
+    addToBodies(worker, bodies, &SolverBody::freeVelocity);
+  });
+  nonFiniteBodies_.clear();
+  for (std::size_t k = 0; k < islands_.size(); ++k) {
+    statistics.addIsland(islandStatistics_[k]);
+    nonFiniteBodies_.insert(nonFiniteBodies_.end(), nonFiniteOf_[k].begin(), nonFiniteOf_[k].end());
   }
+}
+
+SPOOK_INLINE int IslandStepper::prepareWorkers(const RowSet& set, Solver& solver, WorkerPool* workers) {
+  const bool worthIt = workers && workers->size() > 1 && islands_.size() > 1 && set.size() >= kRowsWorthThreads;
+  const std::size_t count = worthIt ? std::size_t(workers->size()) : 1;
+  if (workers_.size() < count) workers_.resize(count);
+  workers_[0].solver = &solver;
+  for (std::size_t w = 1; w < count; ++w) {
+    ref_ptr<Solver>& copy = workers_[w].copy;
+    if (const Solver* kept = copy.get(); !kept || typeid(*kept) != typeid(solver)) copy = solver.makeWorker();
+    if (!copy) return 1;  // a policy without worker copies
+    copy->copySettings(solver);
+    workers_[w].solver = copy.get();
+  }
+  return int(count);
 }
 
 SPOOK_INLINE void IslandStepper::partition(const RowSet& set, const std::vector<SolverBody>& bodies) {
@@ -20824,31 +21138,35 @@ SPOOK_INLINE void IslandStepper::partition(const RowSet& set, const std::vector<
   }
 }
 
-SPOOK_INLINE void IslandStepper::buildProblem(const RowSet& set, const std::vector<SolverBody>& bodies,
-                                              const std::vector<int>& island, double h) {
+SPOOK_INLINE void IslandStepper::buildProblem(Worker& worker, const RowSet& set, const std::vector<SolverBody>& bodies,
+                                              const std::vector<int>& island, double h) const {
+  std::vector<int>& local = worker.local;
+  std::vector<int>& islandBodies = worker.islandBodies;
+  std::vector<int>& rowLocal = worker.rowLocal;
+  IslandProblem& problem = worker.problem;
   const std::vector<Row>& rows = set.rows;
-  local_.resize(bodies.size(), -1);
-  islandBodies_.clear();
+  local.resize(bodies.size(), -1);
+  islandBodies.clear();
   auto localIndex = [&](int body) {
     if (!isDynamic(bodies, body)) return -1;
-    int& l = local_[static_cast<std::size_t>(body)];
+    int& l = local[static_cast<std::size_t>(body)];
     if (l < 0) {
-      l = static_cast<int>(islandBodies_.size());
-      islandBodies_.push_back(body);
+      l = static_cast<int>(islandBodies.size());
+      islandBodies.push_back(body);
     }
     return l;
   };
-  rowLocal_.resize(rows.size(), -1);
-  for (std::size_t k = 0; k < island.size(); ++k) rowLocal_[static_cast<std::size_t>(island[k])] = static_cast<int>(k);
-  const auto localRow = [&](int i) { return i < 0 ? -1 : rowLocal_[static_cast<std::size_t>(i)]; };
-  problem_.rows.resize(island.size());
-  problem_.extraBodies.clear();
+  rowLocal.resize(rows.size(), -1);
+  for (std::size_t k = 0; k < island.size(); ++k) rowLocal[static_cast<std::size_t>(island[k])] = static_cast<int>(k);
+  const auto localRow = [&](int i) { return i < 0 ? -1 : rowLocal[static_cast<std::size_t>(i)]; };
+  problem.rows.resize(island.size());
+  problem.extraBodies.clear();
   for (std::size_t k = 0; k < island.size(); ++k) {
     const Row& r = rows[static_cast<std::size_t>(island[k])];
     const int link = frictionOf_[static_cast<std::size_t>(island[k])];
     const FrictionLink* f = link < 0 ? nullptr : &set.friction[static_cast<std::size_t>(link)];
     const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(island[k]));
-    IslandProblem::Entry& e = problem_.rows[k];
+    IslandProblem::Entry& e = problem.rows[k];
     e.body1 = e.body2 = e.extra = -1;
     // G v and G v* over every body (kinematic ones move too), M⁻¹Gᵀ over
     // the dynamic ones.
@@ -20860,9 +21178,9 @@ SPOOK_INLINE void IslandStepper::buildProblem(const RowSet& set, const std::vect
       const SolverBody& b = bodies[static_cast<std::size_t>(body)];
       speed += J->dot(b.velocity);
       freeSpeed += J->dot(b.freeVelocity);
-      if (b.dynamic) problem_.addBody(e, localIndex(body), *J, b.inverseMass, b.inverseInertia);
+      if (b.dynamic) problem.addBody(e, localIndex(body), *J, b.inverseMass, b.inverseInertia);
     }
-    const double mobility = problem_.mobility(e);
+    const double mobility = problem.mobility(e);
     if (r.holonomic) {
       const SpookParameters spook = SpookParameters::holonomic(r.compliance, r.damping, h);
       // Second order in h (row.hpp): the b' term reads the rate at which
@@ -20894,17 +21212,17 @@ SPOOK_INLINE void IslandStepper::buildProblem(const RowSet& set, const std::vect
     e.frictionBound = f ? f->bound : FrictionBound::FIXED;
     e.coneShare = 1.0;
   }
-  problem_.numBodies = static_cast<int>(islandBodies_.size());
+  problem.numBodies = static_cast<int>(islandBodies.size());
   // Mass matrices only where a direct solve may go through body space.
-  problem_.mass.resize(BodySpaceSolve::outnumbers(island.size(), islandBodies_.size()) ? islandBodies_.size() : 0);
-  for (std::size_t k = 0; k < problem_.mass.size(); ++k) {
-    const SolverBody& b = bodies[static_cast<std::size_t>(islandBodies_[k])];
-    Mat6d& M = problem_.mass[k];
+  problem.mass.resize(BodySpaceSolve::outnumbers(island.size(), islandBodies.size()) ? islandBodies.size() : 0);
+  for (std::size_t k = 0; k < problem.mass.size(); ++k) {
+    const SolverBody& b = bodies[static_cast<std::size_t>(islandBodies[k])];
+    Mat6d& M = problem.mass[k];
     M.setZero();
     M.topLeftCorner<3, 3>() = inverseOf(b.inverseMass);
     M.bottomRightCorner<3, 3>() = inverseOf(b.inverseInertia);
   }
-  for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
+  for (int body : islandBodies) local[static_cast<std::size_t>(body)] = -1;
 }
 
 SPOOK_INLINE Mat3d IslandStepper::inverseOf(const Mat3d& m) {
@@ -21855,6 +22173,7 @@ struct SimulationWorkspace {
   ContactRows<S> contactRows;
   IslandStepper islands;
   GeometricStiffness geometricStiffness;
+  WorkerPool workers;  ///< SimulationT::setNumThreads
 };
 
 // How many rows and side-table entries a RowSet held.
@@ -21923,7 +22242,8 @@ void SimulationT<S>::forgetPredictions() {
 
 template <Scalar S>
 void SimulationT<S>::collide() {
-  space_->update(bodies_.get());
+  work_->workers.resize(numThreads_);
+  space_->update(bodies_.get(), &work_->workers);
   statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
   notifyContacts();
 }
@@ -21962,14 +22282,14 @@ void SimulationT<S>::solveRows(const StepContext& step) {
   else
     w.geometricStiffness.clear();
   if (w.rows.empty()) return;
-  w.islands.solve(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  w.islands.solve(w.rows, w.solverBodies, h, *solver_, statistics_.solver, &w.workers);
   // Again while the forces just found need more geometric stiffness than
   // the solve had (geometric_stiffness.hpp).
   for (int solves = 1; stiffness && solves < detail::GeometricStiffness::kMaxSolves &&
                        w.geometricStiffness.refresh(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
        ++solves) {
     SolverStatistics again;
-    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again);
+    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again, &w.workers);
     statistics_.solver.addResolve(again);
   }
   for (int i : w.islands.getNonFiniteBodies())
@@ -22071,7 +22391,7 @@ void SimulationT<S>::postStabilize(const StepContext& step) {
   // Frozen bodies stand still, like static ones.
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (w.frozen[i]) w.solverBodies[i] = detail::SolverBody{};
-  w.islands.project(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  w.islands.project(w.rows, w.solverBodies, h, *solver_, statistics_.solver, &w.workers);
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (!detail::BodyIntegrator<S>::displace(*bodies_[i], w.solverBodies[i], S(h)))
       freeze(i, FreezeReason::NON_FINITE_STATE);

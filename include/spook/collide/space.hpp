@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
@@ -23,6 +24,7 @@
 #include <spook/core/implementation.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/referenced.hpp>
+#include <spook/core/worker_pool.hpp>
 #include <spook/dynamics/rigid_body.hpp>
 
 namespace spook {
@@ -140,7 +142,12 @@ class SpaceT : public Referenced {
   /// Finds the contacts between this space's geometries and those of
   /// `bodies` (a simulation's), reduces them and marks impacts; pairs that
   /// touched before and no longer do are listed in getSeparations().
-  void update(const std::vector<ref_ptr<Body>>& bodies = {});
+  /// With `workers`, the pairs are collided on its threads, with the same
+  /// contacts in the same order.
+  void update(const std::vector<ref_ptr<Body>>& bodies = {}, detail::WorkerPool* workers = nullptr);
+
+  /// Fewest candidate pairs worth spreading over threads.
+  static constexpr std::size_t kPairsWorthThreads = 64;
 
   /// The narrow phase of one pair of placed shapes (shape frame → world)
   /// through this space's colliders: their contact points into `sink`,
@@ -185,8 +192,11 @@ class SpaceT : public Referenced {
   /// before anything changes, rather than silently colliding with nothing.
   void gather(const std::vector<ref_ptr<Body>>& bodies);
 
-  /// Collides active_[i] with active_[j] at the poses update() took.
-  void narrowPhase(std::size_t i, std::size_t j);
+  /// Collides active_[i] with active_[j] at the poses update() took; a
+  /// contact goes to `found`, points dropped as non-finite are counted.
+  void narrowPhase(std::size_t i, std::size_t j, std::vector<Contact>& found, std::size_t& dropped) const;
+  /// Every candidate pair of pairs_, in order, into contacts_.
+  void narrowPhase(detail::WorkerPool* workers);
 
   // Each pair reduces as its rule says (the space's mode and resolution
   // unless a reduction rule overrides them); REDUCE_ALL pairs pool their
@@ -218,6 +228,11 @@ class SpaceT : public Referenced {
   std::vector<TransformT<S>> shapePoses_;
   std::vector<BoundingBoxT<S>> boxes_;
   detail::SweepAndPrune<S> broadphase_;
+  /// The broad phase's pairs that may collide (canCollide), in its order.
+  std::vector<std::pair<std::size_t, std::size_t>> pairs_;
+  /// Per piece of pairs_ on the threads: its contacts and dropped points.
+  std::vector<std::vector<Contact>> piecesFound_;
+  std::vector<std::size_t> piecesDropped_;
   std::vector<Contact> contacts_;
   /// The pairs in contact after the last update(), sorted by their ids.
   std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>>> touching_, nowTouching_;
@@ -275,7 +290,7 @@ void SpaceT<S>::setContactBinResolution(int resolution) {
 }
 
 template <Scalar S>
-void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies) {
+void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerPool* workers) {
   gather(bodies);
   boxes_.clear();
   firstShapePose_.clear();
@@ -289,9 +304,11 @@ void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies) {
     // round-off, stays a pair.
     boxes_.push_back(g->getBoundingBox(X_WG).grownBy(S(detail::kTouchingGap)));
   }
-  contacts_.clear();
-  numDroppedContactPoints_ = 0;
-  broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) { narrowPhase(i, j); });
+  pairs_.clear();
+  broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) {
+    if (canCollide(*active_[i], *active_[j])) pairs_.emplace_back(i, j);
+  });
+  narrowPhase(workers);
   reduce();
   trackEvents();
 }
@@ -327,8 +344,33 @@ void SpaceT<S>::gather(const std::vector<ref_ptr<Body>>& bodies) {
 }
 
 template <Scalar S>
-void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j) {
-  if (!canCollide(*active_[i], *active_[j])) return;
+void SpaceT<S>::narrowPhase(detail::WorkerPool* workers) {
+  contacts_.clear();
+  numDroppedContactPoints_ = 0;
+  const int threads = workers ? workers->size() : 1;
+  if (threads < 2 || pairs_.size() < kPairsWorthThreads) {
+    for (const auto& [i, j] : pairs_) narrowPhase(i, j, contacts_, numDroppedContactPoints_);
+    return;
+  }
+  // Contiguous pieces, a few per thread so that one slow piece (a trimesh
+  // pair) does not hold the others up; joined in order.
+  const std::size_t pieces = std::min<std::size_t>(4 * std::size_t(threads), pairs_.size() / 16);
+  piecesFound_.resize(pieces);
+  piecesDropped_.assign(pieces, 0);
+  workers->forEach(pieces, [&](std::size_t piece, int) {
+    piecesFound_[piece].clear();
+    for (std::size_t k = pairs_.size() * piece / pieces, end = pairs_.size() * (piece + 1) / pieces; k < end; ++k)
+      narrowPhase(pairs_[k].first, pairs_[k].second, piecesFound_[piece], piecesDropped_[piece]);
+  });
+  for (std::size_t piece = 0; piece < pieces; ++piece) {
+    std::move(piecesFound_[piece].begin(), piecesFound_[piece].end(), std::back_inserter(contacts_));
+    piecesFound_[piece].clear();
+    numDroppedContactPoints_ += piecesDropped_[piece];
+  }
+}
+
+template <Scalar S>
+void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j, std::vector<Contact>& found, std::size_t& dropped) const {
   // One order per pair, so that normals and event keys are stable.
   if (active_[i]->getId() > active_[j]->getId()) std::swap(i, j);
   Geometry* first = active_[i];
@@ -341,8 +383,8 @@ void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j) {
     for (std::size_t k2 = 0; k2 < shapes2.size(); ++k2)
       collide_(*shapes1[k1].shape, shapePoses_[firstShapePose_[i] + k1], *shapes2[k2].shape,
                shapePoses_[firstShapePose_[j] + k2], sink);
-  numDroppedContactPoints_ += sink.getNumDropped();
-  if (!contact.points().empty()) contacts_.push_back(std::move(contact));
+  dropped += sink.getNumDropped();
+  if (!contact.points().empty()) found.push_back(std::move(contact));
 }
 
 template <Scalar S>

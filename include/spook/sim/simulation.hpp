@@ -89,6 +89,15 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   [[nodiscard]] Solver* getSolver() const { return solver_.get(); }
   void setSolver(ref_ptr<Solver> solver);
 
+  /// Threads a step may use, the calling one included (default 1; at most
+  /// kMaxThreads): the narrow phase's geometry pairs and the islands'
+  /// solves are spread over them (a pile of bodies in contact is one
+  /// island). The results are the same bit for bit for any number of
+  /// threads. The threads wait between steps and end with the simulation.
+  [[nodiscard]] int getNumThreads() const { return numThreads_; }
+  void setNumThreads(int n);
+  static constexpr int kMaxThreads = 256;
+
   // --- Gravity ---------------------------------------------------------------
 
   [[nodiscard]] GravityFieldT<S>* getGravityField() const { return gravity_.get(); }
@@ -295,6 +304,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   S timeBase_ = S(0);
   std::uint64_t stepsSinceBase_ = 0;
   bool stepping_ = false;
+  int numThreads_ = 1;
   ref_ptr<GravityFieldT<S>> gravity_ = new UniformGravityFieldT<S>();
   detail::Roster<Body, true> bodies_{"RigidBody"};
   detail::Roster<Listener> listeners_{"StepEventListener"};
@@ -344,6 +354,12 @@ template <Scalar S>
 void SimulationT<S>::setSolver(ref_ptr<Solver> solver) {
   if (!solver) throw error("solver must not be null", "nullptr");
   solver_ = std::move(solver);
+}
+
+template <Scalar S>
+void SimulationT<S>::setNumThreads(int n) {
+  if (n < 1 || n > kMaxThreads) throw error("number of threads must be in [1, " + std::to_string(kMaxThreads) + "]", n);
+  numThreads_ = n;
 }
 
 template <Scalar S>

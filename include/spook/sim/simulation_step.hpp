@@ -15,6 +15,7 @@
 #include <vector>
 
 #include <spook/collide/continuous.hpp>
+#include <spook/core/worker_pool.hpp>
 #include <spook/sim/constraint_rows.hpp>
 #include <spook/sim/contact_rows.hpp>
 #include <spook/sim/simulation.hpp>
@@ -45,6 +46,7 @@ struct SimulationWorkspace {
   ContactRows<S> contactRows;
   IslandStepper islands;
   GeometricStiffness geometricStiffness;
+  WorkerPool workers;  ///< SimulationT::setNumThreads
 };
 
 // How many rows and side-table entries a RowSet held.
@@ -113,7 +115,8 @@ void SimulationT<S>::forgetPredictions() {
 
 template <Scalar S>
 void SimulationT<S>::collide() {
-  space_->update(bodies_.get());
+  work_->workers.resize(numThreads_);
+  space_->update(bodies_.get(), &work_->workers);
   statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
   notifyContacts();
 }
@@ -152,14 +155,14 @@ void SimulationT<S>::solveRows(const StepContext& step) {
   else
     w.geometricStiffness.clear();
   if (w.rows.empty()) return;
-  w.islands.solve(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  w.islands.solve(w.rows, w.solverBodies, h, *solver_, statistics_.solver, &w.workers);
   // Again while the forces just found need more geometric stiffness than
   // the solve had (geometric_stiffness.hpp).
   for (int solves = 1; stiffness && solves < detail::GeometricStiffness::kMaxSolves &&
                        w.geometricStiffness.refresh(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
        ++solves) {
     SolverStatistics again;
-    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again);
+    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again, &w.workers);
     statistics_.solver.addResolve(again);
   }
   for (int i : w.islands.getNonFiniteBodies())
@@ -261,7 +264,7 @@ void SimulationT<S>::postStabilize(const StepContext& step) {
   // Frozen bodies stand still, like static ones.
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (w.frozen[i]) w.solverBodies[i] = detail::SolverBody{};
-  w.islands.project(w.rows, w.solverBodies, h, *solver_, statistics_.solver);
+  w.islands.project(w.rows, w.solverBodies, h, *solver_, statistics_.solver, &w.workers);
   for (std::size_t i = 0; i < bodies_.size(); ++i)
     if (!detail::BodyIntegrator<S>::displace(*bodies_[i], w.solverBodies[i], S(h)))
       freeze(i, FreezeReason::NON_FINITE_STATE);

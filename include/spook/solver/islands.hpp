@@ -6,11 +6,13 @@
 #include <limits>
 #include <numeric>
 #include <span>
+#include <typeinfo>
 #include <vector>
 
 #include <Eigen/Cholesky>
 
 #include <spook/core/implementation.hpp>
+#include <spook/core/worker_pool.hpp>
 #include <spook/solver/body_space_solve.hpp>
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/row.hpp>
@@ -46,7 +48,7 @@ class IslandStepper {
   /// orientations. Fills each body's displacement (Δx, Δθ) that brings the
   /// rows to their targets.
   void project(const RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
-               SolverStatistics& statistics);
+               SolverStatistics& statistics, WorkerPool* workers = nullptr);
 
   /// The dynamic bodies (indices into `bodies`) of the islands whose
   /// impulses the last solve() dropped as non-finite.
@@ -54,8 +56,15 @@ class IslandStepper {
 
   /// The rows' impulses: each row's last impulse in (the warm start and the
   /// direct solver's first guess), the solved one out; rows that join no
-  /// island (between static bodies) keep theirs.
-  void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics);
+  /// island (between static bodies) keep theirs. With `workers`, islands
+  /// are solved on its threads (each by a worker copy of `solver`, see
+  /// Solver::makeWorker), with the same results.
+  void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics,
+             WorkerPool* workers = nullptr);
+
+  /// Fewest rows in a step worth spreading its islands over threads (a
+  /// thread's wake-up costs about what ~100 rows' solve does).
+  static constexpr std::size_t kRowsWorthThreads = 256;
 
  private:
   int find(int i) {
@@ -90,37 +99,67 @@ class IslandStepper {
 
   void partition(const RowSet& set, const std::vector<SolverBody>& bodies);
 
-  // The island's entries, impulses and guesses zero (index() first).
-  void buildProblem(const RowSet& set, const std::vector<SolverBody>& bodies, const std::vector<int>& island, double h);
+  // What one thread needs to solve an island: its problem, its bodies'
+  // local indices and a solver (worker 0: the simulation's own).
+  struct Worker {
+    std::vector<int> local, islandBodies, rowLocal;
+    IslandProblem problem;
+    std::vector<Vec6d> velocityChange;
+    Solver* solver = nullptr;
+    ref_ptr<Solver> copy;  ///< workers after the first: their copy of the simulation's solver
+  };
 
-  // Adds M⁻¹Gᵀ Λ of problem_'s impulses to a field of the island's bodies.
-  void addToBodies(std::vector<SolverBody>& bodies, Vec6d SolverBody::*field) {
-    problem_.velocityChange(velocityChange_);
-    for (std::size_t k = 0; k < islandBodies_.size(); ++k)
-      bodies[static_cast<std::size_t>(islandBodies_[k])].*field += velocityChange_[k];
+  // Workers for `workers`' threads with solvers like `solver`; how many of
+  // them to use (1 when the islands are to be solved one after another).
+  int prepareWorkers(const RowSet& set, Solver& solver, WorkerPool* workers);
+
+  // Runs island(k, worker) for every island, on `count` workers.
+  template <class F>
+  void forEachIsland(WorkerPool* workers, int count, const F& island) {
+    if (count > 1)
+      workers->forEach(islands_.size(), island);
+    else
+      for (std::size_t k = 0; k < islands_.size(); ++k) island(k, 0);
+  }
+
+  // The island's entries, impulses and guesses zero (index() first).
+  void buildProblem(Worker& worker, const RowSet& set, const std::vector<SolverBody>& bodies,
+                    const std::vector<int>& island, double h) const;
+
+  // Adds M⁻¹Gᵀ Λ of the worker's impulses to a field of its island's bodies.
+  static void addToBodies(Worker& worker, std::vector<SolverBody>& bodies, Vec6d SolverBody::*field) {
+    worker.problem.velocityChange(worker.velocityChange);
+    for (std::size_t k = 0; k < worker.islandBodies.size(); ++k)
+      bodies[static_cast<std::size_t>(worker.islandBodies[k])].*field += worker.velocityChange[k];
   }
 
   // The inverse of a symmetric 3×3 matrix, NaN when it is not positive definite.
   static Mat3d inverseOf(const Mat3d& m);
 
-  std::vector<int> parent_, islandOfRoot_, local_, islandBodies_, rowLocal_, nonFiniteBodies_, frictionOf_, thirdOf_,
-      secondOrderOf_;
+  std::vector<int> parent_, islandOfRoot_, nonFiniteBodies_, frictionOf_, thirdOf_, secondOrderOf_;
   std::vector<std::vector<int>> islands_;
-  IslandProblem problem_;
-  std::vector<Vec6d> velocityChange_;
+  std::vector<Worker> workers_;
+  /// Per island of the running solve: its statistics, and its bodies when
+  /// its impulses came out non-finite.
+  std::vector<SolverStatistics> islandStatistics_;
+  std::vector<std::vector<int>> nonFiniteOf_;
 };
 
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
 SPOOK_INLINE void IslandStepper::project(const RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
-                                         SolverStatistics& statistics) {
+                                         SolverStatistics& statistics, WorkerPool* workers) {
   const std::vector<Row>& rows = set.rows;
   index(set, false);
   partition(set, bodies);
-  for (const std::vector<int>& island : islands_) {
-    buildProblem(set, bodies, island, h);
-    for (std::size_t k = 0; k < island.size(); ++k) {
-      const Row& r = rows[static_cast<std::size_t>(island[k])];
-      IslandProblem::Entry& e = problem_.rows[k];
+  const int count = prepareWorkers(set, solver, workers);
+  islandStatistics_.assign(islands_.size(), SolverStatistics{});
+  forEachIsland(workers, count, [&](std::size_t k, int w) {
+    Worker& worker = workers_[static_cast<std::size_t>(w)];
+    const std::vector<int>& island = islands_[k];
+    buildProblem(worker, set, bodies, island, h);
+    for (std::size_t i = 0; i < island.size(); ++i) {
+      const Row& r = rows[static_cast<std::size_t>(island[i])];
+      IslandProblem::Entry& e = worker.problem.rows[i];
       const double mobility = e.diagonal - e.sigma;
       e.q = r.speed - r.violation;  // speed carries the target violation here
       e.sigma = 1e-9 * mobility;
@@ -128,25 +167,30 @@ SPOOK_INLINE void IslandStepper::project(const RowSet& set, std::vector<SolverBo
       e.lower = -std::numeric_limits<double>::infinity();
       e.upper = std::numeric_limits<double>::infinity();
     }
-    solver.project(problem_, statistics);
-    addToBodies(bodies, &SolverBody::displacement);
-  }
+    worker.solver->project(worker.problem, islandStatistics_[k]);
+    addToBodies(worker, bodies, &SolverBody::displacement);
+  });
+  for (const SolverStatistics& island : islandStatistics_) statistics.addIsland(island);
 }
 
 SPOOK_INLINE void IslandStepper::solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
-                                       SolverStatistics& statistics) {
+                                       SolverStatistics& statistics, WorkerPool* workers) {
   std::vector<double>& impulses = set.impulses;
   index(set, true);
   partition(set, bodies);
-  nonFiniteBodies_.clear();
-  for (const std::vector<int>& island : islands_) {
-    buildProblem(set, bodies, island, h);
-    const bool warmStart = solver.getEnableWarmStarting();
-    const bool contactWarmStart = solver.getEnableContactWarmStarting();
-    const double contactFactor = solver.getContactWarmStartingFactor();
-    for (std::size_t k = 0; k < island.size(); ++k) {
-      IslandProblem::Entry& e = problem_.rows[k];
-      e.guess = std::clamp(impulses[static_cast<std::size_t>(island[k])], e.lower, e.upper);
+  const int count = prepareWorkers(set, solver, workers);
+  islandStatistics_.assign(islands_.size(), SolverStatistics{});
+  nonFiniteOf_.resize(islands_.size());
+  const bool warmStart = solver.getEnableWarmStarting();
+  const bool contactWarmStart = solver.getEnableContactWarmStarting();
+  const double contactFactor = solver.getContactWarmStartingFactor();
+  forEachIsland(workers, count, [&](std::size_t k, int w) {
+    Worker& worker = workers_[static_cast<std::size_t>(w)];
+    const std::vector<int>& island = islands_[k];
+    buildProblem(worker, set, bodies, island, h);
+    for (std::size_t i = 0; i < island.size(); ++i) {
+      IslandProblem::Entry& e = worker.problem.rows[i];
+      e.guess = std::clamp(impulses[static_cast<std::size_t>(island[i])], e.lower, e.upper);
       if (warmStart)
         e.impulse = e.guess;
       else if (contactWarmStart && e.constraint < 0 && e.bounded())
@@ -154,12 +198,32 @@ SPOOK_INLINE void IslandStepper::solve(RowSet& set, std::vector<SolverBody>& bod
       else
         e.impulse = std::clamp(0.0, e.lower, e.upper);
     }
-    if (!solver.solve(problem_, statistics))
-      nonFiniteBodies_.insert(nonFiniteBodies_.end(), islandBodies_.begin(), islandBodies_.end());
-    for (std::size_t k = 0; k < island.size(); ++k)
-      impulses[static_cast<std::size_t>(island[k])] = problem_.rows[k].impulse;
-    addToBodies(bodies, &SolverBody::freeVelocity);
+    nonFiniteOf_[k].clear();
+    if (!worker.solver->solve(worker.problem, islandStatistics_[k])) nonFiniteOf_[k] = worker.islandBodies;
+    for (std::size_t i = 0; i < island.size(); ++i)
+      impulses[static_cast<std::size_t>(island[i])] = worker.problem.rows[i].impulse;
+    addToBodies(worker, bodies, &SolverBody::freeVelocity);
+  });
+  nonFiniteBodies_.clear();
+  for (std::size_t k = 0; k < islands_.size(); ++k) {
+    statistics.addIsland(islandStatistics_[k]);
+    nonFiniteBodies_.insert(nonFiniteBodies_.end(), nonFiniteOf_[k].begin(), nonFiniteOf_[k].end());
   }
+}
+
+SPOOK_INLINE int IslandStepper::prepareWorkers(const RowSet& set, Solver& solver, WorkerPool* workers) {
+  const bool worthIt = workers && workers->size() > 1 && islands_.size() > 1 && set.size() >= kRowsWorthThreads;
+  const std::size_t count = worthIt ? std::size_t(workers->size()) : 1;
+  if (workers_.size() < count) workers_.resize(count);
+  workers_[0].solver = &solver;
+  for (std::size_t w = 1; w < count; ++w) {
+    ref_ptr<Solver>& copy = workers_[w].copy;
+    if (const Solver* kept = copy.get(); !kept || typeid(*kept) != typeid(solver)) copy = solver.makeWorker();
+    if (!copy) return 1;  // a policy without worker copies
+    copy->copySettings(solver);
+    workers_[w].solver = copy.get();
+  }
+  return int(count);
 }
 
 SPOOK_INLINE void IslandStepper::partition(const RowSet& set, const std::vector<SolverBody>& bodies) {
@@ -195,31 +259,35 @@ SPOOK_INLINE void IslandStepper::partition(const RowSet& set, const std::vector<
   }
 }
 
-SPOOK_INLINE void IslandStepper::buildProblem(const RowSet& set, const std::vector<SolverBody>& bodies,
-                                              const std::vector<int>& island, double h) {
+SPOOK_INLINE void IslandStepper::buildProblem(Worker& worker, const RowSet& set, const std::vector<SolverBody>& bodies,
+                                              const std::vector<int>& island, double h) const {
+  std::vector<int>& local = worker.local;
+  std::vector<int>& islandBodies = worker.islandBodies;
+  std::vector<int>& rowLocal = worker.rowLocal;
+  IslandProblem& problem = worker.problem;
   const std::vector<Row>& rows = set.rows;
-  local_.resize(bodies.size(), -1);
-  islandBodies_.clear();
+  local.resize(bodies.size(), -1);
+  islandBodies.clear();
   auto localIndex = [&](int body) {
     if (!isDynamic(bodies, body)) return -1;
-    int& l = local_[static_cast<std::size_t>(body)];
+    int& l = local[static_cast<std::size_t>(body)];
     if (l < 0) {
-      l = static_cast<int>(islandBodies_.size());
-      islandBodies_.push_back(body);
+      l = static_cast<int>(islandBodies.size());
+      islandBodies.push_back(body);
     }
     return l;
   };
-  rowLocal_.resize(rows.size(), -1);
-  for (std::size_t k = 0; k < island.size(); ++k) rowLocal_[static_cast<std::size_t>(island[k])] = static_cast<int>(k);
-  const auto localRow = [&](int i) { return i < 0 ? -1 : rowLocal_[static_cast<std::size_t>(i)]; };
-  problem_.rows.resize(island.size());
-  problem_.extraBodies.clear();
+  rowLocal.resize(rows.size(), -1);
+  for (std::size_t k = 0; k < island.size(); ++k) rowLocal[static_cast<std::size_t>(island[k])] = static_cast<int>(k);
+  const auto localRow = [&](int i) { return i < 0 ? -1 : rowLocal[static_cast<std::size_t>(i)]; };
+  problem.rows.resize(island.size());
+  problem.extraBodies.clear();
   for (std::size_t k = 0; k < island.size(); ++k) {
     const Row& r = rows[static_cast<std::size_t>(island[k])];
     const int link = frictionOf_[static_cast<std::size_t>(island[k])];
     const FrictionLink* f = link < 0 ? nullptr : &set.friction[static_cast<std::size_t>(link)];
     const ThirdBody* third = thirdBodyOf(set, static_cast<std::size_t>(island[k]));
-    IslandProblem::Entry& e = problem_.rows[k];
+    IslandProblem::Entry& e = problem.rows[k];
     e.body1 = e.body2 = e.extra = -1;
     // G v and G v* over every body (kinematic ones move too), M⁻¹Gᵀ over
     // the dynamic ones.
@@ -231,9 +299,9 @@ SPOOK_INLINE void IslandStepper::buildProblem(const RowSet& set, const std::vect
       const SolverBody& b = bodies[static_cast<std::size_t>(body)];
       speed += J->dot(b.velocity);
       freeSpeed += J->dot(b.freeVelocity);
-      if (b.dynamic) problem_.addBody(e, localIndex(body), *J, b.inverseMass, b.inverseInertia);
+      if (b.dynamic) problem.addBody(e, localIndex(body), *J, b.inverseMass, b.inverseInertia);
     }
-    const double mobility = problem_.mobility(e);
+    const double mobility = problem.mobility(e);
     if (r.holonomic) {
       const SpookParameters spook = SpookParameters::holonomic(r.compliance, r.damping, h);
       // Second order in h (row.hpp): the b' term reads the rate at which
@@ -265,17 +333,17 @@ SPOOK_INLINE void IslandStepper::buildProblem(const RowSet& set, const std::vect
     e.frictionBound = f ? f->bound : FrictionBound::FIXED;
     e.coneShare = 1.0;
   }
-  problem_.numBodies = static_cast<int>(islandBodies_.size());
+  problem.numBodies = static_cast<int>(islandBodies.size());
   // Mass matrices only where a direct solve may go through body space.
-  problem_.mass.resize(BodySpaceSolve::outnumbers(island.size(), islandBodies_.size()) ? islandBodies_.size() : 0);
-  for (std::size_t k = 0; k < problem_.mass.size(); ++k) {
-    const SolverBody& b = bodies[static_cast<std::size_t>(islandBodies_[k])];
-    Mat6d& M = problem_.mass[k];
+  problem.mass.resize(BodySpaceSolve::outnumbers(island.size(), islandBodies.size()) ? islandBodies.size() : 0);
+  for (std::size_t k = 0; k < problem.mass.size(); ++k) {
+    const SolverBody& b = bodies[static_cast<std::size_t>(islandBodies[k])];
+    Mat6d& M = problem.mass[k];
     M.setZero();
     M.topLeftCorner<3, 3>() = inverseOf(b.inverseMass);
     M.bottomRightCorner<3, 3>() = inverseOf(b.inverseInertia);
   }
-  for (int body : islandBodies_) local_[static_cast<std::size_t>(body)] = -1;
+  for (int body : islandBodies) local[static_cast<std::size_t>(body)] = -1;
 }
 
 SPOOK_INLINE Mat3d IslandStepper::inverseOf(const Mat3d& m) {

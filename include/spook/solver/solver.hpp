@@ -64,6 +64,25 @@ struct SolverStatistics {
     nonFiniteIslands = again.nonFiniteIslands;
     ++geometricStiffnessResolves;
   }
+
+  /// Takes in another island's solve of the same step: counts add up,
+  /// maxima stay maxima.
+  void addIsland(const SolverStatistics& island) {
+    numIslands += island.numIslands;
+    numRows += island.numRows;
+    numDirectRows += island.numDirectRows;
+    numIterativeRows += island.numIterativeRows;
+    iterations = std::max(iterations, island.iterations);
+    factorizations += island.factorizations;
+    frictionIterations = std::max(frictionIterations, island.frictionIterations);
+    complementarityError = std::max(complementarityError, island.complementarityError);
+    converged = converged && island.converged;
+    directFallbacks += island.directFallbacks;
+    solveTime += island.solveTime;
+    nonFiniteIslands += island.nonFiniteIslands;
+    pivotBudgetCuts += island.pivotBudgetCuts;
+    geometricStiffnessResolves += island.geometricStiffnessResolves;
+  }
 };
 
 /// Solves the rows of an island: the simulation's solver policy. Subclasses
@@ -219,6 +238,16 @@ class Solver : public Referenced {
   /// come out non-finite are dropped (set to zero) and counted; false then.
   bool solve(detail::IslandProblem& problem, SolverStatistics& statistics);
 
+  /// A solver of the same policy and settings with a workspace of its own,
+  /// for another thread's islands (SimulationT::setNumThreads); null where
+  /// the policy has none (a subclass of a user's: its islands are then
+  /// solved one after another). The workspace caches only what it would
+  /// compute again from the same island, so either solver gives the same
+  /// answer bit for bit.
+  [[nodiscard]] virtual ref_ptr<Solver> makeWorker() const { return nullptr; }
+  /// Takes every setting of `other` (not its workspace).
+  void copySettings(const Solver& other);
+
  protected:
   Solver();
   ~Solver() override;
@@ -271,6 +300,8 @@ class DirectSolver final : public Solver {
   [[nodiscard]] const char* getName() const override { return "direct"; }
   [[nodiscard]] bool projects(SolveType) const override { return getEnablePostStabilization(); }
 
+  [[nodiscard]] ref_ptr<Solver> makeWorker() const override;
+
  protected:
   void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
 };
@@ -282,6 +313,8 @@ class IterativeSolver final : public Solver {
  public:
   [[nodiscard]] const char* getName() const override { return "iterative"; }
   [[nodiscard]] bool projects(SolveType) const override { return false; }
+
+  [[nodiscard]] ref_ptr<Solver> makeWorker() const override;
 
  protected:
   void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
@@ -303,6 +336,8 @@ class HybridSolver final : public Solver {
  public:
   HybridSolver() { setEnablePostStabilization(true); }
   [[nodiscard]] const char* getName() const override { return "hybrid"; }
+
+  [[nodiscard]] ref_ptr<Solver> makeWorker() const override;
 
  protected:
   void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;

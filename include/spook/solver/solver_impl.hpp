@@ -142,6 +142,36 @@ SPOOK_INLINE double Solver::complementarityError(const detail::IslandProblem& pr
   return worst;
 }
 
+SPOOK_INLINE void Solver::copySettings(const Solver& other) {
+  iterations_ = other.iterations_;
+  tolerance_ = other.tolerance_;
+  method_ = other.method_;
+  maxPivotSteps_ = other.maxPivotSteps_;
+  postStabilization_ = other.postStabilization_;
+  warmStarting_ = other.warmStarting_;
+  contactWarmStarting_ = other.contactWarmStarting_;
+  contactWarmStartingFactor_ = other.contactWarmStartingFactor_;
+  geometricStiffness_ = other.geometricStiffness_;
+  geometricStiffnessThreshold_ = other.geometricStiffnessThreshold_;
+  projectionIterations_ = other.projectionIterations_;
+  frictionIterations_ = other.frictionIterations_;
+  frictionTolerance_ = other.frictionTolerance_;
+  couplingIterations_ = other.couplingIterations_;
+}
+
+namespace detail {
+template <class Policy>
+ref_ptr<Solver> workerLike(const Policy& policy) {
+  ref_ptr<Solver> worker = new Policy();
+  worker->copySettings(policy);
+  return worker;
+}
+}  // namespace detail
+
+SPOOK_INLINE ref_ptr<Solver> DirectSolver::makeWorker() const { return detail::workerLike(*this); }
+SPOOK_INLINE ref_ptr<Solver> IterativeSolver::makeWorker() const { return detail::workerLike(*this); }
+SPOOK_INLINE ref_ptr<Solver> HybridSolver::makeWorker() const { return detail::workerLike(*this); }
+
 SPOOK_INLINE void DirectSolver::solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const std::vector<int> rows = allRows(problem);
   statistics.numDirectRows += static_cast<int>(rows.size());
