@@ -9,7 +9,9 @@
 // given, runs only the scenes whose name contains it, and argv[3] only the
 // policies whose name and friction solve type contain it ("direct", "hybrid
 // SPLIT", "bullet"), and argv[4] gives spook's threads per simulation
-// (SimulationT::setNumThreads, default 1).
+// (SimulationT::setNumThreads, default 1). `contact_study --scaling [csv]
+// [threads]` measures the cost per step against the body count instead
+// (scaling() below; bench/plot_contact_scaling.py).
 //
 // Scenes (gravity (0, 0, −9.80665) m/s², density 1000 kg/m³, one material
 // for every geometry whose contact material has friction coefficient 0.5 and
@@ -23,12 +25,16 @@
 //               half a pitch and resting on the one below); 5 s at h = 1/60
 //   stack 1/60  10 unit cubes stacked on the ground; 10 s at h = 1/60
 //   stack 1/30  the same at h = 1/30
+//   20 stacks   20 such stacks 3 m apart on a 4 × 5 grid (20 islands);
+//               5 s at h = 1/60
 //
 // Policies: direct (its defaults, post-stabilization on); hybrid with the
 // contact material's friction model (iterative projected cone) solved SPLIT
 // (the default: normals direct, friction iterative), DIRECT_AND_ITERATIVE
-// and DIRECT; iterative (projected Gauss–Seidel, cold started) with 16 and 64
-// sweeps. The direct and iterative policies ignore the solve type ("-").
+// and DIRECT; "hybrid sleep", the default hybrid with the simulation's auto
+// sleep on (SimulationT::getAutoSleep); iterative (projected Gauss–Seidel,
+// cold started) with 16 and 64 sweeps. The direct and iterative policies
+// ignore the solve type ("-").
 //
 // Reference engines, built in when their packages are installed (CMake finds
 // them with pkg-config; bench/study_engine_*.cpp), each with its own defaults
@@ -111,6 +117,7 @@ enum class Kind { SPHERES, PYRAMID, STACK };
 struct StudyScene {
   study::SceneDescription description;
   std::vector<std::size_t> tracked;  ///< dynamic-body indices
+  double halfWidth = 1.0;            ///< m, spheres: a sphere farther out than this left the box
 };
 
 study::BodySpec ground() {
@@ -149,37 +156,41 @@ double jitter(std::uint32_t i, std::uint32_t axis) {
   return double(x) / double(UINT32_MAX) * 2.0 - 1.0;
 }
 
-StudyScene spheres() {
-  constexpr int kCount = 1000, kGrid = 9;
+/// `count` spheres of radius 0.1 m poured from a jittered square grid of
+/// about 13 layers into a box that fits the grid (2.2 m wide for the
+/// 1,000 of the table's scene).
+StudyScene spheres(int count) {
   constexpr double kRadius = 0.1, kPitch = 0.22, kLayerPitch = 0.25;  // m
   constexpr double kWallHalf = 2.0;                                   // m: walls 4 m tall
+  const int grid = std::max(1, int(std::ceil(std::sqrt(count / 13.0))));
+  const double inner = grid * kPitch / 2.0 + 0.01;  // m: the walls' inner faces
   StudyScene scene;
+  scene.halfWidth = inner;
   auto& bodies = scene.description.bodies;
   bodies.push_back(ground());
   for (double side : {-1.0, 1.0}) {
-    bodies.push_back(box({0.1, 1.2, kWallHalf}, {1.1 * side, 0, kWallHalf}, false));
-    bodies.push_back(box({1.2, 0.1, kWallHalf}, {0, 1.1 * side, kWallHalf}, false));
+    bodies.push_back(box({0.1, inner + 0.2, kWallHalf}, {(inner + 0.1) * side, 0, kWallHalf}, false));
+    bodies.push_back(box({inner + 0.2, 0.1, kWallHalf}, {0, (inner + 0.1) * side, kWallHalf}, false));
   }
   // Neighbours 2 cm apart on the grid, so a jitter of ±8 mm keeps them apart;
   // the outermost stay 1.2 cm inside the walls.
-  for (int i = 0; i < kCount; ++i) {
-    const int layer = i / (kGrid * kGrid), column = i % kGrid, row = (i / kGrid) % kGrid;
+  for (int i = 0; i < count; ++i) {
+    const int layer = i / (grid * grid), column = i % grid, row = (i / grid) % grid;
     const std::uint32_t slot = std::uint32_t(i);
-    bodies.push_back(sphere(kRadius, {(column - (kGrid - 1) / 2.0) * kPitch + 0.008 * jitter(slot, 0),
-                                      (row - (kGrid - 1) / 2.0) * kPitch + 0.008 * jitter(slot, 1),
+    bodies.push_back(sphere(kRadius, {(column - (grid - 1) / 2.0) * kPitch + 0.008 * jitter(slot, 0),
+                                      (row - (grid - 1) / 2.0) * kPitch + 0.008 * jitter(slot, 1),
                                       2.0 * kRadius + layer * kLayerPitch + 0.02 * jitter(slot, 2)}));
   }
   return scene;
 }
 
-StudyScene pyramid() {
-  constexpr int kBase = 20;
+StudyScene pyramid(int base) {
   constexpr double kPitch = 1.01;  // m: unit cubes with 1 cm gaps
   StudyScene scene;
   scene.description.bodies.push_back(ground());
   std::size_t index = 0;
-  for (int level = 0; level < kBase; ++level) {
-    const int count = kBase - level;
+  for (int level = 0; level < base; ++level) {
+    const int count = base - level;
     for (int i = 0; i < count; ++i) {
       scene.description.bodies.push_back(box({0.5, 0.5, 0.5}, {(i - (count - 1) / 2.0) * kPitch, 0.0, 0.5 + level}, true));
       scene.tracked.push_back(index++);
@@ -216,6 +227,8 @@ struct SceneSpec {
   Kind kind;
   double h, duration;  ///< s
   std::function<StudyScene()> build;
+  /// Wall-clock (s) after which a run stops, as one too slow step stops it.
+  double budget = std::numeric_limits<double>::infinity();
 };
 
 // --- Engines -----------------------------------------------------------------
@@ -227,7 +240,7 @@ struct SceneSpec {
 class SpookEngine final : public study::Engine {
  public:
   SpookEngine(const study::SceneDescription& scene, spook::SolverRef solver, spook::SolveType frictionSolveType,
-              int threads) {
+              int threads, bool sleep) {
     sim_->setUniformGravity(Vec3(0, 0, scene.gravity));
     material_->getBulkMaterial()->setDensity(scene.density);
     auto* cm = sim_->getMaterialManager()->getOrCreateContactMaterial(material_.get(), material_.get());
@@ -239,6 +252,7 @@ class SpookEngine final : public study::Engine {
     sim_->setTimeStep(scene.timeStep);
     sim_->setSolver(solver);
     sim_->setNumThreads(threads);
+    sim_->getAutoSleep()->setEnable(sleep);
   }
 
   void step() override { sim_->stepForward(); }
@@ -330,10 +344,11 @@ const char* solveTypeName(spook::SolveType type) {
 }
 
 Policy spookPolicy(std::string name, std::function<spook::SolverRef()> solver, std::optional<spook::SolveType> type,
-                   int threads) {
+                   int threads, bool sleep = false) {
   return {std::move(name), type ? solveTypeName(*type) : "-",
-          [solver, type, threads](const study::SceneDescription& scene) -> std::unique_ptr<study::Engine> {
-            return std::make_unique<SpookEngine>(scene, solver(), type.value_or(spook::SolveType::SPLIT), threads);
+          [solver, type, threads, sleep](const study::SceneDescription& scene) -> std::unique_ptr<study::Engine> {
+            return std::make_unique<SpookEngine>(scene, solver(), type.value_or(spook::SolveType::SPLIT), threads,
+                                                 sleep);
           }};
 }
 
@@ -344,6 +359,9 @@ std::vector<Policy> policies(int threads) {
   for (spook::SolveType type :
        {spook::SolveType::SPLIT, spook::SolveType::DIRECT_AND_ITERATIVE, spook::SolveType::DIRECT})
     list.push_back(spookPolicy("hybrid", [] { return spook::SolverRef(new spook::HybridSolver()); }, type, threads));
+  list.push_back(spookPolicy(
+      "hybrid sleep", [] { return spook::SolverRef(new spook::HybridSolver()); }, spook::SolveType::SPLIT, threads,
+      true));
   for (int n : {16, 64})
     list.push_back(spookPolicy(
         "iterative" + std::to_string(n),
@@ -428,7 +446,8 @@ Result run(const SceneSpec& spec, const Policy& policy) {
       r.finite = r.finite && std::isfinite(moved);
       if (std::isfinite(moved)) r.drift = std::max(r.drift, moved);
     }
-    if (step > kTooSlowStep) {
+    if (step > kTooSlowStep ||
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > spec.budget) {
       r.tooSlow = true;
       break;
     }
@@ -446,7 +465,7 @@ Result run(const SceneSpec& spec, const Policy& policy) {
     for (std::size_t i = 0; i < dynamicCount; ++i) {
       const study::Point p = engine->position(i);
       r.finite = r.finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
-      r.escaped = r.escaped || std::abs(p[0]) > 1.0 || std::abs(p[1]) > 1.0 || p[2] < 0.0;
+      r.escaped = r.escaped || std::abs(p[0]) > scene.halfWidth || std::abs(p[1]) > scene.halfWidth || p[2] < 0.0;
     }
   }
   const double settledEnergy = 0.5 * totalMassOf(scene.description) * kSettledSpeed * kSettledSpeed;
@@ -463,14 +482,69 @@ std::string format(double value, const char* spec) {
 
 }  // namespace
 
+// --- Scaling -----------------------------------------------------------------
+
+/// Cost per step against body count (`contact_study --scaling [csv]
+/// [threads]`): pyramids of base 10–50 (55–1,275 cubes) and 100–10,000
+/// poured spheres, 2 s at h = 1/60 each (ms/step: the mean over the last
+/// second), under the default policy, iterative 16 and the reference
+/// engines, each run stopped after 120 s of wall-clock (then "too slow", its
+/// cost that of the steps taken). bench/plot_contact_scaling.py plots it.
+int scaling(const std::string& csvPath, int threads) {
+  struct Size {
+    std::string scene;
+    Kind kind;
+    int n;
+  };
+  std::vector<Size> sizes;
+  for (int base : {10, 20, 30, 40, 50}) sizes.push_back({"pyramid", Kind::PYRAMID, base});
+  for (int count : {100, 300, 1000, 3000, 10000}) sizes.push_back({"spheres", Kind::SPHERES, count});
+  std::FILE* csv = std::fopen(csvPath.c_str(), "w");
+  if (!csv) {
+    std::fprintf(stderr, "cannot write %s\n", csvPath.c_str());
+    return 1;
+  }
+  std::fprintf(csv,
+               "scene,bodies,policy,friction_solve_type,steps,ms_per_step,body_steps_per_s,drift_m,"
+               "max_penetration_m,verdict\n");
+  std::printf("%-8s  %6s  %-12s  %-6s  %9s  %13s  %9s  %9s  %-10s\n", "scene", "bodies", "policy", "fric.", "ms/step",
+              "body-steps/s", "drift (m)", "max pen", "verdict");
+  for (const Size& size : sizes) {
+    const SceneSpec spec{size.scene,
+                         size.kind,
+                         1.0 / 60,
+                         2.0,
+                         [size] { return size.kind == Kind::PYRAMID ? pyramid(size.n) : spheres(size.n); },
+                         120.0};
+    const std::size_t bodies = dynamicCountOf(spec.build().description);
+    for (const Policy& policy : policies(threads)) {
+      const std::string name = policy.name + " " + policy.friction;
+      if (name != "hybrid SPLIT" && name != "iterative16 -" && name != "bullet SI -" && name != "ode quick -") continue;
+      const Result r = run(spec, policy);
+      const double rate = 1e3 * double(bodies) / r.msPerStep;
+      std::printf("%-8s  %6zu  %-12s  %-6s  %9.2f  %13.3g  %9s  %9s  %-10s\n", size.scene.c_str(), bodies,
+                  r.policy.c_str(), r.friction.c_str(), r.msPerStep, rate, format(r.drift, "%.2e").c_str(),
+                  format(r.penetration, "%.2e").c_str(), r.verdict.c_str());
+      std::fflush(stdout);
+      std::fprintf(csv, "%s,%zu,%s,%s,%ld,%.6g,%.6g,%.6e,%.6e,%s\n", size.scene.c_str(), bodies, r.policy.c_str(),
+                   r.friction.c_str(), r.steps, r.msPerStep, rate, r.drift, r.penetration, r.verdict.c_str());
+    }
+  }
+  std::fclose(csv);
+  std::printf("CSV written to %s (plot: python3 bench/plot_contact_scaling.py %s)\n", csvPath.c_str(), csvPath.c_str());
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "--scaling")
+    return scaling(argc > 2 ? argv[2] : "contact_scaling.csv", argc > 3 ? std::atoi(argv[3]) : 1);
   const std::string csvPath = argc > 1 ? argv[1] : "contact_study.csv";
   const std::string only = argc > 2 ? argv[2] : "";          // run only the scenes whose name contains this
   const std::string onlyPolicy = argc > 3 ? argv[3] : "";    // and only the policies whose "name friction" contains this
   const int threads = argc > 4 ? std::atoi(argv[4]) : 1;     // spook's SimulationT::setNumThreads
   std::vector<SceneSpec> scenes = {
-      {"spheres", Kind::SPHERES, 1.0 / 60, 3.0, spheres},
-      {"pyramid", Kind::PYRAMID, 1.0 / 60, 5.0, pyramid},
+      {"spheres", Kind::SPHERES, 1.0 / 60, 3.0, [] { return spheres(1000); }},
+      {"pyramid", Kind::PYRAMID, 1.0 / 60, 5.0, [] { return pyramid(20); }},
       {"stack 1/60", Kind::STACK, 1.0 / 60, 10.0, stack},
       {"stack 1/30", Kind::STACK, 1.0 / 30, 10.0, stack},
       {"20 stacks", Kind::STACK, 1.0 / 60, 5.0, stacks},

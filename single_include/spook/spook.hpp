@@ -5132,6 +5132,8 @@ namespace detail {
 template <Scalar S>
 struct BodyIntegrator;
 struct SimulationMembership;
+template <Scalar S>
+struct BodySleep;
 }  // namespace detail
 
 /// A rigid body: a model frame (where the user places it), a center-of-mass
@@ -5275,6 +5277,19 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   [[nodiscard]] bool getEnableCCD() const { return enableCCD_; }
   void setEnableCCD(bool enable) { enableCCD_ = enable; }
 
+  // --- Sleeping ----------------------------------------------------------------
+
+  /// Asleep: the simulation's auto sleep (SimulationT::getAutoSleep) found
+  /// its island at rest and no longer steps it. It wakes, with the bodies
+  /// it touches or is jointed to, when an awake or moving body meets it, when
+  /// a contact of its ends, when a joint is added or removed, when it is moved
+  /// or given a velocity, force or torque, or by wakeUp().
+  [[nodiscard]] bool isSleeping() const { return sleeping_; }
+  void wakeUp() {
+    sleeping_ = false;
+    restingTime_ = S(0);
+  }
+
   // --- Kinematic control -----------------------------------------------------
 
   /// Sets, on a KINEMATICS body, the constant velocities that bring the
@@ -5344,6 +5359,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
 
   friend struct detail::BodyIntegrator<S>;
   friend struct detail::SimulationMembership;
+  friend struct detail::BodySleep<S>;
 
   struct KinematicTarget {
     Transform pose;
@@ -5376,6 +5392,9 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   Vec3 linearDamping_ = Vec3::Zero();
   Vec3 angularDamping_ = Vec3::Zero();
   std::optional<KinematicTarget> target_;
+  bool sleeping_ = false;
+  S restingTime_ = S(0);  ///< s below the auto sleep's thresholds
+  Transform sleepPose_;   ///< the model frame when it fell asleep
   std::vector<std::pair<std::string, ref_ptr<Frame>>> attachments_;
   std::vector<ref_ptr<Geometry>> geometries_;
 
@@ -15916,6 +15935,98 @@ using MaterialManager = MaterialManagerT<float>;
 #include <utility>
 #include <vector>
 
+// --- begin spook/sim/auto_sleep.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SIM_AUTO_SLEEP_HPP
+#define SPOOK_SINGLE_SPOOK_SIM_AUTO_SLEEP_HPP
+
+#include <cmath>
+#include <string>
+
+namespace spook {
+
+/// A simulation's sleeping (SimulationT::getAutoSleep), off by default: an
+/// island of dynamic bodies that has stayed below both velocity thresholds
+/// for getTime() seconds falls asleep: its bodies keep their pose, their
+/// velocities become zero and the step no longer solves or moves them
+/// (RigidBody::isSleeping). They still collide, so an awake or moving body
+/// that meets one wakes its island (RigidBody::isSleeping lists the other
+/// ways to wake). A body of a body store (wire nodes, particles) never
+/// sleeps, nor does an island holding one. Sleeping trades accuracy for
+/// speed: a body at 2 cm/s that falls asleep stops there.
+class AutoSleep {
+ public:
+  [[nodiscard]] bool getEnable() const { return enable_; }
+  void setEnable(bool enable) { enable_ = enable; }
+
+  /// Speed of the center of mass (m/s, finite and >= 0) under which a body
+  /// counts as resting. Default 0.02.
+  [[nodiscard]] double getLinearVelocityThreshold() const { return linear_; }
+  void setLinearVelocityThreshold(double speed) {
+    linear_ = checked("linear velocity threshold must be finite and >= 0 m/s", speed);
+  }
+  /// Angular speed (rad/s, finite and >= 0) under which a body counts as
+  /// resting. Default 0.05.
+  [[nodiscard]] double getAngularVelocityThreshold() const { return angular_; }
+  void setAngularVelocityThreshold(double speed) {
+    angular_ = checked("angular velocity threshold must be finite and >= 0 rad/s", speed);
+  }
+  /// How long (s, finite and > 0) every body of an island must rest before
+  /// the island falls asleep. Default 0.5.
+  [[nodiscard]] double getTime() const { return time_; }
+  void setTime(double time) {
+    if (!(std::isfinite(time) && time > 0.0))
+      throw detail::makeError("AutoSleep", "", "time must be finite and > 0 s", time);
+    time_ = time;
+  }
+
+ private:
+  static double checked(const char* what, double value) {
+    if (!(std::isfinite(value) && value >= 0.0)) throw detail::makeError("AutoSleep", "", what, value);
+    return value;
+  }
+
+  bool enable_ = false;
+  double linear_ = 0.02;
+  double angular_ = 0.05;
+  double time_ = 0.5;
+};
+
+namespace detail {
+
+/// A body's sleep state, kept by the simulation's step (sim/simulation_step.hpp).
+template <Scalar S>
+struct BodySleep {
+  using Body = RigidBodyT<S>;
+
+  /// Whether a sleeping body was moved, disabled, switched from DYNAMICS or
+  /// given a velocity, force or torque since it fell asleep.
+  static bool disturbed(const Body& body) {
+    const Vec3T<S> zero = Vec3T<S>::Zero();
+    return !body.enable_ || body.motionControl_ != Body::DYNAMICS || body.velocity_ != zero ||
+           body.angularVelocity_ != zero || body.force_ != zero || body.torque_ != zero ||
+           body.getTransform().matrix() != body.sleepPose_.matrix();
+  }
+
+  /// Counts the step of h a dynamic awake body spent at rest (or restarts the
+  /// count); true when it has rested long enough to sleep.
+  static bool rest(Body& body, const AutoSleep& sleep, S h) {
+    const bool resting = double(body.velocity_.norm()) <= sleep.getLinearVelocityThreshold() &&
+                         double(body.angularVelocity_.norm()) <= sleep.getAngularVelocityThreshold();
+    body.restingTime_ = resting ? body.restingTime_ + h : S(0);
+    return double(body.restingTime_) >= sleep.getTime();
+  }
+
+  static void fallAsleep(Body& body) {
+    body.sleeping_ = true;
+    body.velocity_ = body.angularVelocity_ = Vec3T<S>::Zero();
+    body.sleepPose_ = body.getTransform();
+  }
+};
+
+}  // namespace detail
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_SIM_AUTO_SLEEP_HPP
+// --- end spook/sim/auto_sleep.hpp ---
 // --- begin spook/sim/contact_settings.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_SIM_CONTACT_SETTINGS_HPP
 #define SPOOK_SINGLE_SPOOK_SIM_CONTACT_SETTINGS_HPP
@@ -16012,6 +16123,7 @@ class JointedPairs {
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16062,6 +16174,7 @@ class Roster {
     if constexpr (kIndexed) Membership::indexOf(*object) = objects_.size();
     Membership::simulationOf(*object) = owner;
     objects_.push_back(std::move(object));
+    ++version_;
   }
   /// Removes a checked object (checkRemovable passed).
   void remove(T* object) {
@@ -16075,6 +16188,7 @@ class Roster {
       objects_.erase(std::find_if(objects_.begin(), objects_.end(), [&](const auto& o) { return o.get() == object; }));
     }
     Membership::simulationOf(*object) = nullptr;
+    ++version_;
   }
   [[nodiscard]] bool contains(const T* object, const void* owner) const {
     return object && Membership::simulationOf(*object) == owner;
@@ -16082,6 +16196,8 @@ class Roster {
 
   [[nodiscard]] const std::vector<ref_ptr<T>>& get() const { return objects_; }
   [[nodiscard]] std::size_t size() const { return objects_.size(); }
+  /// Counts the adds and removes.
+  [[nodiscard]] std::uint64_t version() const { return version_; }
   [[nodiscard]] bool empty() const { return objects_.empty(); }
   [[nodiscard]] const ref_ptr<T>& operator[](std::size_t i) const { return objects_[i]; }
   [[nodiscard]] auto begin() const { return objects_.begin(); }
@@ -16097,6 +16213,7 @@ class Roster {
 
   const char* kind_;
   std::vector<ref_ptr<T>> objects_;
+  std::uint64_t version_ = 0;
 };
 
 }  // namespace spook::detail
@@ -18205,6 +18322,8 @@ struct SimulationStatisticsT {
   /// finite (shapes posed near the largest finite coordinate); they exert
   /// no force.
   std::size_t numDroppedContactPoints = 0;
+  /// Bodies asleep after the last step (SimulationT::getAutoSleep).
+  std::size_t numSleepingBodies = 0;
   /// What the constraint solver did in the last step.
   SolverStatistics solver;
 };
@@ -18492,6 +18611,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void setNumThreads(int n);
   static constexpr int kMaxThreads = 256;
 
+  /// Sleeping of islands at rest (off by default; sim/auto_sleep.hpp).
+  [[nodiscard]] AutoSleep* getAutoSleep() { return &autoSleep_; }
+  [[nodiscard]] const AutoSleep* getAutoSleep() const { return &autoSleep_; }
+
   // --- Gravity ---------------------------------------------------------------
 
   [[nodiscard]] GravityFieldT<S>* getGravityField() const { return gravity_.get(); }
@@ -18653,6 +18776,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void readBackImpulses(const StepContext& step);
   void moveBodies(const StepContext& step);
   void projectRows(const StepContext& step);
+  void wakeBodies(const StepContext& step);
+  void sleepResting(const StepContext& step);
 
   // The stores' and producers' part of a step (sim/step_extension.hpp).
   StepContext beginExtensions(double h);
@@ -18699,6 +18824,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   std::uint64_t stepsSinceBase_ = 0;
   bool stepping_ = false;
   int numThreads_ = 1;
+  AutoSleep autoSleep_;
+  /// The constraints' and producers' roster versions when the last step
+  /// ended: an add or remove since wakes every sleeping body.
+  std::uint64_t sleptConstraints_ = 0, sleptProducers_ = 0;
   ref_ptr<GravityFieldT<S>> gravity_ = new UniformGravityFieldT<S>();
   detail::Roster<Body, true> bodies_{"RigidBody"};
   detail::Roster<Listener> listeners_{"StepEventListener"};
@@ -19117,6 +19246,7 @@ using SimulationRef = ref_ptr<Simulation>;
 #include <cmath>
 #include <cstddef>
 #include <memory>
+#include <numeric>
 #include <span>
 #include <string>
 #include <string_view>
@@ -21512,10 +21642,12 @@ template <Scalar S>
 void SimulationT<S>::integrate(S h) {
   const StepContext step = beginExtensions(double(h));  // stores and producers may add or remove bodies
   gatherSolverBodies(step);  // v, v* = v + hM⁻¹f, M⁻¹: rigid bodies, then each store's
+  wakeBodies(step);          // sleeping bodies disturbed or met by awake ones (getAutoSleep)
   gatherRows(step);          // joints, contacts, then each producer's rows, with their last impulses
   solveRows(step);           // islands under the solver policy; geometric stiffness
   readBackImpulses(step);    // joint forces and predictions, contact forces and persistence, producers
   moveBodies(step);          // positions from v⁺
+  sleepResting(step);        // islands at rest fall asleep (getAutoSleep)
   projectRows(step);         // post-stabilization of the joints and producers' projection rows
 }
 
@@ -21945,8 +22077,8 @@ struct BodyIntegrator {
   using Body = RigidBodyT<S>;
 
   /// The body as the solver sees it. Dynamic bodies get their force-driven
-  /// velocities v*; kinematic ones re-aim a moveTo; static and disabled ones
-  /// stand still with infinite mass.
+  /// velocities v*; kinematic ones re-aim a moveTo; static, disabled and
+  /// sleeping ones stand still with infinite mass.
   ///
   /// Velocity damping dv/dt = −D v is implicit, a force −h D̃ v⁺ on the end
   /// velocity, so it belongs in the mass: M(v⁺ − v) = h f − h D̃ v⁺ + Gᵀλ
@@ -21962,7 +22094,7 @@ struct BodyIntegrator {
   /// D^½ I D^½ Ω is positive semi-definite, so damping never adds energy.
   static SolverBody solverBody(Body& body, const GravityFieldT<S>& gravity, S h) {
     SolverBody b;
-    if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
+    if (!body.enable_ || body.motionControl_ == Body::STATIC || body.sleeping_) return b;
     if (body.motionControl_ == Body::KINEMATICS) {
       if (body.target_) {
         body.aimAtTarget(body.target_->remaining < S(1.5) * h ? h : body.target_->remaining);
@@ -21993,7 +22125,7 @@ struct BodyIntegrator {
   /// when the new state would not be finite; the body is then frozen
   /// (velocities zeroed, pose kept) instead of spreading NaN.
   static bool move(Body& body, const SolverBody& solved, S h) {
-    if (!body.enable_) return true;
+    if (!body.enable_ || body.sleeping_) return true;
     switch (body.motionControl_) {
       case Body::STATIC:
         return true;
@@ -22020,7 +22152,7 @@ struct BodyIntegrator {
   /// its corrections with the same mass as the step's impulses.
   static SolverBody massAndVelocity(const Body& body, S h) {
     SolverBody b;
-    if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
+    if (!body.enable_ || body.motionControl_ == Body::STATIC || body.sleeping_) return b;
     b.velocity = stack(body.velocity_, body.angularVelocity_);
     if (body.motionControl_ != Body::DYNAMICS) return b;
     b.dynamic = true;
@@ -22174,6 +22306,11 @@ struct SimulationWorkspace {
   IslandStepper islands;
   GeometricStiffness geometricStiffness;
   WorkerPool workers;  ///< SimulationT::setNumThreads
+  /// Auto sleep's scratch: body pairs that touch or are jointed, and per
+  /// body its island's root and whether the island may sleep.
+  std::vector<std::pair<RigidBodyT<S>*, RigidBodyT<S>*>> touching;
+  std::vector<int> sleepParent;
+  std::vector<char> sleepReady;
 };
 
 // How many rows and side-table entries a RowSet held.
@@ -22319,6 +22456,107 @@ void SimulationT<S>::moveBodies(const StepContext& step) {
   }
   for (std::size_t k = 0, first = bodies_.size(); k < stores_.size(); first += step.sizes_[k++])
     stores_[k]->move(std::span<const detail::SolverBody>(w.solverBodies).subspan(first, step.sizes_[k]), step);
+}
+
+template <Scalar S>
+void SimulationT<S>::wakeBodies(const StepContext& step) {
+  auto& w = *work_;
+  if (std::none_of(bodies_.begin(), bodies_.end(), [](const auto& body) { return body->isSleeping(); })) return;
+  const S h = S(step.getTimeStep());
+  const auto wake = [&](Body* body) {
+    if (!body || !contains(body) || !body->isSleeping()) return false;
+    body->wakeUp();
+    const std::size_t i = Membership::indexOf(*body);
+    w.solverBodies[i] = detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h);
+    return true;
+  };
+  const bool all =
+      !autoSleep_.getEnable() || constraints_.version() != sleptConstraints_ || producers_.version() != sleptProducers_;
+  for (const auto& body : bodies_)
+    if (body->isSleeping() && (all || detail::BodySleep<S>::disturbed(*body))) wake(body.get());
+  for (const auto& pair : space_->getSeparations()) {
+    if (pair.first) wake(pair.first->getRigidBody());
+    if (pair.second) wake(pair.second->getRigidBody());
+  }
+  // An awake dynamic or a moving kinematic body in contact with a sleeping
+  // one, or jointed to it, wakes it; and so on through the sleeping island.
+  const auto active = [&](const Body* body) {
+    if (!body || !contains(body) || body->isSleeping()) return false;
+    const detail::SolverBody& b = w.solverBodies[Membership::indexOf(*body)];
+    return b.dynamic || b.velocity != detail::Vec6d::Zero();
+  };
+  w.touching.clear();
+  for (const auto& contact : space_->getGeometryContacts())
+    if (contact.isEnabled() && !contact.isSensor()) w.touching.emplace_back(contact.rigidBody(0), contact.rigidBody(1));
+  for (const auto& c : constraints_)
+    if (c->getEnable()) w.touching.emplace_back(c->getBodyAt(0), c->getBodyAt(1));
+  for (bool woke = true; woke;) {
+    woke = false;
+    for (const auto& [a, b] : w.touching) {
+      if (a && a->isSleeping() && active(b)) woke = wake(a) || woke;
+      if (b && b->isSleeping() && active(a)) woke = wake(b) || woke;
+    }
+  }
+}
+
+template <Scalar S>
+void SimulationT<S>::sleepResting(const StepContext& step) {
+  auto& w = *work_;
+  sleptConstraints_ = constraints_.version();
+  sleptProducers_ = producers_.version();
+  std::size_t asleep = 0;
+  if (autoSleep_.getEnable()) {
+    // Islands as the solve saw them: dynamic rigid bodies joined by rows. An
+    // island sleeps when all of its bodies have rested long enough, and
+    // none is a store's body or bound by a producer's row.
+    const int n = static_cast<int>(bodies_.size());
+    const S h = S(step.getTimeStep());
+    std::vector<int>& parent = w.sleepParent;
+    std::vector<char>& ready = w.sleepReady;
+    parent.resize(std::size_t(n));
+    std::iota(parent.begin(), parent.end(), 0);
+    ready.assign(std::size_t(n), 0);
+    const auto dynamic = [&](int i) { return i >= 0 && i < n && w.solverBodies[std::size_t(i)].dynamic; };
+    const auto find = [&](int i) {
+      while (parent[std::size_t(i)] != i) i = parent[std::size_t(i)] = parent[std::size_t(parent[std::size_t(i)])];
+      return i;
+    };
+    for (int i = 0; i < n; ++i)
+      if (dynamic(i) && !w.frozen[std::size_t(i)])
+        ready[std::size_t(i)] = detail::BodySleep<S>::rest(*bodies_[std::size_t(i)], autoSleep_, h);
+    for (const detail::Row& r : w.rows.rows)
+      if (dynamic(r.body1) && dynamic(r.body2)) parent[std::size_t(find(r.body1))] = find(r.body2);
+    for (const detail::ThirdBody& t : w.rows.thirdBodies) {
+      const detail::Row& r = w.rows.rows[std::size_t(t.row)];
+      for (int other : {r.body1, r.body2})
+        if (dynamic(other) && dynamic(t.body)) parent[std::size_t(find(other))] = find(t.body);
+    }
+    // From here ready[root] says whether the root's island may sleep: not
+    // with a body that has not rested long enough, a producer's row or a
+    // store's body.
+    const auto keepAwake = [&](int i) {
+      if (dynamic(i)) ready[std::size_t(find(i))] = 0;
+    };
+    for (int i = 0; i < n; ++i)
+      if (dynamic(i) && !ready[std::size_t(i)]) keepAwake(i);
+    for (std::size_t k = 0; k < w.rows.size(); ++k) {
+      const detail::Row& r = w.rows.rows[k];
+      if (k >= w.firstProducerRow || r.body1 >= n || r.body2 >= n) {
+        keepAwake(r.body1);
+        keepAwake(r.body2);
+      }
+    }
+    for (const detail::ThirdBody& t : w.rows.thirdBodies)
+      if (std::size_t(t.row) >= w.firstProducerRow || t.body >= n) {
+        keepAwake(w.rows.rows[std::size_t(t.row)].body1);
+        keepAwake(w.rows.rows[std::size_t(t.row)].body2);
+        keepAwake(t.body);
+      }
+    for (int i = 0; i < n; ++i)
+      if (dynamic(i) && ready[std::size_t(find(i))]) detail::BodySleep<S>::fallAsleep(*bodies_[std::size_t(i)]);
+  }
+  for (const auto& body : bodies_) asleep += body->isSleeping() ? 1 : 0;
+  statistics_.numSleepingBodies = asleep;
 }
 
 template <Scalar S>

@@ -25,6 +25,8 @@ namespace detail {
 template <Scalar S>
 struct BodyIntegrator;
 struct SimulationMembership;
+template <Scalar S>
+struct BodySleep;
 }  // namespace detail
 
 /// A rigid body: a model frame (where the user places it), a center-of-mass
@@ -168,6 +170,19 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   [[nodiscard]] bool getEnableCCD() const { return enableCCD_; }
   void setEnableCCD(bool enable) { enableCCD_ = enable; }
 
+  // --- Sleeping ----------------------------------------------------------------
+
+  /// Asleep: the simulation's auto sleep (SimulationT::getAutoSleep) found
+  /// its island at rest and no longer steps it. It wakes, with the bodies
+  /// it touches or is jointed to, when an awake or moving body meets it, when
+  /// a contact of its ends, when a joint is added or removed, when it is moved
+  /// or given a velocity, force or torque, or by wakeUp().
+  [[nodiscard]] bool isSleeping() const { return sleeping_; }
+  void wakeUp() {
+    sleeping_ = false;
+    restingTime_ = S(0);
+  }
+
   // --- Kinematic control -----------------------------------------------------
 
   /// Sets, on a KINEMATICS body, the constant velocities that bring the
@@ -237,6 +252,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
 
   friend struct detail::BodyIntegrator<S>;
   friend struct detail::SimulationMembership;
+  friend struct detail::BodySleep<S>;
 
   struct KinematicTarget {
     Transform pose;
@@ -269,6 +285,9 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   Vec3 linearDamping_ = Vec3::Zero();
   Vec3 angularDamping_ = Vec3::Zero();
   std::optional<KinematicTarget> target_;
+  bool sleeping_ = false;
+  S restingTime_ = S(0);  ///< s below the auto sleep's thresholds
+  Transform sleepPose_;   ///< the model frame when it fell asleep
   std::vector<std::pair<std::string, ref_ptr<Frame>>> attachments_;
   std::vector<ref_ptr<Geometry>> geometries_;
 

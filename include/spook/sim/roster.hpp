@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,6 +57,7 @@ class Roster {
     if constexpr (kIndexed) Membership::indexOf(*object) = objects_.size();
     Membership::simulationOf(*object) = owner;
     objects_.push_back(std::move(object));
+    ++version_;
   }
   /// Removes a checked object (checkRemovable passed).
   void remove(T* object) {
@@ -69,6 +71,7 @@ class Roster {
       objects_.erase(std::find_if(objects_.begin(), objects_.end(), [&](const auto& o) { return o.get() == object; }));
     }
     Membership::simulationOf(*object) = nullptr;
+    ++version_;
   }
   [[nodiscard]] bool contains(const T* object, const void* owner) const {
     return object && Membership::simulationOf(*object) == owner;
@@ -76,6 +79,8 @@ class Roster {
 
   [[nodiscard]] const std::vector<ref_ptr<T>>& get() const { return objects_; }
   [[nodiscard]] std::size_t size() const { return objects_.size(); }
+  /// Counts the adds and removes.
+  [[nodiscard]] std::uint64_t version() const { return version_; }
   [[nodiscard]] bool empty() const { return objects_.empty(); }
   [[nodiscard]] const ref_ptr<T>& operator[](std::size_t i) const { return objects_[i]; }
   [[nodiscard]] auto begin() const { return objects_.begin(); }
@@ -91,6 +96,7 @@ class Roster {
 
   const char* kind_;
   std::vector<ref_ptr<T>> objects_;
+  std::uint64_t version_ = 0;
 };
 
 }  // namespace spook::detail

@@ -18,6 +18,7 @@
 #include <spook/core/referenced.hpp>
 #include <spook/dynamics/gravity_field.hpp>
 #include <spook/dynamics/rigid_body.hpp>
+#include <spook/sim/auto_sleep.hpp>
 #include <spook/sim/collection.hpp>
 #include <spook/sim/contact_event_listener.hpp>
 #include <spook/sim/contact_settings.hpp>
@@ -97,6 +98,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   [[nodiscard]] int getNumThreads() const { return numThreads_; }
   void setNumThreads(int n);
   static constexpr int kMaxThreads = 256;
+
+  /// Sleeping of islands at rest (off by default; sim/auto_sleep.hpp).
+  [[nodiscard]] AutoSleep* getAutoSleep() { return &autoSleep_; }
+  [[nodiscard]] const AutoSleep* getAutoSleep() const { return &autoSleep_; }
 
   // --- Gravity ---------------------------------------------------------------
 
@@ -259,6 +264,8 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void readBackImpulses(const StepContext& step);
   void moveBodies(const StepContext& step);
   void projectRows(const StepContext& step);
+  void wakeBodies(const StepContext& step);
+  void sleepResting(const StepContext& step);
 
   // The stores' and producers' part of a step (sim/step_extension.hpp).
   StepContext beginExtensions(double h);
@@ -305,6 +312,10 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   std::uint64_t stepsSinceBase_ = 0;
   bool stepping_ = false;
   int numThreads_ = 1;
+  AutoSleep autoSleep_;
+  /// The constraints' and producers' roster versions when the last step
+  /// ended: an add or remove since wakes every sleeping body.
+  std::uint64_t sleptConstraints_ = 0, sleptProducers_ = 0;
   ref_ptr<GravityFieldT<S>> gravity_ = new UniformGravityFieldT<S>();
   detail::Roster<Body, true> bodies_{"RigidBody"};
   detail::Roster<Listener> listeners_{"StepEventListener"};

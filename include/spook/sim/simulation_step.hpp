@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <memory>
+#include <numeric>
 #include <span>
 #include <string>
 #include <string_view>
@@ -47,6 +48,11 @@ struct SimulationWorkspace {
   IslandStepper islands;
   GeometricStiffness geometricStiffness;
   WorkerPool workers;  ///< SimulationT::setNumThreads
+  /// Auto sleep's scratch: body pairs that touch or are jointed, and per
+  /// body its island's root and whether the island may sleep.
+  std::vector<std::pair<RigidBodyT<S>*, RigidBodyT<S>*>> touching;
+  std::vector<int> sleepParent;
+  std::vector<char> sleepReady;
 };
 
 // How many rows and side-table entries a RowSet held.
@@ -192,6 +198,107 @@ void SimulationT<S>::moveBodies(const StepContext& step) {
   }
   for (std::size_t k = 0, first = bodies_.size(); k < stores_.size(); first += step.sizes_[k++])
     stores_[k]->move(std::span<const detail::SolverBody>(w.solverBodies).subspan(first, step.sizes_[k]), step);
+}
+
+template <Scalar S>
+void SimulationT<S>::wakeBodies(const StepContext& step) {
+  auto& w = *work_;
+  if (std::none_of(bodies_.begin(), bodies_.end(), [](const auto& body) { return body->isSleeping(); })) return;
+  const S h = S(step.getTimeStep());
+  const auto wake = [&](Body* body) {
+    if (!body || !contains(body) || !body->isSleeping()) return false;
+    body->wakeUp();
+    const std::size_t i = Membership::indexOf(*body);
+    w.solverBodies[i] = detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h);
+    return true;
+  };
+  const bool all =
+      !autoSleep_.getEnable() || constraints_.version() != sleptConstraints_ || producers_.version() != sleptProducers_;
+  for (const auto& body : bodies_)
+    if (body->isSleeping() && (all || detail::BodySleep<S>::disturbed(*body))) wake(body.get());
+  for (const auto& pair : space_->getSeparations()) {
+    if (pair.first) wake(pair.first->getRigidBody());
+    if (pair.second) wake(pair.second->getRigidBody());
+  }
+  // An awake dynamic or a moving kinematic body in contact with a sleeping
+  // one, or jointed to it, wakes it; and so on through the sleeping island.
+  const auto active = [&](const Body* body) {
+    if (!body || !contains(body) || body->isSleeping()) return false;
+    const detail::SolverBody& b = w.solverBodies[Membership::indexOf(*body)];
+    return b.dynamic || b.velocity != detail::Vec6d::Zero();
+  };
+  w.touching.clear();
+  for (const auto& contact : space_->getGeometryContacts())
+    if (contact.isEnabled() && !contact.isSensor()) w.touching.emplace_back(contact.rigidBody(0), contact.rigidBody(1));
+  for (const auto& c : constraints_)
+    if (c->getEnable()) w.touching.emplace_back(c->getBodyAt(0), c->getBodyAt(1));
+  for (bool woke = true; woke;) {
+    woke = false;
+    for (const auto& [a, b] : w.touching) {
+      if (a && a->isSleeping() && active(b)) woke = wake(a) || woke;
+      if (b && b->isSleeping() && active(a)) woke = wake(b) || woke;
+    }
+  }
+}
+
+template <Scalar S>
+void SimulationT<S>::sleepResting(const StepContext& step) {
+  auto& w = *work_;
+  sleptConstraints_ = constraints_.version();
+  sleptProducers_ = producers_.version();
+  std::size_t asleep = 0;
+  if (autoSleep_.getEnable()) {
+    // Islands as the solve saw them: dynamic rigid bodies joined by rows. An
+    // island sleeps when all of its bodies have rested long enough, and
+    // none is a store's body or bound by a producer's row.
+    const int n = static_cast<int>(bodies_.size());
+    const S h = S(step.getTimeStep());
+    std::vector<int>& parent = w.sleepParent;
+    std::vector<char>& ready = w.sleepReady;
+    parent.resize(std::size_t(n));
+    std::iota(parent.begin(), parent.end(), 0);
+    ready.assign(std::size_t(n), 0);
+    const auto dynamic = [&](int i) { return i >= 0 && i < n && w.solverBodies[std::size_t(i)].dynamic; };
+    const auto find = [&](int i) {
+      while (parent[std::size_t(i)] != i) i = parent[std::size_t(i)] = parent[std::size_t(parent[std::size_t(i)])];
+      return i;
+    };
+    for (int i = 0; i < n; ++i)
+      if (dynamic(i) && !w.frozen[std::size_t(i)])
+        ready[std::size_t(i)] = detail::BodySleep<S>::rest(*bodies_[std::size_t(i)], autoSleep_, h);
+    for (const detail::Row& r : w.rows.rows)
+      if (dynamic(r.body1) && dynamic(r.body2)) parent[std::size_t(find(r.body1))] = find(r.body2);
+    for (const detail::ThirdBody& t : w.rows.thirdBodies) {
+      const detail::Row& r = w.rows.rows[std::size_t(t.row)];
+      for (int other : {r.body1, r.body2})
+        if (dynamic(other) && dynamic(t.body)) parent[std::size_t(find(other))] = find(t.body);
+    }
+    // From here ready[root] says whether the root's island may sleep: not
+    // with a body that has not rested long enough, a producer's row or a
+    // store's body.
+    const auto keepAwake = [&](int i) {
+      if (dynamic(i)) ready[std::size_t(find(i))] = 0;
+    };
+    for (int i = 0; i < n; ++i)
+      if (dynamic(i) && !ready[std::size_t(i)]) keepAwake(i);
+    for (std::size_t k = 0; k < w.rows.size(); ++k) {
+      const detail::Row& r = w.rows.rows[k];
+      if (k >= w.firstProducerRow || r.body1 >= n || r.body2 >= n) {
+        keepAwake(r.body1);
+        keepAwake(r.body2);
+      }
+    }
+    for (const detail::ThirdBody& t : w.rows.thirdBodies)
+      if (std::size_t(t.row) >= w.firstProducerRow || t.body >= n) {
+        keepAwake(w.rows.rows[std::size_t(t.row)].body1);
+        keepAwake(w.rows.rows[std::size_t(t.row)].body2);
+        keepAwake(t.body);
+      }
+    for (int i = 0; i < n; ++i)
+      if (dynamic(i) && ready[std::size_t(find(i))]) detail::BodySleep<S>::fallAsleep(*bodies_[std::size_t(i)]);
+  }
+  for (const auto& body : bodies_) asleep += body->isSleeping() ? 1 : 0;
+  statistics_.numSleepingBodies = asleep;
 }
 
 template <Scalar S>

@@ -43,6 +43,8 @@ struct SimulationStatisticsT {
   /// finite (shapes posed near the largest finite coordinate); they exert
   /// no force.
   std::size_t numDroppedContactPoints = 0;
+  /// Bodies asleep after the last step (SimulationT::getAutoSleep).
+  std::size_t numSleepingBodies = 0;
   /// What the constraint solver did in the last step.
   SolverStatistics solver;
 };

@@ -39,10 +39,12 @@ template <Scalar S>
 void SimulationT<S>::integrate(S h) {
   const StepContext step = beginExtensions(double(h));  // stores and producers may add or remove bodies
   gatherSolverBodies(step);  // v, v* = v + hM⁻¹f, M⁻¹: rigid bodies, then each store's
+  wakeBodies(step);          // sleeping bodies disturbed or met by awake ones (getAutoSleep)
   gatherRows(step);          // joints, contacts, then each producer's rows, with their last impulses
   solveRows(step);           // islands under the solver policy; geometric stiffness
   readBackImpulses(step);    // joint forces and predictions, contact forces and persistence, producers
   moveBodies(step);          // positions from v⁺
+  sleepResting(step);        // islands at rest fall asleep (getAutoSleep)
   projectRows(step);         // post-stabilization of the joints and producers' projection rows
 }
 

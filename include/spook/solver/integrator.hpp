@@ -23,8 +23,8 @@ struct BodyIntegrator {
   using Body = RigidBodyT<S>;
 
   /// The body as the solver sees it. Dynamic bodies get their force-driven
-  /// velocities v*; kinematic ones re-aim a moveTo; static and disabled ones
-  /// stand still with infinite mass.
+  /// velocities v*; kinematic ones re-aim a moveTo; static, disabled and
+  /// sleeping ones stand still with infinite mass.
   ///
   /// Velocity damping dv/dt = −D v is implicit, a force −h D̃ v⁺ on the end
   /// velocity, so it belongs in the mass: M(v⁺ − v) = h f − h D̃ v⁺ + Gᵀλ
@@ -40,7 +40,7 @@ struct BodyIntegrator {
   /// D^½ I D^½ Ω is positive semi-definite, so damping never adds energy.
   static SolverBody solverBody(Body& body, const GravityFieldT<S>& gravity, S h) {
     SolverBody b;
-    if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
+    if (!body.enable_ || body.motionControl_ == Body::STATIC || body.sleeping_) return b;
     if (body.motionControl_ == Body::KINEMATICS) {
       if (body.target_) {
         body.aimAtTarget(body.target_->remaining < S(1.5) * h ? h : body.target_->remaining);
@@ -71,7 +71,7 @@ struct BodyIntegrator {
   /// when the new state would not be finite; the body is then frozen
   /// (velocities zeroed, pose kept) instead of spreading NaN.
   static bool move(Body& body, const SolverBody& solved, S h) {
-    if (!body.enable_) return true;
+    if (!body.enable_ || body.sleeping_) return true;
     switch (body.motionControl_) {
       case Body::STATIC:
         return true;
@@ -98,7 +98,7 @@ struct BodyIntegrator {
   /// its corrections with the same mass as the step's impulses.
   static SolverBody massAndVelocity(const Body& body, S h) {
     SolverBody b;
-    if (!body.enable_ || body.motionControl_ == Body::STATIC) return b;
+    if (!body.enable_ || body.motionControl_ == Body::STATIC || body.sleeping_) return b;
     b.velocity = stack(body.velocity_, body.angularVelocity_);
     if (body.motionControl_ != Body::DYNAMICS) return b;
     b.dynamic = true;
