@@ -73,7 +73,23 @@ TEST_CASE_TEMPLATE("a resting stack falls asleep as one island and then stands e
   CHECK(scene.sim->getStatistics().solver.numIslands == 0);
   std::vector<spook::TransformT<S>> poses;
   for (const auto& b : boxes) poses.push_back(b->getTransform());
+  // The normal force between the two lower boxes (a pair of sleeping bodies).
+  const auto load = [&] {
+    double sum = 0.0;
+    for (const auto& c : scene.sim->getGeometryContacts())
+      if ((c.rigidBody(0) == boxes[0].get() && c.rigidBody(1) == boxes[1].get()) ||
+          (c.rigidBody(0) == boxes[1].get() && c.rigidBody(1) == boxes[0].get()))
+        for (const auto& p : c.points())
+          if (p.enabled) sum += double(p.getNormalForceMagnitude());
+    return sum;
+  };
+  const std::size_t contacts = scene.sim->getGeometryContacts().size();
   scene.run(1.0);
+  // Asleep, the boxes keep their contacts (not collided again) and their
+  // last forces: the lowest box still carries the two above.
+  CHECK(scene.sim->getGeometryContacts().size() == contacts);
+  const double weight = 2.0 * double(boxes[0]->getMassProperties()->getMass()) * 9.80665;
+  CHECK(std::abs(load() - weight) < 1e-3 * weight);
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     CHECK(boxes[i]->getTransform().matrix() == poses[i].matrix());
     CHECK(std::abs(double(boxes[i]->getPosition().z()) - (0.5 + double(i))) < 1e-3);

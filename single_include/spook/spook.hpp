@@ -5342,7 +5342,10 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
  private:
   using Access = detail::GeometryAccess<S>;
   void checkGeometryChange(const detail::GeometryEdit<S>& edit) const override;
-  void geometryChanged() override { updateMassProperties(); }
+  void geometryChanged() override {
+    updateMassProperties();
+    wakeUp();  // its shapes may have moved under the contacts it slept on
+  }
 
   // Generated mass properties, validated and ready to store.
   struct MassUpdate {
@@ -5802,7 +5805,9 @@ class SpaceT : public Referenced {
   /// `bodies` (a simulation's), reduces them and marks impacts; pairs that
   /// touched before and no longer do are listed in getSeparations().
   /// With `workers`, the pairs are collided on its threads, with the same
-  /// contacts in the same order.
+  /// contacts in the same order. Two geometries of sleeping bodies
+  /// (RigidBody::isSleeping) are not collided again: they keep the contact
+  /// they had (nothing of theirs has moved).
   void update(const std::vector<ref_ptr<Body>>& bodies = {}, detail::WorkerPool* workers = nullptr);
 
   /// Fewest candidate pairs worth spreading over threads.
@@ -5889,6 +5894,10 @@ class SpaceT : public Referenced {
   detail::SweepAndPrune<S> broadphase_;
   /// The broad phase's pairs that may collide (canCollide), in its order.
   std::vector<std::pair<std::size_t, std::size_t>> pairs_;
+  /// The last update's contacts, and where each pair's stands among them,
+  /// sorted by the pair's ids: what two sleeping bodies keep.
+  std::vector<Contact> lastContacts_;
+  std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, std::size_t>> lastContactOf_;
   /// Per piece of pairs_ on the threads: its contacts and dropped points.
   std::vector<std::vector<Contact>> piecesFound_;
   std::vector<std::size_t> piecesDropped_;
@@ -5967,9 +5976,15 @@ void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerP
   broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) {
     if (canCollide(*active_[i], *active_[j])) pairs_.emplace_back(i, j);
   });
+  std::swap(contacts_, lastContacts_);
   narrowPhase(workers);
   reduce();
   trackEvents();
+  lastContactOf_.clear();
+  for (std::size_t k = 0; k < contacts_.size(); ++k)
+    lastContactOf_.emplace_back(std::make_pair(contacts_[k].geometry(0)->getId(), contacts_[k].geometry(1)->getId()),
+                                k);
+  std::sort(lastContactOf_.begin(), lastContactOf_.end());
 }
 
 template <Scalar S>
@@ -6034,6 +6049,20 @@ void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j, std::vector<Contact>& 
   if (active_[i]->getId() > active_[j]->getId()) std::swap(i, j);
   Geometry* first = active_[i];
   Geometry* second = active_[j];
+  const RigidBodyT<S>* body1 = first->getRigidBody();
+  const RigidBodyT<S>* body2 = second->getRigidBody();
+  if (body1 && body2 && body1->isSleeping() && body2->isSleeping()) {
+    const auto key = std::make_pair(first->getId(), second->getId());
+    const auto it = std::lower_bound(lastContactOf_.begin(), lastContactOf_.end(), std::make_pair(key, std::size_t(0)));
+    if (it != lastContactOf_.end() && it->first == key) {
+      // As the colliders gave it: every point enabled, reduced again below.
+      Contact kept = lastContacts_[it->second];
+      kept.setEnable(true);
+      for (auto& point : kept.points()) point.enabled = true;
+      found.push_back(std::move(kept));
+    }
+    return;
+  }
   Contact contact(first, second);
   ContactSinkT<S> sink(contact.points());
   const auto& shapes1 = first->getShapes();
@@ -18776,6 +18805,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void readBackImpulses(const StepContext& step);
   void moveBodies(const StepContext& step);
   void projectRows(const StepContext& step);
+  void wakeDisturbed();
   void wakeBodies(const StepContext& step);
   void sleepResting(const StepContext& step);
 
@@ -21624,7 +21654,7 @@ void SimulationT<S>::stepForward() {
   } reset{stepping_};
 
   notify(Listener::PRE_COLLIDE);
-  collide();  // broadphase, narrow phase, contact events
+  collide();  // sleeping bodies disturbed wake; broadphase, narrow phase, contact events
   notify(Listener::PRE_STEP);
   integrate(timeStep_);
   detail::stopAtFirstContact(bodies_.get(), *space_, timeStep_);  // continuous collision, opt-in per body
@@ -21642,7 +21672,7 @@ template <Scalar S>
 void SimulationT<S>::integrate(S h) {
   const StepContext step = beginExtensions(double(h));  // stores and producers may add or remove bodies
   gatherSolverBodies(step);  // v, v* = v + hM⁻¹f, M⁻¹: rigid bodies, then each store's
-  wakeBodies(step);          // sleeping bodies disturbed or met by awake ones (getAutoSleep)
+  wakeBodies(step);          // sleeping bodies that awake ones touch or are jointed to (getAutoSleep)
   gatherRows(step);          // joints, contacts, then each producer's rows, with their last impulses
   solveRows(step);           // islands under the solver policy; geometric stiffness
   readBackImpulses(step);    // joint forces and predictions, contact forces and persistence, producers
@@ -22379,6 +22409,7 @@ void SimulationT<S>::forgetPredictions() {
 
 template <Scalar S>
 void SimulationT<S>::collide() {
+  wakeDisturbed();  // before the space reuses the contacts of sleeping pairs
   work_->workers.resize(numThreads_);
   space_->update(bodies_.get(), &work_->workers);
   statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
@@ -22459,6 +22490,14 @@ void SimulationT<S>::moveBodies(const StepContext& step) {
 }
 
 template <Scalar S>
+void SimulationT<S>::wakeDisturbed() {
+  const bool all =
+      !autoSleep_.getEnable() || constraints_.version() != sleptConstraints_ || producers_.version() != sleptProducers_;
+  for (const auto& body : bodies_)
+    if (body->isSleeping() && (all || detail::BodySleep<S>::disturbed(*body))) body->wakeUp();
+}
+
+template <Scalar S>
 void SimulationT<S>::wakeBodies(const StepContext& step) {
   auto& w = *work_;
   if (std::none_of(bodies_.begin(), bodies_.end(), [](const auto& body) { return body->isSleeping(); })) return;
@@ -22470,10 +22509,6 @@ void SimulationT<S>::wakeBodies(const StepContext& step) {
     w.solverBodies[i] = detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h);
     return true;
   };
-  const bool all =
-      !autoSleep_.getEnable() || constraints_.version() != sleptConstraints_ || producers_.version() != sleptProducers_;
-  for (const auto& body : bodies_)
-    if (body->isSleeping() && (all || detail::BodySleep<S>::disturbed(*body))) wake(body.get());
   for (const auto& pair : space_->getSeparations()) {
     if (pair.first) wake(pair.first->getRigidBody());
     if (pair.second) wake(pair.second->getRigidBody());

@@ -143,7 +143,9 @@ class SpaceT : public Referenced {
   /// `bodies` (a simulation's), reduces them and marks impacts; pairs that
   /// touched before and no longer do are listed in getSeparations().
   /// With `workers`, the pairs are collided on its threads, with the same
-  /// contacts in the same order.
+  /// contacts in the same order. Two geometries of sleeping bodies
+  /// (RigidBody::isSleeping) are not collided again: they keep the contact
+  /// they had (nothing of theirs has moved).
   void update(const std::vector<ref_ptr<Body>>& bodies = {}, detail::WorkerPool* workers = nullptr);
 
   /// Fewest candidate pairs worth spreading over threads.
@@ -230,6 +232,10 @@ class SpaceT : public Referenced {
   detail::SweepAndPrune<S> broadphase_;
   /// The broad phase's pairs that may collide (canCollide), in its order.
   std::vector<std::pair<std::size_t, std::size_t>> pairs_;
+  /// The last update's contacts, and where each pair's stands among them,
+  /// sorted by the pair's ids: what two sleeping bodies keep.
+  std::vector<Contact> lastContacts_;
+  std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, std::size_t>> lastContactOf_;
   /// Per piece of pairs_ on the threads: its contacts and dropped points.
   std::vector<std::vector<Contact>> piecesFound_;
   std::vector<std::size_t> piecesDropped_;
@@ -308,9 +314,15 @@ void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerP
   broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) {
     if (canCollide(*active_[i], *active_[j])) pairs_.emplace_back(i, j);
   });
+  std::swap(contacts_, lastContacts_);
   narrowPhase(workers);
   reduce();
   trackEvents();
+  lastContactOf_.clear();
+  for (std::size_t k = 0; k < contacts_.size(); ++k)
+    lastContactOf_.emplace_back(std::make_pair(contacts_[k].geometry(0)->getId(), contacts_[k].geometry(1)->getId()),
+                                k);
+  std::sort(lastContactOf_.begin(), lastContactOf_.end());
 }
 
 template <Scalar S>
@@ -375,6 +387,20 @@ void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j, std::vector<Contact>& 
   if (active_[i]->getId() > active_[j]->getId()) std::swap(i, j);
   Geometry* first = active_[i];
   Geometry* second = active_[j];
+  const RigidBodyT<S>* body1 = first->getRigidBody();
+  const RigidBodyT<S>* body2 = second->getRigidBody();
+  if (body1 && body2 && body1->isSleeping() && body2->isSleeping()) {
+    const auto key = std::make_pair(first->getId(), second->getId());
+    const auto it = std::lower_bound(lastContactOf_.begin(), lastContactOf_.end(), std::make_pair(key, std::size_t(0)));
+    if (it != lastContactOf_.end() && it->first == key) {
+      // As the colliders gave it: every point enabled, reduced again below.
+      Contact kept = lastContacts_[it->second];
+      kept.setEnable(true);
+      for (auto& point : kept.points()) point.enabled = true;
+      found.push_back(std::move(kept));
+    }
+    return;
+  }
   Contact contact(first, second);
   ContactSinkT<S> sink(contact.points());
   const auto& shapes1 = first->getShapes();

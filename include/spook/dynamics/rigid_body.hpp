@@ -235,7 +235,10 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
  private:
   using Access = detail::GeometryAccess<S>;
   void checkGeometryChange(const detail::GeometryEdit<S>& edit) const override;
-  void geometryChanged() override { updateMassProperties(); }
+  void geometryChanged() override {
+    updateMassProperties();
+    wakeUp();  // its shapes may have moved under the contacts it slept on
+  }
 
   // Generated mass properties, validated and ready to store.
   struct MassUpdate {

@@ -264,6 +264,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void readBackImpulses(const StepContext& step);
   void moveBodies(const StepContext& step);
   void projectRows(const StepContext& step);
+  void wakeDisturbed();
   void wakeBodies(const StepContext& step);
   void sleepResting(const StepContext& step);
 

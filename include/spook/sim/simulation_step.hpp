@@ -121,6 +121,7 @@ void SimulationT<S>::forgetPredictions() {
 
 template <Scalar S>
 void SimulationT<S>::collide() {
+  wakeDisturbed();  // before the space reuses the contacts of sleeping pairs
   work_->workers.resize(numThreads_);
   space_->update(bodies_.get(), &work_->workers);
   statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
@@ -201,6 +202,14 @@ void SimulationT<S>::moveBodies(const StepContext& step) {
 }
 
 template <Scalar S>
+void SimulationT<S>::wakeDisturbed() {
+  const bool all =
+      !autoSleep_.getEnable() || constraints_.version() != sleptConstraints_ || producers_.version() != sleptProducers_;
+  for (const auto& body : bodies_)
+    if (body->isSleeping() && (all || detail::BodySleep<S>::disturbed(*body))) body->wakeUp();
+}
+
+template <Scalar S>
 void SimulationT<S>::wakeBodies(const StepContext& step) {
   auto& w = *work_;
   if (std::none_of(bodies_.begin(), bodies_.end(), [](const auto& body) { return body->isSleeping(); })) return;
@@ -212,10 +221,6 @@ void SimulationT<S>::wakeBodies(const StepContext& step) {
     w.solverBodies[i] = detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h);
     return true;
   };
-  const bool all =
-      !autoSleep_.getEnable() || constraints_.version() != sleptConstraints_ || producers_.version() != sleptProducers_;
-  for (const auto& body : bodies_)
-    if (body->isSleeping() && (all || detail::BodySleep<S>::disturbed(*body))) wake(body.get());
   for (const auto& pair : space_->getSeparations()) {
     if (pair.first) wake(pair.first->getRigidBody());
     if (pair.second) wake(pair.second->getRigidBody());

@@ -21,7 +21,7 @@ void SimulationT<S>::stepForward() {
   } reset{stepping_};
 
   notify(Listener::PRE_COLLIDE);
-  collide();  // broadphase, narrow phase, contact events
+  collide();  // sleeping bodies disturbed wake; broadphase, narrow phase, contact events
   notify(Listener::PRE_STEP);
   integrate(timeStep_);
   detail::stopAtFirstContact(bodies_.get(), *space_, timeStep_);  // continuous collision, opt-in per body
@@ -39,7 +39,7 @@ template <Scalar S>
 void SimulationT<S>::integrate(S h) {
   const StepContext step = beginExtensions(double(h));  // stores and producers may add or remove bodies
   gatherSolverBodies(step);  // v, v* = v + hM⁻¹f, M⁻¹: rigid bodies, then each store's
-  wakeBodies(step);          // sleeping bodies disturbed or met by awake ones (getAutoSleep)
+  wakeBodies(step);          // sleeping bodies that awake ones touch or are jointed to (getAutoSleep)
   gatherRows(step);          // joints, contacts, then each producer's rows, with their last impulses
   solveRows(step);           // islands under the solver policy; geometric stiffness
   readBackImpulses(step);    // joint forces and predictions, contact forces and persistence, producers
