@@ -182,6 +182,45 @@ TEST_CASE_TEMPLATE("a kinematic platform that starts to move wakes what sleeps o
   CHECK(std::abs(double(box->getPosition().z()) - (3.25 + 0.0)) < 0.02);
 }
 
+// A kinematic platform gliding at 1 cm/s (under the linear threshold) keeps
+// the box it carries awake: asleep, the box would stop and be woken again
+// every step.
+TEST_CASE_TEMPLATE("a box on a slowly gliding kinematic platform stays awake and rides along", S, float, double) {
+  Scene<S> scene;
+  const auto platform = scene.box(Vec3<S>(0, 0, S(2)));
+  platform->setMotionControl(spook::RigidBodyT<S>::KINEMATICS);
+  platform->setVelocity(Vec3<S>(S(0.01), 0, 0));
+  const auto box = scene.box(Vec3<S>(0, 0, S(2.75)), S(0.25));
+  bool slept = false;
+  for (int i = 0; i < 120; ++i) {
+    scene.sim->stepForward();
+    slept = slept || box->isSleeping();
+  }
+  CHECK_FALSE(slept);
+  CHECK(std::abs(double(box->getPosition().x()) - 0.02) < 2e-3);
+}
+
+// A crank held level by its motor at speed 0 falls asleep; setting the
+// motor's speed wakes it (the motor's row drives it) and it turns.
+TEST_CASE_TEMPLATE("a sleeping crank wakes when its motor is given a speed", S, float, double) {
+  Scene<S> scene;
+  scene.sim->setSolver(new spook::DirectSolver());
+  const auto crank = scene.box(Vec3<S>(S(0.25), 0, S(3)), S(0.05));
+  const auto hinge = spook::ConstraintT<S>::template createFromWorld<spook::HingeT<S>>(
+      Vec3<S>(0, 0, S(3)), Vec3<S>::UnitY(), crank.get(), nullptr);
+  scene.sim->add(hinge);
+  hinge->getMotor1D()->setEnable(true);
+  hinge->getMotor1D()->setSpeed(S(0));
+  scene.run(1.0);
+  REQUIRE(crank->isSleeping());
+  hinge->getMotor1D()->setSpeed(S(1));
+  scene.sim->stepForward();
+  CHECK_FALSE(crank->isSleeping());
+  CHECK(std::abs(std::abs(double(crank->getAngularVelocity().y())) - 1.0) < 1e-3);
+  scene.run(1.0);
+  CHECK_FALSE(crank->isSleeping());
+}
+
 // A pendulum passes through zero speed at its turning points: resting there
 // for one step is not resting for getTime().
 TEST_CASE_TEMPLATE("a swinging hinge chain does not fall asleep at its turning points; at rest it does, as one", S,

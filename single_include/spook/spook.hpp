@@ -5282,8 +5282,10 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   /// Asleep: the simulation's auto sleep (SimulationT::getAutoSleep) found
   /// its island at rest and no longer steps it. It wakes, with the bodies
   /// it touches or is jointed to, when an awake or moving body meets it, when
-  /// a contact of its ends, when a joint is added or removed, when it is moved
-  /// or given a velocity, force or torque, or by wakeUp().
+  /// a contact of its ends, when a joint is added or removed, when a row
+  /// drives it (a motor given a speed), when it is moved or given a
+  /// velocity, force or torque, or by wakeUp() (after changing a joint's
+  /// other settings, e.g. a lock's position).
   [[nodiscard]] bool isSleeping() const { return sleeping_; }
   void wakeUp() {
     sleeping_ = false;
@@ -9286,6 +9288,11 @@ struct Row {
 
   [[nodiscard]] bool bounded() const { return lower > -std::numeric_limits<double>::infinity() || upper < std::numeric_limits<double>::infinity(); }
 };
+
+/// Whether a row drives its bodies: a velocity row with a target speed (a
+/// motor, a moving surface). Such a row wakes a sleeping body and keeps its
+/// island awake (SimulationT::getAutoSleep).
+[[nodiscard]] inline bool drives(const Row& r) { return !r.holonomic && r.speed != 0.0; }
 
 /// A friction row: its bounds follow the impulse of its contact's normal
 /// row (solver/friction_bounds.hpp). Indices are in the same row list.
@@ -18807,6 +18814,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void projectRows(const StepContext& step);
   void wakeDisturbed();
   void wakeBodies(const StepContext& step);
+  void wakeDriven(const StepContext& step);
   void sleepResting(const StepContext& step);
 
   // The stores' and producers' part of a step (sim/step_extension.hpp).
@@ -21674,6 +21682,7 @@ void SimulationT<S>::integrate(S h) {
   gatherSolverBodies(step);  // v, v* = v + hM⁻¹f, M⁻¹: rigid bodies, then each store's
   wakeBodies(step);          // sleeping bodies that awake ones touch or are jointed to (getAutoSleep)
   gatherRows(step);          // joints, contacts, then each producer's rows, with their last impulses
+  wakeDriven(step);          // sleeping bodies a row drives (a motor's speed, a moving surface)
   solveRows(step);           // islands under the solver policy; geometric stiffness
   readBackImpulses(step);    // joint forces and predictions, contact forces and persistence, producers
   moveBodies(step);          // positions from v⁺
@@ -22535,6 +22544,22 @@ void SimulationT<S>::wakeBodies(const StepContext& step) {
 }
 
 template <Scalar S>
+void SimulationT<S>::wakeDriven(const StepContext& step) {
+  auto& w = *work_;
+  const int n = static_cast<int>(bodies_.size());
+  const S h = S(step.getTimeStep());
+  const auto sleeping = [&](int i) { return i >= 0 && i < n && bodies_[std::size_t(i)]->isSleeping(); };
+  for (const detail::Row& r : w.rows.rows)
+    if (detail::drives(r) && (sleeping(r.body1) || sleeping(r.body2)))
+      for (int i : {r.body1, r.body2})
+        if (sleeping(i)) {
+          bodies_[std::size_t(i)]->wakeUp();
+          w.solverBodies[std::size_t(i)] =
+              detail::BodyIntegrator<S>::solverBody(*bodies_[std::size_t(i)], *gravity_, h);
+        }
+}
+
+template <Scalar S>
 void SimulationT<S>::sleepResting(const StepContext& step) {
   auto& w = *work_;
   sleptConstraints_ = constraints_.version();
@@ -22567,16 +22592,21 @@ void SimulationT<S>::sleepResting(const StepContext& step) {
         if (dynamic(other) && dynamic(t.body)) parent[std::size_t(find(other))] = find(t.body);
     }
     // From here ready[root] says whether the root's island may sleep: not
-    // with a body that has not rested long enough, a producer's row or a
-    // store's body.
+    // with a body that has not rested long enough, a row that drives it (a
+    // motor, a moving surface), a moving kinematic body it touches, a
+    // producer's row or a store's body.
     const auto keepAwake = [&](int i) {
       if (dynamic(i)) ready[std::size_t(find(i))] = 0;
+    };
+    const auto moving = [&](int i) {
+      return i >= 0 && i < n && !dynamic(i) && w.solverBodies[std::size_t(i)].velocity != detail::Vec6d::Zero();
     };
     for (int i = 0; i < n; ++i)
       if (dynamic(i) && !ready[std::size_t(i)]) keepAwake(i);
     for (std::size_t k = 0; k < w.rows.size(); ++k) {
       const detail::Row& r = w.rows.rows[k];
-      if (k >= w.firstProducerRow || r.body1 >= n || r.body2 >= n) {
+      if (k >= w.firstProducerRow || r.body1 >= n || r.body2 >= n || detail::drives(r) || moving(r.body1) ||
+          moving(r.body2)) {
         keepAwake(r.body1);
         keepAwake(r.body2);
       }

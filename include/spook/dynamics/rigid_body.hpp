@@ -175,8 +175,10 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   /// Asleep: the simulation's auto sleep (SimulationT::getAutoSleep) found
   /// its island at rest and no longer steps it. It wakes, with the bodies
   /// it touches or is jointed to, when an awake or moving body meets it, when
-  /// a contact of its ends, when a joint is added or removed, when it is moved
-  /// or given a velocity, force or torque, or by wakeUp().
+  /// a contact of its ends, when a joint is added or removed, when a row
+  /// drives it (a motor given a speed), when it is moved or given a
+  /// velocity, force or torque, or by wakeUp() (after changing a joint's
+  /// other settings, e.g. a lock's position).
   [[nodiscard]] bool isSleeping() const { return sleeping_; }
   void wakeUp() {
     sleeping_ = false;

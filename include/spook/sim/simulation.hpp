@@ -266,6 +266,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void projectRows(const StepContext& step);
   void wakeDisturbed();
   void wakeBodies(const StepContext& step);
+  void wakeDriven(const StepContext& step);
   void sleepResting(const StepContext& step);
 
   // The stores' and producers' part of a step (sim/step_extension.hpp).

@@ -247,6 +247,22 @@ void SimulationT<S>::wakeBodies(const StepContext& step) {
 }
 
 template <Scalar S>
+void SimulationT<S>::wakeDriven(const StepContext& step) {
+  auto& w = *work_;
+  const int n = static_cast<int>(bodies_.size());
+  const S h = S(step.getTimeStep());
+  const auto sleeping = [&](int i) { return i >= 0 && i < n && bodies_[std::size_t(i)]->isSleeping(); };
+  for (const detail::Row& r : w.rows.rows)
+    if (detail::drives(r) && (sleeping(r.body1) || sleeping(r.body2)))
+      for (int i : {r.body1, r.body2})
+        if (sleeping(i)) {
+          bodies_[std::size_t(i)]->wakeUp();
+          w.solverBodies[std::size_t(i)] =
+              detail::BodyIntegrator<S>::solverBody(*bodies_[std::size_t(i)], *gravity_, h);
+        }
+}
+
+template <Scalar S>
 void SimulationT<S>::sleepResting(const StepContext& step) {
   auto& w = *work_;
   sleptConstraints_ = constraints_.version();
@@ -279,16 +295,21 @@ void SimulationT<S>::sleepResting(const StepContext& step) {
         if (dynamic(other) && dynamic(t.body)) parent[std::size_t(find(other))] = find(t.body);
     }
     // From here ready[root] says whether the root's island may sleep: not
-    // with a body that has not rested long enough, a producer's row or a
-    // store's body.
+    // with a body that has not rested long enough, a row that drives it (a
+    // motor, a moving surface), a moving kinematic body it touches, a
+    // producer's row or a store's body.
     const auto keepAwake = [&](int i) {
       if (dynamic(i)) ready[std::size_t(find(i))] = 0;
+    };
+    const auto moving = [&](int i) {
+      return i >= 0 && i < n && !dynamic(i) && w.solverBodies[std::size_t(i)].velocity != detail::Vec6d::Zero();
     };
     for (int i = 0; i < n; ++i)
       if (dynamic(i) && !ready[std::size_t(i)]) keepAwake(i);
     for (std::size_t k = 0; k < w.rows.size(); ++k) {
       const detail::Row& r = w.rows.rows[k];
-      if (k >= w.firstProducerRow || r.body1 >= n || r.body2 >= n) {
+      if (k >= w.firstProducerRow || r.body1 >= n || r.body2 >= n || detail::drives(r) || moving(r.body1) ||
+          moving(r.body2)) {
         keepAwake(r.body1);
         keepAwake(r.body2);
       }

@@ -41,6 +41,7 @@ void SimulationT<S>::integrate(S h) {
   gatherSolverBodies(step);  // v, v* = v + hM⁻¹f, M⁻¹: rigid bodies, then each store's
   wakeBodies(step);          // sleeping bodies that awake ones touch or are jointed to (getAutoSleep)
   gatherRows(step);          // joints, contacts, then each producer's rows, with their last impulses
+  wakeDriven(step);          // sleeping bodies a row drives (a motor's speed, a moving surface)
   solveRows(step);           // islands under the solver policy; geometric stiffness
   readBackImpulses(step);    // joint forces and predictions, contact forces and persistence, producers
   moveBodies(step);          // positions from v⁺

@@ -67,6 +67,11 @@ struct Row {
   [[nodiscard]] bool bounded() const { return lower > -std::numeric_limits<double>::infinity() || upper < std::numeric_limits<double>::infinity(); }
 };
 
+/// Whether a row drives its bodies: a velocity row with a target speed (a
+/// motor, a moving surface). Such a row wakes a sleeping body and keeps its
+/// island awake (SimulationT::getAutoSleep).
+[[nodiscard]] inline bool drives(const Row& r) { return !r.holonomic && r.speed != 0.0; }
+
 /// A friction row: its bounds follow the impulse of its contact's normal
 /// row (solver/friction_bounds.hpp). Indices are in the same row list.
 struct FrictionLink {
