@@ -5896,8 +5896,9 @@ class SpaceT : public Referenced {
   detail::SweepAndPrune<S> broadphase_;
   /// The broad phase's pairs that may collide (canCollide), in its order.
   std::vector<std::pair<std::size_t, std::size_t>> pairs_;
-  /// The last update's contacts, and where each pair's stands among them,
-  /// sorted by the pair's ids: what two sleeping bodies keep.
+  /// The last update's contacts, and (while a body sleeps) where each
+  /// pair's stands among them, sorted by the pair's ids: what two sleeping
+  /// bodies keep.
   std::vector<Contact> lastContacts_;
   std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, std::size_t>> lastContactOf_;
   /// Per piece of pairs_ on the threads: its contacts and dropped points.
@@ -5979,14 +5980,17 @@ void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerP
     if (canCollide(*active_[i], *active_[j])) pairs_.emplace_back(i, j);
   });
   std::swap(contacts_, lastContacts_);
+  lastContactOf_.clear();
+  if (std::any_of(active_.begin(), active_.end(),
+                  [](const Geometry* g) { return g->getRigidBody() && g->getRigidBody()->isSleeping(); })) {
+    for (std::size_t k = 0; k < lastContacts_.size(); ++k)
+      lastContactOf_.emplace_back(
+          std::make_pair(lastContacts_[k].geometry(0)->getId(), lastContacts_[k].geometry(1)->getId()), k);
+    std::sort(lastContactOf_.begin(), lastContactOf_.end());
+  }
   narrowPhase(workers);
   reduce();
   trackEvents();
-  lastContactOf_.clear();
-  for (std::size_t k = 0; k < contacts_.size(); ++k)
-    lastContactOf_.emplace_back(std::make_pair(contacts_[k].geometry(0)->getId(), contacts_[k].geometry(1)->getId()),
-                                k);
-  std::sort(lastContactOf_.begin(), lastContactOf_.end());
 }
 
 template <Scalar S>
