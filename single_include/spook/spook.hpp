@@ -22356,6 +22356,14 @@ struct SimulationWorkspace {
   std::vector<char> sleepReady;
 };
 
+// Wakes a sleeping body in the middle of a step: from here on the solver
+// sees it as dynamic, with its force-driven velocity.
+template <Scalar S>
+void wakeInStep(RigidBodyT<S>& body, SolverBody& solved, const GravityFieldT<S>& gravity, S h) {
+  body.wakeUp();
+  solved = BodyIntegrator<S>::solverBody(body, gravity, h);
+}
+
 // How many rows and side-table entries a RowSet held.
 struct RowCounts {
   explicit RowCounts(const RowSet& set)
@@ -22517,9 +22525,7 @@ void SimulationT<S>::wakeBodies(const StepContext& step) {
   const S h = S(step.getTimeStep());
   const auto wake = [&](Body* body) {
     if (!body || !contains(body) || !body->isSleeping()) return false;
-    body->wakeUp();
-    const std::size_t i = Membership::indexOf(*body);
-    w.solverBodies[i] = detail::BodyIntegrator<S>::solverBody(*body, *gravity_, h);
+    detail::wakeInStep(*body, w.solverBodies[Membership::indexOf(*body)], *gravity_, h);
     return true;
   };
   for (const auto& pair : space_->getSeparations()) {
@@ -22554,13 +22560,9 @@ void SimulationT<S>::wakeDriven(const StepContext& step) {
   const S h = S(step.getTimeStep());
   const auto sleeping = [&](int i) { return i >= 0 && i < n && bodies_[std::size_t(i)]->isSleeping(); };
   for (const detail::Row& r : w.rows.rows)
-    if (detail::drives(r) && (sleeping(r.body1) || sleeping(r.body2)))
+    if (detail::drives(r))
       for (int i : {r.body1, r.body2})
-        if (sleeping(i)) {
-          bodies_[std::size_t(i)]->wakeUp();
-          w.solverBodies[std::size_t(i)] =
-              detail::BodyIntegrator<S>::solverBody(*bodies_[std::size_t(i)], *gravity_, h);
-        }
+        if (sleeping(i)) detail::wakeInStep(*bodies_[std::size_t(i)], w.solverBodies[std::size_t(i)], *gravity_, h);
 }
 
 template <Scalar S>
