@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <spook/core/geometric_growth.hpp>
 #include <spook/core/implementation.hpp>
 #include <spook/solver/row.hpp>
 
@@ -214,7 +215,7 @@ SPOOK_INLINE std::vector<Vec6d> IslandProblem::velocityChange() const {
 }
 
 SPOOK_INLINE void IslandProblem::velocityChange(std::vector<Vec6d>& dv) const {
-  dv.assign(static_cast<std::size_t>(numBodies), Vec6d::Zero());
+  assignGrowing(dv, static_cast<std::size_t>(numBodies), Vec6d(Vec6d::Zero()));
   for (int i = 0; i < static_cast<int>(rows.size()); ++i) addImpulse(dv, i, rows[static_cast<std::size_t>(i)].impulse);
 }
 

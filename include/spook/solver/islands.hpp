@@ -11,6 +11,7 @@
 
 #include <Eigen/Cholesky>
 
+#include <spook/core/geometric_growth.hpp>
 #include <spook/core/implementation.hpp>
 #include <spook/core/worker_pool.hpp>
 #include <spook/solver/body_space_solve.hpp>
@@ -88,7 +89,7 @@ class IslandStepper {
   }
   template <class Entry>
   static void indexTable(std::span<const Entry> table, std::size_t rows, std::vector<int>& entryOf) {
-    entryOf.assign(rows, -1);
+    assignGrowing(entryOf, rows, -1);
     for (std::size_t k = 0; k < table.size(); ++k)
       entryOf[static_cast<std::size_t>(table[k].row)] = static_cast<int>(k);
   }
@@ -138,6 +139,7 @@ class IslandStepper {
 
   std::vector<int> parent_, islandOfRoot_, nonFiniteBodies_, frictionOf_, thirdOf_, secondOrderOf_;
   std::vector<std::vector<int>> islands_;
+  std::vector<std::vector<int>> spareIslands_;  ///< the last step's islands' storage, emptied
   std::vector<Worker> workers_;
   /// Per island of the running solve: its statistics, and its bodies when
   /// its impulses came out non-finite.
@@ -228,7 +230,7 @@ SPOOK_INLINE int IslandStepper::prepareWorkers(const RowSet& set, Solver& solver
 
 SPOOK_INLINE void IslandStepper::partition(const RowSet& set, const std::vector<SolverBody>& bodies) {
   const std::vector<Row>& rows = set.rows;
-  parent_.resize(bodies.size());
+  resizeGrowing(parent_, bodies.size());
   std::iota(parent_.begin(), parent_.end(), 0);
   const auto join = [&](int a, int b) {
     if (isDynamic(bodies, a) && isDynamic(bodies, b)) parent_[static_cast<std::size_t>(find(a))] = find(b);
@@ -239,7 +241,11 @@ SPOOK_INLINE void IslandStepper::partition(const RowSet& set, const std::vector<
     join(r.body1, t.body);
     join(r.body2, t.body);
   }
-  islandOfRoot_.assign(bodies.size(), -1);
+  assignGrowing(islandOfRoot_, bodies.size(), -1);
+  for (std::vector<int>& island : islands_) {
+    island.clear();
+    spareIslands_.push_back(std::move(island));
+  }
   islands_.clear();
   for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
     const Row& r = rows[static_cast<std::size_t>(i)];
@@ -253,7 +259,12 @@ SPOOK_INLINE void IslandStepper::partition(const RowSet& set, const std::vector<
     int& island = islandOfRoot_[static_cast<std::size_t>(find(body))];
     if (island < 0) {
       island = static_cast<int>(islands_.size());
-      islands_.emplace_back();
+      if (spareIslands_.empty()) {
+        islands_.emplace_back();
+      } else {
+        islands_.push_back(std::move(spareIslands_.back()));
+        spareIslands_.pop_back();
+      }
     }
     islands_[static_cast<std::size_t>(island)].push_back(i);
   }
@@ -266,7 +277,7 @@ SPOOK_INLINE void IslandStepper::buildProblem(Worker& worker, const RowSet& set,
   std::vector<int>& rowLocal = worker.rowLocal;
   IslandProblem& problem = worker.problem;
   const std::vector<Row>& rows = set.rows;
-  local.resize(bodies.size(), -1);
+  resizeGrowing(local, bodies.size(), -1);
   islandBodies.clear();
   auto localIndex = [&](int body) {
     if (!isDynamic(bodies, body)) return -1;
@@ -277,10 +288,10 @@ SPOOK_INLINE void IslandStepper::buildProblem(Worker& worker, const RowSet& set,
     }
     return l;
   };
-  rowLocal.resize(rows.size(), -1);
+  resizeGrowing(rowLocal, rows.size(), -1);
   for (std::size_t k = 0; k < island.size(); ++k) rowLocal[static_cast<std::size_t>(island[k])] = static_cast<int>(k);
   const auto localRow = [&](int i) { return i < 0 ? -1 : rowLocal[static_cast<std::size_t>(i)]; };
-  problem.rows.resize(island.size());
+  resizeGrowing(problem.rows, island.size());
   problem.extraBodies.clear();
   for (std::size_t k = 0; k < island.size(); ++k) {
     const Row& r = rows[static_cast<std::size_t>(island[k])];
@@ -335,7 +346,7 @@ SPOOK_INLINE void IslandStepper::buildProblem(Worker& worker, const RowSet& set,
   }
   problem.numBodies = static_cast<int>(islandBodies.size());
   // Mass matrices only where a direct solve may go through body space.
-  problem.mass.resize(BodySpaceSolve::outnumbers(island.size(), islandBodies.size()) ? islandBodies.size() : 0);
+  resizeGrowing(problem.mass, BodySpaceSolve::outnumbers(island.size(), islandBodies.size()) ? islandBodies.size() : 0);
   for (std::size_t k = 0; k < problem.mass.size(); ++k) {
     const SolverBody& b = bodies[static_cast<std::size_t>(islandBodies[k])];
     Mat6d& M = problem.mass[k];

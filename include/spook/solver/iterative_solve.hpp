@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-
+#include <spook/core/geometric_growth.hpp>
 #include <spook/solver/friction_bounds.hpp>
 #include <spook/solver/island_problem.hpp>
 
@@ -174,8 +174,8 @@ inline void packSweepRows(const IslandProblem& problem, const std::vector<int>& 
                           const std::vector<RowBlocks::Unit>& units, const std::vector<char>& swept,
                           std::vector<SweepRow>& packed, std::vector<int>& position) {
   packed.clear();
-  packed.reserve(units.size());
-  position.assign(problem.rows.size(), -1);
+  reserveGrowing(packed, units.size());
+  assignGrowing(position, problem.rows.size(), -1);
   for (const RowBlocks::Unit& unit : units) {
     if (unit.count > 1) continue;
     const int i = subset[static_cast<std::size_t>(unit.first)];
@@ -230,15 +230,17 @@ inline IterativeSolveResult gaussSeidelSolve(IslandProblem& problem, const std::
                                              double tolerance) {
   IterativeSolveResult result;
   if (subset.empty()) return result;
-  std::vector<Vec6d> velocityChange = problem.velocityChange();
-  Vec6d* dv = velocityChange.data();
-  std::vector<char> swept(problem.rows.size(), 0);
-  for (int i : subset) swept[static_cast<std::size_t>(i)] = 1;
-  const RowBlocks blocks(problem, subset, true);
   // Kept between solves: a scene's rows are packed again at every solve,
   // and fresh pages for them cost more than the packing.
+  thread_local std::vector<Vec6d> velocityChange;
+  thread_local std::vector<char> swept;
   thread_local std::vector<SweepRow> packed;
   thread_local std::vector<int> position;
+  problem.velocityChange(velocityChange);
+  Vec6d* dv = velocityChange.data();
+  assignGrowing(swept, problem.rows.size(), char(0));
+  for (int i : subset) swept[static_cast<std::size_t>(i)] = 1;
+  const RowBlocks blocks(problem, subset, true);
   packSweepRows(problem, subset, blocks.units(), swept, packed, position);
 
   const auto followNormal = [&](SweepRow& s) {
