@@ -1,7 +1,10 @@
 // Broadphase cost: find the overlapping bounding-box pairs of
 //   - 1,000 and 10,000 spheres (r = 0.5 m) moving in a cube sized for about
 //     one neighbour each, every sphere moving every step;
-//   - 210 boxes stacked in a pyramid (20 rows), all touching.
+//   - 210 boxes stacked in a pyramid (20 rows), all touching;
+//   - a settled pile: 1,000 and 10,000 spheres (r = 0.1 m) 0.2 m apart on a
+//     grid, 13 layers, each box touching its neighbours, in a box of four
+//     walls on a ground (the pile of bench/contact_study's scaling).
 // Candidates: sweep and prune (what Space uses), an AABB tree rebuilt from
 // scratch each step and queried once per box (the tree alternative, with
 // no refit bookkeeping), and all pairs (the baseline).
@@ -60,8 +63,7 @@ std::size_t sweep(const std::vector<Box>& boxes, spook::detail::SweepAndPrune<do
 std::size_t tree(const std::vector<Box>& boxes) {
   const spook::detail::AabbTree<double> t(boxes);
   std::size_t pairs = 0;
-  for (std::size_t i = 0; i < boxes.size(); ++i)
-    t.query(boxes[i], [&](std::size_t j) { pairs += j > i ? 1 : 0; });
+  for (std::size_t i = 0; i < boxes.size(); ++i) t.query(boxes[i], [&](std::size_t j) { pairs += j > i ? 1 : 0; });
   return pairs;
 }
 std::size_t allPairs(const std::vector<Box>& boxes) {
@@ -97,6 +99,36 @@ void pyramidBoxes(benchmark::State& state) {
   state.counters["pairs"] = double(pairs);
 }
 
+std::vector<Box> pile(int count) {
+  constexpr double r = 0.1, pitch = 0.2;
+  const int grid = int(std::ceil(std::sqrt(count / 13.0)));
+  const double side = grid * pitch;
+  std::vector<Box> boxes;
+  boxes.push_back({Vec3(-side, -side, -1), Vec3(side, side, 0)});
+  for (double sign : {-1.0, 1.0}) {
+    boxes.push_back({Vec3(sign * side / 2 - 0.1, -side, 0), Vec3(sign * side / 2 + 0.1, side, 4)});
+    boxes.push_back({Vec3(-side, sign * side / 2 - 0.1, 0), Vec3(side, sign * side / 2 + 0.1, 4)});
+  }
+  for (int i = 0; i < count; ++i) {
+    const int layer = i / (grid * grid), column = i % grid, row = (i / grid) % grid;
+    const Vec3 c((column - grid / 2.0) * pitch, (row - grid / 2.0) * pitch, r + layer * pitch);
+    boxes.push_back({c - Vec3::Constant(r), c + Vec3::Constant(r)});
+  }
+  return boxes;
+}
+
+template <int Method>
+void pileBoxes(benchmark::State& state) {
+  const auto boxes = pile(static_cast<int>(state.range(0)));
+  spook::detail::SweepAndPrune<double> sap;
+  std::size_t pairs = 0;
+  for (auto _ : state) {
+    pairs = Method == 0 ? sweep(boxes, sap) : tree(boxes);
+    benchmark::DoNotOptimize(pairs);
+  }
+  state.counters["pairs"] = double(pairs);
+}
+
 }  // namespace
 
 BENCHMARK(movingSpheres<0>)->Name("spheres/sweep_and_prune")->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
@@ -105,4 +137,6 @@ BENCHMARK(movingSpheres<2>)->Name("spheres/all_pairs")->Arg(1000)->Arg(10000)->U
 BENCHMARK(pyramidBoxes<0>)->Name("pyramid210/sweep_and_prune")->Unit(benchmark::kMicrosecond);
 BENCHMARK(pyramidBoxes<1>)->Name("pyramid210/aabb_tree_rebuilt")->Unit(benchmark::kMicrosecond);
 BENCHMARK(pyramidBoxes<2>)->Name("pyramid210/all_pairs")->Unit(benchmark::kMicrosecond);
+BENCHMARK(pileBoxes<0>)->Name("pile/sweep_and_prune")->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(pileBoxes<1>)->Name("pile/aabb_tree_rebuilt")->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();
