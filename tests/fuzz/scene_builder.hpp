@@ -15,7 +15,10 @@
 // valid default scene (a 1 kg box over a ground plane, direct solver, 60 Hz).
 // A real number is one byte: 0..223 map linearly onto the field's typical
 // range [lo, hi], 224..254 pick an extreme value (kExtremes), and 255 takes
-// the next 8 bytes as a raw IEEE double.
+// the next 8 bytes as a raw IEEE double. Reads are sequenced (never two in
+// the arguments of one call, whose order GCC and clang evaluate differently),
+// so that a GCC build (the sweep) decodes an input as the libFuzzer target
+// built by clang does.
 //   scene:  scalar (double/float), solver policy and knobs, time step,
 //           gravity, ground, then up to 8 bodies, up to 8 joints, up to 2
 //           wires, and the step before which one wire operation runs (cut,
@@ -142,7 +145,10 @@ struct Builder {
       }
     }
   }
-  Transform transform() { return spook::makeTransform<S>(vec(-1, 1), rotation()); }
+  Transform transform() {
+    const Vec3 at = vec(-1, 1);
+    return spook::makeTransform<S>(at, rotation());
+  }
 
   spook::ref_ptr<Shape> convex() {
     std::vector<Vec3> points(static_cast<std::size_t>(4 + in.choice(13)));
@@ -236,7 +242,8 @@ struct Builder {
     spook::ref_ptr<Body> b = new Body("body" + std::to_string(index));
     const int geometries = in.choice(4) == 0 ? 0 : 1 + in.choice(2);
     for (int g = 0; g < geometries; ++g) {
-      spook::ref_ptr<spook::GeometryT<S>> geometry = new spook::GeometryT<S>(shape(0), transform());
+      spook::ref_ptr<Shape> shape0 = shape(0);
+      spook::ref_ptr<spook::GeometryT<S>> geometry = new spook::GeometryT<S>(shape0, transform());
       geometry->setMaterial(material());
       b->add(geometry);
     }
@@ -247,10 +254,11 @@ struct Builder {
     }
     if (geometries == 0 || in.choice(4) == 0) b->getMassProperties()->setMass(real(0.01, 100));
     if (in.choice(4) == 0) {
-      const S i = real(0.001, 10);
-      b->getMassProperties()->setInertiaTensor(spook::SPDMat3T<S>(Vec3(i, real(0.001, 10), real(0.001, 10))));
+      const S i = real(0.001, 10), j = real(0.001, 10), k = real(0.001, 10);
+      b->getMassProperties()->setInertiaTensor(spook::SPDMat3T<S>(Vec3(i, j, k)));
     }
-    b->setPosition(vec(-2, 2) + Vec3(0, 0, real(0, 3)));
+    const Vec3 at = vec(-2, 2);
+    b->setPosition(at + Vec3(0, 0, real(0, 3)));
     b->setRotation(rotation());
     b->setVelocity(vec(-10, 10));
     b->setAngularVelocity(vec(-20, 20));
@@ -362,7 +370,8 @@ struct Builder {
   // clamped to a body or a link on it, a winch with random speed, force and brake), routed
   // through free nodes, eyes and over cylinders on bodies or the world.
   void wire(spook::SimulationT<S>& sim, const std::vector<spook::ref_ptr<Body>>& bodies) {
-    spook::ref_ptr<spook::WireT<S>> w = new spook::WireT<S>(real(1e-4, 0.1), real(0.1, 20));
+    const S radius = real(1e-4, 0.1), resolution = real(0.1, 20);
+    spook::ref_ptr<spook::WireT<S>> w = new spook::WireT<S>(radius, resolution);
     auto& material = *w->getMaterial()->getWireMaterial();
     w->getMaterial()->getBulkMaterial()->setDensity(real(1, 1e4));
     material.setYoungsModulusStretch(real(1e3, 1e12));
@@ -392,11 +401,17 @@ struct Builder {
           break;
         }
         default: {
+          Body* carrier = anyBody();
+          const Vec3 at = vec(-1, 1), direction = vec(-1, 1);
           spook::ref_ptr<spook::WireWinchControllerT<S>> winch =
-              new spook::WireWinchControllerT<S>(anyBody(), vec(-1, 1), vec(-1, 1));
+              new spook::WireWinchControllerT<S>(carrier, at, direction);
           winch->setSpeed(real(-5, 5));
-          winch->setForceRange(-real(0, 1e5), real(0, 1e5));
-          if (in.flag()) winch->setBrakeForceRange(-real(0, 1e5), real(0, 1e5));
+          const S haul = -real(0, 1e5), payOut = real(0, 1e5);
+          winch->setForceRange(haul, payOut);
+          if (in.flag()) {
+            const S lower = -real(0, 1e5), upper = real(0, 1e5);
+            winch->setBrakeForceRange(lower, upper);
+          }
           w->add(winch, real(0, 50));
         }
       }
@@ -405,8 +420,9 @@ struct Builder {
     const int middle = in.choice(4);
     for (int i = 0; i < middle; ++i) {
       if (in.flag()) {
-        spook::ref_ptr<spook::GeometryT<S>> sheave =
-            new spook::GeometryT<S>(new spook::CylinderT<S>(real(0.05, 1), real(0.05, 1)), transform());
+        const S radius = real(0.05, 1), height = real(0.05, 1);
+        spook::ref_ptr<Shape> cylinder = new spook::CylinderT<S>(radius, height);
+        spook::ref_ptr<spook::GeometryT<S>> sheave = new spook::GeometryT<S>(cylinder, transform());
         if (Body* carrier = anyBody()) carrier->add(sheave);
         else sim.add(sheave);
         spook::ref_ptr<spook::ContactNodeT<S>> contact = new spook::ContactNodeT<S>(sheave.get(), vec(-1, 1));
@@ -466,13 +482,20 @@ struct Builder {
           break;
         }
         case 2: w->detach(in.flag()); break;
-        case 3: w->attach(new spook::BodyFixedNodeT<S>(body, vec(-1, 1)), in.flag()); break;
+        case 3: {
+          spook::ref_ptr<spook::BodyFixedNodeT<S>> node = new spook::BodyFixedNodeT<S>(body, vec(-1, 1));
+          w->attach(node, in.flag());
+          break;
+        }
         default: {
+          const Vec3 at = vec(-1, 1), direction = vec(-1, 1);
           spook::ref_ptr<spook::WireWinchControllerT<S>> winch =
-              new spook::WireWinchControllerT<S>(body, vec(-1, 1), vec(-1, 1));
+              new spook::WireWinchControllerT<S>(body, at, direction);
           winch->setSpeed(real(-5, 5));
-          winch->setForceRange(-real(0, 1e5), real(0, 1e5));
-          w->attach(winch, real(0, 20), in.flag());
+          const S haul = -real(0, 1e5), payOut = real(0, 1e5);
+          winch->setForceRange(haul, payOut);
+          const S pulledIn = real(0, 20);
+          w->attach(winch, pulledIn, in.flag());
         }
       }
     } catch (const spook::Error&) {
@@ -515,7 +538,8 @@ struct Builder {
       }
       default:
         sim.add(new spook::GeometryT<S>(new spook::PlaneT<S>(Vec3::UnitZ())));
-        sim.add(new spook::GeometryT<S>(shape(0), transform()));
+        spook::ref_ptr<Shape> obstacle = shape(0);
+        sim.add(new spook::GeometryT<S>(obstacle, transform()));
         break;
     }
 
