@@ -18953,6 +18953,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void wakeDisturbed();
   void wakeBodies(const StepContext& step);
   void wakeDriven(const StepContext& step);
+  [[nodiscard]] bool anySleeping() const;
   void sleepResting(const StepContext& step);
 
   // The stores' and producers' part of a step (sim/step_extension.hpp).
@@ -22665,7 +22666,7 @@ void SimulationT<S>::wakeDisturbed() {
 template <Scalar S>
 void SimulationT<S>::wakeBodies(const StepContext& step) {
   auto& w = *work_;
-  if (std::none_of(bodies_.begin(), bodies_.end(), [](const auto& body) { return body->isSleeping(); })) return;
+  if (!anySleeping()) return;
   const S h = S(step.getTimeStep());
   const auto wake = [&](Body* body) {
     if (!body || !contains(body) || !body->isSleeping()) return false;
@@ -22698,7 +22699,13 @@ void SimulationT<S>::wakeBodies(const StepContext& step) {
 }
 
 template <Scalar S>
+bool SimulationT<S>::anySleeping() const {
+  return std::any_of(bodies_.begin(), bodies_.end(), [](const auto& body) { return body->isSleeping(); });
+}
+
+template <Scalar S>
 void SimulationT<S>::wakeDriven(const StepContext& step) {
+  if (!anySleeping()) return;
   auto& w = *work_;
   const int n = static_cast<int>(bodies_.size());
   const S h = S(step.getTimeStep());

@@ -267,6 +267,7 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   void wakeDisturbed();
   void wakeBodies(const StepContext& step);
   void wakeDriven(const StepContext& step);
+  [[nodiscard]] bool anySleeping() const;
   void sleepResting(const StepContext& step);
 
   // The stores' and producers' part of a step (sim/step_extension.hpp).
