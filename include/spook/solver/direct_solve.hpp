@@ -11,6 +11,7 @@
 #include <Eigen/SparseCore>
 
 #include <spook/solver/body_space_solve.hpp>
+#include <spook/solver/free_set_update.hpp>
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/iterative_solve.hpp>
 
@@ -381,6 +382,7 @@ class DirectSolve {
     if (!same(lower_.outerIndexPtr(), columns, analyzedOuter_) || !same(lower_.innerIndexPtr(), entries, analyzedInner_)) {
       ldlt_.analyzePattern(lower_);
       factoredValues_.clear();
+      update_.clear();
       analyzedOuter_.assign(lower_.outerIndexPtr(), lower_.outerIndexPtr() + columns);
       analyzedInner_.assign(lower_.innerIndexPtr(), lower_.innerIndexPtr() + entries);
     }
@@ -449,14 +451,24 @@ class DirectSolve {
     }
     // The hybrid's coupling passes start where the last pass ended: the
     // same matrix, whose factor ldlt_ still holds.
+    // A pivot step that changed a few rows of the last factorized matrix
+    // is solved with its factor (free_set_update.hpp).
     const double* values = lower_.valuePtr();
     const auto count = static_cast<std::size_t>(lower_.nonZeros());
-    if (factoredValues_.empty() || factoredValues_.size() != count ||
-        !std::equal(values, values + count, factoredValues_.begin())) {
+    Eigen::VectorXd solution;
+    if (!factoredValues_.empty() && factoredValues_.size() == count &&
+        std::equal(values, values + count, factoredValues_.begin())) {
+      solution = ldlt_.solve(full);
+    } else if (factoredValues_.empty() || factoredBase_ != lowerValues_ ||
+               !update_.solve(
+                   A_, lower_, freeIndex, full, kRefinedResidual * full.cwiseAbs().maxCoeff(),
+                   [this](const Eigen::VectorXd& v) { return Eigen::VectorXd(ldlt_.solve(v)); }, solution)) {
       ldlt_.factorize(lower_);
       factoredValues_.assign(values, values + count);
+      factoredBase_ = lowerValues_;
+      update_.reset(freeIndex);
+      solution = ldlt_.solve(full);
     }
-    const Eigen::VectorXd solution = ldlt_.solve(full);
     for (int k = 0; k < n; ++k)
       if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[k];
   }
@@ -511,6 +523,8 @@ class DirectSolve {
   std::vector<double> lowerValues_;             ///< lower_'s values as assembled
   std::vector<int> analyzedOuter_, analyzedInner_;  ///< the pattern ldlt_ analyzed
   std::vector<double> factoredValues_;              ///< lower_'s values ldlt_ holds factorized (none: empty)
+  std::vector<double> factoredBase_;                ///< lowerValues_ when ldlt_ was factorized
+  FreeSetUpdate update_;                            ///< solves of other free sets with ldlt_
   Eigen::VectorXd q_;
   std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
