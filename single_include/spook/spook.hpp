@@ -16423,7 +16423,10 @@ struct SolverStatistics {
   int numDirectRows = 0;     ///< rows that went through a direct solve
   int numIterativeRows = 0;  ///< rows that went through projected Gauss–Seidel
   int iterations = 0;        ///< most Gauss–Seidel (or Jacobi) sweeps in one island
-  int factorizations = 0;    ///< sparse factorizations, one per pivoting step
+  /// Pivoting steps of the direct solves, each a solve of its free rows: a
+  /// sparse factorization, or the last one's factor where the step changed
+  /// few rows of its matrix (free_set_update.hpp, body_space_solve.hpp).
+  int factorizations = 0;
   /// Most friction iterations of one direct solve (getNumFrictionIterations);
   /// reaching the maximum means its bounds had not settled to the tolerance.
   int frictionIterations = 0;
@@ -16785,8 +16788,11 @@ using SolverRef = ref_ptr<Solver>;
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <utility>
 #include <vector>
+
+#include <Eigen/LU>
 
 // --- begin spook/solver/block_cholesky.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_BLOCK_CHOLESKY_HPP
@@ -16953,6 +16959,15 @@ class BlockCholesky {
   /// Blocks of L below the diagonal (the fill included).
   [[nodiscard]] std::size_t numFactorBlocks() const { return rows_.size(); }
 
+  /// About how many solve() calls one factorize() costs: 6×6 block
+  /// products (216 multiplications) against block-vector ones (36), a
+  /// pivot's Cholesky and inverse counted as two products.
+  [[nodiscard]] double solvesPerFactorization() const {
+    const double blocks = static_cast<double>(rows_.size());
+    const double products = static_cast<double>(updateSlot_.size()) + blocks + 2.0 * n_;
+    return 216.0 * products / (36.0 * 2.0 * (blocks + n_) + 1.0);
+  }
+
  private:
   // The slot of L's block (row, column), row > column, both in elimination order.
   int slot(int row, int column) const {
@@ -16973,6 +16988,85 @@ class BlockCholesky {
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_SOLVER_BLOCK_CHOLESKY_HPP
 // --- end spook/solver/block_cholesky.hpp ---
+// --- begin spook/solver/factored_free_set.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_FACTORED_FREE_SET_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_FACTORED_FREE_SET_HPP
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace spook::detail {
+
+/// What a direct solve's updates of a factor share (free_set_update.hpp in
+/// row space, BodySpaceSolve in body space): the rows free when the factor
+/// was made, the rows whose state differs now, and per changed row a column
+/// solved with the factor, kept while the factor stands.
+class FactoredFreeSet {
+ public:
+  /// Rows changed against the factorized free set, at most, for an update.
+  static constexpr int kMaxChangedRows = 32;
+  /// Kept columns per factor, at most.
+  static constexpr int kMaxColumns = 2 * kMaxChangedRows;
+
+  /// A new factor, made with the rows freeIndex[k] ≥ 0 free.
+  void reset(const std::vector<int>& freeIndex) {
+    wasFree_.resize(freeIndex.size());
+    for (std::size_t k = 0; k < freeIndex.size(); ++k) wasFree_[k] = freeIndex[k] >= 0 ? 1 : 0;
+    columnOf_.assign(freeIndex.size(), -1);
+    columns_.clear();
+  }
+
+  /// No factor.
+  void clear() {
+    wasFree_.clear();
+    columnOf_.clear();
+    columns_.clear();
+  }
+
+  /// Collects the rows whose state in `freeIndex` differs from the
+  /// factorized one, and makes the column `makeColumn(k)` of each not seen
+  /// changed before. False where there is no factor for these rows or the
+  /// change passes kMaxChangedRows or kMaxColumns.
+  template <class MakeColumn>
+  bool collect(const std::vector<int>& freeIndex, MakeColumn&& makeColumn) {
+    if (wasFree_.size() != freeIndex.size()) return false;
+    changed_.clear();
+    for (std::size_t k = 0; k < freeIndex.size(); ++k)
+      if ((freeIndex[k] >= 0) != (wasFree_[k] != 0)) {
+        if (static_cast<int>(changed_.size()) == kMaxChangedRows) return false;
+        changed_.push_back(static_cast<int>(k));
+      }
+    for (int k : changed_)
+      if (columnOf_[static_cast<std::size_t>(k)] < 0) {
+        if (static_cast<int>(columns_.size()) == kMaxColumns) return false;
+        columnOf_[static_cast<std::size_t>(k)] = static_cast<int>(columns_.size());
+        columns_.push_back(makeColumn(k));
+      }
+    return true;
+  }
+
+  /// Whether row k was free in the factorized matrix.
+  [[nodiscard]] bool wasFree(int k) const { return wasFree_[static_cast<std::size_t>(k)] != 0; }
+  /// The rows of the last collect().
+  [[nodiscard]] const std::vector<int>& changed() const { return changed_; }
+  /// The column of a changed row.
+  [[nodiscard]] const Eigen::VectorXd& column(int k) const {
+    return columns_[static_cast<std::size_t>(columnOf_[static_cast<std::size_t>(k)])];
+  }
+
+ private:
+  std::vector<char> wasFree_;
+  std::vector<int> columnOf_;  ///< per row: its kept column, or −1
+  std::vector<Eigen::VectorXd> columns_;
+  std::vector<int> changed_;
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_FACTORED_FREE_SET_HPP
+// --- end spook/solver/factored_free_set.hpp ---
 
 namespace spook::detail {
 
@@ -17032,20 +17126,31 @@ class BodySpaceSolve {
     }
     std::sort(keys_.begin(), keys_.end());
     keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());
-    if (problem.numBodies == patternBodies_ && keys_ == pattern_) return;
-    pattern_.swap(keys_);
-    patternBodies_ = problem.numBodies;
-    factored_ = false;
-
-    std::vector<std::pair<int, int>> lower(pattern_.size());
-    for (std::size_t p = 0; p < pattern_.size(); ++p) lower[p] = {rowOf(pattern_[p]), colOf(pattern_[p])};
-    cholesky_.analyze(patternBodies_, lower);
+    if (problem.numBodies != patternBodies_ || keys_ != pattern_) {
+      pattern_.swap(keys_);
+      patternBodies_ = problem.numBodies;
+      factored_ = false;
+      std::vector<std::pair<int, int>> lower(pattern_.size());
+      for (std::size_t p = 0; p < pattern_.size(); ++p) lower[p] = {rowOf(pattern_[p]), colOf(pattern_[p])};
+      cholesky_.analyze(patternBodies_, lower);
+    }
+    // Only a factor worth updating needs to know its rows again.
+    rowsHash_ = worthUpdating() ? hashRows(problem, subset) : 0;
   }
 
   /// Factorizes K for the rows of `subset` flagged free (freeIndex[k] ≥ 0);
   /// analyze() has seen the same rows. False where round-off left K not
-  /// positive definite (the caller solves in row space instead).
-  [[nodiscard]] bool factorize(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex) {
+  /// positive definite (the caller solves in row space instead). Where the
+  /// rows are those of the last factorization, at most
+  /// FactoredFreeSet::kMaxChangedRows of them changed state and the factor is costly enough
+  /// (kUpdateWorthSolves), K is not factorized again but updated (see
+  /// prepareUpdate; updated() tells, and `allowUpdate` false forbids it).
+  [[nodiscard]] bool factorize(const IslandProblem& problem, const std::vector<int>& subset,
+                               const std::vector<int>& freeIndex, bool allowUpdate = true) {
+    if (allowUpdate && factored_ && worthUpdating() && rowsHash_ == factoredHash_ &&
+        prepareUpdate(problem, subset, freeIndex))
+      return true;
+    updating_ = false;
     const int numBodies = problem.numBodies;
     diagonal_.resize(static_cast<std::size_t>(numBodies));
     for (int b = 0; b < numBodies; ++b) diagonal_[static_cast<std::size_t>(b)] = problem.mass[static_cast<std::size_t>(b)];
@@ -17082,9 +17187,15 @@ class BodySpaceSolve {
       // diagonal_ and blocks_ are assembled afresh at each call: swapped, not copied.
       std::swap(diagonal_, factoredDiagonal_);
       std::swap(blocks_, factoredBlocks_);
+      factoredHash_ = rowsHash_;
+      set_.reset(freeIndex);
     }
     return factored_;
   }
+
+  /// Whether the last factorize() updated the factor in hand instead of
+  /// factorizing.
+  [[nodiscard]] bool updated() const { return updating_; }
 
   /// Solves the free rows of the last factorize() for the right-hand side r
   /// (`rhs`, one entry per free row); writes x into `x` at the free rows'
@@ -17100,6 +17211,16 @@ class BodySpaceSolve {
       problem.forEachBody(e, [&](int body, const Vec6d& J, const Vec6d&) { y.segment<6>(6 * body) += s * J; });
     }
     cholesky_.solve(y);
+    if (updating_) {
+      // y = K₀⁻¹b − Z C⁻¹ J_Dᵀ K₀⁻¹b (prepareUpdate).
+      const std::vector<int>& changed = set_.changed();
+      const auto m = static_cast<Eigen::Index>(changed.size());
+      Eigen::VectorXd u(m);
+      for (Eigen::Index i = 0; i < m; ++i)
+        u[i] = dotJacobian(problem, subset[static_cast<std::size_t>(changed[static_cast<std::size_t>(i)])], y);
+      const Eigen::VectorXd t = capacitance_.solve(u);
+      for (Eigen::Index i = 0; i < m; ++i) y -= t[i] * set_.column(changed[static_cast<std::size_t>(i)]);
+    }
 
     for (std::size_t k = 0; k < subset.size(); ++k) {
       const int f = freeIndex[k];
@@ -17111,7 +17232,84 @@ class BodySpaceSolve {
     }
   }
 
+  /// An update (a solve or two more, one per new column, a small dense
+  /// solve) is taken where a factorization costs at least this many solves:
+  /// a stack's chain of blocks factorizes in about five (20 stacks of 10
+  /// cubes under the direct policy: 0.93 -> 1.2 ms a step with updates),
+  /// a 210-cube pyramid's filled factor in far more.
+  static constexpr double kUpdateWorthSolves = 8.0;
+
  private:
+  // A pivot step frees or clamps a few rows: K = K₀ + Σ_D s_k j_k j_kᵀ over
+  // the changed rows D, s_k = 1/σ_k for a row freed, −1/σ_k for one clamped,
+  // j_k its Jacobian over the bodies. By the Woodbury identity
+  //   K⁻¹ = K₀⁻¹ − Z (S⁻¹ + J_DᵀZ)⁻¹ Zᵀ,   Z = K₀⁻¹J_D,
+  // a solve with K is one with the factor of K₀ and a dense solve of the
+  // capacitance matrix C = S⁻¹ + J_DᵀZ, as small as the change. Z's columns
+  // depend only on the row and K₀: each is solved once and kept while the
+  // factor stands (pivot steps, the hybrid's coupling passes). The caller
+  // checks the answer against the rows (refineInBodySpace) and factorizes
+  // where it falls short, as where C is singular to round-off (a clamped
+  // row that alone held a direction of K₀).
+  bool prepareUpdate(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex) {
+    const auto jacobianSolved = [&](int k) {
+      Eigen::VectorXd z = Eigen::VectorXd::Zero(6 * problem.numBodies);
+      problem.forEachBody(problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])],
+                          [&](int body, const Vec6d& J, const Vec6d&) { z.segment<6>(6 * body) += J; });
+      cholesky_.solve(z);
+      return z;
+    };
+    if (!set_.collect(freeIndex, jacobianSolved)) return false;
+    const std::vector<int>& changed = set_.changed();
+    const auto m = static_cast<Eigen::Index>(changed.size());
+    Eigen::MatrixXd C(m, m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const int k = changed[static_cast<std::size_t>(i)];
+      const int row = subset[static_cast<std::size_t>(k)];
+      for (Eigen::Index j = 0; j < m; ++j)
+        C(i, j) = dotJacobian(problem, row, set_.column(changed[static_cast<std::size_t>(j)]));
+      const double sigma = problem.rows[static_cast<std::size_t>(row)].sigma;
+      C(i, i) += set_.wasFree(k) ? -sigma : sigma;
+    }
+    capacitance_.compute(C);
+    updating_ = m > 0;
+    return true;
+  }
+
+  bool worthUpdating() const { return cholesky_.solvesPerFactorization() >= kUpdateWorthSolves; }
+
+  // j_rowᵀ v over the row's bodies.
+  static double dotJacobian(const IslandProblem& problem, int row, const Eigen::VectorXd& v) {
+    double sum = 0.0;
+    problem.forEachBody(problem.rows[static_cast<std::size_t>(row)],
+                        [&](int body, const Vec6d& J, const Vec6d&) { sum += J.dot(v.segment<6>(6 * body)); });
+    return sum;
+  }
+
+  // A hash of what K₀ is made of (the rows' bodies, Jacobians and Σ, the
+  // bodies' masses): rows that hash alike are taken for the same rows,
+  // which the caller's check of the answer against the rows backs.
+  static std::uint64_t hashRows(const IslandProblem& problem, const std::vector<int>& subset) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    const auto mix = [&h](double value) {
+      std::uint64_t bits = 0;
+      std::memcpy(&bits, &value, sizeof bits);
+      h = (h ^ bits) * 0x100000001b3ull;
+      h ^= h >> 29;
+    };
+    for (int i : subset) {
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      mix(e.sigma);
+      problem.forEachBody(e, [&](int body, const Vec6d& J, const Vec6d&) {
+        mix(static_cast<double>(body));
+        for (int c = 0; c < 6; ++c) mix(J[c]);
+      });
+    }
+    for (const Mat6d& m : problem.mass)
+      for (int c = 0; c < 36; ++c) mix(m.data()[c]);
+    return h;
+  }
+
   static std::uint64_t key(int row, int col) {
     return (static_cast<std::uint64_t>(row) << 32) | static_cast<std::uint32_t>(col);
   }
@@ -17130,6 +17328,10 @@ class BodySpaceSolve {
   /// K's blocks as cholesky_ holds them factorized (factored_).
   std::vector<Mat6d> factoredDiagonal_, factoredBlocks_;
   bool factored_ = false;
+  std::uint64_t rowsHash_ = 0, factoredHash_ = 0;  ///< hashRows of analyze()'s rows, of the factorized ones
+  FactoredFreeSet set_;                            ///< its columns: Z's, K₀⁻¹ j_k
+  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;
+  bool updating_ = false;
 };
 
 }  // namespace spook::detail
@@ -17171,29 +17373,16 @@ namespace spook::detail {
 /// dense solve of S, where factorizing a pile of spheres' normals costs
 /// about ten solves. The answer is checked against the new matrix and
 /// refined with the same update; the caller factorizes where the change
-/// grows past kMaxChangedRows or the residual does not fall.
+/// grows past FactoredFreeSet's caps or the residual does not fall.
 class FreeSetUpdate {
  public:
-  /// Rows changed against the factorized free set, at most.
-  static constexpr int kMaxChangedRows = 32;
-  /// Kept columns A₀₀⁻¹(·), at most, before the factor is given up.
-  static constexpr int kMaxColumns = 2 * kMaxChangedRows;
   /// Refinements of an update's answer against its residual.
   static constexpr int kRefinements = 2;
 
-  /// A new factor of the matrix with the rows `isFree` free.
-  void reset(const std::vector<int>& freeIndex) {
-    factoredFree_.resize(freeIndex.size());
-    for (std::size_t k = 0; k < freeIndex.size(); ++k) factoredFree_[k] = freeIndex[k] >= 0 ? 1 : 0;
-    columnOf_.assign(freeIndex.size(), -1);
-    columns_.clear();
-  }
-
-  void clear() {
-    factoredFree_.clear();
-    columnOf_.clear();
-    columns_.clear();
-  }
+  /// A new factor of the matrix with the rows freeIndex[k] ≥ 0 free.
+  void reset(const std::vector<int>& freeIndex) { set_.reset(freeIndex); }
+  /// No factor.
+  void clear() { set_.clear(); }
 
   /// Solves B x = b for the matrix B of the free rows `freeIndex` (≥ 0:
   /// free) in the identity-row form of DirectSolve: `A` is the full
@@ -17205,25 +17394,14 @@ class FreeSetUpdate {
   bool solve(const Eigen::SparseMatrix<double>& A, const Eigen::SparseMatrix<double>& current,
              const std::vector<int>& freeIndex, const Eigen::VectorXd& b, double enough, FactorSolve&& factorSolve,
              Eigen::VectorXd& x) {
-    if (factoredFree_.size() != freeIndex.size()) return false;
-    changed_.clear();
-    for (std::size_t k = 0; k < freeIndex.size(); ++k)
-      if ((freeIndex[k] >= 0) != (factoredFree_[k] != 0)) {
-        if (static_cast<int>(changed_.size()) == kMaxChangedRows) return false;
-        changed_.push_back(static_cast<int>(k));
-      }
-    for (int k : changed_)
-      if (columnOf_[static_cast<std::size_t>(k)] < 0) {
-        if (static_cast<int>(columns_.size()) == kMaxColumns) return false;
-        columnOf_[static_cast<std::size_t>(k)] = static_cast<int>(columns_.size());
-        columns_.push_back(factorSolve(borderColumn(A, k)));
-      }
-    const auto m = static_cast<Eigen::Index>(changed_.size());
+    if (!set_.collect(freeIndex, [&](int k) { return Eigen::VectorXd(factorSolve(borderColumn(A, k))); })) return false;
+    const std::vector<int>& changed = set_.changed();
+    const auto m = static_cast<Eigen::Index>(changed.size());
     Eigen::MatrixXd S(m, m);
     for (Eigen::Index i = 0; i < m; ++i) {
-      const int ki = changed_[static_cast<std::size_t>(i)];
+      const int ki = changed[static_cast<std::size_t>(i)];
       for (Eigen::Index j = 0; j < m; ++j) {
-        const int kj = changed_[static_cast<std::size_t>(j)];
+        const int kj = changed[static_cast<std::size_t>(j)];
         const Eigen::VectorXd& z = column(kj);
         if (wasFree(ki))
           S(i, j) = -z[ki];
@@ -17246,10 +17424,8 @@ class FreeSetUpdate {
   }
 
  private:
-  bool wasFree(int k) const { return factoredFree_[static_cast<std::size_t>(k)] != 0; }
-  const Eigen::VectorXd& column(int k) const {
-    return columns_[static_cast<std::size_t>(columnOf_[static_cast<std::size_t>(k)])];
-  }
+  bool wasFree(int k) const { return set_.wasFree(k); }
+  const Eigen::VectorXd& column(int k) const { return set_.column(k); }
 
   // The border of row k: e_k for a row then free (now clamped), its
   // coupling to the factorized free rows A₀k for a row then clamped.
@@ -17278,28 +17454,25 @@ class FreeSetUpdate {
   Eigen::VectorXd apply(const Eigen::SparseMatrix<double>& A, const Eigen::PartialPivLU<Eigen::MatrixXd>& lu,
                         const Eigen::VectorXd& b, FactorSolve& factorSolve) const {
     Eigen::VectorXd g = b;
-    for (int k : changed_)
+    for (int k : set_.changed())
       if (!wasFree(k)) g[k] = 0.0;  // the freed rows' equations are S's
     Eigen::VectorXd y = factorSolve(g);
-    const auto m = static_cast<Eigen::Index>(changed_.size());
+    const auto m = static_cast<Eigen::Index>(set_.changed().size());
     Eigen::VectorXd s(m);
     for (Eigen::Index i = 0; i < m; ++i) {
-      const int k = changed_[static_cast<std::size_t>(i)];
+      const int k = set_.changed()[static_cast<std::size_t>(i)];
       s[i] = wasFree(k) ? -y[k] : b[k] - dotFactoredFree(A, k, y);
     }
     const Eigen::VectorXd t = lu.solve(s);
-    for (Eigen::Index j = 0; j < m; ++j) y -= t[j] * column(changed_[static_cast<std::size_t>(j)]);
+    for (Eigen::Index j = 0; j < m; ++j) y -= t[j] * column(set_.changed()[static_cast<std::size_t>(j)]);
     for (Eigen::Index j = 0; j < m; ++j) {
-      const int k = changed_[static_cast<std::size_t>(j)];
+      const int k = set_.changed()[static_cast<std::size_t>(j)];
       y[k] = wasFree(k) ? 0.0 : t[j];
     }
     return y;
   }
 
-  std::vector<char> factoredFree_;
-  std::vector<int> columnOf_;             ///< per row: its kept column, or −1
-  std::vector<Eigen::VectorXd> columns_;  ///< A₀₀⁻¹ times a row's border column
-  std::vector<int> changed_;
+  FactoredFreeSet set_;  ///< its columns: A₀₀⁻¹ times a row's border column
 };
 
 }  // namespace spook::detail
@@ -18297,8 +18470,14 @@ class DirectSolve {
           rhs[f] -= problem.rowVelocity(subset[static_cast<std::size_t>(k)], clamped);
       if (bodySpaceSolve_.factorize(problem, subset, freeIndex)) {
         bodySpaceSolve_.solve(problem, subset, freeIndex, rhs, x);
-        refineInBodySpace(problem, subset, freeIndex, rhs, x);
-        return;
+        // An updated factor must reach the refinement's residual; it
+        // factorizes where it does not.
+        if (refineInBodySpace(problem, subset, freeIndex, rhs, x) || !bodySpaceSolve_.updated()) return;
+        if (bodySpaceSolve_.factorize(problem, subset, freeIndex, /*allowUpdate=*/false)) {
+          bodySpaceSolve_.solve(problem, subset, freeIndex, rhs, x);
+          refineInBodySpace(problem, subset, freeIndex, rhs, x);
+          return;
+        }
       }
       // Round-off left K indefinite: this solve continues in row space.
       bodySpace_ = false;
@@ -18343,6 +18522,7 @@ class DirectSolve {
         std::equal(values, values + count, factoredValues_.begin())) {
       solution = ldlt_.solve(full);
     } else if (factoredValues_.empty() || factoredBase_ != lowerValues_ ||
+               solvesPerFactorization_ < kUpdateWorthSolves ||
                !update_.solve(
                    A_, lower_, freeIndex, full, kRefinedResidual * full.cwiseAbs().maxCoeff(),
                    [this](const Eigen::VectorXd& v) { return Eigen::VectorXd(ldlt_.solve(v)); }, solution)) {
@@ -18350,10 +18530,25 @@ class DirectSolve {
       factoredValues_.assign(values, values + count);
       factoredBase_ = lowerValues_;
       update_.reset(freeIndex);
+      solvesPerFactorization_ = solvesPerFactorization();
       solution = ldlt_.solve(full);
     }
     for (int k = 0; k < n; ++k)
       if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[k];
+  }
+
+  // About how many solves with ldlt_'s factor its factorization cost: Σ c_j²
+  // multiplications over L's column counts c_j against 2 Σ c_j + n.
+  double solvesPerFactorization() const {
+    const auto& L = ldlt_.matrixL().nestedExpression();
+    const int* outer = L.outerIndexPtr();
+    double factor = 0.0, solve = static_cast<double>(L.cols());
+    for (Eigen::Index j = 0; j < L.cols(); ++j) {
+      const auto c = static_cast<double>(outer[j + 1] - outer[j]);
+      factor += c * c;
+      solve += 2.0 * c;
+    }
+    return factor / solve;
   }
 
   // Iterative refinement of the free rows' body-space solution x of
@@ -18364,8 +18559,9 @@ class DirectSolve {
   // down to kRefinedResidual of the largest right-hand side: a hundredth of
   // the pivoting's tolerance (kRoundOff), below which no feasibility
   // decision changes (refining to 1e-15 cost a 10-cube stack 7-12% of its
-  // step and changed no pyramid's drift or fallbacks).
-  void refineInBodySpace(const IslandProblem& problem, const std::vector<int>& subset,
+  // step and changed no pyramid's drift or fallbacks). True where the
+  // residual reached that.
+  bool refineInBodySpace(const IslandProblem& problem, const std::vector<int>& subset,
                          const std::vector<int>& freeIndex, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
     const int n = static_cast<int>(subset.size());
     Eigen::VectorXd rho(rhs.size()), dx(n);
@@ -18394,9 +18590,14 @@ class DirectSolve {
       }
       size = after;
     }
+    return size <= enough;
   }
 
   static constexpr int kRefinements = 4;
+  /// The row-space factor serves other free sets (update_) where its
+  /// factorization costs at least this many solves (as in body space,
+  /// BodySpaceSolve::kUpdateWorthSolves).
+  static constexpr double kUpdateWorthSolves = BodySpaceSolve::kUpdateWorthSolves;
   static constexpr double kRefinedResidual = 1e-2 * kRoundOff;
 
   int strikesAllowed_ = kBlockPivotingStrikes;
@@ -18408,6 +18609,7 @@ class DirectSolve {
   std::vector<double> factoredValues_;              ///< lower_'s values ldlt_ holds factorized (none: empty)
   std::vector<double> factoredBase_;                ///< lowerValues_ when ldlt_ was factorized
   FreeSetUpdate update_;                            ///< solves of other free sets with ldlt_
+  double solvesPerFactorization_ = 0.0;             ///< of ldlt_'s factor
   Eigen::VectorXd q_;
   std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
@@ -21037,8 +21239,11 @@ class ConstraintRows {
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <utility>
 #include <vector>
+
+#include <Eigen/LU>
 
 // --- begin spook/solver/block_cholesky.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_BLOCK_CHOLESKY_HPP
@@ -21205,6 +21410,15 @@ class BlockCholesky {
   /// Blocks of L below the diagonal (the fill included).
   [[nodiscard]] std::size_t numFactorBlocks() const { return rows_.size(); }
 
+  /// About how many solve() calls one factorize() costs: 6×6 block
+  /// products (216 multiplications) against block-vector ones (36), a
+  /// pivot's Cholesky and inverse counted as two products.
+  [[nodiscard]] double solvesPerFactorization() const {
+    const double blocks = static_cast<double>(rows_.size());
+    const double products = static_cast<double>(updateSlot_.size()) + blocks + 2.0 * n_;
+    return 216.0 * products / (36.0 * 2.0 * (blocks + n_) + 1.0);
+  }
+
  private:
   // The slot of L's block (row, column), row > column, both in elimination order.
   int slot(int row, int column) const {
@@ -21225,6 +21439,85 @@ class BlockCholesky {
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_SOLVER_BLOCK_CHOLESKY_HPP
 // --- end spook/solver/block_cholesky.hpp ---
+// --- begin spook/solver/factored_free_set.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_FACTORED_FREE_SET_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_FACTORED_FREE_SET_HPP
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace spook::detail {
+
+/// What a direct solve's updates of a factor share (free_set_update.hpp in
+/// row space, BodySpaceSolve in body space): the rows free when the factor
+/// was made, the rows whose state differs now, and per changed row a column
+/// solved with the factor, kept while the factor stands.
+class FactoredFreeSet {
+ public:
+  /// Rows changed against the factorized free set, at most, for an update.
+  static constexpr int kMaxChangedRows = 32;
+  /// Kept columns per factor, at most.
+  static constexpr int kMaxColumns = 2 * kMaxChangedRows;
+
+  /// A new factor, made with the rows freeIndex[k] ≥ 0 free.
+  void reset(const std::vector<int>& freeIndex) {
+    wasFree_.resize(freeIndex.size());
+    for (std::size_t k = 0; k < freeIndex.size(); ++k) wasFree_[k] = freeIndex[k] >= 0 ? 1 : 0;
+    columnOf_.assign(freeIndex.size(), -1);
+    columns_.clear();
+  }
+
+  /// No factor.
+  void clear() {
+    wasFree_.clear();
+    columnOf_.clear();
+    columns_.clear();
+  }
+
+  /// Collects the rows whose state in `freeIndex` differs from the
+  /// factorized one, and makes the column `makeColumn(k)` of each not seen
+  /// changed before. False where there is no factor for these rows or the
+  /// change passes kMaxChangedRows or kMaxColumns.
+  template <class MakeColumn>
+  bool collect(const std::vector<int>& freeIndex, MakeColumn&& makeColumn) {
+    if (wasFree_.size() != freeIndex.size()) return false;
+    changed_.clear();
+    for (std::size_t k = 0; k < freeIndex.size(); ++k)
+      if ((freeIndex[k] >= 0) != (wasFree_[k] != 0)) {
+        if (static_cast<int>(changed_.size()) == kMaxChangedRows) return false;
+        changed_.push_back(static_cast<int>(k));
+      }
+    for (int k : changed_)
+      if (columnOf_[static_cast<std::size_t>(k)] < 0) {
+        if (static_cast<int>(columns_.size()) == kMaxColumns) return false;
+        columnOf_[static_cast<std::size_t>(k)] = static_cast<int>(columns_.size());
+        columns_.push_back(makeColumn(k));
+      }
+    return true;
+  }
+
+  /// Whether row k was free in the factorized matrix.
+  [[nodiscard]] bool wasFree(int k) const { return wasFree_[static_cast<std::size_t>(k)] != 0; }
+  /// The rows of the last collect().
+  [[nodiscard]] const std::vector<int>& changed() const { return changed_; }
+  /// The column of a changed row.
+  [[nodiscard]] const Eigen::VectorXd& column(int k) const {
+    return columns_[static_cast<std::size_t>(columnOf_[static_cast<std::size_t>(k)])];
+  }
+
+ private:
+  std::vector<char> wasFree_;
+  std::vector<int> columnOf_;  ///< per row: its kept column, or −1
+  std::vector<Eigen::VectorXd> columns_;
+  std::vector<int> changed_;
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_FACTORED_FREE_SET_HPP
+// --- end spook/solver/factored_free_set.hpp ---
 
 namespace spook::detail {
 
@@ -21284,20 +21577,31 @@ class BodySpaceSolve {
     }
     std::sort(keys_.begin(), keys_.end());
     keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());
-    if (problem.numBodies == patternBodies_ && keys_ == pattern_) return;
-    pattern_.swap(keys_);
-    patternBodies_ = problem.numBodies;
-    factored_ = false;
-
-    std::vector<std::pair<int, int>> lower(pattern_.size());
-    for (std::size_t p = 0; p < pattern_.size(); ++p) lower[p] = {rowOf(pattern_[p]), colOf(pattern_[p])};
-    cholesky_.analyze(patternBodies_, lower);
+    if (problem.numBodies != patternBodies_ || keys_ != pattern_) {
+      pattern_.swap(keys_);
+      patternBodies_ = problem.numBodies;
+      factored_ = false;
+      std::vector<std::pair<int, int>> lower(pattern_.size());
+      for (std::size_t p = 0; p < pattern_.size(); ++p) lower[p] = {rowOf(pattern_[p]), colOf(pattern_[p])};
+      cholesky_.analyze(patternBodies_, lower);
+    }
+    // Only a factor worth updating needs to know its rows again.
+    rowsHash_ = worthUpdating() ? hashRows(problem, subset) : 0;
   }
 
   /// Factorizes K for the rows of `subset` flagged free (freeIndex[k] ≥ 0);
   /// analyze() has seen the same rows. False where round-off left K not
-  /// positive definite (the caller solves in row space instead).
-  [[nodiscard]] bool factorize(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex) {
+  /// positive definite (the caller solves in row space instead). Where the
+  /// rows are those of the last factorization, at most
+  /// FactoredFreeSet::kMaxChangedRows of them changed state and the factor is costly enough
+  /// (kUpdateWorthSolves), K is not factorized again but updated (see
+  /// prepareUpdate; updated() tells, and `allowUpdate` false forbids it).
+  [[nodiscard]] bool factorize(const IslandProblem& problem, const std::vector<int>& subset,
+                               const std::vector<int>& freeIndex, bool allowUpdate = true) {
+    if (allowUpdate && factored_ && worthUpdating() && rowsHash_ == factoredHash_ &&
+        prepareUpdate(problem, subset, freeIndex))
+      return true;
+    updating_ = false;
     const int numBodies = problem.numBodies;
     diagonal_.resize(static_cast<std::size_t>(numBodies));
     for (int b = 0; b < numBodies; ++b) diagonal_[static_cast<std::size_t>(b)] = problem.mass[static_cast<std::size_t>(b)];
@@ -21334,9 +21638,15 @@ class BodySpaceSolve {
       // diagonal_ and blocks_ are assembled afresh at each call: swapped, not copied.
       std::swap(diagonal_, factoredDiagonal_);
       std::swap(blocks_, factoredBlocks_);
+      factoredHash_ = rowsHash_;
+      set_.reset(freeIndex);
     }
     return factored_;
   }
+
+  /// Whether the last factorize() updated the factor in hand instead of
+  /// factorizing.
+  [[nodiscard]] bool updated() const { return updating_; }
 
   /// Solves the free rows of the last factorize() for the right-hand side r
   /// (`rhs`, one entry per free row); writes x into `x` at the free rows'
@@ -21352,6 +21662,16 @@ class BodySpaceSolve {
       problem.forEachBody(e, [&](int body, const Vec6d& J, const Vec6d&) { y.segment<6>(6 * body) += s * J; });
     }
     cholesky_.solve(y);
+    if (updating_) {
+      // y = K₀⁻¹b − Z C⁻¹ J_Dᵀ K₀⁻¹b (prepareUpdate).
+      const std::vector<int>& changed = set_.changed();
+      const auto m = static_cast<Eigen::Index>(changed.size());
+      Eigen::VectorXd u(m);
+      for (Eigen::Index i = 0; i < m; ++i)
+        u[i] = dotJacobian(problem, subset[static_cast<std::size_t>(changed[static_cast<std::size_t>(i)])], y);
+      const Eigen::VectorXd t = capacitance_.solve(u);
+      for (Eigen::Index i = 0; i < m; ++i) y -= t[i] * set_.column(changed[static_cast<std::size_t>(i)]);
+    }
 
     for (std::size_t k = 0; k < subset.size(); ++k) {
       const int f = freeIndex[k];
@@ -21363,7 +21683,84 @@ class BodySpaceSolve {
     }
   }
 
+  /// An update (a solve or two more, one per new column, a small dense
+  /// solve) is taken where a factorization costs at least this many solves:
+  /// a stack's chain of blocks factorizes in about five (20 stacks of 10
+  /// cubes under the direct policy: 0.93 -> 1.2 ms a step with updates),
+  /// a 210-cube pyramid's filled factor in far more.
+  static constexpr double kUpdateWorthSolves = 8.0;
+
  private:
+  // A pivot step frees or clamps a few rows: K = K₀ + Σ_D s_k j_k j_kᵀ over
+  // the changed rows D, s_k = 1/σ_k for a row freed, −1/σ_k for one clamped,
+  // j_k its Jacobian over the bodies. By the Woodbury identity
+  //   K⁻¹ = K₀⁻¹ − Z (S⁻¹ + J_DᵀZ)⁻¹ Zᵀ,   Z = K₀⁻¹J_D,
+  // a solve with K is one with the factor of K₀ and a dense solve of the
+  // capacitance matrix C = S⁻¹ + J_DᵀZ, as small as the change. Z's columns
+  // depend only on the row and K₀: each is solved once and kept while the
+  // factor stands (pivot steps, the hybrid's coupling passes). The caller
+  // checks the answer against the rows (refineInBodySpace) and factorizes
+  // where it falls short, as where C is singular to round-off (a clamped
+  // row that alone held a direction of K₀).
+  bool prepareUpdate(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<int>& freeIndex) {
+    const auto jacobianSolved = [&](int k) {
+      Eigen::VectorXd z = Eigen::VectorXd::Zero(6 * problem.numBodies);
+      problem.forEachBody(problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])],
+                          [&](int body, const Vec6d& J, const Vec6d&) { z.segment<6>(6 * body) += J; });
+      cholesky_.solve(z);
+      return z;
+    };
+    if (!set_.collect(freeIndex, jacobianSolved)) return false;
+    const std::vector<int>& changed = set_.changed();
+    const auto m = static_cast<Eigen::Index>(changed.size());
+    Eigen::MatrixXd C(m, m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const int k = changed[static_cast<std::size_t>(i)];
+      const int row = subset[static_cast<std::size_t>(k)];
+      for (Eigen::Index j = 0; j < m; ++j)
+        C(i, j) = dotJacobian(problem, row, set_.column(changed[static_cast<std::size_t>(j)]));
+      const double sigma = problem.rows[static_cast<std::size_t>(row)].sigma;
+      C(i, i) += set_.wasFree(k) ? -sigma : sigma;
+    }
+    capacitance_.compute(C);
+    updating_ = m > 0;
+    return true;
+  }
+
+  bool worthUpdating() const { return cholesky_.solvesPerFactorization() >= kUpdateWorthSolves; }
+
+  // j_rowᵀ v over the row's bodies.
+  static double dotJacobian(const IslandProblem& problem, int row, const Eigen::VectorXd& v) {
+    double sum = 0.0;
+    problem.forEachBody(problem.rows[static_cast<std::size_t>(row)],
+                        [&](int body, const Vec6d& J, const Vec6d&) { sum += J.dot(v.segment<6>(6 * body)); });
+    return sum;
+  }
+
+  // A hash of what K₀ is made of (the rows' bodies, Jacobians and Σ, the
+  // bodies' masses): rows that hash alike are taken for the same rows,
+  // which the caller's check of the answer against the rows backs.
+  static std::uint64_t hashRows(const IslandProblem& problem, const std::vector<int>& subset) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    const auto mix = [&h](double value) {
+      std::uint64_t bits = 0;
+      std::memcpy(&bits, &value, sizeof bits);
+      h = (h ^ bits) * 0x100000001b3ull;
+      h ^= h >> 29;
+    };
+    for (int i : subset) {
+      const auto& e = problem.rows[static_cast<std::size_t>(i)];
+      mix(e.sigma);
+      problem.forEachBody(e, [&](int body, const Vec6d& J, const Vec6d&) {
+        mix(static_cast<double>(body));
+        for (int c = 0; c < 6; ++c) mix(J[c]);
+      });
+    }
+    for (const Mat6d& m : problem.mass)
+      for (int c = 0; c < 36; ++c) mix(m.data()[c]);
+    return h;
+  }
+
   static std::uint64_t key(int row, int col) {
     return (static_cast<std::uint64_t>(row) << 32) | static_cast<std::uint32_t>(col);
   }
@@ -21382,6 +21779,10 @@ class BodySpaceSolve {
   /// K's blocks as cholesky_ holds them factorized (factored_).
   std::vector<Mat6d> factoredDiagonal_, factoredBlocks_;
   bool factored_ = false;
+  std::uint64_t rowsHash_ = 0, factoredHash_ = 0;  ///< hashRows of analyze()'s rows, of the factorized ones
+  FactoredFreeSet set_;                            ///< its columns: Z's, K₀⁻¹ j_k
+  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;
+  bool updating_ = false;
 };
 
 }  // namespace spook::detail

@@ -414,8 +414,14 @@ class DirectSolve {
           rhs[f] -= problem.rowVelocity(subset[static_cast<std::size_t>(k)], clamped);
       if (bodySpaceSolve_.factorize(problem, subset, freeIndex)) {
         bodySpaceSolve_.solve(problem, subset, freeIndex, rhs, x);
-        refineInBodySpace(problem, subset, freeIndex, rhs, x);
-        return;
+        // An updated factor must reach the refinement's residual; it
+        // factorizes where it does not.
+        if (refineInBodySpace(problem, subset, freeIndex, rhs, x) || !bodySpaceSolve_.updated()) return;
+        if (bodySpaceSolve_.factorize(problem, subset, freeIndex, /*allowUpdate=*/false)) {
+          bodySpaceSolve_.solve(problem, subset, freeIndex, rhs, x);
+          refineInBodySpace(problem, subset, freeIndex, rhs, x);
+          return;
+        }
       }
       // Round-off left K indefinite: this solve continues in row space.
       bodySpace_ = false;
@@ -460,6 +466,7 @@ class DirectSolve {
         std::equal(values, values + count, factoredValues_.begin())) {
       solution = ldlt_.solve(full);
     } else if (factoredValues_.empty() || factoredBase_ != lowerValues_ ||
+               solvesPerFactorization_ < kUpdateWorthSolves ||
                !update_.solve(
                    A_, lower_, freeIndex, full, kRefinedResidual * full.cwiseAbs().maxCoeff(),
                    [this](const Eigen::VectorXd& v) { return Eigen::VectorXd(ldlt_.solve(v)); }, solution)) {
@@ -467,10 +474,25 @@ class DirectSolve {
       factoredValues_.assign(values, values + count);
       factoredBase_ = lowerValues_;
       update_.reset(freeIndex);
+      solvesPerFactorization_ = solvesPerFactorization();
       solution = ldlt_.solve(full);
     }
     for (int k = 0; k < n; ++k)
       if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[k];
+  }
+
+  // About how many solves with ldlt_'s factor its factorization cost: Σ c_j²
+  // multiplications over L's column counts c_j against 2 Σ c_j + n.
+  double solvesPerFactorization() const {
+    const auto& L = ldlt_.matrixL().nestedExpression();
+    const int* outer = L.outerIndexPtr();
+    double factor = 0.0, solve = static_cast<double>(L.cols());
+    for (Eigen::Index j = 0; j < L.cols(); ++j) {
+      const auto c = static_cast<double>(outer[j + 1] - outer[j]);
+      factor += c * c;
+      solve += 2.0 * c;
+    }
+    return factor / solve;
   }
 
   // Iterative refinement of the free rows' body-space solution x of
@@ -481,8 +503,9 @@ class DirectSolve {
   // down to kRefinedResidual of the largest right-hand side: a hundredth of
   // the pivoting's tolerance (kRoundOff), below which no feasibility
   // decision changes (refining to 1e-15 cost a 10-cube stack 7-12% of its
-  // step and changed no pyramid's drift or fallbacks).
-  void refineInBodySpace(const IslandProblem& problem, const std::vector<int>& subset,
+  // step and changed no pyramid's drift or fallbacks). True where the
+  // residual reached that.
+  bool refineInBodySpace(const IslandProblem& problem, const std::vector<int>& subset,
                          const std::vector<int>& freeIndex, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
     const int n = static_cast<int>(subset.size());
     Eigen::VectorXd rho(rhs.size()), dx(n);
@@ -511,9 +534,14 @@ class DirectSolve {
       }
       size = after;
     }
+    return size <= enough;
   }
 
   static constexpr int kRefinements = 4;
+  /// The row-space factor serves other free sets (update_) where its
+  /// factorization costs at least this many solves (as in body space,
+  /// BodySpaceSolve::kUpdateWorthSolves).
+  static constexpr double kUpdateWorthSolves = BodySpaceSolve::kUpdateWorthSolves;
   static constexpr double kRefinedResidual = 1e-2 * kRoundOff;
 
   int strikesAllowed_ = kBlockPivotingStrikes;
@@ -525,6 +553,7 @@ class DirectSolve {
   std::vector<double> factoredValues_;              ///< lower_'s values ldlt_ holds factorized (none: empty)
   std::vector<double> factoredBase_;                ///< lowerValues_ when ldlt_ was factorized
   FreeSetUpdate update_;                            ///< solves of other free sets with ldlt_
+  double solvesPerFactorization_ = 0.0;             ///< of ldlt_'s factor
   Eigen::VectorXd q_;
   std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;

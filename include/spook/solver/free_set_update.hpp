@@ -8,6 +8,8 @@
 #include <Eigen/LU>
 #include <Eigen/SparseCore>
 
+#include <spook/solver/factored_free_set.hpp>
+
 namespace spook::detail {
 
 /// Solves the free rows of a pivot step with the factor of an earlier step
@@ -32,29 +34,16 @@ namespace spook::detail {
 /// dense solve of S, where factorizing a pile of spheres' normals costs
 /// about ten solves. The answer is checked against the new matrix and
 /// refined with the same update; the caller factorizes where the change
-/// grows past kMaxChangedRows or the residual does not fall.
+/// grows past FactoredFreeSet's caps or the residual does not fall.
 class FreeSetUpdate {
  public:
-  /// Rows changed against the factorized free set, at most.
-  static constexpr int kMaxChangedRows = 32;
-  /// Kept columns A₀₀⁻¹(·), at most, before the factor is given up.
-  static constexpr int kMaxColumns = 2 * kMaxChangedRows;
   /// Refinements of an update's answer against its residual.
   static constexpr int kRefinements = 2;
 
-  /// A new factor of the matrix with the rows `isFree` free.
-  void reset(const std::vector<int>& freeIndex) {
-    factoredFree_.resize(freeIndex.size());
-    for (std::size_t k = 0; k < freeIndex.size(); ++k) factoredFree_[k] = freeIndex[k] >= 0 ? 1 : 0;
-    columnOf_.assign(freeIndex.size(), -1);
-    columns_.clear();
-  }
-
-  void clear() {
-    factoredFree_.clear();
-    columnOf_.clear();
-    columns_.clear();
-  }
+  /// A new factor of the matrix with the rows freeIndex[k] ≥ 0 free.
+  void reset(const std::vector<int>& freeIndex) { set_.reset(freeIndex); }
+  /// No factor.
+  void clear() { set_.clear(); }
 
   /// Solves B x = b for the matrix B of the free rows `freeIndex` (≥ 0:
   /// free) in the identity-row form of DirectSolve: `A` is the full
@@ -66,25 +55,14 @@ class FreeSetUpdate {
   bool solve(const Eigen::SparseMatrix<double>& A, const Eigen::SparseMatrix<double>& current,
              const std::vector<int>& freeIndex, const Eigen::VectorXd& b, double enough, FactorSolve&& factorSolve,
              Eigen::VectorXd& x) {
-    if (factoredFree_.size() != freeIndex.size()) return false;
-    changed_.clear();
-    for (std::size_t k = 0; k < freeIndex.size(); ++k)
-      if ((freeIndex[k] >= 0) != (factoredFree_[k] != 0)) {
-        if (static_cast<int>(changed_.size()) == kMaxChangedRows) return false;
-        changed_.push_back(static_cast<int>(k));
-      }
-    for (int k : changed_)
-      if (columnOf_[static_cast<std::size_t>(k)] < 0) {
-        if (static_cast<int>(columns_.size()) == kMaxColumns) return false;
-        columnOf_[static_cast<std::size_t>(k)] = static_cast<int>(columns_.size());
-        columns_.push_back(factorSolve(borderColumn(A, k)));
-      }
-    const auto m = static_cast<Eigen::Index>(changed_.size());
+    if (!set_.collect(freeIndex, [&](int k) { return Eigen::VectorXd(factorSolve(borderColumn(A, k))); })) return false;
+    const std::vector<int>& changed = set_.changed();
+    const auto m = static_cast<Eigen::Index>(changed.size());
     Eigen::MatrixXd S(m, m);
     for (Eigen::Index i = 0; i < m; ++i) {
-      const int ki = changed_[static_cast<std::size_t>(i)];
+      const int ki = changed[static_cast<std::size_t>(i)];
       for (Eigen::Index j = 0; j < m; ++j) {
-        const int kj = changed_[static_cast<std::size_t>(j)];
+        const int kj = changed[static_cast<std::size_t>(j)];
         const Eigen::VectorXd& z = column(kj);
         if (wasFree(ki))
           S(i, j) = -z[ki];
@@ -107,10 +85,8 @@ class FreeSetUpdate {
   }
 
  private:
-  bool wasFree(int k) const { return factoredFree_[static_cast<std::size_t>(k)] != 0; }
-  const Eigen::VectorXd& column(int k) const {
-    return columns_[static_cast<std::size_t>(columnOf_[static_cast<std::size_t>(k)])];
-  }
+  bool wasFree(int k) const { return set_.wasFree(k); }
+  const Eigen::VectorXd& column(int k) const { return set_.column(k); }
 
   // The border of row k: e_k for a row then free (now clamped), its
   // coupling to the factorized free rows A₀k for a row then clamped.
@@ -139,28 +115,25 @@ class FreeSetUpdate {
   Eigen::VectorXd apply(const Eigen::SparseMatrix<double>& A, const Eigen::PartialPivLU<Eigen::MatrixXd>& lu,
                         const Eigen::VectorXd& b, FactorSolve& factorSolve) const {
     Eigen::VectorXd g = b;
-    for (int k : changed_)
+    for (int k : set_.changed())
       if (!wasFree(k)) g[k] = 0.0;  // the freed rows' equations are S's
     Eigen::VectorXd y = factorSolve(g);
-    const auto m = static_cast<Eigen::Index>(changed_.size());
+    const auto m = static_cast<Eigen::Index>(set_.changed().size());
     Eigen::VectorXd s(m);
     for (Eigen::Index i = 0; i < m; ++i) {
-      const int k = changed_[static_cast<std::size_t>(i)];
+      const int k = set_.changed()[static_cast<std::size_t>(i)];
       s[i] = wasFree(k) ? -y[k] : b[k] - dotFactoredFree(A, k, y);
     }
     const Eigen::VectorXd t = lu.solve(s);
-    for (Eigen::Index j = 0; j < m; ++j) y -= t[j] * column(changed_[static_cast<std::size_t>(j)]);
+    for (Eigen::Index j = 0; j < m; ++j) y -= t[j] * column(set_.changed()[static_cast<std::size_t>(j)]);
     for (Eigen::Index j = 0; j < m; ++j) {
-      const int k = changed_[static_cast<std::size_t>(j)];
+      const int k = set_.changed()[static_cast<std::size_t>(j)];
       y[k] = wasFree(k) ? 0.0 : t[j];
     }
     return y;
   }
 
-  std::vector<char> factoredFree_;
-  std::vector<int> columnOf_;             ///< per row: its kept column, or −1
-  std::vector<Eigen::VectorXd> columns_;  ///< A₀₀⁻¹ times a row's border column
-  std::vector<int> changed_;
+  FactoredFreeSet set_;  ///< its columns: A₀₀⁻¹ times a row's border column
 };
 
 }  // namespace spook::detail

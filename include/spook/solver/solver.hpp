@@ -26,7 +26,10 @@ struct SolverStatistics {
   int numDirectRows = 0;     ///< rows that went through a direct solve
   int numIterativeRows = 0;  ///< rows that went through projected Gauss–Seidel
   int iterations = 0;        ///< most Gauss–Seidel (or Jacobi) sweeps in one island
-  int factorizations = 0;    ///< sparse factorizations, one per pivoting step
+  /// Pivoting steps of the direct solves, each a solve of its free rows: a
+  /// sparse factorization, or the last one's factor where the step changed
+  /// few rows of its matrix (free_set_update.hpp, body_space_solve.hpp).
+  int factorizations = 0;
   /// Most friction iterations of one direct solve (getNumFrictionIterations);
   /// reaching the maximum means its bounds had not settled to the tolerance.
   int frictionIterations = 0;
