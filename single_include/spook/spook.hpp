@@ -17261,6 +17261,8 @@ class BodySpaceSolve {
     };
     if (!set_.collect(freeIndex, jacobianSolved)) return false;
     const std::vector<int>& changed = set_.changed();
+    updating_ = !changed.empty();
+    if (!updating_) return true;  // the factorized K itself
     const auto m = static_cast<Eigen::Index>(changed.size());
     Eigen::MatrixXd C(m, m);
     for (Eigen::Index i = 0; i < m; ++i) {
@@ -17272,7 +17274,6 @@ class BodySpaceSolve {
       C(i, i) += set_.wasFree(k) ? -sigma : sigma;
     }
     capacitance_.compute(C);
-    updating_ = m > 0;
     return true;
   }
 
@@ -17396,6 +17397,7 @@ class FreeSetUpdate {
              Eigen::VectorXd& x) {
     if (!set_.collect(freeIndex, [&](int k) { return Eigen::VectorXd(factorSolve(borderColumn(A, k))); })) return false;
     const std::vector<int>& changed = set_.changed();
+    if (changed.empty()) return false;  // the factorized matrix itself: DirectSolve solves it with its factor
     const auto m = static_cast<Eigen::Index>(changed.size());
     Eigen::MatrixXd S(m, m);
     for (Eigen::Index i = 0; i < m; ++i) {
@@ -21712,6 +21714,8 @@ class BodySpaceSolve {
     };
     if (!set_.collect(freeIndex, jacobianSolved)) return false;
     const std::vector<int>& changed = set_.changed();
+    updating_ = !changed.empty();
+    if (!updating_) return true;  // the factorized K itself
     const auto m = static_cast<Eigen::Index>(changed.size());
     Eigen::MatrixXd C(m, m);
     for (Eigen::Index i = 0; i < m; ++i) {
@@ -21723,7 +21727,6 @@ class BodySpaceSolve {
       C(i, i) += set_.wasFree(k) ? -sigma : sigma;
     }
     capacitance_.compute(C);
-    updating_ = m > 0;
     return true;
   }
 

@@ -208,6 +208,8 @@ class BodySpaceSolve {
     };
     if (!set_.collect(freeIndex, jacobianSolved)) return false;
     const std::vector<int>& changed = set_.changed();
+    updating_ = !changed.empty();
+    if (!updating_) return true;  // the factorized K itself
     const auto m = static_cast<Eigen::Index>(changed.size());
     Eigen::MatrixXd C(m, m);
     for (Eigen::Index i = 0; i < m; ++i) {
@@ -219,7 +221,6 @@ class BodySpaceSolve {
       C(i, i) += set_.wasFree(k) ? -sigma : sigma;
     }
     capacitance_.compute(C);
-    updating_ = m > 0;
     return true;
   }
 

@@ -57,6 +57,7 @@ class FreeSetUpdate {
              Eigen::VectorXd& x) {
     if (!set_.collect(freeIndex, [&](int k) { return Eigen::VectorXd(factorSolve(borderColumn(A, k))); })) return false;
     const std::vector<int>& changed = set_.changed();
+    if (changed.empty()) return false;  // the factorized matrix itself: DirectSolve solves it with its factor
     const auto m = static_cast<Eigen::Index>(changed.size());
     Eigen::MatrixXd S(m, m);
     for (Eigen::Index i = 0; i < m; ++i) {
