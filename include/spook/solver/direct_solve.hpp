@@ -381,7 +381,7 @@ class DirectSolve {
     const auto columns = static_cast<std::size_t>(n) + 1, entries = static_cast<std::size_t>(lower_.nonZeros());
     if (!same(lower_.outerIndexPtr(), columns, analyzedOuter_) || !same(lower_.innerIndexPtr(), entries, analyzedInner_)) {
       ldlt_.analyzePattern(lower_);
-      factoredValues_.clear();
+      factoredBase_.clear();
       update_.clear();
       analyzedOuter_.assign(lower_.outerIndexPtr(), lower_.outerIndexPtr() + columns);
       analyzedInner_.assign(lower_.innerIndexPtr(), lower_.innerIndexPtr() + entries);
@@ -456,22 +456,18 @@ class DirectSolve {
       }
     }
     // The hybrid's coupling passes start where the last pass ended: the
-    // same matrix, whose factor ldlt_ still holds.
-    // A pivot step that changed a few rows of the last factorized matrix
-    // is solved with its factor (free_set_update.hpp).
-    const double* values = lower_.valuePtr();
-    const auto count = static_cast<std::size_t>(lower_.nonZeros());
+    // same matrix (same rows, same free set), whose factor ldlt_ still
+    // holds. A pivot step that changed a few rows of it is solved with that
+    // factor (free_set_update.hpp).
+    const bool sameRows = !factoredBase_.empty() && factoredBase_ == lowerValues_;
     Eigen::VectorXd solution;
-    if (!factoredValues_.empty() && factoredValues_.size() == count &&
-        std::equal(values, values + count, factoredValues_.begin())) {
+    if (sameRows && update_.isFactorized(freeIndex)) {
       solution = ldlt_.solve(full);
-    } else if (factoredValues_.empty() || factoredBase_ != lowerValues_ ||
-               solvesPerFactorization_ < kUpdateWorthSolves ||
+    } else if (!sameRows || solvesPerFactorization_ < kUpdateWorthSolves ||
                !update_.solve(
                    A_, lower_, freeIndex, full, kRefinedResidual * full.cwiseAbs().maxCoeff(),
                    [this](const Eigen::VectorXd& v) { return Eigen::VectorXd(ldlt_.solve(v)); }, solution)) {
       ldlt_.factorize(lower_);
-      factoredValues_.assign(values, values + count);
       factoredBase_ = lowerValues_;
       update_.reset(freeIndex);
       solvesPerFactorization_ = solvesPerFactorization();
@@ -550,9 +546,8 @@ class DirectSolve {
   Eigen::SparseMatrix<double> A_, lower_;
   std::vector<double> lowerValues_;             ///< lower_'s values as assembled
   std::vector<int> analyzedOuter_, analyzedInner_;  ///< the pattern ldlt_ analyzed
-  std::vector<double> factoredValues_;              ///< lower_'s values ldlt_ holds factorized (none: empty)
-  std::vector<double> factoredBase_;                ///< lowerValues_ when ldlt_ was factorized
-  FreeSetUpdate update_;                            ///< solves of other free sets with ldlt_
+  std::vector<double> factoredBase_;                ///< lowerValues_ when ldlt_ was factorized (none: empty)
+  FreeSetUpdate update_;                            ///< ldlt_'s free set, and solves of others with it
   double solvesPerFactorization_ = 0.0;             ///< of ldlt_'s factor
   Eigen::VectorXd q_;
   std::vector<Eigen::Triplet<double>> triplets_;

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <cstddef>
-#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -32,6 +31,14 @@ class FactoredFreeSet {
     wasFree_.clear();
     columnOf_.clear();
     columns_.clear();
+  }
+
+  /// Whether the rows freeIndex[k] ≥ 0 are those free in the factor.
+  [[nodiscard]] bool isFactorized(const std::vector<int>& freeIndex) const {
+    if (wasFree_.size() != freeIndex.size()) return false;
+    for (std::size_t k = 0; k < freeIndex.size(); ++k)
+      if ((freeIndex[k] >= 0) != (wasFree_[k] != 0)) return false;
+    return true;
   }
 
   /// Collects the rows whose state in `freeIndex` differs from the

@@ -44,6 +44,8 @@ class FreeSetUpdate {
   void reset(const std::vector<int>& freeIndex) { set_.reset(freeIndex); }
   /// No factor.
   void clear() { set_.clear(); }
+  /// Whether the rows freeIndex[k] ≥ 0 are the factorized free set.
+  [[nodiscard]] bool isFactorized(const std::vector<int>& freeIndex) const { return set_.isFactorized(freeIndex); }
 
   /// Solves B x = b for the matrix B of the free rows `freeIndex` (≥ 0:
   /// free) in the identity-row form of DirectSolve: `A` is the full
