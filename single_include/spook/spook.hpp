@@ -24967,6 +24967,11 @@ class WireT : public RowProducer {
   /// Post-stabilization's threshold: a segment's length error as a share of
   /// its rest length (writeProjectionRows).
   static constexpr double kProjectionTolerance = 1e-3;
+  /// The shortest free length a winch keeps, and the least length of wire a
+  /// node weighs, as a share of the node spacing 1/resolution.
+  static constexpr double kShortestSegment = 0.01;
+  /// The bend rows' stiffness E I at most this many times E A l̄² (writeRows).
+  static constexpr double kStiffestBend = 10.0;
 
   double radius_;
   double resolution_;
@@ -25482,7 +25487,9 @@ void WireT<S>::updateMasses() {
     double length = 0.0;
     if (k > 0) length += 0.5 * restLengths_[k - 1];
     if (k < restLengths_.size()) length += 0.5 * restLengths_[k];
-    nodes_->setMass(std::size_t(points_[k].node), density * length);
+    // Segments hauled in or slid over a contact to (almost) nothing leave a
+    // node the mass of the shortest free length a winch keeps, not none.
+    nodes_->setMass(std::size_t(points_[k].node), density * std::max(length, kShortestSegment / resolution_));
   }
 }
 
@@ -25785,7 +25792,7 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     const double violation = restLengths_[k] - segmentLength(k);
     if (state_[k].broken || state_[k + 1].broken || !std::isfinite(straight) || !std::isfinite(violation)) {
       detail::Row& r = rows.add(stretchImpulse_[k]);
-      r.compliance = restLengths_[k] / stretchStiffness;
+      r.compliance = std::max(restLengths_[k], 0.0) / stretchStiffness;
       continue;
     }
     const Vec3d u = straight > 0.0 ? Vec3d(d / straight) : Vec3d::UnitX();
@@ -25799,7 +25806,7 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     detail::Row& r = rows.add(stretchImpulse_[k]);
     bodies.write(rows, r);
     r.violation = violation;
-    r.compliance = restLengths_[k] / stretchStiffness;
+    r.compliance = std::max(restLengths_[k], 0.0) / stretchStiffness;
     r.damping = double(wire.getDampingStretch());
     // κ = ½vᵀ∇²g v = ½(|ḋ⊥|²/|d| + u·(p̈_b − p̈_a)) with the body points'
     // centripetal accelerations ω×(ω×r) (SecondOrder::curvature): a segment
@@ -25817,8 +25824,20 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   // over the length l̄), so the compliance is l̄/(E I). A clamped end
   // (ConnectingNode) bends between the line from its body's center of mass
   // and the wire, over l̄ = half its segment (none of the wire inside the body).
+  // A bend is at most ten times as stiff as the stretch over its length l̄:
+  // E I ≤ 10 E A l̄² (a node's transverse bend stiffness ~4EI/l³ at most
+  // forty times its segments' axial EA/l; for equal moduli, any node spacing
+  // above a sixth of the radius). Stiffer, the linearized bend rows turn
+  // segments about their nodes faster than the stretch rows hold their
+  // lengths and the wire grows step by step: a rubber-soft stretch modulus
+  // (1e3 Pa) under a bend modulus of 1e8 Pa or more grew a 2 m wire released
+  // level past 100 m (the node spacing, 0.1 m, twice the radius: EI 600-
+  // 2e6 times EA l̄²; fine at 60 times).
   const double areaMoment = std::numbers::pi * std::pow(radius_, 4) / 4.0;
   const double bendStiffness = double(wire.getYoungsModulusBend()) * areaMoment;
+  const auto bendCompliance = [&](double length, double stiffness) {
+    return length / std::min(stiffness, kStiffestBend * stretchStiffness * length * length);
+  };
   struct BendPoint {
     int index;
     Vec3d arm;
@@ -25853,12 +25872,13 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     if (inner) {
       const Vec3d d1 = state_[k].in - state_[k - 1].out, d2 = state_[k + 1].in - state_[k].out;
       // A contact shapes the wire around its geometry: no bend rows there.
-      if (!(d1.norm() > 0.0 && d2.norm() > 0.0) || points_[k].contact >= 0 || state_[k - 1].broken ||
+      const double length = 0.5 * (restLengths_[k - 1] + restLengths_[k]);
+      if (!(d1.norm() > 0.0 && d2.norm() > 0.0 && length > 0.0) || points_[k].contact >= 0 || state_[k - 1].broken ||
           state_[k].broken || state_[k + 1].broken)
         continue;
       bent_[k] = 1;
       writeBend(k, d1, d2, {state_[k - 1].index, state_[k - 1].armOut}, {state_[k].index, state_[k].armIn},
-                {state_[k + 1].index, state_[k + 1].armIn}, 0.5 * (restLengths_[k - 1] + restLengths_[k]) / bendStiffness);
+                {state_[k + 1].index, state_[k + 1].armIn}, bendCompliance(length, bendStiffness));
       continue;
     }
     const std::size_t other = k == 0 ? 1 : k - 1;
@@ -25869,9 +25889,10 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     const Vec3d center = state_[k].out - state_[k].armOut;  // the body's center of mass
     const Vec3d socket = k == 0 ? Vec3d(state_[k].out - center) : Vec3d(center - state_[k].in);
     const Vec3d wireSide = k == 0 ? Vec3d(state_[1].in - state_[0].out) : Vec3d(state_[k].in - state_[other].out);
-    if (!(socket.norm() > 1e-9 && wireSide.norm() > 0.0)) continue;
+    const double length = 0.5 * restLengths_[k == 0 ? 0 : k - 1];
+    if (!(socket.norm() > 1e-9 && wireSide.norm() > 0.0 && length > 0.0)) continue;
     bent_[k] = 1;
-    const double compliance = 0.5 * restLengths_[k == 0 ? 0 : k - 1] / connectionStiffness;
+    const double compliance = bendCompliance(length, connectionStiffness);
     const BendPoint body{state_[k].index, Vec3d::Zero()}, end{state_[k].index, state_[k].armOut};
     const BendPoint beside{state_[other].index, k == 0 ? state_[other].armIn : state_[other].armOut};
     if (k == 0)
@@ -26160,7 +26181,7 @@ void WireT<S>::writeWinchRows(RowWriter& rows, const StepContext& step, std::siz
     if (!winch) continue;
     const detail::WireNodes::Drum& drum = nodes_->drum(winch->drum_);
     const int index = step.indexOf(*nodes_, nodes_->numNodes() + winch->drum_);
-    const double compliance = restLengths_[winchSegment(end)] / stretchStiffness;
+    const double compliance = std::max(restLengths_[winchSegment(end)], 0.0) / stretchStiffness;
     const bool braking = winch->getSpeed() == S(0);
     const double lower = double(winch->getForceRangeLower()) + (braking ? double(winch->getBrakeForceRangeLower()) : 0.0);
     const double upper = double(winch->getForceRangeUpper()) + (braking ? double(winch->getBrakeForceRangeUpper()) : 0.0);
@@ -26174,7 +26195,7 @@ void WireT<S>::writeWinchRows(RowWriter& rows, const StepContext& step, std::siz
       r.lower = lower;
       r.upper = upper;
     }
-    const double shortest = 0.01 / resolution_;
+    const double shortest = kShortestSegment / resolution_;
     written.allIn = offset();
     detail::Row& allIn = rows.add(written.allInImpulse);
     allIn.body1 = index;

@@ -90,8 +90,6 @@ class Reader {
 /// point here with it. Open today:
 ///   unreported-nonfinite  a non-finite body not in frozenBodies (none known;
 ///                         the name lets a new finding be parked)
-///   nonfinite-wire-point  a wire point turns non-finite with no body frozen
-///                         (findings/nonfinite-wire-point, step 17; issue 21)
 inline bool skipping(const char* name) {
   static const std::string list = [] {
     const char* env = std::getenv("SPOOK_FUZZ_SKIP");
@@ -591,8 +589,7 @@ struct Builder {
       if (frozen.empty())
         for (const auto& w : wires)
           for (const Vec3& p : w->getPoints())
-            if (!p.allFinite() && !skipping("nonfinite-wire-point"))
-              finding("non-finite wire point", step, w->getName().c_str());
+            if (!p.allFinite()) finding("non-finite wire point", step, w->getName().c_str());
     }
   }
 };
