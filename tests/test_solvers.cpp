@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -699,6 +700,23 @@ TEST_CASE("the hybrid solver couples direct and iterative rows through DIRECT_AN
   CHECK(worstDirect < 1e-5);
   CHECK(worstIterative < 0.5);
   CHECK(worstDirect < worstIterative);
+}
+
+TEST_CASE("the hybrid's coupling settings: defaults, bad values refused without change, copied to workers") {
+  ref_ptr<HybridSolver> solver = new HybridSolver();
+  CHECK(solver->getCouplingTolerance() == 1e-4);
+  CHECK(solver->getNumCouplingSweeps() == 2);
+  solver->setCouplingTolerance(1e-6);
+  solver->setNumCouplingSweeps(5);
+  for (const double bad : {-1e-3, std::nan(""), std::numeric_limits<double>::infinity()})
+    CHECK_THROWS_AS(solver->setCouplingTolerance(bad), Error);
+  CHECK_THROWS_AS(solver->setNumCouplingSweeps(0), Error);
+  CHECK(solver->getCouplingTolerance() == 1e-6);
+  CHECK(solver->getNumCouplingSweeps() == 5);
+  const ref_ptr<Solver> worker = solver->makeWorker();
+  REQUIRE(worker);
+  CHECK(worker->getCouplingTolerance() == 1e-6);
+  CHECK(worker->getNumCouplingSweeps() == 5);
 }
 
 // Warm starting: on a chain hanging at rest the last step's impulses are

@@ -108,9 +108,10 @@ SPOOK_INLINE bool Solver::directWithFriction(detail::IslandProblem& problem, con
   return true;
 }
 
-SPOOK_INLINE void Solver::iterative(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) const {
+SPOOK_INLINE void Solver::iterative(detail::IslandProblem& problem, const std::vector<int>& subset,
+                                    SolverStatistics& statistics, int sweeps) const {
   const detail::IterativeSolveResult r =
-      detail::iterativeSolve(problem, subset, iterations_, tolerance_, method_ == JACOBI);
+      detail::iterativeSolve(problem, subset, sweeps > 0 ? sweeps : iterations_, tolerance_, method_ == JACOBI);
   statistics.iterations = std::max(statistics.iterations, r.iterations);
   statistics.converged = statistics.converged && r.converged;
 }
@@ -157,6 +158,8 @@ SPOOK_INLINE void Solver::copySettings(const Solver& other) {
   frictionIterations_ = other.frictionIterations_;
   frictionTolerance_ = other.frictionTolerance_;
   couplingIterations_ = other.couplingIterations_;
+  couplingTolerance_ = other.couplingTolerance_;
+  couplingSweeps_ = other.couplingSweeps_;
 }
 
 namespace detail {
@@ -216,7 +219,7 @@ SPOOK_INLINE void HybridSolver::solveIsland(detail::IslandProblem& problem, Solv
   // repeat at the next coupling pass: the step then ends with one more
   // iterative pass, which bounds its cost.
   for (int pass = 0; pass < getNumCouplingIterations(); ++pass) {
-    iterative(problem, iterativeRows, statistics);
+    iterative(problem, iterativeRows, statistics, pass == 0 ? 0 : getNumCouplingSweeps());
     if (!directHeld) break;
     detail::freezeConeShares(problem, iterativeRows, keep);
     detail::applyFrictionBounds(problem, iterativeRows);
@@ -230,7 +233,7 @@ SPOOK_INLINE void HybridSolver::solveIsland(detail::IslandProblem& problem, Solv
     double change = 0.0;
     for (std::size_t k = 0; k < directRows.size(); ++k)
       change = std::max(change, std::abs(problem.rows[static_cast<std::size_t>(directRows[k])].impulse - previous[k]));
-    if (change <= 1e-6 * largest) break;
+    if (change <= getCouplingTolerance() * largest) break;
   }
   // The direct pass moved the normals after the Gauss–Seidel friction.
   if (directHeld) detail::clampFrictionToNormals(problem, iterativeRows);
