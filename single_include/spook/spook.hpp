@@ -16609,8 +16609,9 @@ class Solver : public Referenced {
     couplingIterations_ = n;
   }
   /// Hybrid solver: the coupling passes stop once no direct impulse changes
-  /// by more than this fraction of the largest. Default 1e-4 (1e-6 took
-  /// twice the time on the 210-cube pyramid for the same drift).
+  /// by more than this fraction of the largest. Default 1e-4: at 1e-6 the
+  /// 210-cube pyramid took 4.4 direct solves a step instead of 2.5, for the
+  /// same drift (1.24 mm in 5 s).
   [[nodiscard]] double getCouplingTolerance() const { return couplingTolerance_; }
   void setCouplingTolerance(double tolerance) {
     if (!(tolerance >= 0.0 && std::isfinite(tolerance)))
@@ -25857,8 +25858,8 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   // segments about their nodes faster than the stretch rows hold their
   // lengths and the wire grows step by step: a rubber-soft stretch modulus
   // (1e3 Pa) under a bend modulus of 1e8 Pa or more grew a 2 m wire released
-  // level past 100 m (the node spacing, 0.1 m, twice the radius: EI 600-
-  // 2e6 times EA l̄²; fine at 60 times).
+  // level past 100 m (the node spacing, 0.1 m, twice the radius: EI 6e3 to
+  // 2e6 times EA l̄²; fine at 600 times).
   const double areaMoment = std::numbers::pi * std::pow(radius_, 4) / 4.0;
   const double bendStiffness = double(wire.getYoungsModulusBend()) * areaMoment;
   const auto bendCompliance = [&](double length, double stiffness) {

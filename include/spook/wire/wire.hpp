@@ -1231,8 +1231,8 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   // segments about their nodes faster than the stretch rows hold their
   // lengths and the wire grows step by step: a rubber-soft stretch modulus
   // (1e3 Pa) under a bend modulus of 1e8 Pa or more grew a 2 m wire released
-  // level past 100 m (the node spacing, 0.1 m, twice the radius: EI 600-
-  // 2e6 times EA l̄²; fine at 60 times).
+  // level past 100 m (the node spacing, 0.1 m, twice the radius: EI 6e3 to
+  // 2e6 times EA l̄²; fine at 600 times).
   const double areaMoment = std::numbers::pi * std::pow(radius_, 4) / 4.0;
   const double bendStiffness = double(wire.getYoungsModulusBend()) * areaMoment;
   const auto bendCompliance = [&](double length, double stiffness) {
