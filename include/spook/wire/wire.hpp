@@ -1563,6 +1563,25 @@ void WireT<S>::writeFrictionRows(RowWriter& rows, std::size_t firstRow) {
     r.upper = start;
     rows.setFriction(rows.size() - 1, firstRow + low, coefficient, detail::FrictionBound::SCALED_BOX, -1, true);
   }
+  // The slip moves rest length from the segment after the node to the one
+  // before (beginStep); neither may run out: an end or a load that reaches
+  // the node stops there (without them, the segment left held nothing and
+  // its end passed through the node and blew up).
+  const double shortest = kShortestSegment / resolution_, stretchStiffness = this->stretchStiffness();
+  for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
+    if (points_[k].contact < 0 || state_[k].slip < 0) continue;
+    for (const std::size_t segment : {k - 1, k}) {
+      // Only near the limit; one routed shorter is kept from shortening further.
+      const double straight = restLengths_[segment] - wrapped(segment);
+      if (!(straight < 1.0 / resolution_)) continue;
+      detail::Row& r = rows.add();
+      r.body1 = state_[k].slip;
+      r.J1 = segment == k ? detail::Vec6d(-detail::Vec6d::Unit(0)) : detail::Vec6d(detail::Vec6d::Unit(0));
+      r.violation = std::max(straight - shortest, 0.0);
+      r.compliance = restLengths_[segment] / stretchStiffness;
+      r.lower = 0.0;
+    }
+  }
 }
 
 // A winch's rows on its drum (the free length l of its segment, l̇ the rate
