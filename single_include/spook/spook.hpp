@@ -26205,7 +26205,7 @@ void WireT<S>::writeFrictionRows(RowWriter& rows, std::size_t firstRow) {
       r.body1 = state_[k].slip;
       r.J1 = segment == k ? detail::Vec6d(-detail::Vec6d::Unit(0)) : detail::Vec6d(detail::Vec6d::Unit(0));
       r.violation = std::max(straight - shortest, 0.0);
-      r.compliance = restLengths_[segment] / stretchStiffness;
+      r.compliance = std::max(restLengths_[segment], 0.0) / stretchStiffness;
       r.lower = 0.0;
     }
   }
