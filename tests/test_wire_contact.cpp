@@ -378,14 +378,14 @@ TEST_CASE("a contact node refuses bad input by name and leaves the simulation un
   overBall->add(new FreeNode(2, 0, -2));
   overBall->add(new ContactNode(ball.get(), Vec3(0, 0, 0.5)));
   overBall->add(new FreeNode(-2, 0, -2));
-  refused(overBall.get(), "one cylinder or one box");
+  refused(overBall.get(), "one cylinder, box, convex, trimesh or height field");
   onBox->setTurns(1);
   ref_ptr<Wire> turnsOnBox = new Wire(0.01, 2.0);
   turnsOnBox->setName("w");
   turnsOnBox->add(new FreeNode(2, 0, -2));
   turnsOnBox->add(onBox);
   turnsOnBox->add(new FreeNode(-2, 0, -2));
-  refused(turnsOnBox.get(), "a ContactNode on a box's edge cannot take turns");
+  refused(turnsOnBox.get(), "a ContactNode on an edge cannot take turns");
 
   ref_ptr<Geometry> drum = new Geometry(new Cylinder(0.5, 0.2));
   ref_ptr<Wire> atEnd = new Wire(0.01, 2.0);

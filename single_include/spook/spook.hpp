@@ -23534,6 +23534,7 @@ template class SimulationT<float>;
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -23544,33 +23545,38 @@ template class SimulationT<float>;
 #ifndef SPOOK_SINGLE_SPOOK_WIRE_EDGE_WRAP_HPP
 #define SPOOK_SINGLE_SPOOK_WIRE_EDGE_WRAP_HPP
 
-// How a wire runs over an edge of a box where it is routed over one
-// (wire/wire_node.hpp's ContactNode on a box): it turns there as through an
-// eye (a wrap of radius 0, sheave_wrap.hpp), at the point of the edge where
-// its path from the point before to the point after is shortest, so that the
-// point slides along the edge as they move.
+// How a wire runs over an edge of a polyhedral shape where it is routed over
+// one (wire/wire_node.hpp's ContactNode on a box, a convex, a trimesh or a
+// height field): it turns there as through an eye (a wrap of radius 0,
+// sheave_wrap.hpp), at the point of the edge where its path from the point
+// before to the point after is shortest, so that the point slides along the
+// edge as they move.
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <optional>
 
 #include <Eigen/Core>
 
 namespace spook::detail {
 
-struct BoxEdge {
+/// An edge of a shape, in the shape's frame (m).
+struct ShapeEdge {
   Eigen::Vector3d from = Eigen::Vector3d::Zero(), to = Eigen::Vector3d::Zero();
 };
 
 /// The edge of a box of half extents `half` (its frame) nearest `point`.
-inline BoxEdge nearestBoxEdge(const Eigen::Vector3d& half, const Eigen::Vector3d& point) {
-  BoxEdge best;
+inline ShapeEdge nearestBoxEdge(const Eigen::Vector3d& half, const Eigen::Vector3d& point) {
+  ShapeEdge best;
   double closest = std::numeric_limits<double>::infinity();
   for (int axis = 0; axis < 3; ++axis) {
     const int i = (axis + 1) % 3, j = (axis + 2) % 3;
     for (const double si : {-1.0, 1.0})
       for (const double sj : {-1.0, 1.0}) {
-        BoxEdge edge;
+        ShapeEdge edge;
         edge.from[axis] = -half[axis];
         edge.to[axis] = half[axis];
         edge.from[i] = edge.to[i] = si * half[i];
@@ -23600,6 +23606,86 @@ inline Eigen::Vector3d shortestOverEdge(const Eigen::Vector3d& a, const Eigen::V
   const double r1 = (from - a - t1 * u).norm(), r2 = (to - a - t2 * u).norm();
   const double s = r1 + r2 > 0.0 ? (t1 * r2 + t2 * r1) / (r1 + r2) : 0.5 * (t1 + t2);
   return a + std::clamp(std::isfinite(s) ? s : 0.5 * length, 0.0, length) * u;
+}
+
+/// Keeps the edge a → b where it is nearer `point` than `best` so far.
+class NearestEdge {
+ public:
+  explicit NearestEdge(const Eigen::Vector3d& point) : point_(point) {}
+
+  void consider(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    const Eigen::Vector3d edge = b - a;
+    const double squared = edge.squaredNorm();
+    if (!(squared > 0.0)) return;
+    const double t = std::clamp((point_ - a).dot(edge) / squared, 0.0, 1.0);
+    const double distance = (a + t * edge - point_).norm();
+    if (distance < closest_) {
+      closest_ = distance;
+      best_ = ShapeEdge{a, b};
+    }
+  }
+
+  [[nodiscard]] std::optional<ShapeEdge> best() const { return best_; }
+
+ private:
+  Eigen::Vector3d point_;
+  double closest_ = std::numeric_limits<double>::infinity();
+  std::optional<ShapeEdge> best_;
+};
+
+/// The edges of triangle `index` that fold away seen from its front (the
+/// outside of a mesh, above a height field: bits 0-2 of getActiveEdges):
+/// the ridges a wire can run over, not a flat surface's diagonals.
+template <class Surface>
+void considerRidges(const Surface& surface, std::size_t index, NearestEdge& nearest) {
+  const auto corners = surface.getTriangle(index);
+  const std::uint8_t active = surface.getActiveEdges(index);
+  for (std::size_t k = 0; k < 3; ++k)
+    if (active & (1u << k))
+      nearest.consider(corners[k].template cast<double>(), corners[(k + 1) % 3].template cast<double>());
+}
+
+/// The edge a wire routed at `point` (shape frame) runs over: of a box, a
+/// convex (its hull's edges between faces), a trimesh or a height field
+/// (their ridges, considerRidges; of a height field, those of the cells
+/// around the point's), the one nearest the point; none for other shapes.
+template <Scalar S>
+std::optional<ShapeEdge> nearestShapeEdge(const ShapeT<S>& shape, const Eigen::Vector3d& point) {
+  NearestEdge nearest(point);
+  switch (shape.getType()) {
+    case ShapeType::BOX:
+      return nearestBoxEdge(static_cast<const BoxT<S>&>(shape).getHalfExtents().template cast<double>(), point);
+    case ShapeType::CONVEX: {
+      const auto& convex = static_cast<const ConvexT<S>&>(shape);
+      for (const auto& edge : convex.getEdges())
+        nearest.consider(convex.getVertices()[static_cast<std::size_t>(edge.from)].template cast<double>(),
+                         convex.getVertices()[static_cast<std::size_t>(edge.to)].template cast<double>());
+      break;
+    }
+    case ShapeType::TRIMESH: {
+      const auto& mesh = static_cast<const TrimeshT<S>&>(shape);
+      for (std::size_t i = 0; i < mesh.getNumTriangles(); ++i) considerRidges(mesh, i, nearest);
+      break;
+    }
+    case ShapeType::HEIGHTFIELD: {
+      const auto& field = static_cast<const HeightFieldT<S>&>(shape);
+      const std::size_t cellsX = field.getResolutionX() - 1, cellsY = field.getResolutionY() - 1;
+      const auto cell = [](double coordinate, double size, double spacing, std::size_t cells) {
+        const double c = std::floor((coordinate + 0.5 * size) / spacing);
+        return static_cast<long>(std::clamp(std::isfinite(c) ? c : 0.0, 0.0, double(cells - 1)));
+      };
+      const long ci = cell(point.x(), double(field.getSizeX()), double(field.getSpacing().x()), cellsX);
+      const long cj = cell(point.y(), double(field.getSizeY()), double(field.getSpacing().y()), cellsY);
+      for (long j = std::max(cj - 1, 0L); j <= std::min(cj + 1, long(cellsY) - 1); ++j)
+        for (long i = std::max(ci - 1, 0L); i <= std::min(ci + 1, long(cellsX) - 1); ++i)
+          for (std::size_t k = 0; k < 2; ++k)
+            considerRidges(field, 2 * (std::size_t(i) + cellsX * std::size_t(j)) + k, nearest);
+      break;
+    }
+    default:
+      break;
+  }
+  return nearest.best();
 }
 
 }  // namespace spook::detail
@@ -24256,14 +24342,16 @@ class SlidingNodeT : public WireNodeT<S> {
 };
 
 /// The wire routed over a geometry (agxWire's ContactNode), holding one
-/// cylinder or one box. Over a cylinder (a sheave) the wire wraps it in the
-/// plane across its axis through its center, touching it at `position`
-/// (geometry frame), arriving and leaving along tangents. Over a box it runs
-/// across the edge nearest `position`, turning there as through an eye at
-/// the edge's point where its path is shortest (sliding along the edge as
-/// the wire moves; the wire's radius is not offset from the edge). It slides
-/// over either against friction (SlidingNodeT). Neither first nor last in a
-/// route.
+/// cylinder, box, convex, trimesh or height field. Over a cylinder (a
+/// sheave) the wire wraps it in the plane across its axis through its
+/// center, touching it at `position` (geometry frame), arriving and leaving
+/// along tangents. Over the others it runs across the edge nearest
+/// `position` (a box's or a convex's edge, a trimesh's or a height field's
+/// ridge: an edge where the surface folds away), turning there as through
+/// an eye at the edge's point where its path is shortest (sliding along the
+/// edge as the wire moves, held at its ends; the wire's radius is not offset
+/// from the edge). It slides over either against friction (SlidingNodeT).
+/// Neither first nor last in a route.
 template <Scalar S>
 class ContactNodeT : public SlidingNodeT<S> {
  public:
@@ -24869,8 +24957,8 @@ class WireT : public RowProducer {
     std::size_t slip = 0;
     double frictionImpulse = 0.0;
     int row = -1;  ///< its friction row's offset in this wire's rows, −1: none
-    bool onEdge = false;    ///< over an edge of a box (edge_wrap.hpp): an eye sliding along it
-    detail::BoxEdge edge;   ///< that edge in the box's frame
+    bool onEdge = false;     ///< over an edge of its geometry's shape (edge_wrap.hpp): an eye sliding along it
+    detail::ShapeEdge edge;  ///< that edge in the shape's frame
   };
 
   template <class T>
@@ -24930,8 +25018,9 @@ class WireT : public RowProducer {
   }
   /// The sheave's plane now from its geometry's frame.
   void placePlane(const ContactNode& node, detail::SheaveWrap& wrap) const;
-  /// The edge of a contact node's box nearest its routed position (the box's frame).
-  [[nodiscard]] detail::BoxEdge boxEdgeOf(const ContactNode& node) const;
+  /// The edge of the node's polyhedral shape it runs over (edge_wrap.hpp);
+  /// none for a cylinder (a sheave) or a shape without edges.
+  [[nodiscard]] std::optional<detail::ShapeEdge> edgeOf(const ContactNode& node) const;
   /// Where the wire from `from` to `to` runs over the edge of an edge contact now (world).
   [[nodiscard]] Vec3d edgePoint(const Contact& contact, const Vec3d& from, const Vec3d& to) const;
   /// A contact's wrap now, the wire arriving from `from` and leaving towards
@@ -25300,16 +25389,16 @@ void WireT<S>::placePlane(const ContactNode& node, detail::SheaveWrap& wrap) con
 }
 
 template <Scalar S>
-detail::BoxEdge WireT<S>::boxEdgeOf(const ContactNode& node) const {
-  const auto& box = node.getGeometry()->getShapes().front();
-  const Vec3d local = (box.transform.inverse() * node.getPosition()).template cast<double>();
-  return detail::nearestBoxEdge(static_cast<const BoxT<S>&>(*box.shape).getHalfExtents().template cast<double>(), local);
+std::optional<detail::ShapeEdge> WireT<S>::edgeOf(const ContactNode& node) const {
+  const auto& placed = node.getGeometry()->getShapes().front();
+  const Vec3d local = (placed.transform.inverse() * node.getPosition()).template cast<double>();
+  return detail::nearestShapeEdge(*placed.shape, local);
 }
 
 template <Scalar S>
 auto WireT<S>::edgePoint(const Contact& contact, const Vec3d& from, const Vec3d& to) const -> Vec3d {
   const GeometryT<S>& geometry = *static_cast<const ContactNode&>(*contact.node).getGeometry();
-  const auto X = geometry.getTransform() * geometry.getShapes().front().transform;  // box → world
+  const auto X = geometry.getTransform() * geometry.getShapes().front().transform;  // shape → world
   const Vec3d a = (X * contact.edge.from.template cast<S>()).template cast<double>();
   const Vec3d b = (X * contact.edge.to.template cast<S>()).template cast<double>();
   return detail::shortestOverEdge(a, b, from, to);
@@ -25352,17 +25441,17 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
       if (k == 0 || k + 1 == route_.size()) throw error("a ContactNode may not be the first or last route node; it is node", k);
       const auto* contact = static_cast<const ContactNode*>(&node);
       const auto* shape = contact->getGeometry()->getShape();
-      if (!shape || (shape->getType() != ShapeType::CYLINDER && shape->getType() != ShapeType::BOX) ||
-          contact->getGeometry()->getShapes().size() != 1)
-        throw error("a ContactNode's geometry must hold one cylinder or one box (the shapes wires run over for now); node",
-                    k);
-      if (shape->getType() == ShapeType::BOX && contact->getTurns() != 0)
-        throw error("a ContactNode on a box's edge cannot take turns; node", k);
+      const bool sheave = shape && shape->getType() == ShapeType::CYLINDER;
+      if (!shape || contact->getGeometry()->getShapes().size() != 1 || (!sheave && !edgeOf(*contact)))
+        throw error(
+            "a ContactNode's geometry must hold one cylinder, box, convex, trimesh or height field (the shapes "
+            "wires run over); node",
+            k);
+      if (!sheave && contact->getTurns() != 0) throw error("a ContactNode on an edge cannot take turns; node", k);
       if (k + 1 < route_.size() && route_[k + 1]->getType() == Node::Type::CONTACT &&
           static_cast<const ContactNode*>(route_[k + 1].get())->getGeometry() == contact->getGeometry() &&
-          (shape->getType() == ShapeType::CYLINDER ||
-           boxEdgeOf(*contact).from == boxEdgeOf(*static_cast<const ContactNode*>(route_[k + 1].get())).from))
-        throw error("consecutive ContactNodes on one cylinder or one box edge (route it once); node", k);
+          (sheave || edgeOf(*contact)->from == edgeOf(*static_cast<const ContactNode*>(route_[k + 1].get()))->from))
+        throw error("consecutive ContactNodes on one cylinder or one edge (route it once); node", k);
     }
     if (node.getRigidBody() && simulation.indexOf(*node.getRigidBody()) < 0)
       throw error(("route node " + std::to_string(k) + " is fixed to a body not in the simulation").c_str(),
@@ -25414,9 +25503,9 @@ void WireT<S>::build(const StepContext& simulation) {
     contact.node = static_cast<SlidingNode*>(route_[k].get());
     if (type == Node::Type::EYE) {
       contact.wrap.eye(world(k), world(k - 1), world(k + 1));
-    } else if (static_cast<const ContactNode&>(*contact.node).getGeometry()->getShape()->getType() == ShapeType::BOX) {
+    } else if (const auto edge = edgeOf(static_cast<const ContactNode&>(*contact.node))) {
       contact.onEdge = true;
-      contact.edge = boxEdgeOf(static_cast<const ContactNode&>(*contact.node));
+      contact.edge = *edge;
       contact.wrap.eye(edgePoint(contact, world(k - 1), world(k + 1)), world(k - 1), world(k + 1));
     } else {
       const auto& sheave = static_cast<const ContactNode&>(*contact.node);

@@ -24,6 +24,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -242,8 +243,8 @@ class WireT : public RowProducer {
     std::size_t slip = 0;
     double frictionImpulse = 0.0;
     int row = -1;  ///< its friction row's offset in this wire's rows, −1: none
-    bool onEdge = false;    ///< over an edge of a box (edge_wrap.hpp): an eye sliding along it
-    detail::BoxEdge edge;   ///< that edge in the box's frame
+    bool onEdge = false;     ///< over an edge of its geometry's shape (edge_wrap.hpp): an eye sliding along it
+    detail::ShapeEdge edge;  ///< that edge in the shape's frame
   };
 
   template <class T>
@@ -303,8 +304,9 @@ class WireT : public RowProducer {
   }
   /// The sheave's plane now from its geometry's frame.
   void placePlane(const ContactNode& node, detail::SheaveWrap& wrap) const;
-  /// The edge of a contact node's box nearest its routed position (the box's frame).
-  [[nodiscard]] detail::BoxEdge boxEdgeOf(const ContactNode& node) const;
+  /// The edge of the node's polyhedral shape it runs over (edge_wrap.hpp);
+  /// none for a cylinder (a sheave) or a shape without edges.
+  [[nodiscard]] std::optional<detail::ShapeEdge> edgeOf(const ContactNode& node) const;
   /// Where the wire from `from` to `to` runs over the edge of an edge contact now (world).
   [[nodiscard]] Vec3d edgePoint(const Contact& contact, const Vec3d& from, const Vec3d& to) const;
   /// A contact's wrap now, the wire arriving from `from` and leaving towards
@@ -673,16 +675,16 @@ void WireT<S>::placePlane(const ContactNode& node, detail::SheaveWrap& wrap) con
 }
 
 template <Scalar S>
-detail::BoxEdge WireT<S>::boxEdgeOf(const ContactNode& node) const {
-  const auto& box = node.getGeometry()->getShapes().front();
-  const Vec3d local = (box.transform.inverse() * node.getPosition()).template cast<double>();
-  return detail::nearestBoxEdge(static_cast<const BoxT<S>&>(*box.shape).getHalfExtents().template cast<double>(), local);
+std::optional<detail::ShapeEdge> WireT<S>::edgeOf(const ContactNode& node) const {
+  const auto& placed = node.getGeometry()->getShapes().front();
+  const Vec3d local = (placed.transform.inverse() * node.getPosition()).template cast<double>();
+  return detail::nearestShapeEdge(*placed.shape, local);
 }
 
 template <Scalar S>
 auto WireT<S>::edgePoint(const Contact& contact, const Vec3d& from, const Vec3d& to) const -> Vec3d {
   const GeometryT<S>& geometry = *static_cast<const ContactNode&>(*contact.node).getGeometry();
-  const auto X = geometry.getTransform() * geometry.getShapes().front().transform;  // box → world
+  const auto X = geometry.getTransform() * geometry.getShapes().front().transform;  // shape → world
   const Vec3d a = (X * contact.edge.from.template cast<S>()).template cast<double>();
   const Vec3d b = (X * contact.edge.to.template cast<S>()).template cast<double>();
   return detail::shortestOverEdge(a, b, from, to);
@@ -725,17 +727,17 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
       if (k == 0 || k + 1 == route_.size()) throw error("a ContactNode may not be the first or last route node; it is node", k);
       const auto* contact = static_cast<const ContactNode*>(&node);
       const auto* shape = contact->getGeometry()->getShape();
-      if (!shape || (shape->getType() != ShapeType::CYLINDER && shape->getType() != ShapeType::BOX) ||
-          contact->getGeometry()->getShapes().size() != 1)
-        throw error("a ContactNode's geometry must hold one cylinder or one box (the shapes wires run over for now); node",
-                    k);
-      if (shape->getType() == ShapeType::BOX && contact->getTurns() != 0)
-        throw error("a ContactNode on a box's edge cannot take turns; node", k);
+      const bool sheave = shape && shape->getType() == ShapeType::CYLINDER;
+      if (!shape || contact->getGeometry()->getShapes().size() != 1 || (!sheave && !edgeOf(*contact)))
+        throw error(
+            "a ContactNode's geometry must hold one cylinder, box, convex, trimesh or height field (the shapes "
+            "wires run over); node",
+            k);
+      if (!sheave && contact->getTurns() != 0) throw error("a ContactNode on an edge cannot take turns; node", k);
       if (k + 1 < route_.size() && route_[k + 1]->getType() == Node::Type::CONTACT &&
           static_cast<const ContactNode*>(route_[k + 1].get())->getGeometry() == contact->getGeometry() &&
-          (shape->getType() == ShapeType::CYLINDER ||
-           boxEdgeOf(*contact).from == boxEdgeOf(*static_cast<const ContactNode*>(route_[k + 1].get())).from))
-        throw error("consecutive ContactNodes on one cylinder or one box edge (route it once); node", k);
+          (sheave || edgeOf(*contact)->from == edgeOf(*static_cast<const ContactNode*>(route_[k + 1].get()))->from))
+        throw error("consecutive ContactNodes on one cylinder or one edge (route it once); node", k);
     }
     if (node.getRigidBody() && simulation.indexOf(*node.getRigidBody()) < 0)
       throw error(("route node " + std::to_string(k) + " is fixed to a body not in the simulation").c_str(),
@@ -787,9 +789,9 @@ void WireT<S>::build(const StepContext& simulation) {
     contact.node = static_cast<SlidingNode*>(route_[k].get());
     if (type == Node::Type::EYE) {
       contact.wrap.eye(world(k), world(k - 1), world(k + 1));
-    } else if (static_cast<const ContactNode&>(*contact.node).getGeometry()->getShape()->getType() == ShapeType::BOX) {
+    } else if (const auto edge = edgeOf(static_cast<const ContactNode&>(*contact.node))) {
       contact.onEdge = true;
-      contact.edge = boxEdgeOf(static_cast<const ContactNode&>(*contact.node));
+      contact.edge = *edge;
       contact.wrap.eye(edgePoint(contact, world(k - 1), world(k + 1)), world(k - 1), world(k + 1));
     } else {
       const auto& sheave = static_cast<const ContactNode&>(*contact.node);

@@ -206,14 +206,16 @@ class SlidingNodeT : public WireNodeT<S> {
 };
 
 /// The wire routed over a geometry (agxWire's ContactNode), holding one
-/// cylinder or one box. Over a cylinder (a sheave) the wire wraps it in the
-/// plane across its axis through its center, touching it at `position`
-/// (geometry frame), arriving and leaving along tangents. Over a box it runs
-/// across the edge nearest `position`, turning there as through an eye at
-/// the edge's point where its path is shortest (sliding along the edge as
-/// the wire moves; the wire's radius is not offset from the edge). It slides
-/// over either against friction (SlidingNodeT). Neither first nor last in a
-/// route.
+/// cylinder, box, convex, trimesh or height field. Over a cylinder (a
+/// sheave) the wire wraps it in the plane across its axis through its
+/// center, touching it at `position` (geometry frame), arriving and leaving
+/// along tangents. Over the others it runs across the edge nearest
+/// `position` (a box's or a convex's edge, a trimesh's or a height field's
+/// ridge: an edge where the surface folds away), turning there as through
+/// an eye at the edge's point where its path is shortest (sliding along the
+/// edge as the wire moves, held at its ends; the wire's radius is not offset
+/// from the edge). It slides over either against friction (SlidingNodeT).
+/// Neither first nor last in a route.
 template <Scalar S>
 class ContactNodeT : public SlidingNodeT<S> {
  public:
