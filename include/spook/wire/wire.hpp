@@ -281,6 +281,11 @@ class WireT : public RowProducer {
   [[nodiscard]] double stretchStiffness() const {
     return double(material_->getWireMaterial()->getYoungsModulusStretch()) * std::numbers::pi * radius_ * radius_;
   }
+  /// A segment's stretch compliance l/(E·A) (m/N) from its rest length
+  /// (none below 0: a wrap's arc can take more than its straight part).
+  [[nodiscard]] double segmentCompliance(std::size_t segment, double stretchStiffness) const {
+    return std::max(restLengths_[segment], 0.0) / stretchStiffness;
+  }
   /// Where the wire is at point p (a contact: the material point C of its
   /// wrap), where it arrives at p and leaves it (a contact: the tangent
   /// points), and the velocity of p's body there.
@@ -1194,7 +1199,7 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     const double violation = restLengths_[k] - segmentLength(k);
     if (state_[k].broken || state_[k + 1].broken || !std::isfinite(straight) || !std::isfinite(violation)) {
       detail::Row& r = rows.add(stretchImpulse_[k]);
-      r.compliance = std::max(restLengths_[k], 0.0) / stretchStiffness;
+      r.compliance = segmentCompliance(k, stretchStiffness);
       continue;
     }
     const Vec3d u = straight > 0.0 ? Vec3d(d / straight) : Vec3d::UnitX();
@@ -1208,7 +1213,7 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
     detail::Row& r = rows.add(stretchImpulse_[k]);
     bodies.write(rows, r);
     r.violation = violation;
-    r.compliance = std::max(restLengths_[k], 0.0) / stretchStiffness;
+    r.compliance = segmentCompliance(k, stretchStiffness);
     r.damping = double(wire.getDampingStretch());
     // κ = ½vᵀ∇²g v = ½(|ḋ⊥|²/|d| + u·(p̈_b − p̈_a)) with the body points'
     // centripetal accelerations ω×(ω×r) (SecondOrder::curvature): a segment
@@ -1580,7 +1585,7 @@ void WireT<S>::writeFrictionRows(RowWriter& rows, std::size_t firstRow) {
       r.body1 = state_[k].slip;
       r.J1 = segment == k ? detail::Vec6d(-detail::Vec6d::Unit(0)) : detail::Vec6d(detail::Vec6d::Unit(0));
       r.violation = std::max(straight - shortest, 0.0);
-      r.compliance = std::max(restLengths_[segment], 0.0) / stretchStiffness;
+      r.compliance = segmentCompliance(segment, stretchStiffness);
       r.lower = 0.0;
     }
   }
@@ -1602,7 +1607,7 @@ void WireT<S>::writeWinchRows(RowWriter& rows, const StepContext& step, std::siz
     if (!winch) continue;
     const detail::WireNodes::Drum& drum = nodes_->drum(winch->drum_);
     const int index = step.indexOf(*nodes_, nodes_->numNodes() + winch->drum_);
-    const double compliance = std::max(restLengths_[winchSegment(end)], 0.0) / stretchStiffness;
+    const double compliance = segmentCompliance(winchSegment(end), stretchStiffness);
     const bool braking = winch->getSpeed() == S(0);
     const double lower = double(winch->getForceRangeLower()) + (braking ? double(winch->getBrakeForceRangeLower()) : 0.0);
     const double upper = double(winch->getForceRangeUpper()) + (braking ? double(winch->getBrakeForceRangeUpper()) : 0.0);
