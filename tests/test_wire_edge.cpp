@@ -177,14 +177,18 @@ TEST_CASE_TEMPLATE("a frictionless edge is an Atwood machine's pulley, the wire 
       const double speed = -double(rig.second->getVelocity().z());
       // Where the wire crosses the edges now (y: along them).
       double across = 0.0;
+      int crossings = 0;
       for (const auto& p : rig.wire->getPoints())
         if (std::abs(std::abs(double(p.x())) - 0.5) < 1e-6 &&
-            std::abs(double(p.z()) - (p.x() < 0 ? 0.5 : rightTop(ridge))) < 1e-6)
+            std::abs(double(p.z()) - (p.x() < 0 ? 0.5 : rightTop(ridge))) < 1e-6) {
           across = std::max(across, std::abs(double(p.y())));
+          ++crossings;
+        }
       MESSAGE(nameOf(ridge) << ", routed " << along << " m along: after " << t << " s the heavy load falls at " << speed
                             << " m/s against " << expected << "; the wire crosses the edges within " << across
                             << " m of the loads' plane");
       CHECK(speed == doctest::Approx(expected).epsilon(0.01));
+      CHECK(crossings == 2);  // one point on each edge: the check below measures them
       // Built 0.3 m along (the shortest path from the loads to the routed points), it slid back.
       CHECK(across < 0.1);
     }

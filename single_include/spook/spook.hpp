@@ -25447,7 +25447,8 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
       const auto* contact = static_cast<const ContactNode*>(&node);
       const auto* shape = contact->getGeometry()->getShape();
       const bool sheave = shape && shape->getType() == ShapeType::CYLINDER;
-      if (!shape || contact->getGeometry()->getShapes().size() != 1 || (!sheave && !edgeOf(*contact)))
+      const auto edge = shape && !sheave ? edgeOf(*contact) : std::nullopt;
+      if (!shape || contact->getGeometry()->getShapes().size() != 1 || (!sheave && !edge))
         throw error(
             "a ContactNode's geometry must hold one cylinder, box, convex, trimesh or height field (the shapes "
             "wires run over); node",
@@ -25455,7 +25456,7 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
       if (!sheave && contact->getTurns() != 0) throw error("a ContactNode on an edge cannot take turns; node", k);
       if (k + 1 < route_.size() && route_[k + 1]->getType() == Node::Type::CONTACT &&
           static_cast<const ContactNode*>(route_[k + 1].get())->getGeometry() == contact->getGeometry() &&
-          (sheave || edgeOf(*contact)->from == edgeOf(*static_cast<const ContactNode*>(route_[k + 1].get()))->from))
+          (sheave || edge->from == edgeOf(*static_cast<const ContactNode*>(route_[k + 1].get()))->from))
         throw error("consecutive ContactNodes on one cylinder or one edge (route it once); node", k);
     }
     if (node.getRigidBody() && simulation.indexOf(*node.getRigidBody()) < 0)
