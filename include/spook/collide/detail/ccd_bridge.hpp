@@ -83,7 +83,7 @@ inline constexpr unsigned long kCcdMaxIterations = 200;
 /// polytope (ccdPtNearest), so a call costs the square of its support
 /// calls: at a budget of 1000, a cylinder of radius 1e100 m under a
 /// 392-triangle height field took 1.8 s a step (Release), at 256 0.16 s
-/// (tests/fuzz/corpus/finding_huge-cylinder-on-triangles).
+/// (tests/fuzz/findings/huge-cylinder-on-triangles, parked).
 inline constexpr unsigned long kCcdSupportBudget = 256;
 /// Polishing: starts besides libccd's direction, and the gradient
 /// (relative to the shapes' size) below which a descent ended on a smooth
