@@ -248,33 +248,14 @@ TEST_CASE_TEMPLATE("a push at 45 degrees to the friction axes tells the cone fro
 // (up to 56 μFn on this pile; open).
 TEST_CASE_TEMPLATE("friction at every point of a settling pile stays within the Coulomb cone (hybrid, iterative)", S,
                    float, double) {
-  const S mu = S(0.5), radius = S(0.1), pitch = S(0.22);
-  constexpr int kGrid = 4;
-  const S wall = pitch * S(kGrid - 1) / S(2) + radius + S(0.012);
+  const S mu = S(0.5);
   for (const Policy policy : {Policy::HYBRID, Policy::ITERATIVE}) {
     CAPTURE(spook::test::policyName(policy));
     spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
     sim->setSolver(spook::test::makeSolver(policy));
     Materials<S> m;
     spook::test::addGround(*sim, m.ground);
-    for (int axis = 0; axis < 2; ++axis)
-      for (const S side : {S(-1), S(1)}) {
-        spook::Vec3T<S> inward = spook::Vec3T<S>::Zero();
-        inward[axis] = -side;
-        spook::ref_ptr<spook::GeometryT<S>> plane =
-            new spook::GeometryT<S>(new spook::PlaneT<S>(inward, -wall), spook::TransformT<S>::Identity(), "wall");
-        plane->setMaterial(m.ground);
-        sim->add(plane);
-      }
-    for (int i = 0; i < kGrid * kGrid * kGrid; ++i) {
-      const int column = i % kGrid, row = (i / kGrid) % kGrid, layer = i / (kGrid * kGrid);
-      // Columns staggered by a few millimetres, so that the pile does not stand as a lattice.
-      const S shift = S(0.006) * S((i * 7) % 5 - 2);
-      spook::test::addBody(*sim, "ball", new spook::SphereT<S>(radius), m.body,
-                           spook::Vec3T<S>((S(column) - S(kGrid - 1) / S(2)) * pitch + shift,
-                                           (S(row) - S(kGrid - 1) / S(2)) * pitch - shift,
-                                           S(2) * radius + S(layer) * S(0.25)));
-    }
+    spook::test::addSpherePile(*sim, m.ground, m.body);
     spook::ref_ptr<spook::FrictionModelT<S>> model = new spook::IterativeProjectedConeFrictionT<S>();
     model->setSolveType(spook::SolveType::SPLIT);
     for (auto* pair : {sim->getMaterialManager()->getOrCreateContactMaterial(m.ground.get(), m.body.get()),

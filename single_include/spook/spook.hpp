@@ -3558,12 +3558,15 @@ namespace spook {
 /// normal is a unit vector pointing from the first shape toward the second:
 /// moving the second shape by `depth` along it separates them. The point
 /// lies midway between the two surfaces, so point ∓ normal·depth/2 are the
-/// deepest points of the first and the second shape.
+/// deepest points of the first and the second shape. A negative depth is a
+/// gap point of a speculative contact (Simulation::
+/// setEnableSpeculativeContacts): the shapes are apart by −depth there and
+/// may meet within the step; its force is not zero only if they do.
 template <Scalar S>
 struct ContactPointT {
   Vec3T<S> point = Vec3T<S>::Zero();   ///< world (m)
   Vec3T<S> normal = Vec3T<S>::UnitZ();  ///< world, unit, from the first shape toward the second
-  S depth = S(0);                     ///< penetration along the normal (m), >= 0
+  S depth = S(0);                       ///< penetration along the normal (m); < 0: a gap
   bool enabled = true;                ///< false once contact reduction or a listener has dropped it
   Vec3T<S> force = Vec3T<S>::Zero();    ///< contact force on the second shape's body (N), after the solve
   S normalForce = S(0);               ///< its component along the normal (N); negative only under adhesion
@@ -3574,6 +3577,8 @@ struct ContactPointT {
   [[nodiscard]] const Vec3T<S>& getPoint() const { return point; }
   [[nodiscard]] const Vec3T<S>& getNormal() const { return normal; }
   [[nodiscard]] S getDepth() const { return depth; }
+  /// False for a gap point (depth < 0).
+  [[nodiscard]] bool isTouching() const { return depth >= S(0); }
   [[nodiscard]] const Vec3T<S>& getForce() const { return force; }
   /// Normal and tangential (friction) magnitudes of getForce (N).
   [[nodiscard]] S getNormalForceMagnitude() const { return normalForce; }
@@ -4531,6 +4536,7 @@ using GeometryPair = GeometryPairT<float>;
 #include <map>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <tuple>
 #include <type_traits>
@@ -4731,6 +4737,7 @@ class SweepAndPrune {
 #ifndef SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
 #define SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -4756,15 +4763,37 @@ inline constexpr double kTouchingGap = 1e-5;
 /// the "first toward second" normal convention when the pair was handed to
 /// the collider in reverse order (flipped), and never lets a non-finite
 /// point through: it drops it and counts it in getNumDropped().
+///
+/// A sink may carry a speculative margin (m): the shapes may come that much
+/// closer within the coming step, and a collider that supports it also
+/// reports the points where they are apart by up to the margin, as gap
+/// points of negative depth (accepts()). The solver lets such a point close
+/// its gap within the step and no more, so that a contact is not born
+/// overlapping by up to the approach speed times the step.
 template <Scalar S>
 class ContactSinkT {
  public:
-  explicit ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped = false)
-      : ContactSinkT(points, flipped, std::make_shared<std::size_t>(0)) {}
+  explicit ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped = false, S margin = S(0))
+      : ContactSinkT(points, flipped, std::make_shared<std::size_t>(0), margin) {}
 
-  /// Adds a point: world position (m), unit normal from the collider's first
-  /// shape toward its second, penetration depth (m, clamped at 0).
+  /// The speculative margin (m), >= 0.
+  [[nodiscard]] S margin() const { return margin_; }
+  /// True when a point of this depth is to be written: touching or
+  /// overlapping, or apart by no more than the margin or `touching`
+  /// (then with addSpeculative).
+  [[nodiscard]] bool accepts(S depth, S touching = S(0)) const { return depth >= -std::max(margin_, touching); }
+
+  /// Adds a touching point: world position (m), unit normal from the
+  /// collider's first shape toward its second, penetration depth (m,
+  /// clamped at 0).
   void add(const Vec3T<S>& point, const Vec3T<S>& normal, S depth) {
+    addSpeculative(point, normal, std::max(depth, S(0)));
+  }
+
+  /// Adds a point that may be a gap point: as add(), but a point apart by
+  /// more than `touching` (the collider's touching gap) keeps its negative
+  /// depth when the sink has a margin.
+  void addSpeculative(const Vec3T<S>& point, const Vec3T<S>& normal, S depth, S touching = S(0)) {
     if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) {
       ++*dropped_;
       return;
@@ -4772,7 +4801,7 @@ class ContactSinkT {
     ContactPointT<S> contact;
     contact.point = point;
     contact.normal = flipped_ ? Vec3T<S>(-normal) : normal;
-    contact.depth = depth > S(0) ? depth : S(0);
+    contact.depth = depth >= -touching || margin_ == S(0) ? std::max(depth, S(0)) : depth;
     contact.faceIndex1 = flipped_ ? faces_[1] : faces_[0];
     contact.faceIndex2 = flipped_ ? faces_[0] : faces_[1];
     points_->push_back(contact);
@@ -4785,12 +4814,12 @@ class ContactSinkT {
   }
 
   /// The same output with the shape order swapped (sharing the drop count).
-  [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_, dropped_); }
+  [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_, dropped_, margin_); }
 
-  /// A sink into `points`, unflipped, that shares this one's drop count:
-  /// where a collider adjusts its points before it add()s them here.
+  /// A sink into `points`, unflipped, that shares this one's drop count and
+  /// margin: where a collider adjusts its points before it add()s them here.
   [[nodiscard]] ContactSinkT staging(std::vector<ContactPointT<S>>& points) const {
-    return ContactSinkT(points, false, dropped_);
+    return ContactSinkT(points, false, dropped_, margin_);
   }
 
   /// Number of points written so far.
@@ -4800,13 +4829,14 @@ class ContactSinkT {
   [[nodiscard]] std::size_t getNumDropped() const { return *dropped_; }
 
  private:
-  ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped, std::shared_ptr<std::size_t> dropped)
-      : points_(&points), flipped_(flipped), dropped_(std::move(dropped)) {}
+  ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped, std::shared_ptr<std::size_t> dropped, S margin)
+      : points_(&points), flipped_(flipped), dropped_(std::move(dropped)), margin_(margin > S(0) ? margin : S(0)) {}
 
   std::vector<ContactPointT<S>>* points_;
   bool flipped_;
   std::shared_ptr<std::size_t> dropped_;
   std::array<std::uint32_t, 2> faces_{};
+  S margin_ = S(0);
 };
 
 }  // namespace spook
@@ -5798,6 +5828,16 @@ struct CollidersDefined;
 
 }  // namespace detail
 
+/// How far a body may move within the coming step, for speculative
+/// contacts (SpaceT::update): its center of mass by up to `linear` (m), and
+/// it turns by up to `angular` (rad), so that a point at distance r from
+/// the center of mass moves by up to linear + angular·r.
+template <Scalar S>
+struct StepReachT {
+  S linear = S(0);
+  S angular = S(0);
+};
+
 #if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
 extern template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
                                                                const ShapeT<double>&, const TransformT<double>&,
@@ -5898,7 +5938,22 @@ class SpaceT : public Referenced {
   /// contacts in the same order. Two geometries of sleeping bodies
   /// (RigidBody::isSleeping) are not collided again: they keep the contact
   /// they had (nothing of theirs has moved).
-  void update(const std::vector<ref_ptr<Body>>& bodies = {}, detail::WorkerPool* workers = nullptr);
+  ///
+  /// With `reach` (one per body of `bodies`), contacts are speculative: two
+  /// geometries are collided with a margin of how far they may come closer
+  /// within the step (each one's reach, at most kMaxSpeculativeFraction of
+  /// its half-diagonal; none for sensors), and the colliders that support
+  /// it (collider.hpp) also write the points where they are apart by less
+  /// (negative depths). A pair with only such gap points is not a contact
+  /// (no events, not in getGeometryContacts()): it is listed in
+  /// getSpeculativeContacts(), for the solver.
+  void update(const std::vector<ref_ptr<Body>>& bodies = {}, detail::WorkerPool* workers = nullptr,
+              std::span<const StepReachT<S>> reach = {});
+
+  /// The largest speculative margin of a geometry, as a fraction of its
+  /// bounding box's half-diagonal: a body faster than that in a step may
+  /// still be found overlapping (continuous collision is the remedy).
+  static constexpr double kMaxSpeculativeFraction = 0.25;
 
   /// Fewest candidate pairs worth spreading over threads.
   static constexpr std::size_t kPairsWorthThreads = 64;
@@ -5911,9 +5966,14 @@ class SpaceT : public Referenced {
     return collide_(a, X_WA, b, X_WB, sink);
   }
 
-  /// Geometry pairs in contact after the last update().
+  /// Geometry pairs in contact after the last update(): each has a point of
+  /// depth >= 0, and may have gap points too (negative depth).
   [[nodiscard]] std::vector<Contact>& getGeometryContacts() { return contacts_; }
   [[nodiscard]] const std::vector<Contact>& getGeometryContacts() const { return contacts_; }
+  /// Geometry pairs apart by less than their speculative margin after the
+  /// last update(): gap points only. Not reported as contacts.
+  [[nodiscard]] std::vector<Contact>& getSpeculativeContacts() { return speculative_; }
+  [[nodiscard]] const std::vector<Contact>& getSpeculativeContacts() const { return speculative_; }
   /// Pairs that were in contact the update before the last and no longer are.
   [[nodiscard]] const std::vector<GeometryPairT<S>>& getSeparations() const { return separations_; }
   /// Contact points the last update() dropped, before reduction, because a
@@ -5945,6 +6005,9 @@ class SpaceT : public Referenced {
   /// composite) after the geometry was checked on add: it is checked here,
   /// before anything changes, rather than silently colliding with nothing.
   void gather(const std::vector<ref_ptr<Body>>& bodies);
+  /// The speculative margin of each active geometry (m) for the bodies'
+  /// reach, or none without it.
+  void measureMargins(const std::vector<ref_ptr<Body>>& bodies, std::span<const StepReachT<S>> reach);
 
   /// Collides active_[i] with active_[j] at the poses update() took; a
   /// contact goes to `found`, points dropped as non-finite are counted.
@@ -5956,6 +6019,9 @@ class SpaceT : public Referenced {
   // unless a reduction rule overrides them); REDUCE_ALL pairs pool their
   // points per body pair, at the resolution of the pair's last contact.
   void reduce();
+
+  /// Moves the pairs without a touching point from contacts_ to speculative_.
+  void setSpeculativeApart();
 
   void trackEvents();
 
@@ -5981,6 +6047,7 @@ class SpaceT : public Referenced {
   std::vector<std::size_t> firstShapePose_;
   std::vector<TransformT<S>> shapePoses_;
   std::vector<BoundingBoxT<S>> boxes_;
+  std::vector<S> margins_;  ///< per active geometry (m)
   detail::SweepAndPrune<S> broadphase_;
   /// The broad phase's pairs that may collide (canCollide), in its order.
   std::vector<std::pair<std::size_t, std::size_t>> pairs_;
@@ -5992,7 +6059,7 @@ class SpaceT : public Referenced {
   /// Per piece of pairs_ on the threads: its contacts and dropped points.
   std::vector<std::vector<Contact>> piecesFound_;
   std::vector<std::size_t> piecesDropped_;
-  std::vector<Contact> contacts_;
+  std::vector<Contact> contacts_, speculative_;
   /// The pairs in contact after the last update(), sorted by their ids.
   std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>>> touching_, nowTouching_;
   std::vector<GeometryPairT<S>> separations_;
@@ -6049,7 +6116,8 @@ void SpaceT<S>::setContactBinResolution(int resolution) {
 }
 
 template <Scalar S>
-void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerPool* workers) {
+void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerPool* workers,
+                       std::span<const StepReachT<S>> reach) {
   gather(bodies);
   boxes_.clear();
   firstShapePose_.clear();
@@ -6063,6 +6131,12 @@ void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerP
     // round-off, stays a pair.
     boxes_.push_back(g->getBoundingBox(X_WG).grownBy(S(detail::kTouchingGap)));
   }
+  measureMargins(bodies, reach);
+  for (std::size_t k = 0; k < boxes_.size(); ++k)
+    if (margins_[k] > S(0)) {
+      boxes_[k].min.array() -= margins_[k];
+      boxes_[k].max.array() += margins_[k];
+    }
   pairs_.clear();
   broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) {
     if (canCollide(*active_[i], *active_[j])) pairs_.emplace_back(i, j);
@@ -6078,7 +6152,44 @@ void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerP
   }
   narrowPhase(workers);
   reduce();
+  setSpeculativeApart();
   trackEvents();
+}
+
+template <Scalar S>
+void SpaceT<S>::measureMargins(const std::vector<ref_ptr<Body>>& bodies, std::span<const StepReachT<S>> reach) {
+  margins_.assign(active_.size(), S(0));
+  if (reach.empty()) return;
+  if (reach.size() != bodies.size()) throw error("needs one step reach per body, not", reach.size());
+  // active_ lists this space's own geometries, then those of each enabled body in order (gather).
+  std::size_t k = geometries_.size();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const Body& body = *bodies[b];
+    if (!body.getEnable()) continue;
+    const StepReachT<S>& r = reach[b];
+    for (std::size_t n = body.getGeometries().size(); n > 0; --n, ++k) {
+      const BoundingBoxT<S>& box = boxes_[k];
+      const S size = box.halfExtents().norm();
+      const S arm = (box.center() - body.getCmPosition()).norm() + size;
+      const S margin = std::min(r.linear + r.angular * arm, S(kMaxSpeculativeFraction) * size);
+      if (std::isfinite(margin) && margin > S(0)) margins_[k] = margin;
+    }
+  }
+}
+
+template <Scalar S>
+void SpaceT<S>::setSpeculativeApart() {
+  speculative_.clear();
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const auto& points = contacts_[k].points();
+    const bool touching = std::any_of(points.begin(), points.end(), [](const auto& p) { return p.depth >= S(0); });
+    if (!touching)
+      speculative_.push_back(std::move(contacts_[k]));
+    else if (kept++ != k)
+      contacts_[kept - 1] = std::move(contacts_[k]);
+  }
+  contacts_.erase(contacts_.begin() + std::ptrdiff_t(kept), contacts_.end());
 }
 
 template <Scalar S>
@@ -6158,7 +6269,8 @@ void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j, std::vector<Contact>& 
     return;
   }
   Contact contact(first, second);
-  ContactSinkT<S> sink(contact.points());
+  const S margin = first->isSensor() || second->isSensor() ? S(0) : margins_[i] + margins_[j];
+  ContactSinkT<S> sink(contact.points(), false, margin);
   const auto& shapes1 = first->getShapes();
   const auto& shapes2 = second->getShapes();
   for (std::size_t k1 = 0; k1 < shapes1.size(); ++k1)
@@ -7090,7 +7202,13 @@ concept ConvexShape = requires(const T& shape, const typename T::Vec3& direction
 /// points of a placed at X_WA and b placed at X_WB (shape frame → world).
 /// Analytic pairs specialize it, one file per pair in colliders/; a pair of
 /// convex shapes without one goes through libccd; any other pair has none
-/// (a hole in the collider matrix).
+/// (a hole in the collider matrix). The colliders of spheres, boxes,
+/// capsules and cylinders with planes, and of spheres and capsules with
+/// each other and with a box's faces, also write the gap points within the
+/// sink's speculative margin (where the gap closes at its linear rate, up
+/// to the curvature of two round shapes); the others write touching points
+/// only: two boxes, or a sphere off a box's edge, would stop a body that
+/// slides or rolls over the seam of two flush boxes (a ghost contact).
 template <class A, class B>
 struct Collider {};
 
@@ -7897,10 +8015,10 @@ struct Collider<BoxT<S>, PlaneT<S>> {
     for (int corner = 0; corner < 8; ++corner) {
       const Vec3T<S> sign((corner & 1) ? S(1) : S(-1), (corner & 2) ? S(1) : S(-1), (corner & 4) ? S(1) : S(-1));
       const S height = centerHeight + sign.dot(reach);
-      if (!(height <= gap)) continue;
+      if (!sink.accepts(-height, gap)) continue;
       const Vec3T<S> p = X_WA * Vec3T<S>(sign.cwiseProduct(h));
       // Midway between the corner and the plane point under it.
-      sink.add(p - S(0.5) * height * n, -n, -height);
+      sink.addSpeculative(p - S(0.5) * height * n, -n, -height, gap);
     }
   }
 };
@@ -7921,6 +8039,8 @@ namespace spook {
 /// depth r − |c − q|. A center inside the box, or on its surface, pushes out
 /// through the nearest face, the one with the smallest h_i − |c_i| (the
 /// lowest axis on a tie, the + face when c_i = 0): depth r + h_i − |c_i|.
+/// Within the sink's speculative margin, a sphere off a face (not off an
+/// edge or a corner) gives its gap point.
 template <Scalar S>
 struct Collider<BoxT<S>, SphereT<S>> {
   static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
@@ -7936,7 +8056,11 @@ struct Collider<BoxT<S>, SphereT<S>> {
     S depth;
     if (distance > ScalarTraits<S>::epsilon() * (h.norm() + r)) {
       depth = r - distance;
-      if (!(depth >= S(0))) return;
+      // Gap points only off a face: off an edge or a corner, the gap closes
+      // slower than its linear rate says (a sphere rolling over the seam
+      // of two boxes would be stopped by the next one's edge).
+      const bool offFace = (c.array().abs() > h.array()).count() == 1;
+      if (!(depth >= S(0) || (offFace && sink.accepts(depth)))) return;
       n = d / distance;
       onBox = q;
     } else {
@@ -7955,7 +8079,7 @@ struct Collider<BoxT<S>, SphereT<S>> {
       onBox = c + gap * n;
     }
     // Midway between the box's deepest point and the sphere's, c − r n.
-    sink.add(X_WA * Vec3T<S>(S(0.5) * (onBox + c - r * n)), X_WA.linear() * n, depth);
+    sink.addSpeculative(X_WA * Vec3T<S>(S(0.5) * (onBox + c - r * n)), X_WA.linear() * n, depth);
   }
 };
 
@@ -8010,8 +8134,8 @@ struct Collider<CapsuleT<S>, CapsuleT<S>> {
     const S tiny = ScalarTraits<S>::epsilon() * scale;
     const auto addAlong = [&](const Vec3T<S>& onA, const Vec3T<S>& onB, const Vec3T<S>& n, S distance) {
       const S depth = rA + rB - distance;
-      if (!(depth >= S(0))) return false;
-      sink.add(S(0.5) * (onA + onB + (rA - rB) * n), n, depth);
+      if (!sink.accepts(depth)) return false;
+      sink.addSpeculative(S(0.5) * (onA + onB + (rA - rB) * n), n, depth);
       return true;
     };
     const auto add = [&](const Vec3T<S>& onA, const Vec3T<S>& onB) {
@@ -8075,7 +8199,7 @@ struct Collider<CapsuleT<S>, PlaneT<S>> {
       const S height = n.dot(e - onPlane);
       const S depth = r - height;
       // Midway between the capsule's deepest point e − r n and the plane point under e, e − s n.
-      if (depth >= S(0)) sink.add(e - S(0.5) * (r + height) * n, -n, depth);
+      if (sink.accepts(depth)) sink.addSpeculative(e - S(0.5) * (r + height) * n, -n, depth);
     }
   }
 };
@@ -8110,10 +8234,10 @@ struct Collider<CapsuleT<S>, SphereT<S>> {
     if (t > S(0) && t < S(1)) d -= X_WA.linear().col(1) * X_WA.linear().col(1).dot(d);
     const S distance = d.norm();
     const S depth = rA + rB - distance;
-    if (!(depth >= S(0))) return;
+    if (!sink.accepts(depth)) return;
     const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB + a.getHeight()) ? Vec3T<S>(d / distance)
                                                                                         : Vec3T<S>(X_WA.linear().col(0));
-    sink.add(S(0.5) * (q + c + (rA - rB) * n), n, depth);
+    sink.addSpeculative(S(0.5) * (q + c + (rA - rB) * n), n, depth);
   }
 };
 
@@ -8161,9 +8285,9 @@ struct Collider<CylinderT<S>, PlaneT<S>> {
       const S capHeight = n.dot(capCenter - onPlane);
       for (const Vec3T<S>& direction : rim) {
         const S height = capHeight + r * n.dot(direction);
-        if (!(height <= S(0))) continue;
+        if (!sink.accepts(-height)) continue;
         // Midway between the rim point and the plane point under it.
-        sink.add(capCenter + r * direction - S(0.5) * height * n, -n, -height);
+        sink.addSpeculative(capCenter + r * direction - S(0.5) * height * n, -n, -height);
       }
     }
   }
@@ -8311,9 +8435,9 @@ struct Collider<PlaneT<S>, SphereT<S>> {
     const S height = n.dot(c - X_WA * a.getPoint());
     const S r = b.getRadius();
     const S depth = r - height;
-    if (!(depth >= S(0))) return;
+    if (!sink.accepts(depth)) return;
     // Midway between the plane point under c, c − s n, and the sphere's deepest point c − r n.
-    sink.add(c - S(0.5) * (height + r) * n, n, depth);
+    sink.addSpeculative(c - S(0.5) * (height + r) * n, n, depth);
   }
 };
 
@@ -8839,10 +8963,10 @@ struct Collider<SphereT<S>, SphereT<S>> {
     const Vec3T<S> d = cB - cA;
     const S distance = d.norm();
     const S depth = rA + rB - distance;
-    if (!(depth >= S(0))) return;
+    if (!sink.accepts(depth)) return;
     const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB) ? Vec3T<S>(d / distance) : Vec3T<S>::UnitZ();
     // Midway between a's deepest point cA + rA n and b's, cB − rB n.
-    sink.add(S(0.5) * (cA + cB + (rA - rB) * n), n, depth);
+    sink.addSpeculative(S(0.5) * (cA + cB + (rA - rB) * n), n, depth);
   }
 };
 
@@ -9432,8 +9556,12 @@ struct Row {
 
 /// Whether a row drives its bodies: a velocity row with a target speed (a
 /// motor, a moving surface). Such a row wakes a sleeping body and keeps its
-/// island awake (SimulationT::getAutoSleep).
-[[nodiscard]] inline bool drives(const Row& r) { return !r.holonomic && r.speed != 0.0; }
+/// island awake (SimulationT::getAutoSleep). A row that only pushes
+/// (lower bound >= 0) toward a negative speed, a gap the bodies may close
+/// (a speculative contact), acts only on bodies that approach faster.
+[[nodiscard]] inline bool drives(const Row& r) {
+  return !r.holonomic && r.speed != 0.0 && !(r.lower >= 0.0 && r.speed < 0.0);
+}
 
 /// A friction row: its bounds follow the impulse of its contact's normal
 /// row (solver/friction_bounds.hpp). Indices are in the same row list.
@@ -16221,6 +16349,10 @@ struct ContactSettings {
   /// pair) when they lie within this distance (m) in the first geometry's
   /// frame: its rows start from that point's force.
   double persistenceDistance = 0.01;
+  /// Contacts found ahead of the step (SpaceT::update's reach): points
+  /// apart by a gap the shapes may close within the step become rows that
+  /// let them close it and no more.
+  bool speculative = true;
 };
 
 }  // namespace spook::detail
@@ -19244,6 +19376,18 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// instead of being shot out. Default 1.
   [[nodiscard]] S getMaxDepenetrationSpeed() const;
   void setMaxDepenetrationSpeed(S speed);
+  /// Speculative contacts (default on): the space also finds the points
+  /// where two shapes are apart by less than they may close within the
+  /// step (each body's speed and gravity times the step, SpaceT::update),
+  /// and the solver lets such a gap close within the step and no more. A
+  /// contact is then born touching, not overlapping by up to its approach
+  /// speed times the step, which SPOOK's stabilization would push out over
+  /// the following steps (energy a settling pile never loses). Off, shapes
+  /// are found only once they touch. A pair that a contact listener
+  /// watches (impact or contact) is not speculative: the listener decides
+  /// on its contact before the solver sees it.
+  [[nodiscard]] bool getEnableSpeculativeContacts() const { return contactSettings_.speculative; }
+  void setEnableSpeculativeContacts(bool enable) { contactSettings_.speculative = enable; }
 
   // --- Content ---------------------------------------------------------------
 
@@ -19717,6 +19861,16 @@ void SimulationT<S>::notifyContacts() {
       if (policy == ContactListener::REMOVE_CONTACT) contact.setEnable(false);
     }
   }
+  // A pair that a listener watches acts only once the listener has seen it
+  // touch (and kept it): its speculative contact is left out.
+  for (auto& contact : space_->getSpeculativeContacts())
+    for (const auto& l : snapshot)
+      if (l->getSimulation() == this && l->getEnable() &&
+          (l->getMask() & (ContactListener::IMPACT | ContactListener::CONTACT)) &&
+          l->matches(contact.geometry(0), contact.geometry(1))) {
+        contact.setEnable(false);
+        break;
+      }
   for (auto pair : space_->getSeparations())
     for (const auto& l : snapshot)
       if (l->getSimulation() == this && l->getEnable() && (l->getMask() & ContactListener::SEPARATION) &&
@@ -22202,6 +22356,14 @@ namespace spook::detail {
 /// row into a velocity row asking for e times the approach speed (Newton's
 /// law, §1.4).
 ///
+/// A gap point (negative depth, a speculative contact: SpaceT::update) is
+/// a velocity row instead: the pair may approach along its normal by the
+/// gap within the step, G v ≥ −gap/h, with the Σ of the touching row; an
+/// approach fast enough to close the gap and above the restitution
+/// threshold bounces at once, as a touching impact would. Its friction
+/// rows are bounded by its own normal force (none for box friction, whose
+/// bound stands alone).
+///
 /// A point that continues one of the last step's (contact persistence) gives
 /// its rows that point's force as their last impulse: the warm start of
 /// Gauss–Seidel (when enabled) and the starting active set of the direct
@@ -22209,114 +22371,20 @@ namespace spook::detail {
 template <Scalar S>
 class ContactRows {
  public:
+  /// Rows of the touching pairs `contacts` and then of the pairs with gap
+  /// points only, `speculative`.
   template <class BodyIndex>
-  void build(std::vector<GeometryContactT<S>>& contacts, const MaterialManagerT<S>& materials,
-             const GravityFieldT<S>& gravity, BodyIndex bodyIndex, const std::vector<SolverBody>& bodies, double h,
-             const ContactSettings& settings, RowSet& set) {
-    std::vector<Row>& rows = set.rows;
+  void build(std::vector<GeometryContactT<S>>& contacts, std::vector<GeometryContactT<S>>& speculative,
+             const MaterialManagerT<S>& materials, const GravityFieldT<S>& gravity, BodyIndex bodyIndex,
+             const std::vector<SolverBody>& bodies, double h, const ContactSettings& settings, RowSet& set) {
     points_.clear();
     std::swap(pairs_, lastPairs_);
     std::swap(remembered_, lastRemembered_);
     pairs_.clear();
     remembered_.clear();
 
-    for (auto& contact : contacts) {
-      if (!solvable(contact)) continue;
-      const ContactParametersT<S> p =
-          materials.resolve(*contact.geometry(0)->getMaterial(), *contact.geometry(1)->getMaterial());
-      const FrictionModelT<S>* model = p.frictionModel;
-      const SolveType solveType = model ? model->getSolveType() : SolveType::SPLIT;
-      const auto type = model ? model->getType() : FrictionModelT<S>::ITERATIVE_PROJECTED_CONE;
-      FrictionBound bound = type == FrictionModelT<S>::BOX         ? FrictionBound::FIXED
-                            : type == FrictionModelT<S>::SCALE_BOX ? FrictionBound::SCALED_BOX
-                                                                   : FrictionBound::CONE;
-      // The projected cone is round: anisotropic friction falls back to the scaled box.
-      if (bound == FrictionBound::CONE && p.friction[0] != p.friction[1]) bound = FrictionBound::SCALED_BOX;
-
-      RigidBodyT<S>* body[2] = {contact.rigidBody(0), contact.rigidBody(1)};
-      const int index[2] = {body[0] ? bodyIndex(body[0]) : -1, body[1] ? bodyIndex(body[1]) : -1};
-      Eigen::Vector3d cm[2], surface[2];
-      for (int k = 0; k < 2; ++k) {
-        const auto& geometry = *contact.geometry(static_cast<std::size_t>(k));
-        cm[k] = body[k] ? Eigen::Vector3d(body[k]->getCmPosition().template cast<double>()) : Eigen::Vector3d::Zero();
-        surface[k] =
-            geometry.getSurfaceVelocity().isZero(S(0))
-                ? Eigen::Vector3d::Zero()
-                : Eigen::Vector3d(
-                      (geometry.getTransform().linear() * geometry.getSurfaceVelocity()).template cast<double>());
-      }
-      const PairMemory* lastPair = findLastPair(pairKey(contact));
-      const double normalEstimate = estimateNormalForce(contact, model, lastPair, gravity);
-      const Eigen::Isometry3d toFirstGeometry =
-          Eigen::Isometry3d(contact.geometry(0)->getTransform().template cast<double>().matrix()).inverse();
-
-      for (auto& point : contact.points()) {
-        if (!point.enabled) continue;
-        const Eigen::Vector3d n = point.normal.template cast<double>();
-        const Eigen::Vector3d x = point.point.template cast<double>();
-        const Eigen::Vector3d r1 = x - cm[0], r2 = x - cm[1];
-        const auto velocityOf = [&](int k, const Eigen::Vector3d& r, bool free) -> Eigen::Vector3d {
-          if (index[k] < 0) return Eigen::Vector3d::Zero();
-          const SolverBody& b = bodies[static_cast<std::size_t>(index[k])];
-          const Vec6d& v = free ? b.freeVelocity : b.velocity;
-          return v.head<3>() + v.tail<3>().cross(r);
-        };
-        const auto makeRow = [&](const Eigen::Vector3d& direction) {
-          Row row;
-          row.body1 = index[0];
-          row.body2 = index[1];
-          row.J1 << -direction, -r1.cross(direction);
-          row.J2 << direction, r2.cross(direction);
-          row.solveType = solveType;
-          return row;
-        };
-        const auto append = [&](const Row& row, double impulse) {
-          set.arms.push_back({static_cast<int>(rows.size()), r1, r2});
-          rows.push_back(row);
-          set.impulses.push_back(impulse);
-        };
-
-        const Eigen::Vector3d local = toFirstGeometry * x;
-        const Eigen::Vector3d lastForceOfPoint =
-            lastPair
-                ? continuedForce(std::span<const Remembered>(lastRemembered_).subspan(lastPair->first, lastPair->count),
-                                 local, settings.persistenceDistance)
-                : Eigen::Vector3d::Zero();
-        const int normalIndex = static_cast<int>(rows.size());
-        Row normal = makeRow(n);
-        normal.lower = -double(p.adhesiveForce);
-        const double approach = n.dot(velocityOf(1, r2, false) - velocityOf(0, r1, false));
-        if (p.restitution > S(0) && approach < -settings.restitutionThreshold) {
-          normal.holonomic = false;
-          normal.speed = -double(p.restitution) * approach;
-        } else {
-          normal.compliance = 1.0 / double(p.youngsModulus);
-          normal.damping = double(p.damping);
-          // SPOOK's a·g is the speed at which the overlap is pushed out: capped.
-          const SpookParameters spook = SpookParameters::holonomic(normal.compliance, normal.damping, h);
-          const double deepest = -spook.violationForSpeed(settings.maxDepenetrationSpeed);
-          normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
-        }
-        append(normal, lastForceOfPoint.dot(n) * h);
-
-        const Eigen::Vector3d slip = velocityOf(1, r2, true) + surface[1] - velocityOf(0, r1, true) - surface[0];
-        const auto [t1, t2] = tangents(n, slip, model);
-        const Eigen::Vector3d tangent[2] = {t1, t2};
-        for (int k = 0; k < 2; ++k) {
-          Row row = makeRow(tangent[k]);
-          row.holonomic = false;
-          row.speed = (surface[0] - surface[1]).dot(tangent[k]);
-          row.compliance = double(p.surfaceViscosity[k]);
-          const double mu = double(p.friction[k]);
-          row.upper = mu * normalEstimate / double(std::max<std::size_t>(contact.getNumEnabledPoints(), 1));
-          row.lower = -row.upper;
-          set.friction.push_back({static_cast<int>(rows.size()), normalIndex,
-                                  bound == FrictionBound::CONE ? normalIndex + 2 - k : -1, mu, bound, false});
-          append(row, lastForceOfPoint.dot(tangent[k]) * h);
-        }
-        points_.push_back({&point, pairKey(contact), local, n, t1, t2});
-      }
-    }
+    for (auto* list : {&contacts, &speculative})
+      for (auto& contact : *list) build(contact, materials, gravity, bodyIndex, bodies, h, settings, set);
   }
 
   /// From the solved impulses of the rows build() wrote (in their order):
@@ -22374,6 +22442,120 @@ class ContactRows {
         nearest = &r;
       }
     return nearest ? nearest->force : Eigen::Vector3d::Zero();
+  }
+
+  // The rows of one pair's enabled points.
+  template <class BodyIndex>
+  void build(GeometryContactT<S>& contact, const MaterialManagerT<S>& materials, const GravityFieldT<S>& gravity,
+             BodyIndex bodyIndex, const std::vector<SolverBody>& bodies, double h, const ContactSettings& settings,
+             RowSet& set) {
+    if (!solvable(contact)) return;
+    std::vector<Row>& rows = set.rows;
+    const ContactParametersT<S> p =
+        materials.resolve(*contact.geometry(0)->getMaterial(), *contact.geometry(1)->getMaterial());
+    const FrictionModelT<S>* model = p.frictionModel;
+    const SolveType solveType = model ? model->getSolveType() : SolveType::SPLIT;
+    const auto type = model ? model->getType() : FrictionModelT<S>::ITERATIVE_PROJECTED_CONE;
+    FrictionBound bound = type == FrictionModelT<S>::BOX         ? FrictionBound::FIXED
+                          : type == FrictionModelT<S>::SCALE_BOX ? FrictionBound::SCALED_BOX
+                                                                 : FrictionBound::CONE;
+    // The projected cone is round: anisotropic friction falls back to the scaled box.
+    if (bound == FrictionBound::CONE && p.friction[0] != p.friction[1]) bound = FrictionBound::SCALED_BOX;
+
+    RigidBodyT<S>* body[2] = {contact.rigidBody(0), contact.rigidBody(1)};
+    const int index[2] = {body[0] ? bodyIndex(body[0]) : -1, body[1] ? bodyIndex(body[1]) : -1};
+    Eigen::Vector3d cm[2], surface[2];
+    for (int k = 0; k < 2; ++k) {
+      const auto& geometry = *contact.geometry(static_cast<std::size_t>(k));
+      cm[k] = body[k] ? Eigen::Vector3d(body[k]->getCmPosition().template cast<double>()) : Eigen::Vector3d::Zero();
+      surface[k] =
+          geometry.getSurfaceVelocity().isZero(S(0))
+              ? Eigen::Vector3d::Zero()
+              : Eigen::Vector3d(
+                    (geometry.getTransform().linear() * geometry.getSurfaceVelocity()).template cast<double>());
+    }
+    const PairMemory* lastPair = findLastPair(pairKey(contact));
+    const double normalEstimate = estimateNormalForce(contact, model, lastPair, gravity);
+    const Eigen::Isometry3d toFirstGeometry =
+        Eigen::Isometry3d(contact.geometry(0)->getTransform().template cast<double>().matrix()).inverse();
+
+    for (auto& point : contact.points()) {
+      if (!point.enabled) continue;
+      const Eigen::Vector3d n = point.normal.template cast<double>();
+      const Eigen::Vector3d x = point.point.template cast<double>();
+      const Eigen::Vector3d r1 = x - cm[0], r2 = x - cm[1];
+      const auto velocityOf = [&](int k, const Eigen::Vector3d& r, bool free) -> Eigen::Vector3d {
+        if (index[k] < 0) return Eigen::Vector3d::Zero();
+        const SolverBody& b = bodies[static_cast<std::size_t>(index[k])];
+        const Vec6d& v = free ? b.freeVelocity : b.velocity;
+        return v.head<3>() + v.tail<3>().cross(r);
+      };
+      const auto makeRow = [&](const Eigen::Vector3d& direction) {
+        Row row;
+        row.body1 = index[0];
+        row.body2 = index[1];
+        row.J1 << -direction, -r1.cross(direction);
+        row.J2 << direction, r2.cross(direction);
+        row.solveType = solveType;
+        return row;
+      };
+      const auto append = [&](const Row& row, double impulse) {
+        set.arms.push_back({static_cast<int>(rows.size()), r1, r2});
+        rows.push_back(row);
+        set.impulses.push_back(impulse);
+      };
+
+      const Eigen::Vector3d local = toFirstGeometry * x;
+      const Eigen::Vector3d lastForceOfPoint =
+          lastPair
+              ? continuedForce(std::span<const Remembered>(lastRemembered_).subspan(lastPair->first, lastPair->count),
+                               local, settings.persistenceDistance)
+              : Eigen::Vector3d::Zero();
+      const int normalIndex = static_cast<int>(rows.size());
+      Row normal = makeRow(n);
+      normal.lower = -double(p.adhesiveForce);
+      const double approach = n.dot(velocityOf(1, r2, false) - velocityOf(0, r1, false));
+      const double gap = -double(point.depth);  // > 0 for a gap point
+      const bool impact = p.restitution > S(0) && approach < -settings.restitutionThreshold &&
+                          (gap <= 0.0 || n.dot(velocityOf(1, r2, true) - velocityOf(0, r1, true)) * h < -gap);
+      if (impact) {
+        normal.holonomic = false;
+        normal.speed = -double(p.restitution) * approach;
+        if (gap > 0.0) normal.lower = 0.0;
+      } else if (gap > 0.0) {
+        normal.holonomic = false;
+        normal.speed = -gap / h;
+        normal.lower = 0.0;
+        normal.compliance = h * SpookParameters::holonomic(1.0 / double(p.youngsModulus), double(p.damping), h).sigma;
+      } else {
+        normal.compliance = 1.0 / double(p.youngsModulus);
+        normal.damping = double(p.damping);
+        // SPOOK's a·g is the speed at which the overlap is pushed out: capped.
+        const SpookParameters spook = SpookParameters::holonomic(normal.compliance, normal.damping, h);
+        const double deepest = -spook.violationForSpeed(settings.maxDepenetrationSpeed);
+        normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
+      }
+      append(normal, lastForceOfPoint.dot(n) * h);
+
+      const Eigen::Vector3d slip = velocityOf(1, r2, true) + surface[1] - velocityOf(0, r1, true) - surface[0];
+      const auto [t1, t2] = tangents(n, slip, model);
+      const Eigen::Vector3d tangent[2] = {t1, t2};
+      for (int k = 0; k < 2; ++k) {
+        Row row = makeRow(tangent[k]);
+        row.holonomic = false;
+        row.speed = (surface[0] - surface[1]).dot(tangent[k]);
+        row.compliance = double(p.surfaceViscosity[k]);
+        const double mu = double(p.friction[k]);
+        row.upper = bound == FrictionBound::FIXED && gap > 0.0
+                        ? 0.0
+                        : mu * normalEstimate / double(std::max<std::size_t>(contact.getNumEnabledPoints(), 1));
+        row.lower = -row.upper;
+        set.friction.push_back({static_cast<int>(rows.size()), normalIndex,
+                                bound == FrictionBound::CONE ? normalIndex + 2 - k : -1, mu, bound, false});
+        append(row, lastForceOfPoint.dot(tangent[k]) * h);
+      }
+      points_.push_back({&point, pairKey(contact), local, n, t1, t2});
+    }
   }
 
   static bool solvable(const GeometryContactT<S>& c) { return c.isEnabled() && !c.isSensor(); }
@@ -23118,6 +23300,7 @@ template <Scalar S>
 struct SimulationWorkspace {
   std::vector<SolverBody> solverBodies;
   std::vector<char> frozen;  ///< per body: frozen in this step
+  std::vector<StepReachT<S>> reach;  ///< per body: how far it may move in the step (speculative contacts)
   /// The step's rows: the constraints', the contacts' from firstContactRow
   /// on, the producers' from firstProducerRow on (producerRowsEnd: where
   /// each producer's end).
@@ -23212,7 +23395,26 @@ template <Scalar S>
 void SimulationT<S>::collide() {
   wakeDisturbed();  // before the space reuses the contacts of sleeping pairs
   work_->workers.resize(numThreads_);
-  space_->update(bodies_.get(), &work_->workers);
+  std::vector<StepReachT<S>>& reach = work_->reach;
+  reach.clear();
+  if (contactSettings_.speculative) {
+    // The free motion |Δx| <= h (|v| + h |a|), a = F/m + g; a push from
+    // another contact may add to it (that contact may be born overlapping).
+    const S h = timeStep_;
+    for (const auto& body : bodies_) {
+      StepReachT<S>& r = reach.emplace_back();
+      if (body->getMotionControl() == Body::STATIC || body->isSleeping()) continue;
+      S acceleration = S(0);
+      if (body->getMotionControl() == Body::DYNAMICS) {
+        acceleration = gravity_->calculateGravity(body->getCmPosition()).norm();
+        if (const S mass = body->getMassProperties()->getMass(); mass > S(0))
+          acceleration += body->getForce().norm() / mass;
+      }
+      r.linear = h * (body->getVelocity().norm() + h * acceleration);
+      r.angular = h * body->getAngularVelocity().norm();
+    }
+  }
+  space_->update(bodies_.get(), &work_->workers, reach);
   statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
   notifyContacts();
 }
@@ -23236,8 +23438,8 @@ void SimulationT<S>::gatherRows(const StepContext& step) {
   w.rows.clear();
   w.constraintRows.write(constraints_.get(), bodyIndex(), *solver_, h, w.rows);
   w.firstContactRow = w.rows.size();
-  w.contactRows.build(space_->getGeometryContacts(), materials_, *gravity_, bodyIndex(), w.solverBodies, h,
-                      contactSettings_, w.rows);
+  w.contactRows.build(space_->getGeometryContacts(), space_->getSpeculativeContacts(), materials_, *gravity_,
+                      bodyIndex(), w.solverBodies, h, contactSettings_, w.rows);
   collectProducerRows(step, false);
 }
 
@@ -23320,8 +23522,10 @@ void SimulationT<S>::wakeBodies(const StepContext& step) {
     return b.dynamic || b.velocity != detail::Vec6d::Zero();
   };
   w.touching.clear();
-  for (const auto& contact : space_->getGeometryContacts())
-    if (contact.isEnabled() && !contact.isSensor()) w.touching.emplace_back(contact.rigidBody(0), contact.rigidBody(1));
+  for (const auto* contacts : {&space_->getGeometryContacts(), &space_->getSpeculativeContacts()})
+    for (const auto& contact : *contacts)
+      if (contact.isEnabled() && !contact.isSensor())
+        w.touching.emplace_back(contact.rigidBody(0), contact.rigidBody(1));
   for (const auto& c : constraints_)
     if (c->getEnable()) w.touching.emplace_back(c->getBodyAt(0), c->getBodyAt(1));
   for (bool woke = true; woke;) {

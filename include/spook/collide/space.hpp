@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <tuple>
 #include <type_traits>
@@ -45,6 +46,16 @@ template <class List>
 struct CollidersDefined;
 
 }  // namespace detail
+
+/// How far a body may move within the coming step, for speculative
+/// contacts (SpaceT::update): its center of mass by up to `linear` (m), and
+/// it turns by up to `angular` (rad), so that a point at distance r from
+/// the center of mass moves by up to linear + angular·r.
+template <Scalar S>
+struct StepReachT {
+  S linear = S(0);
+  S angular = S(0);
+};
 
 #if defined(SPOOK_EXTERN_TEMPLATES) && !defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
 extern template bool detail::collideThrough<double, AllShapes>(const ShapeT<double>&, const TransformT<double>&,
@@ -146,7 +157,22 @@ class SpaceT : public Referenced {
   /// contacts in the same order. Two geometries of sleeping bodies
   /// (RigidBody::isSleeping) are not collided again: they keep the contact
   /// they had (nothing of theirs has moved).
-  void update(const std::vector<ref_ptr<Body>>& bodies = {}, detail::WorkerPool* workers = nullptr);
+  ///
+  /// With `reach` (one per body of `bodies`), contacts are speculative: two
+  /// geometries are collided with a margin of how far they may come closer
+  /// within the step (each one's reach, at most kMaxSpeculativeFraction of
+  /// its half-diagonal; none for sensors), and the colliders that support
+  /// it (collider.hpp) also write the points where they are apart by less
+  /// (negative depths). A pair with only such gap points is not a contact
+  /// (no events, not in getGeometryContacts()): it is listed in
+  /// getSpeculativeContacts(), for the solver.
+  void update(const std::vector<ref_ptr<Body>>& bodies = {}, detail::WorkerPool* workers = nullptr,
+              std::span<const StepReachT<S>> reach = {});
+
+  /// The largest speculative margin of a geometry, as a fraction of its
+  /// bounding box's half-diagonal: a body faster than that in a step may
+  /// still be found overlapping (continuous collision is the remedy).
+  static constexpr double kMaxSpeculativeFraction = 0.25;
 
   /// Fewest candidate pairs worth spreading over threads.
   static constexpr std::size_t kPairsWorthThreads = 64;
@@ -159,9 +185,14 @@ class SpaceT : public Referenced {
     return collide_(a, X_WA, b, X_WB, sink);
   }
 
-  /// Geometry pairs in contact after the last update().
+  /// Geometry pairs in contact after the last update(): each has a point of
+  /// depth >= 0, and may have gap points too (negative depth).
   [[nodiscard]] std::vector<Contact>& getGeometryContacts() { return contacts_; }
   [[nodiscard]] const std::vector<Contact>& getGeometryContacts() const { return contacts_; }
+  /// Geometry pairs apart by less than their speculative margin after the
+  /// last update(): gap points only. Not reported as contacts.
+  [[nodiscard]] std::vector<Contact>& getSpeculativeContacts() { return speculative_; }
+  [[nodiscard]] const std::vector<Contact>& getSpeculativeContacts() const { return speculative_; }
   /// Pairs that were in contact the update before the last and no longer are.
   [[nodiscard]] const std::vector<GeometryPairT<S>>& getSeparations() const { return separations_; }
   /// Contact points the last update() dropped, before reduction, because a
@@ -193,6 +224,9 @@ class SpaceT : public Referenced {
   /// composite) after the geometry was checked on add: it is checked here,
   /// before anything changes, rather than silently colliding with nothing.
   void gather(const std::vector<ref_ptr<Body>>& bodies);
+  /// The speculative margin of each active geometry (m) for the bodies'
+  /// reach, or none without it.
+  void measureMargins(const std::vector<ref_ptr<Body>>& bodies, std::span<const StepReachT<S>> reach);
 
   /// Collides active_[i] with active_[j] at the poses update() took; a
   /// contact goes to `found`, points dropped as non-finite are counted.
@@ -204,6 +238,9 @@ class SpaceT : public Referenced {
   // unless a reduction rule overrides them); REDUCE_ALL pairs pool their
   // points per body pair, at the resolution of the pair's last contact.
   void reduce();
+
+  /// Moves the pairs without a touching point from contacts_ to speculative_.
+  void setSpeculativeApart();
 
   void trackEvents();
 
@@ -229,6 +266,7 @@ class SpaceT : public Referenced {
   std::vector<std::size_t> firstShapePose_;
   std::vector<TransformT<S>> shapePoses_;
   std::vector<BoundingBoxT<S>> boxes_;
+  std::vector<S> margins_;  ///< per active geometry (m)
   detail::SweepAndPrune<S> broadphase_;
   /// The broad phase's pairs that may collide (canCollide), in its order.
   std::vector<std::pair<std::size_t, std::size_t>> pairs_;
@@ -240,7 +278,7 @@ class SpaceT : public Referenced {
   /// Per piece of pairs_ on the threads: its contacts and dropped points.
   std::vector<std::vector<Contact>> piecesFound_;
   std::vector<std::size_t> piecesDropped_;
-  std::vector<Contact> contacts_;
+  std::vector<Contact> contacts_, speculative_;
   /// The pairs in contact after the last update(), sorted by their ids.
   std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, GeometryPairT<S>>> touching_, nowTouching_;
   std::vector<GeometryPairT<S>> separations_;
@@ -297,7 +335,8 @@ void SpaceT<S>::setContactBinResolution(int resolution) {
 }
 
 template <Scalar S>
-void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerPool* workers) {
+void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerPool* workers,
+                       std::span<const StepReachT<S>> reach) {
   gather(bodies);
   boxes_.clear();
   firstShapePose_.clear();
@@ -311,6 +350,12 @@ void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerP
     // round-off, stays a pair.
     boxes_.push_back(g->getBoundingBox(X_WG).grownBy(S(detail::kTouchingGap)));
   }
+  measureMargins(bodies, reach);
+  for (std::size_t k = 0; k < boxes_.size(); ++k)
+    if (margins_[k] > S(0)) {
+      boxes_[k].min.array() -= margins_[k];
+      boxes_[k].max.array() += margins_[k];
+    }
   pairs_.clear();
   broadphase_.findPairs(boxes_, [&](std::size_t i, std::size_t j) {
     if (canCollide(*active_[i], *active_[j])) pairs_.emplace_back(i, j);
@@ -326,7 +371,44 @@ void SpaceT<S>::update(const std::vector<ref_ptr<Body>>& bodies, detail::WorkerP
   }
   narrowPhase(workers);
   reduce();
+  setSpeculativeApart();
   trackEvents();
+}
+
+template <Scalar S>
+void SpaceT<S>::measureMargins(const std::vector<ref_ptr<Body>>& bodies, std::span<const StepReachT<S>> reach) {
+  margins_.assign(active_.size(), S(0));
+  if (reach.empty()) return;
+  if (reach.size() != bodies.size()) throw error("needs one step reach per body, not", reach.size());
+  // active_ lists this space's own geometries, then those of each enabled body in order (gather).
+  std::size_t k = geometries_.size();
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const Body& body = *bodies[b];
+    if (!body.getEnable()) continue;
+    const StepReachT<S>& r = reach[b];
+    for (std::size_t n = body.getGeometries().size(); n > 0; --n, ++k) {
+      const BoundingBoxT<S>& box = boxes_[k];
+      const S size = box.halfExtents().norm();
+      const S arm = (box.center() - body.getCmPosition()).norm() + size;
+      const S margin = std::min(r.linear + r.angular * arm, S(kMaxSpeculativeFraction) * size);
+      if (std::isfinite(margin) && margin > S(0)) margins_[k] = margin;
+    }
+  }
+}
+
+template <Scalar S>
+void SpaceT<S>::setSpeculativeApart() {
+  speculative_.clear();
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const auto& points = contacts_[k].points();
+    const bool touching = std::any_of(points.begin(), points.end(), [](const auto& p) { return p.depth >= S(0); });
+    if (!touching)
+      speculative_.push_back(std::move(contacts_[k]));
+    else if (kept++ != k)
+      contacts_[kept - 1] = std::move(contacts_[k]);
+  }
+  contacts_.erase(contacts_.begin() + std::ptrdiff_t(kept), contacts_.end());
 }
 
 template <Scalar S>
@@ -406,7 +488,8 @@ void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j, std::vector<Contact>& 
     return;
   }
   Contact contact(first, second);
-  ContactSinkT<S> sink(contact.points());
+  const S margin = first->isSensor() || second->isSensor() ? S(0) : margins_[i] + margins_[j];
+  ContactSinkT<S> sink(contact.points(), false, margin);
   const auto& shapes1 = first->getShapes();
   const auto& shapes2 = second->getShapes();
   for (std::size_t k1 = 0; k1 < shapes1.size(); ++k1)

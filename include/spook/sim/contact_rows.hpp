@@ -32,6 +32,14 @@ namespace spook::detail {
 /// row into a velocity row asking for e times the approach speed (Newton's
 /// law, §1.4).
 ///
+/// A gap point (negative depth, a speculative contact: SpaceT::update) is
+/// a velocity row instead: the pair may approach along its normal by the
+/// gap within the step, G v ≥ −gap/h, with the Σ of the touching row; an
+/// approach fast enough to close the gap and above the restitution
+/// threshold bounces at once, as a touching impact would. Its friction
+/// rows are bounded by its own normal force (none for box friction, whose
+/// bound stands alone).
+///
 /// A point that continues one of the last step's (contact persistence) gives
 /// its rows that point's force as their last impulse: the warm start of
 /// Gauss–Seidel (when enabled) and the starting active set of the direct
@@ -39,114 +47,20 @@ namespace spook::detail {
 template <Scalar S>
 class ContactRows {
  public:
+  /// Rows of the touching pairs `contacts` and then of the pairs with gap
+  /// points only, `speculative`.
   template <class BodyIndex>
-  void build(std::vector<GeometryContactT<S>>& contacts, const MaterialManagerT<S>& materials,
-             const GravityFieldT<S>& gravity, BodyIndex bodyIndex, const std::vector<SolverBody>& bodies, double h,
-             const ContactSettings& settings, RowSet& set) {
-    std::vector<Row>& rows = set.rows;
+  void build(std::vector<GeometryContactT<S>>& contacts, std::vector<GeometryContactT<S>>& speculative,
+             const MaterialManagerT<S>& materials, const GravityFieldT<S>& gravity, BodyIndex bodyIndex,
+             const std::vector<SolverBody>& bodies, double h, const ContactSettings& settings, RowSet& set) {
     points_.clear();
     std::swap(pairs_, lastPairs_);
     std::swap(remembered_, lastRemembered_);
     pairs_.clear();
     remembered_.clear();
 
-    for (auto& contact : contacts) {
-      if (!solvable(contact)) continue;
-      const ContactParametersT<S> p =
-          materials.resolve(*contact.geometry(0)->getMaterial(), *contact.geometry(1)->getMaterial());
-      const FrictionModelT<S>* model = p.frictionModel;
-      const SolveType solveType = model ? model->getSolveType() : SolveType::SPLIT;
-      const auto type = model ? model->getType() : FrictionModelT<S>::ITERATIVE_PROJECTED_CONE;
-      FrictionBound bound = type == FrictionModelT<S>::BOX         ? FrictionBound::FIXED
-                            : type == FrictionModelT<S>::SCALE_BOX ? FrictionBound::SCALED_BOX
-                                                                   : FrictionBound::CONE;
-      // The projected cone is round: anisotropic friction falls back to the scaled box.
-      if (bound == FrictionBound::CONE && p.friction[0] != p.friction[1]) bound = FrictionBound::SCALED_BOX;
-
-      RigidBodyT<S>* body[2] = {contact.rigidBody(0), contact.rigidBody(1)};
-      const int index[2] = {body[0] ? bodyIndex(body[0]) : -1, body[1] ? bodyIndex(body[1]) : -1};
-      Eigen::Vector3d cm[2], surface[2];
-      for (int k = 0; k < 2; ++k) {
-        const auto& geometry = *contact.geometry(static_cast<std::size_t>(k));
-        cm[k] = body[k] ? Eigen::Vector3d(body[k]->getCmPosition().template cast<double>()) : Eigen::Vector3d::Zero();
-        surface[k] =
-            geometry.getSurfaceVelocity().isZero(S(0))
-                ? Eigen::Vector3d::Zero()
-                : Eigen::Vector3d(
-                      (geometry.getTransform().linear() * geometry.getSurfaceVelocity()).template cast<double>());
-      }
-      const PairMemory* lastPair = findLastPair(pairKey(contact));
-      const double normalEstimate = estimateNormalForce(contact, model, lastPair, gravity);
-      const Eigen::Isometry3d toFirstGeometry =
-          Eigen::Isometry3d(contact.geometry(0)->getTransform().template cast<double>().matrix()).inverse();
-
-      for (auto& point : contact.points()) {
-        if (!point.enabled) continue;
-        const Eigen::Vector3d n = point.normal.template cast<double>();
-        const Eigen::Vector3d x = point.point.template cast<double>();
-        const Eigen::Vector3d r1 = x - cm[0], r2 = x - cm[1];
-        const auto velocityOf = [&](int k, const Eigen::Vector3d& r, bool free) -> Eigen::Vector3d {
-          if (index[k] < 0) return Eigen::Vector3d::Zero();
-          const SolverBody& b = bodies[static_cast<std::size_t>(index[k])];
-          const Vec6d& v = free ? b.freeVelocity : b.velocity;
-          return v.head<3>() + v.tail<3>().cross(r);
-        };
-        const auto makeRow = [&](const Eigen::Vector3d& direction) {
-          Row row;
-          row.body1 = index[0];
-          row.body2 = index[1];
-          row.J1 << -direction, -r1.cross(direction);
-          row.J2 << direction, r2.cross(direction);
-          row.solveType = solveType;
-          return row;
-        };
-        const auto append = [&](const Row& row, double impulse) {
-          set.arms.push_back({static_cast<int>(rows.size()), r1, r2});
-          rows.push_back(row);
-          set.impulses.push_back(impulse);
-        };
-
-        const Eigen::Vector3d local = toFirstGeometry * x;
-        const Eigen::Vector3d lastForceOfPoint =
-            lastPair
-                ? continuedForce(std::span<const Remembered>(lastRemembered_).subspan(lastPair->first, lastPair->count),
-                                 local, settings.persistenceDistance)
-                : Eigen::Vector3d::Zero();
-        const int normalIndex = static_cast<int>(rows.size());
-        Row normal = makeRow(n);
-        normal.lower = -double(p.adhesiveForce);
-        const double approach = n.dot(velocityOf(1, r2, false) - velocityOf(0, r1, false));
-        if (p.restitution > S(0) && approach < -settings.restitutionThreshold) {
-          normal.holonomic = false;
-          normal.speed = -double(p.restitution) * approach;
-        } else {
-          normal.compliance = 1.0 / double(p.youngsModulus);
-          normal.damping = double(p.damping);
-          // SPOOK's a·g is the speed at which the overlap is pushed out: capped.
-          const SpookParameters spook = SpookParameters::holonomic(normal.compliance, normal.damping, h);
-          const double deepest = -spook.violationForSpeed(settings.maxDepenetrationSpeed);
-          normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
-        }
-        append(normal, lastForceOfPoint.dot(n) * h);
-
-        const Eigen::Vector3d slip = velocityOf(1, r2, true) + surface[1] - velocityOf(0, r1, true) - surface[0];
-        const auto [t1, t2] = tangents(n, slip, model);
-        const Eigen::Vector3d tangent[2] = {t1, t2};
-        for (int k = 0; k < 2; ++k) {
-          Row row = makeRow(tangent[k]);
-          row.holonomic = false;
-          row.speed = (surface[0] - surface[1]).dot(tangent[k]);
-          row.compliance = double(p.surfaceViscosity[k]);
-          const double mu = double(p.friction[k]);
-          row.upper = mu * normalEstimate / double(std::max<std::size_t>(contact.getNumEnabledPoints(), 1));
-          row.lower = -row.upper;
-          set.friction.push_back({static_cast<int>(rows.size()), normalIndex,
-                                  bound == FrictionBound::CONE ? normalIndex + 2 - k : -1, mu, bound, false});
-          append(row, lastForceOfPoint.dot(tangent[k]) * h);
-        }
-        points_.push_back({&point, pairKey(contact), local, n, t1, t2});
-      }
-    }
+    for (auto* list : {&contacts, &speculative})
+      for (auto& contact : *list) build(contact, materials, gravity, bodyIndex, bodies, h, settings, set);
   }
 
   /// From the solved impulses of the rows build() wrote (in their order):
@@ -204,6 +118,120 @@ class ContactRows {
         nearest = &r;
       }
     return nearest ? nearest->force : Eigen::Vector3d::Zero();
+  }
+
+  // The rows of one pair's enabled points.
+  template <class BodyIndex>
+  void build(GeometryContactT<S>& contact, const MaterialManagerT<S>& materials, const GravityFieldT<S>& gravity,
+             BodyIndex bodyIndex, const std::vector<SolverBody>& bodies, double h, const ContactSettings& settings,
+             RowSet& set) {
+    if (!solvable(contact)) return;
+    std::vector<Row>& rows = set.rows;
+    const ContactParametersT<S> p =
+        materials.resolve(*contact.geometry(0)->getMaterial(), *contact.geometry(1)->getMaterial());
+    const FrictionModelT<S>* model = p.frictionModel;
+    const SolveType solveType = model ? model->getSolveType() : SolveType::SPLIT;
+    const auto type = model ? model->getType() : FrictionModelT<S>::ITERATIVE_PROJECTED_CONE;
+    FrictionBound bound = type == FrictionModelT<S>::BOX         ? FrictionBound::FIXED
+                          : type == FrictionModelT<S>::SCALE_BOX ? FrictionBound::SCALED_BOX
+                                                                 : FrictionBound::CONE;
+    // The projected cone is round: anisotropic friction falls back to the scaled box.
+    if (bound == FrictionBound::CONE && p.friction[0] != p.friction[1]) bound = FrictionBound::SCALED_BOX;
+
+    RigidBodyT<S>* body[2] = {contact.rigidBody(0), contact.rigidBody(1)};
+    const int index[2] = {body[0] ? bodyIndex(body[0]) : -1, body[1] ? bodyIndex(body[1]) : -1};
+    Eigen::Vector3d cm[2], surface[2];
+    for (int k = 0; k < 2; ++k) {
+      const auto& geometry = *contact.geometry(static_cast<std::size_t>(k));
+      cm[k] = body[k] ? Eigen::Vector3d(body[k]->getCmPosition().template cast<double>()) : Eigen::Vector3d::Zero();
+      surface[k] =
+          geometry.getSurfaceVelocity().isZero(S(0))
+              ? Eigen::Vector3d::Zero()
+              : Eigen::Vector3d(
+                    (geometry.getTransform().linear() * geometry.getSurfaceVelocity()).template cast<double>());
+    }
+    const PairMemory* lastPair = findLastPair(pairKey(contact));
+    const double normalEstimate = estimateNormalForce(contact, model, lastPair, gravity);
+    const Eigen::Isometry3d toFirstGeometry =
+        Eigen::Isometry3d(contact.geometry(0)->getTransform().template cast<double>().matrix()).inverse();
+
+    for (auto& point : contact.points()) {
+      if (!point.enabled) continue;
+      const Eigen::Vector3d n = point.normal.template cast<double>();
+      const Eigen::Vector3d x = point.point.template cast<double>();
+      const Eigen::Vector3d r1 = x - cm[0], r2 = x - cm[1];
+      const auto velocityOf = [&](int k, const Eigen::Vector3d& r, bool free) -> Eigen::Vector3d {
+        if (index[k] < 0) return Eigen::Vector3d::Zero();
+        const SolverBody& b = bodies[static_cast<std::size_t>(index[k])];
+        const Vec6d& v = free ? b.freeVelocity : b.velocity;
+        return v.head<3>() + v.tail<3>().cross(r);
+      };
+      const auto makeRow = [&](const Eigen::Vector3d& direction) {
+        Row row;
+        row.body1 = index[0];
+        row.body2 = index[1];
+        row.J1 << -direction, -r1.cross(direction);
+        row.J2 << direction, r2.cross(direction);
+        row.solveType = solveType;
+        return row;
+      };
+      const auto append = [&](const Row& row, double impulse) {
+        set.arms.push_back({static_cast<int>(rows.size()), r1, r2});
+        rows.push_back(row);
+        set.impulses.push_back(impulse);
+      };
+
+      const Eigen::Vector3d local = toFirstGeometry * x;
+      const Eigen::Vector3d lastForceOfPoint =
+          lastPair
+              ? continuedForce(std::span<const Remembered>(lastRemembered_).subspan(lastPair->first, lastPair->count),
+                               local, settings.persistenceDistance)
+              : Eigen::Vector3d::Zero();
+      const int normalIndex = static_cast<int>(rows.size());
+      Row normal = makeRow(n);
+      normal.lower = -double(p.adhesiveForce);
+      const double approach = n.dot(velocityOf(1, r2, false) - velocityOf(0, r1, false));
+      const double gap = -double(point.depth);  // > 0 for a gap point
+      const bool impact = p.restitution > S(0) && approach < -settings.restitutionThreshold &&
+                          (gap <= 0.0 || n.dot(velocityOf(1, r2, true) - velocityOf(0, r1, true)) * h < -gap);
+      if (impact) {
+        normal.holonomic = false;
+        normal.speed = -double(p.restitution) * approach;
+        if (gap > 0.0) normal.lower = 0.0;
+      } else if (gap > 0.0) {
+        normal.holonomic = false;
+        normal.speed = -gap / h;
+        normal.lower = 0.0;
+        normal.compliance = h * SpookParameters::holonomic(1.0 / double(p.youngsModulus), double(p.damping), h).sigma;
+      } else {
+        normal.compliance = 1.0 / double(p.youngsModulus);
+        normal.damping = double(p.damping);
+        // SPOOK's a·g is the speed at which the overlap is pushed out: capped.
+        const SpookParameters spook = SpookParameters::holonomic(normal.compliance, normal.damping, h);
+        const double deepest = -spook.violationForSpeed(settings.maxDepenetrationSpeed);
+        normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
+      }
+      append(normal, lastForceOfPoint.dot(n) * h);
+
+      const Eigen::Vector3d slip = velocityOf(1, r2, true) + surface[1] - velocityOf(0, r1, true) - surface[0];
+      const auto [t1, t2] = tangents(n, slip, model);
+      const Eigen::Vector3d tangent[2] = {t1, t2};
+      for (int k = 0; k < 2; ++k) {
+        Row row = makeRow(tangent[k]);
+        row.holonomic = false;
+        row.speed = (surface[0] - surface[1]).dot(tangent[k]);
+        row.compliance = double(p.surfaceViscosity[k]);
+        const double mu = double(p.friction[k]);
+        row.upper = bound == FrictionBound::FIXED && gap > 0.0
+                        ? 0.0
+                        : mu * normalEstimate / double(std::max<std::size_t>(contact.getNumEnabledPoints(), 1));
+        row.lower = -row.upper;
+        set.friction.push_back({static_cast<int>(rows.size()), normalIndex,
+                                bound == FrictionBound::CONE ? normalIndex + 2 - k : -1, mu, bound, false});
+        append(row, lastForceOfPoint.dot(tangent[k]) * h);
+      }
+      points_.push_back({&point, pairKey(contact), local, n, t1, t2});
+    }
   }
 
   static bool solvable(const GeometryContactT<S>& c) { return c.isEnabled() && !c.isSensor(); }

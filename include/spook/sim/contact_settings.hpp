@@ -13,6 +13,10 @@ struct ContactSettings {
   /// pair) when they lie within this distance (m) in the first geometry's
   /// frame: its rows start from that point's force.
   double persistenceDistance = 0.01;
+  /// Contacts found ahead of the step (SpaceT::update's reach): points
+  /// apart by a gap the shapes may close within the step become rows that
+  /// let them close it and no more.
+  bool speculative = true;
 };
 
 }  // namespace spook::detail

@@ -135,6 +135,18 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// instead of being shot out. Default 1.
   [[nodiscard]] S getMaxDepenetrationSpeed() const;
   void setMaxDepenetrationSpeed(S speed);
+  /// Speculative contacts (default on): the space also finds the points
+  /// where two shapes are apart by less than they may close within the
+  /// step (each body's speed and gravity times the step, SpaceT::update),
+  /// and the solver lets such a gap close within the step and no more. A
+  /// contact is then born touching, not overlapping by up to its approach
+  /// speed times the step, which SPOOK's stabilization would push out over
+  /// the following steps (energy a settling pile never loses). Off, shapes
+  /// are found only once they touch. A pair that a contact listener
+  /// watches (impact or contact) is not speculative: the listener decides
+  /// on its contact before the solver sees it.
+  [[nodiscard]] bool getEnableSpeculativeContacts() const { return contactSettings_.speculative; }
+  void setEnableSpeculativeContacts(bool enable) { contactSettings_.speculative = enable; }
 
   // --- Content ---------------------------------------------------------------
 
@@ -608,6 +620,16 @@ void SimulationT<S>::notifyContacts() {
       if (policy == ContactListener::REMOVE_CONTACT) contact.setEnable(false);
     }
   }
+  // A pair that a listener watches acts only once the listener has seen it
+  // touch (and kept it): its speculative contact is left out.
+  for (auto& contact : space_->getSpeculativeContacts())
+    for (const auto& l : snapshot)
+      if (l->getSimulation() == this && l->getEnable() &&
+          (l->getMask() & (ContactListener::IMPACT | ContactListener::CONTACT)) &&
+          l->matches(contact.geometry(0), contact.geometry(1))) {
+        contact.setEnable(false);
+        break;
+      }
   for (auto pair : space_->getSeparations())
     for (const auto& l : snapshot)
       if (l->getSimulation() == this && l->getEnable() && (l->getMask() & ContactListener::SEPARATION) &&

@@ -37,6 +37,7 @@ template <Scalar S>
 struct SimulationWorkspace {
   std::vector<SolverBody> solverBodies;
   std::vector<char> frozen;  ///< per body: frozen in this step
+  std::vector<StepReachT<S>> reach;  ///< per body: how far it may move in the step (speculative contacts)
   /// The step's rows: the constraints', the contacts' from firstContactRow
   /// on, the producers' from firstProducerRow on (producerRowsEnd: where
   /// each producer's end).
@@ -131,7 +132,26 @@ template <Scalar S>
 void SimulationT<S>::collide() {
   wakeDisturbed();  // before the space reuses the contacts of sleeping pairs
   work_->workers.resize(numThreads_);
-  space_->update(bodies_.get(), &work_->workers);
+  std::vector<StepReachT<S>>& reach = work_->reach;
+  reach.clear();
+  if (contactSettings_.speculative) {
+    // The free motion |Δx| <= h (|v| + h |a|), a = F/m + g; a push from
+    // another contact may add to it (that contact may be born overlapping).
+    const S h = timeStep_;
+    for (const auto& body : bodies_) {
+      StepReachT<S>& r = reach.emplace_back();
+      if (body->getMotionControl() == Body::STATIC || body->isSleeping()) continue;
+      S acceleration = S(0);
+      if (body->getMotionControl() == Body::DYNAMICS) {
+        acceleration = gravity_->calculateGravity(body->getCmPosition()).norm();
+        if (const S mass = body->getMassProperties()->getMass(); mass > S(0))
+          acceleration += body->getForce().norm() / mass;
+      }
+      r.linear = h * (body->getVelocity().norm() + h * acceleration);
+      r.angular = h * body->getAngularVelocity().norm();
+    }
+  }
+  space_->update(bodies_.get(), &work_->workers, reach);
   statistics_.numDroppedContactPoints = space_->getNumDroppedContactPoints();
   notifyContacts();
 }
@@ -155,8 +175,8 @@ void SimulationT<S>::gatherRows(const StepContext& step) {
   w.rows.clear();
   w.constraintRows.write(constraints_.get(), bodyIndex(), *solver_, h, w.rows);
   w.firstContactRow = w.rows.size();
-  w.contactRows.build(space_->getGeometryContacts(), materials_, *gravity_, bodyIndex(), w.solverBodies, h,
-                      contactSettings_, w.rows);
+  w.contactRows.build(space_->getGeometryContacts(), space_->getSpeculativeContacts(), materials_, *gravity_,
+                      bodyIndex(), w.solverBodies, h, contactSettings_, w.rows);
   collectProducerRows(step, false);
 }
 
@@ -239,8 +259,10 @@ void SimulationT<S>::wakeBodies(const StepContext& step) {
     return b.dynamic || b.velocity != detail::Vec6d::Zero();
   };
   w.touching.clear();
-  for (const auto& contact : space_->getGeometryContacts())
-    if (contact.isEnabled() && !contact.isSensor()) w.touching.emplace_back(contact.rigidBody(0), contact.rigidBody(1));
+  for (const auto* contacts : {&space_->getGeometryContacts(), &space_->getSpeculativeContacts()})
+    for (const auto& contact : *contacts)
+      if (contact.isEnabled() && !contact.isSensor())
+        w.touching.emplace_back(contact.rigidBody(0), contact.rigidBody(1));
   for (const auto& c : constraints_)
     if (c->getEnable()) w.touching.emplace_back(c->getBodyAt(0), c->getBodyAt(1));
   for (bool woke = true; woke;) {

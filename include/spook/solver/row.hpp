@@ -69,8 +69,12 @@ struct Row {
 
 /// Whether a row drives its bodies: a velocity row with a target speed (a
 /// motor, a moving surface). Such a row wakes a sleeping body and keeps its
-/// island awake (SimulationT::getAutoSleep).
-[[nodiscard]] inline bool drives(const Row& r) { return !r.holonomic && r.speed != 0.0; }
+/// island awake (SimulationT::getAutoSleep). A row that only pushes
+/// (lower bound >= 0) toward a negative speed, a gap the bodies may close
+/// (a speculative contact), acts only on bodies that approach faster.
+[[nodiscard]] inline bool drives(const Row& r) {
+  return !r.holonomic && r.speed != 0.0 && !(r.lower >= 0.0 && r.speed < 0.0);
+}
 
 /// A friction row: its bounds follow the impulse of its contact's normal
 /// row (solver/friction_bounds.hpp). Indices are in the same row list.

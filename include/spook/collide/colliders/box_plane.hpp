@@ -25,10 +25,10 @@ struct Collider<BoxT<S>, PlaneT<S>> {
     for (int corner = 0; corner < 8; ++corner) {
       const Vec3T<S> sign((corner & 1) ? S(1) : S(-1), (corner & 2) ? S(1) : S(-1), (corner & 4) ? S(1) : S(-1));
       const S height = centerHeight + sign.dot(reach);
-      if (!(height <= gap)) continue;
+      if (!sink.accepts(-height, gap)) continue;
       const Vec3T<S> p = X_WA * Vec3T<S>(sign.cwiseProduct(h));
       // Midway between the corner and the plane point under it.
-      sink.add(p - S(0.5) * height * n, -n, -height);
+      sink.addSpeculative(p - S(0.5) * height * n, -n, -height, gap);
     }
   }
 };

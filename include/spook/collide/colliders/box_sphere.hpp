@@ -13,6 +13,8 @@ namespace spook {
 /// depth r − |c − q|. A center inside the box, or on its surface, pushes out
 /// through the nearest face, the one with the smallest h_i − |c_i| (the
 /// lowest axis on a tie, the + face when c_i = 0): depth r + h_i − |c_i|.
+/// Within the sink's speculative margin, a sphere off a face (not off an
+/// edge or a corner) gives its gap point.
 template <Scalar S>
 struct Collider<BoxT<S>, SphereT<S>> {
   static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const SphereT<S>& b, const TransformT<S>& X_WB,
@@ -28,7 +30,11 @@ struct Collider<BoxT<S>, SphereT<S>> {
     S depth;
     if (distance > ScalarTraits<S>::epsilon() * (h.norm() + r)) {
       depth = r - distance;
-      if (!(depth >= S(0))) return;
+      // Gap points only off a face: off an edge or a corner, the gap closes
+      // slower than its linear rate says (a sphere rolling over the seam
+      // of two boxes would be stopped by the next one's edge).
+      const bool offFace = (c.array().abs() > h.array()).count() == 1;
+      if (!(depth >= S(0) || (offFace && sink.accepts(depth)))) return;
       n = d / distance;
       onBox = q;
     } else {
@@ -47,7 +53,7 @@ struct Collider<BoxT<S>, SphereT<S>> {
       onBox = c + gap * n;
     }
     // Midway between the box's deepest point and the sphere's, c − r n.
-    sink.add(X_WA * Vec3T<S>(S(0.5) * (onBox + c - r * n)), X_WA.linear() * n, depth);
+    sink.addSpeculative(X_WA * Vec3T<S>(S(0.5) * (onBox + c - r * n)), X_WA.linear() * n, depth);
   }
 };
 

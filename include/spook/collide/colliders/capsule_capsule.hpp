@@ -48,8 +48,8 @@ struct Collider<CapsuleT<S>, CapsuleT<S>> {
     const S tiny = ScalarTraits<S>::epsilon() * scale;
     const auto addAlong = [&](const Vec3T<S>& onA, const Vec3T<S>& onB, const Vec3T<S>& n, S distance) {
       const S depth = rA + rB - distance;
-      if (!(depth >= S(0))) return false;
-      sink.add(S(0.5) * (onA + onB + (rA - rB) * n), n, depth);
+      if (!sink.accepts(depth)) return false;
+      sink.addSpeculative(S(0.5) * (onA + onB + (rA - rB) * n), n, depth);
       return true;
     };
     const auto add = [&](const Vec3T<S>& onA, const Vec3T<S>& onB) {

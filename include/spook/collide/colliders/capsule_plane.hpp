@@ -23,7 +23,7 @@ struct Collider<CapsuleT<S>, PlaneT<S>> {
       const S height = n.dot(e - onPlane);
       const S depth = r - height;
       // Midway between the capsule's deepest point e − r n and the plane point under e, e − s n.
-      if (depth >= S(0)) sink.add(e - S(0.5) * (r + height) * n, -n, depth);
+      if (sink.accepts(depth)) sink.addSpeculative(e - S(0.5) * (r + height) * n, -n, depth);
     }
   }
 };

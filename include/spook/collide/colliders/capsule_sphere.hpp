@@ -28,10 +28,10 @@ struct Collider<CapsuleT<S>, SphereT<S>> {
     if (t > S(0) && t < S(1)) d -= X_WA.linear().col(1) * X_WA.linear().col(1).dot(d);
     const S distance = d.norm();
     const S depth = rA + rB - distance;
-    if (!(depth >= S(0))) return;
+    if (!sink.accepts(depth)) return;
     const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB + a.getHeight()) ? Vec3T<S>(d / distance)
                                                                                         : Vec3T<S>(X_WA.linear().col(0));
-    sink.add(S(0.5) * (q + c + (rA - rB) * n), n, depth);
+    sink.addSpeculative(S(0.5) * (q + c + (rA - rB) * n), n, depth);
   }
 };
 

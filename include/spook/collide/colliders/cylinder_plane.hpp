@@ -41,9 +41,9 @@ struct Collider<CylinderT<S>, PlaneT<S>> {
       const S capHeight = n.dot(capCenter - onPlane);
       for (const Vec3T<S>& direction : rim) {
         const S height = capHeight + r * n.dot(direction);
-        if (!(height <= S(0))) continue;
+        if (!sink.accepts(-height)) continue;
         // Midway between the rim point and the plane point under it.
-        sink.add(capCenter + r * direction - S(0.5) * height * n, -n, -height);
+        sink.addSpeculative(capCenter + r * direction - S(0.5) * height * n, -n, -height);
       }
     }
   }

@@ -18,9 +18,9 @@ struct Collider<PlaneT<S>, SphereT<S>> {
     const S height = n.dot(c - X_WA * a.getPoint());
     const S r = b.getRadius();
     const S depth = r - height;
-    if (!(depth >= S(0))) return;
+    if (!sink.accepts(depth)) return;
     // Midway between the plane point under c, c − s n, and the sphere's deepest point c − r n.
-    sink.add(c - S(0.5) * (height + r) * n, n, depth);
+    sink.addSpeculative(c - S(0.5) * (height + r) * n, n, depth);
   }
 };
 

@@ -17,10 +17,10 @@ struct Collider<SphereT<S>, SphereT<S>> {
     const Vec3T<S> d = cB - cA;
     const S distance = d.norm();
     const S depth = rA + rB - distance;
-    if (!(depth >= S(0))) return;
+    if (!sink.accepts(depth)) return;
     const Vec3T<S> n = distance > ScalarTraits<S>::epsilon() * (rA + rB) ? Vec3T<S>(d / distance) : Vec3T<S>::UnitZ();
     // Midway between a's deepest point cA + rA n and b's, cB − rB n.
-    sink.add(S(0.5) * (cA + cB + (rA - rB) * n), n, depth);
+    sink.addSpeculative(S(0.5) * (cA + cB + (rA - rB) * n), n, depth);
   }
 };
 

@@ -1,0 +1,179 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <spook/collide/space.hpp>
+
+#include "contact_scenes.hpp"
+#include "tolerance.hpp"
+
+// Speculative contacts (Simulation::setEnableSpeculativeContacts): a pair is
+// found when its gap may close within the step, and the solver lets it close
+// that gap and no more, so that a contact is born touching.
+
+using spook::test::pick;
+using spook::test::Policy;
+
+namespace speculative_test {
+
+constexpr double kGravity = 9.80665;
+
+template <class S>
+spook::ref_ptr<spook::RigidBodyT<S>> bodyAt(spook::ShapeT<S>* shape, const spook::Vec3T<S>& position) {
+  spook::ref_ptr<spook::RigidBodyT<S>> body = new spook::RigidBodyT<S>("body");
+  body->add(new spook::GeometryT<S>(shape, spook::TransformT<S>::Identity(), "shape"));
+  body->setPosition(position);
+  return body;
+}
+
+// The points the space finds between a static ground plane and a body whose
+// reach for the step is `reach` (m): touching pairs, and gap-only pairs.
+template <class S>
+std::pair<std::vector<spook::ContactPointT<S>>, std::vector<spook::ContactPointT<S>>> pointsWithReach(
+    spook::SpaceT<S>& space, const spook::ref_ptr<spook::RigidBodyT<S>>& body, S reach) {
+  const std::vector<spook::ref_ptr<spook::RigidBodyT<S>>> bodies{body};
+  const std::vector<spook::StepReachT<S>> reaches{{reach, S(0)}};
+  space.update(bodies, nullptr, reaches);
+  std::pair<std::vector<spook::ContactPointT<S>>, std::vector<spook::ContactPointT<S>>> found;
+  for (const auto& c : space.getGeometryContacts())
+    found.first.insert(found.first.end(), c.points().begin(), c.points().end());
+  for (const auto& c : space.getSpeculativeContacts())
+    found.second.insert(found.second.end(), c.points().begin(), c.points().end());
+  return found;
+}
+
+}  // namespace speculative_test
+
+using speculative_test::bodyAt;
+using speculative_test::pointsWithReach;
+
+TEST_CASE_TEMPLATE("a gap within the reach is a gap point of its exact depth, listed apart from the contacts", S, float,
+                   double) {
+  spook::ref_ptr<spook::SpaceT<S>> space = new spook::SpaceT<S>();
+  space->add(new spook::GeometryT<S>(new spook::PlaneT<S>(spook::Vec3T<S>::UnitZ()), spook::TransformT<S>::Identity(),
+                                     "ground"));
+  const S gap = S(0.004), tolerance = pick<S>(1e-12, 1e-6);
+  // A sphere and a box, each `gap` above the ground.
+  for (const bool box : {false, true}) {
+    CAPTURE(box);
+    auto body = box ? bodyAt<S>(new spook::BoxT<S>(spook::Vec3T<S>(S(0.2), S(0.3), S(0.1))), {S(0), S(0), S(0.1) + gap})
+                    : bodyAt<S>(new spook::SphereT<S>(S(0.1)), {S(0), S(0), S(0.1) + gap});
+    const auto [near, far] =
+        std::pair{pointsWithReach<S>(*space, body, S(0.005)), pointsWithReach<S>(*space, body, S(0.003))};
+    CHECK(near.first.empty());
+    REQUIRE(near.second.size() == (box ? 4u : 1u));
+    for (const auto& p : near.second) {
+      CHECK(std::abs(p.getDepth() + gap) <= tolerance);
+      CHECK_FALSE(p.isTouching());
+      CHECK(std::abs(p.getNormal().z()) == doctest::Approx(1.0));
+    }
+    CHECK(far.first.empty());
+    CHECK(far.second.empty());
+    // Without a reach the space finds touching points only.
+    space->update({body});
+    CHECK(space->getGeometryContacts().empty());
+    CHECK(space->getSpeculativeContacts().empty());
+  }
+}
+
+TEST_CASE_TEMPLATE("two spheres apart by less than their reaches give one gap point; off a box's edge none", S, float,
+                   double) {
+  spook::ref_ptr<spook::SpaceT<S>> space = new spook::SpaceT<S>();
+  const S r = S(0.1), gap = S(0.002);
+  auto a = bodyAt<S>(new spook::SphereT<S>(r), {S(0), S(0), S(1)});
+  auto b = bodyAt<S>(new spook::SphereT<S>(r), {S(2) * r + gap, S(0), S(1)});
+  const std::vector<spook::ref_ptr<spook::RigidBodyT<S>>> spheres{a, b};
+  // Each may move 1.5 mm: together they may close 3 mm.
+  const std::vector<spook::StepReachT<S>> reach{{S(0.0015), S(0)}, {S(0.0015), S(0)}};
+  space->update(spheres, nullptr, reach);
+  CHECK(space->getGeometryContacts().empty());
+  REQUIRE(space->getSpeculativeContacts().size() == 1);
+  REQUIRE(space->getSpeculativeContacts()[0].points().size() == 1);
+  CHECK(double(space->getSpeculativeContacts()[0].points()[0].getDepth()) ==
+        doctest::Approx(-double(gap)).epsilon(pick<S>(1e-9, 1e-4)));
+  // A sphere beside a box's top edge (a seam it may roll over) is not
+  // stopped by it ahead of time; beside the box's side face it is.
+  auto box = bodyAt<S>(new spook::BoxT<S>(spook::Vec3T<S>(S(0.5), S(0.5), S(0.5))), {S(0), S(0), S(0)});
+  for (const bool overEdge : {true, false}) {
+    CAPTURE(overEdge);
+    const S off = (r + gap) / std::sqrt(S(2));  // from the edge, diagonally
+    const spook::Vec3T<S> center =
+        overEdge ? spook::Vec3T<S>(S(0.5) + off, S(0), S(0.5) + off) : spook::Vec3T<S>(S(0.5) + r + gap, S(0), S(0));
+    auto ball = bodyAt<S>(new spook::SphereT<S>(r), center);
+    space->update({box, ball}, nullptr, std::vector<spook::StepReachT<S>>{{S(0), S(0)}, {S(0.05), S(0)}});
+    CHECK(space->getGeometryContacts().empty());
+    CHECK(space->getSpeculativeContacts().size() == (overEdge ? 0u : 1u));
+  }
+}
+
+// Released at rest 1 mm above the ground, a sphere falls g h² = 2.72 mm in
+// its first step (symplectic Euler, h = 1/60 s). Found only once it
+// overlaps, it would be 1.72 mm deep before its contact acts; found ahead,
+// it lands touching: its overlap stays at the contact's own compliance and
+// damping (b v h with b = 1/(1 + 4τ/h), about 0.05 mm here).
+TEST_CASE_TEMPLATE("a sphere released 1 mm above the ground lands without overlapping, under every policy", S, float,
+                   double) {
+  const S r = S(0.1), gap = S(0.001);
+  const double h = 1.0 / 60.0, firstStep = speculative_test::kGravity * h * h;
+  for (const Policy policy : spook::test::kPolicies)
+    for (const bool speculative : {true, false}) {
+      CAPTURE(spook::test::policyName(policy));
+      CAPTURE(speculative);
+      spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
+      sim->setSolver(spook::test::makeSolver(policy));
+      sim->setEnableSpeculativeContacts(speculative);
+      CHECK(sim->getEnableSpeculativeContacts() == speculative);
+      spook::ref_ptr<spook::MaterialT<S>> material = new spook::MaterialT<S>("steel");
+      spook::test::addGround(*sim, material);
+      auto ball = spook::test::addBody<S>(*sim, "ball", new spook::SphereT<S>(r), material, {S(0), S(0), r + gap});
+      double deepest = 0.0;
+      for (int step = 0; step < 60; ++step) {
+        sim->stepForward();
+        deepest = std::max(deepest, double(r - ball->getPosition().z()));
+      }
+      const std::string label = spook::test::policyName(policy) + (speculative ? ", speculative" : ", touching only");
+      MESSAGE(label, ": deepest overlap ", deepest * 1e3, " mm");
+      if (speculative)
+        CHECK(deepest < 1e-4);
+      else
+        CHECK(deepest == doctest::Approx(firstStep - double(gap)).epsilon(0.02));
+      CHECK(std::abs(double(ball->getVelocity().z())) < 1e-3);  // at rest after 1 s
+    }
+}
+
+// 64 spheres dropped into a box of four walls: found only once they
+// overlap, the contacts of a pile keep pushing their overlaps out over the
+// contact's relaxation time, which feeds the motion (a pile that never
+// rests); found ahead, the pile comes to rest.
+TEST_CASE_TEMPLATE("a pile of 64 spheres comes to rest (hybrid and iterative)", S, float, double) {
+  const S mu = S(0.5);
+  for (const Policy policy : {Policy::HYBRID, Policy::ITERATIVE}) {
+    CAPTURE(spook::test::policyName(policy));
+    spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
+    sim->setSolver(spook::test::makeSolver(policy));
+    spook::ref_ptr<spook::MaterialT<S>> material = new spook::MaterialT<S>("rubber");
+    spook::test::addGround(*sim, material);
+    const std::vector<spook::ref_ptr<spook::RigidBodyT<S>>> balls =
+        spook::test::addSpherePile(*sim, material, material);
+    sim->getMaterialManager()->getOrCreateContactMaterial(material.get(), material.get())->setFrictionCoefficient(mu);
+    const int steps = spook::test::sweep(480, 240);
+    double kinetic = 0.0;  // mean over the last second (J)
+    for (int step = 0; step < steps; ++step) {
+      sim->stepForward();
+      if (step < steps - 60) continue;
+      for (const auto& b : balls) {
+        const double m = double(b->getMassProperties()->getMass());
+        kinetic += 0.5 * m * double(b->getVelocity().squaredNorm()) / 60.0;
+      }
+    }
+    // As one speed: every sphere moving at v_rms.
+    const double mass = double(balls[0]->getMassProperties()->getMass());
+    const double rms = std::sqrt(2.0 * kinetic / (mass * double(balls.size())));
+    MESSAGE(spook::test::policyName(policy), ": mean kinetic energy over the last second ", kinetic, " J, rms speed ",
+            rms * 1e3, " mm/s");
+    CHECK(rms < 0.01);
+  }
+}
