@@ -159,7 +159,7 @@ TEST_CASE_TEMPLATE("a pile of 64 spheres comes to rest (hybrid and iterative)", 
     const std::vector<spook::ref_ptr<spook::RigidBodyT<S>>> balls =
         spook::test::addSpherePile(*sim, material, material);
     sim->getMaterialManager()->getOrCreateContactMaterial(material.get(), material.get())->setFrictionCoefficient(mu);
-    const int steps = spook::test::sweep(480, 240);
+    const int steps = 480;  // 8 s, also in the sanitized build (at 4 s the pile still settles)
     double kinetic = 0.0;  // mean over the last second (J)
     for (int step = 0; step < steps; ++step) {
       sim->stepForward();
@@ -176,4 +176,55 @@ TEST_CASE_TEMPLATE("a pile of 64 spheres comes to rest (hybrid and iterative)", 
             rms * 1e3, " mm/s");
     CHECK(rms < 0.01);
   }
+}
+
+// A box released 1 mm above another lands touching (the pyramid's and the
+// stack's pair), and a box sliding frictionless off one static box onto the
+// next, flush with it, crosses the seam without being stopped by the next
+// box's side (no gap point beside a flush face; without that rule it slowed
+// from 2 to 1.15 m/s there). (A crate whose face arrives exactly on the
+// seam, within the touching gap, still catches on it, with speculative
+// contacts on or off: both face axes then touch and the side's is the
+// shallower.)
+TEST_CASE_TEMPLATE("a box lands on a box without overlapping and slides over the seam of two flush boxes", S, float,
+                   double) {
+  const spook::Vec3T<S> half(S(0.5), S(0.5), S(0.5));
+  {
+    spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
+    spook::ref_ptr<spook::MaterialT<S>> wood = new spook::MaterialT<S>("wood");
+    spook::test::addGround(*sim, wood);
+    auto lower = spook::test::addBody<S>(*sim, "lower", new spook::BoxT<S>(half), wood, {S(0), S(0), S(0.5)});
+    auto upper = spook::test::addBody<S>(*sim, "upper", new spook::BoxT<S>(half), wood, {S(0), S(0), S(1.501)});
+    double deepest = 0.0;
+    for (int step = 0; step < 60; ++step) {
+      sim->stepForward();
+      deepest = std::max(deepest, double(lower->getPosition().z() + S(1) - upper->getPosition().z()));
+    }
+    MESSAGE("box on box: deepest overlap ", deepest * 1e3, " mm");
+    CHECK(deepest < 1e-4);  // 1.72 mm found only once overlapping
+  }
+  spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
+  spook::ref_ptr<spook::MaterialT<S>> ice = new spook::MaterialT<S>("ice");
+  sim->getMaterialManager()->getOrCreateContactMaterial(ice.get(), ice.get())->setFrictionCoefficient(S(0));
+  for (const S x : {S(-1), S(1)}) {
+    spook::ref_ptr<spook::GeometryT<S>> tile = new spook::GeometryT<S>(
+        new spook::BoxT<S>(spook::Vec3T<S>(S(1), S(1), S(0.5))),
+        spook::makeTransform<S>(spook::Vec3T<S>(x, S(0), S(-0.5)), spook::QuatT<S>::Identity()), "tile");
+    tile->setMaterial(ice);
+    sim->add(tile);
+  }
+  auto crate = spook::test::addBody<S>(*sim, "crate", new spook::BoxT<S>(spook::Vec3T<S>(S(0.2), S(0.2), S(0.2))), ice,
+                                       {S(-1.013), S(0), S(0.2)});
+  for (int step = 0; step < 30; ++step) sim->stepForward();  // settles on the first tile
+  crate->setVelocity(spook::Vec3T<S>(S(2), S(0), S(0)));
+  double slowest = 2.0, fastestVertical = 0.0;
+  for (int step = 0; step < 45; ++step) {  // 1.5 m: across the seam at x = 0
+    sim->stepForward();
+    slowest = std::min(slowest, double(crate->getVelocity().x()));
+    fastestVertical = std::max(fastestVertical, std::abs(double(crate->getVelocity().z())));
+  }
+  MESSAGE("crate over the seam: slowest ", slowest, " m/s, fastest vertical ", fastestVertical, " m/s");
+  CHECK(crate->getPosition().x() > S(0.4));
+  CHECK(slowest > 1.99);
+  CHECK(fastestVertical < 0.01);
 }

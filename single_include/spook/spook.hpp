@@ -5908,6 +5908,10 @@ class SpaceT : public Referenced {
   /// constraints join (Constraint::setEnableCollisions).
   using BodyPairFilter = std::function<bool(const Body&, const Body&)>;
   void setBodyPairFilter(BodyPairFilter filter) { bodyPairFilter_ = std::move(filter); }
+  /// Pairs of bodies collided without a speculative margin (update's
+  /// reach): a simulation leaves out the bodies its constraints join, whose
+  /// relative motion about their joint the gap's linear rate misjudges.
+  void setSpeculationFilter(BodyPairFilter filter) { speculationFilter_ = std::move(filter); }
 
   /// True when the pair passes every filter: both enabled and colliding,
   /// not on one body, not both static, not disabled pairwise or by groups,
@@ -6037,7 +6041,7 @@ class SpaceT : public Referenced {
   std::set<std::pair<std::string, std::string>> disabledNames_;
   ContactReductionMode reductionMode_ = ContactReductionMode::REDUCE_GEOMETRY;
   ReductionRule reductionRule_;
-  BodyPairFilter bodyPairFilter_;
+  BodyPairFilter bodyPairFilter_, speculationFilter_;
   int binResolution_ = 2;
 
   std::vector<Geometry*> active_;
@@ -6269,7 +6273,9 @@ void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j, std::vector<Contact>& 
     return;
   }
   Contact contact(first, second);
-  const S margin = first->isSensor() || second->isSensor() ? S(0) : margins_[i] + margins_[j];
+  const bool speculative = !(first->isSensor() || second->isSensor() ||
+                             (body1 && body2 && speculationFilter_ && speculationFilter_(*body1, *body2)));
+  const S margin = speculative ? margins_[i] + margins_[j] : S(0);
   ContactSinkT<S> sink(contact.points(), false, margin);
   const auto& shapes1 = first->getShapes();
   const auto& shapes2 = second->getShapes();
@@ -7203,12 +7209,13 @@ concept ConvexShape = requires(const T& shape, const typename T::Vec3& direction
 /// Analytic pairs specialize it, one file per pair in colliders/; a pair of
 /// convex shapes without one goes through libccd; any other pair has none
 /// (a hole in the collider matrix). The colliders of spheres, boxes,
-/// capsules and cylinders with planes, and of spheres and capsules with
-/// each other and with a box's faces, also write the gap points within the
-/// sink's speculative margin (where the gap closes at its linear rate, up
-/// to the curvature of two round shapes); the others write touching points
-/// only: two boxes, or a sphere off a box's edge, would stop a body that
-/// slides or rolls over the seam of two flush boxes (a ghost contact).
+/// capsules and cylinders with planes, of spheres and capsules with each
+/// other and with a box's faces, and of two boxes across a face (not beside
+/// a flush face) also write the gap points within the sink's speculative
+/// margin (where the gap closes at its linear rate, up to the curvature of
+/// two round shapes); the others write touching points only. Off a box's
+/// edge, or beside a face flush with it, a gap point would stop a body
+/// that slides or rolls over the seam of two flush boxes (a ghost contact).
 template <class A, class B>
 struct Collider {};
 
@@ -7386,6 +7393,11 @@ inline constexpr double kEdgeBias = 1.05;
 /// of the reference face (contacts of depth 0): a box resting on another
 /// keeps its four corners when it tilts by round-off, or when float
 /// coordinates cannot resolve its settling depth.
+/// Boxes apart by less than the sink's speculative margin along a face
+/// axis give the clipped corners with their gaps (gap points), unless they
+/// meet flush along another face axis (kFlush): a box sliding off one tile
+/// onto the next, level with it, would be stopped by the next one's side.
+/// Apart along an edge axis, they give none.
 /// Cross products of near-parallel edges are skipped: their direction is
 /// lost to round-off, and the face axes then separate the boxes anyway.
 template <Scalar S>
@@ -7399,6 +7411,11 @@ struct Collider<BoxT<S>, BoxT<S>> {
   /// the direction error ε/|a × b| of keeping it then balances the depth
   /// error |a × b|·size of skipping it.
   static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
+  /// Boxes that overlap along a face axis by at most this much of the
+  /// smaller one's half-diagonal meet flush there (one on the level of the
+  /// other's face: two tiles of a floor, a crate on the next tile): a gap
+  /// beside them is a seam to slide over, which gives no gap points.
+  static constexpr double kFlush = 1e-3;
 
   static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const BoxT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
@@ -7409,13 +7426,17 @@ struct Collider<BoxT<S>, BoxT<S>> {
                       b.getHalfExtents()};
     const Vec3 d = boxB.center;
     const S gap = S(detail::kTouchingGap) * std::min(boxA.half.norm(), boxB.half.norm());
+    const S reach = std::max(gap, sink.margin());  // the farthest apart that may still give points
+    const S flush = S(kFlush) * std::min(boxA.half.norm(), boxB.half.norm());
+    bool flushFace = false;
 
     Axis face, edge;
     // Overlap along the unit axis n; returns false when n separates them.
     auto consider = [&](const Vec3& n, int kind, int index, Axis& best) {
       const S along = n.dot(d);
       const S overlap = boxA.radius(n) + boxB.radius(n) - std::abs(along);
-      if (overlap < -gap) return false;
+      if (overlap < -reach) return false;
+      if (kind != 2 && overlap >= -gap && overlap <= flush) flushFace = true;
       if (overlap < best.depth) best = Axis{along < S(0) ? Vec3(-n) : n, overlap, kind, index};
       return true;
     };
@@ -7432,8 +7453,11 @@ struct Collider<BoxT<S>, BoxT<S>> {
       }
     }
 
+    // Apart (gap points): only across a face, and not beside a flush face.
+    if (std::min(face.depth, edge.depth) < -gap && (flushFace || edge.depth < face.depth)) return;
+
     auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
-      sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
+      sink.addSpeculative(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth, gap);
     };
     // The bias is relative; at depths below round-off (a light box resting
     // in float) only an edge axis shallower by more than the gap wins.
@@ -7446,7 +7470,7 @@ struct Collider<BoxT<S>, BoxT<S>> {
     const Placed& reference = onA ? boxA : boxB;
     const Placed& incident = onA ? boxB : boxA;
     const Vec3 n = onA ? face.axis : Vec3(-face.axis);  // out of the reference face, toward the incident box
-    if (emitFace(reference, face.index, n, incident, face.axis, face.depth, gap, emit) == 0) {
+    if (emitFace(reference, face.index, n, incident, face.axis, face.depth, reach, emit) == 0) {
       // Round-off (or the face bias) left no clipped corner below the
       // reference face: one point at the incident box's deepest corner.
       const Vec3 deepest = incident.corner(-n);
@@ -7472,11 +7496,11 @@ struct Collider<BoxT<S>, BoxT<S>> {
 
   /// Clips the incident face against the reference face `axis` whose
   /// outward normal is n and writes the points below it, or above it by
-  /// less than `gap`, with the normal normal_AB (from A toward B); returns
-  /// how many.
+  /// less than `reach`, with the normal normal_AB (from A toward B);
+  /// returns how many.
   template <class Emit>
   static int emitFace(const Placed& reference, int axis, const Vec3& n, const Placed& incident, const Vec3& normal_AB,
-                      S depthOfAxis, S gap, Emit& emit) {
+                      S depthOfAxis, S reach, Emit& emit) {
     // Incident face: the face of the incident box most opposed to n.
     const Vec3 alignment = incident.axes.transpose() * n;
     int k = 0;
@@ -7509,7 +7533,7 @@ struct Collider<BoxT<S>, BoxT<S>> {
     for (std::size_t m = 0; m < polygon.count; ++m) {
       const Vec3& x = polygon.points[m];
       const S depth = std::min(facePlane - n.dot(x), depthOfAxis);
-      if (!(depth >= -gap)) continue;
+      if (!(depth >= -reach)) continue;
       emit(Vec3(x + n * (S(0.5) * depth)), normal_AB, depth);
       ++written;
     }
@@ -16401,6 +16425,14 @@ class JointedPairs {
     if (it->second.empty()) byPair_.erase(it);
   }
 
+  /// True when an enabled constraint joins `a` and `b`.
+  [[nodiscard]] bool joins(const Body* a, const Body* b) const {
+    if (!a || !b || byPair_.empty()) return false;
+    const auto it = byPair_.find(std::minmax(a, b));
+    if (it == byPair_.end()) return false;
+    return std::any_of(it->second.begin(), it->second.end(), [](const Constraint* c) { return c->getEnable(); });
+  }
+
   /// True when an enabled constraint joins `a` and `b` without allowing
   /// their geometries to collide.
   [[nodiscard]] bool filters(const Body* a, const Body* b) const {
@@ -19795,6 +19827,7 @@ bool SimulationT<S>::contains(const ContactListener* listener) const {
 template <Scalar S>
 void SimulationT<S>::installSpaceRules() {
   space_->setBodyPairFilter([this](const Body& a, const Body& b) { return jointedPairs_.filters(&a, &b); });
+  space_->setSpeculationFilter([this](const Body& a, const Body& b) { return jointedPairs_.joins(&a, &b); });
   space_->setReductionRule([this](const Geometry& a, const Geometry& b) {
     std::optional<std::pair<ContactReductionMode, int>> rule;
     if (const auto* cm = materials_.getContactMaterial(a.getMaterial(), b.getMaterial()))

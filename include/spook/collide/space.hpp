@@ -127,6 +127,10 @@ class SpaceT : public Referenced {
   /// constraints join (Constraint::setEnableCollisions).
   using BodyPairFilter = std::function<bool(const Body&, const Body&)>;
   void setBodyPairFilter(BodyPairFilter filter) { bodyPairFilter_ = std::move(filter); }
+  /// Pairs of bodies collided without a speculative margin (update's
+  /// reach): a simulation leaves out the bodies its constraints join, whose
+  /// relative motion about their joint the gap's linear rate misjudges.
+  void setSpeculationFilter(BodyPairFilter filter) { speculationFilter_ = std::move(filter); }
 
   /// True when the pair passes every filter: both enabled and colliding,
   /// not on one body, not both static, not disabled pairwise or by groups,
@@ -256,7 +260,7 @@ class SpaceT : public Referenced {
   std::set<std::pair<std::string, std::string>> disabledNames_;
   ContactReductionMode reductionMode_ = ContactReductionMode::REDUCE_GEOMETRY;
   ReductionRule reductionRule_;
-  BodyPairFilter bodyPairFilter_;
+  BodyPairFilter bodyPairFilter_, speculationFilter_;
   int binResolution_ = 2;
 
   std::vector<Geometry*> active_;
@@ -488,7 +492,9 @@ void SpaceT<S>::narrowPhase(std::size_t i, std::size_t j, std::vector<Contact>& 
     return;
   }
   Contact contact(first, second);
-  const S margin = first->isSensor() || second->isSensor() ? S(0) : margins_[i] + margins_[j];
+  const bool speculative = !(first->isSensor() || second->isSensor() ||
+                             (body1 && body2 && speculationFilter_ && speculationFilter_(*body1, *body2)));
+  const S margin = speculative ? margins_[i] + margins_[j] : S(0);
   ContactSinkT<S> sink(contact.points(), false, margin);
   const auto& shapes1 = first->getShapes();
   const auto& shapes2 = second->getShapes();

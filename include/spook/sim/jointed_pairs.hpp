@@ -43,6 +43,14 @@ class JointedPairs {
     if (it->second.empty()) byPair_.erase(it);
   }
 
+  /// True when an enabled constraint joins `a` and `b`.
+  [[nodiscard]] bool joins(const Body* a, const Body* b) const {
+    if (!a || !b || byPair_.empty()) return false;
+    const auto it = byPair_.find(std::minmax(a, b));
+    if (it == byPair_.end()) return false;
+    return std::any_of(it->second.begin(), it->second.end(), [](const Constraint* c) { return c->getEnable(); });
+  }
+
   /// True when an enabled constraint joins `a` and `b` without allowing
   /// their geometries to collide.
   [[nodiscard]] bool filters(const Body* a, const Body* b) const {

@@ -554,6 +554,7 @@ bool SimulationT<S>::contains(const ContactListener* listener) const {
 template <Scalar S>
 void SimulationT<S>::installSpaceRules() {
   space_->setBodyPairFilter([this](const Body& a, const Body& b) { return jointedPairs_.filters(&a, &b); });
+  space_->setSpeculationFilter([this](const Body& a, const Body& b) { return jointedPairs_.joins(&a, &b); });
   space_->setReductionRule([this](const Geometry& a, const Geometry& b) {
     std::optional<std::pair<ContactReductionMode, int>> rule;
     if (const auto* cm = materials_.getContactMaterial(a.getMaterial(), b.getMaterial()))

@@ -72,6 +72,11 @@ inline constexpr double kEdgeBias = 1.05;
 /// of the reference face (contacts of depth 0): a box resting on another
 /// keeps its four corners when it tilts by round-off, or when float
 /// coordinates cannot resolve its settling depth.
+/// Boxes apart by less than the sink's speculative margin along a face
+/// axis give the clipped corners with their gaps (gap points), unless they
+/// meet flush along another face axis (kFlush): a box sliding off one tile
+/// onto the next, level with it, would be stopped by the next one's side.
+/// Apart along an edge axis, they give none.
 /// Cross products of near-parallel edges are skipped: their direction is
 /// lost to round-off, and the face axes then separate the boxes anyway.
 template <Scalar S>
@@ -85,6 +90,11 @@ struct Collider<BoxT<S>, BoxT<S>> {
   /// the direction error ε/|a × b| of keeping it then balances the depth
   /// error |a × b|·size of skipping it.
   static constexpr S kParallel = std::is_same_v<S, float> ? S(3e-4) : S(1.5e-8);
+  /// Boxes that overlap along a face axis by at most this much of the
+  /// smaller one's half-diagonal meet flush there (one on the level of the
+  /// other's face: two tiles of a floor, a crate on the next tile): a gap
+  /// beside them is a seam to slide over, which gives no gap points.
+  static constexpr double kFlush = 1e-3;
 
   static void collide(const BoxT<S>& a, const TransformT<S>& X_WA, const BoxT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
@@ -95,13 +105,17 @@ struct Collider<BoxT<S>, BoxT<S>> {
                       b.getHalfExtents()};
     const Vec3 d = boxB.center;
     const S gap = S(detail::kTouchingGap) * std::min(boxA.half.norm(), boxB.half.norm());
+    const S reach = std::max(gap, sink.margin());  // the farthest apart that may still give points
+    const S flush = S(kFlush) * std::min(boxA.half.norm(), boxB.half.norm());
+    bool flushFace = false;
 
     Axis face, edge;
     // Overlap along the unit axis n; returns false when n separates them.
     auto consider = [&](const Vec3& n, int kind, int index, Axis& best) {
       const S along = n.dot(d);
       const S overlap = boxA.radius(n) + boxB.radius(n) - std::abs(along);
-      if (overlap < -gap) return false;
+      if (overlap < -reach) return false;
+      if (kind != 2 && overlap >= -gap && overlap <= flush) flushFace = true;
       if (overlap < best.depth) best = Axis{along < S(0) ? Vec3(-n) : n, overlap, kind, index};
       return true;
     };
@@ -118,8 +132,11 @@ struct Collider<BoxT<S>, BoxT<S>> {
       }
     }
 
+    // Apart (gap points): only across a face, and not beside a flush face.
+    if (std::min(face.depth, edge.depth) < -gap && (flushFace || edge.depth < face.depth)) return;
+
     auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
-      sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
+      sink.addSpeculative(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth, gap);
     };
     // The bias is relative; at depths below round-off (a light box resting
     // in float) only an edge axis shallower by more than the gap wins.
@@ -132,7 +149,7 @@ struct Collider<BoxT<S>, BoxT<S>> {
     const Placed& reference = onA ? boxA : boxB;
     const Placed& incident = onA ? boxB : boxA;
     const Vec3 n = onA ? face.axis : Vec3(-face.axis);  // out of the reference face, toward the incident box
-    if (emitFace(reference, face.index, n, incident, face.axis, face.depth, gap, emit) == 0) {
+    if (emitFace(reference, face.index, n, incident, face.axis, face.depth, reach, emit) == 0) {
       // Round-off (or the face bias) left no clipped corner below the
       // reference face: one point at the incident box's deepest corner.
       const Vec3 deepest = incident.corner(-n);
@@ -158,11 +175,11 @@ struct Collider<BoxT<S>, BoxT<S>> {
 
   /// Clips the incident face against the reference face `axis` whose
   /// outward normal is n and writes the points below it, or above it by
-  /// less than `gap`, with the normal normal_AB (from A toward B); returns
-  /// how many.
+  /// less than `reach`, with the normal normal_AB (from A toward B);
+  /// returns how many.
   template <class Emit>
   static int emitFace(const Placed& reference, int axis, const Vec3& n, const Placed& incident, const Vec3& normal_AB,
-                      S depthOfAxis, S gap, Emit& emit) {
+                      S depthOfAxis, S reach, Emit& emit) {
     // Incident face: the face of the incident box most opposed to n.
     const Vec3 alignment = incident.axes.transpose() * n;
     int k = 0;
@@ -195,7 +212,7 @@ struct Collider<BoxT<S>, BoxT<S>> {
     for (std::size_t m = 0; m < polygon.count; ++m) {
       const Vec3& x = polygon.points[m];
       const S depth = std::min(facePlane - n.dot(x), depthOfAxis);
-      if (!(depth >= -gap)) continue;
+      if (!(depth >= -reach)) continue;
       emit(Vec3(x + n * (S(0.5) * depth)), normal_AB, depth);
       ++written;
     }
