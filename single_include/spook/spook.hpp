@@ -5946,7 +5946,8 @@ class SpaceT : public Referenced {
   /// With `reach` (one per body of `bodies`), contacts are speculative: two
   /// geometries are collided with a margin of how far they may come closer
   /// within the step (each one's reach, at most kMaxSpeculativeFraction of
-  /// its half-diagonal; none for sensors), and the colliders that support
+  /// its half-diagonal; none for sensors and for the body pairs of the
+  /// speculation filter), and the colliders that support
   /// it (collider.hpp) also write the points where they are apart by less
   /// (negative depths). A pair with only such gap points is not a contact
   /// (no events, not in getGeometryContacts()): it is listed in
@@ -19417,7 +19418,9 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// the following steps (energy a settling pile never loses). Off, shapes
   /// are found only once they touch. A pair that a contact listener
   /// watches (impact or contact) is not speculative: the listener decides
-  /// on its contact before the solver sees it.
+  /// on its contact before the solver sees it. Nor are two bodies that a
+  /// constraint joins: their motion about the joint turns the gap at
+  /// another rate than the linear one the gap row assumes.
   [[nodiscard]] bool getEnableSpeculativeContacts() const { return contactSettings_.speculative; }
   void setEnableSpeculativeContacts(bool enable) { contactSettings_.speculative = enable; }
 

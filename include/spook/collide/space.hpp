@@ -165,7 +165,8 @@ class SpaceT : public Referenced {
   /// With `reach` (one per body of `bodies`), contacts are speculative: two
   /// geometries are collided with a margin of how far they may come closer
   /// within the step (each one's reach, at most kMaxSpeculativeFraction of
-  /// its half-diagonal; none for sensors), and the colliders that support
+  /// its half-diagonal; none for sensors and for the body pairs of the
+  /// speculation filter), and the colliders that support
   /// it (collider.hpp) also write the points where they are apart by less
   /// (negative depths). A pair with only such gap points is not a contact
   /// (no events, not in getGeometryContacts()): it is listed in

@@ -144,7 +144,9 @@ class SimulationT : public Referenced, public detail::ContentSink<S> {
   /// the following steps (energy a settling pile never loses). Off, shapes
   /// are found only once they touch. A pair that a contact listener
   /// watches (impact or contact) is not speculative: the listener decides
-  /// on its contact before the solver sees it.
+  /// on its contact before the solver sees it. Nor are two bodies that a
+  /// constraint joins: their motion about the joint turns the gap at
+  /// another rate than the linear one the gap row assumes.
   [[nodiscard]] bool getEnableSpeculativeContacts() const { return contactSettings_.speculative; }
   void setEnableSpeculativeContacts(bool enable) { contactSettings_.speculative = enable; }
 
