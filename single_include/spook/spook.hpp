@@ -16428,24 +16428,25 @@ class JointedPairs {
 
   /// True when an enabled constraint joins `a` and `b`.
   [[nodiscard]] bool joins(const Body* a, const Body* b) const {
-    if (!a || !b || byPair_.empty()) return false;
-    const auto it = byPair_.find(std::minmax(a, b));
-    if (it == byPair_.end()) return false;
-    return std::any_of(it->second.begin(), it->second.end(), [](const Constraint* c) { return c->getEnable(); });
+    return anyConstraint(a, b, [](const Constraint* c) { return c->getEnable(); });
   }
 
   /// True when an enabled constraint joins `a` and `b` without allowing
   /// their geometries to collide.
   [[nodiscard]] bool filters(const Body* a, const Body* b) const {
-    if (!a || !b || byPair_.empty()) return false;
-    const auto it = byPair_.find(std::minmax(a, b));
-    if (it == byPair_.end()) return false;
-    return std::any_of(it->second.begin(), it->second.end(),
-                       [](const Constraint* c) { return c->getEnable() && !c->getEnableCollisions(); });
+    return anyConstraint(a, b, [](const Constraint* c) { return c->getEnable() && !c->getEnableCollisions(); });
   }
 
  private:
   using Key = std::pair<const Body*, const Body*>;
+
+  template <class Predicate>
+  [[nodiscard]] bool anyConstraint(const Body* a, const Body* b, Predicate predicate) const {
+    if (!a || !b || byPair_.empty()) return false;
+    const auto it = byPair_.find(std::minmax(a, b));
+    return it != byPair_.end() && std::any_of(it->second.begin(), it->second.end(), predicate);
+  }
+
   static std::optional<Key> keyOf(const Constraint& constraint) {
     const Body* a = constraint.getBodyAt(0);
     const Body* b = constraint.getBodyAt(1);
