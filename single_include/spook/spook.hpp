@@ -16598,6 +16598,10 @@ struct SolverStatistics {
   /// sparse factorization, or the last one's factor where the step changed
   /// few rows of its matrix (free_set_update.hpp, body_space_solve.hpp).
   int factorizations = 0;
+  /// Multiply-adds of those factorizations, as their symbolic analysis
+  /// counts them (a factor updated instead is counted as factorized):
+  /// what Solver::setMaxDirectWork bounds.
+  double directWork = 0.0;
   /// Most friction iterations of one direct solve (getNumFrictionIterations);
   /// reaching the maximum means its bounds had not settled to the tolerance.
   int frictionIterations = 0;
@@ -16626,6 +16630,7 @@ struct SolverStatistics {
   void addResolve(const SolverStatistics& again) {
     iterations = std::max(iterations, again.iterations);
     factorizations += again.factorizations;
+    directWork += again.directWork;
     frictionIterations = std::max(frictionIterations, again.frictionIterations);
     complementarityError = again.complementarityError;
     converged = again.converged;
@@ -16645,6 +16650,7 @@ struct SolverStatistics {
     numIterativeRows += island.numIterativeRows;
     iterations = std::max(iterations, island.iterations);
     factorizations += island.factorizations;
+    directWork += island.directWork;
     frictionIterations = std::max(frictionIterations, island.frictionIterations);
     complementarityError = std::max(complementarityError, island.complementarityError);
     converged = converged && island.converged;
@@ -16748,6 +16754,24 @@ class Solver : public Referenced {
   void setMaxPivotSteps(int n) {
     if (n < 1) throw detail::makeError("Solver", getName(), "maximum pivot steps must be >= 1", n);
     maxPivotSteps_ = n;
+  }
+  /// The work the direct solves of one island may do in a step, in
+  /// multiply-adds of their factorizations as the symbolic analysis counts
+  /// them (SolverStatistics::directWork), default 3e8: about a quarter of a
+  /// second of one core. It bounds the cost of a step where the pivot steps
+  /// alone do not: a factorization's cost grows with the fill of its
+  /// matrix, about as the square of the bodies in a 3D pile (1,000 spheres
+  /// poured into a box: 2.3e8 once settled, and the pivoting did not
+  /// converge within 1e9, at up to 1 s a step). A first solve that cannot
+  /// afford another factorization falls back to its safe answer
+  /// (SolverStatistics::directFallbacks), a later one is dropped as at the
+  /// pivot budget (pivotBudgetCuts). Deterministic, unlike a limit on
+  /// wall-clock time.
+  [[nodiscard]] double getMaxDirectWork() const { return maxDirectWork_; }
+  void setMaxDirectWork(double multiplyAdds) {
+    if (!(multiplyAdds > 0.0))
+      throw detail::makeError("Solver", getName(), "maximum direct work must be > 0 (multiply-adds)", multiplyAdds);
+    maxDirectWork_ = multiplyAdds;
   }
 
   /// Outer iterations of a direct solve over the friction bounds that follow
@@ -16871,6 +16895,8 @@ class Solver : public Referenced {
   IterativeMethod method_ = GAUSS_SEIDEL;
   int maxPivotSteps_ = 80;
   int pivotBudget_ = 0;  ///< pivot steps left to the island being solved
+  double maxDirectWork_ = 3e8;
+  double workBudget_ = 0.0;  ///< multiply-adds left to the island being solved
   bool postStabilization_ = false;
   bool warmStarting_ = false;
   bool contactWarmStarting_ = true;
@@ -17154,13 +17180,18 @@ class BlockCholesky {
   /// Blocks of L below the diagonal (the fill included).
   [[nodiscard]] std::size_t numFactorBlocks() const { return rows_.size(); }
 
-  /// About how many solve() calls one factorize() costs: 6×6 block
-  /// products (216 multiplications) against block-vector ones (36), a
-  /// pivot's Cholesky and inverse counted as two products.
+  /// The multiply-adds of one factorize(), known from analyze(): 216 per
+  /// 6×6 block product, a pivot's Cholesky and inverse counted as two.
+  [[nodiscard]] double factorizationWork() const {
+    const double blocks = static_cast<double>(rows_.size());
+    return 216.0 * (static_cast<double>(updateSlot_.size()) + blocks + 2.0 * n_);
+  }
+
+  /// About how many solve() calls one factorize() costs (a solve: 36
+  /// multiply-adds per block-vector product, two per block).
   [[nodiscard]] double solvesPerFactorization() const {
     const double blocks = static_cast<double>(rows_.size());
-    const double products = static_cast<double>(updateSlot_.size()) + blocks + 2.0 * n_;
-    return 216.0 * products / (36.0 * 2.0 * (blocks + n_) + 1.0);
+    return factorizationWork() / (36.0 * 2.0 * (blocks + n_) + 1.0);
   }
 
  private:
@@ -17394,6 +17425,9 @@ class BodySpaceSolve {
     }
     return factored_;
   }
+
+  /// The multiply-adds of one factorization of the pattern analyze() fixed.
+  [[nodiscard]] double factorizationWork() const { return cholesky_.factorizationWork(); }
 
   /// Whether the last factorize() updated the factor in hand instead of
   /// factorizing.
@@ -18284,6 +18318,32 @@ struct DirectSolveResult {
   int factorizations = 0;  ///< sparse LDLᵀ factorizations (one per pivot step)
   bool converged = true;   ///< a complementary solution was found
   bool fellBack = false;   ///< the pivoting gave up (the safe fallback answered, if asked for)
+  double work = 0.0;       ///< multiply-adds of its factorizations, as analyzed
+};
+
+/// Eigen's sparse LDLᵀ, with the cost of a factorization known from the
+/// symbolic analysis: about n + Σ c_j² multiply-adds over L's column counts
+/// c_j below the diagonal (Davis, Direct Methods for Sparse Linear Systems,
+/// 2006, §4.7).
+class AnalyzedLDLT : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> {
+ public:
+  /// After analyzePattern().
+  [[nodiscard]] double factorizationWork() const {
+    const int* outer = m_matrix.outerIndexPtr();
+    auto work = static_cast<double>(m_matrix.cols());
+    for (Eigen::Index j = 0; j < m_matrix.cols(); ++j) {
+      const auto c = static_cast<double>(outer[j + 1] - outer[j]);
+      work += c * c;
+    }
+    return work;
+  }
+
+  /// About how many solves with the factor one factorization costs (a
+  /// solve: 2 Σ c_j + n).
+  [[nodiscard]] double solvesPerFactorization() const {
+    const auto n = static_cast<double>(m_matrix.cols());
+    return factorizationWork() / (2.0 * static_cast<double>(m_matrix.outerIndexPtr()[m_matrix.cols()]) + n);
+  }
 };
 
 /// Solves the rows `subset` of an island exactly, the impulses of the other
@@ -18328,7 +18388,12 @@ struct DirectSolveResult {
 /// the descent's), the rows' starting impulses and no impulse at all, the
 /// one of lowest f (f(Λ) − f(0) bounds the kinetic energy the impulses
 /// add), refined by projected Gauss–Seidel. The solve is reported as not
-/// converged.
+/// converged. A solve is also given a budget of work (multiply-adds of its
+/// factorizations, as the symbolic analysis counts them): it takes only the
+/// pivot steps the budget affords, and where it cannot afford one
+/// factorization (a pile of a thousand spheres, whose matrix fills in like
+/// a 3D mesh's), it falls back to the safe answer at once. The cost of a
+/// step is then bounded whatever the scene.
 class DirectSolve {
  public:
   /// Gauss–Seidel sweeps of the fallback.
@@ -18363,8 +18428,9 @@ class DirectSolve {
 
   /// `safeAnswer`: at the cap, leave the fallback's answer (else the rows'
   /// impulses are left as they were, for a caller that restores them).
+  /// `maxWork`: the multiply-adds its factorizations may take in all.
   DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps,
-                          bool safeAnswer = true) {
+                          bool safeAnswer = true, double maxWork = std::numeric_limits<double>::infinity()) {
     DirectSolveResult result;
     const int n = static_cast<int>(subset.size());
     if (n == 0) return result;
@@ -18372,6 +18438,16 @@ class DirectSolve {
     assembleRhs(problem, subset);
     if (bodySpace_) bodySpaceSolve_.analyze(problem, subset);
     else assembleMatrix(problem, subset);
+    const double work = bodySpace_ ? bodySpaceSolve_.factorizationWork() : ldlt_.factorizationWork();
+    // A solve capped at m pivot steps factorizes up to m + 1 times.
+    if (maxWork < work * (static_cast<double>(maxPivotSteps) + 1.0))
+      maxPivotSteps = static_cast<int>(std::floor(maxWork / work)) - 1;
+    if (maxPivotSteps < 0) {
+      if (safeAnswer) fallBack(problem, subset, startingImpulses(problem, subset));
+      result.converged = false;
+      result.fellBack = true;
+      return result;
+    }
 
     // The state of each row: free, or clamped at its lower or upper bound.
     // Warm start: a row whose guess (the last solution) is at a bound starts there.
@@ -18424,6 +18500,7 @@ class DirectSolve {
         if (safeAnswer) fallBack(problem, subset, bestX);
         result.converged = false;
         result.fellBack = true;
+        result.work = work * result.factorizations;
         return result;
       }
       if (strikes > 0) keepRandomHalf(infeasible, step);
@@ -18439,6 +18516,7 @@ class DirectSolve {
       e.impulse = std::clamp(x[k], e.lower, e.upper);
       e.guess = e.impulse;
     }
+    result.work = work * result.factorizations;
     return result;
   }
 
@@ -18541,6 +18619,13 @@ class DirectSolve {
         problem.addImpulse(dv, i, next - x[j]);
         x[j] = next;
       }
+  }
+
+  static Eigen::VectorXd startingImpulses(const IslandProblem& problem, const std::vector<int>& subset) {
+    Eigen::VectorXd x(static_cast<Eigen::Index>(subset.size()));
+    for (std::size_t k = 0; k < subset.size(); ++k)
+      x[static_cast<Eigen::Index>(k)] = problem.rows[static_cast<std::size_t>(subset[k])].impulse;
+    return x;
   }
 
   // The safe answer of a solve whose pivoting gave up (see the class note).
@@ -18732,25 +18817,11 @@ class DirectSolve {
       ldlt_.factorize(lower_);
       factoredBase_ = lowerValues_;
       update_.reset(freeIndex);
-      solvesPerFactorization_ = solvesPerFactorization();
+      solvesPerFactorization_ = ldlt_.solvesPerFactorization();
       solution = ldlt_.solve(full);
     }
     for (int k = 0; k < n; ++k)
       if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[k];
-  }
-
-  // About how many solves with ldlt_'s factor its factorization cost: Σ c_j²
-  // multiplications over L's column counts c_j against 2 Σ c_j + n.
-  double solvesPerFactorization() const {
-    const auto& L = ldlt_.matrixL().nestedExpression();
-    const int* outer = L.outerIndexPtr();
-    double factor = 0.0, solve = static_cast<double>(L.cols());
-    for (Eigen::Index j = 0; j < L.cols(); ++j) {
-      const auto c = static_cast<double>(outer[j + 1] - outer[j]);
-      factor += c * c;
-      solve += 2.0 * c;
-    }
-    return factor / solve;
   }
 
   // Iterative refinement of the free rows' body-space solution x of
@@ -18813,7 +18884,7 @@ class DirectSolve {
   double solvesPerFactorization_ = 0.0;             ///< of ldlt_'s factor
   Eigen::VectorXd q_;
   std::vector<Eigen::Triplet<double>> triplets_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+  AnalyzedLDLT ldlt_;
 };
 
 }  // namespace spook::detail
@@ -18829,6 +18900,7 @@ SPOOK_INLINE Solver::~Solver() = default;
 SPOOK_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
+  workBudget_ = maxDirectWork_;
   direct(problem, allRows(problem), statistics);
   for (auto& e : problem.rows)
     if (!std::isfinite(e.impulse)) e.impulse = 0.0;
@@ -18838,6 +18910,7 @@ SPOOK_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatisti
 SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
+  workBudget_ = maxDirectWork_;
   ++statistics.numIslands;
   statistics.numRows += static_cast<int>(problem.rows.size());
   solveIsland(problem, statistics);
@@ -18854,22 +18927,27 @@ SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics
 }
 
 SPOOK_INLINE void Solver::direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
-  const detail::DirectSolveResult r = direct_->solve(problem, subset, std::clamp(pivotBudget_ - 1, 0, maxPivotSteps_));
+  const detail::DirectSolveResult r = direct_->solve(problem, subset, std::clamp(pivotBudget_ - 1, 0, maxPivotSteps_),
+                                                     /*safeAnswer=*/true, workBudget_);
   pivotBudget_ -= r.factorizations;
+  workBudget_ -= r.work;
   statistics.factorizations += r.factorizations;
+  statistics.directWork += r.work;
   statistics.converged = statistics.converged && r.converged;
   statistics.directFallbacks += r.fellBack ? 1 : 0;
 }
 
 SPOOK_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, const std::vector<int>& subset,
                                                SolverStatistics& statistics) {
-  if (pivotBudget_ <= 0) return false;
+  if (pivotBudget_ <= 0 || workBudget_ <= 0.0) return false;
   const std::vector<detail::IslandProblem::Entry> saved = problem.entries(subset);
   // A solve capped at m pivot steps factorizes up to m + 1 times.
   const detail::DirectSolveResult r =
-      direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_), /*safeAnswer=*/false);
+      direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_), /*safeAnswer=*/false, workBudget_);
   pivotBudget_ -= r.factorizations;
+  workBudget_ -= r.work;
   statistics.factorizations += r.factorizations;
+  statistics.directWork += r.work;
   if (!r.fellBack) return true;
   problem.restore(subset, saved);
   return false;
@@ -18952,6 +19030,7 @@ SPOOK_INLINE void Solver::copySettings(const Solver& other) {
   tolerance_ = other.tolerance_;
   method_ = other.method_;
   maxPivotSteps_ = other.maxPivotSteps_;
+  maxDirectWork_ = other.maxDirectWork_;
   postStabilization_ = other.postStabilization_;
   warmStarting_ = other.warmStarting_;
   contactWarmStarting_ = other.contactWarmStarting_;
@@ -21644,13 +21723,18 @@ class BlockCholesky {
   /// Blocks of L below the diagonal (the fill included).
   [[nodiscard]] std::size_t numFactorBlocks() const { return rows_.size(); }
 
-  /// About how many solve() calls one factorize() costs: 6×6 block
-  /// products (216 multiplications) against block-vector ones (36), a
-  /// pivot's Cholesky and inverse counted as two products.
+  /// The multiply-adds of one factorize(), known from analyze(): 216 per
+  /// 6×6 block product, a pivot's Cholesky and inverse counted as two.
+  [[nodiscard]] double factorizationWork() const {
+    const double blocks = static_cast<double>(rows_.size());
+    return 216.0 * (static_cast<double>(updateSlot_.size()) + blocks + 2.0 * n_);
+  }
+
+  /// About how many solve() calls one factorize() costs (a solve: 36
+  /// multiply-adds per block-vector product, two per block).
   [[nodiscard]] double solvesPerFactorization() const {
     const double blocks = static_cast<double>(rows_.size());
-    const double products = static_cast<double>(updateSlot_.size()) + blocks + 2.0 * n_;
-    return 216.0 * products / (36.0 * 2.0 * (blocks + n_) + 1.0);
+    return factorizationWork() / (36.0 * 2.0 * (blocks + n_) + 1.0);
   }
 
  private:
@@ -21884,6 +21968,9 @@ class BodySpaceSolve {
     }
     return factored_;
   }
+
+  /// The multiply-adds of one factorization of the pattern analyze() fixed.
+  [[nodiscard]] double factorizationWork() const { return cholesky_.factorizationWork(); }
 
   /// Whether the last factorize() updated the factor in hand instead of
   /// factorizing.

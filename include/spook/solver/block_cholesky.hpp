@@ -161,13 +161,18 @@ class BlockCholesky {
   /// Blocks of L below the diagonal (the fill included).
   [[nodiscard]] std::size_t numFactorBlocks() const { return rows_.size(); }
 
-  /// About how many solve() calls one factorize() costs: 6×6 block
-  /// products (216 multiplications) against block-vector ones (36), a
-  /// pivot's Cholesky and inverse counted as two products.
+  /// The multiply-adds of one factorize(), known from analyze(): 216 per
+  /// 6×6 block product, a pivot's Cholesky and inverse counted as two.
+  [[nodiscard]] double factorizationWork() const {
+    const double blocks = static_cast<double>(rows_.size());
+    return 216.0 * (static_cast<double>(updateSlot_.size()) + blocks + 2.0 * n_);
+  }
+
+  /// About how many solve() calls one factorize() costs (a solve: 36
+  /// multiply-adds per block-vector product, two per block).
   [[nodiscard]] double solvesPerFactorization() const {
     const double blocks = static_cast<double>(rows_.size());
-    const double products = static_cast<double>(updateSlot_.size()) + blocks + 2.0 * n_;
-    return 216.0 * products / (36.0 * 2.0 * (blocks + n_) + 1.0);
+    return factorizationWork() / (36.0 * 2.0 * (blocks + n_) + 1.0);
   }
 
  private:

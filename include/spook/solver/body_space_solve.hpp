@@ -140,6 +140,9 @@ class BodySpaceSolve {
     return factored_;
   }
 
+  /// The multiply-adds of one factorization of the pattern analyze() fixed.
+  [[nodiscard]] double factorizationWork() const { return cholesky_.factorizationWork(); }
+
   /// Whether the last factorize() updated the factor in hand instead of
   /// factorizing.
   [[nodiscard]] bool updated() const { return updating_; }

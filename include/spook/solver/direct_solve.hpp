@@ -22,6 +22,32 @@ struct DirectSolveResult {
   int factorizations = 0;  ///< sparse LDLᵀ factorizations (one per pivot step)
   bool converged = true;   ///< a complementary solution was found
   bool fellBack = false;   ///< the pivoting gave up (the safe fallback answered, if asked for)
+  double work = 0.0;       ///< multiply-adds of its factorizations, as analyzed
+};
+
+/// Eigen's sparse LDLᵀ, with the cost of a factorization known from the
+/// symbolic analysis: about n + Σ c_j² multiply-adds over L's column counts
+/// c_j below the diagonal (Davis, Direct Methods for Sparse Linear Systems,
+/// 2006, §4.7).
+class AnalyzedLDLT : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> {
+ public:
+  /// After analyzePattern().
+  [[nodiscard]] double factorizationWork() const {
+    const int* outer = m_matrix.outerIndexPtr();
+    auto work = static_cast<double>(m_matrix.cols());
+    for (Eigen::Index j = 0; j < m_matrix.cols(); ++j) {
+      const auto c = static_cast<double>(outer[j + 1] - outer[j]);
+      work += c * c;
+    }
+    return work;
+  }
+
+  /// About how many solves with the factor one factorization costs (a
+  /// solve: 2 Σ c_j + n).
+  [[nodiscard]] double solvesPerFactorization() const {
+    const auto n = static_cast<double>(m_matrix.cols());
+    return factorizationWork() / (2.0 * static_cast<double>(m_matrix.outerIndexPtr()[m_matrix.cols()]) + n);
+  }
 };
 
 /// Solves the rows `subset` of an island exactly, the impulses of the other
@@ -66,7 +92,12 @@ struct DirectSolveResult {
 /// the descent's), the rows' starting impulses and no impulse at all, the
 /// one of lowest f (f(Λ) − f(0) bounds the kinetic energy the impulses
 /// add), refined by projected Gauss–Seidel. The solve is reported as not
-/// converged.
+/// converged. A solve is also given a budget of work (multiply-adds of its
+/// factorizations, as the symbolic analysis counts them): it takes only the
+/// pivot steps the budget affords, and where it cannot afford one
+/// factorization (a pile of a thousand spheres, whose matrix fills in like
+/// a 3D mesh's), it falls back to the safe answer at once. The cost of a
+/// step is then bounded whatever the scene.
 class DirectSolve {
  public:
   /// Gauss–Seidel sweeps of the fallback.
@@ -101,8 +132,9 @@ class DirectSolve {
 
   /// `safeAnswer`: at the cap, leave the fallback's answer (else the rows'
   /// impulses are left as they were, for a caller that restores them).
+  /// `maxWork`: the multiply-adds its factorizations may take in all.
   DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps,
-                          bool safeAnswer = true) {
+                          bool safeAnswer = true, double maxWork = std::numeric_limits<double>::infinity()) {
     DirectSolveResult result;
     const int n = static_cast<int>(subset.size());
     if (n == 0) return result;
@@ -110,6 +142,16 @@ class DirectSolve {
     assembleRhs(problem, subset);
     if (bodySpace_) bodySpaceSolve_.analyze(problem, subset);
     else assembleMatrix(problem, subset);
+    const double work = bodySpace_ ? bodySpaceSolve_.factorizationWork() : ldlt_.factorizationWork();
+    // A solve capped at m pivot steps factorizes up to m + 1 times.
+    if (maxWork < work * (static_cast<double>(maxPivotSteps) + 1.0))
+      maxPivotSteps = static_cast<int>(std::floor(maxWork / work)) - 1;
+    if (maxPivotSteps < 0) {
+      if (safeAnswer) fallBack(problem, subset, startingImpulses(problem, subset));
+      result.converged = false;
+      result.fellBack = true;
+      return result;
+    }
 
     // The state of each row: free, or clamped at its lower or upper bound.
     // Warm start: a row whose guess (the last solution) is at a bound starts there.
@@ -162,6 +204,7 @@ class DirectSolve {
         if (safeAnswer) fallBack(problem, subset, bestX);
         result.converged = false;
         result.fellBack = true;
+        result.work = work * result.factorizations;
         return result;
       }
       if (strikes > 0) keepRandomHalf(infeasible, step);
@@ -177,6 +220,7 @@ class DirectSolve {
       e.impulse = std::clamp(x[k], e.lower, e.upper);
       e.guess = e.impulse;
     }
+    result.work = work * result.factorizations;
     return result;
   }
 
@@ -279,6 +323,13 @@ class DirectSolve {
         problem.addImpulse(dv, i, next - x[j]);
         x[j] = next;
       }
+  }
+
+  static Eigen::VectorXd startingImpulses(const IslandProblem& problem, const std::vector<int>& subset) {
+    Eigen::VectorXd x(static_cast<Eigen::Index>(subset.size()));
+    for (std::size_t k = 0; k < subset.size(); ++k)
+      x[static_cast<Eigen::Index>(k)] = problem.rows[static_cast<std::size_t>(subset[k])].impulse;
+    return x;
   }
 
   // The safe answer of a solve whose pivoting gave up (see the class note).
@@ -470,25 +521,11 @@ class DirectSolve {
       ldlt_.factorize(lower_);
       factoredBase_ = lowerValues_;
       update_.reset(freeIndex);
-      solvesPerFactorization_ = solvesPerFactorization();
+      solvesPerFactorization_ = ldlt_.solvesPerFactorization();
       solution = ldlt_.solve(full);
     }
     for (int k = 0; k < n; ++k)
       if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[k];
-  }
-
-  // About how many solves with ldlt_'s factor its factorization cost: Σ c_j²
-  // multiplications over L's column counts c_j against 2 Σ c_j + n.
-  double solvesPerFactorization() const {
-    const auto& L = ldlt_.matrixL().nestedExpression();
-    const int* outer = L.outerIndexPtr();
-    double factor = 0.0, solve = static_cast<double>(L.cols());
-    for (Eigen::Index j = 0; j < L.cols(); ++j) {
-      const auto c = static_cast<double>(outer[j + 1] - outer[j]);
-      factor += c * c;
-      solve += 2.0 * c;
-    }
-    return factor / solve;
   }
 
   // Iterative refinement of the free rows' body-space solution x of
@@ -551,7 +588,7 @@ class DirectSolve {
   double solvesPerFactorization_ = 0.0;             ///< of ldlt_'s factor
   Eigen::VectorXd q_;
   std::vector<Eigen::Triplet<double>> triplets_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+  AnalyzedLDLT ldlt_;
 };
 
 }  // namespace spook::detail

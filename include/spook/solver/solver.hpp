@@ -30,6 +30,10 @@ struct SolverStatistics {
   /// sparse factorization, or the last one's factor where the step changed
   /// few rows of its matrix (free_set_update.hpp, body_space_solve.hpp).
   int factorizations = 0;
+  /// Multiply-adds of those factorizations, as their symbolic analysis
+  /// counts them (a factor updated instead is counted as factorized):
+  /// what Solver::setMaxDirectWork bounds.
+  double directWork = 0.0;
   /// Most friction iterations of one direct solve (getNumFrictionIterations);
   /// reaching the maximum means its bounds had not settled to the tolerance.
   int frictionIterations = 0;
@@ -58,6 +62,7 @@ struct SolverStatistics {
   void addResolve(const SolverStatistics& again) {
     iterations = std::max(iterations, again.iterations);
     factorizations += again.factorizations;
+    directWork += again.directWork;
     frictionIterations = std::max(frictionIterations, again.frictionIterations);
     complementarityError = again.complementarityError;
     converged = again.converged;
@@ -77,6 +82,7 @@ struct SolverStatistics {
     numIterativeRows += island.numIterativeRows;
     iterations = std::max(iterations, island.iterations);
     factorizations += island.factorizations;
+    directWork += island.directWork;
     frictionIterations = std::max(frictionIterations, island.frictionIterations);
     complementarityError = std::max(complementarityError, island.complementarityError);
     converged = converged && island.converged;
@@ -180,6 +186,24 @@ class Solver : public Referenced {
   void setMaxPivotSteps(int n) {
     if (n < 1) throw detail::makeError("Solver", getName(), "maximum pivot steps must be >= 1", n);
     maxPivotSteps_ = n;
+  }
+  /// The work the direct solves of one island may do in a step, in
+  /// multiply-adds of their factorizations as the symbolic analysis counts
+  /// them (SolverStatistics::directWork), default 3e8: about a quarter of a
+  /// second of one core. It bounds the cost of a step where the pivot steps
+  /// alone do not: a factorization's cost grows with the fill of its
+  /// matrix, about as the square of the bodies in a 3D pile (1,000 spheres
+  /// poured into a box: 2.3e8 once settled, and the pivoting did not
+  /// converge within 1e9, at up to 1 s a step). A first solve that cannot
+  /// afford another factorization falls back to its safe answer
+  /// (SolverStatistics::directFallbacks), a later one is dropped as at the
+  /// pivot budget (pivotBudgetCuts). Deterministic, unlike a limit on
+  /// wall-clock time.
+  [[nodiscard]] double getMaxDirectWork() const { return maxDirectWork_; }
+  void setMaxDirectWork(double multiplyAdds) {
+    if (!(multiplyAdds > 0.0))
+      throw detail::makeError("Solver", getName(), "maximum direct work must be > 0 (multiply-adds)", multiplyAdds);
+    maxDirectWork_ = multiplyAdds;
   }
 
   /// Outer iterations of a direct solve over the friction bounds that follow
@@ -303,6 +327,8 @@ class Solver : public Referenced {
   IterativeMethod method_ = GAUSS_SEIDEL;
   int maxPivotSteps_ = 80;
   int pivotBudget_ = 0;  ///< pivot steps left to the island being solved
+  double maxDirectWork_ = 3e8;
+  double workBudget_ = 0.0;  ///< multiply-adds left to the island being solved
   bool postStabilization_ = false;
   bool warmStarting_ = false;
   bool contactWarmStarting_ = true;

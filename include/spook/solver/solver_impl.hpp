@@ -25,6 +25,7 @@ SPOOK_INLINE Solver::~Solver() = default;
 SPOOK_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
+  workBudget_ = maxDirectWork_;
   direct(problem, allRows(problem), statistics);
   for (auto& e : problem.rows)
     if (!std::isfinite(e.impulse)) e.impulse = 0.0;
@@ -34,6 +35,7 @@ SPOOK_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatisti
 SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
+  workBudget_ = maxDirectWork_;
   ++statistics.numIslands;
   statistics.numRows += static_cast<int>(problem.rows.size());
   solveIsland(problem, statistics);
@@ -50,22 +52,27 @@ SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics
 }
 
 SPOOK_INLINE void Solver::direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
-  const detail::DirectSolveResult r = direct_->solve(problem, subset, std::clamp(pivotBudget_ - 1, 0, maxPivotSteps_));
+  const detail::DirectSolveResult r = direct_->solve(problem, subset, std::clamp(pivotBudget_ - 1, 0, maxPivotSteps_),
+                                                     /*safeAnswer=*/true, workBudget_);
   pivotBudget_ -= r.factorizations;
+  workBudget_ -= r.work;
   statistics.factorizations += r.factorizations;
+  statistics.directWork += r.work;
   statistics.converged = statistics.converged && r.converged;
   statistics.directFallbacks += r.fellBack ? 1 : 0;
 }
 
 SPOOK_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, const std::vector<int>& subset,
                                                SolverStatistics& statistics) {
-  if (pivotBudget_ <= 0) return false;
+  if (pivotBudget_ <= 0 || workBudget_ <= 0.0) return false;
   const std::vector<detail::IslandProblem::Entry> saved = problem.entries(subset);
   // A solve capped at m pivot steps factorizes up to m + 1 times.
   const detail::DirectSolveResult r =
-      direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_), /*safeAnswer=*/false);
+      direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_), /*safeAnswer=*/false, workBudget_);
   pivotBudget_ -= r.factorizations;
+  workBudget_ -= r.work;
   statistics.factorizations += r.factorizations;
+  statistics.directWork += r.work;
   if (!r.fellBack) return true;
   problem.restore(subset, saved);
   return false;
@@ -148,6 +155,7 @@ SPOOK_INLINE void Solver::copySettings(const Solver& other) {
   tolerance_ = other.tolerance_;
   method_ = other.method_;
   maxPivotSteps_ = other.maxPivotSteps_;
+  maxDirectWork_ = other.maxDirectWork_;
   postStabilization_ = other.postStabilization_;
   warmStarting_ = other.warmStarting_;
   contactWarmStarting_ = other.contactWarmStarting_;
