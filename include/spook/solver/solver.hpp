@@ -189,12 +189,13 @@ class Solver : public Referenced {
   }
   /// The work the direct solves of one island may do in a step, in
   /// multiply-adds of their factorizations as the symbolic analysis counts
-  /// them (SolverStatistics::directWork), default 3e8: about a quarter of a
-  /// second of one core. It bounds the cost of a step where the pivot steps
-  /// alone do not: a factorization's cost grows with the fill of its
-  /// matrix, about as the square of the bodies in a 3D pile (1,000 spheres
-  /// poured into a box: 2.3e8 once settled, and the pivoting did not
-  /// converge within 1e9, at up to 1 s a step). A first solve that cannot
+  /// them (SolverStatistics::directWork), default 3e8: 0.08 s of one core
+  /// in the body-space factorization (~4e9 a second on a 2026 x86 core),
+  /// 0.15 s in row space (~2e9). It bounds the cost of a step where the
+  /// pivot steps alone do not: a factorization's cost grows with the fill
+  /// of its matrix, about as the square of the bodies in a 3D pile (1,000
+  /// spheres poured into a box: 2-4e8 each, and the pivoting did not
+  /// converge within 1e9, at up to 1 s a step; 80 steps took 8 s). A first solve that cannot
   /// afford another factorization falls back to its safe answer
   /// (SolverStatistics::directFallbacks), a later one is dropped as at the
   /// pivot budget (pivotBudgetCuts). Deterministic, unlike a limit on
