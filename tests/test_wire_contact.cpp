@@ -488,3 +488,54 @@ TEST_CASE_TEMPLATE("a winch hauls a load over a fixed sheave against the capstan
     CHECK(highestFriction == doctest::Approx((ratio - 1.0) * weight).epsilon(0.02));
   }
 }
+
+TEST_CASE_TEMPLATE("a stiff wire wrapped on a sheave that a kinematic body spins or drags stays finite", S, double,
+                   float) {
+  using Vec3 = Vec3T<S>;
+  // A steel-like wire (E 4.9e11 Pa, 46 kg/m³, radius 8.2 mm, no bend
+  // stiffness) from a point on a kinematic body, over a cylinder of radius
+  // 0.53 m on that body, to a fixed point of the world: the body spins at
+  // 5 or 20 rad/s about an axis across the cylinder's (the wire wraps 4.9
+  // rad of it) or drags the wire away at 3 or 11 m/s, for a second at 60 Hz.
+  // The wire cannot hold either; it must stay finite, no node farther from
+  // the fixed end than the body's reach plus what a stretch wave runs in a
+  // second, √(E/ρ)·1 s.
+  const double c = std::sqrt(4.9e11 / 46.0);
+  for (const auto& [spin, speed] : {std::pair{20.0, 0.0}, std::pair{5.0, 3.0}, std::pair{0.0, 11.0}}) {
+    CAPTURE(spin);
+    CAPTURE(speed);
+    ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+    ref_ptr<RigidBodyT<S>> body = new RigidBodyT<S>();
+    ref_ptr<GeometryT<S>> sheave = new GeometryT<S>(new CylinderT<S>(S(0.53), S(0.53)));
+    body->add(sheave);
+    body->setMotionControl(RigidBodyT<S>::MotionControl::KINEMATICS);
+    body->setPosition(S(-2), S(-2), S(1.5));
+    sim->add(body);
+    ref_ptr<WireT<S>> wire = new WireT<S>(S(0.0082), S(0.1));
+    wire->getMaterial()->getBulkMaterial()->setDensity(S(46));
+    wire->getMaterial()->getWireMaterial()->setYoungsModulusStretch(S(4.9e11));
+    wire->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(0));
+    wire->getMaterial()->getWireMaterial()->setFrictionCoefficient(S(0.98));
+    wire->add(new BodyFixedNodeT<S>(body.get(), Vec3(S(-1), S(-1), S(-0.94))));
+    wire->add(new ContactNodeT<S>(sheave.get(), Vec3::Zero()));
+    wire->add(new BodyFixedNodeT<S>(nullptr, Vec3(S(-1), S(-1), S(-1))));
+    sim->add(wire);
+    body->setVelocity(Vec3(S(0.16 * speed), S(-speed), S(0)));
+    body->setAngularVelocity(Vec3(S(0), S(0), S(-spin)));
+    const Vec3 anchor(S(-1), S(-1), S(-1));
+    double farthest = 0.0;
+    bool finite = true;
+    for (int s = 0; s < 60; ++s) {
+      sim->stepForward();
+      for (const Vec3& p : wire->getPoints()) {
+        finite = finite && p.allFinite();
+        farthest = std::max(farthest, double((p - anchor).norm()));
+      }
+    }
+    const double reach = double((body->getPosition() - anchor).norm()) + 2.0;
+    MESSAGE("spin " << spin << " rad/s, drag " << speed << " m/s: farthest point " << farthest
+                    << " m from the fixed end (body's reach " << reach << " m)");
+    CHECK(finite);
+    CHECK(farthest <= reach + c * 1.0);
+  }
+}

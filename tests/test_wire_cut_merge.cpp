@@ -283,6 +283,13 @@ TEST_CASE("cut, merge, attach and detach refuse bad input by name and leave the 
             .find("can only attach to a body of its simulation; not, got away") != std::string::npos);
   CHECK(message([&] { wire->attach(new BodyFixedNode(load.get(), Vec3::Zero()), false); })
             .find("is attached at its end") != std::string::npos);
+  const double detached = wire->getRestLength();
+  CHECK(message([&] {
+          wire->attach(new BodyFixedNode(nullptr, Vec3(0, 0, 1e7)), true);
+        }).find("'hoist': would have more than 1e6 lumped nodes (length x resolution) once attached there, got 2") !=
+        std::string::npos);
+  CHECK(wire->getRestLength() == detached);
+  CHECK(message([&] { wire->detach(true); }).find("is not attached at its begin") != std::string::npos);
   ref_ptr<WireWinchController> winch = new WireWinchController(nullptr, Vec3(0, 0, 10), Vec3(0, 0, -1));
   CHECK(message([&] { wire->attach(winch, -1.0, true); }).find("pulled-in length must be finite") != std::string::npos);
   CHECK(message([&] { same->detach(true); }).find("is not attached at its begin, got a free end") != std::string::npos);

@@ -24886,6 +24886,15 @@ class WireNodes : public BodyStore {
   }
   [[nodiscard]] Drum& drum(std::size_t d) { return drums_[d]; }
   [[nodiscard]] const Drum& drum(std::size_t d) const { return drums_[d]; }
+  /// The step's bound on each node's speed relative to `references[i]`
+  /// (m/s; the mean velocity of its neighbours on the wire) and on its
+  /// displacement by the projection (limit·h), which move() and displace()
+  /// keep: none until set.
+  void limitSpeeds(std::vector<Vec3d> references, double limit, double h) {
+    speedReferences_ = std::move(references);
+    speedLimit_ = limit;
+    limitStep_ = h;
+  }
   void writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const override;
   // A solve that failed (non-finite, or beyond a drum's ends: the rows that
   // keep it there are the solver's to meet) must not carry the wire away:
@@ -24897,6 +24906,10 @@ class WireNodes : public BodyStore {
   std::vector<Vec3d> position_, velocity_;
   std::vector<double> mass_;
   std::vector<Drum> drums_;
+  std::vector<Vec3d> speedReferences_;
+  double speedLimit_ = 0.0, limitStep_ = 0.0;
+
+  [[nodiscard]] bool limited() const { return speedReferences_.size() == position_.size() && speedLimit_ > 0.0; }
 };
 
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
@@ -24936,7 +24949,12 @@ SPOOK_INLINE void WireNodes::writeSolverBodies(std::span<SolverBody> bodies, con
 SPOOK_INLINE void WireNodes::move(std::span<const SolverBody> bodies, const StepContext& step) {
   const double h = step.getTimeStep();
   for (std::size_t i = 0; i < position_.size(); ++i) {
-    const Vec3d v = bodies[i].freeVelocity.head<3>();
+    Vec3d v = bodies[i].freeVelocity.head<3>();
+    if (limited()) {
+      const Vec3d relative = v - speedReferences_[i];
+      const double speed = relative.norm();
+      if (speed > speedLimit_) v = speedReferences_[i] + relative * (speedLimit_ / speed);
+    }
     velocity_[i] = v.allFinite() ? v : Vec3d::Zero();
     position_[i] += h * velocity_[i];
   }
@@ -24955,7 +24973,12 @@ SPOOK_INLINE void WireNodes::move(std::span<const SolverBody> bodies, const Step
 }
 
 SPOOK_INLINE void WireNodes::displace(std::span<const SolverBody> bodies) {
-  for (std::size_t i = 0; i < position_.size(); ++i) position_[i] += bodies[i].displacement.head<3>();
+  const double reach = speedLimit_ * limitStep_;
+  for (std::size_t i = 0; i < position_.size(); ++i) {
+    Vec3d d = bodies[i].displacement.head<3>();
+    if (limited() && d.norm() > reach) d *= reach / d.norm();
+    if (d.allFinite()) position_[i] += d;
+  }
 }
 #endif
 
@@ -25410,6 +25433,7 @@ class WireT : public RowProducer {
   [[nodiscard]] bool removable() const { return !(winches_[0] && winches_[1] && restLengths_.size() <= 2); }
   /// state_ for the points as they are now.
   void measurePoints(const StepContext& step);
+  void limitNodeSpeeds(const StepContext& step);
   /// `stretchStiffness`: E·A of the wire (N).
   void writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow, double stretchStiffness);
   void writeFrictionRows(RowWriter& rows, std::size_t firstRow);
@@ -25432,6 +25456,9 @@ class WireT : public RowProducer {
   static constexpr double kShortestSegment = 0.01;
   /// The bend rows' stiffness E I at most this many times E A l̄² (writeRows).
   static constexpr double kStiffestBend = 10.0;
+  /// Lumped nodes a wire may reach (length × resolution): a longer route,
+  /// or an end attached that far away, is refused.
+  static constexpr double kMostNodes = 1e6;
 
   double radius_;
   double resolution_;
@@ -25809,7 +25836,7 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
                 double(getRestLength()) * resolution_);
   // Hostile resolutions would allocate without bound.
   const double nodes = double(getRestLength()) * resolution_ + double(route_.size());
-  if (!(nodes <= 1e6)) throw error("would have more than 1e6 lumped nodes (length x resolution)", nodes);
+  if (!(nodes <= kMostNodes)) throw error("would have more than 1e6 lumped nodes (length x resolution)", nodes);
 }
 
 template <Scalar S>
@@ -26226,11 +26253,41 @@ void WireT<S>::measurePoints(const StepContext& step) {
   }
 }
 
+// No part of a wire moves against its neighbours faster than a stretch
+// wave runs along it, c = √(E/ρ) (5 km/s in steel): a swinging or whipping
+// wire's transverse waves are slower by √strain. What breaks that bound is a
+// step that cannot hold the wire (a kinematic body spinning a sheave the
+// wire wraps at 1.2 rad a step, a body tearing a stiff wire): its nodes,
+// shot out by stretch rows linearized at the step's start, left farther each
+// step, to inf in 10 to 30 steps (fuzz findings). The node store keeps them
+// to c, so that such a wire stays finite; its tension is then whatever its
+// stretch says.
+template <Scalar S>
+void WireT<S>::limitNodeSpeeds(const StepContext& step) {
+  const double c = std::sqrt(stretchStiffness() / linearDensity());
+  std::vector<Vec3d> references(nodes_->numNodes(), Vec3d::Zero());
+  const std::size_t n = points_.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (points_[k].node < 0) continue;
+    Vec3d sum = Vec3d::Zero();
+    int count = 0;
+    for (const std::size_t j : {k - 1, k + 1}) {
+      if (j >= n || !state_[j].v.allFinite()) continue;  // k − 1 wraps past 0 at the first point
+      sum += state_[j].v;
+      ++count;
+    }
+    references[std::size_t(points_[k].node)] =
+        count > 0 ? Vec3d(sum / count) : nodes_->velocity(std::size_t(points_[k].node));
+  }
+  nodes_->limitSpeeds(std::move(references), std::isfinite(c) && c > 0.0 ? c : 0.0, step.getTimeStep());
+}
+
 template <Scalar S>
 void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   if (!built()) return;  // merged into another wire
   const std::size_t n = points_.size(), firstRow = rows.size();
   measurePoints(step);
+  limitNodeSpeeds(step);
   const auto drumIndex = [&](std::size_t segment) {
     for (int end = 0; end < 2; ++end)
       if (winches_[end] && segment == winchSegment(end))
@@ -27061,9 +27118,14 @@ void WireT<S>::attachEnd(int end, ref_ptr<Node> node) {
   syncWinchSegments();
   const std::size_t k = end == 0 ? 0 : points_.size() - 1;
   const double gap = (worldPosition(attached) - worldPosition(points_[k])).norm();
+  // A wire flung far by a step that could not hold it would split that gap
+  // into nodes, twice as many each step.
+  const double nodes = (double(getRestLength()) + gap) * resolution_ + double(points_.size());
+  if (!(nodes <= kMostNodes))
+    throw error("would have more than 1e6 lumped nodes (length x resolution) once attached there", nodes);
   const auto add = [&](auto& v, auto value) { end == 0 ? void(v.insert(v.begin(), value)) : v.push_back(value); };
   add(points_, attached);
-  add(restLengths_, std::isfinite(gap) ? gap : 0.0);
+  add(restLengths_, gap);
   add(stretchImpulse_, 0.0);
   add(tension_, 0.0);
   add(bent_, char(0));

@@ -357,6 +357,7 @@ class WireT : public RowProducer {
   [[nodiscard]] bool removable() const { return !(winches_[0] && winches_[1] && restLengths_.size() <= 2); }
   /// state_ for the points as they are now.
   void measurePoints(const StepContext& step);
+  void limitNodeSpeeds(const StepContext& step);
   /// `stretchStiffness`: E·A of the wire (N).
   void writeWinchRows(RowWriter& rows, const StepContext& step, std::size_t firstRow, double stretchStiffness);
   void writeFrictionRows(RowWriter& rows, std::size_t firstRow);
@@ -379,6 +380,9 @@ class WireT : public RowProducer {
   static constexpr double kShortestSegment = 0.01;
   /// The bend rows' stiffness E I at most this many times E A l̄² (writeRows).
   static constexpr double kStiffestBend = 10.0;
+  /// Lumped nodes a wire may reach (length × resolution): a longer route,
+  /// or an end attached that far away, is refused.
+  static constexpr double kMostNodes = 1e6;
 
   double radius_;
   double resolution_;
@@ -756,7 +760,7 @@ void WireT<S>::checkRoute(const StepContext& simulation) const {
                 double(getRestLength()) * resolution_);
   // Hostile resolutions would allocate without bound.
   const double nodes = double(getRestLength()) * resolution_ + double(route_.size());
-  if (!(nodes <= 1e6)) throw error("would have more than 1e6 lumped nodes (length x resolution)", nodes);
+  if (!(nodes <= kMostNodes)) throw error("would have more than 1e6 lumped nodes (length x resolution)", nodes);
 }
 
 template <Scalar S>
@@ -1173,11 +1177,41 @@ void WireT<S>::measurePoints(const StepContext& step) {
   }
 }
 
+// No part of a wire moves against its neighbours faster than a stretch
+// wave runs along it, c = √(E/ρ) (5 km/s in steel): a swinging or whipping
+// wire's transverse waves are slower by √strain. What breaks that bound is a
+// step that cannot hold the wire (a kinematic body spinning a sheave the
+// wire wraps at 1.2 rad a step, a body tearing a stiff wire): its nodes,
+// shot out by stretch rows linearized at the step's start, left farther each
+// step, to inf in 10 to 30 steps (fuzz findings). The node store keeps them
+// to c, so that such a wire stays finite; its tension is then whatever its
+// stretch says.
+template <Scalar S>
+void WireT<S>::limitNodeSpeeds(const StepContext& step) {
+  const double c = std::sqrt(stretchStiffness() / linearDensity());
+  std::vector<Vec3d> references(nodes_->numNodes(), Vec3d::Zero());
+  const std::size_t n = points_.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (points_[k].node < 0) continue;
+    Vec3d sum = Vec3d::Zero();
+    int count = 0;
+    for (const std::size_t j : {k - 1, k + 1}) {
+      if (j >= n || !state_[j].v.allFinite()) continue;  // k − 1 wraps past 0 at the first point
+      sum += state_[j].v;
+      ++count;
+    }
+    references[std::size_t(points_[k].node)] =
+        count > 0 ? Vec3d(sum / count) : nodes_->velocity(std::size_t(points_[k].node));
+  }
+  nodes_->limitSpeeds(std::move(references), std::isfinite(c) && c > 0.0 ? c : 0.0, step.getTimeStep());
+}
+
 template <Scalar S>
 void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   if (!built()) return;  // merged into another wire
   const std::size_t n = points_.size(), firstRow = rows.size();
   measurePoints(step);
+  limitNodeSpeeds(step);
   const auto drumIndex = [&](std::size_t segment) {
     for (int end = 0; end < 2; ++end)
       if (winches_[end] && segment == winchSegment(end))

@@ -71,6 +71,15 @@ class WireNodes : public BodyStore {
   }
   [[nodiscard]] Drum& drum(std::size_t d) { return drums_[d]; }
   [[nodiscard]] const Drum& drum(std::size_t d) const { return drums_[d]; }
+  /// The step's bound on each node's speed relative to `references[i]`
+  /// (m/s; the mean velocity of its neighbours on the wire) and on its
+  /// displacement by the projection (limit·h), which move() and displace()
+  /// keep: none until set.
+  void limitSpeeds(std::vector<Vec3d> references, double limit, double h) {
+    speedReferences_ = std::move(references);
+    speedLimit_ = limit;
+    limitStep_ = h;
+  }
   void writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const override;
   // A solve that failed (non-finite, or beyond a drum's ends: the rows that
   // keep it there are the solver's to meet) must not carry the wire away:
@@ -82,6 +91,10 @@ class WireNodes : public BodyStore {
   std::vector<Vec3d> position_, velocity_;
   std::vector<double> mass_;
   std::vector<Drum> drums_;
+  std::vector<Vec3d> speedReferences_;
+  double speedLimit_ = 0.0, limitStep_ = 0.0;
+
+  [[nodiscard]] bool limited() const { return speedReferences_.size() == position_.size() && speedLimit_ > 0.0; }
 };
 
 #if defined(SPOOK_DEFINES_NON_TEMPLATES)
@@ -121,7 +134,12 @@ SPOOK_INLINE void WireNodes::writeSolverBodies(std::span<SolverBody> bodies, con
 SPOOK_INLINE void WireNodes::move(std::span<const SolverBody> bodies, const StepContext& step) {
   const double h = step.getTimeStep();
   for (std::size_t i = 0; i < position_.size(); ++i) {
-    const Vec3d v = bodies[i].freeVelocity.head<3>();
+    Vec3d v = bodies[i].freeVelocity.head<3>();
+    if (limited()) {
+      const Vec3d relative = v - speedReferences_[i];
+      const double speed = relative.norm();
+      if (speed > speedLimit_) v = speedReferences_[i] + relative * (speedLimit_ / speed);
+    }
     velocity_[i] = v.allFinite() ? v : Vec3d::Zero();
     position_[i] += h * velocity_[i];
   }
@@ -140,7 +158,12 @@ SPOOK_INLINE void WireNodes::move(std::span<const SolverBody> bodies, const Step
 }
 
 SPOOK_INLINE void WireNodes::displace(std::span<const SolverBody> bodies) {
-  for (std::size_t i = 0; i < position_.size(); ++i) position_[i] += bodies[i].displacement.head<3>();
+  const double reach = speedLimit_ * limitStep_;
+  for (std::size_t i = 0; i < position_.size(); ++i) {
+    Vec3d d = bodies[i].displacement.head<3>();
+    if (limited() && d.norm() > reach) d *= reach / d.norm();
+    if (d.allFinite()) position_[i] += d;
+  }
 }
 #endif
 

@@ -323,9 +323,14 @@ void WireT<S>::attachEnd(int end, ref_ptr<Node> node) {
   syncWinchSegments();
   const std::size_t k = end == 0 ? 0 : points_.size() - 1;
   const double gap = (worldPosition(attached) - worldPosition(points_[k])).norm();
+  // A wire flung far by a step that could not hold it would split that gap
+  // into nodes, twice as many each step.
+  const double nodes = (double(getRestLength()) + gap) * resolution_ + double(points_.size());
+  if (!(nodes <= kMostNodes))
+    throw error("would have more than 1e6 lumped nodes (length x resolution) once attached there", nodes);
   const auto add = [&](auto& v, auto value) { end == 0 ? void(v.insert(v.begin(), value)) : v.push_back(value); };
   add(points_, attached);
-  add(restLengths_, std::isfinite(gap) ? gap : 0.0);
+  add(restLengths_, gap);
   add(stretchImpulse_, 0.0);
   add(tension_, 0.0);
   add(bent_, char(0));
