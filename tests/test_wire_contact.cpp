@@ -501,7 +501,8 @@ TEST_CASE_TEMPLATE("a stiff wire wrapped on a sheave that a kinematic body spins
   // the fixed end than the body's reach plus what a stretch wave runs in a
   // second, √(E/ρ)·1 s.
   const double c = std::sqrt(4.9e11 / 46.0);
-  for (const auto& [spin, speed] : {std::pair{20.0, 0.0}, std::pair{5.0, 3.0}, std::pair{0.0, 11.0}}) {
+  for (const auto& motion : {std::pair{20.0, 0.0}, std::pair{5.0, 3.0}, std::pair{0.0, 11.0}}) {
+    const double spin = motion.first, speed = motion.second;  // rad/s, m/s
     CAPTURE(spin);
     CAPTURE(speed);
     ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
