@@ -288,6 +288,10 @@ TEST_CASE("cut, merge, attach and detach refuse bad input by name and leave the 
           wire->attach(new BodyFixedNode(nullptr, Vec3(0, 0, 1e7)), true);
         }).find("'hoist': would have more than 1e6 lumped nodes (length x resolution) once attached there, got 2") !=
         std::string::npos);
+  CHECK(message([&] {
+          wire->attach(new BodyFixedNode(nullptr, Vec3(1e200, 1e200, 0)), true);
+        }).find("'hoist': would have more than 1e6 lumped nodes (length x resolution) once attached there, got 2.8") !=
+        std::string::npos);  // the gap's norm does not overflow
   CHECK(wire->getRestLength() == detached);
   CHECK(message([&] { wire->detach(true); }).find("is not attached at its begin") != std::string::npos);
   ref_ptr<WireWinchController> winch = new WireWinchController(nullptr, Vec3(0, 0, 10), Vec3(0, 0, -1));

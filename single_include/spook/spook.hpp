@@ -24886,12 +24886,17 @@ class WireNodes : public BodyStore {
   }
   [[nodiscard]] Drum& drum(std::size_t d) { return drums_[d]; }
   [[nodiscard]] const Drum& drum(std::size_t d) const { return drums_[d]; }
-  /// The step's bound on each node's speed relative to `references[i]`
-  /// (m/s; the mean velocity of its neighbours on the wire) and on its
-  /// displacement by the projection (limit·h), which move() and displace()
-  /// keep: none until set.
-  void limitSpeeds(std::vector<Vec3d> references, double limit, double h) {
-    speedReferences_ = std::move(references);
+  /// The velocity each node's speed is bounded against (m/s; the mean
+  /// velocity of its neighbours on the wire), one per node, for the caller
+  /// to fill before limitSpeeds; kept from step to step (no allocation).
+  [[nodiscard]] std::vector<Vec3d>& speedReferences() {
+    speedReferences_.resize(position_.size());
+    return speedReferences_;
+  }
+  /// The step's bound on each node's speed relative to its speed reference
+  /// and on its displacement by the projection (limit·h), which move() and
+  /// displace() keep: none until set.
+  void limitSpeeds(double limit, double h) {
     speedLimit_ = limit;
     limitStep_ = h;
   }
@@ -25626,7 +25631,7 @@ void WireT<S>::setResolutionPerUnitLength(S resolutionPerUnitLength) {
   if (!(std::isfinite(resolutionPerUnitLength) && resolutionPerUnitLength > S(0)))
     throw error("resolution must be finite and > 0 nodes per m", resolutionPerUnitLength);
   const double nodes = double(getRestLength()) * double(resolutionPerUnitLength);
-  if (!(nodes <= 1e6)) throw error("would have more than 1e6 lumped nodes (length x resolution)", nodes);
+  if (!(nodes <= kMostNodes)) throw error("would have more than 1e6 lumped nodes (length x resolution)", nodes);
   resolution_ = double(resolutionPerUnitLength);
 }
 
@@ -25916,7 +25921,7 @@ void WireT<S>::build(const StepContext& simulation) {
     const int fewest = contactOf[k] >= 0 || contactOf[k + 1] >= 0 || winchToWinch ? 2 : 1;
     // The tangent points of a wrap can lie far from the routed points (a huge sheave).
     const double span = (b - a).norm() / spacing;
-    if (!(span <= 1e6)) throw error("would have more than 1e6 lumped nodes on a span of its route; nodes", span);
+    if (!(span <= kMostNodes)) throw error("would have more than 1e6 lumped nodes on a span of its route; nodes", span);
     const int segments = std::max(fewest, int(std::ceil(span - 1e-9)));
     for (int i = 1; i < segments; ++i) {
       Point p;
@@ -26265,7 +26270,8 @@ void WireT<S>::measurePoints(const StepContext& step) {
 template <Scalar S>
 void WireT<S>::limitNodeSpeeds(const StepContext& step) {
   const double c = std::sqrt(stretchStiffness() / linearDensity());
-  std::vector<Vec3d> references(nodes_->numNodes(), Vec3d::Zero());
+  std::vector<Vec3d>& references = nodes_->speedReferences();
+  std::fill(references.begin(), references.end(), Vec3d::Zero());
   const std::size_t n = points_.size();
   for (std::size_t k = 0; k < n; ++k) {
     if (points_[k].node < 0) continue;
@@ -26279,7 +26285,7 @@ void WireT<S>::limitNodeSpeeds(const StepContext& step) {
     references[std::size_t(points_[k].node)] =
         count > 0 ? Vec3d(sum / count) : nodes_->velocity(std::size_t(points_[k].node));
   }
-  nodes_->limitSpeeds(std::move(references), std::isfinite(c) && c > 0.0 ? c : 0.0, step.getTimeStep());
+  nodes_->limitSpeeds(std::isfinite(c) && c > 0.0 ? c : 0.0, step.getTimeStep());
 }
 
 template <Scalar S>
@@ -27117,7 +27123,10 @@ void WireT<S>::attachEnd(int end, ref_ptr<Node> node) {
   }
   syncWinchSegments();
   const std::size_t k = end == 0 ? 0 : points_.size() - 1;
-  const double gap = (worldPosition(attached) - worldPosition(points_[k])).norm();
+  const double gap = (worldPosition(attached) - worldPosition(points_[k])).stableNorm();
+  if (!std::isfinite(gap))
+    throw error("cannot attach an end across a gap that is not finite (the end or the attachment point is not); gap",
+                gap);
   // A wire flung far by a step that could not hold it would split that gap
   // into nodes, twice as many each step.
   const double nodes = (double(getRestLength()) + gap) * resolution_ + double(points_.size());

@@ -550,7 +550,7 @@ void WireT<S>::setResolutionPerUnitLength(S resolutionPerUnitLength) {
   if (!(std::isfinite(resolutionPerUnitLength) && resolutionPerUnitLength > S(0)))
     throw error("resolution must be finite and > 0 nodes per m", resolutionPerUnitLength);
   const double nodes = double(getRestLength()) * double(resolutionPerUnitLength);
-  if (!(nodes <= 1e6)) throw error("would have more than 1e6 lumped nodes (length x resolution)", nodes);
+  if (!(nodes <= kMostNodes)) throw error("would have more than 1e6 lumped nodes (length x resolution)", nodes);
   resolution_ = double(resolutionPerUnitLength);
 }
 
@@ -840,7 +840,7 @@ void WireT<S>::build(const StepContext& simulation) {
     const int fewest = contactOf[k] >= 0 || contactOf[k + 1] >= 0 || winchToWinch ? 2 : 1;
     // The tangent points of a wrap can lie far from the routed points (a huge sheave).
     const double span = (b - a).norm() / spacing;
-    if (!(span <= 1e6)) throw error("would have more than 1e6 lumped nodes on a span of its route; nodes", span);
+    if (!(span <= kMostNodes)) throw error("would have more than 1e6 lumped nodes on a span of its route; nodes", span);
     const int segments = std::max(fewest, int(std::ceil(span - 1e-9)));
     for (int i = 1; i < segments; ++i) {
       Point p;
@@ -1189,7 +1189,8 @@ void WireT<S>::measurePoints(const StepContext& step) {
 template <Scalar S>
 void WireT<S>::limitNodeSpeeds(const StepContext& step) {
   const double c = std::sqrt(stretchStiffness() / linearDensity());
-  std::vector<Vec3d> references(nodes_->numNodes(), Vec3d::Zero());
+  std::vector<Vec3d>& references = nodes_->speedReferences();
+  std::fill(references.begin(), references.end(), Vec3d::Zero());
   const std::size_t n = points_.size();
   for (std::size_t k = 0; k < n; ++k) {
     if (points_[k].node < 0) continue;
@@ -1203,7 +1204,7 @@ void WireT<S>::limitNodeSpeeds(const StepContext& step) {
     references[std::size_t(points_[k].node)] =
         count > 0 ? Vec3d(sum / count) : nodes_->velocity(std::size_t(points_[k].node));
   }
-  nodes_->limitSpeeds(std::move(references), std::isfinite(c) && c > 0.0 ? c : 0.0, step.getTimeStep());
+  nodes_->limitSpeeds(std::isfinite(c) && c > 0.0 ? c : 0.0, step.getTimeStep());
 }
 
 template <Scalar S>

@@ -71,12 +71,17 @@ class WireNodes : public BodyStore {
   }
   [[nodiscard]] Drum& drum(std::size_t d) { return drums_[d]; }
   [[nodiscard]] const Drum& drum(std::size_t d) const { return drums_[d]; }
-  /// The step's bound on each node's speed relative to `references[i]`
-  /// (m/s; the mean velocity of its neighbours on the wire) and on its
-  /// displacement by the projection (limit·h), which move() and displace()
-  /// keep: none until set.
-  void limitSpeeds(std::vector<Vec3d> references, double limit, double h) {
-    speedReferences_ = std::move(references);
+  /// The velocity each node's speed is bounded against (m/s; the mean
+  /// velocity of its neighbours on the wire), one per node, for the caller
+  /// to fill before limitSpeeds; kept from step to step (no allocation).
+  [[nodiscard]] std::vector<Vec3d>& speedReferences() {
+    speedReferences_.resize(position_.size());
+    return speedReferences_;
+  }
+  /// The step's bound on each node's speed relative to its speed reference
+  /// and on its displacement by the projection (limit·h), which move() and
+  /// displace() keep: none until set.
+  void limitSpeeds(double limit, double h) {
     speedLimit_ = limit;
     limitStep_ = h;
   }

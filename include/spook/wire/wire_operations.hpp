@@ -322,7 +322,10 @@ void WireT<S>::attachEnd(int end, ref_ptr<Node> node) {
   }
   syncWinchSegments();
   const std::size_t k = end == 0 ? 0 : points_.size() - 1;
-  const double gap = (worldPosition(attached) - worldPosition(points_[k])).norm();
+  const double gap = (worldPosition(attached) - worldPosition(points_[k])).stableNorm();
+  if (!std::isfinite(gap))
+    throw error("cannot attach an end across a gap that is not finite (the end or the attachment point is not); gap",
+                gap);
   // A wire flung far by a step that could not hold it would split that gap
   // into nodes, twice as many each step.
   const double nodes = (double(getRestLength()) + gap) * resolution_ + double(points_.size());
