@@ -117,7 +117,7 @@ struct SpherePile {
 TEST_CASE_TEMPLATE("a 200-sphere pile steps to the same bits with 1, 2 and 3 threads", S, float, double) {
   for (const Policy policy : {Policy::HYBRID, Policy::ITERATIVE}) {
     CAPTURE(spook::test::policyName(policy));
-    const int steps = spook::test::sweep(300, 60);
+    const int steps = spook::test::sweep(300, 40);
     SpherePile<S> one(policy, 1);
     one.run(steps);
     const std::vector<S> reference = stateOf(*one.sim);
