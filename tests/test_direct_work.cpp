@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <spook/constraints/joints/hinge.hpp>
+
 #include "contact_scenes.hpp"
 #include "error_message.hpp"
 #include "policies.hpp"
@@ -96,8 +98,8 @@ TEST_CASE_TEMPLATE("a direct solve that cannot afford a factorization falls back
   CHECK(starved.lowest > 0.1 - 2e-3);  // radius 0.1 m on the ground
 
   // A budget that binds: the default's solves took more work in a step
-  // within the first half second (from the 10th step on, 1.3e7 to 3.4e7
-  // multiply-adds, float and double, measured 2026-12-06).
+  // within the first half second (from the 10th step on, float and double,
+  // measured 2026-12-06).
   const direct_work_test::PileRun unbound = direct_work_test::runPile<S>(0.0, 30);
   const double budget = 5e6;
   const direct_work_test::PileRun bound = direct_work_test::runPile<S>(budget);
@@ -108,4 +110,43 @@ TEST_CASE_TEMPLATE("a direct solve that cannot afford a factorization falls back
   CHECK(bound.mostWork <= budget * bound.mostIslands);
   CHECK(bound.rmsSpeed < 0.01);
   CHECK(bound.lowest > 0.1 - 2e-3);
+}
+
+// A chain's factor costs a few multiply-adds a row, its pivot steps some
+// hundred times more (residuals, solves, sparse bookkeeping): the work
+// counted for a step of 200 hinged links is at least
+// Solver::kDirectRowWork a row (about 4 a row by its factor alone), and a
+// budget below what the step takes is kept.
+TEST_CASE("the direct work of a step counts every row of each pivot step, and a chain keeps its budget") {
+  const auto chainStep = [](double budget) {
+    spook::SimulationRef sim = new spook::Simulation();
+    sim->setSolver(new spook::DirectSolver());
+    if (budget > 0.0) sim->getSolver()->setMaxDirectWork(budget);
+    spook::RigidBody* previous = nullptr;
+    for (int i = 0; i < 200; ++i) {
+      spook::RigidBodyRef link =
+          new spook::RigidBody(new spook::Geometry(new spook::Box(spook::Vec3(0.25, 0.05, 0.05))));
+      link->setPosition(0.5 * i + 0.25, 0, 10);
+      for (const auto& g : link->getGeometries()) g->setEnableCollisions(false);
+      sim->add(link);
+      spook::FrameRef pin = new spook::Frame();
+      pin->setLocalTranslate(spook::Vec3(-0.25, 0, 0));
+      pin->setLocalRotate(spook::Quat(Eigen::AngleAxisd(spook::PI_2, spook::Vec3::UnitX())));
+      sim->add(spook::HingeRef(previous ? new spook::Hinge(link.get(), pin.get(), previous)
+                                        : new spook::Hinge(link.get(), pin.get())));
+      previous = link.get();
+    }
+    sim->stepForward();
+    return sim->getStatistics().solver;
+  };
+  const spook::SolverStatistics free = chainStep(0.0);
+  MESSAGE("200 links: ", free.numRows, " rows, ", free.factorizations, " factorizations, work ", free.directWork);
+  REQUIRE(free.factorizations >= 1);
+  CHECK(free.directWork >= spook::Solver::kDirectRowWork * free.numRows);
+  CHECK(free.directFallbacks == 0);
+
+  const double budget = free.directWork / 3.0;  // below the first solve's one pivot step
+  const spook::SolverStatistics bound = chainStep(budget);
+  CHECK(bound.directWork <= budget);
+  CHECK(bound.directFallbacks >= 1);
 }

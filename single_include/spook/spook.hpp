@@ -16599,8 +16599,9 @@ struct SolverStatistics {
   /// few rows of its matrix (free_set_update.hpp, body_space_solve.hpp).
   int factorizations = 0;
   /// Multiply-adds of those factorizations, as their symbolic analysis
-  /// counts them (a factor updated instead is counted as factorized):
-  /// what Solver::setMaxDirectWork bounds.
+  /// counts them (a factor updated instead is counted as factorized), plus
+  /// in row space the rows' work in each pivot step
+  /// (Solver::kDirectRowWork): what Solver::setMaxDirectWork bounds.
   double directWork = 0.0;
   /// Most friction iterations of one direct solve (getNumFrictionIterations);
   /// reaching the maximum means its bounds had not settled to the tolerance.
@@ -16755,19 +16756,33 @@ class Solver : public Referenced {
     if (n < 1) throw detail::makeError("Solver", getName(), "maximum pivot steps must be >= 1", n);
     maxPivotSteps_ = n;
   }
-  /// The work the direct solves of one island may do in a step, in
-  /// multiply-adds of their factorizations as the symbolic analysis counts
-  /// them (SolverStatistics::directWork), default 3e8: 0.08 s of one core
-  /// in the body-space factorization (~4e9 a second on a 2026 x86 core),
-  /// 0.15 s in row space (~2e9). It bounds the cost of a step where the
+  /// The work of a direct pivot step in row space (chains, wires, jointed
+  /// islands) beyond its factorization, counted in multiply-adds a row:
+  /// the residuals, bounds and solves over its rows and the sparse
+  /// bookkeeping. A chain's factor takes ~4 multiply-adds a row, its pivot
+  /// step 300-700 ns a row (Release, 2026-12-06): counted by its factor
+  /// alone, a 1,715-node wire ran 0.28 s a step on 2.3e7 multiply-adds, 30
+  /// times a 3D pile's time for the same count. In body space (piles,
+  /// pyramids) the factor of 6x6 blocks outweighs the rows and is counted
+  /// alone.
+  static constexpr double kDirectRowWork = 256.0;
+  /// The work the direct solves of one island may do in a step's solve
+  /// (its geometric-stiffness re-solves share it; the post-stabilization's
+  /// projection has one of its own), in multiply-adds of their
+  /// factorizations as the symbolic analysis counts them plus, in row
+  /// space, kDirectRowWork a row for each pivot step
+  /// (SolverStatistics::directWork), default 3e8: 0.15-0.6 s of one 2026
+  /// x86 core at most (0.46-2.1 ns a counted multiply-add, measured on 3D
+  /// piles, pyramids, a 1,715-node wire and chains of 10-400 hinged links,
+  /// whose fixed costs a solve weigh most). It bounds the cost of a step where the
   /// pivot steps alone do not: a factorization's cost grows with the fill
   /// of its matrix, about as the square of the bodies in a 3D pile (1,000
   /// spheres poured into a box: 2-4e8 each, and the pivoting did not
-  /// converge within 1e9, at up to 1 s a step; 80 steps took 8 s). A first solve that cannot
-  /// afford another factorization falls back to its safe answer
-  /// (SolverStatistics::directFallbacks), a later one is dropped as at the
-  /// pivot budget (pivotBudgetCuts). Deterministic, unlike a limit on
-  /// wall-clock time.
+  /// converge within 1e9, at up to 1 s a step; 80 steps took 8 s). A first
+  /// solve that cannot afford another factorization falls back to its safe
+  /// answer (SolverStatistics::directFallbacks), a later one is dropped as
+  /// at the pivot budget (pivotBudgetCuts). Deterministic, unlike a limit
+  /// on wall-clock time.
   [[nodiscard]] double getMaxDirectWork() const { return maxDirectWork_; }
   void setMaxDirectWork(double multiplyAdds) {
     if (!(multiplyAdds > 0.0))
@@ -16852,7 +16867,9 @@ class Solver : public Referenced {
 
   /// Solves one island in place and accumulates the statistics. Impulses that
   /// come out non-finite are dropped (set to zero) and counted; false then.
-  bool solve(detail::IslandProblem& problem, SolverStatistics& statistics);
+  /// `workSpent`: the direct work earlier solves of the island did in this
+  /// step (a re-solve's share of getMaxDirectWork is what they left).
+  bool solve(detail::IslandProblem& problem, SolverStatistics& statistics, double workSpent = 0.0);
 
   /// A solver of the same policy and settings with a workspace of its own,
   /// for another thread's islands (SimulationT::setNumThreads); null where
@@ -18390,7 +18407,8 @@ class AnalyzedLDLT : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, E
 /// one of lowest f (f(Λ) − f(0) bounds the kinetic energy the impulses
 /// add), refined by projected Gauss–Seidel. The solve is reported as not
 /// converged. A solve is also given a budget of work (multiply-adds of its
-/// factorizations, as the symbolic analysis counts them): it takes only the
+/// factorizations, as the symbolic analysis counts them, and in row space
+/// kRowWork a row for each pivot step): it takes only the
 /// pivot steps the budget affords, and where it cannot afford one
 /// factorization (a pile of a thousand spheres, whose matrix fills in like
 /// a 3D mesh's), it falls back to the safe answer at once. The cost of a
@@ -18422,6 +18440,10 @@ class DirectSolve {
   /// that step (the sweeps alone then lower f).
   static constexpr int kLineSearchHalvings = 8;
 
+  /// The work of a row-space pivot step beyond its factorization, a row
+  /// (Solver::kDirectRowWork).
+  static constexpr double kRowWork = Solver::kDirectRowWork;
+
   DirectSolve() = default;
   /// A solve that turns to the descent after `blockPivotingStrikes` steps
   /// without a new fewest-infeasible count (0: after the first step).
@@ -18439,7 +18461,10 @@ class DirectSolve {
     assembleRhs(problem, subset);
     if (bodySpace_) bodySpaceSolve_.analyze(problem, subset);
     else assembleMatrix(problem, subset);
-    const double work = bodySpace_ ? bodySpaceSolve_.factorizationWork() : ldlt_.factorizationWork();
+    // A pivot step's rows count in row space; in body space the factor of
+    // 6x6 blocks outweighs them (a settling pile of 1,000 spheres: ~1.4e7
+    // multiply-adds against 1.3e6).
+    const double work = bodySpace_ ? bodySpaceSolve_.factorizationWork() : ldlt_.factorizationWork() + kRowWork * n;
     // A solve capped at m pivot steps factorizes up to m + 1 times.
     if (maxWork < work * (static_cast<double>(maxPivotSteps) + 1.0))
       maxPivotSteps = static_cast<int>(std::floor(maxWork / work)) - 1;
@@ -18908,10 +18933,10 @@ SPOOK_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatisti
   statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
+SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics, double workSpent) {
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
-  workBudget_ = maxDirectWork_;
+  workBudget_ = maxDirectWork_ - workSpent;
   ++statistics.numIslands;
   statistics.numRows += static_cast<int>(problem.rows.size());
   solveIsland(problem, statistics);
@@ -22158,9 +22183,11 @@ class IslandStepper {
   /// direct solver's first guess), the solved one out; rows that join no
   /// island (between static bodies) keep theirs. With `workers`, islands
   /// are solved on its threads (each by a worker copy of `solver`, see
-  /// Solver::makeWorker), with the same results.
+  /// Solver::makeWorker), with the same results. `again`: the same rows
+  /// solved again in the step (geometric stiffness), whose islands spend
+  /// what the step's earlier solves left of their direct work budget.
   void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics,
-             WorkerPool* workers = nullptr);
+             WorkerPool* workers = nullptr, bool again = false);
 
   /// Fewest rows in a step worth spreading its islands over threads (a
   /// thread's wake-up costs about what ~100 rows' solve does).
@@ -22243,6 +22270,7 @@ class IslandStepper {
   /// Per island of the running solve: its statistics, and its bodies when
   /// its impulses came out non-finite.
   std::vector<SolverStatistics> islandStatistics_;
+  std::vector<double> islandWork_;  ///< direct work of each island in this step's solves
   std::vector<std::vector<int>> nonFiniteOf_;
 };
 
@@ -22275,13 +22303,15 @@ SPOOK_INLINE void IslandStepper::project(const RowSet& set, std::vector<SolverBo
 }
 
 SPOOK_INLINE void IslandStepper::solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
-                                       SolverStatistics& statistics, WorkerPool* workers) {
+                                       SolverStatistics& statistics, WorkerPool* workers, bool again) {
   std::vector<double>& impulses = set.impulses;
   index(set, true);
   partition(set, bodies);
   const int count = prepareWorkers(set, solver, workers);
   islandStatistics_.assign(islands_.size(), SolverStatistics{});
   nonFiniteOf_.resize(islands_.size());
+  // The same rows partition into the same islands, in the same order.
+  if (!again || islandWork_.size() != islands_.size()) islandWork_.assign(islands_.size(), 0.0);
   const bool warmStart = solver.getEnableWarmStarting();
   const bool contactWarmStart = solver.getEnableContactWarmStarting();
   const double contactFactor = solver.getContactWarmStartingFactor();
@@ -22300,7 +22330,9 @@ SPOOK_INLINE void IslandStepper::solve(RowSet& set, std::vector<SolverBody>& bod
         e.impulse = std::clamp(0.0, e.lower, e.upper);
     }
     nonFiniteOf_[k].clear();
-    if (!worker.solver->solve(worker.problem, islandStatistics_[k])) nonFiniteOf_[k] = worker.islandBodies;
+    if (!worker.solver->solve(worker.problem, islandStatistics_[k], islandWork_[k]))
+      nonFiniteOf_[k] = worker.islandBodies;
+    islandWork_[k] += islandStatistics_[k].directWork;
     for (std::size_t i = 0; i < island.size(); ++i)
       impulses[static_cast<std::size_t>(island[i])] = worker.problem.rows[i].impulse;
     addToBodies(worker, bodies, &SolverBody::freeVelocity);
@@ -23585,7 +23617,7 @@ void SimulationT<S>::solveRows(const StepContext& step) {
                        w.geometricStiffness.refresh(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
        ++solves) {
     SolverStatistics again;
-    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again, &w.workers);
+    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again, &w.workers, /*again=*/true);
     statistics_.solver.addResolve(again);
   }
   for (int i : w.islands.getNonFiniteBodies())

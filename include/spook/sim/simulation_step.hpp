@@ -197,7 +197,7 @@ void SimulationT<S>::solveRows(const StepContext& step) {
                        w.geometricStiffness.refresh(w.rows, w.solverBodies, h, solver_->getGeometricStiffnessThreshold());
        ++solves) {
     SolverStatistics again;
-    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again, &w.workers);
+    w.islands.solve(w.rows, w.solverBodies, h, *solver_, again, &w.workers, /*again=*/true);
     statistics_.solver.addResolve(again);
   }
   for (int i : w.islands.getNonFiniteBodies())

@@ -59,9 +59,11 @@ class IslandStepper {
   /// direct solver's first guess), the solved one out; rows that join no
   /// island (between static bodies) keep theirs. With `workers`, islands
   /// are solved on its threads (each by a worker copy of `solver`, see
-  /// Solver::makeWorker), with the same results.
+  /// Solver::makeWorker), with the same results. `again`: the same rows
+  /// solved again in the step (geometric stiffness), whose islands spend
+  /// what the step's earlier solves left of their direct work budget.
   void solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver, SolverStatistics& statistics,
-             WorkerPool* workers = nullptr);
+             WorkerPool* workers = nullptr, bool again = false);
 
   /// Fewest rows in a step worth spreading its islands over threads (a
   /// thread's wake-up costs about what ~100 rows' solve does).
@@ -144,6 +146,7 @@ class IslandStepper {
   /// Per island of the running solve: its statistics, and its bodies when
   /// its impulses came out non-finite.
   std::vector<SolverStatistics> islandStatistics_;
+  std::vector<double> islandWork_;  ///< direct work of each island in this step's solves
   std::vector<std::vector<int>> nonFiniteOf_;
 };
 
@@ -176,13 +179,15 @@ SPOOK_INLINE void IslandStepper::project(const RowSet& set, std::vector<SolverBo
 }
 
 SPOOK_INLINE void IslandStepper::solve(RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
-                                       SolverStatistics& statistics, WorkerPool* workers) {
+                                       SolverStatistics& statistics, WorkerPool* workers, bool again) {
   std::vector<double>& impulses = set.impulses;
   index(set, true);
   partition(set, bodies);
   const int count = prepareWorkers(set, solver, workers);
   islandStatistics_.assign(islands_.size(), SolverStatistics{});
   nonFiniteOf_.resize(islands_.size());
+  // The same rows partition into the same islands, in the same order.
+  if (!again || islandWork_.size() != islands_.size()) islandWork_.assign(islands_.size(), 0.0);
   const bool warmStart = solver.getEnableWarmStarting();
   const bool contactWarmStart = solver.getEnableContactWarmStarting();
   const double contactFactor = solver.getContactWarmStartingFactor();
@@ -201,7 +206,9 @@ SPOOK_INLINE void IslandStepper::solve(RowSet& set, std::vector<SolverBody>& bod
         e.impulse = std::clamp(0.0, e.lower, e.upper);
     }
     nonFiniteOf_[k].clear();
-    if (!worker.solver->solve(worker.problem, islandStatistics_[k])) nonFiniteOf_[k] = worker.islandBodies;
+    if (!worker.solver->solve(worker.problem, islandStatistics_[k], islandWork_[k]))
+      nonFiniteOf_[k] = worker.islandBodies;
+    islandWork_[k] += islandStatistics_[k].directWork;
     for (std::size_t i = 0; i < island.size(); ++i)
       impulses[static_cast<std::size_t>(island[i])] = worker.problem.rows[i].impulse;
     addToBodies(worker, bodies, &SolverBody::freeVelocity);

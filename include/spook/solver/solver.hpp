@@ -31,8 +31,9 @@ struct SolverStatistics {
   /// few rows of its matrix (free_set_update.hpp, body_space_solve.hpp).
   int factorizations = 0;
   /// Multiply-adds of those factorizations, as their symbolic analysis
-  /// counts them (a factor updated instead is counted as factorized):
-  /// what Solver::setMaxDirectWork bounds.
+  /// counts them (a factor updated instead is counted as factorized), plus
+  /// in row space the rows' work in each pivot step
+  /// (Solver::kDirectRowWork): what Solver::setMaxDirectWork bounds.
   double directWork = 0.0;
   /// Most friction iterations of one direct solve (getNumFrictionIterations);
   /// reaching the maximum means its bounds had not settled to the tolerance.
@@ -187,19 +188,33 @@ class Solver : public Referenced {
     if (n < 1) throw detail::makeError("Solver", getName(), "maximum pivot steps must be >= 1", n);
     maxPivotSteps_ = n;
   }
-  /// The work the direct solves of one island may do in a step, in
-  /// multiply-adds of their factorizations as the symbolic analysis counts
-  /// them (SolverStatistics::directWork), default 3e8: 0.08 s of one core
-  /// in the body-space factorization (~4e9 a second on a 2026 x86 core),
-  /// 0.15 s in row space (~2e9). It bounds the cost of a step where the
+  /// The work of a direct pivot step in row space (chains, wires, jointed
+  /// islands) beyond its factorization, counted in multiply-adds a row:
+  /// the residuals, bounds and solves over its rows and the sparse
+  /// bookkeeping. A chain's factor takes ~4 multiply-adds a row, its pivot
+  /// step 300-700 ns a row (Release, 2026-12-06): counted by its factor
+  /// alone, a 1,715-node wire ran 0.28 s a step on 2.3e7 multiply-adds, 30
+  /// times a 3D pile's time for the same count. In body space (piles,
+  /// pyramids) the factor of 6x6 blocks outweighs the rows and is counted
+  /// alone.
+  static constexpr double kDirectRowWork = 256.0;
+  /// The work the direct solves of one island may do in a step's solve
+  /// (its geometric-stiffness re-solves share it; the post-stabilization's
+  /// projection has one of its own), in multiply-adds of their
+  /// factorizations as the symbolic analysis counts them plus, in row
+  /// space, kDirectRowWork a row for each pivot step
+  /// (SolverStatistics::directWork), default 3e8: 0.15-0.6 s of one 2026
+  /// x86 core at most (0.46-2.1 ns a counted multiply-add, measured on 3D
+  /// piles, pyramids, a 1,715-node wire and chains of 10-400 hinged links,
+  /// whose fixed costs a solve weigh most). It bounds the cost of a step where the
   /// pivot steps alone do not: a factorization's cost grows with the fill
   /// of its matrix, about as the square of the bodies in a 3D pile (1,000
   /// spheres poured into a box: 2-4e8 each, and the pivoting did not
-  /// converge within 1e9, at up to 1 s a step; 80 steps took 8 s). A first solve that cannot
-  /// afford another factorization falls back to its safe answer
-  /// (SolverStatistics::directFallbacks), a later one is dropped as at the
-  /// pivot budget (pivotBudgetCuts). Deterministic, unlike a limit on
-  /// wall-clock time.
+  /// converge within 1e9, at up to 1 s a step; 80 steps took 8 s). A first
+  /// solve that cannot afford another factorization falls back to its safe
+  /// answer (SolverStatistics::directFallbacks), a later one is dropped as
+  /// at the pivot budget (pivotBudgetCuts). Deterministic, unlike a limit
+  /// on wall-clock time.
   [[nodiscard]] double getMaxDirectWork() const { return maxDirectWork_; }
   void setMaxDirectWork(double multiplyAdds) {
     if (!(multiplyAdds > 0.0))
@@ -284,7 +299,9 @@ class Solver : public Referenced {
 
   /// Solves one island in place and accumulates the statistics. Impulses that
   /// come out non-finite are dropped (set to zero) and counted; false then.
-  bool solve(detail::IslandProblem& problem, SolverStatistics& statistics);
+  /// `workSpent`: the direct work earlier solves of the island did in this
+  /// step (a re-solve's share of getMaxDirectWork is what they left).
+  bool solve(detail::IslandProblem& problem, SolverStatistics& statistics, double workSpent = 0.0);
 
   /// A solver of the same policy and settings with a workspace of its own,
   /// for another thread's islands (SimulationT::setNumThreads); null where

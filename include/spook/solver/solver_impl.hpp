@@ -32,10 +32,10 @@ SPOOK_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatisti
   statistics.solveTime += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics) {
+SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics& statistics, double workSpent) {
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
-  workBudget_ = maxDirectWork_;
+  workBudget_ = maxDirectWork_ - workSpent;
   ++statistics.numIslands;
   statistics.numRows += static_cast<int>(problem.rows.size());
   solveIsland(problem, statistics);
