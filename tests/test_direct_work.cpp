@@ -115,7 +115,7 @@ TEST_CASE_TEMPLATE("a direct solve that cannot afford a factorization falls back
 // A chain's factor costs a few multiply-adds a row, its pivot steps some
 // hundred times more (residuals, solves, sparse bookkeeping): the work
 // counted for a step of 200 hinged links is at least
-// Solver::kDirectRowWork a row (about 4 a row by its factor alone), and a
+// Solver::kDirectRowWork a row (about 47 a row by its factor alone), and a
 // budget below what the step takes is kept.
 TEST_CASE("the direct work of a step counts every row of each pivot step, and a chain keeps its budget") {
   const auto chainStep = [](double budget) {

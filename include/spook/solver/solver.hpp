@@ -191,10 +191,10 @@ class Solver : public Referenced {
   /// The work of a direct pivot step in row space (chains, wires, jointed
   /// islands) beyond its factorization, counted in multiply-adds a row:
   /// the residuals, bounds and solves over its rows and the sparse
-  /// bookkeeping. A chain's factor takes ~4 multiply-adds a row, its pivot
-  /// step 300-700 ns a row (Release, 2026-12-06): counted by its factor
-  /// alone, a 1,715-node wire ran 0.28 s a step on 2.3e7 multiply-adds, 30
-  /// times a 3D pile's time for the same count. In body space (piles,
+  /// bookkeeping. A chain's factor takes ~40 multiply-adds a row, its
+  /// pivot step 300-700 ns a row (Release, 2026-12-06): counted by its
+  /// factor alone, a 1,715-node wire ran 0.28 s a step on 2.3e7
+  /// multiply-adds, 30 times a 3D pile's time for the same count. In body space (piles,
   /// pyramids) the factor of 6x6 blocks outweighs the rows and is counted
   /// alone.
   static constexpr double kDirectRowWork = 256.0;
@@ -206,11 +206,11 @@ class Solver : public Referenced {
   /// (SolverStatistics::directWork), default 3e8: 0.15-0.6 s of one 2026
   /// x86 core at most (0.46-2.1 ns a counted multiply-add, measured on 3D
   /// piles, pyramids, a 1,715-node wire and chains of 10-400 hinged links,
-  /// whose fixed costs a solve weigh most). It bounds the cost of a step where the
-  /// pivot steps alone do not: a factorization's cost grows with the fill
-  /// of its matrix, about as the square of the bodies in a 3D pile (1,000
-  /// spheres poured into a box: 2-4e8 each, and the pivoting did not
-  /// converge within 1e9, at up to 1 s a step; 80 steps took 8 s). A first
+  /// whose fixed costs a solve weigh most). It bounds the cost of a step
+  /// where the pivot steps alone do not: a factorization's cost grows with
+  /// the fill of its matrix, about as the square of the bodies in a 3D
+  /// pile (1,000 spheres poured into a box: 2-4e8 each, and the pivoting
+  /// did not converge within 1e9, at up to 1 s a step; 80 steps took 8 s). A first
   /// solve that cannot afford another factorization falls back to its safe
   /// answer (SolverStatistics::directFallbacks), a later one is dropped as
   /// at the pivot budget (pivotBudgetCuts). Deterministic, unlike a limit
