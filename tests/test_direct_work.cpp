@@ -112,8 +112,8 @@ TEST_CASE_TEMPLATE("a direct solve that cannot afford a factorization falls back
   CHECK(bound.lowest > 0.1 - 2e-3);
 }
 
-// A chain's factor costs a few multiply-adds a row, its pivot steps some
-// hundred times more (residuals, solves, sparse bookkeeping): the work
+// A chain's factor costs a few dozen multiply-adds a row, its pivot steps
+// ten to thirty times more (residuals, solves, sparse bookkeeping): the work
 // counted for a step of 200 hinged links is at least
 // Solver::kDirectRowWork a row (about 47 a row by its factor alone), and a
 // budget below what the step takes is kept.

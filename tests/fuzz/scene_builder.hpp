@@ -521,9 +521,9 @@ struct Builder {
     if (knobs & 16) solver->setEnablePostStabilization(false);
     // The 2 s rule stands for ~0.2 s a step in Release (ASan runs some ten
     // times slower): the direct solves get that share of the default work
-    // budget (3e8, 0.1-0.3 s of an island's step in Release), so that a
-    // scene may spend all of it (a 1,715-node wire did, 3.4 s under ASan;
-    // findings/slow-wire-pivoting).
+    // budget (3e8, up to 0.15-0.6 s of an island's step in Release), so
+    // that a scene may spend all of it (a 1,715-node wire did, 3.4 s under
+    // ASan; findings/slow-wire-pivoting-fixed).
     solver->setMaxDirectWork(solver->getMaxDirectWork() / 10.0);
     sim.setSolver(solver);
 
