@@ -16762,9 +16762,9 @@ class Solver : public Referenced {
   /// bookkeeping. A chain's factor takes ~40 multiply-adds a row, its
   /// pivot step 300-700 ns a row (Release, 2026-12-06): counted by its
   /// factor alone, a 1,715-node wire ran 0.28 s a step on 2.3e7
-  /// multiply-adds, 30 times a 3D pile's time for the same count. In body space (piles,
-  /// pyramids) the factor of 6x6 blocks outweighs the rows and is counted
-  /// alone.
+  /// multiply-adds, 30 times a 3D pile's time for the same count. In body
+  /// space (piles, pyramids) the factor of 6x6 blocks outweighs the rows
+  /// and is counted alone.
   static constexpr double kDirectRowWork = 256.0;
   /// The work the direct solves of one island may do in a step's solve
   /// (its geometric-stiffness re-solves share it; the post-stabilization's
@@ -16778,11 +16778,11 @@ class Solver : public Referenced {
   /// where the pivot steps alone do not: a factorization's cost grows with
   /// the fill of its matrix, about as the square of the bodies in a 3D
   /// pile (1,000 spheres poured into a box: 2-4e8 each, and the pivoting
-  /// did not converge within 1e9, at up to 1 s a step; 80 steps took 8 s). A first
-  /// solve that cannot afford another factorization falls back to its safe
-  /// answer (SolverStatistics::directFallbacks), a later one is dropped as
-  /// at the pivot budget (pivotBudgetCuts). Deterministic, unlike a limit
-  /// on wall-clock time.
+  /// did not converge within 1e9, at up to 1 s a step; 80 steps took 8
+  /// s). A first solve that cannot afford another factorization falls back
+  /// to its safe answer (SolverStatistics::directFallbacks), a later one is
+  /// dropped as at the pivot budget (pivotBudgetCuts). Deterministic,
+  /// unlike a limit on wall-clock time.
   [[nodiscard]] double getMaxDirectWork() const { return maxDirectWork_; }
   void setMaxDirectWork(double multiplyAdds) {
     if (!(multiplyAdds > 0.0))
@@ -18408,7 +18408,7 @@ class AnalyzedLDLT : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, E
 /// add), refined by projected Gauss–Seidel. The solve is reported as not
 /// converged. A solve is also given a budget of work (multiply-adds of its
 /// factorizations, as the symbolic analysis counts them, and in row space
-/// kRowWork a row for each pivot step): it takes only the
+/// Solver::kDirectRowWork a row for each pivot step): it takes only the
 /// pivot steps the budget affords, and where it cannot afford one
 /// factorization (a pile of a thousand spheres, whose matrix fills in like
 /// a 3D mesh's), it falls back to the safe answer at once. The cost of a
@@ -18440,10 +18440,6 @@ class DirectSolve {
   /// that step (the sweeps alone then lower f).
   static constexpr int kLineSearchHalvings = 8;
 
-  /// The work of a row-space pivot step beyond its factorization, a row
-  /// (Solver::kDirectRowWork).
-  static constexpr double kRowWork = Solver::kDirectRowWork;
-
   DirectSolve() = default;
   /// A solve that turns to the descent after `blockPivotingStrikes` steps
   /// without a new fewest-infeasible count (0: after the first step).
@@ -18464,7 +18460,8 @@ class DirectSolve {
     // A pivot step's rows count in row space; in body space the factor of
     // 6x6 blocks outweighs them (a settling pile of 1,000 spheres: ~1.4e7
     // multiply-adds against 1.3e6).
-    const double work = bodySpace_ ? bodySpaceSolve_.factorizationWork() : ldlt_.factorizationWork() + kRowWork * n;
+    const double work =
+        bodySpace_ ? bodySpaceSolve_.factorizationWork() : ldlt_.factorizationWork() + Solver::kDirectRowWork * n;
     // A solve capped at m pivot steps factorizes up to m + 1 times.
     if (maxWork < work * (static_cast<double>(maxPivotSteps) + 1.0))
       maxPivotSteps = static_cast<int>(std::floor(maxWork / work)) - 1;

@@ -95,7 +95,7 @@ class AnalyzedLDLT : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, E
 /// add), refined by projected Gauss–Seidel. The solve is reported as not
 /// converged. A solve is also given a budget of work (multiply-adds of its
 /// factorizations, as the symbolic analysis counts them, and in row space
-/// kRowWork a row for each pivot step): it takes only the
+/// Solver::kDirectRowWork a row for each pivot step): it takes only the
 /// pivot steps the budget affords, and where it cannot afford one
 /// factorization (a pile of a thousand spheres, whose matrix fills in like
 /// a 3D mesh's), it falls back to the safe answer at once. The cost of a
@@ -127,10 +127,6 @@ class DirectSolve {
   /// that step (the sweeps alone then lower f).
   static constexpr int kLineSearchHalvings = 8;
 
-  /// The work of a row-space pivot step beyond its factorization, a row
-  /// (Solver::kDirectRowWork).
-  static constexpr double kRowWork = Solver::kDirectRowWork;
-
   DirectSolve() = default;
   /// A solve that turns to the descent after `blockPivotingStrikes` steps
   /// without a new fewest-infeasible count (0: after the first step).
@@ -151,7 +147,8 @@ class DirectSolve {
     // A pivot step's rows count in row space; in body space the factor of
     // 6x6 blocks outweighs them (a settling pile of 1,000 spheres: ~1.4e7
     // multiply-adds against 1.3e6).
-    const double work = bodySpace_ ? bodySpaceSolve_.factorizationWork() : ldlt_.factorizationWork() + kRowWork * n;
+    const double work =
+        bodySpace_ ? bodySpaceSolve_.factorizationWork() : ldlt_.factorizationWork() + Solver::kDirectRowWork * n;
     // A solve capped at m pivot steps factorizes up to m + 1 times.
     if (maxWork < work * (static_cast<double>(maxPivotSteps) + 1.0))
       maxPivotSteps = static_cast<int>(std::floor(maxWork / work)) - 1;

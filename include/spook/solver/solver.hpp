@@ -194,9 +194,9 @@ class Solver : public Referenced {
   /// bookkeeping. A chain's factor takes ~40 multiply-adds a row, its
   /// pivot step 300-700 ns a row (Release, 2026-12-06): counted by its
   /// factor alone, a 1,715-node wire ran 0.28 s a step on 2.3e7
-  /// multiply-adds, 30 times a 3D pile's time for the same count. In body space (piles,
-  /// pyramids) the factor of 6x6 blocks outweighs the rows and is counted
-  /// alone.
+  /// multiply-adds, 30 times a 3D pile's time for the same count. In body
+  /// space (piles, pyramids) the factor of 6x6 blocks outweighs the rows
+  /// and is counted alone.
   static constexpr double kDirectRowWork = 256.0;
   /// The work the direct solves of one island may do in a step's solve
   /// (its geometric-stiffness re-solves share it; the post-stabilization's
@@ -210,11 +210,11 @@ class Solver : public Referenced {
   /// where the pivot steps alone do not: a factorization's cost grows with
   /// the fill of its matrix, about as the square of the bodies in a 3D
   /// pile (1,000 spheres poured into a box: 2-4e8 each, and the pivoting
-  /// did not converge within 1e9, at up to 1 s a step; 80 steps took 8 s). A first
-  /// solve that cannot afford another factorization falls back to its safe
-  /// answer (SolverStatistics::directFallbacks), a later one is dropped as
-  /// at the pivot budget (pivotBudgetCuts). Deterministic, unlike a limit
-  /// on wall-clock time.
+  /// did not converge within 1e9, at up to 1 s a step; 80 steps took 8
+  /// s). A first solve that cannot afford another factorization falls back
+  /// to its safe answer (SolverStatistics::directFallbacks), a later one is
+  /// dropped as at the pivot budget (pivotBudgetCuts). Deterministic,
+  /// unlike a limit on wall-clock time.
   [[nodiscard]] double getMaxDirectWork() const { return maxDirectWork_; }
   void setMaxDirectWork(double multiplyAdds) {
     if (!(multiplyAdds > 0.0))
