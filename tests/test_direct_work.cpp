@@ -101,7 +101,7 @@ TEST_CASE_TEMPLATE("a direct solve that cannot afford a factorization falls back
   // within the first half second (from the 10th step on, float and double,
   // measured 2026-12-06).
   const direct_work_test::PileRun unbound = direct_work_test::runPile<S>(0.0, 30);
-  const double budget = 5e6;
+  const double budget = 1e6;
   const direct_work_test::PileRun bound = direct_work_test::runPile<S>(budget);
   MESSAGE("default budget: most work in a step ", unbound.mostWork, "; budget ", budget, ": most ", bound.mostWork,
           ", ", bound.factorizations, " factorizations, rms speed ", bound.rmsSpeed * 1e3, " mm/s");
