@@ -206,9 +206,18 @@ class ContactRows {
       } else {
         normal.compliance = 1.0 / double(p.youngsModulus);
         normal.damping = double(p.damping);
-        // SPOOK's a·g is the speed at which the overlap is pushed out: capped.
+        // SPOOK's a·g is the speed at which the overlap is pushed out:
+        // capped. The cap is on the push-out, not on the load: a point may
+        // also be as deep as g = F·c, the spring's overlap under the force
+        // F it carried in the last step (its own or its share of its
+        // pair's; a light body's F·c is nanometres). A cap on g alone caps
+        // the load a contact bears at g_cap/c: a 1e8 kg box sank through a
+        // plane at 14 m/s.
         const SpookParameters spook = SpookParameters::holonomic(normal.compliance, normal.damping, h);
-        const double deepest = -spook.violationForSpeed(settings.maxDepenetrationSpeed);
+        const double share =
+            lastPair ? lastPair->normalForce / double(std::max<std::size_t>(contact.getNumEnabledPoints(), 1)) : 0.0;
+        const double carried = std::max({lastForceOfPoint.dot(n), share, 0.0}) * normal.compliance;
+        const double deepest = -(spook.violationForSpeed(settings.maxDepenetrationSpeed) + carried);
         normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
       }
       append(normal, lastForceOfPoint.dot(n) * h);
