@@ -109,6 +109,84 @@ TEST_CASE_TEMPLATE("two spheres apart by less than their reaches give one gap po
   }
 }
 
+// A tipping domino's top edge runs parallel to the next domino's face: the
+// cross product of that edge with the face's vertical edge is the face's
+// normal, up to round-off and any slight skew of the two, and it once
+// decided whether the pair gave gap points or none (the dominoes then met
+// 7 cm deep in a step). Apart by `gap` along the face, the pair gives the
+// two corners of the edge as gap points, whatever the skew.
+TEST_CASE_TEMPLATE("a tipping box's edge parallel to the next box's face gives gap points at any skew", S, float,
+                   double) {
+  spook::ref_ptr<spook::SpaceT<S>> space = new spook::SpaceT<S>();
+  const spook::Vec3T<S> half(S(0.05), S(0.5), S(1));
+  // The two dominoes of a toppling row as they were a step before they met
+  // 7 cm deep (their poses to the last digit), the tipping one moved on by
+  // up to 1 cm: apart by 0.3 mm to 1 cm, they gave no gap point.
+  for (const double dx : {-0.01, -0.003, 0.0}) {
+    CAPTURE(dx);
+    auto falling = bodyAt<S>(new spook::BoxT<S>(half),
+                             {S(2.4559698567568375 + dx), S(1.5380420202696101e-06), S(0.91647990211263497)});
+    falling->setRotation(spook::QuatT<S>(S(0.97298363671594301), S(-1.489448898235081e-07), S(0.23087408404307549),
+                                         S(5.1655180947433321e-07))
+                             .normalized());
+    auto next =
+        bodyAt<S>(new spook::BoxT<S>(half), {S(3.0001268208282204), S(-8.8212172479885442e-08), S(1.0000033878037746)});
+    next->setRotation(spook::QuatT<S>(S(0.99999999798998584), S(2.7525646875031645e-08), S(6.3400972465229379e-05),
+                                      S(5.8670294629778145e-07))
+                          .normalized());
+    space->update({falling, next}, nullptr, std::vector<spook::StepReachT<S>>{{S(0.06), S(0.04)}, {S(0), S(0)}});
+    CHECK(space->getGeometryContacts().empty());
+    REQUIRE(space->getSpeculativeContacts().size() == 1);
+    CHECK(space->getSpeculativeContacts()[0].points().size() == 2);
+    for (const auto& p : space->getSpeculativeContacts()[0].points())
+      CHECK(double(p.getDepth()) == doctest::Approx(dx - 3e-4).epsilon(0.05));
+  }
+  for (const double tilt : {0.3, 0.466, 0.6})
+    for (const double skew : {-1e-3, -1e-7, 0.0, 1e-7, 1e-4, 1e-3})
+      for (const double gap : {3e-4, 0.01, 0.03}) {
+        CAPTURE(tilt);
+        CAPTURE(skew);
+        CAPTURE(gap);
+        // The standing one, turned by a little about y and z.
+        const spook::QuatT<S> standing(Eigen::AngleAxis<S>(S(skew), spook::Vec3T<S>::UnitZ()) *
+                                       Eigen::AngleAxis<S>(S(1.3e-4), spook::Vec3T<S>::UnitY()));
+        auto next = bodyAt<S>(new spook::BoxT<S>(half), {S(3), S(0), S(1)});
+        next->setRotation(standing);
+        // The tipping one, about y toward it and by the skew about x.
+        const spook::QuatT<S> tipping(Eigen::AngleAxis<S>(S(tilt), spook::Vec3T<S>::UnitY()) *
+                                      Eigen::AngleAxis<S>(S(skew), spook::Vec3T<S>::UnitX()));
+        auto falling = bodyAt<S>(new spook::BoxT<S>(half), {S(0), S(0), S(1)});
+        falling->setRotation(tipping);
+        // Its top edge `gap` short of the face at the nearer corner.
+        const auto cornerGaps = [&] {
+          std::vector<double> gaps;
+          for (const S y : {S(-0.5), S(0.5)}) {
+            const spook::Vec3T<S> corner = falling->getPosition() + tipping * spook::Vec3T<S>(S(0.05), y, S(1));
+            const spook::Vec3T<S> local = standing.conjugate() * (corner - next->getPosition());
+            gaps.push_back(double(-S(0.05) - local.x()));
+          }
+          return gaps;
+        };
+        const std::vector<double> before = cornerGaps();
+        falling->setPosition(spook::Vec3T<S>(S(std::min(before[0], before[1]) - gap), S(0), S(1)));
+        const std::vector<double> gaps = cornerGaps();
+        const double least = std::min(gaps[0], gaps[1]), most = std::max(gaps[0], gaps[1]);
+        REQUIRE(std::abs(least - gap) < 1e-5);
+        space->update({falling, next}, nullptr, std::vector<spook::StepReachT<S>>{{S(0.05), S(0.05)}, {S(0), S(0)}});
+        CHECK(space->getGeometryContacts().empty());
+        REQUIRE(space->getSpeculativeContacts().size() == 1);
+        const auto& points = space->getSpeculativeContacts()[0].points();
+        CHECK(points.size() == 2);
+        for (const auto& p : points) {
+          // Short of the corners' gaps by at most the edge axis's 5% bias.
+          const double tolerance = pick<S>(1e-9, 2e-6);
+          CHECK(-double(p.getDepth()) >= 0.95 * least - tolerance);
+          CHECK(-double(p.getDepth()) <= most + tolerance);
+          CHECK(std::abs(double(p.getNormal().x())) > 0.999);
+        }
+      }
+}
+
 // Released at rest 1 mm above the ground, a sphere falls g h² = 2.72 mm in
 // its first step (symplectic Euler, h = 1/60 s). Found only once it
 // overlaps, it would be 1.72 mm deep before its contact acts; found ahead,
