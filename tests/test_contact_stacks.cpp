@@ -111,11 +111,12 @@ TEST_CASE_TEMPLATE("a 1000 kg box on four 1 kg boxes stays put (direct)", S, flo
 // A load whose contact springs sit deeper than the depenetration cap lets
 // a point push (about 5 cm at 60 Hz, default material) rests where the
 // springs carry it: a 20 × 20 × 10 m concrete caisson (9,600 t) on the
-// ground presses each of its four corner points m·g/4 deep into a spring
-// of stiffness E (N/m), and two 3 × 6 × 3 m blocks of 1,000 t carry one
-// of 100,000 t the same way (6 m wide: on springs as soft, 3 m wide, the
-// load is an inverted pendulum, which tipped over in float). Both sank through at 2–14 m/s while the cap bounded
-// the overlap a contact may resist, and with it its load.
+// ground presses each of its four corner points m·g/(4E) deep (a point's
+// spring is E N/m), and two 3 × 6 × 3 m blocks of 1,000 t carry one of
+// 100,000 t the same way (6 m wide: 3 m wide on springs this soft, the
+// load is an inverted pendulum, which tipped over in float). While the cap
+// bounded the overlap a contact may resist, and with it its load, the
+// caisson sank 5.2 m in 10 s and the block fell 428 m in 30 s.
 TEST_CASE_TEMPLATE("a load deeper in its contact springs than the depenetration cap rests at the springs' depth", S,
                    float, double) {
   for (const Policy policy : spook::test::kPolicies) {

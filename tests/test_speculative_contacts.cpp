@@ -120,8 +120,8 @@ TEST_CASE_TEMPLATE("a tipping box's edge parallel to the next box's face gives g
   spook::ref_ptr<spook::SpaceT<S>> space = new spook::SpaceT<S>();
   const spook::Vec3T<S> half(S(0.05), S(0.5), S(1));
   // The two dominoes of a toppling row as they were a step before they met
-  // 7 cm deep (their poses to the last digit), the tipping one moved on by
-  // up to 1 cm: apart by 0.3 mm to 1 cm, they gave no gap point.
+  // 7 cm deep (their poses to the last digit), and the tipping one moved
+  // back by up to 1 cm: apart by 0.3 mm to 1 cm, they gave no gap point.
   for (const double dx : {-0.01, -0.003, 0.0}) {
     CAPTURE(dx);
     auto falling = bodyAt<S>(new spook::BoxT<S>(half),
