@@ -22639,6 +22639,9 @@ class ContactRows {
     }
     const PairMemory* lastPair = findLastPair(pairKey(contact));
     const double normalEstimate = estimateNormalForce(contact, model, lastPair, gravity);
+    const std::size_t numEnabled = std::max<std::size_t>(contact.getNumEnabledPoints(), 1);
+    // Each point's share of the force the pair carried in the last step (N).
+    const double lastShare = lastPair ? lastPair->normalForce / double(numEnabled) : 0.0;
     const Eigen::Isometry3d toFirstGeometry =
         Eigen::Isometry3d(contact.geometry(0)->getTransform().template cast<double>().matrix()).inverse();
 
@@ -22701,9 +22704,7 @@ class ContactRows {
         // the load a contact bears at g_cap/c: a 1e8 kg box sank through a
         // plane at 14 m/s.
         const SpookParameters spook = SpookParameters::holonomic(normal.compliance, normal.damping, h);
-        const double share =
-            lastPair ? lastPair->normalForce / double(std::max<std::size_t>(contact.getNumEnabledPoints(), 1)) : 0.0;
-        const double carried = std::max({lastForceOfPoint.dot(n), share, 0.0}) * normal.compliance;
+        const double carried = std::max({lastForceOfPoint.dot(n), lastShare, 0.0}) * normal.compliance;
         const double deepest = -(spook.violationForSpeed(settings.maxDepenetrationSpeed) + carried);
         normal.violation = std::max(double(p.adhesiveOverlap - point.depth), deepest);
       }
@@ -22718,9 +22719,7 @@ class ContactRows {
         row.speed = (surface[0] - surface[1]).dot(tangent[k]);
         row.compliance = double(p.surfaceViscosity[k]);
         const double mu = double(p.friction[k]);
-        row.upper = bound == FrictionBound::FIXED && gap > 0.0
-                        ? 0.0
-                        : mu * normalEstimate / double(std::max<std::size_t>(contact.getNumEnabledPoints(), 1));
+        row.upper = bound == FrictionBound::FIXED && gap > 0.0 ? 0.0 : mu * normalEstimate / double(numEnabled);
         row.lower = -row.upper;
         set.friction.push_back({static_cast<int>(rows.size()), normalIndex,
                                 bound == FrictionBound::CONE ? normalIndex + 2 - k : -1, mu, bound, false});
