@@ -402,7 +402,9 @@ class IterativeSolver final : public Solver {
 /// with the iterative impulses, in which DIRECT_AND_ITERATIVE friction keeps
 /// the bounds the iterative pass found (PHYSICS.md §2.5). Where a direct
 /// solve ends the passes, the iterative friction is then scaled back within
-/// μ times the normal impulses it found (detail::clampFrictionToNormals).
+/// μ times the normal impulses it found (detail::clampFrictionToNormals);
+/// where one falls back or the island's budget cuts it short, the step ends
+/// with Gauss–Seidel over every row, from the answer it has.
 class HybridSolver final : public Solver {
  public:
   HybridSolver() { setEnablePostStabilization(true); }
