@@ -989,7 +989,7 @@ std::vector<ContactPointT<S>> deepestPerFace(const std::vector<ContactPointT<S>>
 }
 
 template <class S, class Shape, class SoupD>
-Tally shapeAgainstSoup(std::uint64_t seed, auto&& makeShape, auto&& makeSoup, auto&& exact) {
+Tally shapeAgainstSoup(std::uint64_t seed, auto&& makeShape, auto&& makeSoup, auto&& exact, double depthTolerance) {
   RandomPoses random(seed);
   Tally tally;
   std::vector<ContactPointT<S>> points;
@@ -1022,7 +1022,7 @@ Tally shapeAgainstSoup(std::uint64_t seed, auto&& makeShape, auto&& makeSoup, au
     compareContacts<S>(
         refs, deepestPerFace(points, refs, tally),
         [&](std::size_t i, const Vec3d& n) { return projectionOverlap(*shape, XSd, triangles[i], kIdentity, n); },
-        noPoint, kCcdDepth, tally);
+        noPoint, depthTolerance, tally);
   }
   return tally;
 }
@@ -1050,11 +1050,11 @@ ref_ptr<ConvexT<double>> randomConvex(RandomPoses& random) {
 }
 
 template <class S, class Shape, class SoupD>
-void checkShapeAgainstSoup(const std::string& name, std::uint64_t seed, auto&& makeShape, auto&& makeSoup,
-                           auto&& exact) {
-  const Tally tally = shapeAgainstSoup<S, Shape, SoupD>(seed, makeShape, makeSoup, exact);
+void checkShapeAgainstSoup(const std::string& name, std::uint64_t seed, auto&& makeShape, auto&& makeSoup, auto&& exact,
+                           double depthTolerance = kCcdDepth) {
+  const Tally tally = shapeAgainstSoup<S, Shape, SoupD>(seed, makeShape, makeSoup, exact, depthTolerance);
   MESSAGE(describe<S>(name, tally));
-  checkTally(tally, kCcdDepth, kCcdPoses / 5);
+  checkTally(tally, depthTolerance, kCcdPoses / 5);
 }
 
 }  // namespace
@@ -1068,16 +1068,19 @@ TEST_CASE_TEMPLATE("mesh: box vs a two-cell HeightField is the separating-axis p
                                                                boxTriangle);
 }
 
+// Capsules against triangles in closed form (capsule_triangle.hpp): as
+// exact as the analytic pairs, float too (worst 3e-8 m in float, 6e-16 m in
+// double; libccd's polished path, used before, 5.6e-7 m and 3.6e-7 m).
 TEST_CASE_TEMPLATE("mesh: capsule vs a one-triangle Trimesh is r minus the segment-triangle distance", S, float,
                    double) {
   checkShapeAgainstSoup<S, CapsuleT<double>, TrimeshT<double>>("capsule-triangle", 513, randomCapsule, randomTriangle,
-                                                               capsuleTriangle);
+                                                               capsuleTriangle, kAnalyticDepth);
 }
 
 TEST_CASE_TEMPLATE("mesh: capsule vs a two-cell HeightField is r minus the segment-triangle distance", S, float,
                    double) {
   checkShapeAgainstSoup<S, CapsuleT<double>, HeightFieldT<double>>("capsule-heightfield", 514, randomCapsule, twoCells,
-                                                                   capsuleTriangle);
+                                                                   capsuleTriangle, kAnalyticDepth);
 }
 
 // With six starts and a 48-direction lattice the bridge stopped, on a few

@@ -2531,6 +2531,110 @@ class AabbTree {
 #include <cmath>
 #include <cstdint>
 
+// --- begin spook/collide/detail/segment_distance.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_SEGMENT_DISTANCE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_SEGMENT_DISTANCE_HPP
+
+#include <algorithm>
+#include <cmath>
+
+namespace spook::detail {
+
+// Closest points between segments and points, the geometric core of every
+// collider with a capsule or a line (Ericson, Real-Time Collision
+// Detection, §5.1.2 and §5.1.9). All results are finite for any finite
+// input, degenerate segments and parallel segments included.
+
+/// Parameter t ∈ [0, 1] of the point of segment p + t (q − p) closest to x
+/// (0 for a degenerate segment).
+template <Scalar S>
+[[nodiscard]] S closestParameterOnSegment(const Vec3T<S>& p, const Vec3T<S>& q, const Vec3T<S>& x) {
+  const Vec3T<S> d = q - p;
+  const S dd = d.squaredNorm();
+  if (!(dd > S(0))) return S(0);
+  return std::clamp(d.dot(x - p) / dd, S(0), S(1));
+}
+
+/// The point of segment [p, q] closest to x.
+template <Scalar S>
+[[nodiscard]] Vec3T<S> closestPointOnSegment(const Vec3T<S>& p, const Vec3T<S>& q, const Vec3T<S>& x) {
+  return p + closestParameterOnSegment(p, q, x) * (q - p);
+}
+
+/// A unit vector perpendicular to d (any non-zero d), chosen deterministically:
+/// d crossed with the coordinate axis least aligned with it.
+template <Scalar S>
+[[nodiscard]] Vec3T<S> unitPerpendicular(const Vec3T<S>& d) {
+  int axis = 0;
+  const Vec3T<S> a = d.cwiseAbs();
+  if (a.y() < a[axis]) axis = 1;
+  if (a.z() < a[axis]) axis = 2;
+  const Vec3T<S> n = d.cross(Vec3T<S>::Unit(axis));
+  const S length = n.norm();
+  return length > S(0) ? Vec3T<S>(n / length) : Vec3T<S>(Vec3T<S>::UnitX());
+}
+
+/// The closest points of segments [p1, q1] and [p2, q2]: parameters s, t
+/// ∈ [0, 1], the points themselves, and whether the segments are parallel
+/// or degenerate (then the pair is one deterministic choice among many).
+template <Scalar S>
+struct SegmentClosestPoints {
+  S s = S(0);
+  S t = S(0);
+  Vec3T<S> onFirst = Vec3T<S>::Zero();
+  Vec3T<S> onSecond = Vec3T<S>::Zero();
+  bool parallel = false;
+};
+
+/// Minimizes |p1 + s d1 − (p2 + t d2)|² over the unit square (Ericson
+/// §5.1.9): the unconstrained minimum of the line pair is clamped to the
+/// first segment, then the second parameter follows and is clamped, and the
+/// first is recomputed once. Parallel (or degenerate) segments, where the
+/// determinant a e − b² vanishes relative to a e, start from s = 0.
+template <Scalar S>
+[[nodiscard]] SegmentClosestPoints<S> closestPointsBetweenSegments(const Vec3T<S>& p1, const Vec3T<S>& q1,
+                                                                   const Vec3T<S>& p2, const Vec3T<S>& q2) {
+  const Vec3T<S> d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const S a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  SegmentClosestPoints<S> result;
+  if (!(a > S(0)) && !(e > S(0))) {
+    result.parallel = true;
+  } else if (!(a > S(0))) {
+    result.t = std::clamp(f / e, S(0), S(1));
+    result.parallel = true;
+  } else {
+    const S c = d1.dot(r);
+    if (!(e > S(0))) {
+      result.s = std::clamp(-c / a, S(0), S(1));
+      result.parallel = true;
+    } else {
+      const S b = d1.dot(d2);
+      // a e − b² = |d1 × d2|², computed as such to keep its relative accuracy
+      // for nearly parallel segments.
+      const S denominator = d1.cross(d2).squaredNorm();
+      result.parallel = !(denominator > S(4) * ScalarTraits<S>::epsilon() * a * e);
+      S s = result.parallel ? S(0) : std::clamp((b * f - c * e) / denominator, S(0), S(1));
+      S t = (b * s + f) / e;
+      if (t < S(0)) {
+        t = S(0);
+        s = std::clamp(-c / a, S(0), S(1));
+      } else if (t > S(1)) {
+        t = S(1);
+        s = std::clamp((b - c) / a, S(0), S(1));
+      }
+      result.s = s;
+      result.t = t;
+    }
+  }
+  result.onFirst = p1 + result.s * d1;
+  result.onSecond = p2 + result.t * d2;
+  return result;
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_SEGMENT_DISTANCE_HPP
+// --- end spook/collide/detail/segment_distance.hpp ---
+
 namespace spook::detail {
 
 /// One triangle of a mesh or height field, as a convex shape for the
@@ -2578,6 +2682,36 @@ struct Triangle {
     return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
   }
 };
+
+/// The point of triangle t closest to p: by Voronoi regions (Ericson,
+/// Real-Time Collision Detection, §5.1.5) for a proper triangle; over its
+/// three edges for a degenerate one (repeated or collinear corners), where
+/// the region tests would divide round-off by round-off.
+template <Scalar S>
+[[nodiscard]] Vec3T<S> closestOnTriangle(const Triangle<S>& t, const Vec3T<S>& p, bool& onFace) {
+  const Vec3T<S>&a = t.v[0], &b = t.v[1], &c = t.v[2];
+  const Vec3T<S> ab = b - a, ac = c - a;
+  const S longest2 = std::max({ab.squaredNorm(), ac.squaredNorm(), (c - b).squaredNorm()});
+  onFace = false;
+  if (!(ab.cross(ac).norm() > S(64) * ScalarTraits<S>::epsilon() * longest2)) {
+    Vec3T<S> best = closestPointOnSegment<S>(a, b, p);
+    for (const Vec3T<S>& q : {closestPointOnSegment<S>(b, c, p), closestPointOnSegment<S>(c, a, p)})
+      if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
+    return best;
+  }
+  const Vec3T<S> ap = p - a, bp = p - b, cp = p - c;
+  const S d1 = ab.dot(ap), d2 = ac.dot(ap), d3 = ab.dot(bp), d4 = ac.dot(bp), d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d1 <= S(0) && d2 <= S(0)) return a;
+  if (d3 >= S(0) && d4 <= d3) return b;
+  if (d6 >= S(0) && d5 <= d6) return c;
+  const S vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+  if (vc <= S(0) && d1 >= S(0) && d3 <= S(0)) return a + ab * (d1 / (d1 - d3));
+  if (vb <= S(0) && d2 >= S(0) && d6 <= S(0)) return a + ac * (d2 / (d2 - d6));
+  if (va <= S(0) && (d4 - d3) >= S(0) && (d5 - d6) >= S(0)) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  onFace = true;
+  const S denominator = va + vb + vc;
+  return a + ab * (vb / denominator) + ac * (vc / denominator);
+}
 
 /// Folds flatter than this between two triangles of a mesh make an inactive
 /// edge (radians, 5°, as Jolt's default active-edge threshold).
@@ -7805,110 +7939,6 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
 #include <algorithm>
 #include <cmath>
 
-// --- begin spook/collide/detail/segment_distance.hpp ---
-#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_SEGMENT_DISTANCE_HPP
-#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_SEGMENT_DISTANCE_HPP
-
-#include <algorithm>
-#include <cmath>
-
-namespace spook::detail {
-
-// Closest points between segments and points, the geometric core of every
-// collider with a capsule or a line (Ericson, Real-Time Collision
-// Detection, §5.1.2 and §5.1.9). All results are finite for any finite
-// input, degenerate segments and parallel segments included.
-
-/// Parameter t ∈ [0, 1] of the point of segment p + t (q − p) closest to x
-/// (0 for a degenerate segment).
-template <Scalar S>
-[[nodiscard]] S closestParameterOnSegment(const Vec3T<S>& p, const Vec3T<S>& q, const Vec3T<S>& x) {
-  const Vec3T<S> d = q - p;
-  const S dd = d.squaredNorm();
-  if (!(dd > S(0))) return S(0);
-  return std::clamp(d.dot(x - p) / dd, S(0), S(1));
-}
-
-/// The point of segment [p, q] closest to x.
-template <Scalar S>
-[[nodiscard]] Vec3T<S> closestPointOnSegment(const Vec3T<S>& p, const Vec3T<S>& q, const Vec3T<S>& x) {
-  return p + closestParameterOnSegment(p, q, x) * (q - p);
-}
-
-/// A unit vector perpendicular to d (any non-zero d), chosen deterministically:
-/// d crossed with the coordinate axis least aligned with it.
-template <Scalar S>
-[[nodiscard]] Vec3T<S> unitPerpendicular(const Vec3T<S>& d) {
-  int axis = 0;
-  const Vec3T<S> a = d.cwiseAbs();
-  if (a.y() < a[axis]) axis = 1;
-  if (a.z() < a[axis]) axis = 2;
-  const Vec3T<S> n = d.cross(Vec3T<S>::Unit(axis));
-  const S length = n.norm();
-  return length > S(0) ? Vec3T<S>(n / length) : Vec3T<S>(Vec3T<S>::UnitX());
-}
-
-/// The closest points of segments [p1, q1] and [p2, q2]: parameters s, t
-/// ∈ [0, 1], the points themselves, and whether the segments are parallel
-/// or degenerate (then the pair is one deterministic choice among many).
-template <Scalar S>
-struct SegmentClosestPoints {
-  S s = S(0);
-  S t = S(0);
-  Vec3T<S> onFirst = Vec3T<S>::Zero();
-  Vec3T<S> onSecond = Vec3T<S>::Zero();
-  bool parallel = false;
-};
-
-/// Minimizes |p1 + s d1 − (p2 + t d2)|² over the unit square (Ericson
-/// §5.1.9): the unconstrained minimum of the line pair is clamped to the
-/// first segment, then the second parameter follows and is clamped, and the
-/// first is recomputed once. Parallel (or degenerate) segments, where the
-/// determinant a e − b² vanishes relative to a e, start from s = 0.
-template <Scalar S>
-[[nodiscard]] SegmentClosestPoints<S> closestPointsBetweenSegments(const Vec3T<S>& p1, const Vec3T<S>& q1,
-                                                                   const Vec3T<S>& p2, const Vec3T<S>& q2) {
-  const Vec3T<S> d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-  const S a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  SegmentClosestPoints<S> result;
-  if (!(a > S(0)) && !(e > S(0))) {
-    result.parallel = true;
-  } else if (!(a > S(0))) {
-    result.t = std::clamp(f / e, S(0), S(1));
-    result.parallel = true;
-  } else {
-    const S c = d1.dot(r);
-    if (!(e > S(0))) {
-      result.s = std::clamp(-c / a, S(0), S(1));
-      result.parallel = true;
-    } else {
-      const S b = d1.dot(d2);
-      // a e − b² = |d1 × d2|², computed as such to keep its relative accuracy
-      // for nearly parallel segments.
-      const S denominator = d1.cross(d2).squaredNorm();
-      result.parallel = !(denominator > S(4) * ScalarTraits<S>::epsilon() * a * e);
-      S s = result.parallel ? S(0) : std::clamp((b * f - c * e) / denominator, S(0), S(1));
-      S t = (b * s + f) / e;
-      if (t < S(0)) {
-        t = S(0);
-        s = std::clamp(-c / a, S(0), S(1));
-      } else if (t > S(1)) {
-        t = S(1);
-        s = std::clamp((b - c) / a, S(0), S(1));
-      }
-      result.s = s;
-      result.t = t;
-    }
-  }
-  result.onFirst = p1 + result.s * d1;
-  result.onSecond = p2 + result.t * d2;
-  return result;
-}
-
-}  // namespace spook::detail
-#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_SEGMENT_DISTANCE_HPP
-// --- end spook/collide/detail/segment_distance.hpp ---
-
 namespace spook {
 
 /// Box–line, in the box frame, for a segment x(t) = p + t d, t ∈ [0, 1].
@@ -9016,6 +9046,129 @@ struct Collider<SphereT<S>, SphereT<S>> {
 #include <cstddef>
 #include <vector>
 
+// --- begin spook/collide/detail/capsule_triangle.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CAPSULE_TRIANGLE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CAPSULE_TRIANGLE_HPP
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace spook::detail {
+
+/// The closest points of a segment and a triangle, and whether the segment
+/// crosses the triangle (then both are where it crosses).
+struct SegmentTriangleClosest {
+  Vec3T<double> onSegment = Vec3T<double>::Zero();
+  Vec3T<double> onTriangle = Vec3T<double>::Zero();
+  bool crosses = false;
+};
+
+/// Segment [p, q] and triangle t: a segment that does not cross the
+/// triangle comes nearest to it at one of its ends (against the face) or
+/// against one of the triangle's edges (Ericson, Real-Time Collision
+/// Detection, §5.1.10's case analysis for a segment and a triangle).
+inline SegmentTriangleClosest closestPointsOfSegmentAndTriangle(const Vec3T<double>& p, const Vec3T<double>& q,
+                                                     const Triangle<double>& t) {
+  SegmentTriangleClosest best;
+  const Vec3T<double> area = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
+  if (const double twice = area.norm(); twice > 0.0) {
+    const Vec3T<double> n = area / twice;
+    const double hp = n.dot(p - t.v[0]), hq = n.dot(q - t.v[0]);
+    if (((hp <= 0.0 && hq >= 0.0) || (hp >= 0.0 && hq <= 0.0)) && hp != hq) {
+      const Vec3T<double> x = p + (hp / (hp - hq)) * (q - p);
+      bool onFace = false;
+      const Vec3T<double> y = closestOnTriangle<double>(t, x, onFace);
+      if (onFace) return {x, y, true};
+    }
+  }
+  double nearest = std::numeric_limits<double>::infinity();
+  const auto consider = [&](const Vec3T<double>& onSegment, const Vec3T<double>& onTriangle) {
+    const double d = (onTriangle - onSegment).squaredNorm();
+    if (d < nearest) {
+      nearest = d;
+      best.onSegment = onSegment;
+      best.onTriangle = onTriangle;
+    }
+  };
+  bool onFace = false;
+  consider(p, closestOnTriangle<double>(t, p, onFace));
+  consider(q, closestOnTriangle<double>(t, q, onFace));
+  for (int k = 0; k < 3; ++k) {
+    const SegmentClosestPoints<double> c = closestPointsBetweenSegments<double>(p, q, t.v[k], t.v[(k + 1) % 3]);
+    consider(c.onFirst, c.onSecond);
+  }
+  return best;
+}
+
+/// Capsule against one triangle of a mesh (mesh frame t_M, placed by X_WM),
+/// in closed form: apart from the triangle, the capsule's segment core
+/// (its axis between the hemisphere centers) comes within r of it at depth
+/// r − d along the line of the closest points; crossing it, the smallest
+/// overlap over the facet normals of the prism core − triangle (the
+/// triangle's normal and the axis × each edge) plus r. Both are the exact
+/// penetration of the convex pair (the capsule is the core grown by r).
+/// The contacts are the overlap of the two supporting features along that
+/// normal (contactsOfFeatures: two points for a capsule lying on the face),
+/// as libccd's path would give them, at about a twentieth of its cost.
+template <Scalar S>
+void collideCapsuleTriangle(const CapsuleT<S>& capsule, const TransformT<S>& X_WA, const Triangle<S>& t_M,
+                            const TransformT<S>& X_WM, ContactSinkT<S>& sink) {
+  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
+  const double sizeA = sizeOf(capsule), sizeB = sizeOf(t_M);
+  if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
+  const TransformT<double> X_WMd = X_WM.template cast<double>();
+  const Triangle<double> t{{X_WMd * t_M.v[0].template cast<double>(), X_WMd * t_M.v[1].template cast<double>(),
+                            X_WMd * t_M.v[2].template cast<double>()}};
+  const Vec3T<double> axis = X_WA.linear().col(1).template cast<double>();
+  const Vec3T<double> center = X_WA.translation().template cast<double>();
+  const Vec3T<double> half = (0.5 * double(capsule.getHeight())) * axis;
+  const Vec3T<double> p = center - half, q = center + half;
+  const double r = double(capsule.getRadius());
+  // As libccd's path: a gap within kTouchingGap of the smaller size touches.
+  const double touching = kTouchingGap * std::min(sizeA, sizeB);
+
+  const SegmentTriangleClosest closest = closestPointsOfSegmentAndTriangle(p, q, t);
+  const Vec3T<double> gap = closest.onTriangle - closest.onSegment;
+  const double distance = gap.norm();
+  Vec3T<double> n;
+  double depth;
+  if (!closest.crosses && distance > 1e-12 * (sizeA + sizeB)) {
+    depth = r - distance;
+    if (depth < -touching) return;
+    n = gap / distance;
+  } else {
+    // f(a) = h_capsule(a) + h_triangle(−a): the overlap of the projections
+    // onto the unit a, from the capsule toward the triangle.
+    depth = std::numeric_limits<double>::infinity();
+    n = t.normal();
+    const auto consider = [&](const Vec3T<double>& direction) {
+      const double length = direction.norm();
+      if (!(length > 1e-12)) return;
+      for (const double sign : {1.0, -1.0}) {
+        const Vec3T<double> a = direction * (sign / length);
+        const double f = std::max(a.dot(p), a.dot(q)) + r - std::min({a.dot(t.v[0]), a.dot(t.v[1]), a.dot(t.v[2])});
+        if (f < depth) {
+          depth = f;
+          n = a;
+        }
+      }
+    };
+    consider((t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]));
+    for (int k = 0; k < 3; ++k) consider(axis.cross(t.v[(k + 1) % 3] - t.v[k]));
+    if (!std::isfinite(depth)) return;
+  }
+  const CcdObject<CapsuleT<S>> objectA(capsule, X_WA);
+  const CcdObject<Triangle<S>> objectB(t_M, X_WM);
+  for (const FeatureClipping::Contact& contact : contactsOfFeatures(objectA, objectB, n, std::max(depth, 0.0)))
+    sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CAPSULE_TRIANGLE_HPP
+// --- end spook/collide/detail/capsule_triangle.hpp ---
+
 namespace spook {
 
 namespace detail {
@@ -9024,46 +9177,6 @@ namespace detail {
 /// triangles overlapping a box of their own frame.
 template <class T>
 concept TriangleSoup = T::kType == ShapeType::TRIMESH || T::kType == ShapeType::HEIGHTFIELD;
-
-/// The point of segment [a, b] closest to p (a for a zero-length segment).
-template <Scalar S>
-[[nodiscard]] Vec3T<S> closestOnSegment(const Vec3T<S>& a, const Vec3T<S>& b, const Vec3T<S>& p) {
-  const Vec3T<S> ab = b - a;
-  const S length2 = ab.squaredNorm();
-  if (!(length2 > S(0))) return a;
-  return a + ab * std::clamp((p - a).dot(ab) / length2, S(0), S(1));
-}
-
-/// The point of triangle t closest to p: by Voronoi regions (Ericson,
-/// Real-Time Collision Detection, §5.1.5) for a proper triangle; over its
-/// three edges for a degenerate one (repeated or collinear corners), where
-/// the region tests would divide round-off by round-off.
-template <Scalar S>
-[[nodiscard]] Vec3T<S> closestOnTriangle(const Triangle<S>& t, const Vec3T<S>& p, bool& onFace) {
-  const Vec3T<S>&a = t.v[0], &b = t.v[1], &c = t.v[2];
-  const Vec3T<S> ab = b - a, ac = c - a;
-  const S longest2 = std::max({ab.squaredNorm(), ac.squaredNorm(), (c - b).squaredNorm()});
-  onFace = false;
-  if (!(ab.cross(ac).norm() > S(64) * ScalarTraits<S>::epsilon() * longest2)) {
-    Vec3T<S> best = closestOnSegment<S>(a, b, p);
-    for (const Vec3T<S>& q : {closestOnSegment<S>(b, c, p), closestOnSegment<S>(c, a, p)})
-      if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
-    return best;
-  }
-  const Vec3T<S> ap = p - a, bp = p - b, cp = p - c;
-  const S d1 = ab.dot(ap), d2 = ac.dot(ap), d3 = ab.dot(bp), d4 = ac.dot(bp), d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d1 <= S(0) && d2 <= S(0)) return a;
-  if (d3 >= S(0) && d4 <= d3) return b;
-  if (d6 >= S(0) && d5 <= d6) return c;
-  const S vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-  if (vc <= S(0) && d1 >= S(0) && d3 <= S(0)) return a + ab * (d1 / (d1 - d3));
-  if (vb <= S(0) && d2 >= S(0) && d6 <= S(0)) return a + ac * (d2 / (d2 - d6));
-  if (va <= S(0) && (d4 - d3) >= S(0) && (d5 - d6) >= S(0))
-    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  onFace = true;
-  const S denominator = va + vb + vc;
-  return a + ab * (vb / denominator) + ac * (vc / denominator);
-}
 
 /// Sphere against one triangle: a contact when the triangle's closest point
 /// to the center lies within the radius. The normal, from the sphere toward
@@ -9109,13 +9222,13 @@ enum class TriangleContacts { SURFACE, PER_TRIANGLE };
 
 /// Contacts of a shape against the triangles of a soup near it, each
 /// triangle a convex shape of its own: boxes, hulls and segments by the
-/// separating axes with a clipped manifold (polytope_sat.hpp), spheres in
-/// closed form, capsules and cylinders through libccd. For the SURFACE,
-/// each triangle's normals are then held to its active edges
-/// (activeEdgeNormals), and a point that two triangles found alike (on the
-/// edge they share: closer than the spread of a sampled feature, normals
-/// within 1°) is kept once, so that a flat region of many triangles pushes
-/// like one face.
+/// separating axes with a clipped manifold (polytope_sat.hpp), spheres and
+/// capsules in closed form (capsule_triangle.hpp), cylinders through
+/// libccd. For the SURFACE, each triangle's normals are then held to its
+/// active edges (activeEdgeNormals), and a point that two triangles found
+/// alike (on the edge they share: closer than the spread of a sampled
+/// feature, normals within 1°) is kept once, so that a flat region of many
+/// triangles pushes like one face.
 template <Scalar S, class A, class Soup>
 void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
                           ContactSinkT<S>& sink, TriangleContacts report = TriangleContacts::SURFACE) {
@@ -9135,6 +9248,8 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
     } else if constexpr (kIsPolytope<A>) {
       makeTrianglePolytope<S>(t_W, triangle);
       collidePolytopes(shape, triangle, staged);
+    } else if constexpr (A::kType == ShapeType::CAPSULE) {
+      collideCapsuleTriangle<S>(a, X_WA, Triangle<S>{{p0, p1, p2}}, X_WM, staged);
     } else {
       const Triangle<S> t_M{{p0, p1, p2}};
       collideByCcd<S>(a, X_WA, t_M, X_WM, staged);

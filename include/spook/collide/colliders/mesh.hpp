@@ -7,6 +7,7 @@
 
 #include <spook/collide/collider.hpp>
 #include <spook/collide/contact_point.hpp>
+#include <spook/collide/detail/capsule_triangle.hpp>
 #include <spook/collide/detail/ccd_bridge.hpp>
 #include <spook/collide/detail/polytope_sat.hpp>
 #include <spook/collide/detail/triangle.hpp>
@@ -26,46 +27,6 @@ namespace detail {
 /// triangles overlapping a box of their own frame.
 template <class T>
 concept TriangleSoup = T::kType == ShapeType::TRIMESH || T::kType == ShapeType::HEIGHTFIELD;
-
-/// The point of segment [a, b] closest to p (a for a zero-length segment).
-template <Scalar S>
-[[nodiscard]] Vec3T<S> closestOnSegment(const Vec3T<S>& a, const Vec3T<S>& b, const Vec3T<S>& p) {
-  const Vec3T<S> ab = b - a;
-  const S length2 = ab.squaredNorm();
-  if (!(length2 > S(0))) return a;
-  return a + ab * std::clamp((p - a).dot(ab) / length2, S(0), S(1));
-}
-
-/// The point of triangle t closest to p: by Voronoi regions (Ericson,
-/// Real-Time Collision Detection, §5.1.5) for a proper triangle; over its
-/// three edges for a degenerate one (repeated or collinear corners), where
-/// the region tests would divide round-off by round-off.
-template <Scalar S>
-[[nodiscard]] Vec3T<S> closestOnTriangle(const Triangle<S>& t, const Vec3T<S>& p, bool& onFace) {
-  const Vec3T<S>&a = t.v[0], &b = t.v[1], &c = t.v[2];
-  const Vec3T<S> ab = b - a, ac = c - a;
-  const S longest2 = std::max({ab.squaredNorm(), ac.squaredNorm(), (c - b).squaredNorm()});
-  onFace = false;
-  if (!(ab.cross(ac).norm() > S(64) * ScalarTraits<S>::epsilon() * longest2)) {
-    Vec3T<S> best = closestOnSegment<S>(a, b, p);
-    for (const Vec3T<S>& q : {closestOnSegment<S>(b, c, p), closestOnSegment<S>(c, a, p)})
-      if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
-    return best;
-  }
-  const Vec3T<S> ap = p - a, bp = p - b, cp = p - c;
-  const S d1 = ab.dot(ap), d2 = ac.dot(ap), d3 = ab.dot(bp), d4 = ac.dot(bp), d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d1 <= S(0) && d2 <= S(0)) return a;
-  if (d3 >= S(0) && d4 <= d3) return b;
-  if (d6 >= S(0) && d5 <= d6) return c;
-  const S vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-  if (vc <= S(0) && d1 >= S(0) && d3 <= S(0)) return a + ab * (d1 / (d1 - d3));
-  if (vb <= S(0) && d2 >= S(0) && d6 <= S(0)) return a + ac * (d2 / (d2 - d6));
-  if (va <= S(0) && (d4 - d3) >= S(0) && (d5 - d6) >= S(0))
-    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  onFace = true;
-  const S denominator = va + vb + vc;
-  return a + ab * (vb / denominator) + ac * (vc / denominator);
-}
 
 /// Sphere against one triangle: a contact when the triangle's closest point
 /// to the center lies within the radius. The normal, from the sphere toward
@@ -111,13 +72,13 @@ enum class TriangleContacts { SURFACE, PER_TRIANGLE };
 
 /// Contacts of a shape against the triangles of a soup near it, each
 /// triangle a convex shape of its own: boxes, hulls and segments by the
-/// separating axes with a clipped manifold (polytope_sat.hpp), spheres in
-/// closed form, capsules and cylinders through libccd. For the SURFACE,
-/// each triangle's normals are then held to its active edges
-/// (activeEdgeNormals), and a point that two triangles found alike (on the
-/// edge they share: closer than the spread of a sampled feature, normals
-/// within 1°) is kept once, so that a flat region of many triangles pushes
-/// like one face.
+/// separating axes with a clipped manifold (polytope_sat.hpp), spheres and
+/// capsules in closed form (capsule_triangle.hpp), cylinders through
+/// libccd. For the SURFACE, each triangle's normals are then held to its
+/// active edges (activeEdgeNormals), and a point that two triangles found
+/// alike (on the edge they share: closer than the spread of a sampled
+/// feature, normals within 1°) is kept once, so that a flat region of many
+/// triangles pushes like one face.
 template <Scalar S, class A, class Soup>
 void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
                           ContactSinkT<S>& sink, TriangleContacts report = TriangleContacts::SURFACE) {
@@ -137,6 +98,8 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
     } else if constexpr (kIsPolytope<A>) {
       makeTrianglePolytope<S>(t_W, triangle);
       collidePolytopes(shape, triangle, staged);
+    } else if constexpr (A::kType == ShapeType::CAPSULE) {
+      collideCapsuleTriangle<S>(a, X_WA, Triangle<S>{{p0, p1, p2}}, X_WM, staged);
     } else {
       const Triangle<S> t_M{{p0, p1, p2}};
       collideByCcd<S>(a, X_WA, t_M, X_WM, staged);

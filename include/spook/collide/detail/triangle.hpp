@@ -7,6 +7,7 @@
 
 #include <spook/collide/bounding_box.hpp>
 #include <spook/collide/detail/aabb_tree.hpp>
+#include <spook/collide/detail/segment_distance.hpp>
 #include <spook/collide/supporting_feature.hpp>
 #include <spook/core/math.hpp>
 
@@ -57,6 +58,36 @@ struct Triangle {
     return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
   }
 };
+
+/// The point of triangle t closest to p: by Voronoi regions (Ericson,
+/// Real-Time Collision Detection, §5.1.5) for a proper triangle; over its
+/// three edges for a degenerate one (repeated or collinear corners), where
+/// the region tests would divide round-off by round-off.
+template <Scalar S>
+[[nodiscard]] Vec3T<S> closestOnTriangle(const Triangle<S>& t, const Vec3T<S>& p, bool& onFace) {
+  const Vec3T<S>&a = t.v[0], &b = t.v[1], &c = t.v[2];
+  const Vec3T<S> ab = b - a, ac = c - a;
+  const S longest2 = std::max({ab.squaredNorm(), ac.squaredNorm(), (c - b).squaredNorm()});
+  onFace = false;
+  if (!(ab.cross(ac).norm() > S(64) * ScalarTraits<S>::epsilon() * longest2)) {
+    Vec3T<S> best = closestPointOnSegment<S>(a, b, p);
+    for (const Vec3T<S>& q : {closestPointOnSegment<S>(b, c, p), closestPointOnSegment<S>(c, a, p)})
+      if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
+    return best;
+  }
+  const Vec3T<S> ap = p - a, bp = p - b, cp = p - c;
+  const S d1 = ab.dot(ap), d2 = ac.dot(ap), d3 = ab.dot(bp), d4 = ac.dot(bp), d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d1 <= S(0) && d2 <= S(0)) return a;
+  if (d3 >= S(0) && d4 <= d3) return b;
+  if (d6 >= S(0) && d5 <= d6) return c;
+  const S vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+  if (vc <= S(0) && d1 >= S(0) && d3 <= S(0)) return a + ab * (d1 / (d1 - d3));
+  if (vb <= S(0) && d2 >= S(0) && d6 <= S(0)) return a + ac * (d2 / (d2 - d6));
+  if (va <= S(0) && (d4 - d3) >= S(0) && (d5 - d6) >= S(0)) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  onFace = true;
+  const S denominator = va + vb + vc;
+  return a + ab * (vb / denominator) + ac * (vc / denominator);
+}
 
 /// Folds flatter than this between two triangles of a mesh make an inactive
 /// edge (radians, 5°, as Jolt's default active-edge threshold).
