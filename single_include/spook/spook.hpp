@@ -9168,6 +9168,173 @@ void collideCapsuleTriangle(const CapsuleT<S>& capsule, const TransformT<S>& X_W
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CAPSULE_TRIANGLE_HPP
 // --- end spook/collide/detail/capsule_triangle.hpp ---
+// --- begin spook/collide/detail/cylinder_triangle.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CYLINDER_TRIANGLE_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CYLINDER_TRIANGLE_HPP
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace spook::detail {
+
+/// The projection overlap of a cylinder (radius R, half-height H, axis y,
+/// centered on its frame's origin) and a triangle given in that frame,
+/// along the unit n from the cylinder toward the triangle:
+/// f(n) = R·|n_xz| + H·|n_y| − min_i n·v_i.
+struct CylinderTriangleOverlap {
+  double R, H;
+  std::array<Vec3T<double>, 3> v;
+
+  [[nodiscard]] double operator()(const Vec3T<double>& n) const {
+    return R * std::sqrt(n.x() * n.x() + n.z() * n.z()) + H * std::abs(n.y()) -
+           std::min({n.dot(v[0]), n.dot(v[1]), n.dot(v[2])});
+  }
+};
+
+/// The lowest f found so far and its direction.
+struct LowestOverlap {
+  double f = std::numeric_limits<double>::infinity();
+  Vec3T<double> n = Vec3T<double>::UnitY();
+
+  void consider(const CylinderTriangleOverlap& overlap, const Vec3T<double>& direction) {
+    const double length = direction.norm();
+    if (!(length > 0.0)) return;
+    const Vec3T<double> d = direction / length;
+    if (const double value = overlap(d); value < f) {
+      f = value;
+      n = d;
+    }
+  }
+};
+
+/// Samples of a great circle before the local minima are refined, and the
+/// golden-section steps that refine each (a bracket of two sample spacings,
+/// 0.26 rad, to 1e-8 rad: a smooth minimum's depth within R·1e-16).
+inline constexpr int kCircleSamples = 48;
+inline constexpr int kGoldenSteps = 36;
+
+/// The minimum of f over the great circle perpendicular to `axis`: sampled
+/// evenly and at the directions `kinks` project to (where f is not smooth,
+/// and the points nearest ±y, where R·|n_xz| narrows to a notch), each
+/// sampled local minimum then refined by golden section between its
+/// neighbours. f on the circle is smooth between its kinks, with at most a
+/// few minima. The refinement moves along normalize(d + t·tangent), which
+/// covers the arc between the neighbours monotonically in t (no sines).
+inline void circleMinimum(const CylinderTriangleOverlap& f, const Vec3T<double>& axis,
+                          const std::vector<Vec3T<double>>& kinks, LowestOverlap& lowest) {
+  const double length = axis.norm();
+  if (!(length > 0.0)) return;
+  const Vec3T<double> u = axis / length, a = u.unitOrthogonal(), b = u.cross(a);
+  constexpr double kTwoPi = 6.283185307179586;
+  struct Sample {
+    double angle;
+    Vec3T<double> d;
+    double f;
+  };
+  static const std::array<std::array<double, 2>, kCircleSamples> unit = [] {
+    std::array<std::array<double, 2>, kCircleSamples> table{};
+    for (int i = 0; i < kCircleSamples; ++i)
+      table[static_cast<std::size_t>(i)] = {std::cos(kTwoPi * i / kCircleSamples), std::sin(kTwoPi * i / kCircleSamples)};
+    return table;
+  }();
+  thread_local std::vector<Sample> samples;
+  samples.clear();
+  for (int i = 0; i < kCircleSamples; ++i) {
+    const auto& [c, sn] = unit[static_cast<std::size_t>(i)];
+    samples.push_back({kTwoPi * i / kCircleSamples, c * a + sn * b, 0.0});
+  }
+  for (const Vec3T<double>& k : kinks) {
+    const double x = k.dot(a), y = k.dot(b), r = std::hypot(x, y);
+    if (r > 1e-12 * k.norm()) samples.push_back({std::atan2(y, x) + (y < 0.0 ? kTwoPi : 0.0), (x / r) * a + (y / r) * b, 0.0});
+  }
+  std::sort(samples.begin(), samples.end(), [](const Sample& x, const Sample& y) { return x.angle < y.angle; });
+  for (Sample& sample : samples) sample.f = f(sample.d);
+  const std::size_t count = samples.size();
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Sample &before = samples[(i + count - 1) % count], &at = samples[i], &after = samples[(i + 1) % count];
+    if (at.f > before.f || at.f > after.f) continue;
+    lowest.consider(f, at.d);
+    const Vec3T<double> tangent = u.cross(at.d);
+    const double back = std::remainder(at.angle - before.angle, kTwoPi), ahead = std::remainder(after.angle - at.angle, kTwoPi);
+    const auto direction = [&](double t) { return Vec3T<double>((at.d + t * tangent).normalized()); };
+    double lo = -std::tan(std::abs(back)), hi = std::tan(std::abs(ahead));
+    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+    double f1 = f(direction(x1)), f2 = f(direction(x2));
+    for (int step = 0; step < kGoldenSteps; ++step) {
+      if (f1 <= f2) {
+        hi = x2, x2 = x1, f2 = f1;
+        x1 = hi - g * (hi - lo), f1 = f(direction(x1));
+      } else {
+        lo = x1, x1 = x2, f1 = f2;
+        x2 = lo + g * (hi - lo), f2 = f(direction(x2));
+      }
+    }
+    lowest.consider(f, direction(f1 <= f2 ? x1 : x2));
+  }
+}
+
+/// Cylinder against one triangle of a mesh (mesh frame t_M, placed by
+/// X_WM), without libccd: f's minimum over the unit sphere is the
+/// penetration (or minus the distance apart), and it lies where f is
+/// smooth, at a direction normal to both shapes (the nearest boundary point
+/// of the Minkowski difference). Those are ±y (a cap), the triangle's ±
+/// normal, the great circle perpendicular to y (the side) and those
+/// perpendicular to each edge (the edge against a cap, the side or the
+/// rim); apart, also a vertex against the rim, along the line from the
+/// rim's nearest point. The contacts are the overlap of the two supporting
+/// features along that normal (contactsOfFeatures), as libccd's path gives
+/// them, at a fraction of its cost.
+template <Scalar S>
+void collideCylinderTriangle(const CylinderT<S>& cylinder, const TransformT<S>& X_WA, const Triangle<S>& t_M,
+                             const TransformT<S>& X_WM, ContactSinkT<S>& sink) {
+  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
+  const double sizeA = sizeOf(cylinder), sizeB = sizeOf(t_M);
+  if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
+  const TransformT<double> X_AM = X_WA.template cast<double>().inverse(Eigen::Isometry) * X_WM.template cast<double>();
+  CylinderTriangleOverlap f{double(cylinder.getRadius()), 0.5 * double(cylinder.getHeight()), {}};
+  for (int k = 0; k < 3; ++k) f.v[static_cast<std::size_t>(k)] = X_AM * t_M.v[static_cast<std::size_t>(k)].template cast<double>();
+  const Vec3T<double> y = Vec3T<double>::UnitY();
+  const Vec3T<double> normal = (f.v[1] - f.v[0]).cross(f.v[2] - f.v[0]);
+  LowestOverlap lowest;
+  for (const Vec3T<double>& d : {y, Vec3T<double>(-y), normal, Vec3T<double>(-normal)}) lowest.consider(f, d);
+  // Apart: a vertex nearest the rim.
+  for (const Vec3T<double>& v : f.v) {
+    const double radial = std::hypot(v.x(), v.z());
+    const double scale = radial > f.R ? f.R / radial : 1.0;
+    const Vec3T<double> nearest(v.x() * scale, std::clamp(v.y(), -f.H, f.H), v.z() * scale);
+    lowest.consider(f, v - nearest);
+  }
+  // Most triangles a query visits are apart along one of these already.
+  const double touching = kTouchingGap * std::min(sizeA, sizeB);
+  if (lowest.f < -touching) return;
+  thread_local std::vector<Vec3T<double>> kinks;
+  kinks.clear();
+  for (int k = 0; k < 3; ++k) {
+    const Vec3T<double>& v = f.v[static_cast<std::size_t>(k)];
+    kinks.push_back(Vec3T<double>(v.x(), 0.0, v.z()));
+    kinks.push_back(y.cross(f.v[static_cast<std::size_t>((k + 1) % 3)] - v));
+  }
+  circleMinimum(f, y, kinks, lowest);
+  for (int k = 0; k < 3; ++k) {
+    const Vec3T<double> edge = f.v[static_cast<std::size_t>((k + 1) % 3)] - f.v[static_cast<std::size_t>(k)];
+    kinks.assign({y.cross(edge), normal, y, Vec3T<double>(-y)});
+    circleMinimum(f, edge, kinks, lowest);
+  }
+  if (!std::isfinite(lowest.f) || lowest.f < -touching) return;
+  const Vec3T<double> n = X_WA.linear().template cast<double>() * lowest.n;
+  const CcdObject<CylinderT<S>> objectA(cylinder, X_WA);
+  const CcdObject<Triangle<S>> objectB(t_M, X_WM);
+  for (const FeatureClipping::Contact& contact : contactsOfFeatures(objectA, objectB, n, std::max(lowest.f, 0.0)))
+    sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CYLINDER_TRIANGLE_HPP
+// --- end spook/collide/detail/cylinder_triangle.hpp ---
 
 namespace spook {
 
@@ -9223,12 +9390,13 @@ enum class TriangleContacts { SURFACE, PER_TRIANGLE };
 /// Contacts of a shape against the triangles of a soup near it, each
 /// triangle a convex shape of its own: boxes, hulls and segments by the
 /// separating axes with a clipped manifold (polytope_sat.hpp), spheres and
-/// capsules in closed form (capsule_triangle.hpp), cylinders through
-/// libccd. For the SURFACE, each triangle's normals are then held to its
-/// active edges (activeEdgeNormals), and a point that two triangles found
-/// alike (on the edge they share: closer than the spread of a sampled
-/// feature, normals within 1°) is kept once, so that a flat region of many
-/// triangles pushes like one face.
+/// capsules in closed form (capsule_triangle.hpp), cylinders over the
+/// candidate normals (cylinder_triangle.hpp). For the SURFACE, each
+/// triangle's normals are then held to its active edges
+/// (activeEdgeNormals), and a point that two triangles found alike (on the
+/// edge they share: closer than the spread of a sampled feature, normals
+/// within 1°) is kept once, so that a flat region of many triangles pushes
+/// like one face.
 template <Scalar S, class A, class Soup>
 void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
                           ContactSinkT<S>& sink, TriangleContacts report = TriangleContacts::SURFACE) {
@@ -9250,6 +9418,8 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
       collidePolytopes(shape, triangle, staged);
     } else if constexpr (A::kType == ShapeType::CAPSULE) {
       collideCapsuleTriangle<S>(a, X_WA, Triangle<S>{{p0, p1, p2}}, X_WM, staged);
+    } else if constexpr (A::kType == ShapeType::CYLINDER) {
+      collideCylinderTriangle<S>(a, X_WA, Triangle<S>{{p0, p1, p2}}, X_WM, staged);
     } else {
       const Triangle<S> t_M{{p0, p1, p2}};
       collideByCcd<S>(a, X_WA, t_M, X_WM, staged);

@@ -9,6 +9,7 @@
 #include <spook/collide/contact_point.hpp>
 #include <spook/collide/detail/capsule_triangle.hpp>
 #include <spook/collide/detail/ccd_bridge.hpp>
+#include <spook/collide/detail/cylinder_triangle.hpp>
 #include <spook/collide/detail/polytope_sat.hpp>
 #include <spook/collide/detail/triangle.hpp>
 #include <spook/collide/shapes/box.hpp>
@@ -73,12 +74,13 @@ enum class TriangleContacts { SURFACE, PER_TRIANGLE };
 /// Contacts of a shape against the triangles of a soup near it, each
 /// triangle a convex shape of its own: boxes, hulls and segments by the
 /// separating axes with a clipped manifold (polytope_sat.hpp), spheres and
-/// capsules in closed form (capsule_triangle.hpp), cylinders through
-/// libccd. For the SURFACE, each triangle's normals are then held to its
-/// active edges (activeEdgeNormals), and a point that two triangles found
-/// alike (on the edge they share: closer than the spread of a sampled
-/// feature, normals within 1°) is kept once, so that a flat region of many
-/// triangles pushes like one face.
+/// capsules in closed form (capsule_triangle.hpp), cylinders over the
+/// candidate normals (cylinder_triangle.hpp). For the SURFACE, each
+/// triangle's normals are then held to its active edges
+/// (activeEdgeNormals), and a point that two triangles found alike (on the
+/// edge they share: closer than the spread of a sampled feature, normals
+/// within 1°) is kept once, so that a flat region of many triangles pushes
+/// like one face.
 template <Scalar S, class A, class Soup>
 void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
                           ContactSinkT<S>& sink, TriangleContacts report = TriangleContacts::SURFACE) {
@@ -100,6 +102,8 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
       collidePolytopes(shape, triangle, staged);
     } else if constexpr (A::kType == ShapeType::CAPSULE) {
       collideCapsuleTriangle<S>(a, X_WA, Triangle<S>{{p0, p1, p2}}, X_WM, staged);
+    } else if constexpr (A::kType == ShapeType::CYLINDER) {
+      collideCylinderTriangle<S>(a, X_WA, Triangle<S>{{p0, p1, p2}}, X_WM, staged);
     } else {
       const Triangle<S> t_M{{p0, p1, p2}};
       collideByCcd<S>(a, X_WA, t_M, X_WM, staged);
