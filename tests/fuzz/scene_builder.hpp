@@ -90,9 +90,6 @@ class Reader {
 /// point here with it. Open today:
 ///   unreported-nonfinite      a non-finite body not in frozenBodies (none
 ///                             known; the name lets a new finding be parked)
-///   huge-cylinder-on-triangles a cylinder of radius 1e100 m over a height
-///                             field: its steps take seconds in the
-///                             triangles' libccd descent (findings/README.md)
 inline bool skipping(const char* name) {
   static const std::string list = [] {
     const char* env = std::getenv("SPOOK_FUZZ_SKIP");
@@ -561,26 +558,6 @@ struct Builder {
     operationStep = in.choice(2 * kSteps);  // none in half of the runs
   }
 
-  /// Whether the scene holds a cylinder of radius or height above 1e6 m and
-  /// a height field or trimesh (the parked finding huge-cylinder-on-triangles).
-  bool hugeCylinderAndTriangles(const spook::SimulationT<S>& sim) const {
-    bool huge = false, triangles = false;
-    const auto look = [&](const spook::GeometryT<S>& g) {
-      for (const auto& placed : g.getShapes()) {
-        const spook::ShapeType type = placed.shape->getType();
-        triangles = triangles || type == spook::ShapeType::HEIGHTFIELD || type == spook::ShapeType::TRIMESH;
-        if (type == spook::ShapeType::CYLINDER) {
-          const auto& cylinder = static_cast<const spook::CylinderT<S>&>(*placed.shape);
-          huge = huge || !(cylinder.getRadius() <= S(1e6) && cylinder.getHeight() <= S(1e6));
-        }
-      }
-    };
-    for (const auto& g : sim.getSpace()->getGeometries()) look(*g);
-    for (const auto& b : bodies)
-      for (const auto& g : b->getGeometries()) look(*g);
-    return huge && triangles;
-  }
-
   /// A wire routed through a point 1e6 m away (an extreme value) is legal
   /// and has its nodes: 200,000 of them stepped in 2-3.7 s a step in
   /// Release and ran out of libFuzzer's 2 GB under ASan. Its size, not a
@@ -607,7 +584,6 @@ struct Builder {
     } catch (const Skipped&) {
       return;  // a known finding (SPOOK_FUZZ_SKIP)
     }
-    if (skipping("huge-cylinder-on-triangles") && hugeCylinderAndTriangles(*sim)) return;
     for (int step = 0; step < kSteps; ++step) {
       if (step == operationStep) operate(*sim);
       if (tooManyWireNodes()) return;
