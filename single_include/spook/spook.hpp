@@ -6857,6 +6857,13 @@ struct CcdObject {
   }
 };
 
+/// A shape's size (m): the half-diagonal of its bounding box, in its own
+/// frame; the scale of the colliders' touching gap and tolerances.
+template <class Shape>
+[[nodiscard]] double shapeSize(const Shape& shape) {
+  return shape.getBoundingBox().halfExtents().template cast<double>().norm();
+}
+
 inline constexpr double kCcdEpaTolerance = 1e-6;  // m
 
 /// Gap, relative to the smaller shape's size, beyond which libccd's GJK is
@@ -7175,9 +7182,7 @@ template <class A, class B>
 std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, const CcdObject<B>& b,
                                                          const Vec3T<double>& n, double depth) {
   const SupportingFeature onA = supportingFeature(a, n), onB = supportingFeature(b, -n);
-  const auto size = [](const auto& object) {
-    return object.shape->getBoundingBox().halfExtents().template cast<double>().norm();
-  };
+  const auto size = [](const auto& object) { return shapeSize(*object.shape); };
   const FeatureClipping clipping(n);
   std::vector<FeatureClipping::Contact> contacts =
       clipping.contacts({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
@@ -7253,8 +7258,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   // that shapes placed exactly touching (a body set down on a ground) are
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
-  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
-  const double sizeA = sizeOf(a), sizeB = sizeOf(b);
+  const double sizeA = shapeSize(a), sizeB = shapeSize(b);
   // libccd dereferences a null polytope face when its supports overflow.
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
   CcdSupportBudget budget{kCcdSupportBudget};
@@ -9115,8 +9119,7 @@ inline SegmentTriangleClosest closestPointsOfSegmentAndTriangle(const Vec3T<doub
 template <Scalar S>
 void collideCapsuleTriangle(const CapsuleT<S>& capsule, const TransformT<S>& X_WA, const Triangle<S>& t_M,
                             const TransformT<S>& X_WM, ContactSinkT<S>& sink) {
-  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
-  const double sizeA = sizeOf(capsule), sizeB = sizeOf(t_M);
+  const double sizeA = shapeSize(capsule), sizeB = shapeSize(t_M);
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
   const TransformT<double> X_WMd = X_WM.template cast<double>();
   const Triangle<double> t{{X_WMd * t_M.v[0].template cast<double>(), X_WMd * t_M.v[1].template cast<double>(),
@@ -9291,8 +9294,7 @@ inline void circleMinimum(const CylinderTriangleOverlap& f, const Vec3T<double>&
 template <Scalar S>
 void collideCylinderTriangle(const CylinderT<S>& cylinder, const TransformT<S>& X_WA, const Triangle<S>& t_M,
                              const TransformT<S>& X_WM, ContactSinkT<S>& sink) {
-  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
-  const double sizeA = sizeOf(cylinder), sizeB = sizeOf(t_M);
+  const double sizeA = shapeSize(cylinder), sizeB = shapeSize(t_M);
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
   const TransformT<double> X_AM = X_WA.template cast<double>().inverse(Eigen::Isometry) * X_WM.template cast<double>();
   CylinderTriangleOverlap f{double(cylinder.getRadius()), 0.5 * double(cylinder.getHeight()), {}};
@@ -20811,6 +20813,13 @@ struct CcdObject {
   }
 };
 
+/// A shape's size (m): the half-diagonal of its bounding box, in its own
+/// frame; the scale of the colliders' touching gap and tolerances.
+template <class Shape>
+[[nodiscard]] double shapeSize(const Shape& shape) {
+  return shape.getBoundingBox().halfExtents().template cast<double>().norm();
+}
+
 inline constexpr double kCcdEpaTolerance = 1e-6;  // m
 
 /// Gap, relative to the smaller shape's size, beyond which libccd's GJK is
@@ -21129,9 +21138,7 @@ template <class A, class B>
 std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, const CcdObject<B>& b,
                                                          const Vec3T<double>& n, double depth) {
   const SupportingFeature onA = supportingFeature(a, n), onB = supportingFeature(b, -n);
-  const auto size = [](const auto& object) {
-    return object.shape->getBoundingBox().halfExtents().template cast<double>().norm();
-  };
+  const auto size = [](const auto& object) { return shapeSize(*object.shape); };
   const FeatureClipping clipping(n);
   std::vector<FeatureClipping::Contact> contacts =
       clipping.contacts({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
@@ -21207,8 +21214,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   // that shapes placed exactly touching (a body set down on a ground) are
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
-  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
-  const double sizeA = sizeOf(a), sizeB = sizeOf(b);
+  const double sizeA = shapeSize(a), sizeB = shapeSize(b);
   // libccd dereferences a null polytope face when its supports overflow.
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
   CcdSupportBudget budget{kCcdSupportBudget};

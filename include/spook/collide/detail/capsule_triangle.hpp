@@ -71,8 +71,7 @@ inline SegmentTriangleClosest closestPointsOfSegmentAndTriangle(const Vec3T<doub
 template <Scalar S>
 void collideCapsuleTriangle(const CapsuleT<S>& capsule, const TransformT<S>& X_WA, const Triangle<S>& t_M,
                             const TransformT<S>& X_WM, ContactSinkT<S>& sink) {
-  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
-  const double sizeA = sizeOf(capsule), sizeB = sizeOf(t_M);
+  const double sizeA = shapeSize(capsule), sizeB = shapeSize(t_M);
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
   const TransformT<double> X_WMd = X_WM.template cast<double>();
   const Triangle<double> t{{X_WMd * t_M.v[0].template cast<double>(), X_WMd * t_M.v[1].template cast<double>(),

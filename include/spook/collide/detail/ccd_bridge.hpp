@@ -71,6 +71,13 @@ struct CcdObject {
   }
 };
 
+/// A shape's size (m): the half-diagonal of its bounding box, in its own
+/// frame; the scale of the colliders' touching gap and tolerances.
+template <class Shape>
+[[nodiscard]] double shapeSize(const Shape& shape) {
+  return shape.getBoundingBox().halfExtents().template cast<double>().norm();
+}
+
 inline constexpr double kCcdEpaTolerance = 1e-6;  // m
 
 /// Gap, relative to the smaller shape's size, beyond which libccd's GJK is
@@ -389,9 +396,7 @@ template <class A, class B>
 std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, const CcdObject<B>& b,
                                                          const Vec3T<double>& n, double depth) {
   const SupportingFeature onA = supportingFeature(a, n), onB = supportingFeature(b, -n);
-  const auto size = [](const auto& object) {
-    return object.shape->getBoundingBox().halfExtents().template cast<double>().norm();
-  };
+  const auto size = [](const auto& object) { return shapeSize(*object.shape); };
   const FeatureClipping clipping(n);
   std::vector<FeatureClipping::Contact> contacts =
       clipping.contacts({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
@@ -467,8 +472,7 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
   // that shapes placed exactly touching (a body set down on a ground) are
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
-  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
-  const double sizeA = sizeOf(a), sizeB = sizeOf(b);
+  const double sizeA = shapeSize(a), sizeB = shapeSize(b);
   // libccd dereferences a null polytope face when its supports overflow.
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
   CcdSupportBudget budget{kCcdSupportBudget};

@@ -124,8 +124,7 @@ inline void circleMinimum(const CylinderTriangleOverlap& f, const Vec3T<double>&
 template <Scalar S>
 void collideCylinderTriangle(const CylinderT<S>& cylinder, const TransformT<S>& X_WA, const Triangle<S>& t_M,
                              const TransformT<S>& X_WM, ContactSinkT<S>& sink) {
-  const auto sizeOf = [](const auto& shape) { return shape.getBoundingBox().halfExtents().template cast<double>().norm(); };
-  const double sizeA = sizeOf(cylinder), sizeB = sizeOf(t_M);
+  const double sizeA = shapeSize(cylinder), sizeB = shapeSize(t_M);
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
   const TransformT<double> X_AM = X_WA.template cast<double>().inverse(Eigen::Isometry) * X_WM.template cast<double>();
   CylinderTriangleOverlap f{double(cylinder.getRadius()), 0.5 * double(cylinder.getHeight()), {}};
