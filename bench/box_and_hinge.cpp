@@ -1,7 +1,7 @@
 // The compile-time probe of the core (issue 19): one box on one hinge to
 // the world, stepped 1 s. What a program pays to compile spook, timed on
 // its own (spook compiled once, then header-only):
-//   /usr/bin/time g++ -std=c++20 -O2 -DSPOOK_EXTERN_TEMPLATES -Iinclude -isystem /usr/include/eigen3 \
+//   /usr/bin/time g++ -std=c++20 -O2 -DSPOOK_EXTERN_TEMPLATES -Iinclude -isystem /usr/include/eigen3
 //       bench/box_and_hinge.cpp build/libspook_compiled.a -lccd
 //   /usr/bin/time g++ -std=c++20 -O2 -Iinclude -isystem /usr/include/eigen3 bench/box_and_hinge.cpp -lccd
 // (CMake targets box_and_hinge and box_and_hinge_header_only, not built by default.)

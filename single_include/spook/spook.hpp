@@ -6818,10 +6818,58 @@ struct CcdSupportBudget {
   unsigned long calls = 0;  // counted by the first object (libccd's support1)
 };
 
+/// A convex shape as the bridge sees it, whatever its type and scalar: its
+/// support function and supporting feature in its own frame, in double.
+/// Everything below works on this view, so one copy of the polishing serves
+/// every shape pair (compiled per pair, the copies took a fifth of a
+/// program's colliders).
+struct ConvexSupport {
+  const void* shape = nullptr;
+  Vec3T<double> (*support)(const void* shape, const Vec3T<double>& d) = nullptr;
+  /// The shape's supporting feature, or null: sampled (supportingFeature).
+  void (*feature)(const void* shape, const Vec3T<double>& d, SupportingFeatureT<double>& out) = nullptr;
+  Vec3T<double> centerOfVolume = Vec3T<double>::Zero();  // shape frame (m)
+  double size = 0.0;                                     // the half-diagonal of its bounding box (m): shapeSize
+
+  [[nodiscard]] Vec3T<double> supportAlong(const Vec3T<double>& d) const { return support(shape, d); }
+};
+
+/// A shape's size (m): the half-diagonal of its bounding box, in its own
+/// frame; the scale of the colliders' touching gap and tolerances.
 template <class Shape>
-struct CcdObject {
+[[nodiscard]] double shapeSize(const Shape& shape) {
+  return shape.getBoundingBox().halfExtents().template cast<double>().norm();
+}
+
+/// The bridge's view of `shape`, which must outlive it. A float shape is
+/// asked in float, its answers converted.
+template <class Shape>
+[[nodiscard]] ConvexSupport convexSupportOf(const Shape& shape) {
   using S = typename Shape::Vec3::Scalar;
-  const Shape* shape;
+  ConvexSupport convex;
+  convex.shape = &shape;
+  convex.support = [](const void* s, const Vec3T<double>& d) -> Vec3T<double> {
+    return static_cast<const Shape*>(s)->support(d.template cast<S>()).template cast<double>();
+  };
+  if constexpr (requires(SupportingFeatureT<S> & out) { shape.supportingFeature(Vec3T<S>(), out); })
+    convex.feature = [](const void* s, const Vec3T<double>& d, SupportingFeatureT<double>& out) {
+      SupportingFeatureT<S> local;
+      static_cast<const Shape*>(s)->supportingFeature(d.template cast<S>(), local);
+      out.count = local.count;
+      for (std::size_t k = 0; k < local.count; ++k) out.points[k] = local.points[k].template cast<double>();
+      out.radius = double(local.radius);
+      out.center = local.center.template cast<double>();
+      out.axis = local.axis.template cast<double>();
+    };
+  convex.centerOfVolume = shape.getCenterOfVolume().template cast<double>();
+  convex.size = shapeSize(shape);
+  return convex;
+}
+
+/// A convex shape at its world pose, as libccd's object: libccd calls
+/// `support` and `centerOf` with a pointer to it.
+struct CcdObject {
+  ConvexSupport convex;
   Mat3T<double> R;     // shape → world rotation
   Vec3T<double> p;     // shape origin in world (m)
   Vec3T<double> center;  // a point inside the shape, world (m)
@@ -6829,12 +6877,16 @@ struct CcdObject {
   CcdSupportBudget* budget = nullptr;
   bool countsCalls = false;  // libccd calls support1, then support2
 
-  CcdObject(const Shape& s, const TransformT<S>& X_W, double grownBy = 0.0)
-      : shape(&s),
-        R(X_W.linear().template cast<double>()),
-        p(X_W.translation().template cast<double>()),
-        center(R * s.getCenterOfVolume().template cast<double>() + p),
-        margin(grownBy) {}
+  CcdObject(const ConvexSupport& shape, const Mat3T<double>& R_W, const Vec3T<double>& p_W, double grownBy = 0.0)
+      : convex(shape), R(R_W), p(p_W), center(R * shape.centerOfVolume + p), margin(grownBy) {}
+  template <Scalar S>
+  CcdObject(const ConvexSupport& shape, const TransformT<S>& X_W, double grownBy = 0.0)
+      : CcdObject(shape, X_W.linear().template cast<double>(), X_W.translation().template cast<double>(), grownBy) {}
+
+  /// The support point along the world direction n_W (not grown), world (m).
+  [[nodiscard]] Vec3T<double> supportWorld(const Vec3T<double>& n_W) const {
+    return R * convex.supportAlong(R.transpose() * n_W) + p;
+  }
 
   static void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
     const auto& o = *static_cast<const CcdObject*>(object);
@@ -6846,8 +6898,7 @@ struct CcdObject {
       }
     }
     const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
-    const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
-    Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
+    Vec3T<double> s_W = o.supportWorld(d_W);
     if (const double length = d_W.norm(); o.margin > 0.0 && length > 0.0) s_W += (o.margin / length) * d_W;
     for (int i = 0; i < 3; ++i) out->v[i] = s_W[i];
   }
@@ -6856,13 +6907,6 @@ struct CcdObject {
     for (int i = 0; i < 3; ++i) out->v[i] = o.center[i];
   }
 };
-
-/// A shape's size (m): the half-diagonal of its bounding box, in its own
-/// frame; the scale of the colliders' touching gap and tolerances.
-template <class Shape>
-[[nodiscard]] double shapeSize(const Shape& shape) {
-  return shape.getBoundingBox().halfExtents().template cast<double>().norm();
-}
 
 inline constexpr double kCcdEpaTolerance = 1e-6;  // m
 
@@ -6878,6 +6922,18 @@ inline constexpr unsigned long kCcdMaxIterations = 200;
 /// 392-triangle height field took 1.8 s a step (Release), at 256 0.16 s
 /// (tests/fuzz/findings/huge-cylinder-on-triangles, parked).
 inline constexpr unsigned long kCcdSupportBudget = 256;
+
+/// libccd's settings for two CcdObjects.
+[[nodiscard]] inline ccd_t ccdSettings() {
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = &CcdObject::support;
+  ccd.support2 = &CcdObject::support;
+  ccd.center1 = &CcdObject::centerOf;
+  ccd.center2 = &CcdObject::centerOf;
+  ccd.max_iterations = kCcdMaxIterations;
+  return ccd;
+}
 /// Polishing: starts besides libccd's direction, and the gradient
 /// (relative to the shapes' size) below which a descent ended on a smooth
 /// minimum and needs no simplex search. Polishing only the starts within
@@ -6935,17 +6991,11 @@ inline void sortDescents(std::vector<Descent>& descents) {
 /// (from a toward b): f(n) = h_a(n) + h_b(−n), with h the support function.
 /// By the separating axis theorem the penetration depth is min f over unit
 /// n, and by Danskin's theorem ∇f = s_a(n) − s_b(−n) =: w.
-template <class A, class B>
 struct ProjectionOverlap {
-  const CcdObject<A>& a;
-  const CcdObject<B>& b;
+  const CcdObject& a;
+  const CcdObject& b;
 
-  [[nodiscard]] Vec3T<double> supportOf(const auto& object, const Vec3T<double>& n_W) const {
-    using S = typename std::remove_cvref_t<decltype(object)>::S;
-    const Vec3T<S> d = (object.R.transpose() * n_W).template cast<S>();
-    return object.R * object.shape->support(d).template cast<double>() + object.p;
-  }
-  [[nodiscard]] Vec3T<double> gradient(const Vec3T<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
+  [[nodiscard]] Vec3T<double> gradient(const Vec3T<double>& n) const { return a.supportWorld(n) - b.supportWorld(-n); }
 };
 
 /// Where f has a kink (an edge or a corner of a box-like shape is involved)
@@ -6953,9 +7003,8 @@ struct ProjectionOverlap {
 /// gradient nor a fixed pattern of steps can follow; a Nelder–Mead simplex
 /// over the tangent plane of n (Nelder & Mead 1965) stretches along the
 /// crease and walks down it, to 1e-10 rad.
-template <class A, class B>
-double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double size,
-                             double turn, const std::vector<PolishedMinimum>& known, bool& joined) {
+inline double polishBySimplexSearch(const ProjectionOverlap& overlap, Vec3T<double>& n, double f, double size,
+                                    double turn, const std::vector<PolishedMinimum>& known, bool& joined) {
   static const double joinCosine = std::cos(kJoinAngle);
   const Vec3T<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
   const Vec3T<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
@@ -7024,8 +7073,7 @@ double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<doubl
 /// bound on the depth that is exact at the minimum; `smooth` tells whether
 /// the descent ended where the gradient vanishes (a smooth minimum, done)
 /// rather than on a kink of f, where the simplex search must take over.
-template <class A, class B>
-double descend(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double scale, bool& smooth) {
+inline double descend(const ProjectionOverlap& overlap, Vec3T<double>& n, double scale, bool& smooth) {
   Vec3T<double> w = overlap.gradient(n);
   double f = n.dot(w);
   Vec3T<double> g = w - n.dot(w) * n;
@@ -7054,9 +7102,8 @@ double descend(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double 
 /// Restarts of the simplex search with fresh, turned simplices: the usual
 /// cure for one that collapsed across a crease. Stops where a search joins
 /// one of the `known` minima (kJoinAngle).
-template <class A, class B>
-double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double scale,
-                     const std::vector<PolishedMinimum>& known) {
+inline double polishOnKinks(const ProjectionOverlap& overlap, Vec3T<double>& n, double f, double scale,
+                            const std::vector<PolishedMinimum>& known) {
   for (int restart = 0; restart < 6; ++restart) {
     const double before = f;
     bool joined = false;
@@ -7073,10 +7120,9 @@ double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, d
 /// minima; for box-like and cylindrical shapes the true minimum lies on or
 /// near one of these axes (face normals and edge–edge directions, as in the
 /// separating axis theorem).
-template <class A, class B>
-std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdObject<B>& b,
-                                             const Vec3T<double>& fromCcd, std::size_t count) {
-  const ProjectionOverlap<A, B> overlap{a, b};
+inline std::vector<Vec3T<double>> startingDirections(const CcdObject& a, const CcdObject& b,
+                                                     const Vec3T<double>& fromCcd, std::size_t count) {
+  const ProjectionOverlap overlap{a, b};
   std::vector<std::pair<double, Vec3T<double>>> candidates;
   const auto consider = [&](const Vec3T<double>& direction) {
     const double length = direction.norm();
@@ -7127,29 +7173,23 @@ inline constexpr double kFeatureTilt = 1e-3;  // rad
 /// n and at n tilted by kFeatureTilt toward eight directions of the tangent
 /// plane, which spread over a face or an edge (its corners or ends) that is
 /// within that tilt of supporting and stay together otherwise.
-template <class Object>
-SupportingFeature supportingFeature(const Object& object, const Vec3T<double>& n) {
-  using S = typename Object::S;
-  const auto toWorld = [&](const Vec3T<S>& p) { return Vec3T<double>(object.R * p.template cast<double>() + object.p); };
-  const auto support = [&](const Vec3T<double>& d) {
-    return toWorld(object.shape->support((object.R.transpose() * d).template cast<S>()));
-  };
+inline SupportingFeature supportingFeature(const CcdObject& object, const Vec3T<double>& n) {
+  const auto toWorld = [&](const Vec3T<double>& p) { return Vec3T<double>(object.R * p + object.p); };
   SupportingFeature feature{Vec3T<double>::Zero(), 0.0, {}, {}};
-  if constexpr (requires(SupportingFeatureT<S>& out) { object.shape->supportingFeature(Vec3T<S>(), out); }) {
-    SupportingFeatureT<S> local;
-    object.shape->supportingFeature((object.R.transpose() * n).template cast<S>(), local);
+  if (object.convex.feature) {
+    SupportingFeatureT<double> local;
+    object.convex.feature(object.convex.shape, object.R.transpose() * n, local);
     for (std::size_t k = 0; k < local.count; ++k) feature.samples.push_back(toWorld(local.points[k]));
-    if (local.radius > S(0))
-      feature.disc = {toWorld(local.center), object.R * local.axis.template cast<double>(), double(local.radius)};
+    if (local.radius > 0.0) feature.disc = {toWorld(local.center), object.R * local.axis, local.radius};
   } else {
     const Vec3T<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-    feature.samples.push_back(support(n));
+    feature.samples.push_back(object.supportWorld(n));
     for (int k = 0; k < 8; ++k) {
       const double angle = k * 0.7853981633974483;
-      feature.samples.push_back(support(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2)));
+      feature.samples.push_back(object.supportWorld(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2)));
     }
   }
-  const Vec3T<double> atN = support(n);
+  const Vec3T<double> atN = object.supportWorld(n);
   for (const Vec3T<double>& p : feature.samples) {
     feature.center += p;
     feature.spread = std::max(feature.spread, (p - atN).norm());
@@ -7178,11 +7218,10 @@ inline Vec3T<double> contactPointInOverlap(const SupportingFeature& onA, const S
 /// where the features do not overlap, one point by contactPointInOverlap.
 /// Points closer than 4·kFeatureTilt·size are one point (the spread a
 /// sampled curved surface leaves).
-template <class A, class B>
-std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, const CcdObject<B>& b,
-                                                         const Vec3T<double>& n, double depth) {
+inline std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject& a, const CcdObject& b,
+                                                                const Vec3T<double>& n, double depth) {
   const SupportingFeature onA = supportingFeature(a, n), onB = supportingFeature(b, -n);
-  const auto size = [](const auto& object) { return shapeSize(*object.shape); };
+  const auto size = [](const CcdObject& object) { return object.convex.size; };
   const FeatureClipping clipping(n);
   std::vector<FeatureClipping::Contact> contacts =
       clipping.contacts({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
@@ -7209,8 +7248,7 @@ std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, 
 /// size; the exact depth 2.8e-17 of it after the snap).
 inline constexpr double kSnapAngle = 1e-3;  // rad
 
-template <class A, class B>
-void snapToFrameAxis(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double& f) {
+inline void snapToFrameAxis(const ProjectionOverlap& overlap, Vec3T<double>& n, double& f) {
   static const double snapCosine = std::cos(kSnapAngle);
   for (const Mat3T<double>* R : {&overlap.a.R, &overlap.b.R})
     for (int i = 0; i < 3; ++i)
@@ -7228,8 +7266,7 @@ void snapToFrameAxis(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, d
 /// True when one of the directions ±(axes of a's and b's frames) or ±(the
 /// line between their centers) has a projection overlap f below `below`:
 /// the shapes are apart by at least −below along it.
-template <class A, class B>
-bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double below) {
+inline bool separatedAlongFrameAxes(const ProjectionOverlap& overlap, double below) {
   const auto apart = [&](const Vec3T<double>& direction) {
     const double length = direction.norm();
     if (!(length > 0.0)) return false;
@@ -7245,38 +7282,38 @@ bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double belo
   return false;
 }
 
+/// Contacts of a penetration along the unit normal n (from a toward b).
+struct CcdPenetration {
+  Vec3T<double> n = Vec3T<double>::UnitZ();
+  std::vector<FeatureClipping::Contact> contacts;  // none: apart
+};
+
 /// Penetration of two convex shapes by GJK + EPA (libccd), polished as
 /// above: the direction that separates b from a, with the contacts of
 /// contactsOfFeatures (not libccd's point, a midpoint of support points
 /// that may lie on a far corner of a large face), or only the deepest of
 /// them when `manifold` is false (triangle pairs of two meshes, one contact
 /// per intersecting pair).
-template <Scalar S, class A, class B>
-void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
-                  bool manifold = true) {
+inline CcdPenetration penetrationByCcd(const ConvexSupport& a, const Mat3T<double>& R_WA, const Vec3T<double>& p_WA,
+                                       const ConvexSupport& b, const Mat3T<double>& R_WB, const Vec3T<double>& p_WB,
+                                       bool manifold) {
   // libccd sees a grown by kTouchingGap of the smaller shape's size, so
   // that shapes placed exactly touching (a body set down on a ground) are
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
-  const double sizeA = shapeSize(a), sizeB = shapeSize(b);
+  const double sizeA = a.size, sizeB = b.size;
   // libccd dereferences a null polytope face when its supports overflow.
-  if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
+  if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return {};
   CcdSupportBudget budget{kCcdSupportBudget};
-  CcdObject<A> objectA(a, X_WA, kTouchingGap * std::min(sizeA, sizeB));
-  CcdObject<B> objectB(b, X_WB);
+  CcdObject objectA(a, R_WA, p_WA, kTouchingGap * std::min(sizeA, sizeB));
+  CcdObject objectB(b, R_WB, p_WB);
   objectA.budget = objectB.budget = &budget;
   objectA.countsCalls = true;
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = &CcdObject<A>::support;
-  ccd.support2 = &CcdObject<B>::support;
-  ccd.center1 = &CcdObject<A>::centerOf;
-  ccd.center2 = &CcdObject<B>::centerOf;
-  ccd.max_iterations = kCcdMaxIterations;
+  ccd_t ccd = ccdSettings();
   ccd.epa_tolerance = kCcdEpaTolerance;
   ccd_real_t depth = 0;
   ccd_vec3_t direction, position;
-  const ProjectionOverlap<A, B> overlap{objectA, objectB};
+  const ProjectionOverlap overlap{objectA, objectB};
   const int penetration = ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position);
   objectA.budget = objectB.budget = nullptr;
   if (penetration != 0) {
@@ -7286,8 +7323,8 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     // grown by kCcdNearMargin is still apart, or with a separating axis
     // among the shapes' axes and the line between their centers; otherwise
     // the polishing below decides.
-    const CcdObject<A> grownA(a, X_WA, kCcdNearMargin * std::min(sizeA, sizeB));
-    if (!ccdGJKIntersect(&grownA, &objectB, &ccd) || separatedAlongFrameAxes(overlap, -objectA.margin)) return;
+    const CcdObject grownA(a, R_WA, p_WA, kCcdNearMargin * std::min(sizeA, sizeB));
+    if (!ccdGJKIntersect(&grownA, &objectB, &ccd) || separatedAlongFrameAxes(overlap, -objectA.margin)) return {};
     direction = {{0.0, 0.0, 0.0}};
   }
   // libccd reports a penetration far smaller than the shapes (within the
@@ -7319,14 +7356,25 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     }
   }
   snapToFrameAxis(overlap, n, refined);
-  if (!(refined >= -objectA.margin)) return;  // the polished direction separates them
-  std::vector<FeatureClipping::Contact> contacts = contactsOfFeatures(objectA, objectB, n, std::max(refined, 0.0));
+  if (!(refined >= -objectA.margin)) return {};  // the polished direction separates them
+  CcdPenetration result{n, contactsOfFeatures(objectA, objectB, n, std::max(refined, 0.0))};
   if (!manifold) {
-    const auto deepest = std::max_element(contacts.begin(), contacts.end(),
+    const auto deepest = std::max_element(result.contacts.begin(), result.contacts.end(),
                                           [](const auto& x, const auto& y) { return x.depth < y.depth; });
-    contacts = {*deepest};
+    result.contacts = {*deepest};
   }
-  for (const FeatureClipping::Contact& contact : contacts) sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
+  return result;
+}
+
+/// penetrationByCcd for shapes a and b at their world poses, into the sink.
+template <Scalar S, class A, class B>
+void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
+                  bool manifold = true) {
+  const CcdPenetration penetration = penetrationByCcd(
+      convexSupportOf(a), X_WA.linear().template cast<double>(), X_WA.translation().template cast<double>(),
+      convexSupportOf(b), X_WB.linear().template cast<double>(), X_WB.translation().template cast<double>(), manifold);
+  for (const FeatureClipping::Contact& contact : penetration.contacts)
+    sink.add(contact.point.cast<S>(), penetration.n.cast<S>(), S(contact.depth));
 }
 
 }  // namespace spook::detail
@@ -9162,8 +9210,8 @@ void collideCapsuleTriangle(const CapsuleT<S>& capsule, const TransformT<S>& X_W
     for (int k = 0; k < 3; ++k) consider(axis.cross(t.v[(k + 1) % 3] - t.v[k]));
     if (!std::isfinite(depth)) return;
   }
-  const CcdObject<CapsuleT<S>> objectA(capsule, X_WA);
-  const CcdObject<Triangle<S>> objectB(t_M, X_WM);
+  const CcdObject objectA(convexSupportOf(capsule), X_WA);
+  const CcdObject objectB(convexSupportOf(t_M), X_WM);
   for (const FeatureClipping::Contact& contact : contactsOfFeatures(objectA, objectB, n, std::max(depth, 0.0)))
     sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
 }
@@ -9328,8 +9376,8 @@ void collideCylinderTriangle(const CylinderT<S>& cylinder, const TransformT<S>& 
   }
   if (!std::isfinite(lowest.f) || lowest.f < -touching) return;
   const Vec3T<double> n = X_WA.linear().template cast<double>() * lowest.n;
-  const CcdObject<CylinderT<S>> objectA(cylinder, X_WA);
-  const CcdObject<Triangle<S>> objectB(t_M, X_WM);
+  const CcdObject objectA(convexSupportOf(cylinder), X_WA);
+  const CcdObject objectB(convexSupportOf(t_M), X_WM);
   for (const FeatureClipping::Contact& contact : contactsOfFeatures(objectA, objectB, n, std::max(lowest.f, 0.0)))
     sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
 }
@@ -9389,6 +9437,39 @@ inline constexpr bool kIsPolytope =
 /// colliders' choice), or each triangle's own, as a convex shape alone.
 enum class TriangleContacts { SURFACE, PER_TRIANGLE };
 
+/// Adds the points `found` against a soup's triangles to the sink, of two
+/// alike (closer than `alike` (m), normals within kAlikeNormalAngle) the
+/// deeper only (the first found on a tie); every point for alike < 0. Found
+/// along the points sorted by x. (Not per shape pair: one copy per scalar.)
+template <Scalar S>
+void addDistinctSurfaceContacts(const std::vector<ContactPointT<S>>& found, S alike, ContactSinkT<S>& sink) {
+  thread_local std::vector<std::size_t> order;
+  thread_local std::vector<char> kept;
+  kept.assign(found.size(), 1);
+  if (alike >= S(0)) {
+    const S parallel = S(std::cos(kAlikeNormalAngle));
+    order.resize(found.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t i, std::size_t j) { return found[i].point.x() < found[j].point.x(); });
+    for (std::size_t m = 0; m < order.size(); ++m)
+      for (std::size_t l = m + 1; l < order.size() && found[order[l]].point.x() - found[order[m]].point.x() <= alike;
+           ++l) {
+        const std::size_t i = std::min(order[m], order[l]), j = std::max(order[m], order[l]);
+        const ContactPointT<S>&p = found[i], &q = found[j];
+        if ((p.point - q.point).norm() <= alike && p.normal.dot(q.normal) >= parallel)
+          kept[q.depth > p.depth ? i : j] = 0;
+      }
+  }
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    if (!kept[k]) continue;
+    const ContactPointT<S>& c = found[k];
+    sink.setFaceIndices(0, c.faceIndex2);
+    sink.add(c.point, c.normal, c.depth);
+  }
+  sink.setFaceIndices(0, 0);
+}
+
 /// Contacts of a shape against the triangles of a soup near it, each
 /// triangle a convex shape of its own: boxes, hulls and segments by the
 /// separating axes with a clipped manifold (polytope_sat.hpp), spheres and
@@ -9431,33 +9512,8 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
       activeEdgeNormals<S>(t_W, soup.getActiveEdges(i), points, Soup::kType == ShapeType::HEIGHTFIELD);
     found.insert(found.end(), points.begin(), points.end());
   });
-  // Alike pairs, found along the points sorted by x: of two, the deeper
-  // stays (the first found on a tie).
-  thread_local std::vector<std::size_t> order;
-  thread_local std::vector<char> kept;
-  kept.assign(found.size(), 1);
-  if (report == TriangleContacts::SURFACE) {
-    const S alike = S(4.0 * kFeatureTilt) * boxA.halfExtents().norm();
-    const S parallel = S(std::cos(kAlikeNormalAngle));
-    order.resize(found.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t i, std::size_t j) { return found[i].point.x() < found[j].point.x(); });
-    for (std::size_t m = 0; m < order.size(); ++m)
-      for (std::size_t l = m + 1;
-           l < order.size() && found[order[l]].point.x() - found[order[m]].point.x() <= alike; ++l) {
-        const std::size_t i = std::min(order[m], order[l]), j = std::max(order[m], order[l]);
-        const ContactPointT<S>&p = found[i], &q = found[j];
-        if ((p.point - q.point).norm() <= alike && p.normal.dot(q.normal) >= parallel) kept[q.depth > p.depth ? i : j] = 0;
-      }
-  }
-  for (std::size_t k = 0; k < found.size(); ++k) {
-    if (!kept[k]) continue;
-    const ContactPointT<S>& c = found[k];
-    sink.setFaceIndices(0, c.faceIndex2);
-    sink.add(c.point, c.normal, c.depth);
-  }
-  sink.setFaceIndices(0, 0);
+  addDistinctSurfaceContacts<S>(
+      found, report == TriangleContacts::SURFACE ? S(4.0 * kFeatureTilt) * boxA.halfExtents().norm() : S(-1), sink);
 }
 
 /// Triangle pairs of two soups whose boxes overlap, each collided by libccd
@@ -20774,10 +20830,58 @@ struct CcdSupportBudget {
   unsigned long calls = 0;  // counted by the first object (libccd's support1)
 };
 
+/// A convex shape as the bridge sees it, whatever its type and scalar: its
+/// support function and supporting feature in its own frame, in double.
+/// Everything below works on this view, so one copy of the polishing serves
+/// every shape pair (compiled per pair, the copies took a fifth of a
+/// program's colliders).
+struct ConvexSupport {
+  const void* shape = nullptr;
+  Vec3T<double> (*support)(const void* shape, const Vec3T<double>& d) = nullptr;
+  /// The shape's supporting feature, or null: sampled (supportingFeature).
+  void (*feature)(const void* shape, const Vec3T<double>& d, SupportingFeatureT<double>& out) = nullptr;
+  Vec3T<double> centerOfVolume = Vec3T<double>::Zero();  // shape frame (m)
+  double size = 0.0;                                     // the half-diagonal of its bounding box (m): shapeSize
+
+  [[nodiscard]] Vec3T<double> supportAlong(const Vec3T<double>& d) const { return support(shape, d); }
+};
+
+/// A shape's size (m): the half-diagonal of its bounding box, in its own
+/// frame; the scale of the colliders' touching gap and tolerances.
 template <class Shape>
-struct CcdObject {
+[[nodiscard]] double shapeSize(const Shape& shape) {
+  return shape.getBoundingBox().halfExtents().template cast<double>().norm();
+}
+
+/// The bridge's view of `shape`, which must outlive it. A float shape is
+/// asked in float, its answers converted.
+template <class Shape>
+[[nodiscard]] ConvexSupport convexSupportOf(const Shape& shape) {
   using S = typename Shape::Vec3::Scalar;
-  const Shape* shape;
+  ConvexSupport convex;
+  convex.shape = &shape;
+  convex.support = [](const void* s, const Vec3T<double>& d) -> Vec3T<double> {
+    return static_cast<const Shape*>(s)->support(d.template cast<S>()).template cast<double>();
+  };
+  if constexpr (requires(SupportingFeatureT<S> & out) { shape.supportingFeature(Vec3T<S>(), out); })
+    convex.feature = [](const void* s, const Vec3T<double>& d, SupportingFeatureT<double>& out) {
+      SupportingFeatureT<S> local;
+      static_cast<const Shape*>(s)->supportingFeature(d.template cast<S>(), local);
+      out.count = local.count;
+      for (std::size_t k = 0; k < local.count; ++k) out.points[k] = local.points[k].template cast<double>();
+      out.radius = double(local.radius);
+      out.center = local.center.template cast<double>();
+      out.axis = local.axis.template cast<double>();
+    };
+  convex.centerOfVolume = shape.getCenterOfVolume().template cast<double>();
+  convex.size = shapeSize(shape);
+  return convex;
+}
+
+/// A convex shape at its world pose, as libccd's object: libccd calls
+/// `support` and `centerOf` with a pointer to it.
+struct CcdObject {
+  ConvexSupport convex;
   Mat3T<double> R;     // shape → world rotation
   Vec3T<double> p;     // shape origin in world (m)
   Vec3T<double> center;  // a point inside the shape, world (m)
@@ -20785,12 +20889,16 @@ struct CcdObject {
   CcdSupportBudget* budget = nullptr;
   bool countsCalls = false;  // libccd calls support1, then support2
 
-  CcdObject(const Shape& s, const TransformT<S>& X_W, double grownBy = 0.0)
-      : shape(&s),
-        R(X_W.linear().template cast<double>()),
-        p(X_W.translation().template cast<double>()),
-        center(R * s.getCenterOfVolume().template cast<double>() + p),
-        margin(grownBy) {}
+  CcdObject(const ConvexSupport& shape, const Mat3T<double>& R_W, const Vec3T<double>& p_W, double grownBy = 0.0)
+      : convex(shape), R(R_W), p(p_W), center(R * shape.centerOfVolume + p), margin(grownBy) {}
+  template <Scalar S>
+  CcdObject(const ConvexSupport& shape, const TransformT<S>& X_W, double grownBy = 0.0)
+      : CcdObject(shape, X_W.linear().template cast<double>(), X_W.translation().template cast<double>(), grownBy) {}
+
+  /// The support point along the world direction n_W (not grown), world (m).
+  [[nodiscard]] Vec3T<double> supportWorld(const Vec3T<double>& n_W) const {
+    return R * convex.supportAlong(R.transpose() * n_W) + p;
+  }
 
   static void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
     const auto& o = *static_cast<const CcdObject*>(object);
@@ -20802,8 +20910,7 @@ struct CcdObject {
       }
     }
     const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
-    const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
-    Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
+    Vec3T<double> s_W = o.supportWorld(d_W);
     if (const double length = d_W.norm(); o.margin > 0.0 && length > 0.0) s_W += (o.margin / length) * d_W;
     for (int i = 0; i < 3; ++i) out->v[i] = s_W[i];
   }
@@ -20812,13 +20919,6 @@ struct CcdObject {
     for (int i = 0; i < 3; ++i) out->v[i] = o.center[i];
   }
 };
-
-/// A shape's size (m): the half-diagonal of its bounding box, in its own
-/// frame; the scale of the colliders' touching gap and tolerances.
-template <class Shape>
-[[nodiscard]] double shapeSize(const Shape& shape) {
-  return shape.getBoundingBox().halfExtents().template cast<double>().norm();
-}
 
 inline constexpr double kCcdEpaTolerance = 1e-6;  // m
 
@@ -20834,6 +20934,18 @@ inline constexpr unsigned long kCcdMaxIterations = 200;
 /// 392-triangle height field took 1.8 s a step (Release), at 256 0.16 s
 /// (tests/fuzz/findings/huge-cylinder-on-triangles, parked).
 inline constexpr unsigned long kCcdSupportBudget = 256;
+
+/// libccd's settings for two CcdObjects.
+[[nodiscard]] inline ccd_t ccdSettings() {
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = &CcdObject::support;
+  ccd.support2 = &CcdObject::support;
+  ccd.center1 = &CcdObject::centerOf;
+  ccd.center2 = &CcdObject::centerOf;
+  ccd.max_iterations = kCcdMaxIterations;
+  return ccd;
+}
 /// Polishing: starts besides libccd's direction, and the gradient
 /// (relative to the shapes' size) below which a descent ended on a smooth
 /// minimum and needs no simplex search. Polishing only the starts within
@@ -20891,17 +21003,11 @@ inline void sortDescents(std::vector<Descent>& descents) {
 /// (from a toward b): f(n) = h_a(n) + h_b(−n), with h the support function.
 /// By the separating axis theorem the penetration depth is min f over unit
 /// n, and by Danskin's theorem ∇f = s_a(n) − s_b(−n) =: w.
-template <class A, class B>
 struct ProjectionOverlap {
-  const CcdObject<A>& a;
-  const CcdObject<B>& b;
+  const CcdObject& a;
+  const CcdObject& b;
 
-  [[nodiscard]] Vec3T<double> supportOf(const auto& object, const Vec3T<double>& n_W) const {
-    using S = typename std::remove_cvref_t<decltype(object)>::S;
-    const Vec3T<S> d = (object.R.transpose() * n_W).template cast<S>();
-    return object.R * object.shape->support(d).template cast<double>() + object.p;
-  }
-  [[nodiscard]] Vec3T<double> gradient(const Vec3T<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
+  [[nodiscard]] Vec3T<double> gradient(const Vec3T<double>& n) const { return a.supportWorld(n) - b.supportWorld(-n); }
 };
 
 /// Where f has a kink (an edge or a corner of a box-like shape is involved)
@@ -20909,9 +21015,8 @@ struct ProjectionOverlap {
 /// gradient nor a fixed pattern of steps can follow; a Nelder–Mead simplex
 /// over the tangent plane of n (Nelder & Mead 1965) stretches along the
 /// crease and walks down it, to 1e-10 rad.
-template <class A, class B>
-double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double size,
-                             double turn, const std::vector<PolishedMinimum>& known, bool& joined) {
+inline double polishBySimplexSearch(const ProjectionOverlap& overlap, Vec3T<double>& n, double f, double size,
+                                    double turn, const std::vector<PolishedMinimum>& known, bool& joined) {
   static const double joinCosine = std::cos(kJoinAngle);
   const Vec3T<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
   const Vec3T<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
@@ -20980,8 +21085,7 @@ double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<doubl
 /// bound on the depth that is exact at the minimum; `smooth` tells whether
 /// the descent ended where the gradient vanishes (a smooth minimum, done)
 /// rather than on a kink of f, where the simplex search must take over.
-template <class A, class B>
-double descend(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double scale, bool& smooth) {
+inline double descend(const ProjectionOverlap& overlap, Vec3T<double>& n, double scale, bool& smooth) {
   Vec3T<double> w = overlap.gradient(n);
   double f = n.dot(w);
   Vec3T<double> g = w - n.dot(w) * n;
@@ -21010,9 +21114,8 @@ double descend(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double 
 /// Restarts of the simplex search with fresh, turned simplices: the usual
 /// cure for one that collapsed across a crease. Stops where a search joins
 /// one of the `known` minima (kJoinAngle).
-template <class A, class B>
-double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double scale,
-                     const std::vector<PolishedMinimum>& known) {
+inline double polishOnKinks(const ProjectionOverlap& overlap, Vec3T<double>& n, double f, double scale,
+                            const std::vector<PolishedMinimum>& known) {
   for (int restart = 0; restart < 6; ++restart) {
     const double before = f;
     bool joined = false;
@@ -21029,10 +21132,9 @@ double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, d
 /// minima; for box-like and cylindrical shapes the true minimum lies on or
 /// near one of these axes (face normals and edge–edge directions, as in the
 /// separating axis theorem).
-template <class A, class B>
-std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdObject<B>& b,
-                                             const Vec3T<double>& fromCcd, std::size_t count) {
-  const ProjectionOverlap<A, B> overlap{a, b};
+inline std::vector<Vec3T<double>> startingDirections(const CcdObject& a, const CcdObject& b,
+                                                     const Vec3T<double>& fromCcd, std::size_t count) {
+  const ProjectionOverlap overlap{a, b};
   std::vector<std::pair<double, Vec3T<double>>> candidates;
   const auto consider = [&](const Vec3T<double>& direction) {
     const double length = direction.norm();
@@ -21083,29 +21185,23 @@ inline constexpr double kFeatureTilt = 1e-3;  // rad
 /// n and at n tilted by kFeatureTilt toward eight directions of the tangent
 /// plane, which spread over a face or an edge (its corners or ends) that is
 /// within that tilt of supporting and stay together otherwise.
-template <class Object>
-SupportingFeature supportingFeature(const Object& object, const Vec3T<double>& n) {
-  using S = typename Object::S;
-  const auto toWorld = [&](const Vec3T<S>& p) { return Vec3T<double>(object.R * p.template cast<double>() + object.p); };
-  const auto support = [&](const Vec3T<double>& d) {
-    return toWorld(object.shape->support((object.R.transpose() * d).template cast<S>()));
-  };
+inline SupportingFeature supportingFeature(const CcdObject& object, const Vec3T<double>& n) {
+  const auto toWorld = [&](const Vec3T<double>& p) { return Vec3T<double>(object.R * p + object.p); };
   SupportingFeature feature{Vec3T<double>::Zero(), 0.0, {}, {}};
-  if constexpr (requires(SupportingFeatureT<S>& out) { object.shape->supportingFeature(Vec3T<S>(), out); }) {
-    SupportingFeatureT<S> local;
-    object.shape->supportingFeature((object.R.transpose() * n).template cast<S>(), local);
+  if (object.convex.feature) {
+    SupportingFeatureT<double> local;
+    object.convex.feature(object.convex.shape, object.R.transpose() * n, local);
     for (std::size_t k = 0; k < local.count; ++k) feature.samples.push_back(toWorld(local.points[k]));
-    if (local.radius > S(0))
-      feature.disc = {toWorld(local.center), object.R * local.axis.template cast<double>(), double(local.radius)};
+    if (local.radius > 0.0) feature.disc = {toWorld(local.center), object.R * local.axis, local.radius};
   } else {
     const Vec3T<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-    feature.samples.push_back(support(n));
+    feature.samples.push_back(object.supportWorld(n));
     for (int k = 0; k < 8; ++k) {
       const double angle = k * 0.7853981633974483;
-      feature.samples.push_back(support(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2)));
+      feature.samples.push_back(object.supportWorld(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2)));
     }
   }
-  const Vec3T<double> atN = support(n);
+  const Vec3T<double> atN = object.supportWorld(n);
   for (const Vec3T<double>& p : feature.samples) {
     feature.center += p;
     feature.spread = std::max(feature.spread, (p - atN).norm());
@@ -21134,11 +21230,10 @@ inline Vec3T<double> contactPointInOverlap(const SupportingFeature& onA, const S
 /// where the features do not overlap, one point by contactPointInOverlap.
 /// Points closer than 4·kFeatureTilt·size are one point (the spread a
 /// sampled curved surface leaves).
-template <class A, class B>
-std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, const CcdObject<B>& b,
-                                                         const Vec3T<double>& n, double depth) {
+inline std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject& a, const CcdObject& b,
+                                                                const Vec3T<double>& n, double depth) {
   const SupportingFeature onA = supportingFeature(a, n), onB = supportingFeature(b, -n);
-  const auto size = [](const auto& object) { return shapeSize(*object.shape); };
+  const auto size = [](const CcdObject& object) { return object.convex.size; };
   const FeatureClipping clipping(n);
   std::vector<FeatureClipping::Contact> contacts =
       clipping.contacts({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
@@ -21165,8 +21260,7 @@ std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, 
 /// size; the exact depth 2.8e-17 of it after the snap).
 inline constexpr double kSnapAngle = 1e-3;  // rad
 
-template <class A, class B>
-void snapToFrameAxis(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double& f) {
+inline void snapToFrameAxis(const ProjectionOverlap& overlap, Vec3T<double>& n, double& f) {
   static const double snapCosine = std::cos(kSnapAngle);
   for (const Mat3T<double>* R : {&overlap.a.R, &overlap.b.R})
     for (int i = 0; i < 3; ++i)
@@ -21184,8 +21278,7 @@ void snapToFrameAxis(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, d
 /// True when one of the directions ±(axes of a's and b's frames) or ±(the
 /// line between their centers) has a projection overlap f below `below`:
 /// the shapes are apart by at least −below along it.
-template <class A, class B>
-bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double below) {
+inline bool separatedAlongFrameAxes(const ProjectionOverlap& overlap, double below) {
   const auto apart = [&](const Vec3T<double>& direction) {
     const double length = direction.norm();
     if (!(length > 0.0)) return false;
@@ -21201,38 +21294,38 @@ bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double belo
   return false;
 }
 
+/// Contacts of a penetration along the unit normal n (from a toward b).
+struct CcdPenetration {
+  Vec3T<double> n = Vec3T<double>::UnitZ();
+  std::vector<FeatureClipping::Contact> contacts;  // none: apart
+};
+
 /// Penetration of two convex shapes by GJK + EPA (libccd), polished as
 /// above: the direction that separates b from a, with the contacts of
 /// contactsOfFeatures (not libccd's point, a midpoint of support points
 /// that may lie on a far corner of a large face), or only the deepest of
 /// them when `manifold` is false (triangle pairs of two meshes, one contact
 /// per intersecting pair).
-template <Scalar S, class A, class B>
-void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
-                  bool manifold = true) {
+inline CcdPenetration penetrationByCcd(const ConvexSupport& a, const Mat3T<double>& R_WA, const Vec3T<double>& p_WA,
+                                       const ConvexSupport& b, const Mat3T<double>& R_WB, const Vec3T<double>& p_WB,
+                                       bool manifold) {
   // libccd sees a grown by kTouchingGap of the smaller shape's size, so
   // that shapes placed exactly touching (a body set down on a ground) are
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
-  const double sizeA = shapeSize(a), sizeB = shapeSize(b);
+  const double sizeA = a.size, sizeB = b.size;
   // libccd dereferences a null polytope face when its supports overflow.
-  if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
+  if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return {};
   CcdSupportBudget budget{kCcdSupportBudget};
-  CcdObject<A> objectA(a, X_WA, kTouchingGap * std::min(sizeA, sizeB));
-  CcdObject<B> objectB(b, X_WB);
+  CcdObject objectA(a, R_WA, p_WA, kTouchingGap * std::min(sizeA, sizeB));
+  CcdObject objectB(b, R_WB, p_WB);
   objectA.budget = objectB.budget = &budget;
   objectA.countsCalls = true;
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = &CcdObject<A>::support;
-  ccd.support2 = &CcdObject<B>::support;
-  ccd.center1 = &CcdObject<A>::centerOf;
-  ccd.center2 = &CcdObject<B>::centerOf;
-  ccd.max_iterations = kCcdMaxIterations;
+  ccd_t ccd = ccdSettings();
   ccd.epa_tolerance = kCcdEpaTolerance;
   ccd_real_t depth = 0;
   ccd_vec3_t direction, position;
-  const ProjectionOverlap<A, B> overlap{objectA, objectB};
+  const ProjectionOverlap overlap{objectA, objectB};
   const int penetration = ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position);
   objectA.budget = objectB.budget = nullptr;
   if (penetration != 0) {
@@ -21242,8 +21335,8 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     // grown by kCcdNearMargin is still apart, or with a separating axis
     // among the shapes' axes and the line between their centers; otherwise
     // the polishing below decides.
-    const CcdObject<A> grownA(a, X_WA, kCcdNearMargin * std::min(sizeA, sizeB));
-    if (!ccdGJKIntersect(&grownA, &objectB, &ccd) || separatedAlongFrameAxes(overlap, -objectA.margin)) return;
+    const CcdObject grownA(a, R_WA, p_WA, kCcdNearMargin * std::min(sizeA, sizeB));
+    if (!ccdGJKIntersect(&grownA, &objectB, &ccd) || separatedAlongFrameAxes(overlap, -objectA.margin)) return {};
     direction = {{0.0, 0.0, 0.0}};
   }
   // libccd reports a penetration far smaller than the shapes (within the
@@ -21275,14 +21368,25 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     }
   }
   snapToFrameAxis(overlap, n, refined);
-  if (!(refined >= -objectA.margin)) return;  // the polished direction separates them
-  std::vector<FeatureClipping::Contact> contacts = contactsOfFeatures(objectA, objectB, n, std::max(refined, 0.0));
+  if (!(refined >= -objectA.margin)) return {};  // the polished direction separates them
+  CcdPenetration result{n, contactsOfFeatures(objectA, objectB, n, std::max(refined, 0.0))};
   if (!manifold) {
-    const auto deepest = std::max_element(contacts.begin(), contacts.end(),
+    const auto deepest = std::max_element(result.contacts.begin(), result.contacts.end(),
                                           [](const auto& x, const auto& y) { return x.depth < y.depth; });
-    contacts = {*deepest};
+    result.contacts = {*deepest};
   }
-  for (const FeatureClipping::Contact& contact : contacts) sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
+  return result;
+}
+
+/// penetrationByCcd for shapes a and b at their world poses, into the sink.
+template <Scalar S, class A, class B>
+void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
+                  bool manifold = true) {
+  const CcdPenetration penetration = penetrationByCcd(
+      convexSupportOf(a), X_WA.linear().template cast<double>(), X_WA.translation().template cast<double>(),
+      convexSupportOf(b), X_WB.linear().template cast<double>(), X_WB.translation().template cast<double>(), manifold);
+  for (const FeatureClipping::Contact& contact : penetration.contacts)
+    sink.add(contact.point.cast<S>(), penetration.n.cast<S>(), S(contact.depth));
 }
 
 }  // namespace spook::detail
@@ -21339,51 +21443,46 @@ namespace spook::detail {
 
 /// A convex shape swept along the segment [0, motion] of its own frame: the
 /// Minkowski sum of the two, which is convex, with the support below.
-template <class Shape>
-struct SweptShape {
-  using Vec3 = typename Shape::Vec3;
-  using S = typename Vec3::Scalar;
-  const Shape* shape;
-  Vec3 motion;  // shape frame (m)
+struct SweptConvex {
+  const ConvexSupport* shape;
+  Vec3T<double> motion;  // shape frame (m)
 
-  [[nodiscard]] Vec3 support(const Vec3& d) const {
-    const Vec3 s = shape->support(d);
-    return d.dot(motion) > S(0) ? Vec3(s + motion) : s;
+  [[nodiscard]] ConvexSupport view() const {
+    ConvexSupport convex;
+    convex.shape = this;
+    convex.support = [](const void* s, const Vec3T<double>& d) -> Vec3T<double> {
+      const auto& swept = *static_cast<const SweptConvex*>(s);
+      const Vec3T<double> p = swept.shape->supportAlong(d);
+      return d.dot(swept.motion) > 0.0 ? Vec3T<double>(p + swept.motion) : p;
+    };
+    convex.centerOfVolume = shape->centerOfVolume + 0.5 * motion;
+    convex.size = shape->size + 0.5 * motion.norm();
+    return convex;
   }
-  [[nodiscard]] Vec3 getCenterOfVolume() const { return shape->getCenterOfVolume() + S(0.5) * motion; }
 };
 
 /// The core of a swept shape: a sphere of `radius` at `center` (shape frame).
-template <Scalar S>
 struct CoreSphere {
-  using Vec3 = spook::Vec3T<S>;
-  Vec3 center;
-  S radius;
+  Vec3T<double> center;
+  double radius;
 
-  [[nodiscard]] Vec3 support(const Vec3& d) const {
-    const S length = d.norm();
-    return length > S(0) ? Vec3(center + (radius / length) * d) : center;
+  [[nodiscard]] ConvexSupport view() const {
+    ConvexSupport convex;
+    convex.shape = this;
+    convex.support = [](const void* s, const Vec3T<double>& d) -> Vec3T<double> {
+      const auto& core = *static_cast<const CoreSphere*>(s);
+      const double length = d.norm();
+      return length > 0.0 ? Vec3T<double>(core.center + (core.radius / length) * d) : core.center;
+    };
+    convex.centerOfVolume = center;
+    convex.size = std::sqrt(3.0) * radius;
+    return convex;
   }
-  [[nodiscard]] Vec3 getCenterOfVolume() const { return center; }
 };
 
-/// libccd's settings for a pair of bridged objects.
-template <class A, class B>
-[[nodiscard]] ccd_t ccdSettings() {
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = &CcdObject<A>::support;
-  ccd.support2 = &CcdObject<B>::support;
-  ccd.center1 = &CcdObject<A>::centerOf;
-  ccd.center2 = &CcdObject<B>::centerOf;
-  ccd.max_iterations = kCcdMaxIterations;
-  return ccd;
-}
-
 /// Whether two convex objects overlap (libccd's GJK).
-template <class A, class B>
-[[nodiscard]] bool ccdOverlap(const CcdObject<A>& a, const CcdObject<B>& b) {
-  const ccd_t ccd = ccdSettings<A, B>();
+[[nodiscard]] inline bool ccdOverlap(const CcdObject& a, const CcdObject& b) {
+  const ccd_t ccd = ccdSettings();
   return ccdGJKIntersect(&a, &b, &ccd) != 0;
 }
 
@@ -21416,15 +21515,15 @@ class BodySweep {
   void sweep(const Shape& a, const Transform& X_end, const Shape& b, const Transform& X_WB) {
     switch (a.getType()) {
       case ShapeType::BOX:
-        return against(static_cast<const BoxT<S>&>(a), X_end, b, X_WB);
+        return against(a, convexSupportOf(static_cast<const BoxT<S>&>(a)), X_end, b, X_WB);
       case ShapeType::CAPSULE:
-        return against(static_cast<const CapsuleT<S>&>(a), X_end, b, X_WB);
+        return against(a, convexSupportOf(static_cast<const CapsuleT<S>&>(a)), X_end, b, X_WB);
       case ShapeType::CONVEX:
-        return against(static_cast<const ConvexT<S>&>(a), X_end, b, X_WB);
+        return against(a, convexSupportOf(static_cast<const ConvexT<S>&>(a)), X_end, b, X_WB);
       case ShapeType::CYLINDER:
-        return against(static_cast<const CylinderT<S>&>(a), X_end, b, X_WB);
+        return against(a, convexSupportOf(static_cast<const CylinderT<S>&>(a)), X_end, b, X_WB);
       case ShapeType::SPHERE:
-        return against(static_cast<const SphereT<S>&>(a), X_end, b, X_WB);
+        return against(a, convexSupportOf(static_cast<const SphereT<S>&>(a)), X_end, b, X_WB);
       case ShapeType::COMPOSITE:
         for (const auto& child : static_cast<const CompositeT<S>&>(a).getChildren())
           sweep(*child.shape, X_end * child.transform, b, X_WB);
@@ -21435,29 +21534,31 @@ class BodySweep {
   }
 
  private:
-  template <class A>
-  void against(const A& a, const Transform& X_end, const Shape& b, const Transform& X_WB) {
+  // `shape` is the moving convex shape, `a` the bridge's view of it.
+  void against(const Shape& shape, const ConvexSupport& a, const Transform& X_end, const Shape& b,
+               const Transform& X_WB) {
     switch (b.getType()) {
       case ShapeType::BOX:
-        return convex(a, X_end, static_cast<const BoxT<S>&>(b), X_WB);
+        return convex(a, X_end, convexSupportOf(static_cast<const BoxT<S>&>(b)), X_WB);
       case ShapeType::CAPSULE:
-        return convex(a, X_end, static_cast<const CapsuleT<S>&>(b), X_WB);
+        return convex(a, X_end, convexSupportOf(static_cast<const CapsuleT<S>&>(b)), X_WB);
       case ShapeType::CONVEX:
-        return convex(a, X_end, static_cast<const ConvexT<S>&>(b), X_WB);
+        return convex(a, X_end, convexSupportOf(static_cast<const ConvexT<S>&>(b)), X_WB);
       case ShapeType::CYLINDER:
-        return convex(a, X_end, static_cast<const CylinderT<S>&>(b), X_WB);
+        return convex(a, X_end, convexSupportOf(static_cast<const CylinderT<S>&>(b)), X_WB);
       case ShapeType::LINE:
-        return convex(a, X_end, static_cast<const LineT<S>&>(b), X_WB);
+        return convex(a, X_end, convexSupportOf(static_cast<const LineT<S>&>(b)), X_WB);
       case ShapeType::SPHERE:
-        return convex(a, X_end, static_cast<const SphereT<S>&>(b), X_WB);
+        return convex(a, X_end, convexSupportOf(static_cast<const SphereT<S>&>(b)), X_WB);
       case ShapeType::PLANE:
         return plane(a, X_end, static_cast<const PlaneT<S>&>(b), X_WB);
       case ShapeType::TRIMESH:
-        return triangles(a, X_end, static_cast<const TrimeshT<S>&>(b), X_WB);
+        return triangles(shape, a, X_end, static_cast<const TrimeshT<S>&>(b), X_WB);
       case ShapeType::HEIGHTFIELD:
-        return triangles(a, X_end, static_cast<const HeightFieldT<S>&>(b), X_WB);
+        return triangles(shape, a, X_end, static_cast<const HeightFieldT<S>&>(b), X_WB);
       case ShapeType::COMPOSITE:
-        for (const auto& child : static_cast<const CompositeT<S>&>(b).getChildren()) against(a, X_end, *child.shape, X_WB * child.transform);
+        for (const auto& child : static_cast<const CompositeT<S>&>(b).getChildren())
+          against(shape, a, X_end, *child.shape, X_WB * child.transform);
         return;
     }
   }
@@ -21476,26 +21577,23 @@ class BodySweep {
     X.translation() -= motion_.template cast<S>();
     return X;
   }
-  [[nodiscard]] CoreSphere<S> coreOf(const auto& a) const {
-    return {a.getCenterOfVolume(), S(0.5 * halfWidth_)};
-  }
+  [[nodiscard]] CoreSphere coreOf(const ConvexSupport& a) const { return {a.centerOfVolume, 0.5 * halfWidth_}; }
 
   // A half-space: the deepest point along −n of the shape (or, when the
   // shape starts inside, of its core) reaches the plane after the gap over
   // the approach, in closed form.
-  template <class A>
-  void plane(const A& a, const Transform& X_end, const PlaneT<S>& b, const Transform& X_WB) {
+  void plane(const ConvexSupport& a, const Transform& X_end, const PlaneT<S>& b, const Transform& X_WB) {
     const Vec3T<double> n = (X_WB.linear() * b.getNormal()).template cast<double>();
     const Vec3T<double> point = (X_WB * b.getPoint()).template cast<double>();
     const Transform X_start = startOf(X_end);
-    const Vec3 down = X_start.linear().transpose() * (-n).template cast<S>();
-    const auto gapOf = [&](const auto& shape) {
-      return n.dot((X_start * shape.support(down)).template cast<double>() - point);
-    };
+    const Mat3T<double> R = X_start.linear().template cast<double>();
+    const Vec3T<double> p = X_start.translation().template cast<double>(), down = R.transpose() * -n;
+    const auto gapOf = [&](const ConvexSupport& shape) { return n.dot(R * shape.supportAlong(down) + p - point); };
     const double approach = -n.dot(motion_);
     double gap = gapOf(a), depth = contactDepth();
     if (!(gap > 0.0)) {
-      gap = gapOf(coreOf(a));
+      const CoreSphere core = coreOf(a);
+      gap = gapOf(core.view());
       depth = 0.0;
     }
     if (gap > 0.0 && approach > gap) record(std::min(1.0, gap / approach + depth / length_), approach);
@@ -21503,23 +21601,23 @@ class BodySweep {
 
   // Each triangle of a mesh or height field near the sweep, as a convex
   // target whose contact normal is its face normal (either side).
-  template <class A, class Soup>
-  void triangles(const A& a, const Transform& X_end, const Soup& b, const Transform& X_WB) {
-    const BoundingBoxT<S> local = a.getBoundingBox();
+  template <class Soup>
+  void triangles(const Shape& shape, const ConvexSupport& a, const Transform& X_end, const Soup& b,
+                 const Transform& X_WB) {
+    const BoundingBoxT<S> local = shape.getBoundingBox();
     const BoundingBoxT<S> end = transformBox<S>(local, X_end), start = transformBox<S>(local, startOf(X_end));
     const BoundingBoxT<S> swept{end.min.cwiseMin(start.min), end.max.cwiseMax(start.max)};
     const Transform X_BW = X_WB.inverse();
     b.forEachTriangle(transformBox<S>(swept, X_BW), [&](std::size_t, const Vec3& p, const Vec3& q, const Vec3& r) {
       const Triangle<S> triangle{{p, q, r}};
-      if (const std::optional<double> t = placement(a, X_end, triangle, X_WB))
+      if (const std::optional<double> t = placement(a, X_end, convexSupportOf(triangle), X_WB))
         record(*t, std::abs(motion_.dot((X_WB.linear() * triangle.normal()).template cast<double>())));
     });
   }
 
   // A convex target: the contact normal is libccd's penetration direction
   // at the placed pose (the motion's direction when libccd finds none).
-  template <class A, class B>
-  void convex(const A& a, const Transform& X_end, const B& b, const Transform& X_WB) {
+  void convex(const ConvexSupport& a, const Transform& X_end, const ConvexSupport& b, const Transform& X_WB) {
     const std::optional<double> t = placement(a, X_end, b, X_WB);
     if (!t) return;
     Transform X_hit = X_end;
@@ -21527,11 +21625,11 @@ class BodySweep {
     // libccd's MPR refines its portal without an iteration cap either: the
     // same support budget as the bridge's EPA (ccd_bridge.hpp) ends it.
     CcdSupportBudget budget{kCcdSupportBudget};
-    CcdObject<A> objectA(a, X_hit);
-    CcdObject<B> objectB(b, X_WB);
+    CcdObject objectA(a, X_hit);
+    CcdObject objectB(b, X_WB);
     objectA.budget = objectB.budget = &budget;
     objectA.countsCalls = true;
-    const ccd_t ccd = ccdSettings<A, B>();
+    const ccd_t ccd = ccdSettings();
     ccd_real_t depth = 0;
     ccd_vec3_t direction, position;
     double approach = length_;
@@ -21546,12 +21644,12 @@ class BodySweep {
   // convex b: the first contact of the shape plus the contact depth or,
   // when the shape starts overlapping b (a contact the solver has not yet
   // stopped), the first contact of its core; none when out of reach.
-  template <class A, class B>
-  [[nodiscard]] std::optional<double> placement(const A& a, const Transform& X_end, const B& b,
+  [[nodiscard]] std::optional<double> placement(const ConvexSupport& a, const Transform& X_end, const ConvexSupport& b,
                                                 const Transform& X_WB) const {
     const Contact shape = firstContact(a, X_end, b, X_WB, contactDepth());
     if (!shape.startsInside) return shape.fraction;
-    return firstContact(coreOf(a), X_end, b, X_WB, 0.0).fraction;
+    const CoreSphere core = coreOf(a);
+    return firstContact(core.view(), X_end, b, X_WB, 0.0).fraction;
   }
 
   struct Contact {
@@ -21561,15 +21659,16 @@ class BodySweep {
   // First contact of convex a swept against convex b, bracketed by bisection
   // to half the contact depth; placed `depth` (m) past it, or just short of
   // it for a depth of 0.
-  template <class A, class B>
-  [[nodiscard]] Contact firstContact(const A& a, const Transform& X_end, const B& b, const Transform& X_WB,
-                                     double depth) const {
+  [[nodiscard]] Contact firstContact(const ConvexSupport& a, const Transform& X_end, const ConvexSupport& b,
+                                     const Transform& X_WB, double depth) const {
     const Transform X_start = startOf(X_end);
-    const Vec3T<double> motionLocal = X_start.linear().transpose().template cast<double>() * motion_;
-    const CcdObject<B> objectB(b, X_WB);
+    const Mat3T<double> R_start = X_start.linear().template cast<double>();
+    const Vec3T<double> p_start = X_start.translation().template cast<double>();
+    const Vec3T<double> motionLocal = R_start.transpose() * motion_;
+    const CcdObject objectB(b, X_WB);
     const auto reaches = [&](double t) {
-      const SweptShape<A> swept{&a, (t * motionLocal).template cast<S>()};
-      return ccdOverlap(CcdObject<SweptShape<A>>(swept, X_start), objectB);
+      const SweptConvex swept{&a, t * motionLocal};
+      return ccdOverlap(CcdObject(swept.view(), R_start, p_start), objectB);
     };
     if (reaches(0.0)) return {true, std::nullopt};
     if (!reaches(1.0)) return {};

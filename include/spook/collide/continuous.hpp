@@ -70,51 +70,46 @@ namespace spook::detail {
 
 /// A convex shape swept along the segment [0, motion] of its own frame: the
 /// Minkowski sum of the two, which is convex, with the support below.
-template <class Shape>
-struct SweptShape {
-  using Vec3 = typename Shape::Vec3;
-  using S = typename Vec3::Scalar;
-  const Shape* shape;
-  Vec3 motion;  // shape frame (m)
+struct SweptConvex {
+  const ConvexSupport* shape;
+  Vec3T<double> motion;  // shape frame (m)
 
-  [[nodiscard]] Vec3 support(const Vec3& d) const {
-    const Vec3 s = shape->support(d);
-    return d.dot(motion) > S(0) ? Vec3(s + motion) : s;
+  [[nodiscard]] ConvexSupport view() const {
+    ConvexSupport convex;
+    convex.shape = this;
+    convex.support = [](const void* s, const Vec3T<double>& d) -> Vec3T<double> {
+      const auto& swept = *static_cast<const SweptConvex*>(s);
+      const Vec3T<double> p = swept.shape->supportAlong(d);
+      return d.dot(swept.motion) > 0.0 ? Vec3T<double>(p + swept.motion) : p;
+    };
+    convex.centerOfVolume = shape->centerOfVolume + 0.5 * motion;
+    convex.size = shape->size + 0.5 * motion.norm();
+    return convex;
   }
-  [[nodiscard]] Vec3 getCenterOfVolume() const { return shape->getCenterOfVolume() + S(0.5) * motion; }
 };
 
 /// The core of a swept shape: a sphere of `radius` at `center` (shape frame).
-template <Scalar S>
 struct CoreSphere {
-  using Vec3 = spook::Vec3T<S>;
-  Vec3 center;
-  S radius;
+  Vec3T<double> center;
+  double radius;
 
-  [[nodiscard]] Vec3 support(const Vec3& d) const {
-    const S length = d.norm();
-    return length > S(0) ? Vec3(center + (radius / length) * d) : center;
+  [[nodiscard]] ConvexSupport view() const {
+    ConvexSupport convex;
+    convex.shape = this;
+    convex.support = [](const void* s, const Vec3T<double>& d) -> Vec3T<double> {
+      const auto& core = *static_cast<const CoreSphere*>(s);
+      const double length = d.norm();
+      return length > 0.0 ? Vec3T<double>(core.center + (core.radius / length) * d) : core.center;
+    };
+    convex.centerOfVolume = center;
+    convex.size = std::sqrt(3.0) * radius;
+    return convex;
   }
-  [[nodiscard]] Vec3 getCenterOfVolume() const { return center; }
 };
 
-/// libccd's settings for a pair of bridged objects.
-template <class A, class B>
-[[nodiscard]] ccd_t ccdSettings() {
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = &CcdObject<A>::support;
-  ccd.support2 = &CcdObject<B>::support;
-  ccd.center1 = &CcdObject<A>::centerOf;
-  ccd.center2 = &CcdObject<B>::centerOf;
-  ccd.max_iterations = kCcdMaxIterations;
-  return ccd;
-}
-
 /// Whether two convex objects overlap (libccd's GJK).
-template <class A, class B>
-[[nodiscard]] bool ccdOverlap(const CcdObject<A>& a, const CcdObject<B>& b) {
-  const ccd_t ccd = ccdSettings<A, B>();
+[[nodiscard]] inline bool ccdOverlap(const CcdObject& a, const CcdObject& b) {
+  const ccd_t ccd = ccdSettings();
   return ccdGJKIntersect(&a, &b, &ccd) != 0;
 }
 
@@ -147,15 +142,15 @@ class BodySweep {
   void sweep(const Shape& a, const Transform& X_end, const Shape& b, const Transform& X_WB) {
     switch (a.getType()) {
       case ShapeType::BOX:
-        return against(static_cast<const BoxT<S>&>(a), X_end, b, X_WB);
+        return against(a, convexSupportOf(static_cast<const BoxT<S>&>(a)), X_end, b, X_WB);
       case ShapeType::CAPSULE:
-        return against(static_cast<const CapsuleT<S>&>(a), X_end, b, X_WB);
+        return against(a, convexSupportOf(static_cast<const CapsuleT<S>&>(a)), X_end, b, X_WB);
       case ShapeType::CONVEX:
-        return against(static_cast<const ConvexT<S>&>(a), X_end, b, X_WB);
+        return against(a, convexSupportOf(static_cast<const ConvexT<S>&>(a)), X_end, b, X_WB);
       case ShapeType::CYLINDER:
-        return against(static_cast<const CylinderT<S>&>(a), X_end, b, X_WB);
+        return against(a, convexSupportOf(static_cast<const CylinderT<S>&>(a)), X_end, b, X_WB);
       case ShapeType::SPHERE:
-        return against(static_cast<const SphereT<S>&>(a), X_end, b, X_WB);
+        return against(a, convexSupportOf(static_cast<const SphereT<S>&>(a)), X_end, b, X_WB);
       case ShapeType::COMPOSITE:
         for (const auto& child : static_cast<const CompositeT<S>&>(a).getChildren())
           sweep(*child.shape, X_end * child.transform, b, X_WB);
@@ -166,29 +161,31 @@ class BodySweep {
   }
 
  private:
-  template <class A>
-  void against(const A& a, const Transform& X_end, const Shape& b, const Transform& X_WB) {
+  // `shape` is the moving convex shape, `a` the bridge's view of it.
+  void against(const Shape& shape, const ConvexSupport& a, const Transform& X_end, const Shape& b,
+               const Transform& X_WB) {
     switch (b.getType()) {
       case ShapeType::BOX:
-        return convex(a, X_end, static_cast<const BoxT<S>&>(b), X_WB);
+        return convex(a, X_end, convexSupportOf(static_cast<const BoxT<S>&>(b)), X_WB);
       case ShapeType::CAPSULE:
-        return convex(a, X_end, static_cast<const CapsuleT<S>&>(b), X_WB);
+        return convex(a, X_end, convexSupportOf(static_cast<const CapsuleT<S>&>(b)), X_WB);
       case ShapeType::CONVEX:
-        return convex(a, X_end, static_cast<const ConvexT<S>&>(b), X_WB);
+        return convex(a, X_end, convexSupportOf(static_cast<const ConvexT<S>&>(b)), X_WB);
       case ShapeType::CYLINDER:
-        return convex(a, X_end, static_cast<const CylinderT<S>&>(b), X_WB);
+        return convex(a, X_end, convexSupportOf(static_cast<const CylinderT<S>&>(b)), X_WB);
       case ShapeType::LINE:
-        return convex(a, X_end, static_cast<const LineT<S>&>(b), X_WB);
+        return convex(a, X_end, convexSupportOf(static_cast<const LineT<S>&>(b)), X_WB);
       case ShapeType::SPHERE:
-        return convex(a, X_end, static_cast<const SphereT<S>&>(b), X_WB);
+        return convex(a, X_end, convexSupportOf(static_cast<const SphereT<S>&>(b)), X_WB);
       case ShapeType::PLANE:
         return plane(a, X_end, static_cast<const PlaneT<S>&>(b), X_WB);
       case ShapeType::TRIMESH:
-        return triangles(a, X_end, static_cast<const TrimeshT<S>&>(b), X_WB);
+        return triangles(shape, a, X_end, static_cast<const TrimeshT<S>&>(b), X_WB);
       case ShapeType::HEIGHTFIELD:
-        return triangles(a, X_end, static_cast<const HeightFieldT<S>&>(b), X_WB);
+        return triangles(shape, a, X_end, static_cast<const HeightFieldT<S>&>(b), X_WB);
       case ShapeType::COMPOSITE:
-        for (const auto& child : static_cast<const CompositeT<S>&>(b).getChildren()) against(a, X_end, *child.shape, X_WB * child.transform);
+        for (const auto& child : static_cast<const CompositeT<S>&>(b).getChildren())
+          against(shape, a, X_end, *child.shape, X_WB * child.transform);
         return;
     }
   }
@@ -207,26 +204,23 @@ class BodySweep {
     X.translation() -= motion_.template cast<S>();
     return X;
   }
-  [[nodiscard]] CoreSphere<S> coreOf(const auto& a) const {
-    return {a.getCenterOfVolume(), S(0.5 * halfWidth_)};
-  }
+  [[nodiscard]] CoreSphere coreOf(const ConvexSupport& a) const { return {a.centerOfVolume, 0.5 * halfWidth_}; }
 
   // A half-space: the deepest point along −n of the shape (or, when the
   // shape starts inside, of its core) reaches the plane after the gap over
   // the approach, in closed form.
-  template <class A>
-  void plane(const A& a, const Transform& X_end, const PlaneT<S>& b, const Transform& X_WB) {
+  void plane(const ConvexSupport& a, const Transform& X_end, const PlaneT<S>& b, const Transform& X_WB) {
     const Vec3T<double> n = (X_WB.linear() * b.getNormal()).template cast<double>();
     const Vec3T<double> point = (X_WB * b.getPoint()).template cast<double>();
     const Transform X_start = startOf(X_end);
-    const Vec3 down = X_start.linear().transpose() * (-n).template cast<S>();
-    const auto gapOf = [&](const auto& shape) {
-      return n.dot((X_start * shape.support(down)).template cast<double>() - point);
-    };
+    const Mat3T<double> R = X_start.linear().template cast<double>();
+    const Vec3T<double> p = X_start.translation().template cast<double>(), down = R.transpose() * -n;
+    const auto gapOf = [&](const ConvexSupport& shape) { return n.dot(R * shape.supportAlong(down) + p - point); };
     const double approach = -n.dot(motion_);
     double gap = gapOf(a), depth = contactDepth();
     if (!(gap > 0.0)) {
-      gap = gapOf(coreOf(a));
+      const CoreSphere core = coreOf(a);
+      gap = gapOf(core.view());
       depth = 0.0;
     }
     if (gap > 0.0 && approach > gap) record(std::min(1.0, gap / approach + depth / length_), approach);
@@ -234,23 +228,23 @@ class BodySweep {
 
   // Each triangle of a mesh or height field near the sweep, as a convex
   // target whose contact normal is its face normal (either side).
-  template <class A, class Soup>
-  void triangles(const A& a, const Transform& X_end, const Soup& b, const Transform& X_WB) {
-    const BoundingBoxT<S> local = a.getBoundingBox();
+  template <class Soup>
+  void triangles(const Shape& shape, const ConvexSupport& a, const Transform& X_end, const Soup& b,
+                 const Transform& X_WB) {
+    const BoundingBoxT<S> local = shape.getBoundingBox();
     const BoundingBoxT<S> end = transformBox<S>(local, X_end), start = transformBox<S>(local, startOf(X_end));
     const BoundingBoxT<S> swept{end.min.cwiseMin(start.min), end.max.cwiseMax(start.max)};
     const Transform X_BW = X_WB.inverse();
     b.forEachTriangle(transformBox<S>(swept, X_BW), [&](std::size_t, const Vec3& p, const Vec3& q, const Vec3& r) {
       const Triangle<S> triangle{{p, q, r}};
-      if (const std::optional<double> t = placement(a, X_end, triangle, X_WB))
+      if (const std::optional<double> t = placement(a, X_end, convexSupportOf(triangle), X_WB))
         record(*t, std::abs(motion_.dot((X_WB.linear() * triangle.normal()).template cast<double>())));
     });
   }
 
   // A convex target: the contact normal is libccd's penetration direction
   // at the placed pose (the motion's direction when libccd finds none).
-  template <class A, class B>
-  void convex(const A& a, const Transform& X_end, const B& b, const Transform& X_WB) {
+  void convex(const ConvexSupport& a, const Transform& X_end, const ConvexSupport& b, const Transform& X_WB) {
     const std::optional<double> t = placement(a, X_end, b, X_WB);
     if (!t) return;
     Transform X_hit = X_end;
@@ -258,11 +252,11 @@ class BodySweep {
     // libccd's MPR refines its portal without an iteration cap either: the
     // same support budget as the bridge's EPA (ccd_bridge.hpp) ends it.
     CcdSupportBudget budget{kCcdSupportBudget};
-    CcdObject<A> objectA(a, X_hit);
-    CcdObject<B> objectB(b, X_WB);
+    CcdObject objectA(a, X_hit);
+    CcdObject objectB(b, X_WB);
     objectA.budget = objectB.budget = &budget;
     objectA.countsCalls = true;
-    const ccd_t ccd = ccdSettings<A, B>();
+    const ccd_t ccd = ccdSettings();
     ccd_real_t depth = 0;
     ccd_vec3_t direction, position;
     double approach = length_;
@@ -277,12 +271,12 @@ class BodySweep {
   // convex b: the first contact of the shape plus the contact depth or,
   // when the shape starts overlapping b (a contact the solver has not yet
   // stopped), the first contact of its core; none when out of reach.
-  template <class A, class B>
-  [[nodiscard]] std::optional<double> placement(const A& a, const Transform& X_end, const B& b,
+  [[nodiscard]] std::optional<double> placement(const ConvexSupport& a, const Transform& X_end, const ConvexSupport& b,
                                                 const Transform& X_WB) const {
     const Contact shape = firstContact(a, X_end, b, X_WB, contactDepth());
     if (!shape.startsInside) return shape.fraction;
-    return firstContact(coreOf(a), X_end, b, X_WB, 0.0).fraction;
+    const CoreSphere core = coreOf(a);
+    return firstContact(core.view(), X_end, b, X_WB, 0.0).fraction;
   }
 
   struct Contact {
@@ -292,15 +286,16 @@ class BodySweep {
   // First contact of convex a swept against convex b, bracketed by bisection
   // to half the contact depth; placed `depth` (m) past it, or just short of
   // it for a depth of 0.
-  template <class A, class B>
-  [[nodiscard]] Contact firstContact(const A& a, const Transform& X_end, const B& b, const Transform& X_WB,
-                                     double depth) const {
+  [[nodiscard]] Contact firstContact(const ConvexSupport& a, const Transform& X_end, const ConvexSupport& b,
+                                     const Transform& X_WB, double depth) const {
     const Transform X_start = startOf(X_end);
-    const Vec3T<double> motionLocal = X_start.linear().transpose().template cast<double>() * motion_;
-    const CcdObject<B> objectB(b, X_WB);
+    const Mat3T<double> R_start = X_start.linear().template cast<double>();
+    const Vec3T<double> p_start = X_start.translation().template cast<double>();
+    const Vec3T<double> motionLocal = R_start.transpose() * motion_;
+    const CcdObject objectB(b, X_WB);
     const auto reaches = [&](double t) {
-      const SweptShape<A> swept{&a, (t * motionLocal).template cast<S>()};
-      return ccdOverlap(CcdObject<SweptShape<A>>(swept, X_start), objectB);
+      const SweptConvex swept{&a, t * motionLocal};
+      return ccdOverlap(CcdObject(swept.view(), R_start, p_start), objectB);
     };
     if (reaches(0.0)) return {true, std::nullopt};
     if (!reaches(1.0)) return {};

@@ -71,6 +71,39 @@ inline constexpr bool kIsPolytope =
 /// colliders' choice), or each triangle's own, as a convex shape alone.
 enum class TriangleContacts { SURFACE, PER_TRIANGLE };
 
+/// Adds the points `found` against a soup's triangles to the sink, of two
+/// alike (closer than `alike` (m), normals within kAlikeNormalAngle) the
+/// deeper only (the first found on a tie); every point for alike < 0. Found
+/// along the points sorted by x. (Not per shape pair: one copy per scalar.)
+template <Scalar S>
+void addDistinctSurfaceContacts(const std::vector<ContactPointT<S>>& found, S alike, ContactSinkT<S>& sink) {
+  thread_local std::vector<std::size_t> order;
+  thread_local std::vector<char> kept;
+  kept.assign(found.size(), 1);
+  if (alike >= S(0)) {
+    const S parallel = S(std::cos(kAlikeNormalAngle));
+    order.resize(found.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t i, std::size_t j) { return found[i].point.x() < found[j].point.x(); });
+    for (std::size_t m = 0; m < order.size(); ++m)
+      for (std::size_t l = m + 1; l < order.size() && found[order[l]].point.x() - found[order[m]].point.x() <= alike;
+           ++l) {
+        const std::size_t i = std::min(order[m], order[l]), j = std::max(order[m], order[l]);
+        const ContactPointT<S>&p = found[i], &q = found[j];
+        if ((p.point - q.point).norm() <= alike && p.normal.dot(q.normal) >= parallel)
+          kept[q.depth > p.depth ? i : j] = 0;
+      }
+  }
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    if (!kept[k]) continue;
+    const ContactPointT<S>& c = found[k];
+    sink.setFaceIndices(0, c.faceIndex2);
+    sink.add(c.point, c.normal, c.depth);
+  }
+  sink.setFaceIndices(0, 0);
+}
+
 /// Contacts of a shape against the triangles of a soup near it, each
 /// triangle a convex shape of its own: boxes, hulls and segments by the
 /// separating axes with a clipped manifold (polytope_sat.hpp), spheres and
@@ -113,33 +146,8 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
       activeEdgeNormals<S>(t_W, soup.getActiveEdges(i), points, Soup::kType == ShapeType::HEIGHTFIELD);
     found.insert(found.end(), points.begin(), points.end());
   });
-  // Alike pairs, found along the points sorted by x: of two, the deeper
-  // stays (the first found on a tie).
-  thread_local std::vector<std::size_t> order;
-  thread_local std::vector<char> kept;
-  kept.assign(found.size(), 1);
-  if (report == TriangleContacts::SURFACE) {
-    const S alike = S(4.0 * kFeatureTilt) * boxA.halfExtents().norm();
-    const S parallel = S(std::cos(kAlikeNormalAngle));
-    order.resize(found.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t i, std::size_t j) { return found[i].point.x() < found[j].point.x(); });
-    for (std::size_t m = 0; m < order.size(); ++m)
-      for (std::size_t l = m + 1;
-           l < order.size() && found[order[l]].point.x() - found[order[m]].point.x() <= alike; ++l) {
-        const std::size_t i = std::min(order[m], order[l]), j = std::max(order[m], order[l]);
-        const ContactPointT<S>&p = found[i], &q = found[j];
-        if ((p.point - q.point).norm() <= alike && p.normal.dot(q.normal) >= parallel) kept[q.depth > p.depth ? i : j] = 0;
-      }
-  }
-  for (std::size_t k = 0; k < found.size(); ++k) {
-    if (!kept[k]) continue;
-    const ContactPointT<S>& c = found[k];
-    sink.setFaceIndices(0, c.faceIndex2);
-    sink.add(c.point, c.normal, c.depth);
-  }
-  sink.setFaceIndices(0, 0);
+  addDistinctSurfaceContacts<S>(
+      found, report == TriangleContacts::SURFACE ? S(4.0 * kFeatureTilt) * boxA.halfExtents().norm() : S(-1), sink);
 }
 
 /// Triangle pairs of two soups whose boxes overlap, each collided by libccd

@@ -114,8 +114,8 @@ void collideCapsuleTriangle(const CapsuleT<S>& capsule, const TransformT<S>& X_W
     for (int k = 0; k < 3; ++k) consider(axis.cross(t.v[(k + 1) % 3] - t.v[k]));
     if (!std::isfinite(depth)) return;
   }
-  const CcdObject<CapsuleT<S>> objectA(capsule, X_WA);
-  const CcdObject<Triangle<S>> objectB(t_M, X_WM);
+  const CcdObject objectA(convexSupportOf(capsule), X_WA);
+  const CcdObject objectB(convexSupportOf(t_M), X_WM);
   for (const FeatureClipping::Contact& contact : contactsOfFeatures(objectA, objectB, n, std::max(depth, 0.0)))
     sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
 }

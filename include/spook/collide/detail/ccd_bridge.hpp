@@ -32,10 +32,58 @@ struct CcdSupportBudget {
   unsigned long calls = 0;  // counted by the first object (libccd's support1)
 };
 
+/// A convex shape as the bridge sees it, whatever its type and scalar: its
+/// support function and supporting feature in its own frame, in double.
+/// Everything below works on this view, so one copy of the polishing serves
+/// every shape pair (compiled per pair, the copies took a fifth of a
+/// program's colliders).
+struct ConvexSupport {
+  const void* shape = nullptr;
+  Vec3T<double> (*support)(const void* shape, const Vec3T<double>& d) = nullptr;
+  /// The shape's supporting feature, or null: sampled (supportingFeature).
+  void (*feature)(const void* shape, const Vec3T<double>& d, SupportingFeatureT<double>& out) = nullptr;
+  Vec3T<double> centerOfVolume = Vec3T<double>::Zero();  // shape frame (m)
+  double size = 0.0;                                     // the half-diagonal of its bounding box (m): shapeSize
+
+  [[nodiscard]] Vec3T<double> supportAlong(const Vec3T<double>& d) const { return support(shape, d); }
+};
+
+/// A shape's size (m): the half-diagonal of its bounding box, in its own
+/// frame; the scale of the colliders' touching gap and tolerances.
 template <class Shape>
-struct CcdObject {
+[[nodiscard]] double shapeSize(const Shape& shape) {
+  return shape.getBoundingBox().halfExtents().template cast<double>().norm();
+}
+
+/// The bridge's view of `shape`, which must outlive it. A float shape is
+/// asked in float, its answers converted.
+template <class Shape>
+[[nodiscard]] ConvexSupport convexSupportOf(const Shape& shape) {
   using S = typename Shape::Vec3::Scalar;
-  const Shape* shape;
+  ConvexSupport convex;
+  convex.shape = &shape;
+  convex.support = [](const void* s, const Vec3T<double>& d) -> Vec3T<double> {
+    return static_cast<const Shape*>(s)->support(d.template cast<S>()).template cast<double>();
+  };
+  if constexpr (requires(SupportingFeatureT<S> & out) { shape.supportingFeature(Vec3T<S>(), out); })
+    convex.feature = [](const void* s, const Vec3T<double>& d, SupportingFeatureT<double>& out) {
+      SupportingFeatureT<S> local;
+      static_cast<const Shape*>(s)->supportingFeature(d.template cast<S>(), local);
+      out.count = local.count;
+      for (std::size_t k = 0; k < local.count; ++k) out.points[k] = local.points[k].template cast<double>();
+      out.radius = double(local.radius);
+      out.center = local.center.template cast<double>();
+      out.axis = local.axis.template cast<double>();
+    };
+  convex.centerOfVolume = shape.getCenterOfVolume().template cast<double>();
+  convex.size = shapeSize(shape);
+  return convex;
+}
+
+/// A convex shape at its world pose, as libccd's object: libccd calls
+/// `support` and `centerOf` with a pointer to it.
+struct CcdObject {
+  ConvexSupport convex;
   Mat3T<double> R;     // shape → world rotation
   Vec3T<double> p;     // shape origin in world (m)
   Vec3T<double> center;  // a point inside the shape, world (m)
@@ -43,12 +91,16 @@ struct CcdObject {
   CcdSupportBudget* budget = nullptr;
   bool countsCalls = false;  // libccd calls support1, then support2
 
-  CcdObject(const Shape& s, const TransformT<S>& X_W, double grownBy = 0.0)
-      : shape(&s),
-        R(X_W.linear().template cast<double>()),
-        p(X_W.translation().template cast<double>()),
-        center(R * s.getCenterOfVolume().template cast<double>() + p),
-        margin(grownBy) {}
+  CcdObject(const ConvexSupport& shape, const Mat3T<double>& R_W, const Vec3T<double>& p_W, double grownBy = 0.0)
+      : convex(shape), R(R_W), p(p_W), center(R * shape.centerOfVolume + p), margin(grownBy) {}
+  template <Scalar S>
+  CcdObject(const ConvexSupport& shape, const TransformT<S>& X_W, double grownBy = 0.0)
+      : CcdObject(shape, X_W.linear().template cast<double>(), X_W.translation().template cast<double>(), grownBy) {}
+
+  /// The support point along the world direction n_W (not grown), world (m).
+  [[nodiscard]] Vec3T<double> supportWorld(const Vec3T<double>& n_W) const {
+    return R * convex.supportAlong(R.transpose() * n_W) + p;
+  }
 
   static void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
     const auto& o = *static_cast<const CcdObject*>(object);
@@ -60,8 +112,7 @@ struct CcdObject {
       }
     }
     const Vec3T<double> d_W(direction->v[0], direction->v[1], direction->v[2]);
-    const Vec3T<S> d_local = (o.R.transpose() * d_W).template cast<S>();
-    Vec3T<double> s_W = o.R * o.shape->support(d_local).template cast<double>() + o.p;
+    Vec3T<double> s_W = o.supportWorld(d_W);
     if (const double length = d_W.norm(); o.margin > 0.0 && length > 0.0) s_W += (o.margin / length) * d_W;
     for (int i = 0; i < 3; ++i) out->v[i] = s_W[i];
   }
@@ -70,13 +121,6 @@ struct CcdObject {
     for (int i = 0; i < 3; ++i) out->v[i] = o.center[i];
   }
 };
-
-/// A shape's size (m): the half-diagonal of its bounding box, in its own
-/// frame; the scale of the colliders' touching gap and tolerances.
-template <class Shape>
-[[nodiscard]] double shapeSize(const Shape& shape) {
-  return shape.getBoundingBox().halfExtents().template cast<double>().norm();
-}
 
 inline constexpr double kCcdEpaTolerance = 1e-6;  // m
 
@@ -92,6 +136,18 @@ inline constexpr unsigned long kCcdMaxIterations = 200;
 /// 392-triangle height field took 1.8 s a step (Release), at 256 0.16 s
 /// (tests/fuzz/findings/huge-cylinder-on-triangles, parked).
 inline constexpr unsigned long kCcdSupportBudget = 256;
+
+/// libccd's settings for two CcdObjects.
+[[nodiscard]] inline ccd_t ccdSettings() {
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = &CcdObject::support;
+  ccd.support2 = &CcdObject::support;
+  ccd.center1 = &CcdObject::centerOf;
+  ccd.center2 = &CcdObject::centerOf;
+  ccd.max_iterations = kCcdMaxIterations;
+  return ccd;
+}
 /// Polishing: starts besides libccd's direction, and the gradient
 /// (relative to the shapes' size) below which a descent ended on a smooth
 /// minimum and needs no simplex search. Polishing only the starts within
@@ -149,17 +205,11 @@ inline void sortDescents(std::vector<Descent>& descents) {
 /// (from a toward b): f(n) = h_a(n) + h_b(−n), with h the support function.
 /// By the separating axis theorem the penetration depth is min f over unit
 /// n, and by Danskin's theorem ∇f = s_a(n) − s_b(−n) =: w.
-template <class A, class B>
 struct ProjectionOverlap {
-  const CcdObject<A>& a;
-  const CcdObject<B>& b;
+  const CcdObject& a;
+  const CcdObject& b;
 
-  [[nodiscard]] Vec3T<double> supportOf(const auto& object, const Vec3T<double>& n_W) const {
-    using S = typename std::remove_cvref_t<decltype(object)>::S;
-    const Vec3T<S> d = (object.R.transpose() * n_W).template cast<S>();
-    return object.R * object.shape->support(d).template cast<double>() + object.p;
-  }
-  [[nodiscard]] Vec3T<double> gradient(const Vec3T<double>& n) const { return supportOf(a, n) - supportOf(b, -n); }
+  [[nodiscard]] Vec3T<double> gradient(const Vec3T<double>& n) const { return a.supportWorld(n) - b.supportWorld(-n); }
 };
 
 /// Where f has a kink (an edge or a corner of a box-like shape is involved)
@@ -167,9 +217,8 @@ struct ProjectionOverlap {
 /// gradient nor a fixed pattern of steps can follow; a Nelder–Mead simplex
 /// over the tangent plane of n (Nelder & Mead 1965) stretches along the
 /// crease and walks down it, to 1e-10 rad.
-template <class A, class B>
-double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double size,
-                             double turn, const std::vector<PolishedMinimum>& known, bool& joined) {
+inline double polishBySimplexSearch(const ProjectionOverlap& overlap, Vec3T<double>& n, double f, double size,
+                                    double turn, const std::vector<PolishedMinimum>& known, bool& joined) {
   static const double joinCosine = std::cos(kJoinAngle);
   const Vec3T<double> n0 = n, u = n0.unitOrthogonal(), w = n0.cross(u);
   const Vec3T<double> t1 = std::cos(turn) * u + std::sin(turn) * w, t2 = n0.cross(t1);
@@ -238,8 +287,7 @@ double polishBySimplexSearch(const ProjectionOverlap<A, B>& overlap, Vec3T<doubl
 /// bound on the depth that is exact at the minimum; `smooth` tells whether
 /// the descent ended where the gradient vanishes (a smooth minimum, done)
 /// rather than on a kink of f, where the simplex search must take over.
-template <class A, class B>
-double descend(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double scale, bool& smooth) {
+inline double descend(const ProjectionOverlap& overlap, Vec3T<double>& n, double scale, bool& smooth) {
   Vec3T<double> w = overlap.gradient(n);
   double f = n.dot(w);
   Vec3T<double> g = w - n.dot(w) * n;
@@ -268,9 +316,8 @@ double descend(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double 
 /// Restarts of the simplex search with fresh, turned simplices: the usual
 /// cure for one that collapsed across a crease. Stops where a search joins
 /// one of the `known` minima (kJoinAngle).
-template <class A, class B>
-double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double f, double scale,
-                     const std::vector<PolishedMinimum>& known) {
+inline double polishOnKinks(const ProjectionOverlap& overlap, Vec3T<double>& n, double f, double scale,
+                            const std::vector<PolishedMinimum>& known) {
   for (int restart = 0; restart < 6; ++restart) {
     const double before = f;
     bool joined = false;
@@ -287,10 +334,9 @@ double polishOnKinks(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, d
 /// minima; for box-like and cylindrical shapes the true minimum lies on or
 /// near one of these axes (face normals and edge–edge directions, as in the
 /// separating axis theorem).
-template <class A, class B>
-std::vector<Vec3T<double>> startingDirections(const CcdObject<A>& a, const CcdObject<B>& b,
-                                             const Vec3T<double>& fromCcd, std::size_t count) {
-  const ProjectionOverlap<A, B> overlap{a, b};
+inline std::vector<Vec3T<double>> startingDirections(const CcdObject& a, const CcdObject& b,
+                                                     const Vec3T<double>& fromCcd, std::size_t count) {
+  const ProjectionOverlap overlap{a, b};
   std::vector<std::pair<double, Vec3T<double>>> candidates;
   const auto consider = [&](const Vec3T<double>& direction) {
     const double length = direction.norm();
@@ -341,29 +387,23 @@ inline constexpr double kFeatureTilt = 1e-3;  // rad
 /// n and at n tilted by kFeatureTilt toward eight directions of the tangent
 /// plane, which spread over a face or an edge (its corners or ends) that is
 /// within that tilt of supporting and stay together otherwise.
-template <class Object>
-SupportingFeature supportingFeature(const Object& object, const Vec3T<double>& n) {
-  using S = typename Object::S;
-  const auto toWorld = [&](const Vec3T<S>& p) { return Vec3T<double>(object.R * p.template cast<double>() + object.p); };
-  const auto support = [&](const Vec3T<double>& d) {
-    return toWorld(object.shape->support((object.R.transpose() * d).template cast<S>()));
-  };
+inline SupportingFeature supportingFeature(const CcdObject& object, const Vec3T<double>& n) {
+  const auto toWorld = [&](const Vec3T<double>& p) { return Vec3T<double>(object.R * p + object.p); };
   SupportingFeature feature{Vec3T<double>::Zero(), 0.0, {}, {}};
-  if constexpr (requires(SupportingFeatureT<S>& out) { object.shape->supportingFeature(Vec3T<S>(), out); }) {
-    SupportingFeatureT<S> local;
-    object.shape->supportingFeature((object.R.transpose() * n).template cast<S>(), local);
+  if (object.convex.feature) {
+    SupportingFeatureT<double> local;
+    object.convex.feature(object.convex.shape, object.R.transpose() * n, local);
     for (std::size_t k = 0; k < local.count; ++k) feature.samples.push_back(toWorld(local.points[k]));
-    if (local.radius > S(0))
-      feature.disc = {toWorld(local.center), object.R * local.axis.template cast<double>(), double(local.radius)};
+    if (local.radius > 0.0) feature.disc = {toWorld(local.center), object.R * local.axis, local.radius};
   } else {
     const Vec3T<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-    feature.samples.push_back(support(n));
+    feature.samples.push_back(object.supportWorld(n));
     for (int k = 0; k < 8; ++k) {
       const double angle = k * 0.7853981633974483;
-      feature.samples.push_back(support(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2)));
+      feature.samples.push_back(object.supportWorld(n + kFeatureTilt * (std::cos(angle) * t1 + std::sin(angle) * t2)));
     }
   }
-  const Vec3T<double> atN = support(n);
+  const Vec3T<double> atN = object.supportWorld(n);
   for (const Vec3T<double>& p : feature.samples) {
     feature.center += p;
     feature.spread = std::max(feature.spread, (p - atN).norm());
@@ -392,11 +432,10 @@ inline Vec3T<double> contactPointInOverlap(const SupportingFeature& onA, const S
 /// where the features do not overlap, one point by contactPointInOverlap.
 /// Points closer than 4·kFeatureTilt·size are one point (the spread a
 /// sampled curved surface leaves).
-template <class A, class B>
-std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, const CcdObject<B>& b,
-                                                         const Vec3T<double>& n, double depth) {
+inline std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject& a, const CcdObject& b,
+                                                                const Vec3T<double>& n, double depth) {
   const SupportingFeature onA = supportingFeature(a, n), onB = supportingFeature(b, -n);
-  const auto size = [](const auto& object) { return shapeSize(*object.shape); };
+  const auto size = [](const CcdObject& object) { return object.convex.size; };
   const FeatureClipping clipping(n);
   std::vector<FeatureClipping::Contact> contacts =
       clipping.contacts({onA.samples, 4.0 * kFeatureTilt * size(a), onA.disc},
@@ -423,8 +462,7 @@ std::vector<FeatureClipping::Contact> contactsOfFeatures(const CcdObject<A>& a, 
 /// size; the exact depth 2.8e-17 of it after the snap).
 inline constexpr double kSnapAngle = 1e-3;  // rad
 
-template <class A, class B>
-void snapToFrameAxis(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, double& f) {
+inline void snapToFrameAxis(const ProjectionOverlap& overlap, Vec3T<double>& n, double& f) {
   static const double snapCosine = std::cos(kSnapAngle);
   for (const Mat3T<double>* R : {&overlap.a.R, &overlap.b.R})
     for (int i = 0; i < 3; ++i)
@@ -442,8 +480,7 @@ void snapToFrameAxis(const ProjectionOverlap<A, B>& overlap, Vec3T<double>& n, d
 /// True when one of the directions ±(axes of a's and b's frames) or ±(the
 /// line between their centers) has a projection overlap f below `below`:
 /// the shapes are apart by at least −below along it.
-template <class A, class B>
-bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double below) {
+inline bool separatedAlongFrameAxes(const ProjectionOverlap& overlap, double below) {
   const auto apart = [&](const Vec3T<double>& direction) {
     const double length = direction.norm();
     if (!(length > 0.0)) return false;
@@ -459,38 +496,38 @@ bool separatedAlongFrameAxes(const ProjectionOverlap<A, B>& overlap, double belo
   return false;
 }
 
+/// Contacts of a penetration along the unit normal n (from a toward b).
+struct CcdPenetration {
+  Vec3T<double> n = Vec3T<double>::UnitZ();
+  std::vector<FeatureClipping::Contact> contacts;  // none: apart
+};
+
 /// Penetration of two convex shapes by GJK + EPA (libccd), polished as
 /// above: the direction that separates b from a, with the contacts of
 /// contactsOfFeatures (not libccd's point, a midpoint of support points
 /// that may lie on a far corner of a large face), or only the deepest of
 /// them when `manifold` is false (triangle pairs of two meshes, one contact
 /// per intersecting pair).
-template <Scalar S, class A, class B>
-void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
-                  bool manifold = true) {
+inline CcdPenetration penetrationByCcd(const ConvexSupport& a, const Mat3T<double>& R_WA, const Vec3T<double>& p_WA,
+                                       const ConvexSupport& b, const Mat3T<double>& R_WB, const Vec3T<double>& p_WB,
+                                       bool manifold) {
   // libccd sees a grown by kTouchingGap of the smaller shape's size, so
   // that shapes placed exactly touching (a body set down on a ground) are
   // found touching, not left to fall a step; the polishing below measures
   // the true overlap, and a gap within the margin is a contact of depth 0.
-  const double sizeA = shapeSize(a), sizeB = shapeSize(b);
+  const double sizeA = a.size, sizeB = b.size;
   // libccd dereferences a null polytope face when its supports overflow.
-  if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
+  if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return {};
   CcdSupportBudget budget{kCcdSupportBudget};
-  CcdObject<A> objectA(a, X_WA, kTouchingGap * std::min(sizeA, sizeB));
-  CcdObject<B> objectB(b, X_WB);
+  CcdObject objectA(a, R_WA, p_WA, kTouchingGap * std::min(sizeA, sizeB));
+  CcdObject objectB(b, R_WB, p_WB);
   objectA.budget = objectB.budget = &budget;
   objectA.countsCalls = true;
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = &CcdObject<A>::support;
-  ccd.support2 = &CcdObject<B>::support;
-  ccd.center1 = &CcdObject<A>::centerOf;
-  ccd.center2 = &CcdObject<B>::centerOf;
-  ccd.max_iterations = kCcdMaxIterations;
+  ccd_t ccd = ccdSettings();
   ccd.epa_tolerance = kCcdEpaTolerance;
   ccd_real_t depth = 0;
   ccd_vec3_t direction, position;
-  const ProjectionOverlap<A, B> overlap{objectA, objectB};
+  const ProjectionOverlap overlap{objectA, objectB};
   const int penetration = ccdGJKPenetration(&objectA, &objectB, &ccd, &depth, &direction, &position);
   objectA.budget = objectB.budget = nullptr;
   if (penetration != 0) {
@@ -500,8 +537,8 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     // grown by kCcdNearMargin is still apart, or with a separating axis
     // among the shapes' axes and the line between their centers; otherwise
     // the polishing below decides.
-    const CcdObject<A> grownA(a, X_WA, kCcdNearMargin * std::min(sizeA, sizeB));
-    if (!ccdGJKIntersect(&grownA, &objectB, &ccd) || separatedAlongFrameAxes(overlap, -objectA.margin)) return;
+    const CcdObject grownA(a, R_WA, p_WA, kCcdNearMargin * std::min(sizeA, sizeB));
+    if (!ccdGJKIntersect(&grownA, &objectB, &ccd) || separatedAlongFrameAxes(overlap, -objectA.margin)) return {};
     direction = {{0.0, 0.0, 0.0}};
   }
   // libccd reports a penetration far smaller than the shapes (within the
@@ -533,14 +570,25 @@ void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const Trans
     }
   }
   snapToFrameAxis(overlap, n, refined);
-  if (!(refined >= -objectA.margin)) return;  // the polished direction separates them
-  std::vector<FeatureClipping::Contact> contacts = contactsOfFeatures(objectA, objectB, n, std::max(refined, 0.0));
+  if (!(refined >= -objectA.margin)) return {};  // the polished direction separates them
+  CcdPenetration result{n, contactsOfFeatures(objectA, objectB, n, std::max(refined, 0.0))};
   if (!manifold) {
-    const auto deepest = std::max_element(contacts.begin(), contacts.end(),
+    const auto deepest = std::max_element(result.contacts.begin(), result.contacts.end(),
                                           [](const auto& x, const auto& y) { return x.depth < y.depth; });
-    contacts = {*deepest};
+    result.contacts = {*deepest};
   }
-  for (const FeatureClipping::Contact& contact : contacts) sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
+  return result;
+}
+
+/// penetrationByCcd for shapes a and b at their world poses, into the sink.
+template <Scalar S, class A, class B>
+void collideByCcd(const A& a, const TransformT<S>& X_WA, const B& b, const TransformT<S>& X_WB, ContactSinkT<S>& sink,
+                  bool manifold = true) {
+  const CcdPenetration penetration = penetrationByCcd(
+      convexSupportOf(a), X_WA.linear().template cast<double>(), X_WA.translation().template cast<double>(),
+      convexSupportOf(b), X_WB.linear().template cast<double>(), X_WB.translation().template cast<double>(), manifold);
+  for (const FeatureClipping::Contact& contact : penetration.contacts)
+    sink.add(contact.point.cast<S>(), penetration.n.cast<S>(), S(contact.depth));
 }
 
 }  // namespace spook::detail

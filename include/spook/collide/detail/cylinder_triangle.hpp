@@ -158,8 +158,8 @@ void collideCylinderTriangle(const CylinderT<S>& cylinder, const TransformT<S>& 
   }
   if (!std::isfinite(lowest.f) || lowest.f < -touching) return;
   const Vec3T<double> n = X_WA.linear().template cast<double>() * lowest.n;
-  const CcdObject<CylinderT<S>> objectA(cylinder, X_WA);
-  const CcdObject<Triangle<S>> objectB(t_M, X_WM);
+  const CcdObject objectA(convexSupportOf(cylinder), X_WA);
+  const CcdObject objectB(convexSupportOf(t_M), X_WM);
   for (const FeatureClipping::Contact& contact : contactsOfFeatures(objectA, objectB, n, std::max(lowest.f, 0.0)))
     sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
 }
