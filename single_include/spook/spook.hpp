@@ -17386,8 +17386,6 @@ using SolverRef = ref_ptr<Solver>;
 #include <utility>
 #include <vector>
 
-#include <Eigen/LU>
-
 // --- begin spook/solver/block_cholesky.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_BLOCK_CHOLESKY_HPP
 #define SPOOK_SINGLE_SPOOK_SOLVER_BLOCK_CHOLESKY_HPP
@@ -17397,10 +17395,129 @@ using SolverRef = ref_ptr<Solver>;
 #include <utility>
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
+
+// --- begin spook/solver/small_dense.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_SMALL_DENSE_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_SMALL_DENSE_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace spook::detail {
+
+// The solver's small dense factorizations in plain loops: a Cholesky factor
+// of a fixed-size block (3×3 inertias, 6×6 body blocks) and an LU with
+// partial pivoting of the low-rank updates' capacitance matrices (at most
+// FactoredFreeSet::kMaxChangedRows = 32 rows). At these sizes plain loops
+// are as fast as Eigen's LLT and PartialPivLU, and they do not instantiate
+// Eigen's blocked kernels (matrix-matrix products, triangular solves),
+// which cost every program that compiles the solver some 2 s of GCC's time.
+
+/// The lower Cholesky factor L (A = LLᵀ) of the symmetric positive definite
+/// leading n × n corner of A, lower triangle read; false, with L
+/// unspecified, when a pivot is not positive or not finite.
+template <int N>
+bool choleskyLower(const Eigen::Matrix<double, N, N>& A, Eigen::Matrix<double, N, N>& L, int n = N) {
+  L.setZero();
+  for (int j = 0; j < n; ++j) {
+    double d = A(j, j);
+    for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k);
+    if (!(d > 0.0) || !std::isfinite(d)) return false;
+    L(j, j) = std::sqrt(d);
+    for (int i = j + 1; i < n; ++i) {
+      double x = A(i, j);
+      for (int k = 0; k < j; ++k) x -= L(i, k) * L(j, k);
+      L(i, j) = x / L(j, j);
+    }
+  }
+  return true;
+}
+
+/// W = L⁻¹ of the lower triangular leading n × n corner of L (nonzero
+/// diagonal); W is lower triangular, zero elsewhere.
+template <int N>
+void invertLowerTriangular(const Eigen::Matrix<double, N, N>& L, Eigen::Matrix<double, N, N>& W, int n = N) {
+  W.setZero();
+  for (int j = 0; j < n; ++j) {
+    W(j, j) = 1.0 / L(j, j);
+    for (int i = j + 1; i < n; ++i) {
+      double x = 0.0;
+      for (int k = j; k < i; ++k) x -= L(i, k) * W(k, j);
+      W(i, j) = x / L(i, i);
+    }
+  }
+}
+
+/// The inverse of a symmetric positive definite fixed-size matrix, by
+/// A⁻¹ = L⁻ᵀL⁻¹; false, with `inverse` unspecified, when A is not positive
+/// definite.
+template <int N>
+bool invertByCholesky(const Eigen::Matrix<double, N, N>& A, Eigen::Matrix<double, N, N>& inverse) {
+  Eigen::Matrix<double, N, N> L, W;
+  if (!choleskyLower<N>(A, L)) return false;
+  invertLowerTriangular<N>(L, W);
+  inverse.noalias() = W.transpose() * W;
+  return true;
+}
+
+/// LU factorization with partial (row) pivoting, PA = LU, of a small
+/// square matrix; solve() answers A x = b. A singular matrix gives
+/// non-finite answers, as Eigen's PartialPivLU does.
+class DenseLU {
+ public:
+  void compute(const Eigen::MatrixXd& A) {
+    lu_ = A;
+    const Eigen::Index n = lu_.rows();
+    rowOf_.resize(static_cast<std::size_t>(n));
+    for (Eigen::Index i = 0; i < n; ++i) rowOf_[static_cast<std::size_t>(i)] = i;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      Eigen::Index pivot = j;
+      for (Eigen::Index i = j + 1; i < n; ++i)
+        if (std::abs(lu_(i, j)) > std::abs(lu_(pivot, j))) pivot = i;
+      if (pivot != j) {
+        lu_.row(j).swap(lu_.row(pivot));
+        std::swap(rowOf_[static_cast<std::size_t>(j)], rowOf_[static_cast<std::size_t>(pivot)]);
+      }
+      const double diagonal = lu_(j, j);
+      for (Eigen::Index i = j + 1; i < n; ++i) {
+        const double factor = lu_(i, j) / diagonal;
+        lu_(i, j) = factor;
+        for (Eigen::Index k = j + 1; k < n; ++k) lu_(i, k) -= factor * lu_(j, k);
+      }
+    }
+  }
+
+  [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
+    const Eigen::Index n = lu_.rows();
+    Eigen::VectorXd x(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double sum = b[rowOf_[static_cast<std::size_t>(i)]];
+      for (Eigen::Index k = 0; k < i; ++k) sum -= lu_(i, k) * x[k];
+      x[i] = sum;
+    }
+    for (Eigen::Index i = n - 1; i >= 0; --i) {
+      double sum = x[i];
+      for (Eigen::Index k = i + 1; k < n; ++k) sum -= lu_(i, k) * x[k];
+      x[i] = sum / lu_(i, i);
+    }
+    return x;
+  }
+
+ private:
+  Eigen::MatrixXd lu_;
+  std::vector<Eigen::Index> rowOf_;  ///< row i of PA is row rowOf_[i] of A
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_SMALL_DENSE_HPP
+// --- end spook/solver/small_dense.hpp ---
 
 namespace spook::detail {
 
@@ -17504,11 +17621,11 @@ class BlockCholesky {
     std::size_t update = 0;
     for (int j = 0; j < n_; ++j) {
       Mat6& pivot = diagonal_[static_cast<std::size_t>(j)];
-      const Eigen::LLT<Mat6> llt(pivot.selfadjointView<Eigen::Lower>());
-      if (llt.info() != Eigen::Success) return false;
+      Mat6 factor;
+      if (!choleskyLower<6>(pivot, factor)) return false;
       // L_jj⁻¹ (lower triangular) is kept: products with it are the fixed-size
       // kernels, where a triangular solve per block is not.
-      pivot = llt.matrixL().solve(Mat6::Identity());
+      invertLowerTriangular<6>(factor, pivot);
       const Mat6 inverseTransposed = pivot.transpose();
       const int first = columnStart_[static_cast<std::size_t>(j)], last = columnStart_[static_cast<std::size_t>(j) + 1];
       // L_ij = K_ij L_jj⁻ᵀ.
@@ -17940,7 +18057,7 @@ class BodySpaceSolve {
   bool factored_ = false;
   std::uint64_t rowsHash_ = 0, factoredHash_ = 0;  ///< hashRows of analyze()'s rows, of the factorized ones
   FactoredFreeSet set_;                            ///< its columns: Z's, K₀⁻¹ j_k
-  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;
+  DenseLU capacitance_;
   bool updating_ = false;
 };
 
@@ -17956,7 +18073,6 @@ class BodySpaceSolve {
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 #include <Eigen/SparseCore>
 
 namespace spook::detail {
@@ -18022,7 +18138,8 @@ class FreeSetUpdate {
           S(i, j) = (wasFree(kj) ? 0.0 : A.coeff(ki, kj)) - dotFactoredFree(A, ki, z);
       }
     }
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(S);
+    DenseLU lu;
+    lu.compute(S);
 
     x.setZero(b.size());
     Eigen::VectorXd r = b;
@@ -18064,8 +18181,8 @@ class FreeSetUpdate {
   // The bordered system's answer for the right-hand side b (zero at the
   // rows clamped now).
   template <class FactorSolve>
-  Eigen::VectorXd apply(const Eigen::SparseMatrix<double>& A, const Eigen::PartialPivLU<Eigen::MatrixXd>& lu,
-                        const Eigen::VectorXd& b, FactorSolve& factorSolve) const {
+  Eigen::VectorXd apply(const Eigen::SparseMatrix<double>& A, const DenseLU& lu, const Eigen::VectorXd& b,
+                        FactorSolve& factorSolve) const {
     Eigen::VectorXd g = b;
     for (int k : set_.changed())
       if (!wasFree(k)) g[k] = 0.0;  // the freed rows' equations are S's
@@ -18304,27 +18421,9 @@ struct IterativeSolveResult {
 /// not positive (or not finite). Plain loops: for n ≤ 6 they beat Eigen's
 /// general triangular solves several times over.
 inline bool invertPositiveDefinite(Mat6d& A, int n) {
-  Mat6d L = Mat6d::Zero();
-  for (int j = 0; j < n; ++j) {
-    double d = A(j, j);
-    for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k);
-    if (!(d > 0.0) || !std::isfinite(d)) return false;
-    L(j, j) = std::sqrt(d);
-    for (int i = j + 1; i < n; ++i) {
-      double x = A(i, j);
-      for (int k = 0; k < j; ++k) x -= L(i, k) * L(j, k);
-      L(i, j) = x / L(j, j);
-    }
-  }
-  Mat6d W = Mat6d::Zero();  // L⁻¹, lower triangular
-  for (int j = 0; j < n; ++j) {
-    W(j, j) = 1.0 / L(j, j);
-    for (int i = j + 1; i < n; ++i) {
-      double x = 0.0;
-      for (int k = j; k < i; ++k) x -= L(i, k) * W(k, j);
-      W(i, j) = x / L(i, i);
-    }
-  }
+  Mat6d L, W;  // W = L⁻¹
+  if (!choleskyLower<6>(A, L, n)) return false;
+  invertLowerTriangular<6>(L, W, n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j <= i; ++j) {
       double x = 0.0;
@@ -21976,8 +22075,6 @@ class ConstraintRows {
 #include <typeinfo>
 #include <vector>
 
-#include <Eigen/Cholesky>
-
 // --- begin spook/solver/body_space_solve.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
 #define SPOOK_SINGLE_SPOOK_SOLVER_BODY_SPACE_SOLVE_HPP
@@ -21991,8 +22088,6 @@ class ConstraintRows {
 #include <utility>
 #include <vector>
 
-#include <Eigen/LU>
-
 // --- begin spook/solver/block_cholesky.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_SOLVER_BLOCK_CHOLESKY_HPP
 #define SPOOK_SINGLE_SPOOK_SOLVER_BLOCK_CHOLESKY_HPP
@@ -22002,10 +22097,129 @@ class ConstraintRows {
 #include <utility>
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
+
+// --- begin spook/solver/small_dense.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_SOLVER_SMALL_DENSE_HPP
+#define SPOOK_SINGLE_SPOOK_SOLVER_SMALL_DENSE_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace spook::detail {
+
+// The solver's small dense factorizations in plain loops: a Cholesky factor
+// of a fixed-size block (3×3 inertias, 6×6 body blocks) and an LU with
+// partial pivoting of the low-rank updates' capacitance matrices (at most
+// FactoredFreeSet::kMaxChangedRows = 32 rows). At these sizes plain loops
+// are as fast as Eigen's LLT and PartialPivLU, and they do not instantiate
+// Eigen's blocked kernels (matrix-matrix products, triangular solves),
+// which cost every program that compiles the solver some 2 s of GCC's time.
+
+/// The lower Cholesky factor L (A = LLᵀ) of the symmetric positive definite
+/// leading n × n corner of A, lower triangle read; false, with L
+/// unspecified, when a pivot is not positive or not finite.
+template <int N>
+bool choleskyLower(const Eigen::Matrix<double, N, N>& A, Eigen::Matrix<double, N, N>& L, int n = N) {
+  L.setZero();
+  for (int j = 0; j < n; ++j) {
+    double d = A(j, j);
+    for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k);
+    if (!(d > 0.0) || !std::isfinite(d)) return false;
+    L(j, j) = std::sqrt(d);
+    for (int i = j + 1; i < n; ++i) {
+      double x = A(i, j);
+      for (int k = 0; k < j; ++k) x -= L(i, k) * L(j, k);
+      L(i, j) = x / L(j, j);
+    }
+  }
+  return true;
+}
+
+/// W = L⁻¹ of the lower triangular leading n × n corner of L (nonzero
+/// diagonal); W is lower triangular, zero elsewhere.
+template <int N>
+void invertLowerTriangular(const Eigen::Matrix<double, N, N>& L, Eigen::Matrix<double, N, N>& W, int n = N) {
+  W.setZero();
+  for (int j = 0; j < n; ++j) {
+    W(j, j) = 1.0 / L(j, j);
+    for (int i = j + 1; i < n; ++i) {
+      double x = 0.0;
+      for (int k = j; k < i; ++k) x -= L(i, k) * W(k, j);
+      W(i, j) = x / L(i, i);
+    }
+  }
+}
+
+/// The inverse of a symmetric positive definite fixed-size matrix, by
+/// A⁻¹ = L⁻ᵀL⁻¹; false, with `inverse` unspecified, when A is not positive
+/// definite.
+template <int N>
+bool invertByCholesky(const Eigen::Matrix<double, N, N>& A, Eigen::Matrix<double, N, N>& inverse) {
+  Eigen::Matrix<double, N, N> L, W;
+  if (!choleskyLower<N>(A, L)) return false;
+  invertLowerTriangular<N>(L, W);
+  inverse.noalias() = W.transpose() * W;
+  return true;
+}
+
+/// LU factorization with partial (row) pivoting, PA = LU, of a small
+/// square matrix; solve() answers A x = b. A singular matrix gives
+/// non-finite answers, as Eigen's PartialPivLU does.
+class DenseLU {
+ public:
+  void compute(const Eigen::MatrixXd& A) {
+    lu_ = A;
+    const Eigen::Index n = lu_.rows();
+    rowOf_.resize(static_cast<std::size_t>(n));
+    for (Eigen::Index i = 0; i < n; ++i) rowOf_[static_cast<std::size_t>(i)] = i;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      Eigen::Index pivot = j;
+      for (Eigen::Index i = j + 1; i < n; ++i)
+        if (std::abs(lu_(i, j)) > std::abs(lu_(pivot, j))) pivot = i;
+      if (pivot != j) {
+        lu_.row(j).swap(lu_.row(pivot));
+        std::swap(rowOf_[static_cast<std::size_t>(j)], rowOf_[static_cast<std::size_t>(pivot)]);
+      }
+      const double diagonal = lu_(j, j);
+      for (Eigen::Index i = j + 1; i < n; ++i) {
+        const double factor = lu_(i, j) / diagonal;
+        lu_(i, j) = factor;
+        for (Eigen::Index k = j + 1; k < n; ++k) lu_(i, k) -= factor * lu_(j, k);
+      }
+    }
+  }
+
+  [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
+    const Eigen::Index n = lu_.rows();
+    Eigen::VectorXd x(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double sum = b[rowOf_[static_cast<std::size_t>(i)]];
+      for (Eigen::Index k = 0; k < i; ++k) sum -= lu_(i, k) * x[k];
+      x[i] = sum;
+    }
+    for (Eigen::Index i = n - 1; i >= 0; --i) {
+      double sum = x[i];
+      for (Eigen::Index k = i + 1; k < n; ++k) sum -= lu_(i, k) * x[k];
+      x[i] = sum / lu_(i, i);
+    }
+    return x;
+  }
+
+ private:
+  Eigen::MatrixXd lu_;
+  std::vector<Eigen::Index> rowOf_;  ///< row i of PA is row rowOf_[i] of A
+};
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_SOLVER_SMALL_DENSE_HPP
+// --- end spook/solver/small_dense.hpp ---
 
 namespace spook::detail {
 
@@ -22109,11 +22323,11 @@ class BlockCholesky {
     std::size_t update = 0;
     for (int j = 0; j < n_; ++j) {
       Mat6& pivot = diagonal_[static_cast<std::size_t>(j)];
-      const Eigen::LLT<Mat6> llt(pivot.selfadjointView<Eigen::Lower>());
-      if (llt.info() != Eigen::Success) return false;
+      Mat6 factor;
+      if (!choleskyLower<6>(pivot, factor)) return false;
       // L_jj⁻¹ (lower triangular) is kept: products with it are the fixed-size
       // kernels, where a triangular solve per block is not.
-      pivot = llt.matrixL().solve(Mat6::Identity());
+      invertLowerTriangular<6>(factor, pivot);
       const Mat6 inverseTransposed = pivot.transpose();
       const int first = columnStart_[static_cast<std::size_t>(j)], last = columnStart_[static_cast<std::size_t>(j) + 1];
       // L_ij = K_ij L_jj⁻ᵀ.
@@ -22545,7 +22759,7 @@ class BodySpaceSolve {
   bool factored_ = false;
   std::uint64_t rowsHash_ = 0, factoredHash_ = 0;  ///< hashRows of analyze()'s rows, of the factorized ones
   FactoredFreeSet set_;                            ///< its columns: Z's, K₀⁻¹ j_k
-  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;
+  DenseLU capacitance_;
   bool updating_ = false;
 };
 
@@ -22898,9 +23112,9 @@ SPOOK_INLINE void IslandStepper::buildProblem(Worker& worker, const RowSet& set,
 }
 
 SPOOK_INLINE Mat3d IslandStepper::inverseOf(const Mat3d& m) {
-  const Eigen::LLT<Mat3d> llt(m);
-  if (llt.info() != Eigen::Success) return Mat3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  return llt.solve(Mat3d::Identity());
+  Mat3d inverse;
+  if (!invertByCholesky<3>(m, inverse)) return Mat3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  return inverse;
 }
 #endif
 
@@ -23242,7 +23456,6 @@ void SimulationT<S>::integrate(S h) {
 #include <cstddef>
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 namespace spook::detail {
@@ -23394,7 +23607,8 @@ SPOOK_INLINE bool GeometricStiffness::refresh(const RowSet& rows, std::vector<So
     // The largest eigenvalue of LᵀΔA L, L Lᵀ = (I + h²K̃)⁻¹: the stiffness
     // the solve left out, in units of the inertia it used, on the worst
     // axis. Stiffness it took in excess only damps more.
-    const Mat3d L = Eigen::LLT<Mat3d>(solvedWith_[i]).matrixL();
+    Mat3d L;
+    if (!choleskyLower<3>(solvedWith_[i], L)) continue;
     changed = Eigen::SelfAdjointEigenSolver<Mat3d>(L.transpose() * change * L, Eigen::EigenvaluesOnly)
                   .eigenvalues()
                   .maxCoeff() > kRefreshTolerance;
@@ -23474,10 +23688,11 @@ SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vec
     // L⁻ᵀu_k ω_k² u_kᵀL⁻¹ to K̃. Each mode is taken with its own weight,
     // so that a stiff turn (a point-like bob twisting about its rod) does
     // not damp the body's other, soft ones (its swing).
-    const Eigen::LLT<Mat3d> inverseInertia(modeInverseInertia);
-    const Mat3d L = inverseInertia.matrixL();
+    Mat3d L, inverseL;
+    if (!choleskyLower<3>(modeInverseInertia, L)) continue;
+    invertLowerTriangular<3>(L, inverseL);
     const Eigen::SelfAdjointEigenSolver<Mat3d> modes(L.transpose() * stiffness * L);
-    const Mat3d toStiffness = L.transpose().inverse() * modes.eigenvectors();
+    const Mat3d toStiffness = inverseL.transpose() * modes.eigenvectors();
     Vec3d weighted = Vec3d::Zero();
     for (int k = 0; k < 3; ++k) {
       const double rho = h * h * modes.eigenvalues()(k);

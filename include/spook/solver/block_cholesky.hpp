@@ -5,10 +5,11 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
+
+#include <spook/solver/small_dense.hpp>
 
 namespace spook::detail {
 
@@ -112,11 +113,11 @@ class BlockCholesky {
     std::size_t update = 0;
     for (int j = 0; j < n_; ++j) {
       Mat6& pivot = diagonal_[static_cast<std::size_t>(j)];
-      const Eigen::LLT<Mat6> llt(pivot.selfadjointView<Eigen::Lower>());
-      if (llt.info() != Eigen::Success) return false;
+      Mat6 factor;
+      if (!choleskyLower<6>(pivot, factor)) return false;
       // L_jj⁻¹ (lower triangular) is kept: products with it are the fixed-size
       // kernels, where a triangular solve per block is not.
-      pivot = llt.matrixL().solve(Mat6::Identity());
+      invertLowerTriangular<6>(factor, pivot);
       const Mat6 inverseTransposed = pivot.transpose();
       const int first = columnStart_[static_cast<std::size_t>(j)], last = columnStart_[static_cast<std::size_t>(j) + 1];
       // L_ij = K_ij L_jj⁻ᵀ.

@@ -9,8 +9,6 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/LU>
-
 #include <spook/solver/block_cholesky.hpp>
 #include <spook/solver/factored_free_set.hpp>
 #include <spook/solver/island_problem.hpp>
@@ -281,7 +279,7 @@ class BodySpaceSolve {
   bool factored_ = false;
   std::uint64_t rowsHash_ = 0, factoredHash_ = 0;  ///< hashRows of analyze()'s rows, of the factorized ones
   FactoredFreeSet set_;                            ///< its columns: Z's, K₀⁻¹ j_k
-  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;
+  DenseLU capacitance_;
   bool updating_ = false;
 };
 

@@ -5,10 +5,10 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 #include <Eigen/SparseCore>
 
 #include <spook/solver/factored_free_set.hpp>
+#include <spook/solver/small_dense.hpp>
 
 namespace spook::detail {
 
@@ -73,7 +73,8 @@ class FreeSetUpdate {
           S(i, j) = (wasFree(kj) ? 0.0 : A.coeff(ki, kj)) - dotFactoredFree(A, ki, z);
       }
     }
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(S);
+    DenseLU lu;
+    lu.compute(S);
 
     x.setZero(b.size());
     Eigen::VectorXd r = b;
@@ -115,8 +116,8 @@ class FreeSetUpdate {
   // The bordered system's answer for the right-hand side b (zero at the
   // rows clamped now).
   template <class FactorSolve>
-  Eigen::VectorXd apply(const Eigen::SparseMatrix<double>& A, const Eigen::PartialPivLU<Eigen::MatrixXd>& lu,
-                        const Eigen::VectorXd& b, FactorSolve& factorSolve) const {
+  Eigen::VectorXd apply(const Eigen::SparseMatrix<double>& A, const DenseLU& lu, const Eigen::VectorXd& b,
+                        FactorSolve& factorSolve) const {
     Eigen::VectorXd g = b;
     for (int k : set_.changed())
       if (!wasFree(k)) g[k] = 0.0;  // the freed rows' equations are S's

@@ -5,13 +5,13 @@
 #include <cstddef>
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include <spook/core/implementation.hpp>
 #include <spook/core/math.hpp>
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/row.hpp>
+#include <spook/solver/small_dense.hpp>
 
 namespace spook::detail {
 
@@ -162,7 +162,8 @@ SPOOK_INLINE bool GeometricStiffness::refresh(const RowSet& rows, std::vector<So
     // The largest eigenvalue of LᵀΔA L, L Lᵀ = (I + h²K̃)⁻¹: the stiffness
     // the solve left out, in units of the inertia it used, on the worst
     // axis. Stiffness it took in excess only damps more.
-    const Mat3d L = Eigen::LLT<Mat3d>(solvedWith_[i]).matrixL();
+    Mat3d L;
+    if (!choleskyLower<3>(solvedWith_[i], L)) continue;
     changed = Eigen::SelfAdjointEigenSolver<Mat3d>(L.transpose() * change * L, Eigen::EigenvaluesOnly)
                   .eigenvalues()
                   .maxCoeff() > kRefreshTolerance;
@@ -242,10 +243,11 @@ SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vec
     // L⁻ᵀu_k ω_k² u_kᵀL⁻¹ to K̃. Each mode is taken with its own weight,
     // so that a stiff turn (a point-like bob twisting about its rod) does
     // not damp the body's other, soft ones (its swing).
-    const Eigen::LLT<Mat3d> inverseInertia(modeInverseInertia);
-    const Mat3d L = inverseInertia.matrixL();
+    Mat3d L, inverseL;
+    if (!choleskyLower<3>(modeInverseInertia, L)) continue;
+    invertLowerTriangular<3>(L, inverseL);
     const Eigen::SelfAdjointEigenSolver<Mat3d> modes(L.transpose() * stiffness * L);
-    const Mat3d toStiffness = L.transpose().inverse() * modes.eigenvectors();
+    const Mat3d toStiffness = inverseL.transpose() * modes.eigenvectors();
     Vec3d weighted = Vec3d::Zero();
     for (int k = 0; k < 3; ++k) {
       const double rho = h * h * modes.eigenvalues()(k);

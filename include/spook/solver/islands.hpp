@@ -9,14 +9,13 @@
 #include <typeinfo>
 #include <vector>
 
-#include <Eigen/Cholesky>
-
 #include <spook/core/geometric_growth.hpp>
 #include <spook/core/implementation.hpp>
 #include <spook/core/worker_pool.hpp>
 #include <spook/solver/body_space_solve.hpp>
 #include <spook/solver/island_problem.hpp>
 #include <spook/solver/row.hpp>
+#include <spook/solver/small_dense.hpp>
 #include <spook/solver/solver.hpp>
 #include <spook/solver/spook_parameters.hpp>
 
@@ -365,9 +364,9 @@ SPOOK_INLINE void IslandStepper::buildProblem(Worker& worker, const RowSet& set,
 }
 
 SPOOK_INLINE Mat3d IslandStepper::inverseOf(const Mat3d& m) {
-  const Eigen::LLT<Mat3d> llt(m);
-  if (llt.info() != Eigen::Success) return Mat3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  return llt.solve(Mat3d::Identity());
+  Mat3d inverse;
+  if (!invertByCholesky<3>(m, inverse)) return Mat3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  return inverse;
 }
 #endif
 

@@ -8,6 +8,7 @@
 #include <spook/core/geometric_growth.hpp>
 #include <spook/solver/friction_bounds.hpp>
 #include <spook/solver/island_problem.hpp>
+#include <spook/solver/small_dense.hpp>
 
 namespace spook::detail {
 
@@ -24,27 +25,9 @@ struct IterativeSolveResult {
 /// not positive (or not finite). Plain loops: for n ≤ 6 they beat Eigen's
 /// general triangular solves several times over.
 inline bool invertPositiveDefinite(Mat6d& A, int n) {
-  Mat6d L = Mat6d::Zero();
-  for (int j = 0; j < n; ++j) {
-    double d = A(j, j);
-    for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k);
-    if (!(d > 0.0) || !std::isfinite(d)) return false;
-    L(j, j) = std::sqrt(d);
-    for (int i = j + 1; i < n; ++i) {
-      double x = A(i, j);
-      for (int k = 0; k < j; ++k) x -= L(i, k) * L(j, k);
-      L(i, j) = x / L(j, j);
-    }
-  }
-  Mat6d W = Mat6d::Zero();  // L⁻¹, lower triangular
-  for (int j = 0; j < n; ++j) {
-    W(j, j) = 1.0 / L(j, j);
-    for (int i = j + 1; i < n; ++i) {
-      double x = 0.0;
-      for (int k = j; k < i; ++k) x -= L(i, k) * W(k, j);
-      W(i, j) = x / L(i, i);
-    }
-  }
+  Mat6d L, W;  // W = L⁻¹
+  if (!choleskyLower<6>(A, L, n)) return false;
+  invertLowerTriangular<6>(L, W, n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j <= i; ++j) {
       double x = 0.0;
