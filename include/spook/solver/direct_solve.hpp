@@ -161,7 +161,6 @@ class DirectSolve {
 
     // The state of each row: free, or clamped at its lower or upper bound.
     // Warm start: a row whose guess (the last solution) is at a bound starts there.
-    enum State : unsigned char { FREE, LOWER, UPPER };
     std::vector<State> state(static_cast<std::size_t>(n), FREE);
     bool anyBounded = false;
     for (int k = 0; k < n; ++k) {
@@ -231,6 +230,9 @@ class DirectSolve {
   }
 
  private:
+  /// A row's place in a pivot step: free, or held at its lower or upper bound.
+  enum State : unsigned char { FREE, LOWER, UPPER };
+
   // f(Λ) = ½ΛᵀAΛ − qᵀΛ = ½Λᵀ(w − q), w = AΛ − q.
   double merit(const IslandProblem& problem, const std::vector<int>& subset, const Eigen::VectorXd& x) const {
     return merit(x, residual(problem, subset, x));
@@ -279,7 +281,6 @@ class DirectSolve {
       }
       return true;
     };
-    enum State : unsigned char { FREE, LOWER, UPPER };
     std::vector<State> state(static_cast<std::size_t>(n));
     Eigen::VectorXd target(n), trial(n), w;
     for (int step = 0; step < maxSteps;) {
@@ -445,18 +446,19 @@ class DirectSolve {
     }
   }
 
-  // Solves the free rows (state 0) with the others at their bounds (state 1
-  // lower, 2 upper), or where `heldAtBounds` is false, at their impulses in x.
-  template <class States>
-  void solveFree(const IslandProblem& problem, const std::vector<int>& subset, const States& state,
+  // Solves the free rows with the others at their bounds, or where
+  // `heldAtBounds` is false, at their impulses in x.
+  void solveFree(const IslandProblem& problem, const std::vector<int>& subset, const std::vector<State>& state,
                  Eigen::VectorXd& x, bool heldAtBounds = true) {
     const int n = static_cast<int>(subset.size());
     std::vector<int> freeIndex(static_cast<std::size_t>(n), -1);
     int numFree = 0;
     for (int k = 0; k < n; ++k) {
       const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-      if (state[static_cast<std::size_t>(k)] == 0) freeIndex[static_cast<std::size_t>(k)] = numFree++;
-      else if (heldAtBounds) x[k] = state[static_cast<std::size_t>(k)] == 1 ? e.lower : e.upper;
+      if (state[static_cast<std::size_t>(k)] == FREE)
+        freeIndex[static_cast<std::size_t>(k)] = numFree++;
+      else if (heldAtBounds)
+        x[k] = state[static_cast<std::size_t>(k)] == LOWER ? e.lower : e.upper;
     }
     if (numFree == 0) return;
     Eigen::VectorXd rhs(numFree);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <spook/collide/collider.hpp>
@@ -104,6 +105,34 @@ void addDistinctSurfaceContacts(const std::vector<ContactPointT<S>>& found, S al
   sink.setFaceIndices(0, 0);
 }
 
+/// A Trimesh or a HeightField as collideWithTriangles sees it: the
+/// triangles near a box of its frame, their active edges, and whether it is
+/// solid below its surface (a height field). One copy of the per-triangle
+/// work per shape then serves both kinds of soup.
+template <Scalar S>
+struct TriangleSoupView {
+  /// Called with `context`, the triangle's index and its corners (soup frame).
+  using Visit = void (*)(void* context, std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2);
+  const void* soup;
+  void (*forEachTriangle)(const void* soup, const BoundingBoxT<S>& localBox, Visit visit, void* context);
+  std::uint8_t (*activeEdges)(const void* soup, std::size_t i);
+  bool heightField;
+};
+
+template <Scalar S, class Soup>
+[[nodiscard]] TriangleSoupView<S> triangleSoupOf(const Soup& soup) {
+  using Visit = typename TriangleSoupView<S>::Visit;
+  return {&soup,
+          [](const void* s, const BoundingBoxT<S>& box, Visit visit, void* context) {
+            static_cast<const Soup*>(s)->forEachTriangle(
+                box, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
+                  visit(context, i, p0, p1, p2);
+                });
+          },
+          [](const void* s, std::size_t i) { return static_cast<const Soup*>(s)->getActiveEdges(i); },
+          Soup::kType == ShapeType::HEIGHTFIELD};
+}
+
 /// Contacts of a shape against the triangles of a soup near it, each
 /// triangle a convex shape of its own: boxes, hulls and segments by the
 /// separating axes with a clipped manifold (polytope_sat.hpp), spheres and
@@ -114,22 +143,22 @@ void addDistinctSurfaceContacts(const std::vector<ContactPointT<S>>& found, S al
 /// edge they share: closer than the spread of a sampled feature, normals
 /// within 1°) is kept once, so that a flat region of many triangles pushes
 /// like one face.
-template <Scalar S, class A, class Soup>
-void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
-                          ContactSinkT<S>& sink, TriangleContacts report = TriangleContacts::SURFACE) {
+template <Scalar S, class A>
+void collideWithSoup(const A& a, const TransformT<S>& X_WA, const TriangleSoupView<S>& soup, const TransformT<S>& X_WM,
+                     ContactSinkT<S>& sink, TriangleContacts report) {
   const BoundingBoxT<S> boxA = a.getBoundingBox();
   const BoundingBoxT<S> box_M = transformBox<S>(boxA.grownBy(S(kTouchingGap)), X_WM.inverse() * X_WA);
   thread_local Polytope shape, triangle;
   thread_local std::vector<ContactPointT<S>> points, found;
   found.clear();
   if constexpr (kIsPolytope<A>) makePolytope(a, X_WA, shape);
-  soup.forEachTriangle(box_M, [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
+  auto visit = [&](std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
     const Triangle<S> t_W{{X_WM * p0, X_WM * p1, X_WM * p2}};
     points.clear();
     ContactSinkT<S> staged = sink.staging(points);
     staged.setFaceIndices(0, i);
     if constexpr (A::kType == ShapeType::SPHERE) {
-      collideSphereTriangle<S>(a, X_WA.translation(), t_W, staged, Soup::kType == ShapeType::HEIGHTFIELD);
+      collideSphereTriangle<S>(a, X_WA.translation(), t_W, staged, soup.heightField);
     } else if constexpr (kIsPolytope<A>) {
       makeTrianglePolytope<S>(t_W, triangle);
       collidePolytopes(shape, triangle, staged);
@@ -143,11 +172,24 @@ void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& sou
     }
     if (points.empty()) return;
     if (report == TriangleContacts::SURFACE)
-      activeEdgeNormals<S>(t_W, soup.getActiveEdges(i), points, Soup::kType == ShapeType::HEIGHTFIELD);
+      activeEdgeNormals<S>(t_W, soup.activeEdges(soup.soup, i), points, soup.heightField);
     found.insert(found.end(), points.begin(), points.end());
-  });
+  };
+  soup.forEachTriangle(
+      soup.soup, box_M,
+      [](void* context, std::size_t i, const Vec3T<S>& p0, const Vec3T<S>& p1, const Vec3T<S>& p2) {
+        (*static_cast<decltype(visit)*>(context))(i, p0, p1, p2);
+      },
+      &visit);
   addDistinctSurfaceContacts<S>(
       found, report == TriangleContacts::SURFACE ? S(4.0 * kFeatureTilt) * boxA.halfExtents().norm() : S(-1), sink);
+}
+
+/// collideWithSoup against a Trimesh or a HeightField.
+template <Scalar S, class A, class Soup>
+void collideWithTriangles(const A& a, const TransformT<S>& X_WA, const Soup& soup, const TransformT<S>& X_WM,
+                          ContactSinkT<S>& sink, TriangleContacts report = TriangleContacts::SURFACE) {
+  collideWithSoup<S>(a, X_WA, triangleSoupOf<S>(soup), X_WM, sink, report);
 }
 
 /// Triangle pairs of two soups whose boxes overlap, each collided by libccd
