@@ -6,7 +6,6 @@
 
 #include <Eigen/Dense>
 
-#include <spook/solver/iterative_solve.hpp>
 #include <spook/solver/small_dense.hpp>
 
 using namespace spook::detail;
@@ -65,13 +64,17 @@ TEST_CASE("small Cholesky: an indefinite, singular or non-finite block is refuse
   CHECK_FALSE(choleskyLower<6>(corner, L6, 6));
 }
 
-TEST_CASE("invertPositiveDefinite inverts the leading corner of a 6 x 6 block") {
+TEST_CASE("invertByCholesky inverts the leading corner of a 6 x 6 block in place") {
   std::mt19937 rng(11);
   for (int n = 1; n <= 6; ++n) {
     Eigen::Matrix<double, 6, 6> A = randomSpd<6>(rng, 1e4);
+    const Eigen::Matrix<double, 6, 6> before = A;
     const Eigen::MatrixXd corner = A.topLeftCorner(n, n);
-    REQUIRE(invertPositiveDefinite(A, n));
+    REQUIRE(invertByCholesky<6>(A, A, n));
     CHECK((corner * A.topLeftCorner(n, n) - Eigen::MatrixXd::Identity(n, n)).norm() <= 1e-9);
+    // Outside the corner A is left as it was.
+    CHECK(A.rightCols(6 - n) == before.rightCols(6 - n));
+    CHECK(A.bottomRows(6 - n) == before.bottomRows(6 - n));
   }
 }
 

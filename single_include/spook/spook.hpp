@@ -9170,7 +9170,8 @@ inline SegmentTriangleClosest closestPointsOfSegmentAndTriangle(const Vec3T<doub
 template <Scalar S>
 void collideCapsuleTriangle(const CapsuleT<S>& capsule, const TransformT<S>& X_WA, const Triangle<S>& t_M,
                             const TransformT<S>& X_WM, ContactSinkT<S>& sink) {
-  const double sizeA = shapeSize(capsule), sizeB = shapeSize(t_M);
+  const ConvexSupport viewA = convexSupportOf(capsule), viewB = convexSupportOf(t_M);
+  const double sizeA = viewA.size, sizeB = viewB.size;
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
   const TransformT<double> X_WMd = X_WM.template cast<double>();
   const Triangle<double> t{{X_WMd * t_M.v[0].template cast<double>(), X_WMd * t_M.v[1].template cast<double>(),
@@ -9213,8 +9214,8 @@ void collideCapsuleTriangle(const CapsuleT<S>& capsule, const TransformT<S>& X_W
     for (int k = 0; k < 3; ++k) consider(axis.cross(t.v[(k + 1) % 3] - t.v[k]));
     if (!std::isfinite(depth)) return;
   }
-  const CcdObject objectA(convexSupportOf(capsule), X_WA);
-  const CcdObject objectB(convexSupportOf(t_M), X_WM);
+  const CcdObject objectA(viewA, X_WA);
+  const CcdObject objectB(viewB, X_WM);
   for (const FeatureClipping::Contact& contact : contactsOfFeatures(objectA, objectB, n, std::max(depth, 0.0)))
     sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
 }
@@ -9345,7 +9346,8 @@ inline void circleMinimum(const CylinderTriangleOverlap& f, const Vec3T<double>&
 template <Scalar S>
 void collideCylinderTriangle(const CylinderT<S>& cylinder, const TransformT<S>& X_WA, const Triangle<S>& t_M,
                              const TransformT<S>& X_WM, ContactSinkT<S>& sink) {
-  const double sizeA = shapeSize(cylinder), sizeB = shapeSize(t_M);
+  const ConvexSupport viewA = convexSupportOf(cylinder), viewB = convexSupportOf(t_M);
+  const double sizeA = viewA.size, sizeB = viewB.size;
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
   const TransformT<double> X_AM = X_WA.template cast<double>().inverse(Eigen::Isometry) * X_WM.template cast<double>();
   CylinderTriangleOverlap f{double(cylinder.getRadius()), 0.5 * double(cylinder.getHeight()), {}};
@@ -9379,8 +9381,8 @@ void collideCylinderTriangle(const CylinderT<S>& cylinder, const TransformT<S>& 
   }
   if (!std::isfinite(lowest.f) || lowest.f < -touching) return;
   const Vec3T<double> n = X_WA.linear().template cast<double>() * lowest.n;
-  const CcdObject objectA(convexSupportOf(cylinder), X_WA);
-  const CcdObject objectB(convexSupportOf(t_M), X_WM);
+  const CcdObject objectA(viewA, X_WA);
+  const CcdObject objectB(viewB, X_WM);
   for (const FeatureClipping::Contact& contact : contactsOfFeatures(objectA, objectB, n, std::max(lowest.f, 0.0)))
     sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
 }
@@ -17499,16 +17501,23 @@ void invertLowerTriangular(const Eigen::Matrix<double, N, N>& L, Eigen::Matrix<d
   }
 }
 
-/// The inverse of a symmetric positive definite fixed-size matrix, by
-/// A⁻¹ = L⁻ᵀL⁻¹; false, with `inverse` unspecified, when A is not positive
-/// definite.
+/// The inverse of the symmetric positive definite leading n × n corner of
+/// A (lower triangle read), by A⁻¹ = L⁻ᵀL⁻¹, into the same corner of
+/// `inverse` (which may be A itself; the rest of it is left as it was);
+/// false, with that corner unspecified, when A is not positive definite or
+/// its inverse overflows.
 template <int N>
-bool invertByCholesky(const Eigen::Matrix<double, N, N>& A, Eigen::Matrix<double, N, N>& inverse) {
-  Eigen::Matrix<double, N, N> L, W;
-  if (!choleskyLower<N>(A, L)) return false;
-  invertLowerTriangular<N>(L, W);
-  inverse.noalias() = W.transpose() * W;
-  return true;
+bool invertByCholesky(const Eigen::Matrix<double, N, N>& A, Eigen::Matrix<double, N, N>& inverse, int n = N) {
+  Eigen::Matrix<double, N, N> L, W;  // W = L⁻¹
+  if (!choleskyLower<N>(A, L, n)) return false;
+  invertLowerTriangular<N>(L, W, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j <= i; ++j) {
+      double x = 0.0;
+      for (int k = i; k < n; ++k) x += W(k, i) * W(k, j);
+      inverse(i, j) = inverse(j, i) = x;
+    }
+  return inverse.topLeftCorner(n, n).allFinite();
 }
 
 /// LU factorization with partial (row) pivoting, PA = LU, of a small
@@ -18459,24 +18468,6 @@ struct IterativeSolveResult {
   bool converged = false; ///< `change` fell below the tolerance
 };
 
-/// The inverse of the symmetric positive definite leading n × n corner of
-/// `A` (lower triangle read), by Cholesky A = LLᵀ and A⁻¹ = L⁻ᵀL⁻¹, in
-/// place of that corner; false, leaving `A` unspecified, when a pivot is
-/// not positive (or not finite). Plain loops: for n ≤ 6 they beat Eigen's
-/// general triangular solves several times over.
-inline bool invertPositiveDefinite(Mat6d& A, int n) {
-  Mat6d L, W;  // W = L⁻¹
-  if (!choleskyLower<6>(A, L, n)) return false;
-  invertLowerTriangular<6>(L, W, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j <= i; ++j) {
-      double x = 0.0;
-      for (int k = i; k < n; ++k) x += W(k, i) * W(k, j);
-      A(i, j) = A(j, i) = x;
-    }
-  return A.topLeftCorner(n, n).allFinite();
-}
-
 /// The units a Gauss–Seidel sweep updates, in the order of `subset`: a
 /// row, or a block of one constraint's consecutive unbounded rows (up to
 /// six) solved together, ΔΛ_B = (S+Σ)_BB⁻¹ r_B (block Gauss–Seidel, as
@@ -18518,7 +18509,7 @@ class RowBlocks {
             const int i = subset[k + std::size_t(a)], j = subset[k + std::size_t(b)];
             A(a, b) = a == b ? problem.rows[static_cast<std::size_t>(i)].diagonal : problem.coupling(i, j);
           }
-        if (invertPositiveDefinite(A, unit.count)) {
+        if (invertByCholesky<6>(A, A, unit.count)) {
           unit.inverse = static_cast<int>(inverses_.size());
           inverses_.push_back(A);
         } else {
@@ -22205,16 +22196,23 @@ void invertLowerTriangular(const Eigen::Matrix<double, N, N>& L, Eigen::Matrix<d
   }
 }
 
-/// The inverse of a symmetric positive definite fixed-size matrix, by
-/// A⁻¹ = L⁻ᵀL⁻¹; false, with `inverse` unspecified, when A is not positive
-/// definite.
+/// The inverse of the symmetric positive definite leading n × n corner of
+/// A (lower triangle read), by A⁻¹ = L⁻ᵀL⁻¹, into the same corner of
+/// `inverse` (which may be A itself; the rest of it is left as it was);
+/// false, with that corner unspecified, when A is not positive definite or
+/// its inverse overflows.
 template <int N>
-bool invertByCholesky(const Eigen::Matrix<double, N, N>& A, Eigen::Matrix<double, N, N>& inverse) {
-  Eigen::Matrix<double, N, N> L, W;
-  if (!choleskyLower<N>(A, L)) return false;
-  invertLowerTriangular<N>(L, W);
-  inverse.noalias() = W.transpose() * W;
-  return true;
+bool invertByCholesky(const Eigen::Matrix<double, N, N>& A, Eigen::Matrix<double, N, N>& inverse, int n = N) {
+  Eigen::Matrix<double, N, N> L, W;  // W = L⁻¹
+  if (!choleskyLower<N>(A, L, n)) return false;
+  invertLowerTriangular<N>(L, W, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j <= i; ++j) {
+      double x = 0.0;
+      for (int k = i; k < n; ++k) x += W(k, i) * W(k, j);
+      inverse(i, j) = inverse(j, i) = x;
+    }
+  return inverse.topLeftCorner(n, n).allFinite();
 }
 
 /// LU factorization with partial (row) pivoting, PA = LU, of a small

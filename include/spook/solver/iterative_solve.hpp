@@ -19,24 +19,6 @@ struct IterativeSolveResult {
   bool converged = false; ///< `change` fell below the tolerance
 };
 
-/// The inverse of the symmetric positive definite leading n × n corner of
-/// `A` (lower triangle read), by Cholesky A = LLᵀ and A⁻¹ = L⁻ᵀL⁻¹, in
-/// place of that corner; false, leaving `A` unspecified, when a pivot is
-/// not positive (or not finite). Plain loops: for n ≤ 6 they beat Eigen's
-/// general triangular solves several times over.
-inline bool invertPositiveDefinite(Mat6d& A, int n) {
-  Mat6d L, W;  // W = L⁻¹
-  if (!choleskyLower<6>(A, L, n)) return false;
-  invertLowerTriangular<6>(L, W, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j <= i; ++j) {
-      double x = 0.0;
-      for (int k = i; k < n; ++k) x += W(k, i) * W(k, j);
-      A(i, j) = A(j, i) = x;
-    }
-  return A.topLeftCorner(n, n).allFinite();
-}
-
 /// The units a Gauss–Seidel sweep updates, in the order of `subset`: a
 /// row, or a block of one constraint's consecutive unbounded rows (up to
 /// six) solved together, ΔΛ_B = (S+Σ)_BB⁻¹ r_B (block Gauss–Seidel, as
@@ -78,7 +60,7 @@ class RowBlocks {
             const int i = subset[k + std::size_t(a)], j = subset[k + std::size_t(b)];
             A(a, b) = a == b ? problem.rows[static_cast<std::size_t>(i)].diagonal : problem.coupling(i, j);
           }
-        if (invertPositiveDefinite(A, unit.count)) {
+        if (invertByCholesky<6>(A, A, unit.count)) {
           unit.inverse = static_cast<int>(inverses_.size());
           inverses_.push_back(A);
         } else {

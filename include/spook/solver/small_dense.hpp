@@ -52,16 +52,23 @@ void invertLowerTriangular(const Eigen::Matrix<double, N, N>& L, Eigen::Matrix<d
   }
 }
 
-/// The inverse of a symmetric positive definite fixed-size matrix, by
-/// A⁻¹ = L⁻ᵀL⁻¹; false, with `inverse` unspecified, when A is not positive
-/// definite.
+/// The inverse of the symmetric positive definite leading n × n corner of
+/// A (lower triangle read), by A⁻¹ = L⁻ᵀL⁻¹, into the same corner of
+/// `inverse` (which may be A itself; the rest of it is left as it was);
+/// false, with that corner unspecified, when A is not positive definite or
+/// its inverse overflows.
 template <int N>
-bool invertByCholesky(const Eigen::Matrix<double, N, N>& A, Eigen::Matrix<double, N, N>& inverse) {
-  Eigen::Matrix<double, N, N> L, W;
-  if (!choleskyLower<N>(A, L)) return false;
-  invertLowerTriangular<N>(L, W);
-  inverse.noalias() = W.transpose() * W;
-  return true;
+bool invertByCholesky(const Eigen::Matrix<double, N, N>& A, Eigen::Matrix<double, N, N>& inverse, int n = N) {
+  Eigen::Matrix<double, N, N> L, W;  // W = L⁻¹
+  if (!choleskyLower<N>(A, L, n)) return false;
+  invertLowerTriangular<N>(L, W, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j <= i; ++j) {
+      double x = 0.0;
+      for (int k = i; k < n; ++k) x += W(k, i) * W(k, j);
+      inverse(i, j) = inverse(j, i) = x;
+    }
+  return inverse.topLeftCorner(n, n).allFinite();
 }
 
 /// LU factorization with partial (row) pivoting, PA = LU, of a small

@@ -71,7 +71,8 @@ inline SegmentTriangleClosest closestPointsOfSegmentAndTriangle(const Vec3T<doub
 template <Scalar S>
 void collideCapsuleTriangle(const CapsuleT<S>& capsule, const TransformT<S>& X_WA, const Triangle<S>& t_M,
                             const TransformT<S>& X_WM, ContactSinkT<S>& sink) {
-  const double sizeA = shapeSize(capsule), sizeB = shapeSize(t_M);
+  const ConvexSupport viewA = convexSupportOf(capsule), viewB = convexSupportOf(t_M);
+  const double sizeA = viewA.size, sizeB = viewB.size;
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
   const TransformT<double> X_WMd = X_WM.template cast<double>();
   const Triangle<double> t{{X_WMd * t_M.v[0].template cast<double>(), X_WMd * t_M.v[1].template cast<double>(),
@@ -114,8 +115,8 @@ void collideCapsuleTriangle(const CapsuleT<S>& capsule, const TransformT<S>& X_W
     for (int k = 0; k < 3; ++k) consider(axis.cross(t.v[(k + 1) % 3] - t.v[k]));
     if (!std::isfinite(depth)) return;
   }
-  const CcdObject objectA(convexSupportOf(capsule), X_WA);
-  const CcdObject objectB(convexSupportOf(t_M), X_WM);
+  const CcdObject objectA(viewA, X_WA);
+  const CcdObject objectB(viewB, X_WM);
   for (const FeatureClipping::Contact& contact : contactsOfFeatures(objectA, objectB, n, std::max(depth, 0.0)))
     sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
 }

@@ -124,7 +124,8 @@ inline void circleMinimum(const CylinderTriangleOverlap& f, const Vec3T<double>&
 template <Scalar S>
 void collideCylinderTriangle(const CylinderT<S>& cylinder, const TransformT<S>& X_WA, const Triangle<S>& t_M,
                              const TransformT<S>& X_WM, ContactSinkT<S>& sink) {
-  const double sizeA = shapeSize(cylinder), sizeB = shapeSize(t_M);
+  const ConvexSupport viewA = convexSupportOf(cylinder), viewB = convexSupportOf(t_M);
+  const double sizeA = viewA.size, sizeB = viewB.size;
   if (!std::isfinite(sizeA) || !std::isfinite(sizeB)) return;
   const TransformT<double> X_AM = X_WA.template cast<double>().inverse(Eigen::Isometry) * X_WM.template cast<double>();
   CylinderTriangleOverlap f{double(cylinder.getRadius()), 0.5 * double(cylinder.getHeight()), {}};
@@ -158,8 +159,8 @@ void collideCylinderTriangle(const CylinderT<S>& cylinder, const TransformT<S>& 
   }
   if (!std::isfinite(lowest.f) || lowest.f < -touching) return;
   const Vec3T<double> n = X_WA.linear().template cast<double>() * lowest.n;
-  const CcdObject objectA(convexSupportOf(cylinder), X_WA);
-  const CcdObject objectB(convexSupportOf(t_M), X_WM);
+  const CcdObject objectA(viewA, X_WA);
+  const CcdObject objectB(viewB, X_WM);
   for (const FeatureClipping::Contact& contact : contactsOfFeatures(objectA, objectB, n, std::max(lowest.f, 0.0)))
     sink.add(contact.point.cast<S>(), n.cast<S>(), S(contact.depth));
 }
