@@ -46,6 +46,19 @@ inline constexpr std::array<std::string_view, kNumShapeTypes> kShapeTypeNames = 
   return kShapeTypeNames[static_cast<std::size_t>(type)];
 }
 
+/// Which shape of a pair the default narrow phase asks for the contacts: the
+/// one of the higher rank, which compiles the colliders with the types
+/// ranked at or below its own (ShapeT::collideWithLowerRank). Cheap, common
+/// shapes rank low, so that a program of boxes on a plane compiles the
+/// colliders of planes, spheres and boxes only; a composite ranks highest
+/// and hands its children back to the dispatch.
+[[nodiscard]] constexpr int dispatchRank(ShapeType type) {
+  // From the lowest: plane, sphere, box, capsule, cylinder, line, convex,
+  // trimesh, height field, composite (the table is in ShapeType's order).
+  constexpr std::array<int, kNumShapeTypes> kRanks = {2, 3, 6, 4, 5, 0, 1, 7, 9, 8};
+  return kRanks[static_cast<std::size_t>(type)];
+}
+
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPES_SHAPE_TYPE_HPP
 // --- end spook/collide/shapes/shape_type.hpp ---
@@ -289,6 +302,26 @@ template <class T>
 #define SPOOK_COMPILED_FLOAT(...)
 #endif
 #define SPOOK_COMPILED_ONCE(kind, name) SPOOK_COMPILED_DOUBLE(kind name<double>) SPOOK_COMPILED_FLOAT(kind name<float>)
+
+// The same for the shape classes, with the collider parts: a shape's
+// virtual table holds its colliders (ShapeT::collideWithLowerRank), which
+// compile with it.
+#if defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
+#define SPOOK_COLLIDERS_DOUBLE(...) template __VA_ARGS__;
+#elif defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_COLLIDERS_DOUBLE(...) extern template __VA_ARGS__;
+#else
+#define SPOOK_COLLIDERS_DOUBLE(...)
+#endif
+#if defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
+#define SPOOK_COLLIDERS_FLOAT(...) template __VA_ARGS__;
+#elif defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_COLLIDERS_FLOAT(...) extern template __VA_ARGS__;
+#else
+#define SPOOK_COLLIDERS_FLOAT(...)
+#endif
+#define SPOOK_COMPILED_WITH_COLLIDERS(kind, name) \
+  SPOOK_COLLIDERS_DOUBLE(kind name<double>) SPOOK_COLLIDERS_FLOAT(kind name<float>)
 #endif  // SPOOK_SINGLE_SPOOK_CORE_IMPLEMENTATION_HPP
 // --- end spook/core/implementation.hpp ---
 
@@ -611,6 +644,160 @@ struct BoundingBoxT {
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_BOUNDING_BOX_HPP
 // --- end spook/collide/bounding_box.hpp ---
+// --- begin spook/collide/contact_sink.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+// --- begin spook/collide/contact_point.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_POINT_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_POINT_HPP
+
+#include <cstdint>
+
+namespace spook {
+
+/// One point of contact between two shapes, in world coordinates. The
+/// normal is a unit vector pointing from the first shape toward the second:
+/// moving the second shape by `depth` along it separates them. The point
+/// lies midway between the two surfaces, so point ∓ normal·depth/2 are the
+/// deepest points of the first and the second shape. A negative depth is a
+/// gap point of a speculative contact (Simulation::
+/// setEnableSpeculativeContacts): the shapes are apart by −depth there and
+/// may meet within the step; its force is not zero only if they do.
+template <Scalar S>
+struct ContactPointT {
+  Vec3T<S> point = Vec3T<S>::Zero();   ///< world (m)
+  Vec3T<S> normal = Vec3T<S>::UnitZ();  ///< world, unit, from the first shape toward the second
+  S depth = S(0);                       ///< penetration along the normal (m); < 0: a gap
+  bool enabled = true;                ///< false once contact reduction or a listener has dropped it
+  Vec3T<S> force = Vec3T<S>::Zero();    ///< contact force on the second shape's body (N), after the solve
+  S normalForce = S(0);               ///< its component along the normal (N); negative only under adhesion
+  std::uint32_t faceIndex1 = 0;       ///< the triangle touched when the first shape is a Trimesh or HeightField
+  std::uint32_t faceIndex2 = 0;       ///< the same for the second shape
+
+  [[nodiscard]] bool getEnabled() const { return enabled; }
+  [[nodiscard]] const Vec3T<S>& getPoint() const { return point; }
+  [[nodiscard]] const Vec3T<S>& getNormal() const { return normal; }
+  [[nodiscard]] S getDepth() const { return depth; }
+  /// False for a gap point (depth < 0).
+  [[nodiscard]] bool isTouching() const { return depth >= S(0); }
+  [[nodiscard]] const Vec3T<S>& getForce() const { return force; }
+  /// Normal and tangential (friction) magnitudes of getForce (N).
+  [[nodiscard]] S getNormalForceMagnitude() const { return normalForce; }
+  [[nodiscard]] S getTangentialForceMagnitude() const { return (force - normal * normalForce).norm(); }
+  [[nodiscard]] std::uint32_t getFaceIndex1() const { return faceIndex1; }
+  [[nodiscard]] std::uint32_t getFaceIndex2() const { return faceIndex2; }
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_POINT_HPP
+// --- end spook/collide/contact_point.hpp ---
+
+namespace spook {
+
+namespace detail {
+/// Gap, relative to the smaller shape's size, within which two shapes, and
+/// the corners of their manifold (FeatureClipping::contacts), count as
+/// touching (contacts of depth 0); a mesh's triangle search grows the
+/// shape's box by it. A body resting on a mesh settles about
+/// 1e-6 m deep, and where its contacts pass from one triangle to the next
+/// the solve lifts or tilts it by about as much: a contact lost at such a
+/// gap lets the body fall freely for a step (2.7 mm at 60 Hz) and bump.
+inline constexpr double kTouchingGap = 1e-5;
+}  // namespace detail
+
+/// Where a collider writes the contact points of one shape pair. It keeps
+/// the "first toward second" normal convention when the pair was handed to
+/// the collider in reverse order (flipped), and never lets a non-finite
+/// point through: it drops it and counts it in getNumDropped().
+///
+/// A sink may carry a speculative margin (m): the shapes may come that much
+/// closer within the coming step, and a collider that supports it also
+/// reports the points where they are apart by up to the margin, as gap
+/// points of negative depth (accepts()). The solver lets such a point close
+/// its gap within the step and no more, so that a contact is not born
+/// overlapping by up to the approach speed times the step.
+template <Scalar S>
+class ContactSinkT {
+ public:
+  explicit ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped = false, S margin = S(0))
+      : ContactSinkT(points, flipped, std::make_shared<std::size_t>(0), margin) {}
+
+  /// The speculative margin (m), >= 0.
+  [[nodiscard]] S margin() const { return margin_; }
+  /// True when a point of this depth is to be written: touching or
+  /// overlapping, or apart by no more than the margin or `touching`
+  /// (then with addSpeculative).
+  [[nodiscard]] bool accepts(S depth, S touching = S(0)) const { return depth >= -std::max(margin_, touching); }
+
+  /// Adds a touching point: world position (m), unit normal from the
+  /// collider's first shape toward its second, penetration depth (m,
+  /// clamped at 0).
+  void add(const Vec3T<S>& point, const Vec3T<S>& normal, S depth) {
+    addSpeculative(point, normal, std::max(depth, S(0)));
+  }
+
+  /// Adds a point that may be a gap point: as add(), but a point apart by
+  /// more than `touching` (the collider's touching gap) keeps its negative
+  /// depth when the sink has a margin.
+  void addSpeculative(const Vec3T<S>& point, const Vec3T<S>& normal, S depth, S touching = S(0)) {
+    if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) {
+      ++*dropped_;
+      return;
+    }
+    ContactPointT<S> contact;
+    contact.point = point;
+    contact.normal = flipped_ ? Vec3T<S>(-normal) : normal;
+    contact.depth = depth >= -touching || margin_ == S(0) ? std::max(depth, S(0)) : depth;
+    contact.faceIndex1 = flipped_ ? faces_[1] : faces_[0];
+    contact.faceIndex2 = flipped_ ? faces_[0] : faces_[1];
+    points_->push_back(contact);
+  }
+
+  /// The triangles (of a Trimesh or HeightField) of the collider's first
+  /// and second shape that the next points touch; 0 for other shapes.
+  void setFaceIndices(std::size_t first, std::size_t second) {
+    faces_ = {static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(second)};
+  }
+
+  /// The same output with the shape order swapped (sharing the drop count).
+  [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_, dropped_, margin_); }
+
+  /// A sink into `points`, unflipped, that shares this one's drop count and
+  /// margin: where a collider adjusts its points before it add()s them here.
+  [[nodiscard]] ContactSinkT staging(std::vector<ContactPointT<S>>& points) const {
+    return ContactSinkT(points, false, dropped_, margin_);
+  }
+
+  /// Number of points written so far.
+  [[nodiscard]] std::size_t size() const { return points_->size(); }
+  /// Number of points refused so far because their position, normal or
+  /// depth was not finite (this sink and its reversed() copies).
+  [[nodiscard]] std::size_t getNumDropped() const { return *dropped_; }
+
+ private:
+  ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped, std::shared_ptr<std::size_t> dropped, S margin)
+      : points_(&points), flipped_(flipped), dropped_(std::move(dropped)), margin_(margin > S(0) ? margin : S(0)) {}
+
+  std::vector<ContactPointT<S>>* points_;
+  bool flipped_;
+  std::shared_ptr<std::size_t> dropped_;
+  std::array<std::uint32_t, 2> faces_{};
+  S margin_ = S(0);
+};
+
+}  // namespace spook
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
+// --- end spook/collide/contact_sink.hpp ---
 // --- begin spook/collide/supporting_feature.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SUPPORTING_FEATURE_HPP
 #define SPOOK_SINGLE_SPOOK_COLLIDE_SUPPORTING_FEATURE_HPP
@@ -809,6 +996,14 @@ class ShapeT;
 
 namespace detail {
 
+/// The contacts of a with b, for a b whose type ranks at or below a's
+/// (dispatchRank); false, writing nothing, for a pair without a collider.
+/// Defined with the colliders (collide/shape_dispatch.hpp).
+template <class A>
+bool collideWithLowerRank(const A& a, const TransformT<typename A::Vec3::Scalar>& X_WA,
+                          const ShapeT<typename A::Vec3::Scalar>& b, const TransformT<typename A::Vec3::Scalar>& X_WB,
+                          ContactSinkT<typename A::Vec3::Scalar>& sink);
+
 /// What holds a shape: a Geometry, or a Composite for its children. Asked,
 /// after a shape it holds has changed (its size, children, heights), whether
 /// it can take the change, and told once the change stands: the body that
@@ -858,6 +1053,15 @@ class ShapeT : public Referenced {
   [[nodiscard]] virtual BoundingBoxT<S> getBoundingBox() const = 0;
   /// Center of volume in the shape frame (m); the origin for primitives.
   [[nodiscard]] virtual Vec3 getCenterOfVolume() const { return Vec3::Zero(); }
+
+  /// Writes the contacts of this shape at X_WA with `other` at X_WB (shape
+  /// frame → world; normals from this shape toward the other) when the
+  /// other's type ranks at or below this one's (dispatchRank); returns
+  /// whether the pair has a collider. The narrow phase asks the
+  /// higher-ranked shape of a pair (detail::collideShapes), so that a
+  /// program compiles the colliders of the shape types it constructs only.
+  virtual bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT& other, const TransformT<S>& X_WB,
+                                    ContactSinkT<S>& sink) const = 0;
 
  protected:
   ~ShapeT() override = default;
@@ -909,7 +1113,7 @@ S ShapeT<S>::requireLength(const char* kind, const char* what, S value) {
   return value;
 }
 
-SPOOK_COMPILED_ONCE(class, ShapeT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, ShapeT)
 
 namespace detail {
 
@@ -945,6 +1149,10 @@ class BoxT : public ShapeT<S> {
   void setHalfExtents(const Vec3& halfExtents);
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   [[nodiscard]] S getVolume() const override { return S(8) * halfExtents_.prod(); }
 
@@ -1016,7 +1224,7 @@ auto BoxT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
   return SPDMat3T<S>(Vec3(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()) * (mass / S(3)));
 }
 
-SPOOK_COMPILED_ONCE(class, BoxT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, BoxT)
 
 using Box = BoxT<double>;
 using BoxRef = ref_ptr<Box>;
@@ -1055,6 +1263,10 @@ class CapsuleT : public ShapeT<S> {
 
   /// V = π r² h + 4/3 π r³.
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   [[nodiscard]] S getVolume() const override;
 
@@ -1129,7 +1341,7 @@ auto CapsuleT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
   return SPDMat3T<S>(Vec3(across, axial, across));
 }
 
-SPOOK_COMPILED_ONCE(class, CapsuleT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, CapsuleT)
 
 using Capsule = CapsuleT<double>;
 using CapsuleRef = ref_ptr<Capsule>;
@@ -1193,6 +1405,10 @@ class CompositeT : public ShapeT<S>, private detail::ShapeOwner<S> {
   }
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   [[nodiscard]] S getVolume() const override;
 
@@ -1297,7 +1513,7 @@ CompositeT<S>::~CompositeT() {
   for (Child& c : children_) detail::ShapeOwners<S>::remove(*c.shape, this);
 }
 
-SPOOK_COMPILED_ONCE(class, CompositeT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, CompositeT)
 
 using Composite = CompositeT<double>;
 using CompositeRef = ref_ptr<Composite>;
@@ -1977,6 +2193,10 @@ class ConvexT : public ShapeT<S> {
 
   /// Which kind of shape this is.
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   /// Volume of the hull (m³).
   [[nodiscard]] S getVolume() const override { return volume_; }
@@ -2174,7 +2394,7 @@ void ConvexT<S>::buildEdges() {
   }
 }
 
-SPOOK_COMPILED_ONCE(class, ConvexT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, ConvexT)
 
 using Convex = ConvexT<double>;
 using ConvexRef = ref_ptr<Convex>;
@@ -2212,6 +2432,10 @@ class CylinderT : public ShapeT<S> {
 
   /// V = π r² h.
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   [[nodiscard]] S getVolume() const override;
 
@@ -2294,7 +2518,7 @@ auto CylinderT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
   return SPDMat3T<S>(Vec3(across, S(0.5) * mass * r2, across));
 }
 
-SPOOK_COMPILED_ONCE(class, CylinderT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, CylinderT)
 
 using Cylinder = CylinderT<double>;
 using CylinderRef = ref_ptr<Cylinder>;
@@ -2913,6 +3137,10 @@ class HeightFieldT : public ShapeT<S> {
   }
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   /// 0: a solid below the surface has no finite volume.
   [[nodiscard]] S getVolume() const override { return S(0); }
@@ -3071,7 +3299,7 @@ auto HeightFieldT<S>::cellRange(S lo, S hi, S size, S spacing, std::size_t resol
   return {static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
 }
 
-SPOOK_COMPILED_ONCE(class, HeightFieldT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, HeightFieldT)
 
 using HeightField = HeightFieldT<double>;
 using HeightFieldRef = ref_ptr<HeightField>;
@@ -3114,6 +3342,10 @@ class LineT : public ShapeT<S> {
 
   /// Which kind of shape this is.
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
   /// A segment encloses no volume: 0 m³.
   [[nodiscard]] S getVolume() const override { return S(0); }
   /// The midpoint, shape frame (m).
@@ -3171,7 +3403,7 @@ auto LineT<S>::getBoundingBox() const -> BoundingBoxT<S> {
   return {first_.cwiseMin(second_), first_.cwiseMax(second_)};
 }
 
-SPOOK_COMPILED_ONCE(class, LineT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, LineT)
 
 using Line = LineT<double>;
 using LineRef = ref_ptr<Line>;
@@ -3227,6 +3459,10 @@ class PlaneT : public ShapeT<S> {
 
   /// Which kind of shape this is.
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
   /// A plane encloses no volume: 0 m³.
   [[nodiscard]] S getVolume() const override { return S(0); }
   /// Always throws: a plane has no volume and so no inertia.
@@ -3309,7 +3545,7 @@ auto PlaneT<S>::getBoundingBox() const -> BoundingBoxT<S> {
   return {Vec3::Constant(-inf), Vec3::Constant(inf)};
 }
 
-SPOOK_COMPILED_ONCE(class, PlaneT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, PlaneT)
 
 using Plane = PlaneT<double>;
 using PlaneRef = ref_ptr<Plane>;
@@ -3345,6 +3581,10 @@ class SphereT : public ShapeT<S> {
 
   /// V = 4/3 π r³.
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   [[nodiscard]] S getVolume() const override;
 
@@ -3394,7 +3634,7 @@ auto SphereT<S>::getBoundingBox() const -> BoundingBoxT<S> {
   return {Vec3::Constant(-radius_), Vec3::Constant(radius_)};
 }
 
-SPOOK_COMPILED_ONCE(class, SphereT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, SphereT)
 
 using Sphere = SphereT<double>;
 using SphereRef = ref_ptr<Sphere>;
@@ -3468,6 +3708,10 @@ class TrimeshT : public ShapeT<S> {
   [[nodiscard]] const detail::AabbTree<S>& getTree() const { return tree_; }
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   /// Enclosed volume (m³) of a closed mesh, 0 for an open one.
   [[nodiscard]] S getVolume() const override { return volume_; }
@@ -3647,7 +3891,7 @@ void TrimeshT<S>::computeMass() {
   inertia_ = mass.inertia;
 }
 
-SPOOK_COMPILED_ONCE(class, TrimeshT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, TrimeshT)
 
 using Trimesh = TrimeshT<double>;
 using TrimeshRef = ref_ptr<Trimesh>;
@@ -3679,51 +3923,6 @@ using AllShapes =
 #include <cmath>
 #include <cstddef>
 #include <vector>
-
-// --- begin spook/collide/contact_point.hpp ---
-#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_POINT_HPP
-#define SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_POINT_HPP
-
-#include <cstdint>
-
-namespace spook {
-
-/// One point of contact between two shapes, in world coordinates. The
-/// normal is a unit vector pointing from the first shape toward the second:
-/// moving the second shape by `depth` along it separates them. The point
-/// lies midway between the two surfaces, so point ∓ normal·depth/2 are the
-/// deepest points of the first and the second shape. A negative depth is a
-/// gap point of a speculative contact (Simulation::
-/// setEnableSpeculativeContacts): the shapes are apart by −depth there and
-/// may meet within the step; its force is not zero only if they do.
-template <Scalar S>
-struct ContactPointT {
-  Vec3T<S> point = Vec3T<S>::Zero();   ///< world (m)
-  Vec3T<S> normal = Vec3T<S>::UnitZ();  ///< world, unit, from the first shape toward the second
-  S depth = S(0);                       ///< penetration along the normal (m); < 0: a gap
-  bool enabled = true;                ///< false once contact reduction or a listener has dropped it
-  Vec3T<S> force = Vec3T<S>::Zero();    ///< contact force on the second shape's body (N), after the solve
-  S normalForce = S(0);               ///< its component along the normal (N); negative only under adhesion
-  std::uint32_t faceIndex1 = 0;       ///< the triangle touched when the first shape is a Trimesh or HeightField
-  std::uint32_t faceIndex2 = 0;       ///< the same for the second shape
-
-  [[nodiscard]] bool getEnabled() const { return enabled; }
-  [[nodiscard]] const Vec3T<S>& getPoint() const { return point; }
-  [[nodiscard]] const Vec3T<S>& getNormal() const { return normal; }
-  [[nodiscard]] S getDepth() const { return depth; }
-  /// False for a gap point (depth < 0).
-  [[nodiscard]] bool isTouching() const { return depth >= S(0); }
-  [[nodiscard]] const Vec3T<S>& getForce() const { return force; }
-  /// Normal and tangential (friction) magnitudes of getForce (N).
-  [[nodiscard]] S getNormalForceMagnitude() const { return normalForce; }
-  [[nodiscard]] S getTangentialForceMagnitude() const { return (force - normal * normalForce).norm(); }
-  [[nodiscard]] std::uint32_t getFaceIndex1() const { return faceIndex1; }
-  [[nodiscard]] std::uint32_t getFaceIndex2() const { return faceIndex2; }
-};
-
-}  // namespace spook
-#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_POINT_HPP
-// --- end spook/collide/contact_point.hpp ---
 
 namespace spook {
 
@@ -4867,115 +5066,6 @@ class SweepAndPrune {
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_BROADPHASE_SWEEP_AND_PRUNE_HPP
 // --- end spook/collide/broadphase/sweep_and_prune.hpp ---
-// --- begin spook/collide/contact_sink.hpp ---
-#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
-#define SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
-
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <memory>
-#include <utility>
-#include <vector>
-
-namespace spook {
-
-namespace detail {
-/// Gap, relative to the smaller shape's size, within which two shapes, and
-/// the corners of their manifold (FeatureClipping::contacts), count as
-/// touching (contacts of depth 0); a mesh's triangle search grows the
-/// shape's box by it. A body resting on a mesh settles about
-/// 1e-6 m deep, and where its contacts pass from one triangle to the next
-/// the solve lifts or tilts it by about as much: a contact lost at such a
-/// gap lets the body fall freely for a step (2.7 mm at 60 Hz) and bump.
-inline constexpr double kTouchingGap = 1e-5;
-}  // namespace detail
-
-/// Where a collider writes the contact points of one shape pair. It keeps
-/// the "first toward second" normal convention when the pair was handed to
-/// the collider in reverse order (flipped), and never lets a non-finite
-/// point through: it drops it and counts it in getNumDropped().
-///
-/// A sink may carry a speculative margin (m): the shapes may come that much
-/// closer within the coming step, and a collider that supports it also
-/// reports the points where they are apart by up to the margin, as gap
-/// points of negative depth (accepts()). The solver lets such a point close
-/// its gap within the step and no more, so that a contact is not born
-/// overlapping by up to the approach speed times the step.
-template <Scalar S>
-class ContactSinkT {
- public:
-  explicit ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped = false, S margin = S(0))
-      : ContactSinkT(points, flipped, std::make_shared<std::size_t>(0), margin) {}
-
-  /// The speculative margin (m), >= 0.
-  [[nodiscard]] S margin() const { return margin_; }
-  /// True when a point of this depth is to be written: touching or
-  /// overlapping, or apart by no more than the margin or `touching`
-  /// (then with addSpeculative).
-  [[nodiscard]] bool accepts(S depth, S touching = S(0)) const { return depth >= -std::max(margin_, touching); }
-
-  /// Adds a touching point: world position (m), unit normal from the
-  /// collider's first shape toward its second, penetration depth (m,
-  /// clamped at 0).
-  void add(const Vec3T<S>& point, const Vec3T<S>& normal, S depth) {
-    addSpeculative(point, normal, std::max(depth, S(0)));
-  }
-
-  /// Adds a point that may be a gap point: as add(), but a point apart by
-  /// more than `touching` (the collider's touching gap) keeps its negative
-  /// depth when the sink has a margin.
-  void addSpeculative(const Vec3T<S>& point, const Vec3T<S>& normal, S depth, S touching = S(0)) {
-    if (!(point.allFinite() && normal.allFinite() && std::isfinite(depth))) {
-      ++*dropped_;
-      return;
-    }
-    ContactPointT<S> contact;
-    contact.point = point;
-    contact.normal = flipped_ ? Vec3T<S>(-normal) : normal;
-    contact.depth = depth >= -touching || margin_ == S(0) ? std::max(depth, S(0)) : depth;
-    contact.faceIndex1 = flipped_ ? faces_[1] : faces_[0];
-    contact.faceIndex2 = flipped_ ? faces_[0] : faces_[1];
-    points_->push_back(contact);
-  }
-
-  /// The triangles (of a Trimesh or HeightField) of the collider's first
-  /// and second shape that the next points touch; 0 for other shapes.
-  void setFaceIndices(std::size_t first, std::size_t second) {
-    faces_ = {static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(second)};
-  }
-
-  /// The same output with the shape order swapped (sharing the drop count).
-  [[nodiscard]] ContactSinkT reversed() const { return ContactSinkT(*points_, !flipped_, dropped_, margin_); }
-
-  /// A sink into `points`, unflipped, that shares this one's drop count and
-  /// margin: where a collider adjusts its points before it add()s them here.
-  [[nodiscard]] ContactSinkT staging(std::vector<ContactPointT<S>>& points) const {
-    return ContactSinkT(points, false, dropped_, margin_);
-  }
-
-  /// Number of points written so far.
-  [[nodiscard]] std::size_t size() const { return points_->size(); }
-  /// Number of points refused so far because their position, normal or
-  /// depth was not finite (this sink and its reversed() copies).
-  [[nodiscard]] std::size_t getNumDropped() const { return *dropped_; }
-
- private:
-  ContactSinkT(std::vector<ContactPointT<S>>& points, bool flipped, std::shared_ptr<std::size_t> dropped, S margin)
-      : points_(&points), flipped_(flipped), dropped_(std::move(dropped)), margin_(margin > S(0) ? margin : S(0)) {}
-
-  std::vector<ContactPointT<S>>* points_;
-  bool flipped_;
-  std::shared_ptr<std::size_t> dropped_;
-  std::array<std::uint32_t, 2> faces_{};
-  S margin_ = S(0);
-};
-
-}  // namespace spook
-#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_CONTACT_SINK_HPP
-// --- end spook/collide/contact_sink.hpp ---
 // --- begin spook/core/worker_pool.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_CORE_WORKER_POOL_HPP
 #define SPOOK_SINGLE_SPOOK_CORE_WORKER_POOL_HPP
@@ -6496,7 +6586,11 @@ using SpaceRef = ref_ptr<Space>;
 // declared in collide/space.hpp) with all its colliders. Included by
 // space.hpp in a header-only program and where a collider part is compiled
 // (core/implementation.hpp); a program that compiles spook once includes it
-// itself to build a Space or Simulation for a shape list of its own.
+// itself to build a Space or Simulation for a shape list of its own. The
+// full list goes through the shapes (collide/shape_dispatch.hpp), any
+// other through its collider matrix.
+
+#include <type_traits>
 
 // --- begin spook/collide/collider_matrix.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDER_MATRIX_HPP
@@ -9794,6 +9888,95 @@ extern template class ColliderMatrixT<float, AllShapes>;
 }  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_COLLIDER_MATRIX_HPP
 // --- end spook/collide/collider_matrix.hpp ---
+// --- begin spook/collide/shape_dispatch.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_COLLIDE_SHAPE_DISPATCH_HPP
+#define SPOOK_SINGLE_SPOOK_COLLIDE_SHAPE_DISPATCH_HPP
+
+// The default narrow phase (every shape type): a pair goes to the shape of
+// the higher dispatchRank, whose ShapeT::collideWithLowerRank holds the
+// colliders with the types ranked at or below its own. That member is
+// compiled where the shape type's virtual table is, with its constructor:
+// a header-only program compiles the colliders among the shape types it
+// constructs (and those ranked below them) instead of every pair. Included
+// with collide/collide_through.hpp.
+
+namespace spook::detail {
+
+/// The contacts of a at X_WA with b at X_WB (normals from a toward b),
+/// asked of the higher-ranked shape. False, writing nothing, for a pair
+/// without a collider. A composite is taken apart first (a's before b's),
+/// so that each pair of children meets its collider in the order the
+/// collider matrix hands it over (a collider of two shapes of one type
+/// need not be symmetric to the bit).
+template <Scalar S>
+bool collideShapes(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<S>& b, const TransformT<S>& X_WB,
+                   ContactSinkT<S>& sink) {
+  if (b.getType() == ShapeType::COMPOSITE && a.getType() != ShapeType::COMPOSITE) {
+    for (const auto& child : static_cast<const CompositeT<S>&>(b).getChildren())
+      collideShapes<S>(a, X_WA, *child.shape, X_WB * child.transform, sink);
+    return true;
+  }
+  if (dispatchRank(a.getType()) >= dispatchRank(b.getType())) return a.collideWithLowerRank(X_WA, b, X_WB, sink);
+  ContactSinkT<S> reversed = sink.reversed();
+  return b.collideWithLowerRank(X_WB, a, X_WA, reversed);
+}
+
+/// The pair (A, B) for a B ranked at or below A, else nothing: the pair is
+/// then the other shape's to collide.
+template <class A, class B>
+bool collideRankedPair(const A& a, const TransformT<typename A::Vec3::Scalar>& X_WA,
+                       const ShapeT<typename A::Vec3::Scalar>& b, const TransformT<typename A::Vec3::Scalar>& X_WB,
+                       ContactSinkT<typename A::Vec3::Scalar>& sink) {
+  if constexpr (dispatchRank(B::kType) > dispatchRank(A::kType)) {
+    return false;
+  } else if constexpr (A::kType <= B::kType ? HasCollider<A, B> : HasCollider<B, A>) {
+    spook::collide(a, X_WA, static_cast<const B&>(b), X_WB, sink);
+    return true;
+  } else {
+    return false;
+  }
+}
+
+template <class A>
+bool collideWithLowerRank(const A& a, const TransformT<typename A::Vec3::Scalar>& X_WA,
+                          const ShapeT<typename A::Vec3::Scalar>& b, const TransformT<typename A::Vec3::Scalar>& X_WB,
+                          ContactSinkT<typename A::Vec3::Scalar>& sink) {
+  using S = typename A::Vec3::Scalar;
+  if constexpr (A::kType == ShapeType::COMPOSITE) {
+    // A child pairs with b through the dispatch, skipped where it has no
+    // collider; the composite itself pairs with every shape.
+    for (const auto& child : a.getChildren()) collideShapes<S>(*child.shape, X_WA * child.transform, b, X_WB, sink);
+    return true;
+  } else {
+    switch (b.getType()) {
+      case ShapeType::BOX:
+        return collideRankedPair<A, BoxT<S>>(a, X_WA, b, X_WB, sink);
+      case ShapeType::CAPSULE:
+        return collideRankedPair<A, CapsuleT<S>>(a, X_WA, b, X_WB, sink);
+      case ShapeType::CONVEX:
+        return collideRankedPair<A, ConvexT<S>>(a, X_WA, b, X_WB, sink);
+      case ShapeType::CYLINDER:
+        return collideRankedPair<A, CylinderT<S>>(a, X_WA, b, X_WB, sink);
+      case ShapeType::LINE:
+        return collideRankedPair<A, LineT<S>>(a, X_WA, b, X_WB, sink);
+      case ShapeType::PLANE:
+        return collideRankedPair<A, PlaneT<S>>(a, X_WA, b, X_WB, sink);
+      case ShapeType::SPHERE:
+        return collideRankedPair<A, SphereT<S>>(a, X_WA, b, X_WB, sink);
+      case ShapeType::TRIMESH:
+        return collideRankedPair<A, TrimeshT<S>>(a, X_WA, b, X_WB, sink);
+      case ShapeType::COMPOSITE:
+        return false;  // ranked above every other type
+      case ShapeType::HEIGHTFIELD:
+        return collideRankedPair<A, HeightFieldT<S>>(a, X_WA, b, X_WB, sink);
+    }
+    return false;
+  }
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_COLLIDE_SHAPE_DISPATCH_HPP
+// --- end spook/collide/shape_dispatch.hpp ---
 
 namespace spook {
 
@@ -9802,7 +9985,10 @@ namespace detail {
 template <Scalar S, class List>
 bool collideThrough(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<S>& b, const TransformT<S>& X_WB,
                     ContactSinkT<S>& sink) {
-  return ColliderMatrixT<S, List>::collide(a, X_WA, b, X_WB, sink);
+  if constexpr (std::is_same_v<List, AllShapes>)
+    return collideShapes<S>(a, X_WA, b, X_WB, sink);
+  else
+    return ColliderMatrixT<S, List>::collide(a, X_WA, b, X_WB, sink);
 }
 
 template <class List>

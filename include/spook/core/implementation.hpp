@@ -70,3 +70,23 @@
 #define SPOOK_COMPILED_FLOAT(...)
 #endif
 #define SPOOK_COMPILED_ONCE(kind, name) SPOOK_COMPILED_DOUBLE(kind name<double>) SPOOK_COMPILED_FLOAT(kind name<float>)
+
+// The same for the shape classes, with the collider parts: a shape's
+// virtual table holds its colliders (ShapeT::collideWithLowerRank), which
+// compile with it.
+#if defined(SPOOK_IMPLEMENT_COLLIDERS_DOUBLE)
+#define SPOOK_COLLIDERS_DOUBLE(...) template __VA_ARGS__;
+#elif defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_COLLIDERS_DOUBLE(...) extern template __VA_ARGS__;
+#else
+#define SPOOK_COLLIDERS_DOUBLE(...)
+#endif
+#if defined(SPOOK_IMPLEMENT_COLLIDERS_FLOAT)
+#define SPOOK_COLLIDERS_FLOAT(...) template __VA_ARGS__;
+#elif defined(SPOOK_EXTERN_TEMPLATES)
+#define SPOOK_COLLIDERS_FLOAT(...) extern template __VA_ARGS__;
+#else
+#define SPOOK_COLLIDERS_FLOAT(...)
+#endif
+#define SPOOK_COMPILED_WITH_COLLIDERS(kind, name) \
+  SPOOK_COLLIDERS_DOUBLE(kind name<double>) SPOOK_COLLIDERS_FLOAT(kind name<float>)

@@ -21,6 +21,10 @@ class BoxT : public ShapeT<S> {
   void setHalfExtents(const Vec3& halfExtents);
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   [[nodiscard]] S getVolume() const override { return S(8) * halfExtents_.prod(); }
 
@@ -92,7 +96,7 @@ auto BoxT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
   return SPDMat3T<S>(Vec3(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y()) * (mass / S(3)));
 }
 
-SPOOK_COMPILED_ONCE(class, BoxT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, BoxT)
 
 using Box = BoxT<double>;
 using BoxRef = ref_ptr<Box>;

@@ -26,6 +26,10 @@ class CapsuleT : public ShapeT<S> {
 
   /// V = π r² h + 4/3 π r³.
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   [[nodiscard]] S getVolume() const override;
 
@@ -100,7 +104,7 @@ auto CapsuleT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
   return SPDMat3T<S>(Vec3(across, axial, across));
 }
 
-SPOOK_COMPILED_ONCE(class, CapsuleT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, CapsuleT)
 
 using Capsule = CapsuleT<double>;
 using CapsuleRef = ref_ptr<Capsule>;

@@ -51,6 +51,10 @@ class CompositeT : public ShapeT<S>, private detail::ShapeOwner<S> {
   }
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   [[nodiscard]] S getVolume() const override;
 
@@ -155,7 +159,7 @@ CompositeT<S>::~CompositeT() {
   for (Child& c : children_) detail::ShapeOwners<S>::remove(*c.shape, this);
 }
 
-SPOOK_COMPILED_ONCE(class, CompositeT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, CompositeT)
 
 using Composite = CompositeT<double>;
 using CompositeRef = ref_ptr<Composite>;

@@ -55,6 +55,10 @@ class ConvexT : public ShapeT<S> {
 
   /// Which kind of shape this is.
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   /// Volume of the hull (m³).
   [[nodiscard]] S getVolume() const override { return volume_; }
@@ -252,7 +256,7 @@ void ConvexT<S>::buildEdges() {
   }
 }
 
-SPOOK_COMPILED_ONCE(class, ConvexT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, ConvexT)
 
 using Convex = ConvexT<double>;
 using ConvexRef = ref_ptr<Convex>;

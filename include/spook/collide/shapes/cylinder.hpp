@@ -25,6 +25,10 @@ class CylinderT : public ShapeT<S> {
 
   /// V = π r² h.
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   [[nodiscard]] S getVolume() const override;
 
@@ -107,7 +111,7 @@ auto CylinderT<S>::calculateInertia(S mass) const -> SPDMat3T<S> {
   return SPDMat3T<S>(Vec3(across, S(0.5) * mass * r2, across));
 }
 
-SPOOK_COMPILED_ONCE(class, CylinderT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, CylinderT)
 
 using Cylinder = CylinderT<double>;
 using CylinderRef = ref_ptr<Cylinder>;

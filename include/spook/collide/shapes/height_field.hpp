@@ -122,6 +122,10 @@ class HeightFieldT : public ShapeT<S> {
   }
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   /// 0: a solid below the surface has no finite volume.
   [[nodiscard]] S getVolume() const override { return S(0); }
@@ -280,7 +284,7 @@ auto HeightFieldT<S>::cellRange(S lo, S hi, S size, S spacing, std::size_t resol
   return {static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
 }
 
-SPOOK_COMPILED_ONCE(class, HeightFieldT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, HeightFieldT)
 
 using HeightField = HeightFieldT<double>;
 using HeightFieldRef = ref_ptr<HeightField>;

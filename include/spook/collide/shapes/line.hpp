@@ -30,6 +30,10 @@ class LineT : public ShapeT<S> {
 
   /// Which kind of shape this is.
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
   /// A segment encloses no volume: 0 m³.
   [[nodiscard]] S getVolume() const override { return S(0); }
   /// The midpoint, shape frame (m).
@@ -87,7 +91,7 @@ auto LineT<S>::getBoundingBox() const -> BoundingBoxT<S> {
   return {first_.cwiseMin(second_), first_.cwiseMax(second_)};
 }
 
-SPOOK_COMPILED_ONCE(class, LineT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, LineT)
 
 using Line = LineT<double>;
 using LineRef = ref_ptr<Line>;

@@ -43,6 +43,10 @@ class PlaneT : public ShapeT<S> {
 
   /// Which kind of shape this is.
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
   /// A plane encloses no volume: 0 m³.
   [[nodiscard]] S getVolume() const override { return S(0); }
   /// Always throws: a plane has no volume and so no inertia.
@@ -125,7 +129,7 @@ auto PlaneT<S>::getBoundingBox() const -> BoundingBoxT<S> {
   return {Vec3::Constant(-inf), Vec3::Constant(inf)};
 }
 
-SPOOK_COMPILED_ONCE(class, PlaneT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, PlaneT)
 
 using Plane = PlaneT<double>;
 using PlaneRef = ref_ptr<Plane>;

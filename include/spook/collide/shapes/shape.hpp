@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <spook/collide/bounding_box.hpp>
+#include <spook/collide/contact_sink.hpp>
 #include <spook/collide/shapes/shape_type.hpp>
 #include <spook/collide/supporting_feature.hpp>
 #include <spook/core/error.hpp>
@@ -20,6 +21,14 @@ template <Scalar S>
 class ShapeT;
 
 namespace detail {
+
+/// The contacts of a with b, for a b whose type ranks at or below a's
+/// (dispatchRank); false, writing nothing, for a pair without a collider.
+/// Defined with the colliders (collide/shape_dispatch.hpp).
+template <class A>
+bool collideWithLowerRank(const A& a, const TransformT<typename A::Vec3::Scalar>& X_WA,
+                          const ShapeT<typename A::Vec3::Scalar>& b, const TransformT<typename A::Vec3::Scalar>& X_WB,
+                          ContactSinkT<typename A::Vec3::Scalar>& sink);
 
 /// What holds a shape: a Geometry, or a Composite for its children. Asked,
 /// after a shape it holds has changed (its size, children, heights), whether
@@ -71,6 +80,15 @@ class ShapeT : public Referenced {
   /// Center of volume in the shape frame (m); the origin for primitives.
   [[nodiscard]] virtual Vec3 getCenterOfVolume() const { return Vec3::Zero(); }
 
+  /// Writes the contacts of this shape at X_WA with `other` at X_WB (shape
+  /// frame → world; normals from this shape toward the other) when the
+  /// other's type ranks at or below this one's (dispatchRank); returns
+  /// whether the pair has a collider. The narrow phase asks the
+  /// higher-ranked shape of a pair (detail::collideShapes), so that a
+  /// program compiles the colliders of the shape types it constructs only.
+  virtual bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT& other, const TransformT<S>& X_WB,
+                                    ContactSinkT<S>& sink) const = 0;
+
  protected:
   ~ShapeT() override = default;
 
@@ -121,7 +139,7 @@ S ShapeT<S>::requireLength(const char* kind, const char* what, S value) {
   return value;
 }
 
-SPOOK_COMPILED_ONCE(class, ShapeT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, ShapeT)
 
 namespace detail {
 

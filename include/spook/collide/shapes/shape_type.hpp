@@ -20,4 +20,17 @@ inline constexpr std::array<std::string_view, kNumShapeTypes> kShapeTypeNames = 
   return kShapeTypeNames[static_cast<std::size_t>(type)];
 }
 
+/// Which shape of a pair the default narrow phase asks for the contacts: the
+/// one of the higher rank, which compiles the colliders with the types
+/// ranked at or below its own (ShapeT::collideWithLowerRank). Cheap, common
+/// shapes rank low, so that a program of boxes on a plane compiles the
+/// colliders of planes, spheres and boxes only; a composite ranks highest
+/// and hands its children back to the dispatch.
+[[nodiscard]] constexpr int dispatchRank(ShapeType type) {
+  // From the lowest: plane, sphere, box, capsule, cylinder, line, convex,
+  // trimesh, height field, composite (the table is in ShapeType's order).
+  constexpr std::array<int, kNumShapeTypes> kRanks = {2, 3, 6, 4, 5, 0, 1, 7, 9, 8};
+  return kRanks[static_cast<std::size_t>(type)];
+}
+
 }  // namespace spook

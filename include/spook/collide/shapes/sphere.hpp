@@ -23,6 +23,10 @@ class SphereT : public ShapeT<S> {
 
   /// V = 4/3 π r³.
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   [[nodiscard]] S getVolume() const override;
 
@@ -72,7 +76,7 @@ auto SphereT<S>::getBoundingBox() const -> BoundingBoxT<S> {
   return {Vec3::Constant(-radius_), Vec3::Constant(radius_)};
 }
 
-SPOOK_COMPILED_ONCE(class, SphereT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, SphereT)
 
 using Sphere = SphereT<double>;
 using SphereRef = ref_ptr<Sphere>;

@@ -64,6 +64,10 @@ class TrimeshT : public ShapeT<S> {
   [[nodiscard]] const detail::AabbTree<S>& getTree() const { return tree_; }
 
   [[nodiscard]] ShapeType getType() const override { return kType; }
+  bool collideWithLowerRank(const TransformT<S>& X_WA, const ShapeT<S>& other, const TransformT<S>& X_WB,
+                            ContactSinkT<S>& sink) const override {
+    return detail::collideWithLowerRank(*this, X_WA, other, X_WB, sink);
+  }
 
   /// Enclosed volume (m³) of a closed mesh, 0 for an open one.
   [[nodiscard]] S getVolume() const override { return volume_; }
@@ -243,7 +247,7 @@ void TrimeshT<S>::computeMass() {
   inertia_ = mass.inertia;
 }
 
-SPOOK_COMPILED_ONCE(class, TrimeshT)
+SPOOK_COMPILED_WITH_COLLIDERS(class, TrimeshT)
 
 using Trimesh = TrimeshT<double>;
 using TrimeshRef = ref_ptr<Trimesh>;
