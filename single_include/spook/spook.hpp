@@ -150,7 +150,6 @@ struct ShapeList {
 #include <array>
 #include <charconv>
 #include <cstddef>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -170,13 +169,15 @@ namespace detail {
 // Floating-point values print in their shortest round-trip form (0.1, not
 // 0.10000000000000001), so a message shows exactly the value passed.
 template <class T>
-void appendScalar(std::ostringstream& out, const T& value) {
-  if constexpr (std::is_floating_point_v<T>) {
+void appendScalar(std::string& out, const T& value) {
+  if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool> && !std::is_same_v<T, char>) {
     std::array<char, 64> buffer{};
     const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-    out << std::string_view(buffer.data(), static_cast<std::size_t>(result.ptr - buffer.data()));
+    out.append(buffer.data(), static_cast<std::size_t>(result.ptr - buffer.data()));
+  } else if constexpr (std::is_same_v<T, bool>) {
+    out += value ? "true" : "false";
   } else {
-    out << value;
+    out += value;  // characters and strings
   }
 }
 
@@ -190,38 +191,43 @@ template <class T>
 concept PrintedAsTuple = Indexable<T> && !std::is_convertible_v<T, std::string_view>;
 
 template <class T>
-void appendValue(std::ostringstream& out, const T& value) {
+void appendValue(std::string& out, const T& value) {
   if constexpr (PrintedAsTuple<T>) {
-    out << '(';
+    out += '(';
     for (decltype(value.size()) i = 0; i < value.size(); ++i) {
-      if (i) out << ", ";
+      if (i) out += ", ";
       appendScalar(out, value[i]);
     }
-    out << ')';
+    out += ')';
+  } else if constexpr (std::is_convertible_v<T, std::string_view>) {
+    out += std::string_view(value);
   } else {
     appendScalar(out, value);
   }
+}
+
+/// "spook::RigidBody 'crate': already added to this simulation"
+[[nodiscard]] inline Error makeError(std::string_view kind, std::string_view name, std::string_view what) {
+  std::string message = "spook::";
+  message += kind;
+  if (!name.empty()) {
+    message += " '";
+    message += name;
+    message += '\'';
+  }
+  message += ": ";
+  message += what;
+  return Error(message);
 }
 
 /// "spook::RigidBody 'crate': mass must be finite and > 0 kg, got -1"
 /// (the quoted name is left out for unnamed objects).
 template <class T>
 [[nodiscard]] Error makeError(std::string_view kind, std::string_view name, std::string_view what, const T& value) {
-  std::ostringstream out;
-  out << "spook::" << kind;
-  if (!name.empty()) out << " '" << name << "'";
-  out << ": " << what << ", got ";
-  appendValue(out, value);
-  return Error(out.str());
-}
-
-/// "spook::RigidBody 'crate': already added to this simulation"
-[[nodiscard]] inline Error makeError(std::string_view kind, std::string_view name, std::string_view what) {
-  std::ostringstream out;
-  out << "spook::" << kind;
-  if (!name.empty()) out << " '" << name << "'";
-  out << ": " << what;
-  return Error(out.str());
+  std::string message(what);
+  message += ", got ";
+  appendValue(message, value);
+  return makeError(kind, name, message);
 }
 
 }  // namespace detail
@@ -5200,6 +5206,7 @@ SPOOK_INLINE void WorkerPool::serve(int worker, std::uint64_t seen) {
 #define SPOOK_SINGLE_SPOOK_DYNAMICS_RIGID_BODY_HPP
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -5212,7 +5219,6 @@ SPOOK_INLINE void WorkerPool::serve(int worker, std::uint64_t seen) {
 #define SPOOK_SINGLE_SPOOK_DYNAMICS_MASS_FROM_GEOMETRIES_HPP
 
 #include <optional>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -5233,15 +5239,16 @@ struct GeneratedMass {
 template <Scalar S, class T>
 [[nodiscard]] Error shapeMassError(const GeometryT<S>& geometry, const ShapeT<S>& shape, S density,
                                    const std::string& what, const T& value) {
-  std::ostringstream out;
-  out << shapeTypeName(shape.getType()) << " of bounding half extents ";
+  std::string out(shapeTypeName(shape.getType()));
+  out += " of bounding half extents ";
   appendValue(out, Vec3T<S>(shape.getBoundingBox().halfExtents()));
-  out << " m, volume ";
+  out += " m, volume ";
   appendScalar(out, shape.getVolume());
-  out << " m^3, density ";
+  out += " m^3, density ";
   appendScalar(out, density);
-  out << " kg/m^3: " << what;
-  return makeError("Geometry", geometry.getName(), out.str(), value);
+  out += " kg/m^3: ";
+  out += what;
+  return makeError("Geometry", geometry.getName(), out, value);
 }
 
 /// Each shape of volume V contributes m = ρV (ρ its geometry's material
@@ -5470,7 +5477,21 @@ using MassProperties = MassPropertiesT<float>;
 
 namespace spook {
 
+template <Scalar S>
+class SpaceT;
+template <Scalar S>
+class RigidBodyT;
+
 namespace detail {
+/// The continuous-collision stage of the step (detail::stopAtFirstContact
+/// in collide/continuous.hpp), bound by the first
+/// RigidBody::setEnableCCD(true) of a program, so that a program without
+/// CCD bodies does not compile it; null until then.
+template <Scalar S>
+using CcdStage = void (*)(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const SpaceT<S>& space, S h);
+template <Scalar S>
+inline std::atomic<CcdStage<S>> ccdStage{nullptr};
+
 template <Scalar S>
 struct BodyIntegrator;
 struct SimulationMembership;
@@ -5617,7 +5638,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   /// its first contact instead of passing through (collide/continuous.hpp
   /// states what is covered and what is not).
   [[nodiscard]] bool getEnableCCD() const { return enableCCD_; }
-  void setEnableCCD(bool enable) { enableCCD_ = enable; }
+  void setEnableCCD(bool enable);  // defined with the CCD stage, which it binds
 
   // --- Sleeping ----------------------------------------------------------------
 
@@ -22103,6 +22124,20 @@ void stopAtFirstContact(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const
 }
 
 }  // namespace spook::detail
+
+namespace spook {
+
+template <Scalar S>
+void RigidBodyT<S>::setEnableCCD(bool enable) {
+  if (enable) detail::ccdStage<S>.store(&detail::stopAtFirstContact<S>, std::memory_order_relaxed);
+  enableCCD_ = enable;
+}
+
+// Defined after the class's own explicit instantiation (dynamics/rigid_body.hpp).
+SPOOK_COMPILED_DOUBLE(void RigidBodyT<double>::setEnableCCD(bool))
+SPOOK_COMPILED_FLOAT(void RigidBodyT<float>::setEnableCCD(bool))
+
+}  // namespace spook
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_CONTINUOUS_HPP
 // --- end spook/collide/continuous.hpp ---
 // --- begin spook/sim/constraint_rows.hpp ---
@@ -23635,6 +23670,8 @@ class ContactRows {
 // row producers (sim/step_extension.hpp) take part in the stages of
 // integrate(). Compiled where the step is (sim/simulation_step.hpp).
 
+#include <atomic>
+
 namespace spook {
 
 template <Scalar S>
@@ -23651,7 +23688,8 @@ void SimulationT<S>::stepForward() {
   collide();  // sleeping bodies disturbed wake; broadphase, narrow phase, contact events
   notify(Listener::PRE_STEP);
   integrate(timeStep_);
-  detail::stopAtFirstContact(bodies_.get(), *space_, timeStep_);  // continuous collision, opt-in per body
+  if (const auto ccd = detail::ccdStage<S>.load(std::memory_order_relaxed))  // continuous collision, opt-in per body
+    ccd(bodies_.get(), *space_, timeStep_);
   notify(Listener::POST_STEP);
   notify(Listener::LAST_STEP);
 

@@ -16,6 +16,7 @@
 #include <spook/collide/detail/triangle.hpp>
 #include <spook/collide/geometry.hpp>
 #include <spook/collide/space.hpp>
+#include <spook/core/implementation.hpp>
 #include <spook/core/math.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/dynamics/rigid_body.hpp>
@@ -406,3 +407,17 @@ void stopAtFirstContact(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const
 }
 
 }  // namespace spook::detail
+
+namespace spook {
+
+template <Scalar S>
+void RigidBodyT<S>::setEnableCCD(bool enable) {
+  if (enable) detail::ccdStage<S>.store(&detail::stopAtFirstContact<S>, std::memory_order_relaxed);
+  enableCCD_ = enable;
+}
+
+// Defined after the class's own explicit instantiation (dynamics/rigid_body.hpp).
+SPOOK_COMPILED_DOUBLE(void RigidBodyT<double>::setEnableCCD(bool))
+SPOOK_COMPILED_FLOAT(void RigidBodyT<float>::setEnableCCD(bool))
+
+}  // namespace spook

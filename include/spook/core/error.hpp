@@ -3,7 +3,6 @@
 #include <array>
 #include <charconv>
 #include <cstddef>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -23,13 +22,15 @@ namespace detail {
 // Floating-point values print in their shortest round-trip form (0.1, not
 // 0.10000000000000001), so a message shows exactly the value passed.
 template <class T>
-void appendScalar(std::ostringstream& out, const T& value) {
-  if constexpr (std::is_floating_point_v<T>) {
+void appendScalar(std::string& out, const T& value) {
+  if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool> && !std::is_same_v<T, char>) {
     std::array<char, 64> buffer{};
     const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-    out << std::string_view(buffer.data(), static_cast<std::size_t>(result.ptr - buffer.data()));
+    out.append(buffer.data(), static_cast<std::size_t>(result.ptr - buffer.data()));
+  } else if constexpr (std::is_same_v<T, bool>) {
+    out += value ? "true" : "false";
   } else {
-    out << value;
+    out += value;  // characters and strings
   }
 }
 
@@ -43,38 +44,43 @@ template <class T>
 concept PrintedAsTuple = Indexable<T> && !std::is_convertible_v<T, std::string_view>;
 
 template <class T>
-void appendValue(std::ostringstream& out, const T& value) {
+void appendValue(std::string& out, const T& value) {
   if constexpr (PrintedAsTuple<T>) {
-    out << '(';
+    out += '(';
     for (decltype(value.size()) i = 0; i < value.size(); ++i) {
-      if (i) out << ", ";
+      if (i) out += ", ";
       appendScalar(out, value[i]);
     }
-    out << ')';
+    out += ')';
+  } else if constexpr (std::is_convertible_v<T, std::string_view>) {
+    out += std::string_view(value);
   } else {
     appendScalar(out, value);
   }
+}
+
+/// "spook::RigidBody 'crate': already added to this simulation"
+[[nodiscard]] inline Error makeError(std::string_view kind, std::string_view name, std::string_view what) {
+  std::string message = "spook::";
+  message += kind;
+  if (!name.empty()) {
+    message += " '";
+    message += name;
+    message += '\'';
+  }
+  message += ": ";
+  message += what;
+  return Error(message);
 }
 
 /// "spook::RigidBody 'crate': mass must be finite and > 0 kg, got -1"
 /// (the quoted name is left out for unnamed objects).
 template <class T>
 [[nodiscard]] Error makeError(std::string_view kind, std::string_view name, std::string_view what, const T& value) {
-  std::ostringstream out;
-  out << "spook::" << kind;
-  if (!name.empty()) out << " '" << name << "'";
-  out << ": " << what << ", got ";
-  appendValue(out, value);
-  return Error(out.str());
-}
-
-/// "spook::RigidBody 'crate': already added to this simulation"
-[[nodiscard]] inline Error makeError(std::string_view kind, std::string_view name, std::string_view what) {
-  std::ostringstream out;
-  out << "spook::" << kind;
-  if (!name.empty()) out << " '" << name << "'";
-  out << ": " << what;
-  return Error(out.str());
+  std::string message(what);
+  message += ", got ";
+  appendValue(message, value);
+  return makeError(kind, name, message);
 }
 
 }  // namespace detail

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <optional>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,15 +25,16 @@ struct GeneratedMass {
 template <Scalar S, class T>
 [[nodiscard]] Error shapeMassError(const GeometryT<S>& geometry, const ShapeT<S>& shape, S density,
                                    const std::string& what, const T& value) {
-  std::ostringstream out;
-  out << shapeTypeName(shape.getType()) << " of bounding half extents ";
+  std::string out(shapeTypeName(shape.getType()));
+  out += " of bounding half extents ";
   appendValue(out, Vec3T<S>(shape.getBoundingBox().halfExtents()));
-  out << " m, volume ";
+  out += " m, volume ";
   appendScalar(out, shape.getVolume());
-  out << " m^3, density ";
+  out += " m^3, density ";
   appendScalar(out, density);
-  out << " kg/m^3: " << what;
-  return makeError("Geometry", geometry.getName(), out.str(), value);
+  out += " kg/m^3: ";
+  out += what;
+  return makeError("Geometry", geometry.getName(), out, value);
 }
 
 /// Each shape of volume V contributes m = ρV (ρ its geometry's material

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -21,7 +22,21 @@
 
 namespace spook {
 
+template <Scalar S>
+class SpaceT;
+template <Scalar S>
+class RigidBodyT;
+
 namespace detail {
+/// The continuous-collision stage of the step (detail::stopAtFirstContact
+/// in collide/continuous.hpp), bound by the first
+/// RigidBody::setEnableCCD(true) of a program, so that a program without
+/// CCD bodies does not compile it; null until then.
+template <Scalar S>
+using CcdStage = void (*)(const std::vector<ref_ptr<RigidBodyT<S>>>& bodies, const SpaceT<S>& space, S h);
+template <Scalar S>
+inline std::atomic<CcdStage<S>> ccdStage{nullptr};
+
 template <Scalar S>
 struct BodyIntegrator;
 struct SimulationMembership;
@@ -168,7 +183,7 @@ class RigidBodyT : public Referenced, private detail::GeometryOwner<S> {
   /// its first contact instead of passing through (collide/continuous.hpp
   /// states what is covered and what is not).
   [[nodiscard]] bool getEnableCCD() const { return enableCCD_; }
-  void setEnableCCD(bool enable) { enableCCD_ = enable; }
+  void setEnableCCD(bool enable);  // defined with the CCD stage, which it binds
 
   // --- Sleeping ----------------------------------------------------------------
 

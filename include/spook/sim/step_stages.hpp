@@ -5,6 +5,8 @@
 // row producers (sim/step_extension.hpp) take part in the stages of
 // integrate(). Compiled where the step is (sim/simulation_step.hpp).
 
+#include <atomic>
+
 #include <spook/collide/continuous.hpp>
 #include <spook/sim/simulation.hpp>
 
@@ -24,7 +26,8 @@ void SimulationT<S>::stepForward() {
   collide();  // sleeping bodies disturbed wake; broadphase, narrow phase, contact events
   notify(Listener::PRE_STEP);
   integrate(timeStep_);
-  detail::stopAtFirstContact(bodies_.get(), *space_, timeStep_);  // continuous collision, opt-in per body
+  if (const auto ccd = detail::ccdStage<S>.load(std::memory_order_relaxed))  // continuous collision, opt-in per body
+    ccd(bodies_.get(), *space_, timeStep_);
   notify(Listener::POST_STEP);
   notify(Listener::LAST_STEP);
 
