@@ -9,8 +9,6 @@
 
 #include <doctest/doctest.h>
 
-#include <cstdint>
-#include <cstdio>
 #include <random>
 #include <string>
 #include <type_traits>
@@ -74,13 +72,14 @@ TEST_CASE_TEMPLATE("shape dispatch: every ordered pair gives the collider matrix
   std::mt19937_64 rng(std::is_same_v<S, float> ? 91 : 92);
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::uniform_real_distribution<double> offset(-0.15, 0.15);
-  const auto randomPose = [&](const spook::Vec3T<S>& near) {
+  // Both shapes within 0.15 m of the origin along each axis: most poses overlap.
+  const auto randomPose = [&] {
     Transform X = Transform::Identity();
     X.linear() = Eigen::Quaternion<double>(gauss(rng), gauss(rng), gauss(rng), gauss(rng))
                      .normalized()
                      .toRotationMatrix()
                      .template cast<S>();
-    X.translation() = near + Eigen::Vector3d(offset(rng), offset(rng), offset(rng)).template cast<S>();
+    X.translation() = Eigen::Vector3d(offset(rng), offset(rng), offset(rng)).template cast<S>();
     return X;
   };
   int pairs = 0, mismatched = 0, unsupportedMismatch = 0, silent = 0;
@@ -91,8 +90,8 @@ TEST_CASE_TEMPLATE("shape dispatch: every ordered pair gives the collider matrix
       const bool supported = Matrix::supports(a->getType(), b->getType());
       int withContacts = 0, differing = 0;
       for (int k = 0; k < kPosesPerPair; ++k) {
-        const Transform X_WA = randomPose(spook::Vec3T<S>::Zero());
-        const Transform X_WB = randomPose(spook::Vec3T<S>::Zero());
+        const Transform X_WA = randomPose();
+        const Transform X_WB = randomPose();
         byShapes.clear(), byMatrix.clear();
         spook::ContactSinkT<S> shapesSink(byShapes), matrixSink(byMatrix);
         const bool dispatched = spook::detail::collideThrough<S, spook::AllShapes>(*a, X_WA, *b, X_WB, shapesSink);

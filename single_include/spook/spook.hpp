@@ -9932,7 +9932,14 @@ namespace spook::detail {
 template <Scalar S>
 bool collideShapes(const ShapeT<S>& a, const TransformT<S>& X_WA, const ShapeT<S>& b, const TransformT<S>& X_WB,
                    ContactSinkT<S>& sink) {
-  if (b.getType() == ShapeType::COMPOSITE && a.getType() != ShapeType::COMPOSITE) {
+  // A composite pairs with every shape; a child without a collider for
+  // the other shape is skipped.
+  if (a.getType() == ShapeType::COMPOSITE) {
+    for (const auto& child : static_cast<const CompositeT<S>&>(a).getChildren())
+      collideShapes<S>(*child.shape, X_WA * child.transform, b, X_WB, sink);
+    return true;
+  }
+  if (b.getType() == ShapeType::COMPOSITE) {
     for (const auto& child : static_cast<const CompositeT<S>&>(b).getChildren())
       collideShapes<S>(a, X_WA, *child.shape, X_WB * child.transform, sink);
     return true;
@@ -9964,10 +9971,7 @@ bool collideWithLowerRank(const A& a, const TransformT<typename A::Vec3::Scalar>
                           ContactSinkT<typename A::Vec3::Scalar>& sink) {
   using S = typename A::Vec3::Scalar;
   if constexpr (A::kType == ShapeType::COMPOSITE) {
-    // A child pairs with b through the dispatch, skipped where it has no
-    // collider; the composite itself pairs with every shape.
-    for (const auto& child : a.getChildren()) collideShapes<S>(*child.shape, X_WA * child.transform, b, X_WB, sink);
-    return true;
+    return collideShapes<S>(a, X_WA, b, X_WB, sink);  // taken apart there
   } else {
     switch (b.getType()) {
       case ShapeType::BOX:
@@ -9987,7 +9991,7 @@ bool collideWithLowerRank(const A& a, const TransformT<typename A::Vec3::Scalar>
       case ShapeType::TRIMESH:
         return collideRankedPair<A, TrimeshT<S>>(a, X_WA, b, X_WB, sink);
       case ShapeType::COMPOSITE:
-        return false;  // ranked above every other type
+        return false;  // taken apart by collideShapes
       case ShapeType::HEIGHTFIELD:
         return collideRankedPair<A, HeightFieldT<S>>(a, X_WA, b, X_WB, sink);
     }
