@@ -255,7 +255,18 @@ class SpookEngine final : public study::Engine {
     sim_->getAutoSleep()->setEnable(sleep);
   }
 
-  void step() override { sim_->stepForward(); }
+  void step() override {
+    sim_->stepForward();
+    const spook::SolverStatistics& solver = sim_->getStatistics().solver;
+    cost_.seconds += solver.solveTime;
+    cost_.rowUpdates += double(solver.numIterativeRows) * double(solver.iterations);
+    cost_.sweepsOnly = cost_.sweepsOnly && solver.numDirectRows == 0;
+  }
+
+  // The solve's wall-clock (SolverStatistics::solveTime: packing the rows,
+  // the sweeps, the residual of the statistics) against the rows swept
+  // times the most sweeps of an island (exact for one island).
+  study::SolverCost solverCost() const override { return cost_; }
 
   study::Point position(std::size_t i) const override {
     const Vec3 p = bodies_[i]->getPosition();
@@ -319,6 +330,7 @@ class SpookEngine final : public study::Engine {
 
   spook::SimulationRef sim_ = new spook::Simulation();
   spook::MaterialRef material_ = new spook::Material("wood");
+  study::SolverCost cost_;
   std::vector<spook::RigidBodyRef> bodies_;
 };
 
@@ -381,6 +393,9 @@ std::vector<Policy> policies(int threads) {
 struct Result {
   std::string scene, policy, friction;
   double h = 0, seconds = 0, msPerStep = 0, slowestMs = 0, drift = 0, penetration = 0, kineticEnergy = 0, wall = 0;
+  /// The solver's time per row update over the last simulated second (ns);
+  /// NaN where the engine does not tell or solved rows otherwise.
+  double nsPerRowUpdate = 0;
   long steps = 0;
   std::size_t contacts = 0;
   bool finite = true, tooSlow = false, escaped = false;
@@ -430,8 +445,10 @@ Result run(const SceneSpec& spec, const Policy& policy) {
   const long steps = std::lround(spec.duration / spec.h);
   const long lastSecond = steps - std::lround(1.0 / spec.h);  // the first step of the last simulated second
   double timed = 0.0, all = 0.0;
+  study::SolverCost costBefore;
   const auto start = std::chrono::steady_clock::now();
   for (long k = 0; k < steps; ++k) {
+    if (k == lastSecond) costBefore = engine->solverCost();
     const auto stepStart = std::chrono::steady_clock::now();
     engine->step();
     const double step = std::chrono::duration<double>(std::chrono::steady_clock::now() - stepStart).count();
@@ -455,6 +472,11 @@ Result run(const SceneSpec& spec, const Policy& policy) {
   r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.seconds = double(r.steps) * spec.h;
   r.msPerStep = r.steps > lastSecond ? 1e3 * timed / double(r.steps - lastSecond) : 1e3 * all / double(r.steps);
+  const study::SolverCost cost = engine->solverCost();
+  const double updates = cost.rowUpdates - costBefore.rowUpdates;
+  r.nsPerRowUpdate = cost.sweepsOnly && updates > 0.0 && r.steps > lastSecond
+                         ? 1e9 * (cost.seconds - costBefore.seconds) / updates
+                         : kNaN;
   r.contacts = engine->contacts().points;
   r.kineticEnergy = engine->kineticEnergy();
   r.finite = r.finite && std::isfinite(r.kineticEnergy);
@@ -563,16 +585,16 @@ int main(int argc, char** argv) {
     }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  std::printf("%-10s  %-11s  %-20s  %9s  %8s  %9s  %9s  %9s  %-10s  %5s  %9s  %8s\n", "scene", "policy", "friction",
-              "ms/step", "contacts", "drift (m)", "max pen", "KE (J)", "verdict", "T (s)", "slowest", "wall (s)");
+  std::printf("%-10s  %-11s  %-20s  %9s  %8s  %9s  %9s  %9s  %-10s  %5s  %9s  %8s  %6s\n", "scene", "policy", "friction",
+              "ms/step", "contacts", "drift (m)", "max pen", "KE (J)", "verdict", "T (s)", "slowest", "wall (s)", "ns/row");
   std::string previous;
   for (const Result& r : results) {
     if (r.scene != previous && !previous.empty()) std::printf("\n");
     previous = r.scene;
-    std::printf("%-10s  %-11s  %-20s  %9.2f  %8zu  %9s  %9s  %9.2e  %-10s  %5.2f  %9.1f  %8.1f\n", r.scene.c_str(),
+    std::printf("%-10s  %-11s  %-20s  %9.2f  %8zu  %9s  %9s  %9.2e  %-10s  %5.2f  %9.1f  %8.1f  %6s\n", r.scene.c_str(),
                 r.policy.c_str(), r.friction.c_str(), r.msPerStep, r.contacts, format(r.drift, "%.2e").c_str(),
                 format(r.penetration, "%.2e").c_str(), r.kineticEnergy, r.verdict.c_str(), r.seconds, r.slowestMs,
-                r.wall);
+                r.wall, format(r.nsPerRowUpdate, "%.1f").c_str());
   }
   std::printf(
       "\nms/step: wall-clock of stepForward, mean over the last simulated second; contacts: enabled points at the\n"
@@ -581,6 +603,8 @@ int main(int argc, char** argv) {
       "< %g m <= soft < %g m <= fell; spheres fell (left the box), soft (pen > %g m), unsettled (KE > 1/2 M\n"
       "(%g m/s)^2), ok; too slow: a step took > %g s and the run stopped there, its measures are those of the\n"
       "steps taken. T: simulated time reached; slowest: the slowest step (ms); wall: the run's wall-clock;\n"
+      "ns/row: the iterative solver's time per row update (rows x sweeps) over the last second, spook's\n"
+      "iterative policy (packing, sweeps, residual) and Bullet's sequential impulses (sweeps only);\n"
       "study wall-clock %.1f s.\n",
       kOkDrift, kFellDrift, kSoftPenetration, kSettledSpeed, kTooSlowStep, total);
 
@@ -592,14 +616,14 @@ int main(int argc, char** argv) {
   std::fprintf(csv,
                "scene,policy,friction_solve_type,h,steps,seconds,ms_per_step,slowest_step_ms,contact_points,drift_m,"
                "max_penetration_m,end_kinetic_energy_j,rows,iterations,factorizations,complementarity_error,converged,"
-               "finite,verdict,run_wall_s\n");
+               "finite,verdict,run_wall_s,ns_per_row_update\n");
   for (const Result& r : results) {
     const spook::SolverStatistics solver = r.solver.value_or(spook::SolverStatistics{});
-    std::fprintf(csv, "%s,%s,%s,%.17g,%ld,%.6g,%.6g,%.6g,%zu,%.6e,%.6e,%.6e,%d,%d,%d,%.6e,%d,%d,%s,%.6g\n",
+    std::fprintf(csv, "%s,%s,%s,%.17g,%ld,%.6g,%.6g,%.6g,%zu,%.6e,%.6e,%.6e,%d,%d,%d,%.6e,%d,%d,%s,%.6g,%.6g\n",
                  r.scene.c_str(), r.policy.c_str(), r.friction.c_str(), r.h, r.steps, r.seconds, r.msPerStep,
                  r.slowestMs, r.contacts, r.drift, r.penetration, r.kineticEnergy, solver.numRows, solver.iterations,
                  solver.factorizations, r.solver ? solver.complementarityError : kNaN, solver.converged ? 1 : 0,
-                 r.finite ? 1 : 0, r.verdict.c_str(), r.wall);
+                 r.finite ? 1 : 0, r.verdict.c_str(), r.wall, r.nsPerRowUpdate);
   }
   std::fclose(csv);
   std::printf("CSV written to %s (plot: python3 bench/plot_contact_study.py %s)\n", csvPath.c_str(), csvPath.c_str());

@@ -59,6 +59,16 @@ struct ContactSummary {
 
 /// A scene built in one engine with one solver setting. Dynamic bodies are
 /// numbered in the order they appear in the description.
+/// Time an engine's constraint solver spent and the row updates it made
+/// (rows × sweeps), summed over the steps taken; `sweepsOnly` false where a
+/// step solved rows otherwise (spook's direct parts), which makes the time
+/// per row update meaningless.
+struct SolverCost {
+  double seconds = 0.0;
+  double rowUpdates = 0.0;
+  bool sweepsOnly = true;
+};
+
 class Engine {
  public:
   virtual ~Engine() = default;
@@ -69,6 +79,8 @@ class Engine {
   /// False once the engine reports a failure of its own (spook: an island
   /// dropped or a body frozen); non-finite states are checked by the caller.
   virtual bool healthy() const { return true; }
+  /// Zero where the engine does not tell.
+  virtual SolverCost solverCost() const { return {}; }
 };
 
 /// A solver setting of another engine: its name in the study's table and a

@@ -3,6 +3,7 @@
 // collision setup, stepped with the sequential-impulse solver or with the
 // MLCP solver and its Dantzig LCP.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -33,6 +34,36 @@ std::unique_ptr<btCollisionShape> makeShape(const study::BodySpec& spec) {
   return nullptr;
 }
 
+// Bullet's sequential impulses with the time of their sweeps
+// (solveGroupCacheFriendlyIterations: not the setup that converts contacts
+// to rows, nor the write-back) and the rows they updated (its row pools at
+// each sweep), for the cost per row update beside spook's.
+class TimedSequentialImpulse final : public btSequentialImpulseConstraintSolver {
+ public:
+  study::SolverCost cost;
+
+  btScalar solveGroupCacheFriendlyIterations(btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds,
+                                             int numManifolds, btTypedConstraint** constraints, int numConstraints,
+                                             const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override {
+    const auto start = std::chrono::steady_clock::now();
+    const btScalar residual = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations(
+        bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
+    cost.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return residual;
+  }
+
+  btScalar solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
+                                btPersistentManifold** manifolds, int numManifolds, btTypedConstraint** constraints,
+                                int numConstraints, const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override {
+    cost.rowUpdates += double(m_tmpSolverContactConstraintPool.size() + m_tmpSolverNonContactConstraintPool.size() +
+                              m_tmpSolverContactFrictionConstraintPool.size() +
+                              m_tmpSolverContactRollingFrictionConstraintPool.size());
+    return btSequentialImpulseConstraintSolver::solveSingleIteration(iteration, bodies, numBodies, manifolds,
+                                                                     numManifolds, constraints, numConstraints, info,
+                                                                     debugDrawer);
+  }
+};
+
 class BulletEngine final : public study::Engine {
  public:
   BulletEngine(const study::SceneDescription& scene, BulletSolver solver) : timeStep_(btScalar(scene.timeStep)) {
@@ -40,7 +71,9 @@ class BulletEngine final : public study::Engine {
       dantzig_ = std::make_unique<btDantzigSolver>();
       solver_ = std::make_unique<btMLCPSolver>(dantzig_.get());
     } else {
-      solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
+      auto timed = std::make_unique<TimedSequentialImpulse>();
+      timed_ = timed.get();
+      solver_ = std::move(timed);
     }
     world_ = std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
                                                        configuration_.get());
@@ -82,6 +115,8 @@ class BulletEngine final : public study::Engine {
   // its solve), including speculative ones still apart by less than the
   // contact breaking threshold (about 0.02 m): only touching points,
   // distance <= 0, count.
+  study::SolverCost solverCost() const override { return timed_ ? timed_->cost : study::SolverCost{}; }
+
   study::ContactSummary contacts() const override {
     study::ContactSummary summary;
     const btCollisionDispatcher& dispatcher = *dispatcher_;
@@ -126,6 +161,7 @@ class BulletEngine final : public study::Engine {
   std::unique_ptr<btBroadphaseInterface> broadphase_ = std::make_unique<btDbvtBroadphase>();
   std::unique_ptr<btMLCPSolverInterface> dantzig_;
   std::unique_ptr<btConstraintSolver> solver_;
+  const TimedSequentialImpulse* timed_ = nullptr;  ///< solver_, when sequential impulses
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
   std::unique_ptr<btDiscreteDynamicsWorld> world_;
