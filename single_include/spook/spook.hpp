@@ -10286,6 +10286,19 @@ using Vec3d = Eigen::Vector3d;
 using Mat3d = Eigen::Matrix3d;
 using Mat6d = Eigen::Matrix<double, 6, 6>;
 
+// v += w·s, written out: GCC 12 leaves Eigen's `v += w * s` out of line in
+// the sweeps. In pairs, as the row velocities read v (Eigen's packets): a
+// pair of 8-byte stores cannot be forwarded to the next row's 16-byte load,
+// which then waits for the cache (the sweeps took 10-25% longer with scalar
+// stores).
+SPOOK_ALWAYS_INLINE void addScaled(Vec6d& v, const Vec6d& w, double s) {
+  using Pair = Eigen::Matrix<double, 2, 1>;
+  for (int k = 0; k < 6; k += 2) {
+    Eigen::Map<Pair> out(v.data() + k);
+    out = out + Eigen::Map<const Pair>(w.data() + k) * s;
+  }
+}
+
 /// A body as the solver sees it: velocities of the center of mass (world)
 /// at the start of the step and after the applied forces, and the inverse
 /// mass and inertia in world coordinates (zero unless dynamic).
@@ -10379,11 +10392,11 @@ struct IslandProblem {
   SPOOK_ALWAYS_INLINE void addImpulse(std::vector<Vec6d>& dv, int i, double impulse) const {
     // Written out (not forEachBody): the iterative sweeps' innermost loop.
     const Entry& e = rows[static_cast<std::size_t>(i)];
-    if (e.body1 >= 0) dv[static_cast<std::size_t>(e.body1)] += e.W1 * impulse;
-    if (e.body2 >= 0) dv[static_cast<std::size_t>(e.body2)] += e.W2 * impulse;
+    if (e.body1 >= 0) addScaled(dv[static_cast<std::size_t>(e.body1)], e.W1, impulse);
+    if (e.body2 >= 0) addScaled(dv[static_cast<std::size_t>(e.body2)], e.W2, impulse);
     if (e.extra >= 0) {
       const ExtraBody& x = extraBodies[static_cast<std::size_t>(e.extra)];
-      dv[static_cast<std::size_t>(x.body)] += x.W * impulse;
+      addScaled(dv[static_cast<std::size_t>(x.body)], x.W, impulse);
     }
   }
   /// The entries of `indices`, for restore() after an attempt is dropped.
@@ -18109,7 +18122,11 @@ class BodySpaceSolve {
       const std::array<int, 3> body = problem.bodiesOf(problem.rows[static_cast<std::size_t>(i)]);
       for (std::size_t x = 1; x < body.size(); ++x)
         for (std::size_t y = 0; y < x; ++y)
-          if (body[x] >= 0 && body[y] >= 0) keys_.push_back(key(std::max(body[x], body[y]), std::min(body[x], body[y])));
+          if (body[x] >= 0 && body[y] >= 0) {
+            const std::uint64_t pair = key(std::max(body[x], body[y]), std::min(body[x], body[y]));
+            // A contact's rows follow one another on the same pair: sorted fewer.
+            if (keys_.empty() || keys_.back() != pair) keys_.push_back(pair);
+          }
     }
     std::sort(keys_.begin(), keys_.end());
     keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());
@@ -18780,18 +18797,6 @@ SPOOK_ALWAYS_INLINE double sweptRowVelocity(const IslandProblem& problem, const 
     v += x.J.dot(dv[x.body]);
   }
   return v;
-}
-
-// Written out: GCC 12 leaves Eigen's `v += w * s` out of line here. In
-// pairs, as the row velocities read v (Eigen's packets): a pair of 8-byte
-// stores cannot be forwarded to the next row's 16-byte load, which then
-// waits for the cache (the sweeps took 10-25% longer with scalar stores).
-SPOOK_ALWAYS_INLINE void addScaled(Vec6d& v, const Vec6d& w, double s) {
-  using Pair = Eigen::Matrix<double, 2, 1>;
-  for (int k = 0; k < 6; k += 2) {
-    Eigen::Map<Pair> out(v.data() + k);
-    out = out + Eigen::Map<const Pair>(w.data() + k) * s;
-  }
 }
 
 SPOOK_ALWAYS_INLINE void addSweptImpulse(const IslandProblem& problem, const SweepRow& s, Vec6d* dv, double d) {
@@ -22840,7 +22845,11 @@ class BodySpaceSolve {
       const std::array<int, 3> body = problem.bodiesOf(problem.rows[static_cast<std::size_t>(i)]);
       for (std::size_t x = 1; x < body.size(); ++x)
         for (std::size_t y = 0; y < x; ++y)
-          if (body[x] >= 0 && body[y] >= 0) keys_.push_back(key(std::max(body[x], body[y]), std::min(body[x], body[y])));
+          if (body[x] >= 0 && body[y] >= 0) {
+            const std::uint64_t pair = key(std::max(body[x], body[y]), std::min(body[x], body[y]));
+            // A contact's rows follow one another on the same pair: sorted fewer.
+            if (keys_.empty() || keys_.back() != pair) keys_.push_back(pair);
+          }
     }
     std::sort(keys_.begin(), keys_.end());
     keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());

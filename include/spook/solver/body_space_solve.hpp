@@ -67,7 +67,11 @@ class BodySpaceSolve {
       const std::array<int, 3> body = problem.bodiesOf(problem.rows[static_cast<std::size_t>(i)]);
       for (std::size_t x = 1; x < body.size(); ++x)
         for (std::size_t y = 0; y < x; ++y)
-          if (body[x] >= 0 && body[y] >= 0) keys_.push_back(key(std::max(body[x], body[y]), std::min(body[x], body[y])));
+          if (body[x] >= 0 && body[y] >= 0) {
+            const std::uint64_t pair = key(std::max(body[x], body[y]), std::min(body[x], body[y]));
+            // A contact's rows follow one another on the same pair: sorted fewer.
+            if (keys_.empty() || keys_.back() != pair) keys_.push_back(pair);
+          }
     }
     std::sort(keys_.begin(), keys_.end());
     keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());

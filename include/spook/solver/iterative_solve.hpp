@@ -122,18 +122,6 @@ SPOOK_ALWAYS_INLINE double sweptRowVelocity(const IslandProblem& problem, const 
   return v;
 }
 
-// Written out: GCC 12 leaves Eigen's `v += w * s` out of line here. In
-// pairs, as the row velocities read v (Eigen's packets): a pair of 8-byte
-// stores cannot be forwarded to the next row's 16-byte load, which then
-// waits for the cache (the sweeps took 10-25% longer with scalar stores).
-SPOOK_ALWAYS_INLINE void addScaled(Vec6d& v, const Vec6d& w, double s) {
-  using Pair = Eigen::Matrix<double, 2, 1>;
-  for (int k = 0; k < 6; k += 2) {
-    Eigen::Map<Pair> out(v.data() + k);
-    out = out + Eigen::Map<const Pair>(w.data() + k) * s;
-  }
-}
-
 SPOOK_ALWAYS_INLINE void addSweptImpulse(const IslandProblem& problem, const SweepRow& s, Vec6d* dv, double d) {
   if (s.body1 >= 0) addScaled(dv[s.body1], s.W1, d);
   if (s.body2 >= 0) addScaled(dv[s.body2], s.W2, d);
