@@ -17638,6 +17638,7 @@ using SolverRef = ref_ptr<Solver>;
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
@@ -19142,6 +19143,10 @@ class AnalyzedLDLT : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, E
 /// step is then bounded whatever the scene.
 class DirectSolve {
  public:
+  // It points into its own analyses (analyzed_).
+  DirectSolve(const DirectSolve&) = delete;
+  DirectSolve& operator=(const DirectSolve&) = delete;
+
   /// Gauss–Seidel sweeps of the fallback.
   static constexpr int kFallbackSweeps = 64;
 
@@ -19187,8 +19192,8 @@ class DirectSolve {
     // A pivot step's rows count in row space; in body space the factor of
     // 6x6 blocks outweighs them (a settling pile of 1,000 spheres: ~1.4e7
     // multiply-adds against 1.3e6).
-    const double work =
-        bodySpace_ ? bodySpaceSolve_.factorizationWork() : ldlt_.factorizationWork() + Solver::kDirectRowWork * n;
+    const double work = bodySpace_ ? bodySpaceSolve_.factorizationWork()
+                                   : analyzed_->ldlt->factorizationWork() + Solver::kDirectRowWork * n;
     // A solve capped at m pivot steps factorizes up to m + 1 times.
     if (maxWork < work * (static_cast<double>(maxPivotSteps) + 1.0))
       maxPivotSteps = static_cast<int>(std::floor(maxWork / work)) - 1;
@@ -19433,57 +19438,127 @@ class DirectSolve {
     return w;
   }
 
-  // A_ = (S + Σ)_DD, full symmetric.
+  // A_ = (S + Σ)_DD, full symmetric, and lower_, its lower triangle, both
+  // written column by column in compressed form: through triplets, their
+  // sort and the copy of the triangle took a sixth of a 10-cube stack's
+  // hybrid step.
   void assembleMatrix(const IslandProblem& problem, const std::vector<int>& subset) {
     const int n = static_cast<int>(subset.size());
-    std::vector<std::vector<int>> rowsOfBody(static_cast<std::size_t>(problem.numBodies));
+    const auto numBodies = static_cast<std::size_t>(problem.numBodies);
+    // The rows on each body: rowsOfBody_[rowsOfBodyStart_[b], rowsOfBodyStart_[b + 1]).
+    rowsOfBodyStart_.assign(numBodies + 1, 0);
+    for (int k = 0; k < n; ++k)
+      problem.forEachBody(problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])],
+                          [&](int body, const Vec6d&, const Vec6d&) { ++rowsOfBodyStart_[std::size_t(body) + 1]; });
+    for (std::size_t b = 0; b < numBodies; ++b) rowsOfBodyStart_[b + 1] += rowsOfBodyStart_[b];
+    rowsOfBody_.resize(rowsOfBodyStart_.back());
+    fill_.assign(rowsOfBodyStart_.begin(), rowsOfBodyStart_.end() - 1);
+    for (int k = 0; k < n; ++k)
+      problem.forEachBody(problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])],
+                          [&](int body, const Vec6d&, const Vec6d&) { rowsOfBody_[fill_[std::size_t(body)]++] = k; });
+
+    // Each row's couplings to the rows after it, in order: below_[belowStart_[k], belowStart_[k + 1]).
+    // Two rows sharing both bodies meet twice and coupling() already sums
+    // both, so each pair is taken once.
+    below_.clear();
+    belowStart_.assign(static_cast<std::size_t>(n) + 1, 0);
+    above_.assign(static_cast<std::size_t>(n), 0);
+    lastSeen_.assign(static_cast<std::size_t>(n), -1);
     for (int k = 0; k < n; ++k) {
       const int i = subset[static_cast<std::size_t>(k)];
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      problem.forEachBody(e, [&](int body, const Vec6d&, const Vec6d&) { rowsOfBody[static_cast<std::size_t>(body)].push_back(k); });
-    }
-    triplets_.clear();
-    for (int k = 0; k < n; ++k) {
-      const auto& e = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])];
-      triplets_.emplace_back(k, k, e.diagonal);
-    }
-    // Off-diagonal blocks body by body; two rows sharing both bodies meet
-    // twice and coupling() already sums both, so each pair is added once.
-    std::vector<int> lastSeen(static_cast<std::size_t>(n), -1);
-    for (int k = 0; k < n; ++k) {
-      const int i = subset[static_cast<std::size_t>(k)];
-      const auto& e = problem.rows[static_cast<std::size_t>(i)];
-      problem.forEachBody(e, [&](int body, const Vec6d&, const Vec6d&) {
-        for (int m : rowsOfBody[static_cast<std::size_t>(body)]) {
-          if (m <= k || lastSeen[static_cast<std::size_t>(m)] == k) continue;
-          lastSeen[static_cast<std::size_t>(m)] = k;
+      problem.forEachBody(problem.rows[static_cast<std::size_t>(i)], [&](int body, const Vec6d&, const Vec6d&) {
+        for (std::size_t p = rowsOfBodyStart_[std::size_t(body)]; p < rowsOfBodyStart_[std::size_t(body) + 1]; ++p) {
+          const int m = rowsOfBody_[p];
+          if (m <= k || lastSeen_[static_cast<std::size_t>(m)] == k) continue;
+          lastSeen_[static_cast<std::size_t>(m)] = k;
           const double s = problem.coupling(i, subset[static_cast<std::size_t>(m)]);
           if (s == 0.0) continue;
-          triplets_.emplace_back(k, m, s);
-          triplets_.emplace_back(m, k, s);
+          below_.push_back({m, s});
+          ++above_[static_cast<std::size_t>(m)];
         }
       });
+      belowStart_[static_cast<std::size_t>(k) + 1] = below_.size();
+      std::sort(below_.begin() + std::ptrdiff_t(belowStart_[static_cast<std::size_t>(k)]), below_.end(),
+                [](const Coupling& x, const Coupling& y) { return x.row < y.row; });
     }
+
+    const auto offDiagonal = static_cast<Eigen::Index>(below_.size());
     A_.resize(n, n);
-    A_.setFromTriplets(triplets_.begin(), triplets_.end());
-    // Its lower triangle, factorized at each pivot step (solveFree); the
-    // ordering and elimination tree are computed again only when the
-    // pattern differs from the last solve's (a chain's joints keep theirs
-    // from step to step).
-    lower_ = A_.triangularView<Eigen::Lower>();
-    lower_.makeCompressed();
-    lowerValues_.assign(lower_.valuePtr(), lower_.valuePtr() + lower_.nonZeros());
-    const auto same = [](const int* first, std::size_t count, const std::vector<int>& kept) {
-      return kept.size() == count && std::equal(first, first + count, kept.begin());
-    };
-    const auto columns = static_cast<std::size_t>(n) + 1, entries = static_cast<std::size_t>(lower_.nonZeros());
-    if (!same(lower_.outerIndexPtr(), columns, analyzedOuter_) || !same(lower_.innerIndexPtr(), entries, analyzedInner_)) {
-      ldlt_.analyzePattern(lower_);
-      factoredBase_.clear();
-      update_.clear();
-      analyzedOuter_.assign(lower_.outerIndexPtr(), lower_.outerIndexPtr() + columns);
-      analyzedInner_.assign(lower_.innerIndexPtr(), lower_.innerIndexPtr() + entries);
+    A_.resizeNonZeros(n + 2 * offDiagonal);
+    lower_.resize(n, n);
+    lower_.resizeNonZeros(n + offDiagonal);
+    int* outerA = A_.outerIndexPtr();
+    int* outerL = lower_.outerIndexPtr();
+    outerA[0] = outerL[0] = 0;
+    for (int k = 0; k < n; ++k) {
+      const auto count = static_cast<int>(belowStart_[std::size_t(k) + 1] - belowStart_[std::size_t(k)]);
+      outerA[k + 1] = outerA[k] + above_[static_cast<std::size_t>(k)] + 1 + count;
+      outerL[k + 1] = outerL[k] + 1 + count;
     }
+    // Column k of A_: the rows before k (written as their own columns were,
+    // in ascending order), the diagonal, the rows after k.
+    int* innerA = A_.innerIndexPtr();
+    double* valueA = A_.valuePtr();
+    int* innerL = lower_.innerIndexPtr();
+    double* valueL = lower_.valuePtr();
+    cursor_.assign(outerA, outerA + n);
+    for (int k = 0; k < n; ++k) {
+      const double diagonal = problem.rows[static_cast<std::size_t>(subset[static_cast<std::size_t>(k)])].diagonal;
+      int& at = cursor_[static_cast<std::size_t>(k)];
+      int atL = outerL[k];
+      innerA[at] = innerL[atL] = k;
+      valueA[at++] = valueL[atL++] = diagonal;
+      for (std::size_t p = belowStart_[std::size_t(k)]; p < belowStart_[std::size_t(k) + 1]; ++p) {
+        const Coupling& c = below_[p];
+        innerA[at] = innerL[atL] = c.row;
+        valueA[at++] = valueL[atL++] = c.value;
+        int& upper = cursor_[static_cast<std::size_t>(c.row)];
+        innerA[upper] = k;
+        valueA[upper++] = c.value;
+      }
+    }
+    // Its lower triangle, factorized at each pivot step (solveFree); the
+    // ordering and elimination tree are computed once per pattern: kept from
+    // step to step (a chain's joints keep theirs), and for the last
+    // kAnalyzedPatterns patterns, which islands solved one after another by
+    // the same solver take in turn (20 stacks of 10 cubes ordered 16
+    // patterns a step anew, 6% of the step).
+    lowerValues_.assign(lower_.valuePtr(), lower_.valuePtr() + lower_.nonZeros());
+    const auto columns = static_cast<std::size_t>(n) + 1, entries = static_cast<std::size_t>(lower_.nonZeros());
+    const auto holds = [&](const AnalyzedPattern& a) {
+      return a.outer.size() == columns && a.inner.size() == entries &&
+             std::equal(a.outer.begin(), a.outer.end(), lower_.outerIndexPtr()) &&
+             std::equal(a.inner.begin(), a.inner.end(), lower_.innerIndexPtr());
+    };
+    ++patternClock_;
+    if (analyzed_ && holds(*analyzed_)) {
+      analyzed_->lastUse = patternClock_;
+      return;
+    }
+    // Another pattern: the factor in hand is not of this matrix.
+    factoredBase_.clear();
+    update_.clear();
+    analyzed_ = &large_;
+    if (entries <= kPatternEntriesKept) {
+      for (AnalyzedPattern& a : patterns_)
+        if (holds(a)) {
+          analyzed_ = &a;
+          a.lastUse = patternClock_;
+          return;
+        }
+      if (patterns_.size() < kAnalyzedPatterns) {
+        if (patterns_.empty()) patterns_.reserve(kAnalyzedPatterns);
+        analyzed_ = &patterns_.emplace_back();
+      } else {
+        analyzed_ = &*std::min_element(
+            patterns_.begin(), patterns_.end(),
+            [](const AnalyzedPattern& a, const AnalyzedPattern& b) { return a.lastUse < b.lastUse; });
+      }
+    }
+    analyzed_->ldlt->analyzePattern(lower_);
+    analyzed_->outer.assign(lower_.outerIndexPtr(), lower_.outerIndexPtr() + columns);
+    analyzed_->inner.assign(lower_.innerIndexPtr(), lower_.innerIndexPtr() + entries);
+    analyzed_->lastUse = patternClock_;
   }
 
   // Solves the free rows with the others at their bounds, or where
@@ -19555,22 +19630,22 @@ class DirectSolve {
       }
     }
     // The hybrid's coupling passes start where the last pass ended: the
-    // same matrix (same rows, same free set), whose factor ldlt_ still
+    // same matrix (same rows, same free set), whose factor the pattern's ldlt still
     // holds. A pivot step that changed a few rows of it is solved with that
     // factor (free_set_update.hpp).
     const bool sameRows = !factoredBase_.empty() && factoredBase_ == lowerValues_;
     Eigen::VectorXd solution;
     if (sameRows && update_.isFactorized(freeIndex)) {
-      solution = ldlt_.solve(full);
+      solution = analyzed_->ldlt->solve(full);
     } else if (!sameRows || solvesPerFactorization_ < kUpdateWorthSolves ||
                !update_.solve(
                    A_, lower_, freeIndex, full, kRefinedResidual * full.cwiseAbs().maxCoeff(),
-                   [this](const Eigen::VectorXd& v) { return Eigen::VectorXd(ldlt_.solve(v)); }, solution)) {
-      ldlt_.factorize(lower_);
+                   [this](const Eigen::VectorXd& v) { return Eigen::VectorXd(analyzed_->ldlt->solve(v)); }, solution)) {
+      analyzed_->ldlt->factorize(lower_);
       factoredBase_ = lowerValues_;
       update_.reset(freeIndex);
-      solvesPerFactorization_ = ldlt_.solvesPerFactorization();
-      solution = ldlt_.solve(full);
+      solvesPerFactorization_ = analyzed_->ldlt->solvesPerFactorization();
+      solution = analyzed_->ldlt->solve(full);
     }
     for (int k = 0; k < n; ++k)
       if (freeIndex[static_cast<std::size_t>(k)] >= 0) x[k] = solution[k];
@@ -19630,13 +19705,35 @@ class DirectSolve {
   BodySpaceSolve bodySpaceSolve_;
   Eigen::SparseMatrix<double> A_, lower_;
   std::vector<double> lowerValues_;             ///< lower_'s values as assembled
-  std::vector<int> analyzedOuter_, analyzedInner_;  ///< the pattern ldlt_ analyzed
-  std::vector<double> factoredBase_;                ///< lowerValues_ when ldlt_ was factorized (none: empty)
-  FreeSetUpdate update_;                            ///< ldlt_'s free set, and solves of others with it
-  double solvesPerFactorization_ = 0.0;             ///< of ldlt_'s factor
+  std::vector<double> factoredBase_;            ///< lowerValues_ when analyzed_'s factor was computed (none: empty)
+  FreeSetUpdate update_;                        ///< that factor's free set, and solves of others with it
+  double solvesPerFactorization_ = 0.0;         ///< of that factor
   Eigen::VectorXd q_;
-  std::vector<Eigen::Triplet<double>> triplets_;
-  AnalyzedLDLT ldlt_;
+  struct Coupling {
+    int row;
+    double value;
+  };
+  // assembleMatrix's scratch.
+  std::vector<std::size_t> rowsOfBodyStart_, fill_, belowStart_;
+  std::vector<int> rowsOfBody_, above_, lastSeen_, cursor_;
+  std::vector<Coupling> below_;
+  /// A sparsity pattern of lower_ and the factorization analyzed for it.
+  struct AnalyzedPattern {
+    std::vector<int> outer, inner;
+    std::unique_ptr<AnalyzedLDLT> ldlt = std::make_unique<AnalyzedLDLT>();
+    std::uint64_t lastUse = 0;
+  };
+  /// Patterns kept for the islands that take turns: the last
+  /// kAnalyzedPatterns of at most kPatternEntriesKept entries each (a
+  /// factor of a few hundred kB at most); a larger island's analysis
+  /// is amortized by its factorization, and its pattern changes with its
+  /// contacts: it has one slot of its own, analyzed again for each new one.
+  static constexpr std::size_t kAnalyzedPatterns = 32;
+  static constexpr std::size_t kPatternEntriesKept = 4096;
+  std::vector<AnalyzedPattern> patterns_;  ///< reserved before the first: never moved
+  AnalyzedPattern large_;
+  AnalyzedPattern* analyzed_ = nullptr;  ///< lower_'s: its factor is the one factorized and solved with
+  std::uint64_t patternClock_ = 0;
 };
 
 }  // namespace spook::detail
