@@ -17550,6 +17550,10 @@ class Solver : public Referenced {
   double couplingTolerance_ = 1e-4;
   int couplingSweeps_ = 2;
   std::unique_ptr<detail::DirectSolve> direct_;  ///< the pivoting solver's workspace
+  /// The island being solved (solve, project) has had a direct solve: its
+  /// rows' matrix, which only their impulses and bounds change within the
+  /// island's solve, is the one direct_ assembled for the same rows.
+  bool islandMatrixKnown_ = false;
 };
 
 /// Every row by the direct solver: exact to round-off, whatever the mass
@@ -19180,15 +19184,27 @@ class DirectSolve {
   /// `safeAnswer`: at the cap, leave the fallback's answer (else the rows'
   /// impulses are left as they were, for a caller that restores them).
   /// `maxWork`: the multiply-adds its factorizations may take in all.
+  /// `sameMatrix`: the rows' Jacobians, masses and Σ are those of the last
+  /// solve if it was of the same problem object (only impulses and bounds
+  /// changed since: the friction iterations and coupling passes of one
+  /// island's solve), whose matrix then stands; its rows are compared.
   DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps,
-                          bool safeAnswer = true, double maxWork = std::numeric_limits<double>::infinity()) {
+                          bool safeAnswer = true, double maxWork = std::numeric_limits<double>::infinity(),
+                          bool sameMatrix = false) {
     DirectSolveResult result;
     const int n = static_cast<int>(subset.size());
     if (n == 0) return result;
-    bodySpace_ = BodySpaceSolve::pays(problem, subset);
+    const bool assembled = sameMatrix && assembledFor_ == &problem && assembledRows_ == subset;
+    if (!assembled) bodySpace_ = BodySpaceSolve::pays(problem, subset);
     assembleRhs(problem, subset);
-    if (bodySpace_) bodySpaceSolve_.analyze(problem, subset);
-    else assembleMatrix(problem, subset);
+    if (!assembled) {
+      if (bodySpace_)
+        bodySpaceSolve_.analyze(problem, subset);
+      else
+        assembleMatrix(problem, subset);
+      assembledFor_ = &problem;
+      assembledRows_ = subset;
+    }
     // A pivot step's rows count in row space; in body space the factor of
     // 6x6 blocks outweighs them (a settling pile of 1,000 spheres: ~1.4e7
     // multiply-adds against 1.3e6).
@@ -19701,6 +19717,8 @@ class DirectSolve {
   static constexpr double kRefinedResidual = 1e-2 * kRoundOff;
 
   int strikesAllowed_ = kBlockPivotingStrikes;
+  const IslandProblem* assembledFor_ = nullptr;  ///< the problem and rows of the matrix in hand
+  std::vector<int> assembledRows_;
   bool bodySpace_ = false;
   BodySpaceSolve bodySpaceSolve_;
   Eigen::SparseMatrix<double> A_, lower_;
@@ -19750,6 +19768,7 @@ SPOOK_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatisti
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
   workBudget_ = maxDirectWork_;
+  islandMatrixKnown_ = false;
   direct(problem, allRows(problem), statistics);
   for (auto& e : problem.rows)
     if (!std::isfinite(e.impulse)) e.impulse = 0.0;
@@ -19760,6 +19779,7 @@ SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
   workBudget_ = maxDirectWork_ - workSpent;
+  islandMatrixKnown_ = false;
   ++statistics.numIslands;
   statistics.numRows += static_cast<int>(problem.rows.size());
   solveIsland(problem, statistics);
@@ -19777,7 +19797,8 @@ SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics
 
 SPOOK_INLINE void Solver::direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
   const detail::DirectSolveResult r = direct_->solve(problem, subset, std::clamp(pivotBudget_ - 1, 0, maxPivotSteps_),
-                                                     /*safeAnswer=*/true, workBudget_);
+                                                     /*safeAnswer=*/true, workBudget_, islandMatrixKnown_);
+  islandMatrixKnown_ = true;
   pivotBudget_ -= r.factorizations;
   workBudget_ -= r.work;
   statistics.factorizations += r.factorizations;
@@ -19791,8 +19812,9 @@ SPOOK_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, const st
   if (pivotBudget_ <= 0 || workBudget_ <= 0.0) return false;
   const std::vector<detail::IslandProblem::Entry> saved = problem.entries(subset);
   // A solve capped at m pivot steps factorizes up to m + 1 times.
-  const detail::DirectSolveResult r =
-      direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_), /*safeAnswer=*/false, workBudget_);
+  const detail::DirectSolveResult r = direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_),
+                                                     /*safeAnswer=*/false, workBudget_, islandMatrixKnown_);
+  islandMatrixKnown_ = true;
   pivotBudget_ -= r.factorizations;
   workBudget_ -= r.work;
   statistics.factorizations += r.factorizations;

@@ -140,15 +140,27 @@ class DirectSolve {
   /// `safeAnswer`: at the cap, leave the fallback's answer (else the rows'
   /// impulses are left as they were, for a caller that restores them).
   /// `maxWork`: the multiply-adds its factorizations may take in all.
+  /// `sameMatrix`: the rows' Jacobians, masses and Σ are those of the last
+  /// solve if it was of the same problem object (only impulses and bounds
+  /// changed since: the friction iterations and coupling passes of one
+  /// island's solve), whose matrix then stands; its rows are compared.
   DirectSolveResult solve(IslandProblem& problem, const std::vector<int>& subset, int maxPivotSteps,
-                          bool safeAnswer = true, double maxWork = std::numeric_limits<double>::infinity()) {
+                          bool safeAnswer = true, double maxWork = std::numeric_limits<double>::infinity(),
+                          bool sameMatrix = false) {
     DirectSolveResult result;
     const int n = static_cast<int>(subset.size());
     if (n == 0) return result;
-    bodySpace_ = BodySpaceSolve::pays(problem, subset);
+    const bool assembled = sameMatrix && assembledFor_ == &problem && assembledRows_ == subset;
+    if (!assembled) bodySpace_ = BodySpaceSolve::pays(problem, subset);
     assembleRhs(problem, subset);
-    if (bodySpace_) bodySpaceSolve_.analyze(problem, subset);
-    else assembleMatrix(problem, subset);
+    if (!assembled) {
+      if (bodySpace_)
+        bodySpaceSolve_.analyze(problem, subset);
+      else
+        assembleMatrix(problem, subset);
+      assembledFor_ = &problem;
+      assembledRows_ = subset;
+    }
     // A pivot step's rows count in row space; in body space the factor of
     // 6x6 blocks outweighs them (a settling pile of 1,000 spheres: ~1.4e7
     // multiply-adds against 1.3e6).
@@ -661,6 +673,8 @@ class DirectSolve {
   static constexpr double kRefinedResidual = 1e-2 * kRoundOff;
 
   int strikesAllowed_ = kBlockPivotingStrikes;
+  const IslandProblem* assembledFor_ = nullptr;  ///< the problem and rows of the matrix in hand
+  std::vector<int> assembledRows_;
   bool bodySpace_ = false;
   BodySpaceSolve bodySpaceSolve_;
   Eigen::SparseMatrix<double> A_, lower_;

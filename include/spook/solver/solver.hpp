@@ -360,6 +360,10 @@ class Solver : public Referenced {
   double couplingTolerance_ = 1e-4;
   int couplingSweeps_ = 2;
   std::unique_ptr<detail::DirectSolve> direct_;  ///< the pivoting solver's workspace
+  /// The island being solved (solve, project) has had a direct solve: its
+  /// rows' matrix, which only their impulses and bounds change within the
+  /// island's solve, is the one direct_ assembled for the same rows.
+  bool islandMatrixKnown_ = false;
 };
 
 /// Every row by the direct solver: exact to round-off, whatever the mass

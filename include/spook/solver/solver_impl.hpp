@@ -27,6 +27,7 @@ SPOOK_INLINE void Solver::project(detail::IslandProblem& problem, SolverStatisti
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
   workBudget_ = maxDirectWork_;
+  islandMatrixKnown_ = false;
   direct(problem, allRows(problem), statistics);
   for (auto& e : problem.rows)
     if (!std::isfinite(e.impulse)) e.impulse = 0.0;
@@ -37,6 +38,7 @@ SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics
   const auto start = std::chrono::steady_clock::now();
   pivotBudget_ = islandPivotBudget();
   workBudget_ = maxDirectWork_ - workSpent;
+  islandMatrixKnown_ = false;
   ++statistics.numIslands;
   statistics.numRows += static_cast<int>(problem.rows.size());
   solveIsland(problem, statistics);
@@ -54,7 +56,8 @@ SPOOK_INLINE bool Solver::solve(detail::IslandProblem& problem, SolverStatistics
 
 SPOOK_INLINE void Solver::direct(detail::IslandProblem& problem, const std::vector<int>& subset, SolverStatistics& statistics) {
   const detail::DirectSolveResult r = direct_->solve(problem, subset, std::clamp(pivotBudget_ - 1, 0, maxPivotSteps_),
-                                                     /*safeAnswer=*/true, workBudget_);
+                                                     /*safeAnswer=*/true, workBudget_, islandMatrixKnown_);
+  islandMatrixKnown_ = true;
   pivotBudget_ -= r.factorizations;
   workBudget_ -= r.work;
   statistics.factorizations += r.factorizations;
@@ -68,8 +71,9 @@ SPOOK_INLINE bool Solver::directAttempt(detail::IslandProblem& problem, const st
   if (pivotBudget_ <= 0 || workBudget_ <= 0.0) return false;
   const std::vector<detail::IslandProblem::Entry> saved = problem.entries(subset);
   // A solve capped at m pivot steps factorizes up to m + 1 times.
-  const detail::DirectSolveResult r =
-      direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_), /*safeAnswer=*/false, workBudget_);
+  const detail::DirectSolveResult r = direct_->solve(problem, subset, std::min(pivotBudget_ - 1, maxPivotSteps_),
+                                                     /*safeAnswer=*/false, workBudget_, islandMatrixKnown_);
+  islandMatrixKnown_ = true;
   pivotBudget_ -= r.factorizations;
   workBudget_ -= r.work;
   statistics.factorizations += r.factorizations;
