@@ -57,8 +57,6 @@ struct ContactSummary {
   double deepest = 0.0;
 };
 
-/// A scene built in one engine with one solver setting. Dynamic bodies are
-/// numbered in the order they appear in the description.
 /// Time an engine's constraint solver spent and the row updates it made
 /// (rows × sweeps), summed over the steps taken; `sweepsOnly` false where a
 /// step solved rows otherwise (spook's direct parts), which makes the time
@@ -69,6 +67,8 @@ struct SolverCost {
   bool sweepsOnly = true;
 };
 
+/// A scene built in one engine with one solver setting. Dynamic bodies are
+/// numbered in the order they appear in the description.
 class Engine {
  public:
   virtual ~Engine() = default;

@@ -111,12 +111,12 @@ class BulletEngine final : public study::Engine {
     return energy;
   }
 
+  study::SolverCost solverCost() const override { return timed_ ? timed_->cost : study::SolverCost{}; }
+
   // The manifolds hold the points of the last step's collision pass (before
   // its solve), including speculative ones still apart by less than the
   // contact breaking threshold (about 0.02 m): only touching points,
   // distance <= 0, count.
-  study::SolverCost solverCost() const override { return timed_ ? timed_->cost : study::SolverCost{}; }
-
   study::ContactSummary contacts() const override {
     study::ContactSummary summary;
     const btCollisionDispatcher& dispatcher = *dispatcher_;
