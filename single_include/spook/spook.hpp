@@ -25263,8 +25263,11 @@ struct SheaveWrap {
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <functional>
+#include <iterator>
 #include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -25452,10 +25455,16 @@ class WireGeometryContacts {
       const double* impulse = &impulses[3 * i];
       Point& p = points_[i];
       p.force = (impulse[0] * p.normal + impulse[1] * tangents_[i][0] + impulse[2] * tangents_[i][1]) / h;
-      remembered_.push_back({p.geometry, p.distance, {impulse[0], impulse[1], impulse[2]}});
+      // (A distance that is not a number could match nothing, and would break the sort.)
+      if (std::isfinite(p.distance))
+        remembered_.push_back({p.geometry, p.distance, {impulse[0], impulse[1], impulse[2]}});
       if (touching(p)) touched_.push_back(p.distance);
     }
     std::sort(touched_.begin(), touched_.end());
+    std::sort(remembered_.begin(), remembered_.end(), [](const Remembered& a, const Remembered& b) {
+      return std::less<const Geometry*>()(a.geometry, b.geometry) ||
+             (a.geometry == b.geometry && a.distance < b.distance);
+    });
   }
 
   /// Whether the wire touched a geometry in the last step strictly between
@@ -25490,15 +25499,29 @@ class WireGeometryContacts {
   };
 
   // The last step's contact on `geometry` nearest along the wire, within
-  // `persistence` (m).
+  // `persistence` (m): last_ is sorted by geometry, then distance.
   const Remembered* continued(const Geometry& geometry, double distance, double persistence) const {
+    const auto before = [](const Remembered& r, std::pair<const Geometry*, double> key) {
+      return std::less<const Geometry*>()(r.geometry, key.first) ||
+             (r.geometry == key.first && r.distance < key.second);
+    };
+    const auto next = std::lower_bound(last_.begin(), last_.end(), std::pair{&geometry, distance}, before);
     const Remembered* nearest = nullptr;
     double best = persistence;
-    for (const Remembered& r : last_)
-      if (r.geometry == &geometry && std::abs(r.distance - distance) <= best) {
-        best = std::abs(r.distance - distance);
-        nearest = &r;
+    for (auto it = next; it != last_.end() && it->geometry == &geometry && it->distance - distance <= best; ++it)
+      if (const double d = std::abs(it->distance - distance); d <= best) {
+        best = d;
+        nearest = &*it;
       }
+    for (auto it = next; it != last_.begin() && std::prev(it)->geometry == &geometry;) {
+      --it;
+      if (const double d = distance - it->distance; d <= best) {
+        best = d;
+        nearest = &*it;
+      } else {
+        break;
+      }
+    }
     return nearest;
   }
 
@@ -26365,8 +26388,8 @@ class WireT : public RowProducer {
   /// Number of lumped mass nodes (0 until the wire joins a simulation).
   [[nodiscard]] std::size_t getNumMassNodes() const { return nodes_->numNodes(); }
 
-  /// Whether the wire collides with the geometries of its simulation (off
-  /// by default for now): each straight segment is a capsule of the wire's radius
+  /// Whether the wire collides with the geometries of its simulation (on
+  /// by default, as agxWire's): each straight segment is a capsule of the wire's radius
   /// between its points (wire/wire_geometry_contacts.hpp), with friction
   /// from the wire material's coefficient. Never with the geometries of
   /// the bodies its ends are attached to (fixed, clamped or at a winch), of
@@ -26586,7 +26609,7 @@ class WireT : public RowProducer {
     bool broken = false;
   };
   std::vector<PointState> state_;
-  bool collisions_ = false;
+  bool collisions_ = true;
   std::vector<observer_ptr<Geometry>> noCollisions_;
   detail::WireGeometryContacts<S> geometryContacts_;
   std::vector<typename detail::WireGeometryContacts<S>::Segment> segments_;

@@ -443,18 +443,13 @@ struct Builder {
       }
     }
     end();
-    // Collisions with the scene's geometries for half of the wires when
-    // SPOOK_SWEEP_WIRE_COLLISIONS=1, without reading more input (off, as
-    // in the library, until hostile scenes step in bounded time with them).
-    if (material.getFrictionCoefficient() > S(1) && wireCollisions()) w->setEnableCollisions(true);
+    // Half of the wires collide with the scene's geometries (the library's
+    // default), the other half not, picked without reading more input.
+    if (material.getFrictionCoefficient() <= S(1)) w->setEnableCollisions(false);
     sim.add(w);
     wires.push_back(w);
   }
   std::vector<spook::ref_ptr<spook::WireT<S>>> wires;
-  static bool wireCollisions() {
-    const char* setting = std::getenv("SPOOK_SWEEP_WIRE_COLLISIONS");
-    return setting && std::string(setting) == "1";
-  }
 
   // A wire operation between two steps: cut (the new part added to the
   // simulation), merge two wires (the emptied one removed), detach an end,

@@ -196,8 +196,8 @@ class WireT : public RowProducer {
   /// Number of lumped mass nodes (0 until the wire joins a simulation).
   [[nodiscard]] std::size_t getNumMassNodes() const { return nodes_->numNodes(); }
 
-  /// Whether the wire collides with the geometries of its simulation (off
-  /// by default for now): each straight segment is a capsule of the wire's radius
+  /// Whether the wire collides with the geometries of its simulation (on
+  /// by default, as agxWire's): each straight segment is a capsule of the wire's radius
   /// between its points (wire/wire_geometry_contacts.hpp), with friction
   /// from the wire material's coefficient. Never with the geometries of
   /// the bodies its ends are attached to (fixed, clamped or at a winch), of
@@ -417,7 +417,7 @@ class WireT : public RowProducer {
     bool broken = false;
   };
   std::vector<PointState> state_;
-  bool collisions_ = false;
+  bool collisions_ = true;
   std::vector<observer_ptr<Geometry>> noCollisions_;
   detail::WireGeometryContacts<S> geometryContacts_;
   std::vector<typename detail::WireGeometryContacts<S>::Segment> segments_;
