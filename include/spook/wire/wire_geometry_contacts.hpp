@@ -22,7 +22,6 @@
 #include <iterator>
 #include <limits>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -181,16 +180,13 @@ class WireGeometryContacts {
       const double* impulse = &impulses[3 * i];
       Point& p = points_[i];
       p.force = (impulse[0] * p.normal + impulse[1] * tangents_[i][0] + impulse[2] * tangents_[i][1]) / h;
-      // (A distance that is not a number could match nothing, and would break the sort.)
+      // (A distance that is not finite could match nothing, and would break the sort.)
       if (std::isfinite(p.distance))
         remembered_.push_back({p.geometry, p.distance, {impulse[0], impulse[1], impulse[2]}});
       if (touching(p)) touched_.push_back(p.distance);
     }
     std::sort(touched_.begin(), touched_.end());
-    std::sort(remembered_.begin(), remembered_.end(), [](const Remembered& a, const Remembered& b) {
-      return std::less<const Geometry*>()(a.geometry, b.geometry) ||
-             (a.geometry == b.geometry && a.distance < b.distance);
-    });
+    std::sort(remembered_.begin(), remembered_.end(), Remembered::before);
   }
 
   /// Whether the wire touched a geometry in the last step strictly between
@@ -222,16 +218,18 @@ class WireGeometryContacts {
     const Geometry* geometry;
     double distance;
     double impulse[3];
+    /// By geometry, then distance along the wire.
+    static bool before(const Remembered& a, const Remembered& b) {
+      return std::less<const Geometry*>()(a.geometry, b.geometry) ||
+             (a.geometry == b.geometry && a.distance < b.distance);
+    }
   };
 
   // The last step's contact on `geometry` nearest along the wire, within
   // `persistence` (m): last_ is sorted by geometry, then distance.
   const Remembered* continued(const Geometry& geometry, double distance, double persistence) const {
-    const auto before = [](const Remembered& r, std::pair<const Geometry*, double> key) {
-      return std::less<const Geometry*>()(r.geometry, key.first) ||
-             (r.geometry == key.first && r.distance < key.second);
-    };
-    const auto next = std::lower_bound(last_.begin(), last_.end(), std::pair{&geometry, distance}, before);
+    const auto next =
+        std::lower_bound(last_.begin(), last_.end(), Remembered{&geometry, distance, {}}, Remembered::before);
     const Remembered* nearest = nullptr;
     double best = persistence;
     for (auto it = next; it != last_.end() && it->geometry == &geometry && it->distance - distance <= best; ++it)
