@@ -19,6 +19,7 @@
 // simulation adds and removes both together.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -357,6 +358,14 @@ class WireT : public RowProducer {
   void addDrums();
   /// Whether an inner node may leave: two winches keep a segment each.
   [[nodiscard]] bool removable() const { return !(winches_[0] && winches_[1] && restLengths_.size() <= 2); }
+  /// Whether inner point k's segments may merge into one whose stretch row
+  /// couples at most three bodies (writeRows): a segment between contacts
+  /// on two bodies, or from a contact on a body to a winch, would couple four.
+  [[nodiscard]] bool joinable(std::size_t k) const;
+  /// Whether lumped node k lies on the wire between two contact nodes on
+  /// one geometry, with only lumped nodes between them (a wire over two
+  /// edges of a box, along its top).
+  [[nodiscard]] bool betweenContactsOnOneGeometry(std::size_t k) const;
   /// state_ for the points as they are now.
   void measurePoints(const StepContext& step);
   void limitNodeSpeeds(const StepContext& step);
@@ -914,7 +923,14 @@ void WireT<S>::updateMasses() {
 // fastest mode, the zig-zag, has ω² = 4T/(L m), unstable once h²ω² > 4.
 // A node with ρ = h²(T₁/L₁ + T₂/L₂)/m > 2 (that zig-zag bound) leaves: its
 // two segments merge (rest lengths add), its mass and momentum go to its
-// neighbours. A segment longer than the wire's resolution asks for splits
+// neighbours. A node beside a contact stays (the segment from a contact is
+// not projected, writeProjectionRows: a crane's hook hung from its sheave
+// on one segment settled 0.4% off m g), unless the wire runs from there
+// to a contact on the same geometry (over two edges of a box, along its
+// top, with which it does not collide: the nodes a slack wire gained there
+// sank into the box and were flung off it by the next jolt of tension, a
+// 1 kg load stopped at an edge with 100 kg bouncing on the wire).
+// A segment longer than the wire's resolution asks for splits
 // again where the node it would gain has ρ < 1 (hysteresis). The
 // geometric-stiffness rows of writeRows hold what is left over (a node that
 // cannot leave: next to both ends, or a tension that jumps within a step).
@@ -950,9 +966,9 @@ void WireT<S>::beginStep(const StepContext& step) {
     const double at = before + restLengths_[k - 1], after = at + restLengths_[k];
     const bool touched = geometryContacts_.touchedBetween(before, after);
     before = at;
-    if (p.node < 0 || nextToContact(k) || touched) continue;
+    if (p.node < 0 || touched || (nextToContact(k) && !betweenContactsOnOneGeometry(k))) continue;
     const double rho = h2 * (pull(k - 1) + pull(k)) / nodes_->mass(std::size_t(p.node));
-    if (rho > 2.0 && removable()) {
+    if (rho > 2.0 && removable() && joinable(k)) {
       removeNode(k);
       changed = true;
       before = after;
@@ -1020,7 +1036,7 @@ template <Scalar S>
 bool WireT<S>::leaveBeforeContacts(double timeStep) {
   bool changed = false;
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
-    if (points_[k].node < 0 || !removable()) continue;
+    if (points_[k].node < 0 || !removable() || !joinable(k)) continue;
     const Vec3d position = nodes_->position(std::size_t(points_[k].node));
     const Vec3d velocity = nodes_->velocity(std::size_t(points_[k].node));
     for (const std::size_t c : {k - 1, k + 1}) {
@@ -1093,6 +1109,41 @@ void WireT<S>::leave(std::size_t k) {
   contact.row = -1;
   nodes_->drum(contact.slip).speed = 0.0;
   erasePoint(k);
+}
+
+template <Scalar S>
+bool WireT<S>::joinable(std::size_t k) const {
+  // What a stretch row from point k − 1 to point k + 1 moves: each end's
+  // node or body (a contact's: its geometry's), a contact's slip, a winch's drum.
+  std::array<const void*, 6> coupled{};
+  std::size_t count = 0;
+  const auto couple = [&](const void* thing) {
+    if (thing && std::find(coupled.begin(), coupled.begin() + std::ptrdiff_t(count), thing) ==
+                     coupled.begin() + std::ptrdiff_t(count))
+      coupled[count++] = thing;
+  };
+  for (const std::size_t end : {k - 1, k + 1}) {
+    const Point& p = points_[end];
+    couple(p.node >= 0 ? static_cast<const void*>(&p) : bodyOf(p));
+    if (p.contact >= 0) couple(&contacts_[std::size_t(p.contact)]);
+  }
+  if (winches_[0] && k == 1) couple(winches_[0].get());
+  if (winches_[1] && k + 2 == points_.size()) couple(winches_[1].get());
+  return count <= 3;
+}
+
+template <Scalar S>
+bool WireT<S>::betweenContactsOnOneGeometry(std::size_t k) const {
+  std::size_t first = k, last = k;
+  while (first > 0 && points_[first].node >= 0) --first;
+  while (last + 1 < points_.size() && points_[last].node >= 0) ++last;
+  const auto geometryOf = [&](const Point& p) -> const Geometry* {
+    if (p.contact < 0) return nullptr;
+    const SlidingNode& node = *contacts_[std::size_t(p.contact)].node;
+    return node.getType() == Node::Type::CONTACT ? static_cast<const ContactNode&>(node).getGeometry() : nullptr;
+  };
+  const Geometry* geometry = geometryOf(points_[first]);
+  return geometry && geometry == geometryOf(points_[last]);
 }
 
 template <Scalar S>
