@@ -12,6 +12,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <spook/spook.hpp>
 
@@ -315,6 +316,64 @@ TEST_CASE_TEMPLATE("a wheel on a hinge turns with a wire that cannot slip on it"
   // with the rope.
   CHECK(spin * radius == doctest::Approx(speed).epsilon(0.02));
   CHECK(wheel->getPosition().norm() < S(1e-3));
+}
+
+TEST_CASE_TEMPLATE("a wire over two wheels on hinges runs as an Atwood machine whose pulleys turn", S, double, float) {
+  using Vec3 = Vec3T<S>;
+  // Two wheels of 10 kg and radius 0.5 m, 2 m apart, each on a hinge about
+  // y; the wire over both (a quarter turn on each), the loads under their
+  // outer sides: a = (m₁ − m₂) g/(m₁ + m₂ + 2I/R²). It runs at 4 m/s after
+  // a second: the node left between the wheels closes on the second one, and
+  // may not leave there (the segment between the wheels' contacts would
+  // couple both wheels and both slips, four bodies in one row: it threw).
+  const double heavy = 20.0, light = 5.0, wheelMass = 10.0, radius = 0.5;
+  const double inertia = 0.5 * wheelMass * radius * radius;
+  ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+  std::vector<ref_ptr<RigidBodyT<S>>> wheels;
+  std::vector<ref_ptr<GeometryT<S>>> rims;
+  for (const double x : {-1.0, 1.0}) {
+    ref_ptr<RigidBodyT<S>> wheel = new RigidBodyT<S>();
+    ref_ptr<GeometryT<S>> rim = new GeometryT<S>(new CylinderT<S>(S(radius), S(0.1)));
+    wheel->add(rim);
+    wheel->getMassProperties()->setMass(S(wheelMass));
+    wheel->getMassProperties()->setInertiaTensor(SPDMat3T<S>(Vec3(S(1), S(inertia), S(1))));
+    wheel->setPosition(S(x), S(0), S(0));
+    sim->add(wheel);
+    ref_ptr<FrameT<S>> axle = new FrameT<S>();  // in the wheel's frame
+    axle->setLocalRotate(spook::rotate<S>(Vec3::UnitZ(), Vec3::UnitY()));
+    sim->add(new HingeT<S>(wheel.get(), axle.get()));
+    wheels.push_back(wheel);
+    rims.push_back(rim);
+  }
+  ref_ptr<RigidBodyT<S>> left = new RigidBodyT<S>(), right = new RigidBodyT<S>();
+  right->getMassProperties()->setMass(S(heavy));
+  right->setPosition(S(1.5), S(0), S(-3));
+  left->getMassProperties()->setMass(S(light));
+  left->setPosition(S(-1.5), S(0), S(-3));
+  sim->add(right);
+  sim->add(left);
+  ref_ptr<WireT<S>> wire = new WireT<S>(S(0.005), S(5));
+  wire->getMaterial()->getBulkMaterial()->setDensity(S(100));
+  wire->getMaterial()->getWireMaterial()->setYoungsModulusBend(S(0));
+  wire->getMaterial()->getWireMaterial()->setFrictionCoefficient(S(10));
+  wire->add(new BodyFixedNodeT<S>(right.get(), Vec3::Zero()));
+  wire->add(new ContactNodeT<S>(rims[1].get(), Vec3(S(0), S(0), S(radius))));
+  wire->add(new ContactNodeT<S>(rims[0].get(), Vec3(S(0), S(0), S(radius))));
+  wire->add(new BodyFixedNodeT<S>(left.get(), Vec3::Zero()));
+  sim->add(wire);
+  for (int s = 0; s < 30; ++s) sim->stepForward();
+  const double from = double(right->getVelocity().z());
+  for (int s = 0; s < 30; ++s) sim->stepForward();
+  const double acceleration = (from - double(right->getVelocity().z())) / (30 * double(sim->getTimeStep()));
+  const double expected = (heavy - light) * kGravity / (heavy + light + 2.0 * inertia / (radius * radius));
+  const double speed = -double(right->getVelocity().z());
+  MESSAGE("the heavy load falls at " << acceleration << " m/s^2 against " << expected << ", at " << speed
+                                     << " m/s after 1 s; the wheels turn at "
+                                     << double(wheels[0]->getAngularVelocity().y()) << " and "
+                                     << double(wheels[1]->getAngularVelocity().y()) << " rad/s");
+  CHECK(acceleration == doctest::Approx(expected).epsilon(0.02));
+  for (const auto& wheel : wheels)
+    CHECK(double(wheel->getAngularVelocity().y()) * radius == doctest::Approx(speed).epsilon(0.02));
 }
 
 TEST_CASE_TEMPLATE("a wire leaves a sheave that moves away from it and runs straight", S, double, float) {
