@@ -315,7 +315,12 @@ class Solver : public Referenced {
 
  protected:
   Solver();
-  ~Solver() override;
+  // Its virtual members are declared SPOOK_INLINE, as in its subclasses: a
+  // class whose virtual functions are all inline has no key function, so a
+  // header-only translation unit emits the virtual table, and the solves
+  // behind it, only where a solver is constructed, not in every file that
+  // includes spook.
+  SPOOK_INLINE ~Solver() override;
   virtual void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) = 0;
 
   /// The island's first direct solve: up to getMaxPivotSteps pivot steps
@@ -375,10 +380,10 @@ class DirectSolver final : public Solver {
   [[nodiscard]] const char* getName() const override { return "direct"; }
   [[nodiscard]] bool projects(SolveType) const override { return getEnablePostStabilization(); }
 
-  [[nodiscard]] ref_ptr<Solver> makeWorker() const override;
+  [[nodiscard]] SPOOK_INLINE ref_ptr<Solver> makeWorker() const override;
 
  protected:
-  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
+  SPOOK_INLINE void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
 };
 
 /// Every row by projected Gauss–Seidel (or Jacobi), optionally warm-started
@@ -389,10 +394,10 @@ class IterativeSolver final : public Solver {
   [[nodiscard]] const char* getName() const override { return "iterative"; }
   [[nodiscard]] bool projects(SolveType) const override { return false; }
 
-  [[nodiscard]] ref_ptr<Solver> makeWorker() const override;
+  [[nodiscard]] SPOOK_INLINE ref_ptr<Solver> makeWorker() const override;
 
  protected:
-  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
+  SPOOK_INLINE void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
 };
 
 /// Each row as its constraint or friction model asks (setSolveType): DIRECT
@@ -414,10 +419,10 @@ class HybridSolver final : public Solver {
   HybridSolver() { setEnablePostStabilization(true); }
   [[nodiscard]] const char* getName() const override { return "hybrid"; }
 
-  [[nodiscard]] ref_ptr<Solver> makeWorker() const override;
+  [[nodiscard]] SPOOK_INLINE ref_ptr<Solver> makeWorker() const override;
 
  protected:
-  void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
+  SPOOK_INLINE void solveIsland(detail::IslandProblem& problem, SolverStatistics& statistics) override;
 };
 
 using SolverRef = ref_ptr<Solver>;
