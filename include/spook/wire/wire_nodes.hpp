@@ -85,12 +85,14 @@ class WireNodes : public BodyStore {
     speedLimit_ = limit;
     limitStep_ = h;
   }
-  void writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const override;
+  // Declared SPOOK_INLINE as defined: no key function in a header-only
+  // build, so the virtual table is emitted only where a wire is built.
+  SPOOK_INLINE void writeSolverBodies(std::span<SolverBody> bodies, const StepContext& step) const override;
   // A solve that failed (non-finite, or beyond a drum's ends: the rows that
   // keep it there are the solver's to meet) must not carry the wire away:
   // such a node stops where it is, such a drum at its end.
-  void move(std::span<const SolverBody> bodies, const StepContext& step) override;
-  void displace(std::span<const SolverBody> bodies) override;
+  SPOOK_INLINE void move(std::span<const SolverBody> bodies, const StepContext& step) override;
+  SPOOK_INLINE void displace(std::span<const SolverBody> bodies) override;
 
  private:
   std::vector<Vec3d> position_, velocity_;
