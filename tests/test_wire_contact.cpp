@@ -12,6 +12,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <spook/spook.hpp>
@@ -270,6 +271,49 @@ TEST_CASE_TEMPLATE("an Atwood machine over a cylinder accelerates as the capstan
     CHECK(lightAcceleration == doctest::Approx(a).epsilon(0.02));
     CHECK(double(rig.wire->getRestLength()) == doctest::Approx(length).epsilon(1e-9));
   }
+}
+
+TEST_CASE_TEMPLATE("a load pulled up to a fixed sheave stops at it, held by the wire", S, double, float) {
+  // The frictionless Atwood machine over the cylinder run on: the light load
+  // rises 5 m on the left to where the wire meets the cylinder (z = 0) and
+  // stops there, the heavy one hanging still. A wire cannot push: the load
+  // passes that point by up to one step's travel v h, and the wire then
+  // holds it there (it was dragged over the top and the wire left the
+  // sheave, both loads falling; on a wheel that turns, it still is, as a
+  // point load would be). The light load at the wire's end, and (reversed)
+  // at its start.
+  const double rise = 5.0;
+  for (const bool reversed : {false, true})
+    for (const auto& [light, heavy] : {std::pair(5.0, 20.0), std::pair(1.0, 100.0)}) {
+      CAPTURE(reversed);
+      CAPTURE(heavy / light);
+      const double a = (heavy - light) * kGravity / (heavy + light), arrival = std::sqrt(2.0 * a * rise);
+      OverCylinder<S> rig(heavy, light, 0.0);
+      if (reversed) rig.wire->reverse();
+      const double h = double(rig.sim->getTimeStep());
+      double highest = -1e9, worstSpeed = 0.0;  // relative error of the speed on the way up
+      for (int s = 1; s <= 180; ++s) {
+        rig.sim->stepForward();
+        highest = std::max(highest, double(rig.left->getPosition().z()));
+        if (s >= 6 && highest < -0.1)
+          worstSpeed = std::max(worstSpeed, std::abs(double(rig.left->getVelocity().z()) / (a * s * h) - 1.0));
+      }
+      const double top = double(rig.left->getPosition().z()), x = double(rig.left->getPosition().x());
+      const double speed = double(rig.right->getVelocity().norm());
+      const S atHeavy = reversed ? rig.wire->getRestLength() - S(0.1) : S(0.1);
+      const double tension = double(rig.wire->getTension(atHeavy));
+      MESSAGE(light << " kg against " << heavy << ": on the way up the light load's speed within " << worstSpeed
+                    << " of the Atwood machine's; after 3 s it is at (" << x << ", " << top << ") (highest " << highest
+                    << ", a step's travel at arrival " << arrival * h << "), the heavy one moves at " << speed
+                    << " m/s, the wire pulls it with " << tension << " N (its weight " << heavy * kGravity << ")");
+      REQUIRE(std::isfinite(top));
+      CHECK(worstSpeed < 0.01);
+      CHECK(highest < arrival * h);
+      CHECK(std::abs(top) < arrival * h);
+      CHECK(std::abs(x + 0.5) < 0.01);
+      CHECK(speed < 0.01);
+      CHECK(tension == doctest::Approx(heavy * kGravity).epsilon(0.02));
+    }
 }
 
 TEST_CASE_TEMPLATE("a wheel on a hinge turns with a wire that cannot slip on it", S, double, float) {

@@ -25218,6 +25218,24 @@ struct SheaveWrap {
     out = tangentAngle(to, sense, false);
     wrap += std::remainder(forward(in, out, sense) - wrap, 2.0 * std::numbers::pi);
   }
+  /// The wire's end at `end`, beside this wrap (`arriving`: before it), that
+  /// has passed the tangent point it had in `was` (beyond it along the wire)
+  /// stays there: that tangent keeps its angle and the wrap changes by the
+  /// other one only. A wire's end that reaches a sheave stops at it, as at
+  /// an edge, instead of being dragged around it.
+  void holdEnd(const SheaveWrap& was, const Vec3d& end, bool arriving) {
+    const double angle = arriving ? was.in : was.out;
+    const Vec3d along = sense * (std::cos(angle) * e2 - std::sin(angle) * e1);  // the wire's direction there
+    const double beyond = (end - point(angle)).dot(along);
+    if (!(arriving ? beyond > 0.0 : beyond < 0.0)) return;
+    if (arriving) {
+      wrap += sense * std::remainder(in - angle, 2.0 * std::numbers::pi);
+      in = angle;
+    } else {
+      wrap -= sense * std::remainder(out - angle, 2.0 * std::numbers::pi);
+      out = angle;
+    }
+  }
   /// An eye at `at` (a sheave of radius 0): the wire turns there by the
   /// angle between its directions from `from` and towards `to` (kept when
   /// either is not defined).
@@ -27278,7 +27296,13 @@ void WireT<S>::updateContacts() {
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     if (points_[k].contact < 0) continue;
     Contact& contact = contacts_[std::size_t(points_[k].contact)];
-    const detail::SheaveWrap wrap = wrapNow(contact, departure(points_[k - 1]), arrival(points_[k + 1]));
+    detail::SheaveWrap wrap = wrapNow(contact, departure(points_[k - 1]), arrival(points_[k + 1]));
+    if (wrap.radius > 0.0) {
+      const auto end = [](const Point& p) { return p.node < 0 && p.contact < 0; };
+      if (k == 1 && end(points_[0])) wrap.holdEnd(contact.wrap, worldPosition(points_[0]), true);
+      if (k + 2 == points_.size() && end(points_.back()))
+        wrap.holdEnd(contact.wrap, worldPosition(points_.back()), false);
+    }
     // Beside a body whose state is not finite (frozen), the wrap stays as it was.
     if (!(std::isfinite(wrap.in) && std::isfinite(wrap.out) && wrap.center.allFinite() && wrap.e1.allFinite() &&
           wrap.e2.allFinite()))

@@ -90,6 +90,24 @@ struct SheaveWrap {
     out = tangentAngle(to, sense, false);
     wrap += std::remainder(forward(in, out, sense) - wrap, 2.0 * std::numbers::pi);
   }
+  /// The wire's end at `end`, beside this wrap (`arriving`: before it), that
+  /// has passed the tangent point it had in `was` (beyond it along the wire)
+  /// stays there: that tangent keeps its angle and the wrap changes by the
+  /// other one only. A wire's end that reaches a sheave stops at it, as at
+  /// an edge, instead of being dragged around it.
+  void holdEnd(const SheaveWrap& was, const Vec3d& end, bool arriving) {
+    const double angle = arriving ? was.in : was.out;
+    const Vec3d along = sense * (std::cos(angle) * e2 - std::sin(angle) * e1);  // the wire's direction there
+    const double beyond = (end - point(angle)).dot(along);
+    if (!(arriving ? beyond > 0.0 : beyond < 0.0)) return;
+    if (arriving) {
+      wrap += sense * std::remainder(in - angle, 2.0 * std::numbers::pi);
+      in = angle;
+    } else {
+      wrap -= sense * std::remainder(out - angle, 2.0 * std::numbers::pi);
+      out = angle;
+    }
+  }
   /// An eye at `at` (a sheave of radius 0): the wire turns there by the
   /// angle between its directions from `from` and towards `to` (kept when
   /// either is not defined).

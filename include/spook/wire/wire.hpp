@@ -1081,7 +1081,13 @@ void WireT<S>::updateContacts() {
   for (std::size_t k = 1; k + 1 < points_.size(); ++k) {
     if (points_[k].contact < 0) continue;
     Contact& contact = contacts_[std::size_t(points_[k].contact)];
-    const detail::SheaveWrap wrap = wrapNow(contact, departure(points_[k - 1]), arrival(points_[k + 1]));
+    detail::SheaveWrap wrap = wrapNow(contact, departure(points_[k - 1]), arrival(points_[k + 1]));
+    if (wrap.radius > 0.0) {
+      const auto end = [](const Point& p) { return p.node < 0 && p.contact < 0; };
+      if (k == 1 && end(points_[0])) wrap.holdEnd(contact.wrap, worldPosition(points_[0]), true);
+      if (k + 2 == points_.size() && end(points_.back()))
+        wrap.holdEnd(contact.wrap, worldPosition(points_.back()), false);
+    }
     // Beside a body whose state is not finite (frozen), the wrap stays as it was.
     if (!(std::isfinite(wrap.in) && std::isfinite(wrap.out) && wrap.center.allFinite() && wrap.e1.allFinite() &&
           wrap.e2.allFinite()))
