@@ -284,7 +284,8 @@ TEST_CASE_TEMPLATE("a load pulled up to a fixed sheave stops at it, held by the 
   // at its start.
   const double rise = 5.0;
   for (const bool reversed : {false, true})
-    for (const auto& [light, heavy] : {std::pair(5.0, 20.0), std::pair(1.0, 100.0)}) {
+    for (const auto& loads : {std::pair(5.0, 20.0), std::pair(1.0, 100.0)}) {
+      const double light = loads.first, heavy = loads.second;
       CAPTURE(reversed);
       CAPTURE(heavy / light);
       const double a = (heavy - light) * kGravity / (heavy + light), arrival = std::sqrt(2.0 * a * rise);

@@ -213,9 +213,10 @@ TEST_CASE_TEMPLATE("a load pulled up to the edge stops there, held by the wire",
   // leave (kept beside the edges, they were flung off the box and the wire
   // blew up). Also with nodes between the edges (20 per meter).
   const double rise = 3.0;  // from z = -2.5 to the edge
-  for (const auto& [light, heavy] : {std::pair(5.0, 20.0), std::pair(1.0, 100.0)})
+  for (const auto& loads : {std::pair(5.0, 20.0), std::pair(1.0, 100.0)})
     for (const Ridge ridge : kRidges)
       for (const double resolution : {5.0, 20.0}) {
+        const double light = loads.first, heavy = loads.second;
         CAPTURE(nameOf(ridge));
         CAPTURE(resolution);
         CAPTURE(heavy / light);
