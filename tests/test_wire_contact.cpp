@@ -75,6 +75,26 @@ ref_ptr<GeometryT<S>> fixedCylinder(SimulationT<S>& sim, double x, double z) {
   return cylinder;
 }
 
+/// A wheel (a cylinder of `radius` m and `mass` kg, I = M R²/2 about its
+/// axle) at (x, 0, 0) in `sim`, on a hinge about the world's y axis; its
+/// body and rim.
+template <Scalar S>
+std::pair<ref_ptr<RigidBodyT<S>>, ref_ptr<GeometryT<S>>> hingedWheel(SimulationT<S>& sim, double x, double radius,
+                                                                     double mass) {
+  using Vec3 = Vec3T<S>;
+  ref_ptr<RigidBodyT<S>> wheel = new RigidBodyT<S>();
+  ref_ptr<GeometryT<S>> rim = new GeometryT<S>(new CylinderT<S>(S(radius), S(0.1)));
+  wheel->add(rim);
+  wheel->getMassProperties()->setMass(S(mass));
+  wheel->getMassProperties()->setInertiaTensor(SPDMat3T<S>(Vec3(S(1), S(0.5 * mass * radius * radius), S(1))));
+  wheel->setPosition(S(x), S(0), S(0));
+  sim.add(wheel);
+  ref_ptr<FrameT<S>> axle = new FrameT<S>();  // in the wheel's frame
+  axle->setLocalRotate(spook::rotate<S>(Vec3::UnitZ(), Vec3::UnitY()));
+  sim.add(new HingeT<S>(wheel.get(), axle.get()));
+  return {wheel, rim};
+}
+
 /// A load (kg) hung 5 m below the right of a fixed cylinder at the origin,
 /// its 5 mm wire (5 nodes/m, `density` kg/m³) over the top to a winch on the
 /// world 5 m below the left (pointing up, 3 m on its drum, force range
@@ -324,15 +344,9 @@ TEST_CASE_TEMPLATE("a wheel on a hinge turns with a wire that cannot slip on it"
   const double heavy = 20.0, light = 5.0, wheelMass = 10.0, radius = 0.5;
   const double inertia = 0.5 * wheelMass * radius * radius;
   ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
-  ref_ptr<RigidBodyT<S>> wheel = new RigidBodyT<S>();
-  ref_ptr<GeometryT<S>> rim = new GeometryT<S>(new CylinderT<S>(S(radius), S(0.1)));
-  wheel->add(rim);
-  wheel->getMassProperties()->setMass(S(wheelMass));
-  wheel->getMassProperties()->setInertiaTensor(SPDMat3T<S>(Vec3(S(1), S(inertia), S(1))));
-  sim->add(wheel);
-  ref_ptr<FrameT<S>> axle = new FrameT<S>();
-  axle->setLocalRotate(spook::rotate<S>(Vec3::UnitZ(), Vec3::UnitY()));
-  sim->add(new HingeT<S>(wheel.get(), axle.get()));
+  const auto wheelAndRim = hingedWheel(*sim, 0.0, radius, wheelMass);
+  const ref_ptr<RigidBodyT<S>>& wheel = wheelAndRim.first;
+  const ref_ptr<GeometryT<S>>& rim = wheelAndRim.second;
   ref_ptr<RigidBodyT<S>> left = new RigidBodyT<S>(), right = new RigidBodyT<S>();
   right->getMassProperties()->setMass(S(heavy));
   right->setPosition(S(radius), S(0), S(-5));
@@ -377,18 +391,9 @@ TEST_CASE_TEMPLATE("a wire over two wheels on hinges runs as an Atwood machine w
   std::vector<ref_ptr<RigidBodyT<S>>> wheels;
   std::vector<ref_ptr<GeometryT<S>>> rims;
   for (const double x : {-1.0, 1.0}) {
-    ref_ptr<RigidBodyT<S>> wheel = new RigidBodyT<S>();
-    ref_ptr<GeometryT<S>> rim = new GeometryT<S>(new CylinderT<S>(S(radius), S(0.1)));
-    wheel->add(rim);
-    wheel->getMassProperties()->setMass(S(wheelMass));
-    wheel->getMassProperties()->setInertiaTensor(SPDMat3T<S>(Vec3(S(1), S(inertia), S(1))));
-    wheel->setPosition(S(x), S(0), S(0));
-    sim->add(wheel);
-    ref_ptr<FrameT<S>> axle = new FrameT<S>();  // in the wheel's frame
-    axle->setLocalRotate(spook::rotate<S>(Vec3::UnitZ(), Vec3::UnitY()));
-    sim->add(new HingeT<S>(wheel.get(), axle.get()));
-    wheels.push_back(wheel);
-    rims.push_back(rim);
+    const auto wheelAndRim = hingedWheel(*sim, x, radius, wheelMass);
+    wheels.push_back(wheelAndRim.first);
+    rims.push_back(wheelAndRim.second);
   }
   ref_ptr<RigidBodyT<S>> left = new RigidBodyT<S>(), right = new RigidBodyT<S>();
   right->getMassProperties()->setMass(S(heavy));

@@ -26577,6 +26577,11 @@ class WireT : public RowProducer {
   /// couples at most three bodies (writeRows): a segment between contacts
   /// on two bodies, or from a contact on a body to a winch, would couple four.
   [[nodiscard]] bool joinable(std::size_t k) const;
+  /// The geometry a contact node routes the wire over; nullptr for an eye.
+  [[nodiscard]] static const Geometry* routedGeometry(const Contact& contact) {
+    return contact.node->getType() == Node::Type::CONTACT ? static_cast<const ContactNode&>(*contact.node).getGeometry()
+                                                          : nullptr;
+  }
   /// Whether lumped node k lies on the wire between two contact nodes on
   /// one geometry, with only lumped nodes between them (a wire over two
   /// edges of a box, along its top).
@@ -27358,10 +27363,8 @@ bool WireT<S>::betweenContactsOnOneGeometry(std::size_t k) const {
   std::size_t first = k, last = k;
   while (first > 0 && points_[first].node >= 0) --first;
   while (last + 1 < points_.size() && points_[last].node >= 0) ++last;
-  const auto geometryOf = [&](const Point& p) -> const Geometry* {
-    if (p.contact < 0) return nullptr;
-    const SlidingNode& node = *contacts_[std::size_t(p.contact)].node;
-    return node.getType() == Node::Type::CONTACT ? static_cast<const ContactNode&>(node).getGeometry() : nullptr;
+  const auto geometryOf = [&](const Point& p) {
+    return p.contact >= 0 ? routedGeometry(contacts_[std::size_t(p.contact)]) : nullptr;
   };
   const Geometry* geometry = geometryOf(points_[first]);
   return geometry && geometry == geometryOf(points_[last]);
@@ -27779,9 +27782,7 @@ bool WireT<S>::touches(const Geometry& geometry) const {
       if (contact.node->getType() == Node::Type::EYE && contact.node->getRigidBody() == body) return false;
   }
   for (const Contact& contact : contacts_)
-    if (contact.node->getType() == Node::Type::CONTACT &&
-        static_cast<const ContactNode&>(*contact.node).getGeometry() == &geometry)
-      return false;
+    if (routedGeometry(contact) == &geometry) return false;
   return true;
 }
 
