@@ -5,7 +5,9 @@
 //   cmake --build build --target spook_scene_sweep
 //   build/tests/spook_scene_sweep [runs = 20000] [seed = 1] [only this run]
 // Bytes are uniform in 0..223 (reals within their typical ranges, no
-// extremes: those the fuzz target explores).
+// extremes: those the fuzz target explores). Finite blow-ups count as
+// findings here (scene_builder.hpp, blowUpIsFinding; SPOOK_SWEEP_NO_BLOWUPS=1
+// counts only the fuzz target's findings).
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -18,6 +20,7 @@ int main(int argc, char** argv) {
   std::mt19937 random(argc > 2 ? static_cast<unsigned>(std::atoi(argv[2])) : 1u);
   const int only = argc > 3 ? std::atoi(argv[3]) : -1;
   spook::fuzz::findingThrows = true;
+  spook::fuzz::blowUpIsFinding = std::getenv("SPOOK_SWEEP_NO_BLOWUPS") == nullptr;
   int findings = 0, withWires = 0;
   for (int run = 0; run < runs; ++run) {
     std::vector<std::uint8_t> bytes(60 + random() % 200);

@@ -49,6 +49,11 @@ class IslandStepper {
   /// rows to their targets.
   void project(const RowSet& set, std::vector<SolverBody>& bodies, double h, Solver& solver,
                SolverStatistics& statistics, WorkerPool* workers = nullptr);
+  /// The largest turn (rad) a projection gives a body: beyond ~0.2 rad the
+  /// linearized rows overshoot (sin φ against φ: 0.7% at 0.2 rad, 16% at 1),
+  /// and a scene with a body spinning at 100 rad/s, its rows violated by
+  /// meters, turned it by 2, then 36, then 2e4 rad in successive steps.
+  static constexpr double kMostProjectionTurn = 0.2;
 
   /// The dynamic bodies (indices into `bodies`) of the islands whose
   /// impulses the last solve() dropped as non-finite.
@@ -172,7 +177,14 @@ SPOOK_INLINE void IslandStepper::project(const RowSet& set, std::vector<SolverBo
       e.upper = std::numeric_limits<double>::infinity();
     }
     worker.solver->project(worker.problem, islandStatistics_[k]);
-    addToBodies(worker, bodies, &SolverBody::displacement);
+    worker.problem.velocityChange(worker.velocityChange);
+    // The projection is linearized: it turns a body by at most
+    // kMostProjectionTurn, all of its island's displacements scaled alike.
+    double turn = 0.0;
+    for (const Vec6d& change : worker.velocityChange) turn = std::max(turn, change.tail<3>().norm());
+    const double share = turn > kMostProjectionTurn ? kMostProjectionTurn / turn : 1.0;
+    for (std::size_t b = 0; b < worker.islandBodies.size(); ++b)
+      bodies[static_cast<std::size_t>(worker.islandBodies[b])].displacement += share * worker.velocityChange[b];
   });
   for (const SolverStatistics& island : islandStatistics_) statistics.addIsland(island);
 }
