@@ -26,6 +26,9 @@ struct Attachments {
   Mat3d R1 = Mat3d::Identity(), R2 = Mat3d::Identity();  ///< frame axes as columns
   Vec3d c1 = Vec3d::Zero(), c2 = Vec3d::Zero();          ///< centers of mass (m)
   Vec6d v1 = Vec6d::Zero(), v2 = Vec6d::Zero();          ///< (v, ω) of the centers of mass
+  /// The step (s) the rows are written for, which bounds their second-order
+  /// terms where a body turns by radians in it (turnShare); 0: unbounded.
+  double h = 0.0;
 
   [[nodiscard]] Vec3d r1() const { return p1 - c1; }
   [[nodiscard]] Vec3d r2() const { return p2 - c2; }

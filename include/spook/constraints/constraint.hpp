@@ -318,7 +318,9 @@ namespace detail {
 struct ConstraintAccess {
   template <Scalar S>
   static void addRows(ConstraintT<S>& c, RowSink& sink, double h) {
-    c.addRows(c.attachments(), sink, h);
+    Attachments a = c.attachments();
+    a.h = h;
+    c.addRows(a, sink, h);
   }
   template <Scalar S>
   static void addProjectionRows(ConstraintT<S>& c, RowSink& sink) {
