@@ -170,8 +170,12 @@ SPOOK_INLINE Vec3d separationRate(const Attachments& a) {
 }
 
 SPOOK_INLINE double separationCurvature(const Attachments& a, const Vec3d& n) {
+  // The axis' own second-order term and the product of first-order terms
+  // bounded alike for frame 2's turn in the step (turnShare).
   const Vec3d w2 = a.v2.tail<3>(), dn = w2.cross(n);
-  return 0.5 * (separationCentripetal(a).dot(n) + (a.p1 - a.p2).dot(w2.cross(dn))) + separationRate(a).dot(dn);
+  const double share2 = turnShare(w2, a.h);
+  return 0.5 * (separationCentripetal(a).dot(n) + share2 * (a.p1 - a.p2).dot(w2.cross(dn))) +
+         std::sqrt(share2) * separationRate(a).dot(dn);
 }
 
 SPOOK_INLINE Coordinate rotationalCoordinate(const Attachments& a) {
