@@ -27900,10 +27900,13 @@ void WireT<S>::writeGeometryContactRows(RowWriter& rows, const StepContext& step
 // projected back to that length; never out to its stretch (a jerk's
 // tension asks for far more than the wire's elastic stretch: projected to
 // it, the wire dragged by a spinning body grew to 8 times its length, each
-// projection's stretch pulling back harder in the next step); positions only (the store's displace keeps the nodes'
-// velocities), nodes and bodies moving (drums and slips stay). The segments beside it are not held in that projection:
-// holding all of a wire's segments let its linearization overshoot (a level wire released at h = 0.2 s then rose 13 cm
-// above its start). Segments at a contact, whose tangents are those of the step's start, are left to the next step.
+// projection's stretch pulling back harder in the next step). Positions
+// only (the store's displace keeps the nodes' velocities), nodes and
+// bodies moving (drums and slips stay). The segments beside it are not
+// held in that projection: holding all of a wire's segments let its
+// linearization overshoot (a level wire released at h = 0.2 s then rose
+// 13 cm above its start). Segments at a contact, whose tangents are those
+// of the step's start, are left to the next step.
 template <Scalar S>
 void WireT<S>::writeProjectionRows(RowWriter& rows, const StepContext& step) {
   if (!built()) return;
