@@ -11083,6 +11083,50 @@ using ConstraintRef = ref_ptr<Constraint>;
 #include <algorithm>
 #include <cmath>
 
+// --- begin spook/core/second_order.hpp ---
+#ifndef SPOOK_SINGLE_SPOOK_CORE_SECOND_ORDER_HPP
+#define SPOOK_SINGLE_SPOOK_CORE_SECOND_ORDER_HPP
+
+#include <algorithm>
+#include <cmath>
+
+namespace spook::detail {
+
+// Bounds on the second-order terms κ = ½vᵀ∇²g v (SecondOrder::curvature) of
+// rows whose bodies or ends turn by radians in a step of h, where the Taylor
+// terms grow as the square of the turn and pull the step's nodes or bodies
+// out by more than the row's own size.
+
+/// (1 − cos φ)/(φ²/2) for the turn φ = ω h: the share of a centripetal term
+/// ω×(ω×r) that the turn's exact motion keeps, 1 for small turns and at most
+/// 4/φ² beyond a radian; 1 for h = 0.
+inline double turnShare(double angularSpeed, double h) {
+  const double half = 0.5 * angularSpeed * h;
+  const double sinc = half > 1e-4 ? std::sin(half) / half : 1.0;
+  return sinc * sinc;
+}
+
+/// κ of a length L whose ends part across it at `across` (m/s): the exact
+/// lengthening over the step, √(L² + s²) − L = s²/(√(L² + s²) + L) with
+/// s = across·h, over h²; the Taylor term across²/(2L) for turns well below a
+/// radian (and for h = 0).
+inline double partingCurvature(double across, double length, double h) {
+  return across * across / (std::hypot(length, across * h) + length);
+}
+
+/// κ with the step's second-order change h²κ within half of `length`:
+/// beyond, no motion along the step's start direction keeps the length and
+/// the term only shoots the ends. Unbounded for h = 0.
+inline double halfLengthBound(double curvature, double length, double h) {
+  if (!(h > 0.0)) return curvature;
+  const double most = 0.5 * length / (h * h);
+  return std::clamp(curvature, -most, most);
+}
+
+}  // namespace spook::detail
+#endif  // SPOOK_SINGLE_SPOOK_CORE_SECOND_ORDER_HPP
+// --- end spook/core/second_order.hpp ---
+
 namespace spook::detail {
 
 /// Compliance and damping of one row, in double.
@@ -11103,10 +11147,7 @@ struct ElementaryOptions {
 SPOOK_INLINE Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, double g, const RowParameters& p,
                          double* impulse);
 
-/// (1 − cos φ)/(φ²/2) for the turn φ = |ω|h of a body in a step of h: the
-/// share of a second-order (centripetal) term that the turn's exact motion
-/// keeps, 1 for small turns and at most 4/φ² beyond a radian, where the
-/// Taylor term alone grows as φ²; 1 for h = 0.
+/// turnShare (core/second_order.hpp) of a body turning at ω.
 SPOOK_INLINE double turnShare(const Vec3d& w, double h);
 
 /// Centripetal part of the separation's second derivative,
@@ -11230,11 +11271,7 @@ SPOOK_INLINE Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, 
   return row;
 }
 
-SPOOK_INLINE double turnShare(const Vec3d& w, double h) {
-  const double half = 0.5 * w.norm() * h;
-  const double sinc = half > 1e-4 ? std::sin(half) / half : 1.0;
-  return sinc * sinc;
-}
+SPOOK_INLINE double turnShare(const Vec3d& w, double h) { return turnShare(w.norm(), h); }
 
 SPOOK_INLINE Vec3d separationCentripetal(const Attachments& a) {
   const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>();
@@ -11280,16 +11317,14 @@ SPOOK_INLINE Coordinate distanceCoordinate(const Attachments& a) {
   c.J2 = linearAngular(-n, -a.r2().cross(n));
   c.speed = a.speed(c.J1, c.J2);
   if (length > 1e-12) {
-    // κ = ½ L̈ with L̈ = n·d̈ + |ḋ⊥|²/L, d̈ its centripetal part. The turning
-    // term as the exact lengthening over the step of ends parting across
-    // at |ḋ⊥|, s²/(√(L² + s²) + L) with s = |ḋ⊥|h, over h² (the wire's
-    // stretch rows, wire.hpp), and h²κ within half the length: a 390 kg
-    // body spinning at 22 rad/s on a short distance joint reached 5e6 m/s
-    // in its first step.
+    // κ = ½ L̈ with L̈ = n·d̈ + |ḋ⊥|²/L, d̈ its centripetal part, the turning
+    // term as the exact lengthening over the step and h²κ within half the
+    // length (core/second_order.hpp): a 390 kg body spinning at 22 rad/s on
+    // a short distance joint reached 5e6 m/s in its first step.
     const Vec3d rate = separationRate(a);
     const double across = std::sqrt(std::max(rate.squaredNorm() - std::pow(n.dot(rate), 2), 0.0));
-    c.curvature = 0.5 * n.dot(separationCentripetal(a)) + across * across / (std::hypot(length, across * a.h) + length);
-    if (a.h > 0.0) c.curvature = std::clamp(c.curvature, -0.5 * length / (a.h * a.h), 0.5 * length / (a.h * a.h));
+    c.curvature =
+        halfLengthBound(0.5 * n.dot(separationCentripetal(a)) + partingCurvature(across, length, a.h), length, a.h);
   }
   return c;
 }
@@ -27518,9 +27553,7 @@ void WireT<S>::measurePoints(const StepContext& step) {
       // 1 for small turns, bounded (≤ 4/φ²) for a body spinning a radian
       // or more in a step, where the Taylor term alone grows as φ².
       const Vec3d w = body->getAngularVelocity().template cast<double>();
-      const double halfTurn = 0.5 * w.norm() * step.getTimeStep();
-      const double sinc = halfTurn > 1e-4 ? std::sin(halfTurn) / halfTurn : 1.0;
-      s.centripetal = sinc * sinc * w.cross(w.cross(s.armOut));
+      s.centripetal = detail::turnShare(w.norm(), step.getTimeStep()) * w.cross(w.cross(s.armOut));
     }
     // A body whose state is not finite (the simulation freezes it) holds
     // nothing: rows at it are written empty, so that they keep their places.
@@ -27621,10 +27654,9 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
       const double h = step.getTimeStep();
       const Vec3d rate = state_[k + 1].v - state_[k].v;
       const Vec3d across = rate - u * u.dot(rate);
-      const double turning = across.squaredNorm() / (std::hypot(straight, across.norm() * h) + straight);
+      const double turning = detail::partingCurvature(across.norm(), straight, h);
       const double relative = u.dot(state_[k + 1].centripetal - state_[k].centripetal);
-      const double most = 0.5 * straight / (h * h);
-      const double curvature = -std::clamp(turning + 0.5 * relative, -most, most);
+      const double curvature = -detail::halfLengthBound(turning + 0.5 * relative, straight, h);
       if (std::isfinite(curvature)) rows.setCurvature(rows.size() - 1, curvature);
     }
   }

@@ -38,6 +38,7 @@
 #include <spook/core/observer_ptr.hpp>
 #include <spook/core/ref_ptr.hpp>
 #include <spook/core/scalar.hpp>
+#include <spook/core/second_order.hpp>
 #include <spook/dynamics/material.hpp>
 #include <spook/dynamics/rigid_body.hpp>
 #include <spook/sim/step_extension.hpp>
@@ -1261,9 +1262,7 @@ void WireT<S>::measurePoints(const StepContext& step) {
       // 1 for small turns, bounded (≤ 4/φ²) for a body spinning a radian
       // or more in a step, where the Taylor term alone grows as φ².
       const Vec3d w = body->getAngularVelocity().template cast<double>();
-      const double halfTurn = 0.5 * w.norm() * step.getTimeStep();
-      const double sinc = halfTurn > 1e-4 ? std::sin(halfTurn) / halfTurn : 1.0;
-      s.centripetal = sinc * sinc * w.cross(w.cross(s.armOut));
+      s.centripetal = detail::turnShare(w.norm(), step.getTimeStep()) * w.cross(w.cross(s.armOut));
     }
     // A body whose state is not finite (the simulation freezes it) holds
     // nothing: rows at it are written empty, so that they keep their places.
@@ -1364,10 +1363,9 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
       const double h = step.getTimeStep();
       const Vec3d rate = state_[k + 1].v - state_[k].v;
       const Vec3d across = rate - u * u.dot(rate);
-      const double turning = across.squaredNorm() / (std::hypot(straight, across.norm() * h) + straight);
+      const double turning = detail::partingCurvature(across.norm(), straight, h);
       const double relative = u.dot(state_[k + 1].centripetal - state_[k].centripetal);
-      const double most = 0.5 * straight / (h * h);
-      const double curvature = -std::clamp(turning + 0.5 * relative, -most, most);
+      const double curvature = -detail::halfLengthBound(turning + 0.5 * relative, straight, h);
       if (std::isfinite(curvature)) rows.setCurvature(rows.size() - 1, curvature);
     }
   }

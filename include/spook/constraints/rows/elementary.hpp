@@ -5,6 +5,7 @@
 
 #include <spook/constraints/attachments.hpp>
 #include <spook/core/implementation.hpp>
+#include <spook/core/second_order.hpp>
 
 namespace spook::detail {
 
@@ -26,10 +27,7 @@ struct ElementaryOptions {
 SPOOK_INLINE Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, double g, const RowParameters& p,
                          double* impulse);
 
-/// (1 − cos φ)/(φ²/2) for the turn φ = |ω|h of a body in a step of h: the
-/// share of a second-order (centripetal) term that the turn's exact motion
-/// keeps, 1 for small turns and at most 4/φ² beyond a radian, where the
-/// Taylor term alone grows as φ²; 1 for h = 0.
+/// turnShare (core/second_order.hpp) of a body turning at ω.
 SPOOK_INLINE double turnShare(const Vec3d& w, double h);
 
 /// Centripetal part of the separation's second derivative,
@@ -154,11 +152,7 @@ SPOOK_INLINE Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, 
   return row;
 }
 
-SPOOK_INLINE double turnShare(const Vec3d& w, double h) {
-  const double half = 0.5 * w.norm() * h;
-  const double sinc = half > 1e-4 ? std::sin(half) / half : 1.0;
-  return sinc * sinc;
-}
+SPOOK_INLINE double turnShare(const Vec3d& w, double h) { return turnShare(w.norm(), h); }
 
 SPOOK_INLINE Vec3d separationCentripetal(const Attachments& a) {
   const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>();
@@ -204,16 +198,14 @@ SPOOK_INLINE Coordinate distanceCoordinate(const Attachments& a) {
   c.J2 = linearAngular(-n, -a.r2().cross(n));
   c.speed = a.speed(c.J1, c.J2);
   if (length > 1e-12) {
-    // κ = ½ L̈ with L̈ = n·d̈ + |ḋ⊥|²/L, d̈ its centripetal part. The turning
-    // term as the exact lengthening over the step of ends parting across
-    // at |ḋ⊥|, s²/(√(L² + s²) + L) with s = |ḋ⊥|h, over h² (the wire's
-    // stretch rows, wire.hpp), and h²κ within half the length: a 390 kg
-    // body spinning at 22 rad/s on a short distance joint reached 5e6 m/s
-    // in its first step.
+    // κ = ½ L̈ with L̈ = n·d̈ + |ḋ⊥|²/L, d̈ its centripetal part, the turning
+    // term as the exact lengthening over the step and h²κ within half the
+    // length (core/second_order.hpp): a 390 kg body spinning at 22 rad/s on
+    // a short distance joint reached 5e6 m/s in its first step.
     const Vec3d rate = separationRate(a);
     const double across = std::sqrt(std::max(rate.squaredNorm() - std::pow(n.dot(rate), 2), 0.0));
-    c.curvature = 0.5 * n.dot(separationCentripetal(a)) + across * across / (std::hypot(length, across * a.h) + length);
-    if (a.h > 0.0) c.curvature = std::clamp(c.curvature, -0.5 * length / (a.h * a.h), 0.5 * length / (a.h * a.h));
+    c.curvature =
+        halfLengthBound(0.5 * n.dot(separationCentripetal(a)) + partingCurvature(across, length, a.h), length, a.h);
   }
   return c;
 }
