@@ -11082,6 +11082,7 @@ using ConstraintRef = ref_ptr<Constraint>;
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 // --- begin spook/core/second_order.hpp ---
 #ifndef SPOOK_SINGLE_SPOOK_CORE_SECOND_ORDER_HPP
@@ -11150,6 +11151,24 @@ SPOOK_INLINE Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, 
 /// turnShare (core/second_order.hpp) of a body turning at ω.
 SPOOK_INLINE double turnShare(const Vec3d& w, double h);
 
+/// The frames of `a` a step of a.h later at constant velocities, each turned
+/// by its ω h (origins unchanged: for angles).
+SPOOK_INLINE Attachments turnedFrames(const Attachments& a);
+
+/// κ of an angle or an axes' dot product of `a` (SecondOrder::curvature)
+/// from its value `after` a step of a.h at constant velocities:
+/// h²κ = Δg − h ġ with Δg = after − before wrapped to (−π, π], the exact
+/// remainder of the step's first-order prediction, scaled by turnShare of
+/// the frames' relative turn |ω₁ − ω₂|h (the step's impulses change the
+/// velocities it is predicted from, the more the farther the frames turn)
+/// and kept within ½ a step. The Taylor term ½g̈ grows as the square of the
+/// turn: slack joints of a pair spinning at 50 rad/s gained 1e44 to 1e283
+/// times their energy at h = 1/30 and 0.1 s; with the exact remainder alone
+/// up to 6e3 (1/30) and 4e14 (0.1); with both bounds at most 1.3 and 4e3.
+/// The slack hinge on a body spinning at 23 rad/s, h = 1/30, reached
+/// 1e54 m/s.
+SPOOK_INLINE double remainderCurvature(const Attachments& a, double before, double after, double rate);
+
 /// Centripetal part of the separation's second derivative,
 /// ω₁×(ω₁×r₁) − ω₂×(ω₂×r₂), and its rate ḋ = v₁ + ω₁×r₁ − v₂ − ω₂×r₂.
 SPOOK_INLINE Vec3d separationCentripetal(const Attachments& a);
@@ -11189,11 +11208,19 @@ struct Dot1 {
     const Vec3d u = a.R1.col(A1), w = a.R2.col(A2), n = u.cross(w);
     holonomicRow(sink, linearAngular(Vec3d::Zero(), n), linearAngular(Vec3d::Zero(), -n), u.dot(w), p[0], impulse);
     if (!sink.secondOrder) return;
+    const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>();
+    if (a.h > 0.0) {
+      // From the axes a step later (remainderCurvature): with the Taylor
+      // terms, each scaled by its body's turnShare, a hinged pair whose
+      // bodies turned 1.6 rad a step relative to each other gained 2.5
+      // times its energy at h = 1/30 (0.78 now).
+      const Attachments later = turnedFrames(a);
+      sink.setCurvature(remainderCurvature(a, u.dot(w), later.R1.col(A1).dot(later.R2.col(A2)), n.dot(w1 - w2)));
+      return;
+    }
     // κ = ½(ü·w + u·ẅ) + u̇·ẇ with u̇ = ω₁×u, ü = ω₁×u̇ (SecondOrder::curvature).
-    const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
-    const double share1 = turnShare(w1, a.h), share2 = turnShare(w2, a.h);
-    sink.setCurvature(0.5 * (share1 * w1.cross(du).dot(w) + share2 * u.dot(w2.cross(dw))) +
-                      std::sqrt(share1 * share2) * du.dot(dw));
+    const Vec3d du = w1.cross(u), dw = w2.cross(w);
+    sink.setCurvature(0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw));
   }
 };
 
@@ -11272,6 +11299,25 @@ SPOOK_INLINE Row& holonomicRow(RowSink& sink, const Vec6d& J1, const Vec6d& J2, 
 }
 
 SPOOK_INLINE double turnShare(const Vec3d& w, double h) { return turnShare(w.norm(), h); }
+
+SPOOK_INLINE Attachments turnedFrames(const Attachments& a) {
+  Attachments after = a;
+  const auto turn = [h = a.h](Quatd& q, Mat3d& R, const Vec3d& w) {
+    const double angle = w.norm() * h;
+    if (!(angle > 0.0)) return;
+    q = (Quatd(Eigen::AngleAxisd(angle, w / w.norm())) * q).normalized();
+    R = q.toRotationMatrix();
+  };
+  turn(after.q1, after.R1, a.v1.tail<3>());
+  turn(after.q2, after.R2, a.v2.tail<3>());
+  return after;
+}
+
+SPOOK_INLINE double remainderCurvature(const Attachments& a, double before, double after, double rate) {
+  const double change = std::remainder(after - before, 2.0 * std::numbers::pi);
+  const double remainder = turnShare((a.v1.tail<3>() - a.v2.tail<3>()).norm(), a.h) * (change - a.h * rate);
+  return std::clamp(remainder, -0.5, 0.5) / (a.h * a.h);
+}
 
 SPOOK_INLINE Vec3d separationCentripetal(const Attachments& a) {
   const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>();
@@ -13086,7 +13132,6 @@ using PrismaticRef = ref_ptr<Prismatic>;
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 namespace spook::detail {
 
@@ -13119,23 +13164,6 @@ SPOOK_INLINE Rates axisDot(const Attachments& a, const Vec3d& u, const Vec3d& w)
 /// ½θ̈ = (c κ_s − s κ_c)/r² − θ̇ (s ṡ + c ċ)/r², r² = s² + c².
 SPOOK_INLINE Rates angleRates(const Rates& s, const Rates& c);
 
-/// The frames of `a` a step of a.h later at constant velocities, each turned
-/// by its ω h (origins unchanged: for angles).
-SPOOK_INLINE Attachments turnedFrames(const Attachments& a);
-
-/// κ of an angle of `a` from its value `after` a step of a.h at constant
-/// velocities: h²κ = Δθ − h θ̇ with Δθ = after − before wrapped to (−π, π],
-/// the exact remainder of the step's first-order prediction, scaled by
-/// turnShare of the frames' relative turn |ω₁ − ω₂|h (the step's impulses
-/// change the velocities it is predicted from, the more the farther the
-/// frames turn) and kept within ½ rad. The Taylor term ½θ̈ grows as the
-/// square of the turn: slack joints of a pair spinning at 50 rad/s gained
-/// 1e44 to 1e283 times their energy at h = 1/30 and 0.1 s; with the exact
-/// remainder alone up to 6e3 (1/30) and 4e14 (0.1); with both bounds at most
-/// 1.3 and 4e3. The slack hinge on a body spinning at 23 rad/s, h = 1/30,
-/// reached 1e54 m/s.
-SPOOK_INLINE double angleCurvature(const Attachments& a, double before, double after, double rate);
-
 /// Tilt of frame 1's z axis about axis K (0: x, 1: y) of frame 2 (rad): the
 /// angle of z₁ projected on the plane normal to that axis, measured from z₂.
 /// Independent of the twist about z, so it suits joints whose rotation about
@@ -13161,7 +13189,7 @@ struct TiltAngle {
     out.J1 = linearAngular(Vec3d::Zero(), j);
     out.J2 = linearAngular(Vec3d::Zero(), -j);
     out.speed = a.speed(out.J1, out.J2);
-    out.curvature = a.h > 0.0 ? angleCurvature(a, out.value, angle(turnedFrames(a)), out.speed)
+    out.curvature = a.h > 0.0 ? remainderCurvature(a, out.value, angle(turnedFrames(a)), out.speed)
                               : angleRates(axisDot(a, z1, sign * m), axisDot(a, z1, z2)).curvature;
     return out;
   }
@@ -13204,7 +13232,7 @@ struct RotationAngle {
     out.speed = a.speed(out.J1, out.J2);
     if (a.h > 0.0) {
       const Quatd turned = relativeRotation(turnedFrames(a));
-      out.curvature = angleCurvature(a, out.value, 2.0 * std::atan2(turned.vec()[K], turned.w()), out.speed);
+      out.curvature = remainderCurvature(a, out.value, 2.0 * std::atan2(turned.vec()[K], turned.w()), out.speed);
       return out;
     }
     const Vec3d omega2 = a.v2.tail<3>(), relative = a.v1.tail<3>() - omega2;
@@ -13288,25 +13316,6 @@ SPOOK_INLINE bool SlackInterval::restrictProjection(Row& row, const double* impu
 SPOOK_INLINE Rates axisDot(const Attachments& a, const Vec3d& u, const Vec3d& w) {
   const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
   return {u.dot(w), du.dot(w) + u.dot(dw), 0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw)};
-}
-
-SPOOK_INLINE Attachments turnedFrames(const Attachments& a) {
-  Attachments after = a;
-  const auto turn = [h = a.h](Quatd& q, Mat3d& R, const Vec3d& w) {
-    const double angle = w.norm() * h;
-    if (!(angle > 0.0)) return;
-    q = (Quatd(Eigen::AngleAxisd(angle, w / w.norm())) * q).normalized();
-    R = q.toRotationMatrix();
-  };
-  turn(after.q1, after.R1, a.v1.tail<3>());
-  turn(after.q2, after.R2, a.v2.tail<3>());
-  return after;
-}
-
-SPOOK_INLINE double angleCurvature(const Attachments& a, double before, double after, double rate) {
-  const double change = std::remainder(after - before, 2.0 * std::numbers::pi);
-  const double remainder = turnShare((a.v1.tail<3>() - a.v2.tail<3>()).norm(), a.h) * (change - a.h * rate);
-  return std::clamp(remainder, -0.5, 0.5) / (a.h * a.h);
 }
 
 SPOOK_INLINE Rates angleRates(const Rates& s, const Rates& c) {

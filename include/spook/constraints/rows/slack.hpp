@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include <spook/constraints/rows/elementary.hpp>
 #include <spook/core/implementation.hpp>
@@ -39,23 +38,6 @@ SPOOK_INLINE Rates axisDot(const Attachments& a, const Vec3d& u, const Vec3d& w)
 /// ½θ̈ = (c κ_s − s κ_c)/r² − θ̇ (s ṡ + c ċ)/r², r² = s² + c².
 SPOOK_INLINE Rates angleRates(const Rates& s, const Rates& c);
 
-/// The frames of `a` a step of a.h later at constant velocities, each turned
-/// by its ω h (origins unchanged: for angles).
-SPOOK_INLINE Attachments turnedFrames(const Attachments& a);
-
-/// κ of an angle of `a` from its value `after` a step of a.h at constant
-/// velocities: h²κ = Δθ − h θ̇ with Δθ = after − before wrapped to (−π, π],
-/// the exact remainder of the step's first-order prediction, scaled by
-/// turnShare of the frames' relative turn |ω₁ − ω₂|h (the step's impulses
-/// change the velocities it is predicted from, the more the farther the
-/// frames turn) and kept within ½ rad. The Taylor term ½θ̈ grows as the
-/// square of the turn: slack joints of a pair spinning at 50 rad/s gained
-/// 1e44 to 1e283 times their energy at h = 1/30 and 0.1 s; with the exact
-/// remainder alone up to 6e3 (1/30) and 4e14 (0.1); with both bounds at most
-/// 1.3 and 4e3. The slack hinge on a body spinning at 23 rad/s, h = 1/30,
-/// reached 1e54 m/s.
-SPOOK_INLINE double angleCurvature(const Attachments& a, double before, double after, double rate);
-
 /// Tilt of frame 1's z axis about axis K (0: x, 1: y) of frame 2 (rad): the
 /// angle of z₁ projected on the plane normal to that axis, measured from z₂.
 /// Independent of the twist about z, so it suits joints whose rotation about
@@ -81,7 +63,7 @@ struct TiltAngle {
     out.J1 = linearAngular(Vec3d::Zero(), j);
     out.J2 = linearAngular(Vec3d::Zero(), -j);
     out.speed = a.speed(out.J1, out.J2);
-    out.curvature = a.h > 0.0 ? angleCurvature(a, out.value, angle(turnedFrames(a)), out.speed)
+    out.curvature = a.h > 0.0 ? remainderCurvature(a, out.value, angle(turnedFrames(a)), out.speed)
                               : angleRates(axisDot(a, z1, sign * m), axisDot(a, z1, z2)).curvature;
     return out;
   }
@@ -124,7 +106,7 @@ struct RotationAngle {
     out.speed = a.speed(out.J1, out.J2);
     if (a.h > 0.0) {
       const Quatd turned = relativeRotation(turnedFrames(a));
-      out.curvature = angleCurvature(a, out.value, 2.0 * std::atan2(turned.vec()[K], turned.w()), out.speed);
+      out.curvature = remainderCurvature(a, out.value, 2.0 * std::atan2(turned.vec()[K], turned.w()), out.speed);
       return out;
     }
     const Vec3d omega2 = a.v2.tail<3>(), relative = a.v1.tail<3>() - omega2;
@@ -208,25 +190,6 @@ SPOOK_INLINE bool SlackInterval::restrictProjection(Row& row, const double* impu
 SPOOK_INLINE Rates axisDot(const Attachments& a, const Vec3d& u, const Vec3d& w) {
   const Vec3d w1 = a.v1.tail<3>(), w2 = a.v2.tail<3>(), du = w1.cross(u), dw = w2.cross(w);
   return {u.dot(w), du.dot(w) + u.dot(dw), 0.5 * (w1.cross(du).dot(w) + u.dot(w2.cross(dw))) + du.dot(dw)};
-}
-
-SPOOK_INLINE Attachments turnedFrames(const Attachments& a) {
-  Attachments after = a;
-  const auto turn = [h = a.h](Quatd& q, Mat3d& R, const Vec3d& w) {
-    const double angle = w.norm() * h;
-    if (!(angle > 0.0)) return;
-    q = (Quatd(Eigen::AngleAxisd(angle, w / w.norm())) * q).normalized();
-    R = q.toRotationMatrix();
-  };
-  turn(after.q1, after.R1, a.v1.tail<3>());
-  turn(after.q2, after.R2, a.v2.tail<3>());
-  return after;
-}
-
-SPOOK_INLINE double angleCurvature(const Attachments& a, double before, double after, double rate) {
-  const double change = std::remainder(after - before, 2.0 * std::numbers::pi);
-  const double remainder = turnShare((a.v1.tail<3>() - a.v2.tail<3>()).norm(), a.h) * (change - a.h * rate);
-  return std::clamp(remainder, -0.5, 0.5) / (a.h * a.h);
 }
 
 SPOOK_INLINE Rates angleRates(const Rates& s, const Rates& c) {
