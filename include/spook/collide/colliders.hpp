@@ -6,6 +6,7 @@
 
 #include <spook/collide/colliders/box_box.hpp>
 #include <spook/collide/colliders/box_capsule.hpp>
+#include <spook/collide/colliders/box_cylinder.hpp>
 #include <spook/collide/colliders/box_line.hpp>
 #include <spook/collide/colliders/box_plane.hpp>
 #include <spook/collide/colliders/box_sphere.hpp>

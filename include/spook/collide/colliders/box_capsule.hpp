@@ -82,7 +82,11 @@ template <Scalar S>
 /// When the normal is a box face normal, the segment is clipped to the
 /// face's side planes and each clipped end within r of the face is a
 /// contact with its own depth: two points for a capsule lying on the face,
-/// one otherwise.
+/// one otherwise. Apart across a face by up to the sink's margin, the same
+/// ends are gap points (negative depth); across an edge or a corner there
+/// are none (a ghost contact at the seam of two flush boxes). Without them
+/// a capsule of a chain whipped onto a box at 7.5 m/s was found 12.8 cm
+/// deep, where on a plane 1.3 cm.
 template <Scalar S>
 struct Collider<BoxT<S>, CapsuleT<S>> {
   using Vec3 = spook::Vec3T<S>;
@@ -103,7 +107,7 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
     const S scale = e.maxCoeff() + h + r;
     const BoxFrame local{e, c, u, h, r, scale};
     auto emit = [&](const Vec3& point_A, const Vec3& normal_A, S depth) {
-      sink.add(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
+      sink.addSpeculative(Vec3(R_WA * point_A + X_WA.translation()), Vec3(R_WA * normal_A), depth);
     };
 
     const S t = detail::box_capsule::closestOnSegment<S>(c, u, h, e);
@@ -111,7 +115,7 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
     const Vec3 q = x.cwiseMax(-e).cwiseMin(e);
     const Vec3 gap = x - q;
     const S distance = gap.norm();
-    if (distance > r) return;
+    if (!sink.accepts(r - distance)) return;
     // Below this distance the direction x − q is round-off: the segment
     // counts as touching the box and the separating axes take over.
     const S touching = S(64) * ScalarTraits<S>::epsilon() * scale;
@@ -139,8 +143,8 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
         const S size = rebuilt.norm();
         if (size > S(0)) n = rebuilt.dot(gap) < S(0) ? Vec3(-rebuilt / size) : Vec3(rebuilt / size);
       }
-      if (outside == 1 && local.emitOnFace(k, gap[k] > S(0) ? S(1) : S(-1), depth, emit) > 0) return;
-      emit(Vec3(S(0.5) * (q + x - n * r)), n, depth);
+      if (outside == 1 && local.emitOnFace(k, gap[k] > S(0) ? S(1) : S(-1), depth, emit, sink.margin()) > 0) return;
+      if (depth >= S(0)) emit(Vec3(S(0.5) * (q + x - n * r)), n, depth);
       return;
     }
 
@@ -204,11 +208,12 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
 
     /// Contacts for the normal sign·(unit k), the outward normal of a box
     /// face: the segment clipped to the face's side planes, each end within
-    /// r of the face plane a contact with depth r − height. Writes nothing
-    /// (returns 0) when the clipped ends miss `depth`, the depth of the
-    /// whole pair: the deepest part of the segment lies beside the face.
+    /// r of the face plane a contact with depth r − height, each end within
+    /// r + `margin` a gap point (depth < 0). Writes nothing (returns 0)
+    /// when the clipped ends miss `depth`, the depth of the whole pair: the
+    /// deepest part of the segment lies beside the face.
     template <class Emit>
-    int emitOnFace(int k, S sign, S depth, Emit& emit) const {
+    int emitOnFace(int k, S sign, S depth, Emit& emit, S margin = S(0)) const {
       S lo = -h, hi = h;
       for (const int j : {(k + 1) % 3, (k + 2) % 3}) {
         if (u[j] == S(0)) {
@@ -229,7 +234,7 @@ struct Collider<BoxT<S>, CapsuleT<S>> {
       const bool single = (hi - lo) <= tolerance;
       int written = 0;
       for (std::size_t i = 0; i < 2; ++i) {
-        if (!(depths[i] >= S(0))) continue;
+        if (!(depths[i] >= -margin)) continue;
         if (single && depths[i] < depths[1 - i]) continue;
         if (single && written > 0) break;
         const Vec3 x = c + u * ends[i];
