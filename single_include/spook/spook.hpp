@@ -9561,7 +9561,13 @@ inline void circleMinimum(const CylinderTriangleOverlap& f, const Vec3T<double>&
 /// rim); apart, also a vertex against the rim, along the line from the
 /// rim's nearest point. The contacts are the overlap of the two supporting
 /// features along that normal (contactsOfFeatures), as libccd's path gives
-/// them, at a fraction of its cost.
+/// them, at a fraction of its cost. Apart by up to the sink's margin across
+/// the triangle's face, on its front (its winding's normal), the rim
+/// candidates over the triangle (cylinderRimCandidates, as against a plane)
+/// are gap points; across an edge or a vertex none (a ghost contact where
+/// a wheel rolls from one triangle onto the next). Without them a wheel
+/// driven over a height field at h = 0.1 s dropped a step of free fall into
+/// each downslope, its center 17 cm below the terrain.
 template <Scalar S>
 void collideCylinderTriangle(const CylinderT<S>& cylinder, const TransformT<S>& X_WA, const Triangle<S>& t_M,
                              const TransformT<S>& X_WM, ContactSinkT<S>& sink) {
@@ -9584,7 +9590,8 @@ void collideCylinderTriangle(const CylinderT<S>& cylinder, const TransformT<S>& 
   }
   // Most triangles a query visits are apart along one of these already.
   const double touching = kTouchingGap * std::min(sizeA, sizeB);
-  if (lowest.f < -touching) return;
+  const double reach = std::max(touching, double(sink.margin()));
+  if (lowest.f < -reach) return;
   thread_local std::vector<Vec3T<double>> kinks;
   kinks.clear();
   for (int k = 0; k < 3; ++k) {
@@ -9598,8 +9605,29 @@ void collideCylinderTriangle(const CylinderT<S>& cylinder, const TransformT<S>& 
     kinks.assign({y.cross(edge), normal, y, Vec3T<double>(-y)});
     circleMinimum(f, edge, kinks, lowest);
   }
-  if (!std::isfinite(lowest.f) || lowest.f < -touching) return;
+  if (!std::isfinite(lowest.f) || lowest.f < -reach) return;
   const Vec3T<double> n = X_WA.linear().template cast<double>() * lowest.n;
+  if (lowest.f < -touching) {
+    // Apart across the triangle's face, on its front: the rim candidates
+    // over the triangle, as against a plane, are gap points.
+    std::array<Vec3T<double>, 3> w;
+    for (std::size_t k = 0; k < 3; ++k) w[k] = X_WM.template cast<double>() * t_M.v[k].template cast<double>();
+    const Vec3T<double> face = (w[1] - w[0]).cross(w[2] - w[0]).normalized();
+    if (!(-n.dot(face) >= kSupportingFeatureCos)) return;
+    const auto& R_WA = X_WA.linear();
+    for (const Vec3T<double>& p :
+         cylinderRimCandidates<double>(X_WA.translation().template cast<double>(), R_WA.col(1).template cast<double>(),
+                                       R_WA.col(0).template cast<double>(), f.R, f.H, face)) {
+      const double height = face.dot(p - w[0]);
+      const Vec3T<double> q = p - height * face;
+      bool inside = height <= double(sink.margin());
+      for (std::size_t k = 0; k < 3 && inside; ++k) inside = (w[(k + 1) % 3] - w[k]).cross(q - w[k]).dot(face) >= 0.0;
+      if (inside)
+        sink.addSpeculative(Vec3T<double>(p - 0.5 * height * face).cast<S>(), Vec3T<double>(-face).cast<S>(),
+                            S(-height), S(touching));
+    }
+    return;
+  }
   const CcdObject objectA(viewA, X_WA);
   const CcdObject objectB(viewB, X_WM);
   for (const FeatureClipping::Contact& contact : contactsOfFeatures(objectA, objectB, n, std::max(lowest.f, 0.0)))
@@ -9689,7 +9717,7 @@ void addDistinctSurfaceContacts(const std::vector<ContactPointT<S>>& found, S al
     if (!kept[k]) continue;
     const ContactPointT<S>& c = found[k];
     sink.setFaceIndices(0, c.faceIndex2);
-    sink.add(c.point, c.normal, c.depth);
+    sink.addSpeculative(c.point, c.normal, c.depth);
   }
   sink.setFaceIndices(0, 0);
 }
@@ -9736,7 +9764,12 @@ template <Scalar S, class A>
 void collideWithSoup(const A& a, const TransformT<S>& X_WA, const TriangleSoupView<S>& soup, const TransformT<S>& X_WM,
                      ContactSinkT<S>& sink, TriangleContacts report) {
   const BoundingBoxT<S> boxA = a.getBoundingBox();
-  const BoundingBoxT<S> box_M = transformBox<S>(boxA.grownBy(S(kTouchingGap)), X_WM.inverse() * X_WA);
+  BoundingBoxT<S> grown = boxA.grownBy(S(kTouchingGap));
+  if constexpr (A::kType == ShapeType::CYLINDER) {  // its gap points (collideCylinderTriangle)
+    grown.min.array() -= sink.margin();
+    grown.max.array() += sink.margin();
+  }
+  const BoundingBoxT<S> box_M = transformBox<S>(grown, X_WM.inverse() * X_WA);
   thread_local Polytope shape, triangle;
   thread_local std::vector<ContactPointT<S>> points, found;
   found.clear();

@@ -100,7 +100,7 @@ void addDistinctSurfaceContacts(const std::vector<ContactPointT<S>>& found, S al
     if (!kept[k]) continue;
     const ContactPointT<S>& c = found[k];
     sink.setFaceIndices(0, c.faceIndex2);
-    sink.add(c.point, c.normal, c.depth);
+    sink.addSpeculative(c.point, c.normal, c.depth);
   }
   sink.setFaceIndices(0, 0);
 }
@@ -147,7 +147,12 @@ template <Scalar S, class A>
 void collideWithSoup(const A& a, const TransformT<S>& X_WA, const TriangleSoupView<S>& soup, const TransformT<S>& X_WM,
                      ContactSinkT<S>& sink, TriangleContacts report) {
   const BoundingBoxT<S> boxA = a.getBoundingBox();
-  const BoundingBoxT<S> box_M = transformBox<S>(boxA.grownBy(S(kTouchingGap)), X_WM.inverse() * X_WA);
+  BoundingBoxT<S> grown = boxA.grownBy(S(kTouchingGap));
+  if constexpr (A::kType == ShapeType::CYLINDER) {  // its gap points (collideCylinderTriangle)
+    grown.min.array() -= sink.margin();
+    grown.max.array() += sink.margin();
+  }
+  const BoundingBoxT<S> box_M = transformBox<S>(grown, X_WM.inverse() * X_WA);
   thread_local Polytope shape, triangle;
   thread_local std::vector<ContactPointT<S>> points, found;
   found.clear();
