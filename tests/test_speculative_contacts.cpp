@@ -45,21 +45,6 @@ std::pair<std::vector<spook::ContactPointT<S>>, std::vector<spook::ContactPointT
   return found;
 }
 
-// Sets `body` moving at 2 m/s along x over the seam of two flush tiles at
-// x = 0 for `steps` steps: its slowest speed along x and fastest vertical
-// speed (m/s), which a ghost contact at the seam would show.
-template <class S>
-std::pair<double, double> overTheSeam(spook::SimulationT<S>& sim, spook::RigidBodyT<S>& body, int steps) {
-  body.setVelocity(spook::Vec3T<S>(S(2), S(0), S(0)));
-  double slowest = 2.0, fastestVertical = 0.0;
-  for (int step = 0; step < steps; ++step) {
-    sim.stepForward();
-    slowest = std::min(slowest, double(body.getVelocity().x()));
-    fastestVertical = std::max(fastestVertical, std::abs(double(body.getVelocity().z())));
-  }
-  return {slowest, fastestVertical};
-}
-
 // A static box of half extents `half` whose top face is the plane z = 0.
 template <class S>
 void addBoxGround(spook::SimulationT<S>& sim, const spook::ref_ptr<spook::MaterialT<S>>& material,
@@ -69,6 +54,34 @@ void addBoxGround(spook::SimulationT<S>& sim, const spook::ref_ptr<spook::Materi
       spook::makeTransform<S>(spook::Vec3T<S>(x, S(0), -half.z()), spook::QuatT<S>::Identity()), "ground");
   ground->setMaterial(material);
   sim.add(ground);
+}
+
+// A simulation with two flush frictionless box tiles of half width `half`
+// centered at x = ±half (top faces at z = 0, the seam at x = 0), and their
+// material.
+template <class S>
+std::pair<spook::ref_ptr<spook::SimulationT<S>>, spook::ref_ptr<spook::MaterialT<S>>> flushIceTiles(S half) {
+  spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
+  spook::ref_ptr<spook::MaterialT<S>> ice = new spook::MaterialT<S>("ice");
+  sim->getMaterialManager()->getOrCreateContactMaterial(ice.get(), ice.get())->setFrictionCoefficient(S(0));
+  for (const S x : {-half, half}) addBoxGround<S>(*sim, ice, spook::Vec3T<S>(half, half, S(0.5)), x);
+  return {sim, ice};
+}
+
+// Lets `body` settle for 30 steps, then sets it moving at 2 m/s along x
+// over the seam at x = 0 for `steps` steps: its slowest speed along x and
+// fastest vertical speed (m/s), which a ghost contact at the seam would show.
+template <class S>
+std::pair<double, double> overTheSeam(spook::SimulationT<S>& sim, spook::RigidBodyT<S>& body, int steps) {
+  for (int step = 0; step < 30; ++step) sim.stepForward();
+  body.setVelocity(spook::Vec3T<S>(S(2), S(0), S(0)));
+  double slowest = 2.0, fastestVertical = 0.0;
+  for (int step = 0; step < steps; ++step) {
+    sim.stepForward();
+    slowest = std::min(slowest, double(body.getVelocity().x()));
+    fastestVertical = std::max(fastestVertical, std::abs(double(body.getVelocity().z())));
+  }
+  return {slowest, fastestVertical};
 }
 
 }  // namespace speculative_test
@@ -307,19 +320,9 @@ TEST_CASE_TEMPLATE("a box lands on a box without overlapping and slides over the
     MESSAGE("box on box: deepest overlap ", deepest * 1e3, " mm");
     CHECK(deepest < 1e-4);  // 1.72 mm found only once overlapping
   }
-  spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
-  spook::ref_ptr<spook::MaterialT<S>> ice = new spook::MaterialT<S>("ice");
-  sim->getMaterialManager()->getOrCreateContactMaterial(ice.get(), ice.get())->setFrictionCoefficient(S(0));
-  for (const S x : {S(-1), S(1)}) {
-    spook::ref_ptr<spook::GeometryT<S>> tile = new spook::GeometryT<S>(
-        new spook::BoxT<S>(spook::Vec3T<S>(S(1), S(1), S(0.5))),
-        spook::makeTransform<S>(spook::Vec3T<S>(x, S(0), S(-0.5)), spook::QuatT<S>::Identity()), "tile");
-    tile->setMaterial(ice);
-    sim->add(tile);
-  }
+  const auto [sim, ice] = speculative_test::flushIceTiles<S>(S(1));
   auto crate = spook::test::addBody<S>(*sim, "crate", new spook::BoxT<S>(spook::Vec3T<S>(S(0.2), S(0.2), S(0.2))), ice,
                                        {S(-1.013), S(0), S(0.2)});
-  for (int step = 0; step < 30; ++step) sim->stepForward();  // settles on the first tile
   const auto [slowest, fastestVertical] = speculative_test::overTheSeam(*sim, *crate, 45);  // 1.5 m
   MESSAGE("crate over the seam: slowest ", slowest, " m/s, fastest vertical ", fastestVertical, " m/s");
   CHECK(crate->getPosition().x() > S(0.4));
@@ -399,13 +402,9 @@ TEST_CASE_TEMPLATE(
 
   // Sliding (no friction) at 2 m/s over the seam of two flush tiles: no
   // gap point from the second tile's side face stops it.
-  spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
-  spook::ref_ptr<spook::MaterialT<S>> ice = new spook::MaterialT<S>("ice");
-  sim->getMaterialManager()->getOrCreateContactMaterial(ice.get(), ice.get())->setFrictionCoefficient(S(0));
-  for (const S x : {S(-2), S(2)}) speculative_test::addBoxGround<S>(*sim, ice, Vec3(S(2), S(2), S(0.5)), x);
+  const auto [sim, ice] = speculative_test::flushIceTiles<S>(S(2));
   auto wheel =
       spook::test::addBody<S>(*sim, "wheel", new spook::CylinderT<S>(r, width), ice, {S(-1), S(0), r}, upright);
-  for (int step = 0; step < 30; ++step) sim->stepForward();  // settles on the first tile
   const auto [slowest, fastestVertical] = speculative_test::overTheSeam(*sim, *wheel, 60);  // 2 m
   MESSAGE("wheel over the seam: slowest ", slowest, " m/s, fastest vertical ", fastestVertical, " m/s");
   CHECK(wheel->getPosition().x() > S(0.9));
