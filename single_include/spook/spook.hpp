@@ -3928,6 +3928,7 @@ using AllShapes =
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace spook {
@@ -3947,6 +3948,11 @@ namespace detail {
 /// ch. 13), each coordinate cut into `resolution` bins over [−1, 1]; in each
 /// bin the point farthest from the centroid survives (so the survivors span
 /// the largest area, as the seeds put it), ties going to the deeper one.
+/// The deepest point survives too where it is deeper than every survivor
+/// by more than 1e-3 of the patch's radius: the farthest of a tilted or
+/// curved shape's points (gap points of a hull nearing the ground) may be
+/// its highest, and without the lowest one it falls past the ground for a
+/// step.
 /// Resolution 2 keeps at most one point per quadrant of a flat contact
 /// patch, 3 keeps more. Disabled points stay in the list. A point whose
 /// position, normal or depth is not finite is disabled and left out of the
@@ -4001,6 +4007,13 @@ void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
     (better ? it->best : p)->enabled = false;
     if (better) it->best = p;
   }
+  ContactPointT<S>* deepest = nullptr;
+  S deepestSurvivor = -std::numeric_limits<S>::infinity();
+  for (auto* p : points) {
+    if (!deepest || p->depth > deepest->depth) deepest = p;
+    if (p->enabled) deepestSurvivor = std::max(deepestSurvivor, p->depth);
+  }
+  if (deepest->depth - deepestSurvivor > S(1e-3) * reach * unit) deepest->enabled = true;
 }
 
 }  // namespace detail
@@ -8790,6 +8803,7 @@ struct Collider<PlaneT<S>, SphereT<S>> {
 #define SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_POLYTOPE_SAT_HPP
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -8956,6 +8970,12 @@ struct SeparatingAxis {
   Vec3T<S> n = Vec3T<S>::UnitZ();
   Kind kind = FACE_OF_A;
   int first = -1, second = -1;  // the face, or the edge of a and the edge of b
+  // Apart (depth < 0, within leastOverlap's reach): the most any axis
+  // separates them, and whether a face axis across this one meets flush
+  // (see leastOverlap).
+  S widestGap = std::numeric_limits<S>::infinity();
+  bool flushFace = false;
+  S touching = 0;  // apart by less than this, they touch (m)
 };
 
 /// Whether edges with face normals (a, b) on one polytope and (c, d) on the
@@ -8973,8 +8993,17 @@ struct SeparatingAxis {
 /// The separating axis theorem for polytopes: the penetration depth is the
 /// least overlap f(n) = h_a(n) + h_b(−n) over the face normals of each and
 /// the cross products of their edges (the face normals of the Minkowski
-/// difference), both signs. Returns false as soon as an axis separates.
-[[nodiscard]] inline bool leastOverlap(const Polytope& a, const Polytope& b, SeparatingAxis& best) {
+/// difference), both signs. Returns false as soon as an axis separates them
+/// by more than `reach` (m). Within it, the least overlap is negative (apart);
+/// best.widestGap is then the least overlap over every axis tested, and
+/// best.flushFace tells whether some face axis at more than 45° to the
+/// least one overlaps by no more than 1e-3 of the smaller solid's size (one
+/// level with the other's face while apart from its side: a hull sliding
+/// onto the next box tile, a box over a flat mesh beside the triangle it
+/// rests on). A face axis nearly along the least one is no such seam: a
+/// hull's bottom face tilted by 1e-4 rad over a large triangle overlaps it
+/// by a fraction of a millimetre.
+[[nodiscard]] inline bool leastOverlap(const Polytope& a, const Polytope& b, SeparatingAxis& best, double reach = 0.0) {
   using S = double;
   using Kind = SeparatingAxis::Kind;
   const auto overlap = [&](const Vec3T<S>& n) { return a.support(n).first + b.support(-n).first; };
@@ -8993,7 +9022,18 @@ struct SeparatingAxis {
     for (const Vec3T<S>& v : p.vertices) low = low.cwiseMin(v), high = high.cwiseMax(v);
     return (high - low).norm();
   };
-  const S faceTolerance = roundOff + S(1e-5) * std::min(diameter(a), diameter(b));
+  const S sizeA = diameter(a), sizeB = diameter(b);
+  const S faceTolerance = roundOff + S(1e-5) * std::min(sizeA, sizeB);
+  // The flush band, from the size of the smaller solid (not of a mesh
+  // triangle, which may be far larger or smaller than what rests on it).
+  S solidSize = std::min(a.twoSided ? std::numeric_limits<S>::infinity() : sizeA,
+                         b.twoSided ? std::numeric_limits<S>::infinity() : sizeB);
+  if (!(solidSize < std::numeric_limits<S>::infinity())) solidSize = std::min(sizeA, sizeB);
+  const S flush = reach > S(0) ? S(1e-3) * solidSize : S(0);
+  const S touching = roundOff + S(kTouchingGap) * solidSize;
+  best.touching = touching;
+  std::array<Vec3T<S>, 8> flushNormals;
+  std::size_t flushCount = 0;
   // An edge pair's axis counts only where both edges are extreme along it
   // (they touch there); for other pairs it may still separate the shapes.
   const auto edgesSupport = [&](const Polytope::Edge& ea, const Polytope::Edge& eb, const Vec3T<S>& n) {
@@ -9004,9 +9044,12 @@ struct SeparatingAxis {
   };
   const auto consider = [&](const Vec3T<S>& n, Kind kind, int first, int second) {
     const S f = overlap(n);
+    if (f < -reach) return false;
+    best.widestGap = std::min(best.widestGap, f);
     if (kind != Kind::EDGES) {
-      if (f < best.depth) best = {f, n, kind, first, second};
-      return f >= S(0);
+      if (f <= flush && f >= -touching && flushCount < flushNormals.size()) flushNormals[flushCount++] = n;
+      if (f < best.depth) best = {f, n, kind, first, second, best.widestGap, false, touching};
+      return true;
     }
     const bool againstFace = best.kind != Kind::EDGES;
     const bool nearFace = againstFace && n.dot(best.n) >= S(1) - S(5e-7);
@@ -9016,12 +9059,12 @@ struct SeparatingAxis {
     };
     if (f < best.depth) {
       if (!faceHeld) {
-        if (supported()) best = {f, n, kind, first, second};
+        if (supported()) best = {f, n, kind, first, second, best.widestGap, false, touching};
       } else if (nearFace && supported()) {
         best.depth = f;  // the face's manifold carries the edges' exact depth
       }
     }
-    return f >= S(0);
+    return true;
   };
   for (std::size_t i = 0; i < a.faces.size(); ++i) {
     const Vec3T<S>& n = a.faces[i].normal;
@@ -9053,6 +9096,8 @@ struct SeparatingAxis {
       if (!consider(n, Kind::EDGES, int(i), int(j)) || !consider(-n, Kind::EDGES, int(i), int(j))) return false;
     }
   }
+  for (std::size_t k = 0; k < flushCount; ++k)
+    if (std::abs(flushNormals[k].dot(best.n)) < S(0.7)) best.flushFace = true;
   return best.depth < std::numeric_limits<S>::infinity();
 }
 
@@ -9103,13 +9148,16 @@ inline void clipToHalfSpace(std::vector<Vec3T<double>>& corners, const Vec3T<dou
 /// corner as deep as `depth` (the deepest one hangs over the reference
 /// face's rim) a contact at `depth` is added where the clipped feature comes
 /// nearest to that corner, so that the deepest contact is always the
-/// penetration depth of the pair.
+/// penetration depth of the pair. Corners above the reference face by less
+/// than `reach` (m) are gap points (negative depth).
 template <Scalar T>
 void faceContacts(const Polytope& reference, const std::vector<int>& loop, const Vec3T<double>& r,
-                  const Polytope& incident, const Vec3T<double>& n, double depth, ContactSinkT<T>& sink) {
+                  const Polytope& incident, const Vec3T<double>& n, double depth, ContactSinkT<T>& sink,
+                  double reach = 0.0) {
   using S = double;
+  S tolerance = S(0);
   const auto add = [&](const Vec3T<S>& point, S pointDepth) {
-    sink.add(point.template cast<T>(), n.template cast<T>(), T(pointDepth));
+    sink.addSpeculative(point.template cast<T>(), n.template cast<T>(), T(pointDepth), T(tolerance));
   };
   const S planeOffset = r.dot(reference.vertex(loop[0]));
   thread_local std::vector<Vec3T<S>> corners, scratch;
@@ -9128,10 +9176,10 @@ void faceContacts(const Polytope& reference, const std::vector<int>& loop, const
     clipToHalfSpace(corners, side, side.dot(p), scratch);
   }
   S deepest = -std::numeric_limits<S>::infinity();
-  const S tolerance = S(64) * ScalarTraits<S>::epsilon() * (S(1) + std::abs(planeOffset));
+  tolerance = S(64) * ScalarTraits<S>::epsilon() * (S(1) + std::abs(planeOffset));
   for (const Vec3T<S>& x : corners) {
     const S pointDepth = std::min(planeOffset - r.dot(x), depth);
-    if (pointDepth < -tolerance) continue;
+    if (pointDepth < -tolerance - reach) continue;
     add(x + r * (S(0.5) * pointDepth), pointDepth);
     deepest = std::max(deepest, pointDepth);
   }
@@ -9175,7 +9223,8 @@ void faceContacts(const Polytope& reference, const std::vector<int>& loop, const
 /// at the ends of their common range, for edges within the feature angle
 /// of parallel.
 template <Scalar T>
-void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink) {
+void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink,
+                      double reach = 0.0) {
   using S = double;
   const auto add = [&](const Vec3T<S>& point, S depth) {
     sink.add(point.template cast<T>(), axis.n.template cast<T>(), T(depth));
@@ -9185,9 +9234,10 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
     const bool onA = axis.kind == SeparatingAxis::FACE_OF_A;
     const Polytope& reference = onA ? a : b;
     const Vec3T<S> r = onA ? n : Vec3T<S>(-n);  // the reference face's outward normal, toward the incident polytope
-    faceContacts(reference, reference.faces[std::size_t(axis.first)].loop, r, onA ? b : a, n, axis.depth, sink);
+    faceContacts(reference, reference.faces[std::size_t(axis.first)].loop, r, onA ? b : a, n, axis.depth, sink, reach);
     return;
   }
+  if (axis.depth < -axis.touching) return;  // apart across edges: no gap points
   // Not for mesh triangles: a box sliding across a mesh's internal edges
   // then bumps harder (|v_z| 0.12 -> 0.5 m/s at 3 m/s on 1 m cells). A
   // face's overlap within 1e-4 of the thinner polytope's thickness of the
@@ -9239,12 +9289,20 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
   add(S(0.5) * (closest.onFirst + closest.onSecond), axis.depth);
 }
 
-/// Contacts of two polytopes (from a toward b), none when an axis separates them.
+/// Contacts of two polytopes (from a toward b), none when an axis separates
+/// them. With `gapPoints`, polytopes apart by less than the sink's margin
+/// across a face give that face's manifold as gap points (negative depth),
+/// as box–box does: none across edges (or where an edge axis separates them
+/// by 5% more than the face), and none where a face axis meets flush (a
+/// seam between level faces, where gap points beside it would be ghost
+/// contacts).
 template <Scalar T>
-void collidePolytopes(const Polytope& a, const Polytope& b, ContactSinkT<T>& sink) {
+void collidePolytopes(const Polytope& a, const Polytope& b, ContactSinkT<T>& sink, bool gapPoints = false) {
+  const double reach = gapPoints ? double(sink.margin()) : 0.0;
   SeparatingAxis axis;
-  if (!leastOverlap(a, b, axis)) return;
-  polytopeContacts(a, b, axis, sink);
+  if (!leastOverlap(a, b, axis, reach)) return;
+  if (axis.depth < -axis.touching && (axis.flushFace || axis.widestGap < 1.05 * axis.depth - axis.touching)) return;
+  polytopeContacts(a, b, axis, sink, reach);
 }
 
 }  // namespace spook::detail
@@ -9255,7 +9313,9 @@ namespace spook {
 
 // Pairs of polytopes (boxes, hulls, segments) by the separating axis theorem
 // over face normals and Gauss-map-pruned edge pairs (detail/polytope_sat.hpp):
-// the exact penetration depth, and a clipped manifold where a face touches.
+// the exact penetration depth, and a clipped manifold where a face touches;
+// two solids apart by less than the sink's margin across a face give that
+// manifold as gap points.
 // Box–box and box–line have their own, leaner colliders.
 
 namespace detail {
@@ -9267,7 +9327,8 @@ struct PolytopeCollider {
     thread_local Polytope pa, pb;
     makePolytope(a, X_WA, pa);
     makePolytope(b, X_WB, pb);
-    collidePolytopes(pa, pb, sink);
+    // Solids give gap points; a segment (a line) has no face to give them.
+    collidePolytopes(pa, pb, sink, !pa.faces.empty() && !pb.faces.empty());
   }
 };
 }  // namespace detail
@@ -9765,7 +9826,9 @@ void collideWithSoup(const A& a, const TransformT<S>& X_WA, const TriangleSoupVi
                      ContactSinkT<S>& sink, TriangleContacts report) {
   const BoundingBoxT<S> boxA = a.getBoundingBox();
   BoundingBoxT<S> grown = boxA.grownBy(S(kTouchingGap));
-  if constexpr (A::kType == ShapeType::CYLINDER) {  // its gap points (collideCylinderTriangle)
+  // The gap points of cylinders (collideCylinderTriangle), boxes and hulls
+  // (collidePolytopes).
+  if constexpr (A::kType == ShapeType::CYLINDER || A::kType == ShapeType::BOX || A::kType == ShapeType::CONVEX) {
     grown.min.array() -= sink.margin();
     grown.max.array() += sink.margin();
   }
@@ -9783,7 +9846,7 @@ void collideWithSoup(const A& a, const TransformT<S>& X_WA, const TriangleSoupVi
       collideSphereTriangle<S>(a, X_WA.translation(), t_W, staged, soup.heightField);
     } else if constexpr (kIsPolytope<A>) {
       makeTrianglePolytope<S>(t_W, triangle);
-      collidePolytopes(shape, triangle, staged);
+      collidePolytopes(shape, triangle, staged, !shape.faces.empty());
     } else if constexpr (A::kType == ShapeType::CAPSULE) {
       collideCapsuleTriangle<S>(a, X_WA, Triangle<S>{{p0, p1, p2}}, X_WM, staged);
     } else if constexpr (A::kType == ShapeType::CYLINDER) {
@@ -9834,7 +9897,8 @@ void collideSoups(const SoupA& a, const TransformT<S>& X_WA, const SoupB& b, con
 }
 
 /// Every vertex of `points` (frame A) at or below the plane is a contact,
-/// with the normal from the points' shape into the plane (−n).
+/// with the normal from the points' shape into the plane (−n); one above it
+/// by less than the sink's margin is a gap point.
 template <Scalar S, class Points>
 void collideVerticesWithPlane(const Points& vertices, const TransformT<S>& X_WA, const PlaneT<S>& plane,
                               const TransformT<S>& X_WP, ContactSinkT<S>& sink, bool planeFirst) {
@@ -9843,9 +9907,9 @@ void collideVerticesWithPlane(const Points& vertices, const TransformT<S>& X_WA,
   for (const auto& v : vertices) {
     const Vec3T<S> p = X_WA * v;
     const S height = n.dot(p - o);
-    if (height > S(0)) continue;
+    if (!sink.accepts(-height)) continue;
     const Vec3T<S> mid = p - n * (height * S(0.5));
-    sink.add(mid, planeFirst ? n : Vec3T<S>(-n), -height);
+    sink.addSpeculative(mid, planeFirst ? n : Vec3T<S>(-n), -height);
   }
 }
 
@@ -9862,7 +9926,8 @@ requires(A::kType < B::kType) struct Collider<A, B> {
   }
 };
 
-/// Plane–trimesh: the mesh vertices at or below the plane.
+/// Plane–trimesh: the mesh vertices at or below the plane (gap points above
+/// it within the margin).
 template <Scalar S>
 struct Collider<PlaneT<S>, TrimeshT<S>> {
   static void collide(const PlaneT<S>& a, const TransformT<S>& X_WA, const TrimeshT<S>& b, const TransformT<S>& X_WB,
@@ -9871,12 +9936,35 @@ struct Collider<PlaneT<S>, TrimeshT<S>> {
   }
 };
 
-/// Convex–plane: the hull vertices at or below the plane.
+/// Convex–plane: the hull vertices at or below the plane; apart, the
+/// corners of the hull's face most against the plane within the margin
+/// (gap points), as the separating-axis colliders clip the incident face:
+/// every vertex of a curved hull within the margin would give the contact
+/// reduction a ring of high points to choose from.
 template <Scalar S>
 struct Collider<ConvexT<S>, PlaneT<S>> {
   static void collide(const ConvexT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    detail::collideVerticesWithPlane<S>(a.getVertices(), X_WA, b, X_WB, sink, false);
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S> o = X_WB * b.getPoint();
+    const auto& vertices = a.getVertices();
+    const auto heightOf = [&](const Vec3T<S>& v) { return n.dot(X_WA * v - o); };
+    const auto emit = [&](const Vec3T<S>& v, S height) {
+      sink.addSpeculative(Vec3T<S>(X_WA * v - n * (height * S(0.5))), Vec3T<S>(-n), -height);
+    };
+    for (const auto& v : vertices)
+      if (const S height = heightOf(v); height <= S(0)) emit(v, height);
+    if (sink.margin() == S(0)) return;
+    const Vec3T<S> n_A = X_WA.linear().transpose() * n;
+    const auto& faces = a.getFaces();
+    const auto against = std::min_element(faces.begin(), faces.end(), [&](const auto& f, const auto& g) {
+      return f.normal.dot(n_A) < g.normal.dot(n_A);
+    });
+    if (against == faces.end()) return;
+    for (const int k : against->vertices) {
+      const Vec3T<S>& v = vertices[static_cast<std::size_t>(k)];
+      if (const S height = heightOf(v); height > S(0) && sink.accepts(-height)) emit(v, height);
+    }
   }
 };
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include <spook/collide/contact_point.hpp>
@@ -26,6 +27,11 @@ namespace detail {
 /// ch. 13), each coordinate cut into `resolution` bins over [−1, 1]; in each
 /// bin the point farthest from the centroid survives (so the survivors span
 /// the largest area, as the seeds put it), ties going to the deeper one.
+/// The deepest point survives too where it is deeper than every survivor
+/// by more than 1e-3 of the patch's radius: the farthest of a tilted or
+/// curved shape's points (gap points of a hull nearing the ground) may be
+/// its highest, and without the lowest one it falls past the ground for a
+/// step.
 /// Resolution 2 keeps at most one point per quadrant of a flat contact
 /// patch, 3 keeps more. Disabled points stay in the list. A point whose
 /// position, normal or depth is not finite is disabled and left out of the
@@ -80,6 +86,13 @@ void reduceContacts(std::vector<ContactPointT<S>*>& points, int resolution) {
     (better ? it->best : p)->enabled = false;
     if (better) it->best = p;
   }
+  ContactPointT<S>* deepest = nullptr;
+  S deepestSurvivor = -std::numeric_limits<S>::infinity();
+  for (auto* p : points) {
+    if (!deepest || p->depth > deepest->depth) deepest = p;
+    if (p->enabled) deepestSurvivor = std::max(deepestSurvivor, p->depth);
+  }
+  if (deepest->depth - deepestSurvivor > S(1e-3) * reach * unit) deepest->enabled = true;
 }
 
 }  // namespace detail

@@ -148,7 +148,9 @@ void collideWithSoup(const A& a, const TransformT<S>& X_WA, const TriangleSoupVi
                      ContactSinkT<S>& sink, TriangleContacts report) {
   const BoundingBoxT<S> boxA = a.getBoundingBox();
   BoundingBoxT<S> grown = boxA.grownBy(S(kTouchingGap));
-  if constexpr (A::kType == ShapeType::CYLINDER) {  // its gap points (collideCylinderTriangle)
+  // The gap points of cylinders (collideCylinderTriangle), boxes and hulls
+  // (collidePolytopes).
+  if constexpr (A::kType == ShapeType::CYLINDER || A::kType == ShapeType::BOX || A::kType == ShapeType::CONVEX) {
     grown.min.array() -= sink.margin();
     grown.max.array() += sink.margin();
   }
@@ -166,7 +168,7 @@ void collideWithSoup(const A& a, const TransformT<S>& X_WA, const TriangleSoupVi
       collideSphereTriangle<S>(a, X_WA.translation(), t_W, staged, soup.heightField);
     } else if constexpr (kIsPolytope<A>) {
       makeTrianglePolytope<S>(t_W, triangle);
-      collidePolytopes(shape, triangle, staged);
+      collidePolytopes(shape, triangle, staged, !shape.faces.empty());
     } else if constexpr (A::kType == ShapeType::CAPSULE) {
       collideCapsuleTriangle<S>(a, X_WA, Triangle<S>{{p0, p1, p2}}, X_WM, staged);
     } else if constexpr (A::kType == ShapeType::CYLINDER) {
@@ -217,7 +219,8 @@ void collideSoups(const SoupA& a, const TransformT<S>& X_WA, const SoupB& b, con
 }
 
 /// Every vertex of `points` (frame A) at or below the plane is a contact,
-/// with the normal from the points' shape into the plane (−n).
+/// with the normal from the points' shape into the plane (−n); one above it
+/// by less than the sink's margin is a gap point.
 template <Scalar S, class Points>
 void collideVerticesWithPlane(const Points& vertices, const TransformT<S>& X_WA, const PlaneT<S>& plane,
                               const TransformT<S>& X_WP, ContactSinkT<S>& sink, bool planeFirst) {
@@ -226,9 +229,9 @@ void collideVerticesWithPlane(const Points& vertices, const TransformT<S>& X_WA,
   for (const auto& v : vertices) {
     const Vec3T<S> p = X_WA * v;
     const S height = n.dot(p - o);
-    if (height > S(0)) continue;
+    if (!sink.accepts(-height)) continue;
     const Vec3T<S> mid = p - n * (height * S(0.5));
-    sink.add(mid, planeFirst ? n : Vec3T<S>(-n), -height);
+    sink.addSpeculative(mid, planeFirst ? n : Vec3T<S>(-n), -height);
   }
 }
 
@@ -245,7 +248,8 @@ requires(A::kType < B::kType) struct Collider<A, B> {
   }
 };
 
-/// Plane–trimesh: the mesh vertices at or below the plane.
+/// Plane–trimesh: the mesh vertices at or below the plane (gap points above
+/// it within the margin).
 template <Scalar S>
 struct Collider<PlaneT<S>, TrimeshT<S>> {
   static void collide(const PlaneT<S>& a, const TransformT<S>& X_WA, const TrimeshT<S>& b, const TransformT<S>& X_WB,
@@ -254,12 +258,35 @@ struct Collider<PlaneT<S>, TrimeshT<S>> {
   }
 };
 
-/// Convex–plane: the hull vertices at or below the plane.
+/// Convex–plane: the hull vertices at or below the plane; apart, the
+/// corners of the hull's face most against the plane within the margin
+/// (gap points), as the separating-axis colliders clip the incident face:
+/// every vertex of a curved hull within the margin would give the contact
+/// reduction a ring of high points to choose from.
 template <Scalar S>
 struct Collider<ConvexT<S>, PlaneT<S>> {
   static void collide(const ConvexT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
                       ContactSinkT<S>& sink) {
-    detail::collideVerticesWithPlane<S>(a.getVertices(), X_WA, b, X_WB, sink, false);
+    const Vec3T<S> n = X_WB.linear() * b.getNormal();
+    const Vec3T<S> o = X_WB * b.getPoint();
+    const auto& vertices = a.getVertices();
+    const auto heightOf = [&](const Vec3T<S>& v) { return n.dot(X_WA * v - o); };
+    const auto emit = [&](const Vec3T<S>& v, S height) {
+      sink.addSpeculative(Vec3T<S>(X_WA * v - n * (height * S(0.5))), Vec3T<S>(-n), -height);
+    };
+    for (const auto& v : vertices)
+      if (const S height = heightOf(v); height <= S(0)) emit(v, height);
+    if (sink.margin() == S(0)) return;
+    const Vec3T<S> n_A = X_WA.linear().transpose() * n;
+    const auto& faces = a.getFaces();
+    const auto against = std::min_element(faces.begin(), faces.end(), [&](const auto& f, const auto& g) {
+      return f.normal.dot(n_A) < g.normal.dot(n_A);
+    });
+    if (against == faces.end()) return;
+    for (const int k : against->vertices) {
+      const Vec3T<S>& v = vertices[static_cast<std::size_t>(k)];
+      if (const S height = heightOf(v); height > S(0) && sink.accepts(-height)) emit(v, height);
+    }
   }
 };
 

@@ -10,7 +10,9 @@ namespace spook {
 
 // Pairs of polytopes (boxes, hulls, segments) by the separating axis theorem
 // over face normals and Gauss-map-pruned edge pairs (detail/polytope_sat.hpp):
-// the exact penetration depth, and a clipped manifold where a face touches.
+// the exact penetration depth, and a clipped manifold where a face touches;
+// two solids apart by less than the sink's margin across a face give that
+// manifold as gap points.
 // Box–box and box–line have their own, leaner colliders.
 
 namespace detail {
@@ -22,7 +24,8 @@ struct PolytopeCollider {
     thread_local Polytope pa, pb;
     makePolytope(a, X_WA, pa);
     makePolytope(b, X_WB, pb);
-    collidePolytopes(pa, pb, sink);
+    // Solids give gap points; a segment (a line) has no face to give them.
+    collidePolytopes(pa, pb, sink, !pa.faces.empty() && !pb.faces.empty());
   }
 };
 }  // namespace detail

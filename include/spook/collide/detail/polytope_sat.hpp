@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -22,6 +23,12 @@ struct SeparatingAxis {
   Vec3T<S> n = Vec3T<S>::UnitZ();
   Kind kind = FACE_OF_A;
   int first = -1, second = -1;  // the face, or the edge of a and the edge of b
+  // Apart (depth < 0, within leastOverlap's reach): the most any axis
+  // separates them, and whether a face axis across this one meets flush
+  // (see leastOverlap).
+  S widestGap = std::numeric_limits<S>::infinity();
+  bool flushFace = false;
+  S touching = 0;  // apart by less than this, they touch (m)
 };
 
 /// Whether edges with face normals (a, b) on one polytope and (c, d) on the
@@ -39,8 +46,17 @@ struct SeparatingAxis {
 /// The separating axis theorem for polytopes: the penetration depth is the
 /// least overlap f(n) = h_a(n) + h_b(−n) over the face normals of each and
 /// the cross products of their edges (the face normals of the Minkowski
-/// difference), both signs. Returns false as soon as an axis separates.
-[[nodiscard]] inline bool leastOverlap(const Polytope& a, const Polytope& b, SeparatingAxis& best) {
+/// difference), both signs. Returns false as soon as an axis separates them
+/// by more than `reach` (m). Within it, the least overlap is negative (apart);
+/// best.widestGap is then the least overlap over every axis tested, and
+/// best.flushFace tells whether some face axis at more than 45° to the
+/// least one overlaps by no more than 1e-3 of the smaller solid's size (one
+/// level with the other's face while apart from its side: a hull sliding
+/// onto the next box tile, a box over a flat mesh beside the triangle it
+/// rests on). A face axis nearly along the least one is no such seam: a
+/// hull's bottom face tilted by 1e-4 rad over a large triangle overlaps it
+/// by a fraction of a millimetre.
+[[nodiscard]] inline bool leastOverlap(const Polytope& a, const Polytope& b, SeparatingAxis& best, double reach = 0.0) {
   using S = double;
   using Kind = SeparatingAxis::Kind;
   const auto overlap = [&](const Vec3T<S>& n) { return a.support(n).first + b.support(-n).first; };
@@ -59,7 +75,18 @@ struct SeparatingAxis {
     for (const Vec3T<S>& v : p.vertices) low = low.cwiseMin(v), high = high.cwiseMax(v);
     return (high - low).norm();
   };
-  const S faceTolerance = roundOff + S(1e-5) * std::min(diameter(a), diameter(b));
+  const S sizeA = diameter(a), sizeB = diameter(b);
+  const S faceTolerance = roundOff + S(1e-5) * std::min(sizeA, sizeB);
+  // The flush band, from the size of the smaller solid (not of a mesh
+  // triangle, which may be far larger or smaller than what rests on it).
+  S solidSize = std::min(a.twoSided ? std::numeric_limits<S>::infinity() : sizeA,
+                         b.twoSided ? std::numeric_limits<S>::infinity() : sizeB);
+  if (!(solidSize < std::numeric_limits<S>::infinity())) solidSize = std::min(sizeA, sizeB);
+  const S flush = reach > S(0) ? S(1e-3) * solidSize : S(0);
+  const S touching = roundOff + S(kTouchingGap) * solidSize;
+  best.touching = touching;
+  std::array<Vec3T<S>, 8> flushNormals;
+  std::size_t flushCount = 0;
   // An edge pair's axis counts only where both edges are extreme along it
   // (they touch there); for other pairs it may still separate the shapes.
   const auto edgesSupport = [&](const Polytope::Edge& ea, const Polytope::Edge& eb, const Vec3T<S>& n) {
@@ -70,9 +97,12 @@ struct SeparatingAxis {
   };
   const auto consider = [&](const Vec3T<S>& n, Kind kind, int first, int second) {
     const S f = overlap(n);
+    if (f < -reach) return false;
+    best.widestGap = std::min(best.widestGap, f);
     if (kind != Kind::EDGES) {
-      if (f < best.depth) best = {f, n, kind, first, second};
-      return f >= S(0);
+      if (f <= flush && f >= -touching && flushCount < flushNormals.size()) flushNormals[flushCount++] = n;
+      if (f < best.depth) best = {f, n, kind, first, second, best.widestGap, false, touching};
+      return true;
     }
     const bool againstFace = best.kind != Kind::EDGES;
     const bool nearFace = againstFace && n.dot(best.n) >= S(1) - S(5e-7);
@@ -82,12 +112,12 @@ struct SeparatingAxis {
     };
     if (f < best.depth) {
       if (!faceHeld) {
-        if (supported()) best = {f, n, kind, first, second};
+        if (supported()) best = {f, n, kind, first, second, best.widestGap, false, touching};
       } else if (nearFace && supported()) {
         best.depth = f;  // the face's manifold carries the edges' exact depth
       }
     }
-    return f >= S(0);
+    return true;
   };
   for (std::size_t i = 0; i < a.faces.size(); ++i) {
     const Vec3T<S>& n = a.faces[i].normal;
@@ -119,6 +149,8 @@ struct SeparatingAxis {
       if (!consider(n, Kind::EDGES, int(i), int(j)) || !consider(-n, Kind::EDGES, int(i), int(j))) return false;
     }
   }
+  for (std::size_t k = 0; k < flushCount; ++k)
+    if (std::abs(flushNormals[k].dot(best.n)) < S(0.7)) best.flushFace = true;
   return best.depth < std::numeric_limits<S>::infinity();
 }
 
@@ -169,13 +201,16 @@ inline void clipToHalfSpace(std::vector<Vec3T<double>>& corners, const Vec3T<dou
 /// corner as deep as `depth` (the deepest one hangs over the reference
 /// face's rim) a contact at `depth` is added where the clipped feature comes
 /// nearest to that corner, so that the deepest contact is always the
-/// penetration depth of the pair.
+/// penetration depth of the pair. Corners above the reference face by less
+/// than `reach` (m) are gap points (negative depth).
 template <Scalar T>
 void faceContacts(const Polytope& reference, const std::vector<int>& loop, const Vec3T<double>& r,
-                  const Polytope& incident, const Vec3T<double>& n, double depth, ContactSinkT<T>& sink) {
+                  const Polytope& incident, const Vec3T<double>& n, double depth, ContactSinkT<T>& sink,
+                  double reach = 0.0) {
   using S = double;
+  S tolerance = S(0);
   const auto add = [&](const Vec3T<S>& point, S pointDepth) {
-    sink.add(point.template cast<T>(), n.template cast<T>(), T(pointDepth));
+    sink.addSpeculative(point.template cast<T>(), n.template cast<T>(), T(pointDepth), T(tolerance));
   };
   const S planeOffset = r.dot(reference.vertex(loop[0]));
   thread_local std::vector<Vec3T<S>> corners, scratch;
@@ -194,10 +229,10 @@ void faceContacts(const Polytope& reference, const std::vector<int>& loop, const
     clipToHalfSpace(corners, side, side.dot(p), scratch);
   }
   S deepest = -std::numeric_limits<S>::infinity();
-  const S tolerance = S(64) * ScalarTraits<S>::epsilon() * (S(1) + std::abs(planeOffset));
+  tolerance = S(64) * ScalarTraits<S>::epsilon() * (S(1) + std::abs(planeOffset));
   for (const Vec3T<S>& x : corners) {
     const S pointDepth = std::min(planeOffset - r.dot(x), depth);
-    if (pointDepth < -tolerance) continue;
+    if (pointDepth < -tolerance - reach) continue;
     add(x + r * (S(0.5) * pointDepth), pointDepth);
     deepest = std::max(deepest, pointDepth);
   }
@@ -241,7 +276,8 @@ void faceContacts(const Polytope& reference, const std::vector<int>& loop, const
 /// at the ends of their common range, for edges within the feature angle
 /// of parallel.
 template <Scalar T>
-void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink) {
+void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis& axis, ContactSinkT<T>& sink,
+                      double reach = 0.0) {
   using S = double;
   const auto add = [&](const Vec3T<S>& point, S depth) {
     sink.add(point.template cast<T>(), axis.n.template cast<T>(), T(depth));
@@ -251,9 +287,10 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
     const bool onA = axis.kind == SeparatingAxis::FACE_OF_A;
     const Polytope& reference = onA ? a : b;
     const Vec3T<S> r = onA ? n : Vec3T<S>(-n);  // the reference face's outward normal, toward the incident polytope
-    faceContacts(reference, reference.faces[std::size_t(axis.first)].loop, r, onA ? b : a, n, axis.depth, sink);
+    faceContacts(reference, reference.faces[std::size_t(axis.first)].loop, r, onA ? b : a, n, axis.depth, sink, reach);
     return;
   }
+  if (axis.depth < -axis.touching) return;  // apart across edges: no gap points
   // Not for mesh triangles: a box sliding across a mesh's internal edges
   // then bumps harder (|v_z| 0.12 -> 0.5 m/s at 3 m/s on 1 m cells). A
   // face's overlap within 1e-4 of the thinner polytope's thickness of the
@@ -305,12 +342,20 @@ void polytopeContacts(const Polytope& a, const Polytope& b, const SeparatingAxis
   add(S(0.5) * (closest.onFirst + closest.onSecond), axis.depth);
 }
 
-/// Contacts of two polytopes (from a toward b), none when an axis separates them.
+/// Contacts of two polytopes (from a toward b), none when an axis separates
+/// them. With `gapPoints`, polytopes apart by less than the sink's margin
+/// across a face give that face's manifold as gap points (negative depth),
+/// as box–box does: none across edges (or where an edge axis separates them
+/// by 5% more than the face), and none where a face axis meets flush (a
+/// seam between level faces, where gap points beside it would be ghost
+/// contacts).
 template <Scalar T>
-void collidePolytopes(const Polytope& a, const Polytope& b, ContactSinkT<T>& sink) {
+void collidePolytopes(const Polytope& a, const Polytope& b, ContactSinkT<T>& sink, bool gapPoints = false) {
+  const double reach = gapPoints ? double(sink.margin()) : 0.0;
   SeparatingAxis axis;
-  if (!leastOverlap(a, b, axis)) return;
-  polytopeContacts(a, b, axis, sink);
+  if (!leastOverlap(a, b, axis, reach)) return;
+  if (axis.depth < -axis.touching && (axis.flushFace || axis.widestGap < 1.05 * axis.depth - axis.touching)) return;
+  polytopeContacts(a, b, axis, sink, reach);
 }
 
 }  // namespace spook::detail
