@@ -259,10 +259,10 @@ struct Collider<PlaneT<S>, TrimeshT<S>> {
 };
 
 /// Convex–plane: the hull vertices at or below the plane; apart, the
-/// corners of the hull's face most against the plane within the margin
-/// (gap points), as the separating-axis colliders clip the incident face:
-/// every vertex of a curved hull within the margin would give the contact
-/// reduction a ring of high points to choose from.
+/// corners within the margin of the face at its lowest corner most against
+/// the plane (gap points), as the separating-axis colliders clip the
+/// incident face: every vertex of a curved hull within the margin would
+/// give the contact reduction a ring of high points to choose from.
 template <Scalar S>
 struct Collider<ConvexT<S>, PlaneT<S>> {
   static void collide(const ConvexT<S>& a, const TransformT<S>& X_WA, const PlaneT<S>& b, const TransformT<S>& X_WB,
@@ -277,12 +277,19 @@ struct Collider<ConvexT<S>, PlaneT<S>> {
     for (const auto& v : vertices)
       if (const S height = heightOf(v); height <= S(0)) emit(v, height);
     if (sink.margin() == S(0)) return;
+    // Among the faces at the lowest corner (the most against the plane of
+    // all faces need not be one of them).
     const Vec3T<S> n_A = X_WA.linear().transpose() * n;
-    const auto& faces = a.getFaces();
-    const auto against = std::min_element(faces.begin(), faces.end(), [&](const auto& f, const auto& g) {
-      return f.normal.dot(n_A) < g.normal.dot(n_A);
-    });
-    if (against == faces.end()) return;
+    const int lowest = static_cast<int>(
+        std::min_element(vertices.begin(), vertices.end(),
+                         [&](const Vec3T<S>& u, const Vec3T<S>& v) { return n_A.dot(u) < n_A.dot(v); }) -
+        vertices.begin());
+    const typename ConvexT<S>::Face* against = nullptr;
+    for (const auto& f : a.getFaces())
+      if (std::find(f.vertices.begin(), f.vertices.end(), lowest) != f.vertices.end() &&
+          (!against || f.normal.dot(n_A) < against->normal.dot(n_A)))
+        against = &f;
+    if (!against) return;
     for (const int k : against->vertices) {
       const Vec3T<S>& v = vertices[static_cast<std::size_t>(k)];
       if (const S height = heightOf(v); height > S(0) && sink.accepts(-height)) emit(v, height);
