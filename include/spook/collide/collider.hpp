@@ -21,14 +21,15 @@ concept ConvexShape = requires(const T& shape, const typename T::Vec3& direction
 /// Analytic pairs specialize it, one file per pair in colliders/; a pair of
 /// convex shapes without one goes through libccd; any other pair has none
 /// (a hole in the collider matrix). The colliders of spheres, boxes,
-/// capsules and cylinders with planes, of spheres and capsules with each
-/// other and with a box's faces, of cylinders with a box's and a mesh
-/// triangle's faces, and of two boxes across a face (not beside a flush
-/// face) also write the gap points within the sink's speculative
-/// margin (where the gap closes at its linear rate, up to the curvature of
-/// two round shapes); the others write touching points only. Off a box's
-/// edge, or beside a face flush with it, a gap point would stop a body
-/// that slides or rolls over the seam of two flush boxes (a ghost contact).
+/// capsules, cylinders and hulls with planes, of spheres and capsules with
+/// each other, and of those five shapes with a box's, a hull's and a mesh
+/// triangle's faces (round shapes with a hull in colliders/convex_round.hpp)
+/// also write the gap points within the sink's speculative margin (where
+/// the gap closes at its linear rate, up to the curvature of two round
+/// shapes); the others (a cylinder with a sphere, a capsule or a cylinder,
+/// lines, two meshes) write touching points only. Off a face's edge, or
+/// beside a face flush with it, a gap point would stop a body that slides
+/// or rolls over the seam of two flush boxes (a ghost contact).
 template <class A, class B>
 struct Collider {};
 

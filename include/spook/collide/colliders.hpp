@@ -13,11 +13,12 @@
 #include <spook/collide/colliders/capsule_capsule.hpp>
 #include <spook/collide/colliders/capsule_plane.hpp>
 #include <spook/collide/colliders/capsule_sphere.hpp>
+#include <spook/collide/colliders/convex_round.hpp>
 #include <spook/collide/colliders/cylinder_plane.hpp>
 #include <spook/collide/colliders/cylinder_sphere.hpp>
 #include <spook/collide/colliders/line_plane.hpp>
 #include <spook/collide/colliders/line_sphere.hpp>
+#include <spook/collide/colliders/mesh.hpp>
 #include <spook/collide/colliders/plane_sphere.hpp>
 #include <spook/collide/colliders/polytopes.hpp>
 #include <spook/collide/colliders/sphere_sphere.hpp>
-#include <spook/collide/colliders/mesh.hpp>
