@@ -351,6 +351,36 @@ TEST_CASE_TEMPLATE("a pile of 64 spheres comes to rest (hybrid and iterative)", 
   }
 }
 
+// Face axes that overlap flush (a seam) cut gap points only where they run
+// across the least axis: a box 2.2e-5 m above a 40 m box, its bottom
+// turned by 1.1e-6 rad about its long side, sees its own bottom face axis
+// overlap the ground by ~0 (the ground's 20 m half width spans 2.2e-5 m
+// more along it). Taken for a seam, that left the box without gap points
+// at rest, and Gauss-Seidel at h = 0.1 s dropped it a step of free fall
+// (98 mm) into the ground.
+TEST_CASE_TEMPLATE("a box barely apart from a long box, its bottom turned by round-off, gets its gap points", S, float,
+                   double) {
+  using Vec3 = spook::Vec3T<S>;
+  spook::ref_ptr<spook::SpaceT<S>> space = new spook::SpaceT<S>();
+  spook::ref_ptr<spook::BoxT<S>> ground = new spook::BoxT<S>(Vec3(S(20), S(20), S(0.5)));
+  spook::ref_ptr<spook::BoxT<S>> box = new spook::BoxT<S>(Vec3(S(0.3), S(0.2), S(0.1)));
+  const spook::TransformT<S> X_ground = spook::makeTransform<S>(Vec3(S(0), S(0), S(-0.5)), spook::QuatT<S>::Identity());
+  for (const double turn : {0.0, 1.1e-6, -1.1e-6, 3e-6}) {
+    CAPTURE(turn);
+    const spook::QuatT<S> tilt(Eigen::AngleAxis<S>(S(turn), Vec3::UnitX()));
+    std::vector<spook::ContactPointT<S>> points;
+    spook::ContactSinkT<S> sink(points, false, S(0.05));
+    space->collideShapes(*ground, X_ground, *box, spook::makeTransform<S>(Vec3(S(1.3), S(0.1), S(0.1000216)), tilt),
+                         sink);
+    REQUIRE(points.size() == 4);
+    for (const auto& p : points) {
+      CHECK(double(p.depth) < 0.0);
+      CHECK(double(p.depth) > -5e-5);
+      CHECK(double(p.normal.z()) == doctest::Approx(1.0));
+    }
+  }
+}
+
 // A box released 1 mm above another lands touching (the pyramid's and the
 // stack's pair), and a box sliding frictionless off one static box onto the
 // next, flush with it, crosses the seam without being stopped by the next
@@ -562,11 +592,10 @@ TEST_CASE_TEMPLATE("a box or a convex hull set above a mesh, a box or a plane la
               std::string(shapes[shape]) + ", " + spook::test::policyName(policy) + " on " + grounds[ground];
           MESSAGE(label, ", h = ", h, ": deepest overlap ", deepest * 1e3, " mm");
           if (ground == 0) onPlane = deepest;
-          // Open, Gauss-Seidel at h = 0.1 s: the box-box pair (98 mm, then
-          // out) and the box-shaped hull on the height field's two triangles
-          // (78 mm, then out; the box on them holds 2.5 mm).
-          if (policy == Policy::ITERATIVE && h > 0.05 && ((shape == 0 && ground == 1) || (shape == 1 && ground == 2)))
-            continue;
+          // Open, Gauss-Seidel at h = 0.1 s: the box-shaped hull on the
+          // height field's two triangles (78 mm, then out; the box on them
+          // holds 2.5 mm).
+          if (policy == Policy::ITERATIVE && h > 0.05 && shape == 1 && ground == 2) continue;
           // Direct and hybrid: 2.5 mm at h = 0.1 s, 0.1 mm at 1/60; Gauss-Seidel
           // settles a box-shaped hull 2.5-3.6 mm deep at h = 0.1 s.
           const bool iterative = policy == Policy::ITERATIVE;
@@ -636,9 +665,11 @@ TEST_CASE_TEMPLATE("a ball, a capsule or a cylinder set above a mesh or a convex
           MESSAGE(label, ", h = ", h, ": deepest overlap ", deepest * 1e3, " mm");
           if (ground == 0) onPlane = deepest;
           // Open, Gauss-Seidel at h = 0.1 s: a standing cylinder on the
-          // meshes and the hull lands 15-32 mm deep (2.1 mm on the plane)
-          // and rocks there, up to 9 mm off its rest 2 s later.
-          if (policy == Policy::ITERATIVE && h > 0.05 && shape == 2) continue;
+          // meshes lands 15-23 mm deep (2.1 mm on the plane and the hull)
+          // and rocks there, up to 9 mm off its rest 2 s later: touching a
+          // triangle, its points are the clipped features, five to eight
+          // around the cap, not the plane's four rim points.
+          if (policy == Policy::ITERATIVE && h > 0.05 && shape == 2 && (ground == 1 || ground == 2)) continue;
           CHECK(std::abs(double(b->getPosition().z() - below)) < 1e-3);
           // 2.5 mm at h = 0.1 s, 0.1 mm at 1/60, on every ground.
           CHECK(deepest < 3e-3);

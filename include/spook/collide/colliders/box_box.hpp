@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -108,7 +109,8 @@ struct Collider<BoxT<S>, BoxT<S>> {
     const S gap = S(detail::kTouchingGap) * std::min(boxA.half.norm(), boxB.half.norm());
     const S reach = std::max(gap, sink.margin());  // the farthest apart that may still give points
     const S flush = S(kFlush) * std::min(boxA.half.norm(), boxB.half.norm());
-    bool flushFace = false;
+    std::array<Vec3, 6> flushNormals;
+    std::size_t flushCount = 0;
 
     Axis face, edge;
     // Overlap along the unit axis n; returns false when n separates them.
@@ -116,7 +118,7 @@ struct Collider<BoxT<S>, BoxT<S>> {
       const S along = n.dot(d);
       const S overlap = boxA.radius(n) + boxB.radius(n) - std::abs(along);
       if (overlap < -reach) return false;
-      if (kind != 2 && overlap >= -gap && overlap <= flush) flushFace = true;
+      if (kind != 2 && overlap >= -gap && overlap <= flush) flushNormals[flushCount++] = n;
       if (overlap < best.depth) best = Axis{along < S(0) ? Vec3(-n) : n, overlap, kind, index};
       return true;
     };
@@ -133,6 +135,15 @@ struct Collider<BoxT<S>, BoxT<S>> {
       }
     }
 
+    // A flush face runs across the least axis (at more than 45° to it):
+    // the least axis's near twin on the other box is no seam. A box 2.2e-5 m
+    // above a 40 m box, its bottom turned by 1.1e-6 rad, saw its own bottom
+    // face axis overlap the ground by ~0 (the ground's 20 m half width
+    // spans 2.2e-5 m more along it), took that for a seam and wrote no gap
+    // points: a step of free fall into the ground (98 mm at h = 0.1 s).
+    bool flushFace = false;
+    for (std::size_t k = 0; k < flushCount; ++k)
+      if (std::abs(flushNormals[k].dot(face.axis)) < S(0.7)) flushFace = true;
     // Apart (gap points): only across a face, and not beside a flush face.
     // An edge axis wins with the bias and the gap, as below: where an edge
     // of one box is parallel to a face of the other (a tipping domino's top
