@@ -456,12 +456,6 @@ TEST_CASE_TEMPLATE(
           const std::string label = std::string(spook::test::policyName(policy)) + " on " + grounds[ground];
           MESSAGE(label, ", h = ", h, ", load ", load, " N: deepest overlap ", deepest * 1e3, " mm");
           if (ground == 0) onPlane = deepest;
-          // Open: a mesh's touching points are its triangles' clipped
-          // features, one point where the wheel tilts past the feature angle,
-          // on which Gauss–Seidel rocks it at h = 0.1 s: 11.7 mm deep on the
-          // trimesh and, under the load, through it (the height field,
-          // solid below, holds it within 3.2 mm).
-          if (ground == 3 && policy == Policy::ITERATIVE && h > 0.05) continue;
           CHECK(deepest < (ground > 1 ? 5e-3 : 3e-3));
           CHECK(std::abs(double(wheel->getPosition().z() - r)) < 1e-3);  // resting on its side line
           // The box's face is met as the plane is; a mesh's touching points
@@ -664,12 +658,6 @@ TEST_CASE_TEMPLATE("a ball, a capsule or a cylinder set above a mesh or a convex
               std::string(shapes[shape]) + ", " + spook::test::policyName(policy) + " on " + grounds[ground];
           MESSAGE(label, ", h = ", h, ": deepest overlap ", deepest * 1e3, " mm");
           if (ground == 0) onPlane = deepest;
-          // Open, Gauss-Seidel at h = 0.1 s: a standing cylinder on the
-          // meshes lands 15-23 mm deep (2.1 mm on the plane and the hull)
-          // and rocks there, up to 9 mm off its rest 2 s later: touching a
-          // triangle, its points are the clipped features, five to eight
-          // around the cap, not the plane's four rim points.
-          if (policy == Policy::ITERATIVE && h > 0.05 && shape == 2 && (ground == 1 || ground == 2)) continue;
           CHECK(std::abs(double(b->getPosition().z() - below)) < 1e-3);
           // 2.5 mm at h = 0.1 s, 0.1 mm at 1/60, on every ground.
           CHECK(deepest < 3e-3);

@@ -187,7 +187,8 @@ void collideWithSoup(const A& a, const TransformT<S>& X_WA, const TriangleSoupVi
     } else if constexpr (A::kType == ShapeType::CAPSULE) {
       collideCapsuleTriangle<S>(a, X_WA, Triangle<S>{{p0, p1, p2}}, X_WM, staged);
     } else if constexpr (A::kType == ShapeType::CYLINDER) {
-      collideCylinderTriangle<S>(a, X_WA, Triangle<S>{{p0, p1, p2}}, X_WM, staged);
+      collideCylinderTriangle<S>(a, X_WA, Triangle<S>{{p0, p1, p2}}, X_WM, staged,
+                                 report == TriangleContacts::SURFACE ? soup.activeEdges(soup.soup, i) : 0b111111);
     } else {
       const Triangle<S> t_M{{p0, p1, p2}};
       collideByCcd<S>(a, X_WA, t_M, X_WM, staged);
