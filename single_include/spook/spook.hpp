@@ -2229,12 +2229,9 @@ class ConvexT : public ShapeT<S> {
     const std::size_t top = supportIndex(direction);
     const S length = direction.norm();
     if (length > S(0)) {
-      int face = -1;
-      S nearest = -std::numeric_limits<S>::infinity();
-      for (int k = vertexFacesStart_[top]; k < vertexFacesStart_[top + 1]; ++k)
-        if (const S c = faces_[static_cast<std::size_t>(vertexFaces_[k])].normal.dot(direction); c > nearest)
-          nearest = c, face = vertexFaces_[k];
-      if (face >= 0 && nearest >= S(kSupportingFeatureCos) * length) {
+      const int face = nearestFaceAt(top, direction);
+      if (face >= 0 &&
+          faces_[static_cast<std::size_t>(face)].normal.dot(direction) >= S(kSupportingFeatureCos) * length) {
         const auto& loop = faces_[static_cast<std::size_t>(face)].vertices;
         const std::size_t n = loop.size(), kept = std::min(n, SupportingFeatureT<S>::kCapacity);
         for (std::size_t k = 0; k < kept; ++k) out.add(vertices_[static_cast<std::size_t>(loop[k * n / kept])]);
@@ -2256,6 +2253,12 @@ class ConvexT : public ShapeT<S> {
       }
     }
     out.add(vertices_[top]);
+  }
+
+  /// Of the faces at the corner farthest along `direction`, the one whose
+  /// normal is nearest to it: an index into getFaces() (-1 without faces).
+  [[nodiscard]] int supportingFace(const Vec3& direction) const {
+    return nearestFaceAt(supportIndex(direction), direction);
   }
 
  protected:
@@ -2281,6 +2284,17 @@ class ConvexT : public ShapeT<S> {
       }
     }
     return best;
+  }
+
+  // Of the faces around corner `corner`, the one whose normal is nearest to
+  // `direction` (-1: none).
+  [[nodiscard]] int nearestFaceAt(std::size_t corner, const Vec3& direction) const {
+    int face = -1;
+    S nearest = -std::numeric_limits<S>::infinity();
+    for (int k = vertexFacesStart_[corner]; k < vertexFacesStart_[corner + 1]; ++k)
+      if (const S c = faces_[static_cast<std::size_t>(vertexFaces_[k])].normal.dot(direction); c > nearest)
+        nearest = c, face = vertexFaces_[k];
+    return face;
   }
 
   // The polygon faces around each corner, in compressed rows.
@@ -3000,9 +3014,12 @@ template <Scalar S>
 /// counts as on that edge. `points` hold normals from the shape toward the
 /// mesh; `active` is activeEdges()' mask. A surface solid behind its faces
 /// (a height field) is always seen from the front: a shape sunk through a
-/// face is pushed back out of the solid, never on through it.
+/// face is pushed back out of the solid, never on through it. Where a
+/// normal runs along the face, the side of the shape's center
+/// (`shapeCenter`, world) is the side it is seen from.
 template <Scalar S, class Points>
-void activeEdgeNormals(const Triangle<S>& t_W, std::uint8_t active, Points& points, bool solidBehind = false) {
+void activeEdgeNormals(const Triangle<S>& t_W, std::uint8_t active, Points& points, bool solidBehind,
+                       const Vec3T<S>& shapeCenter) {
   if (active == 0b111111) return;
   const Vec3T<S> e[3] = {t_W.v[1] - t_W.v[0], t_W.v[2] - t_W.v[1], t_W.v[0] - t_W.v[2]};
   const Vec3T<S> area = e[0].cross(-e[2]);
@@ -3012,7 +3029,13 @@ void activeEdgeNormals(const Triangle<S>& t_W, std::uint8_t active, Points& poin
   for (auto& c : points) {
     // Even a normal 0.5° off the face's makes a body sliding at v over the
     // edge approach it at v·sin(0.5°), and the contact kicks it up.
-    const S front = solidBehind ? S(1) : -c.normal.dot(f);
+    S front = solidBehind ? S(1) : -c.normal.dot(f);
+    // A normal along the face (a cap against the triangle's edge, a side
+    // against its corner) tells the side by the sign of round-off: the
+    // shape's center does. A cylinder lying on a fine flat trimesh, its cap
+    // over a corner, got a point pushing it into the mesh and fell 6 cm
+    // deep at h = 0.1 s.
+    if (std::abs(front) < S(kSupportingFeatureSin)) front = f.dot(shapeCenter - t_W.v[0]);
     const unsigned seen = front >= S(0) ? active & 7u : active >> 3;
     if (seen == 0b111) continue;
     S distance[3];
@@ -10033,7 +10056,7 @@ void collideWithSoup(const A& a, const TransformT<S>& X_WA, const TriangleSoupVi
     }
     if (points.empty()) return;
     if (report == TriangleContacts::SURFACE)
-      activeEdgeNormals<S>(t_W, soup.activeEdges(soup.soup, i), points, soup.heightField);
+      activeEdgeNormals<S>(t_W, soup.activeEdges(soup.soup, i), points, soup.heightField, X_WA.translation());
     found.insert(found.end(), points.begin(), points.end());
   };
   soup.forEachTriangle(
@@ -10133,17 +10156,9 @@ struct Collider<ConvexT<S>, PlaneT<S>> {
     if (sink.margin() == S(0)) return;
     // Among the faces at the lowest corner (the most against the plane of
     // all faces need not be one of them).
-    const Vec3T<S> n_A = X_WA.linear().transpose() * n;
-    const int lowest = static_cast<int>(
-        std::min_element(vertices.begin(), vertices.end(),
-                         [&](const Vec3T<S>& u, const Vec3T<S>& v) { return n_A.dot(u) < n_A.dot(v); }) -
-        vertices.begin());
-    const typename ConvexT<S>::Face* against = nullptr;
-    for (const auto& f : a.getFaces())
-      if (std::find(f.vertices.begin(), f.vertices.end(), lowest) != f.vertices.end() &&
-          (!against || f.normal.dot(n_A) < against->normal.dot(n_A)))
-        against = &f;
-    if (!against) return;
+    const int face = a.supportingFace(Vec3T<S>(-(X_WA.linear().transpose() * n)));
+    if (face < 0) return;
+    const auto* against = &a.getFaces()[static_cast<std::size_t>(face)];
     for (const int k : against->vertices) {
       const Vec3T<S>& v = vertices[static_cast<std::size_t>(k)];
       if (const S height = heightOf(v); height > S(0) && sink.accepts(-height)) emit(v, height);

@@ -195,7 +195,7 @@ void collideWithSoup(const A& a, const TransformT<S>& X_WA, const TriangleSoupVi
     }
     if (points.empty()) return;
     if (report == TriangleContacts::SURFACE)
-      activeEdgeNormals<S>(t_W, soup.activeEdges(soup.soup, i), points, soup.heightField);
+      activeEdgeNormals<S>(t_W, soup.activeEdges(soup.soup, i), points, soup.heightField, X_WA.translation());
     found.insert(found.end(), points.begin(), points.end());
   };
   soup.forEachTriangle(
@@ -295,17 +295,9 @@ struct Collider<ConvexT<S>, PlaneT<S>> {
     if (sink.margin() == S(0)) return;
     // Among the faces at the lowest corner (the most against the plane of
     // all faces need not be one of them).
-    const Vec3T<S> n_A = X_WA.linear().transpose() * n;
-    const int lowest = static_cast<int>(
-        std::min_element(vertices.begin(), vertices.end(),
-                         [&](const Vec3T<S>& u, const Vec3T<S>& v) { return n_A.dot(u) < n_A.dot(v); }) -
-        vertices.begin());
-    const typename ConvexT<S>::Face* against = nullptr;
-    for (const auto& f : a.getFaces())
-      if (std::find(f.vertices.begin(), f.vertices.end(), lowest) != f.vertices.end() &&
-          (!against || f.normal.dot(n_A) < against->normal.dot(n_A)))
-        against = &f;
-    if (!against) return;
+    const int face = a.supportingFace(Vec3T<S>(-(X_WA.linear().transpose() * n)));
+    if (face < 0) return;
+    const auto* against = &a.getFaces()[static_cast<std::size_t>(face)];
     for (const int k : against->vertices) {
       const Vec3T<S>& v = vertices[static_cast<std::size_t>(k)];
       if (const S height = heightOf(v); height > S(0) && sink.accepts(-height)) emit(v, height);

@@ -146,9 +146,12 @@ template <Scalar S>
 /// counts as on that edge. `points` hold normals from the shape toward the
 /// mesh; `active` is activeEdges()' mask. A surface solid behind its faces
 /// (a height field) is always seen from the front: a shape sunk through a
-/// face is pushed back out of the solid, never on through it.
+/// face is pushed back out of the solid, never on through it. Where a
+/// normal runs along the face, the side of the shape's center
+/// (`shapeCenter`, world) is the side it is seen from.
 template <Scalar S, class Points>
-void activeEdgeNormals(const Triangle<S>& t_W, std::uint8_t active, Points& points, bool solidBehind = false) {
+void activeEdgeNormals(const Triangle<S>& t_W, std::uint8_t active, Points& points, bool solidBehind,
+                       const Vec3T<S>& shapeCenter) {
   if (active == 0b111111) return;
   const Vec3T<S> e[3] = {t_W.v[1] - t_W.v[0], t_W.v[2] - t_W.v[1], t_W.v[0] - t_W.v[2]};
   const Vec3T<S> area = e[0].cross(-e[2]);
@@ -158,7 +161,13 @@ void activeEdgeNormals(const Triangle<S>& t_W, std::uint8_t active, Points& poin
   for (auto& c : points) {
     // Even a normal 0.5° off the face's makes a body sliding at v over the
     // edge approach it at v·sin(0.5°), and the contact kicks it up.
-    const S front = solidBehind ? S(1) : -c.normal.dot(f);
+    S front = solidBehind ? S(1) : -c.normal.dot(f);
+    // A normal along the face (a cap against the triangle's edge, a side
+    // against its corner) tells the side by the sign of round-off: the
+    // shape's center does. A cylinder lying on a fine flat trimesh, its cap
+    // over a corner, got a point pushing it into the mesh and fell 6 cm
+    // deep at h = 0.1 s.
+    if (std::abs(front) < S(kSupportingFeatureSin)) front = f.dot(shapeCenter - t_W.v[0]);
     const unsigned seen = front >= S(0) ? active & 7u : active >> 3;
     if (seen == 0b111) continue;
     S distance[3];

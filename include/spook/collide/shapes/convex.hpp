@@ -85,12 +85,9 @@ class ConvexT : public ShapeT<S> {
     const std::size_t top = supportIndex(direction);
     const S length = direction.norm();
     if (length > S(0)) {
-      int face = -1;
-      S nearest = -std::numeric_limits<S>::infinity();
-      for (int k = vertexFacesStart_[top]; k < vertexFacesStart_[top + 1]; ++k)
-        if (const S c = faces_[static_cast<std::size_t>(vertexFaces_[k])].normal.dot(direction); c > nearest)
-          nearest = c, face = vertexFaces_[k];
-      if (face >= 0 && nearest >= S(kSupportingFeatureCos) * length) {
+      const int face = nearestFaceAt(top, direction);
+      if (face >= 0 &&
+          faces_[static_cast<std::size_t>(face)].normal.dot(direction) >= S(kSupportingFeatureCos) * length) {
         const auto& loop = faces_[static_cast<std::size_t>(face)].vertices;
         const std::size_t n = loop.size(), kept = std::min(n, SupportingFeatureT<S>::kCapacity);
         for (std::size_t k = 0; k < kept; ++k) out.add(vertices_[static_cast<std::size_t>(loop[k * n / kept])]);
@@ -112,6 +109,12 @@ class ConvexT : public ShapeT<S> {
       }
     }
     out.add(vertices_[top]);
+  }
+
+  /// Of the faces at the corner farthest along `direction`, the one whose
+  /// normal is nearest to it: an index into getFaces() (-1 without faces).
+  [[nodiscard]] int supportingFace(const Vec3& direction) const {
+    return nearestFaceAt(supportIndex(direction), direction);
   }
 
  protected:
@@ -137,6 +140,17 @@ class ConvexT : public ShapeT<S> {
       }
     }
     return best;
+  }
+
+  // Of the faces around corner `corner`, the one whose normal is nearest to
+  // `direction` (-1: none).
+  [[nodiscard]] int nearestFaceAt(std::size_t corner, const Vec3& direction) const {
+    int face = -1;
+    S nearest = -std::numeric_limits<S>::infinity();
+    for (int k = vertexFacesStart_[corner]; k < vertexFacesStart_[corner + 1]; ++k)
+      if (const S c = faces_[static_cast<std::size_t>(vertexFaces_[k])].normal.dot(direction); c > nearest)
+        nearest = c, face = vertexFaces_[k];
+    return face;
   }
 
   // The polygon faces around each corner, in compressed rows.
