@@ -46,29 +46,24 @@ std::pair<std::vector<spook::ContactPointT<S>>, std::vector<spook::ContactPointT
   return found;
 }
 
-// A static box of half extents `half` whose top face is the plane z = 0.
+// A static block of half extents `half` whose top face is the plane z = 0,
+// centered at x: a box, or with `asHull` a convex hull of its 8 corners.
 template <class S>
-void addBoxGround(spook::SimulationT<S>& sim, const spook::ref_ptr<spook::MaterialT<S>>& material,
-                  const spook::Vec3T<S>& half, S x = S(0)) {
+void addBlockGround(spook::SimulationT<S>& sim, const spook::ref_ptr<spook::MaterialT<S>>& material,
+                    const spook::Vec3T<S>& half, S x = S(0), bool asHull = false) {
+  spook::ShapeT<S>* shape = nullptr;
+  if (asHull) {
+    std::vector<spook::Vec3T<S>> corners;
+    for (int i = 0; i < 8; ++i)
+      corners.push_back(
+          spook::Vec3T<S>(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(), i & 4 ? half.z() : -half.z()));
+    shape = new spook::ConvexT<S>(corners);
+  } else {
+    shape = new spook::BoxT<S>(half);
+  }
   spook::ref_ptr<spook::GeometryT<S>> ground = new spook::GeometryT<S>(
-      new spook::BoxT<S>(half),
-      spook::makeTransform<S>(spook::Vec3T<S>(x, S(0), -half.z()), spook::QuatT<S>::Identity()), "ground");
-  ground->setMaterial(material);
-  sim.add(ground);
-}
-
-// A static convex hull shaped as a box of half extents `half` whose top
-// face is the plane z = 0, centered at x.
-template <class S>
-void addHullGround(spook::SimulationT<S>& sim, const spook::ref_ptr<spook::MaterialT<S>>& material,
-                   const spook::Vec3T<S>& half, S x = S(0)) {
-  std::vector<spook::Vec3T<S>> corners;
-  for (int i = 0; i < 8; ++i)
-    corners.push_back(
-        spook::Vec3T<S>(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(), i & 4 ? half.z() : -half.z()));
-  spook::ref_ptr<spook::GeometryT<S>> ground = new spook::GeometryT<S>(
-      new spook::ConvexT<S>(corners),
-      spook::makeTransform<S>(spook::Vec3T<S>(x, S(0), -half.z()), spook::QuatT<S>::Identity()), "hull ground");
+      shape, spook::makeTransform<S>(spook::Vec3T<S>(x, S(0), -half.z()), spook::QuatT<S>::Identity()),
+      asHull ? "hull ground" : "ground");
   ground->setMaterial(material);
   sim.add(ground);
 }
@@ -85,7 +80,7 @@ void addFlatGround(spook::SimulationT<S>& sim, const spook::ref_ptr<spook::Mater
     return;
   }
   if (kind == 1 || kind == 4) {
-    (kind == 1 ? addBoxGround<S> : addHullGround<S>)(sim, material, Vec3(S(20), S(20), S(0.5)), S(0));
+    addBlockGround<S>(sim, material, Vec3(S(20), S(20), S(0.5)), S(0), kind == 4);
     return;
   }
   spook::ShapeT<S>* shape = nullptr;
@@ -136,8 +131,7 @@ std::pair<spook::ref_ptr<spook::SimulationT<S>>, spook::ref_ptr<spook::MaterialT
   spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
   spook::ref_ptr<spook::MaterialT<S>> ice = new spook::MaterialT<S>("ice");
   sim->getMaterialManager()->getOrCreateContactMaterial(ice.get(), ice.get())->setFrictionCoefficient(S(0));
-  for (const S x : {-half, half})
-    (hulls ? addHullGround<S> : addBoxGround<S>)(*sim, ice, spook::Vec3T<S>(half, half, S(0.5)), x);
+  for (const S x : {-half, half}) addBlockGround<S>(*sim, ice, spook::Vec3T<S>(half, half, S(0.5)), x, hulls);
   return {sim, ice};
 }
 
@@ -534,7 +528,7 @@ TEST_CASE_TEMPLATE("a capsule falling fast onto a box lands on it as on a plane"
       sim->setSolver(spook::test::makeSolver(policy));
       spook::ref_ptr<spook::MaterialT<S>> wood = new spook::MaterialT<S>("wood");
       if (box)
-        speculative_test::addBoxGround<S>(*sim, wood, Vec3(S(20), S(20), S(0.5)));
+        speculative_test::addBlockGround<S>(*sim, wood, Vec3(S(20), S(20), S(0.5)));
       else
         spook::test::addGround(*sim, wood);
       auto link =

@@ -844,6 +844,12 @@ inline constexpr double kSupportingFeatureSin = 0.05;
 /// Its cosine, sqrt(1 − 0.05²).
 inline constexpr double kSupportingFeatureCos = 0.99874921777190895;
 
+/// A flush face axis (two faces lying against each other within round-off)
+/// marks a seam beside the least axis only when it runs across that axis,
+/// at more than ~45° to it: |cos| below this. Its near twin on the other
+/// shape (a face turned by round-off) is no seam.
+inline constexpr double kFlushAcrossCos = 0.7;
+
 /// Corners of a cylinder's or a cone's cap a cap feature has (a regular
 /// polygon inscribed in the rim).
 inline constexpr int kCapCorners = 8;
@@ -2773,6 +2779,7 @@ class AabbTree {
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 // --- begin spook/collide/detail/segment_distance.hpp ---
@@ -2924,6 +2931,15 @@ struct Triangle {
     const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
     const S length = n.norm();
     return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
+  }
+  /// The edges p lies beside, seen along the unit `front` (the winding's
+  /// normal): bit k for edge k (corner k to k + 1); 0 where p is over the
+  /// triangle (on an edge counts as over).
+  [[nodiscard]] unsigned edgesBeside(const Vec3& p, const Vec3& front) const {
+    unsigned edges = 0;
+    for (std::size_t k = 0; k < 3; ++k)
+      if ((v[(k + 1) % 3] - v[k]).cross(p - v[k]).dot(front) < S(0)) edges |= 1u << k;
+    return edges;
   }
 };
 
@@ -7798,15 +7814,14 @@ struct Collider<BoxT<S>, BoxT<S>> {
       }
     }
 
-    // A flush face runs across the least axis (at more than 45° to it):
-    // the least axis's near twin on the other box is no seam. A box 2.2e-5 m
+    // A flush face runs across the least axis (kFlushAcrossCos). A box 2.2e-5 m
     // above a 40 m box, its bottom turned by 1.1e-6 rad, saw its own bottom
     // face axis overlap the ground by ~0 (the ground's 20 m half width
     // spans 2.2e-5 m more along it), took that for a seam and wrote no gap
     // points: a step of free fall into the ground (98 mm at h = 0.1 s).
     bool flushFace = false;
     for (std::size_t k = 0; k < flushCount; ++k)
-      if (std::abs(flushNormals[k].dot(face.axis)) < S(0.7)) flushFace = true;
+      if (std::abs(flushNormals[k].dot(face.axis)) < S(kFlushAcrossCos)) flushFace = true;
     // Apart (gap points): only across a face, and not beside a flush face.
     // An edge axis wins with the bias and the gap, as below: where an edge
     // of one box is parallel to a face of the other (a tipping domino's top
@@ -8196,6 +8211,30 @@ std::array<Vec3T<S>, 8> cylinderRimCandidates(const Vec3T<S>& center, const Vec3
   return out;
 }
 
+/// A cylinder resting on a face as on a plane (the face of a box, a hull or
+/// a triangle): its rim `candidates` over the face (`over(p)`) that the
+/// sink accepts are its contacts, touching or gap points, each midway
+/// between the rim and the face, normal `up` (the face's unit normal toward
+/// the cylinder) times `normalSign` (+1 where the face's shape is the
+/// pair's first). `onFace` is a point of the face's plane. Where a
+/// candidate within `touching` of the face lies where `restsAcross(p)`
+/// (beside the face across an edge) the cylinder rests across that edge:
+/// nothing is written and false is returned, for the caller to leave the
+/// pair to the shapes' features.
+template <Scalar S, Scalar T, class Over, class RestsAcross>
+bool addRimPointsOverFace(const std::array<Vec3T<T>, 8>& candidates, const Vec3T<T>& up, const Vec3T<T>& onFace,
+                          T touching, T normalSign, Over over, RestsAcross restsAcross, ContactSinkT<S>& sink) {
+  for (const Vec3T<T>& p : candidates)
+    if (up.dot(p - onFace) <= touching && restsAcross(p)) return false;
+  const Vec3T<S> normal = (normalSign * up).template cast<S>();
+  for (const Vec3T<T>& p : candidates) {
+    const T height = up.dot(p - onFace);
+    if (sink.accepts(S(-height), S(touching)) && over(p))
+      sink.addSpeculative(Vec3T<T>(p - T(0.5) * height * up).template cast<S>(), normal, S(-height), S(touching));
+  }
+  return true;
+}
+
 }  // namespace spook::detail
 #endif  // SPOOK_SINGLE_SPOOK_COLLIDE_DETAIL_CYLINDER_RIM_HPP
 // --- end spook/collide/detail/cylinder_rim.hpp ---
@@ -8256,15 +8295,11 @@ struct Collider<BoxT<S>, CylinderT<S>> {
     };
     const auto candidates = detail::cylinderRimCandidates<S>(
         X_WB.translation(), X_WB.linear().col(1), X_WB.linear().col(0), b.getRadius(), S(0.5) * b.getHeight(), n);
-    // A touching candidate beside the face: the cylinder rests across an edge.
-    for (const Vec3& p : candidates)
-      if (n.dot(p - c) - e[axis] <= touching && !onFace(p)) return passOn();
     const std::size_t before = sink.size();
-    for (const Vec3& p : candidates) {
-      const S height = n.dot(p - c) - e[axis];
-      if (!onFace(p) || !sink.accepts(-height, touching)) continue;
-      sink.addSpeculative(p - S(0.5) * height * n, n, -height, touching);
-    }
+    if (!detail::addRimPointsOverFace<S>(
+            candidates, n, Vec3(c + e[axis] * n), touching, S(1), onFace, [&](const Vec3& p) { return !onFace(p); },
+            sink))
+      return passOn();
     if (sink.size() == before) passOn();
   }
 };
@@ -8664,26 +8699,21 @@ namespace detail {
 /// its plane and whether a point's foot lies on its polygon.
 template <Scalar S>
 struct PlacedHullFace {
-  const ConvexT<S>& hull;
-  const typename ConvexT<S>::Face& face;
-  TransformT<double> X_WH;
-  Vec3T<double> normal;  // outward, world
-  Vec3T<double> origin;  // a corner, world
+  Vec3T<double> normal;                // outward, world
+  std::vector<Vec3T<double>> corners;  // world, counter-clockwise about the normal
 
-  PlacedHullFace(const ConvexT<S>& h, const typename ConvexT<S>::Face& f, const TransformT<double>& X)
-      : hull(h), face(f), X_WH(X), normal(X.linear() * f.normal.template cast<double>()), origin(corner(0)) {}
-
-  [[nodiscard]] Vec3T<double> corner(std::size_t k) const {
-    return X_WH * hull.getVertices()[static_cast<std::size_t>(face.vertices[k])].template cast<double>();
+  PlacedHullFace(const ConvexT<S>& hull, const typename ConvexT<S>::Face& face, const TransformT<double>& X_WH)
+      : normal(X_WH.linear() * face.normal.template cast<double>()) {
+    corners.reserve(face.vertices.size());
+    for (const auto index : face.vertices)
+      corners.push_back(X_WH * hull.getVertices()[static_cast<std::size_t>(index)].template cast<double>());
   }
-  [[nodiscard]] double height(const Vec3T<double>& p) const { return normal.dot(p - origin); }
+
+  [[nodiscard]] double height(const Vec3T<double>& p) const { return normal.dot(p - corners.front()); }
   [[nodiscard]] bool over(const Vec3T<double>& p) const {
-    const Vec3T<double> foot = p - height(p) * normal;
-    const std::size_t n = face.vertices.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      const Vec3T<double> from = corner(k);
-      if ((corner((k + 1) % n) - from).cross(foot - from).dot(normal) < 0.0) return false;
-    }
+    const std::size_t n = corners.size();
+    for (std::size_t k = 0; k < n; ++k)
+      if ((corners[(k + 1) % n] - corners[k]).cross(p - corners[k]).dot(normal) < 0.0) return false;
     return true;
   }
 };
@@ -8699,9 +8729,12 @@ const typename ConvexT<S>::Face* hullFace(const ConvexT<S>& hull, const Transfor
                                           const Vec3T<double>* along, double& score) {
   const typename ConvexT<S>::Face* best = nullptr;
   for (const auto& f : hull.getFaces()) {
-    const PlacedHullFace<S> placed(hull, f, X_WH);
-    const double s = along ? placed.normal.dot(*along)
-                           : placed.height(X_WO * other.supportAlong(X_WO.linear().transpose() * -placed.normal));
+    const Vec3T<double> normal = X_WH.linear() * f.normal.template cast<double>();
+    const auto corner = [&] {
+      return X_WH * hull.getVertices()[static_cast<std::size_t>(f.vertices.front())].template cast<double>();
+    };
+    const double s = along ? normal.dot(*along)
+                           : normal.dot(X_WO * other.supportAlong(X_WO.linear().transpose() * -normal) - corner());
     if (!best || s > score) {
       best = &f;
       score = s;
@@ -8815,16 +8848,12 @@ struct Collider<ConvexT<S>, CylinderT<S>> {
     const auto candidates =
         detail::cylinderRimCandidates<double>(C.translation(), C.linear().col(1), C.linear().col(0),
                                               double(b.getRadius()), 0.5 * double(b.getHeight()), face.normal);
-    // A touching candidate beside the face: the cylinder rests across an edge.
-    for (const Vec3T<double>& p : candidates)
-      if (face.height(p) <= touching && !face.over(p)) return passOn();
+    const auto over = [&](const Vec3T<double>& p) { return face.over(p); };
     const std::size_t before = sink.size();
-    for (const Vec3T<double>& p : candidates) {
-      const double height = face.height(p);
-      if (!sink.accepts(S(-height), S(touching)) || !face.over(p)) continue;
-      sink.addSpeculative(Vec3T<double>(p - 0.5 * height * face.normal).cast<S>(), face.normal.template cast<S>(),
-                          S(-height), S(touching));
-    }
+    if (!detail::addRimPointsOverFace<S>(
+            candidates, face.normal, face.corners.front(), touching, 1.0, over,
+            [&](const Vec3T<double>& p) { return !over(p); }, sink))
+      return passOn();
     if (sink.size() == before) passOn();
   }
 };
@@ -9065,9 +9094,7 @@ void capsuleGapPoints(const Vec3T<double>& p, const Vec3T<double>& q, double r, 
     const double height = front.dot(end - t.v[0]);
     if (!(height > r) || !sink.accepts(S(r - height), S(touching))) continue;
     const Vec3T<double> foot = end - height * front;
-    bool over = true;
-    for (int k = 0; k < 3 && over; ++k) over = (t.v[(k + 1) % 3] - t.v[k]).cross(foot - t.v[k]).dot(front) >= 0.0;
-    if (over)
+    if (t.edgesBeside(foot, front) == 0)
       sink.addSpeculative(Vec3T<double>(foot + 0.5 * (height - r) * front).cast<S>(), Vec3T<double>(-front).cast<S>(),
                           S(r - height), S(touching));
   }
@@ -9276,32 +9303,18 @@ template <Scalar S>
 bool rimPointsOverFace(const CylinderT<S>& cylinder, const TransformT<S>& X_WA, const Triangle<S>& t_M,
                        const TransformT<S>& X_WM, const Vec3T<double>& n, bool touchingIt, double touching,
                        std::uint8_t active, ContactSinkT<S>& sink) {
-  std::array<Vec3T<double>, 3> w;
-  for (std::size_t k = 0; k < 3; ++k) w[k] = X_WM.template cast<double>() * t_M.v[k].template cast<double>();
-  const Vec3T<double> face = (w[1] - w[0]).cross(w[2] - w[0]).normalized();
+  const TransformT<double> X = X_WM.template cast<double>();
+  const Triangle<double> t{{X * t_M.v[0].template cast<double>(), X * t_M.v[1].template cast<double>(),
+                            X * t_M.v[2].template cast<double>()}};
+  const Vec3T<double> face = t.normal();
   if (!(-n.dot(face) >= kSupportingFeatureCos)) return !touchingIt;
-  // Bit k: beside edge k (corner k to k + 1).
-  const auto beside = [&](const Vec3T<double>& p) {
-    const Vec3T<double> q = p - face.dot(p - w[0]) * face;
-    unsigned edges = 0;
-    for (std::size_t k = 0; k < 3; ++k)
-      if ((w[(k + 1) % 3] - w[k]).cross(q - w[k]).dot(face) < 0.0) edges |= 1u << k;
-    return edges;
-  };
   const auto& R_WA = X_WA.linear();
   const auto candidates = cylinderRimCandidates<double>(
       X_WA.translation().template cast<double>(), R_WA.col(1).template cast<double>(),
       R_WA.col(0).template cast<double>(), double(cylinder.getRadius()), 0.5 * double(cylinder.getHeight()), face);
-  if (touchingIt)
-    for (const Vec3T<double>& p : candidates)
-      if (face.dot(p - w[0]) <= touching && (beside(p) & active & 7u) != 0) return false;
-  for (const Vec3T<double>& p : candidates) {
-    const double height = face.dot(p - w[0]);
-    if (beside(p) == 0 && sink.accepts(S(-height), S(touching)))
-      sink.addSpeculative(Vec3T<double>(p - 0.5 * height * face).cast<S>(), Vec3T<double>(-face).cast<S>(), S(-height),
-                          S(touching));
-  }
-  return true;
+  return addRimPointsOverFace<S>(
+      candidates, face, t.v[0], touching, -1.0, [&](const Vec3T<double>& p) { return t.edgesBeside(p, face) == 0; },
+      [&](const Vec3T<double>& p) { return touchingIt && (t.edgesBeside(p, face) & active & 7u) != 0; }, sink);
 }
 
 /// Cylinder against one triangle of a mesh (mesh frame t_M, placed by
@@ -9670,7 +9683,7 @@ struct SeparatingAxis {
     }
   }
   for (std::size_t k = 0; k < flushCount; ++k)
-    if (std::abs(flushNormals[k].dot(best.n)) < S(0.7)) best.flushFace = true;
+    if (std::abs(flushNormals[k].dot(best.n)) < S(kFlushAcrossCos)) best.flushFace = true;
   return best.depth < std::numeric_limits<S>::infinity();
 }
 

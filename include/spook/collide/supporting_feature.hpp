@@ -38,6 +38,12 @@ inline constexpr double kSupportingFeatureSin = 0.05;
 /// Its cosine, sqrt(1 − 0.05²).
 inline constexpr double kSupportingFeatureCos = 0.99874921777190895;
 
+/// A flush face axis (two faces lying against each other within round-off)
+/// marks a seam beside the least axis only when it runs across that axis,
+/// at more than ~45° to it: |cos| below this. Its near twin on the other
+/// shape (a face turned by round-off) is no seam.
+inline constexpr double kFlushAcrossCos = 0.7;
+
 /// Corners of a cylinder's or a cone's cap a cap feature has (a regular
 /// polygon inscribed in the rim).
 inline constexpr int kCapCorners = 8;

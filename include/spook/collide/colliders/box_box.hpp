@@ -10,6 +10,7 @@
 #include <spook/collide/collider.hpp>
 #include <spook/collide/detail/box_clipping.hpp>
 #include <spook/collide/shapes/box.hpp>
+#include <spook/collide/supporting_feature.hpp>
 
 namespace spook {
 
@@ -135,15 +136,14 @@ struct Collider<BoxT<S>, BoxT<S>> {
       }
     }
 
-    // A flush face runs across the least axis (at more than 45° to it):
-    // the least axis's near twin on the other box is no seam. A box 2.2e-5 m
+    // A flush face runs across the least axis (kFlushAcrossCos). A box 2.2e-5 m
     // above a 40 m box, its bottom turned by 1.1e-6 rad, saw its own bottom
     // face axis overlap the ground by ~0 (the ground's 20 m half width
     // spans 2.2e-5 m more along it), took that for a seam and wrote no gap
     // points: a step of free fall into the ground (98 mm at h = 0.1 s).
     bool flushFace = false;
     for (std::size_t k = 0; k < flushCount; ++k)
-      if (std::abs(flushNormals[k].dot(face.axis)) < S(0.7)) flushFace = true;
+      if (std::abs(flushNormals[k].dot(face.axis)) < S(kFlushAcrossCos)) flushFace = true;
     // Apart (gap points): only across a face, and not beside a flush face.
     // An edge axis wins with the bias and the gap, as below: where an edge
     // of one box is parallel to a face of the other (a tipping domino's top

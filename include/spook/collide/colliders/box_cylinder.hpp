@@ -66,15 +66,11 @@ struct Collider<BoxT<S>, CylinderT<S>> {
     };
     const auto candidates = detail::cylinderRimCandidates<S>(
         X_WB.translation(), X_WB.linear().col(1), X_WB.linear().col(0), b.getRadius(), S(0.5) * b.getHeight(), n);
-    // A touching candidate beside the face: the cylinder rests across an edge.
-    for (const Vec3& p : candidates)
-      if (n.dot(p - c) - e[axis] <= touching && !onFace(p)) return passOn();
     const std::size_t before = sink.size();
-    for (const Vec3& p : candidates) {
-      const S height = n.dot(p - c) - e[axis];
-      if (!onFace(p) || !sink.accepts(-height, touching)) continue;
-      sink.addSpeculative(p - S(0.5) * height * n, n, -height, touching);
-    }
+    if (!detail::addRimPointsOverFace<S>(
+            candidates, n, Vec3(c + e[axis] * n), touching, S(1), onFace, [&](const Vec3& p) { return !onFace(p); },
+            sink))
+      return passOn();
     if (sink.size() == before) passOn();
   }
 };

@@ -21,26 +21,21 @@ namespace detail {
 /// its plane and whether a point's foot lies on its polygon.
 template <Scalar S>
 struct PlacedHullFace {
-  const ConvexT<S>& hull;
-  const typename ConvexT<S>::Face& face;
-  TransformT<double> X_WH;
-  Vec3T<double> normal;  // outward, world
-  Vec3T<double> origin;  // a corner, world
+  Vec3T<double> normal;                // outward, world
+  std::vector<Vec3T<double>> corners;  // world, counter-clockwise about the normal
 
-  PlacedHullFace(const ConvexT<S>& h, const typename ConvexT<S>::Face& f, const TransformT<double>& X)
-      : hull(h), face(f), X_WH(X), normal(X.linear() * f.normal.template cast<double>()), origin(corner(0)) {}
-
-  [[nodiscard]] Vec3T<double> corner(std::size_t k) const {
-    return X_WH * hull.getVertices()[static_cast<std::size_t>(face.vertices[k])].template cast<double>();
+  PlacedHullFace(const ConvexT<S>& hull, const typename ConvexT<S>::Face& face, const TransformT<double>& X_WH)
+      : normal(X_WH.linear() * face.normal.template cast<double>()) {
+    corners.reserve(face.vertices.size());
+    for (const auto index : face.vertices)
+      corners.push_back(X_WH * hull.getVertices()[static_cast<std::size_t>(index)].template cast<double>());
   }
-  [[nodiscard]] double height(const Vec3T<double>& p) const { return normal.dot(p - origin); }
+
+  [[nodiscard]] double height(const Vec3T<double>& p) const { return normal.dot(p - corners.front()); }
   [[nodiscard]] bool over(const Vec3T<double>& p) const {
-    const Vec3T<double> foot = p - height(p) * normal;
-    const std::size_t n = face.vertices.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      const Vec3T<double> from = corner(k);
-      if ((corner((k + 1) % n) - from).cross(foot - from).dot(normal) < 0.0) return false;
-    }
+    const std::size_t n = corners.size();
+    for (std::size_t k = 0; k < n; ++k)
+      if ((corners[(k + 1) % n] - corners[k]).cross(p - corners[k]).dot(normal) < 0.0) return false;
     return true;
   }
 };
@@ -56,9 +51,12 @@ const typename ConvexT<S>::Face* hullFace(const ConvexT<S>& hull, const Transfor
                                           const Vec3T<double>* along, double& score) {
   const typename ConvexT<S>::Face* best = nullptr;
   for (const auto& f : hull.getFaces()) {
-    const PlacedHullFace<S> placed(hull, f, X_WH);
-    const double s = along ? placed.normal.dot(*along)
-                           : placed.height(X_WO * other.supportAlong(X_WO.linear().transpose() * -placed.normal));
+    const Vec3T<double> normal = X_WH.linear() * f.normal.template cast<double>();
+    const auto corner = [&] {
+      return X_WH * hull.getVertices()[static_cast<std::size_t>(f.vertices.front())].template cast<double>();
+    };
+    const double s = along ? normal.dot(*along)
+                           : normal.dot(X_WO * other.supportAlong(X_WO.linear().transpose() * -normal) - corner());
     if (!best || s > score) {
       best = &f;
       score = s;
@@ -172,16 +170,12 @@ struct Collider<ConvexT<S>, CylinderT<S>> {
     const auto candidates =
         detail::cylinderRimCandidates<double>(C.translation(), C.linear().col(1), C.linear().col(0),
                                               double(b.getRadius()), 0.5 * double(b.getHeight()), face.normal);
-    // A touching candidate beside the face: the cylinder rests across an edge.
-    for (const Vec3T<double>& p : candidates)
-      if (face.height(p) <= touching && !face.over(p)) return passOn();
+    const auto over = [&](const Vec3T<double>& p) { return face.over(p); };
     const std::size_t before = sink.size();
-    for (const Vec3T<double>& p : candidates) {
-      const double height = face.height(p);
-      if (!sink.accepts(S(-height), S(touching)) || !face.over(p)) continue;
-      sink.addSpeculative(Vec3T<double>(p - 0.5 * height * face.normal).cast<S>(), face.normal.template cast<S>(),
-                          S(-height), S(touching));
-    }
+    if (!detail::addRimPointsOverFace<S>(
+            candidates, face.normal, face.corners.front(), touching, 1.0, over,
+            [&](const Vec3T<double>& p) { return !over(p); }, sink))
+      return passOn();
     if (sink.size() == before) passOn();
   }
 };

@@ -71,9 +71,7 @@ void capsuleGapPoints(const Vec3T<double>& p, const Vec3T<double>& q, double r, 
     const double height = front.dot(end - t.v[0]);
     if (!(height > r) || !sink.accepts(S(r - height), S(touching))) continue;
     const Vec3T<double> foot = end - height * front;
-    bool over = true;
-    for (int k = 0; k < 3 && over; ++k) over = (t.v[(k + 1) % 3] - t.v[k]).cross(foot - t.v[k]).dot(front) >= 0.0;
-    if (over)
+    if (t.edgesBeside(foot, front) == 0)
       sink.addSpeculative(Vec3T<double>(foot + 0.5 * (height - r) * front).cast<S>(), Vec3T<double>(-front).cast<S>(),
                           S(r - height), S(touching));
   }

@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include <spook/collide/contact_sink.hpp>
 #include <spook/core/math.hpp>
 #include <spook/core/scalar.hpp>
 
@@ -31,6 +32,30 @@ std::array<Vec3T<S>, 8> cylinderRimCandidates(const Vec3T<S>& center, const Vec3
   for (const S side : {S(-1), S(1)})
     for (const Vec3T<S>& direction : rim) out[k++] = center + side * halfHeight * u + r * direction;
   return out;
+}
+
+/// A cylinder resting on a face as on a plane (the face of a box, a hull or
+/// a triangle): its rim `candidates` over the face (`over(p)`) that the
+/// sink accepts are its contacts, touching or gap points, each midway
+/// between the rim and the face, normal `up` (the face's unit normal toward
+/// the cylinder) times `normalSign` (+1 where the face's shape is the
+/// pair's first). `onFace` is a point of the face's plane. Where a
+/// candidate within `touching` of the face lies where `restsAcross(p)`
+/// (beside the face across an edge) the cylinder rests across that edge:
+/// nothing is written and false is returned, for the caller to leave the
+/// pair to the shapes' features.
+template <Scalar S, Scalar T, class Over, class RestsAcross>
+bool addRimPointsOverFace(const std::array<Vec3T<T>, 8>& candidates, const Vec3T<T>& up, const Vec3T<T>& onFace,
+                          T touching, T normalSign, Over over, RestsAcross restsAcross, ContactSinkT<S>& sink) {
+  for (const Vec3T<T>& p : candidates)
+    if (up.dot(p - onFace) <= touching && restsAcross(p)) return false;
+  const Vec3T<S> normal = (normalSign * up).template cast<S>();
+  for (const Vec3T<T>& p : candidates) {
+    const T height = up.dot(p - onFace);
+    if (sink.accepts(S(-height), S(touching)) && over(p))
+      sink.addSpeculative(Vec3T<T>(p - T(0.5) * height * up).template cast<S>(), normal, S(-height), S(touching));
+  }
+  return true;
 }
 
 }  // namespace spook::detail

@@ -135,32 +135,18 @@ template <Scalar S>
 bool rimPointsOverFace(const CylinderT<S>& cylinder, const TransformT<S>& X_WA, const Triangle<S>& t_M,
                        const TransformT<S>& X_WM, const Vec3T<double>& n, bool touchingIt, double touching,
                        std::uint8_t active, ContactSinkT<S>& sink) {
-  std::array<Vec3T<double>, 3> w;
-  for (std::size_t k = 0; k < 3; ++k) w[k] = X_WM.template cast<double>() * t_M.v[k].template cast<double>();
-  const Vec3T<double> face = (w[1] - w[0]).cross(w[2] - w[0]).normalized();
+  const TransformT<double> X = X_WM.template cast<double>();
+  const Triangle<double> t{{X * t_M.v[0].template cast<double>(), X * t_M.v[1].template cast<double>(),
+                            X * t_M.v[2].template cast<double>()}};
+  const Vec3T<double> face = t.normal();
   if (!(-n.dot(face) >= kSupportingFeatureCos)) return !touchingIt;
-  // Bit k: beside edge k (corner k to k + 1).
-  const auto beside = [&](const Vec3T<double>& p) {
-    const Vec3T<double> q = p - face.dot(p - w[0]) * face;
-    unsigned edges = 0;
-    for (std::size_t k = 0; k < 3; ++k)
-      if ((w[(k + 1) % 3] - w[k]).cross(q - w[k]).dot(face) < 0.0) edges |= 1u << k;
-    return edges;
-  };
   const auto& R_WA = X_WA.linear();
   const auto candidates = cylinderRimCandidates<double>(
       X_WA.translation().template cast<double>(), R_WA.col(1).template cast<double>(),
       R_WA.col(0).template cast<double>(), double(cylinder.getRadius()), 0.5 * double(cylinder.getHeight()), face);
-  if (touchingIt)
-    for (const Vec3T<double>& p : candidates)
-      if (face.dot(p - w[0]) <= touching && (beside(p) & active & 7u) != 0) return false;
-  for (const Vec3T<double>& p : candidates) {
-    const double height = face.dot(p - w[0]);
-    if (beside(p) == 0 && sink.accepts(S(-height), S(touching)))
-      sink.addSpeculative(Vec3T<double>(p - 0.5 * height * face).cast<S>(), Vec3T<double>(-face).cast<S>(), S(-height),
-                          S(touching));
-  }
-  return true;
+  return addRimPointsOverFace<S>(
+      candidates, face, t.v[0], touching, -1.0, [&](const Vec3T<double>& p) { return t.edgesBeside(p, face) == 0; },
+      [&](const Vec3T<double>& p) { return touchingIt && (t.edgesBeside(p, face) & active & 7u) != 0; }, sink);
 }
 
 /// Cylinder against one triangle of a mesh (mesh frame t_M, placed by

@@ -150,7 +150,7 @@ struct SeparatingAxis {
     }
   }
   for (std::size_t k = 0; k < flushCount; ++k)
-    if (std::abs(flushNormals[k].dot(best.n)) < S(0.7)) best.flushFace = true;
+    if (std::abs(flushNormals[k].dot(best.n)) < S(kFlushAcrossCos)) best.flushFace = true;
   return best.depth < std::numeric_limits<S>::infinity();
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #include <spook/collide/bounding_box.hpp>
@@ -56,6 +57,15 @@ struct Triangle {
     const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
     const S length = n.norm();
     return length > S(0) ? Vec3(n / length) : Vec3::UnitZ();
+  }
+  /// The edges p lies beside, seen along the unit `front` (the winding's
+  /// normal): bit k for edge k (corner k to k + 1); 0 where p is over the
+  /// triangle (on an edge counts as over).
+  [[nodiscard]] unsigned edgesBeside(const Vec3& p, const Vec3& front) const {
+    unsigned edges = 0;
+    for (std::size_t k = 0; k < 3; ++k)
+      if ((v[(k + 1) % 3] - v[k]).cross(p - v[k]).dot(front) < S(0)) edges |= 1u << k;
+    return edges;
   }
 };
 
