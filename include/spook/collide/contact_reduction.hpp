@@ -29,9 +29,9 @@ namespace detail {
 /// the largest area, as the seeds put it), ties going to the deeper one.
 /// Where a gap point (negative depth) meets a deeper point in its bin by
 /// more than 1e-3 of the patch's radius, the deeper one survives: the
-/// smallest gap is the one the body reaches first (a box over a fine mesh
-/// has gap points of the triangles beside it, farther out and farther
-/// apart along the normal; kept, the box fell 23-34 mm into the mesh at
+/// smallest gap is the one the body reaches first (a curved hull over a
+/// fine mesh has gap points on many triangles, the farthest of them the
+/// highest; kept, a 40-point ellipsoid fell 47-133 mm into the mesh at
 /// h = 0.1 s). The deepest point survives too where it is deeper than every
 /// survivor by more than that: the farthest of a tilted or curved shape's
 /// points (gap points of a hull nearing the ground) may be its highest, and
