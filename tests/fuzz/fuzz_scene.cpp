@@ -11,7 +11,7 @@ void runFloatScene(Reader& in);
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   spook::fuzz::Reader in(data, size);
   if (in.choice(2) == 0) {
-    spook::fuzz::Builder<double>{in, {}, {}, -1}.run();
+    spook::fuzz::Builder<double>{in, {}, {}, -1, {}}.run();
   } else {
     spook::fuzz::runFloatScene(in);
   }

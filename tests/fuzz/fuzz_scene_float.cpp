@@ -2,5 +2,5 @@
 #include "scene_builder.hpp"
 
 namespace spook::fuzz {
-void runFloatScene(Reader& in) { Builder<float>{in, {}, {}, -1}.run(); }
+void runFloatScene(Reader& in) { Builder<float>{in, {}, {}, -1, {}}.run(); }
 }  // namespace spook::fuzz

@@ -29,11 +29,11 @@ int main(int argc, char** argv) {
     spook::fuzz::Reader in(bytes.data(), bytes.size());
     try {
       if (in.choice(2) == 0) {
-        spook::fuzz::Builder<double> scene{in, {}, {}, -1};
+        spook::fuzz::Builder<double> scene{in, {}, {}, -1, {}};
         scene.run();
         withWires += scene.wires.empty() ? 0 : 1;
       } else {
-        spook::fuzz::Builder<float> scene{in, {}, {}, -1};
+        spook::fuzz::Builder<float> scene{in, {}, {}, -1, {}};
         scene.run();
         withWires += scene.wires.empty() ? 0 : 1;
       }
