@@ -1,6 +1,6 @@
 // Winches (wire/wire_winch_controller.hpp): hauling in at the set speed,
 // stalling at the force limit, paying out under the brake, the wire's total
-// length kept through both, and refusal of bad input.
+// length kept through both, auto-feed, and refusal of bad input.
 
 #include <doctest/doctest.h>
 
@@ -139,6 +139,109 @@ TEST_CASE_TEMPLATE("a winch keeps the wire's total length through paying out and
   const double tolerance = std::is_same_v<S, double> ? 1e-9 : 4e-6 * total;
   MESSAGE("total length " << total << " m, worst change " << worst << " m");
   CHECK(worst < tolerance);
+}
+
+TEST_CASE_TEMPLATE("an auto-feeding winch takes in the slack of a wire routed around a point", S, double, float) {
+  // A winch on the world at z = 10, routed through a point 3 m aside to a
+  // 100 kg load 10 m below: 11.66 m of wire where 10 m hang straight.
+  const double mass = 100.0, density = 7800.0, pulledIn = 20.0, straight = 10.0;
+  const double routed = 2.0 * std::sqrt(3.0 * 3.0 + 5.0 * 5.0);
+  for (const bool autoFeed : {false, true}) {
+    CAPTURE(autoFeed);
+    ref_ptr<SimulationT<S>> sim = new SimulationT<S>();
+    ref_ptr<RigidBodyT<S>> load = new RigidBodyT<S>();
+    load->getMassProperties()->setMass(S(mass));
+    sim->add(load);
+    ref_ptr<WireWinchControllerT<S>> winch =
+        new WireWinchControllerT<S>(nullptr, Vec3T<S>(S(0), S(0), S(10)), Vec3T<S>(S(0), S(0), S(-1)));
+    winch->setEnableAutoFeed(autoFeed);
+    ref_ptr<WireT<S>> wire = new WireT<S>(S(0.01), S(2));
+    wire->getMaterial()->getBulkMaterial()->setDensity(S(density));
+    wire->add(winch, S(pulledIn));
+    wire->add(new FreeNodeT<S>(S(3), S(0), S(5)));
+    wire->add(new BodyFixedNodeT<S>(load.get(), Vec3T<S>::Zero()));
+    sim->add(wire);
+    // Where the straight wire holds it (as HungLoad).
+    load->setPosition(S(0), S(0), S(-mass * kStandardGravity * straight / (6e10 * std::numbers::pi * 1e-4)));
+    const double total = double(winch->getPulledInLength()) + double(wire->getRestLength());
+    CHECK(total == doctest::Approx(pulledIn + routed).epsilon(1e-6));
+    double lowest = 0.0;
+    for (int s = 0; s < 120; ++s) {
+      sim->stepForward();
+      lowest = std::min(lowest, double(load->getPosition().z()));
+    }
+    MESSAGE("auto-feed " << autoFeed << ": rest length " << wire->getRestLength() << " m, on the drum "
+                         << winch->getPulledInLength() << " m, lowest load " << lowest << " m, tension "
+                         << wire->getTension(S(0)) << " N");
+    if (!autoFeed) {
+      CHECK(wire->getRoute().size() == 3);
+      CHECK(lowest < -1.0);  // the load falls through the slack
+      continue;
+    }
+    // Taut from the start: the slack is on the drum, the load holds within
+    // the stretch under the wire's own weight (~0.1 mm), and the wire's top
+    // segment carries the load and the wire below it (measured: 0.5% under
+    // the weight of all but its top half segment, which hangs on the winch).
+    CHECK(wire->getRoute().size() == 2);
+    CHECK(double(winch->getPulledInLength()) == doctest::Approx(pulledIn + routed - straight).epsilon(1e-6));
+    CHECK(double(winch->getPulledInLength()) + double(wire->getRestLength()) ==
+          doctest::Approx(total).epsilon(std::is_same_v<S, double> ? 1e-12 : 1e-6));
+    CHECK(lowest > -0.5e-3 - mass * kStandardGravity * straight / (6e10 * std::numbers::pi * 1e-4));
+    const double weight = (mass + density * std::numbers::pi * 1e-4 * (straight - 0.25)) * kStandardGravity;
+    CHECK(double(wire->getTension(S(0))) == doctest::Approx(weight).epsilon(0.01));
+    for (const auto& p : wire->getPoints()) CHECK(std::abs(double(p.x())) < 1e-3);
+  }
+}
+
+TEST_CASE("auto-feeding winches share the slack, leave a free end alone and refuse what they cannot feed") {
+  const auto message = [](auto&& make) { return spook::test::errorMessage(make); };
+  // Two auto-feeding winches 10 m apart on the world, routed 2 m above the
+  // line between them: each takes in half of the slack.
+  ref_ptr<Simulation> sim = new Simulation();
+  sim->setUniformGravity(Vec3::Zero());
+  ref_ptr<WireWinchController> left = new WireWinchController(nullptr, Vec3(0, 0, 0), Vec3(1, 0, 0));
+  ref_ptr<WireWinchController> right = new WireWinchController(nullptr, Vec3(10, 0, 0), Vec3(-1, 0, 0));
+  left->setEnableAutoFeed(true);
+  right->setEnableAutoFeed(true);
+  ref_ptr<Wire> span = new Wire(0.01, 2.0);
+  span->add(left, 5.0);
+  span->add(new FreeNode(5, 0, 2));
+  span->add(right, 5.0);
+  sim->add(span);
+  const double slack = 2.0 * std::sqrt(29.0) - 10.0;
+  CHECK(left->getPulledInLength() == doctest::Approx(5.0 + slack / 2).epsilon(1e-12));
+  CHECK(right->getPulledInLength() == doctest::Approx(5.0 + slack / 2).epsilon(1e-12));
+  CHECK(span->getRestLength() == doctest::Approx(10.0).epsilon(1e-12));
+  CHECK(message([&] { left->setEnableAutoFeed(false); }).find("in one already") != std::string::npos);
+
+  // A free end: nothing pulls against the winch; the route stays.
+  ref_ptr<WireWinchController> hoist = new WireWinchController(nullptr, Vec3(0, 5, 10), Vec3(0, 0, -1));
+  hoist->setEnableAutoFeed(true);
+  ref_ptr<Wire> hanging = new Wire(0.01, 2.0);
+  hanging->add(hoist, 5.0);
+  hanging->add(new FreeNode(2, 5, 6));
+  hanging->add(new FreeNode(0, 5, 2));
+  sim->add(hanging);
+  CHECK(hanging->getRoute().size() == 3);
+  CHECK(hoist->getPulledInLength() == 5.0);
+
+  // Routed out and back to the winch's own point: the taut route would
+  // have its two ends coincide. Refused, the wire as routed, nothing added.
+  ref_ptr<WireWinchController> loop = new WireWinchController(nullptr, Vec3(0, -5, 0), Vec3(1, 0, 0));
+  loop->setEnableAutoFeed(true);
+  ref_ptr<Wire> back = new Wire(0.01, 2.0);
+  back->setName("loop");
+  back->add(loop, 5.0);
+  back->add(new FreeNode(3, -5, 0));
+  back->add(new BodyFixedNode(nullptr, Vec3(0, -5, 0)));
+  const std::size_t producers = sim->getRowProducers().size();
+  CHECK(message([&] { sim->add(back); }).find("'loop': consecutive route nodes coincide") != std::string::npos);
+  CHECK(sim->getRowProducers().size() == producers);
+  CHECK(back->getRoute().size() == 3);
+  CHECK(loop->getPulledInLength() == 5.0);
+  loop->setEnableAutoFeed(false);
+  sim->add(back);
+  CHECK(back->getRestLength() == doctest::Approx(6.0).epsilon(1e-12));
 }
 
 TEST_CASE("a winch refuses bad input by name and leaves the simulation unchanged") {

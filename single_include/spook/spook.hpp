@@ -26906,6 +26906,20 @@ class WireWinchControllerT : public Referenced {
   }
   void setBrakeForceRange(S force) { setBrakeForceRange(-force, force); }
 
+  /// Auto-feed (off by default): when its wire is added to a simulation
+  /// with both ends held (no free end), the wire's routing points (free
+  /// nodes) are dropped and it starts straight between the rest of its
+  /// route (winches, eyes, contact nodes, fixed ends), this winch taking in
+  /// the slack they made, or paying out what the straight route needs more
+  /// (shared equally with an auto-feeding winch at the other end). The wire
+  /// may then start through geometry the routing points led it around.
+  /// Set before the wire is in a simulation.
+  [[nodiscard]] bool getEnableAutoFeed() const { return autoFeed_; }
+  void setEnableAutoFeed(bool enable) {
+    if (store_) throw error("auto-feed acts when its wire is added to a simulation; it is in one already", enable);
+    autoFeed_ = enable;
+  }
+
   /// Wire on the drum (m): the initial length given to Wire::add, then what
   /// the winch has hauled in or paid out.
   [[nodiscard]] S getPulledInLength() const { return S(store_ ? store_->drum(drum_).pulledIn : pulledIn_); }
@@ -26940,6 +26954,7 @@ class WireWinchControllerT : public Referenced {
   Vec3 direction_;
   std::string name_;
   S speed_ = S(0);
+  bool autoFeed_ = false;
   S forceLower_ = S(0), forceUpper_ = S(0);
   S brakeLower_ = -std::numeric_limits<S>::infinity(), brakeUpper_ = std::numeric_limits<S>::infinity();
   // Kept by the wire it is routed in: the initial pulled-in length, then
@@ -27169,6 +27184,7 @@ class WireT : public RowProducer {
   [[nodiscard]] bool built() const { return !points_.empty(); }
   void checkRoute(const StepContext& simulation) const;
   void build(const StepContext& simulation);
+  void feedTaut(const StepContext& simulation);
   /// The node spacing the step can resolve (m): the wire's (1/resolution)
   /// and no less than the distance a node falls in a step, |g|h². Shorter
   /// segments turn by more than a radian in a step where one end is held
@@ -27696,13 +27712,56 @@ template <Scalar S>
 void WireT<S>::prepare(const StepContext& simulation) {
   checkRoute(simulation);
   if (built()) return;
+  const std::vector<ref_ptr<Node>> routed = route_;
+  double pulledIn[2] = {0.0, 0.0};
+  for (int end = 0; end < 2; ++end)
+    if (winches_[end]) pulledIn[end] = winches_[end]->pulledIn_;
   try {
     build(simulation);
+    feedTaut(simulation);
   } catch (...) {
     // Refused: the wire stays as routed (its store is not in the simulation yet).
     clearState();
     nodes_ = new detail::WireNodes();
+    route_ = routed;
+    for (int end = 0; end < 2; ++end) {
+      if (!winches_[end]) continue;
+      winches_[end]->pulledIn_ = pulledIn[end];
+      winches_[end]->store_ = nullptr;
+    }
     throw;
+  }
+}
+
+// Auto-feed (WireWinchController::setEnableAutoFeed): between two held ends
+// the routing points (free nodes) are dropped, the wire is built straight
+// between the rest of its route, and its auto-feeding winches take in the
+// length that made it slack (or pay out what the taut route needs more), in
+// equal shares; the wire's length, free and on the drums, is unchanged.
+template <Scalar S>
+void WireT<S>::feedTaut(const StepContext& simulation) {
+  const bool feeds[2] = {winches_[0] && winches_[0]->autoFeed_, winches_[1] && winches_[1]->autoFeed_};
+  const auto held = [&](const Node& node) { return node.getType() != Node::Type::FREE; };
+  if (!(feeds[0] || feeds[1]) || !held(*route_.front()) || !held(*route_.back())) return;
+  std::vector<ref_ptr<Node>> taut;
+  for (const auto& node : route_)
+    if (held(*node)) taut.push_back(node);
+  if (taut.size() == route_.size()) return;
+  const double routedLength = double(getRestLength());
+  clearState();
+  nodes_ = new detail::WireNodes();
+  route_ = std::move(taut);
+  checkRoute(simulation);
+  build(simulation);
+  const double share = (routedLength - double(getRestLength())) / double(int(feeds[0]) + int(feeds[1]));
+  for (int end = 0; end < 2; ++end) {
+    if (!feeds[end]) continue;
+    Winch& winch = *winches_[end];
+    if (!(winch.pulledIn_ + share >= 0.0))
+      throw error("auto-feed: the taut route needs more wire than the winch holds; m lacking",
+                  -(winch.pulledIn_ + share));
+    winch.pulledIn_ += share;
+    nodes_->drum(winch.drum_).pulledIn = winch.pulledIn_;
   }
 }
 

@@ -257,6 +257,7 @@ class WireT : public RowProducer {
   [[nodiscard]] bool built() const { return !points_.empty(); }
   void checkRoute(const StepContext& simulation) const;
   void build(const StepContext& simulation);
+  void feedTaut(const StepContext& simulation);
   /// The node spacing the step can resolve (m): the wire's (1/resolution)
   /// and no less than the distance a node falls in a step, |g|h². Shorter
   /// segments turn by more than a radian in a step where one end is held
@@ -784,13 +785,56 @@ template <Scalar S>
 void WireT<S>::prepare(const StepContext& simulation) {
   checkRoute(simulation);
   if (built()) return;
+  const std::vector<ref_ptr<Node>> routed = route_;
+  double pulledIn[2] = {0.0, 0.0};
+  for (int end = 0; end < 2; ++end)
+    if (winches_[end]) pulledIn[end] = winches_[end]->pulledIn_;
   try {
     build(simulation);
+    feedTaut(simulation);
   } catch (...) {
     // Refused: the wire stays as routed (its store is not in the simulation yet).
     clearState();
     nodes_ = new detail::WireNodes();
+    route_ = routed;
+    for (int end = 0; end < 2; ++end) {
+      if (!winches_[end]) continue;
+      winches_[end]->pulledIn_ = pulledIn[end];
+      winches_[end]->store_ = nullptr;
+    }
     throw;
+  }
+}
+
+// Auto-feed (WireWinchController::setEnableAutoFeed): between two held ends
+// the routing points (free nodes) are dropped, the wire is built straight
+// between the rest of its route, and its auto-feeding winches take in the
+// length that made it slack (or pay out what the taut route needs more), in
+// equal shares; the wire's length, free and on the drums, is unchanged.
+template <Scalar S>
+void WireT<S>::feedTaut(const StepContext& simulation) {
+  const bool feeds[2] = {winches_[0] && winches_[0]->autoFeed_, winches_[1] && winches_[1]->autoFeed_};
+  const auto held = [&](const Node& node) { return node.getType() != Node::Type::FREE; };
+  if (!(feeds[0] || feeds[1]) || !held(*route_.front()) || !held(*route_.back())) return;
+  std::vector<ref_ptr<Node>> taut;
+  for (const auto& node : route_)
+    if (held(*node)) taut.push_back(node);
+  if (taut.size() == route_.size()) return;
+  const double routedLength = double(getRestLength());
+  clearState();
+  nodes_ = new detail::WireNodes();
+  route_ = std::move(taut);
+  checkRoute(simulation);
+  build(simulation);
+  const double share = (routedLength - double(getRestLength())) / double(int(feeds[0]) + int(feeds[1]));
+  for (int end = 0; end < 2; ++end) {
+    if (!feeds[end]) continue;
+    Winch& winch = *winches_[end];
+    if (!(winch.pulledIn_ + share >= 0.0))
+      throw error("auto-feed: the taut route needs more wire than the winch holds; m lacking",
+                  -(winch.pulledIn_ + share));
+    winch.pulledIn_ += share;
+    nodes_->drum(winch.drum_).pulledIn = winch.pulledIn_;
   }
 }
 

@@ -87,6 +87,20 @@ class WireWinchControllerT : public Referenced {
   }
   void setBrakeForceRange(S force) { setBrakeForceRange(-force, force); }
 
+  /// Auto-feed (off by default): when its wire is added to a simulation
+  /// with both ends held (no free end), the wire's routing points (free
+  /// nodes) are dropped and it starts straight between the rest of its
+  /// route (winches, eyes, contact nodes, fixed ends), this winch taking in
+  /// the slack they made, or paying out what the straight route needs more
+  /// (shared equally with an auto-feeding winch at the other end). The wire
+  /// may then start through geometry the routing points led it around.
+  /// Set before the wire is in a simulation.
+  [[nodiscard]] bool getEnableAutoFeed() const { return autoFeed_; }
+  void setEnableAutoFeed(bool enable) {
+    if (store_) throw error("auto-feed acts when its wire is added to a simulation; it is in one already", enable);
+    autoFeed_ = enable;
+  }
+
   /// Wire on the drum (m): the initial length given to Wire::add, then what
   /// the winch has hauled in or paid out.
   [[nodiscard]] S getPulledInLength() const { return S(store_ ? store_->drum(drum_).pulledIn : pulledIn_); }
@@ -121,6 +135,7 @@ class WireWinchControllerT : public Referenced {
   Vec3 direction_;
   std::string name_;
   S speed_ = S(0);
+  bool autoFeed_ = false;
   S forceLower_ = S(0), forceUpper_ = S(0);
   S brakeLower_ = -std::numeric_limits<S>::infinity(), brakeUpper_ = std::numeric_limits<S>::infinity();
   // Kept by the wire it is routed in: the initial pulled-in length, then
