@@ -24612,6 +24612,13 @@ namespace spook::detail {
 /// the force has no torque. Its ρ is taken with that inertia, which keeps
 /// the damping off free swinging (a 1 kg bob with I = 0.004 kg·m² on a 1 m
 /// hinge has ρ = 2 about its center at 60 Hz, 0.008 about the pivot).
+/// Only the directions the point is held in count: with P the projector
+/// on the span of its rows' directions the inertia is I + [r]ₓᵀP M P[r]ₓ.
+/// A point held along one line (the end of a wire or a distance joint)
+/// moves freely across it, so the body rocks about its center against the
+/// tension's lever, a spring of ω² = |f||r|/I: 1e5 kg of I = 1 kg·m² hung
+/// 0.5 m below its center by a steel wire spun up to 1e4 rad/s at 60 Hz
+/// when its turn was taken as about a fixed point.
 ///
 /// K̃ is taken first from the last step's forces, then from the step's own:
 /// a chain's tension jumps from step to step (a 1:1e6 chain released
@@ -24691,9 +24698,21 @@ class GeometricStiffness {
   /// Where a body's row forces act: one point (arm from its center) or several.
   struct Held {
     Vec3d arm = Vec3d::Zero();
+    Mat3d directions = Mat3d::Zero();  ///< Σ d dᵀ of the rows' unit directions there
     int rows = 0;
     bool single = false;
   };
+
+  /// Projector on the span of a held point's row directions (Held::directions).
+  static Mat3d heldDirections(const Mat3d& directions) {
+    const Eigen::SelfAdjointEigenSolver<Mat3d> eigen(directions);
+    Mat3d projector = Mat3d::Zero();
+    const double largest = eigen.eigenvalues().maxCoeff();
+    for (int k = 0; k < 3; ++k)
+      if (eigen.eigenvalues()(k) > 1e-6 * largest)
+        projector.noalias() += eigen.eigenvectors().col(k) * eigen.eigenvectors().col(k).transpose();
+    return projector;
+  }
 
   struct Original {
     std::size_t body;
@@ -24790,6 +24809,21 @@ SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vec
     accumulate(r.body2, force * r.J2.head<3>(), a.arm2, bodies);
   }
   if (!any_) return;
+  // The directions a single held point is held in: those of every row
+  // acting there, loaded or not (a bob hanging on a hinge loads only the
+  // row along its rod).
+  const auto holdAlong = [&](int body, const Vec3d& direction, const Vec3d& arm) {
+    if (body < 0) return;
+    Held& held = heldAt_[static_cast<std::size_t>(body)];
+    const double length = direction.norm();
+    if (held.single && length > 0.0 && (arm - held.arm).norm() <= 1e-3 * (1.0 + arm.norm()))
+      held.directions.noalias() += direction * direction.transpose() / (length * length);
+  };
+  for (const LeverArms& a : rows.arms) {
+    const Row& r = rows.rows[static_cast<std::size_t>(a.row)];
+    holdAlong(r.body1, r.J1.head<3>(), a.arm1);
+    holdAlong(r.body2, r.J2.head<3>(), a.arm2);
+  }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const SolverBody& b = bodies[i];
     if (!b.dynamic || stiffness_[i].isZero(0.0)) continue;
@@ -24807,9 +24841,12 @@ SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vec
     const Mat3d stiffness = eigen.eigenvectors() * tension.asDiagonal() * eigen.eigenvectors().transpose();
     const Held& held = heldAt_[i];
     const Mat3d arm = skew<double>(held.arm);
-    const Mat3d modeInverseInertia =
-        held.single ? Mat3d((b.inverseInertia.inverse() + arm.transpose() * b.inverseMass.inverse() * arm).inverse())
-                    : b.inverseInertia;
+    Mat3d modeInverseInertia = b.inverseInertia;
+    if (held.single) {
+      const Mat3d P = heldDirections(held.directions);
+      modeInverseInertia =
+          (b.inverseInertia.inverse() + arm.transpose() * P * b.inverseMass.inverse() * P * arm).inverse();
+    }
     // Modes of the body's turn: I⁻¹K̃ has eigenvalues ω_k²; with
     // I⁻¹ = L Lᵀ they are those of LᵀK̃L = U diag(ω²) Uᵀ, and mode k adds
     // L⁻ᵀu_k ω_k² u_kᵀL⁻¹ to K̃. Each mode is taken with its own weight,
@@ -26007,9 +26044,13 @@ namespace spook::detail {
 struct WireRowBodies {
   int index[3] = {-1, -1, -1};
   Vec6d J[3] = {Vec6d::Zero(), Vec6d::Zero(), Vec6d::Zero()};
+  /// Arms of points that turn with their body (a wire's end fixed to it),
+  /// the row's share of the geometric stiffness; zero elsewhere (a wrap's
+  /// tangent point stays where the wire leaves the geometry).
+  Eigen::Vector3d turningArm[3] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   int count = 0;
   bool overflow = false;
-  void add(int body, const Eigen::Vector3d& a, const Eigen::Vector3d& arm) {
+  void add(int body, const Eigen::Vector3d& a, const Eigen::Vector3d& arm, bool turnsWithBody = false) {
     if (body < 0) return;
     int k = 0;
     while (k < count && index[k] != body) ++k;
@@ -26020,6 +26061,7 @@ struct WireRowBodies {
     if (k == count) index[count++] = body;
     J[k].head<3>() += a;
     J[k].tail<3>() += arm.cross(a);
+    if (turnsWithBody) turningArm[k] = arm;
   }
   void write(RowWriter& rows, Row& row) const {
     row.body1 = index[0];
@@ -26027,6 +26069,8 @@ struct WireRowBodies {
     row.body2 = index[1];
     row.J2 = J[1];
     if (count == 3) rows.setThirdBody(rows.size() - 1, index[2], J[2]);
+    if (!(turningArm[0].isZero(0.0) && turningArm[1].isZero(0.0)))
+      rows.setLeverArms(rows.size() - 1, turningArm[0], turningArm[1]);
   }
 };
 }  // namespace spook::detail
@@ -28305,9 +28349,13 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
       continue;
     }
     const Vec3d u = straight > 0.0 ? Vec3d(d / straight) : Vec3d::UnitX();
+    // An end fixed to a body is pulled at a point that turns with it: a
+    // light body hung off its center at high tension is a stiff spring
+    // (solver/geometric_stiffness.hpp).
+    const auto fixedToBody = [&](std::size_t i) { return points_[i].node < 0 && points_[i].contact < 0; };
     detail::WireRowBodies bodies;
-    bodies.add(state_[k].index, u, state_[k].armOut);
-    bodies.add(state_[k + 1].index, -u, state_[k + 1].armIn);
+    bodies.add(state_[k].index, u, state_[k].armOut, fixedToBody(k));
+    bodies.add(state_[k + 1].index, -u, state_[k + 1].armIn, fixedToBody(k + 1));
     bodies.add(drumIndex(k), Vec3d::UnitX(), Vec3d::Zero());
     bodies.add(state_[k].slip, -Vec3d::UnitX(), Vec3d::Zero());
     bodies.add(state_[k + 1].slip, Vec3d::UnitX(), Vec3d::Zero());

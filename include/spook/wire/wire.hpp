@@ -1378,9 +1378,13 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
       continue;
     }
     const Vec3d u = straight > 0.0 ? Vec3d(d / straight) : Vec3d::UnitX();
+    // An end fixed to a body is pulled at a point that turns with it: a
+    // light body hung off its center at high tension is a stiff spring
+    // (solver/geometric_stiffness.hpp).
+    const auto fixedToBody = [&](std::size_t i) { return points_[i].node < 0 && points_[i].contact < 0; };
     detail::WireRowBodies bodies;
-    bodies.add(state_[k].index, u, state_[k].armOut);
-    bodies.add(state_[k + 1].index, -u, state_[k + 1].armIn);
+    bodies.add(state_[k].index, u, state_[k].armOut, fixedToBody(k));
+    bodies.add(state_[k + 1].index, -u, state_[k + 1].armIn, fixedToBody(k + 1));
     bodies.add(drumIndex(k), Vec3d::UnitX(), Vec3d::Zero());
     bodies.add(state_[k].slip, -Vec3d::UnitX(), Vec3d::Zero());
     bodies.add(state_[k + 1].slip, Vec3d::UnitX(), Vec3d::Zero());
