@@ -24811,19 +24811,23 @@ SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vec
   if (!any_) return;
   // The directions a single held point is held in: those of every row
   // acting there, loaded or not (a bob hanging on a hinge loads only the
-  // row along its rod).
-  const auto holdAlong = [&](int body, const Vec3d& direction, const Vec3d& arm) {
-    if (body < 0) return;
-    Held& held = heldAt_[static_cast<std::size_t>(body)];
-    const double length = direction.norm();
-    if (held.single && length > 0.0 && (arm - held.arm).norm() <= 1e-3 * (1.0 + arm.norm()))
-      held.directions.noalias() += direction * direction.transpose() / (length * length);
+  // row along its rod); gathered once a body needs them.
+  bool directionsGathered = false;
+  const auto gatherDirections = [&] {
+    const auto holdAlong = [&](int body, const Vec3d& direction, const Vec3d& arm) {
+      if (body < 0) return;
+      Held& held = heldAt_[static_cast<std::size_t>(body)];
+      const double length = direction.norm();
+      if (held.single && length > 0.0 && (arm - held.arm).norm() <= 1e-3 * (1.0 + arm.norm()))
+        held.directions.noalias() += direction * direction.transpose() / (length * length);
+    };
+    for (const LeverArms& a : rows.arms) {
+      const Row& r = rows.rows[static_cast<std::size_t>(a.row)];
+      holdAlong(r.body1, r.J1.head<3>(), a.arm1);
+      holdAlong(r.body2, r.J2.head<3>(), a.arm2);
+    }
+    directionsGathered = true;
   };
-  for (const LeverArms& a : rows.arms) {
-    const Row& r = rows.rows[static_cast<std::size_t>(a.row)];
-    holdAlong(r.body1, r.J1.head<3>(), a.arm1);
-    holdAlong(r.body2, r.J2.head<3>(), a.arm2);
-  }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const SolverBody& b = bodies[i];
     if (!b.dynamic || stiffness_[i].isZero(0.0)) continue;
@@ -24843,6 +24847,7 @@ SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vec
     const Mat3d arm = skew<double>(held.arm);
     Mat3d modeInverseInertia = b.inverseInertia;
     if (held.single) {
+      if (!directionsGathered) gatherDirections();
       const Mat3d P = heldDirections(held.directions);
       modeInverseInertia =
           (b.inverseInertia.inverse() + arm.transpose() * P * b.inverseMass.inverse() * P * arm).inverse();
