@@ -46,7 +46,11 @@ namespace spook::detail {
 /// moves freely across it, so the body rocks about its center against the
 /// tension's lever, a spring of ω² = |f||r|/I: 1e5 kg of I = 1 kg·m² hung
 /// 0.5 m below its center by a steel wire spun up to 1e4 rad/s at 60 Hz
-/// when its turn was taken as about a fixed point.
+/// when its turn was taken as about a fixed point. Such a body's modes take
+/// the stiffness at full weight (threshold 0): its rocking's (hω)² passes
+/// through small values as the held direction turns across its arm, where
+/// the weights left it explicit (I = 100 kg·m² at h = 0.1 s: 4,800 rad/s);
+/// the swing it takes part in is the wire's, which that does not damp.
 ///
 /// K̃ is taken first from the last step's forces, then from the step's own:
 /// a chain's tension jumps from step to step (a 1:1e6 chain released
@@ -274,11 +278,13 @@ SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vec
     const Held& held = heldAt_[i];
     const Mat3d arm = skew<double>(held.arm);
     Mat3d modeInverseInertia = b.inverseInertia;
+    double modeThreshold = threshold;
     if (held.single) {
       if (!directionsGathered) gatherDirections();
       const Mat3d P = heldDirections(held.directions);
       modeInverseInertia =
           (b.inverseInertia.inverse() + arm.transpose() * P * b.inverseMass.inverse() * P * arm).inverse();
+      if (P.trace() < 2.5) modeThreshold = 0.0;
     }
     // Modes of the body's turn: I⁻¹K̃ has eigenvalues ω_k²; with
     // I⁻¹ = L Lᵀ they are those of LᵀK̃L = U diag(ω²) Uᵀ, and mode k adds
@@ -293,7 +299,7 @@ SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vec
     Vec3d weighted = Vec3d::Zero();
     for (int k = 0; k < 3; ++k) {
       const double rho = h * h * modes.eigenvalues()(k);
-      if (rho > threshold) weighted(k) = (1.0 - threshold / rho) * modes.eigenvalues()(k);
+      if (rho > modeThreshold) weighted(k) = (1.0 - modeThreshold / rho) * modes.eigenvalues()(k);
     }
     if (!weighted.isZero(0.0)) added[i] = h * h * toStiffness * weighted.asDiagonal() * toStiffness.transpose();
   }
