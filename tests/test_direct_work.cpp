@@ -10,6 +10,7 @@
 #include "contact_scenes.hpp"
 #include "error_message.hpp"
 #include "policies.hpp"
+#include "tolerance.hpp"
 
 // Solver::setMaxDirectWork: the direct solves of an island spend at most
 // that many multiply-adds on factorizations in a step, and a solve that
@@ -28,10 +29,14 @@ struct PileRun {
   int cuts = 0;            ///< coupling and friction passes the budget cut, over the run
   double mostWork = 0.0;   ///< the largest SolverStatistics::directWork of a step
   int mostIslands = 0;
+  int steps = 0;
 };
 
+/// 6 s at 60 Hz; 3 s in the sanitized build.
+constexpr int kPileSteps = spook::test::sweep(360, 180);
+
 template <class S>
-PileRun runPile(double maxWork, int steps = 360, spook::test::Policy policy = spook::test::Policy::DIRECT) {
+PileRun runPile(double maxWork, int steps = kPileSteps, spook::test::Policy policy = spook::test::Policy::DIRECT) {
   spook::ref_ptr<spook::SimulationT<S>> sim = new spook::SimulationT<S>();
   sim->setSolver(spook::test::makeSolver(policy));
   if (maxWork > 0.0) sim->getSolver()->setMaxDirectWork(maxWork);
@@ -39,6 +44,7 @@ PileRun runPile(double maxWork, int steps = 360, spook::test::Policy policy = sp
   spook::test::addGround(*sim, material);
   const auto balls = spook::test::addSpherePile(*sim, material, material);
   PileRun run;
+  run.steps = steps;
   run.lowest = std::numeric_limits<double>::infinity();
   double kinetic = 0.0;
   for (int step = 0; step < steps; ++step) {
@@ -94,7 +100,7 @@ TEST_CASE_TEMPLATE("a direct solve that cannot afford a factorization falls back
           starved.fallbacks, " fallbacks");
   CHECK(starved.factorizations == 0);
   CHECK(starved.mostWork == 0.0);
-  CHECK(starved.fallbacks >= 360);  // at least one island a step
+  CHECK(starved.fallbacks >= starved.steps);  // at least one island a step
   CHECK(starved.rmsSpeed < 0.01);
   CHECK(starved.deepest < 2e-3);
   CHECK(starved.lowest > 0.1 - 2e-3);  // radius 0.1 m on the ground
@@ -125,11 +131,12 @@ TEST_CASE_TEMPLATE("a direct solve that cannot afford a factorization falls back
 TEST_CASE_TEMPLATE("the hybrid's normals answer the friction when its direct solves run out of budget", S, float,
                    double) {
   for (const double budget : {1.0, 1e5}) {
+    // 6 s in every build: the float pile still moves at 37 mm/s after 3 s.
     const direct_work_test::PileRun run = direct_work_test::runPile<S>(budget, 360, spook::test::Policy::HYBRID);
     MESSAGE("budget ", budget, ": deepest ", run.deepest * 1e3, " mm, rms speed ", run.rmsSpeed * 1e3, " mm/s, ",
             run.fallbacks, " fallbacks, ", run.cuts, " cuts");
     CAPTURE(budget);
-    CHECK(run.fallbacks + run.cuts >= 300);  // the budget binds in most steps
+    CHECK(run.fallbacks + run.cuts >= run.steps * 5 / 6);  // the budget binds in most steps
     CHECK(run.deepest < 1.5e-3);
     CHECK(run.rmsSpeed < 0.01);
     CHECK(run.lowest > 0.1 - 2e-3);
