@@ -24707,6 +24707,12 @@ class GeometricStiffness {
     bool single = false;
   };
 
+  /// Whether two rows' arms reach one point: those of one joint's rows
+  /// differ by its violation (Dot2 rows act at p₁).
+  static bool sameArm(const Vec3d& arm, const Vec3d& heldArm) {
+    return (arm - heldArm).norm() <= 1e-3 * (1.0 + arm.norm());
+  }
+
   /// Projector on the span of a held point's row directions (Held::directions).
   static Mat3d heldDirections(const Mat3d& directions) {
     const Eigen::SelfAdjointEigenSolver<Mat3d> eigen(directions);
@@ -24822,7 +24828,7 @@ SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vec
       if (body < 0) return;
       Held& held = heldAt_[static_cast<std::size_t>(body)];
       const double length = direction.norm();
-      if (held.single && length > 0.0 && (arm - held.arm).norm() <= 1e-3 * (1.0 + arm.norm()))
+      if (held.single && length > 0.0 && sameArm(arm, held.arm))
         held.directions.noalias() += direction * direction.transpose() / (length * length);
     };
     for (const LeverArms& a : rows.arms) {
@@ -24898,8 +24904,7 @@ SPOOK_INLINE void GeometricStiffness::accumulate(int body, const Vec3d& force, c
   stiffness_[i].diagonal().array() -= force.dot(arm);
   Held& held = heldAt_[i];
   if (held.rows == 0) held.arm = arm;
-  // Arms of one joint's rows differ by its violation (Dot2 rows act at p₁).
-  held.single = (held.rows == 0 || held.single) && (arm - held.arm).norm() <= 1e-3 * (1.0 + arm.norm());
+  held.single = (held.rows == 0 || held.single) && sameArm(arm, held.arm);
   ++held.rows;
   any_ = true;
 }
@@ -28350,6 +28355,10 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   // (∂g/∂s = 1 before, −1 after). Across a wrap, the length's derivative is
   // the tangent's direction at the tangent point (which the geometry's body
   // carries with C).
+  // An end fixed to a body is pulled at a point that turns with it: a
+  // light body hung off its center at high tension is a stiff spring
+  // (solver/geometric_stiffness.hpp).
+  const auto fixedToBody = [&](std::size_t i) { return points_[i].node < 0 && points_[i].contact < 0; };
   for (std::size_t k = 0; k + 1 < n; ++k) {
     const Vec3d d = state_[k + 1].in - state_[k].out;
     const double straight = d.norm();
@@ -28360,10 +28369,6 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
       continue;
     }
     const Vec3d u = straight > 0.0 ? Vec3d(d / straight) : Vec3d::UnitX();
-    // An end fixed to a body is pulled at a point that turns with it: a
-    // light body hung off its center at high tension is a stiff spring
-    // (solver/geometric_stiffness.hpp).
-    const auto fixedToBody = [&](std::size_t i) { return points_[i].node < 0 && points_[i].contact < 0; };
     detail::WireRowBodies bodies;
     bodies.add(state_[k].index, u, state_[k].armOut, fixedToBody(k));
     bodies.add(state_[k + 1].index, -u, state_[k + 1].armIn, fixedToBody(k + 1));

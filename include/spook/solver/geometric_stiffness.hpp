@@ -135,6 +135,12 @@ class GeometricStiffness {
     bool single = false;
   };
 
+  /// Whether two rows' arms reach one point: those of one joint's rows
+  /// differ by its violation (Dot2 rows act at p₁).
+  static bool sameArm(const Vec3d& arm, const Vec3d& heldArm) {
+    return (arm - heldArm).norm() <= 1e-3 * (1.0 + arm.norm());
+  }
+
   /// Projector on the span of a held point's row directions (Held::directions).
   static Mat3d heldDirections(const Mat3d& directions) {
     const Eigen::SelfAdjointEigenSolver<Mat3d> eigen(directions);
@@ -250,7 +256,7 @@ SPOOK_INLINE void GeometricStiffness::compute(const RowSet& rows, const std::vec
       if (body < 0) return;
       Held& held = heldAt_[static_cast<std::size_t>(body)];
       const double length = direction.norm();
-      if (held.single && length > 0.0 && (arm - held.arm).norm() <= 1e-3 * (1.0 + arm.norm()))
+      if (held.single && length > 0.0 && sameArm(arm, held.arm))
         held.directions.noalias() += direction * direction.transpose() / (length * length);
     };
     for (const LeverArms& a : rows.arms) {
@@ -326,8 +332,7 @@ SPOOK_INLINE void GeometricStiffness::accumulate(int body, const Vec3d& force, c
   stiffness_[i].diagonal().array() -= force.dot(arm);
   Held& held = heldAt_[i];
   if (held.rows == 0) held.arm = arm;
-  // Arms of one joint's rows differ by its violation (Dot2 rows act at p₁).
-  held.single = (held.rows == 0 || held.single) && (arm - held.arm).norm() <= 1e-3 * (1.0 + arm.norm());
+  held.single = (held.rows == 0 || held.single) && sameArm(arm, held.arm);
   ++held.rows;
   any_ = true;
 }

@@ -1368,6 +1368,10 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
   // (∂g/∂s = 1 before, −1 after). Across a wrap, the length's derivative is
   // the tangent's direction at the tangent point (which the geometry's body
   // carries with C).
+  // An end fixed to a body is pulled at a point that turns with it: a
+  // light body hung off its center at high tension is a stiff spring
+  // (solver/geometric_stiffness.hpp).
+  const auto fixedToBody = [&](std::size_t i) { return points_[i].node < 0 && points_[i].contact < 0; };
   for (std::size_t k = 0; k + 1 < n; ++k) {
     const Vec3d d = state_[k + 1].in - state_[k].out;
     const double straight = d.norm();
@@ -1378,10 +1382,6 @@ void WireT<S>::writeRows(RowWriter& rows, const StepContext& step) {
       continue;
     }
     const Vec3d u = straight > 0.0 ? Vec3d(d / straight) : Vec3d::UnitX();
-    // An end fixed to a body is pulled at a point that turns with it: a
-    // light body hung off its center at high tension is a stiff spring
-    // (solver/geometric_stiffness.hpp).
-    const auto fixedToBody = [&](std::size_t i) { return points_[i].node < 0 && points_[i].contact < 0; };
     detail::WireRowBodies bodies;
     bodies.add(state_[k].index, u, state_[k].armOut, fixedToBody(k));
     bodies.add(state_[k + 1].index, -u, state_[k + 1].armIn, fixedToBody(k + 1));
